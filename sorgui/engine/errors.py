@@ -1,0 +1,43 @@
+"""The engine's one exception hierarchy: callers catch :class:`SorguiError`."""
+
+from __future__ import annotations
+
+
+class SorguiError(Exception):
+    """Base class of every error the exact engine raises on purpose."""
+
+    def __init__(self, message: str) -> None:
+        super().__init__(message)
+        self.message = message
+
+
+class ParseError(SorguiError):
+    """Pasted text is not a polynomial in x, y, z; ``position`` is the 0-based character offset."""
+
+    def __init__(self, message: str, position: int, end: int | None = None) -> None:
+        super().__init__(message)
+        self.position = position
+        self.end = position + 1 if end is None else end
+
+    def __str__(self) -> str:
+        return f"{self.message} (at character {self.position + 1})"
+
+
+class AnalysisError(SorguiError):
+    """The input parsed, but the analysis cannot proceed (e.g. a degenerate surface)."""
+
+
+class SingularError(SorguiError):
+    """Singular failed, was not found, or answered something that could not be read."""
+
+
+class SingularNotFound(SingularError):
+    """Neither the bundled nor a system ``Singular`` executable exists."""
+
+
+class SingularTimeout(SingularError):
+    """A Singular computation did not finish within its time limit."""
+
+
+class Cancelled(SorguiError):
+    """The computation was cancelled by the caller."""

@@ -1,0 +1,213 @@
+"""Exact polynomials over the coefficient field K: one facade over sympy and python-flint.
+
+The engine's canonical polynomial is sympy's sparse ``PolyElement`` over a domain ``K``: ``QQ``
+or a real algebraic field ``QQ(sqrt(n1), sqrt(n2), ...)`` (MATH.md: ``K ⊂ R``). Algorithm choice
+is made here and nowhere else: over ``QQ`` the heavy operations (composition, derivatives,
+factorization) convert to python-flint's ``fmpq_mpoly``, which is orders of magnitude faster
+than pure Python; over an algebraic field they stay in sympy, whose ``ANP`` arithmetic is exact.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from fractions import Fraction
+from functools import lru_cache
+from typing import Any
+
+import sympy
+from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
+from sympy.polys.domains import QQ
+from sympy.polys.domains.domain import Domain
+from sympy.polys.rings import PolyElement, PolyRing, ring
+
+Poly = PolyElement
+"""A polynomial of the engine: sympy's sparse ``PolyElement`` over ``K``."""
+
+XYZ = ("x", "y", "z")
+
+
+# --- the coefficient field K -------------------------------------------------------------
+
+
+@lru_cache(maxsize=64)
+def number_field(radicands: tuple[int, ...] = ()) -> Domain:
+    """The real field ``QQ(sqrt(n) for n in radicands)``; ``QQ`` when there are none.
+
+    Radicands are square-free integers > 1 (the parser reduces ``sqrt(8)`` to ``2*sqrt(2)``).
+    """
+    roots = sorted(set(radicands))
+    if not roots:
+        return QQ
+    return QQ.algebraic_field(*[sympy.sqrt(n) for n in roots])
+
+
+def is_rational_field(K: Domain) -> bool:
+    """True when ``K`` is ``QQ`` (the flint fast path applies)."""
+    return K == QQ
+
+
+def field_name(K: Domain) -> str:
+    """A readable name of ``K``: ``QQ`` or ``QQ(sqrt(2), sqrt(3))``."""
+    if is_rational_field(K):
+        return "QQ"
+    gens = ", ".join(str(g) for g in field_generators(K))
+    return f"QQ({gens})"
+
+
+def field_generators(K: Domain) -> list[sympy.Expr]:
+    """The square roots that generate ``K`` over ``QQ``."""
+    if is_rational_field(K):
+        return []
+    ext = K.ext.as_expr() if hasattr(K.ext, "as_expr") else K.ext
+    return sorted(sympy.Add.make_args(sympy.sympify(ext)), key=str) if K.orig_ext is None else [
+        sympy.sympify(e) for e in K.orig_ext
+    ]
+
+
+def to_expr(K: Domain, c: Any) -> sympy.Expr:
+    """The coefficient ``c ∈ K`` as an exact sympy expression (``sqrt(2)/2``)."""
+    return K.to_sympy(c)
+
+
+def to_str(K: Domain, c: Any) -> str:
+    """``c ∈ K`` as a string that ``sympy.sympify`` reads back exactly (``"3/5"``)."""
+    return str(to_expr(K, c))
+
+
+def from_rational(K: Domain, q: Fraction | int) -> Any:
+    """The rational number ``q`` as an element of ``K``."""
+    q = Fraction(q)
+    return K.convert(QQ(q.numerator, q.denominator))
+
+
+def sqrt_in_field(K: Domain, c: Any) -> Any | None:
+    """A square root of ``c`` in ``K``, or ``None`` when ``c`` is not a square in ``K``."""
+    if K.is_zero(c):
+        return K.zero
+    t = sympy.Symbol("t")
+    gens = field_generators(K)
+    _, factors = sympy.factor_list(t**2 - to_expr(K, c), t, extension=gens or None)
+    for g, _ in factors:
+        p = sympy.Poly(g, t)
+        if p.degree() == 1:
+            root = -p.coeff_monomial(1) / p.coeff_monomial(t)
+            value = K.from_sympy(sympy.nsimplify(root) if not gens else root)
+            return value if K.to_sympy(value).is_nonnegative is not False else -value
+    return None
+
+
+# --- rings and conversions ---------------------------------------------------------------
+
+
+@lru_cache(maxsize=256)
+def poly_ring(names: tuple[str, ...], K: Domain) -> PolyRing:
+    """The ring ``K[names]`` (cached, so rings compare equal across calls)."""
+    R, *_ = ring(",".join(names), K)
+    return R
+
+
+@lru_cache(maxsize=256)
+def _flint_ctx(nvars: int) -> fmpq_mpoly_ctx:
+    names = tuple(f"v{i}" for i in range(nvars))
+    return fmpq_mpoly_ctx.get(names, "lex")
+
+
+def to_flint(f: Poly) -> fmpq_mpoly:
+    """``f ∈ QQ[...]`` as a flint ``fmpq_mpoly`` (the fast representation)."""
+    return _flint_ctx(f.ring.ngens).from_dict(dict(f.items()))
+
+
+def from_flint(g: fmpq_mpoly, R: PolyRing) -> Poly:
+    """The flint polynomial ``g`` as an element of ``R`` (over ``QQ``)."""
+    return R.from_dict({m: QQ(c) if not isinstance(c, fmpq) else c for m, c in g.to_dict().items()})
+
+
+def compose(f: Poly, images: Sequence[Poly]) -> Poly:
+    """``f(images[0], images[1], ...)``: all images in one common target ring.
+
+    This is the workhorse of the profile ``p̃(s, r) = f(c + s·a + r·u)`` and of every identity
+    check (MATH.md §3).
+    """
+    target = images[0].ring
+    if is_rational_field(f.ring.domain) and is_rational_field(target.domain):
+        ctx = _flint_ctx(target.ngens)
+        g = to_flint(f).compose(*[to_flint(h) for h in images], ctx=ctx)
+        return from_flint(g, target)
+    images = [target.domain_new(0) + h if h.ring != target else h for h in images]
+    result = target.zero
+    powers: dict[tuple[int, int], Poly] = {}
+    for monom, coeff in f.items():
+        term = target.ground_new(target.domain.convert(coeff, f.ring.domain))
+        for i, e in enumerate(monom):
+            if e:
+                key = (i, e)
+                if key not in powers:
+                    powers[key] = images[i] ** e
+                term = term * powers[key]
+        result += term
+    return result
+
+
+def derivative(f: Poly, i: int) -> Poly:
+    """``∂f/∂(i-th variable)``."""
+    if is_rational_field(f.ring.domain):
+        return from_flint(to_flint(f).derivative(i), f.ring)
+    return f.diff(f.ring.gens[i])
+
+
+def factor(f: Poly) -> tuple[Any, list[tuple[Poly, int]]]:
+    """``f = c · Π gᵢ^eᵢ`` over ``K``, with monic-content factors sorted deterministically."""
+    if f.is_ground:
+        return f.LC if f else f.ring.domain.zero, []
+    if is_rational_field(f.ring.domain):
+        c, fs = to_flint(f).factor()
+        factors = [(from_flint(g, f.ring), int(e)) for g, e in fs]
+        content = QQ(c)
+    else:
+        content, factors = f.factor_list()
+    factors = [_normalize_sign(g, e) for g, e in factors]
+    product = f.ring.one
+    for g, e in factors:
+        product *= g**e
+    content = f.ring.domain.quo(f.LC, product.LC)
+    factors.sort(key=lambda ge: (ge[0].degree() if ge[0] else 0, str(ge[0])))
+    return content, factors
+
+
+def _normalize_sign(g: Poly, e: int) -> tuple[Poly, int]:
+    """Make the leading coefficient of a factor positive, so printed factors are stable."""
+    K = g.ring.domain
+    lc = K.to_sympy(g.LC)
+    return (-g if lc.is_negative else g), e
+
+
+def primitive(f: Poly) -> Poly:
+    """``f`` scaled to integer coefficients with gcd 1 and a positive leading coefficient (over QQ).
+
+    Over an algebraic field only the leading coefficient is normalised to 1.
+    """
+    if not f:
+        return f
+    K = f.ring.domain
+    if is_rational_field(K):
+        _, g = f.clear_denoms()
+        g = g.primitive()[1]
+        return -g if g.LC < 0 else g
+    return f.monic()
+
+
+def to_sympy_expr(f: Poly) -> sympy.Expr:
+    """``f`` as a sympy expression, for printing (str, LaTeX, Maple, Mathematica)."""
+    return f.as_expr()
+
+
+def poly_str(f: Poly) -> str:
+    """``f`` as a string that ``sympy.sympify`` reads back exactly."""
+    return str(to_sympy_expr(f))
+
+
+def total_degree(f: Poly) -> int:
+    """The total degree of ``f`` (``-1`` for the zero polynomial)."""
+    if not f:
+        return -1
+    return max(sum(m) for m in f.itermonoms())
