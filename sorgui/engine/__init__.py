@@ -1,0 +1,33 @@
+"""The exact engine: pure mathematics over K, with no Qt and no VTK.
+
+Entry point: :func:`analyze` turns pasted text into an immutable :class:`Analysis`.
+Modules, one idea each (following sympy's ``polys``): ``parsing`` (safe parser), ``polys``
+(exact polynomial facade over sympy and flint), ``linalg`` (null spaces over K), ``symmetry``
+(the symmetry algebra L of (★)), ``paper_method`` (the paper's Algorithm II), ``profile``
+(profile curve and axis frames), ``recognition`` (axis, profile, factors), ``singular`` and
+``curves`` (plane curves with Singular), ``rationality`` (Table 1, tubular surface),
+``parametrization`` (rational parameterizations of X), ``report`` (result objects and JSON),
+``analysis`` (the staged pipeline), ``errors`` (the one exception hierarchy).
+"""
+
+from .analysis import STAGES, analyze
+from .errors import AnalysisError, Cancelled, ParseError, SingularError, SingularTimeout, SorguiError
+from .report import Analysis, Axis, Factor, Parametrization, Profile, Rationality, Recognition
+
+__all__ = [
+    "STAGES",
+    "Analysis",
+    "AnalysisError",
+    "Axis",
+    "Cancelled",
+    "Factor",
+    "Parametrization",
+    "ParseError",
+    "Profile",
+    "Rationality",
+    "Recognition",
+    "SingularError",
+    "SingularTimeout",
+    "SorguiError",
+    "analyze",
+]

@@ -1,0 +1,92 @@
+"""The whole analysis of one pasted equation, stage by stage, with timings and cancellation.
+
+Stages: parse → recognition (symmetry, axis, profile) → factors → rationality and
+parameterizations (MATH.md §5–§6; only for a surface of revolution with a unique axis).
+Between stages the ``cancel`` event is checked, and ``progress`` is told the stage's name, so a
+GUI worker can show it; Singular subprocesses are killed on cancel by :mod:`.singular`.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+
+from .errors import Cancelled
+from .parsing import parse_polynomial
+from .polys import field_name, poly_str
+from .recognition import factor_reports, recognize
+from .report import Analysis
+
+ProgressCallback = Callable[[str], None]
+
+STAGES = ("parse", "recognition", "factors", "rationality", "parametrizations")
+
+
+class StageClock:
+    """Times named stages, reports them to ``progress`` and stops at a set ``cancel`` event."""
+
+    def __init__(self, progress: ProgressCallback | None, cancel: threading.Event | None) -> None:
+        self.progress = progress
+        self.cancel = cancel
+        self.timings: list[tuple[str, float]] = []
+
+    def check(self) -> None:
+        """Raise :class:`Cancelled` when the caller asked to stop."""
+        if self.cancel is not None and self.cancel.is_set():
+            raise Cancelled("the analysis was cancelled")
+
+    @contextmanager
+    def stage(self, name: str) -> Iterator[None]:
+        """Run one stage: check for cancellation, announce it, and record its duration."""
+        self.check()
+        if self.progress is not None:
+            self.progress(name)
+        start = time.perf_counter()
+        yield
+        self.timings.append((name, time.perf_counter() - start))
+
+
+def analyze(
+    text: str,
+    *,
+    method: str = "symmetry",
+    recognition_only: bool = False,
+    singular_timeout: float = 60.0,
+    cancel: threading.Event | None = None,
+    progress: ProgressCallback | None = None,
+) -> Analysis:
+    """Analyse the equation ``text`` exactly and return the immutable :class:`Analysis`.
+
+    Raises :class:`~sorgui.engine.errors.ParseError` for bad input, :class:`Cancelled` when
+    ``cancel`` is set; every other engine failure is a :class:`SorguiError` too.
+    """
+    clock = StageClock(progress, cancel)
+    with clock.stage("parse"):
+        parsed = parse_polynomial(text)
+    f = parsed.polynomial
+    with clock.stage("recognition"):
+        recognition, symmetry, profile = recognize(f, method)
+    with clock.stage("factors"):
+        factors, squarefree = factor_reports(f, recognition, method)
+    rationality = None
+    parametrizations: tuple = ()
+    if not recognition_only and profile is not None:
+        from .rationality import analyze_rationality
+
+        rationality, parametrizations = analyze_rationality(
+            f, symmetry, profile, clock=clock, timeout=singular_timeout, cancel=cancel
+        )
+    clock.check()
+    return Analysis(
+        input=text,
+        field=field_name(parsed.field),
+        method=method,
+        recognition=recognition,
+        factors=factors,
+        squarefree=poly_str(squarefree),
+        rationality=rationality,
+        parametrizations=parametrizations,
+        timings=tuple(clock.timings),
+    )

@@ -1,0 +1,140 @@
+"""The profile curve and the axis frame, all over K (MATH.md §3).
+
+With ``c`` a point of the axis, ``a`` its direction and ``u ⟂ a`` (all in ``K³``),
+
+    p̃(s, r) = f(c + s·a + r·u) ∈ K[s, r]
+
+is the profile in a ``K``-rational frame. It is even in ``r`` for a surface of revolution;
+replacing ``r²`` by ``w`` gives ``P²``. The orthonormal profile ``p(x, y) = p̃(x/|a|, y/|u|)``
+is only for presentation (square roots appear when ``|a|²`` is not a square in ``K``); every
+later computation uses ``p̃``, which is ``K``-linearly equivalent to it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import sympy
+from sympy.polys.domains.domain import Domain
+
+from .linalg import Vector, cross, dot, primitive_vector
+from .polys import Poly, compose, poly_ring, primitive, to_expr
+
+S_R = ("s", "r")
+S_W = ("s", "w")
+
+
+@dataclass(frozen=True)
+class AxisFrame:
+    """A ``K``-rational frame of the axis: point ``c``, direction ``a``, and ``u ⟂ a``.
+
+    ``w = a × u`` completes it; ``|w|² = |a|²·|u|²``.
+    """
+
+    point: Vector
+    direction: Vector
+    normal: Vector
+
+    @property
+    def binormal(self) -> Vector:
+        """``w = a × u``."""
+        return cross(self.direction, self.normal)
+
+
+@dataclass(frozen=True)
+class ProfileCurve:
+    """The profile of a surface of revolution in its axis frame.
+
+    ``rational`` is ``p̃(s, r)``, ``square`` is ``P²`` as ``p̃²(s, w)``, ``orthonormal`` is the
+    presented profile ``p(x, y)`` (a sympy expression, x along the axis, y the distance).
+    ``verified`` records the paper's exact test ``f = p(x, y² + z²)`` in the axis frame.
+    """
+
+    frame: AxisFrame
+    rational: Poly
+    square: Poly
+    orthonormal: sympy.Expr
+    even: bool
+    verified: bool
+
+
+def axis_frame(point: Vector, direction: Vector, K: Domain) -> AxisFrame:
+    """A frame with a simple ``u``: the projection of the coordinate vector most orthogonal
+    to ``a`` onto the plane ``a⊥`` (so the x-axis gets ``u = (0, 1, 0)``, as in the paper)."""
+    a = direction
+    k = min(range(3), key=lambda i: (abs(to_expr(K, a[i])), i))
+    e = [K.zero] * 3
+    e[k] = K.one
+    norm2 = dot(a, a)
+    u = tuple(norm2 * e[i] - a[k] * a[i] for i in range(3))
+    return AxisFrame(point=point, direction=a, normal=primitive_vector(u, K))
+
+
+def profile_polynomial(f: Poly, frame: AxisFrame) -> Poly:
+    """``p̃(s, r) = f(c + s·a + r·u)`` in ``K[s, r]``."""
+    K = f.ring.domain
+    R = poly_ring(S_R, K)
+    s, r = R.gens
+    c, a, u = frame.point, frame.direction, frame.normal
+    return compose(f, [c[i] + s * a[i] + r * u[i] for i in range(3)])
+
+
+def is_even_in_second(p: Poly) -> bool:
+    """Whether ``p(s, r)`` contains ``r`` in even powers only."""
+    return all(m[1] % 2 == 0 for m in p.itermonoms())
+
+
+def square_profile(p: Poly) -> Poly:
+    """``P²``: the even polynomial ``p̃(s, r)`` with ``r²`` replaced by ``w``."""
+    R = poly_ring(S_W, p.ring.domain)
+    return R.from_dict({(m[0], m[1] // 2): c for m, c in p.items()})
+
+
+def verify_profile(f: Poly, frame: AxisFrame, square: Poly) -> bool:
+    """The paper's exact test in the axis frame: ``f(c + s·a + r₁·u + r₂·w) = P²(s, r₁² + |a|²r₂²)``.
+
+    The point ``c + s·a + r₁u + r₂w`` lies at squared distance ``|u|²(r₁² + |a|²r₂²)`` from the
+    axis, so this is ``f = p(x, y² + z²)`` written without square roots.
+    """
+    K = f.ring.domain
+    R = poly_ring(("s", "r1", "r2"), K)
+    s, r1, r2 = R.gens
+    c, a, u, w = frame.point, frame.direction, frame.normal, frame.binormal
+    lhs = compose(f, [c[i] + s * a[i] + r1 * u[i] + r2 * w[i] for i in range(3)])
+    rhs = compose(square, [s, r1**2 + dot(a, a) * r2**2])
+    return lhs == rhs
+
+
+def orthonormal_profile(p: Poly, frame: AxisFrame) -> sympy.Expr:
+    """``p(x, y) = p̃(x/|a|, y/|u|)`` in a canonical scale (the top coefficient in ``y`` is
+    positive; integer coefficients with content 1 when they are rational), for presentation."""
+    K = p.ring.domain
+    x, y = sympy.symbols("x y")
+    na = sympy.sqrt(to_expr(K, dot(frame.direction, frame.direction)))
+    nu2 = to_expr(K, dot(frame.normal, frame.normal))
+    expr = sympy.Add(*[to_expr(K, c) * (x / na) ** i * (y**2 / nu2) ** (j // 2) for (i, j), c in p.items()])
+    terms = sympy.Poly(sympy.expand(expr), x, y).terms()
+    _, top = max(terms, key=lambda t: (t[0][1], t[0][0]))
+    coeffs = [sympy.radsimp(c / top) for _, c in terms]
+    if all(c.is_Rational for c in coeffs):
+        lcm = sympy.ilcm(1, *[c.q for c in coeffs])
+        gcd = sympy.igcd(0, *[c.p * lcm // c.q for c in coeffs])
+        coeffs = [c * lcm / gcd for c in coeffs]
+    return sympy.Add(*[c * x**i * y**j for ((i, j), _), c in zip(terms, coeffs)])
+
+
+def profile_curve(f: Poly, point: Vector, direction: Vector) -> ProfileCurve:
+    """The profile of ``f`` about the axis through ``point`` with ``direction`` (MATH.md §3)."""
+    K = f.ring.domain
+    frame = axis_frame(point, direction, K)
+    raw = profile_polynomial(f, frame)
+    even = is_even_in_second(raw)
+    verified = even and verify_profile(f, frame, square_profile(raw))
+    rational = primitive(raw)
+    return ProfileCurve(
+        frame=frame,
+        rational=rational,
+        square=square_profile(rational) if even else poly_ring(S_W, K).zero,
+        orthonormal=orthonormal_profile(rational, frame) if even else sympy.Integer(0),
+        even=even,
+        verified=verified,
+    )

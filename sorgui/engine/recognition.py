@@ -1,0 +1,107 @@
+"""Recognition of one polynomial: symmetry, axis, profile, and its factors (MATH.md §2–§4).
+
+Two interchangeable methods find the symmetry: ``"symmetry"`` (the algebra ``L`` of (★),
+deterministic, the default) and ``"paper"`` (the paper's Algorithm II with random points). Both
+return a :class:`~sorgui.engine.symmetry.Symmetry`; everything after that is shared.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import sympy
+from sympy.polys.domains.domain import Domain
+
+from .errors import AnalysisError
+from .linalg import Vector, cross, primitive_vector
+from .paper_method import recognize_paper
+from .polys import Poly, factor, poly_str, to_str, total_degree
+from .profile import ProfileCurve, profile_curve
+from .report import Axis, Factor, Profile, Recognition
+from .symmetry import CYLINDER, REVOLUTION, Symmetry, recognize_symmetry
+
+METHODS: dict[str, Callable[[Poly], Symmetry]] = {
+    "symmetry": recognize_symmetry,
+    "paper": recognize_paper,
+}
+
+
+def find_symmetry(f: Poly, method: str = "symmetry") -> Symmetry:
+    """The classified symmetry of ``f`` by the named method."""
+    try:
+        return METHODS[method](f)
+    except KeyError:
+        raise AnalysisError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}") from None
+
+
+def _triple(K: Domain, v: Vector | None) -> tuple[str, str, str] | None:
+    return None if v is None else tuple(to_str(K, c) for c in v)  # type: ignore[return-value]
+
+
+def axis_report(point: Vector, direction: Vector, K: Domain) -> Axis:
+    """The axis as point, direction and Plücker coordinates ``(v : p × v)`` (MATH.md §1 erratum)."""
+    plucker = primitive_vector(tuple(direction) + cross(point, direction), K)
+    return Axis(
+        point=_triple(K, point),  # type: ignore[arg-type]
+        direction=_triple(K, direction),  # type: ignore[arg-type]
+        plucker=tuple(to_str(K, c) for c in plucker),  # type: ignore[arg-type]
+    )
+
+
+def profile_report(profile: ProfileCurve, K: Domain) -> Profile:
+    """The profile as exact strings."""
+    y = sympy.Symbol("y")
+    square = sympy.expand(profile.orthonormal.subs(y, sympy.sqrt(y)))
+    return Profile(
+        polynomial=str(profile.orthonormal),
+        square=str(square),
+        rational=poly_str(profile.rational),
+        rational_square=poly_str(profile.square),
+        frame_point=_triple(K, profile.frame.point),  # type: ignore[arg-type]
+        frame_direction=_triple(K, profile.frame.direction),  # type: ignore[arg-type]
+        frame_normal=_triple(K, profile.frame.normal),  # type: ignore[arg-type]
+        even=profile.even,
+        verified=profile.verified,
+    )
+
+
+def recognize(f: Poly, method: str = "symmetry") -> tuple[Recognition, Symmetry, ProfileCurve | None]:
+    """Recognise ``f``: the report, the classified symmetry, and the profile when the axis is unique."""
+    K = f.ring.domain
+    sym = find_symmetry(f, method)
+    profile = None
+    if sym.kind in (REVOLUTION, CYLINDER):
+        profile = profile_curve(f, sym.axis_point, sym.axis_direction)  # type: ignore[arg-type]
+        if not profile.verified:
+            raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
+    report = Recognition(
+        polynomial=poly_str(f),
+        degree=total_degree(f),
+        is_sor=sym.is_sor,
+        symmetry=sym.kind,
+        symmetry_dimension=sym.dimension,
+        symmetry_basis=tuple(tuple(to_str(K, c) for c in m.a + m.b) for m in sym.basis),
+        axis=axis_report(sym.axis_point, sym.axis_direction, K) if sym.axis_point is not None else None,  # type: ignore[arg-type]
+        center=_triple(K, sym.center),
+        normal=_triple(K, sym.normal),
+        direction=_triple(K, sym.direction),
+        profile=profile_report(profile, K) if profile is not None else None,
+    )
+    return report, sym, profile
+
+
+def factor_reports(
+    f: Poly, whole: Recognition, method: str = "symmetry"
+) -> tuple[tuple[Factor, ...], Poly]:
+    """The irreducible factors of ``f`` over ``K``, each recognised, and the square-free part.
+
+    When ``f`` is irreducible its only factor's recognition is ``whole`` (not computed twice).
+    """
+    _, factors = factor(f)
+    squarefree = f.ring.one
+    for g, _e in factors:
+        squarefree *= g
+    if len(factors) == 1 and factors[0][1] == 1:
+        return (Factor(poly_str(factors[0][0]), 1, whole),), squarefree
+    reports = tuple(Factor(poly_str(g), e, recognize(g, method)[0]) for g, e in factors)
+    return reports, squarefree

@@ -1,0 +1,218 @@
+"""The engine's immutable result objects and their JSON form (``sorgui analyze --json``).
+
+Every exact number is stored as a string that sympy reads back exactly (``"3/5"``,
+``"sqrt(2)/2"``), every polynomial as a sympy-syntax string in ``x, y, z`` (or the variables
+named beside it). The GUI and the exporters only read these objects; ``to_json`` and
+``from_json`` are inverse to each other.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, fields
+from typing import Any
+
+Triple = tuple[str, str, str]
+
+
+@dataclass(frozen=True)
+class Axis:
+    """A line as a ``K``-rational point and direction, and its Plücker coordinates ``(v : p × v)``."""
+
+    point: Triple
+    direction: Triple
+    plucker: tuple[str, str, str, str, str, str]
+
+
+@dataclass(frozen=True)
+class Profile:
+    """The profile curve (MATH.md §3).
+
+    ``polynomial`` is the orthonormal profile ``p(x, y)`` (x along the axis, y the distance to
+    it); ``square`` is ``P²``, i.e. ``p`` with ``y²`` replaced by ``y``. ``rational`` is the
+    ``K``-rational ``p̃(s, r) = f(c + s·a + r·u)`` with the frame ``frame_point = c``,
+    ``frame_direction = a``, ``frame_normal = u``; ``rational_square`` is ``p̃²(s, w)``.
+    ``verified`` is the exact test ``f = p(x, y² + z²)`` in the axis frame.
+    """
+
+    polynomial: str
+    square: str
+    rational: str
+    rational_square: str
+    frame_point: Triple
+    frame_direction: Triple
+    frame_normal: Triple
+    even: bool
+    verified: bool
+
+
+@dataclass(frozen=True)
+class Recognition:
+    """What the symmetry algebra says about one polynomial (MATH.md §2)."""
+
+    polynomial: str
+    degree: int
+    is_sor: bool
+    symmetry: str
+    symmetry_dimension: int
+    symmetry_basis: tuple[tuple[str, ...], ...]
+    axis: Axis | None = None
+    center: Triple | None = None
+    normal: Triple | None = None
+    direction: Triple | None = None
+    profile: Profile | None = None
+
+
+@dataclass(frozen=True)
+class Factor:
+    """An irreducible factor of ``f`` over ``K`` with its multiplicity and its own recognition."""
+
+    polynomial: str
+    multiplicity: int
+    recognition: Recognition
+
+
+@dataclass(frozen=True)
+class Rationality:
+    """The rationality analysis of MATH.md §5 (the paper's Section 3 and Table 1).
+
+    ``None`` in a field means "not computed" or "undecided"; ``status`` says which, and
+    ``notes`` explain limits met on the way (a time limit, a field Singular refuses).
+    """
+
+    status: str
+    profile_reducible: bool | None = None
+    absolute_factors: tuple[str, ...] = ()
+    genus_profile: int | None = None
+    genus_profile_square: int | None = None
+    table_row: int | None = None
+    complex_rational: bool | None = None
+    unirational: bool | None = None
+    real_rational: bool | None = None
+    square_parametrization: tuple[str, str] | None = None
+    tubular_surface: str | None = None
+    h: str | None = None
+    tau: Triple | None = None
+    real_roots_of_h: int | None = None
+    notes: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Parametrization:
+    """A rational parameterization of ``X`` in the original coordinates, checked by substitution."""
+
+    coordinates: Triple
+    parameters: tuple[str, str]
+    field: str
+    real: bool
+    proper: bool | None
+    method: str
+    verified: bool
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """The whole answer for one input: recognition, factors, rationality and parameterizations."""
+
+    input: str
+    field: str
+    method: str
+    recognition: Recognition
+    factors: tuple[Factor, ...]
+    squarefree: str
+    rationality: Rationality | None = None
+    parametrizations: tuple[Parametrization, ...] = ()
+    timings: tuple[tuple[str, float], ...] = field(default=())
+
+    @property
+    def is_sor(self) -> bool:
+        """Whether ``X`` is a surface of revolution (spheres, planes and cylinders included)."""
+        return self.recognition.is_sor
+
+    def to_json(self) -> dict[str, Any]:
+        """The JSON object of ``sorgui analyze --json`` (recognition keys at the top level)."""
+        rec = _plain(self.recognition)
+        return {
+            "input": self.input,
+            "polynomial": rec["polynomial"],
+            "field": self.field,
+            "method": self.method,
+            "degree": rec["degree"],
+            "is_sor": rec["is_sor"],
+            "symmetry": rec["symmetry"],
+            "symmetry_dimension": rec["symmetry_dimension"],
+            "symmetry_basis": rec["symmetry_basis"],
+            "axis": rec["axis"],
+            "center": rec["center"],
+            "normal": rec["normal"],
+            "direction": rec["direction"],
+            "profile": rec["profile"],
+            "factors": [_plain(f) for f in self.factors],
+            "squarefree": self.squarefree,
+            "rationality": _plain(self.rationality),
+            "parametrizations": [_plain(p) for p in self.parametrizations],
+            "timings": dict(self.timings),
+        }
+
+    @classmethod
+    def from_json(cls, data: dict[str, Any]) -> Analysis:
+        """The inverse of :meth:`to_json`."""
+        recognition = _recognition_from(data)
+        return cls(
+            input=data["input"],
+            field=data["field"],
+            method=data["method"],
+            recognition=recognition,
+            factors=tuple(
+                Factor(f["polynomial"], f["multiplicity"], _recognition_from(f["recognition"]))
+                for f in data["factors"]
+            ),
+            squarefree=data["squarefree"],
+            rationality=_build(Rationality, data.get("rationality")),
+            parametrizations=tuple(_build(Parametrization, p) for p in data.get("parametrizations", [])),
+            timings=tuple(data.get("timings", {}).items()),
+        )
+
+
+def _plain(obj: Any) -> Any:
+    """A dataclass as JSON-ready data (tuples become lists); ``None`` stays ``None``."""
+    if obj is None:
+        return None
+    return _lists(asdict(obj))
+
+
+def _lists(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {k: _lists(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_lists(v) for v in value]
+    return value
+
+
+def _tuples(value: Any) -> Any:
+    if isinstance(value, list):
+        return tuple(_tuples(v) for v in value)
+    return value
+
+
+def _build(cls: type, data: dict[str, Any] | None) -> Any:
+    """Rebuild a flat dataclass from its JSON form (lists back to tuples)."""
+    if data is None:
+        return None
+    names = {f.name for f in fields(cls)}
+    return cls(**{k: _tuples(v) for k, v in data.items() if k in names})
+
+
+def _recognition_from(data: dict[str, Any]) -> Recognition:
+    return Recognition(
+        polynomial=data["polynomial"],
+        degree=data["degree"],
+        is_sor=data["is_sor"],
+        symmetry=data["symmetry"],
+        symmetry_dimension=data["symmetry_dimension"],
+        symmetry_basis=_tuples(data["symmetry_basis"]),
+        axis=_build(Axis, data.get("axis")),
+        center=_tuples(data.get("center")),
+        normal=_tuples(data.get("normal")),
+        direction=_tuples(data.get("direction")),
+        profile=_build(Profile, data.get("profile")),
+    )

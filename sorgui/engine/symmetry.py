@@ -1,0 +1,183 @@
+"""The symmetry algebra ``L`` of ``f`` and the classification of surfaces by it (MATH.md §2).
+
+``L`` is the solution space of the identity
+
+    ∇f(p) · (b + a × p) ≡ 0   as a polynomial in x, y, z,           (★)
+
+with six unknowns ``(a, b) ∈ K⁶``: the Lie algebra of infinitesimal rigid motions that leave
+every level set ``f = α`` invariant. Each monomial of (★) gives one linear equation, so ``L`` is
+a null space over ``K``; its dimension and structure classify the surface (the table of §2), and
+a rotation in ``L`` gives the axis with a ``K``-rational point and direction (the paper's
+Corollary on ``K``-rational axes, made constructive).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from sympy.polys.domains.domain import Domain
+
+from . import linalg
+from .errors import AnalysisError
+from .linalg import Vector, cross, dot, is_zero, primitive_vector, scale, sub
+from .polys import Poly, derivative, is_rational_field, to_flint
+
+REVOLUTION = "revolution"
+CYLINDER = "cylinder_of_revolution"
+SPHERE = "sphere"
+PLANE = "plane"
+EXTRUSION = "extrusion"
+NONE = "none"
+SOR_KINDS = frozenset({REVOLUTION, CYLINDER, SPHERE, PLANE})
+
+
+@dataclass(frozen=True)
+class Motion:
+    """An infinitesimal rigid motion ``v(p) = b + a × p`` (Plücker-like pair ``(a, b)``)."""
+
+    a: Vector
+    b: Vector
+
+
+@dataclass(frozen=True)
+class Symmetry:
+    """The classified symmetry algebra: its basis and the geometric data it determines.
+
+    ``axis_point``/``axis_direction`` are set for a unique axis (revolution, cylinder of
+    revolution); ``center`` for spheres; ``normal`` for planes; ``direction`` for extrusions.
+    """
+
+    kind: str
+    basis: tuple[Motion, ...]
+    axis_point: Vector | None = None
+    axis_direction: Vector | None = None
+    center: Vector | None = None
+    normal: Vector | None = None
+    direction: Vector | None = None
+
+    @property
+    def dimension(self) -> int:
+        """``dim L``."""
+        return len(self.basis)
+
+    @property
+    def is_sor(self) -> bool:
+        """True for surfaces of revolution, spheres, planes and cylinders of revolution."""
+        return self.kind in SOR_KINDS
+
+
+def infinitesimal_generators(f: Poly) -> list[dict[tuple[int, ...], Any]]:
+    """The six polynomials whose K-linear combinations are the left side of (★).
+
+    Coefficients of ``b`` are ``f_x, f_y, f_z``; those of ``a`` are the components of
+    ``p × ∇f`` (since ``∇f·(a × p) = a·(p × ∇f)``). Returned as coefficient dictionaries.
+    """
+    R = f.ring
+    if is_rational_field(R.domain):
+        g = to_flint(f)
+        ctx = g.context()
+        x, y, z = ctx.gens()
+        fx, fy, fz = (g.derivative(i) for i in range(3))
+        polys = [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
+        return [p.to_dict() for p in polys]
+    x, y, z = R.gens
+    fx, fy, fz = (derivative(f, i) for i in range(3))
+    polys = [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
+    return [dict(p.items()) for p in polys]
+
+
+def symmetry_algebra(f: Poly) -> list[Motion]:
+    """A basis of ``L``, the solution space of (★), in reduced (canonical) form."""
+    K = f.ring.domain
+    columns = infinitesimal_generators(f)
+    monomials = sorted(set().union(*columns))
+    zero = K.zero
+    rows = [[K.convert(col.get(m, zero)) for col in columns] for m in monomials]
+    # Unknown order: (b1, b2, b3, a1, a2, a3), matching the columns above.
+    basis = linalg.nullspace(rows, 6, K)
+    return [Motion(a=tuple(v[3:]), b=tuple(v[:3])) for v in basis]
+
+
+def satisfies_identity(f: Poly, motion: Motion) -> bool:
+    """Whether ``(a, b)`` satisfies (★) identically: the exact invariance test."""
+    K = f.ring.domain
+    columns = infinitesimal_generators(f)
+    weights = list(motion.b) + list(motion.a)
+    total: dict[tuple[int, ...], Any] = {}
+    for col, w in zip(columns, weights):
+        if not w:
+            continue
+        for m, c in col.items():
+            total[m] = total.get(m, K.zero) + w * K.convert(c)
+    return not any(total.values())
+
+
+def classify(basis: Sequence[Motion], K: Domain) -> Symmetry:
+    """Classify a symmetry algebra by its dimension and structure (the table of MATH.md §2)."""
+    basis = tuple(basis)
+    dim = len(basis)
+    if dim == 0:
+        return Symmetry(NONE, basis)
+    translations = _translation_subspace(basis, K)
+    if dim == 1:
+        (m,) = basis
+        if is_zero(m.a):
+            return Symmetry(EXTRUSION, basis, direction=primitive_vector(m.b, K))
+        if dot(m.a, m.b):
+            raise AnalysisError("the symmetry algebra is a screw motion, which no algebraic surface has")
+        point, direction = _axis_of_rotation(m, K)
+        return Symmetry(REVOLUTION, basis, axis_point=point, axis_direction=direction)
+    if dim == 2 and len(translations) == 1:
+        t = translations[0]
+        rotation = next(m for m in basis if not is_zero(m.a))
+        # Remove the translation component along the axis, so that a·b = 0.
+        b = sub(rotation.b, scale(K.quo(dot(rotation.a, rotation.b), dot(rotation.a, t)), t))
+        point, direction = _axis_of_rotation(Motion(rotation.a, b), K)
+        return Symmetry(CYLINDER, basis, axis_point=point, axis_direction=direction)
+    if dim == 3 and not translations:
+        return Symmetry(SPHERE, basis, center=_common_center(basis, K))
+    if dim == 3 and len(translations) == 2:
+        normal = primitive_vector(cross(translations[0], translations[1]), K)
+        return Symmetry(PLANE, basis, normal=normal)
+    raise AnalysisError(f"unexpected symmetry algebra of dimension {dim}")
+
+
+def _translation_subspace(basis: Sequence[Motion], K: Domain) -> list[Vector]:
+    """Directions ``b`` of the pure translations ``(0, b)`` in the span of ``basis``."""
+    rows = [[m.a[i] for m in basis] for i in range(3)]
+    combos = linalg.nullspace(rows, len(basis), K)
+    result = []
+    for lam in combos:
+        b = tuple(sum((c * m.b[i] for c, m in zip(lam, basis)), start=K.zero) for i in range(3))
+        result.append(b)
+    return result
+
+
+def _axis_of_rotation(m: Motion, K: Domain) -> tuple[Vector, Vector]:
+    """The axis of the rotation ``b + a × p`` with ``a·b = 0``: the point ``c = (a × b)/|a|²``
+    (the foot of the perpendicular from the origin) and the direction ``a``."""
+    norm2 = dot(m.a, m.a)
+    point = scale(K.quo(K.one, norm2), cross(m.a, m.b))
+    return point, primitive_vector(m.a, K)
+
+
+def _common_center(basis: Sequence[Motion], K: Domain) -> Vector:
+    """The centre ``c`` with ``b = c × a`` for every rotation of ``so(3)`` about ``c``."""
+    rows: list[list[Any]] = []
+    rhs: list[Any] = []
+    for m in basis:
+        a1, a2, a3 = m.a
+        # c × a = (c2 a3 - c3 a2, c3 a1 - c1 a3, c1 a2 - c2 a1)
+        rows += [[K.zero, a3, -a2], [-a3, K.zero, a1], [a2, -a1, K.zero]]
+        rhs += list(m.b)
+    center = linalg.solve_unique(rows, rhs, K)
+    if center is None:
+        raise AnalysisError("the rotations of the symmetry algebra have no common centre")
+    return center
+
+
+def recognize_symmetry(f: Poly) -> Symmetry:
+    """The symmetry method: compute ``L`` from (★) and classify it."""
+    return classify(symmetry_algebra(f), f.ring.domain)

@@ -1,0 +1,39 @@
+"""Shared fixtures: the public corpus and the paper's examples."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+CORPUS = Path(__file__).resolve().parents[1].parent / "shared" / "corpus" / "cases.json"
+
+
+def corpus_cases() -> list[dict]:
+    """The shared corpus of cases with known answers (``../shared/corpus/cases.json``)."""
+    return json.loads(CORPUS.read_text(encoding="utf-8"))
+
+
+@pytest.fixture(scope="session")
+def paper_example_1():
+    """The paper's Example 1 as a polynomial over QQ, built without the parser."""
+    from sympy import Poly, QQ, symbols
+
+    from sorgui.engine.polys import XYZ, poly_ring
+
+    x, y, z = symbols("x y z")
+    text = next(c["input"] for c in corpus_cases() if c["name"] == "paper-example-1")
+    R = poly_ring(XYZ, QQ)
+    terms = {}
+    for term in text.replace("-", "+-").split("+"):
+        if not term:
+            continue
+        factors = term.split("*")
+        coeff = int(factors[0])
+        exps = [0, 0, 0]
+        for factor in factors[1:]:
+            name, _, power = factor.partition("^")
+            exps["xyz".index(name)] += int(power or 1)
+        terms[tuple(exps)] = terms.get(tuple(exps), 0) + coeff
+    return R.from_dict({m: QQ(c) for m, c in terms.items()})

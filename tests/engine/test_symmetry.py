@@ -1,0 +1,82 @@
+"""The symmetry algebra and the paper's Algorithm II on one table of known surfaces (MATH.md §2, §7)."""
+
+from __future__ import annotations
+
+import pytest
+import sympy
+from sympy.polys.domains import QQ
+
+from sorgui.engine.linalg import is_zero
+from sorgui.engine.polys import XYZ, number_field, poly_ring
+from sorgui.engine.recognition import METHODS, recognize
+from sorgui.engine.symmetry import satisfies_identity, symmetry_algebra
+
+from .helpers import rational_vector, revolve, same_line
+
+R = poly_ring(XYZ, QQ)
+x, y, z = R.gens
+K2 = number_field((2,))
+R2 = poly_ring(XYZ, K2)
+s2 = K2.from_sympy(sympy.sqrt(2))
+
+# name, polynomial, kind, dim L, axis (point, direction) or None, centre or None
+TABLE = [
+    ("cone", y**2 - 2 * x * z, "revolution", 1, ((0, 0, 0), (1, 0, 1)), None),
+    ("torus", (x**2 + y**2 + z**2 + 3) ** 2 - 16 * (x**2 + y**2), "revolution", 1, ((0, 0, 0), (0, 0, 1)), None),
+    ("cubic", y**2 + z**2 - x**3 - 3 * x**2 + 2 * x, "revolution", 1, ((0, 0, 0), (1, 0, 0)), None),
+    ("sphere", x**2 + y**2 + z**2 - 2 * x - 3, "sphere", 3, None, (1, 0, 0)),
+    ("plane", 2 * x - y + 3 * z - 1, "plane", 3, None, None),
+    ("cylinder", (x - 1) ** 2 + (y - 2) ** 2 - 4, "cylinder_of_revolution", 2, ((1, 2, 0), (0, 0, 1)), None),
+    ("line pair around an axis", x**2 + y**2, "cylinder_of_revolution", 2, ((0, 0, 0), (0, 0, 1)), None),
+    ("extrusion", x**3 - y**2 - x, "extrusion", 1, None, None),
+    ("ellipsoid", x**2 + 2 * y**2 + 3 * z**2 - 1, "none", 0, None, None),
+    ("hyperboloid off the origin", (x - 1) ** 2 + (y + 2) ** 2 - 3 * (z - 5) ** 2 - 1, "revolution", 1, ((1, -2, 5), (0, 0, 1)), None),
+    ("concentric spheres", ((x - 1) ** 2 + y**2 + z**2 - 1) * ((x - 1) ** 2 + y**2 + z**2 - 4), "sphere", 3, None, (1, 0, 0)),
+    ("coaxial blend", (x**2 + y**2 + (z - 1) ** 2 - 4) * (x**2 + y**2 - 1) - QQ(1, 4), "revolution", 1, ((0, 0, 0), (0, 0, 1)), None),
+    ("non-coaxial blend", (x**2 + y**2 + (z - 1) ** 2 - 4) * ((x - z) ** 2 / 2 + y**2 - 1) - QQ(1, 4), "none", 0, None, None),
+    ("tilted torus", revolve({(0, 2): 1, (0, 1): 6 - 16, (0, 0): 9, (2, 0): 16}, rational_vector((1, 2, 3)), rational_vector((2, -1, 2))),
+     "revolution", 1, ((1, 2, 3), (2, -1, 2)), None),
+]
+
+
+@pytest.mark.parametrize("method", sorted(METHODS))
+@pytest.mark.parametrize(("name", "f", "kind", "dim", "axis", "center"), TABLE, ids=[t[0] for t in TABLE])
+def test_methods_agree_on_known_surfaces(method, name, f, kind, dim, axis, center):
+    report, sym, profile = recognize(f, method)
+    assert sym.kind == kind
+    assert sym.dimension == dim
+    assert report.is_sor == (kind in {"revolution", "cylinder_of_revolution", "sphere", "plane"})
+    if axis is not None:
+        assert same_line(sym.axis_point, sym.axis_direction, rational_vector(axis[0]), rational_vector(axis[1]))
+        assert profile is not None and profile.even and profile.verified
+    if center is not None:
+        assert sym.center == rational_vector(center)
+
+
+def test_symmetry_basis_satisfies_the_identity():
+    f = TABLE[1][1]
+    (m,) = symmetry_algebra(f)
+    assert satisfies_identity(f, m)
+    assert not is_zero(m.a)
+
+
+def test_axis_over_an_algebraic_field():
+    a = (K2.one, s2, K2.zero)
+    c = (K2.one, K2.zero, K2.convert(QQ(1, 2)))
+    f = revolve({(1, 1): 1, (0, 1): -3, (2, 0): 2, (0, 0): 1}, c, a, K2)
+    assert f.ring.domain == K2
+    for method in METHODS:
+        _, sym, profile = recognize(f, method)
+        assert sym.kind == "revolution"
+        assert same_line(sym.axis_point, sym.axis_direction, c, a)
+        assert profile is not None and profile.verified
+
+
+def test_paper_example_axis_and_profile(paper_example_1):
+    report, sym, profile = recognize(paper_example_1)
+    assert same_line(sym.axis_point, sym.axis_direction, rational_vector(("3/5", "-4/5", 0)), rational_vector((4, 3, 0)))
+    X, Y = sympy.symbols("x y")
+    paper_p = -400 - 104 * X**2 - X**4 + 200 * Y**2 - 48 * X * Y**2 + 26 * X**2 * Y**2 - 29 * Y**4 + 12 * X * Y**4 + Y**6
+    assert sympy.expand(profile.orthonormal - paper_p) == 0 or sympy.expand(profile.orthonormal - paper_p.subs(X, -X)) == 0
+    # MATH.md §1 erratum: with (v : p × v) the Plücker coordinates are (4:3:0:0:0:5).
+    assert report.axis.plucker == ("4", "3", "0", "0", "0", "5")
