@@ -1,0 +1,577 @@
+"""Plane-curve algorithms of the rationality analysis (MATH.md §4–§5, the paper's Section 3).
+
+Every function takes a bivariate polynomial ``F`` over ``K`` (``QQ`` or a real algebraic field
+``QQ(θ)``) and starts at most one Singular process (:mod:`.singular`), which ``timeout`` and
+``cancel`` control; :func:`analyze_curves` handles several curves (``P`` and ``P²``) in one run.
+Algorithm choice:
+
+* absolute factorization: ``absFactorize`` (absfact.lib) over ``QQ``. It refuses algebraic
+  extensions, so over ``K = QQ(θ)`` each square-free part ``G`` of ``F`` goes through its norm
+  ``N = Res_t(G(x + sθ, y + s²θ), m(t)) ∈ QQ[x, y]`` (Trager; the shift ``s`` makes ``N``
+  square-free). The absolute factors of ``N`` are those of all conjugates of ``G``; a class
+  over ``QQ(a)`` contains ``θ = c(a)`` for a root ``c`` of ``m`` (found by a divisibility test)
+  and holds ``deg μ / deg m`` factors of ``G``. When ``QQ(a) = K`` the factor is rewritten
+  over ``K``.
+* genus: ``genus`` (normal.lib) over ``QQ``; over ``QQ(θ)`` the checked workaround of MATH.md §5,
+  ``genus(ideal(F, m(t))) = d·(g - 1) + 1``. Only for absolutely irreducible curves.
+* parameterization of a genus-0 curve: the direct route when ``F`` is linear in a variable (no
+  Singular at all), else ``paraPlaneCurve`` (paraplanecurves.lib) on the homogenised curve,
+  with its conic step replaced by a real-preferring one: when ``rationalPointConic`` picks an
+  imaginary field although the conic has real points, a line through an interior point meets
+  it in a point over a real quadratic field. Every answer is checked exactly: it satisfies
+  ``F`` and its degree equals ``deg F`` (proper). No answer is an :class:`AnalysisError` that
+  says why (e.g. ``paraPlaneCurve`` accepts only ``QQ``).
+* real roots: Sturm sequences over ``K``; the signs of elements of ``K`` come from arb balls
+  refined until they exclude 0 (rigorous, never plain floats).
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import flint
+import sympy
+from sympy.polys.domains import QQ
+from sympy.polys.domains.domain import Domain
+from sympy.polys.rootisolation import dup_sturm
+from sympy.polys.sqfreetools import dup_sqf_part
+
+from .errors import AnalysisError, SingularError
+from .polys import Poly, field_generators, is_rational_field, poly_ring, to_expr, total_degree
+from .singular import (
+    ABSOLUTE_FACTOR_PROCS,
+    PARAMETRIZATION_PROCS,
+    minpoly_to_singular,
+    parse_int,
+    parse_intvec,
+    parse_list,
+    parse_singular,
+    poly_to_singular,
+    run_script,
+)
+
+ALGEBRAIC = sympy.Symbol("a")
+"""The algebraic number in absolute factors and parameterizations over an extension."""
+
+PARAMETER = sympy.Symbol("t")
+"""The default parameter of rational parameterizations."""
+
+
+# --- results ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class AbsoluteFactor:
+    """A class of conjugate absolute factors of ``F``: ``factor`` in the curve's variables and
+    ``a``, a root of ``minpoly``; with ``minpoly = None`` there is no ``a`` and ``factor`` has
+    coefficients in ``K`` (square roots as sympy radicals).
+
+    ``conjugates`` factors of ``F`` lie in the class, each with ``multiplicity``. Over
+    ``K = QQ(θ)`` they are ``factor`` at those roots ``a`` of ``minpoly`` with
+    ``generator(a) = θ`` (``generator`` is ``None`` over ``QQ``).
+    """
+
+    factor: sympy.Expr
+    multiplicity: int
+    conjugates: int
+    minpoly: sympy.Expr | None = None
+    generator: sympy.Expr | None = None
+
+
+@dataclass(frozen=True)
+class AbsoluteFactorization:
+    """``F`` over ``C`` (MATH.md §4): classes of conjugate absolute factors."""
+
+    variables: tuple[sympy.Symbol, sympy.Symbol]
+    factors: tuple[AbsoluteFactor, ...]
+
+    @property
+    def is_absolutely_irreducible(self) -> bool:
+        """Exactly one absolute factor: one class, multiplicity 1, no conjugates."""
+        return [(f.multiplicity, f.conjugates) for f in self.factors] == [(1, 1)]
+
+    @property
+    def count(self) -> int:
+        """The number of absolute factors of ``F``, counted with multiplicity."""
+        return sum(f.multiplicity * f.conjugates for f in self.factors)
+
+
+@dataclass(frozen=True)
+class CurveAnalysis:
+    """Absolute factorization and, for an absolutely irreducible curve, its geometric genus."""
+
+    factorization: AbsoluteFactorization
+    genus: int | None
+
+    @property
+    def is_absolutely_irreducible(self) -> bool:
+        return self.factorization.is_absolutely_irreducible
+
+
+@dataclass(frozen=True)
+class CurveParametrization:
+    """A proper rational parameterization ``(x(t), y(t))`` of a plane curve, verified exactly.
+
+    ``generators`` are the algebraic numbers in its coefficients (``()`` over ``QQ``,
+    ``(sqrt(3),)``, ``(I,)``); ``method`` is ``"direct"`` or ``"paraPlaneCurve"``.
+    """
+
+    variables: tuple[sympy.Symbol, sympy.Symbol]
+    x: sympy.Expr
+    y: sympy.Expr
+    parameter: sympy.Symbol
+    generators: tuple[sympy.Expr, ...]
+    method: str
+
+    @property
+    def coordinates(self) -> tuple[sympy.Expr, sympy.Expr]:
+        return self.x, self.y
+
+    @property
+    def field(self) -> str:
+        """``QQ``, ``QQ(sqrt(3))`` or ``QQ(sqrt(-1))``: the field of the coefficients."""
+        if not self.generators:
+            return "QQ"
+        names = [f"sqrt({g**2})" if (g**2).is_Rational else str(g) for g in self.generators]
+        return "QQ(" + ", ".join(names) + ")"
+
+    @property
+    def is_real(self) -> bool:
+        return all(g.is_real for g in self.generators)
+
+
+# --- absolute factorization and genus -------------------------------------------------------
+
+
+def analyze_curves(
+    curves: Sequence[Poly],
+    *,
+    with_genus: bool = True,
+    timeout: float = 60.0,
+    cancel: threading.Event | None = None,
+) -> tuple[CurveAnalysis, ...]:
+    """Absolute factorization and genus of several curves in ONE Singular run (e.g. ``P`` and
+    ``P²`` of the paper); the genus is ``None`` unless the curve is absolutely irreducible."""
+    plans = [_Plan(F, f"c{i}", with_genus) for i, F in enumerate(curves)]
+    script = ABSOLUTE_FACTOR_PROCS + "".join(p.code for p in plans)
+    found = run_script(script, timeout=timeout, cancel=cancel)
+    return tuple(p.read(found) for p in plans)
+
+
+def analyze_curve(
+    F: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None
+) -> CurveAnalysis:
+    """:func:`analyze_curves` for one curve."""
+    return analyze_curves([F], timeout=timeout, cancel=cancel)[0]
+
+
+def absolute_factorization(
+    F: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None
+) -> AbsoluteFactorization:
+    """The factors of ``F`` over ``C``, in classes of conjugates (MATH.md §4)."""
+    return analyze_curves([F], with_genus=False, timeout=timeout, cancel=cancel)[0].factorization
+
+
+def genus(F: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None) -> int:
+    """The geometric genus of the absolutely irreducible curve ``F = 0`` (points at infinity
+    included). Raises :class:`AnalysisError` when ``F`` is absolutely reducible or not reduced,
+    where Singular's ``genus`` answers nonsense: factor first."""
+    analysis = analyze_curve(F, timeout=timeout, cancel=cancel)
+    if analysis.genus is None:
+        raise AnalysisError(
+            f"the curve {F.as_expr()} = 0 is not absolutely irreducible "
+            f"({analysis.factorization.count} absolute factors): its genus is not defined"
+        )
+    return analysis.genus
+
+
+
+class _Plan:
+    """The Singular code for one curve of :func:`analyze_curves` and the reader of its results.
+
+    Over ``K = QQ(θ)`` the curve is split into square-free parts over ``K``; a part with a
+    rational multiple goes to ``absFactorize`` directly, the others through their norms.
+    """
+
+    def __init__(self, F: Poly, key: str, with_genus: bool) -> None:
+        if F.ring.ngens != 2:
+            raise ValueError("a plane curve needs a polynomial ring with two generators")
+        if total_degree(F) < 1:
+            raise AnalysisError("a constant polynomial does not define a curve")
+        self.key = key
+        self.variables = _variables(F)
+        self.symbols = {"x": self.variables[0], "y": self.variables[1], "a": ALGEBRAIC}
+        rational = _over_qq(F)
+        self.degree = 1
+        self.parts: list[tuple[Poly, int, bool]] = [] if rational is None else [(rational, 1, True)]
+        minpoly = ""
+        if rational is None:
+            K = self.domain = F.ring.domain
+            self.degree = len(K.mod.to_list()) - 1
+            minpoly = minpoly_to_singular(K, "t")
+            for G, e in F.sqf_list()[1]:
+                G_qq = _over_qq(G)
+                self.parts.append((G if G_qq is None else G_qq, e, G_qq is not None))
+        self.genus_wanted = with_genus and len(self.parts) == 1 and self.parts[0][1] == 1
+        wanted = int(self.genus_wanted)
+        code = []
+        for j, (G, _, is_rational) in enumerate(self.parts):
+            k = f"{key}_{j}"
+            if is_rational:
+                code.append(f"ring sorguiQ_{k} = 0,(x,y),dp;\n"
+                            f'sorguiAbsQQ({poly_to_singular(G, ["x", "y"])}, "{k}", {wanted});\n')
+            else:
+                code.append(f"ring sorguiN_{k} = 0,(x,y,t),dp;\n"
+                            f"sorguiAbsNorm({poly_to_singular(G, ['x', 'y'], 't')}, {minpoly}, "
+                            f'{self.degree}, "{k}", {wanted});\n')
+        self.code = "".join(code)
+
+    def read(self, found: dict[str, list[str]]) -> CurveAnalysis:
+        """The :class:`CurveAnalysis` from the script's results."""
+        factors: list[AbsoluteFactor] = []
+        for j, (_, e, is_rational) in enumerate(self.parts):
+            k = f"{self.key}_{j}"
+            factors += self._read_qq(found, k, e) if is_rational else self._read_norm(found, k, e)
+        factorization = AbsoluteFactorization(self.variables, tuple(factors))
+        value = None
+        if self.genus_wanted and factorization.is_absolutely_irreducible:
+            G = parse_int(_one(found, f"genus_{self.key}_0"))
+            if self.parts[0][2]:
+                value = G
+            elif (G - 1) % self.degree == 0:  # MATH.md §5: G = d·(g - 1) + 1
+                value = (G - 1) // self.degree + 1
+            else:
+                raise SingularError(f"the conjugate curves have genus {G}, not d·(g-1)+1")
+        return CurveAnalysis(factorization, value)
+
+    def _read_qq(self, found: dict[str, list[str]], k: str, e: int) -> list[AbsoluteFactor]:
+        polys = parse_list(_one(found, f"factors_{k}"), self.symbols)[1:]
+        mults = parse_intvec(_one(found, f"mult_{k}"))[1:]
+        minpolys = parse_list(_one(found, f"minpolys_{k}"), self.symbols)[1:]
+        result = []
+        for g, m, mu in zip(polys, mults, minpolys, strict=True):
+            n = sympy.degree(mu, ALGEBRAIC)
+            result.append(AbsoluteFactor(g, m * e, max(n, 1), mu if n > 1 else None))
+        return result
+
+    def _read_norm(self, found: dict[str, list[str]], k: str, e: int) -> list[AbsoluteFactor]:
+        if _one(found, f"squarefree_{k}") != "1":
+            raise SingularError("no shift made the norm of the curve square-free")
+        result = []
+        for text in found.get(f"class_{k}", []):
+            mu_text, c_text, h_text = text.split("|")
+            mu = parse_singular(mu_text, self.symbols)
+            n = int(sympy.degree(mu, ALGEBRAIC))
+            if n % self.degree:
+                raise SingularError(f"a class of absolute factors over a field of degree {n}")
+            h = sympy.expand(parse_singular(h_text, self.symbols))
+            c = parse_singular(c_text, self.symbols)
+            if n == self.degree:  # QQ(a) = K: write the factor over K itself
+                result.append(AbsoluteFactor(self._over_k(h, mu, c), e, 1))
+            else:
+                result.append(AbsoluteFactor(h, e, n // self.degree, mu, c))
+        count = parse_int(_one(found, f"count_{k}"))
+        if sum(f.conjugates for f in result) * self.degree != count:
+            raise SingularError("the absolute factors of the norm do not match the curve")
+        return result
+
+
+    def _over_k(self, h: sympy.Expr, mu: sympy.Expr, c: sympy.Expr) -> sympy.Expr:
+        """``h(x, y, a)`` over ``K = QQ(θ)`` when ``QQ(a) = K`` and ``θ = c(a)``: solve
+        ``a = φ(θ)`` in the basis ``1, c, c², ...`` of ``QQ[a]/(mu)``, then substitute."""
+        a, d = ALGEBRAIC, self.degree
+        K = self.domain
+        powers = [sympy.Poly(c**j, a).rem(sympy.Poly(mu, a)) for j in range(d)]
+        matrix = sympy.Matrix(d, d, lambda i, j: powers[j].coeff_monomial(a**i))
+        phi = matrix.solve(sympy.Matrix(d, 1, lambda i, _: 1 if i == 1 else 0))
+        a_in_k = sum((K.convert(QQ.convert(phi[j])) * K([QQ.one, QQ.zero]) ** j for j in range(d)),
+                     K.zero)
+        R = poly_ring(tuple(str(v) for v in self.variables), K)
+        G = R.zero
+        for monom, coeff in sympy.Poly(h, *self.variables).terms():
+            value = K.zero
+            for (k,), q in sympy.Poly(coeff, a).terms():
+                value += K.convert(QQ.convert(q)) * a_in_k**k
+            G += R({monom: value})
+        return G.monic().as_expr()
+
+
+def _variables(F: Poly) -> tuple[sympy.Symbol, sympy.Symbol]:
+    x, y = F.ring.symbols
+    return x, y
+
+
+def _one(found: dict[str, list[str]], name: str) -> str:
+    """The single result ``name``; a missing one means the script did not get there."""
+    values = found.get(name)
+    if not values:
+        raise SingularError(f"Singular did not report {name!r}")
+    return values[0]
+
+
+def _over_qq(F: Poly) -> Poly | None:
+    """``F`` as an element of ``QQ[x, y]`` if a multiple of it has rational coefficients."""
+    if is_rational_field(F.ring.domain):
+        return F
+    G = F.monic()
+    if any(len(c.to_list()) > 1 for c in G.values()):
+        return None
+    R = poly_ring(tuple(str(s) for s in F.ring.symbols), QQ)
+    return R.from_dict({m: QQ.convert(c.to_list()[0]) for m, c in G.items() if c.to_list()})
+
+
+# --- rational parameterization --------------------------------------------------------------
+
+
+def parametrize(
+    F: Poly,
+    *,
+    parameter: sympy.Symbol = PARAMETER,
+    timeout: float = 60.0,
+    cancel: threading.Event | None = None,
+) -> CurveParametrization:
+    """A proper rational parameterization of the genus-0 curve ``F = 0``, verified exactly.
+
+    The direct route first (MATH.md §5: ``A(x)·y + C(x)`` gives ``(t, -C(t)/A(t))``, and the
+    same with the roles swapped), without Singular; else ``paraPlaneCurve`` over ``QQ``, whose
+    field is made real when the curve has real points (see the module docstring). Raises
+    :class:`AnalysisError` with the reason when there is none: the curve is reducible or of
+    positive genus, or ``F`` has irrational coefficients and is linear in neither variable
+    (``paraPlaneCurve`` accepts only ``QQ``).
+    """
+    if F.ring.ngens != 2 or total_degree(F) < 1:
+        raise AnalysisError("parametrize needs a non-constant polynomial in two variables")
+    variables = _variables(F)
+    found = _direct(F)
+    curve, method = F, "direct"
+    if found is None:
+        rational = _over_qq(F)
+        if rational is None:
+            raise AnalysisError(
+                "no parameterization: the curve has coefficients outside QQ and is linear in "
+                "neither variable, and Singular's paraPlaneCurve accepts only rational "
+                "coefficients (ground field is not Q)"
+            )
+        found = _para_plane_curve(rational, timeout, cancel)
+        curve, method = rational, "paraPlaneCurve"
+    (p1, q1), (p2, q2) = found
+    if not _vanishes(curve, p1, q1, p2, q2):
+        raise SingularError(f"the parameterization from {method} does not satisfy F = 0")
+    if not _proper_degree(curve, p1, q1, p2, q2):
+        raise SingularError(f"the parameterization from {method} is not proper")
+    D = p1.ring.domain
+    generators = () if is_rational_field(D) else tuple(field_generators(D))
+    x, y = ((p.as_expr() / q.as_expr()).subs(p.ring.symbols[0], parameter) for p, q in found)
+    return CurveParametrization(variables, x, y, parameter, generators, method)
+
+
+_Fraction = tuple[Poly, Poly]
+"""A rational function ``p/q`` in ``D[t]``: ``q`` monic, ``gcd(p, q) = 1``."""
+
+
+def _direct(F: Poly) -> tuple[_Fraction, _Fraction] | None:
+    """``(t, -C(t)/A(t))`` when ``F = A(x)·y + C(x)``, or the same with ``x`` and ``y``
+    swapped, over ``K``; ``None`` when ``F`` is linear in neither variable."""
+    R = poly_ring(("t",), F.ring.domain)
+    for linear in (1, 0):
+        if F.degree(linear) != 1:
+            continue
+        other = 1 - linear
+        A = R.from_dict({(m[other],): c for m, c in F.items() if m[linear] == 1})
+        C = R.from_dict({(m[other],): c for m, c in F.items() if m[linear] == 0})
+        if A.gcd(C).degree() > 0:
+            raise AnalysisError(f"the curve {F.as_expr()} = 0 is reducible: it contains a line")
+        free, value = (R.gens[0], R.one), _reduced(-C, A)
+        return (free, value) if linear == 1 else (value, free)
+    return None
+
+
+def _para_plane_curve(
+    F: Poly, timeout: float, cancel: threading.Event | None
+) -> tuple[_Fraction, _Fraction]:
+    """``sorguiParaCurve`` on ``F ∈ QQ[x, y]``: the checks, then paraPlaneCurve's PARA
+    dehomogenised at ``s = 1``, over ``QQ`` or the quadratic field of its ``minpoly``."""
+    script = (
+        PARAMETRIZATION_PROCS
+        + "ring sorguiP = 0,(x,y),dp;\n"
+        + f"sorguiParaCurve({poly_to_singular(F, ['x', 'y'])});\n"
+    )
+    found = run_script(script, timeout=timeout, cancel=cancel)
+    if _one(found, "irreducible") != "1":
+        raise AnalysisError(f"the curve {F.as_expr()} = 0 is not absolutely irreducible")
+    g = parse_int(_one(found, "genus"))
+    if g != 0:
+        raise AnalysisError(f"the curve has genus {g}, so it has no rational parameterization")
+    s, t, a = sympy.symbols("s t a")
+    D, root = QQ, QQ.zero
+    if "minpoly" in found:
+        D, root = _quadratic_root(parse_singular(_one(found, "minpoly"), {"a": a}), a)
+    R = poly_ring(("t",), D)
+    para = []
+    for p in parse_list(_one(found, "para"), {"s": s, "t": t, "a": a}):
+        terms: dict[tuple[int], object] = {}
+        for (_, j, k), c in sympy.Poly(p, s, t, a, domain=QQ).terms():
+            terms[(j,)] = terms.get((j,), D.zero) + D.convert(QQ.convert(c)) * root**k
+        para.append(R.from_dict(terms))
+    if len(para) != 3:
+        raise SingularError(f"paraPlaneCurve gave {len(para)} coordinates, not 3")
+    return _reduced(para[0], para[2]), _reduced(para[1], para[2])
+
+
+def _quadratic_root(mu: sympy.Expr, a: sympy.Symbol) -> tuple[Domain, object]:
+    """The field ``D = QQ(sqrt(n))`` of the quadratic ``mu(a)`` (``QQ(sqrt(-3))`` is printed
+    ``QQ<sqrt(3)*I>``) and a root of ``mu`` in it."""
+    poly = sympy.Poly(mu, a)
+    if poly.degree() != 2:
+        raise SingularError(f"paraPlaneCurve chose the field QQ[a]/({mu}), not a quadratic one")
+    c2, c1, c0 = poly.all_coeffs()
+    k, generator = sympy.sqrt(c1**2 - 4 * c2 * c0).as_coeff_Mul()
+    D = QQ.algebraic_field(generator)
+    k, c1, c2 = (D.convert(QQ.convert(c)) for c in (k, c1, c2))
+    return D, (D([QQ.one, QQ.zero]) * k - c1) / (2 * c2)
+
+
+def _reduced(p: Poly, q: Poly) -> _Fraction:
+    """``p/q`` in lowest terms with a monic denominator."""
+    if not q:
+        raise AnalysisError("a parameterization has a zero denominator")
+    g = p.gcd(q)
+    p, q = p.exquo(g), q.exquo(g)
+    return p.quo_ground(q.LC), q.monic()
+
+
+def _vanishes(F: Poly, p1: Poly, q1: Poly, p2: Poly, q2: Poly) -> bool:
+    """``F(p1/q1, p2/q2) = 0``: with denominators cleared,
+    ``Σ c·p1^i q1^(nx-i) p2^j q2^(ny-j) = 0``."""
+    D, K = p1.ring.domain, F.ring.domain
+    nx, ny = F.degree(0), F.degree(1)
+    total = p1.ring.zero
+    for (i, j), c in F.items():
+        if K != D:
+            c = D.convert(c, K) if is_rational_field(K) else D.from_sympy(to_expr(K, c))
+        total += p1**i * q1 ** (nx - i) * p2**j * q2 ** (ny - j) * c
+    return not total
+
+
+def _proper_degree(F: Poly, p1: Poly, q1: Poly, p2: Poly, q2: Poly) -> bool:
+    """With ``x = P₁/Q``, ``y = P₂/Q`` in lowest terms, ``max deg(P₁, P₂, Q)`` is the degree of
+    the map times ``deg F``: it equals ``deg F`` exactly when the map is birational."""
+    q = q1.lcm(q2)
+    P1, P2 = p1 * q.exquo(q1), p2 * q.exquo(q2)
+    return max(total_degree(P1), total_degree(P2), total_degree(q)) == total_degree(F)
+
+
+def _fractions(
+    x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr]
+) -> tuple[_Fraction, _Fraction]:
+    """``x`` and ``y`` as reduced fractions in ``QQ(generators)[t]``."""
+    D = QQ.algebraic_field(*generators) if generators else QQ
+    R = poly_ring(("t",), D)
+    result = []
+    for expr in (x, y):
+        p, q = (
+            R.from_dict({m: D.from_sympy(c) for m, c in sympy.Poly(part, t).terms()})
+            for part in sympy.fraction(sympy.together(expr))
+        )
+        result.append(_reduced(p, q))
+    return result[0], result[1]
+
+
+def is_on_curve(
+    F: Poly, x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr] = ()
+) -> bool:
+    """True when ``F(x(t), y(t)) = 0`` exactly in ``QQ(generators)[t]`` (MATH.md §6: every
+    parameterization is checked by substitution)."""
+    (p1, q1), (p2, q2) = _fractions(x, y, t, generators)
+    return _vanishes(F, p1, q1, p2, q2)
+
+
+def is_proper(
+    F: Poly, x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr] = ()
+) -> bool:
+    """True when ``(x(t), y(t))`` parameterizes the irreducible curve ``F = 0`` birationally
+    (the degree criterion of :func:`_proper_degree`)."""
+    (p1, q1), (p2, q2) = _fractions(x, y, t, generators)
+    return _proper_degree(F, p1, q1, p2, q2)
+
+
+# --- real roots -----------------------------------------------------------------------------
+
+
+def count_real_roots(h: Poly) -> int:
+    """The number of distinct real roots of a univariate ``h`` with coefficients in ``K ⊂ R``
+    (for the Corollary of the paper: ``r̂·q̂`` has at most two real roots iff ``X`` is rational).
+
+    Sturm's theorem on the square-free part over ``K``; the signs of the leading coefficients
+    (elements of ``K``) come from arb balls refined until they exclude 0, so the answer is
+    exact.
+    """
+    used = {i for m in h.itermonoms() for i, e in enumerate(m) if e}
+    if len(used) > 1:
+        raise ValueError("count_real_roots needs a univariate polynomial")
+    if not h:
+        raise ValueError("the zero polynomial has infinitely many roots")
+    K = h.ring.domain
+    i = used.pop() if used else 0
+    degree = max(m[i] for m in h.itermonoms())
+    dense = [K.zero] * (degree + 1)
+    for m, c in h.items():
+        dense[degree - m[i]] = c
+    f = dense if K.is_Field else [K.get_field().convert(c, K) for c in dense]
+    field = K if K.is_Field else K.get_field()
+    chain = dup_sturm(dup_sqf_part(f, field), field)
+    at_plus = [_sign(field, p[0]) for p in chain]
+    at_minus = [s * (-1) ** (len(p) - 1) for s, p in zip(at_plus, chain, strict=True)]
+    return _sign_changes(at_minus) - _sign_changes(at_plus)
+
+
+def _sign_changes(signs: Sequence[int]) -> int:
+    nonzero = [s for s in signs if s]
+    return sum(1 for u, v in zip(nonzero, nonzero[1:]) if u != v)
+
+
+def _sign(K: Domain, c: object) -> int:
+    """The sign of ``c ∈ K``: exact over ``QQ``; over ``QQ(θ)``, ``c(θ)`` in ball arithmetic
+    with rising precision until the ball excludes 0 (it does, as ``c ≠ 0``)."""
+    if not c:
+        return 0
+    if is_rational_field(K):
+        return 1 if c > 0 else -1
+    coeffs = [flint.fmpq(int(QQ.numer(q)), int(QQ.denom(q))) for q in map(QQ.convert, c.to_list())]
+    prec = 64
+    while prec <= 1 << 16:
+        with flint.ctx.workprec(prec):
+            theta = _arb(K.ext.as_expr())
+            value = flint.arb(0)
+            for q in coeffs:
+                value = value * theta + q
+            if value > 0:
+                return 1
+            if value < 0:
+                return -1
+        prec *= 4
+    raise AnalysisError(f"could not decide the sign of {to_expr(K, c)}")
+
+
+def _arb(expr: sympy.Expr) -> flint.arb:
+    """A ball containing the real radical expression ``expr`` (rationals, ``+``, ``*``, powers
+    with integer or half-integer exponents), at the current working precision."""
+    if expr.is_Rational:
+        return flint.arb(flint.fmpq(int(expr.p), int(expr.q)))
+    if expr.is_Add:
+        return sum((_arb(e) for e in expr.args), flint.arb(0))
+    if expr.is_Mul:
+        value = flint.arb(1)
+        for e in expr.args:
+            value *= _arb(e)
+        return value
+    if expr.is_Pow and expr.exp.is_Rational and expr.exp.q in (1, 2):
+        base = _arb(expr.base)
+        if expr.exp.q == 2:
+            if not base > 0:
+                raise AnalysisError(f"{expr} is not a real number")
+            base = base.sqrt()
+        return base ** int(expr.exp.p)
+    raise AnalysisError(f"cannot evaluate {expr} as a real algebraic number")

@@ -1,0 +1,395 @@
+"""Plane curves with the real Singular: absolute factors, genus, parameterizations, real roots.
+
+Known data: the paper's Appendix Example 2 (``P`` of genus 1, ``P²`` of genus 0 with the
+corrected constant ``-400``, MATH.md §1), the cone's two lines, ``x² + y²`` (two complex
+lines), ``x² + y² = 3`` (real points, no rational point).
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Sequence
+
+import pytest
+import sympy
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from sympy.polys.domains import QQ
+
+from sorgui.engine import curves
+from sorgui.engine.curves import (
+    ALGEBRAIC,
+    AbsoluteFactorization,
+    absolute_factorization,
+    analyze_curve,
+    analyze_curves,
+    count_real_roots,
+    genus,
+    is_on_curve,
+    is_proper,
+    parametrize,
+)
+from sorgui.engine.errors import AnalysisError, Cancelled
+from sorgui.engine.polys import Poly, number_field, poly_ring
+
+R = poly_ring(("x", "y"), QQ)
+x, y = R.gens
+X, Y = R.symbols
+T = sympy.Symbol("t")
+P = (
+    -400 - 104 * x**2 - x**4 + 200 * y**2 - 48 * x * y**2 + 26 * x**2 * y**2
+    - 29 * y**4 + 12 * x * y**4 + y**6
+)
+P2 = (
+    -400 - 104 * x**2 - x**4 + 200 * y - 48 * x * y + 26 * x**2 * y
+    - 29 * y**2 + 12 * x * y**2 + y**3
+)
+P2_AS_PRINTED = P2 + 800  # the paper's +400, an erratum
+
+K2 = number_field((2,))
+RK = poly_ring(("x", "y"), K2)
+u, v = RK.gens
+SQRT2 = K2.from_sympy(sympy.sqrt(2))
+
+
+def product_of_norms(factorization: AbsoluteFactorization) -> sympy.Expr:
+    """∏ Res_a(factor, minpoly)^multiplicity: the product of all absolute factors over QQ."""
+    result = sympy.S.One
+    for f in factorization.factors:
+        norm = f.factor if f.minpoly is None else sympy.resultant(f.factor, f.minpoly, ALGEBRAIC)
+        result *= norm**f.multiplicity
+    return sympy.expand(result)
+
+
+def proportional(a: sympy.Expr, b: sympy.Expr) -> bool:
+    ratio = sympy.cancel(a / b)
+    return ratio.is_Rational and ratio != 0
+
+
+# --- genus ------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("F", "expected"),
+    [
+        (y**2 - x**3 - x - 1, 1),  # smooth cubic
+        (y**2 - x**3 - x**2, 0),  # nodal cubic
+        (x**2 + y**2 - 1, 0),  # conic
+        (2 * x - 3 * y + 1, 0),  # line
+        (y**2 - x**5 - 1, 2),
+        (P, 1),  # the paper's profile curve
+        (P2, 0),  # its square P²
+        (P2_AS_PRINTED, 3),  # the misprint +400 is not rational
+    ],
+)
+def test_genus_of_known_curves(F: Poly, expected: int) -> None:
+    assert genus(F) == expected
+
+
+@pytest.mark.parametrize(
+    ("F", "expected"),
+    [
+        (v**2 - SQRT2 * u**3 - 1, 1),  # MATH.md §5: G = 1, g = 1
+        (v**2 - SQRT2 * u**5 - 1, 2),
+        (u**2 + v**2 - SQRT2, 0),
+        (SQRT2 * (u**2 + v**2 - 3), 0),  # a rational multiple goes the QQ way
+    ],
+)
+def test_genus_over_a_real_quadratic_field(F: Poly, expected: int) -> None:
+    assert genus(F) == expected
+
+
+@pytest.mark.parametrize("F", [y**2 - x**2, x**2 + y**2, y**2, (x - 1) * (y**2 - x**3)])
+def test_genus_refuses_reducible_or_non_reduced_curves(F: Poly) -> None:
+    with pytest.raises(AnalysisError, match="not absolutely irreducible"):
+        genus(F)
+
+
+def test_genus_refuses_a_reducible_curve_over_an_extension() -> None:
+    with pytest.raises(AnalysisError):
+        genus(u**2 - 2 * v**2)
+
+
+def test_constant_is_not_a_curve() -> None:
+    with pytest.raises(AnalysisError):
+        analyze_curve(R(3))
+
+
+# --- absolute factorization -------------------------------------------------------------------
+
+
+def test_cone_profile_is_two_lines() -> None:
+    result = absolute_factorization(y**2 - x**2)
+    assert not result.is_absolutely_irreducible
+    assert sorted(str(f.factor) for f in result.factors) == ["x + y", "x - y"]
+    assert all(f.minpoly is None and f.conjugates == 1 for f in result.factors)
+
+
+def test_sum_of_squares_splits_over_the_gaussian_numbers() -> None:
+    result = absolute_factorization(x**2 + y**2)
+    assert not result.is_absolutely_irreducible
+    (factor,) = result.factors
+    assert factor.conjugates == 2 and factor.minpoly == ALGEBRAIC**2 + 1
+    assert proportional(product_of_norms(result), X**2 + Y**2)
+
+
+@pytest.mark.parametrize(
+    "F", [P, P2, x**2 + y**2 - 3, y**2 * (x + 1), (x**2 - 2) * (x**2 + y**2) ** 2, x**4 + y**4]
+)
+def test_absolute_factors_multiply_to_the_curve(F: Poly) -> None:
+    result = absolute_factorization(F)
+    assert proportional(product_of_norms(result), F.as_expr())
+    assert result.count == sum(
+        f.multiplicity * f.conjugates for f in result.factors
+    )
+
+
+def test_multiplicities_are_reported() -> None:
+    result = absolute_factorization(y**2 * (x + 1))
+    found = sorted((str(f.factor), f.multiplicity) for f in result.factors)
+    assert found == [("x + 1", 1), ("y", 2)]
+    assert result.count == 3
+
+
+@pytest.mark.parametrize(
+    ("F", "count", "irreducible"),
+    [
+        (v**2 - SQRT2 * u**3 - 1, 1, True),
+        (u**2 + v**2 - SQRT2, 1, True),
+        (u**2 + SQRT2 * v**2, 2, False),  # two complex lines, conjugate over QQ(sqrt 2)
+        ((u**2 + SQRT2 * v**2) ** 2 * (u - 1), 5, False),
+        (u**2 - 2 * v**2, 2, False),
+    ],
+)
+def test_absolute_factors_over_an_extension(F: Poly, count: int, irreducible: bool) -> None:
+    """Each class is checked exactly: ``factor`` divides ``F`` with ``θ = generator(a)``,
+    modulo the minimal polynomial of ``a``."""
+    result = absolute_factorization(F)
+    assert result.count == count
+    assert result.is_absolutely_irreducible == irreducible
+    theta = sympy.sqrt(2)
+    for f in result.factors:
+        if f.generator is None:
+            continue
+        assert sympy.rem(sympy.expand(f.generator**2 - 2), f.minpoly, ALGEBRAIC) == 0
+        substituted = sympy.expand(F.as_expr().subs(theta, sympy.Symbol("theta")))
+        substituted = substituted.subs(sympy.Symbol("theta"), f.generator)
+        basis = sympy.groebner([f.factor, f.minpoly], X, Y, ALGEBRAIC, order="lex")
+        assert basis.reduce(sympy.expand(substituted))[1] == 0
+
+
+def test_curves_over_a_field_of_degree_four() -> None:
+    K = number_field((2, 3))
+    s, w = poly_ring(("s", "w"), K).gens
+    r2, r3 = K.from_sympy(sympy.sqrt(2)), K.from_sympy(sympy.sqrt(3))
+    elliptic, lines = analyze_curves([w**2 - (r2 + r3) * s**3 - 1, (s - r2) * (w - r3)])
+    assert elliptic.genus == 1
+    (factor,) = elliptic.factorization.factors
+    assert factor.minpoly is None  # written over K itself
+    S, W = sympy.symbols("s w")
+    expected = S**3 - (sympy.sqrt(3) - sympy.sqrt(2)) * (W**2 - 1)
+    assert sympy.simplify(factor.factor - expected) == 0
+    assert lines.genus is None
+    found = sorted(str(f.factor) for f in lines.factorization.factors)
+    assert found == ["s - sqrt(2)", "w - sqrt(3)"]
+
+
+def test_one_singular_run_analyses_several_curves(monkeypatch: pytest.MonkeyPatch) -> None:
+    calls = []
+    original = curves.run_script
+
+    def counting(script: str, **kwargs: object) -> dict[str, list[str]]:
+        calls.append(script)
+        return original(script, **kwargs)
+
+    monkeypatch.setattr(curves, "run_script", counting)
+    p, p2 = analyze_curves([P, P2])
+    assert len(calls) == 1
+    assert (p.genus, p2.genus) == (1, 0)
+    assert p.is_absolutely_irreducible and p2.is_absolutely_irreducible
+
+
+def test_cancel_reaches_singular() -> None:
+    cancel = threading.Event()
+    cancel.set()
+    with pytest.raises(Cancelled):
+        analyze_curves([P, P2], cancel=cancel)
+
+
+# --- parameterizations ------------------------------------------------------------------------
+
+
+def check(F: Poly, para: curves.CurveParametrization) -> None:
+    assert is_on_curve(F, para.x, para.y, para.parameter, para.generators)
+    assert is_proper(F, para.x, para.y, para.parameter, para.generators)
+
+
+def test_paper_parametrization_of_p_square_is_exact_and_proper() -> None:
+    assert is_on_curve(P2, -(T**3) + T, T**4 + 4 * T**3 + 6 * T**2 + 4 * T + 5, T)
+    assert is_proper(P2, -(T**3) + T, T**4 + 4 * T**3 + 6 * T**2 + 4 * T + 5, T)
+    assert not is_on_curve(P2_AS_PRINTED, -(T**3) + T, T**4 + 4 * T**3 + 6 * T**2 + 4 * T + 5, T)
+
+
+def test_parametrize_p_square_with_singular() -> None:
+    para = parametrize(P2)
+    assert para.method == "paraPlaneCurve" and para.field == "QQ" and para.is_real
+    check(P2, para)
+
+
+def test_paraplanecurve_alone_picks_the_gaussian_field_for_a_real_circle() -> None:
+    """What MATH.md §5 warns about: x² + y² = 3z² comes back over QQ(i)."""
+    found = curves.run_script(
+        "ring q = 0,(x,y,z),dp;\n"
+        "def P = paraPlaneCurve(x^2+y^2-3*z^2); setring P; short = 0;\n"
+        'sorguiEmit("minpoly", string(minpoly));'
+    )
+    assert found["minpoly"] == ["(a^2+1)"]
+
+
+@pytest.mark.parametrize(
+    "F",
+    [
+        x**2 + y**2 - 3,  # real points, no rational point: QQ(sqrt 3)
+        x**2 + y**2 - 3 * x**2 * y**2,  # a quartic whose conic has no rational point
+        x**2 - 3 * y**2 - 2,  # a hyperbola without rational points
+    ],
+)
+def test_parametrization_is_real_when_the_curve_has_real_points(F: Poly) -> None:
+    para = parametrize(F)
+    assert para.is_real and para.generators
+    check(F, para)
+
+
+def test_circle_of_radius_sqrt3_is_parametrized_over_qq_sqrt3() -> None:
+    para = parametrize(x**2 + y**2 - 3)
+    assert para.generators == (sympy.sqrt(3),)
+
+
+def test_curve_without_real_points_keeps_an_imaginary_field() -> None:
+    para = parametrize(x**2 + y**2 + 3)
+    assert not para.is_real
+    check(x**2 + y**2 + 3, para)
+
+
+@pytest.mark.parametrize(
+    "F",
+    [
+        x**2 - y**3,  # cusp
+        y**2 - x**3 - x**2,  # node
+        x**2 + y**2 - 1,
+        x**3 + y**3 - 3 * x * y,  # folium of Descartes
+        (x**2 + y**2) ** 2 - 2 * (x**2 - y**2),  # lemniscate of Bernoulli
+    ],
+)
+def test_rational_curves_over_qq(F: Poly) -> None:
+    para = parametrize(F)
+    assert para.field == "QQ"
+    check(F, para)
+
+
+def test_linear_in_y_takes_the_direct_route_without_singular(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def no_singular(*args: object, **kwargs: object) -> None:
+        raise AssertionError("Singular must not run")
+
+    monkeypatch.setattr(curves, "run_script", no_singular)
+    F = y - x**3 - 3 * x**2 + 2 * x
+    para = parametrize(F)
+    assert para.method == "direct" and para.coordinates == (T, T**3 + 3 * T**2 - 2 * T)
+    check(F, para)
+    G = x * (y**2 + 1) - y**3
+    para = parametrize(G)
+    assert para.method == "direct" and para.y == T
+    check(G, para)
+
+
+def test_direct_route_over_an_extension() -> None:
+    F = u**2 * v - SQRT2 * u + 1
+    para = parametrize(F)
+    assert para.method == "direct" and para.field == "QQ(sqrt(2))"
+    check(F, para)
+
+
+def test_extension_without_direct_route_says_why() -> None:
+    with pytest.raises(AnalysisError, match="ground field is not Q"):
+        parametrize(u**2 + v**2 - SQRT2)
+
+
+@pytest.mark.parametrize(
+    ("F", "reason"),
+    [
+        (y**2 - x**5 - 1, "genus 2"),
+        (P, "genus 1"),
+        (x**2 - y**2, "not absolutely irreducible"),
+        (x * y, "reducible"),
+    ],
+)
+def test_parametrize_refuses_curves_without_one(F: Poly, reason: str) -> None:
+    with pytest.raises(AnalysisError, match=reason):
+        parametrize(F)
+
+
+def test_improper_parametrization_is_detected() -> None:
+    F = y - x**2
+    assert is_on_curve(F, T**2, T**4, T)
+    assert not is_proper(F, T**2, T**4, T)
+    assert not is_on_curve(F, T, T**3, T)
+
+
+# --- real roots -------------------------------------------------------------------------------
+
+Rt = poly_ring(("t",), QQ)
+(t,) = Rt.gens
+
+
+@pytest.mark.parametrize(
+    ("h", "expected"),
+    [
+        (t**4 + 4 * t**3 + 6 * t**2 + 4 * t + 5, 0),  # the paper's tubular surface
+        (t**3 + 3 * t**2 - 2 * t, 3),  # MATH.md §7: two components
+        ((t - 1) ** 3 * (t**2 + 1), 1),
+        (t**2 - 2, 2),
+        (Rt(5), 0),
+    ],
+)
+def test_count_real_roots_over_qq(h: Poly, expected: int) -> None:
+    assert count_real_roots(h) == expected
+
+
+def test_count_real_roots_over_a_multiquadratic_field() -> None:
+    K = number_field((2, 3))
+    (s,) = poly_ring(("s",), K).gens
+    r2, r3 = K.from_sympy(sympy.sqrt(2)), K.from_sympy(sympy.sqrt(3))
+    assert count_real_roots((s - r2) * (s - r3) * (s**2 - r3 + r2)) == 4
+    assert count_real_roots((s - r2) * (s - r3) * (s**2 + r3 - r2)) == 2
+    assert count_real_roots(s**2 - (5 - 2 * r2 * r3)) == 2  # 5 - 2√6 ≈ 0.1 > 0
+    assert count_real_roots(s**2 + (2 * r2 * r3 - 5)) == 2
+    assert count_real_roots((s**2 - 2) * (s - r2)) == 2  # a double root counts once
+
+
+def test_count_real_roots_rejects_bad_input() -> None:
+    with pytest.raises(ValueError):
+        count_real_roots(x * y - 1)
+    with pytest.raises(ValueError):
+        count_real_roots(Rt.zero)
+
+
+def linear_and_quadratic(factors: Sequence[tuple[int, int, int]]) -> Poly:
+    h = Rt.one
+    for a, b, c in factors:
+        h *= a * t**2 + b * t + c if a else b * t + c or t
+    return h
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    st.lists(
+        st.tuples(st.integers(-3, 3), st.integers(-5, 5), st.integers(-5, 5)), min_size=1, max_size=5
+    )
+)
+def test_count_real_roots_agrees_with_sympy(factors: list[tuple[int, int, int]]) -> None:
+    h = linear_and_quadratic(factors)
+    if h.is_ground:
+        return
+    assert count_real_roots(h) == len(set(sympy.Poly(h.as_expr(), T).real_roots()))
