@@ -1,0 +1,232 @@
+"""Plain floating-point geometry shared by the render layer: regions, lines and VTK cell arrays.
+
+A *region* is where things are drawn: a box ``(xmin, xmax, ymin, ymax, zmin, zmax)`` (pyvista's
+bounds order) or a ball. Meshes, axes and curves are clipped to it. Everything here is display
+geometry in ``float64``; exact answers (does the normal meet the axis?) come from the engine.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+Vector = np.ndarray | Sequence[float]
+Bounds = tuple[float, float, float, float, float, float]
+"""``(xmin, xmax, ymin, ymax, zmin, zmax)``, pyvista's order."""
+
+
+@dataclass(frozen=True)
+class ClipBox:
+    """Keep what lies inside the axis-aligned box ``bounds``."""
+
+    bounds: Bounds
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "bounds", as_bounds(self.bounds))
+
+
+@dataclass(frozen=True)
+class ClipSphere:
+    """Keep what lies inside the ball of radius ``radius`` about ``center``."""
+
+    center: tuple[float, float, float]
+    radius: float
+
+    def __post_init__(self) -> None:
+        center = as_vector(self.center, "center")
+        if not (np.isfinite(self.radius) and self.radius > 0):
+            raise ValueError(f"clip radius must be positive and finite, got {self.radius}")
+        object.__setattr__(self, "center", tuple(float(v) for v in center))
+        object.__setattr__(self, "radius", float(self.radius))
+
+
+Region = ClipBox | ClipSphere
+
+
+def readonly(a: np.ndarray) -> np.ndarray:
+    """``a`` (made contiguous) with writing disabled: plain data handed between threads."""
+    a = np.ascontiguousarray(a)
+    a.flags.writeable = False
+    return a
+
+
+def as_vector(v: Vector, name: str = "vector") -> np.ndarray:
+    """``v`` as a finite ``float64`` array of shape ``(3,)``; ``ValueError`` otherwise."""
+    out = np.asarray(v, dtype=np.float64).reshape(-1)
+    if out.shape != (3,) or not np.all(np.isfinite(out)):
+        raise ValueError(f"{name} must be three finite numbers, got {v!r}")
+    return out
+
+
+def as_bounds(bounds: Sequence[float]) -> Bounds:
+    """Validate ``(xmin, xmax, ymin, ymax, zmin, zmax)``: finite, ``min < max`` on each axis."""
+    b = np.asarray(bounds, dtype=np.float64).reshape(-1)
+    if b.shape != (6,) or not np.all(np.isfinite(b)) or np.any(b[1::2] <= b[0::2]):
+        raise ValueError(f"bounds must be (xmin, xmax, ymin, ymax, zmin, zmax), got {bounds!r}")
+    return tuple(float(v) for v in b)  # type: ignore[return-value]
+
+
+def as_region(region: Region | Sequence[float]) -> Region:
+    """A :class:`ClipBox` or :class:`ClipSphere`; plain bounds become a box."""
+    if isinstance(region, (ClipBox, ClipSphere)):
+        return region
+    return ClipBox(as_bounds(region))
+
+
+def region_bounds(region: Region | Sequence[float]) -> Bounds:
+    """The axis-aligned bounding box of ``region``."""
+    region = as_region(region)
+    if isinstance(region, ClipBox):
+        return region.bounds
+    c, r = np.asarray(region.center), region.radius
+    return as_bounds(np.column_stack([c - r, c + r]).ravel())
+
+
+def enclosing_sphere(region: Region | Sequence[float]) -> tuple[np.ndarray, float]:
+    """A ball ``(center, radius)`` that contains ``region`` (the circumscribed ball of a box)."""
+    region = as_region(region)
+    if isinstance(region, ClipSphere):
+        return np.asarray(region.center), region.radius
+    b = np.asarray(region.bounds).reshape(3, 2)
+    return b.mean(axis=1), 0.5 * float(np.linalg.norm(b[:, 1] - b[:, 0]))
+
+
+def inside_region(points: np.ndarray, region: Region | Sequence[float]) -> np.ndarray:
+    """Boolean mask of the rows of ``points (n, 3)`` that lie in ``region`` (boundary included)."""
+    region = as_region(region)
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    with np.errstate(invalid="ignore"):
+        if isinstance(region, ClipSphere):
+            d = pts - np.asarray(region.center)
+            return np.einsum("ij,ij->i", d, d) <= region.radius**2
+        b = np.asarray(region.bounds).reshape(3, 2)
+        return np.all((pts >= b[:, 0]) & (pts <= b[:, 1]), axis=1)
+
+
+def unit(v: Vector) -> np.ndarray:
+    """``v / |v|``, or the zero vector when ``v`` is zero or not finite."""
+    v = np.asarray(v, dtype=np.float64)
+    norm = float(np.linalg.norm(v))
+    if not (np.isfinite(norm) and norm > 0.0):
+        return np.zeros_like(v)
+    return v / norm
+
+
+def perpendicular_vector(a: Vector) -> np.ndarray:
+    """A nonzero vector orthogonal to ``a`` (not normalised): ``a × e`` for the axis ``e``
+    least aligned with ``a``."""
+    a = as_vector(a, "direction")
+    if not np.any(a):
+        raise ValueError("direction must be nonzero")
+    e = np.zeros(3)
+    e[int(np.argmin(np.abs(a)))] = 1.0
+    return np.cross(a, e)
+
+
+def line_in_region(
+    point: Vector, direction: Vector, region: Region | Sequence[float]
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """The segment ``(start, end)`` of the line ``point + t·direction`` inside ``region``.
+
+    ``None`` when the line misses the region (or only touches it in one point).
+    """
+    p, d = as_vector(point, "point"), as_vector(direction, "direction")
+    if not np.any(d):
+        raise ValueError("direction must be nonzero")
+    region = as_region(region)
+    if isinstance(region, ClipSphere):
+        # |p + t d - c|² = R²: a quadratic in t.
+        q = p - np.asarray(region.center)
+        a2, b1, c0 = d @ d, q @ d, q @ q - region.radius**2
+        disc = b1 * b1 - a2 * c0
+        if disc <= 0.0:
+            return None
+        root = np.sqrt(disc)
+        t0, t1 = (-b1 - root) / a2, (-b1 + root) / a2
+    else:
+        # Slab method: intersect the parameter intervals of the three slabs.
+        b = np.asarray(region.bounds).reshape(3, 2)
+        t0, t1 = -np.inf, np.inf
+        for v in range(3):
+            if d[v] == 0.0:
+                if not b[v, 0] <= p[v] <= b[v, 1]:
+                    return None
+                continue
+            ta, tb = sorted(((b[v, 0] - p[v]) / d[v], (b[v, 1] - p[v]) / d[v]))
+            t0, t1 = max(t0, ta), min(t1, tb)
+        if not t0 < t1:
+            return None
+    return p + t0 * d, p + t1 * d
+
+
+def line_skews(
+    points: np.ndarray, directions: np.ndarray, line_point: Vector, line_direction: Vector
+) -> np.ndarray:
+    """``|(c - p_i) · (d̂_i × â)|`` for the lines ``p_i + t·d_i`` (rows) against ``c + t·a``.
+
+    Zero exactly when the lines meet or are parallel; it equals ``distance · sin(angle)`` and
+    is the well-conditioned form of the paper's condition ``∇f(p)·(ā + a × p) = 0`` that the
+    normal at ``p`` meets the axis ``(a : ā)``. Zero directions give ``0``.
+    """
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    d = np.asarray(directions, dtype=np.float64).reshape(-1, 3)
+    norms = np.linalg.norm(d, axis=1, keepdims=True)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d = np.where(norms > 0.0, d / norms, 0.0)
+    a = unit(as_vector(line_direction, "line direction"))
+    c = as_vector(line_point, "line point")
+    return np.abs(np.einsum("ij,ij->i", c - pts, np.cross(d, a)))
+
+
+def line_distance(
+    p1: Vector, d1: Vector, p2: Vector, d2: Vector, parallel_tol: float = 1e-12
+) -> float:
+    """The distance between the lines ``p1 + t·d1`` and ``p2 + t·d2``.
+
+    Parallel lines (``sin(angle) ≤ parallel_tol``) count as meeting at infinity, the
+    projective convention of the paper, and get distance ``0``.
+    """
+    sine = float(np.linalg.norm(np.cross(unit(as_vector(d1)), unit(as_vector(d2)))))
+    if sine <= parallel_tol:
+        return 0.0
+    return float(line_skews(as_vector(p1), as_vector(d1), p2, d2)[0]) / sine
+
+
+def foot_on_line(point: Vector, line_point: Vector, line_direction: Vector) -> np.ndarray:
+    """The orthogonal projection of ``point`` onto the line ``line_point + t·line_direction``."""
+    c, a = as_vector(line_point, "axis point"), unit(as_vector(line_direction, "axis direction"))
+    if not np.any(a):
+        raise ValueError("axis direction must be nonzero")
+    return c + ((as_vector(point, "point") - c) @ a) * a
+
+
+# --- VTK flat cell arrays -------------------------------------------------------------------
+
+
+def polyline_cells(lengths: Sequence[int], closed: Sequence[bool] | None = None) -> np.ndarray:
+    """The VTK flat cell array ``[n, i0, …, i(n-1), …]`` for consecutive polylines.
+
+    Polyline ``k`` uses the next ``lengths[k]`` points; a closed one repeats its first index.
+    """
+    cells: list[np.ndarray] = []
+    start = 0
+    for k, n in enumerate(lengths):
+        ids = np.arange(start, start + n, dtype=np.int64)
+        if closed is not None and closed[k] and n > 2:
+            ids = np.append(ids, start)
+        cells.append(np.concatenate([[len(ids)], ids]))
+        start += n
+    return np.concatenate(cells) if cells else np.zeros(0, dtype=np.int64)
+
+
+def split_cells(cells: np.ndarray) -> list[np.ndarray]:
+    """The point ids of each cell of a VTK flat cell array."""
+    out, k = [], 0
+    cells = np.asarray(cells, dtype=np.int64)
+    while k < len(cells):
+        n = int(cells[k])
+        out.append(cells[k + 1 : k + 1 + n])
+        k += n + 1
+    return out
