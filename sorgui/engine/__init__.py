@@ -10,7 +10,7 @@ Modules, one idea each (following sympy's ``polys``): ``parsing`` (safe parser),
 ``analysis`` (the staged pipeline), ``errors`` (the one exception hierarchy).
 """
 
-from .analysis import STAGES, analyze
+from .analysis import STAGES, analyze, analyze_polynomial
 from .errors import AnalysisError, Cancelled, ParseError, SingularError, SingularTimeout, SorguiError
 from .report import Analysis, Axis, Factor, Parametrization, Profile, Rationality, Recognition
 
@@ -30,4 +30,5 @@ __all__ = [
     "SingularTimeout",
     "SorguiError",
     "analyze",
+    "analyze_polynomial",
 ]

@@ -12,12 +12,15 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from dataclasses import replace
 
 from .errors import Cancelled
 from .parsing import parse_polynomial
-from .polys import field_name, poly_str
+from .polys import Poly, field_name, poly_str
+from .profile import profile_curve
+from .rationality import analyze_rationality, parametrizations
 from .recognition import factor_reports, recognize
-from .report import Analysis
+from .report import Analysis, Parametrization, Rationality
 
 ProgressCallback = Callable[[str], None]
 
@@ -65,28 +68,63 @@ def analyze(
     clock = StageClock(progress, cancel)
     with clock.stage("parse"):
         parsed = parse_polynomial(text)
-    f = parsed.polynomial
+    return analyze_polynomial(
+        parsed.polynomial,
+        text=text,
+        method=method,
+        recognition_only=recognition_only,
+        singular_timeout=singular_timeout,
+        clock=clock,
+    )
+
+
+def analyze_polynomial(
+    f: Poly,
+    *,
+    text: str | None = None,
+    method: str = "symmetry",
+    recognition_only: bool = False,
+    singular_timeout: float = 60.0,
+    clock: StageClock | None = None,
+) -> Analysis:
+    """The analysis of a polynomial over ``K`` that is already parsed (``text`` defaults to it)."""
+    clock = clock or StageClock(None, None)
+    cancel = clock.cancel
     with clock.stage("recognition"):
         recognition, symmetry, profile = recognize(f, method)
     with clock.stage("factors"):
-        factors, squarefree = factor_reports(f, recognition, method)
+        factors, distinct = factor_reports(f, recognition, method)
     rationality = None
-    parametrizations: tuple = ()
+    found: tuple[Parametrization, ...] = ()
     if not recognition_only and profile is not None:
-        from .rationality import analyze_rationality
-
-        rationality, parametrizations = analyze_rationality(
-            f, symmetry, profile, clock=clock, timeout=singular_timeout, cancel=cancel
-        )
+        if len(distinct) > 1:
+            rationality = Rationality(status="not analysed: X is reducible over K; see its factors")
+        else:
+            g = distinct[0]
+            if g != f:
+                profile = profile_curve(g, symmetry.axis_point, symmetry.axis_direction)
+            with clock.stage("rationality"):
+                rationality, tube = analyze_rationality(profile, timeout=singular_timeout, cancel=cancel)
+            with clock.stage("parametrizations"):
+                found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)
+            rationality = replace(rationality, notes=rationality.notes + notes)
     clock.check()
     return Analysis(
-        input=text,
-        field=field_name(parsed.field),
+        input=poly_str(f) if text is None else text,
+        field=field_name(f.ring.domain),
         method=method,
         recognition=recognition,
         factors=factors,
-        squarefree=poly_str(squarefree),
+        squarefree=poly_str(_product(distinct)),
         rationality=rationality,
-        parametrizations=parametrizations,
+        parametrizations=found,
         timings=tuple(clock.timings),
     )
+
+
+def _product(polys: list[Poly]) -> Poly:
+    """The product of the distinct factors: the square-free part of ``f`` (used for meshing)."""
+    result = polys[0]
+    for g in polys[1:]:
+        result *= g
+    return result

@@ -15,7 +15,7 @@ from functools import lru_cache
 from typing import Any
 
 import sympy
-from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
+from flint import fmpq_mpoly, fmpq_mpoly_ctx
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.rings import PolyElement, PolyRing, ring
@@ -119,7 +119,7 @@ def to_flint(f: Poly) -> fmpq_mpoly:
 
 def from_flint(g: fmpq_mpoly, R: PolyRing) -> Poly:
     """The flint polynomial ``g`` as an element of ``R`` (over ``QQ``)."""
-    return R.from_dict({m: QQ(c) if not isinstance(c, fmpq) else c for m, c in g.to_dict().items()})
+    return R.from_dict({tuple(map(int, m)): c for m, c in g.to_dict().items()})
 
 
 def compose(f: Poly, images: Sequence[Poly]) -> Poly:
@@ -128,12 +128,13 @@ def compose(f: Poly, images: Sequence[Poly]) -> Poly:
     This is the workhorse of the profile ``p̃(s, r) = f(c + s·a + r·u)`` and of every identity
     check (MATH.md §3).
     """
-    target = images[0].ring
+    target = next(h.ring for h in images if isinstance(h, PolyElement))
+    # A constant image may arrive as a bare coefficient (``c + 0·s`` is ``c`` in sympy).
+    images = [h if isinstance(h, PolyElement) else target.ground_new(h) for h in images]
     if is_rational_field(f.ring.domain) and is_rational_field(target.domain):
         ctx = _flint_ctx(target.ngens)
         g = to_flint(f).compose(*[to_flint(h) for h in images], ctx=ctx)
         return from_flint(g, target)
-    images = [target.domain_new(0) + h if h.ring != target else h for h in images]
     result = target.zero
     powers: dict[tuple[int, int], Poly] = {}
     for monom, coeff in f.items():
@@ -197,13 +198,45 @@ def primitive(f: Poly) -> Poly:
 
 
 def to_sympy_expr(f: Poly) -> sympy.Expr:
-    """``f`` as a sympy expression, for printing (str, LaTeX, Maple, Mathematica)."""
+    """``f`` as a sympy expression, for the printers (LaTeX, Maple, Mathematica)."""
     return f.as_expr()
 
 
 def poly_str(f: Poly) -> str:
-    """``f`` as a string that ``sympy.sympify`` reads back exactly."""
-    return str(to_sympy_expr(f))
+    """``f`` as a string that sympy (and the project's parser) reads back exactly.
+
+    Terms come in decreasing total degree. The string is written directly from the terms:
+    sympy's printer needs seconds for the thousands of terms of a degree-30 surface.
+    """
+    if not f:
+        return "0"
+    K = f.ring.domain
+    names = [str(g) for g in f.ring.symbols]
+    out: list[str] = []
+    for monom, c in sorted(f.terms(), key=lambda t: (sum(t[0]), t[0]), reverse=True):
+        negative, magnitude = _signed_coefficient(K, c)
+        variables = "*".join(n if e == 1 else f"{n}**{e}" for n, e in zip(names, monom) if e)
+        if not variables:
+            body = magnitude
+        elif magnitude == "1":
+            body = variables
+        else:
+            body = f"{magnitude}*{variables}"
+        if out:
+            out.append(f" - {body}" if negative else f" + {body}")
+        else:
+            out.append(f"-{body}" if negative else body)
+    return "".join(out)
+
+
+def _signed_coefficient(K: Domain, c: Any) -> tuple[bool, str]:
+    """The sign of a coefficient and the text of its magnitude (parenthesised when a sum)."""
+    if is_rational_field(K):
+        return c < 0, str(-c if c < 0 else c)
+    expr = K.to_sympy(c)
+    negative = expr.could_extract_minus_sign()
+    text = str(-expr if negative else expr)
+    return negative, f"({text})" if isinstance(-expr if negative else expr, sympy.Add) else text
 
 
 def total_degree(f: Poly) -> int:

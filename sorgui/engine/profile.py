@@ -14,10 +14,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 import sympy
+from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
 from .linalg import Vector, cross, dot, primitive_vector
-from .polys import Poly, compose, poly_ring, primitive, to_expr
+from .polys import Poly, compose, field_generators, poly_ring, primitive, sqrt_in_field, to_expr
 
 S_R = ("s", "r")
 S_W = ("s", "w")
@@ -45,14 +46,14 @@ class ProfileCurve:
     """The profile of a surface of revolution in its axis frame.
 
     ``rational`` is ``p̃(s, r)``, ``square`` is ``P²`` as ``p̃²(s, w)``, ``orthonormal`` is the
-    presented profile ``p(x, y)`` (a sympy expression, x along the axis, y the distance).
+    presented profile ``p(x, y)`` (x along the axis, y the distance; over ``K`` or ``K(|a|)``).
     ``verified`` records the paper's exact test ``f = p(x, y² + z²)`` in the axis frame.
     """
 
     frame: AxisFrame
     rational: Poly
     square: Poly
-    orthonormal: sympy.Expr
+    orthonormal: Poly
     even: bool
     verified: bool
 
@@ -104,22 +105,31 @@ def verify_profile(f: Poly, frame: AxisFrame, square: Poly) -> bool:
     return lhs == rhs
 
 
-def orthonormal_profile(p: Poly, frame: AxisFrame) -> sympy.Expr:
-    """``p(x, y) = p̃(x/|a|, y/|u|)`` in a canonical scale (the top coefficient in ``y`` is
-    positive; integer coefficients with content 1 when they are rational), for presentation."""
+def orthonormal_profile(p: Poly, frame: AxisFrame) -> Poly:
+    """``p(x, y) = p̃(x/|a|, y/|u|)`` for presentation, in a canonical scale (the top coefficient
+    in ``y`` positive; integer coefficients with content 1 when they are rational).
+
+    Its field is ``K``, or ``K(|a|)`` when ``|a|²`` is not a square in ``K``; ``y`` only occurs
+    squared, so ``|u|`` never needs a square root.
+    """
     K = p.ring.domain
-    x, y = sympy.symbols("x y")
-    na = sympy.sqrt(to_expr(K, dot(frame.direction, frame.direction)))
-    nu2 = to_expr(K, dot(frame.normal, frame.normal))
-    expr = sympy.Add(*[to_expr(K, c) * (x / na) ** i * (y**2 / nu2) ** (j // 2) for (i, j), c in p.items()])
-    terms = sympy.Poly(sympy.expand(expr), x, y).terms()
-    _, top = max(terms, key=lambda t: (t[0][1], t[0][0]))
-    coeffs = [sympy.radsimp(c / top) for _, c in terms]
-    if all(c.is_Rational for c in coeffs):
-        lcm = sympy.ilcm(1, *[c.q for c in coeffs])
-        gcd = sympy.igcd(0, *[c.p * lcm // c.q for c in coeffs])
-        coeffs = [c * lcm / gcd for c in coeffs]
-    return sympy.Add(*[c * x**i * y**j for ((i, j), _), c in zip(terms, coeffs)])
+    n = dot(frame.direction, frame.direction)
+    root = sqrt_in_field(K, n)
+    L = K
+    if root is None:
+        L = QQ.algebraic_field(*field_generators(K), sympy.sqrt(to_expr(K, n)))
+        root = L.from_sympy(sympy.sqrt(to_expr(K, n)))
+    inverse_root = L.quo(L.one, root)
+    inverse_m = L.quo(L.one, L.convert(dot(frame.normal, frame.normal), K))
+    R = poly_ring(("x", "y"), L)
+    terms = {(i, j): L.convert(c, K) * inverse_root**i * inverse_m ** (j // 2) for (i, j), c in p.items()}
+    top = terms[max(terms, key=lambda m: (m[1], m[0]))]
+    scaled = {m: to_expr(L, L.quo(c, top)) for m, c in terms.items()}
+    if all(c.is_Rational for c in scaled.values()):
+        rational = primitive(poly_ring(("x", "y"), QQ).from_dict({m: QQ.from_sympy(c) for m, c in scaled.items()}))
+        top_monomial = max(scaled, key=lambda m: (m[1], m[0]))
+        return rational if dict(rational.items())[top_monomial] > 0 else -rational
+    return R.from_dict({m: L.quo(c, top) for m, c in terms.items()})
 
 
 def profile_curve(f: Poly, point: Vector, direction: Vector) -> ProfileCurve:
@@ -134,7 +144,7 @@ def profile_curve(f: Poly, point: Vector, direction: Vector) -> ProfileCurve:
         frame=frame,
         rational=rational,
         square=square_profile(rational) if even else poly_ring(S_W, K).zero,
-        orthonormal=orthonormal_profile(rational, frame) if even else sympy.Integer(0),
+        orthonormal=orthonormal_profile(rational, frame) if even else poly_ring(("x", "y"), K).zero,
         even=even,
         verified=verified,
     )

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-import sympy
 from sympy.polys.domains.domain import Domain
 
 from .errors import AnalysisError
@@ -50,11 +49,11 @@ def axis_report(point: Vector, direction: Vector, K: Domain) -> Axis:
 
 def profile_report(profile: ProfileCurve, K: Domain) -> Profile:
     """The profile as exact strings."""
-    y = sympy.Symbol("y")
-    square = sympy.expand(profile.orthonormal.subs(y, sympy.sqrt(y)))
+    p = profile.orthonormal
+    square = p.ring.from_dict({(i, j // 2): c for (i, j), c in p.items()})
     return Profile(
-        polynomial=str(profile.orthonormal),
-        square=str(square),
+        polynomial=poly_str(p),
+        square=poly_str(square),
         rational=poly_str(profile.rational),
         rational_square=poly_str(profile.square),
         frame_point=_triple(K, profile.frame.point),  # type: ignore[arg-type]
@@ -92,16 +91,14 @@ def recognize(f: Poly, method: str = "symmetry") -> tuple[Recognition, Symmetry,
 
 def factor_reports(
     f: Poly, whole: Recognition, method: str = "symmetry"
-) -> tuple[tuple[Factor, ...], Poly]:
-    """The irreducible factors of ``f`` over ``K``, each recognised, and the square-free part.
+) -> tuple[tuple[Factor, ...], list[Poly]]:
+    """The irreducible factors of ``f`` over ``K``, each recognised, and the distinct factors.
 
     When ``f`` is irreducible its only factor's recognition is ``whole`` (not computed twice).
     """
     _, factors = factor(f)
-    squarefree = f.ring.one
-    for g, _e in factors:
-        squarefree *= g
+    distinct = [g for g, _e in factors]
     if len(factors) == 1 and factors[0][1] == 1:
-        return (Factor(poly_str(factors[0][0]), 1, whole),), squarefree
+        return (Factor(poly_str(factors[0][0]), 1, whole),), distinct
     reports = tuple(Factor(poly_str(g), e, recognize(g, method)[0]) for g, e in factors)
-    return reports, squarefree
+    return reports, distinct

@@ -12,9 +12,15 @@ from sorgui.engine.linalg import Vector, cross, dot, is_zero
 from sorgui.engine.polys import XYZ, Poly, compose, poly_ring
 
 
-def rational_vector(values: Sequence[int | Fraction], K: Domain = QQ) -> Vector:
-    """Integers or fractions as a vector over ``K``."""
-    return tuple(K.convert(QQ(Fraction(v).numerator, Fraction(v).denominator)) for v in values)
+def rational_vector(values: Sequence[object], K: Domain = QQ) -> Vector:
+    """Integers, fractions, strings like ``"3/5"`` or ``QQ`` elements as a vector over ``K``."""
+    out = []
+    for v in values:
+        if isinstance(v, (int, str, Fraction)):
+            q = Fraction(v)
+            v = QQ(q.numerator, q.denominator)
+        out.append(K.convert(v))
+    return tuple(out)
 
 
 def revolve(profile: dict[tuple[int, int], int], point: Vector, direction: Vector, K: Domain = QQ) -> Poly:

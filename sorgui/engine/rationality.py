@@ -1,0 +1,253 @@
+"""Rationality of a surface of revolution: Table 1 of the paper and the tubular surface (MATH.md §5).
+
+From the ``K``-rational profile ``P: p̃(s, r) = 0`` and its square ``P²: p̃²(s, w) = 0``:
+
+* ``X_C`` is rational iff ``genus(P²) = 0`` (Theorem "rationality of SOR");
+* ``P`` reducible over ``C`` means ``p̃ = g(s, r)·g(s, -r)`` (the cone's two lines);
+* the row of Table 1 follows from "reducible / genus(P)" and "genus(P²)";
+* when ``genus(P²) = 0``, a proper parameterization ``(φ, r/q)`` of ``P²`` gives the tubular
+  surface ``T: y² + z² = h(x)`` with ``h = r̂·q̂`` (Theorem "birational to tubular"), and the
+  real surface is rational iff it is unirational and ``h`` has at most two real roots (the
+  Corollary), counted exactly with Sturm sequences.
+
+Every Singular call runs under the time limit; a limit reached ends in an "undecided" status,
+never in a hang.
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass
+
+import sympy
+from sympy.polys.domains import QQ
+
+from . import curves
+from .curves import CurveAnalysis, CurveParametrization
+from .errors import AnalysisError, SingularError, SingularTimeout
+from .linalg import dot
+from .parametrization import (
+    T,
+    Section,
+    make_parametrization,
+    norm_decomposition,
+    sweep,
+    tubular_section,
+)
+from .polys import Poly, poly_ring, to_expr
+from .profile import ProfileCurve
+from .report import Parametrization, Rationality
+
+
+@dataclass(frozen=True)
+class TubularSurface:
+    """``T: y² + z² = h(x)`` and the map ``τ(x, y, z) = (φ(x), d(x)·y/q̃(x), d(x)·z/q̃(x))``."""
+
+    phi: sympy.Expr
+    h: sympy.Expr
+    d: sympy.Expr
+    q: sympy.Expr
+    field: tuple[sympy.Expr, ...]
+
+
+def table_row(reducible: bool, genus_p: int | None, genus_p2: int) -> int:
+    """The row (1–5, top to bottom) of Table 1 of the paper."""
+    if reducible:
+        return 1 if genus_p2 == 0 else 2
+    if genus_p == 0:
+        return 3
+    return 4 if genus_p2 == 0 else 5
+
+
+def tubular_surface(par: CurveParametrization) -> TubularSurface:
+    """The tubular surface of a proper parameterization ``(φ(t), r(t)/q(t))`` of ``P²``:
+    cancel ``gcd(r, q)``, write ``r̃·q̃ = h·d²`` with ``h`` square-free (odd multiplicities)."""
+    phi = sympy.cancel(par.x.subs(par.parameter, T))
+    r, q = sympy.fraction(sympy.cancel(par.y.subs(par.parameter, T)))
+    extension = list(par.generators) or None
+    product = sympy.Poly(r * q, T, extension=extension)
+    lead, factors = product.sqf_list()
+    h, d = lead, sympy.Integer(1)
+    for g, e in factors:
+        h *= g.as_expr() ** (e % 2)
+        d *= g.as_expr() ** (e // 2)
+    return TubularSurface(phi=phi, h=sympy.expand(h), d=sympy.expand(d), q=sympy.expand(q), field=par.generators)
+
+
+def count_real_roots_of(h: sympy.Expr, generators: tuple[sympy.Expr, ...]) -> int:
+    """The number of real roots of ``h`` (coefficients in ``QQ`` or a real field), exactly."""
+    K = QQ.algebraic_field(*generators) if generators else QQ
+    R = poly_ring(("t",), K)
+    return curves.count_real_roots(R.from_expr(h) if generators else R(sympy.Poly(h, T).as_expr()))
+
+
+def has_real_surface(h: sympy.Expr, real_roots: int) -> bool:
+    """Whether ``y² + z² = h(x)`` has a two-dimensional real part: ``h > 0`` somewhere."""
+    poly = sympy.Poly(h, T)
+    return real_roots > 0 or poly.degree() % 2 == 1 or bool(poly.LC() > 0)
+
+
+def analyze_rationality(
+    profile: ProfileCurve,
+    *,
+    timeout: float = 60.0,
+    cancel: threading.Event | None = None,
+) -> tuple[Rationality, TubularSurface | None]:
+    """The rationality facts of a surface of revolution with the given profile."""
+    try:
+        p, p2 = curves.analyze_curves([profile.rational, profile.square], timeout=timeout, cancel=cancel)
+    except SingularTimeout as exc:
+        return Rationality(status=f"undecided within the time limit: {exc.message}"), None
+    absolute = _absolute_factors(p)
+    reducible = not p.is_absolutely_irreducible
+    if p2.genus is None:
+        return Rationality(
+            status="not applicable: X is not absolutely irreducible (P² splits over C)",
+            profile_reducible=reducible,
+            absolute_factors=absolute,
+        ), None
+    row = table_row(reducible, p.genus, p2.genus)
+    base = dict(
+        profile_reducible=reducible,
+        absolute_factors=absolute,
+        genus_profile=None if reducible else p.genus,
+        genus_profile_square=p2.genus,
+        table_row=row,
+        complex_rational=p2.genus == 0,
+    )
+    if p2.genus > 0:
+        return Rationality(status="decided", unirational=False, real_rational=False, **base), None
+    try:
+        par = curves.parametrize(profile.square, timeout=timeout, cancel=cancel)
+    except SingularTimeout as exc:
+        return Rationality(status=f"partly undecided: {exc.message}", **base,
+                           notes=("no parameterization of P² within the time limit",)), None
+    except (AnalysisError, SingularError) as exc:
+        return Rationality(status="partly undecided", **base,
+                           notes=(f"no parameterization of P²: {exc.message}",)), None
+    tube = tubular_surface(par)
+    notes = ["T and τ live in the axis frame p = c + s·a + y·u + z·(a × u)/|a| of the profile"]
+    if not par.is_real:
+        return Rationality(status="decided", unirational=False, real_rational=False,
+                           square_parametrization=(str(par.x), str(par.y)),
+                           tubular_surface=_tube_str(tube), h=str(tube.h), tau=_tau_str(tube),
+                           notes=(*notes, f"P² has no real parameterization (field {par.field})"), **base), tube
+    roots = count_real_roots_of(tube.h, par.generators)
+    unirational = has_real_surface(tube.h, roots)
+    return Rationality(
+        status="decided",
+        unirational=unirational,
+        real_rational=unirational and roots <= 2,
+        square_parametrization=(str(par.x), str(par.y)),
+        tubular_surface=_tube_str(tube),
+        h=str(tube.h),
+        tau=_tau_str(tube),
+        real_roots_of_h=roots,
+        notes=tuple(notes),
+        **base,
+    ), tube
+
+
+def _absolute_factors(analysis: CurveAnalysis) -> tuple[str, ...]:
+    """The absolute factors as strings, with the algebraic number ``a`` named where present."""
+    out = []
+    for fac in analysis.factorization.factors:
+        text = str(fac.factor)
+        if fac.minpoly is not None:
+            text += f"  where {fac.minpoly} = 0"
+        if fac.multiplicity > 1:
+            text = f"({text})^{fac.multiplicity}"
+        out.append(text)
+    return tuple(out)
+
+
+def _tube_str(tube: TubularSurface) -> str:
+    x, y, z = sympy.symbols("x y z")
+    return str(y**2 + z**2 - tube.h.subs(T, x))
+
+
+def _tau_str(tube: TubularSurface) -> tuple[str, str, str]:
+    x, y, z = sympy.symbols("x y z")
+    factor = (tube.d / tube.q).subs(T, x)
+    return str(tube.phi.subs(T, x)), str(sympy.cancel(factor * y)), str(sympy.cancel(factor * z))
+
+
+# --- parameterizations of X -----------------------------------------------------------------
+
+
+def parametrizations(
+    f: Poly,
+    profile: ProfileCurve,
+    rationality: Rationality,
+    tube: TubularSurface | None,
+    *,
+    timeout: float = 60.0,
+    cancel: threading.Event | None = None,
+) -> tuple[tuple[Parametrization, ...], tuple[str, ...]]:
+    """Every parameterization MATH.md §6 provides, each verified; and notes on those that could
+    not be built."""
+    found: list[Parametrization] = []
+    notes: list[str] = []
+    K = f.ring.domain
+    frame = profile.frame
+    if rationality.genus_profile == 0 or rationality.profile_reducible:
+        try:
+            section = _profile_section(profile, rationality, timeout=timeout, cancel=cancel)
+            proper = False if not rationality.profile_reducible else None
+            par = make_parametrization(f, sweep(section, frame, K), method="rotated profile", proper=proper)
+            if par is not None:
+                found.append(par)
+        except SingularTimeout as exc:
+            notes.append(f"rotated profile: {exc.message}")
+        except (AnalysisError, SingularError) as exc:
+            notes.append(f"rotated profile: {exc.message}")
+    if tube is not None:
+        n = to_expr(K, dot(frame.direction, frame.direction))
+        real = norm_decomposition(tube.h, n) if not tube.field else None
+        if real is not None:
+            A, B = real
+            method = "via tubular surface (real)"
+        else:
+            alpha = sympy.sqrt(-n)
+            A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * alpha)
+            method = "via tubular surface (complex)"
+            if not tube.field:
+                notes.append("h is not of the form A² + |a|²·B² over QQ: only the complex parameterization through T")
+        section = tubular_section(tube.phi, tube.d, tube.q, A, B)
+        par = make_parametrization(f, sweep(section, frame, K), method=method, proper=True)
+        if par is not None:
+            found.append(par)
+    return tuple(found), tuple(notes)
+
+
+def _profile_section(
+    profile: ProfileCurve, rationality: Rationality, *, timeout: float, cancel: threading.Event | None
+) -> Section:
+    """A section from a rational profile ``P`` or from a component ``P⁺`` of a reducible one."""
+    curve = profile.rational
+    if rationality.profile_reducible:
+        curve = _real_component(profile.rational, timeout=timeout, cancel=cancel)
+    par = curves.parametrize(curve, timeout=timeout, cancel=cancel)
+    return Section(phi=par.x.subs(par.parameter, T), rho_u=par.y.subs(par.parameter, T), rho_w=sympy.Integer(0))
+
+
+def _real_component(p: Poly, *, timeout: float, cancel: threading.Event | None) -> Poly:
+    """A component ``g(s, r)`` of ``p̃ = g(s, r)·g(s, -r)`` over a real field, as a polynomial."""
+    factorization = curves.absolute_factorization(p, timeout=timeout, cancel=cancel)
+    s, r = sympy.symbols("s r")
+    for fac in factorization.factors:
+        if fac.minpoly is None:
+            candidates = [fac.factor]
+        else:
+            roots = sympy.Poly(fac.minpoly, curves.ALGEBRAIC).all_roots()
+            candidates = [fac.factor.subs(curves.ALGEBRAIC, root) for root in roots if root.is_real]
+        for expr in candidates:
+            expr = sympy.expand(expr)
+            numbers = sorted({a for a in expr.atoms(sympy.Pow) if a.exp == sympy.Rational(1, 2)}, key=str)
+            K = QQ.algebraic_field(*numbers) if numbers else QQ
+            R = poly_ring(("s", "r"), K)
+            return R.from_expr(expr.subs({s: R.symbols[0], r: R.symbols[1]})) if numbers else R(
+                sympy.Poly(expr, s, r).as_expr()
+            )
+    raise AnalysisError("the profile has no component over a real field")
+

@@ -1,0 +1,154 @@
+"""Rationality (MATH.md §5–§6, the paper's Section 3 and Appendix Example 2), with real Singular."""
+
+from __future__ import annotations
+
+import random
+
+import pytest
+import sympy
+from sympy.polys.domains import QQ
+
+from sorgui.engine.analysis import analyze, analyze_polynomial
+from sorgui.engine.polys import XYZ, poly_ring
+from sorgui.engine.rationality import table_row
+
+from .helpers import move, quaternion_rotation, rational_vector, revolve
+
+t, x, y = sympy.symbols("t x y")
+
+
+def assert_parametrizations_verified(result) -> None:
+    assert result.parametrizations
+    for par in result.parametrizations:
+        assert par.verified is True
+        assert par.parameters == ("s", "t")
+
+
+def test_table_rows() -> None:
+    assert [table_row(True, None, 0), table_row(True, None, 2), table_row(False, 0, 0),
+            table_row(False, 1, 0), table_row(False, 1, 1)] == [1, 2, 3, 4, 5]
+
+
+def test_paper_example_2(paper_example_1) -> None:
+    result = analyze_polynomial(paper_example_1)
+    rat = result.rationality
+    assert (rat.genus_profile, rat.genus_profile_square, rat.table_row) == (1, 0, 4)
+    assert rat.profile_reducible is False and rat.complex_rational is True
+    # MATH.md §1: P² has the constant -400 (the paper prints +400).
+    corrected = -400 - 104 * x**2 - x**4 + 200 * y - 48 * x * y + 26 * x**2 * y - 29 * y**2 + 12 * x * y**2 + y**3
+    square = sympy.S(result.recognition.profile.square)
+    assert sympy.expand(square - corrected) == 0 or sympy.expand(square - corrected.subs(x, -x)) == 0
+    # The paper's (-t³+t, t⁴+4t³+6t²+4t+5) lies on it.
+    assert sympy.expand(corrected.subs({x: -t**3 + t, y: t**4 + 4 * t**3 + 6 * t**2 + 4 * t + 5})) == 0
+    # The tubular surface is the paper's y² + z² = (t+1)⁴ + 4, up to a shift of the parameter.
+    h = sympy.Poly(sympy.S(rat.h), t)
+    paper_h = t**4 + 4 * t**3 + 6 * t**2 + 4 * t + 5
+    shift = (h.coeff_monomial(t**3) - 4) / 4
+    assert h.degree() == 4 and sympy.expand(paper_h.subs(t, t + shift) - h.as_expr()) == 0
+    assert rat.real_roots_of_h == 0 and rat.unirational is True and rat.real_rational is True
+    real = [p for p in result.parametrizations if p.real]
+    assert real and all(p.verified for p in real)
+    assert any(p.proper for p in real)
+
+
+def test_paper_example_finishes_quickly_enough_for_the_gui(paper_example_1) -> None:
+    result = analyze_polynomial(paper_example_1)
+    # A loose guard only: the speed goal itself is measured in benchmarks/analysis.py.
+    assert sum(seconds for _, seconds in result.timings) < 20
+
+
+def test_paper_cubic_is_unirational_not_rational() -> None:
+    result = analyze("y^2 + z^2 = x^3 + 3x^2 - 2x")
+    rat = result.rationality
+    assert (rat.table_row, rat.real_roots_of_h) == (4, 3)
+    assert rat.unirational is True and rat.real_rational is False
+    assert_parametrizations_verified(result)
+
+
+def test_cone_has_a_reducible_profile() -> None:
+    result = analyze("y^2 - 2xz")
+    rat = result.rationality
+    assert rat.profile_reducible is True and rat.table_row == 1 and rat.genus_profile is None
+    assert rat.real_rational is True
+    assert_parametrizations_verified(result)
+    assert any(p.method == "rotated profile" and p.real for p in result.parametrizations)
+
+
+def squarefree_polynomial(rng: random.Random, degree: int) -> sympy.Expr:
+    """A random square-free polynomial in ``t`` of the given degree with small coefficients."""
+    while True:
+        g = sum(rng.randint(-4, 4) * t**k for k in range(degree)) + rng.choice([1, -1, 2]) * t**degree
+        if sympy.degree(sympy.gcd(g, sympy.diff(g, t)), t) == 0:
+            return g
+
+
+def general_position(profile: dict[tuple[int, int], int], seed: int):
+    """``F(s, w)`` placed on a rational axis and moved by a rational rotation."""
+    rng = random.Random(seed)
+    c = rational_vector([QQ(rng.randint(-3, 3), rng.randint(1, 3)) for _ in range(3)])
+    a = rational_vector([rng.randint(1, 3), rng.randint(-2, 2), rng.randint(-2, 2)])
+    q = [rng.randint(-2, 2) for _ in range(3)] + [1]
+    return move(revolve(profile, c, a), quaternion_rotation(q), rational_vector((1, -1, QQ(1, 2))))
+
+
+def on_x_axis(profile: dict[tuple[int, int], int]):
+    return revolve(profile, rational_vector((0, 0, 0)), rational_vector((1, 0, 0)))
+
+
+@pytest.mark.parametrize("degree", [3, 4, 5, 6])
+@pytest.mark.parametrize("placed", ["axis", "general"])
+def test_tube_over_a_polynomial(degree: int, placed: str) -> None:
+    """``y² + z² = g(x)``: P² is rational, P is hyperelliptic of genus ⌊(deg g - 1)/2⌋."""
+    g = sympy.Poly(squarefree_polynomial(random.Random(degree), degree), t)
+    profile = {(0, 1): 1} | {(k, 0): -int(c) for (k,), c in g.terms()}
+    f = on_x_axis(profile) if placed == "axis" else general_position(profile, degree)
+    rat = analyze_polynomial(f).rationality
+    assert rat.genus_profile == (degree - 1) // 2
+    assert rat.genus_profile_square == 0
+    assert rat.table_row == (3 if degree <= 2 else 4)
+    assert rat.complex_rational is True
+
+
+@pytest.mark.parametrize("degree", [3, 4, 5, 6])
+@pytest.mark.parametrize("placed", ["axis", "general"])
+def test_squared_tube_over_a_polynomial(degree: int, placed: str) -> None:
+    """``(y² + z²)² = g(x)``: P² is hyperelliptic of genus ⌊(deg g - 1)/2⌋."""
+    g = sympy.Poly(squarefree_polynomial(random.Random(10 + degree), degree), t)
+    profile = {(0, 2): 1} | {(k, 0): -int(c) for (k,), c in g.terms()}
+    f = on_x_axis(profile) if placed == "axis" else general_position(profile, degree)
+    rat = analyze_polynomial(f).rationality
+    expected = (degree - 1) // 2
+    assert rat.genus_profile_square == expected
+    if expected > 0:
+        assert rat.table_row == 5 and rat.complex_rational is False and rat.unirational is False
+
+
+def test_general_position_parametrization_is_verified_in_original_coordinates() -> None:
+    f = general_position({(0, 1): 1, (2, 0): -1, (0, 0): -1}, seed=3)  # a hyperboloid
+    result = analyze_polynomial(f)
+    assert result.rationality.table_row == 3
+    assert_parametrizations_verified(result)
+    assert any(p.real for p in result.parametrizations)
+
+
+def test_algebraic_coefficients_say_what_is_undecidable() -> None:
+    result = analyze("y^2 + z^2 - sqrt(2) x^3 - 1")
+    rat = result.rationality
+    assert result.field == "QQ(sqrt(2))"
+    assert rat.genus_profile == 1 and rat.genus_profile_square == 0 and rat.table_row == 4
+    assert_parametrizations_verified(result)
+
+
+def test_reducible_surface_is_not_analysed_as_a_whole() -> None:
+    result = analyze("(x^2 + y^2 + z^2 - 1)(x^2 + y^2 - 4)")
+    assert result.recognition.symmetry == "revolution"
+    assert result.rationality.status.startswith("not analysed")
+    assert len(result.factors) == 2
+
+
+def test_json_round_trip() -> None:
+    from sorgui.engine.report import Analysis
+
+    result = analyze("y^2 - 2xz")
+    again = Analysis.from_json(result.to_json())
+    assert again == result
