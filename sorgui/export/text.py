@@ -1,0 +1,96 @@
+"""A short human-readable report of an :class:`~sorgui.engine.report.Analysis` (the CLI's output)."""
+
+from __future__ import annotations
+
+from sorgui.engine.report import Analysis, Rationality, Recognition
+
+TABLE_1 = (
+    ("reducible", "0", "rational", "rational"),
+    ("reducible", ">0", "non-rational", "non-rational"),
+    ("0", "0", "rational", "depends on #components"),
+    (">0", "0", "rational", "depends on #components"),
+    (">0", ">0", "non-rational", "non-rational"),
+)
+"""Table 1 of the paper: genus(P), genus(P²), X_C, X (real); rows numbered 1–5 top to bottom."""
+
+SYMMETRY_NAMES = {
+    "revolution": "surface of revolution",
+    "cylinder_of_revolution": "cylinder of revolution",
+    "sphere": "sphere (every line through the centre is an axis)",
+    "plane": "plane (every line along the normal is an axis)",
+    "extrusion": "extrusion (cylindrical surface), not a surface of revolution",
+    "none": "no continuous symmetry: not a surface of revolution",
+}
+
+
+def _vec(v: tuple[str, ...] | None) -> str:
+    return "(" + ", ".join(v) + ")" if v else "-"
+
+
+def recognition_lines(rec: Recognition, indent: str = "") -> list[str]:
+    """The recognition facts of one polynomial, one per line."""
+    lines = [f"{indent}symmetry:  {SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)} (dim L = {rec.symmetry_dimension})"]
+    if rec.axis is not None:
+        lines.append(f"{indent}axis:      {_vec(rec.axis.point)} + t·{_vec(rec.axis.direction)}")
+        lines.append(f"{indent}Plücker:   ({' : '.join(rec.axis.plucker)})")
+    if rec.center is not None:
+        lines.append(f"{indent}centre:    {_vec(rec.center)}")
+    if rec.normal is not None:
+        lines.append(f"{indent}normal:    {_vec(rec.normal)}")
+    if rec.direction is not None:
+        lines.append(f"{indent}direction: {_vec(rec.direction)}")
+    if rec.profile is not None:
+        lines.append(f"{indent}profile:   p(x, y) = {rec.profile.polynomial}")
+        lines.append(f"{indent}P²:        {rec.profile.square}")
+    return lines
+
+
+def rationality_lines(rat: Rationality) -> list[str]:
+    """The rationality facts (Table 1 row, genera, tubular surface)."""
+    lines = [f"rationality: {rat.status}"]
+    if rat.profile_reducible is not None:
+        lines.append(f"  profile P reducible over C: {'yes' if rat.profile_reducible else 'no'}")
+    genus_p = "reducible" if rat.profile_reducible else rat.genus_profile
+    lines.append(f"  genus(P) = {genus_p}, genus(P²) = {rat.genus_profile_square}")
+    if rat.table_row is not None:
+        row = TABLE_1[rat.table_row - 1]
+        lines.append(f"  Table 1, row {rat.table_row}: genus(P) {row[0]}, genus(P²) {row[1]}, X_C {row[2]}, X {row[3]}")
+    for label, value in (
+        ("X_C rational", rat.complex_rational),
+        ("X unirational", rat.unirational),
+        ("X rational (real)", rat.real_rational),
+    ):
+        lines.append(f"  {label}: {'undecided' if value is None else ('yes' if value else 'no')}")
+    if rat.tubular_surface is not None:
+        lines.append(f"  tubular surface T: {rat.tubular_surface} = 0")
+        lines.append(f"  real roots of h = r̂·q̂: {rat.real_roots_of_h}")
+    lines += [f"  note: {n}" for n in rat.notes]
+    return lines
+
+
+def format_report(analysis: Analysis) -> str:
+    """The whole report as text."""
+    rec = analysis.recognition
+    verdict = "YES" if rec.is_sor else "NO"
+    lines = [
+        f"f = {rec.polynomial}",
+        f"field K = {analysis.field}, degree {rec.degree}, method {analysis.method}",
+        f"surface of revolution: {verdict}",
+        *recognition_lines(rec),
+    ]
+    if len(analysis.factors) > 1 or analysis.factors[0].multiplicity > 1:
+        lines.append(f"factors over K ({len(analysis.factors)}):")
+        for factor in analysis.factors:
+            lines.append(f"  [{factor.multiplicity}] {factor.polynomial}")
+            lines += recognition_lines(factor.recognition, indent="      ")
+    if analysis.rationality is not None:
+        lines += rationality_lines(analysis.rationality)
+    for i, par in enumerate(analysis.parametrizations, 1):
+        kind = "real" if par.real else "complex"
+        proper = {True: "proper", False: "not proper", None: "properness unknown"}[par.proper]
+        lines.append(f"parametrization {i} ({par.method}; {kind}, {proper}, over {par.field}; verified: {par.verified}):")
+        for name, coord in zip("xyz", par.coordinates):
+            lines.append(f"  {name}({', '.join(par.parameters)}) = {coord}")
+    timing = ", ".join(f"{name} {seconds:.3f} s" for name, seconds in analysis.timings)
+    lines.append(f"timings: {timing}")
+    return "\n".join(lines)

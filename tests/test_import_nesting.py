@@ -1,0 +1,27 @@
+"""Layering: the exact engine loads neither Qt nor VTK (checked in a fresh interpreter, like MNE)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+FORBIDDEN = ("PySide6", "shiboken6", "pyvista", "pyvistaqt", "vtk", "vtkmodules", "qtpy", "matplotlib")
+
+
+def loaded_modules(statement: str) -> set[str]:
+    code = f"import sys, json; {statement}; print(json.dumps(sorted(sys.modules)))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=120)
+    return set(json.loads(out.stdout))
+
+
+def test_engine_imports_neither_qt_nor_vtk() -> None:
+    modules = loaded_modules("import sorgui.engine; from sorgui.engine import analyze; analyze('x^2+y^2-z^2', recognition_only=True)")
+    top = {m.split(".")[0] for m in modules}
+    assert not top & set(FORBIDDEN), sorted(top & set(FORBIDDEN))
+
+
+def test_command_line_imports_neither_qt_nor_vtk() -> None:
+    modules = loaded_modules("import sorgui.cli, sorgui.export.text")
+    top = {m.split(".")[0] for m in modules}
+    assert not top & set(FORBIDDEN), sorted(top & set(FORBIDDEN))
