@@ -1,0 +1,88 @@
+"""Benchmark: recognition (axis + profile) of surfaces of revolution in general position.
+
+For each degree, a random profile ``F(s, w)`` is placed on a rational axis and moved by a
+rational rotation (so every monomial of the given degree appears), then recognised by both
+methods, timed inside the process. Run ``python benchmarks/recognition.py [--write]``; with
+``--write`` the table replaces the recognition section of ``docs/benchmarks.md``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import statistics
+import sys
+import time
+from pathlib import Path
+
+from sympy.polys.domains import QQ
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from sorgui.engine.recognition import METHODS, recognize  # noqa: E402
+from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve  # noqa: E402
+
+DEGREES = (4, 6, 8, 10, 12, 16, 20, 25, 30)
+MARK_START = "<!-- recognition:start -->"
+MARK_END = "<!-- recognition:end -->"
+
+
+def surface(degree: int, seed: int = 1):
+    """A SOR of the given total degree in general position (deterministic for a seed)."""
+    rng = random.Random(seed)
+    profile = {
+        (i, j): rng.randint(-9, 9) or 1
+        for i in range(degree + 1)
+        for j in range(degree // 2 + 1)
+        if i + 2 * j <= degree and rng.random() < 0.7
+    }
+    profile[(degree, 0)] = 1
+    profile[(degree % 2, degree // 2)] = 1
+    f = revolve(profile, rational_vector((QQ(1, 2), QQ(-1, 3), 2)), rational_vector((3, -2, 5)))
+    return move(f, quaternion_rotation((1, 2, -1, 3)), rational_vector((QQ(1, 5), 1, QQ(-2, 7))))
+
+
+def time_method(f, method: str, repeats: int) -> float:
+    """The median wall time of ``recognize(f, method)``."""
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        report, _, _ = recognize(f, method)
+        times.append(time.perf_counter() - start)
+        assert report.is_sor and report.profile.verified
+    return statistics.median(times)
+
+
+def table(repeats: int) -> str:
+    """The markdown table of median recognition times per degree and method."""
+    rows = ["| degree | terms | " + " | ".join(f"{m} (s)" for m in METHODS) + " |",
+            "|---:|---:|" + "---:|" * len(METHODS)]
+    for degree in DEGREES:
+        f = surface(degree)
+        cells = [f"{time_method(f, m, repeats):.3f}" for m in METHODS]
+        rows.append(f"| {degree} | {len(f)} | " + " | ".join(cells) + " |")
+        print(rows[-1], flush=True)
+    return "\n".join(rows)
+
+
+def write(text: str) -> None:
+    """Replace the recognition section of docs/benchmarks.md."""
+    path = ROOT / "docs" / "benchmarks.md"
+    doc = path.read_text(encoding="utf-8")
+    start, end = doc.index(MARK_START) + len(MARK_START), doc.index(MARK_END)
+    path.write_text(doc[:start] + "\n" + text + "\n" + doc[end:], encoding="utf-8")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--write", action="store_true", help="update docs/benchmarks.md")
+    args = parser.parse_args()
+    result = table(args.repeats)
+    if args.write:
+        write(result)
+
+
+if __name__ == "__main__":
+    main()
