@@ -29,7 +29,7 @@ from sympy.solvers.diophantine.diophantine import diop_ternary_quadratic
 from .linalg import Vector, dot
 from .polys import Poly, field_generators, to_expr
 from .radicals import RadicalRing, radicals_of
-from .profile import AxisFrame
+from .profile import AxisFrame, ProfileCurve
 from .report import Parametrization
 
 T = sympy.Symbol("t")
@@ -38,11 +38,13 @@ PARAMETERS = ("s", "t")
 
 @dataclass(frozen=True)
 class Section:
-    """A section ``c + φ·a + ρ₁·u + ρ₂·w`` given by sympy rational functions of ``t``."""
+    """A section ``c + φ·a + ρ₁·u + ρ₂·w`` given by sympy rational functions of ``t``;
+    ``named`` lists symbols that stand for square roots (symbol, value), such as ``√-n``."""
 
     phi: sympy.Expr
     rho_u: sympy.Expr
     rho_w: sympy.Expr
+    named: tuple[tuple[sympy.Symbol, sympy.Expr], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -52,6 +54,9 @@ class SurfaceMap:
     ring: RadicalRing
     numerators: tuple[fmpq_mpoly, fmpq_mpoly, fmpq_mpoly]
     denominator: fmpq_mpoly
+    axial: fmpq_mpoly
+    radial: tuple[fmpq_mpoly, fmpq_mpoly]
+    """In the axis frame the point is ``c + (axial/D)·a + (radial₀/D)·u + (radial₁/D)·w``."""
 
     def coordinates(self) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
         """The three coordinates as sympy rational functions in lowest terms (for display)."""
@@ -68,7 +73,8 @@ def sweep(section: Section, frame: AxisFrame, K: Domain) -> SurfaceMap:
     vectors = [frame.point, frame.direction, frame.normal, frame.binormal]
     exprs = [[to_expr(K, c) for c in v] for v in vectors]
     n_expr = to_expr(K, dot(frame.direction, frame.direction))
-    ring = RadicalRing(PARAMETERS, radicals_of([section.phi, section.rho_u, section.rho_w, n_expr, *sum(exprs, [])]))
+    expressions = [section.phi, section.rho_u, section.rho_w, n_expr, *sum(exprs, [])]
+    ring = RadicalRing(PARAMETERS, radicals_of(expressions, dict(section.named)))
     c, a, u, w = ([ring.from_expr(e) for e in v] for v in exprs)
     n = ring.from_expr(n_expr)
     sigma = ring.variable("s")
@@ -81,7 +87,7 @@ def sweep(section: Section, frame: AxisFrame, K: Domain) -> SurfaceMap:
     along_u = ring.reduce(rho_u * cos_num - n * sin_num * rho_w)
     along_w = ring.reduce(rho_u * sin_num + cos_num * rho_w)
     nums = tuple(ring.reduce(c[i] * den + a[i] * along_a + u[i] * along_u + w[i] * along_w) for i in range(3))
-    return SurfaceMap(ring, nums, den)  # type: ignore[arg-type]
+    return SurfaceMap(ring, nums, den, along_a, (along_u, along_w))  # type: ignore[arg-type]
 
 
 def norm_decomposition(h: sympy.Expr, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr] | None:
@@ -146,51 +152,82 @@ def _rational_norm(c: sympy.Expr, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr
 
 
 def tubular_section(
-    phi: sympy.Expr, d: sympy.Expr, q: sympy.Expr, A: sympy.Expr, B: sympy.Expr
+    phi: sympy.Expr,
+    d: sympy.Expr,
+    q: sympy.Expr,
+    A: sympy.Expr,
+    B: sympy.Expr,
+    named: tuple[tuple[sympy.Symbol, sympy.Expr], ...] = (),
 ) -> Section:
     """The section ``(φ, d·A/q̃, d·B/q̃)`` of ``X`` through ``τ`` of the paper's Theorem
     "birational to tubular", with ``A² + n·B² = h``."""
-    return Section(phi=phi, rho_u=d * A / q, rho_w=d * B / q)
+    return Section(phi=phi, rho_u=d * A / q, rho_w=d * B / q, named=named)
 
 
 def vanishes_on(f: Poly, surface: SurfaceMap) -> bool:
-    """Whether ``f(N₁/D, N₂/D, N₃/D) = 0`` exactly: the homogenised ``f`` at ``(N₁, N₂, N₃, D)``,
-    composed in flint and reduced modulo the radicals' relations. A nonzero normal form with
-    several radicals is rechecked over sympy's algebraic field (the normal form is unique only
-    for independent radicands)."""
-    ring = surface.ring
-    if f.ring.domain != QQ:
-        ring = RadicalRing(ring.variables, tuple(sorted({*ring.radicals, *field_generators(f.ring.domain)}, key=str)))
-        surface = SurfaceMap(ring, *(_recast(surface, ring)))
+    """Whether ``f(N₁/D, N₂/D, N₃/D) = 0`` exactly: the homogenised ``f`` (its coefficients
+    written with the radicals of ``K``) is composed with ``(N₁, N₂, N₃, D)`` in flint and reduced
+    modulo the radicals' relations. A nonzero normal form with several radicals is rechecked
+    over sympy's algebraic field (the normal form is unique only for independent radicands)."""
+    K = f.ring.domain
+    ring = surface.ring.extended(radicals_of([sympy.Add(*field_generators(K))]))
+    kept = ring.context.gens()[: len(surface.ring.variables) + len(surface.ring.radicals)]
+    images = [p.compose(*kept, ctx=ring.context) for p in (*surface.numerators, surface.denominator)]
+    images += list(ring.context.gens()[len(ring.variables):])
     degree = max(sum(m) for m in f.itermonoms())
-    ctx = ring.context
-    images = (*surface.numerators, surface.denominator)
-    total = ctx.from_dict({})
-    powers: dict[tuple[int, int], fmpq_mpoly] = {}
-    for monom, coeff in f.items():
-        term = ring.from_expr(to_expr(f.ring.domain, coeff))
-        for i, e in enumerate((*monom, degree - sum(monom))):
-            if e:
-                if (i, e) not in powers:
-                    powers[(i, e)] = ring.reduce(images[i] ** e)
-                term = ring.reduce(term * powers[(i, e)])
-        total += term
+    source = RadicalRing(("x", "y", "z", "w"), ring.radicals)
+    if K == QQ:
+        zeros = [0] * len(ring.radicals)
+        H = source.context.from_dict({(*m, degree - sum(m), *zeros): c for m, c in f.items()})
+    else:
+        x, y, z, w = source.symbols
+        H = source.from_expr(sympy.Add(*[
+            to_expr(K, c) * x ** m[0] * y ** m[1] * z ** m[2] * w ** (degree - sum(m)) for m, c in f.items()
+        ]))
+    total = ring.reduce(H.compose(*images, ctx=ring.context))
+    if total.is_zero() or len(ring.radicals) < 2:
+        return total.is_zero()
+    return sympy.Poly(ring.to_expr(total), *ring.symbols, extension=True).is_zero
+
+
+def vanishes_in_frame(profile: ProfileCurve, surface: SurfaceMap) -> bool:
+    """Whether the map, written in the axis frame, satisfies ``P²(s, y² + n·z²) = 0`` exactly.
+
+    ``f(c + s·a + y·u + z·w) = P²(s, y² + n·z²)`` is itself an exact identity, checked when the
+    profile was computed (``profile.verified``), so this is the substitution into ``f`` with the
+    frame change done first: far cheaper for high degrees than composing ``f`` itself.
+    """
+    if not profile.verified:
+        return False
+    ring = surface.ring
+    K = profile.square.ring.domain
+    ring = ring.extended(radicals_of([sympy.Add(*field_generators(K))]))
+    kept = ring.context.gens()[: len(surface.ring.variables) + len(surface.ring.radicals)]
+    lift = [p.compose(*kept, ctx=ring.context) for p in (surface.axial, *surface.radial, surface.denominator)]
+    axial, along_u, along_w, den = lift
+    n = ring.from_expr(to_expr(K, dot(profile.frame.direction, profile.frame.direction)))
+    radius = ring.reduce(along_u**2 + n * along_w**2)
+    top = max(i + 2 * j for i, j in profile.square.itermonoms())
+    total = ring.context.from_dict({})
+    for (i, j), c in profile.square.items():
+        total += ring.reduce(ring.from_expr(to_expr(K, c)) * axial**i * radius**j * den ** (top - i - 2 * j))
     total = ring.reduce(total)
     if total.is_zero() or len(ring.radicals) < 2:
         return total.is_zero()
-    expr = ring.to_expr(total)
-    return sympy.Poly(expr, *ring.symbols, extension=True).is_zero
+    return sympy.Poly(ring.to_expr(total), *ring.symbols, extension=True).is_zero
 
 
-def _recast(surface: SurfaceMap, ring: RadicalRing) -> tuple[tuple[fmpq_mpoly, ...], fmpq_mpoly]:
-    """The same map written in a ring with more radicals."""
-    nums = tuple(ring.from_expr(surface.ring.to_expr(p)) for p in surface.numerators)
-    return nums, ring.from_expr(surface.ring.to_expr(surface.denominator))
+LITERAL_DEGREE = 6
+"""Up to this degree of ``f`` the parameterization is substituted into ``f`` itself; above it,
+into ``f`` written in the axis frame (:func:`vanishes_in_frame`), which is as exact and cheaper."""
 
 
-def make_parametrization(f: Poly, surface: SurfaceMap, *, method: str, proper: bool | None) -> Parametrization | None:
+def make_parametrization(
+    f: Poly, profile: ProfileCurve, surface: SurfaceMap, *, method: str, proper: bool | None
+) -> Parametrization | None:
     """A verified :class:`Parametrization`, or ``None`` when the substitution does not vanish."""
-    if not vanishes_on(f, surface):
+    literal = max(sum(m) for m in f.itermonoms()) <= LITERAL_DEGREE
+    if not (vanishes_on(f, surface) if literal else vanishes_in_frame(profile, surface)):
         return None
     return Parametrization(
         coordinates=tuple(str(c) for c in surface.coordinates()),  # type: ignore[arg-type]
@@ -200,4 +237,5 @@ def make_parametrization(f: Poly, surface: SurfaceMap, *, method: str, proper: b
         proper=proper,
         method=method,
         verified=True,
+        verification="substituted into f" if literal else "substituted into f in the axis frame",
     )

@@ -2,42 +2,63 @@
 
 Parameterizations have coefficients in small multiquadratic fields (``√3``, ``i``, ``√-n``).
 Instead of sympy's primitive-element arithmetic, which is slow in several variables, each
-radical ``√dᵢ`` becomes an extra flint variable ``rᵢ`` with the relation ``rᵢ² = dᵢ``; every
-result is reduced modulo the relations. The reduced form is unique when the radicands are
-multiplicatively independent modulo squares (sympy already writes ``√2·√3`` as ``√6``), so a
-zero normal form proves an identity; a nonzero one is only trusted after an exact recheck by
-the caller.
+radical becomes an extra flint variable ``ρᵢ`` with the relation ``ρᵢ² = dᵢ``, and results are
+reduced modulo the relations. A radical is either a square root that sympy prints
+(``sqrt(3)``, ``I``) or a symbol the caller introduces for a number sympy would split, such as
+``√-14`` (sympy writes ``I*sqrt(14)``, two radicals where one suffices). The reduced form is
+unique when the radicands are multiplicatively independent modulo squares, so a zero normal
+form proves an identity; a nonzero one is only trusted after an exact recheck by the caller.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 
 
-def radicals_of(expressions: Iterable[sympy.Expr]) -> tuple[sympy.Expr, ...]:
-    """The square roots of rationals (``sqrt(3)``, ``I``) in the expressions, sorted."""
-    found: set[sympy.Expr] = set()
+@dataclass(frozen=True)
+class Radical:
+    """A square root ``value`` (``sqrt(3)``, ``I``, ``I*sqrt(14)``) named ``symbol`` in the ring."""
+
+    symbol: sympy.Symbol
+    value: sympy.Expr
+
+    @property
+    def square(self) -> sympy.Rational:
+        return sympy.Rational(sympy.expand(self.value**2))
+
+
+def radicals_of(
+    expressions: Iterable[sympy.Expr], named: Mapping[sympy.Symbol, sympy.Expr] | None = None
+) -> tuple[Radical, ...]:
+    """The radicals of the expressions: square roots of rationals and ``I`` as sympy prints them,
+    plus the caller's ``named`` symbols (symbol → its value) that occur."""
+    named = named or {}
+    atoms: set[sympy.Expr] = set()
+    symbols: set[sympy.Symbol] = set()
     for e in expressions:
-        found |= {a for a in e.atoms(sympy.Pow) if a.exp == sympy.Rational(1, 2) and a.base.is_Rational}
+        atoms |= {a for a in e.atoms(sympy.Pow) if a.exp == sympy.Rational(1, 2) and a.base.is_Rational}
         if e.has(sympy.I):
-            found.add(sympy.I)
-    return tuple(sorted(found, key=str))
+            atoms.add(sympy.I)
+        symbols |= {s for s in e.free_symbols if s in named}
+    found = [Radical(sympy.Symbol(f"_rho{i}"), a) for i, a in enumerate(sorted(atoms, key=str))]
+    found += [Radical(s, named[s]) for s in sorted(symbols, key=str)]
+    return tuple(found)
 
 
 @dataclass(frozen=True)
 class RadicalRing:
-    """``QQ[variables, r₁, …, r_k]`` modulo ``rᵢ² = radicalᵢ²``."""
+    """``QQ[variables, ρ₁, …, ρ_k]`` modulo ``ρᵢ² = dᵢ``."""
 
     variables: tuple[str, ...]
-    radicals: tuple[sympy.Expr, ...]
+    radicals: tuple[Radical, ...]
 
     @property
     def context(self) -> fmpq_mpoly_ctx:
-        names = self.variables + tuple(f"_r{i}" for i in range(len(self.radicals)))
+        names = self.variables + tuple(str(r.symbol) for r in self.radicals)
         return fmpq_mpoly_ctx.get(names, "lex")
 
     @property
@@ -46,30 +67,28 @@ class RadicalRing:
 
     @property
     def is_real(self) -> bool:
-        """Whether every radical is real (the field lies in ``R``)."""
-        return all(r.is_real for r in self.radicals)
+        """Whether every radical is real (the coefficient field lies in ``R``)."""
+        return all(r.square > 0 for r in self.radicals)
 
     @property
     def field(self) -> str:
-        """``QQ`` or ``QQ(sqrt(3), I)``."""
-        return "QQ(" + ", ".join(map(str, self.radicals)) + ")" if self.radicals else "QQ"
-
-    def relations(self) -> list[fmpq_mpoly]:
-        """``rᵢ² - dᵢ``."""
-        ctx = self.context
-        gens = ctx.gens()[len(self.variables):]
-        return [g**2 - _rational(r**2) for g, r in zip(gens, self.radicals)]
+        """``QQ`` or ``QQ(sqrt(3), sqrt(-14))``."""
+        cores = [sympy.sqrt(r.square).as_coeff_Mul()[1] for r in self.radicals]
+        names = [f"sqrt({sympy.expand(core**2)})" for core in cores]
+        return "QQ(" + ", ".join(names) + ")" if names else "QQ"
 
     def reduce(self, p: fmpq_mpoly) -> fmpq_mpoly:
-        """The normal form of ``p`` modulo the relations (degree ≤ 1 in each ``rᵢ``)."""
-        for rel in self.relations():
-            p = p % rel
+        """The normal form of ``p`` modulo the relations (degree ≤ 1 in each ``ρᵢ``)."""
+        gens = self.context.gens()[len(self.variables):]
+        for g, r in zip(gens, self.radicals):
+            p = p % (g**2 - _rational(r.square))
         return p
 
     def from_expr(self, expr: sympy.Expr) -> fmpq_mpoly:
         """A polynomial sympy expression in the variables and the radicals, as a flint polynomial."""
-        marks = [sympy.Symbol(f"_r{i}") for i in range(len(self.radicals))]
-        replaced = sympy.expand(expr).xreplace(dict(zip(self.radicals, marks)))
+        marks = [r.symbol for r in self.radicals]
+        printed = {r.value: r.symbol for r in self.radicals if r.symbol.name.startswith("_rho")}
+        replaced = sympy.expand(sympy.expand(expr).xreplace(printed))
         poly = sympy.Poly(replaced, *self.symbols, *marks, domain="QQ")
         return self.reduce(self.context.from_dict({m: _rational(c) for m, c in poly.terms()}))
 
@@ -79,13 +98,22 @@ class RadicalRing:
         return self.from_expr(num), self.from_expr(den)
 
     def to_expr(self, p: fmpq_mpoly) -> sympy.Expr:
-        """Back to sympy, with the radicals in place of the ``rᵢ``."""
-        values = (*self.symbols, *self.radicals)
-        return sympy.Add(*[sympy.Rational(int(c.p), int(c.q)) * sympy.Mul(*[v**int(e) for v, e in zip(values, m)])
-                           for m, c in p.to_dict().items()])
+        """Back to sympy, with the radicals' values in place of the ``ρᵢ``."""
+        values = (*self.symbols, *(r.value for r in self.radicals))
+        return sympy.Add(*[
+            sympy.Rational(int(c.p), int(c.q)) * sympy.Mul(*[v ** int(e) for v, e in zip(values, m)])
+            for m, c in p.to_dict().items()
+        ])
 
     def variable(self, name: str) -> fmpq_mpoly:
         return self.context.gens()[self.variables.index(name)]
+
+    def extended(self, more: Iterable[Radical]) -> RadicalRing:
+        """The ring with further radicals (those whose value is new)."""
+        known = {r.value for r in self.radicals}
+        extra = [r for r in more if r.value not in known]
+        renamed = [Radical(sympy.Symbol(f"_rho{len(self.radicals) + i}"), r.value) for i, r in enumerate(extra)]
+        return RadicalRing(self.variables, self.radicals + tuple(renamed))
 
 
 def _rational(q: object) -> fmpq:

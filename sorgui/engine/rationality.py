@@ -38,6 +38,9 @@ from .polys import Poly, poly_ring, to_expr
 from .profile import ProfileCurve
 from .report import Parametrization, Rationality
 
+ALPHA = sympy.Symbol("alpha")
+"""Stands for ``√-n`` (``n = |a|²``) in the complex parameterization through ``T``."""
+
 
 @dataclass(frozen=True)
 class TubularSurface:
@@ -194,7 +197,7 @@ def parametrizations(
         try:
             section = _profile_section(profile, rationality, timeout=timeout, cancel=cancel)
             proper = False if not rationality.profile_reducible else None
-            par = make_parametrization(f, sweep(section, frame, K), method="rotated profile", proper=proper)
+            par = make_parametrization(f, profile, sweep(section, frame, K), method="rotated profile", proper=proper)
             if par is not None:
                 found.append(par)
         except SingularTimeout as exc:
@@ -208,13 +211,12 @@ def parametrizations(
             A, B = real
             method = "via tubular surface (real)"
         else:
-            alpha = sympy.sqrt(-n)
-            A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * alpha)
+            A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * ALPHA)
             method = "via tubular surface (complex)"
             if not tube.field:
                 notes.append("h is not of the form A² + |a|²·B² over QQ: only the complex parameterization through T")
-        section = tubular_section(tube.phi, tube.d, tube.q, A, B)
-        par = make_parametrization(f, sweep(section, frame, K), method=method, proper=True)
+        section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
+        par = make_parametrization(f, profile, sweep(section, frame, K), method=method, proper=True)
         if par is not None:
             found.append(par)
     return tuple(found), tuple(notes)

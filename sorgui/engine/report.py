@@ -98,7 +98,11 @@ class Rationality:
 
 @dataclass(frozen=True)
 class Parametrization:
-    """A rational parameterization of ``X`` in the original coordinates, checked by substitution."""
+    """A rational parameterization of ``X`` in the original coordinates, checked by substitution.
+
+    ``verification`` says how: substituted into ``f`` itself, or into ``f`` written in the axis
+    frame (``f(c + s·a + y·u + z·w) = P²(s, y² + |a|²z²)``, itself an exact identity).
+    """
 
     coordinates: Triple
     parameters: tuple[str, str]
@@ -107,6 +111,7 @@ class Parametrization:
     proper: bool | None
     method: str
     verified: bool
+    verification: str = "substituted into f"
 
 
 @dataclass(frozen=True)

@@ -88,7 +88,8 @@ def format_report(analysis: Analysis) -> str:
     for i, par in enumerate(analysis.parametrizations, 1):
         kind = "real" if par.real else "complex"
         proper = {True: "proper", False: "not proper", None: "properness unknown"}[par.proper]
-        lines.append(f"parametrization {i} ({par.method}; {kind}, {proper}, over {par.field}; verified: {par.verified}):")
+        check = par.verification if par.verified else "NOT verified"
+        lines.append(f"parametrization {i} ({par.method}; {kind}, {proper}, over {par.field}; {check}):")
         for name, coord in zip("xyz", par.coordinates):
             lines.append(f"  {name}({', '.join(par.parameters)}) = {coord}")
     timing = ", ".join(f"{name} {seconds:.3f} s" for name, seconds in analysis.timings)

@@ -152,3 +152,29 @@ def test_json_round_trip() -> None:
     result = analyze("y^2 - 2xz")
     again = Analysis.from_json(result.to_json())
     assert again == result
+
+
+def test_high_degree_parametrization_is_verified_in_the_axis_frame() -> None:
+    profile = {(0, 1): 1, (6, 1): 1, (8, 0): -1, (3, 0): 2, (0, 0): -5}
+    result = analyze_polynomial(general_position(profile, seed=8))
+    assert result.recognition.degree == 8 and result.rationality.genus_profile_square == 0
+    assert_parametrizations_verified(result)
+    assert {p.verification for p in result.parametrizations} == {"substituted into f in the axis frame"}
+
+
+@pytest.mark.parametrize("degree_limit", [0, 60])
+def test_a_wrong_parametrization_is_never_reported(monkeypatch, degree_limit: int) -> None:
+    """Both checks (into f, and into f in the axis frame) accept a section on the surface and
+    reject one that is off it."""
+    from sorgui.engine import parametrization as pm
+    from sorgui.engine.recognition import recognize
+
+    monkeypatch.setattr(pm, "LITERAL_DEGREE", degree_limit)
+    f = on_x_axis({(0, 1): 1, (2, 0): -1, (0, 0): -1})  # y² + z² = x² + 1
+    _, _, profile = recognize(f)
+    zero = sympy.Integer(0)
+    good = pm.Section(phi=(t**2 - 1) / (2 * t), rho_u=(t**2 + 1) / (2 * t), rho_w=zero)
+    wrong = pm.Section(phi=(t**2 - 1) / (2 * t), rho_u=(t**2 + 2) / (2 * t), rho_w=zero)
+    found = pm.make_parametrization(f, profile, pm.sweep(good, profile.frame, QQ), method="test", proper=None)
+    assert found is not None and found.verified and found.real
+    assert pm.make_parametrization(f, profile, pm.sweep(wrong, profile.frame, QQ), method="test", proper=None) is None
