@@ -23,13 +23,21 @@ def rational_vector(values: Sequence[object], K: Domain = QQ) -> Vector:
     return tuple(out)
 
 
-def revolve(profile: dict[tuple[int, int], int], point: Vector, direction: Vector, K: Domain = QQ) -> Poly:
-    """``f = F(a·(p - c), |p - c|²)`` for ``F(s, w) = Σ F_ij s^i w^j``: a SOR about the axis (c, a)."""
+def revolve(
+    profile: dict[tuple[int, int], int], point: Vector, direction: Vector, K: Domain = QQ, axis_distance: bool = False
+) -> Poly:
+    """``f = F(a·(p - c), |p - c|²)`` for ``F(s, w) = Σ F_ij s^i w^j``: a SOR about the axis (c, a).
+
+    With ``axis_distance`` the second variable is the squared distance to the axis,
+    ``|p - c|² - (a·(p - c))²/|a|²``, so ``F(s, w) = w - g(s)`` is the tube ``y² + z² = g(x)``.
+    """
     R = poly_ring(XYZ, K)
     x, y, z = R.gens
     d = [x - point[0], y - point[1], z - point[2]]
     h = sum((direction[i] * d[i] for i in range(3)), start=R.zero)
     rho = sum((d[i] ** 2 for i in range(3)), start=R.zero)
+    if axis_distance:
+        rho = rho - h**2 * K.quo(K.one, dot(direction, direction))
     F = poly_ring(("s", "w"), K).from_dict({m: K.convert(c) for m, c in profile.items()})
     return compose(F, [h, rho])
 

@@ -83,16 +83,18 @@ def squarefree_polynomial(rng: random.Random, degree: int) -> sympy.Expr:
 
 
 def general_position(profile: dict[tuple[int, int], int], seed: int):
-    """``F(s, w)`` placed on a rational axis and moved by a rational rotation."""
+    """``F(s, w)`` (``w`` the squared distance to the axis) on a rational axis, rotated."""
     rng = random.Random(seed)
     c = rational_vector([QQ(rng.randint(-3, 3), rng.randint(1, 3)) for _ in range(3)])
     a = rational_vector([rng.randint(1, 3), rng.randint(-2, 2), rng.randint(-2, 2)])
     q = [rng.randint(-2, 2) for _ in range(3)] + [1]
-    return move(revolve(profile, c, a), quaternion_rotation(q), rational_vector((1, -1, QQ(1, 2))))
+    f = revolve(profile, c, a, axis_distance=True)
+    return move(f, quaternion_rotation(q), rational_vector((1, -1, QQ(1, 2))))
 
 
 def on_x_axis(profile: dict[tuple[int, int], int]):
-    return revolve(profile, rational_vector((0, 0, 0)), rational_vector((1, 0, 0)))
+    """``F(x, y² + z²)``."""
+    return revolve(profile, rational_vector((0, 0, 0)), rational_vector((1, 0, 0)), axis_distance=True)
 
 
 @pytest.mark.parametrize("degree", [3, 4, 5, 6])
