@@ -10,22 +10,18 @@ from __future__ import annotations
 
 import argparse
 import random
-import statistics
 import sys
-import time
 from pathlib import Path
 
 from sympy.polys.domains import QQ
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from benchmarks.report import median_time, write_section  # noqa: E402
 from sorgui.engine.recognition import METHODS, recognize  # noqa: E402
 from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve  # noqa: E402
 
 DEGREES = (4, 6, 8, 10, 12, 16, 20, 25, 30)
-MARK_START = "<!-- recognition:start -->"
-MARK_END = "<!-- recognition:end -->"
 
 
 def surface(degree: int, seed: int = 1):
@@ -43,15 +39,11 @@ def surface(degree: int, seed: int = 1):
     return move(f, quaternion_rotation((1, 2, -1, 3)), rational_vector((QQ(1, 5), 1, QQ(-2, 7))))
 
 
-def time_method(f, method: str, repeats: int) -> float:
-    """The median wall time of ``recognize(f, method)``."""
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        report, _, _ = recognize(f, method)
-        times.append(time.perf_counter() - start)
-        assert report.is_sor and report.profile.verified
-    return statistics.median(times)
+def recognised(f, method: str):
+    """``recognize`` checked: the benchmark only counts correct answers."""
+    report, _, _ = recognize(f, method)
+    assert report.is_sor and report.profile.verified
+    return report
 
 
 def table(repeats: int) -> str:
@@ -60,18 +52,10 @@ def table(repeats: int) -> str:
             "|---:|---:|" + "---:|" * len(METHODS)]
     for degree in DEGREES:
         f = surface(degree)
-        cells = [f"{time_method(f, m, repeats):.3f}" for m in METHODS]
+        cells = [f"{median_time(lambda m=m: recognised(f, m), repeats)[0]:.3f}" for m in METHODS]
         rows.append(f"| {degree} | {len(f)} | " + " | ".join(cells) + " |")
         print(rows[-1], flush=True)
     return "\n".join(rows)
-
-
-def write(text: str) -> None:
-    """Replace the recognition section of docs/benchmarks.md."""
-    path = ROOT / "docs" / "benchmarks.md"
-    doc = path.read_text(encoding="utf-8")
-    start, end = doc.index(MARK_START) + len(MARK_START), doc.index(MARK_END)
-    path.write_text(doc[:start] + "\n" + text + "\n" + doc[end:], encoding="utf-8")
 
 
 def main() -> None:
@@ -81,7 +65,7 @@ def main() -> None:
     args = parser.parse_args()
     result = table(args.repeats)
     if args.write:
-        write(result)
+        write_section("recognition", result)
 
 
 if __name__ == "__main__":
