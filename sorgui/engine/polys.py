@@ -55,13 +55,10 @@ def field_name(K: Domain) -> str:
 
 
 def field_generators(K: Domain) -> list[sympy.Expr]:
-    """The square roots that generate ``K`` over ``QQ``."""
+    """The algebraic numbers that generate ``K`` over ``QQ`` (the square roots given by the user)."""
     if is_rational_field(K):
         return []
-    ext = K.ext.as_expr() if hasattr(K.ext, "as_expr") else K.ext
-    return sorted(sympy.Add.make_args(sympy.sympify(ext)), key=str) if K.orig_ext is None else [
-        sympy.sympify(e) for e in K.orig_ext
-    ]
+    return list(K.orig_ext) if getattr(K, "orig_ext", None) else [K.ext.as_expr()]
 
 
 def to_expr(K: Domain, c: Any) -> sympy.Expr:
