@@ -1,0 +1,56 @@
+"""Starting the desktop application: ``run_gui(path)`` is what ``sorgui [FILE]`` calls.
+
+The ``QApplication`` gets sorgui's names (which also place its settings file), icon and a
+consistent style; the window opens with ``FILE``, or else with the last session's equation, or
+on a first start with the paper's Example 1, and analyses it at once.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from importlib import resources
+
+from PySide6.QtCore import QTimer
+from PySide6.QtGui import QIcon
+from PySide6.QtWidgets import QApplication
+
+from sorgui import __version__
+from sorgui.gui.settings import APPLICATION, ORGANIZATION
+
+ICON = "sorgui.svg"
+"""The application icon, package data in ``sorgui/resources``."""
+
+
+def application_icon() -> QIcon:
+    """sorgui's icon (a profile curve revolving about its axis)."""
+    return QIcon(str(resources.files("sorgui") / "resources" / ICON))
+
+
+def create_application(argv: list[str] | None = None) -> QApplication:
+    """The ``QApplication`` (the existing one, if any) with sorgui's names and icon."""
+    app = QApplication.instance()
+    if app is None:
+        if sys.platform.startswith("linux") and "QT_QPA_PLATFORM" not in os.environ:
+            os.environ["QT_QPA_PLATFORM"] = "xcb"  # VTK renders through GLX, also under Wayland
+        app = QApplication(list(argv if argv is not None else sys.argv))
+    app.setOrganizationName(ORGANIZATION)
+    app.setApplicationName(APPLICATION)
+    app.setApplicationDisplayName("sorgui")
+    app.setApplicationVersion(__version__)
+    app.setDesktopFileName("sorgui")
+    app.setWindowIcon(application_icon())
+    if app.style().name().lower() not in ("fusion", "breeze"):
+        app.setStyle("Fusion")
+    return app  # type: ignore[return-value]
+
+
+def run_gui(path: str | None = None) -> int:
+    """Open the main window (with ``path``, if given) and run the event loop; the exit status."""
+    from sorgui.gui.main_window import MainWindow
+
+    app = create_application()
+    window = MainWindow()
+    window.show()
+    QTimer.singleShot(0, lambda: window.load_startup_equation(path))
+    return app.exec()

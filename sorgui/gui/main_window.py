@@ -1,0 +1,446 @@
+"""The main window: editor and results on the left, the 3D viewport on the right.
+
+It wires the parts together and owns no mathematics: the editor validates the text, the
+:class:`~sorgui.gui.worker.AnalysisWorker` analyses it in another process, the results pane
+and the viewport show what comes back. Keyboard: Ctrl+Return analyses, Esc cancels. The
+status bar shows the current stage and a busy indicator; the window never waits for the engine.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from PySide6.QtCore import Qt, QTimer, Signal
+from PySide6.QtGui import QAction, QCloseEvent, QGuiApplication, QKeySequence, QPainter, QPaintEvent, QPen
+from PySide6.QtWidgets import (
+    QFileDialog,
+    QHBoxLayout,
+    QLabel,
+    QMainWindow,
+    QMessageBox,
+    QPushButton,
+    QSplitter,
+    QVBoxLayout,
+    QWidget,
+)
+
+from sorgui import __version__
+from sorgui.engine.errors import ParseError
+from sorgui.examples import EXAMPLES, example_text
+from sorgui.gui.editor import EquationEditor
+from sorgui.gui.examples import ExamplesMenu
+from sorgui.gui.formulas import Style
+from sorgui.gui.job import JobRequest, JobResult
+from sorgui.gui.results import FORMULA_MARGIN, ResultsPane
+from sorgui.gui.settings import (
+    EQUATION_FILTER,
+    EquationFileError,
+    RecentFilesMenu,
+    Settings,
+    read_equation,
+    write_equation,
+)
+from sorgui.gui.viewport import Viewport
+from sorgui.gui.worker import AnalysisWorker
+
+STAGE_NAMES = {
+    "parse": "Reading the equation",
+    "recognition": "Solving for the symmetry algebra",
+    "factors": "Factoring over K",
+    "rationality": "Deciding rationality (Singular)",
+    "parametrizations": "Parameterizing",
+    "scene": "Meshing the surface",
+    "formulas": "Typesetting the results",
+}
+
+SCENE_DELAY_MS = 20
+"""Pause between showing the results pane and the scene of one analysis."""
+
+DEFAULT_EXAMPLE = EXAMPLES[0].name
+"""The paper's Example 1, loaded on a first start."""
+
+
+class BusyIndicator(QWidget):
+    """A small spinning arc for the status bar, repainted eight times a second.
+
+    Cheaper than an indeterminate ``QProgressBar``, whose animation repaints continuously and
+    costs most of a core under software rendering (Xvfb).
+    """
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setFixedSize(16, 16)
+        self._angle = 0
+        self._timer = QTimer(self)
+        self._timer.setInterval(125)
+        self._timer.timeout.connect(self._on_tick_change)
+
+    def set_busy(self, busy: bool) -> None:
+        self.setVisible(busy)
+        if busy:
+            self._timer.start()
+        else:
+            self._timer.stop()
+
+    def _on_tick_change(self) -> None:
+        self._angle = (self._angle - 30) % 360
+        self.update()
+
+    def paintEvent(self, event: QPaintEvent) -> None:  # noqa: N802 (Qt override)
+        painter = QPainter(self)
+        painter.setRenderHint(QPainter.RenderHint.Antialiasing)
+        pen = QPen(self.palette().highlight().color(), 2.2)
+        pen.setCapStyle(Qt.PenCapStyle.RoundCap)
+        painter.setPen(pen)
+        painter.drawArc(self.rect().adjusted(2, 2, -2, -2), self._angle * 16, 270 * 16)
+
+
+class MainWindow(QMainWindow):
+    """sorgui's window. ``prestart_worker`` keeps a warm worker process ready (off in tests
+    that never analyse). :attr:`result_shown` is emitted once a result is on screen (results
+    pane and scene), with the :class:`~sorgui.gui.job.JobResult`."""
+
+    result_shown = Signal(object)
+
+    def __init__(self, settings: Settings | None = None, prestart_worker: bool = True) -> None:
+        super().__init__()
+        self.settings = settings or Settings(self)
+        self.worker = AnalysisWorker(self, prestart=prestart_worker)
+        self.editor = EquationEditor(self)
+        self.results = ResultsPane(self)
+        self.viewport = Viewport(self)
+        self._file: str | None = None
+        self._analysis_json: dict | None = None
+        self._started_at = 0.0
+
+        self.analyze_button = QPushButton("Analyze")
+        self.analyze_button.setObjectName("analyzeButton")
+        self.analyze_button.setDefault(True)
+        self.analyze_button.setToolTip("Analyse the equation (Ctrl+Return)")
+        self.cancel_button = QPushButton("Cancel")
+        self.cancel_button.setObjectName("cancelButton")
+        self.cancel_button.setToolTip("Stop the running analysis (Esc)")
+        self.cancel_button.setEnabled(False)
+        self._build_layout()
+        self._build_actions()
+        self._build_status_bar()
+
+        self.analyze_button.clicked.connect(self.analyze)
+        self.cancel_button.clicked.connect(self.cancel)
+        self.editor.text_changed.connect(self._on_text_change)
+        self.editor.validity_changed.connect(self._on_validity_change)
+        self.worker.progress.connect(self._on_progress_change)
+        self.worker.finished.connect(self._on_result_change)
+        self.worker.invalid.connect(self._on_invalid_change)
+        self.worker.failed.connect(self._on_failure_change)
+        self.worker.cancelled.connect(self._on_cancel_change)
+        self.worker.busy_changed.connect(self._on_busy_change)
+        self.viewport.radius_requested.connect(self._on_radius_change)
+        self.viewport.picked.connect(self._on_pick_change)
+        self._restore_layout()
+        self._update_title()
+
+    # --- layout ---
+
+    def _build_layout(self) -> None:
+        buttons = QHBoxLayout()
+        buttons.addWidget(QLabel("<b>f(x, y, z) = 0</b>"))
+        buttons.addStretch(1)
+        buttons.addWidget(self.cancel_button)
+        buttons.addWidget(self.analyze_button)
+        top = QWidget()
+        top_layout = QVBoxLayout(top)
+        top_layout.setContentsMargins(8, 8, 8, 4)
+        top_layout.addLayout(buttons)
+        top_layout.addWidget(self.editor)
+        self.left_splitter = QSplitter(Qt.Orientation.Vertical)
+        self.left_splitter.addWidget(top)
+        self.left_splitter.addWidget(self.results)
+        self.left_splitter.setStretchFactor(1, 1)
+        self.left_splitter.setSizes([190, 610])
+        self.splitter = QSplitter(Qt.Orientation.Horizontal)
+        self.splitter.addWidget(self.left_splitter)
+        self.splitter.addWidget(self.viewport)
+        self.splitter.setStretchFactor(1, 1)
+        self.splitter.setSizes([560, 840])
+        self.setCentralWidget(self.splitter)
+        self.resize(1400, 860)
+
+    def _build_actions(self) -> None:
+        menu = self.menuBar()
+        file_menu = menu.addMenu("&File")
+        self.open_action = self._action(file_menu, "&Open…", self._on_open_change, QKeySequence.StandardKey.Open)
+        self.recent_menu = RecentFilesMenu(self.settings, self)
+        self.recent_menu.file_chosen.connect(self.open_file)
+        file_menu.addMenu(self.recent_menu)
+        self.save_action = self._action(file_menu, "&Save", self._on_save_change, QKeySequence.StandardKey.Save)
+        self.save_as_action = self._action(file_menu, "Save &As…", self._on_save_as_change,
+                                           QKeySequence.StandardKey.SaveAs)
+        file_menu.addSeparator()
+        self.copy_report_action = self._action(file_menu, "&Copy Report", self._on_copy_report_change,
+                                               "Ctrl+Shift+C")
+        self.screenshot_action = self._action(file_menu, "Save Screens&hot…", self._on_screenshot_change,
+                                              "Ctrl+Shift+P")
+        file_menu.addSeparator()
+        self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
+
+        analysis_menu = menu.addMenu("&Analysis")
+        self.analyze_action = self._action(analysis_menu, "&Analyze", self.analyze, "Ctrl+Return")
+        self.analyze_action.setShortcuts([QKeySequence("Ctrl+Return"), QKeySequence("Ctrl+Enter")])
+        self.cancel_action = self._action(analysis_menu, "&Cancel", self.cancel, "Esc")
+        self.cancel_action.setEnabled(False)
+
+        self.examples_menu = ExamplesMenu(self)
+        self.examples_menu.example_chosen.connect(self._on_example_change)
+        menu.addMenu(self.examples_menu)
+
+        view_menu = menu.addMenu("&View")
+        self._action(view_menu, "&Reset Camera", self.viewport.reset_camera, "Ctrl+R")
+
+        help_menu = menu.addMenu("&Help")
+        self._action(help_menu, "&About sorgui", self._on_about_change)
+
+    def _action(self, menu, text: str, slot, shortcut=None) -> QAction:  # noqa: ANN001
+        action = QAction(text, self)
+        if shortcut is not None:
+            action.setShortcut(QKeySequence(shortcut))
+        action.triggered.connect(lambda _checked=False: slot())
+        menu.addAction(action)
+        return action
+
+    def _build_status_bar(self) -> None:
+        self.stage_label = QLabel("Ready")
+        self.busy_indicator = BusyIndicator()
+        self.busy_indicator.set_busy(False)
+        self.statusBar().addWidget(self.busy_indicator)
+        self.statusBar().addWidget(self.stage_label, 1)
+
+    # --- public API ---
+
+    def set_equation(self, text: str, file: str | None = None) -> None:
+        """Put ``text`` into the editor; ``file`` is where it came from (or ``None``)."""
+        self.editor.set_text(text)
+        self._file = file
+        self.setWindowModified(False)
+        self._update_title()
+
+    def load_example(self, name: str) -> None:
+        """Load the bundled example ``name`` and analyse it."""
+        self.set_equation(example_text(name))
+        self.analyze()
+
+    def load_startup_equation(self, path: str | None) -> None:
+        """What the window shows first: ``path``, else the last session's text, else Example 1."""
+        if path is not None:
+            self.open_file(path)
+            return
+        text = self.settings.equation
+        if text:
+            self.set_equation(text, self.settings.current_file)
+            self.setWindowModified(False)
+            self.analyze()
+        else:
+            self.load_example(DEFAULT_EXAMPLE)
+
+    def open_file(self, path: str) -> bool:
+        """Read an equation file into the editor and analyse it."""
+        try:
+            text = read_equation(path)
+        except EquationFileError as exc:
+            if not Path(path).exists():
+                self.settings.remove_recent_file(path)
+            self._show_error("Cannot open file", str(exc))
+            return False
+        self.set_equation(text, str(Path(path).resolve()))
+        self.settings.add_recent_file(path)
+        self.analyze()
+        return True
+
+    def save_file(self, path: str) -> bool:
+        """Write the editor's text to ``path``."""
+        try:
+            write_equation(path, self.editor.text())
+        except EquationFileError as exc:
+            self._show_error("Cannot save file", str(exc))
+            return False
+        self._file = str(Path(path).resolve())
+        self.settings.add_recent_file(path)
+        self.setWindowModified(False)
+        self._update_title()
+        self.statusBar().showMessage(f"Saved {path}", 4000)
+        return True
+
+    def analyze(self) -> bool:
+        """Validate the equation and, if it is a polynomial, analyse it in the worker."""
+        if self.editor.check() is False:
+            error = self.editor.error
+            self._show_invalid(str(error) if error is not None else "The editor is empty.")
+            return False
+        self._started_at = time.perf_counter()
+        self.worker.start(JobRequest(self.editor.text(), resolution=self.viewport.mesh_resolution(),
+                                     style=self._formula_style()))
+        return True
+
+    def cancel(self) -> None:
+        """Stop the running analysis (the process is killed if it does not stop at once)."""
+        if self.worker.is_busy:
+            self.stage_label.setText("Cancelling…")
+            self.worker.cancel()
+
+    def save_screenshots(self, window_png: str | Path, viewport_png: str | Path) -> None:
+        """Save the whole window and the render window as PNG images."""
+        self.grab().save(str(window_png))
+        self.viewport.screenshot(viewport_png)
+
+    # --- handlers ---
+
+    def _on_text_change(self) -> None:
+        self.setWindowModified(True)
+
+    def _on_validity_change(self, valid: object) -> None:
+        self.analyze_button.setEnabled(valid is not False)
+
+    def _on_progress_change(self, stage: str) -> None:
+        self.stage_label.setText(STAGE_NAMES.get(stage, stage) + "…")
+
+    def _on_busy_change(self, busy: bool) -> None:
+        self.cancel_button.setEnabled(busy)
+        self.cancel_action.setEnabled(busy)
+        self.busy_indicator.set_busy(busy)
+        self.viewport.radius_box.setEnabled(not busy and self._analysis_json is not None)
+        if busy:
+            self.stage_label.setText("Starting…")
+
+    def _on_result_change(self, result: JobResult) -> None:
+        elapsed = time.perf_counter() - self._started_at
+        if result.formulas is None:  # the same analysis in a new ball
+            self.viewport.show_scene(result.scene, reset_camera=False)
+            self.stage_label.setText(f"Re-meshed in {elapsed:.2f} s: {result.scene.summary()}")
+            self.result_shown.emit(result)
+            return
+        analysis = result.analysis
+        self._analysis_json = result.analysis_json
+        self.results.show_analysis(analysis, result.formulas, result.timings)
+        verdict = "surface of revolution" if analysis.is_sor else "not a surface of revolution"
+        notes = " ".join(result.scene.notes)
+        self.stage_label.setText(f"Done in {elapsed:.2f} s: {verdict}; {result.scene.summary()}. {notes}".strip())
+        # The scene a little later: the results pane is laid out and painted first, and input
+        # is handled in between (no single turn of the event loop builds both).
+        QTimer.singleShot(SCENE_DELAY_MS, self, lambda: self._show_scene(result))
+
+    def _show_scene(self, result: JobResult) -> None:
+        self.viewport.show_scene(result.scene)
+        self.result_shown.emit(result)
+
+    def _on_invalid_change(self, message: str, position: int, end: int) -> None:
+        error = ParseError(message, position, end)
+        self.editor.show_error(error)
+        self._show_invalid(str(error))
+
+    def _show_invalid(self, message: str) -> None:
+        self.results.show_message("Not a polynomial in x, y, z", message, "error")
+        self.stage_label.setText("Fix the equation to analyse it")
+
+    def _on_failure_change(self, message: str) -> None:
+        self._analysis_json = None
+        self.results.show_message("The analysis failed", message, "error")
+        self.viewport.clear()
+        self.stage_label.setText("Failed: " + message)
+
+    def _on_cancel_change(self) -> None:
+        self.stage_label.setText("Cancelled")
+
+    def _on_radius_change(self, radius: float) -> None:
+        if self._analysis_json is None or self.worker.is_busy:
+            return
+        self._started_at = time.perf_counter()
+        self.worker.start(JobRequest(self.editor.text(), analysis=self._analysis_json, radius=radius,
+                                     resolution=self.viewport.mesh_resolution(), style=None))
+
+    def _on_pick_change(self, info) -> None:  # noqa: ANN001
+        self.statusBar().showMessage(info.summary(), 15000)
+
+    def _on_example_change(self, title: str, text: str) -> None:
+        self.set_equation(text)
+        self.statusBar().showMessage(f"Example: {title}", 4000)
+        self.analyze()
+
+    def _on_open_change(self) -> None:
+        start = str(Path(self._file).parent) if self._file else ""
+        path, _ = QFileDialog.getOpenFileName(self, "Open equation", start, EQUATION_FILTER)
+        if path:
+            self.open_file(path)
+
+    def _on_save_change(self) -> None:
+        if self._file is None:
+            self._on_save_as_change()
+        else:
+            self.save_file(self._file)
+
+    def _on_save_as_change(self) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Save equation", self._file or "equation.txt",
+                                              EQUATION_FILTER)
+        if path:
+            self.save_file(path)
+
+    def _on_copy_report_change(self) -> None:
+        QGuiApplication.clipboard().setText(self.results.plain_text())
+        self.statusBar().showMessage("Report copied to the clipboard", 3000)
+
+    def _on_screenshot_change(self) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Save screenshot", "sorgui.png", "PNG images (*.png)")
+        if path:
+            self.viewport.screenshot(path)
+            self.statusBar().showMessage(f"Saved {path}", 4000)
+
+    def _on_about_change(self) -> None:
+        QMessageBox.about(
+            self, "About sorgui",
+            f"<b>sorgui {__version__}</b><p>Decides exactly whether an algebraic surface "
+            "f(x, y, z) = 0 is a surface of revolution, after J. Vršek and M. Lávička, "
+            "<i>Determining surfaces of revolution from their implicit equations</i>.</p>"
+            f"<p>Settings: {self.settings.file_name}</p>",
+        )
+
+    # --- helpers ---
+
+    def _formula_style(self) -> Style:
+        """Formulas typeset for this screen, wrapped to the width the results pane has now."""
+        ratio = self.devicePixelRatioF()
+        width = 0.85 * (self.results.viewport().width() - FORMULA_MARGIN)  # pieces join a bit wider
+        return Style(dpi=96.0 * ratio, size=self.font().pointSizeF() + 1.5, width=max(width, 200) * ratio)
+
+    def _show_error(self, title: str, message: str) -> None:
+        self.statusBar().showMessage(message, 8000)
+        QMessageBox.warning(self, title, message)
+
+    def _update_title(self) -> None:
+        name = Path(self._file).name if self._file else "Untitled"
+        self.setWindowTitle(f"{name}[*] — sorgui")
+
+    def _restore_layout(self) -> None:
+        for name, widget in (("window", self), ("splitter", self.splitter), ("left", self.left_splitter)):
+            state = self.settings.layout(name)
+            if state is None:
+                continue
+            if widget is self:
+                self.restoreGeometry(state)
+            else:
+                widget.restoreState(state)
+
+    def _save_layout(self) -> None:
+        self.settings.save_layout("window", self.saveGeometry())
+        self.settings.save_layout("splitter", self.splitter.saveState())
+        self.settings.save_layout("left", self.left_splitter.saveState())
+
+    def closeEvent(self, event: QCloseEvent) -> None:  # noqa: N802 (Qt override)
+        """Remember the text and layout, kill the worker processes, release the render window."""
+        self.settings.equation = self.editor.text()
+        self.settings.current_file = self._file
+        self._save_layout()
+        self.settings.sync()
+        self.worker.shutdown()
+        self.viewport.close_plotter()
+        super().closeEvent(event)
+

@@ -1,0 +1,285 @@
+"""The results pane: the verdict, the axis, the profile, Table 1 and the parameterizations.
+
+It only reads an :class:`~sorgui.engine.report.Analysis` and the typeset formulas the worker
+made for it (:mod:`sorgui.gui.formulas`); nothing here computes mathematics. Table 1 of the
+paper is shown whole, with the surface's row highlighted, so the user sees where the answer
+comes from. ``plain_text()`` is the CLI's report (:func:`sorgui.export.text.format_report`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from PySide6.QtCore import Qt
+from PySide6.QtGui import QColor, QFont
+from PySide6.QtWidgets import (
+    QAbstractItemView,
+    QFrame,
+    QGridLayout,
+    QHeaderView,
+    QLabel,
+    QScrollArea,
+    QTableWidget,
+    QTableWidgetItem,
+    QVBoxLayout,
+    QWidget,
+)
+
+from sorgui.engine.report import Analysis, Rationality, Recognition
+from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, format_report
+from sorgui.gui.formula_view import FormulaView
+from sorgui.gui.formulas import Formula
+
+TABLE_HEADERS = ("row", "genus(P)", "genus(P²)", "X over ℂ", "X over ℝ")
+HIGHLIGHT = QColor("#ffe08a")
+YES_NO = {True: "yes", False: "no", None: "undecided"}
+CAPTION_WIDTH = 130
+"""Width of the caption column, the same in every section so that formulas line up."""
+FORMULA_MARGIN = CAPTION_WIDTH + 120
+"""Pixels of the pane's width that are not the formula column (caption, copy button, margins)."""
+
+_BANNER_STYLE = {
+    "sor": "background: #e3f2e5; color: #1b5e20; border: 1px solid #a5d6a7;",
+    "not": "background: #fbe9e7; color: #8d2b0b; border: 1px solid #ffab91;",
+    "info": "background: #eef2f7; color: #263238; border: 1px solid #cfd8dc;",
+    "error": "background: #fdecea; color: #b71c1c; border: 1px solid #ef9a9a;",
+}
+
+
+class ResultsPane(QScrollArea):
+    """A scrolling column of sections, rebuilt for every analysis."""
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("resultsPane")
+        self.setWidgetResizable(True)
+        self.setFrameShape(QFrame.Shape.NoFrame)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self._analysis: Analysis | None = None
+        self._formulas: dict[str, Formula] = {}
+        self._message = ""
+        self.banner = QLabel()
+        self.table: QTableWidget | None = None
+        self.show_message("No analysis yet", "Type an equation and press Analyze (Ctrl+Return).", "info")
+
+    # --- public API ---
+
+    @property
+    def analysis(self) -> Analysis | None:
+        return self._analysis
+
+    def plain_text(self) -> str:
+        """The shown result as plain text: the CLI's report, or the shown message."""
+        return format_report(self._analysis) if self._analysis is not None else self._message
+
+    def show_message(self, title: str, message: str, kind: str = "info") -> None:
+        """Replace the results by a message (``kind``: ``info`` or ``error``)."""
+        self._analysis, self._formulas = None, {}
+        self._message = f"{title}\n{message}"
+        column = self._new_column()
+        self._banner(column, title, message, kind)
+        column.addStretch(1)
+
+    def show_analysis(
+        self, analysis: Analysis, formulas: dict[str, Formula], worker_timings: Sequence[tuple[str, float]] = ()
+    ) -> None:
+        """Show ``analysis`` with its typeset ``formulas`` (keys of :func:`analysis_formulas`)."""
+        self._analysis, self._formulas = analysis, formulas
+        rec = analysis.recognition
+        column = self._new_column()
+        title = "Surface of revolution" if rec.is_sor else "Not a surface of revolution"
+        detail = (
+            f"{SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)} · degree {rec.degree} over "
+            f"{analysis.field} · dim L = {rec.symmetry_dimension}"
+        )
+        self._banner(column, title, detail, "sor" if rec.is_sor else "not")
+        self._section(column, "Equation", [("f(x, y, z)", "polynomial")])
+        self._recognition_sections(column, rec, "")
+        if len(analysis.factors) > 1 or analysis.factors[0].multiplicity > 1:
+            self._factor_section(column, analysis)
+        if analysis.rationality is not None:
+            self._rationality_section(column, analysis.rationality)
+        self._parametrization_section(column, analysis)
+        self._timings_section(column, tuple(analysis.timings) + tuple(worker_timings))
+        column.addStretch(1)
+
+    # --- building blocks ---
+
+    def _new_column(self) -> QVBoxLayout:
+        old = self.takeWidget()
+        if old is not None:
+            old.deleteLater()
+        self.table = None
+        page = QWidget()
+        page.setObjectName("resultsPage")
+        column = QVBoxLayout(page)
+        column.setContentsMargins(10, 10, 10, 10)
+        column.setSpacing(6)
+        self.setWidget(page)
+        return column
+
+    def _banner(self, column: QVBoxLayout, title: str, detail: str, kind: str) -> None:
+        self.banner = QLabel(f"<div style='font-size: 15pt; font-weight: 600'>{title}</div>"
+                             f"<div>{detail}</div>")
+        self.banner.setObjectName("verdictBanner")
+        self.banner.setWordWrap(True)
+        self.banner.setTextFormat(Qt.TextFormat.RichText)
+        self.banner.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.banner.setStyleSheet(f"QLabel {{ {_BANNER_STYLE[kind]} border-radius: 6px; padding: 8px; }}")
+        column.addWidget(self.banner)
+
+    def _heading(self, column: QVBoxLayout, text: str) -> None:
+        label = QLabel(text)
+        font = label.font()
+        font.setBold(True)
+        font.setPointSizeF(font.pointSizeF() * 1.1)
+        label.setFont(font)
+        label.setContentsMargins(0, 8, 0, 0)
+        column.addWidget(label)
+
+    def _section(self, column: QVBoxLayout, heading: str, rows: Sequence[tuple[str, str]]) -> None:
+        """A heading and a grid of ``(caption, formula key or text)`` rows.
+
+        A value that is a key of the formulas is typeset; any other value is shown as text.
+        """
+        self._heading(column, heading)
+        grid = QGridLayout()
+        grid.setHorizontalSpacing(10)
+        grid.setVerticalSpacing(4)
+        grid.setColumnStretch(1, 1)
+        grid.setColumnMinimumWidth(0, CAPTION_WIDTH)
+        ratio = self.devicePixelRatioF()
+        width = self.viewport().width() - FORMULA_MARGIN
+        for index, (caption, value) in enumerate(rows):
+            label = QLabel(caption)
+            label.setStyleSheet("color: #546e7a;")
+            label.setWordWrap(True)
+            label.setFixedWidth(CAPTION_WIDTH)
+            grid.addWidget(label, index, 0, Qt.AlignmentFlag.AlignTop)
+            if value in self._formulas:
+                grid.addWidget(FormulaView(self._formulas[value], ratio=ratio, max_width=width), index, 1)
+            else:
+                text = QLabel(value)
+                text.setWordWrap(True)
+                text.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+                grid.addWidget(text, index, 1)
+        column.addLayout(grid)
+
+    def _recognition_sections(self, column: QVBoxLayout, rec: Recognition, key: str) -> None:
+        if rec.axis is not None:
+            self._section(column, "Axis", [
+                ("point c", f"{key}axis.point"),
+                ("direction a", f"{key}axis.direction"),
+                ("line", f"{key}axis.line"),
+                ("Plücker (a : c × a)", f"{key}axis.plucker"),
+            ])
+        if rec.center is not None:
+            self._section(column, "Centre (every line through it is an axis)", [("centre", f"{key}center")])
+        if rec.normal is not None:
+            self._section(column, "Normal (every line along it is an axis)", [("normal", f"{key}normal")])
+        if rec.direction is not None:
+            self._section(column, "Direction of translation", [("direction", f"{key}direction")])
+        if rec.profile is not None and not key:
+            profile = rec.profile
+            self._section(column, "Profile curve", [
+                ("p(x, y) = 0", "profile.polynomial"),
+                ("", "x along the axis, y the distance to it"),
+                ("P²: y² → y", "profile.square"),
+                ("p̃(s, r) = f(c + s·a + r·u)", "profile.rational"),
+                ("frame", "profile.frame_point"),
+                ("", "profile.frame_direction"),
+                ("", "profile.frame_normal"),
+                ("checks", f"p̃ even in r: {YES_NO[profile.even]} · f = p(x, √(y² + z²)) "
+                           f"in the axis frame: {YES_NO[profile.verified]}"),
+            ])
+
+    def _factor_section(self, column: QVBoxLayout, analysis: Analysis) -> None:
+        rows = []
+        for index, factor in enumerate(analysis.factors):
+            rec = factor.recognition
+            rows.append((f"factor {index + 1}" + (f"  (power {factor.multiplicity})" if factor.multiplicity > 1 else ""),
+                         f"factor.{index}"))
+            rows.append(("", SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)))
+            if rec.axis is not None:
+                rows.append(("axis", f"factor.{index}.axis.line"))
+            if rec.center is not None:
+                rows.append(("centre", f"factor.{index}.center"))
+        self._section(column, f"Factors over {analysis.field}", rows)
+
+    def _rationality_section(self, column: QVBoxLayout, rat: Rationality) -> None:
+        genus_p = "reducible" if rat.profile_reducible else _value(rat.genus_profile)
+        rows = [
+            ("status", rat.status),
+            ("genus(P)", genus_p),
+            ("genus(P²)", _value(rat.genus_profile_square)),
+            ("X rational over ℂ", YES_NO[rat.complex_rational]),
+            ("X unirational over ℝ", YES_NO[rat.unirational]),
+            ("X rational over ℝ", YES_NO[rat.real_rational]),
+        ]
+        if rat.square_parametrization:
+            rows += [("P² parameterized by", "rationality.square_parametrization.0"),
+                     ("", "rationality.square_parametrization.1")]
+        if rat.tubular_surface:
+            rows.append(("tubular surface T", "rationality.tubular_surface"))
+        if rat.h:
+            rows.append(("h = r̂·q̂", "rationality.h"))
+        if rat.real_roots_of_h is not None:
+            rows.append(("real roots of h", str(rat.real_roots_of_h)))
+        if rat.tau:
+            rows += [("τ: X ⇢ T", "rationality.tau.x"), ("", "rationality.tau.y"), ("", "rationality.tau.z")]
+        rows += [("note", note) for note in rat.notes]
+        self._heading(column, "Rationality (Table 1 of the paper)")
+        column.addWidget(self._table_1(rat.table_row))
+        self._section(column, "Genera and rationality", rows)
+
+    def _table_1(self, row: int | None) -> QTableWidget:
+        table = QTableWidget(len(TABLE_1), len(TABLE_HEADERS))
+        table.setObjectName("table1")
+        table.setHorizontalHeaderLabels(TABLE_HEADERS)
+        table.verticalHeader().setVisible(False)
+        table.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+        table.setSelectionMode(QAbstractItemView.SelectionMode.NoSelection)
+        table.setFocusPolicy(Qt.FocusPolicy.NoFocus)
+        bold = QFont(table.font())
+        bold.setBold(True)
+        for r, cells in enumerate(TABLE_1):
+            for c, text in enumerate((str(r + 1), *cells)):
+                item = QTableWidgetItem(text)
+                item.setTextAlignment(Qt.AlignmentFlag.AlignCenter)
+                if row == r + 1:
+                    item.setBackground(HIGHLIGHT)
+                    item.setFont(bold)
+                    item.setToolTip("the row of this surface")
+                table.setItem(r, c, item)
+        header = table.horizontalHeader()
+        header.setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
+        header.setSectionResizeMode(0, QHeaderView.ResizeMode.ResizeToContents)
+        table.resizeRowsToContents()
+        height = header.sizeHint().height() + sum(table.rowHeight(r) for r in range(table.rowCount()))
+        table.setFixedHeight(height + 2 * table.frameWidth())
+        table.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.table = table
+        return table
+
+    def _parametrization_section(self, column: QVBoxLayout, analysis: Analysis) -> None:
+        for index, param in enumerate(analysis.parametrizations):
+            kind = "real" if param.real else "complex"
+            proper = {True: "proper", False: "not proper", None: "properness unknown"}[param.proper]
+            check = "verified by substitution" if param.verified else "NOT verified"
+            names = ", ".join(param.parameters)
+            self._section(column, f"Parameterization {index + 1} ({names})", [
+                ("", f"{param.method} · {kind}, {proper}, over {param.field} · {check}"),
+                ("x", f"parametrization.{index}.x"),
+                ("y", f"parametrization.{index}.y"),
+                ("z", f"parametrization.{index}.z"),
+            ])
+
+    def _timings_section(self, column: QVBoxLayout, timings: Sequence[tuple[str, float]]) -> None:
+        total = sum(seconds for _name, seconds in timings)
+        rows = [(name, f"{seconds * 1000:.0f} ms") for name, seconds in timings]
+        rows.append(("total", f"{total * 1000:.0f} ms"))
+        self._section(column, "Timings", rows)
+
+
+def _value(value: object) -> str:
+    return "undecided" if value is None else str(value)

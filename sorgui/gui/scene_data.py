@@ -1,0 +1,253 @@
+"""The plain arrays of the 3D scene of one analysis, built in the worker process.
+
+From an :class:`~sorgui.engine.report.Analysis` this computes, with the builders of
+:mod:`sorgui.render`, everything the viewport draws: the mesh of the square-free part of ``f``
+(coloured by side), the axis, the profile curve in a plane through the axis, the centre of a
+sphere, and a patch of the first real parameterization. All of it is ``numpy`` data (no Qt, no
+VTK objects), so it crosses the process boundary by pickling and the GUI thread only wraps it.
+
+The drawn region is a ball. Its centre and radius come from :func:`view_region`, which looks
+for the real points of ``f`` on a few lines through a natural centre (the axis, a sphere's
+centre, or the origin), so that bounded parts of the surface are shown whole.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from itertools import product
+
+import numpy as np
+
+from sorgui.engine.report import Analysis, Parametrization, Recognition
+from sorgui.gui.exact import (
+    ExpressionError,
+    Terms,
+    float_vector,
+    polynomial_terms,
+    rational_function_terms,
+)
+from sorgui.render import (
+    ClipSphere,
+    LineData,
+    MarkerData,
+    MeshData,
+    PatchData,
+    axis_line,
+    parametric_patch,
+    profile_curve,
+    sphere_center_marker,
+    surface_mesh,
+)
+from sorgui.render.geometry import foot_on_line, perpendicular_vector, unit
+from sorgui.render.sampling import evaluate_points, term_arrays
+
+DEFAULT_RESOLUTION = 150
+"""Grid nodes along the diameter of the drawn ball."""
+
+PATCH_RANGE = (-3.0, 3.0)
+"""Range of both parameters of the drawn parametric patch (the rotation parameter ``s`` is the
+tangent of half the angle, so ``±3`` covers about 287° and leaves the seam open)."""
+
+PATCH_GRID = 41
+"""Samples per parameter of the patch, drawn as a wireframe: a readable net of curves."""
+
+MIN_RADIUS = 1.0
+MAX_RADIUS = 1.0e4
+MARGIN = 1.25
+"""The ball's radius is this factor times the distance of the farthest real point kept."""
+SPREAD = 3.0
+"""Real points farther than this many median distances belong to far branches: not framed."""
+
+
+@dataclass(frozen=True, eq=False)
+class SceneData:
+    """Everything the viewport draws for one analysis, as plain data.
+
+    ``terms``: float terms of the square-free part of ``f`` (for picking); ``region``: the drawn
+    ball; ``axis_point``/``axis_direction``: the unique axis as floats, if there is one;
+    ``notes``: what the picture leaves out, in words for the user.
+    """
+
+    terms: Terms
+    region: ClipSphere
+    surface: MeshData
+    axis_segment: LineData
+    profile_curve: LineData
+    center_marker: MarkerData | None
+    patch: PatchData | None
+    axis_point: tuple[float, float, float] | None
+    axis_direction: tuple[float, float, float] | None
+    notes: tuple[str, ...]
+
+    @property
+    def axis(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """``(point, direction)`` of the unique axis, for the picking test."""
+        if self.axis_point is None or self.axis_direction is None:
+            return None
+        return np.asarray(self.axis_point), np.asarray(self.axis_direction)
+
+    def summary(self) -> str:
+        """Short facts for the status bar: triangles and the drawn ball."""
+        center = ", ".join(f"{v:.3g}" for v in self.region.center)
+        return f"{self.surface.n_faces:,} triangles in a ball of radius {self.region.radius:.3g} about ({center})"
+
+
+# --- where to look --------------------------------------------------------------------------
+
+
+def restriction_to_line(terms: Terms, point: np.ndarray, direction: np.ndarray) -> np.ndarray:
+    """Coefficients (lowest degree first) of ``t ↦ f(point + t·direction)``.
+
+    ``f`` is evaluated at the ``n = deg + 1`` points with ``t`` an ``n``-th root of unity, and
+    the coefficients are the discrete Fourier transform of those values: exact up to rounding
+    and perfectly conditioned, and vectorised over all terms (dense degree 40 in milliseconds).
+    """
+    exps, coefs = term_arrays(terms, 3)
+    if len(exps) == 0:
+        return np.zeros(1)
+    degree = int(exps.sum(axis=1).max())
+    n = degree + 1
+    t = np.exp(2j * np.pi * np.arange(n) / n)
+    values = np.repeat(coefs[:, None].astype(complex), n, axis=1)
+    for v in range(3):
+        coordinate = point[v] + direction[v] * t
+        powers = np.cumprod(np.vstack([np.ones(n), np.repeat(coordinate[None, :], degree, axis=0)]), axis=0)
+        values *= powers[exps[:, v]]
+    return (np.fft.fft(values.sum(axis=0)) / n).real
+
+
+def real_roots(coefficients: np.ndarray) -> np.ndarray:
+    """The real roots of a univariate polynomial (lowest degree first), numerically."""
+    c = np.asarray(coefficients, dtype=np.float64)
+    scale = float(np.abs(c).max(initial=0.0))
+    if scale == 0.0 or not np.isfinite(scale):
+        return np.zeros(0)
+    c = c / scale
+    nonzero = np.nonzero(np.abs(c) > 1e-12)[0]
+    if len(nonzero) == 0 or nonzero[-1] == 0:
+        return np.zeros(0)
+    roots = np.roots(c[: nonzero[-1] + 1][::-1])
+    real = roots[np.abs(roots.imag) <= 1e-6 * np.maximum(1.0, np.abs(roots))].real
+    return real[np.isfinite(real)]
+
+
+def _probe_directions(axis: np.ndarray | None) -> list[np.ndarray]:
+    """The 13 directions of a cube's axes and diagonals, plus an axis frame if there is one."""
+    directions = [np.array(d, dtype=np.float64) for d in product((-1, 0, 1), repeat=3)]
+    directions = [d for d in directions if next((x for x in d if x), 0) > 0]
+    if axis is not None:
+        u = unit(perpendicular_vector(axis))
+        w = np.cross(unit(axis), u)
+        directions += [unit(axis), u, w, unit(u + w), unit(u - w)]
+    return directions
+
+
+def view_region(
+    terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
+) -> ClipSphere:
+    """A ball that shows the interesting part of ``f = 0`` around ``center``.
+
+    The real points of ``f`` on lines through ``center`` (cube axes and diagonals, and an axis
+    frame) are collected. Far points of unbounded branches are dropped: only those within
+    :data:`SPREAD` times the median distance are kept. The centre then moves to the middle of
+    the kept points (along the axis, if there is one), and the radius is :data:`MARGIN` times
+    the farthest kept point's distance, clamped to ``[MIN_RADIUS, MAX_RADIUS]``.
+    """
+    points = [
+        center + t * d
+        for d in _probe_directions(axis)
+        for t in real_roots(restriction_to_line(terms, center, d))
+    ]
+    pts = np.array(points).reshape(-1, 3)
+    distances = np.linalg.norm(pts - center, axis=1)
+    positive = distances[distances > 1e-9 * max(1.0, float(np.linalg.norm(center)))]
+    if len(positive) == 0:
+        return ClipSphere(tuple(center), 2.0 * MIN_RADIUS)
+    core = pts[distances <= min(distances.max(), SPREAD * float(np.median(positive)))]
+    if axis is not None:
+        a = unit(axis)
+        heights = (core - center) @ a
+        middle = center + 0.5 * (heights.min() + heights.max()) * a
+    else:
+        middle = 0.5 * (core.min(axis=0) + core.max(axis=0))
+    radius = MARGIN * float(np.linalg.norm(core - middle, axis=1).max())
+    return ClipSphere(tuple(middle), float(np.clip(radius, MIN_RADIUS, MAX_RADIUS)))
+
+
+def natural_center(rec: Recognition) -> tuple[np.ndarray, np.ndarray | None]:
+    """Where to centre the view, and the axis direction if the axis is unique."""
+    if rec.axis is not None:
+        point, direction = float_vector(rec.axis.point), float_vector(rec.axis.direction)
+        return foot_on_line(np.zeros(3), point, direction), direction
+    if rec.center is not None:
+        return float_vector(rec.center), None
+    return np.zeros(3), None
+
+
+# --- the scene ------------------------------------------------------------------------------
+
+
+def _patch(param: Parametrization, region: ClipSphere) -> PatchData | None:
+    """A grid patch of a real parameterization (``None`` if its coordinates cannot be read)."""
+    try:
+        coordinates = [rational_function_terms(c, param.parameters) for c in param.coordinates]
+    except (ExpressionError, ValueError, TypeError):
+        return None
+
+    def coordinate(numerator: Terms, denominator: Terms):
+        def evaluate(s: np.ndarray, t: np.ndarray) -> np.ndarray:
+            st = np.column_stack([np.ravel(s), np.ravel(t)])
+            with np.errstate(all="ignore"):
+                value = evaluate_points(numerator, st) / evaluate_points(denominator, st)
+            return value.reshape(np.shape(s))
+
+        return evaluate
+
+    fx, fy, fz = (coordinate(n, d) for n, d in coordinates)
+    return parametric_patch(fx, fy, fz, PATCH_RANGE, PATCH_RANGE, n=PATCH_GRID, region=region)
+
+
+def build_scene(
+    analysis: Analysis, radius: float | None = None, resolution: int = DEFAULT_RESOLUTION
+) -> SceneData:
+    """The scene of ``analysis``; ``radius`` overrides the automatic size of the drawn ball."""
+    rec = analysis.recognition
+    terms = polynomial_terms(analysis.squarefree)
+    center, axis_direction = natural_center(rec)
+    region = view_region(terms, center, axis_direction)
+    if radius is not None:
+        region = ClipSphere(region.center, radius)
+    c, r = np.asarray(region.center), region.radius
+    bounds = tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
+    surface = surface_mesh(terms, bounds, resolution=resolution, clip=region)
+    notes = []
+    if surface.is_empty:
+        notes.append("The surface has no real points that can be drawn inside the ball.")
+    segment, profile = LineData.empty(), LineData.empty()
+    axis_point = None
+    if rec.axis is not None:
+        point, direction = float_vector(rec.axis.point), float_vector(rec.axis.direction)
+        segment = axis_line(point, direction, region)
+        axis_point = tuple(point)
+    if rec.profile is not None:
+        profile = profile_curve(
+            polynomial_terms(rec.profile.rational, ("s", "r")),
+            float_vector(rec.profile.frame_point),
+            float_vector(rec.profile.frame_direction),
+            float_vector(rec.profile.frame_normal),
+            region,
+        )
+    marker = sphere_center_marker(float_vector(rec.center), region) if rec.center else None
+    real = [p for p in analysis.parametrizations if p.real and p.verified]
+    return SceneData(
+        terms=terms,
+        region=region,
+        surface=surface,
+        axis_segment=segment,
+        profile_curve=profile,
+        center_marker=marker,
+        patch=_patch(real[0], region) if real else None,
+        axis_point=axis_point,  # type: ignore[arg-type]
+        axis_direction=tuple(axis_direction) if axis_direction is not None else None,  # type: ignore[arg-type]
+        notes=tuple(notes),
+    )

@@ -1,0 +1,160 @@
+"""What sorgui remembers between sessions, and the equation files it reads and writes.
+
+One :class:`Settings` object wraps ``QSettings`` in INI format in the user scope
+(``~/.config/sorgui/sorgui.ini`` on Linux): the editor content (restored on the next start),
+the recent files, and the window layout. Tests point ``QSettings.setPath`` at a temporary
+folder, so they never touch the user's file. Equation files are plain UTF-8 text.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6.QtCore import QByteArray, QObject, QSettings, Signal
+from PySide6.QtGui import QAction
+from PySide6.QtWidgets import QMenu, QWidget
+
+ORGANIZATION = "sorgui"
+APPLICATION = "sorgui"
+MAX_RECENT_FILES = 10
+MAX_FILE_BYTES = 4 * 1024 * 1024
+"""Equation files larger than this are refused: nobody types a 4 MB polynomial."""
+
+EQUATION_FILTER = "Equations (*.txt *.sor *.poly);;All files (*)"
+
+
+class EquationFileError(OSError):
+    """An equation file could not be read or written; the message is for the user."""
+
+
+def read_equation(path: str | Path) -> str:
+    """The text of an equation file (UTF-8, at most :data:`MAX_FILE_BYTES`)."""
+    path = Path(path)
+    try:
+        size = path.stat().st_size
+        if size > MAX_FILE_BYTES:
+            raise EquationFileError(f"{path.name} is too large ({size // 1024} KiB) to be an equation")
+        return path.read_text(encoding="utf-8").strip()
+    except UnicodeDecodeError:
+        raise EquationFileError(f"{path.name} is not a UTF-8 text file") from None
+    except OSError as exc:
+        if isinstance(exc, EquationFileError):
+            raise
+        raise EquationFileError(f"cannot read {path}: {exc.strerror or exc}") from None
+
+
+def write_equation(path: str | Path, text: str) -> None:
+    """Write ``text`` to ``path`` as UTF-8 with a final newline."""
+    path = Path(path)
+    try:
+        path.write_text(text.rstrip("\n") + "\n", encoding="utf-8")
+    except OSError as exc:
+        raise EquationFileError(f"cannot write {path}: {exc.strerror or exc}") from None
+
+
+class Settings(QObject):
+    """Typed access to sorgui's ``QSettings``; emits :attr:`recent_files_changed`."""
+
+    recent_files_changed = Signal()
+
+    def __init__(self, parent: QObject | None = None) -> None:
+        super().__init__(parent)
+        self._store = QSettings(
+            QSettings.Format.IniFormat, QSettings.Scope.UserScope, ORGANIZATION, APPLICATION
+        )
+
+    @property
+    def file_name(self) -> str:
+        """Where the settings live (for the About box and for tests)."""
+        return self._store.fileName()
+
+    # --- editor content ---
+
+    @property
+    def equation(self) -> str | None:
+        """The editor content at the last exit, or ``None`` on a first start."""
+        value = self._store.value("editor/equation")
+        return str(value) if value else None
+
+    @equation.setter
+    def equation(self, text: str) -> None:
+        self._store.setValue("editor/equation", text)
+
+    @property
+    def current_file(self) -> str | None:
+        """The file the editor content came from or was saved to, if any."""
+        value = self._store.value("editor/file")
+        return str(value) if value else None
+
+    @current_file.setter
+    def current_file(self, path: str | None) -> None:
+        self._store.setValue("editor/file", path or "")
+
+    # --- recent files ---
+
+    @property
+    def recent_files(self) -> list[str]:
+        """Recently opened or saved files, newest first."""
+        value = self._store.value("files/recent", [])
+        if isinstance(value, str):  # QSettings returns a lone string for a one-element list
+            value = [value]
+        return [str(v) for v in value or []]
+
+    def add_recent_file(self, path: str | Path) -> None:
+        """Put ``path`` first in the recent files (absolute, without duplicates)."""
+        name = str(Path(path).resolve())
+        files = [name] + [f for f in self.recent_files if f != name]
+        self._store.setValue("files/recent", files[:MAX_RECENT_FILES])
+        self.recent_files_changed.emit()
+
+    def remove_recent_file(self, path: str) -> None:
+        """Forget ``path`` (it no longer exists)."""
+        self._store.setValue("files/recent", [f for f in self.recent_files if f != path])
+        self.recent_files_changed.emit()
+
+    def clear_recent_files(self) -> None:
+        self._store.setValue("files/recent", [])
+        self.recent_files_changed.emit()
+
+    # --- window layout ---
+
+    def save_layout(self, name: str, state: QByteArray) -> None:
+        """Store a widget's saved geometry or state (``saveGeometry()``/``saveState()``)."""
+        self._store.setValue(f"layout/{name}", state)
+
+    def layout(self, name: str) -> QByteArray | None:
+        value = self._store.value(f"layout/{name}")
+        return value if isinstance(value, QByteArray) else None
+
+    def sync(self) -> None:
+        """Write pending changes to disk now."""
+        self._store.sync()
+
+
+class RecentFilesMenu(QMenu):
+    """File ▸ Open Recent: one action per remembered file, rebuilt when the list changes."""
+
+    file_chosen = Signal(str)
+
+    def __init__(self, settings: Settings, parent: QWidget | None = None) -> None:
+        super().__init__("Open &Recent", parent)
+        self._settings = settings
+        settings.recent_files_changed.connect(self._on_recent_files_change)
+        self._on_recent_files_change()
+
+    def _on_recent_files_change(self) -> None:
+        self.clear()
+        files = self._settings.recent_files
+        for index, name in enumerate(files):
+            label = f"&{index + 1}  {Path(name).name}" if index < 9 else Path(name).name
+            action = QAction(label, self)
+            action.setToolTip(name)
+            action.setData(name)
+            action.triggered.connect(lambda _checked=False, n=name: self.file_chosen.emit(n))
+            self.addAction(action)
+        if files:
+            self.addSeparator()
+        clear = self.addAction("&Clear List")
+        clear.setEnabled(bool(files))
+        clear.triggered.connect(self._settings.clear_recent_files)
+        self.setEnabled(bool(files))

@@ -1,0 +1,273 @@
+"""Runs analyses in a separate process, so the window never freezes and cancel always works.
+
+:class:`AnalysisWorker` lives on the GUI thread. Each job runs in its own process, started with
+the ``spawn`` method (no forked Qt or VTK state) and running :func:`sorgui.gui.job.serve`,
+which makes it a process-group leader. A timer polls the pipe and turns messages into the Qt
+signals :attr:`~AnalysisWorker.progress`, :attr:`~AnalysisWorker.finished`,
+:attr:`~AnalysisWorker.failed` and :attr:`~AnalysisWorker.cancelled`.
+
+Cancelling sets the job's ``multiprocessing.Event`` (the engine checks it between stages and
+kills Singular at once); a process still alive :data:`CANCEL_GRACE_S` later is frozen with
+``SIGSTOP`` and killed with ``SIGKILL`` together with its process group and the process groups
+of all its descendants (Singular runs in a session of its own). Starting a job supersedes the
+running one the same way, silently. The next process is started ahead of time (a warm spare),
+so an analysis does not wait for Python to import sympy, flint and VTK; it is started a little
+after the previous job ends, so that it competes neither with a running job nor with the GUI
+showing the result. Worker processes run at a lower priority (``nice``) than the GUI.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import signal
+import time
+from pathlib import Path
+
+from PySide6.QtCore import QObject, QTimer, Signal
+
+from sorgui.gui.job import JobRequest, serve
+
+POLL_INTERVAL_MS = 15
+"""How often the GUI thread looks at the pipes of running jobs."""
+
+CANCEL_GRACE_S = 0.5
+"""How long a cancelled job may take to stop by itself before it is killed."""
+
+SPARE_DELAY_MS = 2000
+"""The next worker process starts this long after a job ends, once the result is on screen."""
+
+
+def descendants(pid: int) -> list[tuple[int, int]]:
+    """``(pid, pgid)`` of every descendant of ``pid``, read from ``/proc`` (empty elsewhere)."""
+    parents: dict[int, list[tuple[int, int]]] = {}
+    proc = Path("/proc")
+    if not proc.is_dir():
+        return []
+    for entry in proc.iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            stat = (entry / "stat").read_text()
+        except OSError:
+            continue
+        fields = stat.rsplit(")", 1)[1].split()  # after "pid (comm)": state ppid pgrp ...
+        parents.setdefault(int(fields[1]), []).append((int(entry.name), int(fields[2])))
+    found, stack = [], [pid]
+    while stack:
+        for child in parents.get(stack.pop(), []):
+            found.append(child)
+            stack.append(child[0])
+    return found
+
+
+def kill_process_tree(pid: int) -> None:
+    """Kill the process ``pid``, its process group and the groups of all its descendants.
+
+    The group is stopped first, so that nothing new is started between listing and killing.
+    """
+    _signal_group(pid, signal.SIGSTOP)
+    groups = {pgid for _pid, pgid in descendants(pid)} | {pid}
+    groups.discard(os.getpgrp())  # a child that has not yet left our group: never kill ourselves
+    for group in groups:
+        _signal_group(group, signal.SIGKILL)
+    try:
+        os.kill(pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+
+
+def _signal_group(pgid: int, signum: int) -> None:
+    try:
+        os.killpg(pgid, signum)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
+class _Job:
+    """One worker process, its pipe and its cancel event."""
+
+    def __init__(self, context: multiprocessing.context.SpawnContext) -> None:
+        self.conn, child_conn = context.Pipe(duplex=True)
+        self.cancel_event = context.Event()
+        self.process = context.Process(
+            target=serve, args=(child_conn, self.cancel_event), name="sorgui-analysis", daemon=True
+        )
+        self.process.start()
+        child_conn.close()
+        self.kill_at: float | None = None
+        self.ended = False
+
+    @property
+    def pid(self) -> int | None:
+        return self.process.pid
+
+    def request_cancel(self) -> None:
+        if self.kill_at is None:
+            self.cancel_event.set()
+            self.kill_at = time.monotonic() + CANCEL_GRACE_S
+
+    def messages(self) -> list[tuple[str, object]]:
+        """The messages waiting in the pipe; ``("eof", None)`` once the child has hung up."""
+        out: list[tuple[str, object]] = []
+        try:
+            while not self.ended and self.conn.poll():
+                out.append(self.conn.recv())
+        except (EOFError, OSError):
+            out.append(("eof", None))
+        return out
+
+    def kill(self) -> None:
+        if self.process.is_alive() and self.pid is not None:
+            kill_process_tree(self.pid)
+        self.ended = True
+
+    def reap(self) -> bool:
+        """Release the process once it has exited; ``True`` when it is gone."""
+        if self.process.is_alive():
+            return False
+        self.conn.close()
+        self.process.join(0)
+        return True
+
+
+class AnalysisWorker(QObject):
+    """Starts, supersedes and cancels analysis processes; reports through Qt signals.
+
+    ``finished`` carries a :class:`~sorgui.gui.job.JobResult`; ``invalid`` a parse error
+    ``(message, position, end)``; ``failed`` a one-line message; ``busy_changed`` whether a
+    job is running (for the Analyze and Cancel buttons).
+    """
+
+    progress = Signal(str)
+    finished = Signal(object)
+    invalid = Signal(str, int, int)
+    failed = Signal(str)
+    cancelled = Signal()
+    busy_changed = Signal(bool)
+
+    def __init__(self, parent: QObject | None = None, prestart: bool = True) -> None:
+        super().__init__(parent)
+        self._context = multiprocessing.get_context("spawn")
+        self._current: _Job | None = None
+        self._retiring: list[_Job] = []
+        self._spare: _Job | None = None
+        self._prestart = prestart
+        self._timer = QTimer(self)
+        self._timer.setInterval(POLL_INTERVAL_MS)
+        self._timer.timeout.connect(self._on_poll_timer_change)
+        self._spare_timer = QTimer(self)
+        self._spare_timer.setSingleShot(True)
+        self._spare_timer.setInterval(SPARE_DELAY_MS)
+        self._spare_timer.timeout.connect(self._on_spare_timer_change)
+        if prestart:
+            self._spare = _Job(self._context)
+
+    # --- public API ---
+
+    @property
+    def is_busy(self) -> bool:
+        return self._current is not None
+
+    @property
+    def current_pid(self) -> int | None:
+        """The process id of the running job (for tests and diagnostics)."""
+        return self._current.pid if self._current is not None else None
+
+    def start(self, request: JobRequest) -> None:
+        """Run ``request`` in a worker process, superseding (cancelling) the running job."""
+        if self._current is not None:
+            self._retire(self._current)
+        job, self._spare = self._spare, None
+        if job is None or not job.process.is_alive():
+            job = _Job(self._context)
+        job.conn.send(request)
+        self._current = job
+        self._timer.start()
+        self.busy_changed.emit(True)
+
+    def cancel(self) -> None:
+        """Ask the running job to stop; it is killed if it has not stopped within the grace time.
+
+        ``cancelled`` is emitted once the job is over.
+        """
+        if self._current is not None:
+            self._current.request_cancel()
+
+    def shutdown(self) -> None:
+        """Kill every process at once (the window is closing) and stop polling."""
+        self._timer.stop()
+        self._spare_timer.stop()
+        jobs = [j for j in (self._current, self._spare, *self._retiring) if j is not None]
+        self._current, self._spare, self._retiring = None, None, []
+        for job in jobs:
+            job.kill()
+        for job in jobs:
+            job.process.join(1.0)
+            job.conn.close()
+
+    # --- polling ---
+
+    def _on_spare_timer_change(self) -> None:
+        if self._spare is None:
+            self._spare = _Job(self._context)
+
+    def _retire(self, job: _Job) -> None:
+        """Stop caring about ``job``'s answer; make sure it ends."""
+        job.request_cancel()
+        self._retiring.append(job)
+
+    def _on_poll_timer_change(self) -> None:
+        if self._current is not None:
+            self._poll_current(self._current)
+        now = time.monotonic()
+        for job in list(self._retiring):
+            job.messages()
+            if job.kill_at is not None and now >= job.kill_at:
+                job.kill()
+            if job.reap():
+                self._retiring.remove(job)
+        if self._current is None and not self._retiring:
+            self._timer.stop()
+
+    def _poll_current(self, job: _Job) -> None:
+        for kind, payload in job.messages():
+            if kind == "progress":
+                self.progress.emit(str(payload))
+                continue
+            if job.kill_at is not None:
+                kind = "cancelled"  # whatever came back after the user cancelled
+            elif kind == "eof":
+                job.process.join(0.05)
+                kind, payload = "failed", _exit_message(job.process.exitcode)
+            self._end_current(job, kind, payload)
+            return
+        if job.kill_at is not None and time.monotonic() >= job.kill_at:
+            job.kill()
+            self._end_current(job, "cancelled", None)
+
+    def _end_current(self, job: _Job, kind: str, payload: object) -> None:
+        job.ended = True
+        self._current = None
+        self._retiring.append(job)
+        if self._prestart:
+            self._spare_timer.start()  # soon, but not while the GUI shows the result
+        self.busy_changed.emit(False)
+        if kind == "finished":
+            self.finished.emit(payload)
+        elif kind == "invalid":
+            self.invalid.emit(*payload)  # type: ignore[misc]
+        elif kind == "failed":
+            self.failed.emit(str(payload))
+        else:
+            self.cancelled.emit()
+
+
+def _exit_message(exitcode: int | None) -> str:
+    if exitcode is not None and exitcode < 0:
+        try:
+            name = signal.Signals(-exitcode).name
+        except ValueError:
+            name = f"signal {-exitcode}"
+        return f"the analysis process was killed ({name}); it may have run out of memory"
+    return f"the analysis process stopped unexpectedly (exit status {exitcode})"

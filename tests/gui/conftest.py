@@ -1,0 +1,147 @@
+"""Fixtures of the GUI tests: a real window with a real VTK render window, and leak checks.
+
+Tests marked ``gui`` need a display. Without one they are skipped, except in CI (``CI`` set),
+where ``.ci/run`` always starts Xvfb: there a missing display fails them instead of hiding them.
+Qt must use the ``xcb`` platform: ``QT_QPA_PLATFORM=offscreen`` gives VTK no OpenGL context.
+Every test gets its own settings folder, so no test reads or writes the user's settings.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+ARTIFACTS = Path(__file__).resolve().parents[2] / "artifacts"
+"""Screenshots taken by the tests (git-ignored), kept for people to look at."""
+
+
+def display_available() -> bool:
+    """Whether a window can be opened here (an X display on Linux; always elsewhere)."""
+    if not sys.platform.startswith("linux"):
+        return True
+    return bool(os.environ.get("DISPLAY"))
+
+
+if sys.platform.startswith("linux"):
+    os.environ["QT_QPA_PLATFORM"] = "xcb"  # VTK renders through GLX (Xvfb in CI)
+
+
+def pytest_runtest_setup(item: pytest.Item) -> None:
+    """Before any fixture (a QApplication without a display would abort the whole run)."""
+    if item.get_closest_marker("gui") is None or display_available():
+        return
+    if os.environ.get("CI"):
+        pytest.fail("CI must run the GUI tests under Xvfb, but DISPLAY is not set")
+    pytest.skip("no display: run under xvfb-run (see .ci/run)")
+
+
+@pytest.fixture(autouse=True)
+def settings_folder(tmp_path: Path) -> Path:
+    """A fresh QSettings location for each test (never the user's ``~/.config``)."""
+    from PySide6.QtCore import QSettings
+
+    folder = tmp_path / "settings"
+    folder.mkdir()
+    for scope in (QSettings.Scope.UserScope, QSettings.Scope.SystemScope):
+        QSettings.setPath(QSettings.Format.IniFormat, scope, str(folder))
+    return folder
+
+
+def _worker_processes() -> list[multiprocessing.Process]:
+    return [p for p in multiprocessing.active_children() if p.name == "sorgui-analysis"]
+
+
+@pytest.fixture(autouse=True)
+def no_leaks(request: pytest.FixtureRequest) -> Iterator[None]:
+    """Fail a GUI test that leaves a window, a render window or a worker process behind.
+
+    Autouse, so it is set up before (and torn down after) the ``window`` fixture.
+    """
+    yield
+    if request.node.get_closest_marker("gui") is None or not display_available():
+        return
+    from PySide6.QtCore import QCoreApplication, QEvent
+    from PySide6.QtWidgets import QApplication
+    from pyvista.plotting.plotter import _ALL_PLOTTERS
+
+    app = QApplication.instance()
+    if app is not None:
+        QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
+        app.processEvents()
+        visible = [w for w in QApplication.topLevelWidgets() if w.isVisible()]
+        assert not visible, f"windows left open: {visible}"
+    assert not _ALL_PLOTTERS, f"render windows left open: {list(_ALL_PLOTTERS)}"
+    assert not _worker_processes(), f"worker processes left running: {_worker_processes()}"
+
+
+@pytest.fixture
+def make_window(qtbot):  # noqa: ANN001, ANN201
+    """A factory of shown main windows, each closed (worker killed, render window released)
+    and deleted at the end of the test."""
+    from PySide6.QtCore import QCoreApplication, QEvent
+
+    from sorgui.gui.app import create_application
+    from sorgui.gui.main_window import MainWindow
+
+    create_application([])
+    windows = []
+
+    def make(prestart_worker: bool = True) -> MainWindow:
+        window = MainWindow(prestart_worker=prestart_worker)
+        window.resize(1400, 860)
+        window.show()
+        qtbot.waitExposed(window)
+        windows.append(window)
+        return window
+
+    yield make
+    for window in windows:
+        window.close()
+        window.deleteLater()
+    QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
+
+
+@pytest.fixture
+def window(make_window):  # noqa: ANN001, ANN201
+    """One shown main window with a warm worker process."""
+    return make_window()
+
+
+@pytest.fixture(scope="session")
+def artifacts() -> Path:
+    ARTIFACTS.mkdir(exist_ok=True)
+    return ARTIFACTS
+
+
+@pytest.fixture
+def run_analysis(qtbot):  # noqa: ANN001, ANN201
+    """``run_analysis(window, text=None)``: analyse (the given or the current text) and wait
+    until the result is on screen; fails at once with the worker's message if it fails."""
+
+    def run(window, text: str | None = None, timeout_ms: int = 90_000):  # noqa: ANN001, ANN202
+        outcome: list[tuple[str, object]] = []
+        connections = [
+            (window.result_shown, lambda result: outcome.append(("shown", result))),
+            (window.worker.failed, lambda message: outcome.append(("failed", message))),
+            (window.worker.invalid, lambda message, *_: outcome.append(("invalid", message))),
+        ]
+        for signal, slot in connections:
+            signal.connect(slot)
+        try:
+            if text is not None:
+                window.set_equation(text)
+            assert window.analyze(), window.editor.status_label.text()
+            qtbot.waitUntil(lambda: bool(outcome), timeout=timeout_ms)
+        finally:
+            for signal, slot in connections:
+                signal.disconnect(slot)
+        kind, payload = outcome[0]
+        assert kind == "shown", f"the analysis {kind}: {payload}"
+        return payload
+
+    return run

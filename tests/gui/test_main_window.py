@@ -1,0 +1,151 @@
+"""The main window end to end: typing, analysing, invalid input, examples, files, screenshots.
+
+Real Qt widgets, a real VTK render window (Mesa under Xvfb in CI) and real worker processes
+running the exact engine and Singular; nothing is mocked.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from PySide6.QtCore import Qt
+from PySide6.QtGui import QGuiApplication, QImage, QTextCharFormat
+
+from sorgui.examples import EXAMPLES, example_text
+
+pytestmark = pytest.mark.gui
+
+EXPECTED_SOR = {
+    "paper-example-1": True,
+    "paper-cubic": True,
+    "torus": True,
+    "cone": True,
+    "sphere": True,
+    "cylinder": True,
+    "coaxial-blend": True,
+    "non-coaxial-blend": False,
+    "ellipsoid": False,
+}
+
+
+def test_typed_equation_is_analysed_and_drawn(window, qtbot) -> None:
+    editor = window.editor.text_edit
+    qtbot.mouseClick(editor.viewport(), Qt.MouseButton.LeftButton)
+    editor.clear()
+    qtbot.keyClicks(editor, "(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)")
+    qtbot.waitUntil(lambda: window.editor.is_valid is True, timeout=5000)
+    assert window.analyze_button.isEnabled()
+    with qtbot.waitSignal(window.result_shown, timeout=90_000) as blocker:
+        with qtbot.waitSignal(window.worker.busy_changed, timeout=5000):
+            qtbot.mouseClick(window.analyze_button, Qt.MouseButton.LeftButton)
+        assert window.cancel_button.isEnabled() and window.busy_indicator.isVisible()
+    analysis = blocker.args[0].analysis
+    assert analysis.is_sor and analysis.recognition.symmetry == "revolution"
+    assert analysis.recognition.axis.direction == ("0", "0", "1")
+
+    text = window.results.plain_text()
+    assert "surface of revolution: YES" in text
+    assert "(0, 0, 0) + t·(0, 0, 1)" in text
+    assert "Surface of revolution" in window.results.banner.text()
+    assert {"surface", "axis", "profile"} <= window.viewport.actor_names()
+    assert not window.cancel_button.isEnabled() and not window.busy_indicator.isVisible()
+    assert window.stage_label.text().startswith("Done")
+
+
+def test_table_1_highlights_the_row_of_the_surface(window, run_analysis) -> None:
+    result = run_analysis(window, example_text("paper-example-1"))
+    assert result.analysis.rationality.table_row == 4
+    table = window.results.table
+    highlighted = {
+        row for row in range(table.rowCount()) if table.item(row, 0).background().color().name() == "#ffe08a"
+    }
+    assert highlighted == {3}  # rows are numbered 1-5 in the paper, 0-4 in Qt
+    assert [table.item(3, c).text() for c in range(5)] == ["4", ">0", "0", "rational", "depends on #components"]
+
+
+def test_formulas_are_typeset_and_copyable(window, qtbot, run_analysis) -> None:
+    from sorgui.gui.formula_view import FormulaView
+
+    run_analysis(window, example_text("cone"))
+    views = window.results.findChildren(FormulaView)
+    assert len(views) >= 8
+    assert all(view.formula.masks for view in views), "every formula is typeset by mathtext"
+    direction = next(v for v in views if v.formula.plain == "(1, 0, 1)")
+    qtbot.mouseClick(direction.copy_button, Qt.MouseButton.LeftButton)
+    assert QGuiApplication.clipboard().text() == "(1, 0, 1)"
+    direction.copy_latex()
+    assert QGuiApplication.clipboard().text() == r"\left(1, 0, 1\right)"
+
+
+def test_invalid_equation_is_underlined_and_starts_no_worker(make_window, qtbot) -> None:
+    window = make_window(prestart_worker=False)
+    editor = window.editor
+    editor.text_edit.clear()
+    qtbot.keyClicks(editor.text_edit, "x^2+*y")
+    qtbot.waitUntil(lambda: editor.error is not None, timeout=5000)
+    selections = editor.error_selections()
+    assert len(selections) == 1
+    fmt = selections[0].format
+    assert fmt.underlineStyle() == QTextCharFormat.UnderlineStyle.WaveUnderline
+    cursor = selections[0].cursor
+    assert cursor.selectionStart() == editor.error.position
+    assert cursor.selectionEnd() >= cursor.selectionStart() + 1
+    assert editor.error.message in editor.status_label.text()
+    assert not window.analyze_button.isEnabled()
+
+    assert window.analyze() is False
+    assert not window.worker.is_busy and window.worker.current_pid is None
+    assert "Not a polynomial" in window.results.banner.text()
+
+    editor.text_edit.clear()
+    qtbot.keyClicks(editor.text_edit, "x^2+y")
+    qtbot.waitUntil(lambda: editor.is_valid is True, timeout=5000)
+    assert editor.error_selections() == [] and window.analyze_button.isEnabled()
+
+
+def test_keyboard_analyses_and_cancels(window, qtbot) -> None:
+    window.set_equation(example_text("torus"))
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow, timeout=5000)  # shortcuts go to the active window
+    window.editor.text_edit.setFocus()
+    with qtbot.waitSignal(window.worker.busy_changed, timeout=5000):
+        qtbot.keyClick(window.editor.text_edit, Qt.Key.Key_Return, Qt.KeyboardModifier.ControlModifier)
+    assert window.worker.is_busy
+    with qtbot.waitSignal(window.worker.cancelled, timeout=5000):
+        qtbot.keyClick(window.editor.text_edit, Qt.Key.Key_Escape)
+    assert window.stage_label.text() == "Cancelled"
+    assert not window.worker.is_busy
+
+
+@pytest.mark.slow
+def test_examples_menu_loads_and_analyses_each_example(window, qtbot) -> None:
+    actions = window.examples_menu.example_actions()
+    assert [a.data() for a in actions] == [e.name for e in EXAMPLES]
+    for action in actions:
+        with qtbot.waitSignal(window.result_shown, timeout=90_000) as blocker:
+            action.trigger()
+        analysis = blocker.args[0].analysis
+        assert window.editor.text() == example_text(action.data())
+        assert analysis.is_sor is EXPECTED_SOR[action.data()], action.data()
+        banner = window.results.banner.text()
+        assert ("Not a surface" in banner) is not EXPECTED_SOR[action.data()]
+        assert "surface" in window.viewport.actor_names()
+
+
+def test_startup_loads_and_analyses_example_1_and_screenshots(window, qtbot, artifacts) -> None:
+    with qtbot.waitSignal(window.result_shown, timeout=90_000) as blocker:
+        window.load_startup_equation(None)
+    analysis = blocker.args[0].analysis
+    assert window.editor.text() == example_text("paper-example-1")
+    assert analysis.recognition.axis.point == ("3/5", "-4/5", "0")
+    window.viewport.patch_box.setChecked(True)
+    assert {"surface", "axis", "profile", "patch"} <= window.viewport.actor_names()
+    qtbot.wait(300)
+
+    window_png, viewport_png = artifacts / "main-window.png", artifacts / "viewport.png"
+    window.save_screenshots(window_png, viewport_png)
+    for path, minimum in ((window_png, (1200, 700)), (viewport_png, (600, 500))):
+        image = QImage(str(path))
+        assert image.width() >= minimum[0] and image.height() >= minimum[1], path
+    pixels = np.asarray(QImage(str(viewport_png)).convertToFormat(QImage.Format.Format_Grayscale8).constBits())
+    assert pixels.std() > 10, "the render window shows something"

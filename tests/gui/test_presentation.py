@@ -1,0 +1,97 @@
+"""What the worker process prepares for the GUI, without Qt: exact strings read back,
+typeset formulas, the scene's plain arrays, and the job protocol."""
+
+from __future__ import annotations
+
+import pickle
+import subprocess
+import sys
+import threading
+
+import numpy as np
+import pytest
+import sympy
+
+from sorgui.examples import example_text
+from sorgui.gui.exact import (
+    ExpressionError,
+    float_vector,
+    polynomial_terms,
+    rational_function_terms,
+    read_expression,
+)
+from sorgui.gui.formulas import Style, expression_formula, render_formulas, vector_formula
+from sorgui.gui.job import JobRequest, run_job
+from sorgui.gui.scene_data import real_roots, restriction_to_line, view_region
+
+s, t = sympy.symbols("s t")
+
+
+def test_reader_builds_exact_expressions_without_eval() -> None:
+    assert read_expression("-sqrt(2)/2 + 3/5") == -sympy.sqrt(2) / 2 + sympy.Rational(3, 5)
+    assert read_expression("(t**2 - 1)/(t**2 + 1)") == (t**2 - 1) / (t**2 + 1)
+    assert read_expression("2*I*s^3") == 2 * sympy.I * s**3
+    assert float_vector(("3/5", "-4/5", "0")) == pytest.approx([0.6, -0.8, 0.0])
+    for bad in ("__import__('os')", "x.real", "1 +", "sqrt", "x; y", "lambda: 1"):
+        with pytest.raises(ExpressionError):
+            read_expression(bad)
+
+
+def test_terms_from_engine_strings() -> None:
+    assert sorted(polynomial_terms("x**2/2 - sqrt(2)*y*z")) == sorted(
+        [((2, 0, 0), 0.5), ((0, 1, 1), -np.sqrt(2))]
+    )
+    assert sorted(polynomial_terms("3*s**2*r - r", ("s", "r"))) == [((0, 1), -1.0), ((2, 1), 3.0)]
+    numerator, denominator = rational_function_terms("2*s/(s**2 + t**2 + 1)", ("s", "t"))
+    assert numerator == [((1, 0), 2.0)]
+    assert sorted(denominator) == [((0, 0), 1.0), ((0, 2), 1.0), ((2, 0), 1.0)]
+
+
+def test_formulas_wrap_to_the_width_and_keep_exact_plain_text() -> None:
+    text = " + ".join(f"{k}*x**{k}" for k in range(1, 30))
+    narrow = render_formulas({"f": expression_formula(text, "f =")}, Style(width=300))["f"]
+    assert narrow.plain == text and len(narrow.lines) > 3
+    assert narrow.lines[0].startswith("f = ") and narrow.lines[1].startswith(r"\qquad")
+    assert "".join(narrow.lines).replace(r"\qquad", "") == "".join(narrow.pieces)
+    assert all(m.dtype == np.uint8 and m.ndim == 2 for m in narrow.masks)
+    assert max(m.shape[1] for m in narrow.masks) < 300 + 200  # one piece may overhang
+    wide = render_formulas({"f": expression_formula(text)}, Style(width=5000))["f"]
+    assert len(wide.lines) == 1
+    vector = vector_formula(("3/5", "-sqrt(2)", "0"))
+    assert vector.latex == r"\left(3 / 5, - \sqrt{2}, 0\right)"
+
+
+def test_view_region_frames_the_bounded_part() -> None:
+    torus = polynomial_terms("(x^2 + y^2 + z^2 + 3)^2 - 16*(x^2 + y^2)")
+    line = restriction_to_line(torus, np.zeros(3), np.array([1.0, 0.0, 0.0]))
+    assert sorted(np.round(real_roots(line), 9)) == [-3.0, -1.0, 1.0, 3.0]
+    region = view_region(torus, np.zeros(3), np.array([0.0, 0.0, 1.0]))
+    assert region.center == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
+    assert 3.0 < region.radius < 4.5
+
+
+def test_job_returns_plain_picklable_data() -> None:
+    kind, result = run_job(JobRequest(example_text("cylinder"), resolution=40))
+    assert kind == "finished"
+    blob = pickle.loads(pickle.dumps(result))
+    assert blob.analysis.recognition.symmetry == "cylinder_of_revolution"
+    assert not blob.scene.surface.is_empty and not blob.scene.axis_segment.is_empty
+    assert all(f.masks for f in blob.formulas.values())
+    assert [name for name, _ in blob.timings] == ["scene", "formulas"]
+
+
+def test_job_reports_errors_as_messages() -> None:
+    kind, (message, position, end) = run_job(JobRequest("x^2+*y"))
+    assert kind == "invalid" and position == 4 and end > position and message
+    cancel = threading.Event()
+    cancel.set()
+    assert run_job(JobRequest(example_text("torus")), cancel) == ("cancelled", None)
+    kind, message = run_job(JobRequest("x", analysis={"not": "an analysis"}))
+    assert kind == "failed" and message.startswith("internal error") and "Traceback" not in message
+
+
+def test_worker_process_imports_no_qt() -> None:
+    """The worker process (sorgui.gui.job) must start without PySide6: it would only slow it."""
+    code = "import sys, sorgui.gui.job; print(sorted(m for m in sys.modules if m.split('.')[0] in ('PySide6', 'pyvistaqt', 'shiboken6')))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"

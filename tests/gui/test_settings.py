@@ -1,0 +1,75 @@
+"""What sorgui remembers (in a temporary settings folder), and equation files."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from sorgui.examples import example_text
+from sorgui.gui.settings import EquationFileError, Settings, read_equation, write_equation
+
+
+def test_settings_live_in_the_test_folder(settings_folder: Path) -> None:
+    settings = Settings()
+    settings.equation = "x^2 + y^2 - 1"
+    settings.sync()
+    assert Path(settings.file_name).is_relative_to(settings_folder)
+    assert Settings().equation == "x^2 + y^2 - 1"
+
+
+def test_recent_files_are_newest_first_and_unique(tmp_path: Path) -> None:
+    settings = Settings()
+    changes: list[None] = []
+    settings.recent_files_changed.connect(lambda: changes.append(None))
+    a, b = tmp_path / "a.txt", tmp_path / "b.txt"
+    settings.add_recent_file(a)
+    settings.add_recent_file(b)
+    settings.add_recent_file(a)
+    assert settings.recent_files == [str(a.resolve()), str(b.resolve())]
+    settings.remove_recent_file(str(b.resolve()))
+    assert settings.recent_files == [str(a.resolve())]
+    assert len(changes) == 4
+
+
+def test_equation_files_round_trip_and_refuse_junk(tmp_path: Path) -> None:
+    path = tmp_path / "eq.txt"
+    write_equation(path, "x^2 + y^2 - z\n\n")
+    assert path.read_text(encoding="utf-8") == "x^2 + y^2 - z\n"
+    assert read_equation(path) == "x^2 + y^2 - z"
+    (tmp_path / "bin.txt").write_bytes(b"\xff\xfe\x00x")
+    with pytest.raises(EquationFileError, match="UTF-8"):
+        read_equation(tmp_path / "bin.txt")
+    with pytest.raises(EquationFileError, match="cannot read"):
+        read_equation(tmp_path / "missing.txt")
+
+
+@pytest.mark.gui
+def test_editor_content_is_restored_on_the_next_start(make_window, qtbot, settings_folder) -> None:
+    first = make_window(prestart_worker=False)
+    first.set_equation("x^2 + 2y^2 + 3z^2 - 1")
+    first.close()
+    second = make_window()
+    with qtbot.waitSignal(second.result_shown, timeout=90_000):
+        second.load_startup_equation(None)
+    assert second.editor.text() == "x^2 + 2y^2 + 3z^2 - 1"
+    assert second.results.analysis.recognition.symmetry == "none"
+
+
+@pytest.mark.gui
+def test_open_save_and_recent_files(window, qtbot, tmp_path: Path) -> None:
+    path = tmp_path / "cone.txt"
+    path.write_text(example_text("cone") + "\n", encoding="utf-8")
+    with qtbot.waitSignal(window.result_shown, timeout=90_000):
+        assert window.open_file(str(path))
+    assert window.editor.text() == example_text("cone")
+    assert window.windowTitle().startswith("cone.txt")
+    actions = [a for a in window.recent_menu.actions() if a.data()]
+    assert [a.data() for a in actions] == [str(path.resolve())]
+
+    window.editor.set_text("y^2 - 2*x*z")
+    copy = tmp_path / "copy.txt"
+    assert window.save_file(str(copy))
+    assert copy.read_text(encoding="utf-8") == "y^2 - 2*x*z\n"
+    assert [a.data() for a in window.recent_menu.actions() if a.data()][0] == str(copy.resolve())
+    assert not window.isWindowModified()

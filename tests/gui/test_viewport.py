@@ -1,0 +1,87 @@
+"""The 3D viewport: actors by name, picking with the normal test, re-meshing a new ball."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from sorgui.examples import example_text
+
+pytestmark = pytest.mark.gui
+
+
+@pytest.fixture
+def torus_window(window, run_analysis):  # noqa: ANN001, ANN201
+    run_analysis(window, example_text("torus"))
+    return window
+
+
+def test_picking_a_torus_point_reports_a_normal_meeting_the_axis(torus_window, qtbot) -> None:
+    viewport = torus_window.viewport
+    with qtbot.waitSignal(viewport.picked, timeout=5000) as blocker:
+        info = viewport.pick_point((2.0, 0.0, 1.0))  # the top of the tube: |p|² + 3 = 8 = 4·2
+    assert blocker.args[0] is info
+    assert abs(info.value) < 1e-9 and info.meets_axis is True
+    assert np.allclose(info.normal_direction, (0.0, 0.0, 1.0), atol=1e-9)
+    assert {"pick_normal", "pick_circle", "pick_point"} <= viewport.actor_names()
+    assert "meets" in viewport.pick_label.text()
+    circle = viewport.plotter.renderer.actors["pick_circle"].GetMapper().GetInput()
+    radii = np.linalg.norm(np.asarray(circle.GetPoints().GetData())[:, :2], axis=1)
+    assert np.allclose(radii, 2.0, atol=1e-6)  # the circle of latitude through the point
+
+
+def test_right_click_on_the_surface_picks_it(torus_window, qtbot) -> None:
+    viewport = torus_window.viewport
+    plotter = viewport.plotter
+    plotter.view_xz(render=False)  # looking along y at the tube's cross-section x ∈ [1, 3]
+    plotter.renderer.reset_camera(render=False)
+    plotter.render()
+    renderer = plotter.renderer
+    renderer.SetWorldPoint(2.0, 0.0, 0.0, 1.0)  # the ray through this point meets the torus on
+    # its outer equator (distance 3 from the axis) only
+    renderer.WorldToDisplay()
+    x, y, _ = renderer.GetDisplayPoint()
+    with qtbot.waitSignal(viewport.picked, timeout=5000) as blocker:
+        plotter.iren._mouse_right_button_click(int(round(x)), int(round(y)))
+    info = blocker.args[0]
+    assert abs(np.linalg.norm(info.point[:2]) - 3.0) < 0.05 and abs(info.point[2]) < 0.05
+    assert info.meets_axis is True
+
+
+def test_picking_a_non_sor_reports_no_axis(window, run_analysis) -> None:
+    run_analysis(window, example_text("ellipsoid"))
+    info = window.viewport.pick_point((1.0, 0.0, 0.0))
+    assert info.axis_test is None and abs(info.value) < 1e-12
+    assert "pick_circle" not in window.viewport.actor_names()
+
+
+def test_sphere_shows_its_centre_and_no_axis(window, run_analysis) -> None:
+    run_analysis(window, example_text("sphere"))
+    names = window.viewport.actor_names()
+    assert "surface" in names and "center" in names and "axis" not in names
+
+
+def test_radius_box_re_meshes_a_larger_ball(torus_window, qtbot) -> None:
+    viewport = torus_window.viewport
+    old = viewport.scene.region
+    with qtbot.waitSignal(torus_window.result_shown, timeout=60_000) as blocker:
+        viewport.radius_box.setValue(2 * old.radius)
+    scene = blocker.args[0].scene
+    assert blocker.args[0].formulas is None  # the same analysis: only the scene was rebuilt
+    assert scene.region.radius == pytest.approx(2 * old.radius)
+    assert viewport.scene is scene and "Re-meshed" in torus_window.stage_label.text()
+
+
+def test_parameterization_patch_toggles(torus_window, qtbot) -> None:
+    viewport = torus_window.viewport
+    assert viewport.patch_box.isEnabled()
+    viewport.patch_box.setChecked(True)
+    assert viewport.plotter.renderer.actors["patch"].GetVisibility()
+    viewport.patch_box.setChecked(False)
+    assert not viewport.plotter.renderer.actors["patch"].GetVisibility()
+
+
+def test_failed_analysis_clears_the_scene(torus_window, qtbot) -> None:
+    torus_window._on_failure_change("Singular exploded")
+    assert "surface" not in torus_window.viewport.actor_names()
+    assert "Singular exploded" in torus_window.results.banner.text()
