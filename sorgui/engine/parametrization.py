@@ -86,8 +86,72 @@ def sweep(section: Section, frame: AxisFrame, K: Domain) -> SurfaceMap:
     rho_u, rho_w = ring.reduce(nu * dphi * dw), ring.reduce(nw * dphi * du)
     along_u = ring.reduce(rho_u * cos_num - n * sin_num * rho_w)
     along_w = ring.reduce(rho_u * sin_num + cos_num * rho_w)
+    return _assemble(ring, (c, a, u, w), den, along_a, along_u, along_w)
+
+
+def frame_map(
+    axial: sympy.Expr,
+    along_u: sympy.Expr,
+    along_w: sympy.Expr,
+    frame: AxisFrame,
+    K: Domain,
+    named: tuple[tuple[sympy.Symbol, sympy.Expr], ...] = (),
+) -> SurfaceMap:
+    """The map ``c + axial·a + along_u·u + along_w·w`` for rational functions of ``(s, t)``."""
+    vectors = [frame.point, frame.direction, frame.normal, frame.binormal]
+    exprs = [[to_expr(K, c) for c in v] for v in vectors]
+    ring = RadicalRing(PARAMETERS, radicals_of([axial, along_u, along_w, *sum(exprs, [])], dict(named)))
+    basis = tuple([ring.from_expr(e) for e in v] for v in exprs)
+    (na, da), (nu, du), (nw, dw) = (ring.fraction(e) for e in (axial, along_u, along_w))
+    den = ring.reduce(da * du * dw)
+    return _assemble(ring, basis, den, ring.reduce(na * du * dw), ring.reduce(nu * da * dw), ring.reduce(nw * da * du))
+
+
+def _assemble(
+    ring: RadicalRing,
+    basis: tuple[list[fmpq_mpoly], ...],
+    den: fmpq_mpoly,
+    along_a: fmpq_mpoly,
+    along_u: fmpq_mpoly,
+    along_w: fmpq_mpoly,
+) -> SurfaceMap:
+    """``(c·D + a·along_a + u·along_u + w·along_w) / D`` in the original coordinates."""
+    c, a, u, w = basis
     nums = tuple(ring.reduce(c[i] * den + a[i] * along_a + u[i] * along_u + w[i] * along_w) for i in range(3))
     return SurfaceMap(ring, nums, den, along_a, (along_u, along_w))  # type: ignore[arg-type]
+
+
+@dataclass(frozen=True)
+class NormFactorization:
+    """``h = (A² + n·B²)·u²·q``: ``A + √-n·B`` collects the factors that split over ``QQ(√-n)``,
+    ``u`` the square part, and ``q`` (with the leading coefficient) the rest (MATH.md §6)."""
+
+    A: sympy.Expr
+    B: sympy.Expr
+    u: sympy.Expr
+    q: sympy.Expr
+
+
+def norm_factorization(h: sympy.Expr, n: sympy.Expr) -> NormFactorization | None:
+    """Split ``h ∈ QQ[t]`` as :class:`NormFactorization` (``None`` for irrational coefficients)."""
+    poly = sympy.Poly(h, T)
+    if poly.degree() < 0 or not all(c.is_Rational for c in poly.coeffs()) or not n.is_Rational:
+        return None
+    alpha = sympy.sqrt(-n)
+    lead, factors = poly.factor_list()
+    product, square, rest = sympy.Integer(1), sympy.Integer(1), sympy.Integer(lead)
+    for g, e in factors:
+        square *= g.as_expr() ** (e // 2)
+        if e % 2 == 0:
+            continue
+        _, split = sympy.factor_list(g.as_expr(), T, extension=alpha)
+        if len(split) < 2:
+            rest *= g.as_expr()
+            continue
+        rest *= g.LC()
+        product *= sympy.Poly(split[0][0], T, extension=alpha).monic().as_expr()
+    A, B = _split(sympy.Poly(sympy.expand(product), T, extension=alpha), n)
+    return NormFactorization(A, B, sympy.expand(square), sympy.expand(rest))
 
 
 def norm_decomposition(h: sympy.Expr, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr] | None:
@@ -97,30 +161,58 @@ def norm_decomposition(h: sympy.Expr, n: sympy.Expr) -> tuple[sympy.Expr, sympy.
     splits over ``QQ(√-n)`` and the leading coefficient is a rational norm ``X² + nY²``
     (solved as the ternary form ``X² + nY² - cZ²`` with sympy's Diophantine solver).
     """
-    poly = sympy.Poly(h, T)
-    if poly.degree() < 0 or not all(c.is_Rational for c in poly.coeffs()) or not n.is_Rational:
+    split = norm_factorization(h, n)
+    if split is None or not split.q.is_Rational:
         return None
-    alpha = sympy.sqrt(-n)
-    lead, factors = poly.factor_list()
-    product = sympy.Integer(1)
-    for g, e in factors:
-        if e % 2 == 0:
-            product *= g.as_expr() ** (e // 2)
-            continue
-        _, split = sympy.factor_list(g.as_expr(), T, extension=alpha)
-        if len(split) < 2:
-            return None
-        G = sympy.Poly(split[0][0], T, extension=alpha).monic()
-        lead *= g.LC()
-        product *= G.as_expr() ** e
-    point = _rational_norm(lead, n)
+    point = _rational_norm(split.q, n)
     if point is None:
         return None
-    product *= point[0] + alpha * point[1]
-    A, B = _split(sympy.Poly(sympy.expand(product), T, extension=alpha), n)
-    if sympy.expand(A**2 + n * B**2 - h) != 0:
+    A, B = _times(split.A, split.B, point[0], point[1], n)
+    A, B = sympy.expand(A * split.u), sympy.expand(B * split.u)
+    return (A, B) if sympy.expand(A**2 + n * B**2 - h) == 0 else None
+
+
+def _times(A: sympy.Expr, B: sympy.Expr, C: sympy.Expr, D: sympy.Expr, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr]:
+    """``(A + √-n·B)(C + √-n·D)`` as its two real parts."""
+    return A * C - n * B * D, A * D + B * C
+
+
+def quadric_section(h: sympy.Expr, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None:
+    """A proper real parameterization ``(x, Y, Z)(s, t)`` of ``Y² + n·Z² = h(x)`` when
+    ``h = N·u²·q`` with ``deg q ≤ 2`` and ``q`` positive somewhere (MATH.md §6): the quadric
+    ``y'² + n·z'² = q(x)`` is projected stereographically from a real point (a real root of
+    ``q``, possibly in a real quadratic field, or a rational point found by a small search).
+    """
+    split = norm_factorization(h, n)
+    if split is None or sympy.degree(split.q, T) not in (1, 2):
         return None
-    return A, B
+    q = sympy.Poly(split.q, T)
+    point = _real_point(q, n)
+    if point is None:
+        return None
+    t0, y0, z0 = point
+    m1, m2 = sympy.symbols("s t")
+    a = q.coeff_monomial(T**2) if q.degree() == 2 else sympy.Integer(0)
+    slope = q.diff(T).as_expr().subs(T, t0)
+    k = (slope - 2 * y0 * m1 - 2 * n * z0 * m2) / (m1**2 + n * m2**2 - a)
+    x, y1, z1 = t0 + k, y0 + k * m1, z0 + k * m2
+    A, B, u = (e.subs(T, x) for e in (split.A, split.B, split.u))
+    Y, Z = _times(A, B, y1, z1, n)
+    return x, u * Y, u * Z
+
+
+def _real_point(q: sympy.Poly, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None:
+    """A smooth real point ``(t₀, y₀, z₀)`` of ``y² + n·z² = q(t)``."""
+    roots = sorted(q.real_roots(), key=lambda r: (not r.is_Rational, sympy.count_ops(r)))
+    for root in roots:
+        if q.diff(T).as_expr().subs(T, root) != 0:
+            return root, sympy.Integer(0), sympy.Integer(0)
+    for t0 in sorted(range(-12, 13), key=abs):
+        value = q.as_expr().subs(T, t0)
+        found = _rational_norm(value, n) if value > 0 else None
+        if found is not None:
+            return sympy.Integer(t0), found[0], found[1]
+    return None
 
 
 def _split(P: sympy.Poly, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr]:

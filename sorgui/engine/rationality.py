@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import sympy
 from sympy.polys.domains import QQ
+from sympy.polys.domains.domain import Domain
 
 from . import curves
 from .curves import CurveAnalysis, CurveParametrization
@@ -29,8 +30,10 @@ from .linalg import dot
 from .parametrization import (
     T,
     Section,
+    frame_map,
     make_parametrization,
     norm_decomposition,
+    quadric_section,
     sweep,
     tubular_section,
 )
@@ -206,20 +209,39 @@ def parametrizations(
             notes.append(f"rotated profile: {exc.message}")
     if tube is not None:
         n = to_expr(K, dot(frame.direction, frame.direction))
-        real = norm_decomposition(tube.h, n) if not tube.field else None
-        if real is not None:
-            A, B = real
-            method = "via tubular surface (real)"
-        else:
-            A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * ALPHA)
-            method = "via tubular surface (complex)"
-            if not tube.field:
-                notes.append("h is not of the form A² + |a|²·B² over QQ: only the complex parameterization through T")
-        section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
-        par = make_parametrization(f, profile, sweep(section, frame, K), method=method, proper=True)
-        if par is not None:
-            found.append(par)
+        par, note = _tubular_parametrization(f, profile, tube, n, K)
+        found += [par] if par is not None else []
+        notes += [note] if note else []
     return tuple(found), tuple(notes)
+
+
+def _tubular_parametrization(
+    f: Poly, profile: ProfileCurve, tube: TubularSurface, n: sympy.Expr, K: Domain
+) -> tuple[Parametrization | None, str]:
+    """The parameterization through ``T`` (MATH.md §6): real when ``h = A² + n·B²``, or when the
+    rest after the norm part is of degree ≤ 2 (a quadric, projected stereographically); the
+    complex one otherwise. Returns it and a note on what could not be done."""
+    frame = profile.frame
+    real = norm_decomposition(tube.h, n) if not tube.field else None
+    if real is not None:
+        section = tubular_section(tube.phi, tube.d, tube.q, *real)
+        return make_parametrization(f, profile, sweep(section, frame, K), method="via tubular surface (real)",
+                                    proper=True), ""
+    quadric = quadric_section(tube.h, n) if not tube.field else None
+    if quadric is not None:
+        x, Y, Z = quadric
+        scale = (tube.d / tube.q).subs(T, x)
+        surface = frame_map(tube.phi.subs(T, x), scale * Y, scale * Z, frame, K)
+        return make_parametrization(f, profile, surface, method="via tubular surface (real, stereographic)",
+                                    proper=True), ""
+    A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * ALPHA)
+    section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
+    complex_par = make_parametrization(f, profile, sweep(section, frame, K), method="via tubular surface (complex)",
+                                       proper=True)
+    note = "" if tube.field else (
+        "no real parameterization through T: h = N·u²·q has a part q of degree > 2 (or no real point)"
+    )
+    return complex_par, note
 
 
 def _profile_section(

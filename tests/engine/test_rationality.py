@@ -180,3 +180,24 @@ def test_a_wrong_parametrization_is_never_reported(monkeypatch, degree_limit: in
     found = pm.make_parametrization(f, profile, pm.sweep(good, profile.frame, QQ), method="test", proper=None)
     assert found is not None and found.verified and found.real
     assert pm.make_parametrization(f, profile, pm.sweep(wrong, profile.frame, QQ), method="test", proper=None) is None
+
+
+@pytest.mark.parametrize(("equation", "row", "field"), [
+    ("y^2 + z^2 = x^2 - 1", 3, "QQ"),
+    ("y^2 + z^2 = (x^2 + 1)(x^2 - 2)", 4, "QQ(sqrt(2))"),
+])
+def test_sign_changing_h_gets_a_real_proper_parametrization(equation: str, row: int, field: str) -> None:
+    """h = N·u²·q with deg q ≤ 2: the quadric is projected from a real point (MATH.md §6)."""
+    result = analyze(equation)
+    assert result.rationality.table_row == row and result.rationality.real_rational is True
+    stereographic = [p for p in result.parametrizations if "stereographic" in p.method]
+    assert len(stereographic) == 1
+    par = stereographic[0]
+    assert par.verified and par.real and par.proper is True and par.field == field
+
+
+def test_quadric_section_of_a_rational_root() -> None:
+    from sorgui.engine.parametrization import quadric_section
+
+    x, Y, Z = quadric_section(t**2 - 1, sympy.Integer(1))
+    assert sympy.simplify(Y**2 + Z**2 - (x**2 - 1)) == 0
