@@ -7,7 +7,6 @@ Cases: the paper's Example 1/2 and surfaces of revolution of degree 4…12 in ge
 
 from __future__ import annotations
 
-import argparse
 import random
 import sys
 from pathlib import Path
@@ -16,7 +15,7 @@ from sympy.polys.domains import QQ
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.report import median_time, write_section  # noqa: E402
+from benchmarks.report import median_time, run  # noqa: E402
 from sorgui.engine.analysis import analyze, analyze_polynomial  # noqa: E402
 from sorgui.examples import example_text  # noqa: E402
 from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve  # noqa: E402
@@ -49,15 +48,5 @@ def table(repeats: int) -> str:
     return "\n".join(rows)
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--write", action="store_true", help="update docs/benchmarks.md")
-    args = parser.parse_args()
-    result = table(args.repeats)
-    if args.write:
-        write_section("analysis", result)
-
-
 if __name__ == "__main__":
-    main()
+    run("analysis", __doc__, table)

@@ -30,22 +30,10 @@ AFTER_MS = 300
 
 def sor_in_general_position(degree: int) -> str:
     """A surface of revolution of the given degree on a tilted rational axis (dense in x, y, z)."""
-    from sympy.polys.domains import QQ
-
+    from benchmarks.recognition import surface
     from sorgui.engine.polys import poly_str
-    from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve
 
-    rng = random.Random(degree)
-    profile = {
-        (i, j): rng.randint(-9, 9) or 1
-        for i in range(degree + 1)
-        for j in range(degree // 2 + 1)
-        if i + 2 * j <= degree and rng.random() < 0.7
-    }
-    profile[(degree, 0)] = 1
-    profile[(0, degree // 2)] = 1
-    f = revolve(profile, rational_vector((QQ(1, 2), QQ(-1, 3), 2)), rational_vector((3, -2, 5)))
-    return poly_str(move(f, quaternion_rotation((1, 2, -1, 3)), rational_vector((QQ(1, 5), 1, QQ(-2, 7)))))
+    return poly_str(surface(degree, seed=degree))
 
 
 def dense_surface(degree: int) -> str:

@@ -8,7 +8,6 @@ methods, timed inside the process. Run ``python benchmarks/recognition.py [--wri
 
 from __future__ import annotations
 
-import argparse
 import random
 import sys
 from pathlib import Path
@@ -17,7 +16,7 @@ from sympy.polys.domains import QQ
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from benchmarks.report import median_time, write_section  # noqa: E402
+from benchmarks.report import median_time, run  # noqa: E402
 from sorgui.engine.recognition import METHODS, recognize  # noqa: E402
 from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve  # noqa: E402
 
@@ -58,15 +57,5 @@ def table(repeats: int) -> str:
     return "\n".join(rows)
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--write", action="store_true", help="update docs/benchmarks.md")
-    args = parser.parse_args()
-    result = table(args.repeats)
-    if args.write:
-        write_section("recognition", result)
-
-
 if __name__ == "__main__":
-    main()
+    run("recognition", __doc__, table)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import statistics
 import time
 from collections.abc import Callable
@@ -36,3 +37,14 @@ def write_section(name: str, table: str) -> None:
     start_mark, end_mark = f"<!-- {name}:start -->", f"<!-- {name}:end -->"
     start, end = doc.index(start_mark) + len(start_mark), doc.index(end_mark)
     DOC.write_text(doc[:start] + "\n" + table + "\n" + doc[end:], encoding="utf-8")
+
+
+def run(section: str, description: str, table: Callable[[int], str]) -> None:
+    """The command line of a benchmark: ``[--repeats N] [--write]``; print (and record) its table."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--write", action="store_true", help="update docs/benchmarks.md")
+    args = parser.parse_args()
+    result = table(args.repeats)
+    if args.write:
+        write_section(section, result)
