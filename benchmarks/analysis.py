@@ -38,8 +38,8 @@ def table(repeats: int) -> str:
             "|---|---:|---:|---:|---:|---|"]
     cases = [("paper Example 1/2", lambda: analyze(example_text("paper-example-1")))]
     cases += [(f"general position, degree {d}", (lambda d=d: analyze_polynomial(tube(d)))) for d in DEGREES]
-    for name, run in cases:
-        seconds, result = median_time(run, repeats)
+    for name, analysis in cases:
+        seconds, result = median_time(analysis, repeats)
         stages = ", ".join(f"{n} {s:.3f}" for n, s in result.timings)
         row = result.rationality.table_row if result.rationality else "-"
         rows.append(f"| {name} | {result.recognition.degree} | {row} | {len(result.parametrizations)} "

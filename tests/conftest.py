@@ -18,11 +18,10 @@ def corpus_cases() -> list[dict]:
 @pytest.fixture(scope="session")
 def paper_example_1():
     """The paper's Example 1 as a polynomial over QQ, built without the parser."""
-    from sympy import Poly, QQ, symbols
+    from sympy import QQ
 
     from sorgui.engine.polys import XYZ, poly_ring
 
-    x, y, z = symbols("x y z")
     text = next(c["input"] for c in corpus_cases() if c["name"] == "paper-example-1")
     R = poly_ring(XYZ, QQ)
     terms = {}

@@ -17,7 +17,6 @@ Every parameterization is substituted back into ``f`` and must reduce to 0 exact
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 import sympy
@@ -26,7 +25,7 @@ from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.solvers.diophantine.diophantine import diop_ternary_quadratic
 
-from .linalg import Vector, dot
+from .linalg import dot
 from .polys import Poly, field_generators, to_expr
 from .radicals import RadicalRing, radicals_of
 from .profile import AxisFrame, ProfileCurve

@@ -194,11 +194,6 @@ def primitive(f: Poly) -> Poly:
     return f.monic()
 
 
-def to_sympy_expr(f: Poly) -> sympy.Expr:
-    """``f`` as a sympy expression, for the printers (LaTeX, Maple, Mathematica)."""
-    return f.as_expr()
-
-
 def poly_str(f: Poly) -> str:
     """``f`` as a string that sympy (and the project's parser) reads back exactly.
 

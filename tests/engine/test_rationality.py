@@ -9,7 +9,6 @@ import sympy
 from sympy.polys.domains import QQ
 
 from sorgui.engine.analysis import analyze, analyze_polynomial
-from sorgui.engine.polys import XYZ, poly_ring
 from sorgui.engine.rationality import table_row
 
 from .helpers import move, quaternion_rotation, rational_vector, revolve
