@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from sorgui.engine import ParseError, SorguiError, analyze
+from sorgui.export.files import FORMATS, export_analysis
 from sorgui.export.text import format_report
 
 DEFAULT_EXAMPLE = "paper-example-1"
@@ -31,6 +32,9 @@ def _analyze_parser() -> argparse.ArgumentParser:
     parser.add_argument("--method", choices=("symmetry", "paper"), default="symmetry",
                         help="symmetry algebra (default, deterministic) or the paper's Algorithm II")
     parser.add_argument("--timeout", type=float, default=60.0, help="time limit per Singular call, in seconds")
+    parser.add_argument("-o", "--output", type=Path, action="append", default=[],
+                        help="also write the results to a file: .json, .txt, .tex (LaTeX), .mpl (Maple) "
+                             "or .m (Mathematica); may be given several times")
     return parser
 
 
@@ -66,6 +70,9 @@ def _fail(message: str, position: int | None, as_json: bool, status: int) -> int
 def analyze_main(argv: Sequence[str]) -> int:
     """``sorgui analyze``: print the report (or JSON) of one equation."""
     args = _analyze_parser().parse_args(argv)
+    unknown = [str(p) for p in args.output if p.suffix.lower() not in FORMATS]
+    if unknown:
+        return _fail(f"unknown export format of {', '.join(unknown)}; use {', '.join(FORMATS)}", None, args.json, 2)
     try:
         text = _read_input(args)
         result = analyze(text, method=args.method, recognition_only=args.recognition_only,
@@ -76,6 +83,11 @@ def analyze_main(argv: Sequence[str]) -> int:
         return _fail(str(exc), exc.position, args.json, 2)
     except SorguiError as exc:
         return _fail(exc.message, None, args.json, 1)
+    try:
+        for path in args.output:
+            export_analysis(result, path)
+    except OSError as exc:
+        return _fail(f"cannot write {exc.filename}: {exc.strerror}", None, args.json, 2)
     if args.json:
         print(json.dumps(result.to_json(), indent=1))
     else:

@@ -1,7 +1,7 @@
 """The formulas of an analysis as mathematics: LaTeX, wrapped lines and mathtext images.
 
 The results pane shows every polynomial, vector and parameterization typeset, not as Python
-text. Each engine string is read exactly (:mod:`sorgui.gui.exact`) and printed with
+text. Each engine string is read exactly (:mod:`sorgui.export.exact`) and printed with
 ``sympy.latex``, one piece per top-level term. :func:`render_formulas` then wraps the pieces
 into lines no wider than the pane (measured with mathtext itself) and rasterises each line with
 matplotlib's mathtext (Computer Modern) into an 8-bit alpha mask. This runs in the analysis
@@ -18,7 +18,7 @@ import numpy as np
 import sympy
 
 from sorgui.engine.report import Analysis, Recognition
-from sorgui.gui.exact import ExpressionError, read_expression
+from sorgui.export.exact import ExpressionError, read_expression
 
 MAX_CHARACTERS = 6000
 MAX_TERMS = 100

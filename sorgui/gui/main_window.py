@@ -27,7 +27,9 @@ from PySide6.QtWidgets import (
 
 from sorgui import __version__
 from sorgui.engine.errors import ParseError
+from sorgui.engine.report import Analysis
 from sorgui.examples import EXAMPLES, example_text
+from sorgui.export.files import export_analysis
 from sorgui.gui.editor import EquationEditor
 from sorgui.gui.examples import ExamplesMenu
 from sorgui.gui.formulas import Style
@@ -59,6 +61,15 @@ SCENE_DELAY_MS = 20
 
 DEFAULT_EXAMPLE = EXAMPLES[0].name
 """The paper's Example 1, loaded on a first start."""
+
+EXPORT_FILTERS = {
+    ".json": "JSON",
+    ".txt": "Text report",
+    ".tex": "LaTeX",
+    ".mpl": "Maple",
+    ".m": "Mathematica",
+}
+"""The file dialog's choices for File → Export Results (the formats of :mod:`sorgui.export.files`)."""
 
 
 class BusyIndicator(QWidget):
@@ -180,6 +191,7 @@ class MainWindow(QMainWindow):
         file_menu.addSeparator()
         self.copy_report_action = self._action(file_menu, "&Copy Report", self._on_copy_report_change,
                                                "Ctrl+Shift+C")
+        self.export_action = self._action(file_menu, "&Export Results…", self._on_export_change, "Ctrl+E")
         self.screenshot_action = self._action(file_menu, "Save Screens&hot…", self._on_screenshot_change,
                                               "Ctrl+Shift+P")
         file_menu.addSeparator()
@@ -387,6 +399,29 @@ class MainWindow(QMainWindow):
     def _on_copy_report_change(self) -> None:
         QGuiApplication.clipboard().setText(self.results.plain_text())
         self.statusBar().showMessage("Report copied to the clipboard", 3000)
+
+    def export_results(self, path: str | Path) -> Path:
+        """Write the shown analysis to ``path`` (JSON, text, LaTeX, Maple or Mathematica, by suffix)."""
+        if self._analysis_json is None:
+            raise ValueError("there is no analysis to export yet")
+        return export_analysis(Analysis.from_json(self._analysis_json), path)
+
+    def _on_export_change(self) -> None:
+        if self._analysis_json is None:
+            self.statusBar().showMessage("Analyse an equation first", 4000)
+            return
+        filters = ";;".join(f"{name} (*{suffix})" for suffix, name in EXPORT_FILTERS.items())
+        path, chosen = QFileDialog.getSaveFileName(self, "Export results", "sorgui-results.json", filters)
+        if not path:
+            return
+        if not Path(path).suffix:
+            path += next(suffix for suffix, name in EXPORT_FILTERS.items() if chosen.startswith(name))
+        try:
+            written = self.export_results(path)
+        except (OSError, ValueError) as exc:
+            self._show_error("Export failed", str(exc))
+            return
+        self.statusBar().showMessage(f"Exported {written}", 4000)
 
     def _on_screenshot_change(self) -> None:
         path, _ = QFileDialog.getSaveFileName(self, "Save screenshot", "sorgui.png", "PNG images (*.png)")

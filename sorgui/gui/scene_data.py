@@ -19,7 +19,7 @@ from itertools import product
 import numpy as np
 
 from sorgui.engine.report import Analysis, Parametrization, Recognition
-from sorgui.gui.exact import (
+from sorgui.export.exact import (
     ExpressionError,
     Terms,
     float_vector,

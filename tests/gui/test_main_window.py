@@ -77,6 +77,18 @@ def test_formulas_are_typeset_and_copyable(window, qtbot, run_analysis) -> None:
     assert QGuiApplication.clipboard().text() == r"\left(1, 0, 1\right)"
 
 
+def test_results_are_exported_to_files(window, run_analysis, tmp_path) -> None:
+    import json
+
+    run_analysis(window, example_text("cone"))
+    written = window.export_results(tmp_path / "cone.json")
+    data = json.loads(written.read_text(encoding="utf-8"))
+    assert data["symmetry"] == "revolution" and data["rationality"]["table_row"] == 1
+    assert "\\documentclass" in window.export_results(tmp_path / "cone.tex").read_text(encoding="utf-8")
+    with pytest.raises(ValueError):
+        window.export_results(tmp_path / "cone.xyz")
+
+
 def test_invalid_equation_is_underlined_and_starts_no_worker(make_window, qtbot) -> None:
     window = make_window(prestart_worker=False)
     editor = window.editor

@@ -13,7 +13,7 @@ import pytest
 import sympy
 
 from sorgui.examples import example_text
-from sorgui.gui.exact import (
+from sorgui.export.exact import (
     ExpressionError,
     float_vector,
     polynomial_terms,

@@ -1,12 +1,12 @@
 """The engine's exact strings as sympy expressions, floats and plain terms, without ``eval``.
 
 The engine reports every number and polynomial as a string in sympy's own output syntax
-(``"3/5"``, ``"sqrt(2)/2"``, ``"(t**2 - 1)/(t**2 + 1)"``). The GUI reads them back here:
+(``"3/5"``, ``"sqrt(2)/2"``, ``"(t**2 - 1)/(t**2 + 1)"``). They are read back here:
 polynomials through the project's parser :func:`~sorgui.engine.parsing.parse_polynomial` (which
 also gives the exact field ``K``), and numbers and rational functions of the parameterizations
 through a small recursive-descent reader of that output syntax, which builds sympy objects with
 their constructors (never ``sympify``: pasted text is untrusted, and so is everything derived
-from it). This module has no Qt, so the analysis worker process uses it too.
+from it). It has no Qt: the exporters, the GUI and its analysis worker process all read through it.
 """
 
 from __future__ import annotations
@@ -32,9 +32,9 @@ class ExpressionError(ValueError):
 
 
 class _Reader:
-    """Recursive descent over ``expr := term (± term)*``, ``term := power ((*|/) power)*``,
-    ``power := unary (** power)?``, ``unary := -unary | atom``, ``atom := number | name |
-    sqrt(expr) | (expr)``; ``^`` is read as ``**``."""
+    """Recursive descent over ``expr := term (± term)*``, ``term := unary ((*|/) unary)*``,
+    ``unary := (-|+) unary | power``, ``power := atom (** unary)?``, ``atom := number | name |
+    sqrt(expr) | (expr)``; ``^`` is read as ``**``, and ``-x**2`` is ``-(x**2)`` as in sympy."""
 
     def __init__(self, text: str) -> None:
         self.tokens = self._tokenize(text)
@@ -77,26 +77,26 @@ class _Reader:
         return sympy.Add(*terms)  # one n-ary sum: pasted sums are long
 
     def _term(self) -> sympy.Expr:
-        factors = [self._power()]
+        factors = [self._unary()]
         while self._peek() in ("*", "/"):
             operator = self._take()
-            right = self._power()
+            right = self._unary()
             factors.append(right if operator == "*" else sympy.Pow(right, -1))
         return sympy.Mul(*factors)
-
-    def _power(self) -> sympy.Expr:
-        base = self._unary()
-        if self._peek() in ("**", "^"):
-            self._take()
-            return sympy.Pow(base, self._power())
-        return base
 
     def _unary(self) -> sympy.Expr:
         if self._peek() in ("-", "+"):
             sign = self._take()
             value = self._unary()
             return -value if sign == "-" else value
-        return self._atom()
+        return self._power()
+
+    def _power(self) -> sympy.Expr:
+        base = self._atom()
+        if self._peek() in ("**", "^"):
+            self._take()
+            return sympy.Pow(base, self._unary())  # right-associative; -x**2 is -(x**2)
+        return base
 
     def _atom(self) -> sympy.Expr:
         token = self._take()

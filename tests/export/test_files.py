@@ -1,0 +1,67 @@
+"""Exports (JSON, text, LaTeX, Maple, Mathematica) and the exact reader of engine strings."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+import sympy
+
+from sorgui.cli import main
+from sorgui.engine import analyze
+from sorgui.engine.report import Analysis
+from sorgui.export.exact import read_expression
+from sorgui.export.files import FORMATS, analysis_formulas, export_analysis
+
+x, y, s, t = sympy.symbols("x y s t")
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("-x**2 + y**2", -x**2 + y**2),
+    ("-2**2", sympy.Integer(-4)),
+    ("2**-1*x", x / 2),
+    ("x**2**3", x**8),
+    ("(1 - s**2)/(s**2 + 1)", (1 - s**2) / (s**2 + 1)),
+    ("-sqrt(2)/2 + I*t", -sympy.sqrt(2) / 2 + sympy.I * t),
+])
+def test_engine_strings_are_read_exactly(text: str, expected: sympy.Expr) -> None:
+    assert sympy.simplify(read_expression(text) - expected) == 0
+
+
+def test_formulas_are_the_exact_results() -> None:
+    result = analyze("y^2 - 2xz")
+    formulas = {name: expr for name, _, expr in analysis_formulas(result)}
+    assert sympy.expand(formulas["p"] - (-x**2 + y**2)) == 0 or sympy.expand(formulas["p"] - (x**2 - y**2)) == 0
+    assert list(formulas["axis_direction"]) == [1, 0, 1]
+    assert {"f", "P2", "T", "X1"} <= set(formulas)
+
+
+@pytest.mark.parametrize("suffix", sorted(FORMATS))
+def test_every_format_is_written(tmp_path, suffix: str) -> None:
+    result = analyze("y^2 + z^2 = x^3 + 3x^2 - 2x")
+    path = export_analysis(result, tmp_path / f"cubic{suffix}")
+    text = path.read_text(encoding="utf-8")
+    assert text.endswith("\n") and len(text) > 100
+    if suffix == ".json":
+        assert Analysis.from_json(json.loads(text)) == result
+    if suffix == ".tex":
+        assert text.startswith(r"\documentclass") and r"\end{document}" in text and "row 4" in text
+    if suffix == ".mpl":
+        assert "f := " in text and "T := " in text
+    if suffix == ".m":
+        assert "f = " in text and "(*" in text and "*)" in text
+
+
+def test_unknown_format_is_refused(tmp_path) -> None:
+    with pytest.raises(ValueError, match="unknown export format"):
+        export_analysis(analyze("x^2 + y^2 - 1"), tmp_path / "out.docx")
+
+
+def test_command_line_output_option(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    tex, mma = tmp_path / "cone.tex", tmp_path / "cone.m"
+    assert main(["analyze", "-o", str(tex), "--output", str(mma), "y^2 - 2xz"]) == 0
+    assert tex.exists() and mma.exists()
+    capsys.readouterr()
+    assert main(["analyze", "--json", "-o", str(tmp_path / "x.doc"), "y^2 - 2xz"]) == 2
+    assert "unknown export format" in json.loads(capsys.readouterr().out)["error"]["message"]
+    assert main(["analyze", "-o", str(tmp_path / "missing" / "x.json"), "y^2 - 2xz"]) == 2
