@@ -104,6 +104,8 @@ def analyze_rationality(
         p, p2 = curves.analyze_curves([profile.rational, profile.square], timeout=timeout, cancel=cancel)
     except SingularTimeout as exc:
         return Rationality(status=f"undecided within the time limit: {exc.message}"), None
+    except SingularError as exc:
+        return Rationality(status=f"undecided: {exc.message}"), None
     absolute = _absolute_factors(p)
     reducible = not p.is_absolutely_irreducible
     if p2.genus is None:

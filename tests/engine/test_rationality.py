@@ -10,6 +10,7 @@ from sympy.polys.domains import QQ
 
 from sorgui.engine.analysis import analyze, analyze_polynomial
 from sorgui.engine.rationality import table_row
+from sorgui.examples import example_text
 
 from .helpers import move, quaternion_rotation, rational_vector, revolve
 
@@ -200,3 +201,18 @@ def test_quadric_section_of_a_rational_root() -> None:
 
     x, Y, Z = quadric_section(t**2 - 1, sympy.Integer(1))
     assert sympy.simplify(Y**2 + Z**2 - (x**2 - 1)) == 0
+
+
+def test_a_time_limit_ends_in_an_undecided_result() -> None:
+    result = analyze(example_text("paper-example-1"), singular_timeout=0.001)
+    assert result.recognition.is_sor and result.rationality.status.startswith("undecided within the time limit")
+    assert result.rationality.table_row is None and result.parametrizations == ()
+
+
+def test_missing_singular_is_reported_not_raised(monkeypatch) -> None:
+    from sorgui.engine.singular import ENV_VARIABLE
+
+    monkeypatch.setenv(ENV_VARIABLE, "/nonexistent/Singular")
+    result = analyze("y^2 + z^2 = x^3 + 3x^2 - 2x")
+    assert result.recognition.is_sor
+    assert result.rationality.status.startswith("undecided") and ENV_VARIABLE in result.rationality.status
