@@ -83,6 +83,9 @@ def analyze_main(argv: Sequence[str]) -> int:
         return _fail(str(exc), exc.position, args.json, 2)
     except SorguiError as exc:
         return _fail(exc.message, None, args.json, 1)
+    except Exception as exc:  # noqa: BLE001 - a bug must still end in one line, not a traceback
+        return _fail(f"internal error ({type(exc).__name__}: {exc}); please report it with the input",
+                     None, args.json, 1)
     try:
         for path in args.output:
             export_analysis(result, path)

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import sympy
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
+from sympy.polys.polyerrors import BasePolynomialError
 
 from . import curves
 from .curves import CurveAnalysis, CurveParametrization
@@ -40,6 +41,10 @@ from .parametrization import (
 from .polys import Poly, poly_ring, to_expr
 from .profile import ProfileCurve
 from .report import Parametrization, Rationality
+
+UNSUPPORTED = (BasePolynomialError, NotImplementedError)
+"""What sympy raises for coefficient fields it cannot handle; a parameterization is then left
+out with a note, and the rest of the analysis stands."""
 
 ALPHA = sympy.Symbol("alpha")
 """Stands for ``√-n`` (``n = |a|²``) in the complex parameterization through ``T``."""
@@ -205,13 +210,16 @@ def parametrizations(
             par = make_parametrization(f, profile, sweep(section, frame, K), method="rotated profile", proper=proper)
             if par is not None:
                 found.append(par)
-        except SingularTimeout as exc:
-            notes.append(f"rotated profile: {exc.message}")
         except (AnalysisError, SingularError) as exc:
             notes.append(f"rotated profile: {exc.message}")
+        except UNSUPPORTED as exc:
+            notes.append(f"rotated profile: not computed ({type(exc).__name__}: {exc})")
     if tube is not None:
         n = to_expr(K, dot(frame.direction, frame.direction))
-        par, note = _tubular_parametrization(f, profile, tube, n, K)
+        try:
+            par, note = _tubular_parametrization(f, profile, tube, n, K)
+        except UNSUPPORTED as exc:
+            par, note = None, f"parameterization through T: not computed ({type(exc).__name__}: {exc})"
         found += [par] if par is not None else []
         notes += [note] if note else []
     return tuple(found), tuple(notes)
