@@ -105,6 +105,10 @@ def analyze_rationality(
     cancel: threading.Event | None = None,
 ) -> tuple[Rationality, TubularSurface | None]:
     """The rationality facts of a surface of revolution with the given profile."""
+    if all(m == (0, 1) for m in profile.square.itermonoms()):
+        # P² = c·w: X is y² + z² = 0 in the axis frame, two complex planes (MATH.md §4).
+        return Rationality(status="not applicable: X is a pair of complex planes through the axis "
+                                  "(not absolutely irreducible)"), None
     try:
         p, p2 = curves.analyze_curves([profile.rational, profile.square], timeout=timeout, cancel=cancel)
     except SingularTimeout as exc:

@@ -216,3 +216,10 @@ def test_missing_singular_is_reported_not_raised(monkeypatch) -> None:
     result = analyze("y^2 + z^2 = x^3 + 3x^2 - 2x")
     assert result.recognition.is_sor
     assert result.rationality.status.startswith("undecided") and ENV_VARIABLE in result.rationality.status
+
+
+def test_complex_plane_pair_is_not_analysed() -> None:
+    """x² + y² = 0 has P² = w: two complex planes through the axis (MATH.md §4)."""
+    result = analyze("x^2 + y^2")
+    assert result.recognition.symmetry == "cylinder_of_revolution"
+    assert result.rationality.status.startswith("not applicable") and result.parametrizations == ()
