@@ -221,7 +221,7 @@ def parametrizations(
     if tube is not None:
         n = to_expr(K, dot(frame.direction, frame.direction))
         try:
-            par, note = _tubular_parametrization(f, profile, tube, n, K)
+            par, note = _tubular_parametrization(f, profile, tube, n, K, rationality)
         except UNSUPPORTED as exc:
             par, note = None, f"parameterization through T: not computed ({type(exc).__name__}: {exc})"
         found += [par] if par is not None else []
@@ -230,7 +230,7 @@ def parametrizations(
 
 
 def _tubular_parametrization(
-    f: Poly, profile: ProfileCurve, tube: TubularSurface, n: sympy.Expr, K: Domain
+    f: Poly, profile: ProfileCurve, tube: TubularSurface, n: sympy.Expr, K: Domain, rationality: Rationality
 ) -> tuple[Parametrization | None, str]:
     """The parameterization through ``T`` (MATH.md §6): real when ``h = A² + n·B²``, or when the
     rest after the norm part is of degree ≤ 2 (a quadric, projected stereographically); the
@@ -252,9 +252,13 @@ def _tubular_parametrization(
     section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
     complex_par = make_parametrization(f, profile, sweep(section, frame, K), method="via tubular surface (complex)",
                                        proper=True)
-    note = "" if tube.field else (
-        "no real parameterization through T: h = N·u²·q has a part q of degree > 2 (or no real point)"
-    )
+    if (rationality.real_roots_of_h or 0) > 2 and rationality.unirational:
+        note = ("X is unirational but not rational: h has more than two real roots, so the real surface "
+                "is disconnected (the paper's Corollary); sorgui gives the complex parameterization only")
+    elif tube.field:
+        note = ""
+    else:
+        note = "no real parameterization through T: h = N·u²·q has a part q of degree > 2 (or no real point)"
     return complex_par, note
 
 
