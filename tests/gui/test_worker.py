@@ -146,6 +146,7 @@ def test_kill_process_tree_reaches_other_sessions(tmp_path: Path) -> None:
         if child.poll() is None:
             os.kill(child.pid, signal.SIGKILL)
         child.wait(timeout=5)
+        child.stdout.close()
 
 
 def _cmdline(pid: int) -> str:
