@@ -9,6 +9,7 @@ status bar shows the current stage and a busy indicator; the window never waits 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 from PySide6.QtCore import Qt, QTimer, Signal
@@ -18,6 +19,7 @@ from PySide6.QtWidgets import (
     QHBoxLayout,
     QLabel,
     QMainWindow,
+    QMenu,
     QMessageBox,
     QPushButton,
     QSplitter,
@@ -30,6 +32,7 @@ from sorgui.engine.errors import ParseError
 from sorgui.engine.report import Analysis
 from sorgui.examples import EXAMPLES, example_text
 from sorgui.export.files import export_analysis
+from sorgui.render.picking import PickInfo
 from sorgui.gui.editor import EquationEditor
 from sorgui.gui.examples import ExamplesMenu
 from sorgui.gui.formulas import Style
@@ -213,7 +216,14 @@ class MainWindow(QMainWindow):
         help_menu = menu.addMenu("&Help")
         self._action(help_menu, "&About sorgui", self._on_about_change)
 
-    def _action(self, menu, text: str, slot, shortcut=None) -> QAction:  # noqa: ANN001
+    def _action(
+        self,
+        menu: QMenu,
+        text: str,
+        slot: Callable[[], object],
+        shortcut: QKeySequence | QKeySequence.StandardKey | str | None = None,
+    ) -> QAction:
+        """A menu entry that calls ``slot`` (with its keyboard shortcut, if any)."""
         action = QAction(text, self)
         if shortcut is not None:
             action.setShortcut(QKeySequence(shortcut))
@@ -370,7 +380,7 @@ class MainWindow(QMainWindow):
         self.worker.start(JobRequest(self.editor.text(), analysis=self._analysis_json, radius=radius,
                                      resolution=self.viewport.mesh_resolution(), style=None))
 
-    def _on_pick_change(self, info) -> None:  # noqa: ANN001
+    def _on_pick_change(self, info: PickInfo) -> None:
         self.statusBar().showMessage(info.summary(), 15000)
 
     def _on_example_change(self, title: str, text: str) -> None:
