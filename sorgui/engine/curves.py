@@ -331,6 +331,7 @@ def parametrize(
     parameter: sympy.Symbol = PARAMETER,
     timeout: float = 60.0,
     cancel: threading.Event | None = None,
+    known_genus_zero: bool = False,
 ) -> CurveParametrization:
     """A proper rational parameterization of the genus-0 curve ``F = 0``, verified exactly.
 
@@ -339,7 +340,9 @@ def parametrize(
     field is made real when the curve has real points (see the module docstring). Raises
     :class:`AnalysisError` with the reason when there is none: the curve is reducible or of
     positive genus, or ``F`` has irrational coefficients and is linear in neither variable
-    (``paraPlaneCurve`` accepts only ``QQ``).
+    (``paraPlaneCurve`` accepts only ``QQ``). With ``known_genus_zero`` the caller vouches that
+    the curve is absolutely irreducible of genus 0 (as the rationality analysis has just
+    computed), and Singular does not compute it again.
     """
     if F.ring.ngens != 2 or total_degree(F) < 1:
         raise AnalysisError("parametrize needs a non-constant polynomial in two variables")
@@ -354,7 +357,7 @@ def parametrize(
                 "neither variable, and Singular's paraPlaneCurve accepts only rational "
                 "coefficients (ground field is not Q)"
             )
-        found = _para_plane_curve(rational, timeout, cancel)
+        found = _para_plane_curve(rational, timeout, cancel, known_genus_zero)
         curve, method = rational, "paraPlaneCurve"
     (p1, q1), (p2, q2) = found
     if not _vanishes(curve, p1, q1, p2, q2):
@@ -389,14 +392,15 @@ def _direct(F: Poly) -> tuple[_Fraction, _Fraction] | None:
 
 
 def _para_plane_curve(
-    F: Poly, timeout: float, cancel: threading.Event | None
+    F: Poly, timeout: float, cancel: threading.Event | None, checked: bool = False
 ) -> tuple[_Fraction, _Fraction]:
-    """``sorguiParaCurve`` on ``F ∈ QQ[x, y]``: the checks, then paraPlaneCurve's PARA
+    """``sorguiParaCurve`` on ``F ∈ QQ[x, y]``: the checks (skipped when ``checked``: the caller
+    already knows the curve is absolutely irreducible of genus 0), then paraPlaneCurve's PARA
     dehomogenised at ``s = 1``, over ``QQ`` or the quadratic field of its ``minpoly``."""
     script = (
         PARAMETRIZATION_PROCS
         + "ring sorguiP = 0,(x,y),dp;\n"
-        + f"sorguiParaCurve({poly_to_singular(F, ['x', 'y'])});\n"
+        + f"sorguiParaCurve({poly_to_singular(F, ['x', 'y'])}, {int(checked)});\n"
     )
     found = run_script(script, timeout=timeout, cancel=cancel)
     if _one(found, "irreducible") != "1":

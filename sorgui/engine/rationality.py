@@ -135,7 +135,7 @@ def analyze_rationality(
     if p2.genus > 0:
         return Rationality(status="decided", unirational=False, real_rational=False, **base), None
     try:
-        par = curves.parametrize(profile.square, timeout=timeout, cancel=cancel)
+        par = curves.parametrize(profile.square, timeout=timeout, cancel=cancel, known_genus_zero=True)
     except SingularTimeout as exc:
         return Rationality(status=f"partly undecided: {exc.message}", **base,
                            notes=("no parameterization of P² within the time limit",)), None

@@ -615,17 +615,23 @@ proc sorguiParametrize(poly f)
   return(RP1);
 }
 
-proc sorguiParaCurve(poly F)
+proc sorguiParaCurve(poly F, int checked)
 {
-  // the checks (absolutely irreducible, genus 0), then PARA and the field's minpoly
+  // the checks (absolutely irreducible, genus 0) unless the caller made them, then PARA and
+  // the field's minpoly
   def B = basering;
-  def A = absFactorize(F, "a");
-  setring A;
-  int irreducible = (absolute_factors[4] == 1);
-  setring B;
+  int irreducible = 1;
+  int g = 0;
+  if (!checked)
+  {
+    def A = absFactorize(F, "a");
+    setring A;
+    irreducible = (absolute_factors[4] == 1);
+    setring B;
+  }
   sorguiEmit("irreducible", string(irreducible));
   if (!irreducible) { return(); }
-  int g = genus(F);
+  if (!checked) { g = genus(F); }
   sorguiEmit("genus", string(g));
   if (g != 0) { return(); }
   ring H = 0,(x,y,z),dp;
@@ -636,7 +642,8 @@ proc sorguiParaCurve(poly F)
   sorguiEmit("para", string(PARA));
 }
 """
-"""``sorguiParaCurve(F)`` for ``F ∈ QQ[x, y]``: results ``irreducible``, ``genus``, and for a
+"""``sorguiParaCurve(F, checked)`` for ``F ∈ QQ[x, y]`` (``checked = 1``: the caller knows ``F`` is
+absolutely irreducible of genus 0): results ``irreducible``, ``genus``, and for a
 rational curve ``para`` (paraPlaneCurve's PARA in ``s, t``) and ``minpoly`` (of ``a``, when the
 field is an extension). ``sorguiParametrize`` is paraPlaneCurve with the conic step replaced by
 ``sorguiRealPointConic``, which prefers a real quadratic field."""

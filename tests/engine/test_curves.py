@@ -230,8 +230,9 @@ def test_paper_parametrization_of_p_square_is_exact_and_proper() -> None:
     assert not is_on_curve(P2_AS_PRINTED, -(T**3) + T, T**4 + 4 * T**3 + 6 * T**2 + 4 * T + 5, T)
 
 
-def test_parametrize_p_square_with_singular() -> None:
-    para = parametrize(P2)
+@pytest.mark.parametrize("known_genus_zero", [False, True])
+def test_parametrize_p_square_with_singular(known_genus_zero: bool) -> None:
+    para = parametrize(P2, known_genus_zero=known_genus_zero)
     assert para.method == "paraPlaneCurve" and para.field == "QQ" and para.is_real
     check(P2, para)
 
