@@ -236,12 +236,12 @@ def _tubular_parametrization(
     rest after the norm part is of degree ≤ 2 (a quadric, projected stereographically); the
     complex one otherwise. Returns it and a note on what could not be done."""
     frame = profile.frame
-    real = norm_decomposition(tube.h, n) if not tube.field else None
+    real = norm_decomposition(tube.h, n)
     if real is not None:
         section = tubular_section(tube.phi, tube.d, tube.q, *real)
         return make_parametrization(f, profile, sweep(section, frame, K), method="via tubular surface (real)",
                                     proper=True), ""
-    quadric = quadric_section(tube.h, n) if not tube.field else None
+    quadric = quadric_section(tube.h, n)
     if quadric is not None:
         x, Y, Z = quadric
         scale = (tube.d / tube.q).subs(T, x)
@@ -252,13 +252,14 @@ def _tubular_parametrization(
     section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
     complex_par = make_parametrization(f, profile, sweep(section, frame, K), method="via tubular surface (complex)",
                                        proper=True)
-    if (rationality.real_roots_of_h or 0) > 2 and rationality.unirational:
+    if not rationality.unirational:
+        note = ""
+    elif (rationality.real_roots_of_h or 0) > 2:
         note = ("X is unirational but not rational: h has more than two real roots, so the real surface "
                 "is disconnected (the paper's Corollary); sorgui gives the complex parameterization only")
-    elif tube.field:
-        note = ""
     else:
-        note = "no real parameterization through T: h = N·u²·q has a part q of degree > 2 (or no real point)"
+        note = ("no real parameterization through T was found: h = N·u²·q with q of degree > 2, or h "
+                "has irrational coefficients; sorgui gives the complex parameterization only")
     return complex_par, note
 
 

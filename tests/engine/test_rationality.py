@@ -223,3 +223,12 @@ def test_complex_plane_pair_is_not_analysed() -> None:
     result = analyze("x^2 + y^2")
     assert result.recognition.symmetry == "cylinder_of_revolution"
     assert result.rationality.status.startswith("not applicable") and result.parametrizations == ()
+
+
+def test_real_parametrization_over_an_algebraic_field_of_definition() -> None:
+    """An ellipsoid of revolution whose axis needs sqrt(2): the real proper parameterization
+    through T lives in a real field containing K."""
+    result = analyze("(x + sqrt(2)y)^2 + x^2 + y^2 + z^2 - 1")
+    assert result.field == "QQ(sqrt(2))" and result.rationality.table_row == 3
+    proper_real = [p for p in result.parametrizations if p.real and p.proper]
+    assert proper_real and all(p.verified for p in proper_real)
