@@ -115,6 +115,97 @@ class Parametrization:
 
 
 @dataclass(frozen=True)
+class ApproximateAxis:
+    """A line in floating point: a point on it and a unit direction (length units of the input)."""
+
+    point: tuple[float, float, float]
+    direction: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class NearestSurface:
+    """The exact surface that a rounded input was meant to be (docs/math.md, "Rounded input").
+
+    ``polynomial`` is exact (rational, or over the input's field); ``axis`` is exact as in the
+    rest of the JSON; ``relative_distance`` is ``‖f - g‖₂ / ‖f‖₂`` over the coefficients, with
+    ``g`` the snapped polynomial; ``max_deviation`` is the largest distance (length units) from a
+    sampled point of ``g = 0`` to ``f = 0`` inside the viewport's box; ``within_rounding`` says
+    whether every coefficient of ``f - g`` lies within the rounding of the printed input.
+    ``analysis`` is the whole exact analysis of ``g`` (``None`` with ``--recognition-only``).
+    """
+
+    polynomial: str
+    kind: str
+    axis: Axis | None
+    center: Triple | None
+    normal: Triple | None
+    relative_distance: float
+    max_deviation: float | None
+    within_rounding: bool
+    analysis: Analysis | None = None
+
+
+@dataclass(frozen=True)
+class Approximation:
+    """Whether a rounded input is, within its rounding, a surface of revolution.
+
+    ``tolerance`` is the relative tolerance in force and ``tolerance_source`` says where it came
+    from (``"input"``: derived from the printed digits; ``"given"``: ``--tolerance``).
+    ``singular_values`` are those of the floating-point system (★), largest first, relative to
+    the largest; ``relative_distance`` is ``‖f - f̄‖₂ / ‖f‖₂`` for the nearest invariant
+    polynomial ``f̄`` about the refined axis, and ``residual`` the same residual measured in units
+    of the input's rounding (≤ 1 means within it). ``kind`` is the approximate symmetry kind (or
+    ``None``); ``nearest`` is the snapped exact surface, when one was found.
+    """
+
+    tolerance: float
+    tolerance_source: str
+    near_sor: bool
+    kind: str | None
+    relative_distance: float
+    residual: float
+    singular_values: tuple[float, ...]
+    axis: ApproximateAxis | None = None
+    center: tuple[float, float, float] | None = None
+    normal: tuple[float, float, float] | None = None
+    nearest: NearestSurface | None = None
+    notes: tuple[str, ...] = ()
+
+    def to_json(self) -> dict[str, Any]:
+        """The ``approximate`` object of ``sorgui analyze --json``."""
+        data = _lists({k: getattr(self, k) for k in _field_names(Approximation) if k not in ("axis", "nearest")})
+        data["axis"] = _plain(self.axis)
+        nearest = self.nearest
+        if nearest is not None:
+            data["nearest"] = _lists({k: getattr(nearest, k) for k in _field_names(NearestSurface)
+                                      if k not in ("axis", "analysis")})
+            data["nearest"]["axis"] = _plain(nearest.axis)
+            data["nearest"]["analysis"] = None if nearest.analysis is None else nearest.analysis.to_json()
+        else:
+            data["nearest"] = None
+        return data
+
+    @classmethod
+    def from_json(cls, data: dict[str, Any]) -> Approximation:
+        """The inverse of :meth:`to_json`."""
+        nearest = data.get("nearest")
+        if nearest is not None:
+            nearest = NearestSurface(
+                polynomial=nearest["polynomial"],
+                kind=nearest["kind"],
+                axis=_build(Axis, nearest.get("axis")),
+                center=_tuples(nearest.get("center")),
+                normal=_tuples(nearest.get("normal")),
+                relative_distance=nearest["relative_distance"],
+                max_deviation=nearest.get("max_deviation"),
+                within_rounding=nearest["within_rounding"],
+                analysis=None if nearest.get("analysis") is None else Analysis.from_json(nearest["analysis"]),
+            )
+        plain = {k: _tuples(v) for k, v in data.items() if k in _field_names(cls) and k not in ("axis", "nearest")}
+        return cls(**plain, axis=_build(ApproximateAxis, data.get("axis")), nearest=nearest)
+
+
+@dataclass(frozen=True)
 class Analysis:
     """The whole answer for one input: recognition, factors, rationality and parameterizations."""
 
@@ -127,6 +218,7 @@ class Analysis:
     rationality: Rationality | None = None
     parametrizations: tuple[Parametrization, ...] = ()
     timings: tuple[tuple[str, float], ...] = field(default=())
+    approximate: Approximation | None = None
 
     @property
     def is_sor(self) -> bool:
@@ -156,6 +248,7 @@ class Analysis:
             "rationality": _plain(self.rationality),
             "parametrizations": [_plain(p) for p in self.parametrizations],
             "timings": dict(self.timings),
+            "approximate": None if self.approximate is None else self.approximate.to_json(),
         }
 
     @classmethod
@@ -175,7 +268,12 @@ class Analysis:
             rationality=_build(Rationality, data.get("rationality")),
             parametrizations=tuple(_build(Parametrization, p) for p in data.get("parametrizations", [])),
             timings=tuple(data.get("timings", {}).items()),
+            approximate=None if data.get("approximate") is None else Approximation.from_json(data["approximate"]),
         )
+
+
+def _field_names(cls: type) -> list[str]:
+    return [f.name for f in fields(cls)]
 
 
 def _plain(obj: Any) -> Any:
