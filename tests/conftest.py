@@ -7,11 +7,11 @@ from pathlib import Path
 
 import pytest
 
-CORPUS = Path(__file__).resolve().parents[1].parent / "shared" / "corpus" / "cases.json"
+CORPUS = Path(__file__).resolve().parent / "data" / "cases.json"
 
 
 def corpus_cases() -> list[dict]:
-    """The shared corpus of cases with known answers (``../shared/corpus/cases.json``)."""
+    """The public corpus of cases with known answers (``tests/data/cases.json``, see its README)."""
     return json.loads(CORPUS.read_text(encoding="utf-8"))
 
 

@@ -1,4 +1,4 @@
-"""The shared corpus through the command line's JSON (every key a case states is checked)."""
+"""The public corpus (tests/data/cases.json) through the CLI's JSON; every key a case states is checked."""
 
 from __future__ import annotations
 

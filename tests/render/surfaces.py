@@ -37,7 +37,7 @@ def direct(terms, x, y, z):
 
 
 def corpus_terms(name: str):
-    """An expanded integer polynomial of the shared corpus (``c*x^i*y^j*z^k`` sums) as terms.
+    """An expanded integer polynomial of the public corpus (``c*x^i*y^j*z^k`` sums) as terms.
 
     Only for the corpus's trusted, expanded inputs; the engine's parser handles user text.
     """
