@@ -1,7 +1,7 @@
 """The whole analysis of one pasted equation, stage by stage, with timings and cancellation.
 
 Stages: parse → recognition (symmetry, axis, profile) → factors → rationality and
-parameterizations (MATH.md §5–§6; only for a surface of revolution with a unique axis).
+parameterizations (docs/math.md §5–§6; only for a surface of revolution with a unique axis).
 Between stages the ``cancel`` event is checked, and ``progress`` is told the stage's name, so a
 GUI worker can show it; Singular subprocesses are killed on cancel by :mod:`.singular`.
 """

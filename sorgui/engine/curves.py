@@ -1,4 +1,4 @@
-"""Plane-curve algorithms of the rationality analysis (MATH.md §4–§5, the paper's Section 3).
+"""Plane-curve algorithms of the rationality analysis (docs/math.md §4–§5, the paper's Section 3).
 
 Every function takes a bivariate polynomial ``F`` over ``K`` (``QQ`` or a real algebraic field
 ``QQ(θ)``) and starts at most one Singular process (:mod:`.singular`), which ``timeout`` and
@@ -12,7 +12,7 @@ Algorithm choice:
   over ``QQ(a)`` contains ``θ = c(a)`` for a root ``c`` of ``m`` (found by a divisibility test)
   and holds ``deg μ / deg m`` factors of ``G``. When ``QQ(a) = K`` the factor is rewritten
   over ``K``.
-* genus: ``genus`` (normal.lib) over ``QQ``; over ``QQ(θ)`` the checked workaround of MATH.md §5,
+* genus: ``genus`` (normal.lib) over ``QQ``; over ``QQ(θ)`` the checked workaround of docs/math.md §5,
   ``genus(ideal(F, m(t))) = d·(g - 1) + 1``. Only for absolutely irreducible curves.
 * parameterization of a genus-0 curve: the direct route when ``F`` is linear in a variable (no
   Singular at all), else ``paraPlaneCurve`` (paraplanecurves.lib) on the homogenised curve,
@@ -21,8 +21,6 @@ Algorithm choice:
   it in a point over a real quadratic field. Every answer is checked exactly: it satisfies
   ``F`` and its degree equals ``deg F`` (proper). No answer is an :class:`AnalysisError` that
   says why (e.g. ``paraPlaneCurve`` accepts only ``QQ``).
-* real roots: Sturm sequences over ``K``; the signs of elements of ``K`` come from arb balls
-  refined until they exclude 0 (rigorous, never plain floats).
 """
 
 from __future__ import annotations
@@ -31,12 +29,9 @@ import threading
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-import flint
 import sympy
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
-from sympy.polys.rootisolation import dup_sturm
-from sympy.polys.sqfreetools import dup_sqf_part
 
 from .errors import AnalysisError, SingularError
 from .polys import Poly, field_generators, is_rational_field, poly_ring, to_expr, total_degree
@@ -82,7 +77,7 @@ class AbsoluteFactor:
 
 @dataclass(frozen=True)
 class AbsoluteFactorization:
-    """``F`` over ``C`` (MATH.md §4): classes of conjugate absolute factors."""
+    """``F`` over ``C`` (docs/math.md §4): classes of conjugate absolute factors."""
 
     variables: tuple[sympy.Symbol, sympy.Symbol]
     factors: tuple[AbsoluteFactor, ...]
@@ -170,7 +165,7 @@ def analyze_curve(
 def absolute_factorization(
     F: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None
 ) -> AbsoluteFactorization:
-    """The factors of ``F`` over ``C``, in classes of conjugates (MATH.md §4)."""
+    """The factors of ``F`` over ``C``, in classes of conjugates (docs/math.md §4)."""
     return analyze_curves([F], with_genus=False, timeout=timeout, cancel=cancel)[0].factorization
 
 
@@ -240,7 +235,7 @@ class _Plan:
             G = parse_int(_one(found, f"genus_{self.key}_0"))
             if self.parts[0][2]:
                 value = G
-            elif (G - 1) % self.degree == 0:  # MATH.md §5: G = d·(g - 1) + 1
+            elif (G - 1) % self.degree == 0:  # docs/math.md §5: G = d·(g - 1) + 1
                 value = (G - 1) // self.degree + 1
             else:
                 raise SingularError(f"the conjugate curves have genus {G}, not d·(g-1)+1")
@@ -335,7 +330,7 @@ def parametrize(
 ) -> CurveParametrization:
     """A proper rational parameterization of the genus-0 curve ``F = 0``, verified exactly.
 
-    The direct route first (MATH.md §5: ``A(x)·y + C(x)`` gives ``(t, -C(t)/A(t))``, and the
+    The direct route first (docs/math.md §5: ``A(x)·y + C(x)`` gives ``(t, -C(t)/A(t))``, and the
     same with the roles swapped), without Singular; else ``paraPlaneCurve`` over ``QQ``, whose
     field is made real when the curve has real points (see the module docstring). Raises
     :class:`AnalysisError` with the reason when there is none: the curve is reducible or of
@@ -486,7 +481,7 @@ def _fractions(
 def is_on_curve(
     F: Poly, x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr] = ()
 ) -> bool:
-    """True when ``F(x(t), y(t)) = 0`` exactly in ``QQ(generators)[t]`` (MATH.md §6: every
+    """True when ``F(x(t), y(t)) = 0`` exactly in ``QQ(generators)[t]`` (docs/math.md §6: every
     parameterization is checked by substitution)."""
     (p1, q1), (p2, q2) = _fractions(x, y, t, generators)
     return _vanishes(F, p1, q1, p2, q2)
@@ -499,83 +494,3 @@ def is_proper(
     (the degree criterion of :func:`_proper_degree`)."""
     (p1, q1), (p2, q2) = _fractions(x, y, t, generators)
     return _proper_degree(F, p1, q1, p2, q2)
-
-
-# --- real roots -----------------------------------------------------------------------------
-
-
-def count_real_roots(h: Poly) -> int:
-    """The number of distinct real roots of a univariate ``h`` with coefficients in ``K ⊂ R``
-    (for the Corollary of the paper: ``r̂·q̂`` has at most two real roots iff ``X`` is rational).
-
-    Sturm's theorem on the square-free part over ``K``; the signs of the leading coefficients
-    (elements of ``K``) come from arb balls refined until they exclude 0, so the answer is
-    exact.
-    """
-    used = {i for m in h.itermonoms() for i, e in enumerate(m) if e}
-    if len(used) > 1:
-        raise ValueError("count_real_roots needs a univariate polynomial")
-    if not h:
-        raise ValueError("the zero polynomial has infinitely many roots")
-    K = h.ring.domain
-    i = used.pop() if used else 0
-    degree = max(m[i] for m in h.itermonoms())
-    dense = [K.zero] * (degree + 1)
-    for m, c in h.items():
-        dense[degree - m[i]] = c
-    f = dense if K.is_Field else [K.get_field().convert(c, K) for c in dense]
-    field = K if K.is_Field else K.get_field()
-    chain = dup_sturm(dup_sqf_part(f, field), field)
-    at_plus = [_sign(field, p[0]) for p in chain]
-    at_minus = [s * (-1) ** (len(p) - 1) for s, p in zip(at_plus, chain, strict=True)]
-    return _sign_changes(at_minus) - _sign_changes(at_plus)
-
-
-def _sign_changes(signs: Sequence[int]) -> int:
-    nonzero = [s for s in signs if s]
-    return sum(1 for u, v in zip(nonzero, nonzero[1:]) if u != v)
-
-
-def _sign(K: Domain, c: object) -> int:
-    """The sign of ``c ∈ K``: exact over ``QQ``; over ``QQ(θ)``, ``c(θ)`` in ball arithmetic
-    with rising precision until the ball excludes 0 (it does, as ``c ≠ 0``)."""
-    if not c:
-        return 0
-    if is_rational_field(K):
-        return 1 if c > 0 else -1
-    coeffs = [flint.fmpq(int(QQ.numer(q)), int(QQ.denom(q))) for q in map(QQ.convert, c.to_list())]
-    prec = 64
-    while prec <= 1 << 16:
-        with flint.ctx.workprec(prec):
-            theta = _arb(K.ext.as_expr())
-            value = flint.arb(0)
-            for q in coeffs:
-                value = value * theta + q
-            if value > 0:
-                return 1
-            if value < 0:
-                return -1
-        prec *= 4
-    raise AnalysisError(f"could not decide the sign of {to_expr(K, c)}")
-
-
-def _arb(expr: sympy.Expr) -> flint.arb:
-    """A ball containing the real radical expression ``expr`` (rationals, ``+``, ``*``, powers
-    with integer or half-integer exponents), at the current working precision."""
-    if expr.is_Rational:
-        return flint.arb(flint.fmpq(int(expr.p), int(expr.q)))
-    if expr.is_Add:
-        return sum((_arb(e) for e in expr.args), flint.arb(0))
-    if expr.is_Mul:
-        value = flint.arb(1)
-        for e in expr.args:
-            value *= _arb(e)
-        return value
-    if expr.is_Pow and expr.exp.is_Rational and expr.exp.q in (1, 2):
-        base = _arb(expr.base)
-        if expr.exp.q == 2:
-            if not base > 0:
-                raise AnalysisError(f"{expr} is not a real number")
-            base = base.sqrt()
-        return base ** int(expr.exp.p)
-    raise AnalysisError(f"cannot evaluate {expr} as a real algebraic number")

@@ -1,4 +1,4 @@
-"""The paper's Algorithm II (Recognition of SOR II), with the iteration bound of MATH.md §1.
+"""The paper's Algorithm II (Recognition of SOR II), with the iteration bound of docs/math.md §1.
 
 Choose points ``p_i`` anywhere in space (by Theorem "SORs are onions" they need not lie on the
 surface), take the Plücker coordinates of the normals ``N_i = (∇f(p_i) : p_i × ∇f(p_i))`` of the

@@ -1,15 +1,15 @@
-"""Rational parameterizations of a surface of revolution, each checked by substitution (MATH.md §6).
+"""Rational parameterizations of a surface of revolution, each checked by substitution (docs/math.md §6).
 
 A *section* of ``X`` is a rational curve meeting every circle of latitude (the paper's
 Section 3). In the ``K``-rational axis frame ``(c, a, u, w = a × u)`` a section is
 
     c + φ(t)·a + ρ₁(t)·u + ρ₂(t)·w,
 
-and rotating it with the ``K``-rational circle of MATH.md §3 — ``u ↦ t₁u + t₂w``,
+and rotating it with the ``K``-rational circle of docs/math.md §3 — ``u ↦ t₁u + t₂w``,
 ``w ↦ -n·t₂u + t₁w`` with ``n = |a|²`` and ``t₁² + n·t₂² = 1`` — parameterizes ``X`` without a
 square root of ``|a|²``. Sections come from a rational profile (or profile component) or from
 the tubular surface ``T`` when ``genus(P²) = 0``; on ``T`` a real section needs
-``h = A² + n·B²`` over ``QQ`` (a norm from ``QQ(√-n)``, MATH.md §6 with ``i`` replaced by
+``h = A² + n·B²`` over ``QQ`` (a norm from ``QQ(√-n)``, docs/math.md §6 with ``i`` replaced by
 ``√-n``), otherwise ``B = (h - 1)/(2√-n)`` gives the complex one.
 
 Every parameterization is substituted back into ``f`` and must reduce to 0 exactly.
@@ -67,7 +67,7 @@ class SurfaceMap:
 
 
 def sweep(section: Section, frame: AxisFrame, K: Domain) -> SurfaceMap:
-    """Rotate ``section`` about the axis with the ``K``-rational circle (MATH.md §3):
+    """Rotate ``section`` about the axis with the ``K``-rational circle (docs/math.md §3):
     ``u ↦ t₁u + t₂w``, ``w ↦ -n·t₂u + t₁w``, ``t₁ = (1 - nσ²)/(1 + nσ²)``, ``t₂ = 2σ/(1 + nσ²)``."""
     vectors = [frame.point, frame.direction, frame.normal, frame.binormal]
     exprs = [[to_expr(K, c) for c in v] for v in vectors]
@@ -123,7 +123,7 @@ def _assemble(
 @dataclass(frozen=True)
 class NormFactorization:
     """``h = (A² + n·B²)·u²·q``: ``A + √-n·B`` collects the factors that split over ``QQ(√-n)``,
-    ``u`` the square part, and ``q`` (with the leading coefficient) the rest (MATH.md §6)."""
+    ``u`` the square part, and ``q`` (with the leading coefficient) the rest (docs/math.md §6)."""
 
     A: sympy.Expr
     B: sympy.Expr
@@ -178,7 +178,7 @@ def _times(A: sympy.Expr, B: sympy.Expr, C: sympy.Expr, D: sympy.Expr, n: sympy.
 
 def quadric_section(h: sympy.Expr, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None:
     """A proper real parameterization ``(x, Y, Z)(s, t)`` of ``Y² + n·Z² = h(x)`` when
-    ``h = N·u²·q`` with ``deg q ≤ 2`` and ``q`` positive somewhere (MATH.md §6): the quadric
+    ``h = N·u²·q`` with ``deg q ≤ 2`` and ``q`` positive somewhere (docs/math.md §6): the quadric
     ``y'² + n·z'² = q(x)`` is projected stereographically from a real point (a real root of
     ``q``, possibly in a real quadratic field, or a rational point found by a small search).
     """

@@ -1,7 +1,7 @@
 """Exact polynomials over the coefficient field K: one facade over sympy and python-flint.
 
 The engine's canonical polynomial is sympy's sparse ``PolyElement`` over a domain ``K``: ``QQ``
-or a real algebraic field ``QQ(sqrt(n1), sqrt(n2), ...)`` (MATH.md: ``K ⊂ R``). Algorithm choice
+or a real algebraic field ``QQ(sqrt(n1), sqrt(n2), ...)`` (docs/math.md: ``K ⊂ R``). Algorithm choice
 is made here and nowhere else: over ``QQ`` the heavy operations (composition, derivatives,
 factorization) convert to python-flint's ``fmpq_mpoly``, which is orders of magnitude faster
 than pure Python; over an algebraic field they stay in sympy, whose ``ANP`` arithmetic is exact.
@@ -123,7 +123,7 @@ def compose(f: Poly, images: Sequence[Poly]) -> Poly:
     """``f(images[0], images[1], ...)``: all images in one common target ring.
 
     This is the workhorse of the profile ``p̃(s, r) = f(c + s·a + r·u)`` and of every identity
-    check (MATH.md §3).
+    check (docs/math.md §3).
     """
     target = next(h.ring for h in images if isinstance(h, PolyElement))
     # A constant image may arrive as a bare coefficient (``c + 0·s`` is ``c`` in sympy).

@@ -1,4 +1,4 @@
-"""The profile curve and the axis frame, all over K (MATH.md §3).
+"""The profile curve and the axis frame, all over K (docs/math.md §3).
 
 With ``c`` a point of the axis, ``a`` its direction and ``u ⟂ a`` (all in ``K³``),
 
@@ -133,7 +133,7 @@ def orthonormal_profile(p: Poly, frame: AxisFrame) -> Poly:
 
 
 def profile_curve(f: Poly, point: Vector, direction: Vector) -> ProfileCurve:
-    """The profile of ``f`` about the axis through ``point`` with ``direction`` (MATH.md §3)."""
+    """The profile of ``f`` about the axis through ``point`` with ``direction`` (docs/math.md §3)."""
     K = f.ring.domain
     frame = axis_frame(point, direction, K)
     raw = profile_polynomial(f, frame)

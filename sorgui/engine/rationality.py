@@ -1,4 +1,4 @@
-"""Rationality of a surface of revolution: Table 1 of the paper and the tubular surface (MATH.md §5).
+"""Rationality of a surface of revolution: Table 1 of the paper and the tubular surface (docs/math.md §5).
 
 From the ``K``-rational profile ``P: p̃(s, r) = 0`` and its square ``P²: p̃²(s, w) = 0``:
 
@@ -40,6 +40,7 @@ from .parametrization import (
 )
 from .polys import Poly, poly_ring, to_expr
 from .profile import ProfileCurve
+from .realroots import count_real_roots
 from .report import Parametrization, Rationality
 
 UNSUPPORTED = (BasePolynomialError, NotImplementedError)
@@ -89,7 +90,7 @@ def count_real_roots_of(h: sympy.Expr, generators: tuple[sympy.Expr, ...]) -> in
     """The number of real roots of ``h`` (coefficients in ``QQ`` or a real field), exactly."""
     K = QQ.algebraic_field(*generators) if generators else QQ
     R = poly_ring(("t",), K)
-    return curves.count_real_roots(R.from_expr(h) if generators else R(sympy.Poly(h, T).as_expr()))
+    return count_real_roots(R.from_expr(h) if generators else R(sympy.Poly(h, T).as_expr()))
 
 
 def has_real_surface(h: sympy.Expr, real_roots: int) -> bool:
@@ -106,7 +107,7 @@ def analyze_rationality(
 ) -> tuple[Rationality, TubularSurface | None]:
     """The rationality facts of a surface of revolution with the given profile."""
     if all(m == (0, 1) for m in profile.square.itermonoms()):
-        # P² = c·w: X is y² + z² = 0 in the axis frame, two complex planes (MATH.md §4).
+        # P² = c·w: X is y² + z² = 0 in the axis frame, two complex planes (docs/math.md §4).
         return Rationality(status="not applicable: X is a pair of complex planes through the axis "
                                   "(not absolutely irreducible)"), None
     try:
@@ -201,7 +202,7 @@ def parametrizations(
     timeout: float = 60.0,
     cancel: threading.Event | None = None,
 ) -> tuple[tuple[Parametrization, ...], tuple[str, ...]]:
-    """Every parameterization MATH.md §6 provides, each verified; and notes on those that could
+    """Every parameterization docs/math.md §6 provides, each verified; and notes on those that could
     not be built."""
     found: list[Parametrization] = []
     notes: list[str] = []
@@ -232,7 +233,7 @@ def parametrizations(
 def _tubular_parametrization(
     f: Poly, profile: ProfileCurve, tube: TubularSurface, n: sympy.Expr, K: Domain, rationality: Rationality
 ) -> tuple[Parametrization | None, str]:
-    """The parameterization through ``T`` (MATH.md §6): real when ``h = A² + n·B²``, or when the
+    """The parameterization through ``T`` (docs/math.md §6): real when ``h = A² + n·B²``, or when the
     rest after the norm part is of degree ≤ 2 (a quadric, projected stereographically); the
     complex one otherwise. Returns it and a note on what could not be done."""
     frame = profile.frame

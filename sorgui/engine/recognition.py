@@ -1,4 +1,4 @@
-"""Recognition of one polynomial: symmetry, axis, profile, and its factors (MATH.md §2–§4).
+"""Recognition of one polynomial: symmetry, axis, profile, and its factors (docs/math.md §2–§4).
 
 Two interchangeable methods find the symmetry: ``"symmetry"`` (the algebra ``L`` of (★),
 deterministic, the default) and ``"paper"`` (the paper's Algorithm II with random points). Both
@@ -38,7 +38,7 @@ def _triple(K: Domain, v: Vector | None) -> tuple[str, str, str] | None:
 
 
 def axis_report(point: Vector, direction: Vector, K: Domain) -> Axis:
-    """The axis as point, direction and Plücker coordinates ``(v : p × v)`` (MATH.md §1 erratum)."""
+    """The axis as point, direction and Plücker coordinates ``(v : p × v)`` (docs/math.md §1 erratum)."""
     plucker = primitive_vector(tuple(direction) + cross(point, direction), K)
     return Axis(
         point=_triple(K, point),  # type: ignore[arg-type]

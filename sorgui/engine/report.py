@@ -25,7 +25,7 @@ class Axis:
 
 @dataclass(frozen=True)
 class Profile:
-    """The profile curve (MATH.md §3).
+    """The profile curve (docs/math.md §3).
 
     ``polynomial`` is the orthonormal profile ``p(x, y)`` (x along the axis, y the distance to
     it); ``square`` is ``P²``, i.e. ``p`` with ``y²`` replaced by ``y``. ``rational`` is the
@@ -47,7 +47,7 @@ class Profile:
 
 @dataclass(frozen=True)
 class Recognition:
-    """What the symmetry algebra says about one polynomial (MATH.md §2)."""
+    """What the symmetry algebra says about one polynomial (docs/math.md §2)."""
 
     polynomial: str
     degree: int
@@ -73,7 +73,7 @@ class Factor:
 
 @dataclass(frozen=True)
 class Rationality:
-    """The rationality analysis of MATH.md §5 (the paper's Section 3 and Table 1).
+    """The rationality analysis of docs/math.md §5 (the paper's Section 3 and Table 1).
 
     ``None`` in a field means "not computed" or "undecided"; ``status`` says which, and
     ``notes`` explain limits met on the way (a time limit, a field Singular refuses).

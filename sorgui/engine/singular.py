@@ -2,7 +2,7 @@
 and sorgui's own Singular procedures (:data:`ABSOLUTE_FACTOR_PROCS`,
 :data:`PARAMETRIZATION_PROCS`), which :mod:`.curves` drives.
 
-Singular runs as a subprocess (MATH.md §5: "run Singular as a subprocess with a time limit so
+Singular runs as a subprocess (docs/math.md §5: "run Singular as a subprocess with a time limit so
 that a long computation can be cancelled"). A script reports its results with
 :func:`emit`, which prints each value between markers unique to this Python process; only the
 text between the markers is read, so banners, library chatter and echoed input never reach a

@@ -1,4 +1,4 @@
-"""The symmetry algebra ``L`` of ``f`` and the classification of surfaces by it (MATH.md §2).
+"""The symmetry algebra ``L`` of ``f`` and the classification of surfaces by it (docs/math.md §2).
 
 ``L`` is the solution space of the identity
 
@@ -115,7 +115,7 @@ def satisfies_identity(f: Poly, motion: Motion) -> bool:
 
 
 def classify(basis: Sequence[Motion], K: Domain) -> Symmetry:
-    """Classify a symmetry algebra by its dimension and structure (the table of MATH.md §2)."""
+    """Classify a symmetry algebra by its dimension and structure (the table of docs/math.md §2)."""
     basis = tuple(basis)
     dim = len(basis)
     if dim == 0:

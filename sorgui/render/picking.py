@@ -1,7 +1,7 @@
 """What the viewport shows about a picked point: ``f``, ``∇f``, the normal line, the axis test.
 
 The paper's recognition rests on one fact: on a surface of revolution every normal line meets
-the axis (Section 2; MATH.md §2 turns it into the identity ``∇f(p)·(ā + a × p) ≡ 0``). The
+the axis (Section 2; docs/math.md §2 turns it into the identity ``∇f(p)·(ā + a × p) ≡ 0``). The
 viewport lets the user *see* it: pick a point, draw its normal and its latitude circle, and
 report how far the normal passes from the axis. This is floating-point display; the exact
 answer is the engine's.
@@ -108,7 +108,7 @@ def normal_meets_axis(
     """Does the normal line ``point + t·normal_direction`` meet the axis ``c + t·a``?
 
     Decides on ``skew = |(c - p)·(n̂ × â)|``, which vanishes when the lines meet or are
-    parallel (MATH.md §2: ``∇f(p)·(ā + a × p) = 0``, normalised), against
+    parallel (docs/math.md §2: ``∇f(p)·(ā + a × p) = 0``, normalised), against
     ``rel_tol · max(|p - c|, |p|, |c|)``: the size of the numbers the computation loses
     digits on. ``ValueError`` for a zero direction.
     """
@@ -134,7 +134,7 @@ def axis_coordinates(
     point: Vector, axis_point: Vector, axis_direction: Vector
 ) -> tuple[float, float]:
     """``(height, radius)`` of ``point``: signed position along the unit axis from
-    ``axis_point``, and distance from the axis (the orthonormal profile frame of MATH.md §3)."""
+    ``axis_point``, and distance from the axis (the orthonormal profile frame of docs/math.md §3)."""
     p = as_vector(point, "point")
     foot = foot_on_line(p, axis_point, axis_direction)
     a = unit(as_vector(axis_direction, "axis direction"))

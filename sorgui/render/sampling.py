@@ -2,7 +2,7 @@
 
 The render layer never sees the engine's exact polynomials. A worker hands it plain data,
 ``terms = [((i, j, k), c), ...]`` meaning ``Σ c·x^i·y^j·z^k`` (or ``((i, j), c)`` for the
-profile ``p̃(s, r)`` of MATH.md §3), and this module evaluates it quickly in ``float64``.
+profile ``p̃(s, r)`` of docs/math.md §3), and this module evaluates it quickly in ``float64``.
 
 Two ideas keep it fast and safe:
 
@@ -317,7 +317,7 @@ def profile_terms(
     direction: Sequence[float],
     u: Sequence[float],
 ) -> list[tuple[tuple[int, int], float]]:
-    """Floating-point ``p̃(s, r) = f(c + s·a + r·u)`` (MATH.md §3) as bivariate terms.
+    """Floating-point ``p̃(s, r) = f(c + s·a + r·u)`` (docs/math.md §3) as bivariate terms.
 
     The engine computes ``p̃`` exactly; this float version serves previews and tests. Each of
     ``x, y, z`` is an affine form in ``(s, r)``; its powers are expanded by the binomial

@@ -2,7 +2,7 @@
 
 Each builder returns a frozen dataclass of ``numpy`` arrays that a worker may compute and hand
 to the GUI thread, which calls ``to_polydata()`` (or :func:`to_polydata`) to get the
-``pyvista`` object. Names follow MATH.md: the axis is the line ``c + t·a``; the profile
+``pyvista`` object. Names follow docs/math.md: the axis is the line ``c + t·a``; the profile
 ``p̃(s, r)`` lives in the plane of the points ``c + s·a + r·u`` with ``u ⟂ a``; neither ``a``
 nor ``u`` needs to be a unit vector (the engine keeps them ``K``-rational).
 """

@@ -1,19 +1,16 @@
-"""Plane curves with the real Singular: absolute factors, genus, parameterizations, real roots.
+"""Plane curves with the real Singular: absolute factors, genus, parameterizations.
 
 Known data: the paper's Appendix Example 2 (``P`` of genus 1, ``P²`` of genus 0 with the
-corrected constant ``-400``, MATH.md §1), the cone's two lines, ``x² + y²`` (two complex
+corrected constant ``-400``, docs/math.md §1), the cone's two lines, ``x² + y²`` (two complex
 lines), ``x² + y² = 3`` (real points, no rational point).
 """
 
 from __future__ import annotations
 
 import threading
-from collections.abc import Sequence
 
 import pytest
 import sympy
-from hypothesis import given, settings
-from hypothesis import strategies as st
 from sympy.polys.domains import QQ
 
 from sorgui.engine import curves
@@ -23,7 +20,6 @@ from sorgui.engine.curves import (
     absolute_factorization,
     analyze_curve,
     analyze_curves,
-    count_real_roots,
     genus,
     is_on_curve,
     is_proper,
@@ -89,7 +85,7 @@ def test_genus_of_known_curves(F: Poly, expected: int) -> None:
 @pytest.mark.parametrize(
     ("F", "expected"),
     [
-        (v**2 - SQRT2 * u**3 - 1, 1),  # MATH.md §5: G = 1, g = 1
+        (v**2 - SQRT2 * u**3 - 1, 1),  # docs/math.md §5: G = 1, g = 1
         (v**2 - SQRT2 * u**5 - 1, 2),
         (u**2 + v**2 - SQRT2, 0),
         (SQRT2 * (u**2 + v**2 - 3), 0),  # a rational multiple goes the QQ way
@@ -238,7 +234,7 @@ def test_parametrize_p_square_with_singular(known_genus_zero: bool) -> None:
 
 
 def test_paraplanecurve_alone_picks_the_gaussian_field_for_a_real_circle() -> None:
-    """What MATH.md §5 warns about: x² + y² = 3z² comes back over QQ(i)."""
+    """What docs/math.md §5 warns about: x² + y² = 3z² comes back over QQ(i)."""
     found = curves.run_script(
         "ring q = 0,(x,y,z),dp;\n"
         "def P = paraPlaneCurve(x^2+y^2-3*z^2); setring P; short = 0;\n"
@@ -336,61 +332,3 @@ def test_improper_parametrization_is_detected() -> None:
     assert is_on_curve(F, T**2, T**4, T)
     assert not is_proper(F, T**2, T**4, T)
     assert not is_on_curve(F, T, T**3, T)
-
-
-# --- real roots -------------------------------------------------------------------------------
-
-Rt = poly_ring(("t",), QQ)
-(t,) = Rt.gens
-
-
-@pytest.mark.parametrize(
-    ("h", "expected"),
-    [
-        (t**4 + 4 * t**3 + 6 * t**2 + 4 * t + 5, 0),  # the paper's tubular surface
-        (t**3 + 3 * t**2 - 2 * t, 3),  # MATH.md §7: two components
-        ((t - 1) ** 3 * (t**2 + 1), 1),
-        (t**2 - 2, 2),
-        (Rt(5), 0),
-    ],
-)
-def test_count_real_roots_over_qq(h: Poly, expected: int) -> None:
-    assert count_real_roots(h) == expected
-
-
-def test_count_real_roots_over_a_multiquadratic_field() -> None:
-    K = number_field((2, 3))
-    (s,) = poly_ring(("s",), K).gens
-    r2, r3 = K.from_sympy(sympy.sqrt(2)), K.from_sympy(sympy.sqrt(3))
-    assert count_real_roots((s - r2) * (s - r3) * (s**2 - r3 + r2)) == 4
-    assert count_real_roots((s - r2) * (s - r3) * (s**2 + r3 - r2)) == 2
-    assert count_real_roots(s**2 - (5 - 2 * r2 * r3)) == 2  # 5 - 2√6 ≈ 0.1 > 0
-    assert count_real_roots(s**2 + (2 * r2 * r3 - 5)) == 2
-    assert count_real_roots((s**2 - 2) * (s - r2)) == 2  # a double root counts once
-
-
-def test_count_real_roots_rejects_bad_input() -> None:
-    with pytest.raises(ValueError):
-        count_real_roots(x * y - 1)
-    with pytest.raises(ValueError):
-        count_real_roots(Rt.zero)
-
-
-def linear_and_quadratic(factors: Sequence[tuple[int, int, int]]) -> Poly:
-    h = Rt.one
-    for a, b, c in factors:
-        h *= a * t**2 + b * t + c if a else b * t + c or t
-    return h
-
-
-@settings(max_examples=80, deadline=None)
-@given(
-    st.lists(
-        st.tuples(st.integers(-3, 3), st.integers(-5, 5), st.integers(-5, 5)), min_size=1, max_size=5
-    )
-)
-def test_count_real_roots_agrees_with_sympy(factors: list[tuple[int, int, int]]) -> None:
-    h = linear_and_quadratic(factors)
-    if h.is_ground:
-        return
-    assert count_real_roots(h) == len(set(sympy.Poly(h.as_expr(), T).real_roots()))

@@ -1,4 +1,4 @@
-"""Rationality (MATH.md §5–§6, the paper's Section 3 and Appendix Example 2), with real Singular."""
+"""Rationality (docs/math.md §5–§6, the paper's Section 3 and Appendix Example 2), with real Singular."""
 
 from __future__ import annotations
 
@@ -34,7 +34,7 @@ def test_paper_example_2(paper_example_1) -> None:
     rat = result.rationality
     assert (rat.genus_profile, rat.genus_profile_square, rat.table_row) == (1, 0, 4)
     assert rat.profile_reducible is False and rat.complex_rational is True
-    # MATH.md §1: P² has the constant -400 (the paper prints +400).
+    # docs/math.md §1: P² has the constant -400 (the paper prints +400).
     corrected = -400 - 104 * x**2 - x**4 + 200 * y - 48 * x * y + 26 * x**2 * y - 29 * y**2 + 12 * x * y**2 + y**3
     square = sympy.S(result.recognition.profile.square)
     assert sympy.expand(square - corrected) == 0 or sympy.expand(square - corrected.subs(x, -x)) == 0
@@ -187,7 +187,7 @@ def test_a_wrong_parametrization_is_never_reported(monkeypatch, degree_limit: in
     ("y^2 + z^2 = (x^2 + 1)(x^2 - 2)", 4, "QQ(sqrt(2))"),
 ])
 def test_sign_changing_h_gets_a_real_proper_parametrization(equation: str, row: int, field: str) -> None:
-    """h = N·u²·q with deg q ≤ 2: the quadric is projected from a real point (MATH.md §6)."""
+    """h = N·u²·q with deg q ≤ 2: the quadric is projected from a real point (docs/math.md §6)."""
     result = analyze(equation)
     assert result.rationality.table_row == row and result.rationality.real_rational is True
     stereographic = [p for p in result.parametrizations if "stereographic" in p.method]
@@ -219,7 +219,7 @@ def test_missing_singular_is_reported_not_raised(monkeypatch) -> None:
 
 
 def test_complex_plane_pair_is_not_analysed() -> None:
-    """x² + y² = 0 has P² = w: two complex planes through the axis (MATH.md §4)."""
+    """x² + y² = 0 has P² = w: two complex planes through the axis (docs/math.md §4)."""
     result = analyze("x^2 + y^2")
     assert result.recognition.symmetry == "cylinder_of_revolution"
     assert result.rationality.status.startswith("not applicable") and result.parametrizations == ()

@@ -1,4 +1,4 @@
-"""The symmetry algebra and the paper's Algorithm II on one table of known surfaces (MATH.md §2, §7)."""
+"""The symmetry algebra and the paper's Algorithm II on one table of known surfaces (docs/math.md §2, §7)."""
 
 from __future__ import annotations
 
@@ -79,5 +79,5 @@ def test_paper_example_axis_and_profile(paper_example_1):
     paper_p = -400 - 104 * X**2 - X**4 + 200 * Y**2 - 48 * X * Y**2 + 26 * X**2 * Y**2 - 29 * Y**4 + 12 * X * Y**4 + Y**6
     p = profile.orthonormal.as_expr()
     assert sympy.expand(p - paper_p) == 0 or sympy.expand(p - paper_p.subs(X, -X)) == 0
-    # MATH.md §1 erratum: with (v : p × v) the Plücker coordinates are (4:3:0:0:0:5).
+    # docs/math.md §1 erratum: with (v : p × v) the Plücker coordinates are (4:3:0:0:0:5).
     assert report.axis.plucker == ("4", "3", "0", "0", "0", "5")

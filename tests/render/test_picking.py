@@ -1,4 +1,4 @@
-"""Picking: f, ∇f, the normal line and whether it meets an axis (MATH.md §2)."""
+"""Picking: f, ∇f, the normal line and whether it meets an axis (docs/math.md §2)."""
 
 from __future__ import annotations
 

@@ -133,7 +133,7 @@ def test_profile_terms_agree_with_substitution_at_random_points():
 
 
 def test_profile_terms_of_paper_example_1_match_math_md():
-    # MATH.md §7: c = (3/5, -4/5, 0), a = (4, 3, 0)/5, u = (0, 0, 1) gives
+    # docs/math.md §7: c = (3/5, -4/5, 0), a = (4, 3, 0)/5, u = (0, 0, 1) gives
     # 15625·(r⁶ + 12r⁴s - 29r⁴ + 26r²s² - 48r²s + 200r² - s⁴ - 104s² - 400).
     terms = corpus_terms("paper-example-1")
     got = dict(profile_terms(terms, (0.6, -0.8, 0), (0.8, 0.6, 0), (0, 0, 1)))
