@@ -23,17 +23,34 @@ from .recognition import factor_reports, recognize
 from .report import Analysis, Parametrization, Rationality
 
 ProgressCallback = Callable[[str], None]
+PartialCallback = Callable[[Analysis], None]
 
 STAGES = ("parse", "recognition", "factors", "rationality", "parametrizations")
 
 
 class StageClock:
-    """Times named stages, reports them to ``progress`` and stops at a set ``cancel`` event."""
+    """Times named stages, reports them to ``progress`` and stops at a set ``cancel`` event.
 
-    def __init__(self, progress: ProgressCallback | None, cancel: threading.Event | None) -> None:
+    ``partial`` is given the :class:`Analysis` known so far whenever a group of stages is done
+    (after the factors, then at the end), so that a window can show the verdict and the axis
+    while Singular still runs.
+    """
+
+    def __init__(
+        self,
+        progress: ProgressCallback | None,
+        cancel: threading.Event | None,
+        partial: PartialCallback | None = None,
+    ) -> None:
         self.progress = progress
         self.cancel = cancel
+        self.partial = partial
         self.timings: list[tuple[str, float]] = []
+
+    def publish(self, analysis: Analysis) -> None:
+        """Hand the analysis known so far to ``partial`` (if any)."""
+        if self.partial is not None:
+            self.partial(analysis)
 
     def check(self) -> None:
         """Raise :class:`Cancelled` when the caller asked to stop."""
@@ -59,13 +76,15 @@ def analyze(
     singular_timeout: float = 60.0,
     cancel: threading.Event | None = None,
     progress: ProgressCallback | None = None,
+    partial: PartialCallback | None = None,
 ) -> Analysis:
     """Analyse the equation ``text`` exactly and return the immutable :class:`Analysis`.
 
+    ``partial`` receives the results known so far as they arrive (see :class:`StageClock`).
     Raises :class:`~sorgui.engine.errors.ParseError` for bad input, :class:`Cancelled` when
     ``cancel`` is set; every other engine failure is a :class:`SorguiError` too.
     """
-    clock = StageClock(progress, cancel)
+    clock = StageClock(progress, cancel, partial)
     with clock.stage("parse"):
         parsed = parse_polynomial(text)
     return analyze_polynomial(
@@ -94,8 +113,23 @@ def analyze_polynomial(
         recognition, symmetry, profile = recognize(f, method)
     with clock.stage("factors"):
         factors, distinct = factor_reports(f, recognition, method)
+
+    def result(rationality: Rationality | None, found: tuple[Parametrization, ...]) -> Analysis:
+        return Analysis(
+            input=poly_str(f) if text is None else text,
+            field=field_name(f.ring.domain),
+            method=method,
+            recognition=recognition,
+            factors=factors,
+            squarefree=poly_str(_product(distinct)),
+            rationality=rationality,
+            parametrizations=found,
+            timings=tuple(clock.timings),
+        )
+
     rationality = None
     found: tuple[Parametrization, ...] = ()
+    clock.publish(result(rationality, found))
     if not recognition_only and profile is not None:
         if len(distinct) > 1:
             rationality = Rationality(status="not analysed: X is reducible over K; see its factors")
@@ -105,21 +139,12 @@ def analyze_polynomial(
                 profile = profile_curve(g, symmetry.axis_point, symmetry.axis_direction)
             with clock.stage("rationality"):
                 rationality, tube = analyze_rationality(profile, timeout=singular_timeout, cancel=cancel)
+            clock.publish(result(rationality, found))
             with clock.stage("parametrizations"):
                 found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)
             rationality = replace(rationality, notes=rationality.notes + notes)
     clock.check()
-    return Analysis(
-        input=poly_str(f) if text is None else text,
-        field=field_name(f.ring.domain),
-        method=method,
-        recognition=recognition,
-        factors=factors,
-        squarefree=poly_str(_product(distinct)),
-        rationality=rationality,
-        parametrizations=found,
-        timings=tuple(clock.timings),
-    )
+    return result(rationality, found)
 
 
 def _product(polys: list[Poly]) -> Poly:
