@@ -36,8 +36,6 @@ from sympy.polys.domains.domain import Domain
 from .errors import AnalysisError, SingularError
 from .polys import Poly, field_generators, is_rational_field, poly_ring, to_expr, total_degree
 from .singular import (
-    ABSOLUTE_FACTOR_PROCS,
-    PARAMETRIZATION_PROCS,
     minpoly_to_singular,
     parse_int,
     parse_intvec,
@@ -150,7 +148,7 @@ def analyze_curves(
     """Absolute factorization and genus of several curves in ONE Singular run (e.g. ``P`` and
     ``P²`` of the paper); the genus is ``None`` unless the curve is absolutely irreducible."""
     plans = [_Plan(F, f"c{i}", with_genus) for i, F in enumerate(curves)]
-    script = ABSOLUTE_FACTOR_PROCS + "".join(p.code for p in plans)
+    script = "".join(p.code for p in plans)
     found = run_script(script, timeout=timeout, cancel=cancel)
     return tuple(p.read(found) for p in plans)
 
@@ -393,8 +391,7 @@ def _para_plane_curve(
     already knows the curve is absolutely irreducible of genus 0), then paraPlaneCurve's PARA
     dehomogenised at ``s = 1``, over ``QQ`` or the quadratic field of its ``minpoly``."""
     script = (
-        PARAMETRIZATION_PROCS
-        + "ring sorguiP = 0,(x,y),dp;\n"
+        "ring sorguiP = 0,(x,y),dp;\n"
         + f"sorguiParaCurve({poly_to_singular(F, ['x', 'y'])}, {int(checked)});\n"
     )
     found = run_script(script, timeout=timeout, cancel=cancel)

@@ -23,6 +23,10 @@ class ParseError(SorguiError):
         return f"{self.message} (at character {self.position + 1})"
 
 
+class ExpressionError(SorguiError, ValueError):
+    """A machine-written formula (Singular's answer, an engine result string) that cannot be read."""
+
+
 class AnalysisError(SorguiError):
     """The input parsed, but the analysis cannot proceed (e.g. a degenerate surface)."""
 

@@ -1,43 +1,55 @@
-"""All Singular code of sorgui: find the executable, run scripts, send and read polynomials,
-and sorgui's own Singular procedures (:data:`ABSOLUTE_FACTOR_PROCS`,
-:data:`PARAMETRIZATION_PROCS`), which :mod:`.curves` drives.
+"""All Singular code of sorgui: find the executable, run scripts, send and read polynomials.
 
-Singular runs as a subprocess (docs/math.md §5: "run Singular as a subprocess with a time limit so
-that a long computation can be cancelled"). A script reports its results with
-:func:`emit`, which prints each value between markers unique to this Python process; only the
-text between the markers is read, so banners, library chatter and echoed input never reach a
-parser. Errors (Singular's ``? ...`` lines) raise :class:`SingularError`.
+sorgui's own Singular procedures live in the library ``sorgui.lib`` beside this module
+(shipped as package data); every script loads it, and :mod:`.curves` calls its procedures.
+
+Singular runs as a subprocess (docs/math.md §5: "run Singular as a subprocess with a time limit
+so that a long computation can be cancelled"). It never outlives sorgui: it leads a process
+group that is killed on a time limit, a cancel or any exception (``KeyboardInterrupt``, or the
+command line's handlers of ``SIGTERM`` and ``SIGHUP``), and on Linux the kernel kills it when
+the thread that started it dies, even by ``kill -9`` (``PR_SET_PDEATHSIG``); a CPU-time limit
+(``RLIMIT_CPU``) a little above the wall-clock limit bounds it on every POSIX system.
+
+A script reports its results with :func:`emit`, which prints each value between markers unique
+to this Python process; only the text between the markers is read, so banners, library
+chatter and echoed input never reach a parser. Errors (Singular's ``? ...`` lines) raise
+:class:`SingularError`.
 
 Polynomials go to Singular as strings with integer coefficients (:func:`poly_to_singular`;
 a coefficient in ``K = QQ(θ)`` becomes a polynomial in the ring parameter ``a`` with
 ``minpoly = m(a)``, :func:`minpoly_to_singular`), and come back through
-:func:`parse_singular`, a small recursive-descent parser of Singular's ``short=0`` output
-(numbers, names, ``+ - * / ^`` and parentheses). Text from the subprocess is never evaluated.
+:func:`parse_singular`, the reader of :mod:`.expressions` restricted to Singular's ``short=0``
+output. Text from the subprocess is never evaluated.
 """
 
 from __future__ import annotations
 
+import ctypes
 import importlib.metadata
+import importlib.resources
 import importlib.util
 import os
 import re
+import resource
 import secrets
 import shutil
 import signal
 import subprocess
+import sys
 import tempfile
 import threading
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from functools import lru_cache, reduce
-from math import lcm
+from math import ceil, lcm
 from pathlib import Path
 
 import sympy
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
-from .errors import Cancelled, SingularError, SingularNotFound, SingularTimeout
+from .errors import Cancelled, ExpressionError, SingularError, SingularNotFound, SingularTimeout
+from .expressions import read, singular_syntax
 from .polys import Poly, is_rational_field
 
 ENV_VARIABLE = "SORGUI_SINGULAR"
@@ -45,6 +57,14 @@ ENV_VARIABLE = "SORGUI_SINGULAR"
 
 LIBRARIES = ("normal.lib", "absfact.lib", "paraplanecurves.lib")
 """The Singular libraries every script loads (genus, absFactorize, paraPlaneCurve)."""
+
+LIBRARY = "sorgui.lib"
+"""sorgui's own procedures (package data of :mod:`sorgui.engine`), loaded after :data:`LIBRARIES`."""
+
+CPU_MARGIN = 5
+"""Seconds of CPU time Singular may use beyond its wall-clock limit before the kernel stops it."""
+
+_PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
 
 POLL_INTERVAL = 0.05
 """Seconds between checks of the cancel event and the time limit while Singular runs."""
@@ -121,7 +141,9 @@ def run_singular(
 
     The process runs in its own process group, which is killed when ``timeout`` seconds pass
     (:class:`SingularTimeout`) or ``cancel`` is set (:class:`Cancelled`, within
-    :data:`POLL_INTERVAL`). Singular errors (``? ...`` lines) raise :class:`SingularError`.
+    :data:`POLL_INTERVAL`), or when any exception reaches this function; it dies with the
+    calling thread (:func:`_child_limits`). Singular errors (``? ...`` lines) raise
+    :class:`SingularError`.
     """
     if cancel is not None and cancel.is_set():
         raise Cancelled("the Singular computation was cancelled")
@@ -136,6 +158,7 @@ def run_singular(
             stderr=subprocess.PIPE,
             cwd=folder,
             start_new_session=True,
+            preexec_fn=_child_limits(timeout),
             text=True,
         )
         out, err = _wait(proc, timeout, cancel)
@@ -180,14 +203,49 @@ def _kill(proc: subprocess.Popen[str]) -> None:
     proc.communicate()
 
 
+def _child_limits(timeout: float) -> Callable[[], None]:
+    """What the child runs before ``exec``: die with the parent thread, at most ``timeout`` +
+    :data:`CPU_MARGIN` seconds of CPU time."""
+    parent = os.getpid()
+    seconds = min(ceil(timeout) + CPU_MARGIN, 2**31 - 1)
+
+    def limit() -> None:
+        if _prctl is not None:
+            _prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+            if os.getppid() != parent:  # the parent died before the line above
+                os._exit(1)
+        resource.setrlimit(resource.RLIMIT_CPU, (seconds, seconds + 1))
+
+    return limit
+
+
+def _load_prctl() -> Callable[..., int] | None:
+    """Linux's ``prctl`` from the C library, or ``None`` on other systems."""
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        return ctypes.CDLL(None, use_errno=True).prctl
+    except (OSError, AttributeError):
+        return None
+
+
+_prctl = _load_prctl()
+
+
+def library_path() -> Path:
+    """The file of sorgui's Singular library :data:`LIBRARY`."""
+    return Path(str(importlib.resources.files(__package__) / LIBRARY))
+
+
 def script_header() -> str:
-    """The first lines of every script: the libraries, quiet library messages, and the proc
-    ``sorguiEmit(name, value)`` that prints the string ``value`` as the result ``name``."""
-    libs = " ".join(f'LIB "{lib}";' for lib in LIBRARIES)
+    """The first lines of every script: the libraries (Singular's and sorgui's), quiet library
+    messages, and the proc ``sorguiEmit(name, value)`` that prints the string ``value`` as the
+    result ``name``."""
+    libs = " ".join(f'LIB "{lib}";' for lib in (*LIBRARIES, library_path()))
     return (
-        f"{libs}\nprintlevel = -10;\n"
         "proc sorguiEmit(string name, string value)\n"
         f'{{ print("{_BEGIN} " + name); print(value); print("{_END}"); }}\n'
+        f"{libs}\nprintlevel = -10;\n"
     )
 
 
@@ -272,17 +330,18 @@ def _integer_poly(coeffs: Sequence, parameter: str) -> str:
 
 # --- reading polynomials --------------------------------------------------------------------
 
-_TOKENS = re.compile(r"\s*(?:(\d+)|([A-Za-z_][A-Za-z_0-9]*)|(.))")
-_MAX_EXPONENT = 10_000
-
 
 def parse_singular(text: str, symbols: Mapping[str, sympy.Expr]) -> sympy.Expr:
     """Read one polynomial (or number) printed by Singular with ``short=0``.
 
     ``symbols`` maps each allowed name (ring variables, the parameter ``a``) to a sympy
     expression; any other name, or any other character, raises :class:`SingularError`.
+    The reader is :mod:`.expressions`, shared with the exporters.
     """
-    return _Parser(text, symbols).parse()
+    try:
+        return read(text, singular_syntax(symbols))
+    except ExpressionError as exc:
+        raise SingularError(f"cannot read Singular's answer {text[:200]!r}: {exc.message}") from None
 
 
 def parse_list(text: str, symbols: Mapping[str, sympy.Expr]) -> list[sympy.Expr]:
@@ -300,350 +359,3 @@ def parse_int(text: str) -> int:
 def parse_intvec(text: str) -> list[int]:
     """Read an ``intvec`` printed by Singular as ``string(v)`` (``1,2,3``)."""
     return [parse_int(part) for part in text.split(",")]
-
-
-class _Parser:
-    """Recursive descent over ``sum := ['-'] product (('+'|'-') product)*``,
-    ``product := power (('*'|'/') power)*``, ``power := atom ['^' integer]``,
-    ``atom := integer | name | '(' sum ')'``."""
-
-    def __init__(self, text: str, symbols: Mapping[str, sympy.Expr]) -> None:
-        self.text = text
-        self.symbols = symbols
-        self.tokens: list[tuple[str, str]] = []
-        for match in _TOKENS.finditer(text.strip()):
-            number, name, other = match.groups()
-            if number is not None:
-                self.tokens.append(("int", number))
-            elif name is not None:
-                self.tokens.append(("name", name))
-            elif other is not None and not other.isspace():
-                self.tokens.append(("op", other))
-        self.pos = 0
-
-    def fail(self, why: str) -> SingularError:
-        return SingularError(f"cannot read Singular's answer {self.text[:200]!r}: {why}")
-
-    def peek(self) -> tuple[str, str] | None:
-        return self.tokens[self.pos] if self.pos < len(self.tokens) else None
-
-    def take(self, op: str) -> bool:
-        if self.peek() == ("op", op):
-            self.pos += 1
-            return True
-        return False
-
-    def parse(self) -> sympy.Expr:
-        if not self.tokens:
-            raise self.fail("it is empty")
-        value = self.sum()
-        if self.peek() is not None:
-            raise self.fail(f"unexpected {self.peek()[1]!r}")
-        return value
-
-    def sum(self) -> sympy.Expr:
-        terms = [-self.product() if self.take("-") else self.product()]
-        while True:
-            if self.take("+"):
-                terms.append(self.product())
-            elif self.take("-"):
-                terms.append(-self.product())
-            else:
-                return sympy.Add(*terms)
-
-    def product(self) -> sympy.Expr:
-        value = self.power()
-        while True:
-            if self.take("*"):
-                value = value * self.power()
-            elif self.take("/"):
-                divisor = self.power()
-                if divisor == 0:
-                    raise self.fail("division by zero")
-                value = value / divisor
-            else:
-                return value
-
-    def power(self) -> sympy.Expr:
-        base = self.atom()
-        if self.take("^"):
-            token = self.peek()
-            if token is None or token[0] != "int" or int(token[1]) > _MAX_EXPONENT:
-                raise self.fail("an exponent must be a small integer")
-            self.pos += 1
-            return base ** int(token[1])
-        return base
-
-    def atom(self) -> sympy.Expr:
-        token = self.peek()
-        if token is None:
-            raise self.fail("it ends too early")
-        self.pos += 1
-        kind, text = token
-        if kind == "int":
-            return sympy.Integer(int(text))
-        if kind == "name":
-            if text not in self.symbols:
-                raise self.fail(f"unknown name {text!r}")
-            return self.symbols[text]
-        if text == "(":
-            value = self.sum()
-            if not self.take(")"):
-                raise self.fail("a parenthesis is not closed")
-            return value
-        raise self.fail(f"unexpected {text!r}")
-
-
-# --- sorgui's Singular procedures -----------------------------------------------------------
-# Sent after script_header(). Rings and variables inside procs are local, so one script can
-# handle several curves without name clashes; results leave through sorguiEmit. Never name a
-# global ring `r`: it breaks paraplanecurves.lib's `map perm = basering, ...`.
-
-ABSOLUTE_FACTOR_PROCS = """
-proc sorguiAbsQQ(poly F, string key, int withGenus)
-{
-  // absFactorize over QQ; the genus only for an absolutely irreducible curve
-  def B = basering;
-  def A = absFactorize(F, "a");
-  setring A; short = 0;
-  sorguiEmit("factors_" + key, string(absolute_factors[1]));
-  sorguiEmit("mult_" + key, string(absolute_factors[2]));
-  sorguiEmit("minpolys_" + key, string(absolute_factors[3]));
-  sorguiEmit("count_" + key, string(absolute_factors[4]));
-  int irreducible = (absolute_factors[4] == 1);
-  setring B;
-  if (withGenus && irreducible) { sorguiEmit("genus_" + key, string(genus(F))); }
-}
-
-proc sorguiAbsNorm(poly G, poly m, int d, string key, int withGenus)
-{
-  // G in QQ[x,y,t] square-free over QQ(t)/m(t), m of degree d: absolute factors of G
-  // through the norm of its shift (Trager), each class with the root c(a) of m it needs
-  def BN = basering;
-  int s = 0;
-  poly N = resultant(G, m, t);
-  while ((deg(gcd(gcd(N, diff(N, x)), diff(N, y))) > 0) && (s < 30))
-  {
-    s = s + 1;
-    N = resultant(subst(G, x, x + s*t, y, y + s^2*t), m, t);
-  }
-  sorguiEmit("squarefree_" + key, string(deg(gcd(gcd(N, diff(N, x)), diff(N, y))) <= 0));
-  poly Gs = subst(G, x, x + s*t, y, y + s^2*t);
-  ring QN = 0,(x,y),dp;
-  poly N = imap(BN, N);
-  def A = absFactorize(N, "a");
-  setring A; short = 0;
-  list L = absolute_factors;
-  sorguiEmit("count_" + key, string(L[4]));
-  int irreducible = (L[4] == d);
-  int k; int j; string mu; string h;
-  for (k = 2; k <= size(L[1]); k++)
-  {
-    setring A;
-    mu = string(L[3][k]); h = string(L[1][k]);
-    ring E = (0,a),(x,y,t),dp;
-    execute("minpoly = " + mu + ";");
-    short = 0;
-    execute("poly H = " + h + ";");
-    poly Gs = imap(BN, Gs); poly m = imap(BN, m);
-    ideal R = factorize(m, 1);
-    for (j = 1; j <= size(R); j++)
-    {
-      if (deg(R[j]) == 1)
-      {
-        number c = -leadcoef(subst(R[j], t, 0)) / leadcoef(R[j]);
-        if (reduce(subst(Gs, t, c), std(H)) == 0)
-        {
-          poly U = subst(H, x, x - s*c, y, y - s^2*c);
-          sorguiEmit("class_" + key, mu + "|" + string(c) + "|" + string(U));
-        }
-        kill c;
-      }
-    }
-    setring A; kill E;
-  }
-  setring BN;
-  if (withGenus && irreducible) { sorguiEmit("genus_" + key, string(genus(ideal(G, m)))); }
-}
-"""
-"""``sorguiAbsQQ(F, key, withGenus)`` (``absFactorize`` over ``QQ``; results ``factors_<key>``,
-``mult_<key>``, ``minpolys_<key>``, ``count_<key>``, ``genus_<key>``) and ``sorguiAbsNorm(G, m, d,
-key, withGenus)`` (the norm route over ``QQ[t]/m(t)``; results ``squarefree_<key>``,
-``count_<key>``, one ``class_<key>`` ``"mu|c|factor"`` per class, ``genus_<key>``)."""
-
-
-PARAMETRIZATION_PROCS = """
-proc sorguiEval(poly q, list P)
-{
-  return(leadcoef(subst(q, var(1), P[1], var(2), P[2], var(3), P[3])));
-}
-
-proc sorguiRealPointConic(poly q)
-{
-  // rationalPointConic, unless it chose an imaginary field for a conic with real points:
-  // then a line through an interior point (the pole of a line missing the conic, or simply
-  // a secant coordinate line) meets it in a point over a real quadratic field QQ(a).
-  def R0 = basering;
-  def S = rationalPointConic(q);
-  setring S;
-  if (npars(S) == 0) { return(S); }
-  string sq = string(par(1)^2);
-  setring R0;
-  execute("number square = " + sq + ";");
-  if (square > 0) { return(S); }
-  list E1 = number(1), number(0), number(0);
-  list E2 = number(0), number(1), number(0);
-  list E3 = number(0), number(0), number(1);
-  number m11 = sorguiEval(q, E1); number m22 = sorguiEval(q, E2); number m33 = sorguiEval(q, E3);
-  number m12 = (sorguiEval(q, list(number(1), number(1), number(0))) - m11 - m22) / 2;
-  number m13 = (sorguiEval(q, list(number(1), number(0), number(1))) - m11 - m33) / 2;
-  number m23 = (sorguiEval(q, list(number(0), number(1), number(1))) - m22 - m33) / 2;
-  number tr = m11 + m22 + m33;
-  number e2 = m11*m22 - m12^2 + m11*m33 - m13^2 + m22*m33 - m23^2;
-  number dt = m11*(m22*m33 - m23^2) - m12*(m12*m33 - m13*m23) + m13*(m12*m23 - m13*m22);
-  if (e2 > 0 && ((tr > 0 && dt > 0) || (tr < 0 && dt < 0))) { return(S); }
-  list P = E1; list Q = E2;
-  number A = m11; number C = m22; number B = 2*m12;
-  number D = B^2 - 4*A*C;
-  if (D <= 0)
-  {
-    P = list(m12*m23 - m13*m22, m13*m12 - m11*m23, m11*m22 - m12^2);
-    if (P[2] == 0 && P[3] == 0) { Q = E2; } else { Q = E1; }
-    A = sorguiEval(q, P); C = sorguiEval(q, Q);
-    B = sorguiEval(q, list(P[1] + Q[1], P[2] + Q[2], P[3] + Q[3])) - A - C;
-    D = B^2 - 4*A*C;
-  }
-  bigint N = bigint(numerator(D)) * bigint(denominator(D));
-  bigint s = 1; bigint p = 2;
-  while (p <= 1000 && p*p <= N)
-  {
-    while (N mod (p*p) == 0) { N = N div (p*p); s = s*p; }
-    p = p + 1;
-  }
-  number root = number(s) / denominator(D);
-  string pt = "matrix point[1][3];";
-  int i;
-  for (i = 1; i <= 3; i++)
-  {
-    pt = pt + "point[1," + string(i) + "] = (" + string(-B) + " + (" + string(root) + ")*a)*("
-         + string(P[i]) + ") + 2*(" + string(A) + ")*(" + string(Q[i]) + ");";
-  }
-  list L = ring_list(R0);
-  L[1] = list(0, list("a"), list(list("lp", 1)), ideal(0));
-  def RTemp = ring(L);
-  setring RTemp;
-  list L = ringlist(RTemp);
-  L[1][4] = ideal(a^2 - N);
-  def S2 = ring(L);
-  setring S2;
-  execute(pt);
-  export(point);
-  return(S2);
-}
-
-proc sorguiProjConic(poly q)
-{
-  // projConic of paraplanecurves.lib with sorguiRealPointConic: the pencil through the point.
-  def R0 = basering;
-  list rl = ring_list(R0);
-  rl[3] = list(list("dp",1:3),list("C",0));
-  def RP20 = ring(rl);
-  setring RP20;
-  poly q = imap(R0,q);
-  def RP21 = sorguiRealPointConic(q);
-  setring RP21;
-  list rl1 = ring_list(RP21);
-  rl1[2] = list("u","v","w");
-  rl1[3] = list(list("dp",1:3),list("C",0));
-  def RP2 = ring(rl1);
-  setring RP2;
-  ideal point = fetch(RP21,point);
-  matrix bP = syz(point);
-  ideal Ipoint = matrix(maxideal(1))*bP;
-  export(Ipoint);
-  return(RP2);
-}
-
-proc sorguiParametrize(poly f)
-{
-  // paraPlaneCurve of paraplanecurves.lib (odd degree: itself; even degree: the same steps
-  // with sorguiProjConic), for f homogeneous, absolutely irreducible, of genus 0.
-  int d = deg(f);
-  if ((d mod 2) == 1) { return(paraPlaneCurve(f)); }
-  def Roriginal = basering;
-  list rl = ring_list(Roriginal);
-  rl[2] = list("x","y","z");
-  rl[3] = list(list("dp",1:3),list("C",0));
-  def RP2 = ring(rl);
-  setring RP2;
-  poly f = fetch(Roriginal,f);
-  if (d == 2)
-  {
-    def RPc = sorguiProjConic(f);
-    setring RPc;
-    def rp1 = invertBirMap(Ipoint, ideal(fetch(RP2,f)));
-  }
-  else
-  {
-    int k;
-    ideal AI = adjointIdeal(f, list(2, "rattestyes/firstchecksdone"));
-    def Rrnc = mapToRatNormCurve(f, AI);
-    setring Rrnc;
-    int m = d-1;
-    def RP2conic = rncItProjEven(RNC);
-    setring RP2conic;
-    def RPc = sorguiProjConic(CONIC);
-    def Rbig = RPc + Rrnc;
-    setring Rbig;
-    ideal PHI = imap(Rrnc,PHI);
-    ideal PROJ = imap(RPc,Ipoint);
-    for (k = 1; k <= 3; k++) { PROJ = subst(PROJ,var(k),PHI[k]); }
-    ideal AI = fetch(RP2,AI);
-    for (k = 1; k <= m; k++) { PROJ = subst(PROJ,var(k+3),AI[k]); }
-    setring RPc;
-    ideal If = ideal(fetch(RP2,f));
-    ideal PROJ = imap(Rbig,PROJ);
-    def rp1 = invertBirMap(PROJ,If);
-  }
-  setring rp1;
-  list rl1 = ring_list(rp1);
-  rl1[2] = list("s","t");
-  def RP1 = ring(rl1);
-  setring RP1;
-  ideal PARA = fetch(rp1,psi);
-  export(PARA);
-  return(RP1);
-}
-
-proc sorguiParaCurve(poly F, int checked)
-{
-  // the checks (absolutely irreducible, genus 0) unless the caller made them, then PARA and
-  // the field's minpoly
-  def B = basering;
-  int irreducible = 1;
-  int g = 0;
-  if (!checked)
-  {
-    def A = absFactorize(F, "a");
-    setring A;
-    irreducible = (absolute_factors[4] == 1);
-    setring B;
-  }
-  sorguiEmit("irreducible", string(irreducible));
-  if (!irreducible) { return(); }
-  if (!checked) { g = genus(F); }
-  sorguiEmit("genus", string(g));
-  if (g != 0) { return(); }
-  ring H = 0,(x,y,z),dp;
-  poly f = homog(imap(B, F), z);
-  def P = sorguiParametrize(f);
-  setring P; short = 0;
-  if (npars(P) > 0) { sorguiEmit("minpoly", string(minpoly)); }
-  sorguiEmit("para", string(PARA));
-}
-"""
-"""``sorguiParaCurve(F, checked)`` for ``F ∈ QQ[x, y]`` (``checked = 1``: the caller knows ``F`` is
-absolutely irreducible of genus 0): results ``irreducible``, ``genus``, and for a
-rational curve ``para`` (paraPlaneCurve's PARA in ``s, t``) and ``minpoly`` (of ``a``, when the
-field is an extension). ``sorguiParametrize`` is paraPlaneCurve with the conic step replaced by
-``sorguiRealPointConic``, which prefers a real quadratic field."""
