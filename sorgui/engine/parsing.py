@@ -13,13 +13,17 @@ Grammar, from the lowest to the highest precedence::
     sum      := product (('+' | '-') product)*
     product  := factor (('*' | '/') factor | factor)*    -- juxtaposition is '*': 1/2x = x/2
     factor   := ('+' | '-')* atom superscript* ['^' factor]   -- -x^2 = -(x^2), 2^3^2 = 2^9
-    atom     := number | x | y | z | 'sqrt' '(' sum ')' | '(' sum ')'
+    atom     := number | x | y | z | 'sqrt' '(' sum ')' | '(' sum ')' | '\\frac' '(' sum ')' '(' sum ')'
+
+A leading ``f(x, y, z) =`` is skipped, a byte-order mark is a space, and LaTeX-style input
+(``x^{2}``, ``\\cdot``, ``\\left( \\right)``, ``\\sqrt{2}``, ``\\frac{1}{2}``) reads as the plain syntax above.
 """
 
 from __future__ import annotations
 
 import math
 import re
+import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
@@ -42,28 +46,38 @@ MAX_LENGTH = 1_000_000  # characters of input
 MAX_NESTING = 200  # parentheses and '^' nested inside each other
 MAX_EXPONENT = 10_000  # |n| in c^n for a constant c
 MAX_DECIMAL_EXPONENT = 1_000  # |e| in 1.5e-3
-MAX_DIGITS = 100_000  # digits of one number literal
-MAX_BITS = 1_000_000  # size of any constant (numerator or denominator)
+MAX_DIGITS = 20_000  # digits of one number literal
+MAX_BITS = 66_439  # size of any constant (numerator or denominator): 20,000 digits
+MAX_PRINTED_DIGITS = 10 * MAX_DIGITS
+"""Python refuses to print integers of more than 4,300 digits by default; the engine prints the
+numbers it derives from the input (products of a few coefficients), so it raises that limit to
+this bound, which its own limits keep: an accepted input is analysed, never refused by ``str``."""
 MAX_RADICAND_DIGITS = 50  # sqrt(n) needs the square part of n: factoring must stay fast
 MAX_RADICANDS = 4  # [K : QQ] <= 16
 MAX_WORK = 5_000_000  # coefficient multiplications while expanding (a few seconds)
 
+if 0 < sys.get_int_max_str_digits() < MAX_PRINTED_DIGITS:
+    sys.set_int_max_str_digits(MAX_PRINTED_DIGITS)
+
 Rational: TypeAlias = int | Fraction  # exact; integer literals stay ints (faster)
 _VARIABLES = "xyz"
 _VARIABLE_INDEX = {name: i for i, name in enumerate(_VARIABLES)}
-_OPERATORS = {"**": "^", "−": "-", "–": "-", "·": "*", "⋅": "*", "×": "*", "∗": "*"}
+_OPERATORS = {"**": "^", "−": "-", "–": "-", "·": "*", "⋅": "*", "×": "*", "∗": "*",
+              "{": "(", "}": ")", "\\cdot": "*", "\\times": "*"}
 _SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
 _TOKEN = re.compile(
-    r"(?P<space>\s+)"
+    r"(?P<space>[\s\ufeff]+|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:!]))"
     r"|(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
     r"|(?P<name>[A-Za-z]+)"
     r"|(?P<sup>[⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
-    r"|(?P<op>\*\*|[-+*/^()=−–·⋅×∗])"
+    r"|(?P<op>\*\*|[-+*/^()=−–·⋅×∗{}]|\\(?:cdot|times)(?![A-Za-z]))"
+    r"|(?P<latex>\\(?:sqrt|frac)(?![A-Za-z]))"
     r"|(?P<bad>.)",
     re.DOTALL,
 )
+_FUNCTION_NAME = re.compile(r"\s*[A-Za-z]\w*\s*\(\s*x\s*,\s*y\s*,\s*z\s*\)\s*:?=", re.ASCII)
 _NUMBER = re.compile(r"([0-9]*)(?:\.([0-9]*))?(?:[eE]([+-]?[0-9]+))?")
-_IMPLICIT = frozenset({"var", "sqrt", "("})  # tokens that start an implicit product
+_IMPLICIT = frozenset({"var", "sqrt", "frac", "("})  # tokens that start an implicit product
 
 
 @dataclass(frozen=True)
@@ -107,6 +121,15 @@ def parse_polynomial(text: str) -> ParsedPolynomial:
     return ParsedPolynomial(text, polynomial, field, radicands)
 
 
+def syntax_tree(text: str) -> Node:
+    """The syntax tree of ``text``, unchecked and unevaluated: what :mod:`.precision` reads to
+    learn how many digits each number was printed with (docs/math.md §8)."""
+    try:
+        return _Parser(text).equation()
+    except RecursionError:
+        raise ParseError("the expression is nested too deeply", 0, len(text)) from None
+
+
 # --- tokens ------------------------------------------------------------------------------
 
 
@@ -120,8 +143,14 @@ class Token(NamedTuple):
 
 
 def _tokens(text: str) -> Iterator[Token]:
-    """The tokens of ``text``, lazily, so that the first error in reading order is reported."""
-    for match in _TOKEN.finditer(text):
+    """The tokens of ``text``, lazily, so that the first error in reading order is reported.
+
+    A leading ``f(x, y, z) =`` (any name, ``=`` or ``:=``) is skipped: ``f(x,y,z) = g`` is the
+    equation ``g = 0``. LaTeX's ``{ }`` are parentheses, ``\\cdot`` and ``\\times`` are ``*``,
+    ``\\sqrt`` is ``sqrt``, and ``\\left``, ``\\right`` and LaTeX spacing are ignored.
+    """
+    prefix = _FUNCTION_NAME.match(text)
+    for match in _TOKEN.finditer(text, prefix.end() if prefix else 0):
         kind, word = match.lastgroup, match.group()
         start, end = match.span()
         if kind == "op":
@@ -134,6 +163,8 @@ def _tokens(text: str) -> Iterator[Token]:
                 yield Token("var", start, end, _VARIABLE_INDEX[word])
             else:
                 yield from _name(word, start)
+        elif kind == "latex":
+            yield Token(word[1:], start, end)  # sqrt or frac
         elif kind == "sup":
             digits = word.translate(_SUPERSCRIPTS)
             if len(digits) > 6:
@@ -325,6 +356,8 @@ class _Parser:
             node = Sqrt(tok.start, self._prev.end, arg)
         elif tok.kind == "(":
             node = self._group(depth)
+        elif tok.kind == "frac":
+            node = self._fraction(depth)
         else:
             raise self._missing_operand(tok)
         while self._tok.kind == "sup":
@@ -335,6 +368,19 @@ class _Parser:
             exponent = self._factor(depth + 1)
             node = Power(tok.start, self._prev.end, node, exponent)
         return Neg(start, self._prev.end, node) if negative else node
+
+    def _fraction(self, depth: int) -> Node:
+        """LaTeX's ``\\frac{a}{b}``, read as ``(a)/(b)``."""
+        frac = self._advance()
+        parts = []
+        for _ in range(2):
+            if self._tok.kind != "(":
+                raise ParseError("'\\frac' must be followed by '{numerator}{denominator}'", frac.start,
+                                 self._tok.end)
+            parts.append(self._group(depth))
+        numerator, denominator = parts
+        return Product(frac.start, self._prev.end, (numerator, Reciprocal(denominator.start, denominator.end,
+                                                                         denominator)))
 
     def _group(self, depth: int) -> Node:
         """``'(' sum ')'``; the error for a missing ')' points at the unmatched '('."""

@@ -280,7 +280,7 @@ ERRORS = [
     ("x^(2^10000^2)", 5, 12, "exponent is too large"),
     ("(2^10000)^10000 x", 0, 15, "too large"),
     ("x^(" + "*".join(["7^9999"] * 40) + ")", 3, 282, "too large"),
-    ("x^(" + "*".join(["7^9999"] * 20) + ")", 0, 143, "degree up to about 2^"),
+    ("x^(" + "*".join(["7^9999"] * 2) + ")", 0, 17, "degree up to about 2^"),
     ("sqrt(" + "1" * 60 + ") x", 0, 66, "too large to factor"),
     ("sqrt(2)+sqrt(3)+sqrt(5)+sqrt(7)+sqrt(11)+x", 32, 40, "too many"),
     ("(x+y+z+1)^25*(x+y+z+1)^25", 0, 25, "too large to expand"),
