@@ -1,0 +1,5 @@
+"""Benchmarks of sorgui, run from the repository root as ``python -m benchmarks.NAME``.
+
+They import ``sorgui``, ``tests`` (the surface builders) and each other as packages; the
+figures and the exact commands are in ``docs/benchmarks.md``.
+"""

@@ -2,23 +2,19 @@
 
 Cases: the paper's Example 1/2 and surfaces of revolution of degree 4…12 in general position
 (``(1 + s^(d-2))·w = g(s)``, whose ``P²`` is rational, so every stage runs). Run
-``python benchmarks/analysis.py [--write]``; ``--write`` updates ``docs/benchmarks.md``.
+``python -m benchmarks.analysis [--write]``; ``--write`` updates ``docs/benchmarks.md``.
 """
 
 from __future__ import annotations
 
 import random
-import sys
-from pathlib import Path
 
 from sympy.polys.domains import QQ
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-from benchmarks.report import median_time, run  # noqa: E402
-from sorgui.engine.analysis import analyze, analyze_polynomial  # noqa: E402
-from sorgui.examples import example_text  # noqa: E402
-from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve  # noqa: E402
+from benchmarks.report import median_time, run
+from sorgui.engine.analysis import analyze, analyze_polynomial
+from sorgui.examples import example_text
+from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve
 
 DEGREES = (4, 6, 8, 10, 12)
 

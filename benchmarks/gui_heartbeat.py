@@ -6,7 +6,7 @@ surface the table gives the longest interval between two heartbeats, from pastin
 until the results and the mesh are on screen (and 300 ms more, so that the first frame of the
 new mesh is counted), the 99th percentile, and how many intervals exceeded 100 ms.
 
-Run: ``xvfb-run -a -s "-screen 0 1920x1080x24" python benchmarks/gui_heartbeat.py [--write]``
+Run: ``xvfb-run -a -s "-screen 0 1920x1080x24" python -m benchmarks.gui_heartbeat [--write]``
 """
 
 from __future__ import annotations
@@ -14,13 +14,8 @@ from __future__ import annotations
 import argparse
 import random
 import statistics
-import sys
 import tempfile
 import time
-from pathlib import Path
-
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 
 HEARTBEAT_MS = 10
 GOAL_MS = 100.0

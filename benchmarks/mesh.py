@@ -1,6 +1,6 @@
 """Benchmark: the mesh of the paper's Example 1 (degree 6) on a 150³ grid.
 
-Run as ``python benchmarks/mesh.py [--runs N] [--resolution R] [--write]``. Prints a markdown table with
+Run as ``python -m benchmarks.mesh [--runs N] [--resolution R] [--write]``. Prints a markdown table with
 the minimum and median wall time of each stage over several runs:
 
 * sampling: ``f`` on the offset grid (nested Horner, ``sorgui.render.sampling``);
@@ -18,19 +18,15 @@ import argparse
 import os
 import platform
 import statistics
-import sys
-from pathlib import Path
 
 import numpy as np
 from vtkmodules.vtkCommonCore import vtkSMPTools
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-from benchmarks.report import wall_times, write_section  # noqa: E402
-from sorgui.engine.parsing import parse_polynomial  # noqa: E402
-from sorgui.examples import example_text  # noqa: E402
-from sorgui.render.geometry import ClipSphere  # noqa: E402
-from sorgui.render.mesh import (  # noqa: E402
+from benchmarks.report import wall_times, write_section
+from sorgui.engine.parsing import parse_polynomial
+from sorgui.examples import example_text
+from sorgui.render.geometry import ClipSphere
+from sorgui.render.mesh import (
     enable_vtk_threads,
     finish_mesh,
     sample_surface,

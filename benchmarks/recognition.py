@@ -2,23 +2,19 @@
 
 For each degree, a random profile ``F(s, w)`` is placed on a rational axis and moved by a
 rational rotation (so every monomial of the given degree appears), then recognised by both
-methods, timed inside the process. Run ``python benchmarks/recognition.py [--write]``; with
+methods, timed inside the process. Run ``python -m benchmarks.recognition [--write]``; with
 ``--write`` the table replaces the recognition section of ``docs/benchmarks.md``.
 """
 
 from __future__ import annotations
 
 import random
-import sys
-from pathlib import Path
 
 from sympy.polys.domains import QQ
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-from benchmarks.report import median_time, run  # noqa: E402
-from sorgui.engine.recognition import METHODS, recognize  # noqa: E402
-from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve  # noqa: E402
+from benchmarks.report import median_time, run
+from sorgui.engine.recognition import METHODS, recognize
+from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve
 
 DEGREES = (4, 6, 8, 10, 12, 16, 20, 25, 30)
 
