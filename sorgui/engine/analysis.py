@@ -19,13 +19,14 @@ from .parsing import parse_polynomial
 from .polys import Poly, field_name, poly_str
 from .profile import profile_curve
 from .rationality import analyze_rationality, parametrizations
+from .real_locus import real_locus
 from .recognition import factor_reports, recognize
 from .report import Analysis, Parametrization, Rationality
 
 ProgressCallback = Callable[[str], None]
 PartialCallback = Callable[[Analysis], None]
 
-STAGES = ("parse", "recognition", "factors", "rationality", "parametrizations")
+STAGES = ("parse", "recognition", "factors", "real locus", "rationality", "parametrizations")
 
 
 class StageClock:
@@ -113,6 +114,10 @@ def analyze_polynomial(
         recognition, symmetry, profile = recognize(f, method)
     with clock.stage("factors"):
         factors, distinct = factor_reports(f, recognition, method)
+    real = None
+    if not recognition_only and recognition.is_sor:
+        with clock.stage("real locus"):
+            real = real_locus(f, symmetry, profile)
 
     def result(rationality: Rationality | None, found: tuple[Parametrization, ...]) -> Analysis:
         return Analysis(
@@ -125,6 +130,7 @@ def analyze_polynomial(
             rationality=rationality,
             parametrizations=found,
             timings=tuple(clock.timings),
+            real_locus=real,
         )
 
     rationality = None

@@ -43,17 +43,18 @@ def count_real_roots(h: Poly) -> int:
     f = dense if K.is_Field else [K.get_field().convert(c, K) for c in dense]
     field = K if K.is_Field else K.get_field()
     chain = dup_sturm(dup_sqf_part(f, field), field)
-    at_plus = [_sign(field, p[0]) for p in chain]
+    at_plus = [sign(field, p[0]) for p in chain]
     at_minus = [s * (-1) ** (len(p) - 1) for s, p in zip(at_plus, chain, strict=True)]
-    return _sign_changes(at_minus) - _sign_changes(at_plus)
+    return sign_changes(at_minus) - sign_changes(at_plus)
 
 
-def _sign_changes(signs: Sequence[int]) -> int:
+def sign_changes(signs: Sequence[int]) -> int:
+    """The number of sign changes in a sequence of signs (zeros skipped), as in Sturm's theorem."""
     nonzero = [s for s in signs if s]
     return sum(1 for u, v in zip(nonzero, nonzero[1:]) if u != v)
 
 
-def _sign(K: Domain, c: object) -> int:
+def sign(K: Domain, c: object) -> int:
     """The sign of ``c ∈ K``: exact over ``QQ``; over ``QQ(θ)``, ``c(θ)`` in ball arithmetic
     with rising precision until the ball excludes 0 (it does, as ``c ≠ 0``)."""
     if not c:

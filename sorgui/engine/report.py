@@ -97,6 +97,23 @@ class Rationality:
 
 
 @dataclass(frozen=True)
+class RealLocus:
+    """What the real points of ``X`` are (docs/math.md §3.4): the surface turned from the profile.
+
+    ``kind`` is ``"empty"``, ``"points"``, ``"curve"`` or ``"surface"`` (the largest piece;
+    ``dimension`` -1, 0, 1 or 2). Below a surface the pieces are counted exactly: ``points``
+    isolated real points, ``circles`` circles about the axis, ``axis_line`` whether the whole
+    axis lies on ``X``. ``None`` means not counted (above a surface, or no unique axis).
+    """
+
+    kind: str
+    dimension: int
+    points: int | None = None
+    circles: int | None = None
+    axis_line: bool | None = None
+
+
+@dataclass(frozen=True)
 class Parametrization:
     """A rational parameterization of ``X`` in the original coordinates, checked by substitution.
 
@@ -219,6 +236,7 @@ class Analysis:
     parametrizations: tuple[Parametrization, ...] = ()
     timings: tuple[tuple[str, float], ...] = field(default=())
     approximate: Approximation | None = None
+    real_locus: RealLocus | None = None
 
     @property
     def is_sor(self) -> bool:
@@ -249,6 +267,7 @@ class Analysis:
             "parametrizations": [_plain(p) for p in self.parametrizations],
             "timings": dict(self.timings),
             "approximate": None if self.approximate is None else self.approximate.to_json(),
+            "real_locus": _plain(self.real_locus),
         }
 
     @classmethod
@@ -269,6 +288,7 @@ class Analysis:
             parametrizations=tuple(_build(Parametrization, p) for p in data.get("parametrizations", [])),
             timings=tuple(data.get("timings", {}).items()),
             approximate=None if data.get("approximate") is None else Approximation.from_json(data["approximate"]),
+            real_locus=_build(RealLocus, data.get("real_locus")),
         )
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from sorgui.engine.report import Analysis, Rationality, Recognition
+from sorgui.engine.report import Analysis, Rationality, RealLocus, Recognition
 
 TABLE_1 = (
     ("reducible", "0", "rational", "rational"),
@@ -50,8 +50,7 @@ def rationality_lines(rat: Rationality) -> list[str]:
     lines = [f"rationality: {rat.status}"]
     if rat.profile_reducible is not None:
         lines.append(f"  profile P reducible over C: {'yes' if rat.profile_reducible else 'no'}")
-    genus_p = "reducible" if rat.profile_reducible else rat.genus_profile
-    lines.append(f"  genus(P) = {genus_p}, genus(P²) = {rat.genus_profile_square}")
+    lines.append(f"  {genus_line(rat)}")
     if rat.table_row is not None:
         row = TABLE_1[rat.table_row - 1]
         lines.append(f"  Table 1, row {rat.table_row}: genus(P) {row[0]}, genus(P²) {row[1]}, X_C {row[2]}, X {row[3]}")
@@ -68,6 +67,43 @@ def rationality_lines(rat: Rationality) -> list[str]:
     return lines
 
 
+def genus_line(rat: Rationality) -> str:
+    """The genera of ``P`` and ``P²``, or what stands in their place: a reducible curve has no
+    genus of its own (Table 1 then reads "reducible"), and a stage not reached computes none."""
+    if rat.profile_reducible is None and rat.genus_profile_square is None:
+        return "genus(P), genus(P²): not computed"
+    if rat.profile_reducible:
+        first = "P is reducible over C (no genus)"
+    else:
+        first = "genus(P) not computed" if rat.genus_profile is None else f"genus(P) = {rat.genus_profile}"
+    if rat.genus_profile_square is not None:
+        second = f"genus(P²) = {rat.genus_profile_square}"
+    else:
+        second = "P² is reducible over C (no genus)" if rat.profile_reducible is not None else "genus(P²) not computed"
+    return f"{first}, {second}"
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}" if n == 1 else f"{n} {noun}s"
+
+
+def real_locus_line(real: RealLocus) -> str:
+    """What the real points of ``X`` are, in words (docs/math.md §3.4)."""
+    if real.kind == "empty":
+        return "real points: none (X has no real point)"
+    if real.kind == "surface":
+        return "real points: a real surface"
+    if real.kind == "points":
+        return f"real points: only {_count(real.points or 0, 'point')} (no real surface)"
+    parts = ["the axis line"] if real.axis_line else []
+    if real.circles:
+        parts.append(_count(real.circles, "circle") + " about the axis")
+    if real.points:
+        parts.append(_count(real.points, "isolated point"))
+    pieces = ", ".join(parts[:-1]) + " and " + parts[-1] if len(parts) > 1 else "".join(parts)
+    return f"real points: only a curve (no real surface): {pieces}"
+
+
 def format_report(analysis: Analysis) -> str:
     """The whole report as text."""
     rec = analysis.recognition
@@ -78,6 +114,8 @@ def format_report(analysis: Analysis) -> str:
         f"surface of revolution: {verdict}",
         *recognition_lines(rec),
     ]
+    if analysis.real_locus is not None:
+        lines.append(real_locus_line(analysis.real_locus))
     if len(analysis.factors) > 1 or analysis.factors[0].multiplicity > 1:
         lines.append(f"factors over K ({len(analysis.factors)}):")
         for factor in analysis.factors:

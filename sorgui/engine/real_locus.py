@@ -1,0 +1,229 @@
+"""The real points of a surface of revolution: empty, points, a curve or a surface (docs/math.md §3.4).
+
+``X`` is the half-plane curve ``Z = {p̃(s, r) = 0, r ≥ 0}`` turned about the axis: a piece of
+``Z`` off the axis sweeps a piece of surface, an isolated point of ``Z`` off the axis a circle,
+a point on the axis stays a point. With ``G(s, w) = P²`` (``w = r²``), ``G = w^k·c(s)·H(s, w)``:
+
+* surface: a real root of the content ``c`` (a plane across the axis), or a sample ``s₀`` at
+  which ``H(s₀, w)`` is square-free and has a positive root (then a real branch passes through
+  it). Cheap samples first; if they find nothing, one sample in each interval between the real
+  roots of ``lc_w(H)·disc_w(H)·H(s, 0)``, which decides it;
+* otherwise circles are the real singular points ``H = H_s = H_w = 0`` with ``w > 0``, counted
+  with a lexicographic Gröbner basis in shape position and the Sturm–Tarski theorem; the axis
+  line lies on ``X`` when ``k > 0``; points are the real roots of ``G(s, 0)``.
+
+Spheres and planes use their normal forms ``g(|p - c|²)`` and ``g(n·p)`` (docs/math.md §2).
+Every sign is exact (rationals, or ball arithmetic in ``K`` that refines until it excludes 0).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import sympy
+from sympy.polys.domains import QQ
+from sympy.polys.domains.domain import Domain
+
+from .errors import AnalysisError
+from .linalg import Vector
+from .polys import Poly, compose, is_rational_field, poly_ring
+from .profile import ProfileCurve
+from .realroots import count_real_roots, sign, sign_changes
+from .report import RealLocus
+from .symmetry import PLANE, SPHERE, Symmetry
+
+S, W, T = sympy.symbols("s w t")
+
+EMPTY, POINTS, CURVE, SURFACE = "empty", "points", "curve", "surface"
+DIMENSION = {EMPTY: -1, POINTS: 0, CURVE: 1, SURFACE: 2}
+
+QUICK_SAMPLES = tuple(QQ(n, d) for n, d in ((0, 1), (1, 1), (-1, 1), (1, 2), (-1, 2), (2, 1), (-2, 1), (3, 1)))
+"""Values of ``s`` tried before the discriminant is computed: most real surfaces show a simple
+positive root ``w`` at one of them."""
+
+SHEARS = 12
+"""How many shears ``t = s + λ·w`` are tried to bring the singular points into shape position."""
+
+
+def real_locus(f: Poly, symmetry: Symmetry, profile: ProfileCurve | None) -> RealLocus | None:
+    """The real points of ``X = {f = 0}``; ``None`` when ``X`` has no unique axis and is neither
+    a sphere nor a plane (then it is not a surface of revolution)."""
+    if symmetry.kind == SPHERE:
+        return sphere_locus(f, symmetry.center)  # type: ignore[arg-type]
+    if symmetry.kind == PLANE:
+        return plane_locus(f, symmetry.normal)  # type: ignore[arg-type]
+    if profile is None:
+        return None
+    return profile_locus(profile.square)
+
+
+def _locus(kind: str, **counts: int | bool | None) -> RealLocus:
+    return RealLocus(kind=kind, dimension=DIMENSION[kind], **counts)  # type: ignore[arg-type]
+
+
+def sphere_locus(f: Poly, center: Vector) -> RealLocus:
+    """Concentric spheres ``f = g(|p - c|²)``: ``φ(t) = f(c + t·e₁) = g(t²)`` has a real root
+    ``t ≠ 0`` for every real sphere, and the root 0 when the centre is on ``X``."""
+    K = f.ring.domain
+    R = poly_ring(("t",), K)
+    (t,) = R.gens
+    phi = compose(f, [center[0] + t, R.ground_new(center[1]), R.ground_new(center[2])])
+    roots = count_real_roots(phi)
+    on_center = (0,) not in phi
+    if roots > int(on_center):
+        return _locus(SURFACE)
+    return _locus(POINTS, points=1) if on_center else _locus(EMPTY, points=0)
+
+
+def plane_locus(f: Poly, normal: Vector) -> RealLocus:
+    """Parallel planes ``f = g(n·p)``: one real plane for each real root of ``f(t·n)``."""
+    R = poly_ring(("t",), f.ring.domain)
+    (t,) = R.gens
+    psi = compose(f, [normal[0] * t, normal[1] * t, normal[2] * t])
+    return _locus(SURFACE) if count_real_roots(psi) else _locus(EMPTY, points=0)
+
+
+def profile_locus(square: Poly) -> RealLocus:
+    """The real points of the surface of revolution whose ``P²`` is ``square`` = ``G(s, w)``."""
+    K = square.ring.domain
+    G = sympy.Poly(square.as_expr(*(S, W)), S, W, domain=K)
+    k = min(m[1] for m in G.monoms())
+    G1 = sympy.Poly.from_dict({(i, j - k): c for (i, j), c in G.as_dict(native=True).items()}, S, W, domain=K)
+    content = _content_in_s(G1)
+    if content.degree() > 0 and _real_roots(content):
+        return _locus(SURFACE)
+    H = G1.exquo(sympy.Poly(content.as_expr(), S, W, domain=K))
+    if H.degree(W) > 0:
+        H = H.exquo(H.gcd(H.diff(W)))
+        if _has_surface(H, QUICK_SAMPLES) or _has_surface(H, _cell_samples(H)):
+            return _locus(SURFACE)
+        circles = _circles(H)
+    else:
+        circles = 0
+    points = 0 if k else _real_roots(G.eval(W, 0))
+    kind = CURVE if k or circles else (POINTS if points else EMPTY)
+    return _locus(kind, points=points, circles=circles, axis_line=bool(k))
+
+
+def _content_in_s(G: sympy.Poly) -> sympy.Poly:
+    """The gcd in ``K[s]`` of the coefficients of ``G`` as a polynomial in ``w``."""
+    K = G.domain
+    content = sympy.Poly(0, S, domain=K)
+    for j in range(G.degree(W) + 1):
+        coefficient = sympy.Poly(G.as_expr().coeff(W, j), S, domain=K)
+        content = content.gcd(coefficient)
+    return content.monic() if content.degree() > 0 else sympy.Poly(1, S, domain=K)
+
+
+def _real_roots(p: sympy.Poly) -> int:
+    """The number of distinct real roots of a univariate ``p`` over ``K`` (0 for a constant)."""
+    if p.degree() <= 0:
+        if p.is_zero:
+            raise AnalysisError("a real-root count of the zero polynomial (internal error)")
+        return 0
+    R = poly_ring(("t",), p.domain)
+    return count_real_roots(R.from_dict({(m[0],): c for m, c in p.as_dict(native=True).items()}))
+
+
+def _has_surface(H: sympy.Poly, samples: Sequence) -> bool:
+    """Whether some ``s₀`` has ``H(s₀, w)`` square-free with a positive root ``w``: by the
+    implicit function theorem a real branch of ``H = 0`` with ``w > 0`` passes through it."""
+    K = H.domain
+    for s0 in samples:
+        h = sympy.Poly(H.as_expr().subs(S, QQ.to_sympy(s0)), W, domain=K)
+        if h.degree() <= 0 or h.gcd(h.diff(W)).degree() > 0:
+            continue
+        if _real_roots(sympy.Poly(h.as_expr().subs(W, T**2), T, domain=K)) > (0 if h.eval(0) else 1):
+            return True
+    return False
+
+
+def _cell_samples(H: sympy.Poly) -> list:
+    """One rational ``s`` in each open interval cut out by the real roots of
+    ``lc_w(H)·disc_w(H)·H(s, 0)`` (over ``K``, by way of its norm over ``QQ``)."""
+    K = H.domain
+    critical = sympy.Poly(sympy.LC(H.as_expr(), W), S, domain=K) * sympy.Poly(H.as_expr().subs(W, 0), S, domain=K)
+    if H.degree(W) > 1:
+        critical *= sympy.Poly(H.as_expr(), W, S, domain=K).discriminant()
+    critical = sympy.Poly(critical.as_expr(), S, domain=K)
+    if not is_rational_field(K):
+        critical = critical.norm()
+    critical = sympy.Poly(critical.as_expr(), S, domain=QQ).sqf_part()
+    if critical.degree() <= 0:
+        return [QQ(0)]
+    eps = None
+    while True:
+        intervals = sorted(critical.intervals(eps=eps)) if eps else sorted(critical.intervals())
+        bounds = [(sympy.Rational(a), sympy.Rational(b)) for (a, b), _ in intervals]
+        if not bounds:
+            return [QQ(0)]
+        samples = [bounds[0][0] - 1, bounds[-1][1] + 1]
+        samples += [(b + a) / 2 for (_, b), (a, _) in zip(bounds, bounds[1:])]
+        if all(critical.eval(x) for x in samples):
+            return [QQ(int(x.p), int(x.q)) for x in samples]
+        eps = min(b - a for a, b in bounds if b > a) / 4 if eps is None else eps / 4
+
+
+def _circles(H: sympy.Poly) -> int:
+    """The number of real singular points of ``H = 0`` with ``w > 0`` (each turns into a circle)."""
+    K = H.domain
+    system = [H.as_expr(), H.diff(S).as_expr(), H.diff(W).as_expr()]
+    radical = _radical(system, K)
+    if radical is None:
+        return 0
+    q, v = _shape(radical, K)
+    return _positive_at_roots(q, v)
+
+
+def _lex_basis(system: list[sympy.Expr], first: sympy.Symbol, second: sympy.Symbol, K: Domain) -> sympy.GroebnerBasis:
+    """The reduced lexicographic Gröbner basis (``first > second``) of a zero-dimensional ideal:
+    F5B in degree order, then FGLM to lex (much faster than Buchberger in lex directly)."""
+    basis = sympy.groebner(system, first, second, order="grevlex", method="f5b", domain=K)
+    return basis if basis.exprs == [1] else basis.fglm("lex")
+
+
+def _radical(system: list[sympy.Expr], K: Domain) -> list[sympy.Expr] | None:
+    """Generators of the radical of the zero-dimensional ideal of ``system`` (Seidenberg: add the
+    square-free eliminants in ``s`` and ``w``), as a reduced basis; ``None`` when the ideal is the
+    whole ring."""
+    basis = _lex_basis(system, W, S, K)
+    if basis.exprs == [1]:
+        return None
+    eliminants = [basis.exprs[-1], _lex_basis(system, S, W, K).exprs[-1]]
+    for e, x in zip(eliminants, (S, W)):
+        if e.free_symbols != {x}:
+            raise AnalysisError("the singular points of the profile are not finitely many (internal error)")
+    radical = system + [sympy.Poly(e, x, domain=K).sqf_part().as_expr() for e, x in zip(eliminants, (S, W))]
+    return _lex_basis(radical, W, S, K).exprs
+
+
+def _shape(radical: list[sympy.Expr], K: Domain) -> tuple[sympy.Poly, sympy.Poly]:
+    """``(q, v)`` with ``V = {(t - λ·v(t), v(t)) : q(t) = 0}`` for the first shear ``s = t - λ·w``
+    that puts the radical ideal in shape position (lex basis ``{w - v(t), q(t)}``)."""
+    for lam in range(SHEARS):
+        sheared = [e.subs(S, T - lam * W) for e in radical]
+        basis = _lex_basis(sheared, W, T, K).exprs
+        if len(basis) != 2:
+            continue
+        first = sympy.Poly(basis[0], W, T, domain=K)
+        if first.degree(W) != 1 or sympy.Poly(basis[0], W).LC() != 1 or basis[1].has(W):
+            continue
+        return sympy.Poly(basis[1], T, domain=K), sympy.Poly(W - basis[0], T, domain=K)
+    raise AnalysisError("the singular points of the profile did not come into shape position")
+
+
+def _positive_at_roots(q: sympy.Poly, v: sympy.Poly) -> int:
+    """``#{ξ ∈ R : q(ξ) = 0, v(ξ) > 0}`` for square-free ``q``, by the Sturm–Tarski theorem:
+    ``TaQ(v, q) = #{v > 0} - #{v < 0}`` is the sign-change difference of the signed remainder
+    sequence of ``q`` and ``q'·v``."""
+    K = q.domain
+    total = _real_roots(q)
+    zero = _real_roots(q.gcd(v))
+    sequence = [q, q.diff(T) * v]
+    while not sequence[-1].is_zero:
+        sequence.append(-sequence[-2].rem(sequence[-1]))
+    sequence.pop()
+    at_plus = [sign(K, K.from_sympy(p.LC())) for p in sequence]
+    at_minus = [s * (-1) ** p.degree() for s, p in zip(at_plus, sequence, strict=True)]
+    tarski = sign_changes(at_minus) - sign_changes(at_plus)
+    return (total - zero + tarski) // 2

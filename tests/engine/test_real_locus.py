@@ -1,0 +1,92 @@
+"""The real points of a surface of revolution (docs/math.md §3.4): exact answers on known surfaces."""
+
+from __future__ import annotations
+
+import pytest
+
+from sorgui.engine.analysis import analyze
+from sorgui.engine.parsing import parse_polynomial
+from sorgui.engine.real_locus import real_locus
+from sorgui.engine.recognition import recognize
+from sorgui.engine.report import Analysis, RealLocus
+from sorgui.export.text import format_report
+
+
+def locus(text: str) -> RealLocus | None:
+    f = parse_polynomial(text).polynomial
+    _, symmetry, profile = recognize(f)
+    return real_locus(f, symmetry, profile)
+
+
+CASES = [
+    # spheres and planes: their normal forms
+    ("x^2+y^2+z^2+1", RealLocus("empty", -1, points=0)),
+    ("x^2+y^2+z^2", RealLocus("points", 0, points=1)),
+    ("x^2+y^2+z^2-2x-3", RealLocus("surface", 2)),
+    ("(x^2+y^2+z^2)*(x^2+y^2+z^2-1)", RealLocus("surface", 2)),
+    ("2x-y+3z-1", RealLocus("surface", 2)),
+    ("x^2+1", RealLocus("empty", -1, points=0)),
+    # cylinders of revolution
+    ("x^2+y^2", RealLocus("curve", 1, points=0, circles=0, axis_line=True)),
+    ("x^2+y^2+1", RealLocus("empty", -1, points=0, circles=0, axis_line=False)),
+    ("(x-1)^2+(y-2)^2-4", RealLocus("surface", 2)),
+    # surfaces of revolution
+    ("(x^2+y^2+z^2+3)^2-16(x^2+y^2)", RealLocus("surface", 2)),  # the torus
+    ("(x^2+y^2+z^2+3)^2+16(x^2+y^2)", RealLocus("empty", -1, points=0, circles=0, axis_line=False)),
+    ("(x^2+y^2)*z^2+1", RealLocus("empty", -1, points=0, circles=0, axis_line=False)),
+    ("(x^2+y^2+z^2-5)^2+z^2", RealLocus("curve", 1, points=0, circles=1, axis_line=False)),  # a circle
+    ("x^2+y^2+(z^2-1)^2", RealLocus("points", 0, points=2, circles=0, axis_line=False)),
+    ("x^2+y^2+z^4", RealLocus("points", 0, points=1, circles=0, axis_line=False)),
+    ("(x^2+y^2)*((x^2+y^2+z^2-5)^2+z^2)", RealLocus("curve", 1, points=0, circles=1, axis_line=True)),
+    (
+        "((x^2+y^2+z^2-5)^2+z^2)*(x^2+y^2+(z-7)^2)",
+        RealLocus("curve", 1, points=1, circles=1, axis_line=False),
+    ),
+    ("y^2-2xz", RealLocus("surface", 2)),  # the cone
+    ("y^2+z^2-x^3-3x^2+2x", RealLocus("surface", 2)),  # two real components
+    ("(x^2+y^2+z^2-1)^2+(z^2-1)^2", RealLocus("points", 0, points=2, circles=0, axis_line=False)),
+    ("(x^2+y^2-z^2)^2+(z-1)^2", RealLocus("curve", 1, points=0, circles=1, axis_line=False)),
+    # A² + B² = 0 with A, B meeting in two real points with w = x² + y² > 0 and one with w < 0
+    (
+        "(z^3-2z(x^2+y^2)+(x^2+y^2)^2-3)^2+(z^2(x^2+y^2)-(x^2+y^2)+1)^2",
+        RealLocus("curve", 1, points=0, circles=2, axis_line=False),
+    ),
+    # over K = QQ(sqrt(2), sqrt(3))
+    ("(1+sqrt(2))(x^2+y^2)+z^2+sqrt(3)", RealLocus("empty", -1, points=0, circles=0, axis_line=False)),
+    ("(x^2+y^2-sqrt(2))^2+(z-sqrt(3))^2", RealLocus("curve", 1, points=0, circles=1, axis_line=False)),
+    ("x^2+y^2-sqrt(2)z^2-sqrt(3)", RealLocus("surface", 2)),
+]
+
+
+@pytest.mark.parametrize(("text", "expected"), CASES, ids=[c[0] for c in CASES])
+def test_real_locus(text: str, expected: RealLocus) -> None:
+    assert locus(text) == expected
+
+
+def test_not_a_surface_of_revolution_has_no_real_locus() -> None:
+    assert locus("x^2+2y^2+3z^2-1") is None
+    assert locus("x^3-y^2-x") is None
+
+
+def test_the_analysis_reports_it_in_json_and_words() -> None:
+    analysis = analyze("x^2+y^2+z^2+1")
+    data = analysis.to_json()
+    assert data["real_locus"] == {"kind": "empty", "dimension": -1, "points": 0, "circles": None, "axis_line": None}
+    assert Analysis.from_json(data) == analysis
+    assert "real points: none (X has no real point)" in format_report(analysis).splitlines()
+
+    circle = analyze("(x^2+y^2+z^2-5)^2+z^2")
+    assert Analysis.from_json(circle.to_json()).real_locus == circle.real_locus
+    assert "real points: only a curve (no real surface): 1 circle about the axis" in format_report(circle)
+
+    assert "real points: a real surface" in format_report(analyze("(x^2+y^2+z^2+3)^2-16(x^2+y^2)"))
+    assert analyze("x^2+2y^2+3z^2-1").to_json()["real_locus"] is None
+
+
+def test_genus_line_says_what_a_reducible_profile_means() -> None:
+    report = format_report(analyze("y^2-2xz"))  # the cone: P is two lines
+    assert "P is reducible over C (no genus), genus(P²) = 0" in report
+    assert "None" not in report
+    planes = format_report(analyze("x^2+y^2"))  # P² = w: two complex planes
+    assert "genus(P), genus(P²): not computed" in planes
+    assert "None" not in planes
