@@ -1,109 +1,129 @@
-"""Writing an :class:`~sorgui.engine.report.Analysis` to files: JSON, text, LaTeX, Maple, Mathematica.
+"""Writing an :class:`~sorgui.engine.report.Analysis` to files, in the format the suffix names.
 
-The format follows the file's suffix (:data:`FORMATS`). JSON is exactly ``sorgui analyze
---json``; the text file is the command line's report; the LaTeX, Maple and Mathematica files
-hold the results as formulas (the equation, the axis, the profile and ``P²``, the tubular
-surface and every parameterization), printed by sympy's printers from the engine's exact
-strings (read back with :mod:`sorgui.export.exact`, never evaluated).
+:data:`FORMATS` lists every format: reports (JSON, text, Markdown, HTML), formula files (LaTeX,
+Maple, Mathematica, Python), meshes (STL, OBJ, PLY, VTP; ``NAME.patch.stl`` is the parametric
+patch instead of the surface) and a PNG picture. The format follows the file's suffix, or the
+``fmt`` argument (``"stl"``, ``".stl"`` or ``"patch.stl"``). Meshes and pictures need the scene
+(``sorgui.session.scene_data.SceneData``) the caller built; Markdown and HTML add a picture when
+a scene is given and an off-screen renderer is available. Every file is written atomically
+(:mod:`sorgui.export.atomic`): a failure raises ``OSError`` and leaves any old file unchanged.
 """
 
 from __future__ import annotations
 
-import json
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
-
-import sympy
-from sympy.printing.maple import maple_code
-from sympy.printing.mathematica import mathematica_code
+from typing import Any
 
 from sorgui.engine.report import Analysis
-from sorgui.export.exact import read_expression
-from sorgui.export.text import TABLE_1, format_report
+from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
+from sorgui.export.cas import latex_document, maple_file, mathematica_file
+from sorgui.export.python_module import python_module
+from sorgui.export.reports import html_report, json_report, markdown_report, text_report
 
-Formula = tuple[str, str, sympy.Expr]
-"""(name used in code, description, exact expression)."""
-
-
-def analysis_formulas(analysis: Analysis) -> list[Formula]:
-    """The results of ``analysis`` as named exact expressions, in reading order."""
-    rec = analysis.recognition
-    out: list[Formula] = [("f", "the equation f(x, y, z) = 0", read_expression(rec.polynomial))]
-    vectors = {
-        "axis_point": ("a point of the axis", rec.axis.point if rec.axis else None),
-        "axis_direction": ("the direction of the axis", rec.axis.direction if rec.axis else None),
-        "center": ("the centre of the sphere", rec.center),
-        "normal": ("the normal of the plane", rec.normal),
-        "direction": ("the direction of the extrusion", rec.direction),
-    }
-    for name, (text, value) in vectors.items():
-        if value is not None:
-            out.append((name, text, sympy.Matrix([read_expression(v) for v in value]).T))
-    if rec.profile is not None:
-        out.append(("p", "the profile p(x, y) = 0 (x along the axis, y the distance)", read_expression(rec.profile.polynomial)))
-        out.append(("P2", "the curve P² (p with y² replaced by y)", read_expression(rec.profile.square)))
-    rat = analysis.rationality
-    if rat is not None and rat.tubular_surface is not None:
-        out.append(("T", "the tubular surface T = 0", read_expression(rat.tubular_surface)))
-    for i, par in enumerate(analysis.parametrizations, 1):
-        coords = sympy.Matrix([read_expression(c) for c in par.coordinates]).T
-        out.append((f"X{i}", f"parameterization {i}: {par.method}, over {par.field}", coords))
-    return out
+PNG_SIZE = (1600, 1200)
+"""The size of a PNG written from the command line (the window saves the viewport's own)."""
 
 
-def _latex(analysis: Analysis) -> str:
-    """A LaTeX document with the verdict, the Table 1 row and every formula."""
-    field = analysis.field.replace("QQ", r"\mathbb{Q}")
-    symmetry = analysis.recognition.symmetry.replace("_", " ")
-    lines = [
-        r"\documentclass{article}",
-        r"\usepackage{amsmath}",
-        r"\allowdisplaybreaks",
-        r"\begin{document}",
-        r"\section*{sorgui: " + ("a surface of revolution" if analysis.is_sor else "not a surface of revolution") + "}",
-        f"Symmetry: {symmetry}; field $K = {field}$.",
-    ]
-    rat = analysis.rationality
-    if rat is not None and rat.table_row is not None:
-        row = TABLE_1[rat.table_row - 1]
-        lines.append(f"Table 1, row {rat.table_row}: genus$(P)$ {row[0]}, genus$(P^2)$ {row[1]}, "
-                     f"$X_\\mathbb{{C}}$ {row[2]}, $X$ {row[3]}.")
-    for _name, text, expr in analysis_formulas(analysis):
-        lines += [f"\\paragraph{{{text[0].upper() + text[1:]}}}", r"\[", sympy.latex(expr), r"\]"]
-    lines.append(r"\end{document}")
-    return "\n".join(lines) + "\n"
+@dataclass(frozen=True)
+class Format:
+    """One export format: its suffix, its name in file dialogs, and its kind (``report``,
+    ``formula``, ``mesh`` or ``picture``)."""
+
+    suffix: str
+    name: str
+    kind: str
+
+    @property
+    def needs_scene(self) -> bool:
+        return self.kind in ("mesh", "picture")
 
 
-def _code(printer: Callable[[sympy.Expr], str], assign: str, comment: tuple[str, str]) -> Callable[[Analysis], str]:
-    """A writer of ``name assign value;`` lines with comments for a computer algebra system."""
-    start, end = comment
+FORMATS: dict[str, Format] = {f.suffix: f for f in (
+    Format(".json", "JSON report", "report"),
+    Format(".txt", "Text report", "report"),
+    Format(".md", "Markdown report", "report"),
+    Format(".html", "HTML report", "report"),
+    Format(".tex", "LaTeX document", "formula"),
+    Format(".mpl", "Maple", "formula"),
+    Format(".m", "Mathematica", "formula"),
+    Format(".py", "Python module (NumPy and SymPy)", "formula"),
+    Format(".stl", "STL mesh (binary)", "mesh"),
+    Format(".obj", "OBJ mesh", "mesh"),
+    Format(".ply", "PLY mesh (binary)", "mesh"),
+    Format(".vtp", "VTK PolyData (VTP)", "mesh"),
+    Format(".png", "PNG picture", "picture"),
+)}
+"""Suffix → format."""
 
-    def write(analysis: Analysis) -> str:
-        verdict = "a surface of revolution" if analysis.is_sor else "not a surface of revolution"
-        lines = [f"{start} sorgui: {verdict}{end}"]
-        for name, text, expr in analysis_formulas(analysis):
-            lines += [f"{start} {text}{end}", f"{name}{assign}{printer(expr)};"]
-        return "\n".join(lines) + "\n"
-
-    return write
-
-
-FORMATS: dict[str, Callable[[Analysis], str]] = {
-    ".json": lambda analysis: json.dumps(analysis.to_json(), indent=1) + "\n",
-    ".txt": lambda analysis: format_report(analysis) + "\n",
-    ".tex": _latex,
-    ".mpl": _code(maple_code, " := ", ("#", "")),
-    ".m": _code(mathematica_code, " = ", ("(*", " *)")),
+TEXT_WRITERS: dict[str, Callable[[Analysis], str]] = {
+    ".json": json_report,
+    ".txt": text_report,
+    ".tex": latex_document,
+    ".mpl": maple_file,
+    ".m": mathematica_file,
+    ".py": python_module,
 }
-"""File suffix → writer."""
 
 
-def export_analysis(analysis: Analysis, path: str | Path) -> Path:
-    """Write ``analysis`` to ``path`` in the format its suffix names; raise ``ValueError`` for an
-    unknown suffix and ``OSError`` when the file cannot be written."""
+def format_of(path: str | Path, fmt: str | None = None) -> Format:
+    """The format of ``path``: ``fmt`` if given (``"stl"``, ``".stl"``, ``"patch.stl"``), else its
+    suffix; ``ValueError`` naming the known formats otherwise."""
+    if fmt is not None:
+        suffix = "." + fmt.lower().lstrip(".").removeprefix("patch.")
+    else:
+        suffix = Path(path).suffix.lower()
+    if suffix not in FORMATS:
+        shown = suffix if suffix else "(no suffix)"
+        raise ValueError(f"unknown export format {shown} of {path}; use one of {', '.join(FORMATS)}")
+    return FORMATS[suffix]
+
+
+def export_analysis(
+    analysis: Analysis,
+    path: str | Path,
+    fmt: str | None = None,
+    scene: Any = None,
+    picture: bytes | None = None,
+) -> Path:
+    """Write ``analysis`` to ``path`` in the format of its suffix (or ``fmt``); return ``path``.
+
+    ``scene`` is needed for meshes and pictures (``ValueError`` without it) and gives Markdown
+    and HTML their picture; ``picture`` (PNG bytes) is used instead of rendering one. A Markdown
+    report's picture is written beside it as ``NAME.png``.
+    """
     path = Path(path)
-    writer = FORMATS.get(path.suffix.lower())
-    if writer is None:
-        raise ValueError(f"unknown export format {path.suffix!r}; use one of {', '.join(FORMATS)}")
-    path.write_text(writer(analysis), encoding="utf-8")
-    return path
+    form = format_of(path, fmt)
+    if form.needs_scene and scene is None:
+        raise ValueError(f"{form.name} needs the drawn scene of the analysis")
+    if form.suffix in TEXT_WRITERS:
+        return atomic_write_text(path, TEXT_WRITERS[form.suffix](analysis))
+    if form.kind == "mesh":
+        from sorgui.export.meshes import is_patch_path, write_mesh
+
+        patch = is_patch_path(path) or (fmt is not None and fmt.lower().lstrip(".").startswith("patch."))
+        return write_mesh(scene, analysis.recognition.polynomial, path, form.suffix, patch)
+    if form.kind == "picture":
+        from sorgui.export.picture import render_png
+
+        return atomic_write_bytes(path, picture or render_png(scene, PNG_SIZE))
+    if picture is None and scene is not None:
+        picture = report_picture(scene)
+    if form.suffix == ".html":
+        return atomic_write_text(path, html_report(analysis, picture))
+    image = None
+    if picture is not None:
+        image = path.with_suffix(".png")
+        atomic_write_bytes(image, picture)
+    return atomic_write_text(path, markdown_report(analysis, image.name if image else None))
+
+
+def report_picture(scene: Any) -> bytes | None:
+    """The report's PNG of ``scene``, or ``None`` when no off-screen renderer is available."""
+    from sorgui.export.picture import render_png
+
+    try:
+        return render_png(scene)
+    except RuntimeError:
+        return None

@@ -1,4 +1,4 @@
-"""Exports (JSON, text, LaTeX, Maple, Mathematica) and the exact reader of engine strings."""
+"""Every export format through export_analysis and the command line, and the exact reader of engine strings."""
 
 from __future__ import annotations
 
@@ -11,7 +11,8 @@ from sorgui.cli import main
 from sorgui.engine import analyze
 from sorgui.engine.report import Analysis
 from sorgui.export.exact import read_expression
-from sorgui.export.files import FORMATS, analysis_formulas, export_analysis
+from sorgui.export.files import FORMATS, export_analysis
+from sorgui.export.formulas import analysis_formulas
 
 x, y, s, t = sympy.symbols("x y s t")
 
@@ -30,22 +31,23 @@ def test_engine_strings_are_read_exactly(text: str, expected: sympy.Expr) -> Non
 
 def test_formulas_are_the_exact_results() -> None:
     result = analyze("y^2 - 2xz")
-    formulas = {name: expr for name, _, expr in analysis_formulas(result)}
+    formulas = {f.name: f.value for f in analysis_formulas(result)}
     assert sympy.expand(formulas["p"] - (-x**2 + y**2)) == 0 or sympy.expand(formulas["p"] - (x**2 - y**2)) == 0
-    assert list(formulas["axis_direction"]) == [1, 0, 1]
+    assert list(formulas["axisDirection"]) == [1, 0, 1]
     assert {"f", "P2", "T", "X1"} <= set(formulas)
 
 
-@pytest.mark.parametrize("suffix", sorted(FORMATS))
-def test_every_format_is_written(tmp_path, suffix: str) -> None:
-    result = analyze("y^2 + z^2 = x^3 + 3x^2 - 2x")
-    path = export_analysis(result, tmp_path / f"cubic{suffix}")
+@pytest.mark.parametrize("suffix", sorted(s for s, f in FORMATS.items() if not f.needs_scene))
+def test_every_format_is_written(analyses, tmp_path, suffix: str) -> None:
+    result = analyses["paper-example-1"]
+    path = export_analysis(result, tmp_path / f"example{suffix}")
     text = path.read_text(encoding="utf-8")
     assert text.endswith("\n") and len(text) > 100
     if suffix == ".json":
         assert Analysis.from_json(json.loads(text)) == result
     if suffix == ".tex":
         assert text.startswith(r"\documentclass") and r"\end{document}" in text and "row 4" in text
+        assert r"\usepackage{amssymb}" in text
     if suffix == ".mpl":
         assert "f := " in text and "T := " in text
     if suffix == ".m":
@@ -64,4 +66,27 @@ def test_command_line_output_option(tmp_path, capsys: pytest.CaptureFixture[str]
     capsys.readouterr()
     assert main(["analyze", "--json", "-o", str(tmp_path / "x.doc"), "y^2 - 2xz"]) == 2
     assert "unknown export format" in json.loads(capsys.readouterr().out)["error"]["message"]
-    assert main(["analyze", "-o", str(tmp_path / "missing" / "x.json"), "y^2 - 2xz"]) == 2
+
+
+def test_command_line_meshes_pictures_and_format_option(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    import pyvista
+
+    outputs = [tmp_path / n for n in ("torus.stl", "torus.patch.obj", "torus.html", "torus.md", "torus.png")]
+    arguments = [a for path in outputs for a in ("-o", str(path))]
+    assert main(["analyze", *arguments, "(x^2 + y^2 + z^2 + 8)^2 - 36(x^2 + y^2)"]) == 0
+    assert pyvista.read(outputs[0]).n_cells > 1000 and pyvista.read(outputs[1]).n_cells > 100
+    assert 'src="data:image/png;base64,' in outputs[2].read_text(encoding="utf-8")
+    assert (tmp_path / "torus.png").read_bytes().startswith(b"\x89PNG")
+    assert main(["analyze", "--format", "py", "-o", str(tmp_path / "torus.txt"), "x^2 + y^2 - z^2 - 1"]) == 0
+    assert "def X1(s, t):" in (tmp_path / "torus.txt").read_text(encoding="utf-8")
+    capsys.readouterr()
+    assert main(["analyze", "--format", "docx", "-o", str(tmp_path / "a.txt"), "x^2 + y^2 - 1"]) == 2
+    assert "unknown export format" in capsys.readouterr().err
+
+
+def test_open_refuses_what_is_not_a_report(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    bad = tmp_path / "equation.json"
+    bad.write_text("x^2 + y^2 - 1", encoding="utf-8")
+    assert main(["open", str(bad)]) == 2
+    assert capsys.readouterr().err.strip().splitlines() == [
+        f"sorgui: {bad} is not a JSON report: Expecting value: line 1 column 1 (char 0)"]

@@ -1,0 +1,206 @@
+"""Formula files for other tools: a LaTeX document, a Maple worksheet and a Mathematica file.
+
+All three print the same :func:`~sorgui.export.formulas.analysis_formulas` with sympy's own
+printers (``latex``, ``maple_code``, ``mathematica_code``), so that the files read back into
+exactly the expressions the engine found: the Maple lines are ``name := maple_code(value);``,
+the Mathematica lines ``name = mathematica_code(value);`` (vectors as lists ``{a, b, c}``), which
+``sympy.parsing.mathematica.parse_mathematica`` reads back. Each map is followed by its
+parameter domain and the points it misses (:class:`~sorgui.export.formulas.Coverage`).
+The LaTeX document needs only ``amsmath`` and ``amssymb``; long sums are broken over lines.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import sympy
+from sympy.printing.maple import maple_code
+from sympy.printing.mathematica import mathematica_code
+
+from sorgui.engine.report import Analysis, Approximation
+from sorgui.export.formulas import CoverageStyle, Formula, analysis_formulas
+from sorgui.export.text import TABLE_1
+
+LATEX_LINE = 100
+"""Characters of LaTeX source per displayed line before a long sum is broken."""
+
+_TEX_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
+                "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}"}
+_TEX_UNICODE = {"τ": r"$\tau$", "·": r"$\cdot$", "×": r"$\times$", "²": r"$^2$", "³": r"$^3$", "→": r"$\to$",
+                "≤": r"$\le$", "≥": r"$\ge$", "−": "-", "√": r"$\surd$", "̂": "", "±": r"$\pm$", "∞": r"$\infty$",
+                "ℂ": r"$\mathbb{C}$", "ℝ": r"$\mathbb{R}$", "ℚ": r"$\mathbb{Q}$", "–": "--", "—": "---"}
+
+
+def verdict(analysis: Analysis) -> str:
+    """One line: whether ``X`` is a surface of revolution."""
+    return "a surface of revolution" if analysis.is_sor else "not a surface of revolution"
+
+
+def summary_lines(analysis: Analysis) -> list[str]:
+    """The verdict, symmetry, field and Table 1 row in plain words (the files' header)."""
+    rec = analysis.recognition
+    lines = [f"sorgui: {verdict(analysis)}",
+             f"symmetry: {rec.symmetry.replace('_', ' ')} (dim L = {rec.symmetry_dimension}); field K = {analysis.field}"]
+    rat = analysis.rationality
+    if rat is not None and rat.table_row is not None:
+        row = TABLE_1[rat.table_row - 1]
+        lines.append(f"Table 1, row {rat.table_row}: genus(P) {row[0]}, genus(P^2) {row[1]}, "
+                     f"X_C {row[2]}, X {row[3]}")
+    if analysis.approximate is not None:
+        lines.append("rounded input: " + approximate_line(analysis.approximate))
+    return lines
+
+
+def approximate_line(approx: Approximation) -> str:
+    """The verdict on a rounded input in one line."""
+    kind = f" ({approx.kind})" if approx.kind else ""
+    return (f"{'near' if approx.near_sor else 'not near'} a surface of revolution{kind} within the relative "
+            f"tolerance {approx.tolerance:g} ({approx.tolerance_source}); residual {approx.residual:.3g} roundings")
+
+
+LATEX_NAMES = {"P2": "P^2", "P2K": r"\tilde{p}^2", "P2param": r"\mathrm{P2param}", "tau": r"\tau",
+               "axisPoint": r"\mathrm{axisPoint}", "axisDirection": r"\mathrm{axisDirection}",
+               "center": r"\mathrm{center}", "normal": r"\mathrm{normal}", "direction": r"\mathrm{direction}"}
+"""How the formulas' names are typeset (``X1`` becomes ``X_{1}`` by sympy's rule)."""
+
+
+def latex_name(name: str) -> str:
+    """The LaTeX of a formula's name."""
+    return LATEX_NAMES.get(name) or sympy.latex(sympy.Symbol(name))
+
+
+def tex_text(text: str) -> str:
+    """``text`` escaped for LaTeX's text mode (special characters and the Unicode sorgui uses)."""
+    out = []
+    for char in text:
+        if char in _TEX_SPECIAL:
+            out.append(_TEX_SPECIAL[char])
+        elif char in _TEX_UNICODE:
+            out.append(_TEX_UNICODE[char])
+        elif ord(char) < 128:
+            out.append(char)
+        else:
+            out.append(f"[U+{ord(char):04X}]")
+    return "".join(out)
+
+
+def _signed_terms(expr: sympy.Expr) -> list[str]:
+    """The terms of a sum as LaTeX, each after the first with its sign in front."""
+    pieces = []
+    for i, term in enumerate(expr.as_ordered_terms()):
+        if i == 0:
+            pieces.append(sympy.latex(term))
+        elif term.could_extract_minus_sign():
+            pieces.append("- " + sympy.latex(-term))
+        else:
+            pieces.append("+ " + sympy.latex(term))
+    return pieces
+
+
+def latex_display(lhs: str, expr: sympy.Expr) -> list[str]:
+    """``lhs = expr`` displayed, a long sum (or the long numerator of a quotient) over lines."""
+    whole = sympy.latex(expr)
+    if len(whole) <= LATEX_LINE:
+        return [r"\[", f"{lhs} = {whole}", r"\]"]
+    numerator, denominator = sympy.fraction(sympy.together(expr))
+    if not isinstance(numerator, sympy.Add):
+        return [r"\[", f"{lhs} = {whole}", r"\]"]
+    prefix = f"{lhs} = " + ("" if denominator == 1 else r"\frac{1}{" + sympy.latex(denominator) + r"}\bigl(")
+    lines, current = [], prefix
+    for piece in _signed_terms(numerator):
+        if len(current) + len(piece) > LATEX_LINE and current != prefix:
+            lines.append(current + r" \\")
+            current = "\\quad " + piece
+        else:
+            current += " " + piece
+    lines.append(current + ("" if denominator == 1 else r"\bigr)"))
+    return [r"\begin{multline*}", *lines, r"\end{multline*}"]
+
+
+def _tex_math(text: str) -> str:
+    return f"${text}$"
+
+
+LATEX_STYLE = CoverageStyle(expr=sympy.latex, math=_tex_math, real=r"\mathbb{R}", complex=r"\mathbb{C}",
+                            element=r"\in", to=r"\to", infinity=r"\infty",
+                            power=lambda n: "" if n == 1 else f"^{{{n}}}")
+
+
+def _latex_formula(formula: Formula) -> list[str]:
+    lines = [r"\paragraph{" + tex_text(formula.description[0].upper() + formula.description[1:]) + "}"]
+    if not formula.is_vector:
+        lines += latex_display(latex_name(formula.name), formula.value)
+    elif formula.parameters and formula.name.startswith("X"):
+        args = ", ".join(sympy.latex(p) for p in formula.parameters)
+        for coordinate, value in zip("xyz", formula.value):
+            lines += latex_display(f"{coordinate}({args})", value)
+    else:
+        args = "(" + ", ".join(sympy.latex(p) for p in formula.parameters) + ")" if formula.parameters else ""
+        name = latex_name(formula.name) + args
+        row = r"\left(" + ", ".join(sympy.latex(c) for c in formula.value) + r"\right)"
+        if len(row) <= LATEX_LINE:
+            lines += [r"\[", f"{name} = {row}", r"\]"]
+        else:
+            for i, value in enumerate(formula.value, 1):
+                lines += latex_display(f"{name}_{{{i}}}", value)
+    if formula.coverage is not None:
+        lines.append(r"\begin{itemize}")
+        lines += [r"\item " + _tex_words(line) for line in formula.coverage.lines(LATEX_STYLE)]
+        lines.append(r"\end{itemize}")
+    return lines
+
+
+def _tex_words(line: str) -> str:
+    """A coverage line: escape the words between the ``$…$`` formulas, keep the formulas."""
+    parts = line.split("$")
+    return "".join(tex_text(part) if i % 2 == 0 else f"${part}$" for i, part in enumerate(parts))
+
+
+def latex_document(analysis: Analysis) -> str:
+    """A complete LaTeX document (``pdflatex`` compiles it) with every result as a formula."""
+    head = summary_lines(analysis)
+    lines = [
+        r"\documentclass[11pt]{article}",
+        r"\usepackage[T1]{fontenc}",
+        r"\usepackage{amsmath}",
+        r"\usepackage{amssymb}",
+        r"\allowdisplaybreaks",
+        r"\begin{document}",
+        r"\section*{" + tex_text(head[0]) + "}",
+        *[tex_text(line) + r"\par" for line in head[1:]],
+    ]
+    for formula in analysis_formulas(analysis):
+        lines += _latex_formula(formula)
+    lines.append(r"\end{document}")
+    return "\n".join(lines) + "\n"
+
+
+def _code_file(
+    printer: Callable[[object], str], assign: str, comment: Callable[[str], str], style: CoverageStyle
+) -> Callable[[Analysis], str]:
+    """A writer of ``name assign value;`` lines with comments, for a computer algebra system."""
+
+    def write(analysis: Analysis) -> str:
+        lines = [comment(line) for line in summary_lines(analysis)]
+        for formula in analysis_formulas(analysis):
+            value = list(formula.value) if formula.is_vector else formula.value
+            lines.append(comment(formula.description))
+            if formula.coverage is not None:
+                lines += [comment("  " + line) for line in formula.coverage.lines(style)]
+            lines.append(f"{formula.name}{assign}{printer(value)};")
+        return "\n".join(lines) + "\n"
+
+    return write
+
+
+def _mathematica_comment(text: str) -> str:
+    return "(* " + text.replace("*)", "* )").replace("(*", "( *") + " *)"
+
+
+maple_file = _code_file(maple_code, " := ", lambda text: "# " + text,
+                        CoverageStyle(expr=maple_code, infinity="infinity"))
+"""The Maple file: ``name := value;`` with ``#`` comments; vectors are Maple lists."""
+
+mathematica_file = _code_file(mathematica_code, " = ", _mathematica_comment,
+                              CoverageStyle(expr=mathematica_code, infinity="Infinity"))
+"""The Mathematica file: ``name = value;`` with ``(* *)`` comments; vectors are lists."""

@@ -1,0 +1,91 @@
+"""A PNG picture of the surface and its axis, rendered off screen for the Markdown/HTML reports.
+
+The scene (``sorgui.session.scene_data.SceneData``: surface mesh, axis segment, profile curve,
+sphere centre) is drawn by an off-screen pyvista plotter in the viewport's colours, from the
+viewport's isometric direction. VTK picks the OpenGL context itself: GLX under X (or Xvfb), EGL
+or OSMesa without a display; when none can be had, :func:`render_png` raises ``RuntimeError``
+and the reports are written without a picture.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+import numpy as np
+
+from sorgui.render import ClipSphere, LineData, MarkerData, MeshData
+
+PICTURE_SIZE = (900, 700)
+"""Width and height of the report picture, in pixels."""
+
+SURFACE_COLOR = "#7fa7d6"
+BACK_COLOR = "#e8a95b"
+AXIS_COLOR = "#1f2a44"
+PROFILE_COLOR = "#c2185b"
+CENTER_COLOR = "#d32f2f"
+
+
+class PictureScene(Protocol):
+    """What the picture needs of a scene."""
+
+    surface: MeshData
+    axis_segment: LineData
+    profile_curve: LineData
+    center_marker: MarkerData | None
+    region: ClipSphere
+
+
+def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transparent: bool = False) -> bytes:
+    """The scene as PNG bytes of ``size`` pixels; ``RuntimeError`` without an OpenGL context."""
+    import pyvista
+    from vtkmodules.vtkCommonCore import vtkObject
+
+    from sorgui.render import mesh_to_polydata
+
+    warnings = vtkObject.GetGlobalWarningDisplay()
+    vtkObject.GlobalWarningDisplayOff()  # VTK's note that X is missing before it falls back to EGL
+    try:
+        plotter = pyvista.Plotter(off_screen=True, window_size=list(size))
+        try:
+            plotter.set_background("white")
+            if not scene.surface.is_empty:
+                actor = plotter.add_mesh(mesh_to_polydata(scene.surface), color=SURFACE_COLOR, specular=0.35,
+                                         backface_params={"color": BACK_COLOR}, smooth_shading=True)
+                actor.prop.interpolation = "gouraud"
+            for data, color in ((scene.axis_segment, AXIS_COLOR), (scene.profile_curve, PROFILE_COLOR)):
+                if not data.is_empty:
+                    plotter.add_mesh(data.to_polydata(), color=color, line_width=4)
+            if scene.center_marker is not None:
+                plotter.add_mesh(scene.center_marker.to_polydata(), color=CENTER_COLOR)
+            plotter.view_isometric()
+            c, r = np.asarray(scene.region.center), scene.region.radius
+            plotter.reset_camera(bounds=[v for i in range(3) for v in (c[i] - r, c[i] + r)])
+            plotter.camera.zoom(1.4)  # the ball's corners are empty: frame the ball, not its box
+            image = plotter.screenshot(None, transparent_background=transparent, return_img=True)
+        finally:
+            plotter.close()
+    except (RuntimeError, AttributeError, ValueError) as exc:
+        raise RuntimeError(f"no off-screen renderer: {exc}") from exc
+    finally:
+        vtkObject.SetGlobalWarningDisplay(warnings)
+    return png_bytes(image)
+
+
+def png_bytes(image: np.ndarray) -> bytes:
+    """An ``(h, w, 3|4)`` ``uint8`` image as PNG bytes (VTK's PNG writer, in memory)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+
+    height, width, channels = image.shape
+    data = vtkImageData()
+    data.SetDimensions(width, height, 1)
+    flipped = np.ascontiguousarray(image[::-1].reshape(-1, channels))  # VTK's rows run bottom-up
+    array = numpy_to_vtk(flipped, deep=True)
+    data.GetPointData().SetScalars(array)
+    writer = vtkPNGWriter()
+    writer.SetInputData(data)
+    writer.WriteToMemoryOn()
+    writer.Write()
+    result = writer.GetResult()
+    return bytes(memoryview(result))

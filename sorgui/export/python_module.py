@@ -1,0 +1,115 @@
+"""The Python export: a module that evaluates the parameterizations with NumPy and checks them.
+
+The written module needs only ``numpy`` and ``sympy``. It holds
+
+* ``F``, ``P2`` and the other results as exact sympy expressions, built from sympy's own
+  exact syntax (``S(3)/5``, ``sqrt(S(2))``), so nothing is rounded;
+* one function per parameterization, ``X1(s, t)``, ``X2(s, t)``, … (and ``P2param(t)`` of the profile),
+  vectorised over NumPy arrays (broadcast like ``s + t``), returning the arrays ``x, y, z``;
+  its docstring states the parameter domain and the points it misses;
+* ``check()``, which substitutes every exact parameterization into ``F`` (or ``P2``) and
+  asserts that the result cancels to zero (``P2param`` into ``P2K``).
+
+The code is printed by sympy's printers (``NumPyPrinter`` for the functions, ``sstr`` with
+``sympy_integers`` for the exact expressions).
+The check clears denominators and compares polynomials, which takes a fraction of a second where
+sympy's ``cancel`` of the substituted fraction takes many.
+"""
+
+from __future__ import annotations
+
+import sympy
+from sympy.printing.numpy import NumPyPrinter
+
+from sorgui.engine.report import Analysis
+from sorgui.export.cas import summary_lines
+from sorgui.export.formulas import Formula, analysis_formulas
+
+_NUMPY = NumPyPrinter({"fully_qualified_modules": True})
+
+
+def exact_code(value: sympy.Expr | tuple[sympy.Expr, ...]) -> str:
+    """Python source for ``value`` that rebuilds it exactly with ``from sympy import *`` names."""
+    if isinstance(value, tuple):
+        return "(" + ", ".join(exact_code(v) for v in value) + ("," if len(value) == 1 else "") + ")"
+    return sympy.sstr(value, sympy_integers=True)
+
+
+def _numpy_code(expr: sympy.Expr) -> str:
+    return _NUMPY.doprint(expr)
+
+
+def _function(formula: Formula) -> list[str]:
+    args = ", ".join(str(p) for p in formula.parameters)
+    outputs = "x, y, z" if len(formula.value) == 3 else "s, w"
+    assert formula.coverage is not None
+    doc = [f'    """{formula.description[0].upper() + formula.description[1:]}.', "",
+           f"    Vectorised over NumPy arrays ({args} broadcast together); returns the arrays {outputs}.",
+           "    Where a denominator vanishes the values are inf or nan."]
+    doc += ["", *[f"    {line}" for line in formula.coverage.lines()], '    """']
+    body = [f"    {p} = numpy.asarray({p})" for p in formula.parameters]
+    zero = " + ".join(f"0 * {p}" for p in formula.parameters)
+    body.append(f"    zero = {zero}")
+    body.append('    with numpy.errstate(divide="ignore", invalid="ignore"):')
+    body.append("        return (")
+    body += [f"            zero + ({_numpy_code(c)})," for c in formula.value]
+    body.append("        )")
+    return [f"def {formula.name}({args}):", *doc, *body, "", ""]
+
+
+_VANISHES = '''def _vanishes(equation, variables, coordinates, parameters):
+    """Whether equation(coordinates) is zero: with the common denominator D of the coordinates
+    (c_i = A_i / D) and d the degree of the equation, sum k * A^e * D^(d - |e|) over its terms."""
+    fractions = [[Poly(e, *parameters, extension=True) for e in together(c).as_numer_denom()] for c in coordinates]
+    denominator = fractions[0][1]
+    for _, d in fractions[1:]:
+        denominator = denominator.lcm(d)
+    scaled = [n * denominator.exquo(d) for n, d in fractions]
+    terms = Poly(equation, *variables, extension=True).terms()
+    degree = max(sum(monomial) for monomial, _ in terms)
+    total = Poly(0, *parameters, extension=True)
+    for monomial, coefficient in terms:
+        term = Poly(coefficient, *parameters, extension=True) * denominator ** (degree - sum(monomial))
+        for power, value in zip(monomial, scaled):
+            term = term * value ** power
+        total = total + term
+    return total.is_zero'''
+"""The exact check of the written module (source): Poly arithmetic, no rational simplification."""
+
+
+def _exact_name(formula: Formula, maps: list[Formula]) -> str:
+    """``F`` for the equation, ``X1_EXACT`` beside the function ``X1``, else the formula's name."""
+    if formula.name == "f":
+        return "F"
+    return formula.name + "_EXACT" if formula in maps else formula.name
+
+
+def python_module(analysis: Analysis) -> str:
+    """The source of the Python module for ``analysis`` (module docstring)."""
+    formulas = analysis_formulas(analysis)
+    maps = [f for f in formulas if f.coverage is not None and f.name != "tau"]
+    head = summary_lines(analysis)
+    lines = ['"""' + head[0] + ".", "", *head[1:], "",
+             "Written by sorgui. The parameterizations are NumPy functions; the results are exact sympy",
+             "expressions; check() verifies by exact substitution that each parameterization lies on the surface.",
+             '"""', "", "import numpy", "from sympy import I, Poly, S, Symbol, sqrt, together  # noqa: F401 (I, sqrt: in the formulas)", "",
+             'x, y, z, s, t, w = (Symbol(name) for name in ("x", "y", "z", "s", "t", "w"))', ""]
+    for formula in formulas:
+        lines.append(f"# {formula.description}")
+        lines.append(f"{_exact_name(formula, maps)} = {exact_code(formula.value)}")
+    lines += ["", "PARAMETERS = {", *[f"    {f.name!r}: ({', '.join(map(str, f.parameters))},)," for f in maps],
+              "}", '"""The parameters of each parameterization, in order."""', "", ""]
+    for formula in maps:
+        lines += _function(formula)
+    targets = {f.name: ("P2K" if f.name == "P2param" else "F") for f in maps}
+    lines += [*_VANISHES.splitlines(), "", "",
+              "def check():",
+              '    """Substitute every exact parameterization into its equation; assert the result is zero."""',
+              "    checked = []"]
+    for name, target in targets.items():
+        variables = "(s, w)" if target == "P2K" else "(x, y, z)"
+        lines += [f"    assert _vanishes({target}, {variables}, {name}_EXACT, PARAMETERS[{name!r}]), {name!r}",
+                  f"    checked.append({name!r})"]
+    lines += ["    return checked", "", "", 'if __name__ == "__main__":',
+              '    print("verified:", ", ".join(check()) or "nothing to check")']
+    return "\n".join(lines) + "\n"

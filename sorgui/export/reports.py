@@ -1,0 +1,200 @@
+"""Report files: JSON (``sorgui analyze --json``), plain text, Markdown and HTML.
+
+Markdown and HTML say the same things in the same order — the verdict, the axis, the profile,
+the Table 1 row and the genera, the tubular surface, every parameterization with its parameter
+domain and the points it misses, the rounded-input verdict when there is one — with formulas as
+LaTeX between ``$…$`` (inline) and ``$$…$$`` (display), the delimiters KaTeX's auto-render and
+most Markdown viewers understand. A PNG picture of the surface and its axis is added when one is
+given (the caller renders it with :func:`sorgui.export.picture.render_png`): beside a Markdown
+file as ``NAME.png``, inside an HTML file as a ``data:`` URI, so the HTML is one file.
+
+The reports are tolerant of results added later: top-level keys of the JSON that they do not
+know are listed under "Further results" as JSON.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import sympy
+
+from sorgui.engine.errors import SorguiError
+from sorgui.engine.report import Analysis
+from sorgui.export.cas import LATEX_STYLE, approximate_line, latex_name, verdict
+from sorgui.export.formulas import Formula, analysis_formulas
+from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, format_report
+
+KNOWN_KEYS = frozenset({
+    "input", "polynomial", "field", "method", "degree", "is_sor", "symmetry", "symmetry_dimension",
+    "symmetry_basis", "axis", "center", "normal", "direction", "profile", "factors", "squarefree",
+    "rationality", "parametrizations", "timings", "approximate",
+})
+"""The JSON keys the Markdown and HTML reports present in words."""
+
+DISPLAY_LENGTH = 60
+"""LaTeX longer than this is displayed on its own line."""
+
+
+def json_report(analysis: Analysis) -> str:
+    """The JSON document of ``sorgui analyze --json``."""
+    return json.dumps(analysis.to_json(), indent=1) + "\n"
+
+
+class ReportError(SorguiError):
+    """A file is not a JSON report of sorgui (unreadable, not JSON, or not an analysis)."""
+
+
+def read_report(path: str | Path) -> Analysis:
+    """The analysis saved in the JSON report ``path`` (the inverse of :func:`json_report`)."""
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise ReportError(f"cannot read {path}: {exc.strerror or exc}") from None
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise ReportError(f"{path} is not a JSON report: {exc}") from None
+    if isinstance(data, dict) and "error" in data and "input" not in data:
+        raise ReportError(f"{path} holds an error, not an analysis: {data['error']}")
+    try:
+        return Analysis.from_json(data)
+    except (KeyError, TypeError, AttributeError, ValueError) as exc:
+        raise ReportError(f"{path} is not a sorgui report (missing or bad {exc})") from None
+
+
+def text_report(analysis: Analysis) -> str:
+    """The command line's report."""
+    return format_report(analysis) + "\n"
+
+
+@dataclass(frozen=True)
+class Block:
+    """A piece of a report: ``kind`` is ``"h1"``, ``"h2"``, ``"p"``, ``"math"``, ``"list"``, ``"code"``
+    or ``"image"``; ``text`` is words with ``$…$`` formulas (or LaTeX for ``"math"``, or lines for
+    ``"list"``)."""
+
+    kind: str
+    text: str | tuple[str, ...]
+
+
+def _inline(latex: str) -> str:
+    return f"${latex}$"
+
+
+def _formula_blocks(formula: Formula) -> list[Block]:
+    name = latex_name(formula.name)
+    args = "(" + ", ".join(sympy.latex(p) for p in formula.parameters) + ")" if formula.parameters else ""
+    if formula.is_vector:
+        latex = r"\left(" + ", ".join(sympy.latex(c) for c in formula.value) + r"\right)"
+    else:
+        latex = sympy.latex(formula.value)
+    lhs = name + args
+    blocks = [Block("p", formula.description[0].upper() + formula.description[1:] + ":")]
+    if len(latex) <= DISPLAY_LENGTH:
+        blocks.append(Block("p", _inline(f"{lhs} = {latex}")))
+    else:
+        blocks.append(Block("math", f"{lhs} = {latex}"))
+    if formula.coverage is not None:
+        blocks.append(Block("list", tuple(formula.coverage.lines(LATEX_STYLE))))
+    return blocks
+
+
+def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]:
+    """The report as blocks; ``picture`` is the image's address (file name or ``data:`` URI)."""
+    rec = analysis.recognition
+    blocks = [Block("h1", f"sorgui: {verdict(analysis)}")]
+    blocks.append(Block("p", "Equation: " + _inline(sympy.latex(sympy.Symbol("f")) + " = 0") +
+                    f" with the polynomial of degree {rec.degree} over the field $K$ = {analysis.field}."))
+    blocks.append(Block("p", f"Symmetry: {SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)} "
+                             f"(the symmetry algebra has dimension {rec.symmetry_dimension})."))
+    if picture is not None:
+        blocks.append(Block("image", picture))
+    rat = analysis.rationality
+    if rat is not None:
+        blocks.append(Block("h2", "Rationality"))
+        facts = [f"status: {rat.status}"]
+        if rat.table_row is not None:
+            row = TABLE_1[rat.table_row - 1]
+            facts.append(f"Table 1, row {rat.table_row}: genus($P$) {row[0]}, genus($P^2$) {row[1]}, "
+                         f"$X_{{\\mathbb{{C}}}}$ {row[2]}, $X$ {row[3]}")
+        genus_p = "reducible" if rat.profile_reducible else rat.genus_profile
+        facts.append(f"genus($P$) = {genus_p}, genus($P^2$) = {rat.genus_profile_square}")
+        for label, value in (("$X_{\\mathbb{C}}$ rational", rat.complex_rational),
+                             ("$X$ unirational", rat.unirational), ("$X$ rational over the reals", rat.real_rational)):
+            facts.append(f"{label}: {'undecided' if value is None else ('yes' if value else 'no')}")
+        facts += [f"note: {n}" for n in rat.notes]
+        blocks.append(Block("list", tuple(facts)))
+    if analysis.approximate is not None:
+        approx = analysis.approximate
+        blocks.append(Block("h2", "Rounded input"))
+        blocks.append(Block("list", tuple([approximate_line(approx),
+                                           f"relative distance to the nearest invariant polynomial: "
+                                           f"{approx.relative_distance:.3g}",
+                                           *[f"note: {n}" for n in approx.notes]])))
+    blocks.append(Block("h2", "Formulas"))
+    for formula in analysis_formulas(analysis):
+        blocks += _formula_blocks(formula)
+    extra = {k: v for k, v in analysis.to_json().items() if k not in KNOWN_KEYS and v is not None}
+    if extra:
+        blocks.append(Block("h2", "Further results"))
+        blocks.append(Block("code", json.dumps(extra, indent=1)))
+    timing = ", ".join(f"{name} {seconds:.3f} s" for name, seconds in analysis.timings)
+    blocks.append(Block("p", f"Method: {analysis.method}. Timings: {timing or 'none recorded'}."))
+    return blocks
+
+
+def markdown_report(analysis: Analysis, picture: str | None = None) -> str:
+    """The report as Markdown (``picture``: the PNG's file name beside it, if any)."""
+    out = []
+    for block in report_blocks(analysis, picture):
+        if block.kind == "h1":
+            out.append(f"# {block.text}")
+        elif block.kind == "h2":
+            out.append(f"## {block.text}")
+        elif block.kind == "math":
+            out.append(f"$$\n{block.text}\n$$")
+        elif block.kind == "list":
+            out.append("\n".join(f"- {line}" for line in block.text))
+        elif block.kind == "code":
+            out.append(f"```json\n{block.text}\n```")
+        elif block.kind == "image":
+            out.append(f"![The surface and its axis]({block.text})")
+        else:
+            out.append(str(block.text))
+    return "\n\n".join(out) + "\n"
+
+
+def _html_words(text: str) -> str:
+    """Words with ``$…$`` formulas: the words escaped, the formulas kept for KaTeX."""
+    parts = text.split("$")
+    return "".join(html.escape(part) if i % 2 == 0 else f'<span class="math">${html.escape(part)}$</span>'
+                   for i, part in enumerate(parts))
+
+
+HTML_STYLE = """body { font-family: sans-serif; max-width: 60em; margin: 2em auto; line-height: 1.5; }
+.display { overflow-x: auto; } img { max-width: 100%; } pre { background: #f4f6fa; padding: 1em; }"""
+
+
+def html_report(analysis: Analysis, png: bytes | None = None) -> str:
+    """The report as one HTML file (the picture embedded as a ``data:`` URI)."""
+    picture = None if png is None else "data:image/png;base64," + base64.b64encode(png).decode("ascii")
+    body = []
+    for block in report_blocks(analysis, picture):
+        if block.kind in ("h1", "h2"):
+            body.append(f"<{block.kind}>{html.escape(str(block.text))}</{block.kind}>")
+        elif block.kind == "math":
+            body.append(f'<div class="display">$${html.escape(str(block.text))}$$</div>')
+        elif block.kind == "list":
+            body.append("<ul>" + "".join(f"<li>{_html_words(line)}</li>" for line in block.text) + "</ul>")
+        elif block.kind == "code":
+            body.append(f"<pre>{html.escape(str(block.text))}</pre>")
+        elif block.kind == "image":
+            body.append(f'<p><img alt="The surface and its axis" src="{block.text}"></p>')
+        else:
+            body.append(f"<p>{_html_words(str(block.text))}</p>")
+    title = html.escape(f"sorgui: {verdict(analysis)}")
+    return ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+            f"<title>{title}</title>\n<style>\n{HTML_STYLE}\n</style>\n</head>\n<body>\n"
+            + "\n".join(body) + "\n</body>\n</html>\n")

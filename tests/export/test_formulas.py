@@ -1,0 +1,70 @@
+"""The named formulas and what each parameterization covers: domain, poles, missed points."""
+
+from __future__ import annotations
+
+import sympy
+
+from sorgui.export.formulas import analysis_formulas, coverage
+
+s, t, x, y, z = sympy.symbols("s t x y z")
+
+
+def test_names_are_letters_and_digits_and_vectors_are_tuples(analyses) -> None:
+    formulas = analysis_formulas(analyses["paper-example-1"])
+    names = [f.name for f in formulas]
+    assert all(name.isalnum() for name in names), names
+    assert {"f", "axisPoint", "axisDirection", "p", "P2", "P2K", "P2param", "T", "tau", "X1"} <= set(names)
+    by_name = {f.name: f for f in formulas}
+    assert by_name["axisDirection"].value == (4, 3, 0)
+    assert by_name["axisPoint"].value == (sympy.Rational(3, 5), sympy.Rational(-4, 5), 0)
+
+
+def test_torus_parameterization_misses_two_circles(analyses) -> None:
+    """X2 of the torus: poles only at complex parameters; as s → ∞ the meridian at angle π and as
+    t → ∞ a circle of latitude are missed, both checked exactly to be reached by no parameter."""
+    by_name = {f.name: f for f in analysis_formulas(analyses["torus"])}
+    cov = by_name["X2"].coverage
+    assert cov is not None and cov.real and cov.parameters == (s, t)
+    assert {sympy.expand(e.factor) for e in cov.excluded} == {s**2 + 1, t**2 + 16}
+    assert all(e.real_zeros is False for e in cov.excluded)
+    at_s, at_t = cov.limits
+    assert at_s.parameter == s and at_t.parameter == t
+    expected = [(3 - 3 * s**2) / (s**2 + 1), 6 * s / (s**2 + 1), 0]
+    assert all(sympy.simplify(c - e) == 0 for c, e in zip(at_t.point, expected))
+    # the circle x² + y² = 9, z = 0 of the torus (x² + y² + z² + 8)² = 36(x² + y²)
+    circle = [c for c in at_t.point]
+    assert sympy.simplify(circle[0] ** 2 + circle[1] ** 2 - 9) == 0
+    assert at_s.check == (sympy.Rational(7, 3), True) and at_t.check == (sympy.Rational(7, 3), True)
+    assert cov.lines()[0] == "parameter domain: (s, t) in R^2"
+
+
+def test_example_1_poles_and_points_at_infinity(analyses) -> None:
+    cov = {f.name: f for f in analysis_formulas(analyses["paper-example-1"])}["X1"].coverage
+    assert [sympy.expand(e.factor) for e in cov.excluded] == [s**2 + sympy.Rational(1, 25)]
+    assert cov.limits[1].point is None  # t → ∞ runs off to infinity: nothing affine is missed
+    assert cov.limits[0].point is not None and cov.limits[0].check[1] is True
+
+
+def test_complex_parameterization_lists_its_complex_poles(analyses) -> None:
+    cov = {f.name: f for f in analysis_formulas(analyses["paper-cubic"])}["X1"].coverage
+    assert not cov.real
+    assert cov.excluded[0].roots == (-sympy.I, sympy.I)
+    assert "C^2" in cov.lines()[0]
+
+
+def test_real_poles_are_listed_exactly() -> None:
+    cov = coverage((1 / (t**2 - 2), t), (t,), True)
+    assert cov.excluded[0].real_zeros is True
+    assert set(cov.excluded[0].roots) == {sympy.sqrt(2), -sympy.sqrt(2)}
+    assert cov.limits[0].point is None
+    line = cov.lines()[1]
+    assert "sqrt(2)" in line and "t**2 - 2 = 0" in line
+
+
+def test_a_point_reached_again_is_not_called_missed() -> None:
+    """x = s²/(s² + 1) reaches its limit 1 (as s → ∞) for no s, while x = s/(s² + 1) + t tends to
+    t, which s = 0 reaches: the exact test tells the two apart."""
+    missed = coverage((s**2 / (s**2 + 1), t, t), (s, t), True).limits[0]
+    reached = coverage((s / (s**2 + 1) + t, t, t), (s, t), True).limits[0]
+    assert missed.check[1] is True
+    assert reached.check[1] is False

@@ -1,0 +1,87 @@
+"""Report files read back: JSON into equal result objects, Markdown and HTML with formulas and picture."""
+
+from __future__ import annotations
+
+import base64
+import dataclasses
+import json
+
+import pytest
+
+from sorgui.engine.report import Analysis, Approximation
+from sorgui.export.files import export_analysis, format_of
+from sorgui.export.reports import ReportError, html_report, markdown_report, read_report
+
+PNG = b"\x89PNG\r\n\x1a\n" + b"\x00" * 16
+"""Stands for a picture (the reports only embed or copy the bytes)."""
+
+
+@pytest.mark.parametrize("name", ["paper-example-1", "torus", "paper-cubic"])
+def test_json_reloads_into_equal_result_objects(analyses, tmp_path, name: str) -> None:
+    path = export_analysis(analyses[name], tmp_path / "report.json")
+    assert read_report(path) == analyses[name]
+    assert json.loads(path.read_text(encoding="utf-8")) == analyses[name].to_json()
+
+
+def test_approximate_results_are_kept_and_reported(analyses, tmp_path) -> None:
+    approx = Approximation(tolerance=1e-6, tolerance_source="input", near_sor=True, kind="revolution",
+                           relative_distance=2e-7, residual=0.4, singular_values=(1.0, 0.5, 1e-8))
+    analysis = dataclasses.replace(analyses["torus"], approximate=approx)
+    path = export_analysis(analysis, tmp_path / "rounded.json")
+    assert read_report(path) == analysis
+    text = markdown_report(analysis)
+    assert "## Rounded input" in text and "near a surface of revolution (revolution)" in text
+
+
+def test_unknown_results_are_listed_not_lost(analyses) -> None:
+    class Later(Analysis):
+        def to_json(self):  # noqa: ANN202 - a result type added after this exporter
+            return {**super().to_json(), "canal": {"spine": "line", "radius": "1"}}
+
+    analysis = Later(**{f.name: getattr(analyses["torus"], f.name) for f in dataclasses.fields(Analysis)})
+    text = markdown_report(analysis)
+    assert "## Further results" in text and '"spine": "line"' in text
+
+
+def test_markdown_has_latex_formulas_and_the_picture_beside_it(analyses, tmp_path) -> None:
+    path = export_analysis(analyses["torus"], tmp_path / "torus.md", picture=PNG)
+    text = path.read_text(encoding="utf-8")
+    assert text.startswith("# sorgui: a surface of revolution")
+    assert "![The surface and its axis](torus.png)" in text
+    assert (tmp_path / "torus.png").read_bytes() == PNG
+    assert "$X_{2}(s, t) = " in text or "$$\nX_{2}(s, t) = " in text
+    assert r"- parameter domain: $(s, t) \in \mathbb{R}^{2}$" in text
+    assert "Table 1, row 1" in text
+
+
+def test_html_is_one_file_with_the_picture_inside(analyses) -> None:
+    text = html_report(analyses["paper-example-1"], PNG)
+    assert text.startswith("<!DOCTYPE html>") and text.rstrip().endswith("</html>")
+    assert 'src="data:image/png;base64,' + base64.b64encode(PNG).decode() + '"' in text
+    assert '<span class="math">$(s, t) \\in \\mathbb{R}^{2}$</span>' in text
+    assert "<script" not in text  # nothing fetched from elsewhere
+
+
+def test_reports_without_a_picture(analyses, tmp_path) -> None:
+    path = export_analysis(analyses["cone"], tmp_path / "cone.md")
+    assert "![" not in path.read_text(encoding="utf-8")
+    assert not (tmp_path / "cone.png").exists()
+
+
+def test_bad_reports_are_refused_with_one_line(tmp_path) -> None:
+    cases = {"missing.json": None, "text.json": "x^2 + y^2", "error.json": '{"error": {"message": "bad"}}',
+             "other.json": '{"input": "x"}'}
+    for name, content in cases.items():
+        if content is not None:
+            (tmp_path / name).write_text(content, encoding="utf-8")
+        with pytest.raises(ReportError) as info:
+            read_report(tmp_path / name)
+        assert name in info.value.message and "\n" not in info.value.message
+
+
+def test_format_names() -> None:
+    assert format_of("a.STL").suffix == ".stl"
+    assert format_of("a.dat", "patch.ply").suffix == ".ply"
+    assert format_of("a", "md").kind == "report"
+    with pytest.raises(ValueError, match="unknown export format"):
+        format_of("a.docx")
