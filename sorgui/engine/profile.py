@@ -132,10 +132,11 @@ def orthonormal_profile(p: Poly, frame: AxisFrame) -> Poly:
     return R.from_dict({m: L.quo(c, top) for m, c in terms.items()})
 
 
-def profile_curve(f: Poly, point: Vector, direction: Vector) -> ProfileCurve:
-    """The profile of ``f`` about the axis through ``point`` with ``direction`` (docs/math.md §3)."""
+def profile_curve(f: Poly, point: Vector, direction: Vector, normal: Vector | None = None) -> ProfileCurve:
+    """The profile of ``f`` about the axis through ``point`` with ``direction`` (docs/math.md §3);
+    ``normal`` (``u ⟂ a``) is chosen by :func:`axis_frame` unless given."""
     K = f.ring.domain
-    frame = axis_frame(point, direction, K)
+    frame = axis_frame(point, direction, K) if normal is None else AxisFrame(point, direction, normal)
     raw = profile_polynomial(f, frame)
     even = is_even_in_second(raw)
     verified = even and verify_profile(f, frame, square_profile(raw))

@@ -12,7 +12,7 @@ from collections.abc import Callable
 from sympy.polys.domains.domain import Domain
 
 from .errors import AnalysisError
-from .linalg import Vector, cross, primitive_vector
+from .linalg import Vector, cross, is_zero, primitive_vector, sub
 from .paper_method import recognize_paper
 from .polys import Poly, factor, poly_str, to_str, total_degree
 from .profile import ProfileCurve, profile_curve
@@ -64,13 +64,24 @@ def profile_report(profile: ProfileCurve, K: Domain) -> Profile:
     )
 
 
-def recognize(f: Poly, method: str = "symmetry") -> tuple[Recognition, Symmetry, ProfileCurve | None]:
-    """Recognise ``f``: the report, the classified symmetry, and the profile when the axis is unique."""
+def recognize(
+    f: Poly, method: str = "symmetry", frame: tuple[Vector, Vector, Vector] | None = None
+) -> tuple[Recognition, Symmetry, ProfileCurve | None]:
+    """Recognise ``f``: the report, the classified symmetry, and the profile when the axis is unique.
+
+    ``frame`` (a point, a direction and a normal ``u ⟂ a``) is used for the profile instead of
+    the foot point and primitive direction of the axis when it lies on the same line: a rounded
+    input's snapped surface passes the frame that keeps its profile's coefficients small
+    (docs/math.md §8).
+    """
     K = f.ring.domain
     sym = find_symmetry(f, method)
     profile = None
     if sym.kind in (REVOLUTION, CYLINDER):
-        profile = profile_curve(f, sym.axis_point, sym.axis_direction)  # type: ignore[arg-type]
+        point, direction, normal = sym.axis_point, sym.axis_direction, None
+        if frame is not None and _same_line(frame[:2], (point, direction)):  # type: ignore[arg-type]
+            point, direction, normal = frame
+        profile = profile_curve(f, point, direction, normal)  # type: ignore[arg-type]
         if not profile.verified:
             raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
     report = Recognition(
@@ -87,6 +98,12 @@ def recognize(f: Poly, method: str = "symmetry") -> tuple[Recognition, Symmetry,
         profile=profile_report(profile, K) if profile is not None else None,
     )
     return report, sym, profile
+
+
+def _same_line(first: tuple[Vector, Vector], second: tuple[Vector, Vector]) -> bool:
+    """Whether two (point, direction) pairs describe the same line, exactly."""
+    (p, a), (q, b) = first, second
+    return is_zero(cross(a, b)) and is_zero(cross(sub(p, q), b))
 
 
 def factor_reports(

@@ -1,0 +1,192 @@
+"""Rounded input: is ``f``, up to the rounding of its printed digits, a surface of revolution?
+(docs/math.md §8)
+
+:func:`approximate_symmetry` runs the three float steps of :mod:`.near_symmetry` (singular
+values of (★), the approximate Killing fields, the weighted nearest invariant polynomial with a
+Gauss–Newton axis) for the kinds the small singular values allow, most symmetric first, and
+accepts the first whose residual is within the rounding. For a near surface of revolution it
+then snaps to the simplest exact surface (:mod:`.snapping`) and measures how far its zero set
+is from ``f``'s (:mod:`.deviation`). ``is_sor`` keeps its exact meaning; this module only adds
+the :class:`~sorgui.engine.report.Approximation` beside it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import dense
+from .deviation import max_deviation
+from sympy.polys.domains import QQ
+
+from .errors import AnalysisError
+from .linalg import Vector
+from .near_symmetry import Fit, Normalised, candidates, fit, killing_system, normalise, refine
+from .polys import Poly, poly_str, to_str
+from .precision import Rounding, given_rounding, input_rounding
+from .recognition import axis_report
+from .report import ApproximateAxis, Approximation, NearestSurface
+from .snapping import ExactSurface, perpendicular, snap
+from .symmetry import CYLINDER, EXTRUSION, PLANE, REVOLUTION, SOR_KINDS, SPHERE
+
+GATE = 1e4
+"""A kind is tried when its singular values are below ``GATE·τ`` (and 10⁻²): a cheap filter;
+the weighted residual decides."""
+
+KIND_WORDS = {
+    REVOLUTION: "a surface of revolution",
+    CYLINDER: "a cylinder of revolution",
+    SPHERE: "a sphere",
+    PLANE: "a plane",
+    EXTRUSION: "an extrusion (a cylindrical surface)",
+}
+
+
+@dataclass(frozen=True)
+class NearResult:
+    """The approximation, and the exact surface it snapped to with the axis frame that keeps
+    its profile simple (for the caller to analyse)."""
+
+    approximation: Approximation
+    nearest: Poly | None
+    frame: tuple[Vector, Vector, Vector] | None = None
+
+
+def rounding_of(f: Poly, text: str | None, tolerance: float | None) -> tuple[Rounding | None, tuple[str, ...]]:
+    """The rounding in force: given by ``tolerance``, else read off the digits of ``text``
+    (``None`` for exact input without a tolerance), with a note when a given tolerance is finer
+    than the digits printed."""
+    coefficients = dense.float_coefficients(f)
+    printed = None if text is None else input_rounding(text, coefficients)
+    if tolerance is None:
+        return printed, ()
+    if not (math.isfinite(tolerance) and 0.0 < tolerance < 1.0):
+        raise AnalysisError(f"the tolerance must be a number between 0 and 1, not {tolerance}")
+    notes: tuple[str, ...] = ()
+    if printed is not None and tolerance < printed.tolerance:
+        notes = (f"the tolerance {tolerance:.2g} is below the precision of the input's digits "
+                 f"({printed.tolerance:.2g} relative): a rounded surface may be missed",)
+    return given_rounding(tolerance, coefficients), notes
+
+
+def approximate_symmetry(f: Poly, rounding: Rounding, *, snap_exact: bool = True,
+                         notes: tuple[str, ...] = ()) -> NearResult:
+    """The :class:`Approximation` of ``f`` under ``rounding`` (docs/math.md §8)."""
+    coefficients = dense.float_coefficients(f)
+    normalised = normalise(coefficients, rounding)
+    sigma, vectors, _ = killing_system(normalised)
+    notes = list(notes)
+    accepted, best = _search(normalised, sigma, vectors, rounding.tolerance)
+    near = accepted is not None and accepted.candidate.kind in SOR_KINDS
+    shown = accepted or best
+    exact: ExactSurface | None = None
+    if near and snap_exact:
+        exact = snap(normalised, accepted, f, rounding)
+        if exact is None:
+            notes.append("no exact surface with rational axis and coefficients was found within the "
+                         "rounding; the axis above is approximate")
+    if accepted is None:
+        notes.append(_far_note(sigma, best, rounding))
+    nearest = None if exact is None else _nearest_surface(exact, normalised, f)
+    approximation = Approximation(
+        tolerance=rounding.tolerance,
+        tolerance_source=rounding.source,
+        near_sor=near,
+        kind=None if accepted is None else accepted.candidate.kind,
+        relative_distance=shown.relative_distance if shown is not None else 1.0,
+        residual=shown.residual if shown is not None else math.inf,
+        singular_values=tuple(float(s) for s in sigma),
+        axis=_axis(shown, normalised) if accepted is not None else None,
+        center=_center(shown, normalised) if accepted is not None else None,
+        normal=_normal(shown) if accepted is not None else None,
+        nearest=nearest,
+        notes=tuple(notes),
+    )
+    if exact is None:
+        return NearResult(approximation, None)
+    frame = None
+    if exact.point is not None and exact.direction is not None:
+        frame = tuple(tuple(QQ(v.numerator, v.denominator) for v in vector)
+                      for vector in (exact.point, exact.direction, perpendicular(exact.direction)))
+    return NearResult(approximation, exact.polynomial, frame)  # type: ignore[arg-type]
+
+
+def _search(f: Normalised, sigma: np.ndarray, vectors: np.ndarray, tolerance: float) -> tuple[Fit | None, Fit | None]:
+    """The first kind (most symmetric first) whose refined fit is within the rounding, and the
+    best fit seen (for saying how far a miss is)."""
+    gate = min(1e-2, GATE * tolerance)
+    best: Fit | None = None
+    for count in (3, 2, 1):
+        if sigma[6 - count] > gate and not (count == 1 and best is None):
+            continue
+        for candidate in candidates(vectors, count):
+            result = refine(f, candidate) if sigma[6 - count] <= gate else fit(f, candidate)
+            if best is None or result.residual < best.residual:
+                best = result
+            if result.residual <= 1.0 + result.noise:
+                return result, best
+    return None, best
+
+
+def _far_note(sigma: np.ndarray, best: Fit | None, rounding: Rounding) -> str:
+    smallest = f"the smallest singular value of (★) is {sigma[-1]:.2g} against a tolerance of {rounding.tolerance:.2g}"
+    if best is None:
+        return f"not near any continuous symmetry: {smallest}"
+    kind = KIND_WORDS.get(best.candidate.kind, best.candidate.kind)
+    return (f"not within the rounding of {kind}: the nearest one about the best axis is "
+            f"{best.relative_distance:.2g} away (relative), {best.residual:.3g} times the rounding; {smallest}")
+
+
+def _axis(result: Fit, f: Normalised) -> ApproximateAxis | None:
+    c = result.candidate
+    if c.kind not in (REVOLUTION, CYLINDER):
+        return None
+    direction = c.direction / np.linalg.norm(c.direction)
+    point = c.point * f.length
+    point = point - (point @ direction) * direction
+    return ApproximateAxis(tuple(float(v) for v in point), tuple(float(v) for v in direction))  # type: ignore[arg-type]
+
+
+def _center(result: Fit, f: Normalised) -> tuple[float, float, float] | None:
+    c = result.candidate
+    return tuple(float(v) * f.length for v in c.point) if c.kind == SPHERE else None  # type: ignore[return-value]
+
+
+def _normal(result: Fit) -> tuple[float, float, float] | None:
+    c = result.candidate
+    if c.kind not in (PLANE, EXTRUSION):
+        return None
+    return tuple(float(v) for v in c.direction / np.linalg.norm(c.direction))  # type: ignore[return-value]
+
+
+def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> NearestSurface:
+    """The report of the snapped surface, with the deviation of its zero set from ``f``'s."""
+    sym = exact.symmetry
+    K = exact.polynomial.ring.domain
+    axis = None
+    if sym.axis_point is not None:
+        axis = axis_report(sym.axis_point, sym.axis_direction, K)  # type: ignore[arg-type]
+    triple = (lambda v: None if v is None else tuple(to_str(K, c) for c in v))
+    g = dense.scaled(dense.from_terms(dense.float_coefficients(exact.polynomial), f.degree), f.length) / f.scale
+    center = np.zeros(3)
+    direction = None
+    if sym.axis_point is not None:
+        center = np.array([float(v) for v in sym.axis_point]) / f.length
+        direction = np.array([float(v) for v in sym.axis_direction])
+    elif sym.center is not None:
+        center = np.array([float(v) for v in sym.center]) / f.length
+    deviation = max_deviation(f.array, g, center, direction)
+    return NearestSurface(
+        polynomial=poly_str(exact.polynomial),
+        kind=sym.kind,
+        axis=axis,
+        center=triple(sym.center),
+        normal=triple(sym.normal),
+        relative_distance=exact.relative_distance,
+        max_deviation=None if deviation is None else deviation * f.length,
+        within_rounding=exact.largest <= 1.0,
+    )
+
+

@@ -1,0 +1,109 @@
+"""How far apart two zero sets are, inside the ball the viewport shows (docs/math.md §8).
+
+The ball is the viewport's: centred on the axis (or the centre), with a radius taken from the
+real points of the surface on a star of lines through that centre (the 13 axes and diagonals
+of a cube and an axis frame), far points of unbounded branches dropped. Points of each zero set
+are sampled on random lines through the ball (the real roots of the restriction, found by a DFT
+and companion matrices) and moved onto the other zero set by Newton steps along the gradient;
+the deviation is the largest distance moved, both ways (a sampled Hausdorff distance).
+"""
+
+from __future__ import annotations
+
+from itertools import product
+
+import numpy as np
+
+from . import dense
+
+MIN_RADIUS = 1.0
+MAX_RADIUS = 1.0e4
+MARGIN = 1.25
+SPREAD = 3.0
+LINES = 160
+NEWTON_STEPS = 6
+CONVERGED = 1e-9
+
+
+def probe_directions(axis: np.ndarray | None) -> list[np.ndarray]:
+    """The 13 directions of a cube's axes and diagonals, plus an axis frame if there is one."""
+    directions = [np.array(d, dtype=float) for d in product((-1, 0, 1), repeat=3)]
+    directions = [d / np.linalg.norm(d) for d in directions if next((x for x in d if x), 0) > 0]
+    if axis is not None:
+        a = axis / np.linalg.norm(axis)
+        e = np.zeros(3)
+        e[int(np.argmin(np.abs(a)))] = 1.0
+        u = np.cross(a, e)
+        u /= np.linalg.norm(u)
+        w = np.cross(a, u)
+        directions += [a, u, w, (u + w) / np.sqrt(2), (u - w) / np.sqrt(2)]
+    return directions
+
+
+def view_ball(array: np.ndarray, center: np.ndarray, axis: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+    """The ball that shows the interesting part of ``f = 0`` around ``center``: real points of
+    ``f`` on lines through ``center``, those farther than ``SPREAD`` times the median distance
+    dropped; centred on the middle of the rest (along the axis, if any), radius ``MARGIN``
+    times the farthest, clamped to ``[MIN_RADIUS, MAX_RADIUS]``."""
+    points = [center + t * d for d in probe_directions(axis)
+              for t in dense.real_roots(dense.restriction_to_line(array, center, d))]
+    pts = np.array(points).reshape(-1, 3)
+    distances = np.linalg.norm(pts - center, axis=1)
+    positive = distances[distances > 1e-9 * max(1.0, float(np.linalg.norm(center)))]
+    if len(positive) == 0:
+        return center, 2.0 * MIN_RADIUS
+    core = pts[distances <= min(distances.max(), SPREAD * float(np.median(positive)))]
+    if axis is not None:
+        a = axis / np.linalg.norm(axis)
+        heights = (core - center) @ a
+        middle = center + 0.5 * (heights.min() + heights.max()) * a
+    else:
+        middle = 0.5 * (core.min(axis=0) + core.max(axis=0))
+    radius = MARGIN * float(np.linalg.norm(core - middle, axis=1).max())
+    return middle, float(np.clip(radius, MIN_RADIUS, MAX_RADIUS))
+
+
+def sample_zero_set(array: np.ndarray, center: np.ndarray, radius: float, seed: int = 0) -> np.ndarray:
+    """Real points of ``f = 0`` inside the ball, on ``LINES`` random lines through it."""
+    rng = np.random.default_rng(seed)
+    found = []
+    for _ in range(LINES):
+        start = center + radius * rng.uniform(-0.5, 0.5, 3)
+        direction = rng.normal(size=3)
+        direction /= np.linalg.norm(direction)
+        for t in dense.real_roots(dense.restriction_to_line(array, start, direction)):
+            p = start + t * direction
+            if np.linalg.norm(p - center) <= radius:
+                found.append(p)
+    return np.array(found).reshape(-1, 3)
+
+
+def distance_to_zero_set(array: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """How far Newton steps along the gradient move each point onto ``f = 0`` (points where the
+    steps do not converge, next to a singular point, are left out)."""
+    moved = points.copy()
+    for _ in range(NEWTON_STEPS):
+        values = dense.evaluate(array, moved)
+        grads = dense.gradient(array, moved)
+        norms = np.einsum("ij,ij->i", grads, grads)
+        safe = norms > 0
+        step = np.zeros_like(moved)
+        step[safe] = (values[safe] / norms[safe])[:, None] * grads[safe]
+        moved -= step
+    converged = np.abs(dense.evaluate(array, moved)) <= CONVERGED * (1.0 + np.abs(dense.evaluate(array, points)))
+    return np.linalg.norm(moved - points, axis=1)[converged]
+
+
+def max_deviation(first: np.ndarray, second: np.ndarray, center: np.ndarray,
+                  axis: np.ndarray | None) -> float | None:
+    """The largest distance between the zero sets of two polynomials (dense arrays in the same
+    coordinates) inside the view ball of ``second``; ``None`` when neither has real points there."""
+    ball, radius = view_ball(second, center, axis)
+    distances = []
+    for source, target in ((second, first), (first, second)):
+        points = sample_zero_set(source, ball, radius)
+        if len(points):
+            distances.append(distance_to_zero_set(target, points))
+    if not distances:
+        return None
+    return float(np.concatenate(distances).max())

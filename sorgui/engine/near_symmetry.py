@@ -1,0 +1,352 @@
+"""The floating-point symmetry algebra of a rounded polynomial and its nearest invariant fit
+(docs/math.md §8).
+
+Three steps, each in ``float64`` on the normalised input (coordinates scaled by a length ``L``
+that balances the coefficients of the lowest and the highest degree; coefficients divided by
+the largest one):
+
+1. **Singular values of (★).** The six columns of (★) (``f_x, f_y, f_z`` and the components of
+   ``p × ∇f``), each scaled to unit length, form a matrix whose small singular values count the
+   approximate infinitesimal isometries of ``f``; their right singular vectors are approximate
+   Killing fields ``b + a × p``, classified as in §2 (revolution, cylinder of revolution,
+   sphere, plane, extrusion) to give a first axis, centre or normal.
+2. **Nearest invariant polynomial.** For a candidate axis, the polynomials invariant under the
+   rotations about it are spanned by ``h^i ρ^j`` (``h = n·(p - c)``, ``ρ = |p - c|²``); for
+   the other kinds by the analogous bases. The nearest one is a weighted linear least-squares
+   fit, each coefficient weighted by ``1/e_α`` (the rounding bound of :mod:`.precision`), so the
+   residual is measured in units of the input's rounding: ``χ = ‖(f - f̄)/e‖₂/√N ≤ 1`` means
+   "within the rounding".
+3. **Gauss–Newton on the axis.** The axis parameters (two for the direction, two for the point)
+   are refined by Gauss–Newton with a line search on that weighted residual (variable
+   projection: the fit is redone at every step), so the axis is as accurate as the digits allow.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import dense
+from .precision import Rounding
+from .symmetry import CYLINDER, EXTRUSION, PLANE, REVOLUTION, SPHERE
+
+GN_ITERATIONS = 12
+FD_STEP = 1e-7
+
+
+@dataclass(frozen=True)
+class Normalised:
+    """``f`` as a dense float polynomial in ``X = p / length``, divided by ``scale``, with the
+    rounding bound of every coefficient in the same units."""
+
+    degree: int
+    length: float
+    scale: float
+    array: np.ndarray
+    bounds: np.ndarray
+    selected: np.ndarray
+
+    @property
+    def vector(self) -> np.ndarray:
+        return self.array[self.selected]
+
+    @property
+    def weights(self) -> np.ndarray:
+        return 1.0 / self.bounds[self.selected]
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """An approximate symmetry in normalised coordinates: ``kind`` with its ``direction``
+    (axis, plane normal or extrusion direction) and ``point`` (on the axis, or the centre)."""
+
+    kind: str
+    direction: np.ndarray | None
+    point: np.ndarray | None
+
+
+@dataclass(frozen=True)
+class Fit:
+    """The nearest invariant polynomial for a candidate: basis coefficients, residuals."""
+
+    candidate: Candidate
+    coefficients: np.ndarray
+    exponents: tuple[tuple[int, int], ...]
+    fitted: np.ndarray
+    residual: float
+    largest: float
+    relative_distance: float
+    noise: float
+
+
+def normalise(coefficients: dict[tuple[int, int, int], float], rounding: Rounding) -> Normalised:
+    """Scale coordinates and coefficients so that the float computations are well balanced."""
+    degree = rounding.degree
+    array = dense.from_terms(coefficients, degree)
+    bounds = np.full(array.shape, rounding.default)
+    for (i, j, k), e in rounding.bounds.items():
+        bounds[i, j, k] = e
+    by_degree = {}
+    for (i, j, k), c in coefficients.items():
+        by_degree[i + j + k] = by_degree.get(i + j + k, 0.0) + c * c
+    low, high = min(by_degree), max(by_degree)
+    length = 1.0
+    if high > low:
+        length = (math.sqrt(by_degree[low]) / math.sqrt(by_degree[high])) ** (1.0 / (high - low))
+        length = min(max(length, 1e-6), 1e6)
+    array = dense.scaled(array, length)
+    bounds = dense.scaled(bounds, length)
+    scale = float(np.abs(array).max())
+    return Normalised(degree, length, scale, array / scale, bounds / scale, dense.mask(degree))
+
+
+# --- 1. the singular values of (★) -------------------------------------------------------------
+
+
+def killing_system(f: Normalised) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Singular values (largest first, relative to the largest), right singular vectors (rows,
+    as ``(b, a)`` in normalised coordinates) of the column-scaled float system (★)."""
+    A = f.array
+    fx, fy, fz = (dense.derivative(A, axis) for axis in range(3))
+    x, y, z = ([((1, 0, 0), 1.0)], [((0, 1, 0), 1.0)], [((0, 0, 1), 1.0)])
+    columns = [fx, fy, fz,
+               dense.times(fz, y) - dense.times(fy, z),
+               dense.times(fx, z) - dense.times(fz, x),
+               dense.times(fy, x) - dense.times(fx, y)]
+    M = dense.stack(columns, f.selected)
+    norms = np.linalg.norm(M, axis=0)
+    norms[norms == 0.0] = 1.0
+    _, sigma, vt = np.linalg.svd(M / norms, full_matrices=False)
+    vectors = vt / norms[None, :]
+    vectors /= np.linalg.norm(vectors, axis=1)[:, None]
+    return sigma / sigma[0], vectors, norms
+
+
+def candidates(vectors: np.ndarray, count: int) -> list[Candidate]:
+    """The symmetries that the ``count`` smallest singular vectors span (docs/math.md §2)."""
+    V = vectors[-count:]
+    B, A = V[:, :3].T, V[:, 3:].T  # columns: translation parts b, rotation parts a
+    if count == 1:
+        b, a = B[:, 0], A[:, 0]
+        found = [Candidate(EXTRUSION, _unit(b), None)]
+        if np.linalg.norm(a) > 1e-9:
+            found.insert(0, _rotation(a, b, REVOLUTION))
+        return found
+    _, s, wt = np.linalg.svd(A)
+    if count == 2:
+        t = B @ wt[-1]
+        a, b = A @ wt[0], B @ wt[0]
+        return [_rotation(a, b, CYLINDER, along=t)]
+    if count == 3:
+        found = []
+        if s[-1] > 1e-3 * s[0]:
+            rows = np.vstack([_cross_matrix(A[:, i]) for i in range(3)])
+            center = np.linalg.lstsq(-rows, B.T.reshape(-1), rcond=None)[0]
+            found.append(Candidate(SPHERE, None, center))
+        t1, t2 = B @ wt[-1], B @ wt[-2]
+        found.append(Candidate(PLANE, _unit(np.cross(t1, t2)), None))
+        return found
+    return []
+
+
+def _rotation(a: np.ndarray, b: np.ndarray, kind: str, along: np.ndarray | None = None) -> Candidate:
+    """The axis of ``b + a × p``: direction ``a`` (or ``along``), point ``(a × b)/|a|²``."""
+    b = b - (a @ b) / (a @ a) * a
+    direction = _unit(a if along is None else along)
+    return Candidate(kind, direction, np.cross(a, b) / (a @ a))
+
+
+def _cross_matrix(a: np.ndarray) -> np.ndarray:
+    """The matrix of ``c ↦ a × c`` (a rotation about the centre has ``b = c × a = -(a × c)``)."""
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / np.linalg.norm(v)
+
+
+# --- 2. the nearest invariant polynomial ---------------------------------------------------------
+
+
+def invariant_basis(candidate: Candidate, degree: int, point: np.ndarray | None = None,
+                    direction: np.ndarray | None = None) -> tuple[list[np.ndarray], list[tuple[int, int]]]:
+    """A basis of the polynomials of degree ≤ ``degree`` invariant under the candidate's group,
+    with the exponents ``(i, j)`` of each element ``h^i ρ^j`` (``(i, j)`` = powers of the two
+    coordinates ``u·p, w·p`` for an extrusion). ``point``/``direction`` override the candidate's
+    (they need not be unit: an exact integer direction keeps ``h`` exact)."""
+    kind = candidate.kind
+    n = candidate.direction if direction is None else direction
+    c = candidate.point if point is None else point
+    one = dense.from_terms({(0, 0, 0): 1.0}, degree)
+    if kind == PLANE:
+        h = dense.linear_form(n, np.zeros(3))
+        return dense.powers(one, h, degree + 1), [(i, 0) for i in range(degree + 1)]
+    if kind == SPHERE:
+        rho = dense.squared_distance(c)
+        return dense.powers(one, rho, degree // 2 + 1), [(0, j) for j in range(degree // 2 + 1)]
+    if kind == EXTRUSION:
+        u = _unit(np.cross(n, _least_aligned(n)))
+        w = np.cross(_unit(n), u)
+        arrays, exponents = [], []
+        for j, wj in enumerate(dense.powers(one, dense.linear_form(w, np.zeros(3)), degree + 1)):
+            for i, term in enumerate(dense.powers(wj, dense.linear_form(u, np.zeros(3)), degree + 1 - j)):
+                arrays.append(term)
+                exponents.append((i, j))
+        return arrays, exponents
+    h = dense.linear_form(n, c)
+    nn = float(n @ n)
+    rho = dense.squared_distance(c)
+    if kind == CYLINDER:
+        # |a|²·|p - c|² - (a·(p - c))²: the squared distance to the axis, times |a|².
+        across = [(m, nn * v) for m, v in rho] + [(m, -v) for m, v in dense.form_product(h, h)]
+        arrays = dense.powers(one, across, degree // 2 + 1)
+        return arrays, [(0, j) for j in range(degree // 2 + 1)]
+    arrays, exponents = [], []
+    for j, rj in enumerate(dense.powers(one, rho, degree // 2 + 1)):
+        for i, term in enumerate(dense.powers(rj, h, degree - 2 * j + 1)):
+            arrays.append(term)
+            exponents.append((i, j))
+    return arrays, exponents
+
+
+def _least_aligned(n: np.ndarray) -> np.ndarray:
+    e = np.zeros(3)
+    e[int(np.argmin(np.abs(n)))] = 1.0
+    return e
+
+
+def fit(f: Normalised, candidate: Candidate, point: np.ndarray | None = None,
+        direction: np.ndarray | None = None) -> Fit:
+    """The nearest invariant polynomial in the weighted least-squares sense (step 2)."""
+    arrays, exponents = invariant_basis(candidate, f.degree, point, direction)
+    basis = dense.stack(arrays, f.selected)
+    w = f.weights
+    weighted = basis * w[:, None]
+    norms = np.linalg.norm(weighted, axis=0)
+    norms[norms == 0.0] = 1.0
+    target = f.vector * w
+    solution, *_ = np.linalg.lstsq(weighted / norms, target, rcond=None)
+    coefficients = solution / norms
+    fitted = basis @ coefficients
+    residual = (f.vector - fitted) * w
+    count = len(residual)
+    sv = np.linalg.svd(weighted / norms, compute_uv=False)
+    condition = float(sv[0] / sv[-1]) if sv[-1] > 0 else math.inf
+    noise = 4 * np.finfo(float).eps * condition * float(np.linalg.norm(target)) / math.sqrt(count)
+    degrees = _degrees(f)
+    unscaled = (f.vector - fitted) / f.length ** degrees
+    original = f.vector / f.length ** degrees
+    return Fit(
+        candidate=Candidate(candidate.kind,
+                            candidate.direction if direction is None else direction,
+                            candidate.point if point is None else point),
+        coefficients=coefficients,
+        exponents=tuple(exponents),
+        fitted=fitted,
+        residual=float(np.linalg.norm(residual) / math.sqrt(count)),
+        largest=float(np.abs(residual).max()),
+        relative_distance=float(np.linalg.norm(unscaled) / np.linalg.norm(original)),
+        noise=float(noise),
+    )
+
+
+def _degrees(f: Normalised) -> np.ndarray:
+    i, j, k = np.indices(f.array.shape)
+    return (i + j + k)[f.selected]
+
+
+# --- 3. Gauss–Newton on the axis -----------------------------------------------------------------
+
+
+def refine(f: Normalised, candidate: Candidate) -> Fit:
+    """Refine the candidate's parameters by Gauss–Newton on the weighted residual (step 3)."""
+    params, build = parametrisation(candidate)
+    if len(params) == 0:
+        return fit(f, candidate)
+
+    def residual_vector(theta: np.ndarray) -> np.ndarray:
+        arrays, _ = invariant_basis(build(theta), f.degree)
+        basis = dense.stack(arrays, f.selected) * f.weights[:, None]
+        norms = np.linalg.norm(basis, axis=0)
+        norms[norms == 0.0] = 1.0
+        target = f.vector * f.weights
+        solution, *_ = np.linalg.lstsq(basis / norms, target, rcond=None)
+        return target - (basis / norms) @ solution
+
+    return fit(f, build(gauss_newton(residual_vector, params)[0]))
+
+
+def refine_fixed(f: Normalised, candidate: Candidate, coefficients: np.ndarray) -> tuple[Candidate, np.ndarray, np.ndarray]:
+    """Refine the axis (or centre, or normal) with the invariant's coefficients held fixed: once
+    they are snapped, the axis is determined more sharply than with them free. Returns the
+    refined candidate and the standard errors of its direction's and point's coordinates (from
+    the Gauss–Newton Jacobian, each residual having unit variance in rounding units)."""
+    params, build = parametrisation(candidate)
+    length = 1.0 if candidate.direction is None else float(np.linalg.norm(candidate.direction))
+
+    def scaled(theta: np.ndarray) -> Candidate:
+        c = build(theta)
+        return c if c.direction is None else Candidate(c.kind, c.direction * length, c.point)
+
+    def residual_vector(theta: np.ndarray) -> np.ndarray:
+        arrays, _ = invariant_basis(scaled(theta), f.degree)
+        return (f.vector - dense.stack(arrays, f.selected) @ coefficients) * f.weights
+
+    theta, jacobian = gauss_newton(residual_vector, params)
+    refined = scaled(theta)
+    covariance = np.linalg.pinv(jacobian.T @ jacobian)
+    n = refined.direction
+    if n is None:
+        return refined, np.zeros(3), np.sqrt(np.abs(np.diag(covariance)))
+    e1 = _unit(np.cross(n, _least_aligned(n)))
+    frame = np.column_stack([e1, np.cross(_unit(n), e1)])
+    direction_sigma = np.sqrt(np.abs(np.diag(frame @ covariance[:2, :2] @ frame.T)))
+    point_sigma = np.zeros(3)
+    if len(theta) == 4:
+        point_sigma = np.sqrt(np.abs(np.diag(frame @ covariance[2:, 2:] @ frame.T)))
+    return refined, direction_sigma, point_sigma
+
+
+def gauss_newton(residual: Callable[[np.ndarray], np.ndarray], theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Minimise ``‖residual(θ)‖²`` by Gauss–Newton with a forward-difference Jacobian and a
+    halving line search, from ``theta``; returns ``θ`` and the last Jacobian."""
+    r = residual(theta)
+
+    def jacobian_at(theta: np.ndarray, r: np.ndarray) -> np.ndarray:
+        return np.column_stack([(residual(theta + FD_STEP * e) - r) / FD_STEP for e in np.eye(len(theta))])
+
+    for _ in range(GN_ITERATIONS):
+        jacobian = jacobian_at(theta, r)
+        step, *_ = np.linalg.lstsq(jacobian, -r, rcond=None)
+        for factor in (1.0, 0.5, 0.25, 0.125):
+            trial = theta + factor * step
+            r_trial = residual(trial)
+            if r_trial @ r_trial < r @ r:
+                break
+        else:
+            break
+        gain = 1.0 - (r_trial @ r_trial) / (r @ r)
+        theta, r = trial, r_trial
+        if gain < 1e-6:
+            break
+    return theta, jacobian_at(theta, r)
+
+
+def parametrisation(candidate: Candidate) -> tuple[np.ndarray, Callable[[np.ndarray], Candidate]]:
+    """Local coordinates around the candidate: offsets of the direction (in two perpendicular
+    directions) and of the point (across the axis; all three for a sphere's centre)."""
+    kind, n, c = candidate.kind, candidate.direction, candidate.point
+    if kind == SPHERE:
+        return np.zeros(3), lambda t: Candidate(SPHERE, None, c + t)
+    e1 = _unit(np.cross(n, _least_aligned(n)))
+    e2 = np.cross(n, e1)
+
+    def direction(t: np.ndarray) -> np.ndarray:
+        return _unit(n + t[0] * e1 + t[1] * e2)
+
+    if kind in (PLANE, EXTRUSION):
+        return np.zeros(2), lambda t: Candidate(kind, direction(t), None)
+    return np.zeros(4), lambda t: Candidate(kind, direction(t), c + t[2] * e1 + t[3] * e2)

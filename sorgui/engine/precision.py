@@ -1,0 +1,250 @@
+"""How precisely the input was printed: a rounding bound for every coefficient (docs/math.md §8).
+
+A CAD system prints floating-point coefficients with a fixed number of digits, so a decimal
+literal such as ``1.234567`` stands for any number within half a unit of its last printed
+place (``±5e-7``). This module turns those digits into a bound ``e_α ≥ 0`` on the rounding of
+every coefficient ``f_α`` of the expanded polynomial, by first-order propagation through the
+syntax tree: sums add bounds, a product ``u·v`` has bound ``|u|·e_v + e_u·|v|`` (coefficientwise
+absolute values), a power ``u^n`` has ``n·|u|^(n-1)·e_u``. Integer literals in an input that has
+decimals are read as printed with the same number of significant digits as its most precise
+decimal (``%g`` prints ``0.99999999997`` as ``1``); exponents are exact. When no printed
+fraction ends in ``0``, the printer dropped trailing zeros (``%g`` prints ``15.44`` for
+``15.44000000``), so a literal is never read as coarser than that many significant digits;
+when some fraction ends in ``0`` (fixed-point printing, ``15.440000``), every literal's own
+last place counts and integers are exact.
+
+The relative tolerance of the input is ``τ = ‖e‖₂ / ‖f‖₂`` over the coefficients. A tolerance
+given by the user instead (``--tolerance τ``) spreads ``τ·‖f‖₂`` evenly over the monomials of
+degree ≤ deg f. Every bound is at least ``FLOAT_FLOOR·max|f_α|``: the coefficients a CAD system
+prints were computed in double precision and carry that much noise whatever it prints.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from math import comb
+
+from .parsing import Neg, Node, Num, Power, Product, Reciprocal, Sqrt, Sum, Var, syntax_tree
+
+FLOAT_FLOOR = 1e-15
+"""Relative noise of coefficients computed in double precision, below any printed digit."""
+
+MAX_PRODUCTS = 2_000_000
+"""Term products the propagation may spend; past this the bound is taken uniform (see below)."""
+
+Monomial = tuple[int, int, int]
+FloatPoly = dict[Monomial, float]
+_DECIMAL = re.compile(r"([0-9]*)(?:\.([0-9]*))?(?:[eE]([+-]?[0-9]+))?")
+
+
+@dataclass(frozen=True)
+class Rounding:
+    """Bounds ``e_α`` on the rounding of the coefficients of ``f``.
+
+    ``bounds`` holds the monomials that carry a bound of their own; every other monomial of
+    degree ≤ ``degree`` has ``default``. ``tolerance`` is ``‖e‖₂/‖f‖₂``; ``source`` is
+    ``"input"`` (from the printed digits) or ``"given"``; ``digits`` is the largest number of
+    significant digits printed (``None`` when the tolerance was given).
+    """
+
+    bounds: dict[Monomial, float]
+    default: float
+    degree: int
+    tolerance: float
+    source: str
+    digits: int | None
+
+    def bound(self, monomial: Monomial) -> float:
+        """``e_α`` for the monomial ``α``."""
+        return self.bounds.get(monomial, self.default)
+
+
+def has_decimals(text: str) -> bool:
+    """Whether ``text`` prints a number with a decimal point or an exponent (``1.5``, ``2e-3``)."""
+    return any(isinstance(node, Num) and _is_decimal(text, node) for node in _nodes(syntax_tree(text)))
+
+
+def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
+    """The rounding bounds read off the digits of ``text``; ``None`` if it prints no decimal.
+
+    ``coefficients`` are the exact coefficients of the parsed ``f`` as floats.
+    """
+    tree = syntax_tree(text)
+    literals = [node for node in _nodes(tree) if isinstance(node, Num)]
+    decimals = [node for node in literals if _is_decimal(text, node)]
+    if not decimals:
+        return None
+    digits = max(_significant_digits(text, node) for node in decimals)
+    zeros_kept = any(_fraction(text, node).endswith("0") for node in decimals)
+    top = max(abs(c) for c in coefficients.values())
+    floor = FLOAT_FLOOR * top
+    degree = max(sum(m) for m in coefficients)
+    propagated = _Propagation(text, digits, zeros_kept).run(tree)
+    if propagated is None:
+        relative = max(_literal_bound(text, n, digits, zeros_kept) / abs(float(n.value)) for n in decimals if n.value)
+        errors = {m: relative * abs(c) for m, c in coefficients.items()}
+    else:
+        errors = {m: propagated.get(m, 0.0) for m in coefficients}
+    bounds = {m: max(e, floor) for m, e in errors.items()}
+    printed = [e for e in errors.values() if e > 0.0]
+    default = max(min(printed, default=floor), floor)
+    norm_f = math.sqrt(sum(c * c for c in coefficients.values()))
+    absent = comb(degree + 3, 3) - len(bounds)
+    norm_e = math.sqrt(sum(e * e for e in bounds.values()) + absent * default * default)
+    return Rounding(bounds, default, degree, norm_e / norm_f, "input", digits)
+
+
+def given_rounding(tolerance: float, coefficients: FloatPoly) -> Rounding:
+    """Uniform bounds for a relative tolerance given by the user: ``e_α = τ·‖f‖₂/√N``."""
+    degree = max(sum(m) for m in coefficients)
+    count = comb(degree + 3, 3)
+    norm_f = math.sqrt(sum(c * c for c in coefficients.values()))
+    top = max(abs(c) for c in coefficients.values())
+    default = max(tolerance * norm_f / math.sqrt(count), FLOAT_FLOOR * top)
+    return Rounding({}, default, degree, tolerance, "given", None)
+
+
+# --- reading the printed digits ---------------------------------------------------------------
+
+
+def _nodes(node: Node):
+    """Every node of the tree, iteratively (pasted sums can be long)."""
+    stack = [node]
+    while stack:
+        node = stack.pop()
+        yield node
+        match node:
+            case Neg(arg=arg) | Reciprocal(arg=arg) | Sqrt(arg=arg):
+                stack.append(arg)
+            case Sum(terms=children) | Product(factors=children):
+                stack.extend(children)
+            case Power(base=base, exponent=exponent):
+                stack += [base, exponent]
+
+
+def _is_decimal(text: str, node: Num) -> bool:
+    return any(ch in ".eE" for ch in text[node.start:node.end])
+
+
+def _significant_digits(text: str, node: Num) -> int:
+    """Significant digits of a literal: ``0.00120`` has 3, ``1.5e-3`` has 2."""
+    whole, fraction, _ = _DECIMAL.fullmatch(text, node.start, node.end).groups()
+    return max(len((whole + (fraction or "")).lstrip("0")), 1)
+
+
+def _fraction(text: str, node: Num) -> str:
+    return _DECIMAL.fullmatch(text, node.start, node.end).group(2) or ""
+
+
+def _literal_bound(text: str, node: Num, digits: int, zeros_kept: bool) -> float:
+    """Half a unit in the last printed place of a literal, read as the module docstring says."""
+    _, fraction, exponent = _DECIMAL.fullmatch(text, node.start, node.end).groups()
+    value = abs(float(node.value))
+    decimal = fraction is not None or exponent is not None
+    if not decimal and zeros_kept:
+        return 0.0
+    by_digits = 0.5 * 10.0 ** (math.floor(math.log10(value)) - digits + 1) if value else 0.0
+    if not decimal:
+        return by_digits
+    own = 0.5 * 10.0 ** (int(exponent or 0) - len(fraction or ""))
+    return own if zeros_kept else min(own, by_digits) if value else own
+
+
+class _Propagation:
+    """First-order propagation of literal rounding through the syntax tree, in floats."""
+
+    def __init__(self, text: str, digits: int, zeros_kept: bool) -> None:
+        self.text = text
+        self.digits = digits
+        self.zeros_kept = zeros_kept
+        self.work = 0
+
+    def run(self, tree: Node) -> FloatPoly | None:
+        """The bound of every coefficient, or ``None`` when the expansion is too large."""
+        try:
+            _, error = self._pair(tree)
+        except _TooLarge:
+            return None
+        return error
+
+    def _pair(self, node: Node) -> tuple[FloatPoly, FloatPoly]:
+        """``(value, bound)`` of a subtree as float polynomials."""
+        match node:
+            case Num():
+                return {(0, 0, 0): float(node.value)}, {(0, 0, 0): _literal_bound(self.text, node, self.digits, self.zeros_kept)}
+            case Var():
+                m = [0, 0, 0]
+                m[node.index] = 1
+                return {tuple(m): 1.0}, {}
+            case Neg():
+                value, error = self._pair(node.arg)
+                return {m: -c for m, c in value.items()}, error
+            case Sum():
+                value: FloatPoly = {}
+                error: FloatPoly = {}
+                for term in node.terms:
+                    v, e = self._pair(term)
+                    _accumulate(value, v)
+                    _accumulate(error, e)
+                return value, error
+            case Product():
+                value, error = self._pair(node.factors[0])
+                for factor in node.factors[1:]:
+                    if isinstance(factor, Reciprocal):
+                        c, e = self._constant(factor.arg)
+                        value = {m: v / c for m, v in value.items()}
+                        error = {m: ev / abs(c) + abs(value.get(m, 0.0)) * e / abs(c) for m, ev in error.items()}
+                        continue
+                    v2, e2 = self._pair(factor)
+                    value, error = self._times(value, error, v2, e2)
+                return value, error
+            case Power():
+                n = self._constant(node.exponent)[0]
+                if n != int(n) or n < 0:  # a surd such as 2^(1/2): a constant
+                    base, e = self._constant(node.base)
+                    return {(0, 0, 0): base**n}, {(0, 0, 0): abs(n * base ** (n - 1)) * e}
+                return self._power(*self._pair(node.base), int(n))
+            case Sqrt():
+                c, e = self._constant(node.arg)
+                root = math.sqrt(abs(c))
+                return {(0, 0, 0): root}, {(0, 0, 0): e / (2.0 * root) if root else 0.0}
+        raise TypeError(node)
+
+    def _constant(self, node: Node) -> tuple[float, float]:
+        value, error = self._pair(node)
+        return value.get((0, 0, 0), 0.0), error.get((0, 0, 0), 0.0)
+
+    def _power(self, value: FloatPoly, error: FloatPoly, n: int) -> tuple[FloatPoly, FloatPoly]:
+        result, bound = {(0, 0, 0): 1.0}, {}
+        for _ in range(n):
+            result, bound = self._times(result, bound, value, error)
+        return result, bound
+
+    def _times(self, v1: FloatPoly, e1: FloatPoly, v2: FloatPoly, e2: FloatPoly) -> tuple[FloatPoly, FloatPoly]:
+        self.work += len(v1) * len(v2) + len(v1) * len(e2) + len(e1) * len(v2)
+        if self.work > MAX_PRODUCTS:
+            raise _TooLarge
+        value = _product(v1, v2, signed=True)
+        error = _product({m: abs(c) for m, c in v1.items()}, e2, signed=False)
+        _accumulate(error, _product(e1, {m: abs(c) for m, c in v2.items()}, signed=False))
+        return value, error
+
+
+class _TooLarge(Exception):
+    """The propagation would cost more than :data:`MAX_PRODUCTS` term products."""
+
+
+def _accumulate(total: FloatPoly, part: FloatPoly) -> None:
+    for m, c in part.items():
+        total[m] = total.get(m, 0.0) + c
+
+
+def _product(a: FloatPoly, b: FloatPoly, *, signed: bool) -> FloatPoly:
+    result: FloatPoly = {}
+    for (i, j, k), c in a.items():
+        for (p, q, r), d in b.items():
+            m = (i + p, j + q, k + r)
+            result[m] = result.get(m, 0.0) + c * d
+    return result if signed else {m: abs(c) for m, c in result.items()}

@@ -1,0 +1,366 @@
+"""From a rounded near-surface of revolution to the exact surface it was meant to be
+(docs/math.md §8, "The nearest exact surface").
+
+The fit of :mod:`.near_symmetry` gives a float axis (or centre, or normal) and float
+coefficients of the invariant basis ``h^i ρ^j``. Snapping replaces them by the *simplest*
+exact values that keep the fit within the input's rounding:
+
+* **Direction:** the primitive integer vector with the smallest common denominator ``D`` that
+  approximates the direction's ratios within ``ε`` (simultaneous approximation, searched over
+  ``D``), for ``ε = 10⁻², 10⁻³, …``: the first one whose float fit still passes wins.
+* **Point:** the foot of the axis (its point nearest the origin), each coordinate the simplest
+  rational (fewest continued-fraction steps) within ``ε·L``, the same way.
+* **Coefficients:** each the simplest rational within three standard errors of the weighted
+  least-squares fit; or, when ``f`` was normalised by an irrational factor, the ratios to the
+  best-determined coefficient and then the overall factor. The candidate with the fewest bits
+  whose *exact* residual passes wins.
+
+The exact surface ``g = Σ q_ij h^i ρ^j`` is then built over ``QQ`` and checked by the exact
+recognizer (docs/math.md §2) before it is returned.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+from flint import fmpq, fmpq_mpoly
+
+from . import dense
+from .near_symmetry import Fit, Normalised, fit, invariant_basis, refine_fixed
+from .polys import XYZ, Poly, from_flint, poly_ring, to_flint
+from .precision import Rounding
+from .symmetry import CYLINDER, PLANE, REVOLUTION, SPHERE, Symmetry, recognize_symmetry
+
+from sympy.polys.domains import QQ
+
+Vector = tuple[Fraction, Fraction, Fraction]
+EPSILONS = tuple(10.0 ** -k for k in range(2, 14))
+MAX_DENOMINATOR = 10**6
+AXIS_TRIES = 3
+SPREADS = (3.0, 1.0, 0.3)
+"""Radii, in standard errors, within which a refined axis is snapped (widest first)."""
+
+
+@dataclass(frozen=True)
+class ExactSurface:
+    """The snapped exact surface ``g`` with its exact axis data and its distance to ``f``;
+    ``direction`` and ``point`` are the snapped axis (or normal, or centre) in the frame that
+    keeps the profile simple, for the exact analysis to use."""
+
+    polynomial: Poly
+    symmetry: Symmetry
+    residual: float
+    largest: float
+    relative_distance: float
+    direction: Vector | None
+    point: Vector | None
+
+
+def simplest_between(lo: Fraction, hi: Fraction) -> Fraction:
+    """The rational with the smallest denominator (then numerator) in ``[lo, hi]``."""
+    if lo > hi:
+        lo, hi = hi, lo
+    if lo <= 0 <= hi:
+        return Fraction(0)
+    if hi < 0:
+        return -simplest_between(-hi, -lo)
+    whole = math.floor(lo)
+    if lo == whole:
+        return Fraction(whole)
+    if whole + 1 <= hi:
+        return Fraction(whole + 1)
+    return whole + 1 / simplest_between(1 / (hi - whole), 1 / (lo - whole))
+
+
+def simplest_near(value: float, radius: float) -> Fraction:
+    """The simplest rational within ``radius`` of ``value``."""
+    v = Fraction(value)
+    r = Fraction(abs(radius))
+    return simplest_between(v - r, v + r)
+
+
+def integer_direction(direction: np.ndarray, epsilon: float) -> tuple[int, int, int] | None:
+    """The primitive integer vector with the smallest common denominator whose ratios are
+    within ``epsilon`` of the direction's (None if none up to ``MAX_DENOMINATOR``)."""
+    j = int(np.argmax(np.abs(direction)))
+    ratios = direction / direction[j]
+    step = 100_000
+    for start in range(1, MAX_DENOMINATOR + 1, step):
+        D = np.arange(start, start + step, dtype=float)[:, None]
+        scaled = D * ratios[None, :]
+        error = np.abs(scaled - np.round(scaled)).max(axis=1) / D[:, 0]
+        hits = np.nonzero(error <= epsilon)[0]
+        if len(hits):
+            ints = [int(v) for v in np.round(scaled[hits[0]])]
+            g = math.gcd(*ints)
+            return tuple(v // g for v in ints)  # type: ignore[return-value]
+    return None
+
+
+def rational_unit_direction(direction: np.ndarray, epsilon: float | np.ndarray) -> tuple[Fraction, Fraction, Fraction]:
+    """A rational unit vector near ``direction``: the inverse stereographic image of the
+    simplest rationals ``(u, v)`` within ``epsilon`` (a number, or one radius per coordinate of
+    the direction) of the direction's projection from the pole opposite its largest component.
+    Its ``h = n·(p - c)`` keeps the profile orthonormal."""
+    n = direction / np.linalg.norm(direction)
+    k = int(np.argmax(np.abs(n)))
+    sign = 1.0 if n[k] > 0 else -1.0
+    others = [i for i in range(3) if i != k]
+    radii = np.broadcast_to(np.asarray(epsilon, float), (3,))
+    u, v = (simplest_near(n[i] / (1.0 + sign * n[k]), radii[i] / (1.0 + sign * n[k])) for i in others)
+    denominator = 1 + u * u + v * v
+    result = [Fraction(0)] * 3
+    result[others[0]], result[others[1]] = 2 * u / denominator, 2 * v / denominator
+    result[k] = (1 - u * u - v * v) / denominator * int(sign)
+    return tuple(result)  # type: ignore[return-value]
+
+
+def perpendicular(direction: Vector) -> Vector:
+    """A vector ``u ⟂ a`` with ``|u| = |a|`` when ``|a|`` is rational: the Householder reflection
+    that maps the coordinate vector ``e_k`` nearest ``a`` onto ``a/|a|`` maps another coordinate
+    vector onto ``u/|u|``; otherwise a primitive ``e_j``-projection. The profile in the frame
+    ``(a, u)`` then keeps the coefficients of the snapped profile."""
+    a = [Fraction(v) for v in direction]
+    norm2 = sum(v * v for v in a)
+    k = max(range(3), key=lambda i: abs(a[i]))
+    j = (k + 1) % 3
+    root = Fraction(math.isqrt(norm2.numerator), math.isqrt(norm2.denominator))
+    if root * root != norm2:
+        e = [Fraction(0)] * 3
+        e[min(range(3), key=lambda i: abs(a[i]))] = Fraction(1)
+        return tuple(norm2 * e[i] - sum(x * y for x, y in zip(a, e)) * a[i] for i in range(3))  # type: ignore[return-value]
+    n = [v / root for v in a]
+    sign = 1 if n[k] >= 0 else -1
+    v = [n[i] - (sign if i == k else 0) for i in range(3)]
+    vv = sum(x * x for x in v)
+    image = [(1 if i == j else 0) - 2 * v[i] * v[j] / vv for i in range(3)]
+    return tuple(root * x for x in image)  # type: ignore[return-value]
+
+
+def _integer_vector(direction: np.ndarray, epsilon: float) -> Vector | None:
+    a = integer_direction(direction, epsilon)
+    return None if a is None else tuple(Fraction(v) for v in a)  # type: ignore[return-value]
+
+
+DirectionSnap = Callable[[np.ndarray, float], "Vector | None"]
+FAMILIES: tuple[DirectionSnap, ...] = (_integer_vector, rational_unit_direction)
+"""Primitive integer directions, and rational unit directions (which keep an irrational axis's
+profile coefficients simple)."""
+
+
+def snapped_directions(direction: np.ndarray, family: DirectionSnap) -> list[Vector]:
+    """The distinct exact directions of one family near ``direction``, simplest first."""
+    found: list[Vector] = []
+    for eps in EPSILONS:
+        a = family(direction, eps)
+        if a is not None and a not in found:
+            found.append(a)
+    return found
+
+
+def exact_axes(f: Normalised, best: Fit, directions: list[Vector]) -> Iterator[tuple[Vector | None, Vector | None]]:
+    """Exact (direction, point) pairs to try, simplest first: the first ``AXIS_TRIES``
+    directions whose float fit passes, each with the points near the profile's centre on that
+    axis whose float fit passes, coarsest first (docs/math.md §8). A coarse pair can pass with
+    free coefficients and fail once they are snapped, so finer pairs follow."""
+    kind = best.candidate.kind
+    limit = max(1.0 + best.noise, best.residual * 1.5)
+    tried = 0
+    for a in directions if kind in (REVOLUTION, CYLINDER, PLANE) else [None]:
+        direction = None if a is None else np.array([float(v) for v in a])
+        if kind == PLANE:
+            if fit(f, best.candidate, direction=direction).residual <= limit:
+                yield a, None
+                tried += 1
+        else:
+            point = best.candidate.point
+            if direction is not None:
+                point = profile_centre(f, best, direction)
+                if fit(f, best.candidate, point=point, direction=direction).residual > limit:
+                    continue
+            tried += 1
+            seen: list[Vector] = []
+            passing = False
+            for eps in EPSILONS:
+                c = tuple(simplest_near(float(v) * f.length, eps * f.length) for v in point)
+                if c in seen:
+                    continue
+                seen.append(c)  # type: ignore[arg-type]
+                float_c = np.array([float(v) for v in c]) / f.length
+                passing = passing or fit(f, best.candidate, point=float_c, direction=direction).residual <= limit
+                if passing:
+                    yield a, c  # type: ignore[misc]
+        if tried >= AXIS_TRIES:
+            return
+
+
+def profile_centre(f: Normalised, best: Fit, direction: np.ndarray) -> np.ndarray:
+    """The point of the axis about which the profile's terms of degree ``d - 1`` are smallest
+    (the centre of a torus, the vertex region of a paraboloid): least squares in the shift
+    ``t`` along the axis, whose effect on those terms is linear."""
+    unit = direction / np.linalg.norm(direction)
+    foot = best.candidate.point - (best.candidate.point @ unit) * unit
+    if best.candidate.kind != REVOLUTION:
+        return foot
+
+    def below_top(t: float) -> np.ndarray:
+        local = fit(f, best.candidate, point=foot + t * unit, direction=unit)
+        return np.array([q for (i, j), q in zip(local.exponents, local.coefficients) if i + 2 * j == f.degree - 1])
+
+    at_zero, at_one = below_top(0.0), below_top(1.0)
+    slope = at_one - at_zero
+    if not np.any(slope):
+        return foot
+    t = -float(slope @ at_zero) / float(slope @ slope)
+    return foot + t * unit
+
+
+def _radius(sigma: np.ndarray, spread: float, family: DirectionSnap) -> float | np.ndarray:
+    """Snapping radii from standard errors (one number for the integer family)."""
+    radii = np.maximum(sigma * spread, 1e-15)
+    return float(radii.max()) if family is _integer_vector else radii
+
+
+def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurface | None:
+    """The simplest exact surface of the fit's kind within the rounding, or ``None``: for each
+    family of directions the first surface that passes, then the one whose profile
+    coefficients have the fewest bits."""
+    exact_f = exact if exact.ring.domain == QQ else None
+    found: list[tuple[int, ExactSurface]] = []
+    for family in FAMILIES if best.candidate.direction is not None else (None,):
+        surface = _first_exact(f, best, family, exact_f, rounding)
+        if surface is not None:
+            found.append(surface)
+    if not found:
+        return None
+    return min(found, key=lambda item: item[0])[1]
+
+
+def _first_exact(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None,
+                 rounding: Rounding) -> tuple[int, ExactSurface] | None:
+    """The first exact axis and coefficients, in the order of :func:`exact_axes`, whose exact
+    surface passes, with the bits of its coefficients. When the simplest coefficients fail on a
+    coarse axis, the axis is refined with them held fixed and snapped again, finely."""
+    directions = [] if family is None else snapped_directions(best.candidate.direction, family)
+    kind = best.candidate.kind
+    for a, c in exact_axes(f, best, directions):
+        direction = None if a is None else np.array([float(v) for v in a])
+        point = None if c is None else np.array([float(v) for v in c]) / f.length
+        local = fit(f, best.candidate, point=point, direction=direction)
+        degrees = np.array([i + 2 * j for i, j in local.exponents])
+        for rank, coefficients in enumerate(_coefficient_candidates(f, local)):
+            g = build(kind, a, c, local.exponents, coefficients)
+            surface = None if g is None else _check(g, exact_f, rounding, f, a, c)
+            if surface is not None:
+                return _bits(coefficients), surface
+            if rank >= 2:
+                continue
+            fixed = np.array([float(q) for q in coefficients]) * f.length ** degrees / f.scale
+            moved, direction_sigma, point_sigma = refine_fixed(f, local.candidate, fixed)
+            for spread in SPREADS:
+                a2 = None if family is None else family(moved.direction, _radius(direction_sigma, spread, family))
+                c2 = None if moved.point is None else tuple(
+                    simplest_near(float(v) * f.length, float(max(e * spread, 1e-15)) * f.length)
+                    for v, e in zip(moved.point, point_sigma))
+                if family is not None and a2 is None:
+                    continue
+                g = build(kind, a2, c2, local.exponents, coefficients)  # type: ignore[arg-type]
+                surface = None if g is None else _check(g, exact_f, rounding, f, a2, c2)  # type: ignore[arg-type]
+                if surface is not None:
+                    return _bits(coefficients), surface
+    return None
+
+
+def _coefficient_candidates(f: Normalised, local: Fit) -> list[list[Fraction]]:
+    """Exact coefficients of ``g`` in the original coordinates, simplest candidates first."""
+    degrees = np.array([i + 2 * j for i, j in local.exponents])
+    factor = f.scale / f.length ** degrees
+    values = local.coefficients * factor
+    errors = _standard_errors(f, local) * factor * 3.0 * max(1.0, local.residual)
+    found = [[simplest_near(v, e) for v, e in zip(values, errors)]]
+    pivot = int(np.argmax(np.abs(values) / np.maximum(errors, 1e-300)))
+    if values[pivot] != 0.0:
+        ratios = values / values[pivot]
+        ratio_errors = errors / abs(values[pivot]) + np.abs(ratios) * errors[pivot] / abs(values[pivot])
+        snapped = [simplest_near(r, e) for r, e in zip(ratios, ratio_errors)]
+        scale = simplest_near(values[pivot], errors[pivot])
+        found.append([scale * r for r in snapped])
+        found.append([Fraction(values[pivot]) * r for r in snapped])
+    found.append([Fraction(v).limit_denominator(10**15) for v in values])
+    return sorted(found, key=_bits)
+
+
+def _bits(values: list[Fraction]) -> int:
+    return sum(v.numerator.bit_length() + v.denominator.bit_length() for v in values)
+
+
+def _standard_errors(f: Normalised, local: Fit) -> np.ndarray:
+    """Standard errors of the fitted coefficients, in units of the rounding bounds."""
+    arrays, _ = invariant_basis(local.candidate, f.degree)
+    weighted = dense.stack(arrays, f.selected) * f.weights[:, None]
+    norms = np.linalg.norm(weighted, axis=0)
+    norms[norms == 0.0] = 1.0
+    _, s, vt = np.linalg.svd(weighted / norms, full_matrices=False)
+    s = np.maximum(s, s[0] * 1e-15)
+    covariance = (vt.T / s**2) @ vt
+    return np.sqrt(np.abs(np.diag(covariance))) / norms
+
+
+def build(kind: str, a: Vector | None, c: Vector | None,
+          exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction]) -> Poly | None:
+    """``g = Σ q_ij h^i ρ^j`` over ``QQ`` (``h = a·(p - c)``, ``ρ = |p - c|²``; for a cylinder
+    ``ρ`` is ``|a|²|p - c|² - h²``; for a plane ``h = a·p``)."""
+    R = poly_ring(XYZ, QQ)
+    ctx = to_flint(R.gens[0]).context()
+    x, y, z = ctx.gens()
+    gens = (x, y, z)
+    zero = fmpq_mpoly(0, ctx)
+    origin = c if c is not None else (Fraction(0),) * 3
+    shifted = [gens[i] - fmpq(origin[i].numerator, origin[i].denominator) for i in range(3)]
+    h = sum((fmpq(a[i].numerator, a[i].denominator) * shifted[i] for i in range(3)), zero) if a is not None else zero
+    rho = sum((s * s for s in shifted), zero)
+    if kind == CYLINDER:
+        norm2 = sum(v * v for v in a)
+        rho = fmpq(norm2.numerator, norm2.denominator) * rho - h * h
+    g = zero
+    for (i, j), q in zip(exponents, coefficients):
+        if q:
+            g += fmpq(q.numerator, q.denominator) * h**i * rho**j
+    if g.is_zero() or g.total_degree() < 1:
+        return None
+    return from_flint(g, R)
+
+
+def _check(g: Poly, exact_f: Poly | None, rounding: Rounding, f: Normalised,
+           a: Vector | None, c: Vector | None) -> ExactSurface | None:
+    """``g`` with its exact residual against ``f``, if the exact recognizer agrees it is a
+    surface of revolution and the residual is within twice the rounding."""
+    g_terms = {tuple(int(e) for e in m): c for m, c in to_flint(g).to_dict().items()}
+    if exact_f is not None:
+        difference = to_flint(exact_f) - to_flint(g)
+        residual_terms = {tuple(int(e) for e in m): float(c) for m, c in difference.to_dict().items()}
+        f_terms = dense.float_coefficients(exact_f)
+    else:
+        scale = f.scale
+        f_terms = {m: float(v) * scale / f.length ** sum(m) for m, v in zip(_monomials(f), f.vector)}
+        residual_terms = {m: f_terms.get(m, 0.0) - float(g_terms.get(m, 0)) for m in set(f_terms) | set(g_terms)}
+    count = math.comb(rounding.degree + 3, 3)
+    ratios = [abs(r) / rounding.bound(m) for m, r in residual_terms.items()]
+    residual = math.sqrt(sum(v * v for v in ratios) / count)
+    if residual > 2.0:
+        return None
+    symmetry = recognize_symmetry(g)
+    if not symmetry.is_sor:
+        return None
+    norm_f = math.sqrt(sum(v * v for v in f_terms.values()))
+    distance = math.sqrt(sum(r * r for r in residual_terms.values())) / norm_f
+    return ExactSurface(g, symmetry, residual, max(ratios, default=0.0), distance, a, c)
+
+
+def _monomials(f: Normalised) -> list[tuple[int, int, int]]:
+    i, j, k = np.nonzero(f.selected)
+    return [(int(a), int(b), int(c)) for a, b, c in zip(i, j, k)]
