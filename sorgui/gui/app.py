@@ -38,7 +38,7 @@ def create_application(argv: list[str] | None = None) -> QApplication:
     app.setApplicationName(APPLICATION)
     app.setApplicationDisplayName("sorgui")
     app.setApplicationVersion(__version__)
-    app.setDesktopFileName("sorgui")
+    app.setDesktopFileName("org.sorgui.Sorgui")  # resources/org.sorgui.Sorgui.desktop: the launcher
     app.setWindowIcon(application_icon())
     if app.style().name().lower() not in ("fusion", "breeze"):
         app.setStyle("Fusion")
