@@ -1,115 +1,391 @@
 """The command line: ``sorgui`` opens the window, ``sorgui analyze`` analyses on the terminal.
 
 Exit status of ``sorgui analyze``: 0 for every analysed input (surface of revolution or not),
-2 for bad input (a one-line message on stderr, no traceback; with ``--json`` an ``error``
-object on stdout), 1 when the analysis itself fails.
+2 for bad input or bad use (a one-line message on stderr, no traceback; with ``--json`` an
+``error`` object on stdout), 1 when the analysis itself fails or the output cannot be written,
+130 on Ctrl+C (``SIGINT``), 128 + N on the signals ``SIGTERM`` and ``SIGHUP``, which end
+sorgui cleanly: Singular is killed on the way out (and dies with sorgui even on ``kill -9``).
+
+``--timeout`` bounds the whole analysis; stages not finished by then are reported as
+undecided. ``--each-line`` analyses one equation per line (:mod:`sorgui.batch`, JSON Lines).
+
+The engine (sympy, flint, Singular) is imported only once an equation is to be analysed, so
+that ``--help`` and bad command lines answer at once.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
+import os
+import signal
 import sys
-from collections.abc import Sequence
+import time
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
+from typing import TYPE_CHECKING, Any, NoReturn
 
-from sorgui.engine import ParseError, SorguiError, analyze
-from sorgui.export.files import FORMATS, export_analysis
-from sorgui.export.text import format_report
+if TYPE_CHECKING:
+    from sorgui.engine import Analysis
 
 DEFAULT_EXAMPLE = "paper-example-1"
+DEFAULT_TIMEOUT = 120.0
+"""Seconds for the whole analysis of one equation unless ``--timeout`` says otherwise."""
+MAX_INPUT = 1_000_000
+"""Characters of input read at most (plus one, to tell that there is more); the parser's
+``MAX_LENGTH``, repeated here so that reading needs no engine import (a test checks they agree)."""
+EXPORT_SUFFIXES = (".json", ".txt", ".md", ".html", ".tex", ".mpl", ".m", ".py", ".stl", ".obj", ".ply", ".vtp",
+                   ".png")
+"""Suffixes ``-o`` accepts (the keys of ``sorgui.export.files.FORMATS``; a test checks it)."""
 
 
-def _analyze_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+class UsageError(Exception):
+    """Bad command-line use (a missing file, conflicting options, a bad value)."""
+
+
+class _Terminated(BaseException):
+    """``SIGTERM`` or ``SIGHUP`` arrived: unwind (killing Singular) and exit."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line (raised, not printed with the usage)."""
+
+    def error(self, message: str) -> NoReturn:
+        raise UsageError(message)
+
+
+def positive_seconds(text: str) -> float:
+    """A time limit: a finite number of seconds greater than 0 (``nan``, ``inf``, 0 and negative
+    values are refused)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number of seconds: {text!r}") from None
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f"the time limit must be a positive number of seconds, not {text!r}")
+    return value
+
+
+def tolerance_value(text: str) -> float | None:
+    """``--tolerance``: ``auto`` (``None``: from the input's printed digits) or a relative
+    tolerance strictly between 0 and 1."""
+    if text.strip().lower() == "auto":
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a tolerance: {text!r} (use 'auto' or a number such as 1e-8)") from None
+    if not math.isfinite(value) or not 0.0 < value < 1.0:
+        raise argparse.ArgumentTypeError(f"the tolerance must be a number between 0 and 1, not {text!r}")
+    return value
+
+
+def positive_int(text: str) -> int:
+    """A count of at least 1 (``--jobs``)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, not {value}")
+    return value
+
+
+def analyze_parser() -> argparse.ArgumentParser:
+    """The options of ``sorgui analyze`` (the one place that declares them)."""
+    parser = _Parser(
         prog="sorgui analyze",
         description="Decide exactly whether f(x, y, z) = 0 is a surface of revolution.",
+        allow_abbrev=False,
     )
-    parser.add_argument("expression", nargs="?", help="the equation, or '-' to read standard input")
+    parser.add_argument("expression", nargs="?",
+                        help="the equation (it may start with '-'), or '-' to read standard input")
     parser.add_argument("-f", "--file", type=Path, help="read the equation from a file")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("--recognition-only", action="store_true", help="skip the rationality analysis")
     parser.add_argument("--method", choices=("symmetry", "paper"), default="symmetry",
                         help="symmetry algebra (default, deterministic) or the paper's Algorithm II")
-    parser.add_argument("--timeout", type=float, default=60.0, help="time limit per Singular call, in seconds")
+    parser.add_argument("--timeout", type=positive_seconds, default=DEFAULT_TIMEOUT,
+                        help=f"time limit of the whole analysis, in seconds (default {DEFAULT_TIMEOUT:g}); "
+                             "stages not finished are reported as undecided")
+    parser.add_argument("--tolerance", type=tolerance_value, default=None, metavar="auto|T",
+                        help="also ask whether the surface is, within a relative tolerance T (e.g. 1e-8), "
+                             "a surface of revolution, and find the exact surface it was meant to be; "
+                             "'auto' (the default) does so whenever the input prints decimals, with the "
+                             "tolerance their digits give")
     parser.add_argument("-o", "--output", type=Path, action="append", default=[],
-                        help="also write the results to a file: .json, .txt, .tex (LaTeX), .mpl (Maple) "
-                             "or .m (Mathematica); may be given several times")
+                        help="also write the results to a file, in the format its suffix names: reports "
+                             ".json .txt .md .html; formulas .tex (LaTeX) .mpl (Maple) .m (Mathematica) "
+                             ".py (NumPy/SymPy); meshes .stl .obj .ply .vtp (NAME.patch.stl: the "
+                             "parametric patch); .png (a picture); may be given several times")
+    parser.add_argument("--format", dest="export_format", metavar="FORMAT",
+                        help="the format of every -o file whatever its suffix (json, md, tex, stl, "
+                             "patch.stl, ...)")
+    parser.add_argument("--each-line", action="store_true",
+                        help="analyse every line of the input (-f FILE or '-') on its own and print "
+                             "JSON Lines; '#' starts a comment")
+    parser.add_argument("--jobs", type=positive_int, default=1,
+                        help="with --each-line: the number of worker processes (default 1)")
     return parser
 
 
-def _read_input(args: argparse.Namespace) -> str:
-    """The equation text from the argument, a file, or standard input."""
+def parse_arguments(parser: argparse.ArgumentParser, argv: Sequence[str]) -> argparse.Namespace:
+    """``parser.parse_args`` where an equation starting with ``-`` (``-x^2-y^2+z^2-1``) is the
+    expression, not an option: every such argument that is neither an option nor an option's
+    value is moved behind ``--``."""
+    options = {s: a for a in parser._actions for s in a.option_strings}
+    kept: list[str] = []
+    expressions: list[str] = []
+    rest = iter(argv)
+    for arg in rest:
+        if arg == "--":
+            expressions += rest
+        elif len(arg) > 1 and arg.startswith("-") and not _is_option(arg, options):
+            expressions.append(arg)
+        else:
+            kept.append(arg)
+            action = options.get(arg)
+            if action is not None and action.nargs != 0:  # its value follows, even "-5"
+                kept += [value for value in [next(rest, None)] if value is not None]
+    return parser.parse_args([*kept, "--", *expressions] if expressions else kept)
+
+
+def _is_option(arg: str, options: dict[str, argparse.Action]) -> bool:
+    """``--name``, ``--name=value``, ``-f`` or ``-fVALUE`` for a declared option."""
+    if arg.split("=", 1)[0] in options:
+        return True
+    return not arg.startswith("--") and arg[:2] in options
+
+
+# --- input and output --------------------------------------------------------------------
+
+
+def read_input(args: argparse.Namespace) -> tuple[str, Path | None]:
+    """The equation text (at most :data:`MAX_INPUT` characters) and the file it came from."""
     if args.file is not None:
         if args.expression is not None:
-            raise _UsageError("give either an expression or -f FILE, not both")
+            raise UsageError("give either an expression or -f FILE, not both")
         try:
-            return args.file.read_text(encoding="utf-8")
+            with open(args.file, encoding="utf-8") as stream:
+                return _bounded(stream.read(MAX_INPUT + 1), str(args.file)), args.file
         except (OSError, UnicodeDecodeError) as exc:
-            raise _UsageError(f"cannot read {args.file}: {exc}") from None
+            reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+            raise UsageError(f"cannot read {args.file}: {reason}") from None
     if args.expression is None:
+        if args.each_line:
+            raise UsageError("--each-line reads -f FILE or '-' (standard input)")
         from sorgui.examples import example_text
 
-        return example_text(DEFAULT_EXAMPLE)
+        return example_text(DEFAULT_EXAMPLE), None
     if args.expression == "-":
-        return sys.stdin.read()
-    return args.expression
+        try:
+            return _bounded(sys.stdin.read(MAX_INPUT + 1), "standard input"), None
+        except UnicodeDecodeError as exc:
+            raise UsageError(f"cannot read standard input: {exc}") from None
+    return _bounded(args.expression, "the expression"), None
 
 
-class _UsageError(Exception):
-    """Bad command-line use (a missing file, conflicting options)."""
+def _bounded(text: str, source: str) -> str:
+    if len(text) > MAX_INPUT:
+        raise UsageError(f"{source} is too long (more than {MAX_INPUT:,} characters)")
+    return text
 
 
-def _fail(message: str, position: int | None, as_json: bool, status: int) -> int:
+def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None = None) -> None:
+    """Refuse, before any analysis, ``-o`` targets that cannot be written: an unknown format, a
+    missing or read-only folder, a folder or read-only file in the way, the input file itself."""
+    for path in outputs:
+        suffix = "." + fmt.lower().lstrip(".").removeprefix("patch.") if fmt else path.suffix.lower()
+        if suffix not in EXPORT_SUFFIXES:
+            raise UsageError(f"unknown export format of {path}; use {', '.join(EXPORT_SUFFIXES)}")
+        if source is not None and path.exists() and source.exists() and path.samefile(source):
+            raise UsageError(f"refusing to overwrite the input file {path}")
+        folder = path.parent
+        if not folder.is_dir():
+            raise UsageError(f"cannot write {path}: the folder {folder} does not exist")
+        if path.is_dir():
+            raise UsageError(f"cannot write {path}: it is a folder")
+        if not os.access(folder, os.W_OK | os.X_OK) or (path.exists() and not os.access(path, os.W_OK)):
+            raise UsageError(f"cannot write {path}: permission denied")
+
+
+def write_outputs(result: Analysis, outputs: Sequence[Path], fmt: str | None = None) -> None:
+    """Write ``result`` to every ``-o`` file (atomically); an error names the file.
+
+    Meshes, pictures and the pictures of Markdown/HTML reports need the 3D scene, built once
+    (with pyvista) only when one of them is asked for."""
+    from sorgui.export.files import export_analysis, format_of
+
+    scene = None
+    if any(format_of(path, fmt).kind in ("mesh", "picture") or format_of(path, fmt).suffix in (".md", ".html")
+           for path in outputs):
+        from sorgui.session.scene_data import build_scene
+
+        scene = build_scene(result)
+    for path in outputs:
+        try:
+            export_analysis(result, path, fmt, scene=scene)
+        except OSError as exc:
+            raise _OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
+        except ValueError as exc:
+            raise _OutputError(f"cannot write {path}: {exc}") from None
+
+
+class _OutputError(Exception):
+    """A result could not be written (a file, or standard output)."""
+
+
+def emit(text: str) -> None:
+    """Write ``text`` and one newline to standard output, flushed, so that a closed pipe or a
+    full disk is noticed here (:class:`_OutputError`) and not at exit as a traceback."""
+    try:
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+        sys.stdout.flush()
+    except OSError as exc:
+        _silence_stdout()
+        raise _OutputError(f"cannot write the output: {exc.strerror or exc}") from None
+
+
+def _silence_stdout() -> None:
+    """Point standard output at /dev/null: Python's final flush must not fail again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):
+        pass
+
+
+def fail(message: str, position: int | None, as_json: bool, status: int) -> int:
+    """Report an error in one line on stderr (and as an ``error`` object with ``--json``)."""
     if as_json:
-        print(json.dumps({"error": {"message": message, "position": position}}))
+        try:
+            emit(json.dumps({"error": {"message": message, "position": position}}))
+        except _OutputError:
+            pass
     print(f"sorgui: {message}", file=sys.stderr)
     return status
 
 
+# --- the commands ------------------------------------------------------------------------
+
+
 def analyze_main(argv: Sequence[str]) -> int:
-    """``sorgui analyze``: print the report (or JSON) of one equation."""
-    args = _analyze_parser().parse_args(argv)
-    unknown = [str(p) for p in args.output if p.suffix.lower() not in FORMATS]
-    if unknown:
-        return _fail(f"unknown export format of {', '.join(unknown)}; use {', '.join(FORMATS)}", None, args.json, 2)
+    """``sorgui analyze``: print the report (or JSON) of one equation, or of each line."""
+    started = time.monotonic()
+    as_json = "--json" in argv
     try:
-        text = _read_input(args)
+        args = parse_arguments(analyze_parser(), argv)
+        text, source = read_input(args)
+        if args.each_line:
+            if args.output:
+                raise UsageError("-o cannot be combined with --each-line")
+            from sorgui.batch import run_batch
+
+            return run_batch(text, args, emit)
+        check_outputs(args.output, source, args.export_format)
+    except UsageError as exc:
+        return fail(str(exc), None, as_json, 2)
+    except _OutputError as exc:
+        return fail(str(exc), None, False, 1)
+    from sorgui.engine import ParseError, SorguiError, analyze
+
+    try:
+        timeout = max(args.timeout - (time.monotonic() - started), 0.001)  # imports count too
         result = analyze(text, method=args.method, recognition_only=args.recognition_only,
-                         singular_timeout=args.timeout)
-    except _UsageError as exc:
-        return _fail(str(exc), None, args.json, 2)
+                         singular_timeout=timeout, timeout=timeout, tolerance=args.tolerance)
     except ParseError as exc:
-        return _fail(str(exc), exc.position, args.json, 2)
+        return fail(str(exc), exc.position, args.json, 2)
     except SorguiError as exc:
-        return _fail(exc.message, None, args.json, 1)
+        return fail(exc.message, None, args.json, 1)
     except Exception as exc:  # noqa: BLE001 - a bug must still end in one line, not a traceback
-        return _fail(f"internal error ({type(exc).__name__}: {exc}); please report it with the input",
-                     None, args.json, 1)
+        return fail(f"internal error ({type(exc).__name__}: {exc}); please report it with the input",
+                    None, args.json, 1)
     try:
-        for path in args.output:
-            export_analysis(result, path)
-    except OSError as exc:
-        return _fail(f"cannot write {exc.filename}: {exc.strerror}", None, args.json, 2)
-    if args.json:
-        print(json.dumps(result.to_json(), indent=1))
-    else:
-        print(format_report(result))
+        write_outputs(result, args.output, args.export_format)
+        if args.json:
+            emit(json.dumps(result.to_json(), indent=1))
+        else:
+            from sorgui.export.text import format_report
+
+            emit(format_report(result))
+    except _OutputError as exc:
+        return fail(str(exc), None, False, 1)
     return 0
+
+
+def gui_main(argv: Sequence[str]) -> int:
+    """``sorgui [FILE]``: the window."""
+    parser = _Parser(prog="sorgui", description="sorgui: surfaces of revolution, exactly.",
+                     epilog="Use 'sorgui analyze --help' for the command line.")
+    parser.add_argument("file", nargs="?", help="an equation file to open")
+    try:
+        args = parser.parse_args(argv)
+    except UsageError as exc:
+        return fail(str(exc), None, False, 2)
+    from sorgui.gui.app import run_gui
+
+    return run_gui(args.file)
+
+
+def open_main(argv: Sequence[str]) -> int:
+    """``sorgui open REPORT.json``: the window with a saved report, shown without recomputing."""
+    parser = _Parser(prog="sorgui open", description="Show a report saved as JSON (sorgui analyze --json "
+                     "or -o FILE.json, File > Export) in the window, without analysing again.")
+    parser.add_argument("report", type=Path, help="the JSON report")
+    try:
+        args = parser.parse_args(argv)
+        from sorgui.export.reports import ReportError, read_report
+
+        read_report(args.report)
+    except UsageError as exc:
+        return fail(str(exc), None, False, 2)
+    except ReportError as exc:
+        return fail(exc.message, None, False, 2)
+    from sorgui.gui.app import run_gui
+
+    return run_gui(str(args.report))
+
+
+COMMANDS: dict[str, Callable[[Sequence[str]], int]] = {"analyze": analyze_main, "open": open_main}
+"""Subcommands by name; anything else opens the window."""
+
+
+@contextmanager
+def ending_signals() -> Iterator[None]:
+    """``SIGTERM`` and ``SIGHUP`` raise :class:`_Terminated` in the main thread while inside, so
+    that the stack unwinds (Singular killed, worker processes ended) before sorgui exits."""
+
+    def terminate(signum: int, _frame: Any) -> None:
+        raise _Terminated(signum)
+
+    wanted = [s for s in (getattr(signal, "SIGTERM", None), getattr(signal, "SIGHUP", None)) if s is not None]
+    previous = {s: signal.signal(s, terminate) for s in wanted}
+    try:
+        yield
+    finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``sorgui`` console script."""
     argv = list(sys.argv[1:] if argv is None else argv)
-    if argv and argv[0] == "analyze":
-        return analyze_main(argv[1:])
-    parser = argparse.ArgumentParser(prog="sorgui", description="sorgui: surfaces of revolution, exactly.",
-                                     epilog="Use 'sorgui analyze --help' for the command line.")
-    parser.add_argument("file", nargs="?", help="an equation file to open")
-    args = parser.parse_args(argv)
-    from sorgui.gui.app import run_gui
-
-    return run_gui(args.file)
+    try:
+        with ending_signals():
+            command = COMMANDS.get(argv[0]) if argv else None
+            return command(argv[1:]) if command is not None else gui_main(argv)
+    except KeyboardInterrupt:
+        print("sorgui: interrupted", file=sys.stderr)
+        return 130
+    except _Terminated as exc:
+        return 128 + exc.signum
 
 
 if __name__ == "__main__":

@@ -43,5 +43,9 @@ class SingularTimeout(SingularError):
     """A Singular computation did not finish within its time limit."""
 
 
+class TimeLimitReached(SorguiError):
+    """The whole analysis did not finish within its time limit (:mod:`.timelimit`)."""
+
+
 class Cancelled(SorguiError):
     """The computation was cancelled by the caller."""

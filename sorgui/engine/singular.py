@@ -10,7 +10,8 @@ command line's handlers of ``SIGTERM`` and ``SIGHUP``), and on Linux the kernel 
 the thread that started it dies, even by ``kill -9`` (``PR_SET_PDEATHSIG``); a CPU-time limit
 (``RLIMIT_CPU``) a little above the wall-clock limit bounds it on every POSIX system.
 
-A script reports its results with :func:`emit`, which prints each value between markers unique
+The script goes to Singular's standard input, so nothing is written to disk and nothing is
+left behind. A script reports its results with :func:`emit`, which prints each value between markers unique
 to this Python process; only the text between the markers is read, so banners, library
 chatter and echoed input never reach a parser. Errors (Singular's ``? ...`` lines) raise
 :class:`SingularError`.
@@ -147,21 +148,17 @@ def run_singular(
     """
     if cancel is not None and cancel.is_set():
         raise Cancelled("the Singular computation was cancelled")
-    executable = find_singular()
-    with tempfile.TemporaryDirectory(prefix="sorgui-singular-") as folder:
-        path = Path(folder) / "script.sing"
-        path.write_text(script + "\nquit;\n", encoding="utf-8")
-        proc = subprocess.Popen(
-            [str(executable), *_FLAGS, str(path)],
-            stdin=subprocess.DEVNULL,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            cwd=folder,
-            start_new_session=True,
-            preexec_fn=_child_limits(timeout),
-            text=True,
-        )
-        out, err = _wait(proc, timeout, cancel)
+    proc = subprocess.Popen(
+        [str(find_singular()), *_FLAGS],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        cwd=tempfile.gettempdir(),
+        start_new_session=True,
+        preexec_fn=_child_limits(timeout),
+        text=True,
+    )
+    out, err = _wait(proc, script + "\nquit;\n", timeout, cancel)
     errors = _ERROR_LINE.findall(out) + _ERROR_LINE.findall(err)
     if errors:
         message = "; ".join(e.strip() for e in errors[:4])
@@ -173,16 +170,18 @@ def run_singular(
 
 
 def _wait(
-    proc: subprocess.Popen[str], timeout: float, cancel: threading.Event | None
+    proc: subprocess.Popen[str], script: str, timeout: float, cancel: threading.Event | None
 ) -> tuple[str, str]:
-    """Collect the output of ``proc``, killing its process group on timeout or cancel."""
+    """Send ``script`` to ``proc`` and collect its output, killing its process group on
+    timeout, cancel or any exception."""
     deadline = time.monotonic() + timeout
+    pending: str | None = script  # communicate() keeps sending it across its own timeouts
     try:
         while True:
             try:
-                return proc.communicate(timeout=POLL_INTERVAL)
+                return proc.communicate(pending, timeout=POLL_INTERVAL)
             except subprocess.TimeoutExpired:
-                pass
+                pending = None
             if cancel is not None and cancel.is_set():
                 raise Cancelled("the Singular computation was cancelled")
             if time.monotonic() > deadline:
@@ -210,13 +209,17 @@ def _child_limits(timeout: float) -> Callable[[], None]:
     seconds = min(ceil(timeout) + CPU_MARGIN, 2**31 - 1)
 
     def limit() -> None:
-        if _prctl is not None:
-            _prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-            if os.getppid() != parent:  # the parent died before the line above
-                os._exit(1)
+        if die_with_parent(signal.SIGKILL) and os.getppid() != parent:
+            os._exit(1)  # the parent died before the kernel was asked
         resource.setrlimit(resource.RLIMIT_CPU, (seconds, seconds + 1))
 
     return limit
+
+
+def die_with_parent(signum: int) -> bool:
+    """Ask the kernel to send ``signum`` to this process when the thread that started it dies
+    (Linux ``PR_SET_PDEATHSIG``, also after ``kill -9``); ``False`` where that is not possible."""
+    return _prctl is not None and _prctl(_PR_SET_PDEATHSIG, int(signum), 0, 0, 0) == 0
 
 
 def _load_prctl() -> Callable[..., int] | None:

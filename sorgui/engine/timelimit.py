@@ -1,0 +1,83 @@
+"""One time limit for the whole analysis, and what is reported when it is reached.
+
+The Python stages (recognition, factors over ``K``, parameterizations) can run for minutes
+inside sympy, where no cancel event is looked at. In the main thread, :func:`time_limit`
+therefore arms a one-shot ``SIGALRM`` timer whose handler raises :class:`TimeLimitReached`
+wherever the analysis is; a Singular call it interrupts kills Singular on the way out
+(:mod:`.singular`). In other threads only the Singular calls are bounded (by the time left). :func:`unfinished_analysis` then reports the stages that did not finish as
+undecided and keeps those that did.
+"""
+
+from __future__ import annotations
+
+import signal
+import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import replace
+from types import FrameType
+
+from .errors import TimeLimitReached
+from .polys import Poly, field_name, poly_str, total_degree
+from .report import Analysis, Rationality, Recognition
+
+
+@contextmanager
+def time_limit(seconds: float | None) -> Iterator[None]:
+    """Raise :class:`TimeLimitReached` inside the block once ``seconds`` have passed (main thread
+    only, where signals are delivered; elsewhere, and for ``None``, the block is not bounded)."""
+    usable = hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
+    if seconds is None or not usable:
+        yield
+        return
+
+    def expire(_signum: int, _frame: FrameType | None) -> None:
+        raise TimeLimitReached(f"the analysis did not finish within the time limit of {seconds:.3g} s")
+
+    previous = signal.signal(signal.SIGALRM, expire)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+UNDECIDED = "undecided"
+"""The ``symmetry`` of a recognition that did not finish within the time limit."""
+
+
+def unfinished_analysis(
+    f: Poly,
+    *,
+    text: str,
+    method: str,
+    recognition: Recognition | None,
+    latest: Analysis | None,
+    timings: tuple[tuple[str, float], ...],
+    current: str | None,
+    message: str,
+    recognition_only: bool,
+) -> Analysis:
+    """The analysis as far as it got: ``latest`` (the last complete group of stages) or just the
+    ``recognition``; ``unfinished`` lists the stage that was running (``current``) and the
+    stages that were still to come."""
+    if latest is None:
+        if recognition is None:
+            recognition = Recognition(polynomial=poly_str(f), degree=total_degree(f), is_sor=False,
+                                      symmetry=UNDECIDED, symmetry_dimension=0, symmetry_basis=())
+        latest = Analysis(input=text, field=field_name(f.ring.domain), method=method, recognition=recognition,
+                          factors=(), squarefree=poly_str(f))
+    rec = latest.recognition
+    needs_rationality = not recognition_only and (rec.symmetry == UNDECIDED or (rec.is_sor and rec.profile is not None))
+    pipeline = ["recognition", "factors", *(("rationality", "parametrizations") if needs_rationality else ())]
+    done = {name for name, _ in timings}
+    unfinished = [s for s in pipeline if s not in done]
+    if current is not None and current not in done and current not in unfinished:
+        unfinished.insert(0, current)
+    rationality = latest.rationality
+    if rationality is None and needs_rationality:
+        rationality = Rationality(status=f"undecided: {message}")
+    elif rationality is not None and "parametrizations" in unfinished:
+        rationality = replace(rationality, notes=(*rationality.notes, f"no parameterizations: {message}"))
+    return replace(latest, rationality=rationality, timings=timings, unfinished=tuple(unfinished))

@@ -1,0 +1,171 @@
+"""The command line's contract, tried as a user would: real ``sorgui`` processes.
+
+Arguments (an equation may start with ``-``; every error is one line, or an ``error`` object
+with ``--json``), bounded input, ``-o`` checked before the analysis, output errors in one line,
+the text report's final newline, and the one time limit of the whole analysis.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from sorgui import cli
+
+SORGUI = [sys.executable, "-m", "sorgui.cli"]
+DATA = Path(__file__).resolve().parent / "data"
+
+
+def sorgui(*args: str, timeout: float = 120, **kwargs) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([*SORGUI, *args], capture_output=True, text=True, timeout=timeout, **kwargs)
+
+
+def one_line(stderr: str) -> str:
+    """The single line of ``stderr`` (asserting there is exactly one, and no traceback)."""
+    assert stderr.count("\n") == 1 and stderr.endswith("\n"), stderr
+    assert "Traceback" not in stderr and "usage:" not in stderr
+    return stderr.strip()
+
+
+def test_an_equation_may_start_with_a_minus_sign() -> None:
+    out = sorgui("analyze", "--recognition-only", "-x^2-y^2+z^2-1")
+    assert out.returncode == 0, out.stderr
+    assert "surface of revolution: YES" in out.stdout
+    data = json.loads(sorgui("analyze", "--json", "--recognition-only", "-x^2-y^2+z^2-1").stdout)
+    assert data["polynomial"] == "-x**2 - y**2 + z**2 - 1" and data["is_sor"] is True
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--timeout", "nan", "x^2+y^2-z"], "positive number of seconds"),
+    (["--timeout", "0", "x^2+y^2-z"], "positive number of seconds"),
+    (["--timeout", "-5", "x^2+y^2-z"], "positive number of seconds"),
+    (["--timeout", "inf", "x^2+y^2-z"], "positive number of seconds"),
+    (["--timeout", "soon", "x^2+y^2-z"], "not a number of seconds"),
+    (["--method", "guess", "x^2+y^2-z"], "invalid choice"),
+    (["--frobnicate", "x^2+y^2-z"], "unrecognized arguments"),
+    (["x^2+y^2-z", "x^2"], "unrecognized arguments"),
+    (["-f", "missing-file.txt"], "cannot read missing-file.txt"),
+    (["--jobs", "0", "-"], "must be at least 1"),
+])
+def test_every_argument_error_is_one_line_and_an_error_object(args: list[str], words: str) -> None:
+    plain = sorgui("analyze", *args)
+    assert plain.returncode == 2 and plain.stdout == ""
+    assert words in one_line(plain.stderr)
+    as_json = sorgui("analyze", "--json", *args)
+    assert as_json.returncode == 2
+    assert words in json.loads(as_json.stdout)["error"]["message"]
+    one_line(as_json.stderr)
+
+
+def test_the_window_command_line_errors_are_one_line_too() -> None:
+    out = sorgui("--frobnicate")
+    assert out.returncode == 2 and "unrecognized arguments" in one_line(out.stderr)
+
+
+def test_input_is_read_only_up_to_the_limit() -> None:
+    start = time.monotonic()
+    out = sorgui("analyze", "-f", "/dev/zero", timeout=60)
+    assert out.returncode == 2 and "too long (more than 1,000,000 characters)" in one_line(out.stderr)
+    with open("/dev/zero", "rb") as endless:
+        out = sorgui("analyze", "-", stdin=endless, timeout=60)
+    assert out.returncode == 2 and "standard input is too long" in one_line(out.stderr)
+    assert time.monotonic() - start < 40  # two processes; gigabytes would take minutes
+
+
+def test_the_input_limit_is_the_parsers() -> None:
+    from sorgui.engine.parsing import MAX_LENGTH
+    from sorgui.export.files import FORMATS
+
+    assert cli.MAX_INPUT == MAX_LENGTH
+    assert set(cli.EXPORT_SUFFIXES) == set(FORMATS)
+
+
+def test_numbers_of_more_than_4300_digits_are_analysed() -> None:
+    for text in ("10^4300*x+y^2-z", "1" + "0" * 4400 + "*x+y^2-z"):
+        out = sorgui("analyze", "--json", "--recognition-only", text)
+        assert out.returncode == 0, out.stderr
+        data = json.loads(out.stdout)
+        assert data["symmetry"] == "revolution" and len(data["polynomial"]) > 4300
+
+
+def test_bom_function_name_and_latex_are_accepted(tmp_path: Path) -> None:
+    path = tmp_path / "eq.txt"
+    path.write_bytes("\ufeffx^2 + y^2 - z\n".encode())
+    assert json.loads(sorgui("analyze", "--json", "--recognition-only", "-f", str(path)).stdout)["is_sor"]
+    for text in ("f(x,y,z) = x^2 + y^2 - z", r"\left( x \right)^{2} + y^{2} - \frac{1}{2} \cdot z"):
+        out = sorgui("analyze", "--json", "--recognition-only", text)
+        assert out.returncode == 0, out.stderr
+        assert json.loads(out.stdout)["symmetry"] == "revolution"
+
+
+def test_the_text_report_ends_with_one_newline() -> None:
+    out = sorgui("analyze", "--recognition-only", "x^2+y^2-z")
+    assert out.stdout.endswith("\n") and not out.stdout.endswith("\n\n")
+
+
+def test_outputs_are_checked_before_the_analysis(tmp_path: Path) -> None:
+    slow = str(DATA / "slow-singular.txt")
+    for target, words in [
+        (tmp_path / "missing" / "r.json", "does not exist"),
+        (tmp_path / "r.doc", "unknown export format"),
+        (tmp_path, "unknown export format"),
+    ]:
+        start = time.monotonic()
+        out = sorgui("analyze", "-o", str(target), "-f", slow, timeout=60)
+        assert out.returncode == 2 and str(target) in one_line(out.stderr) and words in out.stderr
+        assert out.stdout == "" and time.monotonic() - start < 30  # no minute-long analysis first
+    folder = tmp_path / "locked"
+    folder.mkdir()
+    folder.chmod(0o500)
+    if not os.access(folder, os.W_OK):  # root may write anywhere
+        out = sorgui("analyze", "-o", str(folder / "r.json"), "x^2+y^2-z")
+        assert out.returncode == 2 and "permission denied" in one_line(out.stderr)
+
+
+def test_the_input_file_is_never_overwritten(tmp_path: Path) -> None:
+    path = tmp_path / "eq.txt"
+    path.write_text("x^2+y^2-z\n", encoding="utf-8")
+    out = sorgui("analyze", "-f", str(path), "-o", str(tmp_path / "." / "eq.txt"))
+    assert out.returncode == 2 and "refusing to overwrite the input file" in one_line(out.stderr)
+    assert path.read_text(encoding="utf-8") == "x^2+y^2-z\n"
+
+
+def test_a_closed_pipe_and_a_full_disk_give_one_line() -> None:
+    proc = subprocess.Popen([*SORGUI, "analyze", "--json", "--recognition-only", "x^2+y^2-z"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc.stdout.close()  # like `| head` having exited
+    err = proc.stderr.read()
+    proc.stderr.close()
+    assert proc.wait(timeout=120) == 1
+    assert "cannot write the output" in one_line(err)
+    with open("/dev/full", "w") as full:
+        out = subprocess.run([*SORGUI, "analyze", "--recognition-only", "x^2+y^2-z"], stdout=full,
+                             stderr=subprocess.PIPE, text=True, timeout=120)
+    assert out.returncode == 1 and "No space left on device" in one_line(out.stderr)
+
+
+def test_write_errors_name_the_file(tmp_path: Path) -> None:
+    target = tmp_path / "r.json"
+    target.mkdir()  # a folder named like the file: refused before the analysis, with its name
+    out = sorgui("analyze", "-o", str(target), "x^2+y^2-z")
+    assert out.returncode == 2 and f"cannot write {target}" in one_line(out.stderr)
+
+
+def test_the_time_limit_bounds_the_whole_analysis_and_keeps_what_is_done() -> None:
+    start = time.monotonic()
+    out = sorgui("analyze", "--json", "--timeout", "4", "-f", str(DATA / "slow-singular.txt"))
+    elapsed = time.monotonic() - start
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    assert data["is_sor"] is True and data["axis"] is not None  # recognition: done and kept
+    assert data["unfinished"][0] == "rationality"
+    assert data["rationality"]["status"].startswith("undecided")
+    assert elapsed < 4 + 15  # the limit plus starting Python and importing, on a busy machine
+    text = sorgui("analyze", "--timeout", "4", "-f", str(DATA / "slow-singular.txt")).stdout
+    assert "not finished within the time limit (undecided): rationality" in text
