@@ -1,0 +1,147 @@
+"""Singular dies with sorgui, whatever ends it: real processes, real signals, real Singular.
+
+Each test starts ``sorgui analyze`` on ``tests/data/slow-singular.txt`` (its rationality stage
+keeps Singular busy for minutes), waits until Singular runs, ends sorgui, and checks that no
+Singular process is left (a zombie waiting for its new parent to reap it counts as dead).
+Singular reads its script from standard input, so no temporary file or folder exists at all.
+"""
+
+from __future__ import annotations
+
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+
+pytestmark = [pytest.mark.slow, pytest.mark.skipif(not Path("/proc").is_dir(), reason="reads /proc")]
+
+SLOW = str(Path(__file__).resolve().parent / "data" / "slow-singular.txt")
+ANALYZE = [sys.executable, "-m", "sorgui.cli", "analyze", "--timeout", "600"]
+
+
+def _stat(pid: int) -> tuple[str, int] | None:
+    """(state, parent pid) of ``pid``, or ``None`` when it is gone."""
+    try:
+        text = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return None
+    fields = text.rsplit(")", 1)[1].split()
+    return fields[0], int(fields[1])
+
+
+def descendants(pid: int) -> list[int]:
+    parents: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit() and (stat := _stat(int(entry.name))) is not None:
+            parents.setdefault(stat[1], []).append(int(entry.name))
+    found, stack = [], [pid]
+    while stack:
+        for child in parents.get(stack.pop(), []):
+            found.append(child)
+            stack.append(child)
+    return found
+
+
+def singular_processes(pid: int) -> list[int]:
+    out = []
+    for child in descendants(pid):
+        try:
+            if Path(f"/proc/{child}/comm").read_text().strip() == "Singular":
+                out.append(child)
+        except OSError:
+            pass
+    return out
+
+
+def dead(pid: int) -> bool:
+    stat = _stat(pid)
+    return stat is None or stat[0] in ("Z", "X")
+
+
+def wait_for(condition: Callable[[], object], seconds: float) -> object:
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        value = condition()
+        if value:
+            return value
+        time.sleep(0.1)
+    raise AssertionError(f"not within {seconds} s")
+
+
+def start(*args: str, command: list[str] | None = None) -> tuple[subprocess.Popen[str], list[int]]:
+    """Start sorgui on the slow input; return it and its running Singular processes."""
+    proc = subprocess.Popen([*(command or []), *ANALYZE, *args, "-f", SLOW], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    singulars = wait_for(lambda: singular_processes(proc.pid), 120)
+    for pid in singulars:
+        cmdline = Path(f"/proc/{pid}/cmdline").read_bytes().split(b"\0")
+        assert all(arg.startswith(b"-") for arg in cmdline[1:] if arg), cmdline  # no script file
+    return proc, singulars
+
+
+def finish(proc: subprocess.Popen[str]) -> tuple[int, str]:
+    _out, err = proc.communicate(timeout=60)
+    return proc.returncode, err
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP])
+def test_sigterm_and_sighup_end_sorgui_and_singular(signum: int) -> None:
+    proc, singulars = start()
+    proc.send_signal(signum)
+    status, err = finish(proc)
+    assert status == 128 + signum and "Traceback" not in err
+    wait_for(lambda: all(dead(pid) for pid in singulars), 10)
+
+
+def test_sigint_prints_one_line_and_exits_130() -> None:
+    proc, singulars = start()
+    proc.send_signal(signal.SIGINT)
+    status, err = finish(proc)
+    assert status == 130 and err == "sorgui: interrupted\n"
+    wait_for(lambda: all(dead(pid) for pid in singulars), 10)
+
+
+def test_kill_9_of_sorgui_kills_singular() -> None:
+    proc, singulars = start()
+    proc.kill()
+    finish(proc)
+    wait_for(lambda: all(dead(pid) for pid in singulars), 10)
+
+
+def test_the_timeout_command_ends_singular_too() -> None:
+    started = time.monotonic()
+    proc, singulars = start(command=["timeout", "40"])
+    status, err = finish(proc)
+    assert status == 124 and "Traceback" not in err  # timeout's own status after its SIGTERM
+    assert time.monotonic() - started < 70
+    wait_for(lambda: all(dead(pid) for pid in singulars), 10)
+
+
+def test_singular_has_a_cpu_limit() -> None:
+    proc, singulars = start()
+    try:
+        limits = Path(f"/proc/{singulars[0]}/limits").read_text()
+        line = next(line for line in limits.splitlines() if line.startswith("Max cpu time"))
+        soft = line.split()[3]
+        assert soft.isdigit() and int(soft) <= 600 + 10
+    finally:
+        proc.kill()
+        finish(proc)
+
+
+def test_batch_workers_and_their_singular_end_with_sorgui(tmp_path: Path) -> None:
+    lines = tmp_path / "lines.txt"
+    equation = Path(SLOW).read_text(encoding="utf-8").strip()
+    lines.write_text(f"{equation}\n{equation}\n", encoding="utf-8")
+    proc = subprocess.Popen([*ANALYZE, "--each-line", "--jobs", "2", "-f", str(lines)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    singulars = wait_for(lambda: singular_processes(proc.pid), 120)
+    workers = [pid for pid in descendants(proc.pid) if pid not in singulars]
+    proc.send_signal(signal.SIGTERM)
+    status, err = finish(proc)
+    assert status == 128 + signal.SIGTERM and "Traceback" not in err
+    wait_for(lambda: all(dead(pid) for pid in singulars + workers), 15)
