@@ -1,4 +1,5 @@
-"""Layering: the exact engine loads neither Qt nor VTK (checked in a fresh interpreter, like MNE)."""
+"""Layering: the exact engine and the session model load neither Qt nor VTK (checked in a fresh
+interpreter, like MNE)."""
 
 from __future__ import annotations
 
@@ -23,5 +24,15 @@ def test_engine_imports_neither_qt_nor_vtk() -> None:
 
 def test_command_line_imports_neither_qt_nor_vtk() -> None:
     modules = loaded_modules("import sorgui.cli, sorgui.export.text")
+    top = {m.split(".")[0] for m in modules}
+    assert not top & set(FORBIDDEN), sorted(top & set(FORBIDDEN))
+
+
+def test_session_imports_neither_qt_nor_vtk() -> None:
+    statement = (
+        "import sorgui.session; from sorgui.session import Session, Run, StageState; "
+        "import sorgui.session.formulas, sorgui.session.events, sorgui.session.job; Session()"
+    )
+    modules = loaded_modules(statement)
     top = {m.split(".")[0] for m in modules}
     assert not top & set(FORBIDDEN), sorted(top & set(FORBIDDEN))

@@ -1,30 +1,48 @@
-"""One typeset formula in the results pane, with copy actions.
+"""One typeset formula in the results pane, with a visible copy menu.
 
 The worker process rasterised each wrapped line of the formula into an alpha mask
-(:mod:`sorgui.gui.formulas`); here the lines are stacked into one image, tinted with the
+(:mod:`sorgui.session.formulas`); here the lines are stacked into one image, tinted with the
 palette's text colour and shown as one pixmap (one widget per formula keeps the pane quick to
-lay out). Only a formula taller or wider than the pane gets a scroll area. A formula without
-masks is shown as selectable plain text, shortened if it is huge. The copy button puts the
-exact plain text on the clipboard; the context menu also offers LaTeX.
+lay out). A long formula is folded to its first :data:`FOLDED_LINES` lines with a "show all"
+button; a formula wider than the pane scrolls sideways. A formula without masks (not typeset
+yet, or too long to typeset) is shown as selectable plain text, elided with "show all" too.
+The Copy button's menu puts the formula on the clipboard as text, LaTeX, Maple, Mathematica or
+Python.
 """
 
 from __future__ import annotations
 
 import numpy as np
 from PySide6.QtCore import QPoint, Qt
-from PySide6.QtGui import QFontDatabase, QGuiApplication, QIcon, QImage, QPixmap
-from PySide6.QtWidgets import QFrame, QHBoxLayout, QLabel, QMenu, QScrollArea, QToolButton, QWidget
+from PySide6.QtGui import QFontDatabase, QGuiApplication, QImage, QPixmap
+from PySide6.QtWidgets import (
+    QFrame,
+    QHBoxLayout,
+    QLabel,
+    QMenu,
+    QScrollArea,
+    QToolButton,
+    QVBoxLayout,
+    QWidget,
+)
 
-from sorgui.gui.formulas import Formula
+from sorgui.session.formulas import CODE_PRINTERS, Formula
 
-MAX_HEIGHT = 300
-"""Taller formulas scroll (logical pixels), so that one polynomial cannot fill the pane."""
+FOLDED_LINES = 6
+"""Lines of a long typeset formula shown before "show all"."""
 
 LINE_SPACING = 3
 """Device pixels between the typeset lines of a formula."""
 
 PLAIN_PREVIEW = 1500
-"""Characters of an untypeset formula shown (laying out 200 000 would freeze the window)."""
+"""Characters of an untypeset formula shown before "show all"."""
+
+PLAIN_LIMIT = 60_000
+"""Characters shown at most even after "show all" (laying out 200 000 would freeze the
+window); the copy menu always gives the whole formula."""
+
+LANGUAGES = ("text", "LaTeX", *(name for name, _printer in CODE_PRINTERS))
+"""The entries of the copy menu."""
 
 
 def formula_pixmap(masks: tuple[np.ndarray, ...], color: tuple[int, int, int], ratio: float) -> QPixmap:
@@ -45,7 +63,7 @@ def formula_pixmap(masks: tuple[np.ndarray, ...], color: tuple[int, int, int], r
 
 
 class FormulaView(QFrame):
-    """A formula, a copy button and a Copy plain text / Copy LaTeX menu.
+    """A formula, its "show all" button when folded, and a Copy button with a language menu.
 
     ``max_width`` is the width available to the formula (logical pixels); wider ones scroll.
     """
@@ -55,65 +73,115 @@ class FormulaView(QFrame):
     ) -> None:
         super().__init__(parent)
         self.formula = formula
+        self._ratio = ratio
+        self._max_width = max_width
+        self.expanded = False
+        self._folded = False
         self.setObjectName("formulaView")
         self.setContextMenuPolicy(Qt.ContextMenuPolicy.CustomContextMenu)
         self.customContextMenuRequested.connect(self._on_context_menu_change)
 
         self.content = QLabel()
         self.content.setContextMenuPolicy(Qt.ContextMenuPolicy.NoContextMenu)
+        self.scroll: QScrollArea | None = None
+        self.show_all_button = QToolButton(self)
+        self.show_all_button.setObjectName("showAll")
+        self.show_all_button.setAutoRaise(True)
+        self.show_all_button.clicked.connect(self.show_all)
+        self.show_all_button.setVisible(False)
+
+        self.copy_button = QToolButton(self)
+        self.copy_button.setObjectName("copyButton")
+        self.copy_button.setText("Copy")
+        self.copy_button.setAutoRaise(True)
+        self.copy_button.setToolTip("Copy as plain text; the arrow copies as LaTeX, Maple, Mathematica or Python")
+        self.copy_button.setPopupMode(QToolButton.ToolButtonPopupMode.MenuButtonPopup)
+        self.copy_menu = QMenu(self.copy_button)
+        for language in LANGUAGES:
+            self.copy_menu.addAction(f"Copy as {language}", lambda lang=language: self.copy(lang))
+        self.copy_button.setMenu(self.copy_menu)
+        self.copy_button.clicked.connect(self.copy_plain)
+
+        self._body = QVBoxLayout()
+        self._body.setContentsMargins(0, 0, 0, 0)
+        self._body.setSpacing(0)
+        layout = QHBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.setSpacing(2)
+        layout.addLayout(self._body, 1)
+        layout.addWidget(self.copy_button, 0, Qt.AlignmentFlag.AlignTop)
+        self._fill()
+
+    # --- public API ---
+
+    @property
+    def folded(self) -> bool:
+        """Whether part of the formula is hidden behind "show all"."""
+        return self._folded
+
+    def show_all(self) -> None:
+        """Show the whole formula (up to :data:`PLAIN_LIMIT` characters of plain text)."""
+        self.expanded = True
+        self._fill()
+
+    def copy(self, language: str) -> None:
+        """Put the formula on the clipboard in ``language`` (one of :data:`LANGUAGES`)."""
+        QGuiApplication.clipboard().setText(self.formula.code(language))
+
+    def copy_plain(self) -> None:
+        """Put the formula's plain text (the engine's exact string) on the clipboard."""
+        self.copy("text")
+
+    def copy_latex(self) -> None:
+        """Put the formula's LaTeX on the clipboard."""
+        self.copy("LaTeX")
+
+    # --- helpers ---
+
+    def _fill(self) -> None:
+        formula = self.formula
+        while self._body.count():
+            item = self._body.takeAt(0)
+            if item.widget() is not None and item.widget() is not self.show_all_button:
+                item.widget().setParent(None)
+        self.content = QLabel()
+        self.content.setContextMenuPolicy(Qt.ContextMenuPolicy.NoContextMenu)
+        hidden = 0
         if formula.masks:
+            masks = formula.masks if self.expanded else formula.masks[:FOLDED_LINES]
+            hidden = len(formula.masks) - len(masks)
             text = self.palette().windowText().color()
-            self.content.setPixmap(formula_pixmap(formula.masks, (text.red(), text.green(), text.blue()), ratio))
+            self.content.setPixmap(formula_pixmap(masks, (text.red(), text.green(), text.blue()), self._ratio))
             self.content.setToolTip(formula.plain if len(formula.plain) <= PLAIN_PREVIEW else "")
+            self.show_all_button.setText(f"show all ({hidden} more lines)")
         else:
-            shown = formula.plain
-            if len(shown) > PLAIN_PREVIEW:
-                rest = len(shown) - PLAIN_PREVIEW
-                shown = f"{shown[:PLAIN_PREVIEW]} … ({rest:,} more characters: copy to get them all)"
+            limit = PLAIN_LIMIT if self.expanded else PLAIN_PREVIEW
+            shown = formula.plain[:limit]
+            hidden = len(formula.plain) - len(shown)
+            if hidden:
+                shown += f" … ({hidden:,} more characters: copy to get them all)"
             self.content.setText(shown)
             self.content.setFont(QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont))
             self.content.setWordWrap(True)
             self.content.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
-        body: QWidget = self.content
+            self.show_all_button.setText(f"show all ({hidden:,} more characters)")
         hint = self.content.sizeHint()
-        if formula.masks and (hint.height() > MAX_HEIGHT or hint.width() > max_width):
+        if formula.masks and hint.width() > self._max_width:
             scroll = QScrollArea()
             scroll.setWidget(self.content)
             scroll.setFrameShape(QFrame.Shape.NoFrame)
             scroll.setContextMenuPolicy(Qt.ContextMenuPolicy.NoContextMenu)
-            bar = scroll.horizontalScrollBar().sizeHint().height() if hint.width() > max_width else 0
-            scroll.setFixedHeight(min(hint.height(), MAX_HEIGHT) + bar + 2)
-            body = scroll
-
-        self.copy_button = QToolButton(self)
-        icon = QIcon.fromTheme("edit-copy")
-        if icon.isNull():
-            self.copy_button.setText("Copy")
+            scroll.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+            scroll.setFixedHeight(hint.height() + scroll.horizontalScrollBar().sizeHint().height() + 2)
+            self._body.addWidget(scroll)
+            self.scroll = scroll
         else:
-            self.copy_button.setIcon(icon)
-        self.copy_button.setAutoRaise(True)
-        self.copy_button.setToolTip("Copy as plain text (right-click for LaTeX)")
-        self.copy_button.clicked.connect(self.copy_plain)
-
-        layout = QHBoxLayout(self)
-        layout.setContentsMargins(0, 0, 0, 0)
-        layout.setSpacing(2)
-        if body is self.content:
-            layout.addWidget(body, 1, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignTop)
-        else:
-            layout.addWidget(body, 1)  # a scroll area takes the whole width (its size hint is small)
-        layout.addWidget(self.copy_button, 0, Qt.AlignmentFlag.AlignTop)
-
-    def copy_plain(self) -> None:
-        """Put the formula's plain text (the engine's exact string) on the clipboard."""
-        QGuiApplication.clipboard().setText(self.formula.plain)
-
-    def copy_latex(self) -> None:
-        """Put the formula's LaTeX on the clipboard."""
-        QGuiApplication.clipboard().setText(self.formula.latex)
+            self._body.addWidget(self.content, 0, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignTop)
+            self.scroll = None
+        self._folded = hidden > 0 and not self.expanded
+        self.show_all_button.setVisible(self._folded)
+        if self._folded:
+            self._body.addWidget(self.show_all_button, 0, Qt.AlignmentFlag.AlignLeft)
 
     def _on_context_menu_change(self, position: QPoint) -> None:
-        menu = QMenu(self)
-        menu.addAction("Copy as plain text", self.copy_plain)
-        menu.addAction("Copy as LaTeX", self.copy_latex)
-        menu.popup(self.mapToGlobal(position))
+        self.copy_menu.popup(self.mapToGlobal(position))

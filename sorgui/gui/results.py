@@ -1,14 +1,17 @@
 """The results pane: the verdict, the axis, the profile, Table 1 and the parameterizations.
 
-It only reads an :class:`~sorgui.engine.report.Analysis` and the typeset formulas the worker
-made for it (:mod:`sorgui.gui.formulas`); nothing here computes mathematics. Table 1 of the
-paper is shown whole, with the surface's row highlighted, so the user sees where the answer
-comes from. ``plain_text()`` is the CLI's report (:func:`sorgui.export.text.format_report`).
+It only reads an :class:`~sorgui.engine.report.Analysis` (possibly partial: the results known
+so far) and the typeset formulas the worker made for it (:mod:`sorgui.session.formulas`);
+formulas not typeset yet are shown as their exact text. Nothing here computes mathematics.
+Table 1 of the paper is shown whole, with the surface's row highlighted, so the user sees where
+the answer comes from; stages still running are named as such. A *no* is explained in words
+(:mod:`sorgui.gui.wording`), the near case of rounded input too. ``plain_text()`` is the CLI's
+report (:func:`sorgui.export.text.format_report`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QColor, QFont
@@ -25,10 +28,11 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from sorgui.engine.report import Analysis, Rationality, Recognition
+from sorgui.engine.report import Analysis, Approximation, Rationality, Recognition
 from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, format_report
 from sorgui.gui.formula_view import FormulaView
-from sorgui.gui.formulas import Formula
+from sorgui.gui.wording import CAPTION_TIPS, floats, verdict, why_not
+from sorgui.session.formulas import Formula, analysis_formulas
 
 TABLE_HEADERS = ("row", "genus(P)", "genus(P²)", "X over ℂ", "X over ℝ")
 HIGHLIGHT = QColor("#ffe08a")
@@ -40,6 +44,7 @@ FORMULA_MARGIN = CAPTION_WIDTH + 120
 
 _BANNER_STYLE = {
     "sor": "background: #e3f2e5; color: #1b5e20; border: 1px solid #a5d6a7;",
+    "near": "background: #f1f8e9; color: #33691e; border: 1px solid #c5e1a5;",
     "not": "background: #fbe9e7; color: #8d2b0b; border: 1px solid #ffab91;",
     "info": "background: #eef2f7; color: #263238; border: 1px solid #cfd8dc;",
     "error": "background: #fdecea; color: #b71c1c; border: 1px solid #ef9a9a;",
@@ -54,12 +59,15 @@ class ResultsPane(QScrollArea):
         self.setObjectName("resultsPane")
         self.setWidgetResizable(True)
         self.setFrameShape(QFrame.Shape.NoFrame)
-        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAsNeeded)
         self._analysis: Analysis | None = None
         self._formulas: dict[str, Formula] = {}
         self._message = ""
+        self._zoom = 1.0
+        self._base_size = self.font().pointSizeF()
         self.banner = QLabel()
         self.table: QTableWidget | None = None
+        self.stale = False
         self.show_message("No analysis yet", "Type an equation and press Analyze (Ctrl+Return).", "info")
 
     # --- public API ---
@@ -81,27 +89,84 @@ class ResultsPane(QScrollArea):
         column.addStretch(1)
 
     def show_analysis(
-        self, analysis: Analysis, formulas: dict[str, Formula], worker_timings: Sequence[tuple[str, float]] = ()
+        self,
+        analysis: Analysis,
+        formulas: dict[str, Formula],
+        worker_timings: Sequence[tuple[str, float]] = (),
+        pending: Collection[str] = (),
+        nearest: bool = False,
     ) -> None:
-        """Show ``analysis`` with its typeset ``formulas`` (keys of :func:`analysis_formulas`)."""
-        self._analysis, self._formulas = analysis, formulas
+        """Show ``analysis`` with its typeset ``formulas`` (keys of :func:`analysis_formulas`;
+        missing ones are shown as text). ``pending`` names the stages still to come (shown as
+        such); ``nearest`` says that ``analysis`` is that of the nearest exact surface."""
+        self._analysis = analysis
+        self._formulas = {**analysis_formulas(analysis, plain=True), **formulas}
         rec = analysis.recognition
         column = self._new_column()
-        title = "Surface of revolution" if rec.is_sor else "Not a surface of revolution"
-        detail = (
-            f"{SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)} · degree {rec.degree} over "
-            f"{analysis.field} · dim L = {rec.symmetry_dimension}"
-        )
-        self._banner(column, title, detail, "sor" if rec.is_sor else "not")
+        title, detail, kind = verdict(analysis)
+        if nearest:
+            title = "The nearest exact surface: " + title.lower()
+            detail = "the exact analysis of the surface of revolution that the rounded input was meant to be · " + detail
+        self._banner(column, title, detail, kind)
         self._section(column, "Equation", [("f(x, y, z)", "polynomial")])
+        if analysis.approximate is not None:
+            self._approximation_section(column, analysis.approximate)
+        reasons = why_not(analysis)
+        if reasons:
+            self._section(column, "Why it is not a surface of revolution", [("", line) for line in reasons])
         self._recognition_sections(column, rec, "")
         if len(analysis.factors) > 1 or analysis.factors[0].multiplicity > 1:
             self._factor_section(column, analysis)
         if analysis.rationality is not None:
             self._rationality_section(column, analysis.rationality)
+        elif "rationality" in pending:
+            self._section(column, "Rationality (Table 1 of the paper)",
+                          [("", "being decided (Singular): the row, the genera and the parameterizations follow")])
         self._parametrization_section(column, analysis)
+        if analysis.rationality is not None and "parametrizations" in pending:
+            self._section(column, "Parameterizations", [("", "being computed and verified…")])
         self._timings_section(column, tuple(analysis.timings) + tuple(worker_timings))
         column.addStretch(1)
+        self.set_stale(self.stale)
+
+    def set_stale(self, stale: bool) -> None:
+        """Grey the results out (they belong to the previous equation) or show them normally."""
+        self.stale = stale
+        page = self.widget()
+        if page is not None:
+            page.setEnabled(not stale)
+
+    def set_zoom(self, zoom: float) -> None:
+        """Scale the pane's text by ``zoom`` (the caller has the formulas typeset again)."""
+        self._zoom = zoom
+        font = self.font()
+        font.setPointSizeF(self._base_size * zoom)
+        self.setFont(font)
+
+    def _approximation_section(self, column: QVBoxLayout, approx: Approximation) -> None:
+        source = "from the digits of the input" if approx.tolerance_source == "input" else "given"
+        smallest = ", ".join(f"{v:.2g}" for v in approx.singular_values[-3:])
+        rows = [
+            ("tolerance", f"{approx.tolerance:.2g} (relative, {source})"),
+            ("near", ("yes: " if approx.near_sor else "no: ") + (approx.kind or "no symmetry kind")),
+            ("relative distance", f"{approx.relative_distance:.3g}"),
+            ("in units of rounding", f"{approx.residual:.3g}"),
+            ("singular values", f"smallest: {smallest}" if smallest else "–"),
+        ]
+        if approx.axis is not None:
+            rows.append(("approximate axis", f"{floats(approx.axis.point)} + t·{floats(approx.axis.direction)}"))
+        nearest = approx.nearest
+        if nearest is not None:
+            rows.append(("nearest exact surface", "approximate.nearest"))
+            if nearest.axis is not None:
+                rows.append(("", "approximate.nearest.axis"))
+            deviation = "–" if nearest.max_deviation is None else f"{nearest.max_deviation:.3g} (length units)"
+            rows.append(("max deviation", deviation))
+            rows.append(("", f"coefficient distance {nearest.relative_distance:.3g} (relative); "
+                             + ("within the rounding of the input" if nearest.within_rounding
+                                else "NOT within the rounding of the input")))
+        rows += [("note", note) for note in approx.notes]
+        self._section(column, "Rounded input", rows)
 
     # --- building blocks ---
 
@@ -152,12 +217,16 @@ class ResultsPane(QScrollArea):
         width = self.viewport().width() - FORMULA_MARGIN
         for index, (caption, value) in enumerate(rows):
             label = QLabel(caption)
+            label.setObjectName("caption")
+            label.setToolTip(CAPTION_TIPS.get(caption, ""))
             label.setStyleSheet("color: #546e7a;")
             label.setWordWrap(True)
             label.setFixedWidth(CAPTION_WIDTH)
             grid.addWidget(label, index, 0, Qt.AlignmentFlag.AlignTop)
             if value in self._formulas:
-                grid.addWidget(FormulaView(self._formulas[value], ratio=ratio, max_width=width), index, 1)
+                view = FormulaView(self._formulas[value], ratio=ratio, max_width=width)
+                view.setToolTip(CAPTION_TIPS.get(caption, ""))
+                grid.addWidget(view, index, 1)
             else:
                 text = QLabel(value)
                 text.setWordWrap(True)

@@ -2,12 +2,13 @@
 
 One :class:`Settings` object wraps ``QSettings`` in INI format in the user scope
 (``~/.config/sorgui/sorgui.ini`` on Linux): the editor content (restored on the next start),
-the recent files, and the window layout. Tests point ``QSettings.setPath`` at a temporary
+the recent files, the window layout and the camera of the 3D view. Tests point ``QSettings.setPath`` at a temporary
 folder, so they never touch the user's file. Equation files are plain UTF-8 text.
 """
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 from PySide6.QtCore import QByteArray, QObject, QSettings, Signal
@@ -115,6 +116,22 @@ class Settings(QObject):
     def clear_recent_files(self) -> None:
         self._store.setValue("files/recent", [])
         self.recent_files_changed.emit()
+
+    # --- the 3D view ---
+
+    @property
+    def camera(self) -> dict[str, object] | None:
+        """The camera of the 3D view at the last exit (a :class:`~sorgui.gui.camera.CameraState` dict)."""
+        value = self._store.value("view/camera")
+        try:
+            data = json.loads(str(value)) if value else None
+        except ValueError:
+            return None
+        return data if isinstance(data, dict) else None
+
+    @camera.setter
+    def camera(self, state: dict[str, object]) -> None:
+        self._store.setValue("view/camera", json.dumps(state))
 
     # --- window layout ---
 

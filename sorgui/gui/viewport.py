@@ -1,12 +1,21 @@
 """The 3D viewport: the surface, its axis and profile, and point-and-click inspection.
 
 A pyvistaqt ``QtInteractor`` is embedded in a widget with a small tool row. Actors are built on
-the GUI thread from the plain arrays of a :class:`~sorgui.gui.scene_data.SceneData` that the
+the GUI thread from the plain arrays of a :class:`~sorgui.session.scene_data.SceneData` that the
 worker process computed, and replaced in place by name (``add_mesh(..., name="surface")``).
 The surface's two sides have two colours (the mesh is wound to face ``f > 0``). Right-click
 (or P) on the surface picks a point: the viewport draws its normal line and its circle of
 latitude, and reports ``f`` there and whether the normal meets the axis (the paper's
 characterisation of surfaces of revolution, tested by :func:`sorgui.render.picking.pick_info`).
+
+VTK's and pyvista's own key bindings are removed (``p`` drew a red box, ``3`` stereo, ``w``/``s``
+wireframe, ``e``/``q`` quit): the only keys are the application's (P picks, listed in Help).
+:attr:`Viewport.view_actions` are the standard views (along and across the axis, the
+coordinate views, reset), orthographic projection, wireframe and the meridian clip; the window
+puts them in its View menu and the tool row. A caption names the surface shown; when the
+results are stale the surface is greyed and the caption says it is the previous equation's.
+For rounded input the approximate axis is drawn, and the deviation from the nearest exact
+surface can colour the surface.
 """
 
 from __future__ import annotations
@@ -17,17 +26,21 @@ import numpy as np
 import pyvista
 from pyvistaqt import QtInteractor
 from PySide6.QtCore import Qt, QTimer, Signal
+from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QCheckBox,
     QDoubleSpinBox,
     QHBoxLayout,
     QLabel,
+    QToolBar,
     QToolButton,
     QVBoxLayout,
     QWidget,
 )
+from vtkmodules.vtkCommonDataModel import vtkPlane
 
-from sorgui.gui.scene_data import SceneData
+from sorgui.gui.camera import CameraState, coordinate_view, meridian_normal, view_across, view_along
+from sorgui.session.scene_data import SceneData
 from sorgui.render import mesh_to_polydata, pick_info, to_polydata
 from sorgui.render.picking import PickInfo
 
@@ -42,8 +55,12 @@ PATCH_COLOR = "#2e7d32"
 NORMAL_COLOR = "#ff6f00"
 LATITUDE_COLOR = "#6a1b9a"
 PICK_COLOR = "#111111"
+STALE_COLOR = "#b0b6bd"
+APPROXIMATE_AXIS_COLOR = "#ef6c00"
+FACTOR_AXES_COLOR = "#455a64"
+DEVIATION_MAP = "viridis"
 
-SCENE_ACTORS = ("surface", "axis", "profile", "center", "patch")
+SCENE_ACTORS = ("surface", "axis", "profile", "center", "patch", "approx_axis", "factor_axes")
 PICK_ACTORS = ("pick_normal", "pick_circle", "pick_point")
 
 SOFTWARE_RENDERERS = ("llvmpipe", "softpipe", "swrast", "Software Rasterizer")
@@ -74,8 +91,30 @@ class Viewport(QWidget):
             callback=self._on_pick_change, show_message=False, show_point=False,
             left_clicking=False, clear_on_no_selection=False,
         )
+        self._remove_default_key_bindings()
         self._scene: SceneData | None = None
         self._software: bool | None = None
+        self._stale = False
+        self._clip_plane = vtkPlane()
+
+        self.caption = QLabel("No surface yet", self)
+        self.caption.setObjectName("viewportCaption")
+        self.caption.setTextFormat(Qt.TextFormat.PlainText)
+        self.caption.setContentsMargins(6, 0, 6, 0)
+        self.caption.setToolTip("The surface the 3D view shows")
+        self.deviation_box = QCheckBox("Deviation", self)
+        self.deviation_box.setToolTip(
+            "Colour the surface by its distance to the nearest exact surface of revolution (rounded input)"
+        )
+        self.deviation_box.setEnabled(False)
+        self.view_actions = self._build_view_actions()
+        self.toolbar = QToolBar(self)
+        self.toolbar.setObjectName("viewToolbar")
+        for name in ("along", "across", "x", "y", "z", "reset", None, "parallel", "wireframe", "clip"):
+            if name is None:
+                self.toolbar.addSeparator()
+            else:
+                self.toolbar.addAction(self.view_actions[name])
 
         self.radius_box = QDoubleSpinBox(self)
         self.radius_box.setObjectName("radiusBox")
@@ -98,15 +137,18 @@ class Viewport(QWidget):
         self.pick_label.setWordWrap(True)
         self.pick_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
 
+        self.reset_button.setVisible(False)  # the toolbar's Reset does it
         controls = QHBoxLayout()
         controls.setContentsMargins(6, 4, 6, 0)
-        for widget in (self.reset_button, self.radius_box, self.profile_box, self.patch_box):
+        for widget in (self.radius_box, self.profile_box, self.patch_box, self.deviation_box):
             controls.addWidget(widget)
         controls.addStretch(1)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         layout.setSpacing(2)
+        layout.addWidget(self.toolbar)
         layout.addLayout(controls)
+        layout.addWidget(self.caption)
         layout.addWidget(self.plotter, 1)
         layout.addWidget(self.pick_label)
         self.pick_label.setContentsMargins(6, 0, 6, 4)
@@ -118,6 +160,7 @@ class Viewport(QWidget):
         self.radius_box.valueChanged.connect(self._on_radius_change)
         self.patch_box.toggled.connect(self._on_patch_visibility_change)
         self.profile_box.toggled.connect(self._on_profile_visibility_change)
+        self.deviation_box.toggled.connect(self._on_deviation_change)
         self.reset_button.clicked.connect(self.reset_camera)
 
     # --- public API ---
@@ -130,14 +173,23 @@ class Viewport(QWidget):
         """Names of the actors in the renderer (for tests)."""
         return set(self.plotter.renderer.actors)
 
-    def show_scene(self, scene: SceneData, reset_camera: bool = True) -> None:
-        """Replace the drawn scene by ``scene`` (actors updated in place by name)."""
+    def show_scene(self, scene: SceneData, reset_camera: bool = True, caption: str | None = None) -> None:
+        """Replace the drawn scene by ``scene`` (actors updated in place by name); ``caption``
+        names the surface shown."""
         self._scene = scene
+        self._stale = False
+        if caption is not None:
+            self.caption.setText(caption)
         self._clear_pick()
-        self._set_actor("surface", mesh_to_polydata(scene.surface), color=FRONT_COLOR,
-                        backface_params={"color": BACK_COLOR}, specular=0.35,
-                        specular_power=20.0, pickable=True, interpolation="gouraud")
+        self._show_surface()
         self._set_actor("axis", to_polydata(scene.axis_segment), color=AXIS_COLOR, line_width=4)
+        self._set_actor("approx_axis", to_polydata(scene.approximate_axis), color=APPROXIMATE_AXIS_COLOR,
+                        line_width=3)
+        self._set_actor("factor_axes", to_polydata(scene.factor_axes), color=FACTOR_AXES_COLOR, line_width=3)
+        self.deviation_box.setEnabled(scene.deviation is not None)
+        self.view_actions["along"].setEnabled(self._axis() is not None)
+        self.view_actions["across"].setEnabled(self._axis() is not None)
+        self.view_actions["clip"].setEnabled(scene.axis is not None)
         self._set_actor("profile", to_polydata(scene.profile_curve), color=PROFILE_COLOR,
                         line_width=4, visible=self.profile_box.isChecked())
         center = to_polydata(scene.center_marker) if scene.center_marker else pyvista.PolyData()
@@ -154,14 +206,33 @@ class Viewport(QWidget):
             self.reset_camera(render=False)
         self.request_render()
 
-    def clear(self) -> None:
-        """Remove the scene (e.g. when the input is not a polynomial)."""
+    def clear(self, caption: str = "No surface") -> None:
+        """Remove the scene (a new analysis started, or the input is not a polynomial)."""
         self._scene = None
+        self._stale = False
+        self.caption.setText(caption)
+        self._remove_scalar_bar()
         for name in SCENE_ACTORS + PICK_ACTORS:
             self.plotter.remove_actor(name, render=False)
         self.radius_box.setEnabled(False)
         self.patch_box.setEnabled(False)
+        self.deviation_box.setEnabled(False)
         self.request_render()
+
+    def set_stale(self, stale: bool, caption: str | None = None) -> None:
+        """Grey the surface (it belongs to the previous equation) or colour it again."""
+        if caption is not None:
+            self.caption.setText(caption)
+        if stale == self._stale or self._scene is None:
+            self._stale = stale and self._scene is not None
+            return
+        self._stale = stale
+        self._show_surface()
+        self.request_render()
+
+    @property
+    def stale(self) -> bool:
+        return self._stale
 
     def reset_camera(self, render: bool = True) -> None:
         """Look at the drawn ball from an isometric direction."""
@@ -172,7 +243,77 @@ class Viewport(QWidget):
             # The renderer's own method: pyvista's Plotter.reset_camera renders regardless.
             self.plotter.renderer.reset_camera(render=False, bounds=bounds)
         if render:
-            self.request_render()
+            self.render_now()
+
+    def set_view(self, name: str) -> None:
+        """One of the standard views: ``along``/``across`` the axis, ``x``, ``y``, ``z``, ``reset``."""
+        if name == "reset":
+            self.reset_camera()
+            return
+        scene = self._scene
+        center = np.asarray(scene.region.center) if scene is not None else np.zeros(3)
+        radius = scene.region.radius if scene is not None else 1.0
+        axis = self._axis()
+        if name in ("along", "across"):
+            if axis is None:
+                return
+            position, up = (view_along if name == "along" else view_across)(center, radius, axis[1])
+        else:
+            position, up = coordinate_view(center, radius, name)
+        camera = self.plotter.renderer.GetActiveCamera()
+        camera.SetFocalPoint(*center)
+        camera.SetPosition(*position)
+        camera.SetViewUp(*up)
+        bounds = tuple(v for i in range(3) for v in (center[i] - radius, center[i] + radius))
+        self.plotter.renderer.reset_camera(render=False, bounds=bounds)
+        self.render_now()
+
+    def set_parallel_projection(self, parallel: bool) -> None:
+        """Orthographic (``True``) or perspective projection."""
+        self.plotter.renderer.GetActiveCamera().SetParallelProjection(parallel)
+        self.view_actions["parallel"].setChecked(parallel)
+        if self._scene is not None:
+            self.plotter.renderer.reset_camera(render=False)
+        self.render_now()
+
+    def set_wireframe(self, wireframe: bool) -> None:
+        """Draw the surface as its triangle edges (``True``) or shaded."""
+        self.view_actions["wireframe"].setChecked(wireframe)
+        actor = self.plotter.renderer.actors.get("surface")
+        if actor is not None:
+            actor.prop.style = "wireframe" if wireframe else "surface"
+        self.render_now()
+
+    def set_clip(self, clip: bool) -> None:
+        """Cut the surface along the meridian plane through the axis (shows the profile)."""
+        self.view_actions["clip"].setChecked(clip)
+        self._apply_clip()
+        self.render_now()
+
+    def camera_state(self) -> CameraState:
+        """The camera now (for the settings)."""
+        camera = self.plotter.renderer.GetActiveCamera()
+        return CameraState(
+            tuple(camera.GetPosition()), tuple(camera.GetFocalPoint()), tuple(camera.GetViewUp()),
+            camera.GetViewAngle(), camera.GetParallelScale(), bool(camera.GetParallelProjection()),
+        )
+
+    def restore_camera(self, state: CameraState) -> None:
+        """Put the camera where ``state`` says."""
+        camera = self.plotter.renderer.GetActiveCamera()
+        camera.SetPosition(*state.position)
+        camera.SetFocalPoint(*state.focal_point)
+        camera.SetViewUp(*state.view_up)
+        camera.SetViewAngle(state.view_angle)
+        camera.SetParallelScale(state.parallel_scale)
+        camera.SetParallelProjection(state.parallel)
+        self.view_actions["parallel"].setChecked(state.parallel)
+        self.plotter.renderer.ResetCameraClippingRange()
+        self.render_now()
+
+    def render_now(self) -> None:
+        """Render at once (a view change the user asked for is drawn immediately)."""
+        self.plotter.render()
 
     def request_render(self) -> None:
         """Render at the next paint event: the GUI thread renders once per event-loop turn,
@@ -265,6 +406,117 @@ class Viewport(QWidget):
     def mesh_resolution(self) -> int:
         """Grid nodes across the drawn ball: fewer triangles when rendering in software."""
         return SOFTWARE_RESOLUTION if self.software_rendering() else HARDWARE_RESOLUTION
+
+    def _remove_default_key_bindings(self) -> None:
+        """Silence VTK's interactor-style keys and pyvista's; P picks at the mouse instead."""
+        iren = self.plotter.iren
+        iren.interactor.RemoveObservers("CharEvent")
+        iren.clear_key_event_callbacks()
+        iren.add_key_event("p", self._pick_at_mouse)
+        iren.add_key_event("P", self._pick_at_mouse)
+
+    def _pick_at_mouse(self) -> None:
+        x, y = self.plotter.iren.interactor.GetEventPosition()
+        self.plotter.iren.picker.Pick(x, y, 0, self.plotter.renderer)
+
+    def _build_view_actions(self) -> dict[str, QAction]:
+        specs = (
+            ("along", "View Along the &Axis", "Ctrl+Alt+A", lambda: self.set_view("along")),
+            ("across", "View A&cross the Axis", "Ctrl+Alt+C", lambda: self.set_view("across")),
+            ("x", "View Along &x", "Ctrl+Alt+X", lambda: self.set_view("x")),
+            ("y", "View Along &y", "Ctrl+Alt+Y", lambda: self.set_view("y")),
+            ("z", "View Along &z", "Ctrl+Alt+Z", lambda: self.set_view("z")),
+            ("reset", "&Reset View", "Ctrl+R", lambda: self.set_view("reset")),
+        )
+        actions: dict[str, QAction] = {}
+        for name, text, key, slot in specs:
+            action = QAction(text, self)
+            action.setIconText({"along": "Along axis", "across": "Across axis", "reset": "Reset"}.get(name, name))
+            action.setShortcut(QKeySequence(key))
+            action.setToolTip(f"{text.replace('&', '')} ({key})")
+            action.triggered.connect(lambda _checked=False, f=slot: f())
+            actions[name] = action
+        toggles = (
+            ("parallel", "&Orthographic Projection", "Ctrl+Alt+O", "Ortho", self.set_parallel_projection),
+            ("wireframe", "&Wireframe", "Ctrl+Alt+W", "Wireframe", self.set_wireframe),
+            ("clip", "&Meridian Section", "Ctrl+Alt+M", "Section",  self.set_clip),
+        )
+        for name, text, key, short, slot in toggles:
+            action = QAction(text, self)
+            action.setCheckable(True)
+            action.setIconText(short)
+            action.setShortcut(QKeySequence(key))
+            action.setToolTip(f"{text.replace('&', '')} ({key})")
+            action.triggered.connect(lambda checked=False, f=slot: f(checked))
+            actions[name] = action
+        actions["clip"].setToolTip("Cut the surface along the plane through the axis and the profile: "
+                                   "the cut's edge is the profile curve (Ctrl+Alt+M)")
+        for name in ("along", "across", "clip"):
+            actions[name].setEnabled(False)
+        return actions
+
+    def _axis(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """The drawn axis: the exact one, else the approximate axis of rounded input."""
+        scene = self._scene
+        if scene is None:
+            return None
+        if scene.axis is not None:
+            return scene.axis
+        if not scene.approximate_axis.is_empty:
+            a, b = scene.approximate_axis.points[0], scene.approximate_axis.points[-1]
+            return a, b - a
+        return None
+
+    def _show_surface(self) -> None:
+        """The surface actor as the state asks: side colours, deviation colours, or grey if stale."""
+        scene = self._scene
+        if scene is None:
+            return
+        mesh = mesh_to_polydata(scene.surface)
+        deviation = self.deviation_box.isChecked() and scene.deviation is not None and not self._stale
+        self._remove_scalar_bar()
+        if self._stale:
+            self._set_actor("surface", mesh, color=STALE_COLOR, opacity=0.45, pickable=False,
+                            interpolation="gouraud")
+        elif deviation and mesh.n_points:
+            mesh.point_data["deviation"] = np.asarray(scene.deviation)
+            self._set_actor("surface", mesh, scalars="deviation", cmap=DEVIATION_MAP, pickable=True,
+                            interpolation="gouraud", nan_color=STALE_COLOR,
+                            scalar_bar_args={"title": "distance to nearest exact surface", "vertical": True,
+                                             "fmt": "%.2g"})
+        else:
+            self._set_actor("surface", mesh, color=FRONT_COLOR, backface_params={"color": BACK_COLOR},
+                            specular=0.35, specular_power=20.0, pickable=True, interpolation="gouraud")
+        actor = self.plotter.renderer.actors.get("surface")
+        if actor is not None and self.view_actions["wireframe"].isChecked():
+            actor.prop.style = "wireframe"
+        self._apply_clip()
+
+    def _remove_scalar_bar(self) -> None:
+        for title in list(self.plotter.scalar_bars.keys()):
+            self.plotter.remove_scalar_bar(title, render=False)
+
+    def _apply_clip(self) -> None:
+        """Clip the surface (and the patch) by the meridian plane, if asked and there is an axis."""
+        scene = self._scene
+        clip = self.view_actions["clip"].isChecked() and scene is not None and scene.axis is not None
+        if clip:
+            point, direction = scene.axis
+            normal = meridian_normal(point, direction, scene.profile_curve.points)
+            self._clip_plane.SetOrigin(*point)
+            self._clip_plane.SetNormal(*normal)
+        for name in ("surface", "patch"):
+            actor = self.plotter.renderer.actors.get(name)
+            if actor is None:
+                continue
+            mapper = actor.GetMapper()
+            mapper.RemoveAllClippingPlanes()
+            if clip:
+                mapper.AddClippingPlane(self._clip_plane)
+
+    def _on_deviation_change(self, _checked: bool) -> None:
+        self._show_surface()
+        self.request_render()
 
     def _clear_pick(self) -> None:
         for name in PICK_ACTORS:

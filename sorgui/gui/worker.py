@@ -1,7 +1,7 @@
 """Runs analyses in a separate process, so the window never freezes and cancel always works.
 
 :class:`AnalysisWorker` lives on the GUI thread. Each job runs in its own process, started with
-the ``spawn`` method (no forked Qt or VTK state) and running :func:`sorgui.gui.job.serve`,
+the ``spawn`` method (no forked Qt or VTK state) and running :func:`sorgui.session.job.serve`,
 which makes it a process-group leader. A timer polls the pipe and turns messages into the Qt
 signals :attr:`~AnalysisWorker.progress`, :attr:`~AnalysisWorker.finished`,
 :attr:`~AnalysisWorker.failed` and :attr:`~AnalysisWorker.cancelled`.
@@ -20,19 +20,23 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+from collections import deque
 import signal
 import time
 from pathlib import Path
 
 from PySide6.QtCore import QObject, QTimer, Signal
 
-from sorgui.gui.job import JobRequest, serve
+from sorgui.session.job import JobRequest, serve
 
 POLL_INTERVAL_MS = 15
 """How often the GUI thread looks at the pipes of running jobs."""
 
 CANCEL_GRACE_S = 0.5
 """How long a cancelled job may take to stop by itself before it is killed."""
+
+INTERMEDIATE = ("done", "analysis", "scene", "nearest_scene", "formulas")
+"""Messages a job sends before its final one (see :mod:`sorgui.session.job`)."""
 
 SPARE_DELAY_MS = 2000
 """The next worker process starts this long after a job ends, once the result is on screen."""
@@ -97,6 +101,7 @@ class _Job:
         child_conn.close()
         self.kill_at: float | None = None
         self.ended = False
+        self.pending: deque[tuple[str, object]] = deque()
 
     @property
     def pid(self) -> int | None:
@@ -134,12 +139,15 @@ class _Job:
 class AnalysisWorker(QObject):
     """Starts, supersedes and cancels analysis processes; reports through Qt signals.
 
-    ``finished`` carries a :class:`~sorgui.gui.job.JobResult`; ``invalid`` a parse error
+    ``finished`` carries a :class:`~sorgui.session.job.JobResult`; ``invalid`` a parse error
     ``(message, position, end)``; ``failed`` a one-line message; ``busy_changed`` whether a
-    job is running (for the Analyze and Cancel buttons).
+    job is running (for the Analyze and Cancel buttons). ``message`` carries every message of
+    the current job, intermediate results and the final one alike, as ``(kind, payload)``: it
+    feeds :meth:`sorgui.session.Session.handle` (the worker is the session's runner).
     """
 
     progress = Signal(str)
+    message = Signal(str, object)
     finished = Signal(object)
     invalid = Signal(str, int, int)
     failed = Signal(str)
@@ -231,9 +239,21 @@ class AnalysisWorker(QObject):
             self._timer.stop()
 
     def _poll_current(self, job: _Job) -> None:
-        for kind, payload in job.messages():
+        """Hand on the job's messages: at most one result per turn of the event loop, so that
+        the window draws (and takes input) between showing the verdict, the mesh and the
+        formulas."""
+        job.pending.extend(job.messages())
+        while job.pending:
+            kind, payload = job.pending.popleft()
             if kind == "progress":
+                self.message.emit(kind, payload)
                 self.progress.emit(str(payload))
+                continue
+            if kind in INTERMEDIATE:
+                if job.kill_at is None:
+                    self.message.emit(kind, payload)
+                    if kind != "done":
+                        return
                 continue
             if job.kill_at is not None:
                 kind = "cancelled"  # whatever came back after the user cancelled
@@ -252,6 +272,7 @@ class AnalysisWorker(QObject):
         self._retiring.append(job)
         if self._prestart:
             self._spare_timer.start()  # soon, but not while the GUI shows the result
+        self.message.emit(kind, payload)
         self.busy_changed.emit(False)
         if kind == "finished":
             self.finished.emit(payload)

@@ -6,16 +6,20 @@ text. Each engine string is read exactly (:mod:`sorgui.export.exact`) and printe
 into lines no wider than the pane (measured with mathtext itself) and rasterises each line with
 matplotlib's mathtext (Computer Modern) into an 8-bit alpha mask. This runs in the analysis
 worker process (it has no Qt), so the GUI thread only colours ready-made masks; a formula
-mathtext cannot typeset is shown as plain text instead.
+mathtext cannot typeset is shown as plain text instead. Each formula also carries its Maple,
+Mathematica and Python forms (sympy's printers, as the exported files), for the copy menu.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
 import sympy
+from sympy.printing.maple import maple_code
+from sympy.printing.mathematica import mathematica_code
+from sympy.printing.pycode import pycode
 
 from sorgui.engine.report import Analysis, Recognition
 from sorgui.export.exact import ExpressionError, read_expression
@@ -44,6 +48,14 @@ class Formula:
     pieces: tuple[str, ...]
     lines: tuple[str, ...] = ()
     masks: tuple[np.ndarray, ...] = ()
+    codes: tuple[tuple[str, str], ...] = ()
+    """``(language, text)`` for Maple, Mathematica and Python (empty if not readable)."""
+
+    def code(self, language: str) -> str:
+        """The formula in ``language`` (``"text"``, ``"LaTeX"``, ``"Maple"``, …; plain text if unknown)."""
+        if language == "LaTeX":
+            return self.latex
+        return dict(self.codes).get(language, self.plain)
 
 
 @dataclass(frozen=True)
@@ -60,6 +72,30 @@ def _latex(expr: sympy.Expr) -> str:
     return sympy.latex(expr, fold_short_frac=True)
 
 
+CODE_PRINTERS = (("Maple", maple_code), ("Mathematica", mathematica_code), ("Python", pycode))
+"""The languages of the copy menu, with sympy's printers."""
+
+_BRACKETS = {"Maple": ("[", "]"), "Mathematica": ("{", "}"), "Python": ("(", ")")}
+
+
+def _codes(exprs: Sequence[sympy.Expr], vector: bool) -> tuple[tuple[str, str], ...]:
+    """The expression (or the vector of ``exprs``) in each language of :data:`CODE_PRINTERS`."""
+    out = []
+    for language, printer in CODE_PRINTERS:
+        parts = [printer(e) for e in exprs]
+        if vector:
+            left, right = _BRACKETS[language]
+            out.append((language, left + ", ".join(parts) + right))
+        else:
+            out.append((language, parts[0]))
+    return tuple(out)
+
+
+def plain_formula(text: str) -> Formula:
+    """``text`` as an untypeset formula (shown as text until the typeset one arrives)."""
+    return Formula(text, text, ())
+
+
 def expression_formula(text: str, prefix: str = "") -> Formula:
     """The engine string ``text`` (a number, polynomial or rational function) as a formula."""
     if len(text) > MAX_CHARACTERS:
@@ -69,8 +105,9 @@ def expression_formula(text: str, prefix: str = "") -> Formula:
     except ExpressionError:
         return Formula(text, text, ())
     terms = expr.as_ordered_terms() if isinstance(expr, sympy.Add) else [expr]
+    codes = _codes([expr], vector=False)
     if len(terms) > MAX_TERMS:
-        return Formula(text, _latex(expr), ())
+        return Formula(text, _latex(expr), (), codes=codes)
     pieces = []
     for index, term in enumerate(terms):
         negative = term.could_extract_minus_sign()
@@ -79,7 +116,7 @@ def expression_formula(text: str, prefix: str = "") -> Formula:
         pieces.append(sign + body)
     if prefix:
         pieces[0] = f"{prefix} {pieces[0]}"
-    return Formula(text, _latex(expr), tuple(pieces))
+    return Formula(text, _latex(expr), tuple(pieces), codes=codes)
 
 
 def vector_formula(values: Sequence[str], prefix: str = "") -> Formula:
@@ -87,11 +124,11 @@ def vector_formula(values: Sequence[str], prefix: str = "") -> Formula:
     separator = " : " if len(values) == 6 else ", "
     plain = "(" + separator.join(values) + ")"
     try:
-        parts = [_latex(read_expression(v)) for v in values]
+        exprs = [read_expression(v) for v in values]
     except ExpressionError:
         return Formula(plain, plain, ())
-    latex = r"\left(" + separator.join(parts) + r"\right)"
-    return Formula(plain, latex, ((prefix + " " if prefix else "") + latex,))
+    latex = r"\left(" + separator.join(_latex(e) for e in exprs) + r"\right)"
+    return Formula(plain, latex, ((prefix + " " if prefix else "") + latex,), codes=_codes(exprs, vector=True))
 
 
 def line_formula(point: Sequence[str], direction: Sequence[str]) -> Formula:
@@ -104,51 +141,80 @@ def line_formula(point: Sequence[str], direction: Sequence[str]) -> Formula:
 # --- all formulas of an analysis ------------------------------------------------------------
 
 
-def _recognition_formulas(rec: Recognition, key: str) -> Iterable[tuple[str, Formula]]:
+@dataclass(frozen=True)
+class _Builders:
+    expression: Callable[..., Formula]
+    vector: Callable[..., Formula]
+    line: Callable[..., Formula]
+
+
+def _plain_vector(values: Sequence[str], prefix: str = "") -> Formula:
+    return plain_formula("(" + (" : " if len(values) == 6 else ", ").join(values) + ")")
+
+
+def _plain_line(point: Sequence[str], direction: Sequence[str]) -> Formula:
+    return plain_formula(f"{_plain_vector(point).plain} + t*{_plain_vector(direction).plain}")
+
+
+_EXACT = _Builders(expression_formula, vector_formula, line_formula)
+_PLAIN = _Builders(lambda text, prefix="": plain_formula(text), _plain_vector, _plain_line)
+
+
+def _recognition_formulas(rec: Recognition, key: str, make: _Builders) -> Iterable[tuple[str, Formula]]:
     if rec.axis is not None:
-        yield f"{key}axis.point", vector_formula(rec.axis.point)
-        yield f"{key}axis.direction", vector_formula(rec.axis.direction)
-        yield f"{key}axis.plucker", vector_formula(rec.axis.plucker)
-        yield f"{key}axis.line", line_formula(rec.axis.point, rec.axis.direction)
+        yield f"{key}axis.point", make.vector(rec.axis.point)
+        yield f"{key}axis.direction", make.vector(rec.axis.direction)
+        yield f"{key}axis.plucker", make.vector(rec.axis.plucker)
+        yield f"{key}axis.line", make.line(rec.axis.point, rec.axis.direction)
     for name in ("center", "normal", "direction"):
         value = getattr(rec, name)
         if value is not None:
-            yield f"{key}{name}", vector_formula(value)
+            yield f"{key}{name}", make.vector(value)
 
 
-def analysis_formulas(analysis: Analysis) -> dict[str, Formula]:
-    """Every formula the results pane shows, by key (``"axis.point"``, ``"factor.0"``, …)."""
+def analysis_formulas(analysis: Analysis, plain: bool = False) -> dict[str, Formula]:
+    """Every formula the results pane shows, by key (``"axis.point"``, ``"factor.0"``, …).
+
+    ``plain`` gives them as untypeset text at once (no sympy), for the GUI thread to show until
+    the typeset ones arrive.
+    """
+    make = _PLAIN if plain else _EXACT
     rec = analysis.recognition
-    out: dict[str, Formula] = {"polynomial": expression_formula(rec.polynomial, "f =")}
-    out.update(_recognition_formulas(rec, ""))
+    out: dict[str, Formula] = {"polynomial": make.expression(rec.polynomial, "f =")}
+    out.update(_recognition_formulas(rec, "", make))
     if rec.profile is not None:
         profile = rec.profile
-        out["profile.polynomial"] = expression_formula(profile.polynomial, "p(x, y) =")
-        out["profile.square"] = expression_formula(profile.square, "P^2(x, y) =")
-        out["profile.rational"] = expression_formula(profile.rational, r"\tilde{p}(s, r) =")
-        out["profile.frame_point"] = vector_formula(profile.frame_point, "c =")
-        out["profile.frame_direction"] = vector_formula(profile.frame_direction, "a =")
-        out["profile.frame_normal"] = vector_formula(profile.frame_normal, "u =")
+        out["profile.polynomial"] = make.expression(profile.polynomial, "p(x, y) =")
+        out["profile.square"] = make.expression(profile.square, "P^2(x, y) =")
+        out["profile.rational"] = make.expression(profile.rational, r"\tilde{p}(s, r) =")
+        out["profile.frame_point"] = make.vector(profile.frame_point, "c =")
+        out["profile.frame_direction"] = make.vector(profile.frame_direction, "a =")
+        out["profile.frame_normal"] = make.vector(profile.frame_normal, "u =")
     if len(analysis.factors) > 1:
         for index, factor in enumerate(analysis.factors):
-            out[f"factor.{index}"] = expression_formula(factor.polynomial)
-            out.update(_recognition_formulas(factor.recognition, f"factor.{index}."))
+            out[f"factor.{index}"] = make.expression(factor.polynomial)
+            out.update(_recognition_formulas(factor.recognition, f"factor.{index}.", make))
     rationality = analysis.rationality
     if rationality is not None:
         if rationality.tubular_surface:
-            out["rationality.tubular_surface"] = expression_formula(rationality.tubular_surface, "T:")
+            out["rationality.tubular_surface"] = make.expression(rationality.tubular_surface, "T:")
         if rationality.h:
-            out["rationality.h"] = expression_formula(rationality.h, "h =")
+            out["rationality.h"] = make.expression(rationality.h, "h =")
         if rationality.square_parametrization:
             phi, rho = rationality.square_parametrization
-            out["rationality.square_parametrization.0"] = expression_formula(phi, r"\varphi =")
-            out["rationality.square_parametrization.1"] = expression_formula(rho, r"\rho =")
+            out["rationality.square_parametrization.0"] = make.expression(phi, r"\varphi =")
+            out["rationality.square_parametrization.1"] = make.expression(rho, r"\rho =")
         if rationality.tau:
             for name, value in zip("xyz", rationality.tau):
-                out[f"rationality.tau.{name}"] = expression_formula(value, rf"\tau_{name} =")
+                out[f"rationality.tau.{name}"] = make.expression(value, rf"\tau_{name} =")
     for index, param in enumerate(analysis.parametrizations):
         for name, value in zip("xyz", param.coordinates):
-            out[f"parametrization.{index}.{name}"] = expression_formula(value, f"{name} =")
+            out[f"parametrization.{index}.{name}"] = make.expression(value, f"{name} =")
+    nearest = analysis.approximate.nearest if analysis.approximate is not None else None
+    if nearest is not None:
+        out["approximate.nearest"] = make.expression(nearest.polynomial, "g =")
+        if nearest.axis is not None:
+            out["approximate.nearest.axis"] = make.line(nearest.axis.point, nearest.axis.direction)
     return out
 
 
@@ -192,13 +258,26 @@ def wrap(pieces: Sequence[str], style: Style) -> tuple[str, ...]:
     return tuple(lines)
 
 
+def render_formula(formula: Formula, style: Style) -> Formula:
+    """``formula`` rasterised: on one line if it fits (one mathtext parse, the common case),
+    else wrapped at its terms; ``ValueError`` if mathtext cannot typeset it."""
+    if not formula.pieces:
+        return formula
+    whole = "".join(formula.pieces)
+    parsed = _parse(whole, style)
+    if parsed.width <= style.width or len(formula.pieces) == 1:
+        mask = np.pad(np.asarray(parsed.image), ((2, 2), (2, 6)))
+        return replace(formula, lines=(whole,), masks=(mask,))
+    lines = wrap(formula.pieces, style)
+    return replace(formula, lines=lines, masks=tuple(render_line(line, style) for line in lines))
+
+
 def render_formulas(formulas: dict[str, Formula], style: Style) -> dict[str, Formula]:
     """``formulas`` wrapped and rasterised; a formula mathtext rejects keeps no masks."""
     out = {}
     for key, formula in formulas.items():
         try:
-            lines = wrap(formula.pieces, style) if formula.pieces else ()
-            out[key] = replace(formula, lines=lines, masks=tuple(render_line(ln, style) for ln in lines))
+            out[key] = render_formula(formula, style)
         except (ValueError, RuntimeError):
             out[key] = formula
     return out

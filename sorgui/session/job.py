@@ -1,12 +1,21 @@
-"""What the analysis worker process does: analyse, build the scene, typeset the formulas.
+"""What the analysis worker process does: analyse, build the scene, typeset the formulas, and
+send every result the moment it is known.
 
 This module is the target of the worker process (started with the ``spawn`` method by
 :mod:`sorgui.gui.worker`) and imports no Qt. :func:`serve` makes the process a process-group
-leader, waits for one :class:`JobRequest`, and sends plain messages back through its pipe:
+leader, waits for one :class:`JobRequest`, and sends plain picklable messages back:
 
-* ``("progress", stage)`` for every stage (the engine's, then ``"scene"`` and ``"formulas"``);
-* exactly one final message: ``("finished", JobResult)``, ``("invalid", (message, position,
-  end))`` for text that is not a polynomial, ``("failed", message)`` or ``("cancelled", None)``.
+* ``("progress", stage)`` when a stage starts (the engine's stages, ``"scene"``, ``"formulas"``);
+* ``("done", (stage, seconds))`` when one of the worker's own stages ends (the engine's stage
+  times come with the analysis);
+* ``("analysis", Analysis)``: the results known so far, first after the factors (verdict, axis,
+  profile), then after the rationality (Table 1 row, genera), then complete;
+* ``("scene", SceneData)``: the typed surface's scene (first without the parameterization
+  patch), and ``("nearest_scene", SceneData)``: the nearest exact surface's, for rounded input;
+* ``("formulas", {key: Formula})``: every formula of the analysis known so far, typeset;
+* exactly one final message: ``("finished", JobResult)`` (without the scenes and formulas,
+  already sent), ``("invalid", (message, position, end))`` for text that is not a polynomial,
+  ``("failed", message)`` or ``("cancelled", None)``.
 
 Engine errors come back as one-line messages, never as tracebacks.
 """
@@ -14,20 +23,25 @@ Engine errors come back as one-line messages, never as tracebacks.
 from __future__ import annotations
 
 import os
+import signal
 import sys
 import threading
 import time
 import traceback
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from multiprocessing.connection import Connection
 from typing import Any
 
 from sorgui.engine import Analysis, Cancelled, ParseError, SorguiError, analyze
-from sorgui.gui.formulas import Formula, Style, analysis_formulas, render_formulas, render_line
-from sorgui.gui.scene_data import DEFAULT_RESOLUTION, SceneData, build_scene
+from sorgui.engine.singular import die_with_parent
+from sorgui.session.formulas import Formula, Style, analysis_formulas, render_formulas, render_line
 
 Message = tuple[str, Any]
+Send = Callable[[str, Any], None]
+
+DEFAULT_RESOLUTION = 150
+"""Grid nodes along the diameter of the drawn ball."""
 
 WORKER_NICENESS = 5
 """The worker runs at a lower priority than the GUI, which then always gets the processor."""
@@ -37,75 +51,174 @@ WORKER_NICENESS = 5
 class JobRequest:
     """One job for the worker process.
 
-    With ``analysis`` (an earlier result's JSON) the engine is skipped and only the scene is
-    rebuilt, e.g. for a new ``radius`` of the drawn ball. ``style`` ``None`` skips the formulas.
+    With ``analysis`` (an earlier result) the engine is skipped: only the scene is rebuilt (e.g.
+    for a new ``radius`` of the drawn ball) and/or the formulas typeset again (a new ``style``,
+    e.g. after zooming). ``style`` ``None`` skips the formulas, ``scene=False`` the scene.
     """
 
     text: str
     method: str = "symmetry"
     recognition_only: bool = False
     singular_timeout: float = 60.0
-    analysis: dict[str, Any] | None = None
+    analysis: Analysis | None = None
     radius: float | None = None
     resolution: int = DEFAULT_RESOLUTION
     style: Style | None = Style()
+    scene: bool = True
 
 
 @dataclass(frozen=True, eq=False)
 class JobResult:
-    """The worker's answer: the analysis (as JSON), its scene, its formulas (or ``None``) and
+    """The worker's complete answer: the analysis, its scene (``None`` if not asked for), its
+    formulas (``None`` if not asked for), the nearest exact surface's scene (rounded input) and
     the worker's own stage timings (scene, formulas)."""
 
-    analysis_json: dict[str, Any]
-    scene: SceneData
+    analysis: Analysis
+    scene: Any
     formulas: dict[str, Formula] | None
     timings: tuple[tuple[str, float], ...]
+    nearest_scene: Any = None
 
-    @property
-    def analysis(self) -> Analysis:
-        return Analysis.from_json(self.analysis_json)
+
+@dataclass
+class _Presenter:
+    """Turns each analysis the engine publishes into messages: the scene once the recognition
+    is known, the patch and the rounded-input extras once they are, the formulas every time
+    (each formula typeset once, then reused)."""
+
+    request: JobRequest
+    send: Send
+    check: Callable[[], None]
+    timings: list[tuple[str, float]] = field(default_factory=list)
+    scene: Any = None
+    nearest_scene: Any = None
+    formulas: dict[str, Formula] = field(default_factory=dict)
+    _typeset: dict[tuple[str, str], Formula] = field(default_factory=dict)
+    _patched: bool = False
+    _approximated: bool = False
+
+    def stage(self, name: str, work: Callable[[], Any]) -> Any:
+        self.check()
+        self.send("progress", name)
+        start = time.perf_counter()
+        value = work()
+        seconds = time.perf_counter() - start
+        self.timings.append((name, seconds))
+        self.send("done", (name, seconds))
+        return value
+
+    def present(self, analysis: Analysis) -> None:
+        from sorgui.session import scene_data
+
+        self.send("analysis", analysis)
+        request = self.request
+        if request.scene:
+            if self.scene is None:
+                self.scene = self.stage("scene", lambda: scene_data.build_scene(
+                    analysis, request.radius, request.resolution, patch=False))
+                self.send("scene", self.scene)
+            extras = self._extras(analysis)
+            if extras is not None:
+                self.scene = self.stage("scene", lambda: extras(self.scene))
+                self.send("scene", self.scene)
+            if self._approximated and self.nearest_scene is None and _nearest(analysis) is not None:
+                nearest = _nearest(analysis)
+                self.nearest_scene = self.stage("scene", lambda: scene_data.build_scene(
+                    nearest, region=self.scene.region, resolution=request.resolution))
+                self.send("nearest_scene", self.nearest_scene)
+        if request.style is not None:
+            self.formulas = self.stage("formulas", lambda: self._typeset_all(analysis, request.style))
+            self.send("formulas", self.formulas)
+
+    def _extras(self, analysis: Analysis) -> Callable[[Any], Any] | None:
+        """What the scene still lacks of ``analysis``: the patch, the rounded-input extras."""
+        from sorgui.session import scene_data
+
+        steps = []
+        if not self._patched and analysis.parametrizations:
+            self._patched = True
+            steps.append(lambda scene: scene_data.with_patch(scene, analysis))
+        if not self._approximated and analysis.approximate is not None:
+            self._approximated = True
+            steps.append(lambda scene: scene_data.with_approximation(scene, analysis))
+        if not steps:
+            return None
+
+        def apply(scene: Any) -> Any:
+            for step in steps:
+                scene = step(scene)
+            return scene
+
+        return apply
+
+    def _typeset_all(self, analysis: Analysis, style: Style) -> dict[str, Formula]:
+        wanted = analysis_formulas(analysis)
+        nearest = _nearest(analysis)
+        if nearest is not None:
+            wanted.update({f"nearest.{k}": v for k, v in analysis_formulas(nearest).items()})
+        fresh = {k: f for k, f in wanted.items() if (k, f.plain) not in self._typeset}
+        for key, formula in render_formulas(fresh, style).items():
+            self._typeset[(key, formula.plain)] = formula
+        return {k: self._typeset[(k, f.plain)] for k, f in wanted.items()}
+
+
+def _nearest(analysis: Analysis) -> Analysis | None:
+    """The exact analysis of the nearest exact surface of rounded input, if there is one."""
+    approx = analysis.approximate
+    if approx is None or approx.nearest is None:
+        return None
+    return approx.nearest.analysis
 
 
 def run_job(
     request: JobRequest,
     cancel: threading.Event | Any | None = None,
     progress: Callable[[str], None] | None = None,
+    send: Send | None = None,
 ) -> Message:
-    """Do ``request`` and return the final message (also usable without a process)."""
-    report = progress or (lambda _stage: None)
-    timings: list[tuple[str, float]] = []
+    """Do ``request`` and return the final message (also usable without a process).
+
+    ``send`` receives every intermediate message; ``progress`` (an older, simpler hook) only
+    the names of the stages as they start.
+    """
+
+    def deliver(kind: str, payload: Any) -> None:
+        if send is not None:
+            send(kind, payload)
+        if kind == "progress" and progress is not None:
+            progress(payload)
 
     def check() -> None:
         if cancel is not None and cancel.is_set():
             raise Cancelled("the analysis was cancelled")
 
-    def stage(name: str, work: Callable[[], Any]) -> Any:
-        check()
-        report(name)
-        start = time.perf_counter()
-        value = work()
-        timings.append((name, time.perf_counter() - start))
-        return value
-
+    presenter = _Presenter(request, deliver, check)
     try:
         if request.analysis is not None:
-            analysis = Analysis.from_json(request.analysis)
+            analysis = request.analysis
+            presenter.present(analysis)
         else:
             analysis = analyze(
                 request.text,
                 method=request.method,
                 recognition_only=request.recognition_only,
                 singular_timeout=request.singular_timeout,
+                timeout=request.singular_timeout,  # the window's limit bounds the whole analysis
                 cancel=cancel,
-                progress=report,
+                progress=lambda stage: deliver("progress", stage),
+                partial=presenter.present,
             )
-        scene = stage("scene", lambda: build_scene(analysis, request.radius, request.resolution))
-        formulas = None
-        if request.style is not None:
-            style = request.style
-            formulas = stage("formulas", lambda: render_formulas(analysis_formulas(analysis), style))
+            if analysis.parametrizations or analysis.approximate is not None or analysis.rationality is not None:
+                presenter.present(analysis)  # the complete analysis: patch, rounded-input extras
+            else:
+                deliver("analysis", analysis)
         check()
-        return "finished", JobResult(analysis.to_json(), scene, formulas, tuple(timings))
+        if send is not None:  # the scenes and formulas went out as messages: not pickled twice
+            return "finished", JobResult(analysis, None, None, tuple(presenter.timings))
+        formulas = presenter.formulas if request.style is not None else None
+        return "finished", JobResult(
+            analysis, presenter.scene, formulas, tuple(presenter.timings), presenter.nearest_scene
+        )
     except Cancelled:
         return "cancelled", None
     except ParseError as exc:
@@ -129,15 +242,18 @@ def serve(conn: Connection, cancel: Any) -> None:
     """
     if hasattr(os, "setpgrp"):
         os.setpgrp()
+    die_with_parent(signal.SIGKILL)  # the window killed (even by kill -9): the worker goes too
     if hasattr(os, "nice"):
         os.nice(WORKER_NICENESS)
     render_line("x", Style())  # load mathtext's fonts while nobody waits
+    import sorgui.session.scene_data  # noqa: F401  (VTK and pyvista, loaded while nobody waits)
+
     try:
         request = conn.recv()
     except (EOFError, OSError):
         return
     try:
-        conn.send(run_job(request, cancel, progress=lambda stage: conn.send(("progress", stage))))
+        conn.send(run_job(request, cancel, send=lambda kind, payload: conn.send((kind, payload))))
     except (BrokenPipeError, OSError):
         pass  # the GUI has gone away or superseded this job
     conn.close()

@@ -3,7 +3,9 @@
 From an :class:`~sorgui.engine.report.Analysis` this computes, with the builders of
 :mod:`sorgui.render`, everything the viewport draws: the mesh of the square-free part of ``f``
 (coloured by side), the axis, the profile curve in a plane through the axis, the centre of a
-sphere, and a patch of the first real parameterization. All of it is ``numpy`` data (no Qt, no
+sphere, a patch of the first real parameterization, the axes of the factors of a reducible
+surface, and for rounded input the approximate axis and the deviation from the nearest exact
+surface (docs/math.md, "Rounded input"). All of it is ``numpy`` data (no Qt, no
 VTK objects), so it crosses the process boundary by pickling and the GUI thread only wraps it.
 
 The drawn region is a ball. Its centre and radius come from :func:`view_region`, which looks
@@ -13,7 +15,7 @@ centre, or the origin), so that bounded parts of the surface are shown whole.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from itertools import product
 
 import numpy as np
@@ -39,10 +41,9 @@ from sorgui.render import (
     surface_mesh,
 )
 from sorgui.render.geometry import foot_on_line, perpendicular_vector, unit
-from sorgui.render.sampling import evaluate_points, term_arrays
+from sorgui.render.sampling import evaluate_points, term_arrays, value_and_gradient
+from sorgui.session.job import DEFAULT_RESOLUTION
 
-DEFAULT_RESOLUTION = 150
-"""Grid nodes along the diameter of the drawn ball."""
 
 PATCH_RANGE = (-3.0, 3.0)
 """Range of both parameters of the drawn parametric patch (the rotation parameter ``s`` is the
@@ -65,7 +66,10 @@ class SceneData:
 
     ``terms``: float terms of the square-free part of ``f`` (for picking); ``region``: the drawn
     ball; ``axis_point``/``axis_direction``: the unique axis as floats, if there is one;
-    ``notes``: what the picture leaves out, in words for the user.
+    ``notes``: what the picture leaves out, in words for the user. ``factor_axes``: the axes
+    of the factors of a reducible surface (one polyline each); ``approximate_axis``: the
+    floating-point axis of rounded input; ``deviation``: per surface point, the distance to
+    the nearest exact surface (``|g|/|∇g|``, length units), when there is one.
     """
 
     terms: Terms
@@ -78,6 +82,9 @@ class SceneData:
     axis_point: tuple[float, float, float] | None
     axis_direction: tuple[float, float, float] | None
     notes: tuple[str, ...]
+    factor_axes: LineData = LineData.empty()
+    approximate_axis: LineData = LineData.empty()
+    deviation: np.ndarray | None = None
 
     @property
     def axis(self) -> tuple[np.ndarray, np.ndarray] | None:
@@ -208,13 +215,20 @@ def _patch(param: Parametrization, region: ClipSphere) -> PatchData | None:
 
 
 def build_scene(
-    analysis: Analysis, radius: float | None = None, resolution: int = DEFAULT_RESOLUTION
+    analysis: Analysis,
+    radius: float | None = None,
+    resolution: int = DEFAULT_RESOLUTION,
+    region: ClipSphere | None = None,
+    patch: bool = True,
 ) -> SceneData:
-    """The scene of ``analysis``; ``radius`` overrides the automatic size of the drawn ball."""
+    """The scene of ``analysis``; ``radius`` overrides the automatic size of the drawn ball,
+    ``region`` the whole ball (the nearest exact surface is drawn in the typed one's ball);
+    ``patch=False`` leaves the parameterization patch for :func:`with_patch`."""
     rec = analysis.recognition
     terms = polynomial_terms(analysis.squarefree)
     center, axis_direction = natural_center(rec)
-    region = view_region(terms, center, axis_direction)
+    if region is None:
+        region = view_region(terms, center, axis_direction)
     if radius is not None:
         region = ClipSphere(region.center, radius)
     c, r = np.asarray(region.center), region.radius
@@ -238,7 +252,12 @@ def build_scene(
             region,
         )
     marker = sphere_center_marker(float_vector(rec.center), region) if rec.center else None
-    real = [p for p in analysis.parametrizations if p.real and p.verified]
+    real = [p for p in analysis.parametrizations if p.real and p.verified] if patch else []
+    factor_lines = [
+        axis_line(float_vector(f.recognition.axis.point), float_vector(f.recognition.axis.direction), region)
+        for f in analysis.factors
+        if f.recognition.axis is not None and len(analysis.factors) > 1
+    ]
     return SceneData(
         terms=terms,
         region=region,
@@ -250,4 +269,34 @@ def build_scene(
         axis_point=axis_point,  # type: ignore[arg-type]
         axis_direction=tuple(axis_direction) if axis_direction is not None else None,  # type: ignore[arg-type]
         notes=tuple(notes),
+        factor_axes=LineData.from_polylines([line.points for line in factor_lines if not line.is_empty]),
     )
+
+
+def with_patch(scene: SceneData, analysis: Analysis) -> SceneData:
+    """``scene`` with the patch of the first real verified parameterization of ``analysis``."""
+    real = [p for p in analysis.parametrizations if p.real and p.verified]
+    return replace(scene, patch=_patch(real[0], scene.region) if real else None)
+
+
+def with_approximation(scene: SceneData, analysis: Analysis) -> SceneData:
+    """``scene`` with the approximate axis of rounded input and, when the nearest exact surface
+    ``g`` is known, each surface point's distance to it, ``|g(p)| / |∇g(p)|`` (first order)."""
+    approx = analysis.approximate
+    if approx is None:
+        return scene
+    line = LineData.empty()
+    if approx.axis is not None:
+        line = axis_line(np.asarray(approx.axis.point), np.asarray(approx.axis.direction), scene.region)
+    deviation = None
+    if approx.nearest is not None and not scene.surface.is_empty:
+        deviation = surface_deviation(polynomial_terms(approx.nearest.polynomial), scene.surface.points)
+    return replace(scene, approximate_axis=line, deviation=deviation)
+
+
+def surface_deviation(terms: Terms, points: np.ndarray) -> np.ndarray:
+    """``|g(p)| / |∇g(p)|`` at ``points``: the first-order distance from ``p`` to ``g = 0``."""
+    values, grads = value_and_gradient(terms, points)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        distance = np.abs(values) / np.linalg.norm(grads, axis=1)
+    return np.where(np.isfinite(distance), distance, np.nan)

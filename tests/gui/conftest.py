@@ -101,6 +101,7 @@ def make_window(qtbot):  # noqa: ANN001, ANN201
 
     yield make
     for window in windows:
+        window.setWindowModified(False)  # no unsaved-changes question at the end of a test
         window.close()
         window.deleteLater()
     QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)

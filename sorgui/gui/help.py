@@ -1,0 +1,150 @@
+"""The Help menu: input syntax, mouse and keys, what the results mean, the paper, known limits.
+
+Each topic is a page of HTML shown in one non-modal :class:`HelpDialog` (a ``QTextBrowser``),
+so the user can keep it open beside the window. The examples in the input-syntax page are
+equations the parser accepts (a test parses every one of them).
+"""
+
+from __future__ import annotations
+
+import html
+
+from PySide6.QtWidgets import QDialog, QDialogButtonBox, QTextBrowser, QVBoxLayout, QWidget
+
+from sorgui.export.text import TABLE_1
+
+SYNTAX_EXAMPLES = (
+    ("(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)", "a torus: powers with ^, implicit multiplication"),
+    ("x**2 + y**2 = z**2", "a cone: ** works too, and an equation sides = sides"),
+    ("2xy^2 + 2(x+1) - z", "implicit multiplication of numbers, variables and brackets"),
+    ("x² + y² − 1 = 0", "Unicode superscripts and minus sign"),
+    ("0.25x^2 + y^2/4 + z^2 - 1", "decimals are exact: 0.25 is 1/4"),
+    ("x^2 + y^2 - 2z^2 + sqrt(2)·x·z", "square roots of rationals, the dot · as multiplication"),
+    ("1.5E-3x^2 + y^2 + z^2 - 1", "E-notation (rounded input: sorgui also looks for a nearby exact surface)"),
+)
+"""Equations the parser accepts, with what each shows."""
+
+KEYS = (
+    ("Ctrl+Return", "analyse the equation"),
+    ("Esc", "cancel the running analysis (Singular included)"),
+    ("Ctrl++ / Ctrl+− / Ctrl+0", "zoom the formulas in, out, back to normal"),
+    ("Ctrl+N, Ctrl+O, Ctrl+S", "new, open, save an equation file"),
+    ("Ctrl+1 … Ctrl+9", "the examples"),
+    ("Ctrl+R", "reset the 3D view"),
+    ("Ctrl+Alt+A / Ctrl+Alt+C", "view along / across the axis"),
+    ("Ctrl+Alt+X / Y / Z", "view along a coordinate axis"),
+    ("Ctrl+Alt+O", "orthographic or perspective projection"),
+    ("Ctrl+Alt+W", "wireframe or shaded surface"),
+    ("Ctrl+Alt+M", "meridian section: cut along the plane through the axis and the profile"),
+    ("P (in the 3D view)", "inspect the surface under the mouse"),
+)
+MOUSE = (
+    ("left drag", "rotate the view"),
+    ("Shift + left drag, or middle drag", "move the view"),
+    ("wheel, or right drag", "zoom the view"),
+    ("right click on the surface", "inspect the point: its normal, whether the normal meets the axis, "
+                                    "and the circle of latitude through it"),
+)
+
+RESULTS_HTML = """
+<h3>The verdict</h3>
+<p>sorgui computes the <b>symmetry algebra L</b> of the surface X: f = 0, the infinitesimal
+isometries X ↦ ω × X + b that keep f = 0 (docs/math.md §2). Its dimension and its elements say
+what symmetry X has:</p>
+<ul>
+<li><b>surface of revolution</b>: L is spanned by the rotations about one line, the <b>axis</b>;</li>
+<li><b>cylinder of revolution</b>: rotations about the axis and translations along it;</li>
+<li><b>sphere</b>: every line through the centre is an axis; <b>plane</b>: every line along the normal;</li>
+<li><b>extrusion</b>: only translations along one direction (a cylinder over a plane curve): not a
+surface of revolution;</li>
+<li><b>none</b>: dim L = 0, no continuous symmetry at all.</li>
+</ul>
+<p>The <b>profile</b> p(x, y) = 0 is the section by a plane through the axis, with x along the
+axis and y the distance to it; <b>P²</b> is the profile with y² replaced by y.</p>
+<h3>Table 1 of the paper</h3>
+<p>Whether X can be parameterized by rational functions depends on the genera of P and P²
+(the geometric genus: 0 for a rational curve):</p>
+{table}
+<p><b>Rational over ℂ</b>: a parameterization with complex coefficients exists.
+<b>Unirational over ℝ</b>: a real rational map covers X, possibly several times.
+<b>Rational over ℝ</b>: a real parameterization that is one-to-one almost everywhere exists; for
+rows 3 and 4 it depends on the number of real components, decided by the real roots of h.
+Every parameterization sorgui shows has been verified exactly by substitution.</p>
+<h3>Rounded input</h3>
+<p>Decimals in the input are read exactly, but sorgui also asks whether the equation is, within
+the rounding of its printed digits, a surface of revolution: it then shows the relative distance,
+the approximate axis, and the <b>nearest exact surface</b>, whose exact analysis you can switch to.</p>
+"""
+
+LIMITS_HTML = """
+<ul>
+<li>Total degree at most 60; coefficients rational or in ℚ(√n₁, √n₂, …).</li>
+<li>The rationality analysis uses Singular (a subprocess) and stops after the time limit; then
+the Table 1 row stays undecided and the recognition is still shown.</li>
+<li>Reducible surfaces are recognised as a whole and factor by factor; the rationality analysis
+needs an irreducible surface.</li>
+<li>The 3D view samples the surface on a grid inside a ball: thin parts, isolated real points and
+singular curves may not be drawn.</li>
+<li>For rounded input the nearness is a floating-point judgement against the tolerance; the
+nearest exact surface is exact, and its own analysis is exact.</li>
+</ul>
+"""
+
+PAPER_HTML = """
+<p>sorgui implements</p>
+<blockquote>J. Vršek, M. Lávička, <i>Determining surfaces of revolution from their implicit
+equations</i>, Journal of Computational and Applied Mathematics.</blockquote>
+<p>Its Section 2 is the recognition (the symmetry algebra and the axis), its Section 3 the
+rationality (Table 1 and the tubular surface), its Appendix the two examples in the Examples menu.
+The repository's own account of the mathematics is <tt>docs/math.md</tt>.</p>
+"""
+
+
+def _rows(rows: tuple[tuple[str, str], ...]) -> str:
+    cells = "".join(f"<tr><td><b>{html.escape(a)}</b></td><td>{html.escape(b)}</td></tr>" for a, b in rows)
+    return f"<table cellspacing='4'>{cells}</table>"
+
+
+def table_1_html() -> str:
+    head = "<tr><th>row</th><th>genus(P)</th><th>genus(P²)</th><th>X over ℂ</th><th>X over ℝ</th></tr>"
+    body = "".join(
+        f"<tr><td align='center'>{i + 1}</td>" + "".join(f"<td align='center'>{c}</td>" for c in row) + "</tr>"
+        for i, row in enumerate(TABLE_1)
+    )
+    return f"<table border='1' cellspacing='0' cellpadding='4'>{head}{body}</table>"
+
+
+TOPICS = {
+    "syntax": ("Input Syntax", "<h3>Input syntax</h3><p>Type a polynomial in x, y, z, or an equation "
+               "(left = right). Nothing you type is ever run as code: sorgui has its own parser.</p>"
+               + _rows(SYNTAX_EXAMPLES)),
+    "keys": ("Mouse and Keys", "<h3>Keys</h3>" + _rows(KEYS) + "<h3>Mouse in the 3D view</h3>" + _rows(MOUSE)
+             + "<p>VTK's own keys (wireframe, stereo, quit, …) are switched off.</p>"),
+    "results": ("What the Results Mean", RESULTS_HTML.replace("{table}", table_1_html())),
+    "paper": ("The Paper", PAPER_HTML),
+    "limits": ("Known Limits", "<h3>Known limits</h3>" + LIMITS_HTML),
+}
+"""Help topic → (menu title, HTML page)."""
+
+
+class HelpDialog(QDialog):
+    """A non-modal window showing one help topic at a time."""
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("helpDialog")
+        self.resize(640, 560)
+        self.browser = QTextBrowser(self)
+        self.browser.setOpenExternalLinks(True)
+        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Close, self)
+        buttons.rejected.connect(self.close)
+        layout = QVBoxLayout(self)
+        layout.addWidget(self.browser)
+        layout.addWidget(buttons)
+
+    def show_topic(self, topic: str) -> None:
+        title, page = TOPICS[topic]
+        self.setWindowTitle(f"{title} — sorgui")
+        self.browser.setHtml(page)
+        self.show()
+        self.raise_()

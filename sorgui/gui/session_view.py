@@ -1,0 +1,249 @@
+"""The window's view of the session: it subscribes to the session's events and only renders.
+
+:class:`SessionView` turns every event of :class:`~sorgui.session.model.Session` into updates of
+the run panel, the results pane, the 3D viewport and the status line:
+
+* a new run clears the results and the 3D view at once (no old verdict under a new equation);
+* stages are shown as they start and finish, each result as it arrives (the verdict and the
+  axis with their mesh while Singular still runs); rebuilding the results pane is coalesced to
+  once per turn of the event loop;
+* when the edited equation differs from the analysed one, the results are greyed, the 3D view's
+  surface too, and the notice says they belong to the previous equation;
+* an input error, a failed stage or a cancelled run is said at the top of the pane;
+* for rounded input, the switch shows the equation as typed or the nearest exact surface.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QObject, QTimer, Signal
+from PySide6.QtWidgets import QLabel
+
+from sorgui.engine.errors import ParseError
+from sorgui.gui.camera import CameraState
+from sorgui.gui.editor import EquationEditor
+from sorgui.gui.results import ResultsPane
+from sorgui.gui.stages import RunPanel, seconds_text
+from sorgui.gui.viewport import Viewport
+from sorgui.session.model import WORKER_STAGES, Run, Session, StageState
+
+CAPTION_CHARACTERS = 90
+"""The viewport's caption shows this much of the equation."""
+
+STALE_NOTICE = ("<b>These results are for the previous equation.</b> The equation above has "
+                "changed: press Analyze (Ctrl+Return) to analyse it.")
+
+
+def short(text: str, limit: int = CAPTION_CHARACTERS) -> str:
+    """``text`` on one line, elided to ``limit`` characters."""
+    flat = " ".join(text.split())
+    return flat if len(flat) <= limit else flat[: limit - 1] + "…"
+
+
+class SessionView(QObject):
+    """Renders one :class:`Session` into the window's widgets.
+
+    :attr:`shown` is emitted with the run's :class:`~sorgui.session.job.JobResult` once a run
+    has finished and its results and scene are on screen (and after a re-mesh).
+    """
+
+    shown = Signal(object)
+
+    def __init__(
+        self,
+        session: Session,
+        editor: EquationEditor,
+        panel: RunPanel,
+        results: ResultsPane,
+        viewport: Viewport,
+        status: QLabel,
+    ) -> None:
+        super().__init__(results)
+        self.session = session
+        self.editor, self.panel, self.results, self.viewport, self.status = editor, panel, results, viewport, status
+        self.restore_camera: CameraState | None = None
+        """A camera to restore at the next first scene (the state of the last session)."""
+        self._fresh_scene = True
+        self._pane_timer = QTimer(self)
+        self._pane_timer.setSingleShot(True)
+        self._pane_timer.setInterval(0)
+        self._pane_timer.timeout.connect(self.refresh_pane)
+        events = session.events
+        events.run_started.connect(self._on_run_start_change)
+        events.state_changed.connect(self._on_stage_change)
+        events.analysis_changed.connect(self._on_results_change)
+        events.formulas_changed.connect(self._on_results_change)
+        events.scene_changed.connect(self._on_scene_change)
+        events.nearest_scene_changed.connect(self._on_nearest_scene_change)
+        events.run_finished.connect(self._on_run_finish_change)
+        events.stale_changed.connect(self._on_stale_change)
+        events.view_changed.connect(self._on_view_change)
+        events.refreshed.connect(self._on_refresh_change)
+        panel.view_requested.connect(self._on_view_request_change)
+
+    def close(self) -> None:
+        """Stop listening (the window is closing)."""
+        self._pane_timer.stop()
+        self.session.events.disconnect_all()
+
+    # --- rendering ---
+
+    def refresh_pane(self) -> None:
+        """Rebuild the results pane from the session's current run and view."""
+        self._pane_timer.stop()
+        run = self.session.run
+        if run is None:
+            return
+        if run.outcome == "invalid":
+            self.results.show_message("Not a polynomial in x, y, z", run.message or "", "error")
+        elif run.analysis is None:
+            if run.running:
+                running = next((s.title for s in run.stage_list() if s.state is StageState.RUNNING), "Starting")
+                self.results.show_message("Analysing…", f"{running}. The verdict appears as soon as it is known.",
+                                          "info")
+            elif run.outcome == "cancelled":
+                self.results.show_message("Cancelled", "The analysis was stopped before the verdict was known.",
+                                          "info")
+            else:
+                self.results.show_message("The analysis failed", run.message or "", "error")
+        else:
+            nearest = self.session.view == "nearest" and self.session.nearest_analysis is not None
+            if nearest:
+                analysis = self.session.nearest_analysis
+                formulas = {k[len("nearest."):]: f for k, f in run.formulas.items() if k.startswith("nearest.")}
+            else:
+                analysis = run.analysis
+                formulas = {k: f for k, f in run.formulas.items() if not k.startswith("nearest.")}
+            pending = {s.name for s in run.stage_list() if s.state in (StageState.PENDING, StageState.RUNNING)}
+            worker = tuple((name, run.stages[name].seconds) for name in WORKER_STAGES
+                           if name in run.stages and run.stages[name].state is StageState.DONE)
+            self.results.show_analysis(analysis, formulas, worker, pending=pending, nearest=nearest)
+        self.results.set_stale(self.session.stale)
+        self.panel.set_nearest_available(self.session.nearest_analysis is not None, self.session.view)
+
+    def _schedule_pane(self) -> None:
+        if not self._pane_timer.isActive():
+            self._pane_timer.start()
+
+    def _caption(self, run: Run, nearest: bool = False) -> str:
+        if nearest:
+            return "The nearest exact surface of revolution of: " + short(run.text)
+        return "f = " + short(run.text)
+
+    def _update_notice(self) -> None:
+        run = self.session.run
+        if self.session.stale:
+            self.panel.set_notice("stale", STALE_NOTICE)
+        elif run is None or run.running or run.outcome == "finished":
+            self.panel.set_notice(None)
+        elif run.outcome == "invalid":
+            self.panel.set_notice("error", f"<b>Not a polynomial:</b> {run.message}")
+        elif run.outcome == "failed":
+            failed = run.failed_stage()
+            where = f" in the stage “{failed.title}”" if failed is not None else ""
+            kept = " The results of the stages before it are shown." if run.analysis is not None else ""
+            self.panel.set_notice("error", f"<b>The analysis failed{where}:</b> {run.message}.{kept}")
+        else:
+            kept = "what was done is shown" if run.analysis is not None else "nothing was finished"
+            self.panel.set_notice("cancelled", f"<b>Cancelled</b> after {seconds_text(run.elapsed())}: "
+                                               f"{kept}, the rest is marked cancelled.")
+
+    # --- handlers ---
+
+    def _on_run_start_change(self, run: Run) -> None:
+        self._fresh_scene = True
+        self.panel.show_run(run)
+        self._update_notice()
+        self.refresh_pane()
+        self.viewport.clear(caption="Analysing: " + short(run.text))
+        self.status.setText("Starting…")
+
+    def _on_stage_change(self, name: str, state: StageState) -> None:
+        run = self.session.run
+        if run is None:
+            return
+        self.panel.show_run(run)
+        if state is StageState.RUNNING and run.running:
+            self.status.setText(run.stages[name].title + "…")
+
+    def _on_results_change(self, _value: object) -> None:
+        self._schedule_pane()
+
+    def _on_scene_change(self, scene: object) -> None:
+        run = self.session.run
+        if run is None or self.session.view != "typed":
+            return
+        self._show_scene(scene, self._caption(run))
+
+    def _on_nearest_scene_change(self, scene: object) -> None:
+        run = self.session.run
+        if run is not None and self.session.view == "nearest":
+            self._show_scene(scene, self._caption(run, nearest=True))
+
+    def _show_scene(self, scene: object, caption: str) -> None:
+        reset = self._fresh_scene
+        self._fresh_scene = False
+        self.viewport.show_scene(scene, reset_camera=reset and self.restore_camera is None, caption=caption)
+        if reset and self.restore_camera is not None:
+            self.viewport.restore_camera(self.restore_camera)
+            self.restore_camera = None
+        if self.session.stale:
+            self.viewport.set_stale(True, "Previous equation (out of date): " + caption)
+
+    def _on_run_finish_change(self, run: Run) -> None:
+        self.refresh_pane()
+        self.panel.show_run(run)
+        self._update_notice()
+        if run.outcome == "finished":
+            analysis = run.analysis
+            verdict = "surface of revolution" if analysis.is_sor else "not a surface of revolution"
+            if analysis.approximate is not None and analysis.approximate.near_sor and not analysis.is_sor:
+                verdict = "nearly a surface of revolution"
+            summary = run.scene.summary() if run.scene is not None else ""
+            notes = " ".join(run.scene.notes) if run.scene is not None else ""
+            self.status.setText(f"Done in {run.elapsed():.2f} s: {verdict}; {summary}. {notes}".strip())
+            if run.result is not None:
+                self.shown.emit(run.result)
+        elif run.outcome == "invalid":
+            message, position, end = run.error
+            self.editor.show_error(ParseError(message, position, end))
+            self.status.setText("Fix the equation to analyse it")
+            self.viewport.clear(caption="No surface: the equation is not a polynomial")
+        elif run.outcome == "failed":
+            self.status.setText("Failed: " + (run.message or ""))
+            if run.scene is None:
+                self.viewport.clear(caption="No surface: the analysis failed")
+        else:
+            self.status.setText("Cancelled")
+
+    def _on_stale_change(self, stale: bool) -> None:
+        run = self.session.run
+        self.results.set_stale(stale)
+        self._update_notice()
+        if run is not None and self.viewport.scene is not None:
+            caption = self._caption(run, self.session.view == "nearest")
+            self.viewport.set_stale(stale, ("Previous equation (out of date): " if stale else "") + caption)
+
+    def _on_view_request_change(self, view: str) -> None:
+        if self.session.nearest_analysis is not None or view == "typed":
+            self.session.set_view(view)
+
+    def _on_view_change(self, view: str) -> None:
+        run = self.session.run
+        self.refresh_pane()
+        if run is None:
+            return
+        scene = run.nearest_scene if view == "nearest" else run.scene
+        if scene is not None:
+            self.viewport.show_scene(scene, reset_camera=False, caption=self._caption(run, view == "nearest"))
+            if self.session.stale:
+                self.viewport.set_stale(True)
+
+    def _on_refresh_change(self, what: str, result: object) -> None:
+        if result is None:
+            self.status.setText("Could not redo the " + ("mesh" if what == "scene" else "formulas"))
+            return
+        if what == "scene":
+            self.status.setText(f"Re-meshed: {result.scene.summary()}")
+            self.shown.emit(result)
+        else:
+            self.refresh_pane()

@@ -1,0 +1,187 @@
+"""The run panel above the results: what is being analysed, how far it is, and whether the
+results below belong to the equation in the editor.
+
+It renders the :class:`~sorgui.session.model.Run` of the session: one line per stage with
+its state and time (the running one with an elapsed-time counter), a determinate progress bar
+over the stages, and a notice at the top for everything the user must not miss: results that
+belong to the previous equation, an input error, a failed stage, a cancelled run. It also holds
+the switch between the equation as typed and the nearest exact surface (rounded input).
+"""
+
+from __future__ import annotations
+
+import html
+import time
+
+from PySide6.QtCore import Qt, QTimer, Signal
+from PySide6.QtWidgets import (
+    QButtonGroup,
+    QHBoxLayout,
+    QLabel,
+    QProgressBar,
+    QRadioButton,
+    QVBoxLayout,
+    QWidget,
+)
+
+from sorgui.session.model import Run, StageState
+
+TICK_MS = 200
+"""The elapsed-time counter of the running stage is redrawn this often."""
+
+SYMBOLS = {
+    StageState.PENDING: ("○", "#90a4ae"),
+    StageState.RUNNING: ("◔", "#1565c0"),
+    StageState.DONE: ("✓", "#2e7d32"),
+    StageState.FAILED: ("✗", "#c62828"),
+    StageState.CANCELLED: ("⊘", "#8d6e63"),
+    StageState.SKIPPED: ("–", "#b0bec5"),
+}
+
+NOTICE_STYLE = {
+    "stale": "background: #fff8e1; color: #6d4c00; border: 1px solid #ffe082;",
+    "error": "background: #fdecea; color: #b71c1c; border: 1px solid #ef9a9a;",
+    "cancelled": "background: #efebe9; color: #4e342e; border: 1px solid #d7ccc8;",
+}
+
+
+def seconds_text(seconds: float) -> str:
+    """``"34 ms"``, ``"1.2 s"``: short enough for a stage line."""
+    return f"{seconds * 1000:.0f} ms" if seconds < 1.0 else f"{seconds:.1f} s"
+
+
+class RunPanel(QWidget):
+    """The stages of the current run, its progress, a notice line and the view switch.
+
+    :attr:`view_requested` carries ``"typed"`` or ``"nearest"`` when the user switches.
+    """
+
+    view_requested = Signal(str)
+
+    def __init__(self, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setObjectName("runPanel")
+        self._run: Run | None = None
+        self.notice = QLabel(self)
+        self.notice.setObjectName("runNotice")
+        self.notice.setWordWrap(True)
+        self.notice.setTextFormat(Qt.TextFormat.RichText)
+        self.notice.setVisible(False)
+        self.progress_bar = QProgressBar(self)
+        self.progress_bar.setObjectName("stageProgress")
+        self.progress_bar.setTextVisible(True)
+        self.progress_bar.setFormat("%v of %m stages")
+        self.progress_bar.setMaximumHeight(16)
+        self.stage_line = QLabel(self)
+        self.stage_line.setObjectName("stageLine")
+        self.stage_line.setWordWrap(True)
+        self.stage_line.setTextFormat(Qt.TextFormat.RichText)
+        self.stage_line.setToolTip(
+            "The stages of the analysis as they finish: ✓ done, ◔ running, ○ pending, "
+            "– not needed for this surface, ⊘ cancelled, ✗ failed"
+        )
+        self.typed_button = QRadioButton("the equation as typed", self)
+        self.typed_button.setObjectName("viewTyped")
+        self.typed_button.setChecked(True)
+        self.nearest_button = QRadioButton("the nearest exact surface", self)
+        self.nearest_button.setObjectName("viewNearest")
+        self.nearest_button.setToolTip(
+            "The exact surface of revolution the rounded coefficients were meant to be: its own "
+            "exact analysis (Table 1 row, parameterizations) and its picture"
+        )
+        group = QButtonGroup(self)
+        group.addButton(self.typed_button)
+        group.addButton(self.nearest_button)
+        self.view_row = QWidget(self)
+        row = QHBoxLayout(self.view_row)
+        row.setContentsMargins(0, 0, 0, 0)
+        row.addWidget(QLabel("Show:"))
+        row.addWidget(self.typed_button)
+        row.addWidget(self.nearest_button)
+        row.addStretch(1)
+        self.view_row.setVisible(False)
+        self.typed_button.toggled.connect(self._on_view_toggle_change)
+
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(8, 2, 8, 2)
+        layout.setSpacing(3)
+        layout.addWidget(self.notice)
+        layout.addWidget(self.progress_bar)
+        layout.addWidget(self.stage_line)
+        layout.addWidget(self.view_row)
+
+        self._timer = QTimer(self)
+        self._timer.setInterval(TICK_MS)
+        self._timer.timeout.connect(self._on_tick_change)
+        self.show_run(None)
+
+    # --- public API ---
+
+    def show_run(self, run: Run | None) -> None:
+        """Show the stages of ``run`` (``None``: nothing analysed yet)."""
+        self._run = run
+        if run is None:
+            self.progress_bar.setVisible(False)
+            self.stage_line.setText("")
+            self._timer.stop()
+            return
+        self.progress_bar.setVisible(True)
+        done, total = run.progress
+        self.progress_bar.setRange(0, total)
+        self.progress_bar.setValue(done)
+        self.stage_line.setText(self._stage_text(run))
+        if run.running:
+            self._timer.start()
+        else:
+            self._timer.stop()
+            self.progress_bar.setVisible(False)
+
+    def set_notice(self, kind: str | None, text: str = "") -> None:
+        """Show a notice (``"stale"``, ``"error"``, ``"cancelled"``) or hide it (``None``)."""
+        if kind is None:
+            self.notice.setVisible(False)
+            self.notice.setText("")
+            return
+        self.notice.setProperty("kind", kind)
+        self.notice.setText(text)
+        self.notice.setStyleSheet(f"QLabel {{ {NOTICE_STYLE[kind]} border-radius: 4px; padding: 4px 6px; }}")
+        self.notice.setVisible(True)
+
+    @property
+    def notice_kind(self) -> str | None:
+        return self.notice.property("kind") if self.notice.isVisible() else None
+
+    def set_nearest_available(self, available: bool, view: str = "typed") -> None:
+        """Offer the switch to the nearest exact surface (only when there is one)."""
+        self.view_row.setVisible(available)
+        self.typed_button.blockSignals(True)
+        self.nearest_button.blockSignals(True)
+        self.typed_button.setChecked(view == "typed")
+        self.nearest_button.setChecked(view == "nearest")
+        self.typed_button.blockSignals(False)
+        self.nearest_button.blockSignals(False)
+
+    # --- helpers ---
+
+    def _stage_text(self, run: Run) -> str:
+        now = time.monotonic()
+        parts = []
+        for stage in run.stage_list():
+            symbol, color = SYMBOLS[stage.state]
+            label = html.escape(stage.title)
+            if stage.state is StageState.RUNNING:
+                text = f"<b>{label}</b> {seconds_text(stage.elapsed(now))}…"
+            elif stage.state is StageState.DONE:
+                text = f"{label} {seconds_text(stage.seconds)}"
+            else:
+                text = f"{label} <i>{stage.state.value}</i>" if stage.state is not StageState.PENDING else label
+            parts.append(f"<span style='color:{color}'>{symbol}</span>&nbsp;{text}")
+        total = f"<span style='color:#546e7a'>total {seconds_text(run.elapsed())}</span>"
+        return " · ".join(parts) + " · " + total
+
+    def _on_tick_change(self) -> None:
+        if self._run is not None:
+            self.stage_line.setText(self._stage_text(self._run))
+
+    def _on_view_toggle_change(self, typed: bool) -> None:
+        self.view_requested.emit("typed" if typed else "nearest")

@@ -1,0 +1,129 @@
+"""The results in words: the verdict, the near case of rounded input, why a surface is not one
+of revolution, and the tooltips of the results pane.
+
+Only strings are built here, from the engine's result objects (no Qt, no mathematics): the
+results pane and the Help menu show them. The terms are those of ``docs/math.md`` (the symmetry
+algebra ``L``, the profile ``P``, Table 1 of Vršek & Lávička).
+"""
+
+from __future__ import annotations
+
+from sorgui.engine.report import Analysis, Approximation, Recognition
+
+KIND_WORDS = {
+    "revolution": "a surface of revolution about one axis",
+    "cylinder_of_revolution": "a cylinder of revolution (rotations about its axis and translations along it)",
+    "sphere": "a sphere (every line through the centre is an axis)",
+    "plane": "a plane (every line along the normal is an axis)",
+    "extrusion": "an extrusion: a cylindrical surface over a plane curve, invariant only under "
+                 "translations along one direction",
+    "none": "no continuous symmetry at all",
+}
+
+CAPTION_TIPS = {
+    "f(x, y, z)": "The equation as sorgui read it (exact, expanded): the surface X is f = 0",
+    "point c": "A point of the axis with coordinates in the field K of the input",
+    "direction a": "A direction vector of the axis (not normalised: it stays exact)",
+    "line": "The axis as the line c + t·a",
+    "Plücker (a : c × a)": "Plücker coordinates of the axis: the same for every choice of c and a",
+    "p(x, y) = 0": "The profile curve: x along the axis, y the distance to it (MATH.md §3)",
+    "P²: y² → y": "The profile with y² replaced by y: the curve P² whose genus decides Table 1",
+    "p̃(s, r) = f(c + s·a + r·u)": "The profile in the K-rational frame (c, a, u), exact",
+    "frame": "The frame of the profile: c on the axis, a along it, u perpendicular to it",
+    "checks": "Exact checks of the profile: evenness in r and f = p(x, √(y² + z²)) in the axis frame",
+    "status": "Whether the rationality analysis ran, and if not, why",
+    "genus(P)": "The geometric genus of the profile curve P (Singular); 'reducible' for a reducible P",
+    "genus(P²)": "The geometric genus of P²; genus 0 means X is rational over ℂ (Table 1)",
+    "X rational over ℂ": "Whether X has a rational parameterization with complex coefficients",
+    "X unirational over ℝ": "Whether a real rational map covers X (not necessarily one-to-one)",
+    "X rational over ℝ": "Whether X has a real rational parameterization that is one-to-one almost everywhere",
+    "P² parameterized by": "A rational parameterization (φ, ρ) of the curve P²",
+    "tubular surface T": "The tubular surface T of the paper's Section 3, through which X is parameterized",
+    "h = r̂·q̂": "The polynomial whose real roots decide the real rationality (paper, Section 3)",
+    "real roots of h": "Number of real roots of h: with none, X is rational over ℝ",
+    "τ: X ⇢ T": "The birational map from X to the tubular surface T",
+    "x": "x-coordinate of the parameterization", "y": "y-coordinate", "z": "z-coordinate",
+    "tolerance": "The relative tolerance in force: from the digits printed in the input, or --tolerance",
+    "near": "Whether f is, within the rounding of its coefficients, a surface of revolution",
+    "relative distance": "‖f − f̄‖₂ / ‖f‖₂ over the coefficients, f̄ the nearest rotation-invariant polynomial",
+    "in units of rounding": "The same distance measured in the rounding of the input: 1 or less is within it",
+    "singular values": "The smallest singular values of the floating-point symmetry system (★), relative",
+    "approximate axis": "The refined floating-point axis (length units of the input)",
+    "nearest exact surface": "The exact surface of revolution the rounded input was meant to be",
+    "max deviation": "The largest distance between the two zero sets inside the drawn ball (length units)",
+}
+
+
+def floats(values: tuple[float, ...] | None, digits: int = 6) -> str:
+    return "(" + ", ".join(f"{v:.{digits}g}" for v in values) + ")" if values else "–"
+
+
+def near_words(approx: Approximation) -> str:
+    """The near case in one sentence, as the issue's user expects it."""
+    axis = approx.axis
+    about = f" about the line {floats(axis.point)} + t·{floats(axis.direction)}" if axis is not None else ""
+    kind = "a surface of revolution" if approx.kind in (None, "revolution") else KIND_WORDS.get(approx.kind, approx.kind)
+    return f"not exactly, but within {approx.relative_distance:.2g} (relative) of {kind}{about}"
+
+
+def far_words(approx: Approximation) -> str:
+    """Why rounded input is *not* near a surface of revolution: how far it is."""
+    return (f"not near one either: the nearest rotation-invariant polynomial is {approx.relative_distance:.2g} "
+            f"away (relative), {approx.residual:.3g} times the rounding of the input "
+            f"(tolerance {approx.tolerance:.2g})")
+
+
+def verdict(analysis: Analysis) -> tuple[str, str, str]:
+    """``(title, detail, kind)`` of the verdict banner; ``kind`` is ``sor``, ``near`` or ``not``."""
+    rec = analysis.recognition
+    approx = analysis.approximate
+    detail = f"{KIND_WORDS.get(rec.symmetry, rec.symmetry)} · degree {rec.degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
+    if rec.is_sor:
+        return "Surface of revolution", detail, "sor"
+    if approx is not None and approx.near_sor:
+        return "Nearly a surface of revolution", near_words(approx) + f" · degree {rec.degree}", "near"
+    if approx is not None:
+        return "Not a surface of revolution", far_words(approx), "not"
+    return "Not a surface of revolution", detail, "not"
+
+
+def why_not(analysis: Analysis) -> list[str]:
+    """Sentences that explain a *no*: the symmetry algebra, the symmetry there is, the factors."""
+    rec = analysis.recognition
+    if rec.is_sor:
+        return []
+    lines = [_dimension_sentence(rec)]
+    if rec.symmetry == "extrusion" and rec.direction is not None:
+        lines.append(f"It is an extrusion: invariant under the translations along ({', '.join(rec.direction)}), "
+                     "but under no rotation, so it has no axis of revolution.")
+    elif rec.symmetry == "none":
+        lines.append("A surface of revolution is invariant under the rotations about its axis, a "
+                     "one-dimensional family of isometries; this surface has none, so no line is an axis.")
+    factors = analysis.factors
+    if len(factors) > 1:
+        sor = [(i, f) for i, f in enumerate(factors) if f.recognition.is_sor]
+        for index, factor in enumerate(factors):
+            lines.append(f"Factor {index + 1}: {_factor_words(factor.recognition)}.")
+        axes = {f.recognition.axis.plucker for _, f in sor if f.recognition.axis is not None}
+        if len(axes) > 1:
+            lines.append("The factors are surfaces of revolution about different axes (drawn in the 3D "
+                         "view), so their union is not one.")
+    return lines
+
+
+def _dimension_sentence(rec: Recognition) -> str:
+    dim = rec.symmetry_dimension
+    if dim == 0:
+        return ("The symmetry algebra L (the infinitesimal isometries ω × X + b that keep f = 0, MATH.md §2) "
+                "is zero: the surface has no continuous symmetry.")
+    return (f"The symmetry algebra L (the infinitesimal isometries ω × X + b that keep f = 0, MATH.md §2) "
+            f"has dimension {dim}, but contains no rotation about a line.")
+
+
+def _factor_words(rec: Recognition) -> str:
+    words = KIND_WORDS.get(rec.symmetry, rec.symmetry)
+    if rec.axis is not None:
+        words += f", axis ({', '.join(rec.axis.point)}) + t·({', '.join(rec.axis.direction)})"
+    if rec.center is not None:
+        words += f", centre ({', '.join(rec.center)})"
+    return words

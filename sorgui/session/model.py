@@ -1,0 +1,375 @@
+"""The application model: one equation, one analysis run, the state of each of its stages.
+
+A :class:`Session` owns the equation being edited and the current :class:`Run` (the analysis of
+one text: its stages, its typed results as they arrive, how it ended). It starts jobs through a
+:class:`Runner` (the window's process worker, or :class:`InlineRunner` here, without Qt), takes
+the worker's messages in :meth:`Session.handle`, and announces every change through
+:class:`~sorgui.session.events.SessionEvents`. Views subscribe and only render.
+
+Two rules make the window trustworthy: a new run drops everything of the previous one at once
+(no old verdict under a new equation), and the moment the edited equation differs from the
+analysed one the session is *stale* (``stale_changed(True)``), so views mark the results as
+belonging to the previous equation.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field, replace
+from enum import Enum
+from typing import TYPE_CHECKING, Any, Protocol
+
+from sorgui.engine.report import Analysis
+from sorgui.session.events import SessionEvents
+from sorgui.session.formulas import Formula
+from sorgui.session.job import JobRequest, JobResult, run_job
+
+if TYPE_CHECKING:
+    from sorgui.session.scene_data import SceneData
+
+STAGES = ("parse", "recognition", "factors", "scene", "rationality", "parametrizations", "formulas")
+"""The stages of a run in the order they usually start (the engine may add others, such as
+``approximate`` for rounded input: they are inserted where they start)."""
+
+WORKER_STAGES = ("scene", "formulas")
+"""Stages of the worker itself, which may run more than once (their times add up)."""
+
+STAGE_TITLES = {
+    "parse": "Reading the equation",
+    "recognition": "Symmetry algebra, axis and profile",
+    "factors": "Factors over K",
+    "approximate": "Nearest surface of revolution (rounded input)",
+    "scene": "Mesh of the surface",
+    "rationality": "Table 1 row and genera (Singular)",
+    "parametrizations": "Parameterizations",
+    "formulas": "Typesetting",
+}
+
+
+class StageState(str, Enum):
+    """Where a stage of a run is."""
+
+    PENDING = "pending"
+    RUNNING = "running"
+    DONE = "done"
+    FAILED = "failed"
+    CANCELLED = "cancelled"
+    SKIPPED = "skipped"
+    """Not needed for this input (e.g. no rationality for a surface that is not one of revolution)."""
+
+
+@dataclass
+class Stage:
+    """One stage of a run: its state, the seconds it took (summed over repeats) and, while it
+    runs, when it started (``time.monotonic``)."""
+
+    name: str
+    state: StageState = StageState.PENDING
+    seconds: float = 0.0
+    started: float | None = None
+
+    @property
+    def title(self) -> str:
+        return STAGE_TITLES.get(self.name, self.name)
+
+    def elapsed(self, now: float | None = None) -> float:
+        """Seconds so far: the recorded time, plus the running time if it runs."""
+        if self.state is StageState.RUNNING and self.started is not None:
+            return self.seconds + ((now if now is not None else time.monotonic()) - self.started)
+        return self.seconds
+
+
+@dataclass
+class Run:
+    """The analysis of one text: its stages and the results known so far.
+
+    ``outcome`` is ``None`` while it runs, then ``"finished"``, ``"invalid"`` (not a
+    polynomial: ``error`` is ``(message, position, end)``), ``"failed"`` (``message``) or
+    ``"cancelled"``.
+    """
+
+    text: str
+    request: JobRequest
+    stages: dict[str, Stage] = field(default_factory=lambda: {name: Stage(name) for name in STAGES})
+    analysis: Analysis | None = None
+    scene: SceneData | None = None
+    nearest_scene: SceneData | None = None
+    formulas: dict[str, Formula] = field(default_factory=dict)
+    outcome: str | None = None
+    message: str | None = None
+    error: tuple[str, int, int] | None = None
+    result: JobResult | None = None
+    started: float = field(default_factory=time.monotonic)
+    ended: float | None = None
+
+    @property
+    def running(self) -> bool:
+        return self.outcome is None
+
+    @property
+    def progress(self) -> tuple[int, int]:
+        """``(finished stages, all stages)``, skipped ones counted as finished."""
+        over = (StageState.DONE, StageState.SKIPPED, StageState.FAILED, StageState.CANCELLED)
+        return sum(s.state in over for s in self.stages.values()), len(self.stages)
+
+    def stage_list(self) -> list[Stage]:
+        return list(self.stages.values())
+
+    def failed_stage(self) -> Stage | None:
+        return next((s for s in self.stages.values() if s.state is StageState.FAILED), None)
+
+    def elapsed(self) -> float:
+        return (self.ended if self.ended is not None else time.monotonic()) - self.started
+
+
+class Runner(Protocol):
+    """Runs one job at a time and hands every message to the session's :meth:`Session.handle`;
+    starting a job supersedes the running one (whose messages are then never delivered)."""
+
+    def start(self, request: JobRequest) -> None: ...
+
+    def cancel(self) -> None: ...
+
+
+class InlineRunner:
+    """Runs a job to its end in the calling thread (the command line, tests): :meth:`start`
+    returns when the run is over. :meth:`cancel` may be called from a session callback."""
+
+    def __init__(self, deliver: Any) -> None:
+        import threading
+
+        self._deliver = deliver
+        self._cancel = threading.Event()
+
+    def start(self, request: JobRequest) -> None:
+        self._cancel.clear()
+        final = run_job(request, self._cancel, send=self._deliver)
+        self._deliver(*final)
+
+    def cancel(self) -> None:
+        self._cancel.set()
+
+
+VIEWS = ("typed", "nearest")
+"""What the results and the 3D view show: the equation as typed, or for rounded input the
+nearest exact surface of revolution (``Analysis.approximate.nearest``)."""
+
+
+class Session:
+    """The equation being edited, the current run, and the events views subscribe to."""
+
+    def __init__(self, runner: Runner | None = None) -> None:
+        self.events = SessionEvents()
+        self.runner: Runner = runner if runner is not None else InlineRunner(self.handle)
+        self.equation = ""
+        self.run: Run | None = None
+        self.view = "typed"
+        self._stale = False
+        self._refresh: str | None = None
+        """``"scene"`` or ``"formulas"`` while a job only redoes those for the current run."""
+
+    # --- the equation ---
+
+    @property
+    def stale(self) -> bool:
+        """Whether the shown results belong to another equation than the one being edited."""
+        return self._stale
+
+    def set_equation(self, text: str) -> None:
+        """The edited equation is now ``text`` (results of another text become stale)."""
+        if text == self.equation:
+            return
+        self.equation = text
+        self.events.equation_changed.emit(text)
+        self._update_stale()
+
+    def _update_stale(self) -> None:
+        stale = self.run is not None and self.run.text != self.equation
+        if stale != self._stale:
+            self._stale = stale
+            self.events.stale_changed.emit(stale)
+
+    # --- runs ---
+
+    def analyze(self, text: str | None = None, **options: Any) -> Run:
+        """Start the analysis of ``text`` (default: the edited equation); ``options`` are fields
+        of :class:`JobRequest` (``resolution``, ``style``, ``method``, …). Any previous run is
+        superseded and everything it showed is dropped at once."""
+        if text is not None:
+            self.set_equation(text)
+        request = JobRequest(self.equation, **options)
+        self._refresh = None
+        self.run = Run(self.equation, request)
+        self.view = "typed"
+        self._update_stale()
+        self.events.run_started.emit(self.run)
+        self.runner.start(request)
+        return self.run
+
+    def remesh(self, radius: float | None = None, resolution: int | None = None) -> bool:
+        """Rebuild the current run's scene in a ball of ``radius`` (no new analysis)."""
+        changes: dict[str, Any] = {"radius": radius, "style": None, "scene": True}
+        if resolution is not None:
+            changes["resolution"] = resolution
+        return self._redo("scene", changes)
+
+    def retypeset(self, style: Any) -> bool:
+        """Typeset the current run's formulas again in ``style`` (e.g. after a zoom)."""
+        return self._redo("formulas", {"style": style, "scene": False})
+
+    def _redo(self, what: str, changes: dict[str, Any]) -> bool:
+        """Redo the scene or the formulas of the finished current run (``False`` if there is none)."""
+        run = self.run
+        if run is None or run.outcome != "finished" or run.analysis is None or self._refresh is not None:
+            return False
+        self._refresh = what
+        self.runner.start(replace(run.request, analysis=run.analysis, **changes))
+        return True
+
+    def cancel(self) -> None:
+        """Ask the running job to stop; what is done stays, the rest becomes *cancelled*."""
+        if self.run is not None and self.run.running:
+            self.runner.cancel()
+
+    def set_view(self, view: str) -> None:
+        """Show the equation as typed (``"typed"``) or the nearest exact surface (``"nearest"``)."""
+        if view not in VIEWS:
+            raise ValueError(f"unknown view {view!r}; one of {VIEWS}")
+        if view == "nearest" and self.nearest_analysis is None:
+            raise ValueError("there is no nearest exact surface to show")
+        if view != self.view:
+            self.view = view
+            self.events.view_changed.emit(view)
+
+    @property
+    def nearest_analysis(self) -> Analysis | None:
+        """The exact analysis of the nearest exact surface of the current (rounded) input."""
+        run = self.run
+        if run is None or run.analysis is None or run.analysis.approximate is None:
+            return None
+        nearest = run.analysis.approximate.nearest
+        return None if nearest is None else nearest.analysis
+
+    # --- messages of the runner ---
+
+    def handle(self, kind: str, payload: Any) -> None:
+        """Take one message of the current job (see :mod:`sorgui.session.job`)."""
+        run = self.run
+        if run is None:
+            return
+        if self._refresh is not None:
+            self._handle_refresh(run, kind, payload)
+            return
+        if not run.running:
+            return
+        if kind == "progress":
+            self._start_stage(run, str(payload))
+        elif kind == "done":
+            name, seconds = payload
+            self._finish_stage(run, name, seconds, add=True)
+        elif kind == "analysis":
+            run.analysis = payload
+            for name, seconds in payload.timings:
+                self._finish_stage(run, name, seconds, add=False)
+            self.events.analysis_changed.emit(payload)
+        elif kind == "scene":
+            run.scene = payload
+            self.events.scene_changed.emit(payload)
+        elif kind == "nearest_scene":
+            run.nearest_scene = payload
+            self.events.nearest_scene_changed.emit(payload)
+        elif kind == "formulas":
+            run.formulas = payload
+            self.events.formulas_changed.emit(payload)
+        else:
+            self._end(run, kind, payload)
+
+    def _handle_refresh(self, run: Run, kind: str, payload: Any) -> None:
+        if kind == "scene":
+            run.scene = payload
+            self.events.scene_changed.emit(payload)
+        elif kind == "formulas":
+            run.formulas = payload
+            self.events.formulas_changed.emit(payload)
+        elif kind in ("finished", "failed", "cancelled", "invalid"):
+            what, self._refresh = self._refresh, None
+            if kind == "finished" and run.result is not None:
+                run.result = replace(run.result, scene=run.scene, formulas=run.formulas)
+            self.events.refreshed.emit(what, run.result if kind == "finished" else None)
+
+    def _set_state(self, run: Run, stage: Stage, state: StageState) -> None:
+        if stage.state is not state:
+            stage.state = state
+            self.events.state_changed.emit(stage.name, state)
+
+    def _stage(self, run: Run, name: str) -> Stage:
+        """The stage ``name``; an unplanned one is inserted after the last stage that started."""
+        if name not in run.stages:
+            names = list(run.stages)
+            started = [i for i, n in enumerate(names) if run.stages[n].state is not StageState.PENDING]
+            at = started[-1] + 1 if started else 0
+            names.insert(at, name)
+            old = run.stages
+            run.stages = {n: old[n] if n in old else Stage(n) for n in names}
+        return run.stages[name]
+
+    def _start_stage(self, run: Run, name: str) -> None:
+        now = time.monotonic()
+        for other in run.stages.values():
+            if other.state is StageState.RUNNING and other.name not in WORKER_STAGES and other.name != name:
+                other.seconds = now - (other.started or now)
+                other.started = None
+                self._set_state(run, other, StageState.DONE)
+                self.events.stage_done.emit(other.name, other.seconds)
+        stage = self._stage(run, name)
+        stage.started = now
+        self._set_state(run, stage, StageState.RUNNING)
+
+    def _finish_stage(self, run: Run, name: str, seconds: float, add: bool) -> None:
+        stage = self._stage(run, name)
+        stage.seconds = stage.seconds + seconds if add else seconds
+        stage.started = None
+        was_done = stage.state is StageState.DONE
+        self._set_state(run, stage, StageState.DONE)
+        if add or not was_done:
+            self.events.stage_done.emit(name, stage.seconds)
+
+    def _end(self, run: Run, kind: str, payload: Any) -> None:
+        run.outcome = kind if kind in ("finished", "invalid", "failed", "cancelled") else "failed"
+        run.ended = time.monotonic()
+        rest = {
+            "finished": StageState.SKIPPED,
+            "invalid": StageState.SKIPPED,
+            "failed": StageState.SKIPPED,
+            "cancelled": StageState.CANCELLED,
+        }[run.outcome]
+        running = {
+            "finished": StageState.DONE,
+            "invalid": StageState.FAILED,
+            "failed": StageState.FAILED,
+            "cancelled": StageState.CANCELLED,
+        }[run.outcome]
+        if kind == "finished":
+            run.analysis = payload.analysis
+            run.scene = run.scene if run.scene is not None else payload.scene
+            run.formulas = run.formulas or (payload.formulas or {})
+            run.nearest_scene = run.nearest_scene if run.nearest_scene is not None else payload.nearest_scene
+            run.result = replace(payload, scene=run.scene, formulas=run.formulas or payload.formulas,
+                                 nearest_scene=run.nearest_scene)
+        elif kind == "invalid":
+            run.error = tuple(payload)  # type: ignore[assignment]
+            run.message = str(payload[0])
+        elif kind == "failed":
+            run.message = str(payload)
+        else:
+            run.message = "cancelled"
+        now = time.monotonic()
+        for stage in run.stages.values():
+            if stage.state is StageState.RUNNING:
+                if stage.started is not None and stage.name not in WORKER_STAGES:
+                    stage.seconds += now - stage.started
+                stage.started = None
+                self._set_state(run, stage, running)
+            elif stage.state is StageState.PENDING:
+                self._set_state(run, stage, rest)
+        self.events.run_finished.emit(run)

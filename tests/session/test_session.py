@@ -1,0 +1,166 @@
+"""The Qt-free session: stages as they arrive, typed results, the never-stale rule, cancel.
+
+Real analyses (the exact engine and Singular) run in this process through the session's
+:class:`~sorgui.session.InlineRunner`; the state machine's rarer paths (a failed stage, an
+unplanned stage) are fed the worker's own messages.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from sorgui.engine.report import Analysis
+from sorgui.examples import example_text
+from sorgui.session import Session, StageState
+from sorgui.session.job import JobRequest
+
+TORUS = example_text("torus")
+
+
+def record(session: Session) -> list[tuple[str, tuple]]:
+    """Every event of ``session``, in order, with its arguments."""
+    log: list[tuple[str, tuple]] = []
+    for name in session.events.NAMES:
+        getattr(session.events, name).connect(lambda *args, n=name: log.append((n, args)))
+    return log
+
+
+def states(session: Session) -> dict[str, StageState]:
+    return {stage.name: stage.state for stage in session.run.stage_list()}
+
+
+def test_results_arrive_stage_by_stage_as_typed_objects() -> None:
+    session = Session()
+    log = record(session)
+    run = session.analyze(TORUS, resolution=40)
+    assert run.outcome == "finished"
+    names = [name for name, _ in log]
+    first = names.index("analysis_changed")
+    early = log[first][1][0]
+    assert isinstance(early, Analysis)
+    assert early.is_sor and early.recognition.axis.direction == ("0", "0", "1")
+    assert early.rationality is None, "the verdict is published before Singular runs"
+    assert ("state_changed", ("rationality", StageState.RUNNING)) in log[first:]
+    assert names.index("scene_changed") < log.index(("state_changed", ("rationality", StageState.RUNNING)))
+    assert isinstance(run.analysis, Analysis) and run.analysis.rationality.table_row == 1
+    assert run.analysis.parametrizations and run.scene.patch is not None
+    assert all(state is StageState.DONE for state in states(session).values())
+    assert all(stage.seconds > 0 for stage in run.stage_list())
+    assert run.progress == (len(run.stages), len(run.stages))
+    assert run.formulas["axis.direction"].masks, "typeset in the worker"
+    assert run.formulas["axis.direction"].code("Mathematica") == "{0, 0, 1}"
+    assert names[-1] == "run_finished"
+
+
+def test_a_surface_that_is_not_one_of_revolution_skips_the_rationality() -> None:
+    session = Session()
+    run = session.analyze(example_text("ellipsoid"), resolution=30, style=None)
+    assert run.outcome == "finished" and not run.analysis.is_sor
+    assert states(session)["rationality"] is StageState.SKIPPED
+    assert states(session)["parametrizations"] is StageState.SKIPPED
+    assert states(session)["recognition"] is StageState.DONE
+
+
+def test_a_changed_equation_makes_the_results_stale_and_a_new_run_drops_them() -> None:
+    session = Session()
+    log = record(session)
+    session.analyze(TORUS, resolution=30, style=None)
+    assert not session.stale
+    session.set_equation(TORUS + " + 1")
+    assert session.stale and ("stale_changed", (True,)) in log
+    assert session.run.text == TORUS, "the shown results still name their own equation"
+    seen: list[object] = []
+    session.events.run_started.connect(lambda run: seen.append((run.analysis, run.scene, session.stale)))
+    session.analyze(resolution=30, style=None)
+    assert seen == [(None, None, False)], "nothing of the old run survives the start of the new one"
+    assert ("stale_changed", (False,)) in log
+    session.set_equation(session.run.text)
+    assert not session.stale
+
+
+def test_cancel_keeps_what_is_done_and_marks_the_rest_cancelled() -> None:
+    session = Session()
+    session.events.analysis_changed.connect(lambda analysis: session.cancel())
+    run = session.analyze(TORUS, resolution=30, style=None)
+    assert run.outcome == "cancelled"
+    assert run.analysis is not None and run.analysis.is_sor, "the verdict stays"
+    stages = states(session)
+    assert stages["recognition"] is StageState.DONE
+    assert stages["rationality"] is StageState.CANCELLED
+    assert stages["parametrizations"] is StageState.CANCELLED
+
+
+def test_input_errors_end_the_run_with_a_position() -> None:
+    session = Session()
+    run = session.analyze("x^2 +* y")
+    assert run.outcome == "invalid" and run.analysis is None
+    message, position, end = run.error
+    assert position == 5 and end > position and message == run.message  # at the "*"
+    assert states(session)["parse"] is StageState.FAILED
+    assert states(session)["recognition"] is StageState.SKIPPED
+
+
+class ScriptedRunner:
+    """A runner that only records requests: the test feeds the worker's messages itself."""
+
+    def __init__(self) -> None:
+        self.requests: list[JobRequest] = []
+        self.cancelled = 0
+
+    def start(self, request: JobRequest) -> None:
+        self.requests.append(request)
+
+    def cancel(self) -> None:
+        self.cancelled += 1
+
+
+def test_a_failed_stage_is_marked_and_the_rest_is_not_run() -> None:
+    runner = ScriptedRunner()
+    session = Session(runner)
+    session.analyze("x^2 + y^2 - z")
+    for stage in ("parse", "recognition", "factors", "rationality"):
+        session.handle("progress", stage)
+    assert states(session)["factors"] is StageState.DONE
+    session.handle("failed", "Singular: out of memory")
+    run = session.run
+    assert run.outcome == "failed" and run.message == "Singular: out of memory"
+    assert run.failed_stage().name == "rationality"
+    assert states(session)["parametrizations"] is StageState.SKIPPED
+
+
+def test_an_unplanned_engine_stage_is_inserted_where_it_starts() -> None:
+    session = Session(ScriptedRunner())
+    session.analyze("x^2 + y^2 - 1.0000001*z^2")
+    for stage in ("parse", "recognition", "approximate"):
+        session.handle("progress", stage)
+    names = [stage.name for stage in session.run.stage_list()]
+    assert names.index("approximate") == names.index("recognition") + 1
+    assert states(session)["recognition"] is StageState.DONE
+    assert states(session)["approximate"] is StageState.RUNNING
+
+
+def test_messages_after_the_end_and_requests_of_the_nearest_view() -> None:
+    runner = ScriptedRunner()
+    session = Session(runner)
+    session.analyze("x^2 + y^2 - z")
+    session.handle("cancelled", None)
+    session.handle("analysis", "late")  # a retired job's message: ignored
+    assert session.run.analysis is None
+    with pytest.raises(ValueError):
+        session.set_view("nearest")
+    with pytest.raises(ValueError):
+        session.set_view("sideways")
+    assert session.remesh(2.0) is False, "nothing finished to re-mesh"
+
+
+def test_remesh_rebuilds_only_the_scene_of_the_finished_run() -> None:
+    session = Session()
+    log = record(session)
+    run = session.analyze(example_text("sphere"), resolution=30, style=None)
+    old = run.scene
+    assert session.remesh(2 * old.region.radius, 30)
+    refreshed = [args for name, args in log if name == "refreshed"]
+    assert len(refreshed) == 1 and refreshed[0][0] == "scene"
+    assert run.scene is not old and run.scene.region.radius == pytest.approx(2 * old.region.radius)
+    assert refreshed[0][1].scene is run.scene
+    assert run.outcome == "finished" and states(session)["rationality"] is not StageState.RUNNING
