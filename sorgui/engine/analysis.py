@@ -1,9 +1,13 @@
 """The whole analysis of one pasted equation, stage by stage, with timings and cancellation.
 
-Stages: parse → recognition (symmetry, axis, profile) → factors → rationality and
-parameterizations (docs/math.md §5–§6; only for a surface of revolution with a unique axis).
+Stages: parse → recognition (symmetry, axis, profile) → factors → approximate (rounded input
+or a given tolerance: the nearest surface of revolution, docs/math.md §8) → rationality and
+parameterizations (docs/math.md §5–§6; only for a surface of revolution with a unique axis) →
+nearest (the whole analysis of the snapped exact surface).
 Between stages the ``cancel`` event is checked, and ``progress`` is told the stage's name, so a
 GUI worker can show it; Singular subprocesses are killed on cancel by :mod:`.singular`.
+``timeout`` bounds the whole analysis (:mod:`.timelimit`): the stages not finished by then are
+reported as undecided, those done are kept.
 """
 
 from __future__ import annotations
@@ -14,19 +18,21 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import replace
 
-from .errors import Cancelled
+from .approximate import approximate_symmetry, rounding_of
+from .errors import Cancelled, TimeLimitReached
+from .linalg import Vector
 from .parsing import parse_polynomial
 from .polys import Poly, field_name, poly_str
 from .profile import profile_curve
-from .rationality import analyze_rationality, parametrizations
 from .real_locus import real_locus
 from .recognition import factor_reports, recognize
-from .report import Analysis, Parametrization, Rationality
+from .report import Analysis, Approximation, Parametrization, Rationality, Recognition
+from .timelimit import time_limit, unfinished_analysis
 
 ProgressCallback = Callable[[str], None]
 PartialCallback = Callable[[Analysis], None]
 
-STAGES = ("parse", "recognition", "factors", "real locus", "rationality", "parametrizations")
+STAGES = ("parse", "recognition", "factors", "real locus", "approximate", "rationality", "parametrizations", "nearest")
 
 
 class StageClock:
@@ -47,9 +53,13 @@ class StageClock:
         self.cancel = cancel
         self.partial = partial
         self.timings: list[tuple[str, float]] = []
+        self.current: str | None = None
+        self.recognition: Recognition | None = None  # kept for a time limit met before publish
+        self.latest: Analysis | None = None
 
     def publish(self, analysis: Analysis) -> None:
-        """Hand the analysis known so far to ``partial`` (if any)."""
+        """Hand the analysis known so far to ``partial`` (if any), and keep it."""
+        self.latest = analysis
         if self.partial is not None:
             self.partial(analysis)
 
@@ -62,6 +72,7 @@ class StageClock:
     def stage(self, name: str) -> Iterator[None]:
         """Run one stage: check for cancellation, announce it, and record its duration."""
         self.check()
+        self.current = name
         if self.progress is not None:
             self.progress(name)
         start = time.perf_counter()
@@ -78,24 +89,42 @@ def analyze(
     cancel: threading.Event | None = None,
     progress: ProgressCallback | None = None,
     partial: PartialCallback | None = None,
+    tolerance: float | None = None,
+    timeout: float | None = None,
 ) -> Analysis:
     """Analyse the equation ``text`` exactly and return the immutable :class:`Analysis`.
+
+    ``timeout`` (seconds) bounds the whole analysis; each Singular call is bounded by it too.
+
+    ``tolerance`` (relative) asks whether ``f`` is near a surface of revolution; without it,
+    that is asked whenever ``text`` prints decimals, with the tolerance their digits give.
 
     ``partial`` receives the results known so far as they arrive (see :class:`StageClock`).
     Raises :class:`~sorgui.engine.errors.ParseError` for bad input, :class:`Cancelled` when
     ``cancel`` is set; every other engine failure is a :class:`SorguiError` too.
     """
     clock = StageClock(progress, cancel, partial)
+    start = time.monotonic()
     with clock.stage("parse"):
         parsed = parse_polynomial(text)
-    return analyze_polynomial(
-        parsed.polynomial,
-        text=text,
-        method=method,
-        recognition_only=recognition_only,
-        singular_timeout=singular_timeout,
-        clock=clock,
-    )
+    remaining = None if timeout is None else max(timeout - (time.monotonic() - start), 0.001)
+    try:
+        with time_limit(remaining):
+            return analyze_polynomial(
+                parsed.polynomial,
+                text=text,
+                method=method,
+                recognition_only=recognition_only,
+                singular_timeout=singular_timeout if remaining is None else min(singular_timeout, remaining),
+                clock=clock,
+                tolerance=tolerance,
+            )
+    except TimeLimitReached as exc:
+        return unfinished_analysis(
+            parsed.polynomial, text=text, method=method, recognition=clock.recognition, latest=clock.latest,
+            timings=tuple(clock.timings), current=clock.current, message=exc.message,
+            recognition_only=recognition_only,
+        )
 
 
 def analyze_polynomial(
@@ -106,18 +135,32 @@ def analyze_polynomial(
     recognition_only: bool = False,
     singular_timeout: float = 60.0,
     clock: StageClock | None = None,
+    tolerance: float | None = None,
+    frame: tuple[Vector, Vector, Vector] | None = None,
 ) -> Analysis:
-    """The analysis of a polynomial over ``K`` that is already parsed (``text`` defaults to it)."""
+    """The analysis of a polynomial over ``K`` that is already parsed (``text`` defaults to it).
+
+    The tolerance is read off ``text``'s digits unless ``tolerance`` is given (docs/math.md §8);
+    ``frame`` is a preferred axis frame for the profile (see :func:`.recognition.recognize`).
+    """
     clock = clock or StageClock(None, None)
     cancel = clock.cancel
     with clock.stage("recognition"):
-        recognition, symmetry, profile = recognize(f, method)
+        recognition, symmetry, profile = recognize(f, method, frame)
+    clock.recognition = recognition
     with clock.stage("factors"):
         factors, distinct = factor_reports(f, recognition, method)
     real = None
     if not recognition_only and recognition.is_sor:
         with clock.stage("real locus"):
             real = real_locus(f, symmetry, profile)
+    approximation: Approximation | None = None
+    rounding, rounding_notes = rounding_of(f, text, tolerance)
+    near = None
+    if rounding is not None:
+        with clock.stage("approximate"):
+            near = approximate_symmetry(f, rounding, notes=rounding_notes)
+        approximation = near.approximation
 
     def result(rationality: Rationality | None, found: tuple[Parametrization, ...]) -> Analysis:
         return Analysis(
@@ -131,6 +174,7 @@ def analyze_polynomial(
             parametrizations=found,
             timings=tuple(clock.timings),
             real_locus=real,
+            approximate=approximation,
         )
 
     rationality = None
@@ -140,15 +184,23 @@ def analyze_polynomial(
         if len(distinct) > 1:
             rationality = Rationality(status="not analysed: X is reducible over K; see its factors")
         else:
+            from .rationality import analyze_rationality, parametrizations  # Singular's layer: only here
+
             g = distinct[0]
             if g != f:
-                profile = profile_curve(g, symmetry.axis_point, symmetry.axis_direction)
+                profile = profile_curve(g, profile.frame.point, profile.frame.direction, profile.frame.normal)
             with clock.stage("rationality"):
                 rationality, tube = analyze_rationality(profile, timeout=singular_timeout, cancel=cancel)
             clock.publish(result(rationality, found))
             with clock.stage("parametrizations"):
                 found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)
             rationality = replace(rationality, notes=rationality.notes + notes)
+    if near is not None and near.nearest is not None and approximation.nearest is not None and not recognition_only:
+        clock.publish(result(rationality, found))
+        with clock.stage("nearest"):
+            of_nearest = analyze_polynomial(near.nearest, method=method, singular_timeout=singular_timeout,
+                                            clock=StageClock(None, cancel), frame=near.frame)
+        approximation = replace(approximation, nearest=replace(approximation.nearest, analysis=of_nearest))
     clock.check()
     return result(rationality, found)
 

@@ -22,7 +22,7 @@ from .deviation import max_deviation
 from sympy.polys.domains import QQ
 
 from .errors import AnalysisError
-from .linalg import Vector
+from .linalg import Vector, primitive_vector
 from .near_symmetry import Fit, Normalised, candidates, fit, killing_system, normalise, refine
 from .polys import Poly, poly_str, to_str
 from .precision import Rounding, given_rounding, input_rounding
@@ -166,7 +166,10 @@ def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> Near
     sym = exact.symmetry
     K = exact.polynomial.ring.domain
     axis = None
-    if sym.axis_point is not None:
+    if exact.point is not None and exact.direction is not None and sym.axis_point is not None:
+        point = tuple(QQ(v.numerator, v.denominator) for v in exact.point)
+        axis = axis_report(point, primitive_vector(sym.axis_direction, K), K)  # type: ignore[arg-type]
+    elif sym.axis_point is not None:
         axis = axis_report(sym.axis_point, sym.axis_direction, K)  # type: ignore[arg-type]
     triple = (lambda v: None if v is None else tuple(to_str(K, c) for c in v))
     g = dense.scaled(dense.from_terms(dense.float_coefficients(exact.polynomial), f.degree), f.length) / f.scale

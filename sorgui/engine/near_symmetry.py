@@ -131,9 +131,9 @@ def candidates(vectors: np.ndarray, count: int) -> list[Candidate]:
     B, A = V[:, :3].T, V[:, 3:].T  # columns: translation parts b, rotation parts a
     if count == 1:
         b, a = B[:, 0], A[:, 0]
-        found = [Candidate(EXTRUSION, _unit(b), None)]
-        if np.linalg.norm(a) > 1e-9:
-            found.insert(0, _rotation(a, b, REVOLUTION))
+        found = [_rotation(a, b, REVOLUTION)] if np.linalg.norm(a) > 1e-9 else []
+        if np.linalg.norm(b) > 1e-9:
+            found.append(Candidate(EXTRUSION, _unit(b), None))
         return found
     _, s, wt = np.linalg.svd(A)
     if count == 2:

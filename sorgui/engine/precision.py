@@ -13,7 +13,8 @@ fraction ends in ``0``, the printer dropped trailing zeros (``%g`` prints ``15.4
 when some fraction ends in ``0`` (fixed-point printing, ``15.440000``), every literal's own
 last place counts and integers are exact.
 
-The relative tolerance of the input is ``τ = ‖e‖₂ / ‖f‖₂`` over the coefficients. A tolerance
+The relative tolerance of the input is ``τ = ‖e‖₂ / ‖f‖₂`` over the printed coefficients; a
+monomial the input does not print gets the smallest bound of a printed one. A tolerance
 given by the user instead (``--tolerance τ``) spreads ``τ·‖f‖₂`` evenly over the monomials of
 degree ≤ deg f. Every bound is at least ``FLOAT_FLOOR·max|f_α|``: the coefficients a CAD system
 prints were computed in double precision and carry that much noise whatever it prints.
@@ -91,8 +92,7 @@ def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
     printed = [e for e in errors.values() if e > 0.0]
     default = max(min(printed, default=floor), floor)
     norm_f = math.sqrt(sum(c * c for c in coefficients.values()))
-    absent = comb(degree + 3, 3) - len(bounds)
-    norm_e = math.sqrt(sum(e * e for e in bounds.values()) + absent * default * default)
+    norm_e = math.sqrt(sum(e * e for e in bounds.values()))
     return Rounding(bounds, default, degree, norm_e / norm_f, "input", digits)
 
 

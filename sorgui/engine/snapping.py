@@ -137,7 +137,7 @@ def perpendicular(direction: Vector) -> Vector:
     sign = 1 if n[k] >= 0 else -1
     v = [n[i] - (sign if i == k else 0) for i in range(3)]
     vv = sum(x * x for x in v)
-    image = [(1 if i == j else 0) - 2 * v[i] * v[j] / vv for i in range(3)]
+    image = [Fraction(1 if i == j else 0) - (2 * v[i] * v[j] / vv if vv else 0) for i in range(3)]
     return tuple(root * x for x in image)  # type: ignore[return-value]
 
 
@@ -242,9 +242,22 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
 
 def _first_exact(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None,
                  rounding: Rounding) -> tuple[int, ExactSurface] | None:
-    """The first exact axis and coefficients, in the order of :func:`exact_axes`, whose exact
-    surface passes, with the bits of its coefficients. When the simplest coefficients fail on a
-    coarse axis, the axis is refined with them held fixed and snapped again, finely."""
+    """The first exact surface, in the order of :func:`exact_axes`, with every coefficient
+    within the rounding (else the first within twice it, in the mean), with the bits of its
+    coefficients. When the simplest coefficients fail on a coarse axis, the axis is refined with
+    them held fixed and snapped again, finely."""
+    fallback: tuple[int, ExactSurface] | None = None
+    for coefficients, surface in _exact_surfaces(f, best, family, exact_f, rounding):
+        if surface.largest <= 1.0:
+            return _bits(coefficients), surface
+        if fallback is None:
+            fallback = _bits(coefficients), surface
+    return fallback
+
+
+def _exact_surfaces(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None,
+                    rounding: Rounding) -> Iterator[tuple[list[Fraction], ExactSurface]]:
+    """Exact surfaces within twice the rounding (in the mean), simplest axes first."""
     directions = [] if family is None else snapped_directions(best.candidate.direction, family)
     kind = best.candidate.kind
     for a, c in exact_axes(f, best, directions):
@@ -252,11 +265,18 @@ def _first_exact(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f
         point = None if c is None else np.array([float(v) for v in c]) / f.length
         local = fit(f, best.candidate, point=point, direction=direction)
         degrees = np.array([i + 2 * j for i, j in local.exponents])
-        for rank, coefficients in enumerate(_coefficient_candidates(f, local)):
+
+        def matched_scales(ratios: list[Fraction]) -> list[Fraction]:
+            g = build(kind, a, c, local.exponents, ratios)
+            return [] if g is None or exact_f is None else _matched_scales(g, exact_f, rounding)
+
+        for rank, coefficients in enumerate(_coefficient_candidates(f, local, matched_scales)):
             g = build(kind, a, c, local.exponents, coefficients)
             surface = None if g is None else _check(g, exact_f, rounding, f, a, c)
             if surface is not None:
-                return _bits(coefficients), surface
+                yield coefficients, surface
+                if surface.largest <= 1.0:
+                    return
             if rank >= 2:
                 continue
             fixed = np.array([float(q) for q in coefficients]) * f.length ** degrees / f.scale
@@ -271,12 +291,16 @@ def _first_exact(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f
                 g = build(kind, a2, c2, local.exponents, coefficients)  # type: ignore[arg-type]
                 surface = None if g is None else _check(g, exact_f, rounding, f, a2, c2)  # type: ignore[arg-type]
                 if surface is not None:
-                    return _bits(coefficients), surface
-    return None
+                    yield coefficients, surface
+                    if surface.largest <= 1.0:
+                        return
 
 
-def _coefficient_candidates(f: Normalised, local: Fit) -> list[list[Fraction]]:
-    """Exact coefficients of ``g`` in the original coordinates, simplest candidates first."""
+def _coefficient_candidates(f: Normalised, local: Fit,
+                            matched_scales: Callable[[list[Fraction]], list[Fraction]]) -> list[list[Fraction]]:
+    """Exact coefficients of ``g`` in the original coordinates, simplest candidates first: each
+    snapped on its own; the ratios to the best-determined one snapped, times the scales that
+    ``matched_scales`` gives them (or that coefficient snapped, or as fitted); as fitted."""
     degrees = np.array([i + 2 * j for i, j in local.exponents])
     factor = f.scale / f.length ** degrees
     values = local.coefficients * factor
@@ -289,9 +313,28 @@ def _coefficient_candidates(f: Normalised, local: Fit) -> list[list[Fraction]]:
         snapped = [simplest_near(r, e) for r, e in zip(ratios, ratio_errors)]
         scale = simplest_near(values[pivot], errors[pivot])
         found.append([scale * r for r in snapped])
+        for matched in matched_scales(snapped):
+            found.append([matched * r for r in snapped])
         found.append([Fraction(values[pivot]) * r for r in snapped])
     found.append([Fraction(v).limit_denominator(10**15) for v in values])
     return sorted(found, key=_bits)
+
+
+def _matched_scales(g: Poly, exact_f: Poly, rounding: Rounding) -> list[Fraction]:
+    """Scales ``λ`` that make ``λ·g`` agree with ``f`` where ``f`` is largest: at each of the
+    three largest coefficients of ``f``, the simplest rational within its rounding divided by
+    ``g``'s coefficient there (a CAD system that divides by its largest coefficient prints an
+    exact ``1.000000000``)."""
+    g_terms = {tuple(int(e) for e in m): c for m, c in to_flint(g).to_dict().items()}
+    f_terms = {tuple(int(e) for e in m): c for m, c in to_flint(exact_f).to_dict().items()}
+    shared = sorted((m for m in f_terms if m in g_terms), key=lambda m: -abs(float(f_terms[m])))
+    scales: list[Fraction] = []
+    for m in shared[:3]:
+        value = simplest_near(float(f_terms[m]), rounding.bound(m))
+        scale = value / Fraction(int(g_terms[m].p), int(g_terms[m].q))
+        if scale and scale not in scales:
+            scales.append(scale)
+    return scales
 
 
 def _bits(values: list[Fraction]) -> int:

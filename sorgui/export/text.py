@@ -20,6 +20,7 @@ SYMMETRY_NAMES = {
     "plane": "plane (every line along the normal is an axis)",
     "extrusion": "extrusion (cylindrical surface), not a surface of revolution",
     "none": "no continuous symmetry: not a surface of revolution",
+    "undecided": "undecided: the recognition did not finish within the time limit",
 }
 
 
@@ -93,6 +94,8 @@ def real_locus_line(real: RealLocus) -> str:
         return "real points: none (X has no real point)"
     if real.kind == "surface":
         return "real points: a real surface"
+    if real.kind == "undecided":
+        return "real points: undecided (the profile is too large for the exact decision)"
     if real.kind == "points":
         return f"real points: only {_count(real.points or 0, 'point')} (no real surface)"
     parts = ["the axis line"] if real.axis_line else []
@@ -105,18 +108,87 @@ def real_locus_line(real: RealLocus) -> str:
 
 
 def format_report(analysis: Analysis) -> str:
-    """The whole report as text."""
+    """The whole report as text (ending with a newline)."""
     rec = analysis.recognition
-    verdict = "YES" if rec.is_sor else "NO"
+    lines = [f"f = {rec.polynomial}", *analysis_lines(analysis)]
+    timing = ", ".join(f"{name} {seconds:.3f} s" for name, seconds in analysis.timings)
+    lines.append(f"timings: {timing}")
+    return "\n".join(lines) + "\n"
+
+
+NEAR_KINDS = {
+    "revolution": "a surface of revolution",
+    "cylinder_of_revolution": "a cylinder of revolution",
+    "sphere": "a sphere",
+    "plane": "a plane",
+    "extrusion": "an extrusion",
+}
+
+
+def _floats(v: tuple[float, ...]) -> str:
+    return "(" + ", ".join(f"{c:.9g}" for c in v) + ")"
+
+
+def approximation_lines(analysis: Analysis) -> list[str]:
+    """The rounded-input verdict in words (docs/math.md §8), with the nearest exact surface."""
+    ap = analysis.approximate
+    if ap is None:
+        return []
+    source = "from the printed digits" if ap.tolerance_source == "input" else "given"
+    lines = [f"rounded input: tolerance {ap.tolerance:.2g} (relative, {source})"]
+    where = ""
+    if ap.axis is not None:
+        where = f" about the axis {_floats(ap.axis.point)} + t·{_floats(ap.axis.direction)}"
+    elif ap.center is not None:
+        where = f" centred at {_floats(ap.center)}"
+    elif ap.normal is not None:
+        where = f" with normal {_floats(ap.normal)}"
+    kind = NEAR_KINDS.get(ap.kind or "", "a surface of revolution")
+    if ap.near_sor and analysis.is_sor:
+        lines.append(f"  exactly {kind}, and within the tolerance{where}")
+    elif ap.near_sor:
+        lines.append(f"  not exactly, but within {ap.relative_distance:.2g} (relative) of {kind}{where}")
+    elif ap.kind is not None:
+        lines.append(f"  not near a surface of revolution; within {ap.relative_distance:.2g} (relative) of {kind}{where}")
+    else:
+        lines.append("  not near a surface of revolution within the tolerance")
+    lines.append(f"  residual {ap.residual:.3g} times the rounding (at most 1: within it); singular values "
+                 f"of (★): {', '.join(f'{v:.2g}' for v in ap.singular_values)}")
+    lines += [f"  note: {note}" for note in ap.notes]
+    near = ap.nearest
+    if near is not None:
+        deviation = "-" if near.max_deviation is None else f"{near.max_deviation:.2g}"
+        lines.append(f"  nearest exact surface: g = {near.polynomial}")
+        lines.append(f"    relative distance {near.relative_distance:.2g}, largest deviation of the zero sets "
+                     f"{deviation} (length units), every coefficient within the rounding: "
+                     f"{'yes' if near.within_rounding else 'no'}")
+        if near.analysis is not None:
+            lines.append("  the analysis of the nearest exact surface:")
+            lines += ["    " + line for line in analysis_lines(near.analysis)]
+        else:
+            lines += ["    " + line for line in recognition_lines_of_nearest(near)]
+    return lines
+
+
+def recognition_lines_of_nearest(near) -> list[str]:  # noqa: ANN001 - a NearestSurface
+    """The exact axis of the nearest surface when its whole analysis was not run."""
+    if near.axis is None:
+        return [f"kind: {NEAR_KINDS.get(near.kind, near.kind)}"]
+    return [f"axis: {_vec(near.axis.point)} + t·{_vec(near.axis.direction)}"]
+
+
+def analysis_lines(analysis: Analysis) -> list[str]:
+    """Everything the report says of one analysis but the polynomial and the timings."""
+    rec = analysis.recognition
+    verdict = "undecided" if rec.symmetry == "undecided" else ("YES" if rec.is_sor else "NO")
     lines = [
-        f"f = {rec.polynomial}",
         f"field K = {analysis.field}, degree {rec.degree}, method {analysis.method}",
         f"surface of revolution: {verdict}",
         *recognition_lines(rec),
     ]
     if analysis.real_locus is not None:
         lines.append(real_locus_line(analysis.real_locus))
-    if len(analysis.factors) > 1 or analysis.factors[0].multiplicity > 1:
+    if len(analysis.factors) > 1 or (analysis.factors and analysis.factors[0].multiplicity > 1):
         lines.append(f"factors over K ({len(analysis.factors)}):")
         for factor in analysis.factors:
             lines.append(f"  [{factor.multiplicity}] {factor.polynomial}")
@@ -130,6 +202,7 @@ def format_report(analysis: Analysis) -> str:
         lines.append(f"parametrization {i} ({par.method}; {kind}, {proper}, over {par.field}; {check}):")
         for name, coord in zip("xyz", par.coordinates):
             lines.append(f"  {name}({', '.join(par.parameters)}) = {coord}")
-    timing = ", ".join(f"{name} {seconds:.3f} s" for name, seconds in analysis.timings)
-    lines.append(f"timings: {timing}")
-    return "\n".join(lines)
+    if analysis.unfinished:
+        lines.append(f"not finished within the time limit (undecided): {', '.join(analysis.unfinished)}")
+    lines += approximation_lines(analysis)
+    return lines

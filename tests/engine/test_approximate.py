@@ -1,0 +1,191 @@
+"""Rounded input (docs/math.md §8): near surfaces of revolution, their axes, the nearest exact
+surface, and near misses that must stay misses."""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from sorgui.engine import analyze
+from sorgui.engine.approximate import approximate_symmetry, rounding_of
+from sorgui.engine.errors import AnalysisError
+from sorgui.engine.parsing import parse_polynomial
+from sorgui.engine.precision import input_rounding
+from sorgui.engine.report import Analysis
+from sorgui.engine.snapping import simplest_between
+
+from .rounded import cylinder, printed, printed_exact, random_sor, rational_sor, rotation, sphere
+
+DIGITS = (6, 8, 10, 12, 15)
+
+
+def near(text: str, tolerance: float | None = None, snap: bool = False):
+    f = parse_polynomial(text).polynomial
+    rounding, notes = rounding_of(f, text, tolerance)
+    assert rounding is not None
+    return approximate_symmetry(f, rounding, snap_exact=snap, notes=notes).approximation
+
+
+def axis_error(approximation, direction: np.ndarray, point: np.ndarray) -> tuple[float, float]:
+    d = np.array(approximation.axis.direction)
+    p = np.array(approximation.axis.point)
+    angle = math.acos(min(1.0, abs(float(d @ direction))))
+    offset = p - point
+    return angle, float(np.linalg.norm(offset - (offset @ direction) * direction))
+
+
+@settings(max_examples=30, deadline=None, derandomize=True)
+@given(seed=st.integers(0, 2**32 - 1), degree=st.integers(2, 10), digits=st.sampled_from(DIGITS))
+def test_rounded_random_surfaces_of_revolution_are_near_with_their_axis(seed: int, degree: int, digits: int) -> None:
+    rng = np.random.default_rng(seed)
+    array, direction, point = random_sor(rng, degree)
+    result = near(printed(array, digits))
+    assert result.near_sor and result.kind == "revolution"
+    angle, distance = axis_error(result, direction, point)
+    assert angle < 1e-3 and distance < 1e-3
+    assert result.residual <= 1.0 + 1e-9
+
+
+@settings(max_examples=20, deadline=None, derandomize=True)
+@given(seed=st.integers(0, 2**32 - 1), degree=st.integers(2, 10), digits=st.sampled_from(DIGITS))
+def test_one_coefficient_off_by_a_thousandth_is_not_near(seed: int, degree: int, digits: int) -> None:
+    rng = np.random.default_rng(seed)
+    array, _, _ = random_sor(rng, degree)
+    # A coefficient of the top degree: changing a lower one of a quadric only moves its centre.
+    top = [m for m in zip(*np.nonzero(array)) if sum(m) == degree]
+    m = top[int(rng.integers(len(top)))]
+    array[m] *= 1.001
+    result = near(printed(array, digits))
+    assert not result.near_sor
+    assert result.residual > 1.0
+    assert any("singular value" in note for note in result.notes)
+
+
+@pytest.mark.parametrize("digits", (6, 10, 15))
+def test_rounded_sphere_and_cylinder_keep_their_kind(digits: int) -> None:
+    center = np.array([0.1 * math.pi, -math.e / 3, math.sqrt(2)])
+    assert near(printed(sphere(center, math.sqrt(3)), digits)).kind == "sphere"
+    direction = rotation(np.array([0.3, -1.1, 0.7, 0.2]))[:, 2]
+    result = near(printed(cylinder(direction, center, 1.7), digits))
+    assert result.near_sor and result.kind == "cylinder_of_revolution"
+    angle, distance = axis_error(result, direction, center)
+    assert angle < 1e-3 and distance < 1e-3
+
+
+def test_the_papers_perturbed_cone_is_near_a_cone_about_the_x_axis() -> None:
+    result = analyze("y^2+z^2-0.0000002xz-x^2", tolerance=1e-6, recognition_only=True).approximate
+    assert result.near_sor and result.kind == "revolution"
+    direction = np.array(result.axis.direction)
+    assert abs(abs(direction[0]) - 1.0) < 1e-6
+    assert result.nearest is not None
+    assert parse_polynomial(result.nearest.polynomial).polynomial == parse_polynomial("y^2+z^2-x^2").polynomial
+
+
+PROFILES = [
+    {(0, 2): Fraction(1), (0, 1): Fraction(-20), (2, 0): Fraction(36), (0, 0): Fraction(64)},  # a torus
+    {(2, 0): Fraction(3), (0, 1): Fraction(-1, 2), (1, 0): Fraction(2), (0, 0): Fraction(-5)},  # a quadric
+    {(3, 0): Fraction(1), (1, 1): Fraction(-2), (0, 1): Fraction(1, 3), (0, 0): Fraction(-7, 4)},  # a cubic
+]
+
+
+@pytest.mark.parametrize("digits", (10, 12, 15))
+@pytest.mark.parametrize("case", range(len(PROFILES)))
+def test_the_snapped_surface_of_a_rational_one_is_the_original(case: int, digits: int) -> None:
+    exact = rational_sor((1, 2, -1, 3), (Fraction(1, 3), Fraction(-2), Fraction(5, 7)), PROFILES[case])
+    result = analyze(printed_exact(exact, digits), recognition_only=True).approximate
+    assert result.near_sor and result.nearest is not None
+    snapped = parse_polynomial(result.nearest.polynomial).polynomial
+    original = parse_polynomial(" + ".join(f"({c})*x^{i}*y^{j}*z^{k}" for (i, j, k), c in exact.items())).polynomial
+    ratio = original.LC / snapped.LC
+    assert snapped * ratio == original
+    assert result.nearest.within_rounding
+
+
+def test_the_rounded_torus_gets_the_whole_analysis_of_its_nearest_surface() -> None:
+    array, direction, point = _turned_torus()
+    analysis = analyze(printed(array, 10))
+    assert not analysis.is_sor
+    result = analysis.approximate
+    assert result.near_sor and result.kind == "revolution"
+    assert axis_error(result, direction, point)[0] < 1e-8
+    nearest = result.nearest
+    assert nearest is not None and nearest.analysis is not None
+    assert nearest.analysis.is_sor
+    assert nearest.analysis.recognition.profile.polynomial == "x**4 + 2*x**2*y**2 + y**4 + 16*x**2 - 20*y**2 + 64"
+    assert nearest.analysis.rationality.table_row == 1
+    assert nearest.analysis.parametrizations and all(p.verified for p in nearest.analysis.parametrizations)
+    assert nearest.relative_distance < 1e-9
+    assert nearest.max_deviation is not None and nearest.max_deviation < 1e-7
+    assert Analysis.from_json(analysis.to_json()) == analysis
+
+
+def _turned_torus() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The torus (R = 3, r = 1) about a line turned by 0.7 rad about z, through (0.3, -1.2, 0.5)."""
+    from sorgui.engine import dense
+
+    direction = np.array([math.cos(0.7), math.sin(0.7), 0.0])
+    point = np.array([0.3, -1.2, 0.5])
+    one = dense.from_terms({(0, 0, 0): 1.0}, 4)
+    h, rho = dense.linear_form(direction, point), dense.squared_distance(point)
+    h2 = dense.times(dense.times(one, h), h)
+    r1 = dense.times(one, rho)
+    r2 = dense.times(r1, rho)
+    return r2 - 20 * r1 + 36 * h2 + 64 * one, direction, point
+
+
+@pytest.mark.parametrize("text", [
+    "x^2 + 2.5y^2 + 3.7z^2 - 1",  # a triaxial ellipsoid
+    # A Dupin cyclide with distinct radii (a = 5, b = 4, c = 3, mu = 2), printed with decimals.
+    "(x^2+y^2+z^2+12.0)^2 - 4(5.0x - 6.0)^2 - 64.0y^2",
+])
+def test_near_misses_say_how_far_they_are(text: str) -> None:
+    result = analyze(text, recognition_only=True).approximate
+    assert not result.near_sor
+    assert result.notes and "singular value" in result.notes[-1]
+
+
+def test_exact_input_has_no_approximation_unless_a_tolerance_is_given() -> None:
+    assert analyze("x^2+y^2-z", recognition_only=True).approximate is None
+    given = analyze("x^2+y^2-z", tolerance=1e-8, recognition_only=True).approximate
+    assert given.tolerance == 1e-8 and given.tolerance_source == "given" and given.near_sor
+
+
+def test_a_tolerance_finer_than_the_digits_says_so() -> None:
+    result = analyze("x^2 + 1.000001y^2 + 0.999999z^2 - 2.5", tolerance=1e-12, recognition_only=True).approximate
+    assert any("below the precision" in note for note in result.notes)
+    assert not result.near_sor
+    assert analyze("x^2 + 1.000001y^2 + 0.999999z^2 - 2.5", recognition_only=True).approximate.near_sor
+
+
+@pytest.mark.parametrize("tolerance", [0.0, -1e-3, 1.5, math.nan, math.inf])
+def test_a_bad_tolerance_is_refused(tolerance: float) -> None:
+    with pytest.raises(AnalysisError):
+        analyze("x^2+y^2-z", tolerance=tolerance)
+
+
+def test_the_tolerance_follows_the_printed_digits() -> None:
+    def tol(text: str) -> float:
+        f = parse_polynomial(text).polynomial
+        from sorgui.engine.dense import float_coefficients
+
+        return input_rounding(text, float_coefficients(f)).tolerance
+
+    assert input_rounding("x^2+y^2-z", {(2, 0, 0): 1.0}) is None
+    assert tol("x^2 + y^2 - 1.5") == pytest.approx(0.05 / math.sqrt(4.25), rel=0.01)
+    # Trailing zeros dropped (%g): 15.44 of a 10-digit print is good to 5e-9, not 5e-3.
+    assert tol("1.234567891x^2 + y^2 - 15.44") < 1e-9
+    # Fixed-point printing keeps zeros: every literal's own last place counts.
+    assert tol("1.500000x^2 + y^2 - 15.440000") == pytest.approx(5e-7 * math.sqrt(2) / math.sqrt(2.25 + 1 + 15.44**2), rel=0.01)
+    assert tol("x^2 + y^2 - 1.5e-3") > tol("x^2 + y^2 - 1.50e-3")
+
+
+def test_simplest_rational_in_an_interval() -> None:
+    assert simplest_between(Fraction(31, 100), Fraction(34, 100)) == Fraction(1, 3)
+    assert simplest_between(Fraction(-24, 10), Fraction(-23, 10)) == Fraction(-7, 3)
+    assert simplest_between(Fraction(-1), Fraction(1)) == 0
+    assert simplest_between(Fraction(7, 2), Fraction(4)) == 4
