@@ -4,13 +4,16 @@
 ``Z`` off the axis sweeps a piece of surface, an isolated point of ``Z`` off the axis a circle,
 a point on the axis stays a point. With ``G(s, w) = P²`` (``w = r²``), ``G = w^k·c(s)·H(s, w)``:
 
-* surface: a real root of the content ``c`` (a plane across the axis), or a sample ``s₀`` at
-  which ``H(s₀, w)`` is square-free and has a positive root (then a real branch passes through
-  it). Cheap samples first; if they find nothing, one sample in each interval between the real
-  roots of ``lc_w(H)·disc_w(H)·H(s, 0)``, which decides it;
+* surface: first a certified look along a few lines ``s = s₀`` and ``w = w₀ > 0`` for a simple
+  real point with ``w > 0`` (a real branch passes through it); then exactly: a real root of the
+  content ``c`` (a plane across the axis), or one sample ``s₀`` in each interval between the
+  real roots of ``lc_w(H)·disc_w(H)·H(s, 0)`` with a positive root of ``H(s₀, w)``;
 * otherwise circles are the real singular points ``H = H_s = H_w = 0`` with ``w > 0``, counted
   with a lexicographic Gröbner basis in shape position and the Sturm–Tarski theorem; the axis
   line lies on ``X`` when ``k > 0``; points are the real roots of ``G(s, 0)``.
+
+The exact steps are bounded by the size of ``H`` (:data:`EXACT_LIMIT`, :data:`CIRCLES_LIMIT`);
+beyond it the answer is ``undecided``, never a guess.
 
 Spheres and planes use their normal forms ``g(|p - c|²)`` and ``g(n·p)`` (docs/math.md §2).
 Every sign is exact (rationals, or ball arithmetic in ``K`` that refines until it excludes 0).
@@ -20,13 +23,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+import flint
 import sympy
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
 from .errors import AnalysisError
 from .linalg import Vector
-from .polys import Poly, compose, is_rational_field, poly_ring
+from .polys import Poly, compose, is_rational_field, poly_ring, to_flint
 from .profile import ProfileCurve
 from .realroots import count_real_roots, sign, sign_changes
 from .report import RealLocus
@@ -34,12 +38,23 @@ from .symmetry import PLANE, SPHERE, Symmetry
 
 S, W, T = sympy.symbols("s w t")
 
-EMPTY, POINTS, CURVE, SURFACE = "empty", "points", "curve", "surface"
-DIMENSION = {EMPTY: -1, POINTS: 0, CURVE: 1, SURFACE: 2}
+EMPTY, POINTS, CURVE, SURFACE, UNDECIDED = "empty", "points", "curve", "surface", "undecided"
+DIMENSION = {EMPTY: -1, POINTS: 0, CURVE: 1, SURFACE: 2, UNDECIDED: None}
 
 QUICK_SAMPLES = tuple(QQ(n, d) for n, d in ((0, 1), (1, 1), (-1, 1), (1, 2), (-1, 2), (2, 1), (-2, 1), (3, 1)))
 """Values of ``s`` tried before the discriminant is computed: most real surfaces show a simple
 positive root ``w`` at one of them."""
+
+QUICK_HEIGHTS = tuple(QQ(4) ** j for j in range(4, -33, -1))
+"""Values ``w₀ > 0`` (squared distances to the axis) tried in the same way, down to ``4⁻³²``:
+thin real surfaces hug the axis."""
+
+EXACT_LIMIT = 90
+"""Above this ``deg_s(H)·deg_w(H)`` the discriminant is not attempted when the first look found
+no real surface: the answer is ``undecided``."""
+
+CIRCLES_LIMIT = 40
+"""The same bound for counting circles and points with Gröbner bases."""
 
 SHEARS = 12
 """How many shears ``t = s + λ·w`` are tried to bring the singular points into shape position."""
@@ -85,6 +100,8 @@ def plane_locus(f: Poly, normal: Vector) -> RealLocus:
 
 def profile_locus(square: Poly) -> RealLocus:
     """The real points of the surface of revolution whose ``P²`` is ``square`` = ``G(s, w)``."""
+    if _quick_surface(square):
+        return _locus(SURFACE)
     K = square.ring.domain
     G = sympy.Poly(square.as_expr(*(S, W)), S, W, domain=K)
     k = min(m[1] for m in G.monoms())
@@ -95,14 +112,53 @@ def profile_locus(square: Poly) -> RealLocus:
     H = G1.exquo(sympy.Poly(content.as_expr(), S, W, domain=K))
     if H.degree(W) > 0:
         H = H.exquo(H.gcd(H.diff(W)))
-        if _has_surface(H, QUICK_SAMPLES) or _has_surface(H, _cell_samples(H)):
+        size = H.degree(S) * H.degree(W)
+        if size > EXACT_LIMIT:
+            return _locus(UNDECIDED)
+        if _has_surface(H, _cell_samples(H)):
             return _locus(SURFACE)
+        if size > CIRCLES_LIMIT:
+            return _locus(UNDECIDED)
         circles = _circles(H)
     else:
         circles = 0
     points = 0 if k else _real_roots(G.eval(W, 0))
     kind = CURVE if k or circles else (POINTS if points else EMPTY)
     return _locus(kind, points=points, circles=circles, axis_line=bool(k))
+
+
+def _quick_surface(square: Poly) -> bool:
+    """A certified first look: a line ``s = s₀``, or ``w = w₀ > 0``, that meets the reduced curve
+    ``G = 0`` in a simple real point with ``w > 0``. Through it passes a real branch (implicit
+    function theorem), so ``X`` has a real surface. ``False`` proves nothing."""
+    if not is_rational_field(square.ring.domain):
+        H = sympy.Poly(square.as_expr(*(S, W)), S, W, domain=square.ring.domain)
+        return _has_surface(H.exquo(H.gcd(H.diff(W))), QUICK_SAMPLES)
+    G = to_flint(square)
+    _, factors = G.factor_squarefree()
+    reduced = G.context().from_dict({(0, 0): 1})
+    for g, _e in factors:
+        reduced *= g
+    for i, values, positive in ((0, QUICK_SAMPLES, True), (1, QUICK_HEIGHTS, False)):
+        for value in values:
+            line = reduced.subs({reduced.context().names()[i]: flint.fmpq(int(value.numerator), int(value.denominator))})
+            coefficients = [flint.fmpq(0)] * (line.degrees()[1 - i] + 1)
+            for monom, c in line.to_dict().items():
+                coefficients[monom[1 - i]] = c
+            if _simple_real_root(flint.fmpq_poly(coefficients), positive):
+                return True
+    return False
+
+
+def _simple_real_root(p: flint.fmpq_poly, positive: bool) -> bool:
+    """Whether square-free ``p`` has a real root (a positive one when ``positive``), certified by
+    arb root isolation (real roots come back with imaginary part exactly 0)."""
+    if p.degree() <= 0 or p.gcd(p.derivative()).degree() > 0:
+        return False
+    for root, _m in p.numer().complex_roots():
+        if root.imag == 0 and (not positive or root.real > 0):
+            return True
+    return False
 
 
 def _content_in_s(G: sympy.Poly) -> sympy.Poly:

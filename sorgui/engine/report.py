@@ -101,13 +101,14 @@ class RealLocus:
     """What the real points of ``X`` are (docs/math.md §3.4): the surface turned from the profile.
 
     ``kind`` is ``"empty"``, ``"points"``, ``"curve"`` or ``"surface"`` (the largest piece;
-    ``dimension`` -1, 0, 1 or 2). Below a surface the pieces are counted exactly: ``points``
+    ``dimension`` -1, 0, 1 or 2), or ``"undecided"`` (``dimension`` ``None``) when the profile is
+    too large for the exact decision. Below a surface the pieces are counted exactly: ``points``
     isolated real points, ``circles`` circles about the axis, ``axis_line`` whether the whole
     axis lies on ``X``. ``None`` means not counted (above a surface, or no unique axis).
     """
 
     kind: str
-    dimension: int
+    dimension: int | None
     points: int | None = None
     circles: int | None = None
     axis_line: bool | None = None

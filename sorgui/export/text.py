@@ -96,6 +96,8 @@ def real_locus_line(real: RealLocus) -> str:
         return "real points: a real surface"
     if real.kind == "undecided":
         return "real points: undecided (the profile is too large for the exact decision)"
+    if real.kind == "undecided":
+        return "real points: undecided (the profile is too large for the exact decision)"
     if real.kind == "points":
         return f"real points: only {_count(real.points or 0, 'point')} (no real surface)"
     parts = ["the axis line"] if real.axis_line else []

@@ -9,7 +9,7 @@ from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.real_locus import real_locus
 from sorgui.engine.recognition import recognize
 from sorgui.engine.report import Analysis, RealLocus
-from sorgui.export.text import format_report
+from sorgui.export.text import format_report, real_locus_line
 
 
 def locus(text: str) -> RealLocus | None:
@@ -51,6 +51,14 @@ CASES = [
         "(z^3-2z(x^2+y^2)+(x^2+y^2)^2-3)^2+(z^2(x^2+y^2)-(x^2+y^2)+1)^2",
         RealLocus("curve", 1, points=0, circles=2, axis_line=False),
     ),
+    # a thin spindle torus about z = 5 (found on a line w = w₀ close to the axis), and a torus of
+    # radii 1000 and 1 (on no line of the first look: decided by the discriminant), and its empty twin
+    ("(x^2+y^2+(z-5)^2+1/1000000-4/1000000)^2-4/1000000(x^2+y^2)", RealLocus("surface", 2)),
+    ("(x^2+y^2+(z-5)^2+1000000-1)^2-4000000(x^2+y^2)", RealLocus("surface", 2)),
+    (
+        "(x^2+y^2+(z-5)^2+1000000+1)^2-4000000(x^2+y^2)",
+        RealLocus("empty", -1, points=0, circles=0, axis_line=False),
+    ),
     # over K = QQ(sqrt(2), sqrt(3))
     ("(1+sqrt(2))(x^2+y^2)+z^2+sqrt(3)", RealLocus("empty", -1, points=0, circles=0, axis_line=False)),
     ("(x^2+y^2-sqrt(2))^2+(z-sqrt(3))^2", RealLocus("curve", 1, points=0, circles=1, axis_line=False)),
@@ -90,3 +98,13 @@ def test_genus_line_says_what_a_reducible_profile_means() -> None:
     planes = format_report(analyze("x^2+y^2"))  # P² = w: two complex planes
     assert "genus(P), genus(P²): not computed" in planes
     assert "None" not in planes
+
+
+def test_words_for_every_kind() -> None:
+    assert real_locus_line(RealLocus("points", 0, points=2)) == "real points: only 2 points (no real surface)"
+    both = RealLocus("curve", 1, points=1, circles=2, axis_line=True)
+    assert real_locus_line(both) == (
+        "real points: only a curve (no real surface): the axis line, 2 circles about the axis and 1 isolated point"
+    )
+    undecided = real_locus_line(RealLocus("undecided", None))
+    assert undecided == "real points: undecided (the profile is too large for the exact decision)"
