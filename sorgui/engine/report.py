@@ -237,6 +237,8 @@ class Analysis:
     parametrizations: tuple[Parametrization, ...] = ()
     timings: tuple[tuple[str, float], ...] = field(default=())
     approximate: Approximation | None = None
+    unfinished: tuple[str, ...] = ()
+    """Stages cut short by the time limit of the whole analysis (their results are undecided)."""
     real_locus: RealLocus | None = None
 
     @property
@@ -269,6 +271,7 @@ class Analysis:
             "timings": dict(self.timings),
             "approximate": None if self.approximate is None else self.approximate.to_json(),
             "real_locus": _plain(self.real_locus),
+            "unfinished": list(self.unfinished),
         }
 
     @classmethod
@@ -290,6 +293,7 @@ class Analysis:
             timings=tuple(data.get("timings", {}).items()),
             approximate=None if data.get("approximate") is None else Approximation.from_json(data["approximate"]),
             real_locus=_build(RealLocus, data.get("real_locus")),
+            unfinished=tuple(data.get("unfinished", ())),
         )
 
 
