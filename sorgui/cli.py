@@ -21,7 +21,6 @@ import math
 import os
 import signal
 import sys
-import time
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
@@ -278,7 +277,6 @@ def fail(message: str, position: int | None, as_json: bool, status: int) -> int:
 
 def analyze_main(argv: Sequence[str]) -> int:
     """``sorgui analyze``: print the report (or JSON) of one equation, or of each line."""
-    started = time.monotonic()
     as_json = "--json" in argv
     try:
         args = parse_arguments(analyze_parser(), argv)
@@ -297,9 +295,8 @@ def analyze_main(argv: Sequence[str]) -> int:
     from sorgui.engine import ParseError, SorguiError, analyze
 
     try:
-        timeout = max(args.timeout - (time.monotonic() - started), 0.001)  # imports count too
         result = analyze(text, method=args.method, recognition_only=args.recognition_only,
-                         singular_timeout=timeout, timeout=timeout, tolerance=args.tolerance)
+                         singular_timeout=args.timeout, timeout=args.timeout, tolerance=args.tolerance)
     except ParseError as exc:
         return fail(str(exc), exc.position, args.json, 2)
     except SorguiError as exc:

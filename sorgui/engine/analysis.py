@@ -109,7 +109,7 @@ def analyze(
         parsed = parse_polynomial(text)
     remaining = None if timeout is None else max(timeout - (time.monotonic() - start), 0.001)
     try:
-        with time_limit(remaining):
+        with time_limit(remaining, timeout):
             return analyze_polynomial(
                 parsed.polynomial,
                 text=text,

@@ -23,16 +23,17 @@ from .report import Analysis, Rationality, Recognition
 
 
 @contextmanager
-def time_limit(seconds: float | None) -> Iterator[None]:
+def time_limit(seconds: float | None, stated: float | None = None) -> Iterator[None]:
     """Raise :class:`TimeLimitReached` inside the block once ``seconds`` have passed (main thread
-    only, where signals are delivered; elsewhere, and for ``None``, the block is not bounded)."""
+    only, where signals are delivered; elsewhere, and for ``None``, the block is not bounded).
+    The message names the ``stated`` limit (the caller's, of which ``seconds`` may be the rest)."""
     usable = hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
     if seconds is None or not usable:
         yield
         return
 
     def expire(_signum: int, _frame: FrameType | None) -> None:
-        raise TimeLimitReached(f"the analysis did not finish within the time limit of {seconds:.3g} s")
+        raise TimeLimitReached(f"the analysis did not finish within the time limit of {stated or seconds:g} s")
 
     previous = signal.signal(signal.SIGALRM, expire)
     signal.setitimer(signal.ITIMER_REAL, seconds)

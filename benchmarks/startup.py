@@ -1,0 +1,54 @@
+"""Benchmark: a whole ``sorgui analyze --recognition-only`` process on a small equation.
+
+Measures the wall time and the CPU time (user + system, from ``getrusage`` of the child) of the
+process, the best of ``--repeats`` runs, and the CPU time of the imports alone. The CPU time
+is the figure to compare on a busy machine: the wall time includes waiting for the processor.
+Run ``python -m benchmarks.startup [--repeats N] [--write]`` from the repository root.
+"""
+
+from __future__ import annotations
+
+import resource
+import subprocess
+import sys
+import time
+
+from benchmarks.report import ROOT, run
+
+CASES = [
+    ("paraboloid, degree 2", "x^2 + y^2 - z"),
+    ("paper Example 1, degree 3", "y^2 + z^2 = x^3 + 3x^2 - 2x"),
+    ("torus, degree 4", "(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)"),
+    ("(x^2+y^2+z^2-1)^5 + x, degree 10", "(x^2 + y^2 + z^2 - 1)^5 + x"),
+]
+IMPORTS = [("sympy", "import sympy"), ("numpy", "import numpy"), ("sorgui.engine", "import sorgui.engine"),
+           ("sorgui.cli", "import sorgui.cli")]
+
+
+def process_times(args: list[str], repeats: int) -> tuple[float, float]:
+    """The best wall time and the best CPU time of ``python args`` over ``repeats`` runs."""
+    walls, cpus = [], []
+    for _ in range(repeats):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        start = time.perf_counter()
+        subprocess.run([sys.executable, *args], capture_output=True, cwd=ROOT, check=True)
+        walls.append(time.perf_counter() - start)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpus.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+    return min(walls), min(cpus)
+
+
+def table(repeats: int) -> str:
+    rows = ["| whole process | wall (s) | CPU (s) |", "|---|---|---|"]
+    for name, text in CASES:
+        wall, cpu = process_times(["-m", "sorgui.cli", "analyze", "--recognition-only", text], repeats)
+        rows.append(f"| `sorgui analyze --recognition-only`: {name} | {wall:.2f} | {cpu:.2f} |")
+    for name, statement in IMPORTS:
+        wall, cpu = process_times(["-c", statement], repeats)
+        rows.append(f"| `python -c \"{statement}\"` | {wall:.2f} | {cpu:.2f} |")
+    print("\n".join(rows), flush=True)
+    return "\n".join(rows)
+
+
+if __name__ == "__main__":
+    run("startup", __doc__.splitlines()[0], table)

@@ -1,0 +1,74 @@
+"""One time limit for the whole analysis: unfinished stages are undecided, finished ones kept."""
+
+from __future__ import annotations
+
+import signal
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from sorgui.engine import Analysis, analyze
+from sorgui.engine.errors import TimeLimitReached
+from sorgui.engine.parsing import parse_polynomial
+from sorgui.engine.timelimit import UNDECIDED, time_limit, unfinished_analysis
+
+SLOW = (Path(__file__).resolve().parents[1] / "data" / "slow-singular.txt").read_text(encoding="utf-8")
+
+
+def test_a_limit_met_in_singular_keeps_the_recognition() -> None:
+    start = time.monotonic()
+    result = analyze(SLOW, timeout=3)
+    assert time.monotonic() - start < 3 + 3
+    assert result.is_sor and result.recognition.axis is not None and result.factors
+    assert result.unfinished == ("rationality", "parametrizations")
+    assert result.rationality is not None and result.rationality.status.startswith("undecided")
+    assert "time limit of 3 s" in result.rationality.status
+    assert Analysis.from_json(result.to_json()) == result
+
+
+def test_a_limit_met_in_python_keeps_what_finished() -> None:
+    """Factoring this power over QQ took 15 s in sympy; wherever the limit falls, the finished
+    stages are kept and only the others are listed as unfinished."""
+    start = time.monotonic()
+    result = analyze("(x+2y+3z+4+5x^2+y^2)^30", timeout=2)
+    assert time.monotonic() - start < 2 + 3
+    done = {name for name, _ in result.timings}
+    assert not done & set(result.unfinished)
+    assert result.recognition.symmetry == ("none" if "recognition" in done else UNDECIDED)
+    assert bool(result.factors) == ("factors" in done)
+
+
+def test_nothing_finished_is_reported_undecided() -> None:
+    f = parse_polynomial("x^2 + y^2 - z").polynomial
+    result = unfinished_analysis(f, text="x^2+y^2-z", method="symmetry", recognition=None, latest=None,
+                                 timings=(("parse", 0.01),), current="recognition", message="too slow",
+                                 recognition_only=False)
+    assert result.recognition.symmetry == UNDECIDED and not result.is_sor
+    assert result.unfinished == ("recognition", "factors", "rationality", "parametrizations")
+    assert result.rationality.status == "undecided: too slow"
+    from sorgui.export.text import format_report
+
+    report = format_report(result)
+    assert "surface of revolution: undecided" in report and "not finished within the time limit" in report
+
+
+def test_the_alarm_is_restored_and_only_armed_in_the_main_thread() -> None:
+    before = signal.getsignal(signal.SIGALRM)
+    with pytest.raises(TimeLimitReached):
+        with time_limit(0.2):
+            time.sleep(5)
+    assert signal.getsignal(signal.SIGALRM) == before
+    assert signal.getitimer(signal.ITIMER_REAL) == (0.0, 0.0)
+    seen: list[object] = []
+
+    def other_thread() -> None:
+        with time_limit(0.1):
+            time.sleep(0.3)  # not interrupted: signals only reach the main thread
+        seen.append(signal.getsignal(signal.SIGALRM))
+
+    thread = threading.Thread(target=other_thread)
+    thread.start()
+    thread.join()
+    assert seen == [before]
