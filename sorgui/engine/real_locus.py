@@ -249,16 +249,17 @@ def _radical(system: list[sympy.Expr], K: Domain) -> list[sympy.Expr] | None:
     for e, x in zip(eliminants, (S, W)):
         if e.free_symbols != {x}:
             raise AnalysisError("the singular points of the profile are not finitely many (internal error)")
-    radical = system + [sympy.Poly(e, x, domain=K).sqf_part().as_expr() for e, x in zip(eliminants, (S, W))]
+    radical = basis.exprs + [sympy.Poly(e, x, domain=K).sqf_part().as_expr() for e, x in zip(eliminants, (S, W))]
     return _lex_basis(radical, W, S, K).exprs
 
 
 def _shape(radical: list[sympy.Expr], K: Domain) -> tuple[sympy.Poly, sympy.Poly]:
     """``(q, v)`` with ``V = {(t - λ·v(t), v(t)) : q(t) = 0}`` for the first shear ``s = t - λ·w``
-    that puts the radical ideal in shape position (lex basis ``{w - v(t), q(t)}``)."""
+    that puts the radical ideal in shape position (lex basis ``{w - v(t), q(t)}``). ``radical``
+    is already a reduced lex basis, so ``λ = 0`` needs no new one."""
     for lam in range(SHEARS):
         sheared = [e.subs(S, T - lam * W) for e in radical]
-        basis = _lex_basis(sheared, W, T, K).exprs
+        basis = sheared if lam == 0 else _lex_basis(sheared, W, T, K).exprs
         if len(basis) != 2:
             continue
         first = sympy.Poly(basis[0], W, T, domain=K)
