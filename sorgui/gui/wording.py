@@ -26,7 +26,7 @@ CAPTION_TIPS = {
     "direction a": "A direction vector of the axis (not normalised: it stays exact)",
     "line": "The axis as the line c + t·a",
     "Plücker (a : c × a)": "Plücker coordinates of the axis: the same for every choice of c and a",
-    "p(x, y) = 0": "The profile curve: x along the axis, y the distance to it (MATH.md §3)",
+    "p(x, y) = 0": "The profile curve: x along the axis, y the distance to it (docs/math.md §3)",
     "P²: y² → y": "The profile with y² replaced by y: the curve P² whose genus decides Table 1",
     "p̃(s, r) = f(c + s·a + r·u)": "The profile in the K-rational frame (c, a, u), exact",
     "frame": "The frame of the profile: c on the axis, a along it, u perpendicular to it",
@@ -114,9 +114,9 @@ def why_not(analysis: Analysis) -> list[str]:
 def _dimension_sentence(rec: Recognition) -> str:
     dim = rec.symmetry_dimension
     if dim == 0:
-        return ("The symmetry algebra L (the infinitesimal isometries ω × X + b that keep f = 0, MATH.md §2) "
+        return ("The symmetry algebra L (the infinitesimal isometries ω × X + b that keep f = 0, docs/math.md §2) "
                 "is zero: the surface has no continuous symmetry.")
-    return (f"The symmetry algebra L (the infinitesimal isometries ω × X + b that keep f = 0, MATH.md §2) "
+    return (f"The symmetry algebra L (the infinitesimal isometries ω × X + b that keep f = 0, docs/math.md §2) "
             f"has dimension {dim}, but contains no rotation about a line.")
 
 
