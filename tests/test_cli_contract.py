@@ -169,3 +169,10 @@ def test_the_time_limit_bounds_the_whole_analysis_and_keeps_what_is_done() -> No
     assert elapsed < 4 + 15  # the limit plus starting Python and importing, on a busy machine
     text = sorgui("analyze", "--timeout", "4", "-f", str(DATA / "slow-singular.txt")).stdout
     assert "not finished within the time limit (undecided): rationality" in text
+
+
+def test_the_command_line_loads_the_engine_only_to_analyse() -> None:
+    code = ("import sys; from sorgui.cli import main; status = main(['analyze', '--timeout', '0']); "
+            "print(status, sorted({m.split('.')[0] for m in sys.modules} & {'sympy', 'flint', 'numpy'}))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.stdout.strip() == "2 []", out.stdout + out.stderr
