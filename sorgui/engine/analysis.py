@@ -1,6 +1,7 @@
 """The whole analysis of one pasted equation, stage by stage, with timings and cancellation.
 
-Stages: parse → recognition (symmetry, axis, profile) → factors → approximate (rounded input
+Stages: parse → recognition (symmetry, axis, profile) → factors → real locus (what the real
+surface of a surface of revolution is, docs/math.md §3.4) → approximate (rounded input
 or a given tolerance: the nearest surface of revolution, docs/math.md §8) → rationality and
 parameterizations (docs/math.md §5–§6; only for a surface of revolution with a unique axis) →
 nearest (the whole analysis of the snapped exact surface).
