@@ -31,10 +31,22 @@ from sorgui import __version__
 from sorgui.engine.errors import ParseError
 from sorgui.engine.report import Analysis
 from sorgui.examples import EXAMPLES, example_text
-from sorgui.export.files import export_analysis
+from sorgui.export.atomic import atomic_write_bytes
+from sorgui.export.files import export_analysis, format_of
+from sorgui.export.reports import ReportError, read_report
 from sorgui.render.picking import PickInfo
 from sorgui.gui.editor import EquationEditor
 from sorgui.gui.examples import ExamplesMenu
+from sorgui.gui.exporting import (
+    EXPORT_FILTERS,
+    REPORT_FILTER,
+    PictureDialog,
+    export_filters,
+    is_report_path,
+    png_bytes,
+    suffix_of_filter,
+    viewport_image,
+)
 from sorgui.gui.formulas import Style
 from sorgui.gui.job import JobRequest, JobResult
 from sorgui.gui.results import FORMULA_MARGIN, ResultsPane
@@ -65,14 +77,8 @@ SCENE_DELAY_MS = 20
 DEFAULT_EXAMPLE = EXAMPLES[0].name
 """The paper's Example 1, loaded on a first start."""
 
-EXPORT_FILTERS = {
-    ".json": "JSON",
-    ".txt": "Text report",
-    ".tex": "LaTeX",
-    ".mpl": "Maple",
-    ".m": "Mathematica",
-}
-"""The file dialog's choices for File → Export Results (the formats of :mod:`sorgui.export.files`)."""
+REPORT_PICTURE_WIDTH = 1200
+"""Width in pixels of the picture of the 3D view in Markdown and HTML reports."""
 
 
 class BusyIndicator(QWidget):
@@ -266,7 +272,10 @@ class MainWindow(QMainWindow):
             self.load_example(DEFAULT_EXAMPLE)
 
     def open_file(self, path: str) -> bool:
-        """Read an equation file into the editor and analyse it."""
+        """Read an equation file into the editor and analyse it (a ``.json`` report is shown as
+        saved, see :meth:`open_report`)."""
+        if is_report_path(path):
+            return self.open_report(path)
         try:
             text = read_equation(path)
         except EquationFileError as exc:
@@ -277,6 +286,21 @@ class MainWindow(QMainWindow):
         self.set_equation(text, str(Path(path).resolve()))
         self.settings.add_recent_file(path)
         self.analyze()
+        return True
+
+    def open_report(self, path: str) -> bool:
+        """Show the analysis saved in the JSON report ``path`` without analysing it again (only its
+        scene and formulas are drawn)."""
+        try:
+            analysis = read_report(path)
+        except ReportError as exc:
+            self._show_error("Cannot open report", exc.message)
+            return False
+        self.set_equation(analysis.input)
+        self._started_at = time.perf_counter()
+        self.worker.start(JobRequest(analysis.input, analysis=analysis.to_json(),
+                                     resolution=self.viewport.mesh_resolution(), style=self._formula_style()))
+        self.statusBar().showMessage(f"Report {Path(path).name}: shown as saved, not analysed again", 6000)
         return True
 
     def save_file(self, path: str) -> bool:
@@ -390,7 +414,8 @@ class MainWindow(QMainWindow):
 
     def _on_open_change(self) -> None:
         start = str(Path(self._file).parent) if self._file else ""
-        path, _ = QFileDialog.getOpenFileName(self, "Open equation", start, EQUATION_FILTER)
+        path, _ = QFileDialog.getOpenFileName(self, "Open equation or report", start,
+                                              f"{EQUATION_FILTER};;{REPORT_FILTER}")
         if path:
             self.open_file(path)
 
@@ -410,22 +435,31 @@ class MainWindow(QMainWindow):
         QGuiApplication.clipboard().setText(self.results.plain_text())
         self.statusBar().showMessage("Report copied to the clipboard", 3000)
 
-    def export_results(self, path: str | Path) -> Path:
-        """Write the shown analysis to ``path`` (JSON, text, LaTeX, Maple or Mathematica, by suffix)."""
-        if self._analysis_json is None:
+    def export_results(self, path: str | Path, fmt: str | None = None) -> Path:
+        """Write the shown analysis to ``path`` in any format of :mod:`sorgui.export.files` (by
+        suffix, or ``fmt``): meshes from the drawn scene, Markdown/HTML with a picture of the view."""
+        analysis = None if self._analysis_json is None else Analysis.from_json(self._analysis_json)
+        if analysis is None:
             raise ValueError("there is no analysis to export yet")
-        return export_analysis(Analysis.from_json(self._analysis_json), path)
+        picture = None
+        if format_of(path, fmt).suffix in (".md", ".html", ".png"):
+            picture = png_bytes(viewport_image(self.viewport, REPORT_PICTURE_WIDTH))
+        return export_analysis(analysis, path, fmt, scene=self.viewport.scene, picture=picture)
+
+    def save_picture(self, path: str | Path, width: int | None = None, transparent: bool = False) -> Path:
+        """Save the 3D view as a PNG ``width`` pixels wide (default: as on screen), optionally
+        with a transparent background (written atomically)."""
+        return atomic_write_bytes(path, png_bytes(viewport_image(self.viewport, width, transparent)))
 
     def _on_export_change(self) -> None:
         if self._analysis_json is None:
             self.statusBar().showMessage("Analyse an equation first", 4000)
             return
-        filters = ";;".join(f"{name} (*{suffix})" for suffix, name in EXPORT_FILTERS.items())
-        path, chosen = QFileDialog.getSaveFileName(self, "Export results", "sorgui-results.json", filters)
+        path, chosen = QFileDialog.getSaveFileName(self, "Export results", "sorgui-results.json", export_filters())
         if not path:
             return
-        if not Path(path).suffix:
-            path += next(suffix for suffix, name in EXPORT_FILTERS.items() if chosen.startswith(name))
+        if Path(path).suffix.lower() not in EXPORT_FILTERS:
+            path += suffix_of_filter(chosen)
         try:
             written = self.export_results(path)
         except (OSError, ValueError) as exc:
@@ -434,10 +468,18 @@ class MainWindow(QMainWindow):
         self.statusBar().showMessage(f"Exported {written}", 4000)
 
     def _on_screenshot_change(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Save screenshot", "sorgui.png", "PNG images (*.png)")
-        if path:
-            self.viewport.screenshot(path)
-            self.statusBar().showMessage(f"Saved {path}", 4000)
+        dialog = PictureDialog(int(self.viewport.plotter.window_size[0]), self)
+        if dialog.exec() != PictureDialog.DialogCode.Accepted:
+            return
+        path, _ = QFileDialog.getSaveFileName(self, "Save picture", "sorgui.png", "PNG images (*.png)")
+        if not path:
+            return
+        try:
+            self.save_picture(path, dialog.width_box.value(), dialog.transparent_box.isChecked())
+        except OSError as exc:
+            self._show_error("Cannot save the picture", f"cannot write {path}: {exc.strerror or exc}")
+            return
+        self.statusBar().showMessage(f"Saved {path}", 4000)
 
     def _on_about_change(self) -> None:
         QMessageBox.about(

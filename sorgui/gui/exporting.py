@@ -1,0 +1,128 @@
+"""File → Export, File → Open of a saved report, and Save Picture: the window's side of the exports.
+
+The formats themselves live in :mod:`sorgui.export` (Qt-free); this module adds the file-dialog
+filters, the picture of the viewport and a small dialog for its size and background.
+
+The picture is rendered by the viewport's own render window at a chosen width (the render is
+scaled up by a whole factor, then resampled to exactly that width), optionally with a
+transparent background. It holds what the user sees in the 3D view — the actors that are
+visible, nothing hidden — without the orientation marker in the corner, which is a widget of
+the window and not part of the scene.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+from PySide6.QtCore import QBuffer, QIODevice, Qt
+from PySide6.QtGui import QImage
+from PySide6.QtWidgets import QCheckBox, QDialog, QDialogButtonBox, QFormLayout, QSpinBox, QWidget
+
+from sorgui.export.files import FORMATS
+
+if TYPE_CHECKING:
+    from sorgui.gui.viewport import Viewport
+
+EXPORT_FILTERS = {suffix: form.name for suffix, form in FORMATS.items()}
+"""The file dialog's choices for File → Export (every format of :mod:`sorgui.export.files`)."""
+
+REPORT_FILTER = "sorgui reports (*.json)"
+"""File → Open also opens a report saved as JSON, shown without analysing again."""
+
+MAX_PICTURE_WIDTH = 8000
+"""The widest picture Save Picture offers, in pixels."""
+
+
+def export_filters() -> str:
+    """The filter string of the Export dialog, the meshes also as their parametric patch."""
+    return ";;".join(f"{name} (*{suffix})" for suffix, name in EXPORT_FILTERS.items())
+
+
+def suffix_of_filter(chosen: str) -> str:
+    """The suffix of the filter ``chosen`` in the Export dialog (for a name typed without one)."""
+    return next((suffix for suffix, name in EXPORT_FILTERS.items() if chosen.startswith(name)), ".json")
+
+
+def is_report_path(path: str | Path) -> bool:
+    """Whether File → Open should treat ``path`` as a saved report rather than an equation."""
+    return Path(path).suffix.lower() == ".json"
+
+
+def viewport_image(viewport: Viewport, width: int | None = None, transparent: bool = False) -> QImage:
+    """The 3D view as an image ``width`` pixels wide (default: the view's own size).
+
+    A transparent background is computed, not asked of OpenGL (the window's surface has no
+    alpha channel): the view is rendered once on black and once on white, and each pixel's
+    opacity is ``1 - (white - black)``, its colour the one on black divided by that opacity —
+    exact for opaque surfaces and for their smoothed edges alike.
+    """
+    plotter = viewport.plotter
+    own_width = max(1, int(plotter.window_size[0]))
+    scale = max(1, math.ceil((width or own_width) / own_width))
+    renderer = plotter.renderer
+    background = (renderer.GetBackground(), renderer.GetBackground2(), renderer.GetGradientBackground())
+    plotter.hide_axes()
+    try:
+        if transparent:
+            renderer.GradientBackgroundOff()
+            on_black = _render(plotter, scale, (0.0, 0.0, 0.0)).astype(np.float64)
+            on_white = _render(plotter, scale, (1.0, 1.0, 1.0)).astype(np.float64)
+            alpha = np.clip(255.0 - (on_white - on_black).max(axis=-1), 0.0, 255.0)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                color = np.where(alpha[..., None] > 0, on_black * 255.0 / alpha[..., None], 0.0)
+            pixels = np.dstack([np.clip(color, 0, 255), alpha]).round().astype(np.uint8)
+        else:
+            pixels = plotter.screenshot(None, return_img=True, scale=scale)[..., :3]
+    finally:
+        renderer.SetBackground(*background[0])
+        renderer.SetBackground2(*background[1])
+        renderer.SetGradientBackground(background[2])
+        plotter.show_axes()
+        viewport.request_render()
+    pixels = np.ascontiguousarray(pixels)
+    height, full_width, channels = pixels.shape
+    form = QImage.Format.Format_RGBA8888 if channels == 4 else QImage.Format.Format_RGB888
+    image = QImage(pixels.data, full_width, height, channels * full_width, form).copy()
+    if width is not None and width != full_width:
+        image = image.scaledToWidth(width, Qt.TransformationMode.SmoothTransformation)
+    return image
+
+
+def _render(plotter: object, scale: int, color: tuple[float, float, float]) -> np.ndarray:
+    """One render of the view on a plain background ``color``, as ``(h, w, 3)`` pixels."""
+    plotter.renderer.SetBackground(*color)  # type: ignore[attr-defined]
+    return plotter.screenshot(None, return_img=True, scale=scale)[..., :3]  # type: ignore[attr-defined]
+
+
+def png_bytes(image: QImage) -> bytes:
+    """``image`` encoded as PNG."""
+    buffer = QBuffer()
+    buffer.open(QIODevice.OpenModeFlag.WriteOnly)
+    image.save(buffer, "PNG")
+    return bytes(buffer.data().data())
+
+
+class PictureDialog(QDialog):
+    """Asks for the picture's width in pixels and whether its background is transparent."""
+
+    def __init__(self, view_width: int, parent: QWidget | None = None) -> None:
+        super().__init__(parent)
+        self.setWindowTitle("Save picture")
+        self.width_box = QSpinBox(self)
+        self.width_box.setObjectName("pictureWidth")
+        self.width_box.setRange(64, MAX_PICTURE_WIDTH)
+        self.width_box.setSuffix(" px")
+        self.width_box.setValue(min(2 * view_width, MAX_PICTURE_WIDTH))
+        self.width_box.setToolTip(f"The view is {view_width} px wide; 2× is {2 * view_width} px")
+        self.transparent_box = QCheckBox("Transparent background", self)
+        self.transparent_box.setObjectName("pictureTransparent")
+        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel, self)
+        buttons.accepted.connect(self.accept)
+        buttons.rejected.connect(self.reject)
+        layout = QFormLayout(self)
+        layout.addRow("Width", self.width_box)
+        layout.addRow("", self.transparent_box)
+        layout.addRow(buttons)

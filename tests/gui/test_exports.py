@@ -1,0 +1,89 @@
+"""File → Export in every format, File → Open of a saved report, and Save Picture, in the real window."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+import pyvista
+from PySide6.QtGui import QImage
+
+from sorgui.engine import analyze
+from sorgui.export.files import FORMATS
+from sorgui.export.reports import read_report
+
+pytestmark = pytest.mark.gui
+
+TORUS = "(x^2 + y^2 + z^2 + 8)^2 - 36(x^2 + y^2)"
+
+
+def test_every_format_is_exported_from_the_window(window, run_analysis, tmp_path) -> None:
+    run_analysis(window, TORUS)
+    for suffix in FORMATS:
+        window.export_results(tmp_path / f"{'report' if suffix == '.md' else 'torus'}{suffix}")
+    assert read_report(tmp_path / "torus.json").recognition.polynomial == analyze(TORUS).recognition.polynomial
+    scene = window.viewport.scene
+    assert pyvista.read(tmp_path / "torus.stl").n_cells == scene.surface.n_faces
+    window.export_results(tmp_path / "torus.patch.ply")
+    assert pyvista.read(tmp_path / "torus.patch.ply").n_cells > 100
+    markdown = (tmp_path / "report.md").read_text(encoding="utf-8")
+    assert "![The surface and its axis](report.png)" in markdown  # the view's picture beside it
+    assert QImage(str(tmp_path / "report.png")).width() == 1200
+    assert QImage(str(tmp_path / "torus.png")).width() == 1200  # .png itself: the view, as for the reports
+    assert 'src="data:image/png;base64,' in (tmp_path / "torus.html").read_text(encoding="utf-8")
+    assert "def X1(s, t):" in (tmp_path / "torus.py").read_text(encoding="utf-8")
+
+
+def test_saved_report_opens_without_analysing_again(window, qtbot, tmp_path) -> None:
+    """The report's own timings come back unchanged: a new analysis would have measured new ones."""
+    analysis = dataclasses.replace(analyze(TORUS), timings=(("recorded", 123.25),))
+    path = tmp_path / "torus.sorgui.json"
+    path.write_text(json.dumps(analysis.to_json()), encoding="utf-8")
+    with qtbot.waitSignal(window.result_shown, timeout=90_000):
+        assert window.open_file(str(path))
+    shown = window.session.run.analysis
+    assert shown == analysis and shown.timings == (("recorded", 123.25),)
+    assert window.editor.text() == analysis.input
+    assert window.viewport.scene is not None and window.viewport.scene.surface.n_faces > 1000
+    assert "Surface of revolution" in window.results.plain_text() or analysis.is_sor
+
+
+def test_a_file_that_is_not_a_report_is_refused_with_a_dialog(window, qtbot, tmp_path, monkeypatch) -> None:
+    shown: list[str] = []
+    monkeypatch.setattr(window, "_show_error", lambda title, message: shown.append(f"{title}: {message}"))
+    bad = tmp_path / "notes.json"
+    bad.write_text("[1, 2", encoding="utf-8")
+    assert not window.open_file(str(bad))
+    assert shown and shown[0].startswith("Cannot open report:") and "notes.json" in shown[0]
+
+
+def pixels(path) -> np.ndarray:  # noqa: ANN001
+    image = QImage(str(path)).convertToFormat(QImage.Format.Format_RGBA8888)
+    data = np.frombuffer(image.constBits(), dtype=np.uint8, count=image.sizeInBytes())
+    return data.reshape(image.height(), image.bytesPerLine() // 4, 4)[:, : image.width()].copy()  # own the pixels
+
+
+def count_color(image: np.ndarray, color: str, tolerance: int = 40) -> int:
+    rgb = np.array([int(color[i:i + 2], 16) for i in (1, 3, 5)])
+    return int((np.abs(image[..., :3].astype(int) - rgb).max(axis=-1) <= tolerance).sum())
+
+
+def test_picture_has_the_chosen_width_a_transparent_background_and_only_visible_actors(
+    window, run_analysis, tmp_path, artifacts
+) -> None:
+    from sorgui.gui.viewport import PATCH_COLOR
+
+    run_analysis(window, TORUS)
+    window.viewport.patch_box.setChecked(True)
+    with_patch = window.save_picture(tmp_path / "patch.png", width=1500, transparent=True)
+    image = pixels(with_patch)
+    assert image.shape[1] == 1500
+    assert image[0, 0, 3] == 0 and image[-1, -1, 3] == 0  # transparent corners
+    assert image[..., 3].max() == 255  # the surface itself is opaque
+    window.viewport.patch_box.setChecked(False)
+    without = pixels(window.save_picture(tmp_path / "plain.png", width=1500, transparent=True))
+    assert count_color(image, PATCH_COLOR) > 20 * max(1, count_color(without, PATCH_COLOR))
+    opaque = pixels(window.save_picture(artifacts / "torus-picture.png", width=1600))
+    assert opaque.shape[1] == 1600 and opaque[0, 0, 3] == 255
