@@ -31,7 +31,7 @@ from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, format_report
 KNOWN_KEYS = frozenset({
     "input", "polynomial", "field", "method", "degree", "is_sor", "symmetry", "symmetry_dimension",
     "symmetry_basis", "axis", "center", "normal", "direction", "profile", "factors", "squarefree",
-    "rationality", "parametrizations", "timings", "approximate",
+    "rationality", "parametrizations", "timings", "approximate", "real_locus", "unfinished",
 })
 """The JSON keys the Markdown and HTML reports present in words."""
 
@@ -105,10 +105,17 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
     """The report as blocks; ``picture`` is the image's address (file name or ``data:`` URI)."""
     rec = analysis.recognition
     blocks = [Block("h1", f"sorgui: {verdict(analysis)}")]
-    blocks.append(Block("p", "Equation: " + _inline(sympy.latex(sympy.Symbol("f")) + " = 0") +
-                    f" with the polynomial of degree {rec.degree} over the field $K$ = {analysis.field}."))
+    blocks.append(Block("p", f"Equation: $f(x, y, z) = 0$ of degree {rec.degree} over the field $K$ = "
+                             f"{analysis.field} (the polynomial is under Formulas)."))
     blocks.append(Block("p", f"Symmetry: {SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)} "
                              f"(the symmetry algebra has dimension {rec.symmetry_dimension})."))
+    locus = analysis.to_json().get("real_locus")
+    if locus:
+        dimension = f" (dimension {locus['dimension']})" if locus.get("dimension") is not None else ""
+        blocks.append(Block("p", f"Real points: {locus['kind']}{dimension}."))
+    if analysis.unfinished:
+        blocks.append(Block("p", "Not finished within the time limit (undecided): "
+                                 + ", ".join(analysis.unfinished) + "."))
     if picture is not None:
         blocks.append(Block("image", picture))
     rat = analysis.rationality
@@ -136,7 +143,7 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
     blocks.append(Block("h2", "Formulas"))
     for formula in analysis_formulas(analysis):
         blocks += _formula_blocks(formula)
-    extra = {k: v for k, v in analysis.to_json().items() if k not in KNOWN_KEYS and v is not None}
+    extra = {k: v for k, v in analysis.to_json().items() if k not in KNOWN_KEYS and v not in (None, [], {})}
     if extra:
         blocks.append(Block("h2", "Further results"))
         blocks.append(Block("code", json.dumps(extra, indent=1)))
