@@ -139,9 +139,10 @@ def _quick_surface(square: Poly) -> bool:
     reduced = G.context().from_dict({(0, 0): 1})
     for g, _e in factors:
         reduced *= g
+    names = reduced.context().names()
     for i, values, positive in ((0, QUICK_SAMPLES, True), (1, QUICK_HEIGHTS, False)):
         for value in values:
-            line = reduced.subs({reduced.context().names()[i]: flint.fmpq(int(value.numerator), int(value.denominator))})
+            line = reduced.subs({names[i]: flint.fmpq(int(value.numerator), int(value.denominator))})
             coefficients = [flint.fmpq(0)] * (line.degrees()[1 - i] + 1)
             for monom, c in line.to_dict().items():
                 coefficients[monom[1 - i]] = c
