@@ -27,13 +27,14 @@ from .polys import Poly, field_name, poly_str
 from .profile import profile_curve
 from .real_locus import real_locus
 from .recognition import factor_reports, recognize
-from .report import Analysis, Approximation, Parametrization, Rationality, Recognition
+from .report import Analysis, Approximation, Canal, Parametrization, Rationality, Recognition
 from .timelimit import time_limit, unfinished_analysis
 
 ProgressCallback = Callable[[str], None]
 PartialCallback = Callable[[Analysis], None]
 
-STAGES = ("parse", "recognition", "factors", "real locus", "approximate", "rationality", "parametrizations", "nearest")
+STAGES = ("parse", "recognition", "factors", "real locus", "approximate", "rationality", "parametrizations", "canal",
+          "nearest")
 
 
 class StageClock:
@@ -163,6 +164,8 @@ def analyze_polynomial(
             near = approximate_symmetry(f, rounding, notes=rounding_notes)
         approximation = near.approximation
 
+    canal: Canal | None = None
+
     def result(rationality: Rationality | None, found: tuple[Parametrization, ...]) -> Analysis:
         return Analysis(
             input=poly_str(f) if text is None else text,
@@ -176,6 +179,7 @@ def analyze_polynomial(
             timings=tuple(clock.timings),
             real_locus=real,
             approximate=approximation,
+            canal=canal,
         )
 
     rationality = None
@@ -196,6 +200,12 @@ def analyze_polynomial(
             with clock.stage("parametrizations"):
                 found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)
             rationality = replace(rationality, notes=rationality.notes + notes)
+    from .canal import analyze_canal  # Singular's layer: only here
+
+    clock.publish(result(rationality, found))
+    with clock.stage("canal"):
+        canal = analyze_canal(f, is_sor=recognition.is_sor, full=not recognition_only,
+                              timeout=singular_timeout, cancel=cancel)
     if near is not None and near.nearest is not None and approximation.nearest is not None and not recognition_only:
         clock.publish(result(rationality, found))
         with clock.stage("nearest"):

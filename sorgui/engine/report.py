@@ -224,6 +224,110 @@ class Approximation:
 
 
 @dataclass(frozen=True)
+class CanalFamily:
+    """One sphere family of a canal surface: its SMAT curve ``(m, ρ)`` (docs/math.md §9).
+
+    ``equations`` generate the SMAT ideal in ``m1, m2, m3, r`` (``r`` is ``ρ``, the squared
+    radius); ``spine_equations`` the spine's ideal in ``m1, m2, m3``; ``plane_model`` is
+    ``G(u, v)``, the image under ``u, v`` = ``projection`` (integer forms in ``m1, m2, m3, r``).
+    ``parametrization`` is ``m(t)`` and ``radius_squared`` ``ρ(t)`` (or the constant of a pipe),
+    over ``field``; ``circle_*`` are the characteristic circles (centre, radius², plane normal).
+    """
+
+    degree: int
+    smat_degree: int
+    genus: int | None
+    planar: bool
+    on_line: bool
+    pipe: bool
+    equations: tuple[str, ...]
+    spine_equations: tuple[str, ...]
+    plane_model: str
+    projection: tuple[tuple[int, ...], tuple[int, ...]]
+    parametrization: Triple | None = None
+    radius_squared: str | None = None
+    parameter: str = "t"
+    field: str | None = None
+    verified: bool = False
+    circle_center: Triple | None = None
+    circle_radius_squared: str | None = None
+    circle_normal: Triple | None = None
+
+
+@dataclass(frozen=True)
+class CanalEvidence:
+    """A certificate (``canal``) or a witness line (``not canal``), with what was checked.
+
+    ``method`` is ``resultant`` (f | Res_t(S, ∂S/∂t) for a rational family), ``elimination``
+    (f divides every generator of the eliminated envelope ideal), ``symmetry`` (a surface of
+    revolution or a sphere), or ``line`` (a witness ``point + τ·direction``).
+    """
+
+    method: str
+    statement: str
+    verified: bool
+    point: Triple | None = None
+    direction: Triple | None = None
+    restriction: str | None = None
+
+
+@dataclass(frozen=True)
+class Canal:
+    """Whether ``X`` is a canal surface, exactly (docs/math.md §9). ``is_canal`` is ``None``
+    when undecided; ``kinds`` among ``pipe``, ``revolution``, ``dupin``, ``developable``;
+    ``families`` are the sphere families found (the two focal conics of a Dupin cyclide)."""
+
+    is_canal: bool | None
+    status: str
+    kinds: tuple[str, ...] = ()
+    families: tuple[CanalFamily, ...] = ()
+    certificate: CanalEvidence | None = None
+    witness: CanalEvidence | None = None
+    parametrizations: tuple[Parametrization, ...] = ()
+    lines_tested: int = 0
+    timings: tuple[tuple[str, float], ...] = ()
+    notes: tuple[str, ...] = ()
+
+    @property
+    def spine(self) -> CanalFamily | None:
+        return self.families[0] if self.families else None
+
+    def to_json(self) -> dict[str, Any]:
+        """The ``canal`` object of ``sorgui analyze --json``."""
+        spine = self.spine
+        return {
+            "is_canal": self.is_canal,
+            "status": self.status,
+            "kinds": list(self.kinds),
+            "spine": _plain(spine),
+            "radius_squared": None if spine is None else spine.radius_squared,
+            "families": [_plain(f) for f in self.families],
+            "certificate": _plain(self.certificate),
+            "witness": _plain(self.witness),
+            "parametrizations": [_plain(p) for p in self.parametrizations],
+            "lines_tested": self.lines_tested,
+            "timings": dict(self.timings),
+            "notes": list(self.notes),
+        }
+
+    @classmethod
+    def from_json(cls, data: dict[str, Any]) -> Canal:
+        """The inverse of :meth:`to_json`."""
+        return cls(
+            is_canal=data["is_canal"],
+            status=data["status"],
+            kinds=tuple(data["kinds"]),
+            families=tuple(_build(CanalFamily, f) for f in data["families"]),
+            certificate=_build(CanalEvidence, data.get("certificate")),
+            witness=_build(CanalEvidence, data.get("witness")),
+            parametrizations=tuple(_build(Parametrization, p) for p in data.get("parametrizations", [])),
+            lines_tested=data.get("lines_tested", 0),
+            timings=tuple(data.get("timings", {}).items()),
+            notes=tuple(data.get("notes", ())),
+        )
+
+
+@dataclass(frozen=True)
 class Analysis:
     """The whole answer for one input: recognition, factors, rationality and parameterizations."""
 
@@ -240,6 +344,7 @@ class Analysis:
     unfinished: tuple[str, ...] = ()
     """Stages cut short by the time limit of the whole analysis (their results are undecided)."""
     real_locus: RealLocus | None = None
+    canal: Canal | None = None
 
     @property
     def is_sor(self) -> bool:
@@ -271,6 +376,7 @@ class Analysis:
             "timings": dict(self.timings),
             "approximate": None if self.approximate is None else self.approximate.to_json(),
             "real_locus": _plain(self.real_locus),
+            "canal": None if self.canal is None else self.canal.to_json(),
             "unfinished": list(self.unfinished),
         }
 
@@ -293,6 +399,7 @@ class Analysis:
             timings=tuple(data.get("timings", {}).items()),
             approximate=None if data.get("approximate") is None else Approximation.from_json(data["approximate"]),
             real_locus=_build(RealLocus, data.get("real_locus")),
+            canal=None if data.get("canal") is None else Canal.from_json(data["canal"]),
             unfinished=tuple(data.get("unfinished", ())),
         )
 

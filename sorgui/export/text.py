@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from sorgui.engine.report import Analysis, Rationality, RealLocus, Recognition
+from sorgui.engine.report import Analysis, Canal, Rationality, RealLocus, Recognition
 
 TABLE_1 = (
     ("reducible", "0", "rational", "rational"),
@@ -204,7 +204,52 @@ def analysis_lines(analysis: Analysis) -> list[str]:
         lines.append(f"parametrization {i} ({par.method}; {kind}, {proper}, over {par.field}; {check}):")
         for name, coord in zip("xyz", par.coordinates):
             lines.append(f"  {name}({', '.join(par.parameters)}) = {coord}")
+    if analysis.canal is not None:
+        lines += canal_lines(analysis.canal)
     if analysis.unfinished:
         lines.append(f"not finished within the time limit (undecided): {', '.join(analysis.unfinished)}")
     lines += approximation_lines(analysis)
+    return lines
+
+
+CANAL_KINDS = {
+    "pipe": "a pipe (constant radius)",
+    "revolution": "a surface of revolution (spine on a line)",
+    "dupin": "a Dupin cyclide (canal in two ways)",
+    "developable": "developable (a cone or cylinder)",
+}
+
+
+def canal_lines(canal: Canal) -> list[str]:
+    """The canal verdict in words (docs/math.md §9): kinds, spines, certificate or witness."""
+    verdict = {True: "YES", False: "NO", None: "undecided"}[canal.is_canal]
+    lines = [f"canal surface: {verdict} ({canal.status})"]
+    if canal.kinds:
+        lines.append("  kinds: " + "; ".join(CANAL_KINDS.get(k, k) for k in canal.kinds))
+    for i, fam in enumerate(canal.families, 1):
+        shape = "a line" if fam.on_line else ("planar" if fam.planar else "not planar")
+        genus = "undecided" if fam.genus is None else str(fam.genus)
+        radius = "constant" if fam.pipe else "varying"
+        lines.append(f"  sphere family {i}: spine of degree {fam.degree} ({shape}), SMAT genus {genus}, radius {radius}")
+        lines.append(f"    SMAT equations (m1, m2, m3 centre, r = radius²): {', '.join(fam.equations)}")
+        if fam.parametrization is not None:
+            check = "verified" if fam.verified else "NOT verified"
+            lines.append(f"    m(t) = ({', '.join(fam.parametrization)}), ρ(t) = {fam.radius_squared} (over {fam.field}; {check})")
+        elif fam.pipe:
+            lines.append(f"    ρ = {fam.radius_squared}")
+        if fam.circle_center is not None:
+            lines.append(f"    characteristic circles: centre ({', '.join(fam.circle_center)}), "
+                         f"radius² {fam.circle_radius_squared}, plane normal ({', '.join(fam.circle_normal or ())})")
+    if canal.certificate is not None:
+        check = "checked" if canal.certificate.verified else "FAILED"
+        lines.append(f"  certificate ({canal.certificate.method}, {check}): {canal.certificate.statement}")
+    if canal.witness is not None:
+        w = canal.witness
+        lines.append(f"  witness line ({', '.join(w.point or ())}) + τ·({', '.join(w.direction or ())}): {w.statement}")
+    for i, par in enumerate(canal.parametrizations, 1):
+        check = par.verification if par.verified else "NOT verified"
+        lines.append(f"  canal parametrization {i} ({par.method}; over {par.field}; {check}):")
+        for name, coord in zip("xyz", par.coordinates):
+            lines.append(f"    {name}({', '.join(par.parameters)}) = {coord}")
+    lines += [f"  note: {n}" for n in canal.notes]
     return lines

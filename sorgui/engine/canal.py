@@ -1,0 +1,433 @@
+"""Canal surfaces: the exact verdict, its certificate or witness, and the kinds (docs/math.md §9).
+
+A canal surface is the envelope of a one-parameter family of spheres ``|X − m(t)|² = ρ(t)``.
+
+* **Not canal** is proved by one witness line on which the focal-sheet condition fails exactly
+  (:mod:`.canal_focal`).
+* **Canal** is proved by the envelope certificate of the recovered family (:mod:`.canal_spine`):
+  ``f | Res_t(S, ∂S/∂t)`` for a rational family over ``QQ``, otherwise ``f`` divides every
+  generator of the ideal ``⟨SMAT, |X − m|² − ρ, 4×4 minors of [Jac; 2(X − m), 1]⟩ ∩ QQ[x, y, z]``
+  of the envelope of the SMAT curve (tangency: ``(2(X − m), 1)`` is normal to the curve).
+* Kinds: ``pipe`` (ρ constant), ``revolution`` (spine on a line), ``dupin`` (canal in two ways:
+  both focal conics), ``developable`` (Gaussian curvature zero: cones and cylinders).
+
+Coefficients in ``QQ(√…)`` go through the norm ``Π f^σ ∈ QQ[x, y, z]``: the shape operator of a
+component does not change when other components are multiplied in.
+"""
+
+from __future__ import annotations
+
+import random
+import threading
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field, replace
+
+import sympy
+from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpq_poly
+from sympy.polys.domains import QQ
+
+from . import curves
+from .canal_focal import DEVELOPABLE, DUPIN, UMBILIC, Derivatives, LineTest, SmatSample, UnluckyLine, line_test
+from .canal_param import (
+    RationalFamily,
+    family_resultant_certificate,
+    family_strings,
+    radical_parametrization,
+    recover_family,
+    verify_radical,
+)
+from .canal_spine import SMAT_NAMES, SmatCurve, smat_curves
+from .errors import AnalysisError, Cancelled, SingularError
+from .polys import Poly, from_flint, is_rational_field, poly_ring, poly_str, to_flint, total_degree
+from .report import Canal, CanalEvidence, CanalFamily, Parametrization
+from .singular import emit, parse_int, poly_to_singular, run_script
+
+LINES = 3
+"""Canal lines tested before the SMAT is computed (one failing line already decides)."""
+
+MAX_LINES = 60
+"""Lines tried at most (unlucky lines are skipped)."""
+
+SEED = 20261127
+
+
+class _NotCanal(Exception):
+    def __init__(self, test: LineTest) -> None:
+        super().__init__("not canal")
+        self.test = test
+
+
+@dataclass
+class _Clock:
+    cancel: threading.Event | None
+    timings: list[tuple[str, float]] = field(default_factory=list)
+
+    @contextmanager
+    def stage(self, name: str) -> Iterator[None]:
+        if self.cancel is not None and self.cancel.is_set():
+            raise Cancelled("the analysis was cancelled")
+        start = time.perf_counter()
+        yield
+        self.timings.append((name, time.perf_counter() - start))
+
+
+class _Lines:
+    """Deterministic random lines and their tests; every canal line is kept for the SMAT."""
+
+    def __init__(self, f: fmpq_mpoly, seed: int) -> None:
+        self.D = Derivatives(f)
+        self.rnd = random.Random(seed)
+        self.tried = 0
+        self.canal: list[LineTest] = []
+
+    def next(self) -> LineTest:
+        while self.tried < MAX_LINES:
+            self.tried += 1
+            point = tuple(self.rnd.randint(-7, 7) for _ in range(3))
+            direction = tuple(self.rnd.randint(-7, 7) or 1 for _ in range(3))
+            try:
+                test = line_test(self.D, point, direction)
+            except UnluckyLine:
+                continue
+            if not test.canal:
+                raise _NotCanal(test)
+            if self.canal and test.branch != self.canal[0].branch:
+                continue
+            self.canal.append(test)
+            return test
+        raise AnalysisError(f"no usable line among {MAX_LINES} for the canal test")
+
+    def sample(self, points: int) -> SmatSample:
+        while SmatSample(tuple(self.canal)).point_count < points:
+            self.next()
+        return SmatSample(tuple(self.canal))
+
+
+def analyze_canal(
+    f: Poly, *, is_sor: bool | None = None, full: bool = True, timeout: float = 60.0,
+    cancel: threading.Event | None = None,
+) -> Canal:
+    """The canal verdict of ``f = 0`` with certificate or witness, kinds, families and
+    parameterizations (genus, ``m(t)``, ``ρ(t)`` and surface parameterizations only when
+    ``full``). ``is_sor`` (from the symmetry algebra) decides the ``revolution`` kind of a
+    reducible surface, is cross-checked otherwise, and certifies a surface of revolution."""
+    clock = _Clock(cancel)
+    g = _rational_squarefree(f)
+    _, factors = g.factor()
+    parts = [_analyze_factor(h, clock, full, timeout, cancel) for h, _ in factors]
+    if len(parts) == 1:
+        result = parts[0]
+    else:
+        result = _combine(parts, is_sor)
+    if is_sor and result.is_canal is None:
+        result = replace(result, is_canal=True, status="canal: a surface of revolution",
+                         kinds=tuple(sorted(set(result.kinds) | {"revolution"})), certificate=_SOR_EVIDENCE)
+    notes = list(result.notes)
+    if not is_rational_field(f.ring.domain):
+        notes.append("coefficients outside QQ: analysed through the norm of f over QQ (all conjugate surfaces)")
+    if is_sor is not None and result.is_canal is not None and is_sor != ("revolution" in result.kinds):
+        notes.append("the symmetry algebra and the canal spine disagree about revolution (internal inconsistency)")
+    return Canal(
+        is_canal=result.is_canal, status=result.status, kinds=result.kinds, families=result.families,
+        certificate=result.certificate, witness=result.witness, parametrizations=result.parametrizations,
+        lines_tested=result.lines_tested, timings=tuple(clock.timings), notes=tuple(notes),
+    )
+
+
+def _rational_squarefree(f: Poly) -> fmpq_mpoly:
+    """The square-free part over ``QQ`` of ``f`` (of its norm when ``K ≠ QQ``), as flint."""
+    if is_rational_field(f.ring.domain):
+        F = to_flint(f)
+    else:
+        F = _norm(f)
+    _, parts = F.factor_squarefree()
+    out = F.context().from_dict({(0, 0, 0): 1})
+    for h, _ in parts:
+        out *= h
+    return out
+
+
+def _norm(f: Poly) -> fmpq_mpoly:
+    """``Res_θ(f(x, y, z, θ), m(θ))``: the product of the conjugates of ``f`` over ``QQ``."""
+    K = f.ring.domain
+    ctx = fmpq_mpoly_ctx.get(("x", "y", "z", "a"), "lex")
+    terms: dict[tuple[int, int, int, int], object] = {}
+    for monom, c in f.items():
+        coords = [QQ.convert(q) for q in c.to_list()]
+        n = len(coords) - 1
+        for i, q in enumerate(coords):
+            if q:
+                terms[(*monom, n - i)] = q
+    F = ctx.from_dict({m: _fmpq(q) for m, q in terms.items()})
+    mod = [QQ.convert(q) for q in K.mod.to_list()]
+    M = ctx.from_dict({(0, 0, 0, len(mod) - 1 - i): _fmpq(q) for i, q in enumerate(mod) if q})
+    N = F.resultant(M, "a")
+    ctx3 = fmpq_mpoly_ctx.get(tuple(f"v{i}" for i in range(3)), "lex")
+    return ctx3.from_dict({m[:3]: c for m, c in zip(N.monoms(), N.coeffs())})
+
+
+def _fmpq(q: object) -> fmpq:
+    return fmpq(int(QQ.numer(q)), int(QQ.denom(q)))
+
+
+_SOR_EVIDENCE = CanalEvidence(
+    "symmetry", "X is a surface of revolution (symmetry algebra): its parallels are the characteristic "
+    "circles of the spheres centred on the axis that touch X along them", True)
+
+
+def _analyze_factor(h: fmpq_mpoly, clock: _Clock, full: bool, timeout: float, cancel: threading.Event | None) -> Canal:
+    """The verdict for one irreducible factor over ``QQ``."""
+    poly = from_flint(h, poly_ring(("x", "y", "z"), QQ))
+    if total_degree(poly) == 1:
+        return Canal(True, "canal: a plane (the limit of a family of spheres)", ("developable", "revolution"),
+                     certificate=CanalEvidence("symmetry", "a plane is a surface of revolution about each normal line", True))
+    lines = _Lines(h, SEED)
+    try:
+        with clock.stage("canal test"):
+            for _ in range(LINES):
+                lines.next()
+        branch = lines.canal[0].branch
+        if branch == UMBILIC:
+            return _umbilic(poly, lines)
+        with clock.stage("canal spine"):
+            smat, _ = smat_curves(lines.sample, seed=SEED, timeout=timeout, cancel=cancel)
+    except _NotCanal as witness:
+        return _not_canal(witness.test, lines.tried)
+    except (SingularError, AnalysisError) as error:
+        if isinstance(error, Cancelled):
+            raise
+        return Canal(None, f"undecided: the canal condition holds on {len(lines.canal)} lines, "
+                     f"but the spine could not be computed ({error.message})", lines_tested=lines.tried)
+    return _canal(poly, smat, branch, lines, clock, full, timeout, cancel)
+
+
+def _not_canal(test: LineTest, tried: int) -> Canal:
+    F = test.F
+    witness = CanalEvidence(
+        method="line",
+        statement=(
+            "on the line point + τ·direction the canal condition fails exactly: "
+            + ("the finite focal root does not satisfy C" if test.branch == DEVELOPABLE
+               else "R = a₂C₀² − a₁C₀C₁ + a₀C₁² is not 0 modulo F")
+            + f" (F of degree {F.degree()}, the square-free part of f on the line)"
+        ),
+        verified=True,
+        point=tuple(str(c) for c in test.point),  # type: ignore[arg-type]
+        direction=tuple(str(c) for c in test.direction),  # type: ignore[arg-type]
+        restriction=_univariate_str(F, "tau"),
+    )
+    return Canal(False, "not canal", witness=witness, lines_tested=tried)
+
+
+def _umbilic(poly: Poly, lines: _Lines) -> Canal:
+    """Every point umbilic on the lines: a sphere, checked exactly from the coefficients."""
+    x, y, z = poly.ring.gens
+    quadratic = total_degree(poly) == 2 and all(
+        poly.coeff(m) == 0 for m in (x * y, x * z, y * z)) and poly.coeff(x**2) == poly.coeff(y**2) == poly.coeff(z**2)
+    if not quadratic:
+        return Canal(None, "undecided: totally umbilic on the lines but not a sphere", lines_tested=lines.tried)
+    return Canal(True, "canal: a sphere (a constant family of spheres)", ("pipe", "revolution"),
+                 certificate=CanalEvidence("symmetry", "x², y², z² have equal coefficients and no mixed terms: a sphere", True),
+                 lines_tested=lines.tried)
+
+
+def _canal(
+    poly: Poly, smat: list[SmatCurve], branch: str, lines: _Lines, clock: _Clock, full: bool, timeout: float,
+    cancel: threading.Event | None,
+) -> Canal:
+    families: list[CanalFamily] = []
+    rational: list[RationalFamily | None] = []
+    notes: list[str] = []
+    with clock.stage("canal genus"):
+        genera = []
+        for curve in smat:
+            genera.append(_genus(curve, timeout, cancel, notes) if full else None)
+    with clock.stage("canal family"):
+        for curve, genus in zip(smat, genera):
+            family = None
+            if genus == 0 and curve.inverse is not None:
+                try:
+                    plane = curves.parametrize(curve.plane_model, timeout=timeout, cancel=cancel, known_genus_zero=True)
+                    family = recover_family(curve, plane)
+                except (SingularError, AnalysisError) as error:
+                    if isinstance(error, Cancelled):
+                        raise
+                    notes.append(f"no rational m(t), ρ(t): {error.message}")
+            rational.append(family)
+            families.append(_family_report(curve, genus, family))
+    with clock.stage("canal certificate"):
+        certificate = _certificate(poly, smat, rational, timeout, cancel, notes)
+    parametrizations: list[Parametrization] = []
+    with clock.stage("canal parametrization"):
+        for family in rational:
+            if family is not None and family.verified:
+                parametrizations.append(_radical(poly, family))
+    kinds = set()
+    if any(c.constant_radius is not None for c in smat):
+        kinds.add("pipe")
+    if any(c.on_line for c in smat):
+        kinds.add("revolution")
+    if branch == DUPIN:
+        kinds.add("dupin")
+    if branch == DEVELOPABLE:
+        kinds.add("developable")
+    if branch == DUPIN and len(smat) == 1:
+        notes.append("the two focal conics are conjugate over QQ: one family of equations holds both")
+    if not full:
+        notes.append("recognition only: no genus, m(t), ρ(t) or parameterization computed")
+    elif not any(f is not None for f in rational):
+        notes.append("no rational parameterization of the surface: the SMAT curve is not rational"
+                     if any(g not in (0, None) for g in genera) else
+                     "no parameterization of the surface was computed")
+    verdict = certificate is not None and certificate.verified
+    status = ("canal" if verdict else
+              f"undecided: the canal condition holds on {len(lines.canal)} lines, but the envelope certificate failed")
+    return Canal(verdict if verdict else None, status, tuple(sorted(kinds)), tuple(families), certificate,
+                 parametrizations=tuple(parametrizations), lines_tested=lines.tried, notes=tuple(notes))
+
+
+def _genus(curve: SmatCurve, timeout: float, cancel: threading.Event | None, notes: list[str]) -> int | None:
+    if total_degree(curve.plane_model) <= 2 and curve.birational:
+        return 0
+    if not curve.birational:
+        notes.append("the plane model of the SMAT curve is not birational to it: genus not computed")
+        return None
+    try:
+        return curves.genus(curve.plane_model, timeout=timeout, cancel=cancel)
+    except (SingularError, AnalysisError) as error:
+        if isinstance(error, Cancelled):
+            raise
+        notes.append(f"genus of the SMAT curve not computed: {error.message}")
+        return None
+
+
+def _family_report(curve: SmatCurve, genus: int | None, family: RationalFamily | None) -> CanalFamily:
+    radius = None if curve.constant_radius is None else str(curve.constant_radius)
+    par = center = normal = radius2 = field_name = None
+    verified = False
+    if family is not None:
+        par, radius = family_strings(family)
+        center = tuple(str(c) for c in family.center)
+        normal = tuple(str(c) for c in family.normal)
+        radius2 = str(family.radius_squared)
+        field_name = "QQ" if family.over_qq else "QQ(" + ", ".join(str(g) for g in family.generators) + ")"
+        verified = family.verified
+    return CanalFamily(
+        degree=curve.spine_degree,
+        smat_degree=curve.smat_degree,
+        genus=genus,
+        planar=curve.planar,
+        on_line=curve.on_line,
+        pipe=curve.constant_radius is not None,
+        equations=tuple(poly_str(g) for g in curve.equations),
+        spine_equations=tuple(poly_str(g) for g in curve.spine_equations),
+        plane_model=poly_str(curve.plane_model),
+        projection=curve.projection,
+        parametrization=par,  # type: ignore[arg-type]
+        radius_squared=radius,
+        field=field_name,
+        verified=verified,
+        circle_center=center,  # type: ignore[arg-type]
+        circle_radius_squared=radius2,
+        circle_normal=normal,  # type: ignore[arg-type]
+    )
+
+
+def _certificate(
+    poly: Poly, smat: list[SmatCurve], rational: list[RationalFamily | None], timeout: float,
+    cancel: threading.Event | None, notes: list[str],
+) -> CanalEvidence | None:
+    """The envelope certificate of every family (both focal conics of a Dupin cyclide)."""
+    methods = []
+    for curve, family in zip(smat, rational):
+        if family is not None and family.over_qq and family.verified and family_resultant_certificate(poly, family):
+            methods.append("resultant")
+            continue
+        try:
+            if not envelope_elimination(poly, curve, timeout=timeout, cancel=cancel):
+                return CanalEvidence("elimination", "f does not divide the envelope ideal of the SMAT curve", False)
+        except SingularError as error:
+            if isinstance(error, Cancelled):
+                raise
+            notes.append(f"envelope certificate not computed: {error.message}")
+            return None
+        methods.append("elimination")
+    method = methods[0] if len(set(methods)) == 1 else "+".join(methods)
+    if method == "resultant":
+        statement = "f divides Res_t(S, ∂S/∂t) for S = |X − m(t)|² − ρ(t) (denominators cleared)"
+    else:
+        statement = ("f divides every generator of the envelope ideal of the SMAT curve "
+                     "(SMAT, |X − m|² = ρ, tangency; m and ρ eliminated)")
+    if len(smat) > 1:
+        statement += f", for each of the {len(smat)} families"
+    return CanalEvidence(method, statement, True)
+
+
+def envelope_elimination(
+    f: Poly, curve: SmatCurve, *, timeout: float, cancel: threading.Event | None,
+) -> bool:
+    """Singular: whether ``f`` divides every generator of the eliminated envelope ideal."""
+    gens = ",".join(poly_to_singular(g) for g in curve.equations)
+    n = len(curve.equations)
+    script = f"""ring sE = 0,(m1,m2,m3,r,x,y,z),dp; short = 0;
+ideal P = {gens};
+matrix M[{n + 1}][4];
+int i; int j;
+for (i = 1; i <= {n}; i++) {{ for (j = 1; j <= 4; j++) {{ M[i, j] = diff(P[i], var(j)); }} }}
+M[{n + 1}, 1] = 2*(x - m1); M[{n + 1}, 2] = 2*(y - m2); M[{n + 1}, 3] = 2*(z - m3); M[{n + 1}, 4] = 1;
+ideal E = P, (x-m1)^2 + (y-m2)^2 + (z-m3)^2 - r, minor(M, 4);
+ideal El = eliminate(E, m1*m2*m3*r);
+ideal F = std(ideal({poly_to_singular(f, ["x", "y", "z"])}));
+int ok = (size(El) > 0) && (size(reduce(El, F)) == 0);
+{emit("ok", "string(ok)")}
+"""
+    found = run_script(script, timeout=timeout, cancel=cancel)
+    return parse_int(found["ok"][0]) == 1
+
+
+def _radical(poly: Poly, family: RationalFamily) -> Parametrization:
+    coords = radical_parametrization(family)
+    verified = verify_radical(poly, family)
+    return Parametrization(
+        coordinates=tuple(str(c) for c in coords),  # type: ignore[arg-type]
+        parameters=("t", "theta"),
+        field="QQ" if family.over_qq else "QQ(" + ", ".join(str(g) for g in family.generators) + ")",
+        real=all(g.is_real for g in family.generators),
+        proper=None,
+        method="canal: characteristic circles (radical)",
+        verified=verified,
+        verification="substituted into f, square roots as variables reduced by their squares",
+    )
+
+
+def _combine(parts: list[Canal], is_sor: bool | None) -> Canal:
+    """The verdict of a reducible surface from its factors over ``QQ``."""
+    if any(p.is_canal is False for p in parts):
+        bad = next(p for p in parts if p.is_canal is False)
+        return Canal(False, "not canal: a component is not canal", witness=bad.witness,
+                     lines_tested=sum(p.lines_tested for p in parts))
+    if any(p.is_canal is None for p in parts):
+        return Canal(None, "undecided for a component", lines_tested=sum(p.lines_tested for p in parts))
+    kinds = set(parts[0].kinds)
+    for p in parts[1:]:
+        kinds &= set(p.kinds)
+    kinds.discard("revolution")
+    if is_sor:
+        kinds.add("revolution")
+    return Canal(
+        True, f"canal: each of the {len(parts)} components is canal", tuple(sorted(kinds)),
+        tuple(f for p in parts for f in p.families),
+        CanalEvidence("components", "; ".join(p.certificate.statement for p in parts if p.certificate), True),
+        parametrizations=tuple(q for p in parts for q in p.parametrizations),
+        lines_tested=sum(p.lines_tested for p in parts),
+        notes=tuple(n for p in parts for n in p.notes),
+    )
+
+
+def _univariate_str(F: fmpq_poly, name: str) -> str:
+    """``F`` as a string in ``name`` that sympy reads back."""
+    tau = sympy.Symbol(name)
+    return str(sum(sympy.Rational(int(c.p), int(c.q)) * tau**i for i, c in enumerate(F.coeffs()) if c))
+

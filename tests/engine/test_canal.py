@@ -1,0 +1,178 @@
+"""Canal surfaces (docs/math.md §9): every example of tests/data/canal-examples.txt gets its verdict,
+with a certificate or a witness line, the kinds, the spines and the verified families."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+import sympy
+
+from sorgui.engine.analysis import analyze
+from sorgui.engine.canal import analyze_canal
+from sorgui.engine.parsing import parse_polynomial
+from sorgui.engine.report import Analysis, Canal
+from sorgui.export.text import format_report
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "data" / "canal-examples.txt"
+
+
+def examples() -> dict[str, str]:
+    """``name → polynomial`` from the examples file (``## name | expectation`` then the polynomial)."""
+    lines = EXAMPLES.read_text(encoding="utf-8").splitlines()
+    return {line[3:].split(" |")[0]: lines[i + 1] for i, line in enumerate(lines) if line.startswith("## ")}
+
+
+EXPECTED: dict[str, set[str] | None] = {
+    "torus R=2 r=1": {"dupin", "pipe", "revolution"},
+    "Dupin a,b,c,mu=5,4,3,4": {"dupin"},
+    "hyperboloid x2+y2-z2-1": {"revolution"},
+    "cone of revolution": {"developable", "revolution"},
+    "cylinder": {"developable", "pipe", "revolution"},
+    "triaxial ellipsoid": None,
+    "elliptic cylinder": None,
+    "elliptic paraboloid": None,
+    "blend cyl R=2 / plane z=0, ball 1 (torus)": {"dupin", "pipe", "revolution"},
+    "squashed torus": None,
+    "Darboux cyclide": None,
+    "pipe parabola": {"pipe"},
+    "canal parabola r=(1+t)/2": set(),
+    "SOR z-axis r=1+t^2/2": {"revolution"},
+    "pipe twisted cubic": {"pipe"},
+    "blend cyl R=2 / plane 3x+4z=0, ball 1": {"pipe"},
+    "pipe parabola + z^6/1000": None,
+    "Dupin + x/100": None,
+}
+"""The kinds of every canal example (``None``: not canal). The two degree-24 examples are below."""
+
+SLOW = ("blend cylinders R=2 (axis y) & R=3 (axis x), ball 1 (genus-1 spine)", "two-cylinder blend + x^3")
+
+
+def canal_of(name: str, full: bool = True) -> Canal:
+    return analyze_canal(parse_polynomial(examples()[name]).polynomial, full=full)
+
+
+def test_every_example_is_covered() -> None:
+    assert set(examples()) == set(EXPECTED) | set(SLOW)
+
+
+@pytest.mark.parametrize("name", sorted(EXPECTED))
+def test_verdict_and_kinds(name: str) -> None:
+    canal = canal_of(name)
+    expected = EXPECTED[name]
+    if expected is None:
+        assert canal.is_canal is False, canal.status
+        assert canal.witness is not None and canal.witness.verified and canal.witness.method == "line"
+        assert canal.families == () and canal.certificate is None
+        return
+    assert canal.is_canal is True, canal.status
+    assert canal.certificate is not None and canal.certificate.verified
+    assert set(canal.kinds) == expected
+    assert canal.witness is None
+    for family in canal.families:
+        if family.genus == 0 and family.parametrization is not None:
+            assert family.verified
+    assert all(p.verified for p in canal.parametrizations)
+
+
+def _substitute(equations: tuple[str, ...], values: dict[str, sympy.Expr]) -> list[sympy.Expr]:
+    symbols = {n: sympy.Symbol(n) for n in ("m1", "m2", "m3", "r")}
+    out = []
+    for text in equations:
+        expr = sympy.parse_expr(text, local_dict=symbols)  # engine output, not user input
+        out.append(sympy.cancel(expr.subs({symbols[k]: v for k, v in values.items()})))
+    return out
+
+
+def test_dupin_cyclide_has_both_focal_conics() -> None:
+    canal = canal_of("Dupin a,b,c,mu=5,4,3,4")
+    assert len(canal.families) == 2
+    spines = {frozenset(f.spine_equations) for f in canal.families}
+    assert frozenset({"m3", "16*m1**2 + 25*m2**2 - 400"}) in spines
+    assert frozenset({"m2", "16*m1**2 - 9*m3**2 - 144"}) in spines
+    t = sympy.Symbol("t")
+    # The ellipse (5 cos, 4 sin, 0) with r = 4 − 3 cos, rationally: cos = (1−t²)/(1+t²).
+    c, s = (1 - t**2) / (1 + t**2), 2 * t / (1 + t**2)
+    ellipse = next(f for f in canal.families if "m3" in f.spine_equations)
+    assert _substitute(ellipse.equations, {"m1": 5 * c, "m2": 4 * s, "m3": 0, "r": (4 - 3 * c) ** 2}) == [0, 0, 0]
+    assert all(f.genus == 0 and f.planar and not f.on_line and f.verified for f in canal.families)
+
+
+def test_torus_spines_are_the_core_circle_and_the_axis() -> None:
+    canal = canal_of("torus R=2 r=1")
+    spines = {frozenset(f.spine_equations) for f in canal.families}
+    assert spines == {frozenset({"m3", "m1**2 + m2**2 - 4"}), frozenset({"m1", "m2"})}
+    circle = next(f for f in canal.families if f.pipe)
+    assert circle.radius_squared == "1" and circle.degree == 2
+
+
+def test_pipe_around_the_parabola() -> None:
+    canal = canal_of("pipe parabola")
+    (family,) = canal.families
+    assert set(family.equations) == {"r - 1", "m3", "m1**2 - m2"}
+    assert (family.degree, family.genus, family.planar, family.pipe) == (2, 0, True, True)
+    assert canal.certificate.method == "resultant"
+    (par,) = canal.parametrizations
+    assert par.verified and par.parameters == ("t", "theta")
+
+
+def test_twisted_cubic_pipe_is_not_planar() -> None:
+    (family,) = canal_of("pipe twisted cubic").families
+    assert (family.degree, family.genus, family.planar, family.pipe) == (3, 0, False, True)
+    t = sympy.Symbol("t")
+    assert _substitute(family.equations, {"m1": t, "m2": t**2, "m3": t**3, "r": 1}) == [0] * len(family.equations)
+
+
+def test_rolling_ball_blend_of_cylinder_and_oblique_plane() -> None:
+    canal = canal_of("blend cyl R=2 / plane 3x+4z=0, ball 1")
+    (family,) = canal.families
+    assert set(family.equations) == {"r - 1", "3*m1 + 4*m3 - 5", "9*m2**2 + 16*m3**2 - 40*m3 - 56"}
+    assert (family.degree, family.genus, family.planar, family.on_line) == (2, 0, True, False)
+    assert family.circle_radius_squared == "1"
+
+
+def test_varying_radius_is_not_a_pipe() -> None:
+    (family,) = canal_of("canal parabola r=(1+t)/2").families
+    assert not family.pipe and family.planar and family.genus == 0 and family.verified
+    t = sympy.Symbol("t")
+    assert _substitute(family.equations, {"m1": t, "m2": t**2, "m3": 0, "r": (1 + t) ** 2 / 4}) == [0, 0, 0]
+
+
+def test_recognition_only_gives_the_verdict_without_the_families_parameterization() -> None:
+    canal = canal_of("pipe parabola", full=False)
+    assert canal.is_canal is True and canal.certificate.method == "elimination"
+    assert canal.families[0].genus is None and canal.parametrizations == ()
+
+
+@pytest.mark.parametrize("name", SLOW)
+def test_two_cylinder_blend(name: str) -> None:
+    canal = canal_of(name)
+    if name.endswith("x^3"):
+        assert canal.is_canal is False and canal.witness is not None
+        return
+    assert canal.is_canal is True and set(canal.kinds) == {"pipe"}
+    (family,) = canal.families
+    assert (family.degree, family.genus, family.planar, family.pipe) == (4, 1, False, True)
+    assert family.parametrization is None and canal.parametrizations == ()
+    assert canal.certificate.method == "elimination"
+    assert any("not rational" in n for n in canal.notes)
+
+
+def test_json_round_trip_and_text_report() -> None:
+    analysis = analyze(examples()["torus R=2 r=1"])
+    data = json.loads(json.dumps(analysis.to_json()))
+    canal = data["canal"]
+    assert canal["is_canal"] is True and set(canal["kinds"]) == {"dupin", "pipe", "revolution"}
+    assert canal["spine"] == canal["families"][0] and canal["radius_squared"] == canal["spine"]["radius_squared"]
+    assert canal["certificate"]["verified"] and canal["witness"] is None
+    assert Analysis.from_json(data) == analysis
+    text = format_report(analysis)
+    assert "canal surface: YES" in text and "a Dupin cyclide" in text and "certificate (" in text
+
+
+def test_text_report_of_a_near_miss() -> None:
+    analysis = analyze(examples()["triaxial ellipsoid"], recognition_only=True)
+    assert analysis.canal is not None and analysis.canal.is_canal is False
+    text = format_report(analysis)
+    assert "canal surface: NO" in text and "witness line" in text
