@@ -36,14 +36,23 @@ MAX_PICTURE_WIDTH = 8000
 """The widest picture Save Picture offers, in pixels."""
 
 
+PATCH_FILTERS = {f".patch{suffix}": f"{form.name}, parametric patch" for suffix, form in FORMATS.items()
+                 if form.kind == "mesh"}
+"""The meshes once more as the patch of the first real parameterization (``NAME.patch.stl``)."""
+
+
 def export_filters() -> str:
     """The filter string of the Export dialog, the meshes also as their parametric patch."""
-    return ";;".join(f"{name} (*{suffix})" for suffix, name in EXPORT_FILTERS.items())
+    choices = {**EXPORT_FILTERS, **PATCH_FILTERS}
+    return ";;".join(f"{name} (*{suffix})" for suffix, name in choices.items())
 
 
 def suffix_of_filter(chosen: str) -> str:
     """The suffix of the filter ``chosen`` in the Export dialog (for a name typed without one)."""
-    return next((suffix for suffix, name in EXPORT_FILTERS.items() if chosen.startswith(name)), ".json")
+    for suffix, name in {**PATCH_FILTERS, **EXPORT_FILTERS}.items():  # the longer names first
+        if chosen.startswith(name):
+            return suffix
+    return ".json"
 
 
 def is_report_path(path: str | Path) -> bool:

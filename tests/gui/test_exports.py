@@ -87,3 +87,13 @@ def test_picture_has_the_chosen_width_a_transparent_background_and_only_visible_
     assert count_color(image, PATCH_COLOR) > 20 * max(1, count_color(without, PATCH_COLOR))
     opaque = pixels(window.save_picture(artifacts / "torus-picture.png", width=1600))
     assert opaque.shape[1] == 1600 and opaque[0, 0, 3] == 255
+
+
+def test_export_dialog_offers_every_format_and_the_patches() -> None:
+    from sorgui.gui.exporting import export_filters, suffix_of_filter
+
+    filters = export_filters().split(";;")
+    assert len(filters) == len(FORMATS) + 4
+    assert suffix_of_filter("STL mesh (binary), parametric patch (*.patch.stl)") == ".patch.stl"
+    assert suffix_of_filter("STL mesh (binary) (*.stl)") == ".stl"
+    assert suffix_of_filter("Python module (NumPy and SymPy) (*.py)") == ".py"
