@@ -1,19 +1,30 @@
 """The main window: editor and results on the left, the 3D viewport on the right.
 
 It wires the parts together and owns no mathematics: the editor validates the text, the
-:class:`~sorgui.gui.worker.AnalysisWorker` analyses it in another process, the results pane
-and the viewport show what comes back. Keyboard: Ctrl+Return analyses, Esc cancels. The
-status bar shows the current stage and a busy indicator; the window never waits for the engine.
+:class:`~sorgui.session.model.Session` owns the equation and the running analysis (through the
+:class:`~sorgui.gui.worker.AnalysisWorker`, which runs it in another process), and the
+:class:`~sorgui.gui.session_view.SessionView` renders the session into the run panel, the
+results pane and the viewport as results arrive. Keyboard: Ctrl+Return analyses, Esc cancels,
+Ctrl++/Ctrl+−/Ctrl+0 zoom the formulas. Typed text is never discarded without asking (Example,
+Open, New, Quit); the window works down to 800×560 (the panes scroll).
 """
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable
 from pathlib import Path
 
-from PySide6.QtCore import Qt, QTimer, Signal
-from PySide6.QtGui import QAction, QCloseEvent, QGuiApplication, QKeySequence, QPainter, QPaintEvent, QPen
+from PySide6.QtCore import QEvent, QObject, Qt, QTimer, Signal
+from PySide6.QtGui import (
+    QAction,
+    QCloseEvent,
+    QFontInfo,
+    QGuiApplication,
+    QKeySequence,
+    QPainter,
+    QPaintEvent,
+    QPen,
+)
 from PySide6.QtWidgets import (
     QFileDialog,
     QHBoxLayout,
@@ -28,13 +39,12 @@ from PySide6.QtWidgets import (
 )
 
 from sorgui import __version__
-from sorgui.engine.errors import ParseError
 from sorgui.engine.report import Analysis
 from sorgui.examples import EXAMPLES, example_text
 from sorgui.export.atomic import atomic_write_bytes
 from sorgui.export.files import export_analysis, format_of
 from sorgui.export.reports import ReportError, read_report
-from sorgui.render.picking import PickInfo
+from sorgui.gui.camera import CameraState
 from sorgui.gui.editor import EquationEditor
 from sorgui.gui.examples import ExamplesMenu
 from sorgui.gui.exporting import (
@@ -47,9 +57,10 @@ from sorgui.gui.exporting import (
     suffix_of_filter,
     viewport_image,
 )
-from sorgui.gui.formulas import Style
-from sorgui.gui.job import JobRequest, JobResult
+from sorgui.gui.help import TOPICS, HelpDialog
 from sorgui.gui.results import FORMULA_MARGIN, ResultsPane
+from sorgui.gui.session_view import SessionView
+from sorgui.gui.stages import RunPanel
 from sorgui.gui.settings import (
     EQUATION_FILTER,
     EquationFileError,
@@ -60,19 +71,15 @@ from sorgui.gui.settings import (
 )
 from sorgui.gui.viewport import Viewport
 from sorgui.gui.worker import AnalysisWorker
+from sorgui.render.picking import PickInfo
+from sorgui.session.formulas import Style
+from sorgui.session.model import Session
 
-STAGE_NAMES = {
-    "parse": "Reading the equation",
-    "recognition": "Solving for the symmetry algebra",
-    "factors": "Factoring over K",
-    "rationality": "Deciding rationality (Singular)",
-    "parametrizations": "Parameterizing",
-    "scene": "Meshing the surface",
-    "formulas": "Typesetting the results",
-}
+ZOOM_STEPS = (0.8, 0.9, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0, 2.5)
+"""The zoom factors of the formulas (Ctrl++ and Ctrl+− step through them)."""
 
-SCENE_DELAY_MS = 20
-"""Pause between showing the results pane and the scene of one analysis."""
+MINIMUM_SIZE = (800, 560)
+"""The window works down to this size: below it the panes scroll instead of cutting."""
 
 DEFAULT_EXAMPLE = EXAMPLES[0].name
 """The paper's Example 1, loaded on a first start."""
@@ -119,7 +126,7 @@ class BusyIndicator(QWidget):
 class MainWindow(QMainWindow):
     """sorgui's window. ``prestart_worker`` keeps a warm worker process ready (off in tests
     that never analyse). :attr:`result_shown` is emitted once a result is on screen (results
-    pane and scene), with the :class:`~sorgui.gui.job.JobResult`."""
+    pane and scene), with the :class:`~sorgui.session.job.JobResult`."""
 
     result_shown = Signal(object)
 
@@ -127,12 +134,15 @@ class MainWindow(QMainWindow):
         super().__init__()
         self.settings = settings or Settings(self)
         self.worker = AnalysisWorker(self, prestart=prestart_worker)
+        self.session = Session(runner=self.worker)
+        self.worker.message.connect(self.session.handle)
         self.editor = EquationEditor(self)
         self.results = ResultsPane(self)
+        self.run_panel = RunPanel(self)
         self.viewport = Viewport(self)
+        self.help_dialog: HelpDialog | None = None
         self._file: str | None = None
-        self._analysis_json: dict | None = None
-        self._started_at = 0.0
+        self._zoom = 1.0
 
         self.analyze_button = QPushButton("Analyze")
         self.analyze_button.setObjectName("analyzeButton")
@@ -145,19 +155,20 @@ class MainWindow(QMainWindow):
         self._build_layout()
         self._build_actions()
         self._build_status_bar()
+        self.view = SessionView(self.session, self.editor, self.run_panel, self.results, self.viewport,
+                                self.stage_label)
+        self.view.shown.connect(self.result_shown)
+        camera = self.settings.camera
+        self.view.restore_camera = CameraState.from_dict(camera) if camera else None
 
         self.analyze_button.clicked.connect(self.analyze)
         self.cancel_button.clicked.connect(self.cancel)
         self.editor.text_changed.connect(self._on_text_change)
         self.editor.validity_changed.connect(self._on_validity_change)
-        self.worker.progress.connect(self._on_progress_change)
-        self.worker.finished.connect(self._on_result_change)
-        self.worker.invalid.connect(self._on_invalid_change)
-        self.worker.failed.connect(self._on_failure_change)
-        self.worker.cancelled.connect(self._on_cancel_change)
         self.worker.busy_changed.connect(self._on_busy_change)
         self.viewport.radius_requested.connect(self._on_radius_change)
         self.viewport.picked.connect(self._on_pick_change)
+        self.results.viewport().installEventFilter(self)
         self._restore_layout()
         self._update_title()
 
@@ -174,9 +185,19 @@ class MainWindow(QMainWindow):
         top_layout.setContentsMargins(8, 8, 8, 4)
         top_layout.addLayout(buttons)
         top_layout.addWidget(self.editor)
+        bottom = QWidget()
+        bottom_layout = QVBoxLayout(bottom)
+        bottom_layout.setContentsMargins(0, 0, 0, 0)
+        bottom_layout.setSpacing(0)
+        bottom_layout.addWidget(self.run_panel)
+        bottom_layout.addWidget(self.results, 1)
+        top.setMinimumHeight(110)
+        bottom.setMinimumSize(300, 200)
+        self.viewport.setMinimumSize(300, 260)
         self.left_splitter = QSplitter(Qt.Orientation.Vertical)
         self.left_splitter.addWidget(top)
-        self.left_splitter.addWidget(self.results)
+        self.left_splitter.addWidget(bottom)
+        self.left_splitter.setChildrenCollapsible(False)
         self.left_splitter.setStretchFactor(1, 1)
         self.left_splitter.setSizes([190, 610])
         self.splitter = QSplitter(Qt.Orientation.Horizontal)
@@ -184,15 +205,18 @@ class MainWindow(QMainWindow):
         self.splitter.addWidget(self.viewport)
         self.splitter.setStretchFactor(1, 1)
         self.splitter.setSizes([560, 840])
+        self.splitter.setChildrenCollapsible(False)
         self.setCentralWidget(self.splitter)
+        self.setMinimumSize(*MINIMUM_SIZE)
         self.resize(1400, 860)
 
     def _build_actions(self) -> None:
         menu = self.menuBar()
         file_menu = menu.addMenu("&File")
+        self.new_action = self._action(file_menu, "&New", self._on_new_change, QKeySequence.StandardKey.New)
         self.open_action = self._action(file_menu, "&Open…", self._on_open_change, QKeySequence.StandardKey.Open)
         self.recent_menu = RecentFilesMenu(self.settings, self)
-        self.recent_menu.file_chosen.connect(self.open_file)
+        self.recent_menu.file_chosen.connect(self._on_recent_file_change)
         file_menu.addMenu(self.recent_menu)
         self.save_action = self._action(file_menu, "&Save", self._on_save_change, QKeySequence.StandardKey.Save)
         self.save_as_action = self._action(file_menu, "Save &As…", self._on_save_as_change,
@@ -217,9 +241,26 @@ class MainWindow(QMainWindow):
         menu.addMenu(self.examples_menu)
 
         view_menu = menu.addMenu("&View")
-        self._action(view_menu, "&Reset Camera", self.viewport.reset_camera, "Ctrl+R")
+        for name in ("along", "across", "x", "y", "z", "reset", None, "parallel", "wireframe", "clip"):
+            if name is None:
+                view_menu.addSeparator()
+            else:
+                view_menu.addAction(self.viewport.view_actions[name])
+        view_menu.addSeparator()
+        self.zoom_in_action = self._action(view_menu, "Zoom &In Formulas", lambda: self.zoom_formulas(+1),
+                                           QKeySequence.StandardKey.ZoomIn)
+        self.zoom_in_action.setShortcuts([QKeySequence("Ctrl++"), QKeySequence("Ctrl+=")])
+        self.zoom_out_action = self._action(view_menu, "Zoom &Out Formulas", lambda: self.zoom_formulas(-1),
+                                            QKeySequence.StandardKey.ZoomOut)
+        self.zoom_reset_action = self._action(view_menu, "&Normal Size", lambda: self.zoom_formulas(0), "Ctrl+0")
 
         help_menu = menu.addMenu("&Help")
+        self.help_actions = {
+            topic: self._action(help_menu, title, lambda t=topic: self.show_help(t))
+            for topic, (title, _page) in TOPICS.items()
+        }
+        self.help_actions["syntax"].setShortcut(QKeySequence.StandardKey.HelpContents)
+        help_menu.addSeparator()
         self._action(help_menu, "&About sorgui", self._on_about_change)
 
     def _action(
@@ -239,6 +280,8 @@ class MainWindow(QMainWindow):
 
     def _build_status_bar(self) -> None:
         self.stage_label = QLabel("Ready")
+        self.stage_label.setObjectName("stageLabel")
+        self.stage_label.setMinimumWidth(50)
         self.busy_indicator = BusyIndicator()
         self.busy_indicator.set_busy(False)
         self.statusBar().addWidget(self.busy_indicator)
@@ -257,6 +300,59 @@ class MainWindow(QMainWindow):
         """Load the bundled example ``name`` and analyse it."""
         self.set_equation(example_text(name))
         self.analyze()
+
+    def confirm_discard(self) -> bool:
+        """Whether the typed text may be replaced: asks to save it first if it was changed.
+
+        ``True`` after Save (and a successful save) or Discard, ``False`` after Cancel.
+        """
+        if not self.isWindowModified() or not self.editor.text().strip():
+            return True
+        name = Path(self._file).name if self._file else "the typed equation"
+        answer = self.ask_to_save(name)
+        if answer == QMessageBox.StandardButton.Save:
+            self._on_save_change()
+            return not self.isWindowModified()
+        return answer == QMessageBox.StandardButton.Discard
+
+    def ask_to_save(self, name: str) -> QMessageBox.StandardButton:
+        """The unsaved-changes question (Save, Discard or Cancel)."""
+        buttons = (QMessageBox.StandardButton.Save | QMessageBox.StandardButton.Discard
+                   | QMessageBox.StandardButton.Cancel)
+        return QMessageBox.question(self, "Unsaved changes", f"Save the changes to {name}?", buttons,
+                                    QMessageBox.StandardButton.Save)
+
+    def new_equation(self) -> bool:
+        """An empty editor (after asking about unsaved changes)."""
+        if not self.confirm_discard():
+            return False
+        self.set_equation("")
+        return True
+
+    def zoom_formulas(self, step: int) -> None:
+        """Zoom the results' text and formulas one step in (+1), out (-1) or back to normal (0)."""
+        if step == 0:
+            zoom = 1.0
+        else:
+            index = min(range(len(ZOOM_STEPS)), key=lambda i: abs(ZOOM_STEPS[i] - self._zoom)) + step
+            zoom = ZOOM_STEPS[max(0, min(len(ZOOM_STEPS) - 1, index))]
+        if zoom == self._zoom:
+            return
+        self._zoom = zoom
+        self.results.set_zoom(zoom)
+        self.view.refresh_pane()
+        self.session.retypeset(self._formula_style())
+        self.statusBar().showMessage(f"Formulas at {zoom:.0%}", 2000)
+
+    @property
+    def zoom(self) -> float:
+        return self._zoom
+
+    def show_help(self, topic: str) -> None:
+        """Open the Help window on ``topic`` (a key of :data:`sorgui.gui.help.TOPICS`)."""
+        if self.help_dialog is None:
+            self.help_dialog = HelpDialog(self)
+        self.help_dialog.show_topic(topic)
 
     def load_startup_equation(self, path: str | None) -> None:
         """What the window shows first: ``path``, else the last session's text, else Example 1."""
@@ -297,9 +393,8 @@ class MainWindow(QMainWindow):
             self._show_error("Cannot open report", exc.message)
             return False
         self.set_equation(analysis.input)
-        self._started_at = time.perf_counter()
-        self.worker.start(JobRequest(analysis.input, analysis=analysis.to_json(),
-                                     resolution=self.viewport.mesh_resolution(), style=self._formula_style()))
+        self.session.analyze(analysis.input, analysis=analysis, resolution=self.viewport.mesh_resolution(),
+                             style=self._formula_style())
         self.statusBar().showMessage(f"Report {Path(path).name}: shown as saved, not analysed again", 6000)
         return True
 
@@ -318,21 +413,24 @@ class MainWindow(QMainWindow):
         return True
 
     def analyze(self) -> bool:
-        """Validate the equation and, if it is a polynomial, analyse it in the worker."""
+        """Validate the equation and, if it is a polynomial, analyse it in the worker (a running
+        analysis is superseded, and the status bar says so)."""
         if self.editor.check() is False:
             error = self.editor.error
             self._show_invalid(str(error) if error is not None else "The editor is empty.")
             return False
-        self._started_at = time.perf_counter()
-        self.worker.start(JobRequest(self.editor.text(), resolution=self.viewport.mesh_resolution(),
-                                     style=self._formula_style()))
+        superseded = self.worker.is_busy
+        self.session.analyze(self.editor.text(), resolution=self.viewport.mesh_resolution(),
+                             style=self._formula_style())
+        if superseded:
+            self.statusBar().showMessage("The running analysis was stopped: this one replaces it", 5000)
         return True
 
     def cancel(self) -> None:
         """Stop the running analysis (the process is killed if it does not stop at once)."""
         if self.worker.is_busy:
             self.stage_label.setText("Cancelling…")
-            self.worker.cancel()
+            self.session.cancel()
 
     def save_screenshots(self, window_png: str | Path, viewport_png: str | Path) -> None:
         """Save the whole window and the render window as PNG images."""
@@ -343,81 +441,57 @@ class MainWindow(QMainWindow):
 
     def _on_text_change(self) -> None:
         self.setWindowModified(True)
+        self.session.set_equation(self.editor.text())
 
     def _on_validity_change(self, valid: object) -> None:
         self.analyze_button.setEnabled(valid is not False)
-
-    def _on_progress_change(self, stage: str) -> None:
-        self.stage_label.setText(STAGE_NAMES.get(stage, stage) + "…")
 
     def _on_busy_change(self, busy: bool) -> None:
         self.cancel_button.setEnabled(busy)
         self.cancel_action.setEnabled(busy)
         self.busy_indicator.set_busy(busy)
-        self.viewport.radius_box.setEnabled(not busy and self._analysis_json is not None)
-        if busy:
-            self.stage_label.setText("Starting…")
-
-    def _on_result_change(self, result: JobResult) -> None:
-        elapsed = time.perf_counter() - self._started_at
-        if result.formulas is None:  # the same analysis in a new ball
-            self.viewport.show_scene(result.scene, reset_camera=False)
-            self.stage_label.setText(f"Re-meshed in {elapsed:.2f} s: {result.scene.summary()}")
-            self.result_shown.emit(result)
-            return
-        analysis = result.analysis
-        self._analysis_json = result.analysis_json
-        self.results.show_analysis(analysis, result.formulas, result.timings)
-        verdict = "surface of revolution" if analysis.is_sor else "not a surface of revolution"
-        notes = " ".join(result.scene.notes)
-        self.stage_label.setText(f"Done in {elapsed:.2f} s: {verdict}; {result.scene.summary()}. {notes}".strip())
-        # The scene a little later: the results pane is laid out and painted first, and input
-        # is handled in between (no single turn of the event loop builds both).
-        QTimer.singleShot(SCENE_DELAY_MS, self, lambda: self._show_scene(result))
-
-    def _show_scene(self, result: JobResult) -> None:
-        self.viewport.show_scene(result.scene)
-        self.result_shown.emit(result)
-
-    def _on_invalid_change(self, message: str, position: int, end: int) -> None:
-        error = ParseError(message, position, end)
-        self.editor.show_error(error)
-        self._show_invalid(str(error))
+        self.viewport.radius_box.setEnabled(not busy and self._finished_analysis() is not None)
 
     def _show_invalid(self, message: str) -> None:
         self.results.show_message("Not a polynomial in x, y, z", message, "error")
+        self.run_panel.set_notice("error", f"<b>Not a polynomial:</b> {message}")
+        self.viewport.clear(caption="No surface: the equation is not a polynomial")
         self.stage_label.setText("Fix the equation to analyse it")
 
-    def _on_failure_change(self, message: str) -> None:
-        self._analysis_json = None
-        self.results.show_message("The analysis failed", message, "error")
-        self.viewport.clear()
-        self.stage_label.setText("Failed: " + message)
-
-    def _on_cancel_change(self) -> None:
-        self.stage_label.setText("Cancelled")
-
     def _on_radius_change(self, radius: float) -> None:
-        if self._analysis_json is None or self.worker.is_busy:
-            return
-        self._started_at = time.perf_counter()
-        self.worker.start(JobRequest(self.editor.text(), analysis=self._analysis_json, radius=radius,
-                                     resolution=self.viewport.mesh_resolution(), style=None))
+        if not self.worker.is_busy:
+            self.session.remesh(radius, self.viewport.mesh_resolution())
+
+    def _finished_analysis(self) -> Analysis | None:
+        """The analysis of the finished current run (the one shown), if any."""
+        run = self.session.run
+        return run.analysis if run is not None and run.outcome == "finished" else None
 
     def _on_pick_change(self, info: PickInfo) -> None:
         self.statusBar().showMessage(info.summary(), 15000)
 
     def _on_example_change(self, title: str, text: str) -> None:
+        if not self.confirm_discard():
+            return
         self.set_equation(text)
         self.statusBar().showMessage(f"Example: {title}", 4000)
         self.analyze()
 
     def _on_open_change(self) -> None:
+        if not self.confirm_discard():
+            return
         start = str(Path(self._file).parent) if self._file else ""
         path, _ = QFileDialog.getOpenFileName(self, "Open equation or report", start,
                                               f"{EQUATION_FILTER};;{REPORT_FILTER}")
         if path:
             self.open_file(path)
+
+    def _on_recent_file_change(self, path: str) -> None:
+        if self.confirm_discard():
+            self.open_file(path)
+
+    def _on_new_change(self) -> None:
+        self.new_equation()
 
     def _on_save_change(self) -> None:
         if self._file is None:
@@ -438,7 +512,7 @@ class MainWindow(QMainWindow):
     def export_results(self, path: str | Path, fmt: str | None = None) -> Path:
         """Write the shown analysis to ``path`` in any format of :mod:`sorgui.export.files` (by
         suffix, or ``fmt``): meshes from the drawn scene, Markdown/HTML with a picture of the view."""
-        analysis = None if self._analysis_json is None else Analysis.from_json(self._analysis_json)
+        analysis = self._finished_analysis()
         if analysis is None:
             raise ValueError("there is no analysis to export yet")
         picture = None
@@ -452,7 +526,7 @@ class MainWindow(QMainWindow):
         return atomic_write_bytes(path, png_bytes(viewport_image(self.viewport, width, transparent)))
 
     def _on_export_change(self) -> None:
-        if self._analysis_json is None:
+        if self._finished_analysis() is None:
             self.statusBar().showMessage("Analyse an equation first", 4000)
             return
         path, chosen = QFileDialog.getSaveFileName(self, "Export results", "sorgui-results.json", export_filters())
@@ -493,10 +567,12 @@ class MainWindow(QMainWindow):
     # --- helpers ---
 
     def _formula_style(self) -> Style:
-        """Formulas typeset for this screen, wrapped to the width the results pane has now."""
+        """Formulas typeset at the text's size on this screen (times the zoom), wrapped to the
+        width the results pane has now."""
         ratio = self.devicePixelRatioF()
         width = 0.85 * (self.results.viewport().width() - FORMULA_MARGIN)  # pieces join a bit wider
-        return Style(dpi=96.0 * ratio, size=self.font().pointSizeF() + 1.5, width=max(width, 200) * ratio)
+        points = QFontInfo(self.font()).pixelSize() * 72.0 / 96.0 + 1.5  # mathtext at 96 dpi: same pixels
+        return Style(dpi=96.0 * ratio, size=points * self._zoom, width=max(width, 200) * ratio)
 
     def _show_error(self, title: str, message: str) -> None:
         self.statusBar().showMessage(message, 8000)
@@ -521,12 +597,28 @@ class MainWindow(QMainWindow):
         self.settings.save_layout("splitter", self.splitter.saveState())
         self.settings.save_layout("left", self.left_splitter.saveState())
 
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 (Qt override)
+        """Ctrl+wheel over the results zooms the formulas."""
+        if (event.type() == QEvent.Type.Wheel and watched is self.results.viewport()
+                and event.modifiers() & Qt.KeyboardModifier.ControlModifier):
+            delta = event.angleDelta().y()  # type: ignore[union-attr]
+            if delta:
+                self.zoom_formulas(1 if delta > 0 else -1)
+            return True
+        return super().eventFilter(watched, event)
+
     def closeEvent(self, event: QCloseEvent) -> None:  # noqa: N802 (Qt override)
-        """Remember the text and layout, kill the worker processes, release the render window."""
+        """Ask about unsaved changes; then remember the text, layout and camera, kill the worker
+        processes and release the render window."""
+        if not self.confirm_discard():
+            event.ignore()
+            return
         self.settings.equation = self.editor.text()
         self.settings.current_file = self._file
+        self.settings.camera = self.viewport.camera_state().to_dict()
         self._save_layout()
         self.settings.sync()
+        self.view.close()
         self.worker.shutdown()
         self.viewport.close_plotter()
         super().closeEvent(event)

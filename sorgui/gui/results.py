@@ -31,7 +31,7 @@ from PySide6.QtWidgets import (
 from sorgui.engine.report import Analysis, Approximation, Rationality, Recognition
 from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, format_report
 from sorgui.gui.formula_view import FormulaView
-from sorgui.gui.wording import CAPTION_TIPS, floats, verdict, why_not
+from sorgui.gui.wording import caption_tip, floats, verdict, why_not
 from sorgui.session.formulas import Formula, analysis_formulas
 
 TABLE_HEADERS = ("row", "genus(P)", "genus(P²)", "X over ℂ", "X over ℝ")
@@ -218,14 +218,14 @@ class ResultsPane(QScrollArea):
         for index, (caption, value) in enumerate(rows):
             label = QLabel(caption)
             label.setObjectName("caption")
-            label.setToolTip(CAPTION_TIPS.get(caption, ""))
+            label.setToolTip(caption_tip(caption))
             label.setStyleSheet("color: #546e7a;")
             label.setWordWrap(True)
             label.setFixedWidth(CAPTION_WIDTH)
             grid.addWidget(label, index, 0, Qt.AlignmentFlag.AlignTop)
             if value in self._formulas:
                 view = FormulaView(self._formulas[value], ratio=ratio, max_width=width)
-                view.setToolTip(CAPTION_TIPS.get(caption, ""))
+                view.setToolTip(caption_tip(caption))
                 grid.addWidget(view, index, 1)
             else:
                 text = QLabel(value)

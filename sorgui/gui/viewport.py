@@ -482,8 +482,8 @@ class Viewport(QWidget):
             mesh.point_data["deviation"] = np.asarray(scene.deviation)
             self._set_actor("surface", mesh, scalars="deviation", cmap=DEVIATION_MAP, pickable=True,
                             interpolation="gouraud", nan_color=STALE_COLOR,
-                            scalar_bar_args={"title": "distance to nearest exact surface", "vertical": True,
-                                             "fmt": "%.2g"})
+                            scalar_bar_args={"title": "deviation", "vertical": True, "fmt": "%.1e",
+                                             "position_x": 0.86, "width": 0.08})
         else:
             self._set_actor("surface", mesh, color=FRONT_COLOR, backface_params={"color": BACK_COLOR},
                             specular=0.35, specular_power=20.0, pickable=True, interpolation="gouraud")

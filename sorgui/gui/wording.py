@@ -9,6 +9,7 @@ algebra ``L``, the profile ``P``, Table 1 of Vršek & Lávička).
 from __future__ import annotations
 
 from sorgui.engine.report import Analysis, Approximation, Recognition
+from sorgui.session.model import STAGE_TITLES
 
 KIND_WORDS = {
     "revolution": "a surface of revolution about one axis",
@@ -51,11 +52,33 @@ CAPTION_TIPS = {
     "approximate axis": "The refined floating-point axis (length units of the input)",
     "nearest exact surface": "The exact surface of revolution the rounded input was meant to be",
     "max deviation": "The largest distance between the two zero sets inside the drawn ball (length units)",
+    "axis": "The axis of this factor (a line with coordinates in K)",
+    "centre": "The centre of this factor, a sphere: every line through it is an axis",
+    "direction": "The direction of translation of an extrusion or a cylinder",
+    "normal": "The normal of the plane: every line along it is an axis",
+    "total": "The time of the whole analysis, from the worker's start to the last result",
+    "note": "A remark of the engine on this result",
 }
 
 
+def caption_tip(caption: str) -> str:
+    """The tooltip of a caption of the results pane (a stage name in the timings gets its title)."""
+    if caption in CAPTION_TIPS:
+        return CAPTION_TIPS[caption]
+    if caption in STAGE_TITLES:
+        return f"Time taken by the stage “{STAGE_TITLES[caption]}”"
+    if caption.startswith("factor "):
+        return "An irreducible factor of f over K (with its power), recognised on its own"
+    return ""
+
+
 def floats(values: tuple[float, ...] | None, digits: int = 6) -> str:
-    return "(" + ", ".join(f"{v:.{digits}g}" for v in values) + ")" if values else "–"
+    """A float vector for people: ``digits`` significant digits, rounding noise (below 1e-12
+    of the largest entry, or of 1) shown as 0."""
+    if not values:
+        return "–"
+    noise = 1e-12 * max(1.0, *(abs(v) for v in values))
+    return "(" + ", ".join(f"{(0.0 if abs(v) < noise else v):.{digits}g}" for v in values) + ")"
 
 
 def near_words(approx: Approximation) -> str:

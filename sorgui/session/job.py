@@ -93,7 +93,7 @@ class _Presenter:
     scene: Any = None
     nearest_scene: Any = None
     formulas: dict[str, Formula] = field(default_factory=dict)
-    _typeset: dict[tuple[str, str], Formula] = field(default_factory=dict)
+    _cache: dict[tuple[str, str], Formula] = field(default_factory=dict)
     _patched: bool = False
     _approximated: bool = False
 
@@ -127,8 +127,14 @@ class _Presenter:
                     nearest, region=self.scene.region, resolution=request.resolution))
                 self.send("nearest_scene", self.nearest_scene)
         if request.style is not None:
-            self.formulas = self.stage("formulas", lambda: self._typeset_all(analysis, request.style))
+            style = request.style
+            self.formulas = self.stage("formulas", lambda: self._typeset(analysis_formulas(analysis), style))
             self.send("formulas", self.formulas)
+            nearest = _nearest(analysis)
+            if nearest is not None:  # the typed equation's first: it is what the pane shows first
+                wanted = {f"nearest.{k}": f for k, f in analysis_formulas(nearest).items()}
+                self.formulas = {**self.formulas, **self.stage("formulas", lambda: self._typeset(wanted, style))}
+                self.send("formulas", self.formulas)
 
     def _extras(self, analysis: Analysis) -> Callable[[Any], Any] | None:
         """What the scene still lacks of ``analysis``: the patch, the rounded-input extras."""
@@ -151,15 +157,12 @@ class _Presenter:
 
         return apply
 
-    def _typeset_all(self, analysis: Analysis, style: Style) -> dict[str, Formula]:
-        wanted = analysis_formulas(analysis)
-        nearest = _nearest(analysis)
-        if nearest is not None:
-            wanted.update({f"nearest.{k}": v for k, v in analysis_formulas(nearest).items()})
-        fresh = {k: f for k, f in wanted.items() if (k, f.plain) not in self._typeset}
+    def _typeset(self, wanted: dict[str, Formula], style: Style) -> dict[str, Formula]:
+        """``wanted`` typeset, each formula once per job (later analyses reuse them)."""
+        fresh = {k: f for k, f in wanted.items() if (k, f.plain) not in self._cache}
         for key, formula in render_formulas(fresh, style).items():
-            self._typeset[(key, formula.plain)] = formula
-        return {k: self._typeset[(k, f.plain)] for k, f in wanted.items()}
+            self._cache[(key, formula.plain)] = formula
+        return {k: self._cache[(k, f.plain)] for k, f in wanted.items()}
 
 
 def _nearest(analysis: Analysis) -> Analysis | None:

@@ -1,0 +1,313 @@
+"""The window one can trust: results stage by stage, never a stale verdict shown as current,
+a viewport without VTK's own keys, standard views, zoom, Help, prompts, a small window.
+
+Real window, real VTK render window (Mesa under Xvfb), real worker processes. A ``Singular``
+that never answers makes the slow stage as slow as we like.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PySide6.QtCore import QPoint, Qt
+from PySide6.QtWidgets import QMessageBox
+
+from sorgui.examples import example_text
+from sorgui.gui.formula_view import FormulaView
+from sorgui.gui.help import TOPICS
+from sorgui.session import StageState
+
+pytestmark = pytest.mark.gui
+
+
+@pytest.fixture
+def hanging_singular(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """A ``Singular`` that never finishes (set before the worker process starts)."""
+    script = tmp_path / "Singular"
+    script.write_text("#!/bin/sh\nexec sleep 600\n")
+    script.chmod(0o755)
+    monkeypatch.setenv("SORGUI_SINGULAR", str(script))
+    return script
+
+
+def stage_state(window, name: str) -> StageState:  # noqa: ANN001
+    return window.session.run.stages[name].state
+
+
+def test_verdict_while_singular_runs_and_no_old_verdict_ever(make_window, qtbot, run_analysis,
+                                                            hanging_singular, artifacts) -> None:
+    window = make_window()
+    run_analysis(window, example_text("ellipsoid"))  # needs no Singular
+    assert "Not a surface of revolution" in window.results.banner.text()
+
+    window.set_equation(example_text("paper-example-1"))
+    assert window.analyze()
+    # At once: nothing of the ellipsoid is left, neither in the pane nor in the 3D view.
+    assert "Not a surface" not in window.results.banner.text()
+    assert "Analysing" in window.results.banner.text()
+    assert "surface" not in window.viewport.actor_names()
+    assert window.viewport.caption.text().startswith("Analysing")
+
+    # The verdict, the axis and the mesh arrive while Singular still runs.
+    qtbot.waitUntil(lambda: window.viewport.scene is not None, timeout=60_000)
+    qtbot.waitUntil(lambda: "Surface of revolution" in window.results.banner.text(), timeout=30_000)
+    qtbot.waitUntil(lambda: stage_state(window, "rationality") is StageState.RUNNING, timeout=30_000)
+    assert window.worker.is_busy
+    assert stage_state(window, "recognition") is StageState.DONE
+    assert "(3/5, -4/5, 0)" in window.results.plain_text()
+    assert "being decided" in _pane_text(window)
+    assert "surface" in window.viewport.actor_names() and "axis" in window.viewport.actor_names()
+    assert window.viewport.caption.text().startswith("f = ")
+    assert window.run_panel.progress_bar.isVisible()
+    assert 0 < window.run_panel.progress_bar.value() < window.run_panel.progress_bar.maximum()
+    qtbot.wait(300)
+    window.save_screenshots(artifacts / "running-window.png", artifacts / "running-viewport.png")
+
+    # Editing makes everything visibly out of date.
+    window.editor.text_edit.moveCursor(window.editor.text_edit.textCursor().MoveOperation.End)
+    qtbot.keyClicks(window.editor.text_edit, " + 1")
+    assert window.session.stale
+    assert window.run_panel.notice_kind == "stale" and "previous equation" in window.run_panel.notice.text()
+    assert not window.results.widget().isEnabled(), "greyed out"
+    assert window.viewport.stale and "Previous equation" in window.viewport.caption.text()
+
+    # Cancel keeps what was done and marks the rest cancelled; nothing is shown as current.
+    with qtbot.waitSignal(window.worker.cancelled, timeout=10_000):
+        window.cancel()
+    assert stage_state(window, "recognition") is StageState.DONE
+    assert stage_state(window, "rationality") is StageState.CANCELLED
+    assert stage_state(window, "parametrizations") is StageState.CANCELLED
+    assert window.run_panel.notice_kind == "stale", "still the previous equation's results"
+    window.editor.set_text(example_text("paper-example-1"))
+    assert not window.session.stale and window.results.widget().isEnabled()
+    assert window.run_panel.notice_kind == "cancelled"
+
+
+def _pane_text(window) -> str:  # noqa: ANN001
+    from PySide6.QtWidgets import QLabel
+
+    return "\n".join(label.text() for label in window.results.widget().findChildren(QLabel))
+
+
+def test_input_error_is_said_at_the_top_and_clears_the_view(window, run_analysis, qtbot) -> None:
+    run_analysis(window, example_text("torus"))
+    window.set_equation("x^2 + (y")
+    assert window.analyze() is False
+    assert window.run_panel.notice_kind == "error"
+    assert "Not a polynomial" in window.results.banner.text()
+    assert "surface" not in window.viewport.actor_names()
+
+
+def test_vtk_keys_change_nothing_and_close_nothing(window, run_analysis, qtbot) -> None:
+    """VTK's interactor style: 3 stereo, w/s wireframe/surface, e/q quit, f fly to, r reset,
+    j/t joystick/trackball, u user; pyvista: v, b, C, +, -, arrows. None of them does anything."""
+    run_analysis(window, example_text("torus"))
+    viewport = window.viewport
+    renderer = viewport.plotter.renderer
+    before = (renderer.GetViewProps().GetNumberOfItems(), viewport.actor_names(), viewport.camera_state())
+    for key in ("3", "w", "s", "e", "q", "f", "r", "j", "t", "u", "v", "b", "C", "+", "-"):
+        qtbot.keyClick(viewport.plotter, key)
+        qtbot.wait(20)
+        assert window.isVisible() and viewport.plotter.isVisible(), key
+        assert not viewport.plotter.ren_win.GetStereoRender(), key
+        assert renderer.actors["surface"].prop.style.lower() == "surface", key
+        after = (renderer.GetViewProps().GetNumberOfItems(), viewport.actor_names(), viewport.camera_state())
+        assert after == before, key
+
+
+def test_p_picks_under_the_mouse_without_a_bounding_box(window, run_analysis, qtbot) -> None:
+    run_analysis(window, example_text("torus"))
+    viewport = window.viewport
+    viewport.set_view("z")
+    renderer = viewport.plotter.renderer
+    props = renderer.GetViewProps().GetNumberOfItems()
+    renderer.SetWorldPoint(2.0, 0.0, 1.0, 1.0)  # the top of the tube
+    renderer.WorldToDisplay()
+    x, y, _ = renderer.GetDisplayPoint()
+    ratio = viewport.plotter.devicePixelRatioF()
+    where = QPoint(int(round(x / ratio)), int(round(viewport.plotter.height() - y / ratio)))
+    qtbot.mouseMove(viewport.plotter, where)
+    with qtbot.waitSignal(viewport.picked, timeout=5000) as blocker:
+        qtbot.keyClick(viewport.plotter, "p")
+    assert blocker.args[0].meets_axis is True
+    added = renderer.GetViewProps().GetNumberOfItems() - props
+    assert added == 3, "the normal, the circle and the point: no red box"
+
+
+def test_standard_views_projection_wireframe_and_section(window, run_analysis) -> None:
+    run_analysis(window, example_text("paper-example-1"))
+    viewport = window.viewport
+    camera = viewport.plotter.renderer.GetActiveCamera()
+    direction = window.session.run.analysis.recognition.axis.direction
+    axis = np.array([float(v) for v in direction])
+    axis /= np.linalg.norm(axis)
+    viewport.view_actions["along"].trigger()
+    assert abs(abs(np.dot(np.asarray(camera.GetDirectionOfProjection()), axis)) - 1) < 1e-9
+    viewport.view_actions["across"].trigger()
+    assert abs(np.dot(np.asarray(camera.GetDirectionOfProjection()), axis)) < 1e-9
+    assert abs(abs(np.dot(np.asarray(camera.GetViewUp()), axis)) - 1) < 1e-9
+    viewport.view_actions["x"].trigger()
+    assert np.allclose(camera.GetDirectionOfProjection(), (-1, 0, 0))
+    viewport.view_actions["parallel"].trigger()
+    assert camera.GetParallelProjection()
+    viewport.view_actions["wireframe"].trigger()
+    assert viewport.plotter.renderer.actors["surface"].prop.style.lower() == "wireframe"
+    viewport.view_actions["wireframe"].trigger()
+    viewport.view_actions["clip"].trigger()
+    assert viewport.plotter.renderer.actors["surface"].GetMapper().GetClippingPlanes().GetNumberOfItems() == 1
+    viewport.view_actions["clip"].trigger()
+    assert viewport.plotter.renderer.actors["surface"].GetMapper().GetClippingPlanes().GetNumberOfItems() == 0
+    viewport.view_actions["reset"].trigger()
+    view_menu = next(a.menu() for a in window.menuBar().actions() if a.text() == "&View")
+    assert viewport.view_actions["along"] in view_menu.actions()
+
+
+def test_camera_is_restored_on_the_next_start(make_window, run_analysis) -> None:
+    first = make_window()
+    run_analysis(first, example_text("torus"))
+    first.viewport.set_view("x")
+    first.viewport.set_parallel_projection(True)
+    saved = first.viewport.camera_state()
+    first.close()
+    second = make_window()
+    run_analysis(second, example_text("torus"))
+    restored = second.viewport.camera_state()
+    assert np.allclose(restored.position, saved.position) and restored.parallel
+
+
+def test_formulas_zoom_with_keys_and_copy_in_every_language(window, run_analysis, qtbot) -> None:
+    from PySide6.QtGui import QGuiApplication
+
+    run_analysis(window, example_text("cone"))
+    height = _formula_height(window, "(1, 0, 1)")
+    window.activateWindow()
+    qtbot.waitUntil(window.isActiveWindow, timeout=5000)
+    with _refreshed(window, qtbot):
+        qtbot.keyClick(window.results, Qt.Key.Key_Plus, Qt.KeyboardModifier.ControlModifier)
+    assert window.zoom > 1.0
+    assert _formula_height(window, "(1, 0, 1)") > height
+    view = next(v for v in window.results.findChildren(FormulaView) if v.formula.plain == "(1, 0, 1)")
+    texts = {}
+    for action in view.copy_menu.actions():
+        action.trigger()
+        texts[action.text()] = QGuiApplication.clipboard().text()
+    assert texts["Copy as text"] == "(1, 0, 1)"
+    assert texts["Copy as LaTeX"] == r"\left(1, 0, 1\right)"
+    assert texts["Copy as Maple"] == "[1, 0, 1]"
+    assert texts["Copy as Mathematica"] == "{1, 0, 1}"
+    assert texts["Copy as Python"] == "(1, 0, 1)"
+    with _refreshed(window, qtbot):
+        window.zoom_reset_action.trigger()
+    assert window.zoom == 1.0 and _formula_height(window, "(1, 0, 1)") == height
+
+
+class _refreshed:  # noqa: N801 (a context manager used like qtbot.waitSignal)
+    """Wait until the session has typeset the formulas again."""
+
+    def __init__(self, window, qtbot) -> None:  # noqa: ANN001
+        self.window, self.qtbot, self.seen = window, qtbot, []
+
+    def __enter__(self) -> None:
+        self.window.session.events.refreshed.connect(self._on)
+
+    def _on(self, what: str, _result: object) -> None:
+        self.seen.append(what)
+
+    def __exit__(self, *exc: object) -> None:
+        try:
+            self.qtbot.waitUntil(lambda: "formulas" in self.seen, timeout=60_000)
+            self.qtbot.wait(50)
+        finally:
+            self.window.session.events.refreshed.disconnect(self._on)
+
+
+def _formula_height(window, plain: str) -> int:  # noqa: ANN001
+    view = next(v for v in window.results.findChildren(FormulaView) if v.formula.plain == plain)
+    return view.content.pixmap().height()
+
+
+def test_long_formulas_are_folded_with_show_all(window, run_analysis) -> None:
+    from benchmarks.gui_heartbeat import sor_in_general_position
+
+    text = sor_in_general_position(8)
+    run_analysis(window, text)
+    view = next(v for v in window.results.findChildren(FormulaView) if v.formula.plain.startswith(
+        window.session.run.analysis.recognition.polynomial[:20]))
+    assert view.folded and "show all" in view.show_all_button.text()
+    view.show_all()
+    assert not view.folded
+
+
+def test_help_menu_has_every_topic(window, qtbot) -> None:
+    help_menu = next(a.menu() for a in window.menuBar().actions() if a.text() == "&Help")
+    titles = [a.text() for a in help_menu.actions()]
+    for title, _page in TOPICS.values():
+        assert title in titles
+    window.show_help("syntax")
+    assert window.help_dialog.isVisible() and "Input syntax" in window.help_dialog.browser.toPlainText()
+    window.show_help("paper")
+    assert "Vršek" in window.help_dialog.browser.toPlainText()
+    window.show_help("keys")
+    assert "Ctrl+Alt+A" in window.help_dialog.browser.toPlainText()
+    window.help_dialog.close()
+
+
+def test_caption_tooltips_on_results(window, run_analysis) -> None:
+    from PySide6.QtWidgets import QLabel
+
+    run_analysis(window, example_text("torus"))
+    captions = [label for label in window.results.widget().findChildren(QLabel) if label.objectName() == "caption"
+                and label.text()]
+    assert captions
+    assert [label.text() for label in captions if not label.toolTip()] == []
+
+
+def test_a_no_is_explained(window, run_analysis) -> None:
+    run_analysis(window, "(x^2 + y^2 - 1)((x - 3)^2 + z^2 - 1)")  # two cylinders, crossed axes
+    text = _pane_text(window)
+    assert "Why it is not a surface of revolution" in text
+    assert "Factor 1: a cylinder of revolution" in text and "Factor 2: a cylinder of revolution" in text
+    assert "different axes" in text
+    assert "factor_axes" in window.viewport.actor_names()
+    run_analysis(window, "x^2 + 2y^2 - 1")
+    assert "extrusion" in _pane_text(window)
+
+
+def test_unsaved_text_is_never_discarded_without_asking(make_window, qtbot, monkeypatch) -> None:
+    window = make_window(prestart_worker=False)
+    window.set_equation("x^2 + y^2 - z")
+    qtbot.keyClicks(window.editor.text_edit, " + 1")
+    assert window.isWindowModified()
+    answers = [QMessageBox.StandardButton.Cancel]
+    monkeypatch.setattr(window, "ask_to_save", lambda name: answers[0])
+    typed = window.editor.text()
+    example = window.examples_menu.example_actions()[1]
+    example.trigger()
+    assert window.editor.text() == typed, "Cancel keeps the text"
+    window.new_action.trigger()
+    assert window.editor.text() == typed
+    assert window.close() is False and window.isVisible(), "Cancel keeps the window open"
+    answers[0] = QMessageBox.StandardButton.Discard
+    window.new_action.trigger()
+    assert window.editor.text() == ""
+    assert "*" in window.windowTitle() or window.windowTitle().startswith("Untitled")
+
+
+def test_the_window_works_at_800_by_560(window, run_analysis, qtbot, artifacts) -> None:
+    window.resize(700, 500)
+    qtbot.wait(100)
+    assert (window.width(), window.height()) == (800, 560), "the minimum size"
+    run_analysis(window, example_text("paper-example-1"))
+    qtbot.wait(200)
+    results = window.results
+    assert results.verticalScrollBar().maximum() > 0, "the results scroll"
+    page = results.widget()
+    copy = page.findChildren(FormulaView)[0].copy_button
+    right = copy.mapTo(page, QPoint(copy.width(), 0)).x()
+    assert right <= page.width(), "the copy buttons are inside the page"
+    reachable = page.width() <= results.viewport().width() or results.horizontalScrollBar().maximum() > 0
+    assert reachable, "what does not fit can be scrolled to"
+    assert window.analyze_button.isVisible() and window.viewport.plotter.isVisible()
+    window.grab().save(str(artifacts / "small-window.png"))
