@@ -34,6 +34,8 @@ from .precision import Rounding
 from .symmetry import CYLINDER, EXTRUSION, PLANE, REVOLUTION, SPHERE
 
 GN_ITERATIONS = 12
+GN_GAIN = 1e-4
+"""Gauss–Newton stops when a step lowers the squared residual by less than this fraction."""
 FD_STEP = 1e-7
 
 
@@ -228,12 +230,11 @@ def fit(f: Normalised, candidate: Candidate, point: np.ndarray | None = None,
     norms = np.linalg.norm(weighted, axis=0)
     norms[norms == 0.0] = 1.0
     target = f.vector * w
-    solution, *_ = np.linalg.lstsq(weighted / norms, target, rcond=None)
+    solution, _, _, sv = np.linalg.lstsq(weighted / norms, target, rcond=None)
     coefficients = solution / norms
     fitted = basis @ coefficients
     residual = (f.vector - fitted) * w
     count = len(residual)
-    sv = np.linalg.svd(weighted / norms, compute_uv=False)
     condition = float(sv[0] / sv[-1]) if sv[-1] > 0 else math.inf
     noise = 4 * np.finfo(float).eps * condition * float(np.linalg.norm(target)) / math.sqrt(count)
     degrees = _degrees(f)
@@ -330,7 +331,7 @@ def gauss_newton(residual: Callable[[np.ndarray], np.ndarray], theta: np.ndarray
             break
         gain = 1.0 - (r_trial @ r_trial) / (r @ r)
         theta, r = trial, r_trial
-        if gain < 1e-6:
+        if gain < GN_GAIN:
             break
     return theta, jacobian_at(theta, r)
 

@@ -22,7 +22,7 @@ recognizer (docs/math.md §2) before it is returned.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -41,6 +41,7 @@ Vector = tuple[Fraction, Fraction, Fraction]
 EPSILONS = tuple(10.0 ** -k for k in range(2, 14))
 MAX_DENOMINATOR = 10**6
 AXIS_TRIES = 3
+MAX_CHECKS = 16
 SPREADS = (3.0, 1.0, 0.3)
 """Radii, in standard errors, within which a refined axis is snapped (widest first)."""
 
@@ -83,22 +84,28 @@ def simplest_near(value: float, radius: float) -> Fraction:
     return simplest_between(v - r, v + r)
 
 
-def integer_direction(direction: np.ndarray, epsilon: float) -> tuple[int, int, int] | None:
-    """The primitive integer vector with the smallest common denominator whose ratios are
-    within ``epsilon`` of the direction's (None if none up to ``MAX_DENOMINATOR``)."""
+def integer_directions(direction: np.ndarray, epsilons: Sequence[float]) -> list[tuple[int, int, int] | None]:
+    """For each ``ε``, the primitive integer vector with the smallest common denominator ``D``
+    whose ratios are within ``ε`` of the direction's (``None`` if none has ``D`` up to
+    ``MAX_DENOMINATOR``): one vectorised pass over all ``D``."""
     j = int(np.argmax(np.abs(direction)))
     ratios = direction / direction[j]
-    step = 100_000
-    for start in range(1, MAX_DENOMINATOR + 1, step):
-        D = np.arange(start, start + step, dtype=float)[:, None]
-        scaled = D * ratios[None, :]
-        error = np.abs(scaled - np.round(scaled)).max(axis=1) / D[:, 0]
-        hits = np.nonzero(error <= epsilon)[0]
-        if len(hits):
-            ints = [int(v) for v in np.round(scaled[hits[0]])]
-            g = math.gcd(*ints)
-            return tuple(v // g for v in ints)  # type: ignore[return-value]
-    return None
+    D = np.arange(1, MAX_DENOMINATOR + 1, dtype=float)
+    error = np.zeros_like(D)
+    for r in ratios:
+        scaled = D * r
+        np.maximum(error, np.abs(scaled - np.round(scaled)), out=error)
+    error /= D
+    found: list[tuple[int, int, int] | None] = []
+    for eps in epsilons:
+        hits = np.flatnonzero(error <= eps)
+        if len(hits) == 0:
+            found.append(None)
+            continue
+        ints = [int(round((hits[0] + 1) * r)) for r in ratios]
+        g = math.gcd(*ints)
+        found.append(tuple(v // g for v in ints))  # type: ignore[arg-type]
+    return found
 
 
 def rational_unit_direction(direction: np.ndarray, epsilon: float | np.ndarray) -> tuple[Fraction, Fraction, Fraction]:
@@ -142,7 +149,7 @@ def perpendicular(direction: Vector) -> Vector:
 
 
 def _integer_vector(direction: np.ndarray, epsilon: float) -> Vector | None:
-    a = integer_direction(direction, epsilon)
+    (a,) = integer_directions(direction, [epsilon])
     return None if a is None else tuple(Fraction(v) for v in a)  # type: ignore[return-value]
 
 
@@ -154,11 +161,14 @@ profile coefficients simple)."""
 
 def snapped_directions(direction: np.ndarray, family: DirectionSnap) -> list[Vector]:
     """The distinct exact directions of one family near ``direction``, simplest first."""
+    if family is _integer_vector:
+        snapped = [None if a is None else tuple(Fraction(v) for v in a) for a in integer_directions(direction, EPSILONS)]
+    else:
+        snapped = [family(direction, eps) for eps in EPSILONS]
     found: list[Vector] = []
-    for eps in EPSILONS:
-        a = family(direction, eps)
+    for a in snapped:
         if a is not None and a not in found:
-            found.append(a)
+            found.append(a)  # type: ignore[arg-type]
     return found
 
 
@@ -257,10 +267,14 @@ def _first_exact(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f
 
 def _exact_surfaces(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None,
                     rounding: Rounding) -> Iterator[tuple[list[Fraction], ExactSurface]]:
-    """Exact surfaces within twice the rounding (in the mean), simplest axes first."""
+    """Exact surfaces within twice the rounding (in the mean), simplest axes first; at most
+    ``MAX_CHECKS`` exact surfaces are built, and the axis is refined with fixed coefficients
+    on the first axis only (an input with irrational data has no simple exact surface, and
+    that must be found out quickly)."""
     directions = [] if family is None else snapped_directions(best.candidate.direction, family)
     kind = best.candidate.kind
-    for a, c in exact_axes(f, best, directions):
+    checks = 0
+    for first, (a, c) in enumerate(exact_axes(f, best, directions)):
         direction = None if a is None else np.array([float(v) for v in a])
         point = None if c is None else np.array([float(v) for v in c]) / f.length
         local = fit(f, best.candidate, point=point, direction=direction)
@@ -271,13 +285,16 @@ def _exact_surfaces(f: Normalised, best: Fit, family: DirectionSnap | None, exac
             return [] if g is None or exact_f is None else _matched_scales(g, exact_f, rounding)
 
         for rank, coefficients in enumerate(_coefficient_candidates(f, local, matched_scales)):
+            checks += 1
+            if checks > MAX_CHECKS:
+                return
             g = build(kind, a, c, local.exponents, coefficients)
             surface = None if g is None else _check(g, exact_f, rounding, f, a, c)
             if surface is not None:
                 yield coefficients, surface
                 if surface.largest <= 1.0:
                     return
-            if rank >= 2:
+            if rank >= 2 or first > 0:
                 continue
             fixed = np.array([float(q) for q in coefficients]) * f.length ** degrees / f.scale
             moved, direction_sigma, point_sigma = refine_fixed(f, local.candidate, fixed)
