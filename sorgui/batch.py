@@ -5,7 +5,8 @@ Its line of output is the analysis JSON of ``sorgui analyze --json`` with ``"lin
 added, or ``{"line", "input", "error": {"message", "position"}}``; a bad line never stops the
 others. The output keeps the order of the input. ``--jobs N`` analyses in N worker processes,
 forked after the engine is imported (so each starts at once); each worker dies with sorgui
-(``PR_SET_PDEATHSIG``) and, on ``SIGTERM``, unwinds so that its Singular is killed. When stderr is a terminal, a progress bar is drawn there.
+(``PR_SET_PDEATHSIG``) and, on ``SIGTERM``, unwinds so that its Singular is killed. A worker
+that dies (killed, out of memory) is replaced, and its line answered with an error object. When stderr is a terminal, a progress bar is drawn there.
 
 Exit status: 0 when every line was analysed, 1 when an analysis failed, else 2 when a line was
 not a polynomial.
@@ -19,6 +20,7 @@ import multiprocessing
 import signal
 import sys
 from collections.abc import Callable, Generator
+from multiprocessing.connection import Connection, wait
 from typing import Any
 
 Job = tuple[int, str, dict[str, Any]]
@@ -90,20 +92,89 @@ class _Progress:
         sys.stderr.flush()
 
 
+class _Worker:
+    """A forked worker process that analyses one line at a time, sent through its pipe."""
+
+    def __init__(self, context: multiprocessing.context.ForkContext) -> None:
+        self.conn, child = context.Pipe()
+        self.process = context.Process(target=_serve, args=(child,), name="sorgui-batch", daemon=True)
+        self.process.start()
+        child.close()
+        self.index: int | None = None  # the job it is analysing
+
+    def give(self, index: int, job: Job) -> None:
+        self.index = index
+        self.conn.send(job)
+
+    def answer(self, job: Job) -> tuple[str, int]:
+        """The worker's answer to ``job``; if the process died instead (killed, out of memory),
+        an error object for the line, and the worker is to be replaced."""
+        try:
+            return self.conn.recv()
+        except (EOFError, OSError):
+            self.process.join(10)  # its pipe closes a moment before it can be reaped
+            code = self.process.exitcode
+            how = f"signal {-code}" if code is not None and code < 0 else f"exit status {code}"
+            message = f"the analysis process died ({how}); it may have run out of memory"
+            return json.dumps(_error(job[0], job[1], message, None)), 1
+
+    def stop(self) -> None:
+        """``SIGTERM`` (the worker unwinds: its Singular is killed), then ``SIGKILL`` if needed."""
+        self.conn.close()
+        if self.process.is_alive():
+            self.process.terminate()
+            self.process.join(5)
+        if self.process.is_alive():
+            self.process.kill()
+            self.process.join()
+
+
+def _serve(conn: Connection) -> None:
+    """A worker's loop: analyse every job that arrives until the pipe closes."""
+    _worker_start()
+    while True:
+        try:
+            job = conn.recv()
+        except (EOFError, OSError):
+            return
+        conn.send(analyze_line(job))
+
+
 def _results(jobs: list[Job], workers: int) -> Generator[tuple[str, int], None, None]:
-    """The answers in input order, from this process or from ``workers`` forked processes."""
+    """The answers in input order, from this process or from ``workers`` forked processes; a
+    worker that dies is replaced, and its line answered with an error object."""
     if workers == 1 or len(jobs) <= 1:
         yield from map(analyze_line, jobs)
         return
     import sorgui.engine  # noqa: F401 - loaded once, before the fork, for every worker
 
-    pool = multiprocessing.get_context("fork").Pool(min(workers, len(jobs)), initializer=_worker_start)
+    context = multiprocessing.get_context("fork")
+    todo = list(enumerate(jobs))[::-1]
+    pool: list[_Worker] = []
+    answers: dict[int, tuple[str, int]] = {}
+    emitted = 0
     try:
-        yield from pool.imap(analyze_line, jobs, chunksize=1)
-        pool.close()
+        pool = [_Worker(context) for _ in range(min(workers, len(jobs)))]
+        for worker in pool:
+            worker.give(*todo.pop())
+        while emitted < len(jobs):
+            busy = {worker.conn: worker for worker in pool if worker.index is not None}
+            for conn in wait(list(busy)):
+                worker = busy[conn]
+                index = worker.index
+                answers[index] = worker.answer(jobs[index])
+                worker.index = None
+                if not worker.process.is_alive():
+                    worker.stop()
+                    pool[pool.index(worker)] = worker = _Worker(context)
+                if todo:
+                    worker.give(*todo.pop())
+            while emitted in answers:
+                yield answers.pop(emitted)
+                emitted += 1
     finally:
-        pool.terminate()  # Ctrl+C, a signal, a closed pipe: the workers (and Singular) go too
-        pool.join()
+        for worker in pool:  # Ctrl+C, a signal, a closed pipe, or done: the workers go too
+            worker.stop()
 
 
 def run_batch(text: str, args: argparse.Namespace, emit: Callable[[str], None]) -> int:

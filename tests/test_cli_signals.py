@@ -8,11 +8,13 @@ Singular reads its script from standard input, so no temporary file or folder ex
 
 from __future__ import annotations
 
+import json
+import os
 import signal
 import subprocess
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
@@ -72,10 +74,33 @@ def wait_for(condition: Callable[[], object], seconds: float) -> object:
     raise AssertionError(f"not within {seconds} s")
 
 
+STARTED: list[subprocess.Popen[str]] = []
+
+
+@pytest.fixture(autouse=True)
+def _no_process_outlives_its_test() -> Iterator[None]:
+    """A failing test must not leave sorgui (and its Singular) running."""
+    yield
+    while STARTED:
+        proc = STARTED.pop()
+        if proc.poll() is None:
+            proc.terminate()
+            try:
+                proc.communicate(timeout=30)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.communicate()
+
+
+def launch(args: list[str]) -> subprocess.Popen[str]:
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    STARTED.append(proc)
+    return proc
+
+
 def start(*args: str, command: list[str] | None = None) -> tuple[subprocess.Popen[str], list[int]]:
     """Start sorgui on the slow input; return it and its running Singular processes."""
-    proc = subprocess.Popen([*(command or []), *ANALYZE, *args, "-f", SLOW], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+    proc = launch([*(command or []), *ANALYZE, *args, "-f", SLOW])
     singulars = wait_for(lambda: singular_processes(proc.pid), 120)
     for pid in singulars:
         cmdline = Path(f"/proc/{pid}/cmdline").read_bytes().split(b"\0")
@@ -137,11 +162,28 @@ def test_batch_workers_and_their_singular_end_with_sorgui(tmp_path: Path) -> Non
     lines = tmp_path / "lines.txt"
     equation = Path(SLOW).read_text(encoding="utf-8").strip()
     lines.write_text(f"{equation}\n{equation}\n", encoding="utf-8")
-    proc = subprocess.Popen([*ANALYZE, "--each-line", "--jobs", "2", "-f", str(lines)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = launch([*ANALYZE, "--each-line", "--jobs", "2", "-f", str(lines)])
     singulars = wait_for(lambda: singular_processes(proc.pid), 120)
     workers = [pid for pid in descendants(proc.pid) if pid not in singulars]
     proc.send_signal(signal.SIGTERM)
     status, err = finish(proc)
     assert status == 128 + signal.SIGTERM and "Traceback" not in err
     wait_for(lambda: all(dead(pid) for pid in singulars + workers), 15)
+
+
+def test_a_batch_survives_a_worker_that_dies(tmp_path: Path) -> None:
+    lines = tmp_path / "lines.txt"
+    equation = Path(SLOW).read_text(encoding="utf-8").strip()
+    # the other lines are not surfaces of revolution: only the first line runs Singular
+    lines.write_text(f"{equation}\nx^2 + 2y^2 - z\nx^2 + 2y^2 + 3z^2 - 1\n", encoding="utf-8")
+    proc = launch([*ANALYZE, "--each-line", "--jobs", "2", "-f", str(lines)])
+    singular = wait_for(lambda: singular_processes(proc.pid), 120)[0]
+    worker = _stat(singular)[1]
+    os.kill(worker, signal.SIGKILL)  # as the kernel's out-of-memory killer would
+    out, err = proc.communicate(timeout=120)
+    assert proc.returncode == 1 and "Traceback" not in err, (out, err)
+    rows = [json.loads(line) for line in out.splitlines()]
+    assert [row["line"] for row in rows] == [1, 2, 3]
+    assert "the analysis process died (signal 9)" in rows[0]["error"]["message"], rows[0]
+    assert rows[1]["is_sor"] is False and rows[2]["is_sor"] is False
+    wait_for(lambda: dead(singular), 10)
