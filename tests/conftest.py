@@ -7,6 +7,8 @@ from pathlib import Path
 
 import pytest
 
+import sorgui  # noqa: F401 - first, so that numpy's BLAS starts with the thread count sorgui sets
+
 CORPUS = Path(__file__).resolve().parent / "data" / "cases.json"
 
 

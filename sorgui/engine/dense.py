@@ -10,7 +10,7 @@ microseconds each. The exact polynomial never enters here except through
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 
 import numpy as np
 
@@ -80,12 +80,14 @@ def form_product(first: SparseForm, second: SparseForm) -> SparseForm:
     return list(total.items())
 
 
-def powers(array: np.ndarray, form: SparseForm, count: int) -> list[np.ndarray]:
-    """``[array, array·form, array·form², ...]`` (``count`` entries)."""
-    result = [array]
-    for _ in range(count - 1):
-        result.append(times(result[-1], form))
-    return result
+def powers(array: np.ndarray, form: SparseForm, count: int) -> Iterator[np.ndarray]:
+    """``array, array·form, array·form², ...`` (``count`` of them), lazily: only the last one is
+    kept, so a basis of degree 60 never holds more than a few cubes."""
+    current = array
+    for k in range(count):
+        yield current
+        if k + 1 < count:
+            current = times(current, form)
 
 
 def derivative(array: np.ndarray, axis: int) -> np.ndarray:

@@ -173,45 +173,47 @@ def _unit(v: np.ndarray) -> np.ndarray:
 # --- 2. the nearest invariant polynomial ---------------------------------------------------------
 
 
-def invariant_basis(candidate: Candidate, degree: int, point: np.ndarray | None = None,
-                    direction: np.ndarray | None = None) -> tuple[list[np.ndarray], list[tuple[int, int]]]:
+def invariant_basis(candidate: Candidate, degree: int, selected: np.ndarray, point: np.ndarray | None = None,
+                    direction: np.ndarray | None = None) -> tuple[np.ndarray, list[tuple[int, int]]]:
     """A basis of the polynomials of degree ≤ ``degree`` invariant under the candidate's group,
-    with the exponents ``(i, j)`` of each element ``h^i ρ^j`` (``(i, j)`` = powers of the two
-    coordinates ``u·p, w·p`` for an extrusion). ``point``/``direction`` override the candidate's
-    (they need not be unit: an exact integer direction keeps ``h`` exact)."""
+    as the columns of a matrix over the monomials ``selected``, with the exponents ``(i, j)`` of
+    each element ``h^i ρ^j`` (``(i, j)`` = powers of the two coordinates ``u·p, w·p`` for an
+    extrusion). ``point``/``direction`` override the candidate's (they need not be unit: an
+    exact integer direction keeps ``h`` exact)."""
     kind = candidate.kind
     n = candidate.direction if direction is None else direction
     c = candidate.point if point is None else point
     one = dense.from_terms({(0, 0, 0): 1.0}, degree)
+    columns: list[np.ndarray] = []
+    exponents: list[tuple[int, int]] = []
+
+    def grid(first: dense.SparseForm, second: dense.SparseForm, first_weight: int, second_count: int) -> None:
+        """``second^j · first^i`` for ``first_weight·j + i ≤ degree`` (the weight of ``second``)."""
+        for j, outer in enumerate(dense.powers(one, second, second_count)):
+            for i, term in enumerate(dense.powers(outer, first, degree - first_weight * j + 1)):
+                columns.append(term[selected])
+                exponents.append((i, j))
+
     if kind == PLANE:
-        h = dense.linear_form(n, np.zeros(3))
-        return dense.powers(one, h, degree + 1), [(i, 0) for i in range(degree + 1)]
-    if kind == SPHERE:
-        rho = dense.squared_distance(c)
-        return dense.powers(one, rho, degree // 2 + 1), [(0, j) for j in range(degree // 2 + 1)]
-    if kind == EXTRUSION:
+        grid(dense.linear_form(n, np.zeros(3)), [], 1, 1)
+    elif kind == SPHERE:
+        for j, term in enumerate(dense.powers(one, dense.squared_distance(c), degree // 2 + 1)):
+            columns.append(term[selected])
+            exponents.append((0, j))
+    elif kind == EXTRUSION:
         u = _unit(np.cross(n, _least_aligned(n)))
         w = np.cross(_unit(n), u)
-        arrays, exponents = [], []
-        for j, wj in enumerate(dense.powers(one, dense.linear_form(w, np.zeros(3)), degree + 1)):
-            for i, term in enumerate(dense.powers(wj, dense.linear_form(u, np.zeros(3)), degree + 1 - j)):
-                arrays.append(term)
-                exponents.append((i, j))
-        return arrays, exponents
-    h = dense.linear_form(n, c)
-    nn = float(n @ n)
-    rho = dense.squared_distance(c)
-    if kind == CYLINDER:
+        grid(dense.linear_form(u, np.zeros(3)), dense.linear_form(w, np.zeros(3)), 1, degree + 1)
+    elif kind == CYLINDER:
+        h, rho = dense.linear_form(n, c), dense.squared_distance(c)
         # |a|²·|p - c|² - (a·(p - c))²: the squared distance to the axis, times |a|².
-        across = [(m, nn * v) for m, v in rho] + [(m, -v) for m, v in dense.form_product(h, h)]
-        arrays = dense.powers(one, across, degree // 2 + 1)
-        return arrays, [(0, j) for j in range(degree // 2 + 1)]
-    arrays, exponents = [], []
-    for j, rj in enumerate(dense.powers(one, rho, degree // 2 + 1)):
-        for i, term in enumerate(dense.powers(rj, h, degree - 2 * j + 1)):
-            arrays.append(term)
-            exponents.append((i, j))
-    return arrays, exponents
+        across = [(m, float(n @ n) * v) for m, v in rho] + [(m, -v) for m, v in dense.form_product(h, h)]
+        for j, term in enumerate(dense.powers(one, across, degree // 2 + 1)):
+            columns.append(term[selected])
+            exponents.append((0, j))
+    else:
+        grid(dense.linear_form(n, c), dense.squared_distance(c), 2, degree // 2 + 1)
+    return np.column_stack(columns), exponents
 
 
 def _least_aligned(n: np.ndarray) -> np.ndarray:
@@ -223,8 +225,7 @@ def _least_aligned(n: np.ndarray) -> np.ndarray:
 def fit(f: Normalised, candidate: Candidate, point: np.ndarray | None = None,
         direction: np.ndarray | None = None) -> Fit:
     """The nearest invariant polynomial in the weighted least-squares sense (step 2)."""
-    arrays, exponents = invariant_basis(candidate, f.degree, point, direction)
-    basis = dense.stack(arrays, f.selected)
+    basis, exponents = invariant_basis(candidate, f.degree, f.selected, point, direction)
     w = f.weights
     weighted = basis * w[:, None]
     norms = np.linalg.norm(weighted, axis=0)
@@ -269,8 +270,7 @@ def refine(f: Normalised, candidate: Candidate) -> Fit:
         return fit(f, candidate)
 
     def residual_vector(theta: np.ndarray) -> np.ndarray:
-        arrays, _ = invariant_basis(build(theta), f.degree)
-        basis = dense.stack(arrays, f.selected) * f.weights[:, None]
+        basis = invariant_basis(build(theta), f.degree, f.selected)[0] * f.weights[:, None]
         norms = np.linalg.norm(basis, axis=0)
         norms[norms == 0.0] = 1.0
         target = f.vector * f.weights
@@ -293,8 +293,8 @@ def refine_fixed(f: Normalised, candidate: Candidate, coefficients: np.ndarray) 
         return c if c.direction is None else Candidate(c.kind, c.direction * length, c.point)
 
     def residual_vector(theta: np.ndarray) -> np.ndarray:
-        arrays, _ = invariant_basis(scaled(theta), f.degree)
-        return (f.vector - dense.stack(arrays, f.selected) @ coefficients) * f.weights
+        basis = invariant_basis(scaled(theta), f.degree, f.selected)[0]
+        return (f.vector - basis @ coefficients) * f.weights
 
     theta, jacobian = gauss_newton(residual_vector, params)
     refined = scaled(theta)

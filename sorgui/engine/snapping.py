@@ -360,8 +360,7 @@ def _bits(values: list[Fraction]) -> int:
 
 def _standard_errors(f: Normalised, local: Fit) -> np.ndarray:
     """Standard errors of the fitted coefficients, in units of the rounding bounds."""
-    arrays, _ = invariant_basis(local.candidate, f.degree)
-    weighted = dense.stack(arrays, f.selected) * f.weights[:, None]
+    weighted = invariant_basis(local.candidate, f.degree, f.selected)[0] * f.weights[:, None]
     norms = np.linalg.norm(weighted, axis=0)
     norms[norms == 0.0] = 1.0
     _, s, vt = np.linalg.svd(weighted / norms, full_matrices=False)
