@@ -31,6 +31,9 @@ from .report import ApproximateAxis, Approximation, NearestSurface
 from .snapping import ExactSurface, perpendicular, snap
 from .symmetry import CYLINDER, EXTRUSION, PLANE, REVOLUTION, SOR_KINDS, SPHERE
 
+MAX_SPAN = 1e100
+"""Coefficients whose sizes differ by more than this are not compared in floating point."""
+
 GATE = 1e4
 """A kind is tried when its singular values are below ``GATE·τ`` (and 10⁻²): a cheap filter;
 the weighted residual decides."""
@@ -75,6 +78,13 @@ def approximate_symmetry(f: Poly, rounding: Rounding, *, snap_exact: bool = True
                          notes: tuple[str, ...] = ()) -> NearResult:
     """The :class:`Approximation` of ``f`` under ``rounding`` (docs/math.md §8)."""
     coefficients = dense.float_coefficients(f)
+    sizes = [abs(c) for c in coefficients.values() if c]
+    if not all(math.isfinite(c) for c in coefficients.values()) or max(sizes) > MAX_SPAN * min(sizes):
+        note = (f"the coefficients span more than {math.log10(MAX_SPAN):.0f} orders of magnitude: beyond "
+                "what floating point can compare, so nearness was not decided")
+        tolerance = rounding.tolerance if math.isfinite(rounding.tolerance) else None
+        return NearResult(Approximation(tolerance, rounding.source, False, None, None, None, (),
+                                        notes=(*notes, note)), None)
     normalised = normalise(coefficients, rounding)
     sigma, vectors, _ = killing_system(normalised)
     notes = list(notes)

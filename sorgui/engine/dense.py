@@ -10,9 +10,11 @@ microseconds each. The exact polynomial never enters here except through
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Iterator
 
 import numpy as np
+from flint import fmpq
 
 from .polys import Poly, is_rational_field, to_flint
 
@@ -24,9 +26,17 @@ SparseForm = list[tuple[Monomial, float]]
 def float_coefficients(f: Poly) -> dict[Monomial, float]:
     """The coefficients of the exact ``f`` as floats (exact rationals rounded once)."""
     if is_rational_field(f.ring.domain):
-        return {tuple(int(e) for e in m): float(c) for m, c in to_flint(f).to_dict().items()}
+        return {tuple(int(e) for e in m): _float(c) for m, c in to_flint(f).to_dict().items()}
     K = f.ring.domain
     return {tuple(m): float(K.to_sympy(c).evalf(20)) for m, c in f.items()}
+
+
+def _float(c: fmpq) -> float:
+    """``c`` as a float, ``±inf`` beyond the float range (the caller refuses those)."""
+    try:
+        return float(c)
+    except OverflowError:
+        return math.inf if c > 0 else -math.inf
 
 
 def zeros(degree: int) -> np.ndarray:

@@ -119,6 +119,8 @@ def killing_system(f: Normalised) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
                dense.times(fx, z) - dense.times(fz, x),
                dense.times(fy, x) - dense.times(fx, y)]
     M = dense.stack(columns, f.selected)
+    if len(M) < 6:  # degree 1: fewer monomials than unknowns; zero rows keep all six vectors
+        M = np.vstack([M, np.zeros((6 - len(M), 6))])
     norms = np.linalg.norm(M, axis=0)
     norms[norms == 0.0] = 1.0
     _, sigma, vt = np.linalg.svd(M / norms, full_matrices=False)
@@ -148,8 +150,9 @@ def candidates(vectors: np.ndarray, count: int) -> list[Candidate]:
             rows = np.vstack([_cross_matrix(A[:, i]) for i in range(3)])
             center = np.linalg.lstsq(-rows, B.T.reshape(-1), rcond=None)[0]
             found.append(Candidate(SPHERE, None, center))
-        t1, t2 = B @ wt[-1], B @ wt[-2]
-        found.append(Candidate(PLANE, _unit(np.cross(t1, t2)), None))
+        normal = np.cross(B @ wt[-1], B @ wt[-2])
+        if np.linalg.norm(normal) > 1e-12:
+            found.append(Candidate(PLANE, _unit(normal), None))
         return found
     return []
 

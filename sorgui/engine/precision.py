@@ -91,19 +91,25 @@ def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
     bounds = {m: max(e, floor) for m, e in errors.items()}
     printed = [e for e in errors.values() if e > 0.0]
     default = max(min(printed, default=floor), floor)
-    norm_f = math.sqrt(sum(c * c for c in coefficients.values()))
-    norm_e = math.sqrt(sum(e * e for e in bounds.values()))
-    return Rounding(bounds, default, degree, norm_e / norm_f, "input", digits)
+    return Rounding(bounds, default, degree, _norm(bounds.values()) / _norm(coefficients.values()), "input", digits)
 
 
 def given_rounding(tolerance: float, coefficients: FloatPoly) -> Rounding:
     """Uniform bounds for a relative tolerance given by the user: ``e_α = τ·‖f‖₂/√N``."""
     degree = max(sum(m) for m in coefficients)
     count = comb(degree + 3, 3)
-    norm_f = math.sqrt(sum(c * c for c in coefficients.values()))
     top = max(abs(c) for c in coefficients.values())
-    default = max(tolerance * norm_f / math.sqrt(count), FLOAT_FLOOR * top)
+    default = max(tolerance * _norm(coefficients.values()) / math.sqrt(count), FLOAT_FLOOR * top)
     return Rounding({}, default, degree, tolerance, "given", None)
+
+
+def _norm(values) -> float:  # noqa: ANN001 - an iterable of floats
+    """The Euclidean norm, scaled so that coefficients near 1e200 do not overflow."""
+    values = [abs(v) for v in values]
+    top = max(values, default=0.0)
+    if top == 0.0 or not math.isfinite(top):
+        return top
+    return top * math.sqrt(sum((v / top) ** 2 for v in values))
 
 
 # --- reading the printed digits ---------------------------------------------------------------

@@ -176,12 +176,12 @@ class Approximation:
     ``None``); ``nearest`` is the snapped exact surface, when one was found.
     """
 
-    tolerance: float
+    tolerance: float | None
     tolerance_source: str
     near_sor: bool
     kind: str | None
-    relative_distance: float
-    residual: float
+    relative_distance: float | None
+    residual: float | None
     singular_values: tuple[float, ...]
     axis: ApproximateAxis | None = None
     center: tuple[float, float, float] | None = None

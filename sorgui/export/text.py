@@ -96,8 +96,6 @@ def real_locus_line(real: RealLocus) -> str:
         return "real points: a real surface"
     if real.kind == "undecided":
         return "real points: undecided (the profile is too large for the exact decision)"
-    if real.kind == "undecided":
-        return "real points: undecided (the profile is too large for the exact decision)"
     if real.kind == "points":
         return f"real points: only {_count(real.points or 0, 'point')} (no real surface)"
     parts = ["the axis line"] if real.axis_line else []
@@ -137,7 +135,8 @@ def approximation_lines(analysis: Analysis) -> list[str]:
     if ap is None:
         return []
     source = "from the printed digits" if ap.tolerance_source == "input" else "given"
-    lines = [f"rounded input: tolerance {ap.tolerance:.2g} (relative, {source})"]
+    tolerance = "beyond floating point" if ap.tolerance is None else f"{ap.tolerance:.2g}"
+    lines = [f"rounded input: tolerance {tolerance} (relative, {source})"]
     where = ""
     if ap.axis is not None:
         where = f" about the axis {_floats(ap.axis.point)} + t·{_floats(ap.axis.direction)}"
@@ -152,10 +151,13 @@ def approximation_lines(analysis: Analysis) -> list[str]:
         lines.append(f"  not exactly, but within {ap.relative_distance:.2g} (relative) of {kind}{where}")
     elif ap.kind is not None:
         lines.append(f"  not near a surface of revolution; within {ap.relative_distance:.2g} (relative) of {kind}{where}")
+    elif ap.residual is None:
+        lines.append("  nearness not decided")
     else:
         lines.append("  not near a surface of revolution within the tolerance")
-    lines.append(f"  residual {ap.residual:.3g} times the rounding (at most 1: within it); singular values "
-                 f"of (★): {', '.join(f'{v:.2g}' for v in ap.singular_values)}")
+    if ap.residual is not None:
+        lines.append(f"  residual {ap.residual:.3g} times the rounding (at most 1: within it); singular values "
+                     f"of (★): {', '.join(f'{v:.2g}' for v in ap.singular_values)}")
     lines += [f"  note: {note}" for note in ap.notes]
     near = ap.nearest
     if near is not None:

@@ -149,8 +149,8 @@ class ResultsPane(QScrollArea):
         rows = [
             ("tolerance", f"{approx.tolerance:.2g} (relative, {source})"),
             ("near", ("yes: " if approx.near_sor else "no: ") + (approx.kind or "no symmetry kind")),
-            ("relative distance", f"{approx.relative_distance:.3g}"),
-            ("in units of rounding", f"{approx.residual:.3g}"),
+            ("relative distance", "–" if approx.relative_distance is None else f"{approx.relative_distance:.3g}"),
+            ("in units of rounding", "–" if approx.residual is None else f"{approx.residual:.3g}"),
             ("singular values", f"smallest: {smallest}" if smallest else "–"),
         ]
         if approx.axis is not None:

@@ -3,6 +3,7 @@ surface, and near misses that must stay misses."""
 
 from __future__ import annotations
 
+import json
 import math
 from fractions import Fraction
 
@@ -189,3 +190,16 @@ def test_simplest_rational_in_an_interval() -> None:
     assert simplest_between(Fraction(-24, 10), Fraction(-23, 10)) == Fraction(-7, 3)
     assert simplest_between(Fraction(-1), Fraction(1)) == 0
     assert simplest_between(Fraction(7, 2), Fraction(4)) == 4
+
+
+@pytest.mark.parametrize("text", ["0.5x", "0.5x + 0.25y - 3.5", "x^2+y^2+1e300z", "10^400*x + 1.5y^2",
+                                  "1e-200x^2+1e200y^2+z^2", "x*y*z - 0.1"])
+def test_extreme_inputs_give_strict_json_and_a_clear_word(text: str) -> None:
+    analysis = analyze(text, recognition_only=True)
+    data = json.loads(json.dumps(analysis.to_json(), allow_nan=False))
+    assert Analysis.from_json(data) == analysis
+    result = analysis.approximate
+    if result.residual is None:
+        assert "orders of magnitude" in result.notes[-1] and not result.near_sor
+    if text.startswith("0.5x"):
+        assert result.near_sor and result.kind == "plane"
