@@ -199,6 +199,8 @@ def run_job(
     try:
         if request.analysis is not None:
             analysis = request.analysis
+            if not isinstance(analysis, Analysis):
+                raise TypeError(f"a job's analysis must be an Analysis, not {type(analysis).__name__}")
             presenter.present(analysis)
         else:
             analysis = analyze(

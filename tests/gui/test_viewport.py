@@ -83,6 +83,8 @@ def test_parameterization_patch_toggles(torus_window, qtbot) -> None:
 
 
 def test_failed_analysis_clears_the_scene(torus_window, qtbot) -> None:
-    torus_window._on_failure_change("Singular exploded")
+    with qtbot.waitSignal(torus_window.worker.failed, timeout=60_000):  # a job the worker cannot do
+        torus_window.session.analyze(example_text("torus"), analysis="not an analysis")
     assert "surface" not in torus_window.viewport.actor_names()
-    assert "Singular exploded" in torus_window.results.banner.text()
+    assert "The analysis failed" in torus_window.results.banner.text()
+    assert torus_window.run_panel.notice_kind == "error"
