@@ -38,11 +38,13 @@ from .canal_param import (
     recover_family,
     verify_radical,
 )
-from .canal_spine import SMAT_NAMES, SmatCurve, smat_curves
+from .canal_spine import MARGIN, SmatCurve, constant_radius, monomials, smat_curves
 from .errors import AnalysisError, Cancelled, SingularError
+from .linalg import cross, primitive_vector, solve_unique
 from .polys import Poly, from_flint, is_rational_field, poly_ring, poly_str, to_flint, total_degree
 from .report import Canal, CanalEvidence, CanalFamily, Parametrization
 from .singular import emit, parse_int, poly_to_singular, run_script
+from .symmetry import Motion, satisfies_identity
 
 LINES = 3
 """Canal lines tested before the SMAT is computed (one failing line already decides)."""
@@ -51,6 +53,20 @@ MAX_LINES = 60
 """Lines tried at most (unlucky lines are skipped)."""
 
 SEED = 20261127
+
+MAX_DEGREE = 30
+"""Surfaces of higher degree are not analysed (the line test costs grow with the degree)."""
+
+GENUS_DEGREE = 12
+"""The genus of a SMAT plane model of higher degree is not computed (Singular's time)."""
+
+FAMILY_DEGREE = 6
+"""``m(t), ρ(t)`` are computed for SMAT plane models up to this degree (exact rational functions
+of higher degree make the verification slow)."""
+
+SOR_SPINE_DEGREE = 8
+"""Above this degree the SMAT of a surface of revolution is not computed: the symmetry algebra
+already certifies it, and its spine is the axis."""
 
 
 class _NotCanal(Exception):
@@ -114,9 +130,15 @@ def analyze_canal(
     ``full``). ``is_sor`` (from the symmetry algebra) decides the ``revolution`` kind of a
     reducible surface, is cross-checked otherwise, and certifies a surface of revolution."""
     clock = _Clock(cancel)
+    if total_degree(f) > MAX_DEGREE:
+        if is_sor:
+            return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=_SOR_EVIDENCE,
+                         notes=(f"degree above {MAX_DEGREE}: only the symmetry algebra's answer is given",))
+        return Canal(None, f"not analysed: degree above {MAX_DEGREE}")
     g = _rational_squarefree(f)
     _, factors = g.factor()
-    parts = [_analyze_factor(h, clock, full, timeout, cancel) for h, _ in factors]
+    parts = [_analyze_factor(h, clock, full, is_sor if len(factors) == 1 else None, timeout, cancel)
+             for h, _ in factors]
     if len(parts) == 1:
         result = parts[0]
     else:
@@ -177,7 +199,9 @@ _SOR_EVIDENCE = CanalEvidence(
     "circles of the spheres centred on the axis that touch X along them", True)
 
 
-def _analyze_factor(h: fmpq_mpoly, clock: _Clock, full: bool, timeout: float, cancel: threading.Event | None) -> Canal:
+def _analyze_factor(
+    h: fmpq_mpoly, clock: _Clock, full: bool, is_sor: bool | None, timeout: float, cancel: threading.Event | None,
+) -> Canal:
     """The verdict for one irreducible factor over ``QQ``."""
     poly = from_flint(h, poly_ring(("x", "y", "z"), QQ))
     if total_degree(poly) == 1:
@@ -191,6 +215,14 @@ def _analyze_factor(h: fmpq_mpoly, clock: _Clock, full: bool, timeout: float, ca
         branch = lines.canal[0].branch
         if branch == UMBILIC:
             return _umbilic(poly, lines)
+        if is_sor and (total_degree(poly) > SOR_SPINE_DEGREE or (branch != DUPIN and total_degree(poly) > 2)):
+            kinds = {"revolution"} | ({branch} & {DUPIN, DEVELOPABLE})
+            if constant_radius(lines.sample(len(monomials(1)) + MARGIN)):
+                kinds.add("pipe")
+            return Canal(True, "canal: a surface of revolution", tuple(sorted(kinds)), certificate=_SOR_EVIDENCE,
+                         lines_tested=lines.tried,
+                         notes=("the spine is the axis; the SMAT of a surface of revolution is computed only for "
+                                f"quadrics and for Dupin cyclides up to degree {SOR_SPINE_DEGREE}",))
         with clock.stage("canal spine"):
             smat, _ = smat_curves(lines.sample, seed=SEED, timeout=timeout, cancel=cancel)
     except _NotCanal as witness:
@@ -247,7 +279,9 @@ def _canal(
     with clock.stage("canal family"):
         for curve, genus in zip(smat, genera):
             family = None
-            if genus == 0 and curve.inverse is not None:
+            if genus == 0 and curve.inverse is not None and total_degree(curve.plane_model) > FAMILY_DEGREE:
+                notes.append(f"the SMAT curve's plane model has degree above {FAMILY_DEGREE}: m(t), ρ(t) not computed")
+            elif genus == 0 and curve.inverse is not None:
                 try:
                     plane = curves.parametrize(curve.plane_model, timeout=timeout, cancel=cancel, known_genus_zero=True)
                     family = recover_family(curve, plane)
@@ -293,6 +327,9 @@ def _genus(curve: SmatCurve, timeout: float, cancel: threading.Event | None, not
         return 0
     if not curve.birational:
         notes.append("the plane model of the SMAT curve is not birational to it: genus not computed")
+        return None
+    if total_degree(curve.plane_model) > GENUS_DEGREE:
+        notes.append(f"the plane model of the SMAT curve has degree above {GENUS_DEGREE}: genus not computed")
         return None
     try:
         return curves.genus(curve.plane_model, timeout=timeout, cancel=cancel)
@@ -342,6 +379,9 @@ def _certificate(
     """The envelope certificate of every family (both focal conics of a Dupin cyclide)."""
     methods = []
     for curve, family in zip(smat, rational):
+        if curve.on_line and _invariant_about_spine(poly, curve):
+            methods.append("rotation")
+            continue
         if family is not None and family.over_qq and family.verified and family_resultant_certificate(poly, family):
             methods.append("resultant")
             continue
@@ -355,7 +395,10 @@ def _certificate(
             return None
         methods.append("elimination")
     method = methods[0] if len(set(methods)) == 1 else "+".join(methods)
-    if method == "resultant":
+    if method == "rotation":
+        statement = ("the spine is a line and f is invariant under the rotations about it (the identity "
+                     "∇f·(a × (p − c)) ≡ 0): X is a surface of revolution, and its parallels are characteristic circles")
+    elif method == "resultant":
         statement = "f divides Res_t(S, ∂S/∂t) for S = |X − m(t)|² − ρ(t) (denominators cleared)"
     else:
         statement = ("f divides every generator of the envelope ideal of the SMAT curve "
@@ -363,6 +406,17 @@ def _certificate(
     if len(smat) > 1:
         statement += f", for each of the {len(smat)} families"
     return CanalEvidence(method, statement, True)
+
+
+def _invariant_about_spine(f: Poly, curve: SmatCurve) -> bool:
+    """Whether ``f`` is invariant under the rotations about the spine line (MATH.md §2, (★))."""
+    rows = [[g.coeff(x) for x in g.ring.gens] for g in curve.spine_equations if total_degree(g) == 1]
+    rhs = [-g.coeff(1) for g in curve.spine_equations if total_degree(g) == 1]
+    direction = primitive_vector(cross(tuple(rows[0]), tuple(rows[1])), QQ)
+    point = solve_unique([*rows[:2], list(direction)], [*rhs[:2], QQ.zero], QQ)
+    if point is None:
+        return False
+    return satisfies_identity(f, Motion(a=direction, b=cross(point, direction)))
 
 
 def envelope_elimination(

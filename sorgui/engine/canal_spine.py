@@ -35,8 +35,9 @@ SMAT_NAMES = ("m1", "m2", "m3", "r")
 
 PLANE_NAMES = ("u", "v")
 
-MAX_DEGREE = 6
-"""The largest degree of the interpolated SMAT equations (docs/math.md §9)."""
+MAX_DEGREE = {2: 24, 3: 8, 4: 6}
+"""The largest degree of the interpolated SMAT equations, by the number of free coordinates
+(a plane SMAT curve has one equation, whose degree can be high; docs/math.md §9)."""
 
 MARGIN = 8
 """Extra sampled points beyond the number of unknown coefficients."""
@@ -174,23 +175,60 @@ def smat_curves(
     timeout: float,
     cancel: threading.Event | None,
 ) -> tuple[list[SmatCurve], SmatSample]:
-    """The SMAT curves through the sampled points: raise the degree k of the interpolated
-    equations until their ideal is one-dimensional and its components carry the sample.
+    """The SMAT curves through the sampled points. First the linear equations (the spine's
+    plane or line, a constant radius); then, in the remaining free coordinates only, equations
+    of degree k = 2, 3, … until their ideal is one-dimensional and its components carry the sample.
 
     ``sample_for(n)`` returns the SMAT points of enough canal lines for at least ``n`` points.
     """
     rnd = random.Random(seed)
-    for k in range(1, MAX_DEGREE + 1):
-        exps = monomials(k)
+    linear_exps = monomials(1)
+    sample = sample_for(len(linear_exps) + MARGIN)
+    linear = [to_poly(v, linear_exps) for v in vanishing(sample, linear_exps)]
+    free = _free_coordinates(linear)
+    if not free:
+        raise AnalysisError("the sphere family is constant (the SMAT is a point)")
+    if len(free) == 1:
+        curves = _decompose(linear, sample, rnd, timeout=timeout, cancel=cancel)
+        if curves:
+            return curves, sample
+        raise AnalysisError("the linear equations of the SMAT do not cut out a curve")
+    top = MAX_DEGREE[len(free)]
+    for k in range(2, top + 1):
+        exps = [_embed(e, free) for e in monomials(k, len(free))]
         sample = sample_for(len(exps) + MARGIN)
         vectors = vanishing(sample, exps)
         if not vectors:
             continue
-        generators = [to_poly(v, exps) for v in vectors]
+        generators = linear + [to_poly(v, exps) for v in vectors]
         curves = _decompose(generators, sample, rnd, timeout=timeout, cancel=cancel)
         if curves:
             return curves, sample
-    raise AnalysisError(f"the SMAT curve has no equations of degree ≤ {MAX_DEGREE} that cut it out")
+    raise AnalysisError(f"the SMAT curve has no equations of degree ≤ {top} that cut it out")
+
+
+def constant_radius(sample: SmatSample) -> bool:
+    """Whether ``ρ`` is constant on the sampled points (a pipe): a linear equation in ``r`` alone."""
+    exps = monomials(1)
+    return any(set(e for e, c in zip(exps, v) if c) == {(0, 0, 0, 1), (0, 0, 0, 0)} for v in vanishing(sample, exps))
+
+
+def _free_coordinates(linear: list[Poly]) -> list[int]:
+    """The coordinates left free by the linear equations (the non-pivot columns of their
+    reduced echelon form)."""
+    if not linear:
+        return [0, 1, 2, 3]
+    R = linear[0].ring
+    rows = [[g.coeff(x) for x in R.gens] for g in linear]
+    _, pivots = sympy.Matrix(rows).rref()
+    return [i for i in range(4) if i not in pivots]
+
+
+def _embed(e: tuple[int, ...], free: list[int]) -> tuple[int, ...]:
+    out = [0, 0, 0, 0]
+    for i, k in zip(free, e):
+        out[i] = k
+    return tuple(out)
 
 
 PROJECTIONS = (
