@@ -32,6 +32,7 @@ from sorgui.engine.report import Analysis, Approximation, Rationality, Recogniti
 from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, format_report
 from sorgui.gui.formula_view import FormulaView
 from sorgui.gui.wording import caption_tip, floats, verdict, why_not
+from sorgui.session.components import Component
 from sorgui.session.formulas import Formula, analysis_formulas
 
 TABLE_HEADERS = ("row", "genus(P)", "genus(P²)", "X over ℂ", "X over ℝ")
@@ -95,10 +96,12 @@ class ResultsPane(QScrollArea):
         worker_timings: Sequence[tuple[str, float]] = (),
         pending: Collection[str] = (),
         nearest: bool = False,
+        components: Sequence[Component] = (),
     ) -> None:
         """Show ``analysis`` with its typeset ``formulas`` (keys of :func:`analysis_formulas`;
         missing ones are shown as text). ``pending`` names the stages still to come (shown as
-        such); ``nearest`` says that ``analysis`` is that of the nearest exact surface."""
+        such); ``nearest`` says that ``analysis`` is that of the nearest exact surface;
+        ``components`` are the typed components of a blend, to explain a *no*."""
         self._analysis = analysis
         self._formulas = {**analysis_formulas(analysis, plain=True), **formulas}
         rec = analysis.recognition
@@ -111,7 +114,7 @@ class ResultsPane(QScrollArea):
         self._section(column, "Equation", [("f(x, y, z)", "polynomial")])
         if analysis.approximate is not None:
             self._approximation_section(column, analysis.approximate)
-        reasons = why_not(analysis)
+        reasons = why_not(analysis, components)
         if reasons:
             self._section(column, "Why it is not a surface of revolution", [("", line) for line in reasons])
         self._recognition_sections(column, rec, "")

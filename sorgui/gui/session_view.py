@@ -72,6 +72,7 @@ class SessionView(QObject):
         events.state_changed.connect(self._on_stage_change)
         events.analysis_changed.connect(self._on_results_change)
         events.formulas_changed.connect(self._on_results_change)
+        events.components_changed.connect(self._on_results_change)
         events.scene_changed.connect(self._on_scene_change)
         events.nearest_scene_changed.connect(self._on_nearest_scene_change)
         events.run_finished.connect(self._on_run_finish_change)
@@ -116,7 +117,8 @@ class SessionView(QObject):
             pending = {s.name for s in run.stage_list() if s.state in (StageState.PENDING, StageState.RUNNING)}
             worker = tuple((name, run.stages[name].seconds) for name in WORKER_STAGES
                            if name in run.stages and run.stages[name].state is StageState.DONE)
-            self.results.show_analysis(analysis, formulas, worker, pending=pending, nearest=nearest)
+            self.results.show_analysis(analysis, formulas, worker, pending=pending, nearest=nearest,
+                                       components=() if nearest else run.components)
         self.results.set_stale(self.session.stale)
         self.panel.set_nearest_available(self.session.nearest_analysis is not None, self.session.view)
 

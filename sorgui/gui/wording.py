@@ -8,7 +8,10 @@ algebra ``L``, the profile ``P``, Table 1 of Vršek & Lávička).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from sorgui.engine.report import Analysis, Approximation, Recognition
+from sorgui.session.components import Component
 from sorgui.session.model import STAGE_TITLES
 
 KIND_WORDS = {
@@ -110,11 +113,28 @@ def verdict(analysis: Analysis) -> tuple[str, str, str]:
     return "Not a surface of revolution", detail, "not"
 
 
-def why_not(analysis: Analysis) -> list[str]:
-    """Sentences that explain a *no*: the symmetry algebra, the symmetry there is, the factors."""
+def why_not(analysis: Analysis, components: Sequence[Component] = ()) -> list[str]:
+    """Sentences that explain a *no*: the symmetry algebra, the symmetry there is, the factors,
+    and the typed components of a blend (:mod:`sorgui.session.components`)."""
     rec = analysis.recognition
     if rec.is_sor:
         return []
+    lines = _symmetry_lines(analysis)
+    if components:
+        lines.append(f"It was typed from {len(components)} surfaces (the factors of its product):")
+        for index, component in enumerate(components):
+            lines.append(f"Component {index + 1}, {component.text.strip()}: {_factor_words(component.recognition)}.")
+        sor = [c.recognition for c in components if c.recognition.is_sor]
+        axes = {r.axis.plucker for r in sor if r.axis is not None}
+        centres = [r.center for r in sor if r.center is not None]
+        if len(axes) > 1 or (axes and centres):
+            lines.append("They have no axis in common (their axes are drawn in the 3D view), so the surface "
+                         "made from them is not one of revolution.")
+    return lines
+
+
+def _symmetry_lines(analysis: Analysis) -> list[str]:
+    rec = analysis.recognition
     lines = [_dimension_sentence(rec)]
     if rec.symmetry == "extrusion" and rec.direction is not None:
         lines.append(f"It is an extrusion: invariant under the translations along ({', '.join(rec.direction)}), "

@@ -52,6 +52,7 @@ class SessionEvents:
     * ``analysis_changed(analysis)``: more results are known (typed engine objects);
     * ``scene_changed(scene)`` and ``nearest_scene_changed(scene)``: a new 3D scene;
     * ``formulas_changed(formulas)``: newly typeset formulas;
+    * ``components_changed(components)``: the typed components of a blend, recognised;
     * ``run_finished(run)``: the run ended (``run.outcome`` says how);
     * ``view_changed(view)``: the user switched between the typed and the nearest surface;
     * ``refreshed(what, result)``: the scene or the formulas of the finished run were redone
@@ -68,6 +69,7 @@ class SessionEvents:
         "scene_changed",
         "nearest_scene_changed",
         "formulas_changed",
+        "components_changed",
         "run_finished",
         "view_changed",
         "refreshed",

@@ -13,6 +13,8 @@ leader, waits for one :class:`JobRequest`, and sends plain picklable messages ba
 * ``("scene", SceneData)``: the typed surface's scene (first without the parameterization
   patch), and ``("nearest_scene", SceneData)``: the nearest exact surface's, for rounded input;
 * ``("formulas", {key: Formula})``: every formula of the analysis known so far, typeset;
+* ``("components", (Component, …))``: for a *no*, the typed components of a blend, each
+  recognised (:mod:`sorgui.session.components`);
 * exactly one final message: ``("finished", JobResult)`` (without the scenes and formulas,
   already sent), ``("invalid", (message, position, end))`` for text that is not a polynomial,
   ``("failed", message)`` or ``("cancelled", None)``.
@@ -117,6 +119,7 @@ class _Presenter:
                 self.scene = self.stage("scene", lambda: scene_data.build_scene(
                     analysis, request.radius, request.resolution, patch=False))
                 self.send("scene", self.scene)
+                self._explain(analysis)
             extras = self._extras(analysis)
             if extras is not None:
                 self.scene = self.stage("scene", lambda: extras(self.scene))
@@ -135,6 +138,20 @@ class _Presenter:
                 wanted = {f"nearest.{k}": f for k, f in analysis_formulas(nearest).items()}
                 self.formulas = {**self.formulas, **self.stage("formulas", lambda: self._typeset(wanted, style))}
                 self.send("formulas", self.formulas)
+
+    def _explain(self, analysis: Analysis) -> None:
+        """For a *no* on irreducible input: the typed components of a blend and their axes."""
+        from sorgui.session import scene_data
+        from sorgui.session.components import typed_components
+
+        if analysis.is_sor or len(analysis.factors) > 1 or self.request.analysis is not None:
+            return
+        components = self.stage("components", lambda: typed_components(self.request.text))
+        if components:
+            self.send("components", components)
+            recognitions = [c.recognition for c in components]
+            self.scene = scene_data.with_component_axes(self.scene, recognitions)
+            self.send("scene", self.scene)
 
     def _extras(self, analysis: Analysis) -> Callable[[Any], Any] | None:
         """What the scene still lacks of ``analysis``: the patch, the rounded-input extras."""

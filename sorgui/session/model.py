@@ -20,6 +20,7 @@ from enum import Enum
 from typing import TYPE_CHECKING, Any, Protocol
 
 from sorgui.engine.report import Analysis
+from sorgui.session.components import Component
 from sorgui.session.events import SessionEvents
 from sorgui.session.formulas import Formula
 from sorgui.session.job import JobRequest, JobResult, run_job
@@ -31,7 +32,7 @@ STAGES = ("parse", "recognition", "factors", "scene", "rationality", "parametriz
 """The stages of a run in the order they usually start (the engine may add others, such as
 ``approximate`` for rounded input: they are inserted where they start)."""
 
-WORKER_STAGES = ("scene", "formulas")
+WORKER_STAGES = ("scene", "formulas", "components")
 """Stages of the worker itself, which may run more than once (their times add up)."""
 
 STAGE_TITLES = {
@@ -52,6 +53,7 @@ STAGE_TITLES = {
     "rationality": "Table 1 row and genera (Singular)",
     "parametrizations": "Parameterizations",
     "formulas": "Typesetting",
+    "components": "Typed components (explaining the no)",
 }
 
 
@@ -104,6 +106,7 @@ class Run:
     scene: SceneData | None = None
     nearest_scene: SceneData | None = None
     formulas: dict[str, Formula] = field(default_factory=dict)
+    components: tuple[Component, ...] = ()
     outcome: str | None = None
     message: str | None = None
     error: tuple[str, int, int] | None = None
@@ -290,6 +293,9 @@ class Session:
         elif kind == "formulas":
             run.formulas = payload
             self.events.formulas_changed.emit(payload)
+        elif kind == "components":
+            run.components = tuple(payload)
+            self.events.components_changed.emit(run.components)
         else:
             self._end(run, kind, payload)
 

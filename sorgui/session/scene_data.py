@@ -300,3 +300,13 @@ def surface_deviation(terms: Terms, points: np.ndarray) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         distance = np.abs(values) / np.linalg.norm(grads, axis=1)
     return np.where(np.isfinite(distance), distance, np.nan)
+
+
+def with_component_axes(scene: SceneData, recognitions: list[Recognition]) -> SceneData:
+    """``scene`` with the axes of the typed components of a blend (:mod:`.components`) as its
+    factor axes; a sphere's centre gets the line through it parallel to the first axis."""
+    axes = [(float_vector(r.axis.point), float_vector(r.axis.direction)) for r in recognitions if r.axis is not None]
+    if axes:
+        axes += [(float_vector(r.center), axes[0][1]) for r in recognitions if r.center is not None]
+    lines = [axis_line(point, direction, scene.region) for point, direction in axes]
+    return replace(scene, factor_axes=LineData.from_polylines([ln.points for ln in lines if not ln.is_empty]))

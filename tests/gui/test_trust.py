@@ -273,6 +273,13 @@ def test_a_no_is_explained(window, run_analysis) -> None:
     assert "factor_axes" in window.viewport.actor_names()
     run_analysis(window, "x^2 + 2y^2 - 1")
     assert "extrusion" in _pane_text(window)
+    run_analysis(window, example_text("non-coaxial-blend"))  # irreducible: its typed components explain
+    text = _pane_text(window)
+    assert "Component 1, x^2 + y^2 + (z - 1)^2 - 4: a sphere" in text
+    assert "Component 2, (x - z)^2/2 + y^2 - 1: a cylinder of revolution" in text and "no axis in common" in text
+    assert "factor_axes" in window.viewport.actor_names()
+    lines = window.viewport.plotter.renderer.actors["factor_axes"].GetMapper().GetInput().GetNumberOfLines()
+    assert lines == 2, "the cylinder's axis and the parallel through the sphere's centre"
 
 
 def test_unsaved_text_is_never_discarded_without_asking(make_window, qtbot, monkeypatch) -> None:

@@ -164,3 +164,15 @@ def test_remesh_rebuilds_only_the_scene_of_the_finished_run() -> None:
     assert run.scene is not old and run.scene.region.radius == pytest.approx(2 * old.region.radius)
     assert refreshed[0][1].scene is run.scene
     assert run.outcome == "finished" and states(session)["rationality"] is not StageState.RUNNING
+
+
+def test_a_blend_is_explained_by_its_typed_components() -> None:
+    session = Session()
+    run = session.analyze(example_text("non-coaxial-blend"), resolution=30, style=None)
+    assert run.outcome == "finished" and not run.analysis.is_sor and len(run.analysis.factors) == 1
+    kinds = [(c.text, c.recognition.symmetry) for c in run.components]
+    assert kinds == [("x^2 + y^2 + (z - 1)^2 - 4", "sphere"), ("(x - z)^2/2 + y^2 - 1", "cylinder_of_revolution")]
+    assert run.components[0].recognition.center == ("0", "0", "1")
+    assert run.components[1].recognition.axis.direction == ("1", "0", "1")
+    assert len(run.scene.factor_axes.polylines()) == 2
+    assert Session().analyze(TORUS, resolution=30, style=None).components == ()

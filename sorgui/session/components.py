@@ -1,0 +1,72 @@
+"""The surfaces an equation was typed from, to explain a *no*.
+
+A blend is typed as a product of surfaces plus a small constant, ``g·h − c``: the result is
+irreducible, so its factors say nothing, but each typed component may be a surface of
+revolution, and the blend is one only when they share an axis. :func:`typed_components` finds
+the non-constant factors of the products in the top-level sum of the typed text (with the
+engine's own syntax tree, never evaluating anything) and recognises each one exactly.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from sorgui.engine import SorguiError, analyze
+from sorgui.engine.parsing import Neg, Node, Num, Product, Reciprocal, Sum, Var, syntax_tree
+from sorgui.engine.report import Recognition
+
+MAX_COMPONENTS = 4
+"""More typed factors than this are not a blend one explains factor by factor."""
+
+
+@dataclass(frozen=True)
+class Component:
+    """One typed factor: its text and its exact recognition."""
+
+    text: str
+    recognition: Recognition
+
+
+def _has_variable(node: Node) -> bool:
+    if isinstance(node, Var):
+        return True
+    if isinstance(node, Num):
+        return False
+    return any(_has_variable(child) for child in _children(node))
+
+
+def _children(node: Node) -> tuple[Node, ...]:
+    if isinstance(node, Sum):
+        return node.terms
+    if isinstance(node, Product):
+        return node.factors
+    return tuple(getattr(node, name) for name in ("arg", "base", "exponent") if hasattr(node, name))
+
+
+def component_texts(text: str) -> tuple[str, ...]:
+    """The texts of the non-constant factors of the products in the top-level sum of ``text``
+    (empty unless there are at least two)."""
+    try:
+        tree = syntax_tree(text)
+    except SorguiError:
+        return ()
+    terms = tree.terms if isinstance(tree, Sum) else (tree,)
+    found: list[str] = []
+    for term in terms:
+        while isinstance(term, Neg):
+            term = term.arg
+        if isinstance(term, Product):
+            found += [text[f.start:f.end] for f in term.factors
+                      if not isinstance(f, Reciprocal) and _has_variable(f)]
+    return tuple(found) if 2 <= len(found) <= MAX_COMPONENTS else ()
+
+
+def typed_components(text: str) -> tuple[Component, ...]:
+    """Each typed component of ``text`` with its exact recognition (see the module docstring)."""
+    out = []
+    for part in component_texts(text):
+        try:
+            out.append(Component(part, analyze(part, recognition_only=True).recognition))
+        except SorguiError:
+            return ()
+    return tuple(out)
