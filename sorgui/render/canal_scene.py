@@ -1,0 +1,116 @@
+"""Scene data of a canal surface (docs/math.md §9): the spine curves and a few characteristic
+circles as plain ``float64`` polylines, for the 3D view (no Qt, no VTK).
+
+The exact ``m(t)`` and the circles ``c(t)``, ``R²(t)``, ``m′(t)`` of each rational sphere family
+are read with the engine's reader of machine-written formulas (never ``eval``), turned into
+numerator and denominator coefficient arrays, and sampled at ``t = tan φ`` so that the whole
+rational curve is covered; points outside the ball of radius ``bound`` are dropped (a polyline is
+split there).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import sympy
+
+from sorgui.engine.expressions import SYMPY, read
+from sorgui.engine.report import Canal, CanalFamily
+
+T = sympy.Symbol("t")
+
+
+@dataclass(frozen=True)
+class CanalScene:
+    """Polylines ``(n, 3)``: the spines (one or more pieces per family) and closed circles."""
+
+    spines: tuple[np.ndarray, ...]
+    circles: tuple[np.ndarray, ...]
+
+
+def canal_scene(canal: Canal, *, bound: float = 20.0, samples: int = 400, circles: int = 12,
+                circle_points: int = 64) -> CanalScene:
+    """The spines and ``circles`` characteristic circles of every rational family of ``canal``.
+
+    Families without ``m(t)`` (a spine of positive genus) contribute nothing.
+    """
+    spines: list[np.ndarray] = []
+    rings: list[np.ndarray] = []
+    for family in canal.families:
+        if family.parametrization is None:
+            continue
+        spines += _spine(family, bound, samples)
+        if family.circle_center is not None:
+            rings += _circles(family, bound, circles, circle_points)
+    return CanalScene(tuple(spines), tuple(rings))
+
+
+def _function(text: str) -> tuple[np.ndarray, np.ndarray]:
+    """A rational function of ``t`` (engine string) as numerator and denominator coefficients
+    (highest degree first, for :func:`numpy.polyval`)."""
+    expr = sympy.together(read(text, SYMPY))
+    num, den = sympy.fraction(expr)
+    return _coefficients(num), _coefficients(den)
+
+
+def _coefficients(expr: sympy.Expr) -> np.ndarray:
+    poly = sympy.Poly(sympy.expand(expr), T)
+    return np.array([float(sympy.re(c.evalf(20))) for c in poly.all_coeffs()], dtype=np.float64)
+
+
+def _evaluate(fn: tuple[np.ndarray, np.ndarray], t: np.ndarray) -> np.ndarray:
+    with np.errstate(all="ignore"):
+        return np.polyval(fn[0], t) / np.polyval(fn[1], t)
+
+
+def _parameters(samples: int) -> np.ndarray:
+    """``t = tan φ`` for ``φ`` evenly spaced in ``(−π/2, π/2)``: the whole real line."""
+    phi = np.linspace(-np.pi / 2, np.pi / 2, samples + 2)[1:-1]
+    return np.tan(phi)
+
+
+def _vectors(triple: Sequence[str], t: np.ndarray) -> np.ndarray:
+    return np.column_stack([_evaluate(_function(c), t) for c in triple])
+
+
+def _spine(family: CanalFamily, bound: float, samples: int) -> list[np.ndarray]:
+    points = _vectors(family.parametrization or (), _parameters(samples))
+    return _split(points, bound)
+
+
+def _split(points: np.ndarray, bound: float) -> list[np.ndarray]:
+    """The runs of finite points inside the ball of radius ``bound`` (at least two points each)."""
+    inside = np.all(np.isfinite(points), axis=1) & (np.linalg.norm(np.nan_to_num(points), axis=1) <= bound)
+    pieces, start = [], None
+    for i, ok in enumerate(list(inside) + [False]):
+        if ok and start is None:
+            start = i
+        elif not ok and start is not None:
+            if i - start >= 2:
+                pieces.append(points[start:i])
+            start = None
+    return pieces
+
+
+def _circles(family: CanalFamily, bound: float, count: int, points: int) -> list[np.ndarray]:
+    t = _parameters(count)
+    centers = _vectors(family.circle_center or (), t)
+    normals = _vectors(family.circle_normal or (), t)
+    radius2 = _evaluate(_function(family.circle_radius_squared or "0"), t)
+    theta = np.linspace(0.0, 2 * np.pi, points + 1)
+    out = []
+    for c, n, r2 in zip(centers, normals, radius2):
+        norm = np.linalg.norm(n)
+        if not (np.all(np.isfinite(c)) and np.isfinite(r2) and r2 > 0 and np.isfinite(norm) and norm > 0):
+            continue
+        n = n / norm
+        helper = np.eye(3)[int(np.argmin(np.abs(n)))]
+        e1 = np.cross(n, helper)
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(n, e1)
+        ring = c + np.sqrt(r2) * (np.outer(np.cos(theta), e1) + np.outer(np.sin(theta), e2))
+        if np.all(np.linalg.norm(ring, axis=1) <= bound):
+            out.append(ring)
+    return out
