@@ -147,10 +147,31 @@ def analyze_curves(
 ) -> tuple[CurveAnalysis, ...]:
     """Absolute factorization and genus of several curves in ONE Singular run (e.g. ``P`` and
     ``P²`` of the paper); the genus is ``None`` unless the curve is absolutely irreducible."""
-    plans = [_Plan(F, f"c{i}", with_genus) for i, F in enumerate(curves)]
-    script = "".join(p.code for p in plans)
-    found = run_script(script, timeout=timeout, cancel=cancel)
-    return tuple(p.read(found) for p in plans)
+    known = {i: _linear_curve(F) for i, F in enumerate(curves)}
+    plans = {i: _Plan(F, f"c{i}", with_genus) for i, F in enumerate(curves) if known[i] is None}
+    found = run_script("".join(p.code for p in plans.values()), timeout=timeout, cancel=cancel) if plans else {}
+    return tuple(known[i] or plans[i].read(found) for i in range(len(curves)))
+
+
+def _linear_curve(F: Poly) -> CurveAnalysis | None:
+    """``F = A(x)·y + C(x)`` over ``K = QQ(θ)`` with ``gcd(A, C) = 1`` (or the same with ``x`` and
+    ``y`` swapped): the graph of ``-C/A``, absolutely irreducible of genus 0 (MATH.md §5), known
+    without Singular, whose norm route over ``K`` is slow. ``None`` otherwise, and over ``QQ``,
+    where ``absFactorize`` is fast and gives the canonical form of the factor."""
+    if is_rational_field(F.ring.domain) or F.ring.ngens != 2 or total_degree(F) < 1:
+        return None
+    R = poly_ring(("t",), F.ring.domain)
+    for linear in (1, 0):
+        if F.degree(linear) != 1:
+            continue
+        other = 1 - linear
+        A = R.from_dict({(m[other],): c for m, c in F.items() if m[linear] == 1})
+        C = R.from_dict({(m[other],): c for m, c in F.items() if m[linear] == 0})
+        if A.gcd(C).degree() > 0:
+            return None
+        factor = AbsoluteFactor(F.monic().as_expr(), 1, 1)
+        return CurveAnalysis(AbsoluteFactorization(_variables(F), (factor,)), 0)
+    return None
 
 
 def analyze_curve(

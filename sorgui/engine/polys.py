@@ -2,9 +2,10 @@
 
 The engine's canonical polynomial is sympy's sparse ``PolyElement`` over a domain ``K``: ``QQ``
 or a real algebraic field ``QQ(sqrt(n1), sqrt(n2), ...)`` (docs/math.md: ``K ⊂ R``). Algorithm choice
-is made here and nowhere else: over ``QQ`` the heavy operations (composition, derivatives,
-factorization) convert to python-flint's ``fmpq_mpoly``, which is orders of magnitude faster
-than pure Python; over an algebraic field they stay in sympy, whose ``ANP`` arithmetic is exact.
+is made here and nowhere else: the heavy operations (composition, factorization) convert to
+python-flint's ``fmpq_mpoly``, which is orders of magnitude faster than pure Python; over an
+algebraic field through :mod:`.numberfields` (the square roots as extra variables, factoring by
+Trager's norm method).
 """
 
 from __future__ import annotations
@@ -19,6 +20,8 @@ from flint import fmpq_mpoly, fmpq_mpoly_ctx
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.rings import PolyElement, PolyRing, ring
+
+from . import numberfields
 
 Poly = PolyElement
 """A polynomial of the engine: sympy's sparse ``PolyElement`` over ``K``."""
@@ -81,6 +84,13 @@ def sqrt_in_field(K: Domain, c: Any) -> Any | None:
     """A square root of ``c`` in ``K``, or ``None`` when ``c`` is not a square in ``K``."""
     if K.is_zero(c):
         return K.zero
+    if is_rational_field(K):
+        q = QQ.convert(c)
+        root = (sympy.sqrt(sympy.Rational(int(QQ.numer(q)), int(QQ.denom(q)))))
+        return QQ.from_sympy(root) if root.is_Rational else None
+    vector = numberfields.element_to_radicals(K, c)
+    if set(vector) == {0}:  # a rational number: its root is a radical monomial (fast path)
+        return numberfields.rational_sqrt(K, vector[0])
     t = sympy.Symbol("t")
     gens = field_generators(K)
     _, factors = sympy.factor_list(t**2 - to_expr(K, c), t, extension=gens or None)
@@ -132,18 +142,9 @@ def compose(f: Poly, images: Sequence[Poly]) -> Poly:
         ctx = _flint_ctx(target.ngens)
         g = to_flint(f).compose(*[to_flint(h) for h in images], ctx=ctx)
         return from_flint(g, target)
-    result = target.zero
-    powers: dict[tuple[int, int], Poly] = {}
-    for monom, coeff in f.items():
-        term = target.ground_new(target.domain.convert(coeff, f.ring.domain))
-        for i, e in enumerate(monom):
-            if e:
-                key = (i, e)
-                if key not in powers:
-                    powers[key] = images[i] ** e
-                term = term * powers[key]
-        result += term
-    return result
+    if is_rational_field(target.domain):
+        images = [h.set_ring(poly_ring(tuple(map(str, target.symbols)), f.ring.domain)) for h in images]
+    return numberfields.compose(f, images)
 
 
 def derivative(f: Poly, i: int) -> Poly:
@@ -160,14 +161,14 @@ def factor(f: Poly) -> tuple[Any, list[tuple[Poly, int]]]:
     if is_rational_field(f.ring.domain):
         c, fs = to_flint(f).factor()
         factors = [(from_flint(g, f.ring), int(e)) for g, e in fs]
-        content = QQ(c)
     else:
-        content, factors = f.factor_list()
+        factors = numberfields.factor(f)[1]
     factors = [_normalize_sign(g, e) for g, e in factors]
-    product = f.ring.one
-    for g, e in factors:
-        product *= g**e
-    content = f.ring.domain.quo(f.LC, product.LC)
+    K = f.ring.domain
+    lead = K.one
+    for g, e in factors:  # the leading coefficient is multiplicative: no need to expand the product
+        lead *= K.convert(g.LC) ** e
+    content = K.quo(f.LC, lead)
     factors.sort(key=lambda ge: (ge[0].degree() if ge[0] else 0, str(ge[0])))
     return content, factors
 

@@ -12,13 +12,28 @@ later computation uses ``p̃``, which is ``K``-linearly equivalent to it.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
+
 import sympy
+from flint import fmpq
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
 from .linalg import Vector, cross, dot, primitive_vector
-from .polys import Poly, compose, field_generators, poly_ring, primitive, sqrt_in_field, to_expr
+from . import numberfields
+from .polys import (
+    Poly,
+    compose,
+    field_generators,
+    is_rational_field,
+    number_field,
+    poly_ring,
+    primitive,
+    sqrt_in_field,
+    to_expr,
+)
 
 S_R = ("s", "r")
 S_W = ("s", "w")
@@ -115,14 +130,13 @@ def orthonormal_profile(p: Poly, frame: AxisFrame) -> Poly:
     K = p.ring.domain
     n = dot(frame.direction, frame.direction)
     root = sqrt_in_field(K, n)
-    L = K
+    L, convert = K, (lambda c: c)
     if root is None:
-        L = QQ.algebraic_field(*field_generators(K), sympy.sqrt(to_expr(K, n)))
-        root = L.from_sympy(sympy.sqrt(to_expr(K, n)))
+        L, root, convert = _adjoin_root(K, n)
     inverse_root = L.quo(L.one, root)
-    inverse_m = L.quo(L.one, L.convert(dot(frame.normal, frame.normal), K))
+    inverse_m = L.quo(L.one, convert(dot(frame.normal, frame.normal)))
     R = poly_ring(("x", "y"), L)
-    terms = {(i, j): L.convert(c, K) * inverse_root**i * inverse_m ** (j // 2) for (i, j), c in p.items()}
+    terms = {(i, j): convert(c) * inverse_root**i * inverse_m ** (j // 2) for (i, j), c in p.items()}
     top = terms[max(terms, key=lambda m: (m[1], m[0]))]
     scaled = {m: to_expr(L, L.quo(c, top)) for m, c in terms.items()}
     if all(c.is_Rational for c in scaled.values()):
@@ -130,6 +144,20 @@ def orthonormal_profile(p: Poly, frame: AxisFrame) -> Poly:
         top_monomial = max(scaled, key=lambda m: (m[1], m[0]))
         return rational if dict(rational.items())[top_monomial] > 0 else -rational
     return R.from_dict({m: L.quo(c, top) for m, c in terms.items()})
+
+
+def _adjoin_root(K: Domain, n: Any) -> tuple[Domain, Any, Callable[[Any], Any]]:
+    """``L = K(√n)``, ``√n ∈ L`` and the embedding ``K → L``. A rational ``n`` keeps ``L``
+    multiquadratic, so the embedding goes through the radical basis (no field isomorphism
+    search); otherwise sympy builds ``L``."""
+    value = to_expr(K, n)
+    if value.is_Rational and not is_rational_field(K):
+        q = fmpq(int(value.p), int(value.q))
+        core = numberfields.squarefree_core(int(value.p * value.q))
+        L = number_field(tuple(numberfields.radical_basis(K).radicands) + (core,))
+        return L, numberfields.rational_sqrt(L, q), lambda c: numberfields.embed(c, K, L)
+    L = QQ.algebraic_field(*field_generators(K), sympy.sqrt(value))
+    return L, L.from_sympy(sympy.sqrt(value)), lambda c: L.convert(c, K)
 
 
 def profile_curve(f: Poly, point: Vector, direction: Vector, normal: Vector | None = None) -> ProfileCurve:

@@ -24,7 +24,7 @@ from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.polyerrors import BasePolynomialError
 
-from . import curves
+from . import curves, numberfields
 from .curves import CurveAnalysis, CurveParametrization
 from .errors import AnalysisError, SingularError, SingularTimeout
 from .linalg import dot
@@ -38,7 +38,7 @@ from .parametrization import (
     sweep,
     tubular_section,
 )
-from .polys import Poly, poly_ring, to_expr
+from .polys import Poly, number_field, poly_ring, to_expr
 from .profile import ProfileCurve
 from .realroots import count_real_roots
 from .report import Parametrization, Rationality
@@ -76,10 +76,9 @@ def tubular_surface(par: CurveParametrization) -> TubularSurface:
     cancel ``gcd(r, q)``, write ``r̃·q̃ = h·d²`` with ``h`` square-free (odd multiplicities)."""
     phi = sympy.cancel(par.x.subs(par.parameter, T))
     r, q = sympy.fraction(sympy.cancel(par.y.subs(par.parameter, T)))
-    extension = list(par.generators) or None
-    product = sympy.Poly(r * q, T, extension=extension)
+    product = _univariate(r * q, par.generators)
     lead, factors = product.sqf_list()
-    h, d = lead, sympy.Integer(1)
+    h, d = product.ring.domain.to_sympy(lead), sympy.Integer(1)
     for g, e in factors:
         h *= g.as_expr() ** (e % 2)
         d *= g.as_expr() ** (e // 2)
@@ -88,9 +87,16 @@ def tubular_surface(par: CurveParametrization) -> TubularSurface:
 
 def count_real_roots_of(h: sympy.Expr, generators: tuple[sympy.Expr, ...]) -> int:
     """The number of real roots of ``h`` (coefficients in ``QQ`` or a real field), exactly."""
-    K = QQ.algebraic_field(*generators) if generators else QQ
-    R = poly_ring(("t",), K)
-    return count_real_roots(R.from_expr(h) if generators else R(sympy.Poly(h, T).as_expr()))
+    return count_real_roots(_univariate(h, generators))
+
+
+def _univariate(expr: sympy.Expr, generators: tuple[sympy.Expr, ...]) -> Poly:
+    """``expr ∈ QQ(generators)[t]`` as a ring element; a real multiquadratic field goes through
+    its radical basis (fast), any other through sympy."""
+    radicands = numberfields.real_radicands(generators)
+    if radicands is not None:
+        return numberfields.from_expr(expr, poly_ring(("t",), number_field(radicands)))
+    return poly_ring(("t",), QQ.algebraic_field(*generators)).from_expr(expr)
 
 
 def has_real_surface(h: sympy.Expr, real_roots: int) -> bool:
