@@ -276,3 +276,18 @@ def test_sending_and_reading_back_is_the_identity_up_to_scale(terms: dict) -> No
         return
     ratio = sympy.cancel(back / f.as_expr())
     assert ratio.is_Rational and ratio > 0
+
+
+def test_sorguis_procedures_are_a_singular_library_shipped_as_package_data() -> None:
+    import tomllib
+
+    from sorgui.engine.singular import library_path, script_header
+
+    path = library_path()
+    text = path.read_text(encoding="utf-8")
+    assert path.name == "sorgui.lib" and 'version="' in text
+    for proc in ("sorguiAbsQQ", "sorguiAbsNorm", "sorguiParaCurve", "sorguiParametrize", "sorguiRealPointConic"):
+        assert f"proc {proc}(" in text
+    assert f'LIB "{path}";' in script_header()
+    pyproject = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text(encoding="utf-8"))
+    assert "engine/*.lib" in pyproject["tool"]["setuptools"]["package-data"]["sorgui"]
