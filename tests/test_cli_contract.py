@@ -176,3 +176,20 @@ def test_the_command_line_loads_the_engine_only_to_analyse() -> None:
             "print(status, sorted({m.split('.')[0] for m in sys.modules} & {'sympy', 'flint', 'numpy'}))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert out.stdout.strip() == "2 []", out.stdout + out.stderr
+
+
+def test_a_failed_write_names_the_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """An OSError without a file name (a full disk in the middle of an atomic write) still names
+    the target; it used to say "cannot write None"."""
+    import errno
+
+    import sorgui.export.files as files
+    from sorgui.engine import analyze
+
+    def full_disk(*_args, **_kwargs):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(files, "export_analysis", full_disk)
+    target = tmp_path / "r.json"
+    with pytest.raises(cli._OutputError, match=f"cannot write {target}: No space left on device"):
+        cli.write_outputs(analyze("x^2+y^2-z", recognition_only=True), [target])
