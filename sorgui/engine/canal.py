@@ -20,6 +20,7 @@ from __future__ import annotations
 import random
 import threading
 import time
+from math import lcm
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
@@ -41,7 +42,7 @@ from .canal_param import (
 from .canal_spine import MARGIN, SmatCurve, constant_radius, monomials, smat_curves
 from .errors import AnalysisError, Cancelled, SingularError
 from .linalg import cross, primitive_vector, solve_unique
-from .polys import Poly, from_flint, is_rational_field, poly_ring, poly_str, to_flint, total_degree
+from .polys import Poly, compose, derivative, from_flint, is_rational_field, poly_ring, poly_str, to_flint, total_degree
 from .report import Canal, CanalEvidence, CanalFamily, Parametrization
 from .singular import emit, parse_int, poly_to_singular, run_script
 from .symmetry import Motion, satisfies_identity
@@ -422,23 +423,73 @@ def _invariant_about_spine(f: Poly, curve: SmatCurve) -> bool:
 def envelope_elimination(
     f: Poly, curve: SmatCurve, *, timeout: float, cancel: threading.Event | None,
 ) -> bool:
-    """Singular: whether ``f`` divides every generator of the eliminated envelope ideal."""
-    gens = ",".join(poly_to_singular(g) for g in curve.equations)
-    n = len(curve.equations)
-    script = f"""ring sE = 0,(m1,m2,m3,r,x,y,z),dp; short = 0;
-ideal P = {gens};
-matrix M[{n + 1}][4];
-int i; int j;
-for (i = 1; i <= {n}; i++) {{ for (j = 1; j <= 4; j++) {{ M[i, j] = diff(P[i], var(j)); }} }}
-M[{n + 1}, 1] = 2*(x - m1); M[{n + 1}, 2] = 2*(y - m2); M[{n + 1}, 3] = 2*(z - m3); M[{n + 1}, 4] = 1;
-ideal E = P, (x-m1)^2 + (y-m2)^2 + (z-m3)^2 - r, minor(M, 4);
-ideal El = eliminate(E, m1*m2*m3*r);
+    """Singular: whether ``f`` divides every generator of the eliminated envelope ideal.
+
+    The linear SMAT equations are solved first (``m, ρ`` affine in the free coordinates ``u``),
+    so the tangency condition is the vanishing of the maximal minors of
+    ``[∂(nonlinear equations)/∂u; (2(X − m), 1)·∂(m, ρ)/∂u]``, with fewer variables to eliminate.
+    """
+    free, coords = _affine_coordinates(curve.equations)
+    names = tuple(f"u{i}" for i in range(len(free)))
+    S = poly_ring(names + ("x", "y", "z"), QQ)
+    images = [S.from_dict({_lift_monom(m, len(names)): c for m, c in expr.items()}) for expr in coords]
+    nonlinear = [g for g in (compose(h, images) for h in curve.equations if total_degree(h) > 1) if g]
+    X = S.gens[len(names):]
+    sphere = sum(((X[i] - images[i]) ** 2 for i in range(3)), S.zero) - images[3]
+    rows = [[derivative(g, j) for j in range(len(names))] for g in nonlinear]
+    rows.append([sum((2 * (X[i] - images[i]) * derivative(images[i], j) for i in range(3)), S.zero)
+                 + derivative(images[3], j) for j in range(len(names))])
+    rows = [_integer_row(row) for row in rows]
+    entries = ",".join(poly_to_singular(e) if e else "0" for row in rows for e in row)
+    gens = ",".join([poly_to_singular(g) for g in nonlinear] + [poly_to_singular(sphere)])
+    variables = "*".join(names)
+    script = f"""ring sE = 0,({",".join(names)},x,y,z),dp; short = 0;
+matrix M[{len(rows)}][{len(names)}] = {entries};
+ideal E = {gens}, minor(M, {len(names)});
+ideal El = eliminate(E, {variables});
 ideal F = std(ideal({poly_to_singular(f, ["x", "y", "z"])}));
 int ok = (size(El) > 0) && (size(reduce(El, F)) == 0);
 {emit("ok", "string(ok)")}
 """
     found = run_script(script, timeout=timeout, cancel=cancel)
     return parse_int(found["ok"][0]) == 1
+
+
+def _affine_coordinates(equations: tuple[Poly, ...]) -> tuple[list[int], list[Poly]]:
+    """The free SMAT coordinates left by the linear equations, and ``(m1, m2, m3, r)`` as affine
+    polynomials in them (in a ring whose variables are the free coordinates, in order)."""
+    R = equations[0].ring
+    linear = [g for g in equations if total_degree(g) == 1]
+    rows = [[g.coeff(x) for x in R.gens] + [g.coeff(1)] for g in linear]
+    reduced, pivots = (sympy.Matrix(rows).rref() if rows else (sympy.zeros(0, 5), ()))
+    free = [i for i in range(4) if i not in pivots]
+    F = poly_ring(tuple(f"u{k}" for k in range(len(free))) or ("u0",), QQ)
+    coords: list[Poly] = []
+    for i in range(4):
+        if i in free:
+            coords.append(F.gens[free.index(i)])
+            continue
+        row = reduced.row(list(pivots).index(i))
+        expr = F(QQ(-int(sympy.fraction(row[4])[0]), int(sympy.fraction(row[4])[1])))
+        for k, j in enumerate(free):
+            c = row[j]
+            if c:
+                expr -= F(QQ(int(sympy.fraction(c)[0]), int(sympy.fraction(c)[1]))) * F.gens[k]
+        coords.append(expr)
+    return free, coords
+
+
+def _lift_monom(m: tuple[int, ...], n: int) -> tuple[int, ...]:
+    return tuple(m[:n]) + (0,) * (n - len(m[:n])) + (0, 0, 0)
+
+
+def _integer_row(row: list[Poly]) -> list[Poly]:
+    """The row times the lcm of its denominators (one factor for the whole row keeps the minors)."""
+    den = 1
+    for e in row:
+        for c in e.coeffs() if e else ():
+            den = lcm(den, int(QQ.denom(c)))
+    return [e * den for e in row]
 
 
 def _radical(poly: Poly, family: RationalFamily) -> Parametrization:
