@@ -30,12 +30,14 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import sympy
+from flint import fmpq, fmpq_poly
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
 from .errors import AnalysisError, SingularError
-from .polys import Poly, field_generators, is_rational_field, poly_ring, to_expr, total_degree
+from .polys import Poly, field_generators, is_rational_field, poly_ring, primitive, to_expr, total_degree
 from .singular import (
+    emit,
     minpoly_to_singular,
     parse_int,
     parse_intvec,
@@ -151,6 +153,81 @@ def analyze_curves(
     plans = {i: _Plan(F, f"c{i}", with_genus) for i, F in enumerate(curves) if known[i] is None}
     found = run_script("".join(p.code for p in plans.values()), timeout=timeout, cancel=cancel) if plans else {}
     return tuple(known[i] or plans[i].read(found) for i in range(len(curves)))
+
+
+SMOOTHNESS_PRIME = 32003
+"""The characteristic in which the smoothness of ``P`` is tested: a smooth reduction of the
+same degree proves the curve smooth over ``C`` (the singular locus is closed)."""
+
+
+def analyze_profile_pair(
+    P: Poly, P2: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None
+) -> tuple[CurveAnalysis, CurveAnalysis]:
+    """:func:`analyze_curves` of the profile ``P`` and its square ``P²``, with the algorithm
+    chosen per curve: when ``P`` (over ``QQ``) is a smooth projective curve — the general
+    position — its genus is ``(d-1)(d-2)/2`` and Riemann–Hurwitz for the double cover
+    ``P → P²``, ``(s, r) ↦ (s, r²)`` gives ``genus(P²)`` (MATH.md §5): Singular only tests the
+    smoothness modulo a prime, instead of computing the genus of the singular curve ``P²``
+    (seconds to minutes at degree 12). Otherwise both go to Singular."""
+    found = _smooth_double_cover(P, P2, timeout, cancel)
+    if found is not None:
+        return found
+    first, second = analyze_curves([P, P2], timeout=timeout, cancel=cancel)
+    return first, second
+
+
+def _smooth_double_cover(
+    P: Poly, P2: Poly, timeout: float, cancel: threading.Event | None
+) -> tuple[CurveAnalysis, CurveAnalysis] | None:
+    """Both analyses when the projective closure of ``P`` is smooth, else ``None``.
+
+    A smooth plane curve is absolutely irreducible, so ``P → P²`` has degree 2 and ``P²`` is
+    absolutely irreducible too. The involution ``σ: r ↦ -r`` of ``P`` fixes exactly the points
+    of ``P`` on the line ``r = 0`` and the point ``(0:1:0)`` if it lies on ``P``; on a smooth
+    curve every fixed point is a ramification point, so with ``B`` of them
+    ``2g(P) - 2 = 2(2g(P²) - 2) + B``.
+    """
+    d = total_degree(P)
+    if not is_rational_field(P.ring.domain) or d < 3 or any(m[1] % 2 for m in P.itermonoms()):
+        return None
+    H = poly_ring(("s", "r", "z"), QQ).from_dict({(i, j, d - i - j): c for (i, j), c in primitive(P).items()})
+    if all(int(c) % SMOOTHNESS_PRIME == 0 for c in H.values()):
+        return None
+    script = (
+        f"ring sorguiS = {SMOOTHNESS_PRIME},(s,r,z),dp;\n"
+        f"poly F = {poly_to_singular(H, ['s', 'r', 'z'])};\n"
+        "ideal J = jacob(F), F;\n" + emit("cone_dimension", "string(dim(std(J)))")
+    )
+    if _one(run_script(script, timeout=timeout, cancel=cancel), "cone_dimension") != "0":
+        return None
+    on_line = fmpq_poly([_fmpq(c) for c in _dense(P)])
+    distinct = on_line.degree() - on_line.gcd(on_line.derivative()).degree()
+    coefficients = dict(P.items())
+    fixed = distinct + (on_line.degree() < d) + ((0, d) not in coefficients)
+    genus_p = (d - 1) * (d - 2) // 2
+    twice, rest = divmod(2 * genus_p - 2 - fixed, 4)
+    if rest:
+        raise SingularError("Riemann-Hurwitz gave a fractional genus (internal error)")
+    analyses = []
+    for F, g in ((P, genus_p), (P2, twice + 1)):
+        factor = AbsoluteFactor(primitive(F).as_expr(), 1, 1)
+        analyses.append(CurveAnalysis(AbsoluteFactorization(_variables(F), (factor,)), g))
+    return analyses[0], analyses[1]
+
+
+def _dense(P: Poly) -> list[object]:
+    """The coefficients of ``P(s, 0)``, lowest degree first."""
+    top = max((i for (i, j) in P.itermonoms() if j == 0), default=0)
+    out = [QQ.zero] * (top + 1)
+    for (i, j), c in P.items():
+        if j == 0:
+            out[i] = c
+    return out
+
+
+def _fmpq(c: object) -> fmpq:
+    """A rational number of sympy's ``QQ`` as flint's ``fmpq``."""
+    return fmpq(int(QQ.numer(c)), int(QQ.denom(c)))
 
 
 def _linear_curve(F: Poly) -> CurveAnalysis | None:

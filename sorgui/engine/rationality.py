@@ -117,7 +117,7 @@ def analyze_rationality(
         return Rationality(status="not applicable: X is a pair of complex planes through the axis "
                                   "(not absolutely irreducible)"), None
     try:
-        p, p2 = curves.analyze_curves([profile.rational, profile.square], timeout=timeout, cancel=cancel)
+        p, p2 = curves.analyze_profile_pair(profile.rational, profile.square, timeout=timeout, cancel=cancel)
     except SingularTimeout as exc:
         return Rationality(status=f"undecided within the time limit: {exc.message}"), None
     except SingularError as exc:
