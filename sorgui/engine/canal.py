@@ -86,8 +86,10 @@ class _Clock:
         if self.cancel is not None and self.cancel.is_set():
             raise Cancelled("the analysis was cancelled")
         start = time.perf_counter()
-        yield
-        self.timings.append((name, time.perf_counter() - start))
+        try:
+            yield
+        finally:
+            self.timings.append((name, time.perf_counter() - start))
 
 
 class _Lines:
@@ -503,7 +505,7 @@ def _radical(poly: Poly, family: RationalFamily) -> Parametrization:
         proper=None,
         method="canal: characteristic circles (radical)",
         verified=verified,
-        verification="substituted into f, square roots as variables reduced by their squares",
+        verification="substituted into f: f(c + a·e₁ + b·e₂) ≡ 0 modulo the circle a²|e₁|² + b²|e₂|² = R²",
     )
 
 
