@@ -326,7 +326,7 @@ def _canal(
 
 
 def _genus(curve: SmatCurve, timeout: float, cancel: threading.Event | None, notes: list[str]) -> int | None:
-    if total_degree(curve.plane_model) <= 2 and curve.birational:
+    if total_degree(curve.plane_model) <= 2 and curve.birational and _irreducible_conic(curve.plane_model):
         return 0
     if not curve.birational:
         notes.append("the plane model of the SMAT curve is not birational to it: genus not computed")
@@ -343,8 +343,18 @@ def _genus(curve: SmatCurve, timeout: float, cancel: threading.Event | None, not
         return None
 
 
+def _irreducible_conic(G: Poly) -> bool:
+    """A line, or a conic whose 3×3 symmetric matrix is regular (irreducible over C)."""
+    if total_degree(G) == 1:
+        return True
+    u, v = G.ring.gens
+    a, b, c = G.coeff(u**2), G.coeff(u * v), G.coeff(v**2)
+    d, e, k = G.coeff(u), G.coeff(v), G.coeff(1)
+    return sympy.Matrix([[2 * a, b, d], [b, 2 * c, e], [d, e, 2 * k]]).det() != 0
+
+
 def _family_report(curve: SmatCurve, genus: int | None, family: RationalFamily | None) -> CanalFamily:
-    radius = None if curve.constant_radius is None else str(curve.constant_radius)
+    radius = curve.constant_radius
     par = center = normal = radius2 = field_name = None
     verified = False
     if family is not None:

@@ -27,7 +27,7 @@ from sympy.polys.domains import QQ
 
 from .canal_focal import Pair, PairRing, SmatSample
 from .errors import AnalysisError
-from .polys import Poly, poly_ring, total_degree
+from .polys import Poly, poly_ring, poly_str, total_degree
 from .singular import emit, parse_int, parse_list, poly_to_singular, run_script
 
 SMAT_NAMES = ("m1", "m2", "m3", "r")
@@ -60,7 +60,7 @@ class SmatCurve:
     smat_degree: int
     planar: bool
     on_line: bool
-    constant_radius: fmpq | None
+    constant_radius: str | None
     plane_model: Poly
     projection: tuple[tuple[int, ...], tuple[int, ...]]
     birational: bool
@@ -384,9 +384,11 @@ def _curve(candidate: _Candidate) -> SmatCurve:
     constant = None
     r = R.gens[3]
     for g in eqs:
-        if total_degree(g) == 1 and all(m in ((0, 0, 0, 1), (0, 0, 0, 0)) for m in g.keys()):
-            value = -g.coeff(1) / g.coeff(r)
-            constant = fmpq(int(QQ.numer(value)), int(QQ.denom(value)))
+        if all(m[:3] == (0, 0, 0) for m in g.keys()):
+            if total_degree(g) == 1:
+                constant = str(-g.coeff(1) / g.coeff(r))
+            else:
+                constant = f"a root of {poly_str(g)}"
     planes = candidate.planes
     G = planes[0] if len(planes) == 1 else _gcd_all(planes)
     return SmatCurve(

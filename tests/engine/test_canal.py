@@ -176,3 +176,12 @@ def test_text_report_of_a_near_miss() -> None:
     assert analysis.canal is not None and analysis.canal.is_canal is False
     text = format_report(analysis)
     assert "canal surface: NO" in text and "witness line" in text
+
+
+def test_coefficients_in_a_quadratic_field_go_through_the_norm() -> None:
+    cylinder = analyze_canal(parse_polynomial("x^2 + y^2 - sqrt(2)").polynomial)
+    assert cylinder.is_canal is True and set(cylinder.kinds) == {"developable", "pipe", "revolution"}
+    assert cylinder.families[0].radius_squared == "a root of r**2 - 2"
+    assert any("norm" in n for n in cylinder.notes)
+    elliptic = analyze_canal(parse_polynomial("x^2 + sqrt(2)*y^2 - 1").polynomial)
+    assert elliptic.is_canal is False and elliptic.witness is not None
