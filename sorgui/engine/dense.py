@@ -160,11 +160,6 @@ def real_roots(coefficients: np.ndarray, tolerance: float = 1e-7) -> np.ndarray:
     return roots[np.abs(roots.imag) <= tolerance * np.maximum(1.0, np.abs(roots))].real
 
 
-def vector(array: np.ndarray, selected: np.ndarray) -> np.ndarray:
-    """The coefficient vector of ``array`` over the monomials ``selected`` (see :func:`mask`)."""
-    return array[selected]
-
-
 def stack(arrays: Iterable[np.ndarray], selected: np.ndarray) -> np.ndarray:
     """The matrix whose columns are the coefficient vectors of ``arrays``."""
     return np.column_stack([a[selected] for a in arrays])

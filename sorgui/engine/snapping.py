@@ -28,14 +28,13 @@ from fractions import Fraction
 
 import numpy as np
 from flint import fmpq, fmpq_mpoly
+from sympy.polys.domains import QQ
 
 from . import dense
 from .near_symmetry import Fit, Normalised, fit, invariant_basis, refine_fixed
 from .polys import XYZ, Poly, from_flint, poly_ring, to_flint
 from .precision import Rounding
-from .symmetry import CYLINDER, PLANE, REVOLUTION, SPHERE, Symmetry, recognize_symmetry
-
-from sympy.polys.domains import QQ
+from .symmetry import CYLINDER, PLANE, REVOLUTION, Symmetry, recognize_symmetry
 
 Vector = tuple[Fraction, Fraction, Fraction]
 EPSILONS = tuple(10.0 ** -k for k in range(2, 14))
