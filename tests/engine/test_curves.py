@@ -332,3 +332,25 @@ def test_improper_parametrization_is_detected() -> None:
     assert is_on_curve(F, T**2, T**4, T)
     assert not is_proper(F, T**2, T**4, T)
     assert not is_on_curve(F, T, T**3, T)
+
+
+# --- the degree-6 rational curve of paraPlaneCurve's documentation as P² ---------------------
+
+@pytest.mark.parametrize(("point", "direction"), [((0, 0, 0), (1, 0, 0)), ((1, -2, 3), (2, 1, 2)), ((0, 0, 0), (1, 1, 1))])
+def test_profile_square_of_the_paraplanecurve_sextic_on_a_rational_axis(point, direction) -> None:
+    """A surface of revolution whose ``P²`` is ``f2(s, w, 1)`` of the example of ``paraPlaneCurve``
+    (paraplanecurves.lib: x⁶+3x⁴y²+3x²y⁴+y⁶-4x⁴z²-34x³yz²-7x²y²z²+12xy³z²+6y⁴z²+36x²z⁴+36xyz⁴+9y²z⁴,
+    a rational sextic) about a rational axis: P² is parameterized properly and exactly."""
+    from sorgui.engine.recognition import recognize
+    from tests.engine.helpers import rational_vector, revolve
+
+    coefficients = {
+        (6, 0): 1, (4, 2): 3, (2, 4): 3, (0, 6): 1, (4, 0): -4, (3, 1): -34, (2, 2): -7, (1, 3): 12,
+        (0, 4): 6, (2, 0): 36, (1, 1): 36, (0, 2): 9,
+    }
+    f = revolve(coefficients, rational_vector(point), rational_vector(direction), axis_distance=True)
+    _, _, profile = recognize(f)
+    par = parametrize(profile.square, known_genus_zero=True)
+    assert par.method == "paraPlaneCurve"
+    assert is_on_curve(profile.square, par.x, par.y, par.parameter, par.generators)
+    assert is_proper(profile.square, par.x, par.y, par.parameter, par.generators)
