@@ -23,7 +23,7 @@ from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpq_poly
 from .canal_spine import SMAT_NAMES, SmatCurve
 from .curves import CurveParametrization
 from .errors import AnalysisError
-from .polys import Poly, poly_ring, to_flint
+from .polys import Poly, to_flint
 
 T = sympy.Symbol("t")
 THETA = sympy.Symbol("theta")

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import random
 import threading
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from itertools import combinations
 from math import lcm
@@ -65,10 +65,6 @@ class SmatCurve:
     projection: tuple[tuple[int, ...], tuple[int, ...]]
     birational: bool
     inverse: tuple[sympy.Expr, ...] | None
-
-
-def smat_ring() -> object:
-    return poly_ring(SMAT_NAMES, QQ)
 
 
 def monomials(k: int, nvars: int = 4) -> list[tuple[int, ...]]:
@@ -420,12 +416,3 @@ def _linear_rank(polys: list[Poly]) -> int:
     R = polys[0].ring
     rows = [[g.coeff(x) for x in R.gens] for g in polys]
     return sympy.Matrix(rows).rank()
-
-
-def iterate_points(count: int, seed: int) -> Iterator[tuple[tuple[int, int, int], tuple[int, int, int]]]:
-    """Deterministic random lines (point, direction) with small integer coordinates."""
-    rnd = random.Random(seed)
-    for _ in range(count):
-        point = tuple(rnd.randint(-7, 7) for _ in range(3))
-        direction = tuple(rnd.randint(-7, 7) or 1 for _ in range(3))
-        yield point, direction  # type: ignore[misc]
