@@ -7,7 +7,7 @@ The written module needs only ``numpy`` and ``sympy``. It holds
 * one function per parameterization, ``X1(s, t)``, ``X2(s, t)``, … (and ``P2param(t)`` of the profile),
   vectorised over NumPy arrays (broadcast like ``s + t``), returning the arrays ``x, y, z``;
   its docstring states the parameter domain and the points it misses;
-* ``check()``, which substitutes every exact parameterization into ``F`` (or ``P2``) and
+* ``check()``, which substitutes every exact parameterization into ``F`` (or ``P2K``) and
   asserts that the result cancels to zero (``P2param`` into ``P2K``).
 
 The code is printed by sympy's printers (``NumPyPrinter`` for the functions, ``sstr`` with
@@ -41,7 +41,8 @@ def _numpy_code(expr: sympy.Expr) -> str:
 
 def _function(formula: Formula) -> list[str]:
     args = ", ".join(str(p) for p in formula.parameters)
-    outputs = "x, y, z" if len(formula.value) == 3 else "s, w"
+    outputs = {"P2param": "s, w"}.get(formula.name, "x, y, z" if formula.name.startswith("X") else
+                                      f"its {len(formula.value)} coordinates")
     assert formula.coverage is not None
     doc = [f'    """{formula.description[0].upper() + formula.description[1:]}.', "",
            f"    Vectorised over NumPy arrays ({args} broadcast together); returns the arrays {outputs}.",
@@ -101,7 +102,8 @@ def python_module(analysis: Analysis) -> str:
               "}", '"""The parameters of each parameterization, in order."""', "", ""]
     for formula in maps:
         lines += _function(formula)
-    targets = {f.name: ("P2K" if f.name == "P2param" else "F") for f in maps}
+    targets = {f.name: ("P2K" if f.name == "P2param" else "F") for f in maps
+               if f.name == "P2param" or (f.name.startswith("X") and len(f.value) == 3)}
     lines += [*_VANISHES.splitlines(), "", "",
               "def check():",
               '    """Substitute every exact parameterization into its equation; assert the result is zero."""',
