@@ -90,3 +90,13 @@ def test_open_refuses_what_is_not_a_report(tmp_path, capsys: pytest.CaptureFixtu
     assert main(["open", str(bad)]) == 2
     assert capsys.readouterr().err.strip().splitlines() == [
         f"sorgui: {bad} is not a JSON report: Expecting value: line 1 column 1 (char 0)"]
+
+
+def test_open_hands_a_valid_report_to_the_window(analyses, tmp_path, monkeypatch) -> None:
+    import sorgui.gui.app
+
+    opened: list[str] = []
+    monkeypatch.setattr(sorgui.gui.app, "run_gui", lambda path=None: opened.append(path) or 0)
+    report = export_analysis(analyses["torus"], tmp_path / "torus.sorgui.json")
+    assert main(["open", str(report)]) == 0
+    assert opened == [str(report)]
