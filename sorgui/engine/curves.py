@@ -166,7 +166,7 @@ def analyze_profile_pair(
     """:func:`analyze_curves` of the profile ``P`` and its square ``P²``, with the algorithm
     chosen per curve: when ``P`` (over ``QQ``) is a smooth projective curve — the general
     position — its genus is ``(d-1)(d-2)/2`` and Riemann–Hurwitz for the double cover
-    ``P → P²``, ``(s, r) ↦ (s, r²)`` gives ``genus(P²)`` (MATH.md §5): Singular only tests the
+    ``P → P²``, ``(s, r) ↦ (s, r²)`` gives ``genus(P²)`` (docs/math.md §5): Singular only tests the
     smoothness modulo a prime, instead of computing the genus of the singular curve ``P²``
     (seconds to minutes at degree 12). Otherwise both go to Singular."""
     found = _smooth_double_cover(P, P2, timeout, cancel)
@@ -232,7 +232,7 @@ def _fmpq(c: object) -> fmpq:
 
 def _linear_curve(F: Poly) -> CurveAnalysis | None:
     """``F = A(x)·y + C(x)`` over ``K = QQ(θ)`` with ``gcd(A, C) = 1`` (or the same with ``x`` and
-    ``y`` swapped): the graph of ``-C/A``, absolutely irreducible of genus 0 (MATH.md §5), known
+    ``y`` swapped): the graph of ``-C/A``, absolutely irreducible of genus 0 (docs/math.md §5), known
     without Singular, whose norm route over ``K`` is slow. ``None`` otherwise, and over ``QQ``,
     where ``absFactorize`` is fast and gives the canonical form of the factor."""
     if is_rational_field(F.ring.domain) or F.ring.ngens != 2 or total_degree(F) < 1:

@@ -1,4 +1,4 @@
-"""Polynomials over ``K = QQ(√d₁, …, √d_k)`` done over ``QQ`` with python-flint (docs/math.md: ``K ⊂ R``).
+"""Polynomials over ``K = QQ(√d₁, …, √d_k)`` computed over ``QQ`` in flint (docs/math.md §5).
 
 sympy's arithmetic over an algebraic field is pure Python and, in several variables, orders of
 magnitude slower than flint over ``QQ``. Here an element of ``K`` is written in the radical
@@ -366,6 +366,16 @@ def norm(G: fmpq_mpoly, radicands: Sequence[int]) -> fmpq_mpoly:
 
 
 # --- factorization (Trager) -------------------------------------------------------------------
+
+
+MAX_NORM_DEGREE = 120
+"""Above this degree of the norm ``N(F)`` (``[K:QQ]·deg F``) Trager's method is not used: the
+norm's size (and memory) grows like its degree to the number of variables."""
+
+
+def norm_degree(f: Poly) -> int:
+    """``[K:QQ]·deg f``: the degree of the norm that :func:`factor` would factor over ``QQ``."""
+    return radical_basis(f.ring.domain).degree * max((sum(m) for m in f.itermonoms()), default=0)
 
 
 def factor(f: Poly) -> tuple[Any, list[tuple[Poly, int]]]:

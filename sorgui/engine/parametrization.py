@@ -299,13 +299,23 @@ def vanishes_in_frame(profile: ProfileCurve, surface: SurfaceMap) -> bool:
     n = ring.from_expr(to_expr(K, dot(profile.frame.direction, profile.frame.direction)))
     radius = ring.reduce(along_u**2 + n * along_w**2)
     top = max(i + 2 * j for i, j in profile.square.itermonoms())
+    axial_powers, radius_powers, den_powers = (_powers(ring, p, top) for p in (axial, radius, den))
     total = ring.context.from_dict({})
     for (i, j), c in profile.square.items():
-        total += ring.reduce(ring.from_expr(to_expr(K, c)) * axial**i * radius**j * den ** (top - i - 2 * j))
+        product = ring.reduce(axial_powers[i] * radius_powers[j])
+        total += ring.from_expr(to_expr(K, c)) * product * den_powers[top - i - 2 * j]
     total = ring.reduce(total)
     if total.is_zero() or len(ring.radicals) < 2:
         return total.is_zero()
     return sympy.Poly(ring.to_expr(total), *ring.symbols, extension=True).is_zero
+
+
+def _powers(ring: RadicalRing, p: fmpq_mpoly, top: int) -> list[fmpq_mpoly]:
+    """``p⁰, p¹, …, p^top`` reduced modulo the radicals' relations (each power computed once)."""
+    out = [ring.context.from_dict({(0,) * ring.context.nvars(): 1})]
+    for _ in range(top):
+        out.append(ring.reduce(out[-1] * p))
+    return out
 
 
 LITERAL_DEGREE = 6

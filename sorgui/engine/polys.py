@@ -161,8 +161,10 @@ def factor(f: Poly) -> tuple[Any, list[tuple[Poly, int]]]:
     if is_rational_field(f.ring.domain):
         c, fs = to_flint(f).factor()
         factors = [(from_flint(g, f.ring), int(e)) for g, e in fs]
-    else:
+    elif numberfields.norm_degree(f) <= numberfields.MAX_NORM_DEGREE:
         factors = numberfields.factor(f)[1]
+    else:  # the norm would be too large for flint's factorization over QQ: sympy's own route
+        factors = f.factor_list()[1]
     factors = [_normalize_sign(g, e) for g, e in factors]
     K = f.ring.domain
     lead = K.one
