@@ -19,10 +19,10 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import replace
 
-from .approximate import approximate_symmetry, rounding_of
 from .errors import Cancelled, TimeLimitReached
 from .linalg import Vector
 from .parsing import parse_polynomial
+from .precision import has_decimals
 from .polys import Poly, field_name, poly_str
 from .profile import profile_curve
 from .real_locus import real_locus
@@ -157,10 +157,12 @@ def analyze_polynomial(
         with clock.stage("real locus"):
             real = real_locus(f, symmetry, profile)
     approximation: Approximation | None = None
-    rounding, rounding_notes = rounding_of(f, text, tolerance)
     near = None
-    if rounding is not None:
+    if tolerance is not None or (text is not None and has_decimals(text)):
+        from .approximate import approximate_symmetry, rounding_of  # numpy: only for rounded input
+
         with clock.stage("approximate"):
+            rounding, rounding_notes = rounding_of(f, text, tolerance)
             near = approximate_symmetry(f, rounding, notes=rounding_notes)
         approximation = near.approximation
 
