@@ -38,7 +38,7 @@ from sympy.polys.numberfields.subfield import primitive_element
 from sympy.polys.rings import PolyElement, PolyRing
 
 from .errors import ParseError
-from .polys import XYZ, from_rational, number_field, poly_ring
+from .polys import XYZ, from_rational, number_field, poly_ring, power
 
 MAX_DEGREE: int = 60
 """The largest total degree accepted (checked on the AST, before anything is expanded)."""
@@ -714,11 +714,7 @@ class _Evaluator:
             terms = min(math.comb(n + len(base) - 1, n), math.comb(n * degree + 3, 3))
             self._charge(node, terms * len(base))
             return base**n
-        result = base  # repeated multiplication: cheaper than squaring for dense polynomials
-        for _ in range(n - 1):
-            self._charge(node, len(result) * len(base))
-            result = result * base
-        return result
+        return power(base, n, lambda products: self._charge(node, products))
 
     def _charge(self, node: Node, products: int) -> None:
         self._work += products * self._cost

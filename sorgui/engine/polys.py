@@ -10,7 +10,7 @@ Trager's norm method).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from fractions import Fraction
 from functools import lru_cache
 from typing import Any
@@ -145,6 +145,26 @@ def compose(f: Poly, images: Sequence[Poly]) -> Poly:
     if is_rational_field(target.domain):
         images = [h.set_ring(poly_ring(tuple(map(str, target.symbols)), f.ring.domain)) for h in images]
     return numberfields.compose(f, images)
+
+
+def power(f: Poly, n: int, charge: Callable[[int], None] | None = None) -> Poly:
+    """``f^n`` (``n ≥ 1``) by repeated multiplication, which is cheaper than squaring for dense
+    polynomials; over ``QQ`` in flint. ``charge`` is told the number of coefficient products of
+    each step before it is done (the parser's work limit)."""
+    if is_rational_field(f.ring.domain):
+        base = to_flint(f)
+        result = base
+        for _ in range(n - 1):
+            if charge is not None:
+                charge(len(result) * len(base))
+            result = result * base
+        return from_flint(result, f.ring)
+    product = f
+    for _ in range(n - 1):
+        if charge is not None:
+            charge(len(product) * len(f))
+        product = product * f
+    return product
 
 
 def derivative(f: Poly, i: int) -> Poly:
