@@ -448,11 +448,14 @@ def parametrize(
                 "neither variable, and Singular's paraPlaneCurve accepts only rational "
                 "coefficients (ground field is not Q)"
             )
-        found = _para_plane_curve(rational, timeout, cancel, known_genus_zero)
+        candidates = _para_plane_curve(rational, timeout, cancel, known_genus_zero)
         curve, method = rational, "paraPlaneCurve"
-    (p1, q1), (p2, q2) = found
-    if not _vanishes(curve, p1, q1, p2, q2):
+        found = next((c for c in candidates if _vanishes(curve, *c[0], *c[1])), None)
+    elif not _vanishes(curve, *found[0], *found[1]):
+        found = None
+    if found is None:
         raise SingularError(f"the parameterization from {method} does not satisfy F = 0")
+    (p1, q1), (p2, q2) = found
     if not _proper_degree(curve, p1, q1, p2, q2):
         raise SingularError(f"the parameterization from {method} is not proper")
     D = p1.ring.domain
@@ -484,10 +487,11 @@ def _direct(F: Poly) -> tuple[_Fraction, _Fraction] | None:
 
 def _para_plane_curve(
     F: Poly, timeout: float, cancel: threading.Event | None, checked: bool = False
-) -> tuple[_Fraction, _Fraction]:
+) -> list[tuple[_Fraction, _Fraction]]:
     """``sorguiParaCurve`` on ``F ∈ QQ[x, y]``: the checks (skipped when ``checked``: the caller
     already knows the curve is absolutely irreducible of genus 0), then paraPlaneCurve's PARA
-    dehomogenised at ``s = 1``, over ``QQ`` or the quadratic field of its ``minpoly``."""
+    dehomogenised at ``s = 1``, over ``QQ`` or the quadratic field of its ``minpoly``: one
+    candidate per root of ``minpoly`` with a nonzero third coordinate."""
     script = (
         "ring sorguiP = 0,(x,y),dp;\n"
         + f"sorguiParaCurve({poly_to_singular(F, ['x', 'y'])}, {int(checked)});\n"
@@ -499,32 +503,42 @@ def _para_plane_curve(
     if g != 0:
         raise AnalysisError(f"the curve has genus {g}, so it has no rational parameterization")
     s, t, a = sympy.symbols("s t a")
-    D, root = QQ, QQ.zero
+    D, roots = QQ, [QQ.zero]
     if "minpoly" in found:
-        D, root = _quadratic_root(parse_singular(_one(found, "minpoly"), {"a": a}), a)
+        D, roots = _quadratic_roots(parse_singular(_one(found, "minpoly"), {"a": a}), a)
     R = poly_ring(("t",), D)
-    para = []
-    for p in parse_list(_one(found, "para"), {"s": s, "t": t, "a": a}):
-        terms: dict[tuple[int], object] = {}
-        for (_, j, k), c in sympy.Poly(p, s, t, a, domain=QQ).terms():
-            terms[(j,)] = terms.get((j,), D.zero) + D.convert(QQ.convert(c)) * root**k
-        para.append(R.from_dict(terms))
-    if len(para) != 3:
-        raise SingularError(f"paraPlaneCurve gave {len(para)} coordinates, not 3")
-    return _reduced(para[0], para[2]), _reduced(para[1], para[2])
+    coordinates = parse_list(_one(found, "para"), {"s": s, "t": t, "a": a})
+    if len(coordinates) != 3:
+        raise SingularError(f"paraPlaneCurve gave {len(coordinates)} coordinates, not 3")
+    candidates = []
+    for root in roots:
+        para = []
+        for p in coordinates:
+            terms: dict[tuple[int], object] = {}
+            for (_, j, k), c in sympy.Poly(p, s, t, a, domain=QQ).terms():
+                terms[(j,)] = terms.get((j,), D.zero) + D.convert(QQ.convert(c)) * root**k
+            para.append(R.from_dict(terms))
+        if para[2]:
+            candidates.append((_reduced(para[0], para[2]), _reduced(para[1], para[2])))
+    if not candidates:
+        raise AnalysisError("a parameterization has a zero denominator at every root of its field's minimal polynomial")
+    return candidates
 
 
-def _quadratic_root(mu: sympy.Expr, a: sympy.Symbol) -> tuple[Domain, object]:
+def _quadratic_roots(mu: sympy.Expr, a: sympy.Symbol) -> tuple[Domain, list[object]]:
     """The field ``D = QQ(sqrt(n))`` of the quadratic ``mu(a)`` (``QQ(sqrt(-3))`` is printed
-    ``QQ<sqrt(3)*I>``) and a root of ``mu`` in it."""
+    ``QQ<sqrt(3)*I>``) and the roots of ``mu`` in it. When ``mu`` is reducible (a square
+    discriminant: the conic step met the conic in rational points) ``D = QQ``, and Singular's
+    answer, computed in ``QQ[a]/(mu)``, may hold at one root only: both are tried."""
     poly = sympy.Poly(mu, a)
     if poly.degree() != 2:
         raise SingularError(f"paraPlaneCurve chose the field QQ[a]/({mu}), not a quadratic one")
     c2, c1, c0 = poly.all_coeffs()
     k, generator = sympy.sqrt(c1**2 - 4 * c2 * c0).as_coeff_Mul()
-    D = QQ.algebraic_field(generator)
+    D = QQ if generator == 1 else QQ.algebraic_field(generator)
+    root = D.one if generator == 1 else D([QQ.one, QQ.zero])
     k, c1, c2 = (D.convert(QQ.convert(c)) for c in (k, c1, c2))
-    return D, (D([QQ.one, QQ.zero]) * k - c1) / (2 * c2)
+    return D, [(root * k - c1) / (2 * c2), (-root * k - c1) / (2 * c2)]
 
 
 def _reduced(p: Poly, q: Poly) -> _Fraction:

@@ -354,3 +354,11 @@ def test_profile_square_of_the_paraplanecurve_sextic_on_a_rational_axis(point, d
     assert par.method == "paraPlaneCurve"
     assert is_on_curve(profile.square, par.x, par.y, par.parameter, par.generators)
     assert is_proper(profile.square, par.x, par.y, par.parameter, par.generators)
+
+
+def test_a_reducible_minimal_polynomial_gives_both_rational_roots() -> None:
+    a = sympy.Symbol("a")
+    D, roots = curves._quadratic_roots(a**2 - 1, a)
+    assert D == QQ and sorted(roots) == [QQ(-1), QQ(1)]
+    D, roots = curves._quadratic_roots(2 * a**2 - 4, a)
+    assert {D.to_sympy(r) for r in roots} == {sympy.sqrt(2), -sympy.sqrt(2)}
