@@ -36,6 +36,7 @@ from .canal_param import (
     family_resultant_certificate,
     family_strings,
     radical_parametrization,
+    rational_parametrization,
     recover_family,
     verify_radical,
 )
@@ -301,6 +302,9 @@ def _canal(
         for family in rational:
             if family is not None and family.verified:
                 parametrizations.append(_radical(poly, family))
+                found = rational_parametrization(poly, family)
+                if found is not None:
+                    parametrizations.append(_rational(found))
     kinds = set()
     if any(c.constant_radius is not None for c in smat):
         kinds.add("pipe")
@@ -516,6 +520,19 @@ def _radical(poly: Poly, family: RationalFamily) -> Parametrization:
         method="canal: characteristic circles (radical)",
         verified=verified,
         verification="substituted into f: f(c + a·e₁ + b·e₂) ≡ 0 modulo the circle a²|e₁|² + b²|e₂|² = R²",
+    )
+
+
+def _rational(found: tuple[tuple[sympy.Expr, ...], bool]) -> Parametrization:
+    coords, verified = found
+    return Parametrization(
+        coordinates=tuple(str(c) for c in coords),  # type: ignore[arg-type]
+        parameters=("t", "s"),
+        field="QQ",
+        real=True,
+        proper=None,
+        method="canal: rational (unit normals on the characteristic circles, sum of two squares)",
+        verified=verified,
     )
 
 

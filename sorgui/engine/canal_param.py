@@ -240,3 +240,136 @@ def _lift(p: fmpq_poly, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
 def family_strings(family: RationalFamily) -> tuple[tuple[str, str, str], str]:
     """``m(t)`` and ``ρ(t)`` as strings sympy reads back."""
     return tuple(str(sympy.factor(c)) for c in family.m), str(sympy.factor(family.rho))  # type: ignore[return-value]
+
+
+def rational_parametrization(f: Poly, family: RationalFamily) -> tuple[tuple[sympy.Expr, ...], bool] | None:
+    """A real rational parameterization ``X(t, s)`` of the canal surface of a rational MAT
+    (``ρ = r(t)²``, ``r`` rational) over ``QQ``, and whether it passed the substitution into ``f``.
+
+    ``X = m + r·n`` with the unit normal ``n = (2u, 2v, u² + v² − 1)/(u² + v² + 1)`` (stereographic
+    projection) on the circle ``n·m′ = −r′``, which in ``(u, v)`` is
+    ``(u + a)² + (v + b)² = (|m′|² − r′²)/(m₃′ + r′)²``. The sum-of-two-squares step writes the
+    numerator ``|m′|² − r′²`` as ``A² + B²`` over ``QQ`` (factorization over ``QQ(i)``); then the
+    circle is ``(u + a, v + b) = (A cos θ − B sin θ, A sin θ + B cos θ)/(m₃′ + r′)`` with the
+    rational ``cos θ = (1 − s²)/(1 + s²)``, ``sin θ = 2s/(1 + s²)``. ``None`` when a step fails.
+    """
+    if family.generators:
+        return None
+    r = _rational_sqrt(family.rho)
+    if r is None:
+        return None
+    dm = [sympy.cancel(sympy.diff(c, T)) for c in family.m]
+    dr = sympy.cancel(sympy.diff(r, T))
+    for order in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+        if sympy.cancel(dm[order[2]] + dr) != 0:
+            break
+    else:
+        return None
+    p, q, w = (dm[i] for i in order)
+    num, den = sympy.fraction(sympy.cancel(p * p + q * q + w * w - dr * dr))
+    split = _two_squares(sympy.Poly(num, T))
+    if split is None:
+        return None
+    A, B = (c / den for c in split)
+    # den is a square: (p² + q² + w² − r′²) has the square of the common denominator below.
+    root = _rational_sqrt(den)
+    if root is None:
+        return None
+    A, B = A * root, B * root
+    S = sympy.Symbol("s")
+    cos, sin = (1 - S**2) / (1 + S**2), 2 * S / (1 + S**2)
+    lead = w + dr
+    u = -p / lead + (A * cos - B * sin) / lead
+    v = -q / lead + (A * sin + B * cos) / lead
+    norm = u * u + v * v + 1
+    n = [2 * u / norm, 2 * v / norm, (u * u + v * v - 1) / norm]
+    normal = [sympy.Integer(0)] * 3
+    for k, i in enumerate(order):
+        normal[i] = n[k]
+    point = tuple(sympy.cancel(family.m[i] + r * normal[i]) for i in range(3))
+    return point, _vanishes_at(f, point, S)
+
+
+def _rational_sqrt(expr: sympy.Expr) -> sympy.Expr | None:
+    """A rational function whose square is ``expr`` (over ``QQ``), or ``None``."""
+    num, den = sympy.fraction(sympy.cancel(expr))
+    roots = []
+    for part in (num, den):
+        c, factors = sympy.factor_list(part, T)
+        if any(e % 2 for _, e in factors) or not c.is_Rational or c < 0:
+            return None
+        sc = sympy.sqrt(c)
+        if not sc.is_Rational:
+            return None
+        roots.append(sc * sympy.Mul(*[g ** (e // 2) for g, e in factors]))
+    return roots[0] / roots[1]
+
+
+def _two_squares(P: sympy.Poly) -> tuple[sympy.Expr, sympy.Expr] | None:
+    """``(A, B)`` in ``QQ[t]`` with ``P = A² + B²``, from the factorization of ``P`` over ``QQ(i)``:
+    each factor ``g`` with its conjugate ``ḡ`` contributes ``g`` to ``G = A + iB``, factors over
+    ``QQ`` of even multiplicity contribute their square roots; the constant must be a sum of two
+    rational squares."""
+    c, factors = sympy.factor_list(P.as_expr(), T, extension=sympy.I)
+    c = sympy.Rational(c)
+    if c <= 0:
+        return None
+    G = sympy.Integer(1)
+    seen: list[sympy.Expr] = []
+    for g, e in factors:
+        if any(sympy.expand(g - _conjugate(h)) == 0 for h in seen):
+            continue
+        conj = _conjugate(g)
+        if sympy.expand(conj - g) == 0:
+            if e % 2:
+                return None
+            G *= g ** (e // 2)
+        else:
+            seen.append(g)
+            partner = next((ee for gg, ee in factors if sympy.expand(gg - conj) == 0), None)
+            if partner != e:
+                return None
+            G *= g**e
+    a, b = _rational_two_squares(c)
+    if a is None:
+        return None
+    G = sympy.expand((a + sympy.I * b) * G)
+    A, B = sympy.expand(G.subs(sympy.I, 0)), sympy.expand((G - G.subs(sympy.I, 0)) / sympy.I)
+    if sympy.expand(A * A + B * B - P.as_expr()) != 0:
+        return None
+    return A, B
+
+
+def _conjugate(g: sympy.Expr) -> sympy.Expr:
+    """Complex conjugation of a polynomial over ``QQ(i)`` in the real variable ``t``."""
+    return sympy.expand(g.subs(sympy.I, -sympy.I))
+
+
+def _rational_two_squares(c: sympy.Rational) -> tuple[sympy.Rational | None, sympy.Rational | None]:
+    """``(a, b)`` rational with ``a² + b² = c``, or ``(None, None)``."""
+    from sympy.solvers.diophantine.diophantine import sum_of_squares
+
+    n = int(c.p) * int(c.q)
+    root = sympy.integer_nthroot(n, 2)
+    if root[1]:
+        return sympy.Rational(root[0], c.q), sympy.Integer(0)
+    for a, b in sum_of_squares(n, 2, zeros=True):
+        return sympy.Rational(a, c.q), sympy.Rational(b, c.q)
+    return None, None
+
+
+def _vanishes_at(f: Poly, point: tuple[sympy.Expr, ...], S: sympy.Symbol) -> bool:
+    """``f(X(t, s)) ≡ 0`` exactly (numerators composed with flint)."""
+    ctx = fmpq_mpoly_ctx.get(("t", "s"), "lex")
+    den = sympy.Integer(1)
+    fracs = [sympy.fraction(sympy.cancel(c)) for c in point]
+    for _, d in fracs:
+        den = sympy.lcm(den, d)
+    nums = [_poly_ts(sympy.expand(n * sympy.cancel(den / d)), ctx, S) for n, d in fracs]
+    D = _poly_ts(sympy.expand(den), ctx, S)
+    return _compose_fraction(to_flint(f), nums, [D, D, D], ctx, common=D).is_zero()
+
+
+def _poly_ts(expr: sympy.Expr, ctx: fmpq_mpoly_ctx, S: sympy.Symbol) -> fmpq_mpoly:
+    p = sympy.Poly(expr, T, S)
+    return ctx.from_dict({m: fmpq(int(sympy.Rational(c).p), int(sympy.Rational(c).q)) for m, c in p.terms()})

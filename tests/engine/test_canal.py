@@ -113,8 +113,9 @@ def test_pipe_around_the_parabola() -> None:
     assert set(family.equations) == {"r - 1", "m3", "m1**2 - m2"}
     assert (family.degree, family.genus, family.planar, family.pipe) == (2, 0, True, True)
     assert canal.certificate.method == "resultant"
-    (par,) = canal.parametrizations
-    assert par.verified and par.parameters == ("t", "theta")
+    radical, rational = canal.parametrizations
+    assert radical.verified and radical.parameters == ("t", "theta")
+    assert rational.verified and rational.real and rational.parameters == ("t", "s") and rational.field == "QQ"
 
 
 def test_twisted_cubic_pipe_is_not_planar() -> None:
@@ -185,3 +186,15 @@ def test_coefficients_in_a_quadratic_field_go_through_the_norm() -> None:
     assert any("norm" in n for n in cylinder.notes)
     elliptic = analyze_canal(parse_polynomial("x^2 + sqrt(2)*y^2 - 1").polynomial)
     assert elliptic.is_canal is False and elliptic.witness is not None
+
+
+def test_dupin_cyclide_has_real_rational_parameterizations() -> None:
+    canal = canal_of("Dupin a,b,c,mu=5,4,3,4")
+    rational = [p for p in canal.parametrizations if p.parameters == ("t", "s")]
+    assert len(rational) == 2 and all(p.verified and p.real for p in rational)
+
+
+def test_no_rational_parameterization_without_a_sum_of_two_squares() -> None:
+    # |m′|² − r′² = 3/4 + 4t² is not a sum of two squares over QQ: only the radical form.
+    canal = canal_of("canal parabola r=(1+t)/2")
+    assert [p.parameters for p in canal.parametrizations] == [("t", "theta")]
