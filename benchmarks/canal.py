@@ -2,8 +2,8 @@
 
 For each case: the time of the focal-sheet test alone (three lines, or up to the witness line),
 of the exact verdict with its certificate (``full=False``: test, SMAT, certificate), and of the
-whole canal analysis (``full=True``: also the genus, ``m(t)``, ``ρ(t)`` and the radical
-parameterization). Run ``python -m benchmarks.canal [--repeats N] [--write]``; ``--write``
+whole canal analysis (``full=True``: also the genus, ``m(t)``, ``ρ(t)``, the radical and rational
+parameterizations). Run ``python -m benchmarks.canal [--repeats N] [--write]``; ``--write``
 updates docs/benchmarks.md.
 """
 
