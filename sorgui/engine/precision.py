@@ -11,7 +11,9 @@ decimal (``%g`` prints ``0.99999999997`` as ``1``); exponents are exact. When no
 fraction ends in ``0``, the printer dropped trailing zeros (``%g`` prints ``15.44`` for
 ``15.44000000``), so a literal is never read as coarser than that many significant digits;
 when some fraction ends in ``0`` (fixed-point printing, ``15.440000``), every literal's own
-last place counts and integers are exact.
+last place counts and integers are exact; so too when every decimal has the same number of
+digits after the point and none has an exponent (``%.6f`` printing whose last digits happen
+not to be ``0``).
 
 The relative tolerance of the input is ``τ = ‖e‖₂ / ‖f‖₂`` over the printed coefficients; a
 monomial the input does not print gets the smallest bound of a printed one. A tolerance
@@ -78,13 +80,13 @@ def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
     if not decimals:
         return None
     digits = max(_significant_digits(text, node) for node in decimals)
-    zeros_kept = any(_fraction(text, node).endswith("0") for node in decimals)
+    fixed_point = _fixed_point(text, decimals)
     top = max(abs(c) for c in coefficients.values())
     floor = FLOAT_FLOOR * top
     degree = max(sum(m) for m in coefficients)
-    propagated = _Propagation(text, digits, zeros_kept).run(tree)
+    propagated = _Propagation(text, digits, fixed_point).run(tree)
     if propagated is None:
-        relative = max(_literal_bound(text, n, digits, zeros_kept) / abs(float(n.value)) for n in decimals if n.value)
+        relative = max(_literal_bound(text, n, digits, fixed_point) / abs(float(n.value)) for n in decimals if n.value)
         errors = {m: relative * abs(c) for m, c in coefficients.items()}
     else:
         errors = {m: propagated.get(m, 0.0) for m in coefficients}
@@ -140,31 +142,41 @@ def _significant_digits(text: str, node: Num) -> int:
     return max(len((whole + (fraction or "")).lstrip("0")), 1)
 
 
+def _fixed_point(text: str, decimals: list[Num]) -> bool:
+    """Whether the input was printed in fixed point (``%.6f``): some printed fraction ends in
+    ``0``, or every decimal has the same number of digits after the point and no exponent."""
+    fractions = [_fraction(text, node) for node in decimals]
+    if any(f.endswith("0") for f in fractions):
+        return True
+    exponents = any(ch in "eE" for node in decimals for ch in text[node.start:node.end])
+    return len(decimals) >= 3 and not exponents and len({len(f) for f in fractions}) == 1
+
+
 def _fraction(text: str, node: Num) -> str:
     return _DECIMAL.fullmatch(text, node.start, node.end).group(2) or ""
 
 
-def _literal_bound(text: str, node: Num, digits: int, zeros_kept: bool) -> float:
+def _literal_bound(text: str, node: Num, digits: int, fixed_point: bool) -> float:
     """Half a unit in the last printed place of a literal, read as the module docstring says."""
     _, fraction, exponent = _DECIMAL.fullmatch(text, node.start, node.end).groups()
     value = abs(float(node.value))
     decimal = fraction is not None or exponent is not None
-    if not decimal and zeros_kept:
+    if not decimal and fixed_point:
         return 0.0
     by_digits = 0.5 * 10.0 ** (math.floor(math.log10(value)) - digits + 1) if value else 0.0
     if not decimal:
         return by_digits
     own = 0.5 * 10.0 ** (int(exponent or 0) - len(fraction or ""))
-    return own if zeros_kept else min(own, by_digits) if value else own
+    return own if fixed_point else min(own, by_digits) if value else own
 
 
 class _Propagation:
     """First-order propagation of literal rounding through the syntax tree, in floats."""
 
-    def __init__(self, text: str, digits: int, zeros_kept: bool) -> None:
+    def __init__(self, text: str, digits: int, fixed_point: bool) -> None:
         self.text = text
         self.digits = digits
-        self.zeros_kept = zeros_kept
+        self.fixed_point = fixed_point
         self.work = 0
 
     def run(self, tree: Node) -> FloatPoly | None:
@@ -179,7 +191,7 @@ class _Propagation:
         """``(value, bound)`` of a subtree as float polynomials."""
         match node:
             case Num():
-                return {(0, 0, 0): float(node.value)}, {(0, 0, 0): _literal_bound(self.text, node, self.digits, self.zeros_kept)}
+                return {(0, 0, 0): float(node.value)}, {(0, 0, 0): _literal_bound(self.text, node, self.digits, self.fixed_point)}
             case Var():
                 m = [0, 0, 0]
                 m[node.index] = 1

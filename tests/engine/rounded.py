@@ -60,6 +60,15 @@ def printed(array: np.ndarray, digits: int) -> str:
     return " ".join(terms)
 
 
+def printed_fixed(array: np.ndarray, decimals: int) -> str:
+    """The polynomial printed in fixed point, ``decimals`` digits after the point (``%.6f``)."""
+    terms = []
+    for i, j, k in zip(*np.nonzero(array)):
+        monomial = "".join(f"*{v}^{e}" for v, e in zip("xyz", (i, j, k)) if e)
+        terms.append(f"{array[i, j, k]:+.{decimals}f}{monomial}")
+    return " ".join(terms)
+
+
 def rational_sor(quaternion: tuple[int, int, int, int], point: tuple[Fraction, ...],
                  profile: dict[tuple[int, int], Fraction]) -> dict[tuple[int, int, int], Fraction]:
     """The exact ``Σ q_ij h^i ρ^j`` about the rational axis through ``point`` along the image of

@@ -20,7 +20,7 @@ from sorgui.engine.precision import input_rounding
 from sorgui.engine.report import Analysis
 from sorgui.engine.snapping import simplest_between
 
-from .rounded import cylinder, printed, printed_exact, random_sor, rational_sor, rotation, sphere
+from .rounded import cylinder, printed, printed_exact, printed_fixed, random_sor, rational_sor, rotation, sphere
 
 DIGITS = (6, 8, 10, 12, 15)
 
@@ -50,6 +50,17 @@ def test_rounded_random_surfaces_of_revolution_are_near_with_their_axis(seed: in
     angle, distance = axis_error(result, direction, point)
     assert angle < 1e-3 and distance < 1e-3
     assert result.residual <= 1.0 + 1e-9
+
+
+@settings(max_examples=15, deadline=None, derandomize=True)
+@given(seed=st.integers(0, 2**32 - 1), degree=st.integers(2, 8), decimals=st.sampled_from((6, 8, 10)))
+def test_fixed_point_prints_are_near_too(seed: int, degree: int, decimals: int) -> None:
+    rng = np.random.default_rng(seed)
+    array, direction, point = random_sor(rng, degree)
+    result = near(printed_fixed(10.0 * array, decimals))
+    assert result.near_sor and result.kind == "revolution"
+    angle, distance = axis_error(result, direction, point)
+    assert angle < 1e-3 and distance < 1e-3
 
 
 @settings(max_examples=20, deadline=None, derandomize=True)
