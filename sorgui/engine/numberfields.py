@@ -129,7 +129,9 @@ def radical_basis(K: Domain) -> RadicalBasis:
     """The radical basis of the real multiquadratic field ``K`` (``QQ(√…)`` from the parser)."""
     dec = _Decomposer()
     for g in K.orig_ext:
-        value = sympy.Rational(g**2)
+        value = sympy.expand(g**2)
+        if not (value.is_Rational and value > 0):
+            raise AnalysisError(f"the field {K} is not a real multiquadratic field")
         dec.add(int(value.p * value.q))
     n = 1 << len(dec.radicands)
     if n != K.mod.degree():
@@ -148,6 +150,16 @@ def radical_basis(K: Domain) -> RadicalBasis:
         power = _multiply(power, theta, dec.radicands)
     to_radicals = fmpq_mat(n, n, [columns[j][i] for i in range(n) for j in range(n)])
     return RadicalBasis(tuple(dec.radicands), to_radicals, to_radicals.inv())
+
+
+def supports(K: Domain) -> bool:
+    """Whether ``K`` is a real multiquadratic field ``QQ(√d₁, …)`` (the parser's fields), which
+    this module handles; other algebraic fields stay with sympy."""
+    try:
+        radical_basis(K)
+    except AnalysisError:
+        return False
+    return True
 
 
 # --- elements -------------------------------------------------------------------------------

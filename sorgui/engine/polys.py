@@ -88,7 +88,7 @@ def sqrt_in_field(K: Domain, c: Any) -> Any | None:
         q = QQ.convert(c)
         root = (sympy.sqrt(sympy.Rational(int(QQ.numer(q)), int(QQ.denom(q)))))
         return QQ.from_sympy(root) if root.is_Rational else None
-    vector = numberfields.element_to_radicals(K, c)
+    vector = numberfields.element_to_radicals(K, c) if numberfields.supports(K) else {}
     if set(vector) == {0}:  # a rational number: its root is a radical monomial (fast path)
         return numberfields.rational_sqrt(K, vector[0])
     t = sympy.Symbol("t")
@@ -144,7 +144,25 @@ def compose(f: Poly, images: Sequence[Poly]) -> Poly:
         return from_flint(g, target)
     if is_rational_field(target.domain):
         images = [h.set_ring(poly_ring(tuple(map(str, target.symbols)), f.ring.domain)) for h in images]
-    return numberfields.compose(f, images)
+    if numberfields.supports(images[0].ring.domain):
+        return numberfields.compose(f, images)
+    return _compose_terms(f, images)
+
+
+def _compose_terms(f: Poly, images: Sequence[Poly]) -> Poly:
+    """``f(images)`` term by term in sympy (fields other than real multiquadratic ones)."""
+    target = images[0].ring
+    result = target.zero
+    powers: dict[tuple[int, int], Poly] = {}
+    for monom, coeff in f.items():
+        term = target.ground_new(target.domain.convert(coeff, f.ring.domain))
+        for i, e in enumerate(monom):
+            if e:
+                if (i, e) not in powers:
+                    powers[(i, e)] = images[i] ** e
+                term = term * powers[(i, e)]
+        result += term
+    return result
 
 
 def power(f: Poly, n: int, charge: Callable[[int], None] | None = None) -> Poly:
@@ -181,7 +199,7 @@ def factor(f: Poly) -> tuple[Any, list[tuple[Poly, int]]]:
     if is_rational_field(f.ring.domain):
         c, fs = to_flint(f).factor()
         factors = [(from_flint(g, f.ring), int(e)) for g, e in fs]
-    elif numberfields.norm_degree(f) <= numberfields.MAX_NORM_DEGREE:
+    elif numberfields.supports(f.ring.domain) and numberfields.norm_degree(f) <= numberfields.MAX_NORM_DEGREE:
         factors = numberfields.factor(f)[1]
     else:  # the norm would be too large for flint's factorization over QQ: sympy's own route
         factors = f.factor_list()[1]

@@ -160,3 +160,12 @@ def test_paraboloid_with_four_square_roots_is_decided() -> None:
     result = analyze("x^2+y^2+sqrt(2)x+sqrt(3)y+sqrt(5)z+sqrt(7)", recognition_only=True)
     assert result.recognition.is_sor is True and result.field == "QQ(sqrt(2), sqrt(3), sqrt(5), sqrt(7))"
     assert result.recognition.axis.direction == ("0", "0", "1")
+
+
+def test_other_algebraic_fields_stay_with_sympy() -> None:
+    imaginary = QQ.algebraic_field(sympy.sqrt(-3))
+    assert not nf.supports(imaginary) and nf.supports(number_field((2, 3)))
+    R = poly_ring(("x", "y"), imaginary)
+    x, y = R.gens
+    _, factors = factor(x**2 + 3 * y**2)  # splits over QQ(√-3), through sympy
+    assert len(factors) == 2
