@@ -146,18 +146,19 @@ def restriction_to_line(array: np.ndarray, point: np.ndarray, direction: np.ndar
     return (np.fft.fft(values) / n).real
 
 
-def real_roots(coefficients: np.ndarray, tolerance: float = 1e-7) -> np.ndarray:
+def real_roots(coefficients: np.ndarray) -> np.ndarray:
     """The real roots of a univariate polynomial (lowest degree first), numerically."""
-    c = np.asarray(coefficients, dtype=float)
+    c = np.asarray(coefficients, dtype=np.float64)
     top = float(np.abs(c).max(initial=0.0))
-    if top == 0.0:
+    if top == 0.0 or not np.isfinite(top):
         return np.zeros(0)
     c = c / top
-    nonzero = np.nonzero(np.abs(c) > 1e-13)[0]
+    nonzero = np.nonzero(np.abs(c) > 1e-12)[0]
     if len(nonzero) == 0 or nonzero[-1] == 0:
         return np.zeros(0)
     roots = np.roots(c[: nonzero[-1] + 1][::-1])
-    return roots[np.abs(roots.imag) <= tolerance * np.maximum(1.0, np.abs(roots))].real
+    real = roots[np.abs(roots.imag) <= 1e-6 * np.maximum(1.0, np.abs(roots))].real
+    return real[np.isfinite(real)]
 
 
 def stack(arrays: Iterable[np.ndarray], selected: np.ndarray) -> np.ndarray:

@@ -16,10 +16,11 @@ centre, or the origin), so that bounded parts of the surface are shown whole.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from itertools import product
 
 import numpy as np
 
+from sorgui.engine import dense
+from sorgui.engine.deviation import view_ball
 from sorgui.engine.report import Analysis, Parametrization, Recognition
 from sorgui.export.exact import (
     ExpressionError,
@@ -40,7 +41,7 @@ from sorgui.render import (
     sphere_center_marker,
     surface_mesh,
 )
-from sorgui.render.geometry import foot_on_line, perpendicular_vector, unit
+from sorgui.render.geometry import foot_on_line
 from sorgui.render.sampling import evaluate_points, term_arrays, value_and_gradient
 from sorgui.session.job import DEFAULT_RESOLUTION
 
@@ -51,14 +52,6 @@ tangent of half the angle, so ``±3`` covers about 287° and leaves the seam ope
 
 PATCH_GRID = 41
 """Samples per parameter of the patch, drawn as a wireframe: a readable net of curves."""
-
-MIN_RADIUS = 1.0
-MAX_RADIUS = 1.0e4
-MARGIN = 1.25
-"""The ball's radius is this factor times the distance of the farthest real point kept."""
-SPREAD = 3.0
-"""Real points farther than this many median distances belong to far branches: not framed."""
-
 
 @dataclass(frozen=True, eq=False)
 class SceneData:
@@ -102,83 +95,17 @@ class SceneData:
 # --- where to look --------------------------------------------------------------------------
 
 
-def restriction_to_line(terms: Terms, point: np.ndarray, direction: np.ndarray) -> np.ndarray:
-    """Coefficients (lowest degree first) of ``t ↦ f(point + t·direction)``.
-
-    ``f`` is evaluated at the ``n = deg + 1`` points with ``t`` an ``n``-th root of unity, and
-    the coefficients are the discrete Fourier transform of those values: exact up to rounding
-    and perfectly conditioned, and vectorised over all terms (dense degree 40 in milliseconds).
-    """
-    exps, coefs = term_arrays(terms, 3)
-    if len(exps) == 0:
-        return np.zeros(1)
-    degree = int(exps.sum(axis=1).max())
-    n = degree + 1
-    t = np.exp(2j * np.pi * np.arange(n) / n)
-    values = np.repeat(coefs[:, None].astype(complex), n, axis=1)
-    for v in range(3):
-        coordinate = point[v] + direction[v] * t
-        powers = np.cumprod(np.vstack([np.ones(n), np.repeat(coordinate[None, :], degree, axis=0)]), axis=0)
-        values *= powers[exps[:, v]]
-    return (np.fft.fft(values.sum(axis=0)) / n).real
-
-
-def real_roots(coefficients: np.ndarray) -> np.ndarray:
-    """The real roots of a univariate polynomial (lowest degree first), numerically."""
-    c = np.asarray(coefficients, dtype=np.float64)
-    scale = float(np.abs(c).max(initial=0.0))
-    if scale == 0.0 or not np.isfinite(scale):
-        return np.zeros(0)
-    c = c / scale
-    nonzero = np.nonzero(np.abs(c) > 1e-12)[0]
-    if len(nonzero) == 0 or nonzero[-1] == 0:
-        return np.zeros(0)
-    roots = np.roots(c[: nonzero[-1] + 1][::-1])
-    real = roots[np.abs(roots.imag) <= 1e-6 * np.maximum(1.0, np.abs(roots))].real
-    return real[np.isfinite(real)]
-
-
-def _probe_directions(axis: np.ndarray | None) -> list[np.ndarray]:
-    """The 13 directions of a cube's axes and diagonals, plus an axis frame if there is one."""
-    directions = [np.array(d, dtype=np.float64) for d in product((-1, 0, 1), repeat=3)]
-    directions = [d for d in directions if next((x for x in d if x), 0) > 0]
-    if axis is not None:
-        u = unit(perpendicular_vector(axis))
-        w = np.cross(unit(axis), u)
-        directions += [unit(axis), u, w, unit(u + w), unit(u - w)]
-    return directions
-
-
 def view_region(
     terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
 ) -> ClipSphere:
-    """A ball that shows the interesting part of ``f = 0`` around ``center``.
-
-    The real points of ``f`` on lines through ``center`` (cube axes and diagonals, and an axis
-    frame) are collected. Far points of unbounded branches are dropped: only those within
-    :data:`SPREAD` times the median distance are kept. The centre then moves to the middle of
-    the kept points (along the axis, if there is one), and the radius is :data:`MARGIN` times
-    the farthest kept point's distance, clamped to ``[MIN_RADIUS, MAX_RADIUS]``.
-    """
-    points = [
-        center + t * d
-        for d in _probe_directions(axis)
-        for t in real_roots(restriction_to_line(terms, center, d))
-    ]
-    pts = np.array(points).reshape(-1, 3)
-    distances = np.linalg.norm(pts - center, axis=1)
-    positive = distances[distances > 1e-9 * max(1.0, float(np.linalg.norm(center)))]
-    if len(positive) == 0:
-        return ClipSphere(tuple(center), 2.0 * MIN_RADIUS)
-    core = pts[distances <= min(distances.max(), SPREAD * float(np.median(positive)))]
-    if axis is not None:
-        a = unit(axis)
-        heights = (core - center) @ a
-        middle = center + 0.5 * (heights.min() + heights.max()) * a
-    else:
-        middle = 0.5 * (core.min(axis=0) + core.max(axis=0))
-    radius = MARGIN * float(np.linalg.norm(core - middle, axis=1).max())
-    return ClipSphere(tuple(middle), float(np.clip(radius, MIN_RADIUS, MAX_RADIUS)))
+    """A ball that shows the interesting part of ``f = 0`` around ``center``: the engine's
+    :func:`~sorgui.engine.deviation.view_ball` (real points on a star of lines, far branches
+    dropped), the same ball in which a rounded input's deviation is measured (docs/math.md §8.6)."""
+    exps, coefs = term_arrays(terms, 3)
+    degree = int(exps.sum(axis=1).max(initial=0))
+    array = dense.from_terms({tuple(int(v) for v in e): float(c) for e, c in zip(exps, coefs)}, degree)
+    middle, radius = view_ball(array, np.asarray(center, dtype=np.float64), axis)
+    return ClipSphere(tuple(float(v) for v in middle), radius)
 
 
 def natural_center(rec: Recognition) -> tuple[np.ndarray, np.ndarray | None]:

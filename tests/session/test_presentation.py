@@ -22,7 +22,8 @@ from sorgui.export.exact import (
 )
 from sorgui.session.formulas import Style, expression_formula, render_formulas, vector_formula
 from sorgui.session.job import JobRequest, run_job
-from sorgui.session.scene_data import real_roots, restriction_to_line, view_region
+from sorgui.engine import dense
+from sorgui.session.scene_data import view_region
 
 s, t = sympy.symbols("s t")
 
@@ -63,8 +64,9 @@ def test_formulas_wrap_to_the_width_and_keep_exact_plain_text() -> None:
 
 def test_view_region_frames_the_bounded_part() -> None:
     torus = polynomial_terms("(x^2 + y^2 + z^2 + 3)^2 - 16*(x^2 + y^2)")
-    line = restriction_to_line(torus, np.zeros(3), np.array([1.0, 0.0, 0.0]))
-    assert sorted(np.round(real_roots(line), 9)) == [-3.0, -1.0, 1.0, 3.0]
+    array = dense.from_terms({tuple(e): float(c) for e, c in torus}, 4)
+    line = dense.restriction_to_line(array, np.zeros(3), np.array([1.0, 0.0, 0.0]))
+    assert sorted(np.round(dense.real_roots(line), 9)) == [-3.0, -1.0, 1.0, 3.0]
     region = view_region(torus, np.zeros(3), np.array([0.0, 0.0, 1.0]))
     assert region.center == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
     assert 3.0 < region.radius < 4.5
