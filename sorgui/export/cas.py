@@ -11,6 +11,7 @@ The LaTeX document needs only ``amsmath`` and ``amssymb``; long sums are broken 
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 
 import sympy
@@ -46,6 +47,12 @@ def summary_lines(analysis: Analysis) -> list[str]:
         row = TABLE_1[rat.table_row - 1]
         lines.append(f"Table 1, row {rat.table_row}: genus(P) {row[0]}, genus(P^2) {row[1]}, "
                      f"X_C {row[2]}, X {row[3]}")
+    canal = analysis.canal
+    if canal is not None:
+        answer = {True: "yes", False: "no", None: "undecided"}[canal.is_canal]
+        kinds = f" ({', '.join(canal.kinds)})" if canal.kinds else ""
+        count = len(canal.families)
+        lines.append(f"canal surface: {answer}{kinds}; {count} sphere {'family' if count == 1 else 'families'} found")
     if analysis.approximate is not None:
         lines.append("rounded input: " + approximate_line(analysis.approximate))
     return lines
@@ -64,8 +71,18 @@ LATEX_NAMES = {"P2": "P^2", "P2K": r"\tilde{p}^2", "P2param": r"\mathrm{P2param}
 """How the formulas' names are typeset (``X1`` becomes ``X_{1}`` by sympy's rule)."""
 
 
+CANAL_LATEX = {"Spine": r"\mathrm{spine}_{%s}", "SMAT": r"\mathrm{SMAT}_{%s}", "M": "m_{%s}", "Rho": r"\rho_{%s}(t)",
+               "C": "c_{%s}", "R2": "R^{2}_{%s}(t)", "N": "n_{%s}(t)"}
+"""How the canal formulas ``canal{i}…`` of family ``i`` are typeset (docs/math.md §9 names)."""
+
+_CANAL_NAME = re.compile(r"canal(\d+)(Spine|SMAT|M|Rho|C|R2|N)")
+
+
 def latex_name(name: str) -> str:
     """The LaTeX of a formula's name."""
+    canal = _CANAL_NAME.fullmatch(name)
+    if canal is not None:
+        return CANAL_LATEX[canal.group(2)] % canal.group(1)
     return LATEX_NAMES.get(name) or sympy.latex(sympy.Symbol(name))
 
 

@@ -29,7 +29,7 @@ from typing import Any
 
 import sympy
 
-from sorgui.engine.report import Analysis
+from sorgui.engine.report import Analysis, Canal
 from sorgui.export.exact import read_expression
 
 Value = sympy.Expr | tuple[sympy.Expr, ...]
@@ -230,7 +230,13 @@ def _vector(triple: tuple[str, ...]) -> tuple[sympy.Expr, ...]:
 
 
 def analysis_formulas(analysis: Analysis) -> list[Formula]:
-    """The results of ``analysis`` as named exact formulas, in reading order."""
+    """The results of ``analysis`` as named exact formulas, in reading order: those of the
+    surface of revolution, then those of its canal sphere families."""
+    return surface_formulas(analysis) + (canal_formulas(analysis.canal) if analysis.canal is not None else [])
+
+
+def surface_formulas(analysis: Analysis) -> list[Formula]:
+    """The equation and the results of the surface-of-revolution analysis as named formulas."""
     rec = analysis.recognition
     out = [Formula("f", "the equation f(x, y, z) = 0", read_expression(rec.polynomial))]
     vectors = (
@@ -272,6 +278,48 @@ def analysis_formulas(analysis: Analysis) -> list[Formula]:
         out.append(Formula(f"X{i}", f"parameterization {i} of X: {par.method} ({kind}, {proper}, over {par.field})",
                            value, parameters, coverage(value, parameters, par.real),
                            {"verified": par.verified, "verification": par.verification}))
+    return out
+
+
+CANAL_PREFIX = "canal"
+"""Every canal formula's name starts with this and the family's number: ``canal1Spine``, ``canal1M``."""
+
+
+def canal_formulas(canal: Canal) -> list[Formula]:
+    """The sphere families of a canal surface (docs/math.md §9) as named formulas, for each
+    family ``i`` with data: ``canal{i}Spine`` (the spine's equations in ``m1, m2, m3``),
+    ``canal{i}SMAT`` (the SMAT curve's in ``m1, m2, m3, r``, ``r`` = ρ), ``canal{i}M`` (the spine
+    ``m(t)``), ``canal{i}Rho`` (the squared radius ``ρ(t)``), ``canal{i}C`` and ``canal{i}R2``
+    (the characteristic circles' centre ``c(t)`` and squared radius ``R²(t)``)."""
+    t = sympy.Symbol("t")
+    out: list[Formula] = []
+    for i, fam in enumerate(canal.families, 1):
+        name = f"{CANAL_PREFIX}{i}"
+        radius = "constant" if fam.pipe else "varying"
+        out.append(Formula(f"{name}Spine", f"the spine of sphere family {i} (centres m1, m2, m3; degree {fam.degree}, "
+                           f"{'on a line' if fam.on_line else 'planar' if fam.planar else 'not planar'}): "
+                           "these equations are zero", tuple(read_expression(e) for e in fam.spine_equations)))
+        out.append(Formula(f"{name}SMAT", f"the SMAT curve of sphere family {i} (centre m1, m2, m3, squared radius r; "
+                           f"genus {'undecided' if fam.genus is None else fam.genus}, radius {radius}): "
+                           "these equations are zero", tuple(read_expression(e) for e in fam.equations)))
+        if fam.parametrization is not None:
+            value = _vector(fam.parametrization)
+            check = "verified" if fam.verified else "not verified"
+            out.append(Formula(f"{name}M", f"the spine t -> m(t) of sphere family {i} (over {fam.field}, {check})",
+                               value, (t,), coverage(value, (t,), _is_real(value)), {"verified": fam.verified}))
+        if fam.radius_squared is not None:
+            out.append(Formula(f"{name}Rho", f"the squared radius rho(t) of the spheres of family {i} ({radius})",
+                               read_expression(fam.radius_squared)))
+        if fam.circle_center is not None:
+            value = _vector(fam.circle_center)
+            out.append(Formula(f"{name}C", f"the centre t -> c(t) of the characteristic circles of family {i}",
+                               value, (t,), coverage(value, (t,), _is_real(value))))
+        if fam.circle_radius_squared is not None:
+            out.append(Formula(f"{name}R2", f"the squared radius R2(t) of the characteristic circles of family {i}",
+                               read_expression(fam.circle_radius_squared)))
+        if fam.circle_normal is not None:
+            out.append(Formula(f"{name}N", f"the normal n(t) of the planes of the characteristic circles of family {i}",
+                               _vector(fam.circle_normal)))
     return out
 
 

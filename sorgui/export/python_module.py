@@ -8,7 +8,9 @@ The written module needs only ``numpy`` and ``sympy``. It holds
   vectorised over NumPy arrays (broadcast like ``s + t``), returning the arrays ``x, y, z``;
   its docstring states the parameter domain and the points it misses;
 * ``check()``, which substitutes every exact parameterization into ``F`` (or ``P2K``) and
-  asserts that the result cancels to zero (``P2param`` into ``P2K``).
+  asserts that the result cancels to zero (``P2param`` into ``P2K``); the spine ``canal1M(t)``
+  of a canal sphere family goes into its spine's equations ``canal1Spine``, and ``(m(t), ρ(t))``
+  into its SMAT curve's ``canal1SMAT`` (docs/math.md §9), not into ``F``.
 
 The code is printed by sympy's printers (``NumPyPrinter`` for the functions, ``sstr`` with
 ``sympy_integers`` for the exact expressions).
@@ -23,7 +25,7 @@ from sympy.printing.numpy import NumPyPrinter
 
 from sorgui.engine.report import Analysis
 from sorgui.export.cas import summary_lines
-from sorgui.export.formulas import Formula, analysis_formulas
+from sorgui.export.formulas import CANAL_PREFIX, Formula, analysis_formulas
 
 _NUMPY = NumPyPrinter({"fully_qualified_modules": True})
 
@@ -41,7 +43,7 @@ def _numpy_code(expr: sympy.Expr) -> str:
 
 def _function(formula: Formula) -> list[str]:
     args = ", ".join(str(p) for p in formula.parameters)
-    outputs = {"P2param": "s, w"}.get(formula.name, "x, y, z" if formula.name.startswith("X") else
+    outputs = {"P2param": "s, w"}.get(formula.name, "x, y, z" if formula.name.startswith(("X", CANAL_PREFIX)) else
                                       f"its {len(formula.value)} coordinates")
     assert formula.coverage is not None
     doc = [f'    """{formula.description[0].upper() + formula.description[1:]}.', "",
@@ -85,6 +87,22 @@ def _exact_name(formula: Formula, maps: list[Formula]) -> str:
     return formula.name + "_EXACT" if formula in maps else formula.name
 
 
+def _canal_checks(formulas: list[Formula]) -> list[str]:
+    """Lines of ``check()`` for each canal spine ``canal{i}M``: every spine equation vanishes at
+    ``m(t)``, and every SMAT equation at ``(m(t), ρ(t))`` when ``canal{i}Rho`` is known."""
+    names = {f.name for f in formulas}
+    lines = []
+    for spine in (f.name for f in formulas if f.name.startswith(CANAL_PREFIX) and f.name.endswith("M")):
+        family = spine[:-1]
+        lines += [f"    assert all(_vanishes(e, (m1, m2, m3), {spine}_EXACT, (t,)) for e in {family}Spine), {spine!r}",
+                  f"    checked.append({spine!r})"]
+        if f"{family}Rho" in names:
+            lines += [f"    assert all(_vanishes(e, (m1, m2, m3, r), {spine}_EXACT + ({family}Rho,), (t,))",
+                      f"               for e in {family}SMAT), {family + 'Rho'!r}",
+                      f"    checked.append({family + 'Rho'!r})"]
+    return lines
+
+
 def python_module(analysis: Analysis) -> str:
     """The source of the Python module for ``analysis`` (module docstring)."""
     formulas = analysis_formulas(analysis)
@@ -94,7 +112,8 @@ def python_module(analysis: Analysis) -> str:
              "Written by sorgui. The parameterizations are NumPy functions; the results are exact sympy",
              "expressions; check() verifies by exact substitution that each parameterization lies on the surface.",
              '"""', "", "import numpy", "from sympy import I, Poly, S, Symbol, sqrt, together  # noqa: F401 (I, sqrt: in the formulas)", "",
-             'x, y, z, s, t, w = (Symbol(name) for name in ("x", "y", "z", "s", "t", "w"))', ""]
+             'x, y, z, s, t, w = (Symbol(name) for name in ("x", "y", "z", "s", "t", "w"))',
+             'm1, m2, m3, r = (Symbol(name) for name in ("m1", "m2", "m3", "r"))', ""]
     for formula in formulas:
         lines.append(f"# {formula.description}")
         lines.append(f"{_exact_name(formula, maps)} = {exact_code(formula.value)}")
@@ -112,6 +131,7 @@ def python_module(analysis: Analysis) -> str:
         variables = "(s, w)" if target == "P2K" else "(x, y, z)"
         lines += [f"    assert _vanishes({target}, {variables}, {name}_EXACT, PARAMETERS[{name!r}]), {name!r}",
                   f"    checked.append({name!r})"]
+    lines += _canal_checks(formulas)
     lines += ["    return checked", "", "", 'if __name__ == "__main__":',
               '    print("verified:", ", ".join(check()) or "nothing to check")']
     return "\n".join(lines) + "\n"

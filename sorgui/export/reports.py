@@ -23,15 +23,15 @@ from pathlib import Path
 import sympy
 
 from sorgui.engine.errors import SorguiError
-from sorgui.engine.report import Analysis
+from sorgui.engine.report import Analysis, Canal
 from sorgui.export.cas import LATEX_STYLE, approximate_line, latex_name, verdict
-from sorgui.export.formulas import Formula, analysis_formulas
-from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, format_report
+from sorgui.export.formulas import Formula, canal_formulas, surface_formulas
+from sorgui.export.text import CANAL_KINDS, SYMMETRY_NAMES, TABLE_1, format_report
 
 KNOWN_KEYS = frozenset({
     "input", "polynomial", "field", "method", "degree", "is_sor", "symmetry", "symmetry_dimension",
     "symmetry_basis", "axis", "center", "normal", "direction", "profile", "factors", "squarefree",
-    "rationality", "parametrizations", "timings", "approximate", "real_locus", "unfinished",
+    "rationality", "parametrizations", "timings", "approximate", "real_locus", "unfinished", "canal",
 })
 """The JSON keys the Markdown and HTML reports present in words."""
 
@@ -101,6 +101,39 @@ def _formula_blocks(formula: Formula) -> list[Block]:
     return blocks
 
 
+def canal_blocks(canal: Canal) -> list[Block]:
+    """The Canal section (docs/math.md §9): the verdict and kinds, each sphere family in words,
+    its formulas (spine, m(t), ρ(t), characteristic circles), the certificate or witness."""
+    answer = {True: "a canal surface", False: "not a canal surface", None: "undecided whether canal"}[canal.is_canal]
+    blocks = [Block("h2", "Canal"), Block("p", f"The surface is {answer} ({canal.status}). A canal surface is the "
+                                               "envelope of a one-parameter family of spheres: each family below "
+                                               "gives their centres $m$ (the spine) and squared radii $\\rho$.")]
+    if canal.kinds:
+        blocks.append(Block("p", "Kinds: " + "; ".join(CANAL_KINDS.get(k, k) for k in canal.kinds) + "."))
+    formulas = canal_formulas(canal)
+    for i, fam in enumerate(canal.families, 1):
+        shape = "on a line" if fam.on_line else ("planar" if fam.planar else "not planar")
+        genus = "undecided" if fam.genus is None else str(fam.genus)
+        facts = [f"spine of degree {fam.degree} ({shape}); SMAT curve of degree {fam.smat_degree} and genus {genus}",
+                 "radius constant (a pipe)" if fam.pipe else "radius varying"]
+        if fam.parametrization is not None:
+            facts.append(f"rational parameterization $m(t)$, $\\rho(t)$ over {fam.field}: "
+                         + ("verified by substitution" if fam.verified else "NOT verified"))
+        else:
+            facts.append("no rational parameterization of the spine")
+        blocks += [Block("p", f"Sphere family {i}:"), Block("list", tuple(facts))]
+        for formula in formulas:
+            if formula.name.startswith(f"canal{i}") and formula.name[len(f"canal{i}")].isalpha():
+                blocks += _formula_blocks(formula)
+    for label, evidence in (("Certificate", canal.certificate), ("Witness", canal.witness)):
+        if evidence is not None:
+            state = "checked" if evidence.verified else "FAILED"
+            blocks.append(Block("p", f"{label} ({evidence.method}, {state}): {evidence.statement}"))
+    if canal.notes:
+        blocks.append(Block("list", tuple(f"note: {n}" for n in canal.notes)))
+    return blocks
+
+
 def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]:
     """The report as blocks; ``picture`` is the image's address (file name or ``data:`` URI)."""
     rec = analysis.recognition
@@ -141,8 +174,10 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
                                            f"{approx.relative_distance:.3g}",
                                            *[f"note: {n}" for n in approx.notes]])))
     blocks.append(Block("h2", "Formulas"))
-    for formula in analysis_formulas(analysis):
+    for formula in surface_formulas(analysis):
         blocks += _formula_blocks(formula)
+    if analysis.canal is not None:
+        blocks += canal_blocks(analysis.canal)
     extra = {k: v for k, v in analysis.to_json().items() if k not in KNOWN_KEYS and v not in (None, [], {})}
     if extra:
         blocks.append(Block("h2", "Further results"))

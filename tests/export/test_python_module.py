@@ -11,12 +11,22 @@ import numpy as np
 import pytest
 import sympy
 
+from sorgui.engine.report import Analysis
 from sorgui.export.exact import read_expression
 from sorgui.export.files import export_analysis
 from tests.export.conftest import relative_residual
 
 RELATIVE = 1e-9
 """|f(p)| / Σ|c·p^m| at the NumPy points: float rounding is ~1e-15, so this is generous."""
+
+
+def canal_checks(analysis: Analysis) -> list[str]:
+    """What check() verifies of the canal families: each spine m(t), and (m(t), ρ(t)) on the SMAT."""
+    out = []
+    for i, fam in enumerate(analysis.canal.families if analysis.canal else (), 1):
+        if fam.parametrization is not None:
+            out += [f"canal{i}M"] + ([f"canal{i}Rho"] if fam.radius_squared is not None else [])
+    return out
 
 
 def load(path: Path, name: str) -> ModuleType:
@@ -33,7 +43,8 @@ def test_module_checks_and_evaluates_on_the_surface(analyses, tmp_path, name: st
     path = export_analysis(analysis, tmp_path / f"{name.replace('-', '_')}.py")
     module = load(path, f"exported_{name.replace('-', '_')}")
     checked = module.check()
-    assert checked == ["P2param", *[f"X{i}" for i in range(1, len(analysis.parametrizations) + 1)]]
+    assert checked == ["P2param", *[f"X{i}" for i in range(1, len(analysis.parametrizations) + 1)],
+                       *canal_checks(analysis)]
     assert sympy.expand(module.F - read_expression(analysis.recognition.polynomial)) == 0
     assert "parameter domain" in module.X1.__doc__ and "parameter domain" in module.P2param.__doc__
     s = np.linspace(-3.0, 3.0, 13)[:, None]
@@ -65,4 +76,4 @@ def test_module_runs_as_a_script(analyses, tmp_path) -> None:
     path = export_analysis(analyses["cone"], tmp_path / "cone.py")
     run = subprocess.run([sys.executable, str(path)], capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
-    assert run.stdout.strip() == "verified: P2param, X1, X2"
+    assert run.stdout.strip() == "verified: P2param, X1, X2, canal1M, canal1Rho"

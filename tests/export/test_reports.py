@@ -36,7 +36,7 @@ def test_approximate_results_are_kept_and_reported(analyses, tmp_path) -> None:
 def test_unknown_results_are_listed_not_lost(analyses) -> None:
     class Later(Analysis):
         def to_json(self):  # noqa: ANN202 - a result type added after this exporter
-            return {**super().to_json(), "canal": {"spine": "line", "radius": "1"}}
+            return {**super().to_json(), "later": {"spine": "line", "radius": "1"}}
 
     analysis = Later(**{f.name: getattr(analyses["torus"], f.name) for f in dataclasses.fields(Analysis)})
     text = markdown_report(analysis)
