@@ -53,19 +53,19 @@ def cylinder(direction: np.ndarray, point: np.ndarray, radius: float) -> np.ndar
 
 def printed(array: np.ndarray, digits: int) -> str:
     """The polynomial as a CAD system prints it: every coefficient to ``digits`` significant digits."""
-    terms = []
-    for i, j, k in zip(*np.nonzero(array)):
-        monomial = "".join(f"*{v}^{e}" for v, e in zip("xyz", (i, j, k)) if e)
-        terms.append(f"{array[i, j, k]:+.{digits - 1}e}{monomial}")
-    return " ".join(terms)
+    return _print(array, f"+.{digits - 1}e")
 
 
 def printed_fixed(array: np.ndarray, decimals: int) -> str:
     """The polynomial printed in fixed point, ``decimals`` digits after the point (``%.6f``)."""
+    return _print(array, f"+.{decimals}f")
+
+
+def _print(array: np.ndarray, spec: str) -> str:
     terms = []
     for i, j, k in zip(*np.nonzero(array)):
         monomial = "".join(f"*{v}^{e}" for v, e in zip("xyz", (i, j, k)) if e)
-        terms.append(f"{array[i, j, k]:+.{decimals}f}{monomial}")
+        terms.append(f"{array[i, j, k]:{spec}}{monomial}")
     return " ".join(terms)
 
 
