@@ -86,7 +86,7 @@ def approximate_symmetry(f: Poly, rounding: Rounding, *, snap_exact: bool = True
         return NearResult(Approximation(tolerance, rounding.source, False, None, None, None, (),
                                         notes=(*notes, note)), None)
     normalised = normalise(coefficients, rounding)
-    sigma, vectors, _ = killing_system(normalised)
+    sigma, vectors = killing_system(normalised)
     notes = list(notes)
     accepted, best = _search(normalised, sigma, vectors, rounding.tolerance)
     near = accepted is not None and accepted.candidate.kind in SOR_KINDS

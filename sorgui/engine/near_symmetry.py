@@ -77,7 +77,6 @@ class Fit:
     candidate: Candidate
     coefficients: np.ndarray
     exponents: tuple[tuple[int, int], ...]
-    fitted: np.ndarray
     residual: float
     largest: float
     relative_distance: float
@@ -108,7 +107,7 @@ def normalise(coefficients: dict[tuple[int, int, int], float], rounding: Roundin
 # --- 1. the singular values of (★) -------------------------------------------------------------
 
 
-def killing_system(f: Normalised) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def killing_system(f: Normalised) -> tuple[np.ndarray, np.ndarray]:
     """Singular values (largest first, relative to the largest), right singular vectors (rows,
     as ``(b, a)`` in normalised coordinates) of the column-scaled float system (★)."""
     A = f.array
@@ -126,7 +125,7 @@ def killing_system(f: Normalised) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     _, sigma, vt = np.linalg.svd(M / norms, full_matrices=False)
     vectors = vt / norms[None, :]
     vectors /= np.linalg.norm(vectors, axis=1)[:, None]
-    return sigma / sigma[0], vectors, norms
+    return sigma / sigma[0], vectors
 
 
 def candidates(vectors: np.ndarray, count: int) -> list[Candidate]:
@@ -250,7 +249,6 @@ def fit(f: Normalised, candidate: Candidate, point: np.ndarray | None = None,
                             candidate.point if point is None else point),
         coefficients=coefficients,
         exponents=tuple(exponents),
-        fitted=fitted,
         residual=float(np.linalg.norm(residual) / math.sqrt(count)),
         largest=float(np.abs(residual).max()),
         relative_distance=float(np.linalg.norm(unscaled) / np.linalg.norm(original)),
