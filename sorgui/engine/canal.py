@@ -29,7 +29,7 @@ import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpq_poly
 from sympy.polys.domains import QQ
 
-from . import curves
+from . import curves, numberfields
 from .canal_focal import DEVELOPABLE, DUPIN, UMBILIC, Derivatives, LineTest, SmatSample, UnluckyLine, line_test
 from .canal_param import (
     RationalFamily,
@@ -176,8 +176,14 @@ def _rational_squarefree(f: Poly) -> fmpq_mpoly:
 
 
 def _norm(f: Poly) -> fmpq_mpoly:
-    """``Res_θ(f(x, y, z, θ), m(θ))``: the product of the conjugates of ``f`` over ``QQ``."""
+    """``Res_θ(f(x, y, z, θ), m(θ))``: the product of the conjugates of ``f`` over ``QQ`` (up to a
+    constant). For ``K = QQ(√d₁, …)`` it is taken in the radical basis, one square root at a time
+    (:func:`.numberfields.norm`), much faster than the resultant in the primitive element."""
     K = f.ring.domain
+    ctx3 = fmpq_mpoly_ctx.get(tuple(f"v{i}" for i in range(3)), "lex")
+    if numberfields.supports(K):
+        N = numberfields.norm(numberfields.to_flint(f), numberfields.radical_basis(K).radicands)
+        return ctx3.from_dict({m[:3]: c for m, c in N.to_dict().items()})
     ctx = fmpq_mpoly_ctx.get(("x", "y", "z", "a"), "lex")
     terms: dict[tuple[int, int, int, int], object] = {}
     for monom, c in f.items():
@@ -190,7 +196,6 @@ def _norm(f: Poly) -> fmpq_mpoly:
     mod = [QQ.convert(q) for q in K.mod.to_list()]
     M = ctx.from_dict({(0, 0, 0, len(mod) - 1 - i): _fmpq(q) for i, q in enumerate(mod) if q})
     N = F.resultant(M, "a")
-    ctx3 = fmpq_mpoly_ctx.get(tuple(f"v{i}" for i in range(3)), "lex")
     return ctx3.from_dict({m[:3]: c for m, c in zip(N.monoms(), N.coeffs())})
 
 

@@ -28,6 +28,7 @@ import sympy
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
+from . import numberfields
 from .errors import AnalysisError
 from .linalg import Vector
 from .polys import Poly, compose, is_rational_field, poly_ring, to_flint
@@ -103,13 +104,13 @@ def profile_locus(square: Poly) -> RealLocus:
     if _quick_surface(square):
         return _locus(SURFACE)
     K = square.ring.domain
-    G = sympy.Poly(square.as_expr(*(S, W)), S, W, domain=K)
+    G = _native(dict(square), (S, W), K)
     k = min(m[1] for m in G.monoms())
     G1 = sympy.Poly.from_dict({(i, j - k): c for (i, j), c in G.as_dict(native=True).items()}, S, W, domain=K)
     content = _content_in_s(G1)
     if content.degree() > 0 and _real_roots(content):
         return _locus(SURFACE)
-    H = G1.exquo(sympy.Poly(content.as_expr(), S, W, domain=K))
+    H = G1.exquo(_native({(i, 0): c for (i,), c in content.as_dict(native=True).items()}, (S, W), K))
     if H.degree(W) > 0:
         H = H.exquo(H.gcd(H.diff(W)))
         size = H.degree(S) * H.degree(W)
@@ -132,7 +133,7 @@ def _quick_surface(square: Poly) -> bool:
     ``G = 0`` in a simple real point with ``w > 0``. Through it passes a real branch (implicit
     function theorem), so ``X`` has a real surface. ``False`` proves nothing."""
     if not is_rational_field(square.ring.domain):
-        H = sympy.Poly(square.as_expr(*(S, W)), S, W, domain=square.ring.domain)
+        H = _native(dict(square), (S, W), square.ring.domain)
         return _has_surface(H.exquo(H.gcd(H.diff(W))), QUICK_SAMPLES)
     G = to_flint(square)
     _, factors = G.factor_squarefree()
@@ -162,13 +163,23 @@ def _simple_real_root(p: flint.fmpq_poly, positive: bool) -> bool:
     return False
 
 
+def _native(terms: dict, gens: tuple[sympy.Symbol, ...], K: Domain) -> sympy.Poly:
+    """A ``sympy.Poly`` over ``K`` from exponents and coefficients already in ``K``: going
+    through an expression would make sympy search a field isomorphism (seconds per call)."""
+    return sympy.Poly.from_dict({tuple(m): c for m, c in terms.items()}, *gens, domain=K)
+
+
+def _coefficient_in_w(G: sympy.Poly, j: int) -> sympy.Poly:
+    """The coefficient of ``w^j`` in ``G(s, w)``, a polynomial in ``s``."""
+    return _native({(i,): c for (i, e), c in G.as_dict(native=True).items() if e == j}, (S,), G.domain)
+
+
 def _content_in_s(G: sympy.Poly) -> sympy.Poly:
     """The gcd in ``K[s]`` of the coefficients of ``G`` as a polynomial in ``w``."""
     K = G.domain
     content = sympy.Poly(0, S, domain=K)
     for j in range(G.degree(W) + 1):
-        coefficient = sympy.Poly(G.as_expr().coeff(W, j), S, domain=K)
-        content = content.gcd(coefficient)
+        content = content.gcd(_coefficient_in_w(G, j))
     return content.monic() if content.degree() > 0 else sympy.Poly(1, S, domain=K)
 
 
@@ -187,10 +198,11 @@ def _has_surface(H: sympy.Poly, samples: Sequence) -> bool:
     implicit function theorem a real branch of ``H = 0`` with ``w > 0`` passes through it."""
     K = H.domain
     for s0 in samples:
-        h = sympy.Poly(H.as_expr().subs(S, QQ.to_sympy(s0)), W, domain=K)
+        h = H.eval(S, K.convert(s0, QQ))
         if h.degree() <= 0 or h.gcd(h.diff(W)).degree() > 0:
             continue
-        if _real_roots(sympy.Poly(h.as_expr().subs(W, T**2), T, domain=K)) > (0 if h.eval(0) else 1):
+        in_t = _native({(2 * i,): c for (i,), c in h.as_dict(native=True).items()}, (T,), K)
+        if _real_roots(in_t) > (0 if h.eval(0) else 1):
             return True
     return False
 
@@ -199,13 +211,10 @@ def _cell_samples(H: sympy.Poly) -> list:
     """One rational ``s`` in each open interval cut out by the real roots of
     ``lc_w(H)·disc_w(H)·H(s, 0)`` (over ``K``, by way of its norm over ``QQ``)."""
     K = H.domain
-    critical = sympy.Poly(sympy.LC(H.as_expr(), W), S, domain=K) * sympy.Poly(H.as_expr().subs(W, 0), S, domain=K)
+    critical = _coefficient_in_w(H, H.degree(W)) * _coefficient_in_w(H, 0)
     if H.degree(W) > 1:
-        critical *= sympy.Poly(H.as_expr(), W, S, domain=K).discriminant()
-    critical = sympy.Poly(critical.as_expr(), S, domain=K)
-    if not is_rational_field(K):
-        critical = critical.norm()
-    critical = sympy.Poly(critical.as_expr(), S, domain=QQ).sqf_part()
+        critical *= _native(H.reorder(W, S).discriminant().as_dict(native=True), (S,), K)
+    critical = _norm_in_s(critical).sqf_part()
     if critical.degree() <= 0:
         return [QQ(0)]
     eps = None
@@ -219,6 +228,19 @@ def _cell_samples(H: sympy.Poly) -> list:
         if all(critical.eval(x) for x in samples):
             return [QQ(int(x.p), int(x.q)) for x in samples]
         eps = min(b - a for a, b in bounds if b > a) / 4 if eps is None else eps / 4
+
+
+def _norm_in_s(p: sympy.Poly) -> sympy.Poly:
+    """``N(p) ∈ QQ[s]``, the product of the conjugates of ``p ∈ K[s]`` (up to a constant):
+    in flint through the radical basis for the parser's fields, else sympy's resultant."""
+    K = p.domain
+    if is_rational_field(K):
+        return p
+    if not numberfields.supports(K):
+        return sympy.Poly(p.norm().as_expr(), S, domain=QQ)
+    element = poly_ring(("s",), K).from_dict({tuple(m): c for m, c in p.as_dict(native=True).items()})
+    N = numberfields.norm(numberfields.to_flint(element), numberfields.radical_basis(K).radicands)
+    return _native({m[:1]: QQ(int(c.p), int(c.q)) for m, c in N.to_dict().items()}, (S,), QQ)
 
 
 def _circles(H: sympy.Poly) -> int:
@@ -281,7 +303,7 @@ def _positive_at_roots(q: sympy.Poly, v: sympy.Poly) -> int:
     while not sequence[-1].is_zero:
         sequence.append(-sequence[-2].rem(sequence[-1]))
     sequence.pop()
-    at_plus = [sign(K, K.from_sympy(p.LC())) for p in sequence]
+    at_plus = [sign(K, p.rep.LC()) for p in sequence]
     at_minus = [s * (-1) ** p.degree() for s, p in zip(at_plus, sequence, strict=True)]
     tarski = sign_changes(at_minus) - sign_changes(at_plus)
     return (total - zero + tarski) // 2

@@ -10,7 +10,8 @@ import pytest
 import sympy
 
 from sorgui.engine.analysis import analyze
-from sorgui.engine.canal import analyze_canal
+from sorgui.engine import numberfields
+from sorgui.engine.canal import _rational_squarefree, analyze_canal
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.report import Analysis, Canal
 from sorgui.export.text import format_report
@@ -198,3 +199,11 @@ def test_no_rational_parameterization_without_a_sum_of_two_squares() -> None:
     # |m′|² − r′² = 3/4 + 4t² is not a sum of two squares over QQ: only the radical form.
     canal = canal_of("canal parabola r=(1+t)/2")
     assert [p.parameters for p in canal.parametrizations] == [("t", "theta")]
+
+
+def test_norm_in_the_radical_basis_matches_the_resultant(monkeypatch: pytest.MonkeyPatch) -> None:
+    # Res_θ(f, m(θ)) and the flint norm one square root at a time give the same square-free part.
+    f = parse_polynomial("x^2+y^2+sqrt(2)x+sqrt(3)y+sqrt(5)z+sqrt(6)").polynomial
+    fast = _rational_squarefree(f)
+    monkeypatch.setattr(numberfields, "supports", lambda K: False)
+    assert _rational_squarefree(f) == fast

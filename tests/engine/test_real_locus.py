@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import pytest
+import sympy
 
 from sorgui.engine.analysis import analyze
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.real_locus import real_locus
+from sorgui.engine.real_locus import _norm_in_s, real_locus
 from sorgui.engine.recognition import recognize
 from sorgui.engine.report import Analysis, RealLocus
 from sorgui.export.text import format_report, real_locus_line
@@ -108,3 +109,22 @@ def test_words_for_every_kind() -> None:
     )
     undecided = real_locus_line(RealLocus("undecided", None))
     assert undecided == "real points: undecided (the profile is too large for the exact decision)"
+
+
+def test_paraboloid_with_four_square_roots() -> None:
+    # Over QQ(√2, √3, √5, √7) (degree 16): a real paraboloid of revolution, and canal as one.
+    analysis = analyze("x^2+y^2+sqrt(2)x+sqrt(3)y+sqrt(5)z+sqrt(7)")
+    assert analysis.real_locus == RealLocus("surface", 2)
+    assert analysis.canal is not None and analysis.canal.is_canal is True
+    assert analysis.canal.kinds == ("revolution",)
+    three = analyze("x^2+y^2+sqrt(2)x+sqrt(3)y+sqrt(5)z")
+    assert three.real_locus == RealLocus("surface", 2)
+    assert three.canal is not None and three.canal.is_canal is True and three.canal.kinds == ("revolution",)
+
+
+def test_norm_in_s_agrees_with_sympy() -> None:
+    # The flint norm in the radical basis has the roots of sympy's resultant norm.
+    K = sympy.QQ.algebraic_field(sympy.sqrt(2), sympy.sqrt(3))
+    s = sympy.Symbol("s")
+    p = sympy.Poly(s**3 - sympy.sqrt(2) * s + sympy.sqrt(6) - 1, s, domain=K)
+    assert _norm_in_s(p).monic() == p.norm().monic()
