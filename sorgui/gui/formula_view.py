@@ -6,8 +6,8 @@ palette's text colour and shown as one pixmap (one widget per formula keeps the 
 lay out). A long formula is folded to its first :data:`FOLDED_LINES` lines with a "show all"
 button; a formula wider than the pane scrolls sideways. A formula without masks (not typeset
 yet, or too long to typeset) is shown as selectable plain text, elided with "show all" too.
-The Copy button's menu puts the formula on the clipboard as text, LaTeX, Maple, Mathematica or
-Python.
+The Copy button puts the exact text on the clipboard; the ▾ button beside it (and the context
+menu) copies as text, LaTeX, Maple, Mathematica or Python.
 """
 
 from __future__ import annotations
@@ -94,13 +94,15 @@ class FormulaView(QFrame):
         self.copy_button.setObjectName("copyButton")
         self.copy_button.setText("Copy")
         self.copy_button.setAutoRaise(True)
-        self.copy_button.setToolTip("Copy as plain text; the arrow copies as LaTeX, Maple, Mathematica or Python")
-        self.copy_button.setPopupMode(QToolButton.ToolButtonPopupMode.MenuButtonPopup)
-        self.copy_menu = QMenu(self.copy_button)
-        for language in LANGUAGES:
-            self.copy_menu.addAction(f"Copy as {language}", lambda lang=language: self.copy(lang))
-        self.copy_button.setMenu(self.copy_menu)
+        self.copy_button.setToolTip("Copy as plain text (▾: as LaTeX, Maple, Mathematica or Python)")
         self.copy_button.clicked.connect(self.copy_plain)
+        self.languages_button = QToolButton(self)
+        self.languages_button.setObjectName("copyAsButton")
+        self.languages_button.setText("▾")
+        self.languages_button.setAutoRaise(True)
+        self.languages_button.setToolTip("Copy as text, LaTeX, Maple, Mathematica or Python")
+        self.languages_button.clicked.connect(self._on_languages_change)
+        self._copy_menu: QMenu | None = None
 
         self._body = QVBoxLayout()
         self._body.setContentsMargins(0, 0, 0, 0)
@@ -110,6 +112,7 @@ class FormulaView(QFrame):
         layout.setSpacing(2)
         layout.addLayout(self._body, 1)
         layout.addWidget(self.copy_button, 0, Qt.AlignmentFlag.AlignTop)
+        layout.addWidget(self.languages_button, 0, Qt.AlignmentFlag.AlignTop)
         self._fill()
 
     # --- public API ---
@@ -118,6 +121,11 @@ class FormulaView(QFrame):
     def folded(self) -> bool:
         """Whether part of the formula is hidden behind "show all"."""
         return self._folded
+
+    def set_formula(self, formula: Formula) -> None:
+        """Show ``formula`` instead (the typeset version of the text shown so far)."""
+        self.formula = formula
+        self._fill()
 
     def show_all(self) -> None:
         """Show the whole formula (up to :data:`PLAIN_LIMIT` characters of plain text)."""
@@ -182,6 +190,18 @@ class FormulaView(QFrame):
         self.show_all_button.setVisible(self._folded)
         if self._folded:
             self._body.addWidget(self.show_all_button, 0, Qt.AlignmentFlag.AlignLeft)
+
+    @property
+    def copy_menu(self) -> QMenu:
+        """The menu of languages, built the first time it is needed (a pane holds many formulas)."""
+        if self._copy_menu is None:
+            self._copy_menu = QMenu(self)
+            for language in LANGUAGES:
+                self._copy_menu.addAction(f"Copy as {language}", lambda lang=language: self.copy(lang))
+        return self._copy_menu
+
+    def _on_languages_change(self) -> None:
+        self.copy_menu.popup(self.languages_button.mapToGlobal(self.languages_button.rect().bottomLeft()))
 
     def _on_context_menu_change(self, position: QPoint) -> None:
         self.copy_menu.popup(self.mapToGlobal(position))

@@ -68,6 +68,8 @@ class ResultsPane(QScrollArea):
         self._base_size = self.font().pointSizeF()
         self.banner = QLabel()
         self.table: QTableWidget | None = None
+        self.views: dict[str, FormulaView] = {}
+        """The formula views of the shown page, by formula key."""
         self.stale = False
         self.show_message("No analysis yet", "Type an equation and press Analyze (Ctrl+Return).", "info")
 
@@ -122,7 +124,7 @@ class ResultsPane(QScrollArea):
             self._factor_section(column, analysis)
         if analysis.rationality is not None:
             self._rationality_section(column, analysis.rationality)
-        elif "rationality" in pending:
+        elif "rationality" in pending and rec.is_sor and analysis.rationality is None:
             self._section(column, "Rationality (Table 1 of the paper)",
                           [("", "being decided (Singular): the row, the genera and the parameterizations follow")])
         self._parametrization_section(column, analysis)
@@ -131,6 +133,16 @@ class ResultsPane(QScrollArea):
         self._timings_section(column, tuple(analysis.timings) + tuple(worker_timings))
         column.addStretch(1)
         self.set_stale(self.stale)
+
+    def update_formulas(self, formulas: dict[str, Formula]) -> None:
+        """Put newly typeset ``formulas`` into the shown page in place (no rebuild of the page)."""
+        self._formulas.update(formulas)
+        ratio = self.devicePixelRatioF()
+        for key, view in self.views.items():
+            formula = formulas.get(key)
+            if formula is not None and formula is not view.formula:
+                view._ratio = ratio
+                view.set_formula(formula)
 
     def set_stale(self, stale: bool) -> None:
         """Grey the results out (they belong to the previous equation) or show them normally."""
@@ -178,6 +190,7 @@ class ResultsPane(QScrollArea):
         if old is not None:
             old.deleteLater()
         self.table = None
+        self.views = {}
         page = QWidget()
         page.setObjectName("resultsPage")
         column = QVBoxLayout(page)
@@ -229,6 +242,7 @@ class ResultsPane(QScrollArea):
             if value in self._formulas:
                 view = FormulaView(self._formulas[value], ratio=ratio, max_width=width)
                 view.setToolTip(caption_tip(caption))
+                self.views[value] = view
                 grid.addWidget(view, index, 1)
             else:
                 text = QLabel(value)

@@ -26,6 +26,10 @@ from sorgui.gui.stages import RunPanel, seconds_text
 from sorgui.gui.viewport import Viewport
 from sorgui.session.model import WORKER_STAGES, Run, Session, StageState
 
+PANE_DELAY_MS = 120
+"""Results arriving within this time rebuild the results pane once (each rebuild costs the GUI
+thread tens of milliseconds for a pane full of formulas)."""
+
 CAPTION_CHARACTERS = 90
 """The viewport's caption shows this much of the equation."""
 
@@ -65,13 +69,16 @@ class SessionView(QObject):
         self._fresh_scene = True
         self._pane_timer = QTimer(self)
         self._pane_timer.setSingleShot(True)
-        self._pane_timer.setInterval(0)
+        self._pane_timer.setInterval(PANE_DELAY_MS)
+        self._dirty = False
+        self._shown: tuple[object, bool] | None = None
+        """The analysis the results pane shows, and whether it is the nearest surface's."""
         self._pane_timer.timeout.connect(self.refresh_pane)
         events = session.events
         events.run_started.connect(self._on_run_start_change)
         events.state_changed.connect(self._on_stage_change)
         events.analysis_changed.connect(self._on_results_change)
-        events.formulas_changed.connect(self._on_results_change)
+        events.formulas_changed.connect(self._on_formulas_change)
         events.components_changed.connect(self._on_results_change)
         events.scene_changed.connect(self._on_scene_change)
         events.nearest_scene_changed.connect(self._on_nearest_scene_change)
@@ -91,6 +98,8 @@ class SessionView(QObject):
     def refresh_pane(self) -> None:
         """Rebuild the results pane from the session's current run and view."""
         self._pane_timer.stop()
+        self._dirty = False
+        self._shown = None
         run = self.session.run
         if run is None:
             return
@@ -119,10 +128,12 @@ class SessionView(QObject):
                            if name in run.stages and run.stages[name].state is StageState.DONE)
             self.results.show_analysis(analysis, formulas, worker, pending=pending, nearest=nearest,
                                        components=() if nearest else run.components)
+            self._shown = (analysis, nearest)
         self.results.set_stale(self.session.stale)
         self.panel.set_nearest_available(self.session.nearest_analysis is not None, self.session.view)
 
     def _schedule_pane(self) -> None:
+        self._dirty = True
         if not self._pane_timer.isActive():
             self._pane_timer.start()
 
@@ -170,6 +181,18 @@ class SessionView(QObject):
     def _on_results_change(self, _value: object) -> None:
         self._schedule_pane()
 
+    def _on_formulas_change(self, formulas: dict) -> None:
+        """Typeset formulas of the shown analysis go into the page in place; else a rebuild."""
+        run = self.session.run
+        nearest = self.session.view == "nearest"
+        shown = (self.session.nearest_analysis if nearest else run.analysis) if run is not None else None
+        if self._dirty or run is None or self._shown != (shown, nearest):
+            self._schedule_pane()
+            return
+        prefix = "nearest." if nearest else ""
+        self.results.update_formulas({k[len(prefix):]: f for k, f in formulas.items()
+                                      if k.startswith(prefix) and (nearest or not k.startswith("nearest."))})
+
     def _on_scene_change(self, scene: object) -> None:
         run = self.session.run
         if run is None or self.session.view != "typed":
@@ -192,7 +215,8 @@ class SessionView(QObject):
             self.viewport.set_stale(True, "Previous equation (out of date): " + caption)
 
     def _on_run_finish_change(self, run: Run) -> None:
-        self.refresh_pane()
+        if self._dirty or run.outcome != "finished":
+            self.refresh_pane()
         self.panel.show_run(run)
         self._update_notice()
         if run.outcome == "finished":

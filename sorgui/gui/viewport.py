@@ -30,7 +30,6 @@ from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QCheckBox,
     QDoubleSpinBox,
-    QHBoxLayout,
     QLabel,
     QToolBar,
     QToolButton,
@@ -138,16 +137,15 @@ class Viewport(QWidget):
         self.pick_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
 
         self.reset_button.setVisible(False)  # the toolbar's Reset does it
-        controls = QHBoxLayout()
-        controls.setContentsMargins(6, 4, 6, 0)
+        self.controls = QToolBar(self)  # a tool bar: in a narrow window the rest goes under »
+        self.controls.setObjectName("viewControls")
         for widget in (self.radius_box, self.profile_box, self.patch_box, self.deviation_box):
-            controls.addWidget(widget)
-        controls.addStretch(1)
+            self.controls.addWidget(widget)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         layout.setSpacing(2)
         layout.addWidget(self.toolbar)
-        layout.addLayout(controls)
+        layout.addWidget(self.controls)
         layout.addWidget(self.caption)
         layout.addWidget(self.plotter, 1)
         layout.addWidget(self.pick_label)

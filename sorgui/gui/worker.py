@@ -35,7 +35,7 @@ POLL_INTERVAL_MS = 15
 CANCEL_GRACE_S = 0.5
 """How long a cancelled job may take to stop by itself before it is killed."""
 
-INTERMEDIATE = ("done", "analysis", "scene", "nearest_scene", "formulas")
+INTERMEDIATE = ("done", "analysis", "scene", "nearest_scene", "formulas", "components")
 """Messages a job sends before its final one (see :mod:`sorgui.session.job`)."""
 
 SPARE_DELAY_MS = 2000

@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from sorgui.engine import SorguiError, analyze
-from sorgui.engine.parsing import Neg, Node, Num, Product, Reciprocal, Sum, Var, syntax_tree
+from sorgui.engine.parsing import Neg, Node, Num, Power, Product, Sum, Var, syntax_tree
 from sorgui.engine.report import Recognition
 
 MAX_COMPONENTS = 4
@@ -56,9 +56,18 @@ def component_texts(text: str) -> tuple[str, ...]:
         while isinstance(term, Neg):
             term = term.arg
         if isinstance(term, Product):
-            found += [text[f.start:f.end] for f in term.factors
-                      if not isinstance(f, Reciprocal) and _has_variable(f)]
+            surfaces = [f for f in term.factors if _is_surface(f)]
+            if len(surfaces) >= 2:
+                found += [text[f.start:f.end] for f in surfaces]
     return tuple(found) if 2 <= len(found) <= MAX_COMPONENTS else ()
+
+
+def _is_surface(node: Node) -> bool:
+    """A bracketed sum with a variable (or a power of one): a surface typed as a factor, not a
+    monomial's variable such as the ``y^2`` of ``2y^2``."""
+    if isinstance(node, Power):
+        node = node.base
+    return isinstance(node, Sum) and _has_variable(node)
 
 
 def typed_components(text: str) -> tuple[Component, ...]:

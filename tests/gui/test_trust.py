@@ -22,13 +22,16 @@ from sorgui.session import StageState
 pytestmark = pytest.mark.gui
 
 
+SLOW_MS = 300_000
+"""Time allowed to an analysis that runs every stage (the canal stage asks Singular too)."""
+
+
 @pytest.fixture
-def hanging_singular(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
-    """A ``Singular`` that never finishes (set before the worker process starts)."""
+def hanging_singular(tmp_path: Path) -> Path:
+    """A ``Singular`` that never finishes (for worker processes started after it is set)."""
     script = tmp_path / "Singular"
     script.write_text("#!/bin/sh\nexec sleep 600\n")
     script.chmod(0o755)
-    monkeypatch.setenv("SORGUI_SINGULAR", str(script))
     return script
 
 
@@ -36,12 +39,13 @@ def stage_state(window, name: str) -> StageState:  # noqa: ANN001
     return window.session.run.stages[name].state
 
 
-def test_verdict_while_singular_runs_and_no_old_verdict_ever(make_window, qtbot, run_analysis,
+def test_verdict_while_singular_runs_and_no_old_verdict_ever(make_window, qtbot, run_analysis, monkeypatch,
                                                             hanging_singular, artifacts) -> None:
-    window = make_window()
-    run_analysis(window, example_text("ellipsoid"))  # needs no Singular
+    window = make_window(prestart_worker=False)  # each job starts its own process
+    run_analysis(window, example_text("ellipsoid"), timeout_ms=SLOW_MS)
     assert "Not a surface of revolution" in window.results.banner.text()
 
+    monkeypatch.setenv("SORGUI_SINGULAR", str(hanging_singular))  # for the next worker process
     window.set_equation(example_text("paper-example-1"))
     assert window.analyze()
     # At once: nothing of the ellipsoid is left, neither in the pane nor in the 3D view.
@@ -265,15 +269,15 @@ def test_caption_tooltips_on_results(window, run_analysis) -> None:
 
 
 def test_a_no_is_explained(window, run_analysis) -> None:
-    run_analysis(window, "(x^2 + y^2 - 1)((x - 3)^2 + z^2 - 1)")  # two cylinders, crossed axes
+    run_analysis(window, "(x^2 + y^2 - 1)((x - 3)^2 + z^2 - 1)", timeout_ms=SLOW_MS)  # crossed cylinders
     text = _pane_text(window)
     assert "Why it is not a surface of revolution" in text
     assert "Factor 1: a cylinder of revolution" in text and "Factor 2: a cylinder of revolution" in text
     assert "different axes" in text
     assert "factor_axes" in window.viewport.actor_names()
-    run_analysis(window, "x^2 + 2y^2 - 1")
+    run_analysis(window, "x^2 + 2y^2 - 1", timeout_ms=SLOW_MS)
     assert "extrusion" in _pane_text(window)
-    run_analysis(window, example_text("non-coaxial-blend"))  # irreducible: its typed components explain
+    run_analysis(window, example_text("non-coaxial-blend"), timeout_ms=SLOW_MS)  # irreducible: its typed components explain
     text = _pane_text(window)
     assert "Component 1, x^2 + y^2 + (z - 1)^2 - 4: a sphere" in text
     assert "Component 2, (x - z)^2/2 + y^2 - 1: a cylinder of revolution" in text and "no axis in common" in text

@@ -12,6 +12,7 @@ import pytest
 from sorgui.engine.report import Analysis
 from sorgui.examples import example_text
 from sorgui.session import Session, StageState
+from sorgui.session.components import component_texts
 from sorgui.session.job import JobRequest
 
 TORUS = example_text("torus")
@@ -176,3 +177,5 @@ def test_a_blend_is_explained_by_its_typed_components() -> None:
     assert run.components[1].recognition.axis.direction == ("1", "0", "1")
     assert len(run.scene.factor_axes.polylines()) == 2
     assert Session().analyze(TORUS, resolution=30, style=None).components == ()
+    assert component_texts("x^2 + 2y^2 + 3z^2 - 1") == (), "a monomial's variables are no surfaces"
+    assert component_texts("2(x+1)(y-2) - 3") == ("x+1", "y-2")
