@@ -65,7 +65,12 @@ def _worker_start() -> None:
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _exit_on_signal)
+    signal.signal(signal.SIGHUP, _exit_on_signal)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, _ENDING)  # blocked across the fork (see _Worker)
     die_with_parent(signal.SIGTERM)
+
+
+_ENDING = {signal.SIGTERM, signal.SIGHUP}
 
 
 def _exit_on_signal(signum: int, _frame: Any) -> None:
@@ -98,7 +103,14 @@ class _Worker:
     def __init__(self, context: multiprocessing.context.ForkContext) -> None:
         self.conn, child = context.Pipe()
         self.process = context.Process(target=_serve, args=(child,), name="sorgui-batch", daemon=True)
-        self.process.start()
+        # The child starts with sorgui's own SIGTERM handler, which unwinds sorgui's stack: a
+        # SIGTERM before the worker installs its own would print a traceback from the fork's
+        # clean-up. Blocked here, such a signal waits for the worker's handler.
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, _ENDING)
+        try:
+            self.process.start()
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
         child.close()
         self.index: int | None = None  # the job it is analysing
 
