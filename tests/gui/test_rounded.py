@@ -1,0 +1,39 @@
+"""Rounded input in the window (docs/math.md §8): the near verdict, the approximate axis, the
+deviation colour map and the switch to the nearest exact surface, in a real window with a real
+VTK render window and a real worker process."""
+
+from __future__ import annotations
+
+import pytest
+from PySide6.QtWidgets import QRadioButton
+
+from tests.engine.rounded import printed
+from tests.engine.test_approximate import _turned_torus
+
+pytestmark = pytest.mark.gui
+
+
+def test_a_rounded_torus_is_shown_near_with_its_axis_and_its_nearest_surface(window, run_analysis, qtbot,
+                                                                             artifacts) -> None:
+    run_analysis(window, printed(_turned_torus()[0], 10), timeout_ms=300_000)
+    qtbot.waitUntil(lambda: window.session.nearest_analysis is not None, timeout=300_000)
+    banner = window.results.banner.text()
+    assert "Nearly a surface of revolution" in banner and "not exactly, but within" in banner
+    assert "approx_axis" in window.viewport.actor_names()
+    assert not window.viewport.scene.approximate_axis.is_empty
+
+    qtbot.waitUntil(window.viewport.deviation_box.isEnabled, timeout=60_000)
+    window.viewport.deviation_box.setChecked(True)
+    assert "deviation" in window.viewport.plotter.scalar_bars
+    window.viewport.deviation_box.setChecked(False)
+    assert "deviation" not in window.viewport.plotter.scalar_bars
+
+    switch = window.findChild(QRadioButton, "viewNearest")
+    assert switch is not None and switch.isEnabled()
+    switch.click()
+    qtbot.waitUntil(lambda: window.session.view == "nearest", timeout=10_000)
+    qtbot.waitUntil(lambda: "nearest exact surface" in window.viewport.caption.text().lower(), timeout=60_000)
+    assert "nearest exact surface" in window.results.banner.text().lower()
+    assert window.session.nearest_analysis.is_sor
+    qtbot.wait(1000)
+    window.grab().save(str(artifacts / "rounded-nearest.png"))
