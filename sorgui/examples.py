@@ -24,6 +24,9 @@ EXAMPLES: tuple[Example, ...] = (
     Example("coaxial-blend", "Coaxial blend of a sphere and a cylinder"),
     Example("non-coaxial-blend", "Non-coaxial blend (not a SOR)"),
     Example("ellipsoid", "Ellipsoid (not a SOR)"),
+    Example("rolling-ball-blend", "Canal: rolling-ball blend of a cylinder and an oblique plane"),
+    Example("pipe-twisted-cubic", "Canal: pipe around a twisted cubic"),
+    Example("dupin-cyclide", "Canal: Dupin cyclide"),
 )
 
 
