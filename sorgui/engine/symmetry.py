@@ -17,6 +17,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from flint import fmpq
+from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
 from . import linalg
@@ -91,6 +93,8 @@ def infinitesimal_generators(f: Poly) -> list[dict[tuple[int, ...], Any]]:
 def symmetry_algebra(f: Poly) -> list[Motion]:
     """A basis of ``L``, the solution space of (★), in reduced (canonical) form."""
     K = f.ring.domain
+    if is_rational_field(K):
+        return _rational_symmetry_algebra(f)
     columns = infinitesimal_generators(f)
     monomials = sorted(set().union(*columns))
     zero = K.zero
@@ -98,6 +102,58 @@ def symmetry_algebra(f: Poly) -> list[Motion]:
     # Unknown order: (b1, b2, b3, a1, a2, a3), matching the columns above.
     basis = linalg.nullspace(rows, 6, K)
     return [Motion(a=tuple(v[3:]), b=tuple(v[:3])) for v in basis]
+
+
+def _rational_symmetry_algebra(f: Poly) -> list[Motion]:
+    """``L`` over ``QQ`` from the six polynomials of (★) evaluated at rational points, each
+    candidate checked as a polynomial identity in flint.
+
+    The values at points give rows whose null space contains ``L``; when every vector of its
+    reduced basis satisfies (★) identically, the two null spaces (hence their row spaces and
+    reduced bases) are equal, and the answer is exactly that of the system with one row per
+    monomial, at the cost of a few evaluations instead of a pass over every coefficient.
+    Points are added until that holds (the full system is the last resort).
+    """
+    g = to_flint(f)
+    x, y, z = g.context().gens()
+    fx, fy, fz = (g.derivative(i) for i in range(3))
+    polys = [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
+    rows: list[list[Any]] = []
+    for batch in range(EVALUATION_BATCHES):
+        for point in _points(batch):
+            values = [p(*point) for p in polys]
+            rows.append([QQ(int(v.p), int(v.q)) for v in values])
+        basis = linalg.nullspace(rows, 6, QQ)
+        if all(_vanishes(polys, v) for v in basis):
+            return [Motion(a=tuple(v[3:]), b=tuple(v[:3])) for v in basis]
+    columns = [p.to_dict() for p in polys]
+    monomials = sorted(set().union(*columns))
+    rows = [[QQ(int(c.p), int(c.q)) for c in (col.get(m, fmpq(0)) for col in columns)] for m in monomials]
+    basis = linalg.nullspace(rows, 6, QQ)
+    return [Motion(a=tuple(v[3:]), b=tuple(v[:3])) for v in basis]
+
+
+EVALUATION_BATCHES = 4
+"""Batches of 8 evaluation points tried before the system with one row per monomial."""
+
+
+def _points(batch: int) -> list[tuple[fmpq, fmpq, fmpq]]:
+    """Eight integer points of a fixed, deterministic sequence (batch by batch): small integers
+    keep the values of a degree-60 polynomial cheap to compute."""
+    found = []
+    for k in range(8 * batch, 8 * batch + 8):
+        a, b, c = (7 * k + 3) % 19 - 9, (11 * k + 5) % 23 - 11, (13 * k + 2) % 29 - 14
+        found.append((fmpq(a), fmpq(b), fmpq(c)))
+    return found
+
+
+def _vanishes(polys: list[Any], weights: Sequence[Any]) -> bool:
+    """Whether ``Σ w_i·polys_i`` is the zero polynomial (exactly, in flint)."""
+    total = polys[0] * 0
+    for p, w in zip(polys, weights):
+        if w:
+            total += p * fmpq(int(w.numerator), int(w.denominator))
+    return total.is_zero()
 
 
 def satisfies_identity(f: Poly, motion: Motion) -> bool:
