@@ -28,10 +28,19 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from sorgui.engine.report import Analysis, Approximation, Rationality, Recognition
+from sorgui.engine.report import Analysis, Approximation, Canal, Rationality, Recognition
 from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, format_report
 from sorgui.gui.formula_view import FormulaView
-from sorgui.gui.wording import caption_tip, floats, verdict, why_not
+from sorgui.gui.wording import (
+    canal_evidence,
+    canal_verdict,
+    caption_tip,
+    floats,
+    radius_words,
+    spine_words,
+    verdict,
+    why_not,
+)
 from sorgui.session.components import Component
 from sorgui.session.formulas import Formula, analysis_formulas
 
@@ -128,6 +137,10 @@ class ResultsPane(QScrollArea):
             self._section(column, "Rationality (Table 1 of the paper)",
                           [("", "being decided (Singular): the row, the genera and the parameterizations follow")])
         self._parametrization_section(column, analysis)
+        if analysis.canal is not None:
+            self._canal_section(column, analysis.canal)
+        elif "canal" in pending:
+            self._section(column, "Canal surface", [("", "being decided: the sphere family and its certificate follow")])
         if analysis.rationality is not None and "parametrizations" in pending:
             self._section(column, "Parameterizations", [("", "being computed and verified…")])
         self._timings_section(column, tuple(analysis.timings) + tuple(worker_timings))
@@ -359,6 +372,24 @@ class ResultsPane(QScrollArea):
                 ("y", f"parametrization.{index}.y"),
                 ("z", f"parametrization.{index}.z"),
             ])
+
+    def _canal_section(self, column: QVBoxLayout, canal: Canal) -> None:
+        rows = [("canal", canal_verdict(canal))]
+        evidence = canal_evidence(canal)
+        if evidence is not None:
+            rows.append(evidence)
+        several = len(canal.families) > 1
+        for index, family in enumerate(canal.families):
+            if several:
+                rows.append((f"family {index + 1}", ""))
+            rows.append(("spine", spine_words(family)))
+            rows.append(("radius", radius_words(family)))
+            if f"canal.{index}.spine" in self._formulas:
+                rows.append(("m(t)", f"canal.{index}.spine"))
+            if f"canal.{index}.radius" in self._formulas and not family.pipe:
+                rows.append(("ρ(t)", f"canal.{index}.radius"))
+        rows += [("note", note) for note in canal.notes]
+        self._section(column, "Canal surface", rows)
 
     def _timings_section(self, column: QVBoxLayout, timings: Sequence[tuple[str, float]]) -> None:
         total = sum(seconds for _name, seconds in timings)

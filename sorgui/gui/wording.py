@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from sorgui.engine.report import Analysis, Approximation, Recognition
+from sorgui.engine.report import Analysis, Approximation, Canal, CanalFamily, Recognition
 from sorgui.session.components import Component
 from sorgui.session.model import STAGE_TITLES
 
@@ -61,7 +61,64 @@ CAPTION_TIPS = {
     "normal": "The normal of the plane: every line along it is an axis",
     "total": "The time of the whole analysis, from the worker's start to the last result",
     "note": "A remark of the engine on this result",
+    "canal": "Whether X is the envelope of a one-parameter family of spheres (docs/math.md §9)",
+    "certificate": "The exact proof that X is the envelope of the sphere family",
+    "witness": "A line on which the canal condition fails exactly: the proof that X is not canal",
+    "spine": "The curve m(t) of the spheres' centres: its degree, whether it is planar, its genus",
+    "radius": "Whether the spheres all have the same radius (a pipe)",
+    "m(t)": "A rational parameterization of the spine (the spheres' centres)",
+    "ρ(t)": "The squared radius of the sphere centred at m(t)",
 }
+
+CANAL_KIND_WORDS = {
+    "pipe": "a pipe (all spheres of one radius)",
+    "revolution": "a surface of revolution (centres on a line)",
+    "dupin": "a Dupin cyclide (canal in two ways)",
+    "developable": "developable (a cone or a cylinder)",
+}
+
+
+def canal_verdict(canal: Canal) -> str:
+    """The canal verdict in one sentence: canal or not, and of which kinds."""
+    if canal.is_canal is None:
+        return f"undecided ({canal.status})"
+    if not canal.is_canal:
+        return "not a canal surface: not the envelope of any one-parameter family of spheres"
+    kinds = ", ".join(CANAL_KIND_WORDS.get(k, k) for k in canal.kinds)
+    return "a canal surface, the envelope of a one-parameter family of spheres" + (f": {kinds}" if kinds else "")
+
+
+def canal_evidence(canal: Canal) -> tuple[str, str] | None:
+    """``(caption, sentence)``: the certificate of a *canal*, or the witness line of a *not canal*."""
+    if canal.certificate is not None:
+        check = "verified" if canal.certificate.verified else "NOT verified"
+        return "certificate", f"{canal.certificate.statement} ({check})"
+    witness = canal.witness
+    if witness is not None:
+        line = ""
+        if witness.point is not None and witness.direction is not None:
+            line = f" on the line ({', '.join(witness.point)}) + τ·({', '.join(witness.direction)})"
+        return "witness", f"{witness.statement}{line}"
+    return None
+
+
+def spine_words(family: CanalFamily) -> str:
+    """The spine of one sphere family in words: degree, planarity, genus."""
+    if family.on_line:
+        shape = "a line"
+    else:
+        shape = f"a {'plane' if family.planar else 'space'} curve of degree {family.degree}"
+    genus = "genus undecided" if family.genus is None else f"genus {family.genus}"
+    rational = " (rational)" if family.genus == 0 else ""
+    return f"{shape}, {genus}{rational}"
+
+
+def radius_words(family: CanalFamily) -> str:
+    """Whether the radius of the family's spheres is constant."""
+    if family.pipe:
+        value = f": ρ = {family.radius_squared}" if family.radius_squared else ""
+        return "constant (a pipe)" + value
+    return "varies along the spine"
 
 
 def caption_tip(caption: str) -> str:

@@ -210,6 +210,13 @@ def analysis_formulas(analysis: Analysis, plain: bool = False) -> dict[str, Form
     for index, param in enumerate(analysis.parametrizations):
         for name, value in zip("xyz", param.coordinates):
             out[f"parametrization.{index}.{name}"] = make.expression(value, f"{name} =")
+    canal = analysis.canal
+    if canal is not None:
+        for index, family in enumerate(canal.families):
+            if family.parametrization is not None:
+                out[f"canal.{index}.spine"] = make.vector(family.parametrization, "m(t) =")
+            if family.radius_squared is not None:
+                out[f"canal.{index}.radius"] = make.expression(family.radius_squared, r"\rho(t) =")
     nearest = analysis.approximate.nearest if analysis.approximate is not None else None
     if nearest is not None:
         out["approximate.nearest"] = make.expression(nearest.polynomial, "g =")
