@@ -15,7 +15,8 @@ coordinate views, reset), orthographic projection, wireframe and the meridian cl
 puts them in its View menu and the tool row. A caption names the surface shown; when the
 results are stale the surface is greyed and the caption says it is the previous equation's.
 For rounded input the approximate axis is drawn, and the deviation from the nearest exact
-surface can colour the surface.
+surface can colour the surface. For a canal surface the spine and a few characteristic circles
+are drawn (the "Canal" box shows or hides them).
 """
 
 from __future__ import annotations
@@ -57,9 +58,13 @@ PICK_COLOR = "#111111"
 STALE_COLOR = "#b0b6bd"
 APPROXIMATE_AXIS_COLOR = "#ef6c00"
 FACTOR_AXES_COLOR = "#455a64"
+CANAL_SPINE_COLOR = "#00838f"
+CANAL_CIRCLE_COLOR = "#26a69a"
 DEVIATION_MAP = "viridis"
 
-SCENE_ACTORS = ("surface", "axis", "profile", "center", "patch", "approx_axis", "factor_axes")
+SCENE_ACTORS = ("surface", "axis", "profile", "center", "patch", "approx_axis", "factor_axes",
+                "canal_spine", "canal_circles")
+CANAL_ACTORS = ("canal_spine", "canal_circles")
 PICK_ACTORS = ("pick_normal", "pick_circle", "pick_point")
 
 SOFTWARE_RENDERERS = ("llvmpipe", "softpipe", "swrast", "Software Rasterizer")
@@ -129,6 +134,11 @@ class Viewport(QWidget):
         self.profile_box = QCheckBox("Profile", self)
         self.profile_box.setChecked(True)
         self.profile_box.setToolTip("The profile curve in a plane through the axis")
+        self.canal_box = QCheckBox("Canal", self)
+        self.canal_box.setChecked(True)
+        self.canal_box.setToolTip("The spine of a canal surface (the spheres' centres) and a few "
+                                  "characteristic circles (where the spheres touch the surface)")
+        self.canal_box.setEnabled(False)
         self.reset_button = QToolButton(self)
         self.reset_button.setText("Reset view")
         self.pick_label = QLabel("Right-click the surface (or press P) to inspect a point.", self)
@@ -139,7 +149,7 @@ class Viewport(QWidget):
         self.reset_button.setVisible(False)  # the toolbar's Reset does it
         self.controls = QToolBar(self)  # a tool bar: in a narrow window the rest goes under »
         self.controls.setObjectName("viewControls")
-        for widget in (self.radius_box, self.profile_box, self.patch_box, self.deviation_box):
+        for widget in (self.radius_box, self.profile_box, self.canal_box, self.patch_box, self.deviation_box):
             self.controls.addWidget(widget)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
@@ -158,6 +168,7 @@ class Viewport(QWidget):
         self.radius_box.valueChanged.connect(self._on_radius_change)
         self.patch_box.toggled.connect(self._on_patch_visibility_change)
         self.profile_box.toggled.connect(self._on_profile_visibility_change)
+        self.canal_box.toggled.connect(self._on_canal_visibility_change)
         self.deviation_box.toggled.connect(self._on_deviation_change)
         self.reset_button.clicked.connect(self.reset_camera)
 
@@ -190,6 +201,12 @@ class Viewport(QWidget):
         self.view_actions["clip"].setEnabled(scene.axis is not None)
         self._set_actor("profile", to_polydata(scene.profile_curve), color=PROFILE_COLOR,
                         line_width=4, visible=self.profile_box.isChecked())
+        canal = self.canal_box.isChecked()
+        self._set_actor("canal_spine", to_polydata(scene.canal_spine), color=CANAL_SPINE_COLOR,
+                        line_width=4, visible=canal)
+        self._set_actor("canal_circles", to_polydata(scene.canal_circles), color=CANAL_CIRCLE_COLOR,
+                        line_width=2, visible=canal)
+        self.canal_box.setEnabled(not (scene.canal_spine.is_empty and scene.canal_circles.is_empty))
         center = to_polydata(scene.center_marker) if scene.center_marker else pyvista.PolyData()
         self._set_actor("center", center, color=CENTER_COLOR, interpolation="gouraud")
         patch = scene.patch.to_polydata() if scene.patch is not None else pyvista.PolyData()
@@ -214,6 +231,7 @@ class Viewport(QWidget):
             self.plotter.remove_actor(name, render=False)
         self.radius_box.setEnabled(False)
         self.patch_box.setEnabled(False)
+        self.canal_box.setEnabled(False)
         self.deviation_box.setEnabled(False)
         self.request_render()
 
@@ -363,6 +381,10 @@ class Viewport(QWidget):
 
     def _on_profile_visibility_change(self, visible: bool) -> None:
         self._set_visibility("profile", visible)
+
+    def _on_canal_visibility_change(self, visible: bool) -> None:
+        for name in CANAL_ACTORS:
+            self._set_visibility(name, visible)
 
     # --- helpers ---
 

@@ -98,6 +98,7 @@ class _Presenter:
     _cache: dict[tuple[str, str], Formula] = field(default_factory=dict)
     _patched: bool = False
     _approximated: bool = False
+    _canal: tuple[Any, ...] = ()
 
     def stage(self, name: str, work: Callable[[], Any]) -> Any:
         self.check()
@@ -154,7 +155,8 @@ class _Presenter:
             self.send("scene", self.scene)
 
     def _extras(self, analysis: Analysis) -> Callable[[Any], Any] | None:
-        """What the scene still lacks of ``analysis``: the patch, the rounded-input extras."""
+        """What the scene still lacks of ``analysis``: the patch, the rounded-input extras, the
+        canal surface's spines and circles."""
         from sorgui.session import scene_data
 
         steps = []
@@ -164,6 +166,11 @@ class _Presenter:
         if not self._approximated and analysis.approximate is not None:
             self._approximated = True
             steps.append(lambda scene: scene_data.with_approximation(scene, analysis))
+        canal = analysis.canal
+        drawn = tuple((f.parametrization, f.circle_center) for f in canal.families) if canal is not None else ()
+        if canal is not None and canal.is_canal and drawn != self._canal and any(p for p, _c in drawn):
+            self._canal = drawn
+            steps.append(lambda scene: scene_data.with_canal(scene, analysis))
         if not steps:
             return None
 
@@ -230,8 +237,9 @@ def run_job(
                 progress=lambda stage: deliver("progress", stage),
                 partial=presenter.present,
             )
-            if analysis.parametrizations or analysis.approximate is not None or analysis.rationality is not None:
-                presenter.present(analysis)  # the complete analysis: patch, rounded-input extras
+            canal = analysis.canal is not None and bool(analysis.canal.is_canal)
+            if analysis.parametrizations or analysis.approximate is not None or analysis.rationality is not None or canal:
+                presenter.present(analysis)  # the complete analysis: patch, rounded-input extras, canal
             else:
                 deliver("analysis", analysis)
         check()

@@ -63,6 +63,8 @@ class SceneData:
     of the factors of a reducible surface (one polyline each); ``approximate_axis``: the
     floating-point axis of rounded input; ``deviation``: per surface point, the distance to
     the nearest exact surface (``|g|/|∇g|``, length units), when there is one.
+    ``canal_spine``/``canal_circles``: the spines and a few characteristic circles of a canal
+    surface's rational sphere families (docs/math.md §9).
     """
 
     terms: Terms
@@ -78,6 +80,8 @@ class SceneData:
     factor_axes: LineData = LineData.empty()
     approximate_axis: LineData = LineData.empty()
     deviation: np.ndarray | None = None
+    canal_spine: LineData = LineData.empty()
+    canal_circles: LineData = LineData.empty()
 
     @property
     def axis(self) -> tuple[np.ndarray, np.ndarray] | None:
@@ -219,6 +223,20 @@ def with_approximation(scene: SceneData, analysis: Analysis) -> SceneData:
     if approx.nearest is not None and not scene.surface.is_empty:
         deviation = surface_deviation(polynomial_terms(approx.nearest.polynomial), scene.surface.points)
     return replace(scene, approximate_axis=line, deviation=deviation)
+
+
+def with_canal(scene: SceneData, analysis: Analysis) -> SceneData:
+    """``scene`` with the spines and characteristic circles of the canal surface of ``analysis``
+    (:func:`sorgui.render.canal_scene.canal_scene`), kept near the drawn ball."""
+    canal = analysis.canal
+    if canal is None or not canal.is_canal:
+        return scene
+    from sorgui.render.canal_scene import canal_scene
+
+    bound = float(np.linalg.norm(scene.region.center)) + 1.5 * scene.region.radius
+    drawn = canal_scene(canal, bound=bound)
+    return replace(scene, canal_spine=LineData.from_polylines(list(drawn.spines)),
+                   canal_circles=LineData.from_polylines(list(drawn.circles)))
 
 
 def surface_deviation(terms: Terms, points: np.ndarray) -> np.ndarray:

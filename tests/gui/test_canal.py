@@ -1,0 +1,70 @@
+"""Canal surfaces in the window (docs/math.md §9): the Canal section of the results pane, the
+spine and characteristic circles in the 3D view with their "Canal" box, and the three canal
+examples of the Examples menu.
+
+Real window, real VTK render window (Mesa under Xvfb), real worker process and Singular.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from PySide6.QtWidgets import QLabel
+
+from sorgui.examples import example_text
+
+pytestmark = pytest.mark.gui
+
+SLOW_MS = 300_000
+"""Time allowed to an analysis that runs every stage (the canal stage asks Singular too)."""
+
+CANAL_EXAMPLES = ("rolling-ball-blend", "pipe-twisted-cubic", "dupin-cyclide")
+
+
+def pane_text(window) -> str:  # noqa: ANN001
+    """Every label of the results pane, joined (captions and values)."""
+    return "\n".join(label.text() for label in window.results.widget().findChildren(QLabel))
+
+
+def test_dupin_cyclide_canal_section_and_viewport(window, qtbot, run_analysis, artifacts: Path) -> None:
+    run_analysis(window, example_text("dupin-cyclide"), timeout_ms=SLOW_MS)
+    canal = window.results.analysis.canal
+    assert canal is not None and canal.is_canal and "dupin" in canal.kinds
+    text = pane_text(window)
+    assert "Canal surface" in text
+    assert "a canal surface, the envelope of a one-parameter family of spheres" in text
+    assert "a Dupin cyclide (canal in two ways)" in text
+    assert "f divides every generator" in text or "f divides Res" in text
+    assert "family 1" in text and "family 2" in text
+    assert "a plane curve of degree 2, genus 0 (rational)" in text
+    assert "varies along the spine" in text
+    assert "canal.0.spine" in window.results.views and "canal.0.radius" in window.results.views
+
+    viewport = window.viewport
+    qtbot.waitUntil(lambda: {"canal_spine", "canal_circles"} <= viewport.actor_names(), timeout=60_000)
+    actors = viewport.plotter.renderer.actors
+    assert actors["canal_spine"].GetMapper().GetInput().n_points > 100
+    assert actors["canal_circles"].GetMapper().GetInput().n_lines >= 4
+    assert viewport.canal_box.isEnabled() and viewport.canal_box.isChecked()
+    assert actors["canal_spine"].GetVisibility() and actors["canal_circles"].GetVisibility()
+    window.save_screenshots(artifacts / "canal-window.png", artifacts / "canal-viewport.png")
+
+    viewport.canal_box.setChecked(False)
+    assert not actors["canal_spine"].GetVisibility() and not actors["canal_circles"].GetVisibility()
+    viewport.canal_box.setChecked(True)
+    assert actors["canal_spine"].GetVisibility() and actors["canal_circles"].GetVisibility()
+
+
+def test_canal_examples_in_menu_and_load(window, qtbot) -> None:  # noqa: ANN001
+    """The three canal examples are in the menu, load into the editor and are found canal."""
+    actions = {a.data(): a for a in window.examples_menu.example_actions()}
+    for name in CANAL_EXAMPLES:
+        assert name in actions
+        assert actions[name].text().startswith("Canal: ")
+        with qtbot.waitSignal(window.result_shown, timeout=SLOW_MS) as blocker:
+            actions[name].trigger()
+        assert window.editor.text() == example_text(name)
+        canal = blocker.args[0].analysis.canal
+        assert canal is not None and canal.is_canal, name
+        assert ("dupin" if name == "dupin-cyclide" else "pipe") in canal.kinds
