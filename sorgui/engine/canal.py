@@ -216,6 +216,13 @@ def _analyze_factor(
     if total_degree(poly) == 1:
         return Canal(True, "canal: a plane (the limit of a family of spheres)", ("developable", "revolution"),
                      certificate=CanalEvidence("symmetry", "a plane is a surface of revolution about each normal line", True))
+    if is_sor and total_degree(poly) > SOR_SPINE_DEGREE:
+        # Above degree 4 a surface is neither a Dupin cyclide, nor a cone or cylinder, nor a pipe
+        # with rotational symmetry (its spine would be the axis or a circle about it: a cylinder or
+        # a torus): the symmetry algebra's certificate is the whole answer, no line is needed.
+        return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=_SOR_EVIDENCE,
+                     notes=("the spine is the axis; the SMAT of a surface of revolution is computed only for "
+                            f"quadrics and for Dupin cyclides up to degree {SOR_SPINE_DEGREE}",))
     lines = _Lines(h, SEED)
     try:
         with clock.stage("canal test"):
