@@ -25,6 +25,9 @@ EXPECTED_SOR = {
     "coaxial-blend": True,
     "non-coaxial-blend": False,
     "ellipsoid": False,
+    "rolling-ball-blend": False,
+    "pipe-twisted-cubic": False,
+    "dupin-cyclide": False,
 }
 
 
