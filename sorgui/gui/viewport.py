@@ -6,7 +6,9 @@ worker process computed, and replaced in place by name (``add_mesh(..., name="su
 The surface's two sides have two colours (the mesh is wound to face ``f > 0``). Right-click
 (or P) on the surface picks a point: the viewport draws its normal line and its circle of
 latitude, and reports ``f`` there and whether the normal meets the axis (the paper's
-characterisation of surfaces of revolution, tested by :func:`sorgui.render.picking.pick_info`).
+characterisation of surfaces of revolution, tested by :func:`sorgui.render.picking.pick_info`);
+on a canal surface also the sphere of each rational family that touches the surface there and
+its characteristic circle (:mod:`sorgui.render.canal_touch`).
 
 VTK's and pyvista's own key bindings are removed (``p`` drew a red box, ``3`` stereo, ``w``/``s``
 wireframe, ``e``/``q`` quit): the only keys are the application's (P picks, listed in Help).
@@ -42,7 +44,9 @@ from vtkmodules.vtkCommonDataModel import vtkPlane
 from sorgui.gui.camera import CameraState, coordinate_view, meridian_normal, view_across, view_along
 from sorgui.session.scene_data import SceneData
 from sorgui.render import mesh_to_polydata, pick_info, to_polydata
+from sorgui.render.canal_touch import Touch, touching_spheres
 from sorgui.render.picking import PickInfo
+from sorgui.render.scene import LineData
 
 FRONT_COLOR = "#7fa7d6"
 """The side ``f > 0`` of the surface."""
@@ -65,7 +69,9 @@ DEVIATION_MAP = "viridis"
 SCENE_ACTORS = ("surface", "axis", "profile", "center", "patch", "approx_axis", "factor_axes",
                 "canal_spine", "canal_circles")
 CANAL_ACTORS = ("canal_spine", "canal_circles")
-PICK_ACTORS = ("pick_normal", "pick_circle", "pick_point")
+PICK_ACTORS = ("pick_normal", "pick_circle", "pick_point", "pick_sphere", "pick_canal_circle")
+TOUCH_SPHERE_COLOR = "#80cbc4"
+TOUCH_CIRCLE_COLOR = "#004d40"
 
 SOFTWARE_RENDERERS = ("llvmpipe", "softpipe", "swrast", "Software Rasterizer")
 SOFTWARE_RESOLUTION = 90
@@ -364,7 +370,16 @@ class Viewport(QWidget):
         self._set_actor("pick_circle", to_polydata(info.latitude), color=LATITUDE_COLOR, line_width=3)
         marker = pyvista.Sphere(radius=0.012 * scene.region.radius, center=info.point)
         self._set_actor("pick_point", marker, color=PICK_COLOR)
-        self.pick_label.setText(_pick_text(info))
+        touches = touching_spheres(scene.canal_families, info.point, 0.02 * scene.region.radius)
+        spheres = pyvista.PolyData()
+        for touch in touches:
+            spheres = spheres.merge(pyvista.Sphere(radius=touch.radius, center=touch.center,
+                                                   theta_resolution=36, phi_resolution=18))
+        self._set_actor("pick_sphere", spheres, color=TOUCH_SPHERE_COLOR, style="wireframe", opacity=0.5,
+                        line_width=1)
+        circles = LineData.from_polylines([t.circle for t in touches])
+        self._set_actor("pick_canal_circle", to_polydata(circles), color=TOUCH_CIRCLE_COLOR, line_width=4)
+        self.pick_label.setText(" · ".join([_pick_text(info)] + [_touch_text(t) for t in touches]))
         self.request_render()
         self.picked.emit(info)
         return info
@@ -542,6 +557,13 @@ class Viewport(QWidget):
         for name in PICK_ACTORS:
             self.plotter.remove_actor(name, render=False)
         self.pick_label.setText("Right-click the surface (or press P) to inspect a point.")
+
+
+def _touch_text(touch: Touch) -> str:
+    """The sphere of a canal family touching the surface at the picked point, in words."""
+    x, y, z = touch.center
+    return (f"touching sphere of family {touch.family + 1}: centre ({x:.4g}, {y:.4g}, {z:.4g}), "
+            f"radius {touch.radius:.4g}")
 
 
 def _pick_text(info: PickInfo) -> str:

@@ -41,6 +41,7 @@ from sorgui.render import (
     sphere_center_marker,
     surface_mesh,
 )
+from sorgui.render.canal_touch import FamilyCurves, family_curves
 from sorgui.render.geometry import foot_on_line
 from sorgui.render.sampling import evaluate_points, term_arrays, value_and_gradient
 from sorgui.session.job import DEFAULT_RESOLUTION
@@ -64,7 +65,8 @@ class SceneData:
     floating-point axis of rounded input; ``deviation``: per surface point, the distance to
     the nearest exact surface (``|g|/|∇g|``, length units), when there is one.
     ``canal_spine``/``canal_circles``: the spines and a few characteristic circles of a canal
-    surface's rational sphere families (docs/math.md §9).
+    surface's rational sphere families (docs/math.md §9); ``canal_families``: those families as
+    float curves, to find the sphere touching the surface at a picked point.
     """
 
     terms: Terms
@@ -82,6 +84,7 @@ class SceneData:
     deviation: np.ndarray | None = None
     canal_spine: LineData = LineData.empty()
     canal_circles: LineData = LineData.empty()
+    canal_families: tuple[FamilyCurves, ...] = ()
 
     @property
     def axis(self) -> tuple[np.ndarray, np.ndarray] | None:
@@ -236,7 +239,8 @@ def with_canal(scene: SceneData, analysis: Analysis) -> SceneData:
     bound = float(np.linalg.norm(scene.region.center)) + 1.5 * scene.region.radius
     drawn = canal_scene(canal, bound=bound)
     return replace(scene, canal_spine=LineData.from_polylines(list(drawn.spines)),
-                   canal_circles=LineData.from_polylines(list(drawn.circles)))
+                   canal_circles=LineData.from_polylines(list(drawn.circles)),
+                   canal_families=family_curves(canal))
 
 
 def surface_deviation(terms: Terms, points: np.ndarray) -> np.ndarray:

@@ -50,6 +50,14 @@ def test_dupin_cyclide_canal_section_and_viewport(window, qtbot, run_analysis, a
     assert actors["canal_spine"].GetVisibility() and actors["canal_circles"].GetVisibility()
     window.save_screenshots(artifacts / "canal-window.png", artifacts / "canal-viewport.png")
 
+    info = viewport.pick_point((6.0, 0.0, 0.0))  # on the cyclide: f(6, 0, 0) = 0
+    assert info is not None and abs(info.value) < 1e-6
+    assert {"pick_sphere", "pick_canal_circle"} <= viewport.actor_names()
+    label = viewport.pick_label.text()
+    assert "touching sphere of family 1: centre (5, 0, 0), radius 1" in label
+    assert "touching sphere of family 2: centre (-3, " in label and "radius 9" in label
+    window.save_screenshots(artifacts / "canal-pick-window.png", artifacts / "canal-pick-viewport.png")
+
     viewport.canal_box.setChecked(False)
     assert not actors["canal_spine"].GetVisibility() and not actors["canal_circles"].GetVisibility()
     viewport.canal_box.setChecked(True)
