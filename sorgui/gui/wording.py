@@ -127,6 +127,8 @@ def caption_tip(caption: str) -> str:
         return CAPTION_TIPS[caption]
     if caption in STAGE_TITLES:
         return f"Time taken by the stage “{STAGE_TITLES[caption]}”"
+    if caption.startswith("family "):
+        return "A one-parameter family of spheres whose envelope is X (a Dupin cyclide has two)"
     if caption.startswith("factor "):
         return "An irreducible factor of f over K (with its power), recognised on its own"
     return ""
