@@ -47,7 +47,11 @@ def canal_scene(canal: Canal, *, bound: float = 20.0, samples: int = 400, circle
     return CanalScene(tuple(spines), tuple(rings))
 
 
-def _function(text: str) -> tuple[np.ndarray, np.ndarray]:
+Function = tuple[np.ndarray, np.ndarray]
+"""A rational function of ``t``: numerator and denominator coefficients, highest degree first."""
+
+
+def rational_function(text: str) -> Function:
     """A rational function of ``t`` (engine string) as numerator and denominator coefficients
     (highest degree first, for :func:`numpy.polyval`)."""
     expr = sympy.together(read(text, SYMPY))
@@ -60,7 +64,8 @@ def _coefficients(expr: sympy.Expr) -> np.ndarray:
     return np.array([float(sympy.re(c.evalf(20))) for c in poly.all_coeffs()], dtype=np.float64)
 
 
-def _evaluate(fn: tuple[np.ndarray, np.ndarray], t: np.ndarray) -> np.ndarray:
+def evaluate(fn: Function, t: np.ndarray) -> np.ndarray:
+    """Values of a :data:`Function` at the parameters ``t`` (``inf``/``nan`` at poles)."""
     with np.errstate(all="ignore"):
         return np.polyval(fn[0], t) / np.polyval(fn[1], t)
 
@@ -72,7 +77,7 @@ def _parameters(samples: int) -> np.ndarray:
 
 
 def _vectors(triple: Sequence[str], t: np.ndarray) -> np.ndarray:
-    return np.column_stack([_evaluate(_function(c), t) for c in triple])
+    return np.column_stack([evaluate(rational_function(c), t) for c in triple])
 
 
 def _spine(family: CanalFamily, bound: float, samples: int) -> list[np.ndarray]:
@@ -98,19 +103,26 @@ def _circles(family: CanalFamily, bound: float, count: int, points: int) -> list
     t = _parameters(count)
     centers = _vectors(family.circle_center or (), t)
     normals = _vectors(family.circle_normal or (), t)
-    radius2 = _evaluate(_function(family.circle_radius_squared or "0"), t)
-    theta = np.linspace(0.0, 2 * np.pi, points + 1)
+    radius2 = evaluate(rational_function(family.circle_radius_squared or "0"), t)
     out = []
     for c, n, r2 in zip(centers, normals, radius2):
-        norm = np.linalg.norm(n)
-        if not (np.all(np.isfinite(c)) and np.isfinite(r2) and r2 > 0 and np.isfinite(norm) and norm > 0):
-            continue
-        n = n / norm
-        helper = np.eye(3)[int(np.argmin(np.abs(n)))]
-        e1 = np.cross(n, helper)
-        e1 /= np.linalg.norm(e1)
-        e2 = np.cross(n, e1)
-        ring = c + np.sqrt(r2) * (np.outer(np.cos(theta), e1) + np.outer(np.sin(theta), e2))
-        if np.all(np.linalg.norm(ring, axis=1) <= bound):
+        ring = circle(c, n, float(r2), points)
+        if ring is not None and np.all(np.linalg.norm(ring, axis=1) <= bound):
             out.append(ring)
     return out
+
+
+def circle(center: np.ndarray, normal: np.ndarray, radius_squared: float, points: int) -> np.ndarray | None:
+    """The circle of the given centre, plane normal and squared radius as a closed polyline of
+    ``points + 1`` points; ``None`` when it is not a real circle (or not finite)."""
+    norm = float(np.linalg.norm(normal))
+    if not (np.all(np.isfinite(center)) and np.isfinite(radius_squared) and radius_squared > 0
+            and np.isfinite(norm) and norm > 0):
+        return None
+    n = normal / norm
+    helper = np.eye(3)[int(np.argmin(np.abs(n)))]
+    e1 = np.cross(n, helper)
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(n, e1)
+    theta = np.linspace(0.0, 2 * np.pi, points + 1)
+    return center + np.sqrt(radius_squared) * (np.outer(np.cos(theta), e1) + np.outer(np.sin(theta), e2))

@@ -14,15 +14,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import sympy
 
-from sorgui.engine.expressions import SYMPY, read
 from sorgui.engine.report import Canal
+from sorgui.render.canal_scene import Function, circle, evaluate, rational_function
 
-Function = tuple[np.ndarray, np.ndarray]
-"""A rational function of ``t``: numerator and denominator coefficients, highest degree first."""
-
-T = sympy.Symbol("t")
 SCAN = 2000
 """Samples of ``φ`` in the coarse scan over the whole real line of ``t``."""
 
@@ -61,11 +56,11 @@ def family_curves(canal: Canal) -> tuple[FamilyCurves, ...]:
                 or family.circle_radius_squared is None or family.circle_normal is None):
             continue
         out.append(FamilyCurves(
-            tuple(_function(c) for c in family.parametrization),  # type: ignore[arg-type]
-            _function(family.radius_squared),
-            tuple(_function(c) for c in family.circle_center),  # type: ignore[arg-type]
-            _function(family.circle_radius_squared),
-            tuple(_function(c) for c in family.circle_normal),  # type: ignore[arg-type]
+            tuple(rational_function(c) for c in family.parametrization),  # type: ignore[arg-type]
+            rational_function(family.radius_squared),
+            tuple(rational_function(c) for c in family.circle_center),  # type: ignore[arg-type]
+            rational_function(family.circle_radius_squared),
+            tuple(rational_function(c) for c in family.circle_normal),  # type: ignore[arg-type]
         ))
     return tuple(out)
 
@@ -81,7 +76,7 @@ def touching_spheres(families: tuple[FamilyCurves, ...], point: np.ndarray, tole
         if not np.isfinite(distance) or distance > tolerance:
             continue
         center = _vector(family.center, np.array([t]))[0]
-        rho = float(_evaluate(family.radius_squared, np.array([t]))[0])
+        rho = float(evaluate(family.radius_squared, np.array([t]))[0])
         ring = _circle(family, t, circle_points)
         if ring is None or not (np.all(np.isfinite(center)) and rho > 0):
             continue
@@ -89,30 +84,15 @@ def touching_spheres(families: tuple[FamilyCurves, ...], point: np.ndarray, tole
     return out
 
 
-def _function(text: str) -> Function:
-    num, den = sympy.fraction(sympy.together(read(text, SYMPY)))
-    return _coefficients(num), _coefficients(den)
-
-
-def _coefficients(expr: sympy.Expr) -> np.ndarray:
-    poly = sympy.Poly(sympy.expand(expr), T)
-    return np.array([float(sympy.re(c.evalf(20))) for c in poly.all_coeffs()], dtype=np.float64)
-
-
-def _evaluate(fn: Function, t: np.ndarray) -> np.ndarray:
-    with np.errstate(all="ignore"):
-        return np.polyval(fn[0], t) / np.polyval(fn[1], t)
-
-
 def _vector(fns: tuple[Function, Function, Function], t: np.ndarray) -> np.ndarray:
-    return np.column_stack([_evaluate(fn, t) for fn in fns])
+    return np.column_stack([evaluate(fn, t) for fn in fns])
 
 
 def _circle_distance(family: FamilyCurves, point: np.ndarray, t: np.ndarray) -> np.ndarray:
     """The distance from ``point`` to the characteristic circle of each parameter in ``t``."""
     c = _vector(family.circle_center, t)
     n = _vector(family.circle_normal, t)
-    r2 = _evaluate(family.circle_radius_squared, t)
+    r2 = evaluate(family.circle_radius_squared, t)
     with np.errstate(all="ignore"):
         n = n / np.linalg.norm(n, axis=1, keepdims=True)
         d = point - c
@@ -137,16 +117,5 @@ def _nearest_circle(family: FamilyCurves, point: np.ndarray) -> tuple[float, flo
 
 def _circle(family: FamilyCurves, t: float, points: int) -> np.ndarray | None:
     ts = np.array([t])
-    c = _vector(family.circle_center, ts)[0]
-    n = _vector(family.circle_normal, ts)[0]
-    r2 = float(_evaluate(family.circle_radius_squared, ts)[0])
-    norm = float(np.linalg.norm(n))
-    if not (np.all(np.isfinite(c)) and np.isfinite(r2) and r2 > 0 and np.isfinite(norm) and norm > 0):
-        return None
-    n = n / norm
-    helper = np.eye(3)[int(np.argmin(np.abs(n)))]
-    e1 = np.cross(n, helper)
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(n, e1)
-    theta = np.linspace(0.0, 2 * np.pi, points + 1)
-    return c + np.sqrt(r2) * (np.outer(np.cos(theta), e1) + np.outer(np.sin(theta), e2))
+    return circle(_vector(family.circle_center, ts)[0], _vector(family.circle_normal, ts)[0],
+                  float(evaluate(family.circle_radius_squared, ts)[0]), points)
