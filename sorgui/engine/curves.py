@@ -237,17 +237,14 @@ def _linear_curve(F: Poly) -> CurveAnalysis | None:
     where ``absFactorize`` is fast and gives the canonical form of the factor."""
     if is_rational_field(F.ring.domain) or F.ring.ngens != 2 or total_degree(F) < 1:
         return None
-    R = poly_ring(("t",), F.ring.domain)
-    for linear in (1, 0):
-        if F.degree(linear) != 1:
-            continue
-        other = 1 - linear
-        A = R.from_dict({(m[other],): c for m, c in F.items() if m[linear] == 1})
-        C = R.from_dict({(m[other],): c for m, c in F.items() if m[linear] == 0})
-        if A.gcd(C).degree() > 0:
-            return None
-        factor = AbsoluteFactor(F.monic().as_expr(), 1, 1)
-        return CurveAnalysis(AbsoluteFactorization(_variables(F), (factor,)), 0)
+    split = _linear_split(F)
+    if split is None:
+        return None
+    _, A, C = split
+    if A.gcd(C).degree() > 0:
+        return None
+    factor = AbsoluteFactor(F.monic().as_expr(), 1, 1)
+    return CurveAnalysis(AbsoluteFactorization(_variables(F), (factor,)), 0)
     return None
 
 
@@ -471,6 +468,19 @@ _Fraction = tuple[Poly, Poly]
 def _direct(F: Poly) -> tuple[_Fraction, _Fraction] | None:
     """``(t, -C(t)/A(t))`` when ``F = A(x)·y + C(x)``, or the same with ``x`` and ``y``
     swapped, over ``K``; ``None`` when ``F`` is linear in neither variable."""
+    split = _linear_split(F)
+    if split is None:
+        return None
+    linear, A, C = split
+    if A.gcd(C).degree() > 0:
+        raise AnalysisError(f"the curve {F.as_expr()} = 0 is reducible: it contains a line")
+    free, value = (A.ring.gens[0], A.ring.one), _reduced(-C, A)
+    return (free, value) if linear == 1 else (value, free)
+
+
+def _linear_split(F: Poly) -> tuple[int, Poly, Poly] | None:
+    """``(i, A, C)`` with ``F = A(t)·v_i + C(t)`` (``t`` the other variable), trying ``y`` before
+    ``x``; ``None`` when ``F`` is linear in neither variable."""
     R = poly_ring(("t",), F.ring.domain)
     for linear in (1, 0):
         if F.degree(linear) != 1:
@@ -478,10 +488,8 @@ def _direct(F: Poly) -> tuple[_Fraction, _Fraction] | None:
         other = 1 - linear
         A = R.from_dict({(m[other],): c for m, c in F.items() if m[linear] == 1})
         C = R.from_dict({(m[other],): c for m, c in F.items() if m[linear] == 0})
-        if A.gcd(C).degree() > 0:
-            raise AnalysisError(f"the curve {F.as_expr()} = 0 is reducible: it contains a line")
-        free, value = (R.gens[0], R.one), _reduced(-C, A)
-        return (free, value) if linear == 1 else (value, free)
+        return linear, A, C
+    return None
     return None
 
 
