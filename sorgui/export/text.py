@@ -13,6 +13,17 @@ TABLE_1 = (
 )
 """Table 1 of the paper: genus(P), genus(P²), X_C, X (real); rows numbered 1–5 top to bottom."""
 
+TABLE_1_WORDS = (
+    "The profile P splits into two curves and P² has genus 0: X is rational, over ℂ and over ℝ.",
+    "The profile P splits into two curves and P² has positive genus: X is not rational.",
+    "The profile P is a rational curve (genus 0), so P² is too: X is rational over ℂ; over ℝ it is "
+    "rational when h has at most two real roots (one real piece), otherwise only unirational.",
+    "The profile P has positive genus but P² is rational: X is rational over ℂ; over ℝ it is "
+    "rational when h has at most two real roots (one real piece), otherwise only unirational.",
+    "Both P and P² have positive genus: X is not rational, over ℂ or over ℝ.",
+)
+"""Each row of Table 1 in words (tooltips and help)."""
+
 SYMMETRY_NAMES = {
     "revolution": "surface of revolution",
     "cylinder_of_revolution": "cylinder of revolution",

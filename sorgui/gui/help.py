@@ -11,7 +11,7 @@ import html
 
 from PySide6.QtWidgets import QDialog, QDialogButtonBox, QTextBrowser, QVBoxLayout, QWidget
 
-from sorgui.export.text import TABLE_1
+from sorgui.export.text import TABLE_1, TABLE_1_WORDS
 
 SYNTAX_EXAMPLES = (
     ("(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)", "a torus: powers with ^, implicit multiplication"),
@@ -111,7 +111,8 @@ def table_1_html() -> str:
         f"<tr><td align='center'>{i + 1}</td>" + "".join(f"<td align='center'>{c}</td>" for c in row) + "</tr>"
         for i, row in enumerate(TABLE_1)
     )
-    return f"<table border='1' cellspacing='0' cellpadding='4'>{head}{body}</table>"
+    words = "".join(f"<li>Row {i + 1}: {html.escape(w)}</li>" for i, w in enumerate(TABLE_1_WORDS))
+    return f"<table border='1' cellspacing='0' cellpadding='4'>{head}{body}</table><ul>{words}</ul>"
 
 
 TOPICS = {

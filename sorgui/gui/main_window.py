@@ -159,7 +159,8 @@ class MainWindow(QMainWindow):
                                 self.stage_label)
         self.view.shown.connect(self.result_shown)
         camera = self.settings.camera
-        self.view.restore_camera = CameraState.from_dict(camera) if camera else None
+        if camera is not None:
+            self.view.restore_camera = (camera[0], CameraState.from_dict(camera[1]))
 
         self.analyze_button.clicked.connect(self.analyze)
         self.cancel_button.clicked.connect(self.cancel)
@@ -615,7 +616,11 @@ class MainWindow(QMainWindow):
             return
         self.settings.equation = self.editor.text()
         self.settings.current_file = self._file
-        self.settings.camera = self.viewport.camera_state().to_dict()
+        run = self.session.run
+        if run is not None and self.viewport.scene is not None:
+            self.settings.set_camera(run.text, self.viewport.camera_state().to_dict())
+        else:
+            self.settings.forget_camera()
         self._save_layout()
         self.settings.sync()
         self.view.close()

@@ -29,7 +29,7 @@ from PySide6.QtWidgets import (
 )
 
 from sorgui.engine.report import Analysis, Approximation, Canal, Rationality, Recognition
-from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, format_report
+from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, TABLE_1_WORDS, format_report
 from sorgui.gui.formula_view import FormulaView
 from sorgui.gui.wording import (
     canal_evidence,
@@ -345,10 +345,12 @@ class ResultsPane(QScrollArea):
             for c, text in enumerate((str(r + 1), *cells)):
                 item = QTableWidgetItem(text)
                 item.setTextAlignment(Qt.AlignmentFlag.AlignCenter)
+                words = f"Row {r + 1}. {TABLE_1_WORDS[r]}"
                 if row == r + 1:
                     item.setBackground(HIGHLIGHT)
                     item.setFont(bold)
-                    item.setToolTip("the row of this surface")
+                    words += "\nThis is the row of this surface."
+                item.setToolTip(words)
                 table.setItem(r, c, item)
         header = table.horizontalHeader()
         header.setSectionResizeMode(QHeaderView.ResizeMode.Stretch)

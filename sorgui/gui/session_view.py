@@ -64,8 +64,9 @@ class SessionView(QObject):
         super().__init__(results)
         self.session = session
         self.editor, self.panel, self.results, self.viewport, self.status = editor, panel, results, viewport, status
-        self.restore_camera: CameraState | None = None
-        """A camera to restore at the next first scene (the state of the last session)."""
+        self.restore_camera: tuple[str, CameraState] | None = None
+        """The last session's camera and the equation it looked at: restored when the first
+        scene shown is of that same equation."""
         self._fresh_scene = True
         self._pane_timer = QTimer(self)
         self._pane_timer.setSingleShot(True)
@@ -205,12 +206,16 @@ class SessionView(QObject):
             self._show_scene(scene, self._caption(run, nearest=True))
 
     def _show_scene(self, scene: object, caption: str) -> None:
-        reset = self._fresh_scene
-        self._fresh_scene = False
-        self.viewport.show_scene(scene, reset_camera=reset and self.restore_camera is None, caption=caption)
-        if reset and self.restore_camera is not None:
-            self.viewport.restore_camera(self.restore_camera)
+        fresh, camera = self._fresh_scene, None
+        if fresh and self.restore_camera is not None:
+            equation, state = self.restore_camera
+            run = self.session.run
+            camera = state if run is not None and run.text == equation else None
             self.restore_camera = None
+        self._fresh_scene = False
+        self.viewport.show_scene(scene, reset_camera=fresh and camera is None, caption=caption)
+        if camera is not None:
+            self.viewport.restore_camera(camera)
         if self.session.stale:
             self.viewport.set_stale(True, "Previous equation (out of date): " + caption)
 

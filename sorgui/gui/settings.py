@@ -120,18 +120,26 @@ class Settings(QObject):
     # --- the 3D view ---
 
     @property
-    def camera(self) -> dict[str, object] | None:
-        """The camera of the 3D view at the last exit (a :class:`~sorgui.gui.camera.CameraState` dict)."""
+    def camera(self) -> tuple[str, dict[str, object]] | None:
+        """The camera of the 3D view at the last exit, with the equation it was looking at:
+        ``(equation, CameraState dict)`` (see :class:`~sorgui.gui.camera.CameraState`)."""
         value = self._store.value("view/camera")
         try:
             data = json.loads(str(value)) if value else None
         except ValueError:
             return None
-        return data if isinstance(data, dict) else None
+        if not isinstance(data, dict) or not isinstance(data.get("equation"), str):
+            return None
+        state = data.get("camera")
+        return (data["equation"], state) if isinstance(state, dict) else None
 
-    @camera.setter
-    def camera(self, state: dict[str, object]) -> None:
-        self._store.setValue("view/camera", json.dumps(state))
+    def set_camera(self, equation: str, state: dict[str, object]) -> None:
+        """Remember the camera of the 3D view showing ``equation``."""
+        self._store.setValue("view/camera", json.dumps({"equation": equation, "camera": state}))
+
+    def forget_camera(self) -> None:
+        """Nothing was shown: the next start frames its first surface afresh."""
+        self._store.remove("view/camera")
 
     # --- window layout ---
 

@@ -89,6 +89,28 @@ def test_verdict_while_singular_runs_and_no_old_verdict_ever(make_window, qtbot,
     assert window.run_panel.notice_kind == "cancelled"
 
 
+def test_analyze_during_a_run_supersedes_it(make_window, qtbot, monkeypatch, hanging_singular) -> None:
+    window = make_window(prestart_worker=False)  # each job starts its own process
+    monkeypatch.setenv("SORGUI_SINGULAR", str(hanging_singular))
+    window.set_equation(example_text("paper-example-1"))
+    assert window.analyze()
+    qtbot.waitUntil(lambda: stage_state(window, "rationality") is StageState.RUNNING, timeout=60_000)
+    first = window.worker.current_pid
+    monkeypatch.delenv("SORGUI_SINGULAR")  # the next process finds the real Singular
+
+    window.set_equation(example_text("cone"))
+    with qtbot.waitSignal(window.result_shown, timeout=SLOW_MS) as blocker:
+        assert window.analyze()
+        assert "replaces it" in window.statusBar().currentMessage()
+        assert "(3/5, -4/5, 0)" not in window.results.plain_text()
+    assert blocker.args[0].analysis.recognition.axis.direction == ("1", "0", "1")
+    assert window.session.run.text == example_text("cone")
+    assert "(3/5, -4/5, 0)" not in window.results.plain_text() and "(1, 0, 1)" in window.results.plain_text()
+    qtbot.waitUntil(lambda: not Path(f"/proc/{first}").exists()
+                    or "Z" in Path(f"/proc/{first}/stat").read_text().rsplit(")", 1)[1].split()[0],
+                    timeout=10_000)  # the superseded process is gone (or a zombie until reaped)
+
+
 def _pane_text(window) -> str:  # noqa: ANN001
     from PySide6.QtWidgets import QLabel
 
@@ -170,7 +192,7 @@ def test_standard_views_projection_wireframe_and_section(window, run_analysis) -
     assert viewport.view_actions["along"] in view_menu.actions()
 
 
-def test_camera_is_restored_on_the_next_start(make_window, run_analysis) -> None:
+def test_camera_is_restored_on_the_next_start_for_the_same_equation(make_window, run_analysis) -> None:
     first = make_window()
     run_analysis(first, example_text("torus"))
     first.viewport.set_view("x")
@@ -181,6 +203,11 @@ def test_camera_is_restored_on_the_next_start(make_window, run_analysis) -> None
     run_analysis(second, example_text("torus"))
     restored = second.viewport.camera_state()
     assert np.allclose(restored.position, saved.position) and restored.parallel
+    second.close()
+    third = make_window()  # another equation first: its surface is framed afresh
+    run_analysis(third, example_text("cone"))
+    framed = third.viewport.camera_state()
+    assert not framed.parallel and not np.allclose(framed.position, saved.position)
 
 
 def test_formulas_zoom_with_keys_and_copy_in_every_language(window, run_analysis, qtbot) -> None:
@@ -205,8 +232,27 @@ def test_formulas_zoom_with_keys_and_copy_in_every_language(window, run_analysis
     assert texts["Copy as Mathematica"] == "{1, 0, 1}"
     assert texts["Copy as Python"] == "(1, 0, 1)"
     with _refreshed(window, qtbot):
+        _ctrl_wheel(window.results.viewport(), -120)  # Ctrl+wheel down over the results: zoom out
+    assert window.zoom == 1.0 and _formula_height(window, "(1, 0, 1)") == height
+    with _refreshed(window, qtbot):
+        _ctrl_wheel(window.results.viewport(), 120)
+    assert window.zoom > 1.0 and _formula_height(window, "(1, 0, 1)") > height
+    with _refreshed(window, qtbot):
         window.zoom_reset_action.trigger()
     assert window.zoom == 1.0 and _formula_height(window, "(1, 0, 1)") == height
+
+
+def _ctrl_wheel(widget, delta: int) -> None:  # noqa: ANN001
+    """One notch of the mouse wheel with Ctrl held, over the middle of ``widget``."""
+    from PySide6.QtCore import QPointF
+    from PySide6.QtGui import QWheelEvent
+    from PySide6.QtWidgets import QApplication
+
+    centre = QPointF(widget.width() / 2, widget.height() / 2)
+    event = QWheelEvent(centre, widget.mapToGlobal(centre), QPoint(0, 0), QPoint(0, delta),
+                        Qt.MouseButton.NoButton, Qt.KeyboardModifier.ControlModifier,
+                        Qt.ScrollPhase.NoScrollPhase, False)
+    QApplication.sendEvent(widget, event)
 
 
 class _refreshed:  # noqa: N801 (a context manager used like qtbot.waitSignal)
@@ -268,6 +314,10 @@ def test_caption_tooltips_on_results(window, run_analysis) -> None:
                 and label.text()]
     assert captions
     assert [label.text() for label in captions if not label.toolTip()] == []
+    table = window.results.table  # every row of Table 1 says what it means; the torus's is row 1
+    tips = [table.item(r, 0).toolTip() for r in range(table.rowCount())]
+    assert all(tip.startswith(f"Row {r + 1}. ") for r, tip in enumerate(tips))
+    assert "row of this surface" in tips[0] and not any("row of this surface" in tip for tip in tips[1:])
 
 
 def test_a_no_is_explained(window, run_analysis) -> None:
