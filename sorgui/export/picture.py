@@ -9,6 +9,7 @@ and the reports are written without a picture.
 
 from __future__ import annotations
 
+import gc
 from typing import Protocol
 
 import numpy as np
@@ -64,6 +65,9 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
             image = plotter.screenshot(None, transparent_background=transparent, return_img=True)
         finally:
             plotter.close()
+            plotter.deep_clean()
+            del plotter
+            gc.collect()  # free the off-screen context's VTK objects now, not in a later collection
     except (RuntimeError, AttributeError, ValueError) as exc:
         raise RuntimeError(f"no off-screen renderer: {exc}") from exc
     finally:

@@ -23,6 +23,7 @@ are drawn (the "Canal" box shows or hides them).
 
 from __future__ import annotations
 
+import gc
 from pathlib import Path
 
 import numpy as np
@@ -351,9 +352,13 @@ class Viewport(QWidget):
         self.plotter.screenshot(str(path))
 
     def close_plotter(self) -> None:
-        """Stop timers and release the render window (before the widget is destroyed)."""
+        """Stop timers and release the render window and every VTK object of the scene now,
+        while the native window still exists: VTK objects left in reference cycles would
+        otherwise be freed by a later garbage collection, after Qt destroyed that window."""
         self._radius_timer.stop()
         self.plotter.close()
+        self.plotter.deep_clean()
+        gc.collect()
 
     # --- handlers ---
 

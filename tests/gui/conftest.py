@@ -8,6 +8,7 @@ Every test gets its own settings folder, so no test reads or writes the user's s
 
 from __future__ import annotations
 
+import gc
 import multiprocessing
 import os
 import sys
@@ -100,11 +101,15 @@ def make_window(qtbot):  # noqa: ANN001, ANN201
         return window
 
     yield make
+    app = QCoreApplication.instance()
     for window in windows:
         window.setWindowModified(False)  # no unsaved-changes question at the end of a test
         window.close()
+    app.processEvents()  # what closing posted runs while the windows still exist
+    for window in windows:
         window.deleteLater()
     QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
+    gc.collect()
 
 
 @pytest.fixture
