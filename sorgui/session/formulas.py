@@ -2,18 +2,25 @@
 
 The results pane shows every polynomial, vector and parameterization typeset, not as Python
 text. Each engine string is read exactly (:mod:`sorgui.export.exact`) and printed with
-``sympy.latex``, one piece per top-level term. :func:`render_formulas` then wraps the pieces
-into lines no wider than the pane (measured with mathtext itself) and rasterises each line with
-matplotlib's mathtext (Computer Modern) into an 8-bit alpha mask. This runs in the analysis
-worker process (it has no Qt), so the GUI thread only colours ready-made masks; a formula
-mathtext cannot typeset is shown as plain text instead. Each formula also carries its Maple,
-Mathematica and Python forms (sympy's printers, as the exported files), for the copy menu.
+``sympy.latex``, one piece per top-level term. :func:`render_formulas` then rasterises it with
+matplotlib's mathtext (Computer Modern) into 8-bit alpha masks: whole when it fits the pane's
+width, else piece by piece, the pieces set side by side on one baseline and wrapped between
+them (mathtext's cost is mostly per parse, so each piece is typeset once; the worker process
+shares the parsing with a forked helper, see :func:`prepare`). This runs in the analysis worker
+process (it has no Qt), so the GUI thread only colours ready-made masks; a formula mathtext
+cannot typeset is shown as plain text instead. :meth:`Formula.code` prints a formula for Maple,
+Mathematica or Python (sympy's printers, as the exported files) when the copy menu asks.
 """
 
 from __future__ import annotations
 
+import contextlib
+import gc
+import os
+import pickle
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 import sympy
@@ -48,14 +55,26 @@ class Formula:
     pieces: tuple[str, ...]
     lines: tuple[str, ...] = ()
     masks: tuple[np.ndarray, ...] = ()
-    codes: tuple[tuple[str, str], ...] = ()
-    """``(language, text)`` for Maple, Mathematica and Python (empty if not readable)."""
+    source: tuple[str, ...] = ()
+    """The engine strings it was read from (one, or the entries of a vector), for :meth:`code`."""
+    vector: bool = False
 
     def code(self, language: str) -> str:
-        """The formula in ``language`` (``"text"``, ``"LaTeX"``, ``"Maple"``, …; plain text if unknown)."""
+        """The formula in ``language`` (``"text"``, ``"LaTeX"``, ``"Maple"``, …; plain text if
+        unknown). Printed when asked for (the copy menu), not for every formula shown."""
         if language == "LaTeX":
             return self.latex
-        return dict(self.codes).get(language, self.plain)
+        printer = dict(CODE_PRINTERS).get(language)
+        if printer is None or not self.source:
+            return self.plain
+        try:
+            parts = [printer(read_expression(text)) for text in self.source]
+        except ExpressionError:
+            return self.plain
+        if not self.vector:
+            return parts[0]
+        left, right = _BRACKETS[language]
+        return left + ", ".join(parts) + right
 
 
 @dataclass(frozen=True)
@@ -78,26 +97,16 @@ CODE_PRINTERS = (("Maple", maple_code), ("Mathematica", mathematica_code), ("Pyt
 _BRACKETS = {"Maple": ("[", "]"), "Mathematica": ("{", "}"), "Python": ("(", ")")}
 
 
-def _codes(exprs: Sequence[sympy.Expr], vector: bool) -> tuple[tuple[str, str], ...]:
-    """The expression (or the vector of ``exprs``) in each language of :data:`CODE_PRINTERS`."""
-    out = []
-    for language, printer in CODE_PRINTERS:
-        parts = [printer(e) for e in exprs]
-        if vector:
-            left, right = _BRACKETS[language]
-            out.append((language, left + ", ".join(parts) + right))
-        else:
-            out.append((language, parts[0]))
-    return tuple(out)
-
-
 def plain_formula(text: str) -> Formula:
     """``text`` as an untypeset formula (shown as text until the typeset one arrives)."""
     return Formula(text, text, ())
 
 
+@lru_cache(maxsize=4096)
 def expression_formula(text: str, prefix: str = "") -> Formula:
-    """The engine string ``text`` (a number, polynomial or rational function) as a formula."""
+    """The engine string ``text`` (a number, polynomial or rational function) as a formula.
+
+    Cached: a job presents its analysis after every stage, and most formulas are the same."""
     if len(text) > MAX_CHARACTERS:
         return Formula(text, text, ())
     try:
@@ -105,22 +114,27 @@ def expression_formula(text: str, prefix: str = "") -> Formula:
     except ExpressionError:
         return Formula(text, text, ())
     terms = expr.as_ordered_terms() if isinstance(expr, sympy.Add) else [expr]
-    codes = _codes([expr], vector=False)
     if len(terms) > MAX_TERMS:
-        return Formula(text, _latex(expr), (), codes=codes)
+        return Formula(text, _latex(expr), (), source=(text,))
     pieces = []
     for index, term in enumerate(terms):
         negative = term.could_extract_minus_sign()
         body = _latex(-term if negative else term)
-        sign = ("-" if negative else "") if index == 0 else (" - " if negative else " + ")
+        sign = ("- " if negative else "") if index == 0 else (" - " if negative else " + ")
         pieces.append(sign + body)
+    latex = "".join(pieces) if len(pieces) > 1 else _latex(expr)  # what sympy.latex prints for a sum
     if prefix:
         pieces[0] = f"{prefix} {pieces[0]}"
-    return Formula(text, _latex(expr), tuple(pieces), codes=codes)
+    return Formula(text, latex, tuple(pieces), source=(text,))
 
 
 def vector_formula(values: Sequence[str], prefix: str = "") -> Formula:
     """A tuple of exact numbers ``(a, b, c)`` (or Plücker coordinates ``(a : … : f)``)."""
+    return _vector_formula(tuple(values), prefix)
+
+
+@lru_cache(maxsize=1024)
+def _vector_formula(values: tuple[str, ...], prefix: str) -> Formula:
     separator = " : " if len(values) == 6 else ", "
     plain = "(" + separator.join(values) + ")"
     try:
@@ -128,7 +142,7 @@ def vector_formula(values: Sequence[str], prefix: str = "") -> Formula:
     except ExpressionError:
         return Formula(plain, plain, ())
     latex = r"\left(" + separator.join(_latex(e) for e in exprs) + r"\right)"
-    return Formula(plain, latex, ((prefix + " " if prefix else "") + latex,), codes=_codes(exprs, vector=True))
+    return Formula(plain, latex, ((prefix + " " if prefix else "") + latex,), source=values, vector=True)
 
 
 def line_formula(point: Sequence[str], direction: Sequence[str]) -> Formula:
@@ -227,60 +241,213 @@ def analysis_formulas(analysis: Analysis, plain: bool = False) -> dict[str, Form
 
 # --- mathtext images ------------------------------------------------------------------------
 
+PAD = ((2, 2), (2, 6))
+"""Blank rows (top, bottom) and columns (left, right) around a mask: delimiters may reach past
+mathtext's box."""
 
-def _parse(latex: str, style: Style):  # noqa: ANN202 (matplotlib's RasterParse)
+PARALLEL_MINIMUM = 4
+"""Fewer pieces than this are typeset in the worker process alone (a fork costs milliseconds)."""
+
+BINARY_CONTEXT = "{}"
+"""Put before a piece that starts with ``+``/``-`` so that mathtext spaces the sign as the binary
+operator it is in the whole formula (an empty group is an operand)."""
+
+WARM_UP = (r"f = x^{4} + 2 x^{2} y^{2} - \frac{3 t^{2} + 1}{\sqrt{5} \left(t - 7\right)^{6}} "
+           r"\left(0 : 1, -\frac{8}{9}\right) \varphi \rho \tau_{x} \tilde{p}(s, r) P^{2} \qquad "
+           r"0123456789 abcdefghijklmnopqrstuvwxyz x^{0123456789 abcdefghijklmnopqrstuvwxyz} "
+           r"\frac{0123456789 abcdefghijklmnopqrstuvwxyz + - ( )}{0123456789 abcdefghijklmnopqrstuvwxyz + - ( )} "
+           r"\frac{x^{0123456789}}{y^{0123456789}} \sqrt{0123456789}")
+"""Typeset once when a worker process starts, so that loading mathtext's glyphs is not paid
+by the first analysis."""
+
+
+@dataclass(frozen=True)
+class _Box:
+    """A typeset piece: its alpha mask, advance width and depth below the baseline (pixels)."""
+
+    image: np.ndarray
+    width: float
+    depth: int
+
+    @property
+    def ascent(self) -> int:
+        return self.image.shape[0] - self.depth
+
+
+_BOXES: dict[tuple[str, Style], _Box] = {}
+"""Every piece typeset in this process, by LaTeX and style (a job typesets each piece once)."""
+
+
+def _typeset(latex: str, style: Style) -> _Box:
     from matplotlib.font_manager import FontProperties
     from matplotlib.mathtext import MathTextParser
 
     prop = FontProperties(size=style.size, math_fontfamily="cm")
-    return MathTextParser("agg").parse(f"${latex}$", dpi=style.dpi, prop=prop)
+    parsed = MathTextParser("agg").parse(f"${latex}$", dpi=style.dpi, prop=prop)
+    image = np.asarray(parsed.image, dtype=np.uint8)
+    return _Box(image, float(parsed.width), min(int(round(parsed.depth)), image.shape[0]))
+
+
+def _box(latex: str, style: Style) -> _Box:
+    """``latex`` typeset by mathtext (Computer Modern); ``ValueError`` if it cannot."""
+    key = (latex, style)
+    box = _BOXES.get(key)
+    if box is None:
+        box = _BOXES[key] = _typeset(latex, style)
+    return box
+
+
+def _typeset_in_child(latexes: Sequence[str], style: Style) -> tuple[int, int] | None:
+    """Start typesetting ``latexes`` in a forked copy of this process: its pid and the pipe it
+    answers on (``None`` where there is no ``fork``). The child writes the pickled boxes it could
+    typeset and exits."""
+    if not hasattr(os, "fork"):
+        return None
+    read, write = os.pipe()
+    gc.freeze()  # the child's collections then skip (and copy) none of this process' objects
+    try:
+        pid = os.fork()
+    except OSError:
+        os.close(read)
+        os.close(write)
+        return None
+    gc.unfreeze()
+    if pid == 0:  # the child: no cleanup of the parent's state, only the boxes and _exit
+        gc.disable()
+        os.close(read)
+        try:
+            boxes = {}
+            for latex in latexes:
+                try:
+                    boxes[latex] = _typeset(latex, style)
+                except (ValueError, RuntimeError):
+                    pass  # the parent typesets it again and reports the error
+            with os.fdopen(write, "wb") as out:
+                pickle.dump(boxes, out, protocol=pickle.HIGHEST_PROTOCOL)
+        finally:
+            os._exit(0)
+    os.close(write)
+    return pid, read
+
+
+def prepare(latexes: Iterable[str], style: Style, processes: int = 1) -> None:
+    """Typeset the pieces of ``latexes`` not typeset yet, with ``processes`` processes: the
+    worker process forks one helper on a machine with two cores or more, which halves the
+    typesetting of a results pane (mathtext's parser is pure Python)."""
+    todo = list(dict.fromkeys(latex for latex in latexes if (latex, style) not in _BOXES))
+    child, mine = None, todo
+    if processes > 1 and len(todo) >= PARALLEL_MINIMUM:
+        halves: tuple[list[str], list[str]] = ([], [])
+        for latex in sorted(todo, key=len, reverse=True):  # parsing time grows with the length
+            min(halves, key=lambda half: sum(map(len, half))).append(latex)
+        child = _typeset_in_child(halves[1], style)
+        mine = halves[0] if child is not None else todo
+    for latex in mine:
+        with contextlib.suppress(ValueError, RuntimeError):  # raised again when it is composed
+            _box(latex, style)
+    if child is not None:
+        pid, pipe = child
+        with os.fdopen(pipe, "rb") as answer:
+            data = answer.read()
+        with contextlib.suppress(ChildProcessError):
+            os.waitpid(pid, 0)
+        if data:
+            for latex, box in pickle.loads(data).items():  # noqa: S301 (our own child's boxes)
+                _BOXES[(latex, style)] = box
+
+
+def _compose(boxes: Sequence[_Box], indent: float = 0.0) -> np.ndarray:
+    """The boxes side by side on one baseline, after ``indent`` blank pixels, padded."""
+    ascent = max(b.ascent for b in boxes)
+    depth = max(b.depth for b in boxes)
+    lefts, x = [], indent
+    for b in boxes:
+        lefts.append(int(round(x)))
+        x += b.width
+    width = max(left + b.image.shape[1] for left, b in zip(lefts, boxes))
+    canvas = np.zeros((ascent + depth, width), dtype=np.uint8)
+    for left, b in zip(lefts, boxes):
+        top = ascent - b.ascent
+        h, w = b.image.shape
+        region = canvas[top:top + h, left:left + w]
+        np.maximum(region, b.image, out=region)
+    return np.pad(canvas, PAD)
 
 
 def render_line(latex: str, style: Style) -> np.ndarray:
     """One LaTeX line as an alpha mask (mathtext, Computer Modern); ``ValueError`` if mathtext
     cannot typeset it."""
-    mask = np.asarray(_parse(latex, style).image)
-    return np.pad(mask, ((2, 2), (2, 6)))  # delimiters may reach past mathtext's box
+    return np.pad(_box(latex, style).image, PAD)
 
 
-def wrap(pieces: Sequence[str], style: Style) -> tuple[str, ...]:
-    """Greedy lines of ``pieces`` no wider than ``style.width`` (one piece may be wider).
+def _piece_boxes(pieces: Sequence[str], style: Style) -> list[_Box]:
+    """Each piece typeset on its own, the later ones in binary context (see
+    :data:`BINARY_CONTEXT`): a formula costs one parse of each piece and nothing more."""
+    return [_box(piece if index == 0 else BINARY_CONTEXT + piece, style) for index, piece in enumerate(pieces)]
 
-    A piece is measured after an ``x``, so that the spacing of its leading ``+``/``-`` as a
-    binary operator is counted.
-    """
-    indent = _parse(CONTINUATION, style).width
-    anchor = _parse("x", style).width
-    lines: list[str] = []
-    current, width = "", 0.0
-    for piece in pieces:
-        size = _parse("x" + piece, style).width - anchor
-        if current and width + size > style.width:
-            lines.append(current)
-            current, width = CONTINUATION + piece, indent
-        else:
-            current += piece
-        width += size
-    lines.append(current)
-    return tuple(lines)
+
+def wrap(pieces: Sequence[str], style: Style) -> tuple[tuple[int, ...], ...]:
+    """Greedy lines of ``pieces`` (as tuples of piece indices) no wider than ``style.width``
+    (one piece may be wider); the second and later lines are indented by :data:`CONTINUATION`."""
+    boxes = _piece_boxes(pieces, style)
+    indent = _box(CONTINUATION, style).width
+    lines: list[list[int]] = [[]]
+    width = 0.0
+    for index, box in enumerate(boxes):
+        if lines[-1] and width + box.width > style.width:
+            lines.append([])
+            width = indent
+        lines[-1].append(index)
+        width += box.width
+    return tuple(tuple(line) for line in lines)
+
+
+LATEX_PIXELS_PER_CHARACTER = 5.0
+"""About how wide a character of a polynomial's LaTeX typesets at 11 pt and 96 dpi (fractions
+are narrower): a formula estimated wider than the line is typeset piece by piece at once."""
+
+
+def _likely_fits(formula: Formula, style: Style) -> bool:
+    """Whether to typeset ``formula`` whole first (one parse; mathtext's cost is mostly per
+    parse) rather than piece by piece (what a wrapped formula needs)."""
+    pixels = LATEX_PIXELS_PER_CHARACTER * style.size / 11.0 * style.dpi / 96.0
+    return len(formula.pieces) == 1 or sum(map(len, formula.pieces)) * pixels <= style.width
+
+
+def _wanted(formula: Formula, style: Style) -> list[str]:
+    """The LaTeX strings :func:`render_formula` will most likely typeset for ``formula``."""
+    if not formula.pieces:
+        return []
+    if _likely_fits(formula, style):
+        return ["".join(formula.pieces)]
+    return [CONTINUATION, *(piece if index == 0 else BINARY_CONTEXT + piece
+                            for index, piece in enumerate(formula.pieces))]
 
 
 def render_formula(formula: Formula, style: Style) -> Formula:
-    """``formula`` rasterised: on one line if it fits (one mathtext parse, the common case),
-    else wrapped at its terms; ``ValueError`` if mathtext cannot typeset it."""
+    """``formula`` rasterised: whole on one line if it fits, else its pieces typeset once each
+    and set side by side, wrapped between pieces; ``ValueError`` if mathtext cannot typeset it."""
     if not formula.pieces:
         return formula
-    whole = "".join(formula.pieces)
-    parsed = _parse(whole, style)
-    if parsed.width <= style.width or len(formula.pieces) == 1:
-        mask = np.pad(np.asarray(parsed.image), ((2, 2), (2, 6)))
-        return replace(formula, lines=(whole,), masks=(mask,))
-    lines = wrap(formula.pieces, style)
-    return replace(formula, lines=lines, masks=tuple(render_line(line, style) for line in lines))
+    if _likely_fits(formula, style):
+        whole = "".join(formula.pieces)
+        box = _box(whole, style)
+        if box.width <= style.width or len(formula.pieces) == 1:
+            return replace(formula, lines=(whole,), masks=(np.pad(box.image, PAD),))
+    boxes = _piece_boxes(formula.pieces, style)
+    indent = _box(CONTINUATION, style).width
+    lines, masks = [], []
+    for number, indices in enumerate(wrap(formula.pieces, style)):
+        text = "".join(formula.pieces[i] for i in indices)
+        lines.append(text if number == 0 else CONTINUATION + text)
+        masks.append(_compose([boxes[i] for i in indices], 0.0 if number == 0 else indent))
+    return replace(formula, lines=tuple(lines), masks=tuple(masks))
 
 
-def render_formulas(formulas: dict[str, Formula], style: Style) -> dict[str, Formula]:
-    """``formulas`` wrapped and rasterised; a formula mathtext rejects keeps no masks."""
+def render_formulas(formulas: dict[str, Formula], style: Style, processes: int = 1) -> dict[str, Formula]:
+    """``formulas`` wrapped and rasterised (their pieces typeset by ``processes`` processes, see
+    :func:`prepare`); a formula mathtext rejects keeps no masks."""
+    prepare([latex for formula in formulas.values() for latex in _wanted(formula, style)], style, processes)
     out = {}
     for key, formula in formulas.items():
         try:

@@ -24,6 +24,7 @@ Engine errors come back as one-line messages, never as tracebacks.
 
 from __future__ import annotations
 
+import gc
 import os
 import signal
 import sys
@@ -37,7 +38,7 @@ from typing import Any
 
 from sorgui.engine import Analysis, Cancelled, ParseError, SorguiError, analyze
 from sorgui.engine.singular import die_with_parent
-from sorgui.session.formulas import Formula, Style, analysis_formulas, render_formulas, render_line
+from sorgui.session.formulas import WARM_UP, Formula, Style, analysis_formulas, render_formulas, render_line
 
 Message = tuple[str, Any]
 Send = Callable[[str, Any], None]
@@ -91,6 +92,7 @@ class _Presenter:
     request: JobRequest
     send: Send
     check: Callable[[], None]
+    processes: int = 1
     timings: list[tuple[str, float]] = field(default_factory=list)
     scene: Any = None
     nearest_scene: Any = None
@@ -184,7 +186,7 @@ class _Presenter:
     def _typeset(self, wanted: dict[str, Formula], style: Style) -> dict[str, Formula]:
         """``wanted`` typeset, each formula once per job (later analyses reuse them)."""
         fresh = {k: f for k, f in wanted.items() if (k, f.plain) not in self._cache}
-        for key, formula in render_formulas(fresh, style).items():
+        for key, formula in render_formulas(fresh, style, self.processes).items():
             self._cache[(key, formula.plain)] = formula
         return {k: self._cache[(k, f.plain)] for k, f in wanted.items()}
 
@@ -202,11 +204,13 @@ def run_job(
     cancel: threading.Event | Any | None = None,
     progress: Callable[[str], None] | None = None,
     send: Send | None = None,
+    processes: int = 1,
 ) -> Message:
     """Do ``request`` and return the final message (also usable without a process).
 
     ``send`` receives every intermediate message; ``progress`` (an older, simpler hook) only
-    the names of the stages as they start.
+    the names of the stages as they start. ``processes`` typeset the formulas (the worker
+    process forks a helper; see :func:`sorgui.session.formulas.prepare`).
     """
 
     def deliver(kind: str, payload: Any) -> None:
@@ -219,7 +223,7 @@ def run_job(
         if cancel is not None and cancel.is_set():
             raise Cancelled("the analysis was cancelled")
 
-    presenter = _Presenter(request, deliver, check)
+    presenter = _Presenter(request, deliver, check, processes)
     try:
         if request.analysis is not None:
             analysis = request.analysis
@@ -262,6 +266,16 @@ def run_job(
         return "failed", f"internal error ({type(exc).__name__}: {exc})"
 
 
+def warm_up() -> None:
+    """What a spare worker process does while nobody waits: load mathtext's fonts and glyphs,
+    VTK and pyvista, then freeze the garbage collector's view of everything loaded so far (the
+    collections during a job then walk only the job's own objects, not sympy's and VTK's)."""
+    render_line(WARM_UP, Style())
+    import sorgui.session.scene_data  # noqa: F401
+    gc.collect()
+    gc.freeze()
+
+
 def serve(conn: Connection, cancel: Any) -> None:
     """The worker process: lead a process group at a lower priority, wait for one request,
     answer it, exit.
@@ -275,15 +289,15 @@ def serve(conn: Connection, cancel: Any) -> None:
     die_with_parent(signal.SIGKILL)  # the window killed (even by kill -9): the worker goes too
     if hasattr(os, "nice"):
         os.nice(WORKER_NICENESS)
-    render_line("x", Style())  # load mathtext's fonts while nobody waits
-    import sorgui.session.scene_data  # noqa: F401  (VTK and pyvista, loaded while nobody waits)
+    warm_up()
 
     try:
         request = conn.recv()
     except (EOFError, OSError):
         return
     try:
-        conn.send(run_job(request, cancel, send=lambda kind, payload: conn.send((kind, payload))))
+        conn.send(run_job(request, cancel, send=lambda kind, payload: conn.send((kind, payload)),
+                          processes=min(2, os.cpu_count() or 1)))
     except (BrokenPipeError, OSError):
         pass  # the GUI has gone away or superseded this job
     conn.close()

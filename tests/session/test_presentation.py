@@ -62,6 +62,36 @@ def test_formulas_wrap_to_the_width_and_keep_exact_plain_text() -> None:
     assert vector.latex == r"\left(3 / 5, - \sqrt{2}, 0\right)"
 
 
+@pytest.mark.parametrize("text", [
+    "x**4 + 2*x**2*y**2 - 10*y**2 + 9", "-x**3 + 3*x/2 - sqrt(2)*y", "-(t**2 - 1)/(t**2 + 1) + 3",
+    "x**2/3 - y/7 - 1", "-x - y", "2*s**2*r - r + sqrt(5)/2", "-2*x*z + y**2", "-7/3", "(x - 1)**2*y",
+    "-x**4 + 26*x**2*y**2 - 104*x**2 + 12*x*y**4 - 48*x*y**2 + y**6 - 29*y**4 + 200*y**2 - 400",
+])
+def test_a_sums_latex_is_sympys(text: str) -> None:
+    """The LaTeX copied is sympy's own, also where it is put together from the pieces."""
+    assert expression_formula(text, "f =").latex == sympy.latex(read_expression(text), fold_short_frac=True)
+
+
+def test_a_forked_helper_typesets_the_same_pixels() -> None:
+    """The worker shares the parsing with a forked helper: same masks as one process alone."""
+    from sorgui.session import formulas
+
+    texts = {f"f{k}": expression_formula(" + ".join(f"{k + j}*x**{j}*y" for j in range(1, 12)), "f =")
+             for k in range(3)}
+    texts["v"] = vector_formula(("3/5", "-sqrt(2)", "(t**2 - 1)/(t**2 + 1)"))
+    style = Style(width=260, size=10.5)
+    formulas._BOXES.clear()
+    alone = render_formulas(texts, style, processes=1)
+    formulas._BOXES.clear()
+    shared = render_formulas(texts, style, processes=2)
+    for key, formula in alone.items():
+        assert formula.lines == shared[key].lines and len(formula.masks) == len(shared[key].masks) > 0
+        assert all(np.array_equal(a, b) for a, b in zip(formula.masks, shared[key].masks))
+    assert len(alone["f0"].lines) > 1  # wrapped: pieces set side by side on one baseline
+    assert alone["v"].code("Maple") == "[3/5, -sqrt(2), (t^2 - 1)/(t^2 + 1)]"
+    assert "x**2*y" in alone["f0"].code("Python") and "x^2*y" in alone["f0"].code("Maple")
+
+
 def test_view_region_frames_the_bounded_part() -> None:
     torus = polynomial_terms("(x^2 + y^2 + z^2 + 3)^2 - 16*(x^2 + y^2)")
     array = dense.from_terms({tuple(e): float(c) for e, c in torus}, 4)
