@@ -123,14 +123,11 @@ def launch() -> None:
 
     folder = tempfile.mkdtemp()
     QSettings.setPath(QSettings.Format.IniFormat, QSettings.Scope.UserScope, folder)
-    from sorgui.gui.app import create_application
-    from sorgui.gui.main_window import MainWindow
+    from sorgui.gui.app import create_application, open_main_window
 
     app = create_application([])
-    window = MainWindow()
-    window.show()
+    window = open_main_window(None)  # as ``sorgui`` does
     times: dict[str, float] = {}
-    window.load_startup_equation(None)
     deadline = time.time() + 120
     while time.time() < deadline and "verdict" not in times:
         QCoreApplication.processEvents()
@@ -185,6 +182,7 @@ def main() -> None:
         window = MainWindow()
         window.resize(1400, 860)
         window.show()
+        window.viewport.start_rendering()
         rows = [
             "| surface | characters | verdict after (s) | all shown after (s) | longest gap (ms) "
             "| 99th pct (ms) | gaps > 100 ms |",

@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 import sys
 from importlib import resources
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QTimer
 from PySide6.QtGui import QIcon
@@ -17,6 +18,9 @@ from PySide6.QtWidgets import QApplication
 
 from sorgui import __version__
 from sorgui.gui.settings import APPLICATION, ORGANIZATION
+
+if TYPE_CHECKING:
+    from sorgui.gui.main_window import MainWindow
 
 ICON = "sorgui.svg"
 """The application icon, package data in ``sorgui/resources``."""
@@ -45,12 +49,32 @@ def create_application(argv: list[str] | None = None) -> QApplication:
     return app  # type: ignore[return-value]
 
 
-def run_gui(path: str | None = None) -> int:
-    """Open the main window (with ``path``, if given) and run the event loop; the exit status."""
+def open_main_window(path: str | None = None) -> MainWindow:
+    """Show the main window at once; once it is drawn, start analysing the startup equation
+    (``path``, the last session's or Example 1) and then create the 3D view's render window.
+
+    In that order the window appears before pyvista and VTK's rendering are imported (a second),
+    and the worker process analyses while they are.
+    """
     from sorgui.gui.main_window import MainWindow
 
-    app = create_application()
     window = MainWindow()
     window.show()
-    QTimer.singleShot(0, lambda: window.load_startup_equation(path))
+
+    def when_drawn() -> None:
+        handle = window.windowHandle()
+        if handle is not None and not handle.isExposed() and window.isVisible():
+            QTimer.singleShot(10, when_drawn)
+            return
+        window.load_startup_equation(path)
+        QTimer.singleShot(0, window.viewport.start_rendering)
+
+    QTimer.singleShot(0, when_drawn)
+    return window
+
+
+def run_gui(path: str | None = None) -> int:
+    """Open the main window (with ``path``, if given) and run the event loop; the exit status."""
+    app = create_application()
+    window = open_main_window(path)  # noqa: F841 (kept alive while the event loop runs)
     return app.exec()

@@ -1,6 +1,8 @@
 """The 3D viewport: the surface, its axis and profile, and point-and-click inspection.
 
-A pyvistaqt ``QtInteractor`` is embedded in a widget with a small tool row. Actors are built on
+A pyvistaqt ``QtInteractor`` is embedded in a widget with a small tool row; it is created
+after the window is first drawn (:meth:`Viewport.start_rendering`), so that the window opens
+without waiting for pyvista and VTK's rendering to load. Actors are built on
 the GUI thread from the plain arrays of a :class:`~sorgui.session.scene_data.SceneData` that the
 worker process computed, and replaced in place by name (``add_mesh(..., name="surface")``).
 The surface's two sides have two colours (the mesh is wound to face ``f > 0``). Right-click
@@ -25,10 +27,9 @@ from __future__ import annotations
 
 import gc
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pyvista
-from pyvistaqt import QtInteractor
 from PySide6.QtCore import Qt, QTimer, Signal
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
@@ -40,7 +41,6 @@ from PySide6.QtWidgets import (
     QVBoxLayout,
     QWidget,
 )
-from vtkmodules.vtkCommonDataModel import vtkPlane
 
 from sorgui.gui.camera import CameraState, coordinate_view, meridian_normal, view_across, view_along
 from sorgui.session.scene_data import SceneData
@@ -48,6 +48,10 @@ from sorgui.render import mesh_to_polydata, pick_info, to_polydata
 from sorgui.render.canal_touch import Touch, touching_spheres
 from sorgui.render.picking import PickInfo
 from sorgui.render.scene import LineData
+
+if TYPE_CHECKING:
+    import pyvista
+    from pyvistaqt import QtInteractor
 
 FRONT_COLOR = "#7fa7d6"
 """The side ``f > 0`` of the surface."""
@@ -95,18 +99,15 @@ class Viewport(QWidget):
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
-        self.plotter = QtInteractor(self, auto_update=False, multi_samples=0)
-        self.plotter.set_background("#fbfcfe", top="#d9e2ee")
-        self.plotter.add_axes(line_width=3, labels_off=False)
-        self.plotter.enable_surface_point_picking(
-            callback=self._on_pick_change, show_message=False, show_point=False,
-            left_clicking=False, clear_on_no_selection=False,
-        )
-        self._remove_default_key_bindings()
+        self._plotter: QtInteractor | None = None
+        self._placeholder = QLabel("Starting the 3D view…", self)
+        self._placeholder.setAlignment(Qt.AlignmentFlag.AlignCenter)
+        self._placeholder.setMinimumSize(120, 120)
         self._scene: SceneData | None = None
         self._software: bool | None = None
         self._stale = False
-        self._clip_plane = vtkPlane()
+        self._clip_plane = None
+        """The meridian plane of the section view (a ``vtkPlane``, made with the render window)."""
 
         self.caption = QLabel("No surface yet", self)
         self.caption.setObjectName("viewportCaption")
@@ -164,7 +165,7 @@ class Viewport(QWidget):
         layout.addWidget(self.toolbar)
         layout.addWidget(self.controls)
         layout.addWidget(self.caption)
-        layout.addWidget(self.plotter, 1)
+        layout.addWidget(self._placeholder, 1)
         layout.addWidget(self.pick_label)
         self.pick_label.setContentsMargins(6, 0, 6, 4)
 
@@ -178,6 +179,44 @@ class Viewport(QWidget):
         self.canal_box.toggled.connect(self._on_canal_visibility_change)
         self.deviation_box.toggled.connect(self._on_deviation_change)
         self.reset_button.clicked.connect(self.reset_camera)
+
+    # --- the render window, created after the window is drawn ---
+
+    @property
+    def plotter(self) -> QtInteractor:
+        """The pyvistaqt render window (created now if :meth:`start_rendering` has not run)."""
+        if self._plotter is None:
+            self.start_rendering()
+        return self._plotter  # type: ignore[return-value]
+
+    @property
+    def rendering(self) -> bool:
+        """Whether the render window exists (it is created after the window is first drawn)."""
+        return self._plotter is not None
+
+    def start_rendering(self) -> None:
+        """Import pyvista and VTK's rendering and put the render window in place of the
+        placeholder. The window calls this once it is drawn, so that it opens without waiting
+        for the second of importing them; anything that needs the render window earlier
+        creates it through :attr:`plotter`."""
+        if self._plotter is not None:
+            return
+        from pyvistaqt import QtInteractor
+        from vtkmodules.vtkCommonDataModel import vtkPlane
+
+        plotter = QtInteractor(self, auto_update=False, multi_samples=0)
+        self._plotter = plotter
+        plotter.set_background("#fbfcfe", top="#d9e2ee")
+        plotter.add_axes(line_width=3, labels_off=False)
+        plotter.enable_surface_point_picking(
+            callback=self._on_pick_change, show_message=False, show_point=False,
+            left_clicking=False, clear_on_no_selection=False,
+        )
+        self._remove_default_key_bindings()
+        self._clip_plane = vtkPlane()
+        self.layout().replaceWidget(self._placeholder, plotter)
+        self._placeholder.deleteLater()
+        plotter.show()
 
     # --- public API ---
 
@@ -214,6 +253,8 @@ class Viewport(QWidget):
         self._set_actor("canal_circles", to_polydata(scene.canal_circles), color=CANAL_CIRCLE_COLOR,
                         line_width=2, visible=canal)
         self.canal_box.setEnabled(not (scene.canal_spine.is_empty and scene.canal_circles.is_empty))
+        import pyvista
+
         center = to_polydata(scene.center_marker) if scene.center_marker else pyvista.PolyData()
         self._set_actor("center", center, color=CENTER_COLOR, interpolation="gouraud")
         patch = scene.patch.to_polydata() if scene.patch is not None else pyvista.PolyData()
@@ -233,13 +274,15 @@ class Viewport(QWidget):
         self._scene = None
         self._stale = False
         self.caption.setText(caption)
-        self._remove_scalar_bar()
-        for name in SCENE_ACTORS + PICK_ACTORS:
-            self.plotter.remove_actor(name, render=False)
         self.radius_box.setEnabled(False)
         self.patch_box.setEnabled(False)
         self.canal_box.setEnabled(False)
         self.deviation_box.setEnabled(False)
+        if self._plotter is None:
+            return
+        self._remove_scalar_bar()
+        for name in SCENE_ACTORS + PICK_ACTORS:
+            self._plotter.remove_actor(name, render=False)
         self.request_render()
 
     def set_stale(self, stale: bool, caption: str | None = None) -> None:
@@ -356,13 +399,17 @@ class Viewport(QWidget):
         while the native window still exists: VTK objects left in reference cycles would
         otherwise be freed by a later garbage collection, after Qt destroyed that window."""
         self._radius_timer.stop()
-        self.plotter.close()
-        self.plotter.deep_clean()
+        if self._plotter is None:
+            return
+        self._plotter.close()
+        self._plotter.deep_clean()
         gc.collect()
 
     # --- handlers ---
 
     def _on_pick_change(self, point: np.ndarray) -> PickInfo | None:
+        import pyvista
+
         scene = self._scene
         if scene is None or point is None or not np.all(np.isfinite(point)):
             return None
@@ -434,8 +481,8 @@ class Viewport(QWidget):
         Then every frame costs the processor, so meshes are coarser and edges are not smoothed.
         """
         if self._software is None:
-            if not self.plotter.isVisible():
-                return True  # no OpenGL context before the window shows: assume the worst
+            if self._plotter is None or not self._plotter.isVisible():
+                return True  # no OpenGL context yet: assume the worst
             self.plotter.ren_win.Render()  # creates the OpenGL context if needed (a cheap frame)
             report = self.plotter.ren_win.ReportCapabilities() or ""
             self._software = any(name in report for name in SOFTWARE_RENDERERS)

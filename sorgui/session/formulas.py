@@ -141,15 +141,22 @@ def _vector_formula(values: tuple[str, ...], prefix: str) -> Formula:
         exprs = [read_expression(v) for v in values]
     except ExpressionError:
         return Formula(plain, plain, ())
-    latex = r"\left(" + separator.join(_latex(e) for e in exprs) + r"\right)"
-    return Formula(plain, latex, ((prefix + " " if prefix else "") + latex,), source=values, vector=True)
+    entries = [_latex(e) for e in exprs]
+    body = separator.join(entries)
+    latex = r"\left(" + body + r"\right)"
+    # mathtext sizes \left( by the content: around digits and colons it draws parentheses
+    # smaller than the text's, so plain ones are typeset unless an entry is tall
+    tall = any(mark in entry for entry in entries for mark in ("\\frac", "\\sqrt", "^"))
+    shown = latex if tall else "(" + body + ")"
+    return Formula(plain, latex, ((prefix + " " if prefix else "") + shown,), source=values, vector=True)
 
 
 def line_formula(point: Sequence[str], direction: Sequence[str]) -> Formula:
     """The parametric line ``c + t·a``."""
     c, a = vector_formula(point), vector_formula(direction)
     latex = f"{c.latex} + t\\,{a.latex}"
-    return Formula(f"{c.plain} + t*{a.plain}", latex, (latex,))
+    shown = f"{c.pieces[0]} + t\\,{a.pieces[0]}" if c.pieces and a.pieces else latex
+    return Formula(f"{c.plain} + t*{a.plain}", latex, (shown,))
 
 
 # --- all formulas of an analysis ------------------------------------------------------------

@@ -164,3 +164,27 @@ def test_startup_loads_and_analyses_example_1_and_screenshots(window, qtbot, art
         assert image.width() >= minimum[0] and image.height() >= minimum[1], path
     pixels = np.asarray(QImage(str(viewport_png)).convertToFormat(QImage.Format.Format_Grayscale8).constBits())
     assert pixels.std() > 10, "the render window shows something"
+
+
+def test_sorgui_opens_the_window_first_then_analyses_example_1(qtbot) -> None:
+    """As ``sorgui`` starts: the window is drawn before the render window exists (pyvista and
+    VTK's rendering load after it), then Example 1 is analysed and drawn."""
+    from PySide6.QtCore import QCoreApplication, QEvent
+
+    from sorgui.gui.app import create_application, open_main_window
+
+    create_application([])
+    window = open_main_window(None)
+    try:
+        assert window.isVisible() and not window.viewport.rendering
+        qtbot.waitExposed(window)
+        qtbot.waitUntil(lambda: window.viewport.rendering, timeout=60_000)
+        qtbot.waitUntil(lambda: window.viewport.scene is not None, timeout=120_000)
+        qtbot.waitUntil(lambda: "Surface of revolution" in window.results.banner.text(), timeout=10_000)
+        assert window.session.run.text == example_text("paper-example-1")
+        assert {"surface", "axis"} <= window.viewport.actor_names()
+    finally:
+        window.setWindowModified(False)
+        window.close()
+        window.deleteLater()
+        QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
