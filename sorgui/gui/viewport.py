@@ -169,6 +169,10 @@ class Viewport(QWidget):
         layout.addWidget(self.pick_label)
         self.pick_label.setContentsMargins(6, 0, 6, 4)
 
+        self._render_timer = QTimer(self)
+        self._render_timer.setSingleShot(True)
+        self._render_timer.setInterval(0)
+        self._render_timer.timeout.connect(self._on_render_timer_change)
         self._radius_timer = QTimer(self)
         self._radius_timer.setSingleShot(True)
         self._radius_timer.setInterval(RADIUS_DELAY_MS)
@@ -382,9 +386,16 @@ class Viewport(QWidget):
         self.plotter.render()
 
     def request_render(self) -> None:
-        """Render at the next paint event: the GUI thread renders once per event-loop turn,
-        after the actors are updated, never in the middle of a handler."""
-        self.plotter.update()
+        """Render in a later turn of the event loop than this one: once however many changes
+        are asked for, never in the middle of a handler, and never in the same turn as the
+        work that changed the actors (a new mesh's first frame in software OpenGL alone takes
+        most of the 100 ms a turn may take)."""
+        if self._plotter is not None and not self._render_timer.isActive():
+            self._render_timer.start()
+
+    def _on_render_timer_change(self) -> None:
+        if self._plotter is not None:
+            self._plotter.update()
 
     def pick_point(self, point: np.ndarray | tuple[float, float, float]) -> PickInfo | None:
         """Inspect the surface at ``point`` as if it had been picked there."""
@@ -399,6 +410,7 @@ class Viewport(QWidget):
         while the native window still exists: VTK objects left in reference cycles would
         otherwise be freed by a later garbage collection, after Qt destroyed that window."""
         self._radius_timer.stop()
+        self._render_timer.stop()
         if self._plotter is None:
             return
         self._plotter.close()
