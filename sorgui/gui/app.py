@@ -53,12 +53,16 @@ def open_main_window(path: str | None = None) -> MainWindow:
     """Show the main window at once; once it is drawn, start analysing the startup equation
     (``path``, the last session's or Example 1) and then create the 3D view's render window.
 
-    In that order the window appears before pyvista and VTK's rendering are imported (a second),
-    and the worker process analyses while they are.
+    In that order the window appears before pyvista and VTK's rendering are imported (a second,
+    on a thread), and the worker process analyses while they are. The worker process itself is
+    started first of all, so that it loads the engine while the window loads Qt's widgets.
     """
+    from sorgui.gui.worker import AnalysisWorker
+
+    worker = AnalysisWorker()
     from sorgui.gui.main_window import MainWindow
 
-    window = MainWindow()
+    window = MainWindow(worker=worker)
     window.show()
 
     def when_drawn() -> None:
@@ -67,7 +71,7 @@ def open_main_window(path: str | None = None) -> MainWindow:
             QTimer.singleShot(10, when_drawn)
             return
         window.load_startup_equation(path)
-        QTimer.singleShot(0, window.viewport.start_rendering)
+        window.viewport.start_rendering_soon()
 
     QTimer.singleShot(0, when_drawn)
     return window

@@ -130,10 +130,14 @@ class MainWindow(QMainWindow):
 
     result_shown = Signal(object)
 
-    def __init__(self, settings: Settings | None = None, prestart_worker: bool = True) -> None:
+    def __init__(self, settings: Settings | None = None, prestart_worker: bool = True,
+                 worker: AnalysisWorker | None = None) -> None:
         super().__init__()
         self.settings = settings or Settings(self)
-        self.worker = AnalysisWorker(self, prestart=prestart_worker)
+        if worker is None:
+            worker = AnalysisWorker(prestart=prestart_worker)
+        worker.setParent(self)
+        self.worker = worker
         self.session = Session(runner=self.worker)
         self.worker.message.connect(self.session.handle)
         self.editor = EquationEditor(self)

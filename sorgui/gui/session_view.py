@@ -180,7 +180,11 @@ class SessionView(QObject):
             self.status.setText(run.stages[name].title + "…")
 
     def _on_results_change(self, _value: object) -> None:
-        self._schedule_pane()
+        run = self.session.run
+        if self._shown is None and run is not None and run.analysis is not None:
+            self.refresh_pane()  # the run's first verdict: shown at once, never coalesced
+        else:
+            self._schedule_pane()
 
     def _on_formulas_change(self, formulas: dict) -> None:
         """Typeset formulas of the shown analysis go into the page in place; else a rebuild."""
@@ -206,6 +210,8 @@ class SessionView(QObject):
             self._show_scene(scene, self._caption(run, nearest=True))
 
     def _show_scene(self, scene: object, caption: str) -> None:
+        if self._dirty:
+            self.refresh_pane()  # the results first: drawing may first have to create the render window
         fresh, camera = self._fresh_scene, None
         if fresh and self.restore_camera is not None:
             equation, state = self.restore_camera

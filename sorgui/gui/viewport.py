@@ -26,6 +26,7 @@ are drawn (the "Canal" box shows or hides them).
 from __future__ import annotations
 
 import gc
+import threading
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -83,8 +84,17 @@ SOFTWARE_RESOLUTION = 90
 HARDWARE_RESOLUTION = 160
 """Grid nodes across the drawn ball (about 33 000 and 105 000 triangles for a torus)."""
 
+LOADING_POLL_MS = 20
+"""How often the GUI thread looks whether pyvista and VTK's rendering have been imported."""
+
 RADIUS_DELAY_MS = 500
 """Debounce of the radius box: the ball is re-meshed this long after the last change."""
+
+
+def _import_rendering() -> None:
+    """Import what the render window needs (run on a thread by :meth:`Viewport.start_rendering_soon`)."""
+    import pyvistaqt  # noqa: F401
+    import vtkmodules.vtkCommonDataModel  # noqa: F401
 
 
 class Viewport(QWidget):
@@ -100,6 +110,10 @@ class Viewport(QWidget):
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self._plotter: QtInteractor | None = None
+        self._loading: threading.Thread | None = None
+        self._loading_timer = QTimer(self)
+        self._loading_timer.setInterval(LOADING_POLL_MS)
+        self._loading_timer.timeout.connect(self._on_loading_timer_change)
         self._placeholder = QLabel("Starting the 3D view…", self)
         self._placeholder.setAlignment(Qt.AlignmentFlag.AlignCenter)
         self._placeholder.setMinimumSize(120, 120)
@@ -198,13 +212,28 @@ class Viewport(QWidget):
         """Whether the render window exists (it is created after the window is first drawn)."""
         return self._plotter is not None
 
+    def start_rendering_soon(self) -> None:
+        """Import pyvista and VTK's rendering on a thread (a second of Python that would
+        otherwise hold up the GUI thread, and with it the first verdict), then create the
+        render window on the GUI thread. The window calls this once it is drawn."""
+        if self._plotter is not None or self._loading is not None:
+            return
+        self._loading = threading.Thread(target=_import_rendering, name="sorgui-import-vtk", daemon=True)
+        self._loading.start()
+        self._loading_timer.start()
+
+    def _on_loading_timer_change(self) -> None:
+        if self._loading is not None and not self._loading.is_alive():
+            self._loading_timer.stop()
+            self.start_rendering()
+
     def start_rendering(self) -> None:
-        """Import pyvista and VTK's rendering and put the render window in place of the
-        placeholder. The window calls this once it is drawn, so that it opens without waiting
-        for the second of importing them; anything that needs the render window earlier
-        creates it through :attr:`plotter`."""
+        """Import pyvista and VTK's rendering (waiting for :meth:`start_rendering_soon`'s
+        thread, if any) and put the render window in place of the placeholder. Anything that
+        needs the render window before it exists creates it through :attr:`plotter`."""
         if self._plotter is not None:
             return
+        self._loading_timer.stop()
         from pyvistaqt import QtInteractor
         from vtkmodules.vtkCommonDataModel import vtkPlane
 
@@ -411,6 +440,7 @@ class Viewport(QWidget):
         otherwise be freed by a later garbage collection, after Qt destroyed that window."""
         self._radius_timer.stop()
         self._render_timer.stop()
+        self._loading_timer.stop()
         if self._plotter is None:
             return
         self._plotter.close()

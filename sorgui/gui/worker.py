@@ -1,7 +1,8 @@
 """Runs analyses in a separate process, so the window never freezes and cancel always works.
 
 :class:`AnalysisWorker` lives on the GUI thread. Each job runs in its own process, started with
-the ``spawn`` method (no forked Qt or VTK state) and running :func:`sorgui.session.job.serve`,
+the ``spawn`` method (no forked Qt or VTK state) and running :func:`sorgui.session.job.serve`
+(through the light :mod:`sorgui.session.process`, so that one can start before the window loads),
 which makes it a process-group leader. A timer polls the pipe and turns messages into the Qt
 signals :attr:`~AnalysisWorker.progress`, :attr:`~AnalysisWorker.finished`,
 :attr:`~AnalysisWorker.failed` and :attr:`~AnalysisWorker.cancelled`.
@@ -24,10 +25,14 @@ from collections import deque
 import signal
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QObject, QTimer, Signal
 
-from sorgui.session.job import JobRequest, serve
+from sorgui.session.process import worker_main
+
+if TYPE_CHECKING:
+    from sorgui.session.job import JobRequest
 
 POLL_INTERVAL_MS = 15
 """How often the GUI thread looks at the pipes of running jobs."""
@@ -95,7 +100,7 @@ class _Job:
         self.conn, child_conn = context.Pipe(duplex=True)
         self.cancel_event = context.Event()
         self.process = context.Process(
-            target=serve, args=(child_conn, self.cancel_event), name="sorgui-analysis", daemon=True
+            target=worker_main, args=(child_conn, self.cancel_event), name="sorgui-analysis", daemon=True
         )
         self.process.start()
         child_conn.close()

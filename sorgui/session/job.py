@@ -25,6 +25,7 @@ Engine errors come back as one-line messages, never as tracebacks.
 from __future__ import annotations
 
 import gc
+import importlib
 import os
 import signal
 import sys
@@ -266,14 +267,25 @@ def run_job(
         return "failed", f"internal error ({type(exc).__name__}: {exc})"
 
 
-def warm_up() -> None:
+def warm_up(waited_for: Callable[[], bool] = lambda: False) -> None:
     """What a spare worker process does while nobody waits: load mathtext's fonts and glyphs,
     VTK and pyvista, then freeze the garbage collector's view of everything loaded so far (the
-    collections during a job then walk only the job's own objects, not sympy's and VTK's)."""
-    render_line(WARM_UP, Style())
-    import sorgui.session.scene_data  # noqa: F401
-    gc.collect()
-    gc.freeze()
+    collections during a job then walk only the job's own objects, not sympy's and VTK's).
+
+    It stops as soon as ``waited_for()`` says a request has arrived (as at the window's start,
+    when the first analysis is asked for at once): its verdict needs none of this, and the
+    stages that do load what they need themselves.
+    """
+    steps: tuple[Callable[[], object], ...] = (
+        lambda: render_line(WARM_UP, Style()),
+        lambda: importlib.import_module("sorgui.session.scene_data"),
+        gc.collect,
+        gc.freeze,
+    )
+    for step in steps:
+        if waited_for():
+            return
+        step()
 
 
 def serve(conn: Connection, cancel: Any) -> None:
@@ -289,7 +301,7 @@ def serve(conn: Connection, cancel: Any) -> None:
     die_with_parent(signal.SIGKILL)  # the window killed (even by kill -9): the worker goes too
     if hasattr(os, "nice"):
         os.nice(WORKER_NICENESS)
-    warm_up()
+    warm_up(waited_for=conn.poll)
 
     try:
         request = conn.recv()
