@@ -210,8 +210,8 @@ class SessionView(QObject):
             self._show_scene(scene, self._caption(run, nearest=True))
 
     def _show_scene(self, scene: object, caption: str) -> None:
-        if self._dirty:
-            self.refresh_pane()  # the results first: drawing may first have to create the render window
+        if self._dirty and not self.viewport.rendering:
+            self.refresh_pane()  # the results first: drawing must first create the render window
         fresh, camera = self._fresh_scene, None
         if fresh and self.restore_camera is not None:
             equation, state = self.restore_camera

@@ -47,7 +47,7 @@ Send = Callable[[str, Any], None]
 DEFAULT_RESOLUTION = 150
 """Grid nodes along the diameter of the drawn ball."""
 
-WORKER_NICENESS = 5
+WORKER_NICENESS = 10
 """The worker runs at a lower priority than the GUI, which then always gets the processor."""
 
 
