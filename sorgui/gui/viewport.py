@@ -1,8 +1,8 @@
 """The 3D viewport: the surface, its axis and profile, and point-and-click inspection.
 
 A pyvistaqt ``QtInteractor`` is embedded in a widget with a small tool row; it is created
-after the window is first drawn (:meth:`Viewport.start_rendering`), so that the window opens
-without waiting for pyvista and VTK's rendering to load. Actors are built on
+after the window is first drawn, pyvista and VTK's rendering imported on a thread
+(:meth:`Viewport.start_rendering_soon`), so that the window opens without waiting for them. Actors are built on
 the GUI thread from the plain arrays of a :class:`~sorgui.session.scene_data.SceneData` that the
 worker process computed, and replaced in place by name (``add_mesh(..., name="surface")``).
 The surface's two sides have two colours (the mesh is wound to face ``f > 0``). Right-click

@@ -284,6 +284,9 @@ class _Box:
 _BOXES: dict[tuple[str, Style], _Box] = {}
 """Every piece typeset in this process, by LaTeX and style (a job typesets each piece once)."""
 
+MAX_BOXES = 20_000
+"""The cache starts again when it holds this many pieces (a long-lived process)."""
+
 
 def _typeset(latex: str, style: Style) -> _Box:
     from matplotlib.font_manager import FontProperties
@@ -300,6 +303,8 @@ def _box(latex: str, style: Style) -> _Box:
     key = (latex, style)
     box = _BOXES.get(key)
     if box is None:
+        if len(_BOXES) >= MAX_BOXES:
+            _BOXES.clear()
         box = _BOXES[key] = _typeset(latex, style)
     return box
 
@@ -311,14 +316,15 @@ def _typeset_in_child(latexes: Sequence[str], style: Style) -> tuple[int, int] |
     if not hasattr(os, "fork"):
         return None
     read, write = os.pipe()
-    gc.freeze()  # the child's collections then skip (and copy) none of this process' objects
+    # The child's collections then walk (and copy) none of this process' objects. They stay
+    # frozen here too: this runs in the worker process, which serves one job and exits.
+    gc.freeze()
     try:
         pid = os.fork()
     except OSError:
         os.close(read)
         os.close(write)
         return None
-    gc.unfreeze()
     if pid == 0:  # the child: no cleanup of the parent's state, only the boxes and _exit
         gc.disable()
         os.close(read)
