@@ -464,7 +464,8 @@ class Viewport(QWidget):
         self._set_actor("pick_circle", to_polydata(info.latitude), color=LATITUDE_COLOR, line_width=3)
         marker = pyvista.Sphere(radius=0.012 * scene.region.radius, center=info.point)
         self._set_actor("pick_point", marker, color=PICK_COLOR)
-        touches = touching_spheres(scene.canal_families, info.point, 0.02 * scene.region.radius)
+        touches = touching_spheres(scene.canal_families, info.point, 0.02 * scene.region.radius,
+                                   normal=info.normal_direction)
         spheres = pyvista.PolyData()
         for touch in touches:
             spheres = spheres.merge(pyvista.Sphere(radius=touch.radius, center=touch.center,

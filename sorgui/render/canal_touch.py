@@ -3,10 +3,15 @@ characteristic circle (docs/math.md §9): the canal analogue of the circle of la
 
 A point ``p`` of the envelope lies on the characteristic circle ``c(t)``, ``R²(t)`` (in the
 plane with normal ``n(t)``) of the sphere ``|X − m(t)|² = ρ(t)`` that touches the surface
-there. The parameter ``t`` is found numerically: the distance from ``p`` to the circle of
-parameter ``t`` is minimised over ``t = tan φ`` (a coarse scan, then finer scans about the
-best value). Everything here is ``float64`` numpy data read once from the engine's exact
-strings (:func:`family_curves`, in the worker), so the GUI thread only evaluates polynomials.
+there. For a rational family the parameter ``t`` is found numerically: the distance from ``p``
+to the circle of parameter ``t`` is minimised over ``t = tan φ`` (a coarse scan, then finer
+scans about the best value). A family with no ``m(t)`` (a spine of positive genus) is known by
+the equations of its SMAT curve in ``m1, m2, m3, r``: the touching sphere's centre lies on the
+normal line ``p + s·n`` at distance ``|s|``, so ``(p + s·n, s²)`` is a common real root of
+those equations restricted to the line; the circle's plane has the normal ``m′`` and passes
+through ``p`` (``(X − m)·m′ + ρ′/2 = 0``, with ``(m′, ρ′)`` the SMAT curve's tangent). Everything
+here is ``float64`` numpy data read once from the engine's exact strings (:func:`family_curves`,
+in the worker), so the GUI thread only evaluates polynomials.
 """
 
 from __future__ import annotations
@@ -14,7 +19,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import sympy
 
+from sorgui.engine.expressions import SYMPY, read
 from sorgui.engine.report import Canal
 from sorgui.render.canal_scene import Function, circle, evaluate, rational_function
 
@@ -35,6 +42,18 @@ class FamilyCurves:
 
 
 @dataclass(frozen=True, eq=False)
+class SmatFamily:
+    """A sphere family with no rational ``m(t)``: the equations of its SMAT curve in
+    ``m1, m2, m3, r`` as float terms (exponents in that order)."""
+
+    equations: tuple[Terms4, ...]
+
+
+Terms4 = tuple[tuple[tuple[int, int, int, int], float], ...]
+"""A polynomial in ``m1, m2, m3, r`` as ``(exponents, coefficient)`` pairs."""
+
+
+@dataclass(frozen=True, eq=False)
 class Touch:
     """The sphere of family ``family`` (parameter ``t``) touching the surface at the picked point:
     its centre and radius, its characteristic circle (a closed polyline) and the distance from
@@ -48,12 +67,15 @@ class Touch:
     distance: float
 
 
-def family_curves(canal: Canal) -> tuple[FamilyCurves, ...]:
-    """The float curves of every family of ``canal`` that has ``m(t)``, ``ρ(t)`` and circles."""
-    out = []
+def family_curves(canal: Canal) -> tuple[FamilyCurves | SmatFamily, ...]:
+    """The float curves of every family of ``canal``: ``m(t)``, ``ρ(t)`` and the circles when the
+    family has them, else the equations of its SMAT curve."""
+    out: list[FamilyCurves | SmatFamily] = []
     for family in canal.families:
         if (family.parametrization is None or family.radius_squared is None or family.circle_center is None
                 or family.circle_radius_squared is None or family.circle_normal is None):
+            if family.equations:
+                out.append(SmatFamily(tuple(_smat_terms(g) for g in family.equations)))
             continue
         out.append(FamilyCurves(
             tuple(rational_function(c) for c in family.parametrization),  # type: ignore[arg-type]
@@ -65,13 +87,19 @@ def family_curves(canal: Canal) -> tuple[FamilyCurves, ...]:
     return tuple(out)
 
 
-def touching_spheres(families: tuple[FamilyCurves, ...], point: np.ndarray, tolerance: float,
-                     circle_points: int = 96) -> list[Touch]:
+def touching_spheres(families: tuple[FamilyCurves | SmatFamily, ...], point: np.ndarray, tolerance: float,
+                     circle_points: int = 96, normal: np.ndarray | None = None) -> list[Touch]:
     """For each family, the sphere whose characteristic circle passes within ``tolerance`` of
-    ``point`` (none for a family whose circles all miss it)."""
+    ``point`` (none for a family whose circles all miss it). A :class:`SmatFamily` needs the
+    surface's unit ``normal`` at ``point``."""
     point = np.asarray(point, dtype=np.float64)
     out = []
     for index, family in enumerate(families):
+        if isinstance(family, SmatFamily):
+            if normal is not None and np.any(normal):
+                out += [t for t in _smat_touches(index, family, point, np.asarray(normal, dtype=np.float64),
+                                                 circle_points) if t.distance <= tolerance]
+            continue
         t, distance = _nearest_circle(family, point)
         if not np.isfinite(distance) or distance > tolerance:
             continue
@@ -119,3 +147,81 @@ def _circle(family: FamilyCurves, t: float, points: int) -> np.ndarray | None:
     ts = np.array([t])
     return circle(_vector(family.circle_center, ts)[0], _vector(family.circle_normal, ts)[0],
                   float(evaluate(family.circle_radius_squared, ts)[0]), points)
+
+
+SMAT_VARIABLES = sympy.symbols("m1 m2 m3 r")
+
+
+def _smat_terms(text: str) -> Terms4:
+    """An equation of a SMAT curve (engine string in ``m1, m2, m3, r``) as float terms."""
+    poly = sympy.Poly(sympy.expand(read(text, SYMPY)), *SMAT_VARIABLES)
+    return tuple((tuple(int(e) for e in monomial), float(sympy.re(c.evalf(20))))
+                 for monomial, c in poly.terms())  # type: ignore[misc]
+
+
+def _evaluate4(terms: Terms4, points: np.ndarray) -> np.ndarray:
+    """Values of a polynomial in ``m1, m2, m3, r`` at ``points`` (shape ``(k, 4)``, complex too)."""
+    total = np.zeros(len(points), dtype=points.dtype)
+    for exponents, c in terms:
+        total = total + c * np.prod(points ** np.asarray(exponents), axis=1)
+    return total
+
+
+def _gradient4(terms: Terms4, point: np.ndarray) -> np.ndarray:
+    """The gradient of a polynomial in ``m1, m2, m3, r`` at one point."""
+    out = np.zeros(4)
+    for exponents, c in terms:
+        for axis, e in enumerate(exponents):
+            if e:
+                lowered = list(exponents)
+                lowered[axis] -= 1
+                out[axis] += c * e * float(np.prod(point ** np.asarray(lowered)))
+    return out
+
+
+def _on_normal_line(terms: Terms4, point: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """Coefficients (lowest degree first) of ``s ↦ P(point + s·normal, s²)``, by a DFT of its
+    values at roots of unity."""
+    degree = max((e[0] + e[1] + e[2] + 2 * e[3] for e, _c in terms), default=0)
+    n = degree + 1
+    s = np.exp(2j * np.pi * np.arange(n) / n)
+    points = np.column_stack([point[None, :] + s[:, None] * normal[None, :], s * s])
+    return (np.fft.fft(_evaluate4(terms, points)) / n).real
+
+
+def _smat_touches(index: int, family: SmatFamily, point: np.ndarray, normal: np.ndarray,
+                  circle_points: int) -> list[Touch]:
+    """The spheres of ``family`` touching the surface at ``point``: the real ``s ≠ 0`` where every
+    SMAT equation vanishes on ``(point + s·normal, s²)``."""
+    from sorgui.engine.dense import real_roots
+
+    normal = normal / np.linalg.norm(normal)
+    lines = [_on_normal_line(g, point, normal) for g in family.equations]
+    lines = [c for c in lines if np.abs(c).max(initial=0.0) > 0]
+    if not lines:
+        return []
+    scales = [float(np.abs(c).max()) for c in lines]
+    first = min(range(len(lines)), key=lambda i: np.count_nonzero(np.abs(lines[i]) > 1e-12 * scales[i]))
+    out = []
+    for s in real_roots(lines[first]):
+        if abs(s) < 1e-9:
+            continue
+        if any(abs(np.polynomial.polynomial.polyval(s, c)) > 1e-6 * scale * max(1.0, abs(s)) ** (len(c) - 1)
+               for c, scale in zip(lines, scales)):
+            continue
+        center = point + s * normal
+        smat = np.append(center, s * s)
+        jacobian = np.array([_gradient4(g, smat) for g in family.equations])
+        tangent = np.linalg.svd(jacobian)[2][-1]  # (m′, ρ′): the kernel of the SMAT curve's Jacobian
+        speed = float(tangent[:3] @ tangent[:3])
+        if speed <= 1e-18:
+            continue
+        shift = -tangent[3] / (2 * speed)
+        ring_center = center + shift * tangent[:3]
+        ring = circle(ring_center, tangent[:3], s * s - shift * shift * speed, circle_points)
+        if ring is None:
+            continue
+        distance = abs(float(np.linalg.norm(point - ring_center)) - float(np.sqrt(s * s - shift * shift * speed)))
+        distance = float(np.hypot(distance, (point - ring_center) @ tangent[:3] / np.sqrt(speed)))
+        out.append(Touch(index, float(s), center, abs(float(s)), ring, distance))
+    return out

@@ -170,10 +170,13 @@ class _Presenter:
             self._approximated = True
             steps.append(lambda scene: scene_data.with_approximation(scene, analysis))
         canal = analysis.canal
-        drawn = tuple((f.parametrization, f.circle_center) for f in canal.families) if canal is not None else ()
-        if canal is not None and canal.is_canal and drawn != self._canal and any(p for p, _c in drawn):
-            self._canal = drawn
-            steps.append(lambda scene: scene_data.with_canal(scene, analysis))
+        if canal is not None and canal.is_canal and canal.families:
+            drawn = tuple((f.parametrization, f.circle_center) for f in canal.families)
+            # a family of positive (or unknown) genus gets no m(t): its SMAT equations serve for picking
+            ready = any(p for p, _c in drawn) or all(f.genus != 0 for f in canal.families)
+            if drawn != self._canal and ready:
+                self._canal = drawn
+                steps.append(lambda scene: scene_data.with_canal(scene, analysis))
         if not steps:
             return None
 

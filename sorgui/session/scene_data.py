@@ -41,7 +41,7 @@ from sorgui.render import (
     sphere_center_marker,
     surface_mesh,
 )
-from sorgui.render.canal_touch import FamilyCurves, family_curves
+from sorgui.render.canal_touch import FamilyCurves, SmatFamily, family_curves
 from sorgui.render.geometry import foot_on_line
 from sorgui.render.sampling import evaluate_points, term_arrays, value_and_gradient
 from sorgui.session.job import DEFAULT_RESOLUTION
@@ -84,7 +84,7 @@ class SceneData:
     deviation: np.ndarray | None = None
     canal_spine: LineData = LineData.empty()
     canal_circles: LineData = LineData.empty()
-    canal_families: tuple[FamilyCurves, ...] = ()
+    canal_families: tuple[FamilyCurves | SmatFamily, ...] = ()
 
     @property
     def axis(self) -> tuple[np.ndarray, np.ndarray] | None:

@@ -76,3 +76,28 @@ def test_canal_examples_in_menu_and_load(window, qtbot) -> None:  # noqa: ANN001
         canal = blocker.args[0].analysis.canal
         assert canal is not None and canal.is_canal, name
         assert ("dupin" if name == "dupin-cyclide" else "pipe") in canal.kinds
+
+
+def test_picking_a_blend_with_a_spine_of_genus_1(window, qtbot, run_analysis) -> None:
+    """The two-cylinder blend's spine has genus 1 (no m(t) to draw): picking a point still shows
+    the sphere that touches the surface there, found from the SMAT equations."""
+    import numpy as np
+
+    data = Path(__file__).resolve().parents[1] / "data" / "canal-examples.txt"
+    lines = data.read_text(encoding="utf-8").splitlines()
+    text = next(lines[i + 1] for i, line in enumerate(lines) if line.startswith("## blend cylinders R=2"))
+    run_analysis(window, text, timeout_ms=SLOW_MS)
+    canal = window.results.analysis.canal
+    assert canal is not None and canal.is_canal and canal.families[0].parametrization is None
+    viewport = window.viewport
+    scene = viewport.scene
+    assert scene.canal_families, "the SMAT equations reach the window"
+    points = np.asarray(scene.surface.points)
+    touched = 0
+    for point in points[:: max(1, len(points) // 15)][:15]:
+        info = viewport.pick_point(point)
+        if info is not None and "touching sphere of family 1" in viewport.pick_label.text():
+            assert "radius 1" in viewport.pick_label.text()
+            assert "pick_sphere" in viewport.actor_names() and "pick_canal_circle" in viewport.actor_names()
+            touched += 1
+    assert touched >= 10

@@ -59,3 +59,34 @@ def test_no_rational_family_gives_an_empty_scene() -> None:
 
     scene = canal_scene(Canal(False, "not canal"))
     assert scene.spines == () and scene.circles == ()
+
+
+def test_touching_sphere_of_a_spine_of_genus_1() -> None:
+    """The two-cylinder blend's spine has genus 1 (no m(t)): the sphere touching the surface at
+    a point is found from the SMAT equations on the normal line, its centre on the spine
+    (y² + z² = 16, x² + z² = 9), its radius 1, and its characteristic circle on the surface."""
+    from sorgui.engine import dense
+    from sorgui.engine.canal import analyze_canal
+    from sorgui.export.exact import polynomial_terms
+    from sorgui.render.canal_touch import SmatFamily, family_curves, touching_spheres
+    from sorgui.render.picking import pick_info
+
+    text = example("blend cylinders R=2")
+    canal = analyze_canal(parse_polynomial(text).polynomial, full=False)
+    families = family_curves(canal)
+    assert len(families) == 1 and isinstance(families[0], SmatFamily)
+    terms = polynomial_terms(text)
+    array = dense.from_terms({tuple(e): c for e, c in terms}, 24)
+    rng = np.random.default_rng(7)
+    touched = 0
+    for _ in range(12):
+        start, direction = rng.normal(size=3) * 2, rng.normal(size=3)
+        for t in dense.real_roots(dense.restriction_to_line(array, start, direction)):
+            info = pick_info(terms, start + t * direction, axis=None, normal_length=1.0, snap_distance=0.1)
+            for touch in touching_spheres(families, info.point, 1e-6, normal=info.normal_direction):
+                x, y, z = touch.center
+                assert abs(y * y + z * z - 16) < 1e-6 and abs(x * x + z * z - 9) < 1e-6
+                assert abs(touch.radius - 1) < 1e-9 and abs(np.linalg.norm(info.point - touch.center) - 1) < 1e-6
+                assert relative_values(text, touch.circle).max() < 1e-6
+                touched += 1
+    assert touched >= 10
