@@ -16,6 +16,7 @@ in the worker), so the GUI thread only evaluates polynomials.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -167,7 +168,12 @@ def _evaluate4(terms: Terms4, points: np.ndarray) -> np.ndarray:
     return total
 
 
-def _gradient4(terms: Terms4, point: np.ndarray) -> np.ndarray:
+def value4(terms: Terms4, point: np.ndarray) -> float:
+    """The value of a polynomial in ``m1, m2, m3, r`` at one point."""
+    return float(_evaluate4(terms, np.asarray(point, dtype=np.float64)[None, :])[0])
+
+
+def gradient4(terms: Terms4, point: np.ndarray) -> np.ndarray:
     """The gradient of a polynomial in ``m1, m2, m3, r`` at one point."""
     out = np.zeros(4)
     for exponents, c in terms:
@@ -177,6 +183,32 @@ def _gradient4(terms: Terms4, point: np.ndarray) -> np.ndarray:
                 lowered[axis] -= 1
                 out[axis] += c * e * float(np.prod(point ** np.asarray(lowered)))
     return out
+
+
+def smat_tangent(equations: Sequence[Terms4], point: np.ndarray) -> np.ndarray | None:
+    """The unit tangent ``(m′, ρ′)`` of a SMAT curve at ``point`` (the kernel of the Jacobian of
+    its equations); ``None`` at a singular point."""
+    _u, sigma, vt = np.linalg.svd(np.array([gradient4(g, point) for g in equations]))
+    if len(sigma) < 3 or sigma[2] <= 1e-9 * max(sigma[0], 1.0):
+        return None
+    return vt[-1]
+
+
+def characteristic_circle(equations: Sequence[Terms4], point: np.ndarray,
+                          points: int) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """The characteristic circle of the sphere ``point = (m, ρ)`` of a SMAT curve: its polyline,
+    centre and squared radius (in the plane ``(X − m)·m′ + ρ′/2 = 0``); ``None`` if not real."""
+    tangent = smat_tangent(equations, point)
+    if tangent is None:
+        return None
+    speed = float(tangent[:3] @ tangent[:3])
+    if speed <= 1e-18:
+        return None
+    shift = -tangent[3] / (2 * speed)
+    center = point[:3] + shift * tangent[:3]
+    radius_squared = float(point[3] - shift * shift * speed)
+    ring = circle(center, tangent[:3], radius_squared, points)
+    return None if ring is None else (ring, center, radius_squared)
 
 
 def _on_normal_line(terms: Terms4, point: np.ndarray, normal: np.ndarray) -> np.ndarray:
@@ -210,18 +242,14 @@ def _smat_touches(index: int, family: SmatFamily, point: np.ndarray, normal: np.
                for c, scale in zip(lines, scales)):
             continue
         center = point + s * normal
-        smat = np.append(center, s * s)
-        jacobian = np.array([_gradient4(g, smat) for g in family.equations])
-        tangent = np.linalg.svd(jacobian)[2][-1]  # (m′, ρ′): the kernel of the SMAT curve's Jacobian
-        speed = float(tangent[:3] @ tangent[:3])
-        if speed <= 1e-18:
+        found = characteristic_circle(family.equations, np.append(center, s * s), circle_points)
+        if found is None:
             continue
-        shift = -tangent[3] / (2 * speed)
-        ring_center = center + shift * tangent[:3]
-        ring = circle(ring_center, tangent[:3], s * s - shift * shift * speed, circle_points)
-        if ring is None:
-            continue
-        distance = abs(float(np.linalg.norm(point - ring_center)) - float(np.sqrt(s * s - shift * shift * speed)))
-        distance = float(np.hypot(distance, (point - ring_center) @ tangent[:3] / np.sqrt(speed)))
+        ring, ring_center, radius_squared = found
+        tangent = smat_tangent(family.equations, np.append(center, s * s))
+        offset = point - ring_center
+        height = float(offset @ tangent[:3]) / float(np.linalg.norm(tangent[:3]))  # type: ignore[index]
+        radial = float(np.sqrt(max(offset @ offset - height * height, 0.0)))
+        distance = float(np.hypot(height, radial - np.sqrt(radius_squared)))
         out.append(Touch(index, float(s), center, abs(float(s)), ring, distance))
     return out

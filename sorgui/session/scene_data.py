@@ -65,8 +65,9 @@ class SceneData:
     floating-point axis of rounded input; ``deviation``: per surface point, the distance to
     the nearest exact surface (``|g|/|∇g|``, length units), when there is one.
     ``canal_spine``/``canal_circles``: the spines and a few characteristic circles of a canal
-    surface's rational sphere families (docs/math.md §9); ``canal_families``: those families as
-    float curves, to find the sphere touching the surface at a picked point.
+    surface's sphere families (docs/math.md §9; a spine of positive genus traced numerically);
+    ``canal_families``: those families as float curves or SMAT equations, to find the sphere
+    touching the surface at a picked point.
     """
 
     terms: Terms
@@ -238,9 +239,19 @@ def with_canal(scene: SceneData, analysis: Analysis) -> SceneData:
 
     bound = float(np.linalg.norm(scene.region.center)) + 1.5 * scene.region.radius
     drawn = canal_scene(canal, bound=bound)
-    return replace(scene, canal_spine=LineData.from_polylines(list(drawn.spines)),
-                   canal_circles=LineData.from_polylines(list(drawn.circles)),
-                   canal_families=family_curves(canal))
+    families = family_curves(canal)
+    spines, circles = list(drawn.spines), list(drawn.circles)
+    implicit = [f for f in families if isinstance(f, SmatFamily)]
+    if implicit and not scene.surface.is_empty:  # spines of positive genus: traced from the surface
+        from sorgui.render.canal_trace import smat_scene
+
+        surface = scene.surface
+        traced = smat_scene(implicit, surface.points, np.asarray(surface.normals, dtype=np.float64),
+                            bound=bound, step=scene.region.radius / 80)
+        spines += traced.spines
+        circles += traced.circles
+    return replace(scene, canal_spine=LineData.from_polylines(spines),
+                   canal_circles=LineData.from_polylines(circles), canal_families=families)
 
 
 def surface_deviation(terms: Terms, points: np.ndarray) -> np.ndarray:

@@ -79,8 +79,9 @@ def test_canal_examples_in_menu_and_load(window, qtbot) -> None:  # noqa: ANN001
 
 
 def test_picking_a_blend_with_a_spine_of_genus_1(window, qtbot, run_analysis) -> None:
-    """The two-cylinder blend's spine has genus 1 (no m(t) to draw): picking a point still shows
-    the sphere that touches the surface there, found from the SMAT equations."""
+    """The two-cylinder blend's spine has genus 1 (no m(t)): it is traced numerically, and
+    picking a point shows the sphere that touches the surface there, found from the SMAT
+    equations."""
     import numpy as np
 
     data = Path(__file__).resolve().parents[1] / "data" / "canal-examples.txt"
@@ -92,6 +93,11 @@ def test_picking_a_blend_with_a_spine_of_genus_1(window, qtbot, run_analysis) ->
     viewport = window.viewport
     scene = viewport.scene
     assert scene.canal_families, "the SMAT equations reach the window"
+    assert {"canal_spine", "canal_circles"} <= viewport.actor_names()  # traced numerically
+    spine = np.asarray(scene.canal_spine.points)
+    assert len(spine) > 100
+    assert np.abs(spine[:, 1] ** 2 + spine[:, 2] ** 2 - 16).max() < 1e-5
+    assert np.abs(spine[:, 0] ** 2 + spine[:, 2] ** 2 - 9).max() < 1e-5
     points = np.asarray(scene.surface.points)
     touched = 0
     for point in points[:: max(1, len(points) // 15)][:15]:

@@ -90,3 +90,35 @@ def test_touching_sphere_of_a_spine_of_genus_1() -> None:
                 assert relative_values(text, touch.circle).max() < 1e-6
                 touched += 1
     assert touched >= 10
+
+
+def test_a_spine_of_genus_1_is_traced_with_its_circles() -> None:
+    """The two-cylinder blend's spine (y² + z² = 16, x² + z² = 9: two closed curves) is traced
+    from points of the surface, and its characteristic circles lie on the surface."""
+    from sorgui.engine import dense
+    from sorgui.engine.canal import analyze_canal
+    from sorgui.export.exact import polynomial_terms
+    from sorgui.render.canal_touch import family_curves
+    from sorgui.render.canal_trace import smat_scene
+    from sorgui.render.sampling import value_and_gradient
+
+    text = example("blend cylinders R=2")
+    families = family_curves(analyze_canal(parse_polynomial(text).polynomial, full=False))
+    terms = polynomial_terms(text)
+    array = dense.from_terms({tuple(e): c for e, c in terms}, 24)
+    rng = np.random.default_rng(3)
+    points = []
+    for _ in range(30):
+        start, direction = rng.normal(size=3) * 2, rng.normal(size=3)
+        points += [start + t * direction for t in dense.real_roots(dense.restriction_to_line(array, start, direction))]
+    points = np.array(points)
+    _, gradients = value_and_gradient(terms, points)
+    scene = smat_scene(families, points, gradients / np.linalg.norm(gradients, axis=1, keepdims=True),
+                       bound=12.0, step=0.1)
+    assert len(scene.spines) == 2
+    for spine in scene.spines:
+        x, y, z = spine.T
+        assert len(spine) > 100 and np.allclose(spine[0], spine[-1])
+        assert np.abs(y * y + z * z - 16).max() < 1e-5 and np.abs(x * x + z * z - 9).max() < 1e-5
+    assert len(scene.circles) == 12
+    assert max(relative_values(text, ring).max() for ring in scene.circles) < 1e-9
