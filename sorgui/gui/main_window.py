@@ -162,6 +162,7 @@ class MainWindow(QMainWindow):
         self.view = SessionView(self.session, self.editor, self.run_panel, self.results, self.viewport,
                                 self.stage_label)
         self.view.shown.connect(self.result_shown)
+        self.viewport.software_guess = self.settings.software_rendering is not False
         camera = self.settings.camera
         if camera is not None:
             self.view.restore_camera = (camera[0], CameraState.from_dict(camera[1]))
@@ -620,6 +621,8 @@ class MainWindow(QMainWindow):
             return
         self.settings.equation = self.editor.text()
         self.settings.current_file = self._file
+        if self.viewport.detected_software is not None:
+            self.settings.software_rendering = self.viewport.detected_software
         run = self.session.run
         if run is not None and self.viewport.scene is not None:
             self.settings.set_camera(run.text, self.viewport.camera_state().to_dict())

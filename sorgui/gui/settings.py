@@ -141,6 +141,16 @@ class Settings(QObject):
         """Nothing was shown: the next start frames its first surface afresh."""
         self._store.remove("view/camera")
 
+    @property
+    def software_rendering(self) -> bool | None:
+        """Whether OpenGL ran in software at the last exit (``None`` if never found out)."""
+        value = self._store.value("view/software_rendering")
+        return None if value is None else str(value).lower() in ("true", "1")
+
+    @software_rendering.setter
+    def software_rendering(self, software: bool) -> None:
+        self._store.setValue("view/software_rendering", bool(software))
+
     # --- window layout ---
 
     def save_layout(self, name: str, state: QByteArray) -> None:

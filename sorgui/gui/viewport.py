@@ -119,6 +119,9 @@ class Viewport(QWidget):
         self._placeholder.setMinimumSize(120, 120)
         self._scene: SceneData | None = None
         self._software: bool | None = None
+        self.software_guess = True
+        """What :meth:`software_rendering` answers before the render window exists (the
+        window's first analysis starts before it): the last session's finding, else the worst."""
         self._stale = False
         self._clip_plane = None
         """The meridian plane of the section view (a ``vtkPlane``, made with the render window)."""
@@ -250,6 +253,7 @@ class Viewport(QWidget):
         self.layout().replaceWidget(self._placeholder, plotter)
         self._placeholder.deleteLater()
         plotter.show()
+        self.software_rendering()  # found once the render window shows, for the next meshes
 
     # --- public API ---
 
@@ -525,12 +529,17 @@ class Viewport(QWidget):
         """
         if self._software is None:
             if self._plotter is None or not self._plotter.isVisible():
-                return True  # no OpenGL context yet: assume the worst
+                return self.software_guess  # no OpenGL context yet
             self.plotter.ren_win.Render()  # creates the OpenGL context if needed (a cheap frame)
             report = self.plotter.ren_win.ReportCapabilities() or ""
             self._software = any(name in report for name in SOFTWARE_RENDERERS)
             if not self._software:
                 self.plotter.enable_anti_aliasing("fxaa")
+        return self._software
+
+    @property
+    def detected_software(self) -> bool | None:
+        """Whether OpenGL was found to run in software (``None`` until it was looked at)."""
         return self._software
 
     def mesh_resolution(self) -> int:

@@ -73,3 +73,19 @@ def test_open_save_and_recent_files(window, qtbot, tmp_path: Path) -> None:
     assert copy.read_text(encoding="utf-8") == "y^2 - 2*x*z\n"
     assert [a.data() for a in window.recent_menu.actions() if a.data()][0] == str(copy.resolve())
     assert not window.isWindowModified()
+
+
+def test_the_last_sessions_opengl_sets_the_first_mesh(make_window, run_analysis) -> None:
+    """The first analysis starts before the render window exists: its mesh is as fine as the
+    OpenGL found in the last session allows (coarse in software, as under Xvfb)."""
+    from sorgui.gui.viewport import HARDWARE_RESOLUTION, SOFTWARE_RESOLUTION
+
+    first = make_window(prestart_worker=False)
+    assert first.viewport.mesh_resolution() == SOFTWARE_RESOLUTION  # nothing known: the worst
+    run_analysis(first, example_text("sphere"))
+    assert first.viewport.detected_software is True  # Mesa's llvmpipe under Xvfb
+    first.close()
+    assert Settings().software_rendering is True
+    Settings().software_rendering = False  # as a machine with a graphics card would have found
+    second = make_window(prestart_worker=False)
+    assert not second.viewport.rendering and second.viewport.mesh_resolution() == HARDWARE_RESOLUTION
