@@ -6,9 +6,9 @@ text. Each engine string is read exactly (:mod:`sorgui.export.exact`) and printe
 matplotlib's mathtext (Computer Modern) into 8-bit alpha masks: whole when it fits the pane's
 width, else piece by piece, the pieces set side by side on one baseline and wrapped between
 them (mathtext's cost is mostly per parse, so each piece is typeset once; the worker process
-shares the parsing with a forked helper, see :func:`prepare`). This runs in the analysis worker
-process (it has no Qt), so the GUI thread only colours ready-made masks; a formula mathtext
-cannot typeset is shown as plain text instead. :meth:`Formula.code` prints a formula for Maple,
+shares the parsing with a forked helper, see :func:`start_helper`). This runs in the analysis
+worker process (it has no Qt), so the GUI thread only colours ready-made masks; a formula
+mathtext cannot typeset is shown as plain text instead. :meth:`Formula.code` prints a formula for Maple,
 Mathematica or Python (sympy's printers, as the exported files) when the copy menu asks.
 """
 
@@ -17,10 +17,12 @@ from __future__ import annotations
 import contextlib
 import gc
 import os
-import pickle
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from multiprocessing import Pipe
+from multiprocessing.connection import Connection
+from typing import NoReturn
 
 import numpy as np
 import sympy
@@ -253,7 +255,8 @@ PAD = ((2, 2), (2, 6))
 mathtext's box."""
 
 PARALLEL_MINIMUM = 4
-"""Fewer pieces than this are typeset in the worker process alone (a fork costs milliseconds)."""
+"""Fewer pieces than this are typeset in the worker process alone (asking the helper and
+pickling its answer cost about a millisecond)."""
 
 BINARY_CONTEXT = "{}"
 """Put before a piece that starts with ``+``/``-`` so that mathtext spaces the sign as the binary
@@ -266,6 +269,10 @@ WARM_UP = (r"f = x^{4} + 2 x^{2} y^{2} - \frac{3 t^{2} + 1}{\sqrt{5} \left(t - 7
            r"\frac{x^{0123456789}}{y^{0123456789}} \sqrt{0123456789}")
 """Typeset once when a worker process starts, so that loading mathtext's glyphs is not paid
 by the first analysis."""
+
+WARM_UP_EXPRESSION = "-(3*t**2 + 1)/(sqrt(5)*(7*t - 1)**6) + x**4 + 2*x**2*y**2"
+"""Made a formula once when a worker process starts: sympy imports its tensor and
+combinatorics modules (about 50 ms) the first time it adds terms of this kind."""
 
 
 @dataclass(frozen=True)
@@ -309,64 +316,103 @@ def _box(latex: str, style: Style) -> _Box:
     return box
 
 
-def _typeset_in_child(latexes: Sequence[str], style: Style) -> tuple[int, int] | None:
-    """Start typesetting ``latexes`` in a forked copy of this process: its pid and the pipe it
-    answers on (``None`` where there is no ``fork``). The child writes the pickled boxes it could
-    typeset and exits."""
-    if not hasattr(os, "fork"):
-        return None
-    read, write = os.pipe()
-    # The child's collections then walk (and copy) none of this process' objects. They stay
-    # frozen here too: this runs in the worker process, which serves one job and exits.
-    gc.freeze()
-    try:
-        pid = os.fork()
-    except OSError:
-        os.close(read)
-        os.close(write)
-        return None
-    if pid == 0:  # the child: no cleanup of the parent's state, only the boxes and _exit
-        gc.disable()
-        os.close(read)
+_HELPER: Connection | None = None
+"""This process' typesetting helper (see :func:`start_helper`), once started."""
+
+
+def start_helper() -> Connection | None:
+    """Fork the typesetting helper, once per process, and return the pipe it answers on
+    (``None`` where there is no ``fork``).
+
+    The helper is a copy of this process taken after mathtext is warm: it typesets the lists
+    of LaTeX it is sent and answers with their boxes (a piece mathtext rejects is left out;
+    the parent typesets it again and reports the error). It exits when the pipe closes, so it
+    ends with the worker process however that ends; the worker's process group takes it along
+    when a job is cancelled. Forking once, not once per stage, saves the fork and the copying
+    of the parent's pages that follows each one.
+    """
+    global _HELPER
+    if _HELPER is None and hasattr(os, "fork"):
+        mine, theirs = Pipe()
+        # The helper's collections then walk (and copy) none of this process' objects. They
+        # stay frozen here too: this runs in the worker process, which serves one job and exits.
+        gc.freeze()
         try:
+            pid = os.fork()
+        except OSError:
+            mine.close()
+            theirs.close()
+            return None
+        if pid == 0:
+            mine.close()
+            _serve_helper(theirs)
+        theirs.close()
+        _HELPER = mine
+    return _HELPER
+
+
+def _serve_helper(conn: Connection) -> NoReturn:
+    """The helper's loop (see :func:`start_helper`): no cleanup of the parent's state at exit."""
+    gc.disable()
+    try:
+        while True:
+            latexes, style = conn.recv()
             boxes = {}
             for latex in latexes:
-                try:
+                with contextlib.suppress(ValueError, RuntimeError):
                     boxes[latex] = _typeset(latex, style)
-                except (ValueError, RuntimeError):
-                    pass  # the parent typesets it again and reports the error
-            with os.fdopen(write, "wb") as out:
-                pickle.dump(boxes, out, protocol=pickle.HIGHEST_PROTOCOL)
-        finally:
-            os._exit(0)
-    os.close(write)
-    return pid, read
+            conn.send(boxes)
+    except (EOFError, OSError):
+        pass
+    finally:
+        os._exit(0)
+
+
+def _ask_helper(helper: Connection, latexes: list[str], style: Style) -> bool:
+    """Send ``latexes`` to the helper; ``False`` (and the helper forgotten) if it is gone."""
+    global _HELPER
+    try:
+        helper.send((latexes, style))
+    except OSError:
+        _HELPER = None
+        return False
+    return True
+
+
+def _helper_boxes(helper: Connection, style: Style) -> None:
+    """Take the helper's answer into :data:`_BOXES` (nothing, and the helper forgotten, if it
+    died: the parent then typesets what is missing)."""
+    global _HELPER
+    try:
+        boxes = helper.recv()
+    except (EOFError, OSError):
+        _HELPER = None
+        return
+    for latex, box in boxes.items():
+        _BOXES[(latex, style)] = box
 
 
 def prepare(latexes: Iterable[str], style: Style, processes: int = 1) -> None:
-    """Typeset the pieces of ``latexes`` not typeset yet, with ``processes`` processes: the
-    worker process forks one helper on a machine with two cores or more, which halves the
-    typesetting of a results pane (mathtext's parser is pure Python)."""
+    """Typeset the pieces of ``latexes`` not typeset yet, with ``processes`` processes: on a
+    machine with two cores or more the worker process shares them with its helper (see
+    :func:`start_helper`), which halves the typesetting of a results pane (mathtext's parser
+    is pure Python)."""
     todo = list(dict.fromkeys(latex for latex in latexes if (latex, style) not in _BOXES))
-    child, mine = None, todo
+    helper, mine = None, todo
     if processes > 1 and len(todo) >= PARALLEL_MINIMUM:
         halves: tuple[list[str], list[str]] = ([], [])
         for latex in sorted(todo, key=len, reverse=True):  # parsing time grows with the length
             min(halves, key=lambda half: sum(map(len, half))).append(latex)
-        child = _typeset_in_child(halves[1], style)
-        mine = halves[0] if child is not None else todo
+        helper = start_helper()
+        if helper is not None and _ask_helper(helper, halves[1], style):
+            mine = halves[0]
+        else:
+            helper = None
     for latex in mine:
         with contextlib.suppress(ValueError, RuntimeError):  # raised again when it is composed
             _box(latex, style)
-    if child is not None:
-        pid, pipe = child
-        with os.fdopen(pipe, "rb") as answer:
-            data = answer.read()
-        with contextlib.suppress(ChildProcessError):
-            os.waitpid(pid, 0)
-        if data:
-            for latex, box in pickle.loads(data).items():  # noqa: S301 (our own child's boxes)
-                _BOXES[(latex, style)] = box
+    if helper is not None:
+        _helper_boxes(helper, style)
 
 
 def _compose(boxes: Sequence[_Box], indent: float = 0.0) -> np.ndarray:

@@ -39,7 +39,17 @@ from typing import Any
 
 from sorgui.engine import Analysis, Cancelled, ParseError, SorguiError, analyze
 from sorgui.engine.singular import die_with_parent
-from sorgui.session.formulas import WARM_UP, Formula, Style, analysis_formulas, render_formulas, render_line
+from sorgui.session.formulas import (
+    WARM_UP,
+    WARM_UP_EXPRESSION,
+    Formula,
+    Style,
+    analysis_formulas,
+    expression_formula,
+    render_formulas,
+    render_line,
+    start_helper,
+)
 
 Message = tuple[str, Any]
 Send = Callable[[str, Any], None]
@@ -214,7 +224,7 @@ def run_job(
 
     ``send`` receives every intermediate message; ``progress`` (an older, simpler hook) only
     the names of the stages as they start. ``processes`` typeset the formulas (the worker
-    process forks a helper; see :func:`sorgui.session.formulas.prepare`).
+    process shares them with a helper; see :func:`sorgui.session.formulas.start_helper`).
     """
 
     def deliver(kind: str, payload: Any) -> None:
@@ -271,19 +281,23 @@ def run_job(
 
 
 def warm_up(waited_for: Callable[[], bool] = lambda: False) -> None:
-    """What a spare worker process does while nobody waits: load mathtext's fonts and glyphs,
-    VTK and pyvista, then freeze the garbage collector's view of everything loaded so far (the
-    collections during a job then walk only the job's own objects, not sympy's and VTK's).
+    """What a spare worker process does while nobody waits: load what sympy's LaTeX printing
+    imports on first use, mathtext's fonts and glyphs, VTK and pyvista, then freeze the garbage
+    collector's view of everything loaded so far (the collections during a job then walk only
+    the job's own objects, not sympy's and VTK's), and fork the typesetting helper on a machine
+    with two cores or more.
 
     It stops as soon as ``waited_for()`` says a request has arrived (as at the window's start,
     when the first analysis is asked for at once): its verdict needs none of this, and the
     stages that do load what they need themselves.
     """
     steps: tuple[Callable[[], object], ...] = (
+        lambda: expression_formula(WARM_UP_EXPRESSION),
         lambda: render_line(WARM_UP, Style()),
         lambda: importlib.import_module("sorgui.session.scene_data"),
         gc.collect,
         gc.freeze,
+        lambda: (os.cpu_count() or 1) > 1 and start_helper(),
     )
     for step in steps:
         if waited_for():
