@@ -415,20 +415,25 @@ def _certificate(
             methods.append("resultant")
             continue
         try:
-            if not envelope_elimination(poly, curve, timeout=timeout, cancel=cancel):
-                return CanalEvidence("elimination", "f does not divide the envelope ideal of the SMAT curve", False)
+            method = envelope_certificate(poly, curve, timeout=timeout, cancel=cancel)
         except SingularError as error:
             if isinstance(error, Cancelled):
                 raise
             notes.append(f"envelope certificate not computed: {error.message}")
             return None
-        methods.append("elimination")
+        if method is None:
+            return CanalEvidence("elimination", "f does not divide the envelope ideal of the SMAT curve", False)
+        methods.append(method)
     method = methods[0] if len(set(methods)) == 1 else "+".join(methods)
     if method == "rotation":
         statement = ("the spine is a line and f is invariant under the rotations about it (the identity "
                      "∇f·(a × (p − c)) ≡ 0): X is a surface of revolution, and its parallels are characteristic circles")
     elif method == "resultant":
         statement = "f divides Res_t(S, ∂S/∂t) for S = |X − m(t)|² − ρ(t) (denominators cleared)"
+    elif method == "incidence":
+        statement = ("f lies in the incidence ideal E of the SMAT curve (SMAT, |X − m|² = ρ, tangency), "
+                     "a complete intersection of dimension 2 whose points over a line are finitely many: "
+                     "the envelope lies in X and is a surface, so it is X")
     else:
         statement = ("f divides every generator of the envelope ideal of the SMAT curve "
                      "(SMAT, |X − m|² = ρ, tangency; m and ρ eliminated)")
@@ -448,14 +453,26 @@ def _invariant_about_spine(f: Poly, curve: SmatCurve) -> bool:
     return satisfies_identity(f, Motion(a=direction, b=cross(point, direction)))
 
 
-def envelope_elimination(
+CERTIFICATE_LINE = ("3*x - 2*y + 5*z - 7", "x + 4*y - 3*z + 2")
+"""The line of the incidence certificate (two planes): any line does that meets the envelope
+in finitely many points of the incidence variety; another makes the certificate fall back to
+the elimination."""
+
+
+def envelope_certificate(
     f: Poly, curve: SmatCurve, *, timeout: float, cancel: threading.Event | None,
-) -> bool:
-    """Singular: whether ``f`` divides every generator of the eliminated envelope ideal.
+) -> str | None:
+    """Singular: ``"incidence"`` or ``"elimination"`` when ``X`` is proved to lie in the envelope
+    of the family (docs/math.md §9), ``None`` when it is not.
 
     The linear SMAT equations are solved first (``m, ρ`` affine in the free coordinates ``u``),
     so the tangency condition is the vanishing of the maximal minors of
-    ``[∂(nonlinear equations)/∂u; (2(X − m), 1)·∂(m, ρ)/∂u]``, with fewer variables to eliminate.
+    ``[∂(nonlinear equations)/∂u; (2(X − m), 1)·∂(m, ρ)/∂u]``, with fewer variables. These
+    equations, with the sphere's, generate the incidence ideal ``E`` of (sphere, point of its
+    characteristic circle). The *incidence* certificate needs no elimination: ``E`` has one
+    generator more than there are ``u`` (so every component of ``V(E)`` has dimension ≥ 2),
+    ``dim V(E) = 2``, ``f ∈ E``, and ``V(E)`` over :data:`CERTIFICATE_LINE` is finite and not
+    empty. Otherwise ``f`` must divide every generator of ``E ∩ QQ[x, y, z]`` (*elimination*).
     """
     free, coords = _affine_coordinates(curve.equations)
     names = tuple(f"u{i}" for i in range(len(free)))
@@ -471,16 +488,25 @@ def envelope_elimination(
     entries = ",".join(poly_to_singular(e) if e else "0" for row in rows for e in row)
     gens = ",".join([poly_to_singular(g) for g in nonlinear] + [poly_to_singular(sphere)])
     variables = "*".join(names)
+    square = int(len(rows) == len(names))
     script = f"""ring sE = 0,({",".join(names)},x,y,z),dp; short = 0;
 matrix M[{len(rows)}][{len(names)}] = {entries};
 ideal E = {gens}, minor(M, {len(names)});
-ideal El = eliminate(E, {variables});
-ideal F = std(ideal({poly_to_singular(f, ["x", "y", "z"])}));
-int ok = (size(El) > 0) && (size(reduce(El, F)) == 0);
+poly f = {poly_to_singular(f, ["x", "y", "z"])};
+ideal G = std(E);
+int ok = 0;
+if ({square} && dim(G) == 2 && size(reduce(f, G)) == 0) {{
+  ideal H = std(E + ideal({", ".join(CERTIFICATE_LINE)}));
+  if (dim(H) == 0) {{ ok = 2; }}
+}}
+if (ok == 0) {{
+  ideal El = eliminate(E, {variables});
+  ok = (size(El) > 0) && (size(reduce(El, std(ideal(f)))) == 0);
+}}
 {emit("ok", "string(ok)")}
 """
     found = run_script(script, timeout=timeout, cancel=cancel)
-    return parse_int(found["ok"][0]) == 1
+    return {2: "incidence", 1: "elimination"}.get(parse_int(found["ok"][0]))
 
 
 def _affine_coordinates(equations: tuple[Poly, ...]) -> tuple[list[int], list[Poly]]:

@@ -258,9 +258,10 @@ class CanalFamily:
 class CanalEvidence:
     """A certificate (``canal``) or a witness line (``not canal``), with what was checked.
 
-    ``method`` is ``resultant`` (f | Res_t(S, ∂S/∂t) for a rational family), ``elimination``
-    (f divides every generator of the eliminated envelope ideal), ``symmetry`` (a surface of
-    revolution or a sphere), or ``line`` (a witness ``point + τ·direction``).
+    ``method`` is ``resultant`` (f | Res_t(S, ∂S/∂t) for a rational family), ``incidence`` (f in
+    the incidence ideal of the family, a surface over a line; docs/math.md §9), ``elimination``
+    (f divides every generator of the eliminated envelope ideal), ``rotation`` or ``symmetry`` (a
+    surface of revolution or a sphere), or ``line`` (a witness ``point + τ·direction``).
     """
 
     method: str

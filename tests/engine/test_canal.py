@@ -11,7 +11,10 @@ import sympy
 
 from sorgui.engine.analysis import analyze
 from sorgui.engine import numberfields
-from sorgui.engine.canal import _rational_squarefree, analyze_canal
+from sorgui.engine import canal as canal_module
+from sorgui.engine.canal import CERTIFICATE_LINE, LINES, SEED, _Lines, _rational_squarefree, analyze_canal, envelope_certificate
+from sorgui.engine.canal_spine import SmatCurve, smat_curves
+from sorgui.engine.polys import Poly, to_flint
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.report import Analysis, Canal
 from sorgui.export.text import format_report
@@ -143,7 +146,7 @@ def test_varying_radius_is_not_a_pipe() -> None:
 
 def test_recognition_only_gives_the_verdict_without_the_families_parameterization() -> None:
     canal = canal_of("pipe parabola", full=False)
-    assert canal.is_canal is True and canal.certificate.method == "elimination"
+    assert canal.is_canal is True and canal.certificate.method == "incidence"
     assert canal.families[0].genus is None and canal.parametrizations == ()
 
 
@@ -157,8 +160,29 @@ def test_two_cylinder_blend(name: str) -> None:
     (family,) = canal.families
     assert (family.degree, family.genus, family.planar, family.pipe) == (4, 1, False, True)
     assert family.parametrization is None and canal.parametrizations == ()
-    assert canal.certificate.method == "elimination"
+    assert canal.certificate.method == "incidence"
     assert any("not rational" in n for n in canal.notes)
+
+
+def _pipe_parabola_and_its_smat() -> tuple[Poly, SmatCurve]:
+    f = parse_polynomial(examples()["pipe parabola"]).polynomial
+    lines = _Lines(to_flint(f), SEED)
+    for _ in range(LINES):
+        lines.next()
+    (curve,), _ = smat_curves(lines.sample, seed=SEED, timeout=60.0, cancel=None)
+    return f, curve
+
+
+@pytest.mark.parametrize("line", [CERTIFICATE_LINE, ("1", "0")])
+def test_the_envelope_certificate_proves_only_envelopes(monkeypatch: pytest.MonkeyPatch, line: tuple[str, str]) -> None:
+    """The incidence certificate, and the elimination it falls back to when the line proves
+    nothing (here ``⟨1⟩``: no point over it): both accept the pipe and refuse another surface."""
+    monkeypatch.setattr(canal_module, "CERTIFICATE_LINE", line)
+    f, curve = _pipe_parabola_and_its_smat()
+    method = "incidence" if line == CERTIFICATE_LINE else "elimination"
+    assert envelope_certificate(f, curve, timeout=60.0, cancel=None) == method
+    x = f.ring.gens[0]
+    assert envelope_certificate(f + x, curve, timeout=60.0, cancel=None) is None
 
 
 def test_json_round_trip_and_text_report() -> None:
