@@ -94,6 +94,9 @@ PAPER_HTML = """
 <p>sorgui implements</p>
 <blockquote>J. Vršek, M. Lávička, <i>Determining surfaces of revolution from their implicit
 equations</i>, Journal of Computational and Applied Mathematics.</blockquote>
+<p>Its DOI, and the journal's page, are one search away:
+<a href="https://search.crossref.org/search/works?q=Determining+surfaces+of+revolution+from+their+implicit+equations&from_ui=yes">Crossref</a>
+(sorgui does not print a DOI it could not check against the paper's source).</p>
 <p>Its Section 2 is the recognition (the symmetry algebra and the axis), its Section 3 the
 rationality (Table 1 and the tubular surface), its Appendix the two examples in the Examples menu.
 The repository's own account of the mathematics is <tt>docs/math.md</tt>.</p>
