@@ -20,7 +20,9 @@ Algorithm choice:
   imaginary field although the conic has real points, a line through an interior point meets
   it in a point over a real quadratic field. Every answer is checked exactly: it satisfies
   ``F`` and its degree equals ``deg F`` (proper). No answer is an :class:`AnalysisError` that
-  says why (e.g. ``paraPlaneCurve`` accepts only ``QQ``).
+  says why (e.g. ``paraPlaneCurve`` accepts only ``QQ``). When ``paraPlaneCurve`` fails (it does
+  on some curves) or Singular is missing, the conic route takes a curve quadratic in one
+  variable whose discriminant is a square times a polynomial of degree 1 or 2.
 """
 
 from __future__ import annotations
@@ -425,7 +427,8 @@ def parametrize(
 
     The direct route first (docs/math.md §5: ``A(x)·y + C(x)`` gives ``(t, -C(t)/A(t))``, and the
     same with the roles swapped), without Singular; else ``paraPlaneCurve`` over ``QQ``, whose
-    field is made real when the curve has real points (see the module docstring). Raises
+    field is made real when the curve has real points (see the module docstring), and the conic
+    route (:func:`_conic`) when Singular fails or is missing. Raises
     :class:`AnalysisError` with the reason when there is none: the curve is reducible or of
     positive genus, or ``F`` has irrational coefficients and is linear in neither variable
     (``paraPlaneCurve`` accepts only ``QQ``). With ``known_genus_zero`` the caller vouches that
@@ -445,8 +448,14 @@ def parametrize(
                 "neither variable, and Singular's paraPlaneCurve accepts only rational "
                 "coefficients (ground field is not Q)"
             )
-        candidates = _para_plane_curve(rational, timeout, cancel, known_genus_zero)
         curve, method = rational, "paraPlaneCurve"
+        try:
+            candidates = _para_plane_curve(rational, timeout, cancel, known_genus_zero)
+        except SingularError:
+            conic = _conic(rational)
+            if conic is None:
+                raise
+            candidates, method = [conic], "conic"
         found = next((c for c in candidates if _vanishes(curve, *c[0], *c[1])), None)
     elif not _vanishes(curve, *found[0], *found[1]):
         found = None
@@ -490,7 +499,88 @@ def _linear_split(F: Poly) -> tuple[int, Poly, Poly] | None:
         C = R.from_dict({(m[other],): c for m, c in F.items() if m[linear] == 0})
         return linear, A, C
     return None
+
+
+CONIC_POINT_SEARCH = 50
+"""The conic route looks for a rational point ``(u₀, w₀)`` of ``w² = q(u)`` among the integers
+``|u₀| ≤`` this (after the points at infinity and ``u₀ = 0``); Singular takes the curve if none
+is found."""
+
+
+def _conic(F: Poly) -> tuple[_Fraction, _Fraction] | None:
+    """A proper parameterization over ``QQ`` when ``F = a(u)·v² + b(u)·v + c(u)`` and the
+    discriminant is ``s(u)²·q(u)`` with ``deg q ∈ {1, 2}``: the curve is birational to the conic
+    ``w² = q(u)`` by ``w = (2a·v + b)/s``, so the conic through a rational point and
+    ``v = (−b + s·w)/(2a)`` parameterize it. With ``a, b, c`` coprime and ``q`` not constant,
+    ``F`` is absolutely irreducible (Gauss's lemma; its discriminant is no square) of genus 0,
+    so no check is needed. ``None`` when ``F`` is not of this kind or no point is found. Paraplanecurves' adjoint map fails on some such curves (with a tacnode at infinity,
+    as the second focal conic of a torus), and this needs no Singular at all."""
+    if not is_rational_field(F.ring.domain):
+        return None
+    R = poly_ring(("t",), QQ)
+    for quadratic in (1, 0):
+        if F.degree(quadratic) != 2:
+            continue
+        other = 1 - quadratic
+        a, b, c = (R.from_dict({(m[other],): k for m, k in F.items() if m[quadratic] == e}) for e in (2, 1, 0))
+        if a.gcd(b).gcd(c).degree() > 0:
+            continue  # a line u = u₀ splits off: Singular's checks say so
+        discriminant = b**2 - 4 * a * c
+        if not discriminant:
+            continue  # a double curve
+        s, q = _square_part(discriminant)
+        conic = _conic_points(q)
+        if conic is None:
+            continue
+        u, w = conic
+        at_u = {R.symbols[0]: u}
+        v = sympy.cancel((-b.as_expr().subs(at_u) + s.as_expr().subs(at_u) * w) / (2 * a.as_expr().subs(at_u)))
+        return _fractions(u, v, PARAMETER, ()) if quadratic == 1 else _fractions(v, u, PARAMETER, ())
     return None
+
+
+def _square_part(D: Poly) -> tuple[Poly, Poly]:
+    """``(s, q)`` with ``D = s²·q`` and ``q`` free of square factors but for its constant."""
+    constant, factors = D.sqf_list()
+    s, q = D.ring.one, D.ring.ground_new(constant)
+    for g, k in factors:
+        s *= g ** (k // 2)
+        if k % 2:
+            q *= g
+    return s, q
+
+
+def _conic_points(q: Poly) -> tuple[sympy.Expr, sympy.Expr] | None:
+    """``(u(t), w(t))`` over ``QQ`` parameterizing ``w² = q(u)`` properly (``deg q`` 1 or 2):
+    the lines through a rational point, at infinity when the leading coefficient is a square,
+    else at ``u₀ = 0, ±1, …, ±``:data:`CONIC_POINT_SEARCH`; ``None`` if there is none."""
+    t = PARAMETER
+    coefficients = {m[0]: QQ.to_sympy(c) for m, c in q.items()}
+    if q.degree() == 1:
+        alpha, beta = (coefficients.get(k, sympy.Integer(0)) for k in (1, 0))
+        return (t**2 - beta) / alpha, t
+    if q.degree() != 2:
+        return None
+    alpha, beta, gamma = (coefficients.get(k, sympy.Integer(0)) for k in (2, 1, 0))
+    root = _rational_sqrt(alpha)
+    if root is not None:  # the point at infinity: w = root·u + t
+        u = (gamma - t**2) / (2 * root * t - beta)
+        return u, root * u + t
+    for u0 in sorted(range(-CONIC_POINT_SEARCH, CONIC_POINT_SEARCH + 1), key=abs):
+        w0 = _rational_sqrt(alpha * u0**2 + beta * u0 + gamma)
+        if w0 is not None:  # the line w = w0 + t·(u − u0) meets the conic again at u
+            u = (alpha * u0 + beta + t**2 * u0 - 2 * w0 * t) / (t**2 - alpha)
+            return u, w0 + t * (u - u0)
+    return None
+
+
+def _rational_sqrt(c: sympy.Rational) -> sympy.Rational | None:
+    """The non-negative rational square root of ``c``, or ``None``."""
+    if c < 0:
+        return None
+    p, exact_p = sympy.integer_nthroot(int(c.p), 2)
+    q, exact_q = sympy.integer_nthroot(int(c.q), 2)
+    return sympy.Rational(p, q) if exact_p and exact_q else None
 
 
 def _para_plane_curve(

@@ -25,7 +25,7 @@ from sorgui.engine.curves import (
     is_proper,
     parametrize,
 )
-from sorgui.engine.errors import AnalysisError, Cancelled
+from sorgui.engine.errors import AnalysisError, Cancelled, SingularError, SingularNotFound
 from sorgui.engine.polys import Poly, number_field, poly_ring
 
 R = poly_ring(("x", "y"), QQ)
@@ -282,6 +282,53 @@ def test_rational_curves_over_qq(F: Poly) -> None:
     para = parametrize(F)
     assert para.field == "QQ"
     check(F, para)
+
+
+TORUS_FOCAL = x**4 - 4 * x**3 - 2 * x**2 * y + 22 * x**2 + 4 * x * y - 36 * x + y**2 - 22 * y + 81
+"""The plane model of the second focal conic of a torus (docs/math.md §9): paraPlaneCurve fails on
+it ("Pn has odd dimension": its adjoint map is wrong at the tacnode at infinity)."""
+
+
+def test_the_conic_route_parameterizes_what_paraplanecurve_fails_on() -> None:
+    with pytest.raises(SingularError, match="odd dimension"):
+        curves._para_plane_curve(TORUS_FOCAL, 60.0, None, True)
+    para = parametrize(TORUS_FOCAL, known_genus_zero=True)
+    assert para.method == "conic" and para.field == "QQ" and para.is_real
+    check(TORUS_FOCAL, para)
+
+
+@pytest.mark.parametrize(
+    "F",
+    [
+        y**2 - 2 * x**2 - 7,  # a hyperbola whose point (1, 3) is found by the search
+        (y - x**2) ** 2 - x**3,  # the discriminant 4x³ = (2x)²·x: a parabola w² = x
+        x**2 * y**2 - (x**2 + 1) * (x - 2) ** 2,  # a(x)·y² = c(x), with a(x) not constant
+    ],
+)
+def test_the_conic_route_without_singular(monkeypatch: pytest.MonkeyPatch, F: Poly) -> None:
+    """With no Singular at all, a curve quadratic in one variable whose discriminant is a
+    square times a polynomial of degree 1 or 2 is still parameterized, and checked."""
+
+    def no_singular(*args: object, **kwargs: object) -> None:
+        raise SingularNotFound("no Singular here")
+
+    monkeypatch.setattr(curves, "run_script", no_singular)
+    para = parametrize(F)
+    assert para.method == "conic" and para.field == "QQ" and para.is_real
+    check(F, para)
+
+
+@pytest.mark.parametrize(
+    "F",
+    [
+        x**2 + y**2 - 3,  # real points, none rational
+        y**2 - x**3 + x,  # genus 1: the discriminant has degree 3
+        (y + x) ** 2,  # a double line
+        (x - 1) * (y**2 - x),  # a line splits off
+    ],
+)
+def test_the_conic_route_declines(F: Poly) -> None:
+    assert curves._conic(F) is None
 
 
 def test_linear_in_y_takes_the_direct_route_without_singular(
