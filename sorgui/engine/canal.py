@@ -424,22 +424,26 @@ def _certificate(
         if method is None:
             return CanalEvidence("elimination", "f does not divide the envelope ideal of the SMAT curve", False)
         methods.append(method)
-    method = methods[0] if len(set(methods)) == 1 else "+".join(methods)
-    if method == "rotation":
-        statement = ("the spine is a line and f is invariant under the rotations about it (the identity "
-                     "∇f·(a × (p − c)) ≡ 0): X is a surface of revolution, and its parallels are characteristic circles")
-    elif method == "resultant":
-        statement = "f divides Res_t(S, ∂S/∂t) for S = |X − m(t)|² − ρ(t) (denominators cleared)"
-    elif method == "incidence":
-        statement = ("f lies in the incidence ideal E of the SMAT curve (SMAT, |X − m|² = ρ, tangency), "
-                     "a complete intersection of dimension 2 whose points over a line are finitely many: "
-                     "the envelope lies in X and is a surface, so it is X")
-    else:
-        statement = ("f divides every generator of the envelope ideal of the SMAT curve "
-                     "(SMAT, |X − m|² = ρ, tangency; m and ρ eliminated)")
-    if len(smat) > 1:
-        statement += f", for each of the {len(smat)} families"
-    return CanalEvidence(method, statement, True)
+    if len(set(methods)) == 1:
+        statement = CERTIFICATES[methods[0]]
+        if len(smat) > 1:
+            statement += f", for each of the {len(smat)} families"
+        return CanalEvidence(methods[0], statement, True)
+    statement = "; ".join(f"family {number}: {CERTIFICATES[m]}" for number, m in enumerate(methods, 1))
+    return CanalEvidence("+".join(methods), statement, True)
+
+
+CERTIFICATES = {
+    "rotation": ("the spine is a line and f is invariant under the rotations about it (the identity "
+                 "∇f·(a × (p − c)) ≡ 0): X is a surface of revolution, and its parallels are characteristic circles"),
+    "resultant": "f divides Res_t(S, ∂S/∂t) for S = |X − m(t)|² − ρ(t) (denominators cleared)",
+    "incidence": ("f lies in the incidence ideal E of the SMAT curve (SMAT, |X − m|² = ρ, tangency), "
+                  "a complete intersection of dimension 2 whose points over a line are finitely many: "
+                  "the envelope lies in X and is a surface, so it is X"),
+    "elimination": ("f divides every generator of the envelope ideal of the SMAT curve "
+                    "(SMAT, |X − m|² = ρ, tangency; m and ρ eliminated)"),
+}
+"""What each envelope certificate proves (docs/math.md §9)."""
 
 
 def _invariant_about_spine(f: Poly, curve: SmatCurve) -> bool:

@@ -91,15 +91,33 @@ def _cross(u: tuple, v: tuple) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
 
 
 def radical_parametrization(family: RationalFamily) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
-    """``c(t) + R(t)(cos θ·e₁/|e₁| + sin θ·e₂/|e₂|)``: exact, with square roots."""
+    """``c(t) + R(t)(cos θ·e₁/|e₁| + sin θ·e₂/|e₂|)``: exact, with square roots where the
+    squares of ``|e₁|``, ``|e₂|``, ``R`` are not squares of rational functions (where they are,
+    the rational root is taken: its sign only turns or mirrors the angle on the same circle)."""
     e1, e2 = frame(family.normal)
-    n1 = sympy.sqrt(sympy.factor(sympy.cancel(sum(c * c for c in e1))))
-    n2 = sympy.sqrt(sympy.factor(sympy.cancel(sum(c * c for c in e2))))
-    R = sympy.sqrt(family.radius_squared)
+    n1 = _root(sum(c * c for c in e1))
+    n2 = _root(sum(c * c for c in e2))
+    R = _root(family.radius_squared)
     return tuple(  # type: ignore[return-value]
-        c + R * (sympy.cos(THETA) * sympy.cancel(a) / n1 + sympy.sin(THETA) * sympy.cancel(b) / n2)
+        c + sympy.factor(sympy.cancel(R * a / n1)) * sympy.cos(THETA) + sympy.factor(sympy.cancel(R * b / n2)) * sympy.sin(THETA)
         for c, a, b in zip(family.center, e1, e2)
     )
+
+
+def _root(square: sympy.Expr) -> sympy.Expr:
+    """A square root of the rational function ``square``: the square factors of its numerator
+    and denominator taken out of the ``sqrt`` (a rational function when nothing is left)."""
+    square = sympy.factor(sympy.cancel(square))
+    if not square.free_symbols <= {T}:
+        return sympy.sqrt(square)
+    outside, inside = sympy.Integer(1), sympy.Integer(1)
+    for part, sign in zip(sympy.fraction(square), (1, -1)):
+        constant, factors = sympy.factor_list(part, T)
+        inside *= constant**sign
+        for g, e in factors:
+            outside *= g ** (sign * (e // 2))
+            inside *= g ** (sign * (e % 2))
+    return outside * sympy.sqrt(inside)
 
 
 def verify_radical(f: Poly, family: RationalFamily) -> bool:

@@ -111,6 +111,38 @@ def test_torus_spines_are_the_core_circle_and_the_axis() -> None:
     assert circle.radius_squared == "1" and circle.degree == 2
 
 
+def test_every_family_of_the_torus_blend_has_its_m_and_rho() -> None:
+    """The second focal conic (the axis, ρ varying) has a plane model on which paraPlaneCurve
+    fails; the conic route parameterizes it (docs/math.md §5)."""
+    canal = canal_of("blend cyl R=2 / plane z=0, ball 1 (torus)")
+    assert len(canal.families) == 2
+    assert all(f.genus == 0 and f.verified and f.parametrization is not None for f in canal.families)
+    assert not any("no rational m(t)" in note for note in canal.notes)
+
+
+def test_a_certificate_by_two_methods_states_each() -> None:
+    certificate = canal_of("torus R=2 r=1").certificate
+    assert certificate.verified and set(certificate.method.split("+")) == {"resultant", "rotation"}
+    first, second = certificate.statement.split("; family 2: ")
+    assert first.startswith("family 1: ")
+    assert {"Res_t" in first, "rotations" in first} == {True, False}
+    assert ("Res_t" in second) != ("Res_t" in first)
+
+
+def test_radical_parameterizations_take_square_factors_out_of_the_roots() -> None:
+    """Where |e₁|², |e₂|², R² are squares of rational functions (the torus) no root is left;
+    elsewhere (the twisted cubic) only square-free radicands stay under the root."""
+    torus = canal_of("torus R=2 r=1")
+    radicals = [p for p in torus.parametrizations if "radical" in p.method]
+    assert radicals and all(p.verified and "sqrt" not in "".join(p.coordinates) for p in radicals)
+    (radical,) = [p for p in canal_of("pipe twisted cubic").parametrizations if "radical" in p.method]
+    t = sympy.Symbol("t")
+    # the engine's own output (with sin, cos), read back here only, never in sorgui itself
+    roots = set().union(*(sympy.sympify(c).atoms(sympy.Pow) for c in radical.coordinates))
+    radicands = [sympy.expand(r.base) for r in roots if r.exp in (sympy.Rational(1, 2), sympy.Rational(-1, 2))]
+    assert radicands and all(sympy.degree(sympy.gcd(r, sympy.diff(r, t)), t) == 0 for r in radicands)
+
+
 def test_pipe_around_the_parabola() -> None:
     canal = canal_of("pipe parabola")
     (family,) = canal.families
