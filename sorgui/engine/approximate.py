@@ -79,9 +79,12 @@ def approximate_symmetry(f: Poly, rounding: Rounding, *, snap_exact: bool = True
     """The :class:`Approximation` of ``f`` under ``rounding`` (docs/math.md §8)."""
     coefficients = dense.float_coefficients(f)
     sizes = [abs(c) for c in coefficients.values() if c]
-    if not all(math.isfinite(c) for c in coefficients.values()) or max(sizes) > MAX_SPAN * min(sizes):
+    finite = all(math.isfinite(c) for c in coefficients.values()) and math.isfinite(rounding.tolerance)
+    if not finite or max(sizes) > MAX_SPAN * min(sizes):
         note = (f"the coefficients span more than {math.log10(MAX_SPAN):.0f} orders of magnitude: beyond "
-                "what floating point can compare, so nearness was not decided")
+                "what floating point can compare, so nearness was not decided" if finite else
+                "the input's numbers lie beyond the range of floating point (about 1e308): "
+                "nearness was not decided")
         tolerance = rounding.tolerance if math.isfinite(rounding.tolerance) else None
         return NearResult(Approximation(tolerance, rounding.source, False, None, None, None, (),
                                         notes=(*notes, note)), None)

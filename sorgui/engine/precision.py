@@ -49,7 +49,8 @@ class Rounding:
     ``bounds`` holds the monomials that carry a bound of their own; every other monomial of
     degree ≤ ``degree`` has ``default``. ``tolerance`` is ``‖e‖₂/‖f‖₂``; ``source`` is
     ``"input"`` (from the printed digits) or ``"given"``; ``digits`` is the largest number of
-    significant digits printed (``None`` when the tolerance was given).
+    significant digits printed (``None`` when the tolerance was given). An infinite
+    ``tolerance`` means the digits could not be read in floating point (a literal beyond it).
     """
 
     bounds: dict[Monomial, float]
@@ -84,12 +85,16 @@ def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
     top = max(abs(c) for c in coefficients.values())
     floor = FLOAT_FLOOR * top
     degree = max(sum(m) for m in coefficients)
-    propagated = _Propagation(text, digits, fixed_point).run(tree)
-    if propagated is None:
-        relative = max(_literal_bound(text, n, digits, fixed_point) / abs(float(n.value)) for n in decimals if n.value)
-        errors = {m: relative * abs(c) for m, c in coefficients.items()}
-    else:
-        errors = {m: propagated.get(m, 0.0) for m in coefficients}
+    try:
+        propagated = _Propagation(text, digits, fixed_point).run(tree)
+        if propagated is None:
+            relative = max(_literal_bound(text, n, digits, fixed_point) / abs(float(n.value))
+                           for n in decimals if n.value)
+            errors = {m: relative * abs(c) for m, c in coefficients.items()}
+        else:
+            errors = {m: propagated.get(m, 0.0) for m in coefficients}
+    except OverflowError:  # a literal or product beyond floating point: no bound can be read
+        return Rounding({}, math.inf, degree, math.inf, "input", digits)
     bounds = {m: max(e, floor) for m, e in errors.items()}
     printed = [e for e in errors.values() if e > 0.0]
     default = max(min(printed, default=floor), floor)

@@ -214,3 +214,14 @@ def test_extreme_inputs_give_strict_json_and_a_clear_word(text: str) -> None:
         assert "orders of magnitude" in result.notes[-1] and not result.near_sor
     if text.startswith("0.5x"):
         assert result.near_sor and result.kind == "plane"
+
+
+@pytest.mark.parametrize("text", ["1e400*x + y", "1e300*x^2*1e300 + y", "1e400*x - 1e400*x + y^2 + z^2 - x + 0.5"])
+def test_numbers_beyond_floating_point_leave_nearness_undecided(text: str) -> None:
+    """The exact analysis stands; the rounded-input stage says why it decided nothing, and the
+    JSON stays standard (no infinite tolerance)."""
+    analysis = analyze(text)
+    approx = analysis.approximate
+    assert approx is not None and not approx.near_sor and approx.tolerance is None
+    assert any("beyond the range of floating point" in note for note in approx.notes)
+    json.loads(json.dumps(analysis.to_json(), allow_nan=False))
