@@ -40,6 +40,7 @@ from .canal_param import (
     recover_family,
     verify_radical,
 )
+from .canal_radical import RadicalFamily, radical_family, radical_surface
 from .canal_spine import MARGIN, SmatCurve, constant_radius, monomials, smat_curves
 from .errors import AnalysisError, Cancelled, SingularError
 from .linalg import cross, primitive_vector, solve_unique
@@ -292,6 +293,7 @@ def _canal(
         genera = []
         for curve in smat:
             genera.append(_genus(curve, timeout, cancel, notes) if full else None)
+    radicals: list[RadicalFamily | None] = []
     with clock.stage("canal family"):
         for curve, genus in zip(smat, genera):
             family = None
@@ -305,8 +307,10 @@ def _canal(
                     if isinstance(error, Cancelled):
                         raise
                     notes.append(f"no rational m(t), ρ(t): {error.message}")
+            radical = radical_family(curve) if family is None and full else None
             rational.append(family)
-            families.append(_family_report(curve, genus, family))
+            radicals.append(radical)
+            families.append(_family_report(curve, genus, family, radical))
     with clock.stage("canal certificate"):
         certificate = _certificate(poly, smat, rational, timeout, cancel, notes)
     parametrizations: list[Parametrization] = []
@@ -317,6 +321,9 @@ def _canal(
                 found = rational_parametrization(poly, family)
                 if found is not None:
                     parametrizations.append(_rational(found))
+        for radical in radicals:
+            if radical is not None:
+                parametrizations.append(_radical_surface(poly, radical))
     kinds = set()
     if any(c.constant_radius is not None for c in smat):
         kinds.add("pipe")
@@ -369,7 +376,9 @@ def _irreducible_conic(G: Poly) -> bool:
     return sympy.Matrix([[2 * a, b, d], [b, 2 * c, e], [d, e, 2 * k]]).det() != 0
 
 
-def _family_report(curve: SmatCurve, genus: int | None, family: RationalFamily | None) -> CanalFamily:
+def _family_report(
+    curve: SmatCurve, genus: int | None, family: RationalFamily | None, radical: RadicalFamily | None = None,
+) -> CanalFamily:
     radius = curve.constant_radius
     par = center = normal = radius2 = field_name = None
     verified = False
@@ -398,6 +407,9 @@ def _family_report(curve: SmatCurve, genus: int | None, family: RationalFamily |
         circle_center=center,  # type: ignore[arg-type]
         circle_radius_squared=radius2,
         circle_normal=normal,  # type: ignore[arg-type]
+        radical_spine=None if radical is None else tuple(str(radical.radicals(c)) for c in radical.m),  # type: ignore[arg-type]
+        radical_radius_squared=None if radical is None else str(radical.radicals(radical.rho)),
+        radical_parameter=None if radical is None else radical.parameter,
     )
 
 
@@ -562,6 +574,22 @@ def _radical(poly: Poly, family: RationalFamily) -> Parametrization:
         method="canal: characteristic circles (radical)",
         verified=verified,
         verification="substituted into f: f(c + a·e₁ + b·e₂) ≡ 0 modulo the circle a²|e₁|² + b²|e₂|² = R²",
+    )
+
+
+def _radical_surface(poly: Poly, family: RadicalFamily) -> Parametrization:
+    coords, verified = radical_surface(poly, family)
+    return Parametrization(
+        coordinates=tuple(str(c) for c in coords),  # type: ignore[arg-type]
+        parameters=("t", "theta"),
+        field="QQ",
+        real=True,
+        proper=None,
+        method=f"canal: characteristic circles (radical, the spine in square roots, t = {family.parameter}; "
+               "real where the radicands are not negative)",
+        verified=verified,
+        verification="substituted into f: f(c + a·e₁ + b·e₂) ≡ 0 modulo the roots' squares and the circle "
+                     "a²|e₁|² + b²|e₂|² = R²",
     )
 
 

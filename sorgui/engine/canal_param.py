@@ -15,6 +15,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import sympy
@@ -95,28 +96,33 @@ def radical_parametrization(family: RationalFamily) -> tuple[sympy.Expr, sympy.E
     squares of ``|e₁|``, ``|e₂|``, ``R`` are not squares of rational functions (where they are,
     the rational root is taken: its sign only turns or mirrors the angle on the same circle)."""
     e1, e2 = frame(family.normal)
-    n1 = _root(sum(c * c for c in e1))
-    n2 = _root(sum(c * c for c in e2))
-    R = _root(family.radius_squared)
+    n1 = square_root(sum(c * c for c in e1))
+    n2 = square_root(sum(c * c for c in e2))
+    R = square_root(family.radius_squared)
     return tuple(  # type: ignore[return-value]
         c + sympy.factor(sympy.cancel(R * a / n1)) * sympy.cos(THETA) + sympy.factor(sympy.cancel(R * b / n2)) * sympy.sin(THETA)
         for c, a, b in zip(family.center, e1, e2)
     )
 
 
-def _root(square: sympy.Expr) -> sympy.Expr:
-    """A square root of the rational function ``square``: the square factors of its numerator
-    and denominator taken out of the ``sqrt`` (a rational function when nothing is left)."""
+def square_root(square: sympy.Expr) -> sympy.Expr:
+    """A square root of the rational function ``square``, written ``q·√P``: the square factors
+    taken out, the denominator's odd factors moved into the polynomial radicand ``P`` (a
+    rational function when ``P`` is 1). A negative constant stays under the root."""
     square = sympy.factor(sympy.cancel(square))
     if not square.free_symbols <= {T}:
         return sympy.sqrt(square)
     outside, inside = sympy.Integer(1), sympy.Integer(1)
     for part, sign in zip(sympy.fraction(square), (1, -1)):
         constant, factors = sympy.factor_list(part, T)
-        inside *= constant**sign
+        outside *= sympy.sqrt(abs(constant)) ** sign
+        if constant < 0:
+            inside = -inside
         for g, e in factors:
             outside *= g ** (sign * (e // 2))
-            inside *= g ** (sign * (e % 2))
+            if e % 2:
+                inside *= g
+                outside *= g ** min(sign, 0)
     return outside * sympy.sqrt(inside)
 
 
@@ -141,7 +147,7 @@ def verify_radical(f: Poly, family: RationalFamily) -> bool:
     for i in range(3):
         parts = [_to_ctx(sympy.cancel(rows[j] * den), ctx) for j in (i, 3 + i, 6 + i)]
         coords.append(parts[0] + a * parts[1] + b * parts[2])
-    value = _compose_fraction(to_flint(f), coords, [D, D, D], ctx, common=D)
+    value = compose_fraction(to_flint(f), coords, [D, D, D], ctx, common=D)
     sa, sb = sympy.Symbol("a"), sympy.Symbol("b")
     circle = sympy.fraction(sympy.cancel(
         sum(c * c for c in e1) * sa**2 + sum(c * c for c in e2) * sb**2 - family.radius_squared))[0]
@@ -149,7 +155,7 @@ def verify_radical(f: Poly, family: RationalFamily) -> bool:
     lead = circle.coeff(sa, 2)
     A = _to_ctx_ab(lead, ctx)
     rest = _to_ctx_ab(sympy.expand(circle - lead * sa**2), ctx)
-    return _reduce_square(value, 1, A, -rest, ctx).is_zero()
+    return reduce_square(value, 1, A, -rest, ctx).is_zero()
 
 
 def _to_ctx_ab(expr: sympy.Expr, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
@@ -158,7 +164,7 @@ def _to_ctx_ab(expr: sympy.Expr, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
     return ctx.from_dict({m: fmpq(int(sympy.Rational(c).p), int(sympy.Rational(c).q)) for m, c in p.terms()})
 
 
-def _reduce_square(p: fmpq_mpoly, index: int, A: fmpq_mpoly, B: fmpq_mpoly, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
+def reduce_square(p: fmpq_mpoly, index: int, A: fmpq_mpoly, B: fmpq_mpoly, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
     """``A^k·p`` with ``(generator index)²`` replaced by ``B/A`` (``k`` half the degree), so that
     ``p`` vanishes on ``A·g² = B`` exactly when the result is zero."""
     top = max((m[index] for m in p.monoms()), default=0) // 2
@@ -181,12 +187,13 @@ def _to_ctx(expr: sympy.Expr, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
     return out
 
 
-def _compose_fraction(
+def compose_fraction(
     f: fmpq_mpoly, nums: list[fmpq_mpoly], dens: list[fmpq_mpoly], ctx: fmpq_mpoly_ctx,
-    common: fmpq_mpoly | None = None,
+    common: fmpq_mpoly | None = None, reduce: Callable[[fmpq_mpoly], fmpq_mpoly] = lambda p: p,
 ) -> fmpq_mpoly:
     """``D^deg f · f(nᵢ/dᵢ)`` with ``D = Π dᵢ`` (or the given common multiple of the ``dᵢ``):
-    the numerator of ``f`` at the rational point."""
+    the numerator of ``f`` at the rational point. ``reduce`` is applied after every product
+    (a normal form modulo relations the point satisfies, which keeps the products small)."""
     d = f.total_degree()
     total = ctx.from_dict({})
     common = dens[0] * dens[1] * dens[2] if common is None else common
@@ -194,18 +201,19 @@ def _compose_fraction(
     cache: dict[tuple[int, int], fmpq_mpoly] = {}
     for monom, coeff in zip(f.monoms(), f.coeffs()):
         term = ctx.from_dict({(0,) * ctx.nvars(): coeff})
-        for i, e in enumerate(monom):
+        for i, e in enumerate((*monom, d - sum(monom))):
             if e:
-                if (i, e) not in cache:
-                    cache[(i, e)] = scaled[i] ** e
-                term *= cache[(i, e)]
-        k = d - sum(monom)
-        if k:
-            if (3, k) not in cache:
-                cache[(3, k)] = common**k
-            term *= cache[(3, k)]
+                term = reduce(term * _power(cache, (*scaled, common), i, e, reduce))
         total += term
-    return total
+    return reduce(total)
+
+
+def _power(cache: dict[tuple[int, int], fmpq_mpoly], bases: tuple[fmpq_mpoly, ...], i: int, e: int,
+           reduce: Callable[[fmpq_mpoly], fmpq_mpoly]) -> fmpq_mpoly:
+    """``bases[i]^e``, reduced, from the cached lower powers."""
+    if (i, e) not in cache:
+        cache[(i, e)] = bases[i] if e == 1 else reduce(_power(cache, bases, i, e - 1, reduce) * bases[i])
+    return cache[(i, e)]
 
 
 def family_resultant_certificate(f: Poly, family: RationalFamily) -> bool:
@@ -385,7 +393,7 @@ def _vanishes_at(f: Poly, point: tuple[sympy.Expr, ...], S: sympy.Symbol) -> boo
         den = sympy.lcm(den, d)
     nums = [_poly_ts(sympy.expand(n * sympy.cancel(den / d)), ctx, S) for n, d in fracs]
     D = _poly_ts(sympy.expand(den), ctx, S)
-    return _compose_fraction(to_flint(f), nums, [D, D, D], ctx, common=D).is_zero()
+    return compose_fraction(to_flint(f), nums, [D, D, D], ctx, common=D).is_zero()
 
 
 def _poly_ts(expr: sympy.Expr, ctx: fmpq_mpoly_ctx, S: sympy.Symbol) -> fmpq_mpoly:

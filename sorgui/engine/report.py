@@ -232,6 +232,9 @@ class CanalFamily:
     ``G(u, v)``, the image under ``u, v`` = ``projection`` (integer forms in ``m1, m2, m3, r``).
     ``parametrization`` is ``m(t)`` and ``radius_squared`` ``ρ(t)`` (or the constant of a pipe),
     over ``field``; ``circle_*`` are the characteristic circles (centre, radius², plane normal).
+    Without a rational ``m(t)`` (a SMAT curve of positive genus), ``radical_spine`` and
+    ``radical_radius_squared`` may give ``m(t)``, ``ρ(t)`` in square roots, ``t`` standing for the
+    SMAT coordinate ``radical_parameter``, verified on the SMAT equations.
     """
 
     degree: int
@@ -252,6 +255,9 @@ class CanalFamily:
     circle_center: Triple | None = None
     circle_radius_squared: str | None = None
     circle_normal: Triple | None = None
+    radical_spine: Triple | None = None
+    radical_radius_squared: str | None = None
+    radical_parameter: str | None = None
 
 
 @dataclass(frozen=True)

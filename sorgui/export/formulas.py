@@ -307,9 +307,14 @@ def canal_formulas(canal: Canal) -> list[Formula]:
             check = "verified" if fam.verified else "not verified"
             out.append(Formula(f"{name}M", f"the spine t -> m(t) of sphere family {i} (over {fam.field}, {check})",
                                value, (t,), coverage(value, (t,), _is_real(value)), {"verified": fam.verified}))
-        if fam.radius_squared is not None:
+        elif fam.radical_spine is not None:
+            out.append(Formula(f"{name}M", f"the spine t -> m(t) of sphere family {i} in square roots "
+                               f"(t = {fam.radical_parameter}; verified on the SMAT equations)",
+                               _vector(fam.radical_spine), (t,), None, {"verified": True}))
+        rho = fam.radius_squared or fam.radical_radius_squared
+        if rho is not None:
             out.append(Formula(f"{name}Rho", f"the squared radius rho(t) of the spheres of family {i} ({radius})",
-                               read_expression(fam.radius_squared)))
+                               read_expression(rho)))
         if fam.circle_center is not None:
             value = _vector(fam.circle_center)
             out.append(Formula(f"{name}C", f"the centre t -> c(t) of the characteristic circles of family {i}",

@@ -248,6 +248,9 @@ def canal_lines(canal: Canal) -> list[str]:
         if fam.parametrization is not None:
             check = "verified" if fam.verified else "NOT verified"
             lines.append(f"    m(t) = ({', '.join(fam.parametrization)}), ρ(t) = {fam.radius_squared} (over {fam.field}; {check})")
+        elif fam.radical_spine is not None:
+            lines.append(f"    m(t) in square roots (t = {fam.radical_parameter}) = ({', '.join(fam.radical_spine)}), "
+                         f"ρ(t) = {fam.radical_radius_squared} (verified on the SMAT equations)")
         elif fam.pipe:
             lines.append(f"    ρ = {fam.radius_squared}")
         if fam.circle_center is not None:

@@ -236,10 +236,12 @@ def analysis_formulas(analysis: Analysis, plain: bool = False) -> dict[str, Form
     canal = analysis.canal
     if canal is not None:
         for index, family in enumerate(canal.families):
-            if family.parametrization is not None:
-                out[f"canal.{index}.spine"] = make.vector(family.parametrization, "m(t) =")
-            if family.radius_squared is not None:
-                out[f"canal.{index}.radius"] = make.expression(family.radius_squared, r"\rho(t) =")
+            spine = family.parametrization or family.radical_spine
+            if spine is not None:
+                out[f"canal.{index}.spine"] = make.vector(spine, "m(t) =")
+            radius = family.radius_squared or family.radical_radius_squared
+            if radius is not None:
+                out[f"canal.{index}.radius"] = make.expression(radius, r"\rho(t) =")
     nearest = analysis.approximate.nearest if analysis.approximate is not None else None
     if nearest is not None:
         out["approximate.nearest"] = make.expression(nearest.polynomial, "g =")

@@ -191,7 +191,11 @@ def test_two_cylinder_blend(name: str) -> None:
     assert canal.is_canal is True and set(canal.kinds) == {"pipe"}
     (family,) = canal.families
     assert (family.degree, family.genus, family.planar, family.pipe) == (4, 1, False, True)
-    assert family.parametrization is None and canal.parametrizations == ()
+    assert family.parametrization is None
+    assert family.radical_spine == ("t", "sqrt(t**2 + 7)", "sqrt((3 - t)*(t + 3))")
+    assert (family.radical_radius_squared, family.radical_parameter) == ("1", "m1")
+    (surface,) = canal.parametrizations
+    assert surface.verified and "square roots" in surface.method and surface.parameters == ("t", "theta")
     assert canal.certificate.method == "incidence"
     assert any("not rational" in n for n in canal.notes)
 

@@ -78,10 +78,10 @@ def test_canal_examples_in_menu_and_load(window, qtbot) -> None:  # noqa: ANN001
         assert ("dupin" if name == "dupin-cyclide" else "pipe") in canal.kinds
 
 
-def test_picking_a_blend_with_a_spine_of_genus_1(window, qtbot, run_analysis) -> None:
-    """The two-cylinder blend's spine has genus 1 (no m(t)): it is traced numerically, and
-    picking a point shows the sphere that touches the surface there, found from the SMAT
-    equations."""
+def test_picking_a_blend_with_a_spine_of_genus_1(window, qtbot, run_analysis, artifacts: Path) -> None:
+    """The two-cylinder blend's spine has genus 1 (no rational m(t)): the pane shows m(t) in
+    square roots, the spine is traced numerically, and picking a point shows the sphere that
+    touches the surface there, found from the SMAT equations."""
     import numpy as np
 
     data = Path(__file__).resolve().parents[1] / "data" / "canal-examples.txt"
@@ -90,6 +90,8 @@ def test_picking_a_blend_with_a_spine_of_genus_1(window, qtbot, run_analysis) ->
     run_analysis(window, text, timeout_ms=SLOW_MS)
     canal = window.results.analysis.canal
     assert canal is not None and canal.is_canal and canal.families[0].parametrization is None
+    assert "canal.0.spine" in window.results.views  # m(t) in square roots, typeset
+    window.save_screenshots(artifacts / "canal-blend-window.png", artifacts / "canal-blend-viewport.png")
     viewport = window.viewport
     scene = viewport.scene
     assert scene.canal_families, "the SMAT equations reach the window"
