@@ -219,6 +219,8 @@ def write_outputs(result: Analysis, outputs: Sequence[Path], fmt: str | None = N
 
     Meshes, pictures and the pictures of Markdown/HTML reports need the 3D scene, built once
     (with pyvista) only when one of them is asked for."""
+    if not outputs:
+        return  # nothing to write: the export modules (and numpy) stay unloaded
     from sorgui.export.files import export_analysis, format_of
 
     scene = None
