@@ -67,6 +67,11 @@ FAMILY_DEGREE = 6
 """``m(t), ρ(t)`` are computed for SMAT plane models up to this degree (exact rational functions
 of higher degree make the verification slow)."""
 
+RADICAL_ROOTS = 2
+"""The circles of a family in square roots are checked on ``f`` (and given as a parameterization)
+for at most this many roots: each root doubles the size of the check (two roots take about
+2 s at degree 24)."""
+
 SOR_SPINE_DEGREE = 8
 """Above this degree the SMAT of a surface of revolution is not computed: the symmetry algebra
 already certifies it, and its spine is the axis."""
@@ -322,8 +327,11 @@ def _canal(
                 if found is not None:
                     parametrizations.append(_rational(found))
         for radical in radicals:
-            if radical is not None:
+            if radical is not None and len(radical.roots) <= RADICAL_ROOTS:
                 parametrizations.append(_radical_surface(poly, radical))
+            elif radical is not None:
+                notes.append(f"the circles of a family in {len(radical.roots)} square roots were not "
+                             f"parameterized (more than {RADICAL_ROOTS} roots)")
     kinds = set()
     if any(c.constant_radius is not None for c in smat):
         kinds.add("pipe")
