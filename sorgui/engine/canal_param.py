@@ -110,7 +110,7 @@ def square_root(square: sympy.Expr) -> sympy.Expr:
     taken out, the denominator's odd factors moved into the polynomial radicand ``P`` (a
     rational function when ``P`` is 1). A negative constant stays under the root."""
     square = sympy.factor(sympy.cancel(square))
-    if not square.free_symbols <= {T}:
+    if not (square.free_symbols <= {T} and square.is_rational_function(T)):
         return sympy.sqrt(square)
     outside, inside = sympy.Integer(1), sympy.Integer(1)
     for part, sign in zip(sympy.fraction(square), (1, -1)):

@@ -122,7 +122,7 @@ def _new_root(square: sympy.Expr, roots: list[tuple[sympy.Symbol, sympy.Expr]]) 
     ``s = √(N·D)`` when ``square = N/D`` (so every radicand is a polynomial), or the root itself
     when ``square`` is a square in ``t`` alone."""
     square = _reduced(square, roots)
-    if square.free_symbols <= {T}:
+    if square.free_symbols <= {T} and square.is_rational_function(T):
         root = square_root(square)
         if not any(p.exp == sympy.S.Half for p in root.atoms(sympy.Pow)):
             return root
