@@ -22,7 +22,8 @@ Algorithm choice:
   ``F`` and its degree equals ``deg F`` (proper). No answer is an :class:`AnalysisError` that
   says why (e.g. ``paraPlaneCurve`` accepts only ``QQ``). When ``paraPlaneCurve`` fails (it does
   on some curves) or Singular is missing, the conic route takes a curve quadratic in one
-  variable whose discriminant is a square times a polynomial of degree 1 or 2.
+  variable whose discriminant is a square times a polynomial of degree 1 or 2; for a curve with
+  coefficients of more than 64 bits it goes first (``paraPlaneCurve`` is slow on those).
 """
 
 from __future__ import annotations
@@ -428,7 +429,8 @@ def parametrize(
     The direct route first (docs/math.md §5: ``A(x)·y + C(x)`` gives ``(t, -C(t)/A(t))``, and the
     same with the roles swapped), without Singular; else ``paraPlaneCurve`` over ``QQ``, whose
     field is made real when the curve has real points (see the module docstring), and the conic
-    route (:func:`_conic`) when Singular fails or is missing. Raises
+    route (:func:`_conic`) when Singular fails or is missing, or first for large coefficients
+    (:data:`LARGE_COEFFICIENT_BITS`). Raises
     :class:`AnalysisError` with the reason when there is none: the curve is reducible or of
     positive genus, or ``F`` has irrational coefficients and is linear in neither variable
     (``paraPlaneCurve`` accepts only ``QQ``). With ``known_genus_zero`` the caller vouches that
@@ -449,13 +451,17 @@ def parametrize(
                 "coefficients (ground field is not Q)"
             )
         curve, method = rational, "paraPlaneCurve"
-        try:
-            candidates = _para_plane_curve(rational, timeout, cancel, known_genus_zero)
-        except SingularError:
-            conic = _conic(rational)
-            if conic is None:
-                raise
+        conic = _conic(rational) if _large(rational) else None
+        if conic is not None:
             candidates, method = [conic], "conic"
+        else:
+            try:
+                candidates = _para_plane_curve(rational, timeout, cancel, known_genus_zero)
+            except SingularError:
+                conic = _conic(rational)
+                if conic is None:
+                    raise
+                candidates, method = [conic], "conic"
         found = next((c for c in candidates if _vanishes(curve, *c[0], *c[1])), None)
     elif not _vanishes(curve, *found[0], *found[1]):
         found = None
@@ -499,6 +505,18 @@ def _linear_split(F: Poly) -> tuple[int, Poly, Poly] | None:
         C = R.from_dict({(m[other],): c for m, c in F.items() if m[linear] == 0})
         return linear, A, C
     return None
+
+
+LARGE_COEFFICIENT_BITS = 64
+"""A curve whose coefficients (numerators and denominators, made integral) exceed this many bits
+takes the conic route before Singular: paraPlaneCurve's time grows fast with their size (an
+exact torus near a printed one, with 50-digit coefficients, took minutes)."""
+
+
+def _large(F: Poly) -> bool:
+    """Whether the coefficients of ``F ∈ QQ[x, y]`` need more than :data:`LARGE_COEFFICIENT_BITS`."""
+    G = primitive(F)
+    return any(int(abs(QQ.numer(c))).bit_length() > LARGE_COEFFICIENT_BITS for c in G.values())
 
 
 CONIC_POINT_SEARCH = 50

@@ -318,6 +318,17 @@ def test_the_conic_route_without_singular(monkeypatch: pytest.MonkeyPatch, F: Po
     check(F, para)
 
 
+def test_large_coefficients_take_the_conic_route_before_singular(monkeypatch: pytest.MonkeyPatch) -> None:
+    def no_singular(*args: object, **kwargs: object) -> None:
+        raise AssertionError("Singular must not run")
+
+    monkeypatch.setattr(curves, "run_script", no_singular)
+    F = y**2 - (2**70 * x**2 + 3**45) * (x - 1) ** 2
+    para = parametrize(F, known_genus_zero=True)
+    assert para.method == "conic" and para.field == "QQ"
+    check(F, para)
+
+
 @pytest.mark.parametrize(
     "F",
     [
