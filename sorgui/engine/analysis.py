@@ -36,6 +36,12 @@ PartialCallback = Callable[[Analysis], None]
 STAGES = ("parse", "recognition", "factors", "real locus", "approximate", "rationality", "parametrizations", "canal",
           "nearest")
 
+NEAREST_SINGULAR_TIMEOUT = 10.0
+"""Each Singular call of the nearest exact surface's analysis stops after this many seconds (or
+the analysis' own limit, if shorter). That surface can have coefficients of a hundred digits
+(the rational axis nearest an irrational one), on which paraPlaneCurve runs for minutes; the
+typed equation's answer must not wait for that."""
+
 
 class StageClock:
     """Times named stages, reports them to ``progress`` and stops at a set ``cancel`` event.
@@ -139,11 +145,14 @@ def analyze_polynomial(
     clock: StageClock | None = None,
     tolerance: float | None = None,
     frame: tuple[Vector, Vector, Vector] | None = None,
+    canal: bool = True,
 ) -> Analysis:
     """The analysis of a polynomial over ``K`` that is already parsed (``text`` defaults to it).
 
     The tolerance is read off ``text``'s digits unless ``tolerance`` is given (docs/math.md §8);
     ``frame`` is a preferred axis frame for the profile (see :func:`.recognition.recognize`).
+    ``canal=False`` skips the canal stage (the nearest exact surface is a surface of revolution,
+    hence canal; the typed equation's canal analysis is the one shown).
     """
     clock = clock or StageClock(None, None)
     cancel = clock.cancel
@@ -166,7 +175,7 @@ def analyze_polynomial(
             near = approximate_symmetry(f, rounding, notes=rounding_notes)
         approximation = near.approximation
 
-    canal: Canal | None = None
+    canal_result: Canal | None = None
 
     def result(rationality: Rationality | None, found: tuple[Parametrization, ...]) -> Analysis:
         return Analysis(
@@ -181,7 +190,7 @@ def analyze_polynomial(
             timings=tuple(clock.timings),
             real_locus=real,
             approximate=approximation,
-            canal=canal,
+            canal=canal_result,
         )
 
     rationality = None
@@ -202,17 +211,19 @@ def analyze_polynomial(
             with clock.stage("parametrizations"):
                 found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)
             rationality = replace(rationality, notes=rationality.notes + notes)
-    from .canal import analyze_canal  # Singular's layer: only here
+    if canal:
+        from .canal import analyze_canal  # Singular's layer: only here
 
-    clock.publish(result(rationality, found))
-    with clock.stage("canal"):
-        canal = analyze_canal(f, is_sor=recognition.is_sor, full=not recognition_only,
-                              timeout=singular_timeout, cancel=cancel)
+        clock.publish(result(rationality, found))
+        with clock.stage("canal"):
+            canal_result = analyze_canal(f, is_sor=recognition.is_sor, full=not recognition_only,
+                                         timeout=singular_timeout, cancel=cancel)
     if near is not None and near.nearest is not None and approximation.nearest is not None and not recognition_only:
         clock.publish(result(rationality, found))
         with clock.stage("nearest"):
-            of_nearest = analyze_polynomial(near.nearest, method=method, singular_timeout=singular_timeout,
-                                            clock=StageClock(None, cancel), frame=near.frame)
+            of_nearest = analyze_polynomial(near.nearest, method=method, clock=StageClock(None, cancel),
+                                            singular_timeout=min(singular_timeout, NEAREST_SINGULAR_TIMEOUT),
+                                            frame=near.frame, canal=False)
         approximation = replace(approximation, nearest=replace(approximation.nearest, analysis=of_nearest))
     clock.check()
     return result(rationality, found)

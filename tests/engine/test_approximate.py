@@ -225,3 +225,52 @@ def test_numbers_beyond_floating_point_leave_nearness_undecided(text: str) -> No
     assert approx is not None and not approx.near_sor and approx.tolerance is None
     assert any("beyond the range of floating point" in note for note in approx.notes)
     json.loads(json.dumps(analysis.to_json(), allow_nan=False))
+
+
+def test_a_torus_printed_on_an_irrational_axis_has_its_nearest_surface_analysed() -> None:
+    """A CAD torus turned by 30° and 45° (an axis along (-1, 1, -√6)) and printed with 10
+    digits: near a surface of revolution, and the nearest exact one (on a rational axis, with
+    large coefficients) is analysed through Table 1 without its canal stage, which on such
+    coefficients ran for minutes."""
+    text = _cad_torus(digits=10)
+    analysis = analyze(text)
+    approx = analysis.approximate
+    assert approx.near_sor and approx.nearest is not None
+    direction = np.array(approx.axis.direction)
+    assert abs(abs(direction @ np.array([-1.0, 1.0, -math.sqrt(6)])) / math.sqrt(8) - 1.0) < 1e-8
+    nearest = approx.nearest.analysis
+    assert nearest is not None and nearest.is_sor and nearest.canal is None
+    assert nearest.rationality is not None and nearest.rationality.table_row == 1
+    assert analysis.unfinished == ()
+
+
+def _cad_torus(digits: int) -> str:
+    """``(|q|² + R² - r²)² - 4R²(q₁² + q₂²)`` with ``q = M(p - c)``, ``M`` the turn by 45° about z
+    after 30° about x, R = 10, r = 2.5, c = (3.2, -1.5, 7), expanded in floats and printed."""
+    a, b = math.radians(30), math.radians(45)
+    rx = np.array([[1, 0, 0], [0, math.cos(a), -math.sin(a)], [0, math.sin(a), math.cos(a)]])
+    rz = np.array([[math.cos(b), -math.sin(b), 0], [math.sin(b), math.cos(b), 0], [0, 0, 1]])
+    m = (rz @ rx).T
+    c = np.array([3.2, -1.5, 7.0])
+    q = [{(1, 0, 0): m[i, 0], (0, 1, 0): m[i, 1], (0, 0, 1): m[i, 2], (0, 0, 0): -float(m[i] @ c)} for i in range(3)]
+
+    def times(u: dict, v: dict) -> dict:
+        out: dict = {}
+        for mu, cu in u.items():
+            for mv, cv in v.items():
+                key = tuple(i + j for i, j in zip(mu, mv))
+                out[key] = out.get(key, 0.0) + cu * cv
+        return out
+
+    def plus(*parts: tuple[float, dict]) -> dict:
+        out: dict = {}
+        for scale, part in parts:
+            for key, value in part.items():
+                out[key] = out.get(key, 0.0) + scale * value
+        return out
+
+    squares = [times(qi, qi) for qi in q]
+    inner = plus((1, squares[0]), (1, squares[1]), (1, squares[2]), (1, {(0, 0, 0): 100.0 - 6.25}))
+    f = plus((1, times(inner, inner)), (-400.0, plus((1, squares[0]), (1, squares[1]))))
+    terms = [f"{value:+.{digits}G}*x^{i}*y^{j}*z^{k}" for (i, j, k), value in sorted(f.items()) if abs(value) > 1e-9]
+    return " ".join(terms)
