@@ -188,11 +188,12 @@ def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> Near
     g = dense.scaled(dense.from_terms(dense.float_coefficients(exact.polynomial), f.degree), f.length) / f.scale
     center = np.zeros(3)
     direction = None
+    floats = (lambda v: np.array([float(K.to_sympy(c)) for c in v]))  # QQ or QQ(√d)
     if sym.axis_point is not None:
-        center = np.array([float(v) for v in sym.axis_point]) / f.length
-        direction = np.array([float(v) for v in sym.axis_direction])
+        center = floats(sym.axis_point) / f.length
+        direction = floats(sym.axis_direction)
     elif sym.center is not None:
-        center = np.array([float(v) for v in sym.center]) / f.length
+        center = floats(sym.center) / f.length
     deviation = max_deviation(f.array, g, center, direction)
     return NearestSurface(
         polynomial=poly_str(exact.polynomial),

@@ -145,6 +145,12 @@ def analyze_canal(
             return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=_SOR_EVIDENCE,
                          notes=(f"degree above {MAX_DEGREE}: only the symmetry algebra's answer is given",))
         return Canal(None, f"not analysed: degree above {MAX_DEGREE}")
+    if is_sor and not is_rational_field(f.ring.domain):
+        # The norm holds the conjugate surfaces too, about other axes: no surface of revolution,
+        # and its SMAT is what Singular would be asked for. The symmetry algebra answers.
+        return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=_SOR_EVIDENCE,
+                     notes=("coefficients outside QQ: the symmetry algebra's answer; the SMAT of the norm (the "
+                            "surface with its conjugates, about other axes) is not computed",))
     g = _rational_squarefree(f)
     _, factors = g.factor()
     parts = [_analyze_factor(h, clock, full, is_sor if len(factors) == 1 else None, timeout, cancel)

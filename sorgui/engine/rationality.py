@@ -289,15 +289,33 @@ def _real_component(p: Poly, *, timeout: float, cancel: threading.Event | None) 
         if fac.minpoly is None:
             candidates = [fac.factor]
         else:
-            roots = sympy.Poly(fac.minpoly, curves.ALGEBRAIC).all_roots()
-            candidates = [fac.factor.subs(curves.ALGEBRAIC, root) for root in roots if root.is_real]
+            candidates = [fac.factor.subs(curves.ALGEBRAIC, root) for root in _real_roots(fac.minpoly)]
         for expr in candidates:
             expr = sympy.expand(expr)
             numbers = sorted({a for a in expr.atoms(sympy.Pow) if a.exp == sympy.Rational(1, 2)}, key=str)
+            if expr.has(sympy.CRootOf):
+                continue  # not in radicals: no field sorgui can write it over
             K = QQ.algebraic_field(*numbers) if numbers else QQ
             R = poly_ring(("s", "r"), K)
             return R.from_expr(expr.subs({s: R.symbols[0], r: R.symbols[1]})) if numbers else R(
                 sympy.Poly(expr, s, r).as_expr()
             )
-    raise AnalysisError("the profile has no component over a real field")
+    raise AnalysisError("the profile has no component over a real field written in square roots")
+
+
+def _real_roots(minpoly: sympy.Expr) -> list[sympy.Expr]:
+    """The real roots of ``minpoly``, in radicals when sympy finds them (degree ≤ 4: the field of
+    a component of a torus's profile over ``QQ(√6)`` has degree 4), else as ``CRootOf``."""
+    poly = sympy.Poly(minpoly, curves.ALGEBRAIC)
+    radicals = sympy.roots(poly)
+    if sum(radicals.values()) == poly.degree():
+        return [root for root in radicals if root.is_real or (root.is_real is None and _numerically_real(root))]
+    return [root for root in poly.all_roots() if root.is_real]
+
+
+def _numerically_real(root: sympy.Expr) -> bool:
+    """Whether a root in radicals whose realness sympy cannot decide is real to 60 digits (the
+    parameterizations built from it are checked exactly anyway)."""
+    value = sympy.N(root, 60)
+    return abs(sympy.im(value)) <= 10**-50 * max(1, abs(sympy.re(value)))
 

@@ -7,7 +7,9 @@ exact values that keep the fit within the input's rounding:
 
 * **Direction:** the primitive integer vector with the smallest common denominator ``D`` that
   approximates the direction's ratios within ``ε`` (simultaneous approximation, searched over
-  ``D``), for ``ε = 10⁻², 10⁻³, …``: the first one whose float fit still passes wins.
+  ``D``), for ``ε = 10⁻², 10⁻³, …``: the first one whose float fit still passes wins. Rational
+  unit vectors and directions in a real quadratic field ``QQ(√d)`` (:func:`quadratic_direction`,
+  the axes of CAD parts turned by 30° or 45°) are the other two families.
 * **Point:** the foot of the axis (its point nearest the origin), each coordinate the simplest
   rational (fewest continued-fraction steps) within ``ε·L``, the same way.
 * **Coefficients:** each the simplest rational within three standard errors of the weighted
@@ -15,19 +17,21 @@ exact values that keep the fit within the input's rounding:
   best-determined coefficient and then the overall factor. The candidate with the fewest bits
   whose *exact* residual passes wins.
 
-The exact surface ``g = Σ q_ij h^i ρ^j`` is then built over ``QQ`` and checked by the exact
-recognizer (docs/math.md §2) before it is returned.
+The exact surface ``g = Σ q_ij h^i ρ^j`` is then built over ``QQ`` (or ``QQ(√d)``) and checked
+by the exact recognizer (docs/math.md §2) before it is returned; a surface within the rounding
+is preferred, then the simplest.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
 
 import numpy as np
-from flint import fmpq, fmpq_mpoly
+import sympy
+from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 from sympy.polys.domains import QQ
 
 from . import dense
@@ -123,6 +127,81 @@ def rational_unit_direction(direction: np.ndarray, epsilon: float | np.ndarray) 
     result[others[0]], result[others[1]] = 2 * u / denominator, 2 * v / denominator
     result[k] = (1 - u * u - v * v) / denominator * int(sign)
     return tuple(result)  # type: ignore[return-value]
+
+
+@dataclass(frozen=True)
+class Quadratic:
+    """``a + b·√d``: an exact coordinate in the real quadratic field ``QQ(√d)`` (``d`` a
+    square-free integer > 1)."""
+
+    a: Fraction
+    b: Fraction
+    d: int
+
+    def __float__(self) -> float:
+        return float(self.a) + float(self.b) * math.sqrt(self.d)
+
+
+QuadraticVector = tuple[Quadratic, Quadratic, Quadratic]
+
+MAX_SQUARE_FREE = 10**6
+"""Radicands of quadratic directions are at most this (CAD rotations give 2, 3, 6)."""
+
+
+def quadratic_direction(direction: np.ndarray, epsilon: float) -> QuadraticVector | None:
+    """A direction in one real quadratic field ``QQ(√d)`` near ``direction``: the squares of the
+    unit vector's coordinates snapped to the simplest rationals within ``epsilon`` (they must
+    add up to 1), their roots scaled by one common ``√k`` so that a single ``√d`` remains (a
+    turn by 30° and 45° gives ``(−1, 1, −√6)``). ``None`` when there is none, or when the
+    direction is rational (the other families have it)."""
+    n = direction / np.linalg.norm(direction)
+    squares = [simplest_near(v * v, max(epsilon, 1e-15)) for v in n]
+    if sum(squares) != 1:
+        return None
+    parts: list[tuple[Fraction, int]] = []  # coordinate = coefficient·√free
+    for q, v in zip(squares, n):
+        if q == 0:
+            parts.append((Fraction(0), 1))
+            continue
+        split = _square_free(q.numerator * q.denominator)
+        if split is None:
+            return None
+        root, free = split
+        parts.append((Fraction(root, q.denominator) * (1 if v > 0 else -1), free))
+    for k in sorted({free for c, free in parts if c}):
+        scaled = []
+        for c, free in parts:
+            root, rest = _square_free(free * k) or (0, 0)
+            scaled.append((c * root, rest))
+        fields = {rest for c, rest in scaled if c and rest != 1}
+        if len(fields) == 1:
+            (d,) = fields
+            return tuple(Quadratic(c if rest == 1 else Fraction(0), c if rest == d else Fraction(0), d)
+                         for c, rest in scaled)  # type: ignore[return-value]
+    return None
+
+
+def _square_free(m: int) -> tuple[int, int] | None:
+    """``(r, f)`` with ``m = r²·f`` and ``f`` square-free; ``None`` for ``m`` above
+    :data:`MAX_SQUARE_FREE` squared (no simple direction has it)."""
+    if m <= 0 or m > MAX_SQUARE_FREE**2:
+        return None
+    r, f = 1, 1
+    p, rest = 2, m
+    while p * p <= rest:
+        e = 0
+        while rest % p == 0:
+            rest //= p
+            e += 1
+        r *= p ** (e // 2)
+        f *= p ** (e % 2)
+        p += 1 if p == 2 else 2
+    return r, f * rest
+
+
+def _quadratic_family(direction: np.ndarray, epsilon: float | np.ndarray) -> QuadraticVector | None:
+    """:func:`quadratic_direction` as a family of :func:`snap` (one radius: the largest)."""
+    return quadratic_direction(direction, float(np.max(epsilon)))
 
 
 def perpendicular(direction: Vector) -> Vector:
@@ -244,9 +323,13 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
         surface = _first_exact(f, best, family, exact_f, rounding)
         if surface is not None:
             found.append(surface)
+    if best.candidate.kind in (REVOLUTION, CYLINDER):
+        surface = _first_exact(f, best, _quadratic_family, exact_f, rounding)
+        if surface is not None:  # its axis is over QQ(√d): the exact analysis finds its own frame
+            found.append((surface[0], replace(surface[1], direction=None, point=None)))
     if not found:
         return None
-    return min(found, key=lambda item: item[0])[1]
+    return min(found, key=lambda item: (item[1].largest > 1.0, item[0]))[1]
 
 
 def _first_exact(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None,
@@ -341,6 +424,8 @@ def _matched_scales(g: Poly, exact_f: Poly, rounding: Rounding) -> list[Fraction
     three largest coefficients of ``f``, the simplest rational within its rounding divided by
     ``g``'s coefficient there (a CAD system that divides by its largest coefficient prints an
     exact ``1.000000000``)."""
+    if g.ring.domain != QQ:
+        return []
     g_terms = {tuple(int(e) for e in m): c for m, c in to_flint(g).to_dict().items()}
     f_terms = {tuple(int(e) for e in m): c for m, c in to_flint(exact_f).to_dict().items()}
     shared = sorted((m for m in f_terms if m in g_terms), key=lambda m: -abs(float(f_terms[m])))
@@ -371,7 +456,10 @@ def _standard_errors(f: Normalised, local: Fit) -> np.ndarray:
 def build(kind: str, a: Vector | None, c: Vector | None,
           exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction]) -> Poly | None:
     """``g = Σ q_ij h^i ρ^j`` over ``QQ`` (``h = a·(p - c)``, ``ρ = |p - c|²``; for a cylinder
-    ``ρ`` is ``|a|²|p - c|² - h²``; for a plane ``h = a·p``)."""
+    ``ρ`` is ``|a|²|p - c|² - h²``; for a plane ``h = a·p``); over ``QQ(√d)`` for a direction
+    in that field (:func:`build_quadratic`)."""
+    if a is not None and isinstance(a[0], Quadratic):
+        return None if c is None else build_quadratic(kind, a, c, exponents, coefficients)  # type: ignore[arg-type]
     R = poly_ring(XYZ, QQ)
     ctx = to_flint(R.gens[0]).context()
     x, y, z = ctx.gens()
@@ -393,15 +481,65 @@ def build(kind: str, a: Vector | None, c: Vector | None,
     return from_flint(g, R)
 
 
+def build_quadratic(kind: str, a: QuadraticVector, c: Vector, exponents: tuple[tuple[int, int], ...],
+                    coefficients: list[Fraction]) -> Poly | None:
+    """``g = Σ q_ij h^i ρ^j`` over ``QQ(√d)`` for a direction ``a`` in that field (as
+    :func:`build`): computed over ``QQ`` with ``w = √d`` as a fourth variable, ``w²`` replaced by
+    ``d``."""
+    d = a[0].d
+    ctx = fmpq_mpoly_ctx.get(("x", "y", "z", "w"), "lex")
+    x, y, z, w = ctx.gens()
+    zero = fmpq_mpoly(0, ctx)
+    shifted = [v - fmpq(q.numerator, q.denominator) for v, q in zip((x, y, z), c)]
+    h = sum(((fmpq(q.a.numerator, q.a.denominator) + fmpq(q.b.numerator, q.b.denominator) * w) * s
+             for q, s in zip(a, shifted)), zero)
+    rho = sum((s * s for s in shifted), zero)
+    if kind == CYLINDER:
+        norm2 = _reduce_root(sum(((fmpq(q.a.numerator, q.a.denominator) + fmpq(q.b.numerator, q.b.denominator) * w) ** 2
+                                  for q in a), zero), d)
+        rho = norm2 * rho - h * h
+    g = zero
+    for (i, j), q in zip(exponents, coefficients):
+        if q:
+            g += fmpq(q.numerator, q.denominator) * _reduce_root(h**i, d) * rho**j
+    g = _reduce_root(g, d)
+    if g.is_zero() or g.total_degree() < 1:
+        return None
+    root = sympy.sqrt(d)
+    K = QQ.algebraic_field(root)
+    terms: dict[tuple[int, int, int], sympy.Expr] = {}
+    for monom, coeff in zip(g.monoms(), g.coeffs()):
+        key = tuple(int(e) for e in monom[:3])
+        value = sympy.Rational(int(coeff.p), int(coeff.q)) * (root if monom[3] else 1)
+        terms[key] = terms.get(key, sympy.Integer(0)) + value  # type: ignore[index]
+    R = poly_ring(XYZ, K)
+    return R.from_dict({m: K.from_sympy(v) for m, v in terms.items() if v != 0})
+
+
+def _reduce_root(p: fmpq_mpoly, d: int) -> fmpq_mpoly:
+    """``p`` with ``w²`` replaced by ``d`` (degree at most 1 in ``w``, the last variable)."""
+    ctx = p.context()
+    out = fmpq_mpoly(0, ctx)
+    for monom, coeff in zip(p.monoms(), p.coeffs()):
+        k = int(monom[3])
+        out += ctx.from_dict({(*monom[:3], k % 2): coeff * fmpq(d) ** (k // 2)})
+    return out
+
+
 def _check(g: Poly, exact_f: Poly | None, rounding: Rounding, f: Normalised,
            a: Vector | None, c: Vector | None) -> ExactSurface | None:
     """``g`` with its exact residual against ``f``, if the exact recognizer agrees it is a
     surface of revolution and the residual is within twice the rounding."""
-    g_terms = {tuple(int(e) for e in m): c for m, c in to_flint(g).to_dict().items()}
-    if exact_f is not None:
+    rational = g.ring.domain == QQ
+    g_terms = ({tuple(int(e) for e in m): c for m, c in to_flint(g).to_dict().items()} if rational
+               else dense.float_coefficients(g))
+    if exact_f is not None and rational:
         difference = to_flint(exact_f) - to_flint(g)
         residual_terms = {tuple(int(e) for e in m): float(c) for m, c in difference.to_dict().items()}
         f_terms = dense.float_coefficients(exact_f)
+    elif exact_f is not None:  # g over QQ(√d): the difference in floats (far below the rounding)
+        f_terms = dense.float_coefficients(exact_f)
+        residual_terms = {m: f_terms.get(m, 0.0) - float(g_terms.get(m, 0)) for m in set(f_terms) | set(g_terms)}
     else:
         scale = f.scale
         f_terms = {m: float(v) * scale / f.length ** sum(m) for m, v in zip(_monomials(f), f.vector)}

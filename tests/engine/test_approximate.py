@@ -18,7 +18,7 @@ from sorgui.engine.errors import AnalysisError
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.precision import input_rounding
 from sorgui.engine.report import Analysis
-from sorgui.engine.snapping import simplest_between
+from sorgui.engine.snapping import quadratic_direction, simplest_between
 
 from .rounded import cylinder, printed, printed_exact, printed_fixed, random_sor, rational_sor, rotation, sphere
 
@@ -227,21 +227,40 @@ def test_numbers_beyond_floating_point_leave_nearness_undecided(text: str) -> No
     json.loads(json.dumps(analysis.to_json(), allow_nan=False))
 
 
-def test_a_torus_printed_on_an_irrational_axis_has_its_nearest_surface_analysed() -> None:
-    """A CAD torus turned by 30° and 45° (an axis along (-1, 1, -√6)) and printed with 10
-    digits: near a surface of revolution, and the nearest exact one (on a rational axis, with
-    large coefficients) is analysed through Table 1 without its canal stage, which on such
-    coefficients ran for minutes."""
-    text = _cad_torus(digits=10)
-    analysis = analyze(text)
+@pytest.mark.parametrize("digits", [8, 10])
+def test_a_torus_printed_on_an_irrational_axis_snaps_back_over_its_quadratic_field(digits: int) -> None:
+    """A CAD torus turned by 30° and 45° (an axis along (-1, 1, -√6)) and printed with 8 or 10
+    digits: near a surface of revolution, and the nearest exact one is the torus itself over
+    QQ(√6), within the rounding, analysed through Table 1 (row 1: its profile is two circles)
+    without a canal stage."""
+    analysis = analyze(_cad_torus(digits=digits))
     approx = analysis.approximate
-    assert approx.near_sor and approx.nearest is not None
+    assert approx.near_sor and approx.nearest is not None and approx.nearest.within_rounding
     direction = np.array(approx.axis.direction)
-    assert abs(abs(direction @ np.array([-1.0, 1.0, -math.sqrt(6)])) / math.sqrt(8) - 1.0) < 1e-8
+    assert abs(abs(direction @ np.array([-1.0, 1.0, -math.sqrt(6)])) / math.sqrt(8) - 1.0) < 1e-6
     nearest = approx.nearest.analysis
-    assert nearest is not None and nearest.is_sor and nearest.canal is None
+    assert nearest is not None and nearest.is_sor and nearest.field == "QQ(sqrt(6))" and nearest.canal is None
     assert nearest.rationality is not None and nearest.rationality.table_row == 1
+    exact = parse_polynomial(_exact_torus_over_qq_sqrt6()).polynomial
+    assert parse_polynomial(approx.nearest.polynomial).polynomial == exact
     assert analysis.unfinished == ()
+
+
+def _exact_torus_over_qq_sqrt6() -> str:
+    """The torus of :func:`_cad_torus`, exactly: ``(ρ + 375/4)² − 400(ρ − h²/8)`` with
+    ``ρ = |p − c|²``, ``h = (−1, 1, −√6)·(p − c)``, ``c = (16/5, −3/2, 7)``."""
+    rho = "((x - 16/5)^2 + (y + 3/2)^2 + (z - 7)^2)"
+    h = "(-(x - 16/5) + (y + 3/2) - sqrt(6)*(z - 7))"
+    return f"({rho} + 375/4)^2 - 400*({rho} - {h}^2/8)"
+
+
+def test_an_exact_torus_over_a_quadratic_field_gets_its_table_1_row() -> None:
+    """Its profile splits into two circles over a field of degree 4 (roots in radicals): once an
+    internal error, now row 1; the canal stage answers from the symmetry algebra."""
+    analysis = analyze(_exact_torus_over_qq_sqrt6())
+    assert analysis.is_sor and analysis.field == "QQ(sqrt(6))"
+    assert analysis.rationality.table_row == 1 and analysis.rationality.complex_rational
+    assert analysis.canal.is_canal and analysis.canal.certificate.method == "symmetry"
 
 
 def _cad_torus(digits: int) -> str:
@@ -274,3 +293,21 @@ def _cad_torus(digits: int) -> str:
     f = plus((1, times(inner, inner)), (-400.0, plus((1, squares[0]), (1, squares[1]))))
     terms = [f"{value:+.{digits}G}*x^{i}*y^{j}*z^{k}" for (i, j, k), value in sorted(f.items()) if abs(value) > 1e-9]
     return " ".join(terms)
+
+
+@pytest.mark.parametrize(
+    ("direction", "d"),
+    [((-math.sqrt(2) / 4, math.sqrt(2) / 4, -math.sqrt(3) / 2), 6), ((0.5, 0.5, 1 / math.sqrt(2)), 2)],
+)
+def test_quadratic_directions_of_cad_turns(direction: tuple[float, ...], d: int) -> None:
+    """A turn by 30° and 45° gives the field QQ(√6), one by 45° and 45° QQ(√2); the exact
+    direction is parallel to the printed one."""
+    found = quadratic_direction(np.array(direction), 1e-9)
+    assert found is not None and {q.d for q in found} == {d}
+    values = np.array([float(q) for q in found])
+    assert abs(abs(values @ np.array(direction)) / np.linalg.norm(values) - 1.0) < 1e-12
+
+
+@pytest.mark.parametrize("direction", [(0.6, 0.8, 0.0), (0.0, 0.0, 1.0), (0.123456789, 0.456789123, 0.881097)])
+def test_rational_or_generic_directions_have_no_quadratic_one(direction: tuple[float, ...]) -> None:
+    assert quadratic_direction(np.array(direction), 1e-12) is None
