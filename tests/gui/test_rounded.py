@@ -37,3 +37,22 @@ def test_a_rounded_torus_is_shown_near_with_its_axis_and_its_nearest_surface(win
     assert window.session.nearest_analysis.is_sor
     qtbot.wait(1000)
     window.grab().save(str(artifacts / "rounded-nearest.png"))
+
+
+def test_a_cad_torus_on_an_irrational_axis_switches_to_its_exact_surface_over_a_quadratic_field(
+        window, run_analysis, qtbot, artifacts) -> None:
+    """Turned by 30° and 45°, printed with 10 digits: the nearest exact surface is the torus over
+    QQ(√6), and the window shows it (its pane and its mesh) when asked."""
+    from tests.engine.test_approximate import _cad_torus
+    from tests.gui.test_canal import pane_text
+
+    run_analysis(window, _cad_torus(digits=10), timeout_ms=300_000)
+    qtbot.waitUntil(lambda: window.session.nearest_analysis is not None, timeout=300_000)
+    assert window.session.nearest_analysis.field == "QQ(sqrt(6))"
+    switch = window.findChild(QRadioButton, "viewNearest")
+    assert switch is not None and switch.isEnabled()
+    switch.click()
+    qtbot.waitUntil(lambda: "nearest exact surface" in window.viewport.caption.text().lower(), timeout=60_000)
+    qtbot.waitUntil(lambda: "QQ(sqrt(6))" in window.results.banner.text() + pane_text(window), timeout=60_000)
+    qtbot.wait(500)
+    window.grab().save(str(artifacts / "rounded-quadratic-nearest.png"))
