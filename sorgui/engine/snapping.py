@@ -144,8 +144,9 @@ class Quadratic:
 
 QuadraticVector = tuple[Quadratic, Quadratic, Quadratic]
 
-MAX_SQUARE_FREE = 10**6
-"""Radicands of quadratic directions are at most this (CAD rotations give 2, 3, 6)."""
+MAX_SQUARE_FREE = 10**4
+"""The squared coordinates of a quadratic direction have numerator times denominator at most
+this squared (CAD turns give 1/8, 3/4, …), which also bounds the trial division."""
 
 
 def quadratic_direction(direction: np.ndarray, epsilon: float) -> QuadraticVector | None:
@@ -169,10 +170,10 @@ def quadratic_direction(direction: np.ndarray, epsilon: float) -> QuadraticVecto
         root, free = split
         parts.append((Fraction(root, q.denominator) * (1 if v > 0 else -1), free))
     for k in sorted({free for c, free in parts if c}):
-        scaled = []
-        for c, free in parts:
-            root, rest = _square_free(free * k) or (0, 0)
-            scaled.append((c * root, rest))
+        splits = [_square_free(free * k) for _, free in parts]
+        if None in splits:
+            continue
+        scaled = [(c * root, rest) for (c, _), (root, rest) in zip(parts, splits)]  # type: ignore[misc]
         fields = {rest for c, rest in scaled if c and rest != 1}
         if len(fields) == 1:
             (d,) = fields
@@ -182,8 +183,8 @@ def quadratic_direction(direction: np.ndarray, epsilon: float) -> QuadraticVecto
 
 
 def _square_free(m: int) -> tuple[int, int] | None:
-    """``(r, f)`` with ``m = r²·f`` and ``f`` square-free; ``None`` for ``m`` above
-    :data:`MAX_SQUARE_FREE` squared (no simple direction has it)."""
+    """``(r, f)`` with ``m = r²·f`` and ``f`` square-free (trial division); ``None`` for ``m``
+    above :data:`MAX_SQUARE_FREE` squared (no simple direction has it)."""
     if m <= 0 or m > MAX_SQUARE_FREE**2:
         return None
     r, f = 1, 1
