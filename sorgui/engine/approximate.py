@@ -13,22 +13,25 @@ the :class:`~sorgui.engine.report.Approximation` beside it.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
+import sympy
+from sympy.polys.domains import QQ
+from sympy.polys.domains.domain import Domain
 
 from . import dense
 from .deviation import max_deviation
-from sympy.polys.domains import QQ
-
 from .errors import AnalysisError
-from .linalg import Vector, primitive_vector
+from .linalg import Vector, cross, primitive_vector
 from .near_symmetry import Fit, Normalised, candidates, fit, killing_system, normalise, refine
 from .polys import Poly, poly_str, to_str
 from .precision import Rounding, given_rounding, input_rounding
 from .recognition import axis_report
 from .report import ApproximateAxis, Approximation, NearestSurface
-from .snapping import ExactSurface, perpendicular, snap
+from .snapping import ExactSurface, Quadratic, perpendicular, snap
 from .symmetry import CYLINDER, EXTRUSION, PLANE, REVOLUTION, SOR_KINDS, SPHERE
 
 MAX_SPAN = 1e100
@@ -121,9 +124,28 @@ def approximate_symmetry(f: Poly, rounding: Rounding, *, snap_exact: bool = True
         return NearResult(approximation, None)
     frame = None
     if exact.point is not None and exact.direction is not None:
-        frame = tuple(tuple(QQ(v.numerator, v.denominator) for v in vector)
-                      for vector in (exact.point, exact.direction, perpendicular(exact.direction)))
+        K = exact.polynomial.ring.domain
+        point, direction = _in_field(exact.point, K), _in_field(exact.direction, K)
+        if isinstance(exact.direction[0], Quadratic):  # any u ⟂ a over QQ(√d): a × e_k
+            k = min(range(3), key=lambda i: abs(float(exact.direction[i])))  # type: ignore[arg-type]
+            normal = cross(direction, tuple(K.one if i == k else K.zero for i in range(3)))
+        else:
+            normal = _in_field(perpendicular(exact.direction), K)  # type: ignore[arg-type]
+        frame = (point, direction, normal)
     return NearResult(approximation, exact.polynomial, frame)  # type: ignore[arg-type]
+
+
+def _in_field(vector: Sequence[Fraction | Quadratic], K: Domain) -> Vector:
+    """Snapped coordinates (rationals, or ``a + b√d``) as elements of ``K``."""
+    out = []
+    for v in vector:
+        if isinstance(v, Quadratic):
+            root = sympy.sqrt(v.d)
+            out.append(K.from_sympy(sympy.Rational(v.a.numerator, v.a.denominator)
+                                    + sympy.Rational(v.b.numerator, v.b.denominator) * root))
+        else:
+            out.append(K.convert(QQ(v.numerator, v.denominator)))
+    return tuple(out)  # type: ignore[return-value]
 
 
 def _search(f: Normalised, sigma: np.ndarray, vectors: np.ndarray, tolerance: float) -> tuple[Fit | None, Fit | None]:
@@ -180,8 +202,7 @@ def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> Near
     K = exact.polynomial.ring.domain
     axis = None
     if exact.point is not None and exact.direction is not None and sym.axis_point is not None:
-        point = tuple(QQ(v.numerator, v.denominator) for v in exact.point)
-        axis = axis_report(point, primitive_vector(sym.axis_direction, K), K)  # type: ignore[arg-type]
+        axis = axis_report(_in_field(exact.point, K), primitive_vector(sym.axis_direction, K), K)
     elif sym.axis_point is not None:
         axis = axis_report(sym.axis_point, sym.axis_direction, K)  # type: ignore[arg-type]
     triple = (lambda v: None if v is None else tuple(to_str(K, c) for c in v))

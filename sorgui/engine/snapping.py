@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
@@ -60,7 +60,7 @@ class ExactSurface:
     residual: float
     largest: float
     relative_distance: float
-    direction: Vector | None
+    direction: Vector | QuadraticVector | None
     point: Vector | None
 
 
@@ -326,8 +326,8 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
             found.append(surface)
     if best.candidate.kind in (REVOLUTION, CYLINDER):
         surface = _first_exact(f, best, _quadratic_family, exact_f, rounding)
-        if surface is not None:  # its axis is over QQ(√d): the exact analysis finds its own frame
-            found.append((surface[0], replace(surface[1], direction=None, point=None)))
+        if surface is not None:
+            found.append(surface)
     if not found:
         return None
     return min(found, key=lambda item: (item[1].largest > 1.0, item[0]))[1]

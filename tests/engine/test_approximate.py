@@ -241,6 +241,8 @@ def test_a_torus_printed_on_an_irrational_axis_snaps_back_over_its_quadratic_fie
     nearest = approx.nearest.analysis
     assert nearest is not None and nearest.is_sor and nearest.field == "QQ(sqrt(6))" and nearest.canal is None
     assert nearest.rationality is not None and nearest.rationality.table_row == 1
+    profile = nearest.recognition.profile  # in the snapped frame: through (16/5, -3/2, 7), rational
+    assert "sqrt" not in profile.polynomial and profile.frame_point == ("16/5", "-3/2", "7")
     exact = parse_polynomial(_exact_torus_over_qq_sqrt6()).polynomial
     assert parse_polynomial(approx.nearest.polynomial).polynomial == exact
     assert analysis.unfinished == ()
