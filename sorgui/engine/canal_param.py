@@ -126,6 +126,14 @@ def square_root(square: sympy.Expr) -> sympy.Expr:
     return outside * sympy.sqrt(inside)
 
 
+def rational_root(square: sympy.Expr) -> sympy.Expr | None:
+    """A rational function of ``t`` over ``QQ`` whose square is ``square``, or ``None``."""
+    root = square_root(square)
+    if root.has(sympy.I) or any(p.exp == sympy.S.Half or p.exp == -sympy.S.Half for p in root.atoms(sympy.Pow)):
+        return None
+    return root
+
+
 def verify_radical(f: Poly, family: RationalFamily) -> bool:
     """Whether ``f`` vanishes on every characteristic circle, exactly: ``f(c + a·e₁ + b·e₂)``, a
     polynomial in ``t, a, b`` (denominators cleared), reduced modulo the circle
@@ -281,7 +289,7 @@ def rational_parametrization(f: Poly, family: RationalFamily) -> tuple[tuple[sym
     """
     if family.generators:
         return None
-    r = _rational_sqrt(family.rho)
+    r = rational_root(family.rho)
     if r is None:
         return None
     dm = [sympy.cancel(sympy.diff(c, T)) for c in family.m]
@@ -298,7 +306,7 @@ def rational_parametrization(f: Poly, family: RationalFamily) -> tuple[tuple[sym
         return None
     A, B = (c / den for c in split)
     # den is a square: (p² + q² + w² − r′²) has the square of the common denominator below.
-    root = _rational_sqrt(den)
+    root = rational_root(den)
     if root is None:
         return None
     A, B = A * root, B * root
@@ -314,21 +322,6 @@ def rational_parametrization(f: Poly, family: RationalFamily) -> tuple[tuple[sym
         normal[i] = n[k]
     point = tuple(sympy.cancel(family.m[i] + r * normal[i]) for i in range(3))
     return point, _vanishes_at(f, point, S)
-
-
-def _rational_sqrt(expr: sympy.Expr) -> sympy.Expr | None:
-    """A rational function whose square is ``expr`` (over ``QQ``), or ``None``."""
-    num, den = sympy.fraction(sympy.cancel(expr))
-    roots = []
-    for part in (num, den):
-        c, factors = sympy.factor_list(part, T)
-        if any(e % 2 for _, e in factors) or not c.is_Rational or c < 0:
-            return None
-        sc = sympy.sqrt(c)
-        if not sc.is_Rational:
-            return None
-        roots.append(sc * sympy.Mul(*[g ** (e // 2) for g, e in factors]))
-    return roots[0] / roots[1]
 
 
 def _two_squares(P: sympy.Poly) -> tuple[sympy.Expr, sympy.Expr] | None:

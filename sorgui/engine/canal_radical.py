@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 
-from .canal_param import THETA, T, compose_fraction, frame, reduce_square, square_root
+from .canal_param import THETA, T, compose_fraction, frame, rational_root, reduce_square, square_root
 from .canal_spine import SMAT_NAMES, SmatCurve
 from .polys import Poly, to_flint
 
@@ -118,14 +118,13 @@ def _solve(equations: list[sympy.Expr], names: list[sympy.Symbol], index: int) -
 
 
 def _new_root(square: sympy.Expr, roots: list[tuple[sympy.Symbol, sympy.Expr]]) -> sympy.Expr:
-    """A square root of the rational function ``square``: ``s/D`` for a new root
-    ``s = √(N·D)`` when ``square = N/D`` (so every radicand is a polynomial), or the root itself
-    when ``square`` is a square in ``t`` alone."""
+    """A square root of the rational function ``square``: itself when ``square`` is a square in
+    ``QQ(t)``, else ``s/D`` for a new root ``s = √(N·D)`` when ``square = N/D`` (so every
+    radicand is a polynomial)."""
     square = _reduced(square, roots)
-    if square.free_symbols <= {T} and square.is_rational_function(T):
-        root = square_root(square)
-        if not any(p.exp == sympy.S.Half for p in root.atoms(sympy.Pow)):
-            return root
+    root = rational_root(square) if square.free_symbols <= {T} else None
+    if root is not None:
+        return root
     numerator, denominator = sympy.fraction(sympy.cancel(square))
     s = sympy.Symbol(f"s{len(roots)}")
     roots.append((s, _reduced(sympy.expand(numerator * denominator), roots)))
@@ -170,31 +169,33 @@ def _on_circles(
     e1: tuple[sympy.Expr, ...], e2: tuple[sympy.Expr, ...], norm1: sympy.Expr, norm2: sympy.Expr,
 ) -> bool:
     """``f(c + a·e₁ + b·e₂) ≡ 0`` modulo the root relations and ``a²|e₁|² + b²|e₂|² = R²``."""
-    ring = _Ring(family)
+    circle = sympy.numer(sympy.together(A**2 * norm1 + B**2 * norm2 - radius_squared))
+    ring = _Ring(family, circle)
     points = [sympy.fraction(sympy.together(c + A * u + B * w)) for c, u, w in zip(center, e1, e2)]
     common = sympy.Integer(1)
     for _, den in points:
         common = sympy.lcm(common, den)
     coords = [ring.element(num * sympy.cancel(common / den)) for num, den in points]
     D = ring.element(common)
-    circle = sympy.numer(sympy.together(A**2 * norm1 + B**2 * norm2 - radius_squared))
+    value = compose_fraction(to_flint(f), coords, [D] * 3, ring.ctx, common=D, reduce=ring.reduce)
     lead = sympy.expand(circle).coeff(A, 2)
     rest = sympy.expand(circle - lead * A**2)
-    ring.relations.append(ring.reduce(ring.element(circle)))  # keeps the degree in a low meanwhile
-    value = ring.compose(to_flint(f), coords, D)
-    ring.relations.pop()
     return ring.reduce(reduce_square(value, len(ring.roots), ring.element(lead), -ring.element(rest), ring.ctx)).is_zero()
 
 
 class _Ring:
-    """``QQ[s_k…, s₀, a, t, b]`` (lexicographic, the roots first) with the root relations."""
+    """``QQ[s_k…, s₀, a, t, b]`` (lexicographic, the roots first) with the root relations and,
+    when given, the circle's (it divides every product too, which keeps the degree in ``a``
+    low; a zero remainder still proves membership)."""
 
-    def __init__(self, family: RadicalFamily) -> None:
+    def __init__(self, family: RadicalFamily, circle: sympy.Expr | None = None) -> None:
         self.roots = [s for s, _ in family.roots]
         self.symbols = (*reversed(self.roots), A, T, B)
         self.ctx = fmpq_mpoly_ctx.get(tuple(str(s) for s in self.symbols), "lex")
         self.relations = [self.ctx.gens()[len(self.roots) - 1 - k] ** 2 - self.element(radicand)
                           for k, (_, radicand) in enumerate(family.roots)]
+        if circle is not None:
+            self.relations.append(self.reduce(self.element(circle)))
 
     def element(self, expr: sympy.Expr) -> fmpq_mpoly:
         """A polynomial expression in the ring's symbols as an element of the context."""
@@ -204,14 +205,11 @@ class _Ring:
 
     def reduce(self, p: fmpq_mpoly) -> fmpq_mpoly:
         """``p`` with every ``s_k²`` replaced, the last root first (its radicand holds the
-        earlier ones)."""
+        earlier ones), after the circle's relation when there is one."""
         for relation in reversed(self.relations):
             p = p % relation
         return p
 
-    def compose(self, f: fmpq_mpoly, coords: list[fmpq_mpoly], common: fmpq_mpoly) -> fmpq_mpoly:
-        """``common^deg f · f(coords/common)``, reduced after every product."""
-        return compose_fraction(f, coords, [common] * 3, self.ctx, common=common, reduce=self.reduce)
 
 
 def _vanishes(family: RadicalFamily, expr: sympy.Expr) -> bool:

@@ -519,12 +519,12 @@ def build_quadratic(kind: str, a: QuadraticVector, c: Vector, exponents: tuple[t
 
 def _reduce_root(p: fmpq_mpoly, d: int) -> fmpq_mpoly:
     """``p`` with ``w²`` replaced by ``d`` (degree at most 1 in ``w``, the last variable)."""
-    ctx = p.context()
-    out = fmpq_mpoly(0, ctx)
+    terms: dict[tuple[int, ...], fmpq] = {}
     for monom, coeff in zip(p.monoms(), p.coeffs()):
         k = int(monom[3])
-        out += ctx.from_dict({(*monom[:3], k % 2): coeff * fmpq(d) ** (k // 2)})
-    return out
+        key = (*(int(e) for e in monom[:3]), k % 2)
+        terms[key] = terms.get(key, fmpq(0)) + coeff * fmpq(d) ** (k // 2)
+    return p.context().from_dict({m: c for m, c in terms.items() if c})
 
 
 def _check(g: Poly, exact_f: Poly | None, rounding: Rounding, f: Normalised,

@@ -8,8 +8,9 @@ width, else piece by piece, the pieces set side by side on one baseline and wrap
 them (mathtext's cost is mostly per parse, so each piece is typeset once; the worker process
 shares the parsing with a forked helper, see :func:`start_helper`). This runs in the analysis
 worker process (it has no Qt), so the GUI thread only colours ready-made masks; a formula
-mathtext cannot typeset is shown as plain text instead. :meth:`Formula.code` prints a formula for Maple,
-Mathematica or Python (sympy's printers, as the exported files) when the copy menu asks.
+mathtext cannot typeset is shown as plain text instead. :meth:`Formula.code` prints a formula
+for Maple, Mathematica or Python (sympy's printers, as the exported files) when the copy menu
+asks.
 """
 
 from __future__ import annotations
