@@ -531,8 +531,9 @@ def _conic(F: Poly) -> tuple[_Fraction, _Fraction] | None:
     ``w² = q(u)`` by ``w = (2a·v + b)/s``, so the conic through a rational point and
     ``v = (−b + s·w)/(2a)`` parameterize it. With ``a, b, c`` coprime and ``q`` not constant,
     ``F`` is absolutely irreducible (Gauss's lemma; its discriminant is no square) of genus 0,
-    so no check is needed. ``None`` when ``F`` is not of this kind or no point is found. Paraplanecurves' adjoint map fails on some such curves (with a tacnode at infinity,
-    as the second focal conic of a torus), and this needs no Singular at all."""
+    so no check is needed. ``None`` when ``F`` is not of this kind or no point is found.
+    Paraplanecurves' adjoint map fails on some such curves (with a tacnode at infinity, as the
+    second focal conic of a torus), and this needs no Singular at all."""
     if not is_rational_field(F.ring.domain):
         return None
     R = poly_ring(("t",), QQ)
