@@ -9,6 +9,10 @@ Between stages the ``cancel`` event is checked, and ``progress`` is told the sta
 GUI worker can show it; Singular subprocesses are killed on cancel by :mod:`.singular`.
 ``timeout`` bounds the whole analysis (:mod:`.timelimit`): the stages not finished by then are
 reported as undecided, those done are kept.
+
+A recognition-only analysis of an equation over ``QQ`` is first tried on python-flint alone
+(:mod:`.rational_path`), which gives the same result without loading sympy; the sympy-based
+stages are imported only when the equation needs them.
 """
 
 from __future__ import annotations
@@ -19,16 +23,18 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import replace
 
+from typing import TYPE_CHECKING
+
 from .errors import Cancelled, TimeLimitReached
 from .linalg import Vector
 from .parsing import parse_polynomial
 from .precision import has_decimals
-from .polys import Poly, field_name, poly_str
-from .profile import profile_curve
-from .real_locus import real_locus
-from .recognition import factor_reports, recognize
 from .report import Analysis, Approximation, Canal, Parametrization, Rationality, Recognition
+from .symmetry import revolution_canal
 from .timelimit import time_limit, unfinished_analysis
+
+if TYPE_CHECKING:
+    from .polys import Poly
 
 ProgressCallback = Callable[[str], None]
 PartialCallback = Callable[[Analysis], None]
@@ -113,6 +119,17 @@ def analyze(
     """
     clock = StageClock(progress, cancel, partial)
     start = time.monotonic()
+    if recognition_only and method == "symmetry" and tolerance is None and not has_decimals(text):
+        from .rational_path import recognition_only_analysis
+
+        try:
+            with time_limit(timeout):
+                quick = recognition_only_analysis(text, StageClock(progress, cancel))
+        except TimeLimitReached:
+            quick = None  # the general pipeline below reports what was done in the time left
+        if quick is not None:
+            clock.publish(quick)
+            return quick
     with clock.stage("parse"):
         parsed = parse_polynomial(text)
     remaining = None if timeout is None else max(timeout - (time.monotonic() - start), 0.001)
@@ -154,6 +171,11 @@ def analyze_polynomial(
     ``canal=False`` skips the canal stage (the nearest exact surface is a surface of revolution,
     hence canal; the typed equation's canal analysis is the one shown).
     """
+    from .polys import field_name, poly_str
+    from .profile import profile_curve
+    from .real_locus import real_locus
+    from .recognition import factor_reports, recognize
+
     clock = clock or StageClock(None, None)
     cancel = clock.cancel
     with clock.stage("recognition"):
@@ -211,7 +233,10 @@ def analyze_polynomial(
             with clock.stage("parametrizations"):
                 found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)
             rationality = replace(rationality, notes=rationality.notes + notes)
-    if canal:
+    if canal and recognition_only and recognition.is_sor:
+        with clock.stage("canal"):
+            canal_result = revolution_canal(recognition.degree)
+    elif canal:
         from .canal import analyze_canal  # Singular's layer: only here
 
         clock.publish(result(rationality, found))

@@ -47,7 +47,7 @@ from .linalg import cross, primitive_vector, solve_unique
 from .polys import Poly, compose, derivative, from_flint, is_rational_field, poly_ring, poly_str, to_flint, total_degree
 from .report import Canal, CanalEvidence, CanalFamily, Parametrization
 from .singular import emit, parse_int, poly_to_singular, run_script
-from .symmetry import Motion, satisfies_identity
+from .symmetry import PLANE_CANAL, SOR_EVIDENCE, Motion, satisfies_identity
 
 LINES = 3
 """Canal lines tested before the SMAT is computed (one failing line already decides)."""
@@ -142,13 +142,13 @@ def analyze_canal(
     clock = _Clock(cancel)
     if total_degree(f) > MAX_DEGREE:
         if is_sor:
-            return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=_SOR_EVIDENCE,
+            return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE,
                          notes=(f"degree above {MAX_DEGREE}: only the symmetry algebra's answer is given",))
         return Canal(None, f"not analysed: degree above {MAX_DEGREE}")
     if is_sor and not is_rational_field(f.ring.domain):
         # The norm holds the conjugate surfaces too, about other axes: no surface of revolution,
         # and its SMAT is what Singular would be asked for. The symmetry algebra answers.
-        return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=_SOR_EVIDENCE,
+        return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE,
                      notes=("coefficients outside QQ: the symmetry algebra's answer; the SMAT of the norm (the "
                             "surface with its conjugates, about other axes) is not computed",))
     g = _rational_squarefree(f)
@@ -161,7 +161,7 @@ def analyze_canal(
         result = _combine(parts, is_sor)
     if is_sor and result.is_canal is None:
         result = replace(result, is_canal=True, status="canal: a surface of revolution",
-                         kinds=tuple(sorted(set(result.kinds) | {"revolution"})), certificate=_SOR_EVIDENCE)
+                         kinds=tuple(sorted(set(result.kinds) | {"revolution"})), certificate=SOR_EVIDENCE)
     notes = list(result.notes)
     if not is_rational_field(f.ring.domain):
         notes.append("coefficients outside QQ: analysed through the norm of f over QQ (all conjugate surfaces)")
@@ -215,24 +215,18 @@ def _fmpq(q: object) -> fmpq:
     return fmpq(int(QQ.numer(q)), int(QQ.denom(q)))
 
 
-_SOR_EVIDENCE = CanalEvidence(
-    "symmetry", "X is a surface of revolution (symmetry algebra): its parallels are the characteristic "
-    "circles of the spheres centred on the axis that touch X along them", True)
-
-
 def _analyze_factor(
     h: fmpq_mpoly, clock: _Clock, full: bool, is_sor: bool | None, timeout: float, cancel: threading.Event | None,
 ) -> Canal:
     """The verdict for one irreducible factor over ``QQ``."""
     poly = from_flint(h, poly_ring(("x", "y", "z"), QQ))
     if total_degree(poly) == 1:
-        return Canal(True, "canal: a plane (the limit of a family of spheres)", ("developable", "revolution"),
-                     certificate=CanalEvidence("symmetry", "a plane is a surface of revolution about each normal line", True))
+        return PLANE_CANAL
     if is_sor and total_degree(poly) > SOR_SPINE_DEGREE:
         # Above degree 4 a surface is neither a Dupin cyclide, nor a cone or cylinder, nor a pipe
         # with rotational symmetry (its spine would be the axis or a circle about it: a cylinder or
         # a torus): the symmetry algebra's certificate is the whole answer, no line is needed.
-        return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=_SOR_EVIDENCE,
+        return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE,
                      notes=("the spine is the axis; the SMAT of a surface of revolution is computed only for "
                             f"quadrics and for Dupin cyclides up to degree {SOR_SPINE_DEGREE}",))
     lines = _Lines(h, SEED)
@@ -247,7 +241,7 @@ def _analyze_factor(
             kinds = {"revolution"} | ({branch} & {DUPIN, DEVELOPABLE})
             if constant_radius(lines.sample(len(monomials(1)) + MARGIN)):
                 kinds.add("pipe")
-            return Canal(True, "canal: a surface of revolution", tuple(sorted(kinds)), certificate=_SOR_EVIDENCE,
+            return Canal(True, "canal: a surface of revolution", tuple(sorted(kinds)), certificate=SOR_EVIDENCE,
                          lines_tested=lines.tried,
                          notes=("the spine is the axis; the SMAT of a surface of revolution is computed only for "
                                 f"quadrics and for Dupin cyclides up to degree {SOR_SPINE_DEGREE}",))

@@ -1,8 +1,9 @@
 """Exact linear algebra over K: null spaces and ranks of small-width matrices.
 
-Algorithm choice: over ``QQ`` the matrices go to python-flint's ``fmpq_mat`` (reduced row echelon
-form in C); over an algebraic field they go to sympy's ``DomainMatrix``, whose ``ANP`` arithmetic
-is exact. Both return a basis of the null space in reduced form, so the answers are canonical:
+Algorithm choice: over ``QQ`` (sympy's domain or :data:`.rationals.RATIONALS`, both with ``fmpq``
+elements) the matrices go to python-flint's ``fmpq_mat`` (reduced row echelon form in C); over an
+algebraic field they go to sympy's ``DomainMatrix``, whose ``ANP`` arithmetic is exact (sympy is
+imported only then). Both return a basis of the null space in reduced form, so the answers are canonical:
 the same input always gives the same basis, whichever method produced the matrix.
 """
 
@@ -12,10 +13,12 @@ from collections.abc import Sequence
 from math import gcd
 from typing import Any
 
-from flint import fmpq_mat
-from sympy.polys.domains import QQ
-from sympy.polys.domains.domain import Domain
-from sympy.polys.matrices import DomainMatrix
+from typing import TYPE_CHECKING
+
+from flint import fmpq, fmpq_mat
+
+if TYPE_CHECKING:
+    from sympy.polys.domains.domain import Domain
 
 Vector = tuple[Any, ...]
 
@@ -24,11 +27,13 @@ def rref(rows: Sequence[Sequence[Any]], ncols: int, K: Domain) -> tuple[list[lis
     """The nonzero rows of the reduced row echelon form and the pivot columns."""
     if not rows:
         return [], []
-    if K == QQ:
+    if K.is_QQ:
         M = fmpq_mat(len(rows), ncols, [c for row in rows for c in row])
         R, rank = M.rref()
-        reduced = [[QQ(R[i, j]) for j in range(ncols)] for i in range(rank)]
+        reduced = [[fmpq(R[i, j]) for j in range(ncols)] for i in range(rank)]
     else:
+        from sympy.polys.matrices import DomainMatrix
+
         dm = DomainMatrix([list(row) for row in rows], (len(rows), ncols), K)
         R, _ = dm.rref()
         reduced = [row for row in R.to_list() if any(row)]
@@ -90,11 +95,21 @@ def is_zero(v: Vector) -> bool:
     return not any(v)
 
 
+def perpendicular(a: Vector, K: Domain) -> Vector:
+    """A simple vector ``u ⟂ a``: the projection onto ``a⊥`` of the coordinate vector ``e_k`` most
+    orthogonal to ``a`` (smallest ``|a_k|``, the first on ties), made primitive; so the x-axis
+    gets ``u = (0, 1, 0)``, as in the paper."""
+    size = abs if K.is_QQ else (lambda c: abs(K.to_sympy(c)))
+    k = min(range(3), key=lambda i: (size(a[i]), i))
+    norm2 = dot(a, a)
+    return primitive_vector(tuple(norm2 * (K.one if i == k else K.zero) - a[k] * a[i] for i in range(3)), K)
+
+
 def primitive_vector(v: Vector, K: Domain) -> Vector:
     """A canonical nonzero multiple of ``v``: coprime integers over ``QQ``, first nonzero entry
     positive; over an algebraic field the first nonzero entry is scaled to 1."""
     lead = next(c for c in v if c)
-    if K != QQ:
+    if not K.is_QQ:
         return tuple(K.quo(c, lead) for c in v)
     den = 1
     for c in v:
@@ -104,4 +119,4 @@ def primitive_vector(v: Vector, K: Domain) -> Vector:
     for n in ints:
         g = gcd(g, abs(n))
     sign = -1 if lead < 0 else 1
-    return tuple(QQ(sign * n // g) for n in ints)
+    return tuple(fmpq(sign * n // g) for n in ints)

@@ -3,7 +3,8 @@
 The user's text is never evaluated (no ``eval``, no ``sympify``). A tokenizer feeds a
 recursive-descent parser that builds a small AST; a checking pass bounds the degree, the
 exponents and the size of every number and collects the square roots (so ``K`` is known);
-only then is the AST evaluated into sympy's sparse ring ``K[x, y, z]``. Every limit is
+only then is the AST evaluated: over ``QQ`` into python-flint's ``QQ[x, y, z]`` (no sympy needed,
+:func:`parse_rational`), over a real field ``K`` into sympy's sparse ring ``K[x, y, z]``. Every limit is
 checked before any expansion, so hostile or mistyped input fails fast with a
 :class:`ParseError` that points at the offending characters.
 
@@ -28,17 +29,16 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
-from typing import Any, NamedTuple, TypeAlias
+from typing import TYPE_CHECKING, Any, NamedTuple, TypeAlias
 
-import sympy
-from flint import fmpz
-from sympy.polys.domains import QQ
-from sympy.polys.domains.domain import Domain
-from sympy.polys.numberfields.subfield import primitive_element
-from sympy.polys.rings import PolyElement, PolyRing
+from flint import fmpq, fmpq_mpoly, fmpz
 
 from .errors import ParseError
-from .polys import XYZ, from_rational, number_field, poly_ring, power
+from .rationals import context
+
+if TYPE_CHECKING:
+    from sympy.polys.domains.domain import Domain
+    from sympy.polys.rings import PolyElement
 
 MAX_DEGREE: int = 60
 """The largest total degree accepted (checked on the AST, before anything is expanded)."""
@@ -96,6 +96,37 @@ def parse_polynomial(text: str) -> ParsedPolynomial:
     Raises :class:`ParseError` (and nothing else) for every input that is not a non-constant
     polynomial in x, y, z of total degree at most ``MAX_DEGREE``.
     """
+    from .polys import XYZ, from_flint, number_field, poly_ring
+
+    tree, evaluator, saw_variable = _checked(text)
+    radicands = tuple(sorted(evaluator.radicands))
+    if not radicands:
+        ring = poly_ring(XYZ, number_field(()))
+        g = _evaluate(text, evaluator, tree, _FlintRationals(), saw_variable)
+        return ParsedPolynomial(text, from_flint(g, ring), ring.domain, ())
+    field = number_field(radicands)
+    polynomial = _evaluate(text, evaluator, tree, _SympyField(poly_ring(XYZ, field), radicands), saw_variable)
+    if all(field.to_sympy(c).is_Rational for c in polynomial.coeffs()):
+        # The square roots cancelled (``sqrt(2)*sqrt(2)*x``): the polynomial lives over QQ.
+        rational = poly_ring(XYZ, number_field(()))
+        terms = {m: rational.domain.from_sympy(field.to_sympy(c)) for m, c in polynomial.items()}
+        return ParsedPolynomial(text, rational.from_dict(terms), rational.domain, ())
+    return ParsedPolynomial(text, polynomial, field, radicands)
+
+
+def parse_rational(text: str) -> fmpq_mpoly | None:
+    """``f ∈ QQ[x, y, z]`` as a flint polynomial (variables ``x, y, z``), without sympy; ``None``
+    when the text has square roots (:func:`parse_polynomial` then gives its field). Raises
+    :class:`ParseError` as :func:`parse_polynomial` does."""
+    tree, evaluator, saw_variable = _checked(text)
+    if evaluator.radicands:
+        return None
+    return _evaluate(text, evaluator, tree, _FlintRationals(), saw_variable)
+
+
+def _checked(text: str) -> tuple[Node, _Evaluator, bool]:
+    """The syntax tree of ``text`` after pass 1 (every limit checked, the radicands known),
+    its evaluator, and whether a variable was written."""
     if len(text) > MAX_LENGTH:
         raise ParseError(f"the input is too long (more than {MAX_LENGTH:,} characters)", 0,
                          len(text))
@@ -104,21 +135,22 @@ def parse_polynomial(text: str) -> ParsedPolynomial:
         tree = parser.equation()
         evaluator = _Evaluator()
         evaluator.check(tree)
-        radicands = tuple(sorted(evaluator.radicands))
-        field = number_field(radicands)
-        polynomial = evaluator.evaluate(tree, poly_ring(XYZ, field), radicands)
     except RecursionError:
         raise ParseError("the expression is nested too deeply", 0, len(text)) from None
-    if polynomial.is_ground:
-        message = ("the equation is constant: its variables cancel" if parser.saw_variable
+    return tree, evaluator, parser.saw_variable
+
+
+def _evaluate(text: str, evaluator: _Evaluator, tree: Node, ring: _Ring, saw_variable: bool) -> Any:
+    """Pass 2 in ``ring``; a constant result is an error."""
+    try:
+        polynomial = evaluator.evaluate(tree, ring)
+    except RecursionError:
+        raise ParseError("the expression is nested too deeply", 0, len(text)) from None
+    if ring.is_constant(polynomial):
+        message = ("the equation is constant: its variables cancel" if saw_variable
                    else "the equation has no variables (use x, y and z)")
         raise ParseError(message, 0, len(text))
-    if radicands and all(field.to_sympy(c).is_Rational for c in polynomial.coeffs()):
-        # The square roots cancelled (``sqrt(2)*sqrt(2)*x``): the polynomial lives over QQ.
-        rational = poly_ring(XYZ, number_field(()))
-        terms = {m: rational.domain.from_sympy(field.to_sympy(c)) for m, c in polynomial.items()}
-        return ParsedPolynomial(text, rational.from_dict(terms), rational.domain, ())
-    return ParsedPolynomial(text, polynomial, field, radicands)
+    return polynomial
 
 
 def syntax_tree(text: str) -> Node:
@@ -588,31 +620,29 @@ class _Evaluator:
 
     # pass 2 ---------------------------------------------------------------------------
 
-    def evaluate(self, node: Node, ring: PolyRing, radicands: tuple[int, ...]) -> PolyElement:
-        """The value of the checked tree in ``ring`` = K[x, y, z]."""
-        self._ring, self._field = ring, ring.domain
-        self._roots = _square_roots(self._field, radicands)
-        self._cost = 1 if self._field == QQ else 8  # an ANP product costs ~8 rational ones
+    def evaluate(self, node: Node, ring: _Ring) -> Any:
+        """The value of the checked tree in ``ring`` (``QQ[x, y, z]`` or ``K[x, y, z]``)."""
+        self._ring = ring
         return self._value(node)
 
-    def _value(self, node: Node) -> PolyElement:
+    def _value(self, node: Node) -> Any:
         ring = self._ring
         match node:
             case Num():
-                return ring.ground_new(self._constant(node.value))
+                return ring.ground(self._constant(node.value))
             case Var():
                 return ring.gens[node.index]
             case Neg():
                 return -self._value(node.arg)
             case Sqrt():
-                return ring.ground_new(self._surd_value(node))
+                return ring.ground(self._surd_value(node))
             case Sum():
                 return self._sum(node)
             case Product():
                 result = self._value(node.factors[0])
                 for factor in node.factors[1:]:
                     if isinstance(factor, Reciprocal):
-                        result = result.mul_ground(self._inverse(factor))
+                        result = ring.scale(result, self._inverse(factor))
                     else:
                         value = self._value(factor)
                         self._charge(node, len(result) * len(value))
@@ -622,41 +652,38 @@ class _Evaluator:
                 return self._power_value(node)
         raise TypeError(node)
 
-    def _power_value(self, node: Power) -> PolyElement:
+    def _power_value(self, node: Power) -> Any:
         ring = self._ring
         if node in self._surds:
-            return ring.ground_new(self._surd_value(node))
+            return ring.ground(self._surd_value(node))
         n = int(self._exponents[node])
         base = self._value(node.base)
-        if base.is_ground:
-            constant = base.get(ring.zero_monom, self._field.zero)
-            return ring.ground_new(self._constant_power(node, constant, n))
+        if ring.is_constant(base):
+            return ring.ground(self._constant_power(node, ring.constant_term(base), n))
         return self._power(node, base, n)
 
-    def _sum(self, node: Sum) -> PolyElement:
+    def _sum(self, node: Sum) -> Any:
         """Accumulate all terms into one dict: linear, where repeated ``p + q`` is quadratic."""
-        total = self._ring.zero
+        total: dict[tuple[int, ...], Any] = {}
         for term in node.terms:
             negative = isinstance(term, Neg)
             if negative:
                 term = term.arg
             monomial = self._monomial(term)
-            items = (monomial,) if monomial is not None else self._value(term).items()
+            items = (monomial,) if monomial is not None else self._ring.terms(self._value(term))
             for monom, coeff in items:
                 old = total.get(monom)
                 if old is None:
                     total[monom] = -coeff if negative else coeff
                 else:
                     total[monom] = old - coeff if negative else old + coeff
-        for monom in [monom for monom, coeff in total.items() if not coeff]:
-            del total[monom]
-        return total
+        return self._ring.from_terms({monom: coeff for monom, coeff in total.items() if coeff})
 
     def _monomial(self, node: Node) -> tuple[tuple[int, ...], Any] | None:
         """``(exponents, coefficient)`` when ``node`` is a product of numbers and powers of
         variables (the terms of a pasted expanded polynomial), else ``None``: a fast path."""
         exponents = [0, 0, 0]
-        coeff = self._field.one
+        coeff = self._ring.one
         for factor in node.factors if isinstance(node, Product) else (node,):
             if isinstance(factor, Var):
                 exponents[factor.index] += 1
@@ -672,55 +699,171 @@ class _Evaluator:
         return tuple(exponents), coeff
 
     def _constant(self, q: Rational) -> Any:
-        if self._field == QQ:
-            return QQ(q.numerator, q.denominator)
-        return from_rational(self._field, q)
+        return self._ring.rational(q)
 
     def _inverse(self, node: Reciprocal) -> Any:
+        ring = self._ring
         value = self._value(node.arg)
-        if not value.is_ground:
+        if not ring.is_constant(value):
             raise ParseError("division by a non-constant expression", node.start, node.end)
         if not value:
             raise ParseError("division by zero", node.start, node.end)
-        return self._field.quo(self._field.one, value.LC)
+        return ring.quo(ring.one, ring.constant_term(value))
 
     def _surd_value(self, node: Node) -> Any:
         c, m = self._surds[node]
         value = self._constant(c)
-        return value * self._roots[m] if m > 1 else value
+        return value * self._ring.square_root(m) if m > 1 else value
 
     def _constant_power(self, node: Power, c: Any, n: int) -> Any:
         """``c^n`` in K by repeated squaring (sympy's ANP power expands before reducing)."""
-        field = self._field
+        ring = self._ring
         if n < 0:
             if not c:
                 raise ParseError("division by zero", node.start, node.end)
-            c, n = field.quo(field.one, c), -n
-        if field == QQ:
-            return c**n
-        result = field.one
+            c, n = ring.quo(ring.one, c), -n
+        result = ring.one
         while n:
             if n & 1:
                 result = result * c
             c, n = c * c, n >> 1
         return result
 
-    def _power(self, node: Power, base: PolyElement, n: int) -> PolyElement:
+    def _power(self, node: Power, base: Any, n: int) -> Any:
         """``base^n`` for a non-constant base and ``0 <= n <= MAX_DEGREE``, within MAX_WORK."""
         if n == 0:
-            return self._ring.one
-        if len(base) <= 5:  # sympy: monomial power or the multinomial formula
-            degree = max(sum(monom) for monom in base)
+            return self._ring.ground(self._ring.one)
+        if len(base) <= 5:  # a monomial power or the multinomial formula
+            degree = max(sum(monom) for monom, _ in self._ring.terms(base))
             terms = min(math.comb(n + len(base) - 1, n), math.comb(n * degree + 3, 3))
             self._charge(node, terms * len(base))
             return base**n
-        return power(base, n, lambda products: self._charge(node, products))
+        product = base
+        for _ in range(n - 1):  # repeated multiplication: cheaper than squaring for dense bases
+            self._charge(node, len(product) * len(base))
+            product = product * base
+        return product
 
     def _charge(self, node: Node, products: int) -> None:
-        self._work += products * self._cost
+        self._work += products * self._ring.cost
         if self._work > MAX_WORK:
             raise ParseError("the expression is too large to expand (it needs more than "
                              f"{MAX_WORK:,} coefficient multiplications)", node.start, node.end)
+
+
+class _Ring:
+    """The arithmetic of pass 2: polynomials in x, y, z over the field, and its constants."""
+
+    cost = 1  # rational multiplications per coefficient product
+    one: Any
+    gens: tuple[Any, ...]
+
+    def rational(self, q: Rational) -> Any:
+        """The rational ``q`` in the field."""
+        raise NotImplementedError
+
+    def square_root(self, m: int) -> Any:
+        """``sqrt(m)`` in the field (``m`` one of its radicands)."""
+        raise NotImplementedError
+
+    def quo(self, a: Any, b: Any) -> Any:
+        """``a / b`` in the field."""
+        raise NotImplementedError
+
+    def ground(self, c: Any) -> Any:
+        """The constant polynomial ``c``."""
+        raise NotImplementedError
+
+    def is_constant(self, p: Any) -> bool:
+        raise NotImplementedError
+
+    def constant_term(self, p: Any) -> Any:
+        raise NotImplementedError
+
+    def terms(self, p: Any) -> Iterator[tuple[tuple[int, ...], Any]]:
+        raise NotImplementedError
+
+    def from_terms(self, terms: dict[tuple[int, ...], Any]) -> Any:
+        raise NotImplementedError
+
+    def scale(self, p: Any, c: Any) -> Any:
+        """``c·p`` for a constant ``c`` of the field."""
+        raise NotImplementedError
+
+
+class _FlintRationals(_Ring):
+    """``QQ[x, y, z]`` in python-flint (no sympy)."""
+
+    def __init__(self) -> None:
+        self._context = context(("x", "y", "z"))
+        self.gens = self._context.gens()
+        self.one = fmpq(1)
+
+    def rational(self, q: Rational) -> fmpq:
+        return fmpq(q.numerator, q.denominator)
+
+    def quo(self, a: Any, b: Any) -> fmpq:
+        return a / b
+
+    def ground(self, c: Any) -> fmpq_mpoly:
+        return self._context.constant(c)
+
+    def is_constant(self, p: fmpq_mpoly) -> bool:
+        return p.is_constant()
+
+    def constant_term(self, p: fmpq_mpoly) -> fmpq:
+        return p[(0, 0, 0)]
+
+    def terms(self, p: fmpq_mpoly) -> Iterator[tuple[tuple[int, ...], Any]]:
+        return ((tuple(int(e) for e in m), c) for m, c in p.terms())
+
+    def from_terms(self, terms: dict[tuple[int, ...], Any]) -> fmpq_mpoly:
+        return self._context.from_dict(terms)
+
+    def scale(self, p: fmpq_mpoly, c: Any) -> fmpq_mpoly:
+        return p * c
+
+
+class _SympyField(_Ring):
+    """``K[x, y, z]`` in sympy's sparse polynomials, ``K`` a real field with square roots."""
+
+    cost = 8  # an ANP product costs ~8 rational ones
+
+    def __init__(self, ring: Any, radicands: tuple[int, ...]) -> None:
+        self._ring = ring
+        self._field = ring.domain
+        self._roots = _square_roots(self._field, radicands)
+        self.gens = ring.gens
+        self.one = self._field.one
+
+    def rational(self, q: Rational) -> Any:
+        from .polys import from_rational
+
+        return from_rational(self._field, q)
+
+    def square_root(self, m: int) -> Any:
+        return self._roots[m]
+
+    def quo(self, a: Any, b: Any) -> Any:
+        return self._field.quo(a, b)
+
+    def ground(self, c: Any) -> PolyElement:
+        return self._ring.ground_new(c)
+
+    def is_constant(self, p: PolyElement) -> bool:
+        return p.is_ground
+
+    def constant_term(self, p: PolyElement) -> Any:
+        return p.get(self._ring.zero_monom, self._field.zero)
+
+    def terms(self, p: PolyElement) -> Iterator[tuple[tuple[int, ...], Any]]:
+        return iter(p.items())
+
+    def from_terms(self, terms: dict[tuple[int, ...], Any]) -> PolyElement:
+        return self._ring.from_dict(terms)
+
+    def scale(self, p: PolyElement, c: Any) -> PolyElement:
+        return p.mul_ground(c)
 
 
 def _square_free_part(q: Fraction, node: Node) -> tuple[Fraction, int]:
@@ -746,6 +889,10 @@ def _square_roots(field: Domain, radicands: tuple[int, ...]) -> dict[int, Any]:
     ``primitive_element(..., ex=True)`` writes each generator in the primitive element, which
     is much faster than ``field.from_sympy`` for three or more roots; each result is checked.
     """
+    import sympy
+    from sympy.polys.domains import QQ
+    from sympy.polys.numberfields.subfield import primitive_element
+
     if not radicands:
         return {}
     roots = [sympy.sqrt(m) for m in radicands]

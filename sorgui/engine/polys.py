@@ -22,6 +22,7 @@ from sympy.polys.domains.domain import Domain
 from sympy.polys.rings import PolyElement, PolyRing, ring
 
 from . import numberfields
+from .rationals import terms_str
 
 Poly = PolyElement
 """A polynomial of the engine: sympy's sparse ``PolyElement`` over ``K``."""
@@ -209,7 +210,7 @@ def factor(f: Poly) -> tuple[Any, list[tuple[Poly, int]]]:
     for g, e in factors:  # the leading coefficient is multiplicative: no need to expand the product
         lead *= K.convert(g.LC) ** e
     content = K.quo(f.LC, lead)
-    factors.sort(key=lambda ge: (ge[0].degree() if ge[0] else 0, str(ge[0])))
+    factors.sort(key=lambda ge: (ge[0].degree() if ge[0] else 0, poly_str(ge[0])))  # as rationals.factor
     return content, factors
 
 
@@ -236,36 +237,22 @@ def primitive(f: Poly) -> Poly:
 
 
 def poly_str(f: Poly) -> str:
-    """``f`` as a string that sympy (and the project's parser) reads back exactly.
+    """``f`` as a string that sympy (and the project's parser) reads back exactly
+    (:func:`.rationals.terms_str`: terms in decreasing total degree).
 
-    Terms come in decreasing total degree. The string is written directly from the terms:
-    sympy's printer needs seconds for the thousands of terms of a degree-30 surface.
+    The string is written directly from the terms: sympy's printer needs seconds for the
+    thousands of terms of a degree-30 surface.
     """
-    if not f:
-        return "0"
     K = f.ring.domain
     names = [str(g) for g in f.ring.symbols]
-    out: list[str] = []
-    for monom, c in sorted(f.terms(), key=lambda t: (sum(t[0]), t[0]), reverse=True):
-        negative, magnitude = _signed_coefficient(K, c)
-        variables = "*".join(n if e == 1 else f"{n}**{e}" for n, e in zip(names, monom) if e)
-        if not variables:
-            body = magnitude
-        elif magnitude == "1":
-            body = variables
-        else:
-            body = f"{magnitude}*{variables}"
-        if out:
-            out.append(f" - {body}" if negative else f" + {body}")
-        else:
-            out.append(f"-{body}" if negative else body)
-    return "".join(out)
+    if is_rational_field(K):
+        return terms_str(names, f.terms())
+    return terms_str(names, f.terms(), lambda c: _signed_coefficient(K, c))
 
 
 def _signed_coefficient(K: Domain, c: Any) -> tuple[bool, str]:
-    """The sign of a coefficient and the text of its magnitude (parenthesised when a sum)."""
-    if is_rational_field(K):
-        return c < 0, str(-c if c < 0 else c)
+    """The sign of a coefficient in an algebraic field and the text of its magnitude
+    (parenthesised when a sum)."""
     expr = K.to_sympy(c)
     negative = expr.could_extract_minus_sign()
     text = str(-expr if negative else expr)

@@ -21,7 +21,7 @@ from flint import fmpq
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
-from .linalg import Vector, cross, dot, primitive_vector
+from .linalg import Vector, cross, dot, perpendicular
 from . import numberfields
 from .polys import (
     Poly,
@@ -74,15 +74,8 @@ class ProfileCurve:
 
 
 def axis_frame(point: Vector, direction: Vector, K: Domain) -> AxisFrame:
-    """A frame with a simple ``u``: the projection of the coordinate vector most orthogonal
-    to ``a`` onto the plane ``a⊥`` (so the x-axis gets ``u = (0, 1, 0)``, as in the paper)."""
-    a = direction
-    k = min(range(3), key=lambda i: (abs(to_expr(K, a[i])), i))
-    e = [K.zero] * 3
-    e[k] = K.one
-    norm2 = dot(a, a)
-    u = tuple(norm2 * e[i] - a[k] * a[i] for i in range(3))
-    return AxisFrame(point=point, direction=a, normal=primitive_vector(u, K))
+    """A frame with a simple ``u`` (:func:`.linalg.perpendicular`)."""
+    return AxisFrame(point=point, direction=direction, normal=perpendicular(direction, K))
 
 
 def profile_polynomial(f: Poly, frame: AxisFrame) -> Poly:

@@ -9,22 +9,29 @@ every level set ``f = α`` invariant. Each monomial of (★) gives one linear eq
 a null space over ``K``; its dimension and structure classify the surface (the table of §2), and
 a rotation in ``L`` gives the axis with a ``K``-rational point and direction (the paper's
 Corollary on ``K``-rational axes, made constructive).
+
+Over ``QQ`` everything here runs on python-flint (:func:`rational_symmetry` needs no sympy, for the
+sympy-free recognition of :mod:`.flint_path`); sympy's polynomials are read only over other ``K``.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from flint import fmpq
-from sympy.polys.domains import QQ
-from sympy.polys.domains.domain import Domain
+from flint import fmpq, fmpq_mpoly
 
 from . import linalg
 from .errors import AnalysisError
 from .linalg import Vector, cross, dot, is_zero, primitive_vector, scale, sub
-from .polys import Poly, derivative, is_rational_field, to_flint
+from .rationals import RATIONALS
+from .report import Canal, CanalEvidence
+
+if TYPE_CHECKING:
+    from sympy.polys.domains.domain import Domain
+
+    from .polys import Poly
 
 REVOLUTION = "revolution"
 CYLINDER = "cylinder_of_revolution"
@@ -70,20 +77,22 @@ class Symmetry:
         return self.kind in SOR_KINDS
 
 
-def infinitesimal_generators(f: Poly) -> list[dict[tuple[int, ...], Any]]:
-    """The six polynomials whose K-linear combinations are the left side of (★).
+def _generators(g: fmpq_mpoly) -> list[fmpq_mpoly]:
+    """The six polynomials whose linear combinations are the left side of (★), over ``QQ``:
+    ``f_x, f_y, f_z`` (coefficients of ``b``) and the components of ``p × ∇f`` (those of ``a``,
+    since ``∇f·(a × p) = a·(p × ∇f)``)."""
+    x, y, z = g.context().gens()
+    fx, fy, fz = (g.derivative(i) for i in range(3))
+    return [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
 
-    Coefficients of ``b`` are ``f_x, f_y, f_z``; those of ``a`` are the components of
-    ``p × ∇f`` (since ``∇f·(a × p) = a·(p × ∇f)``). Returned as coefficient dictionaries.
-    """
+
+def infinitesimal_generators(f: Poly) -> list[dict[tuple[int, ...], Any]]:
+    """The six polynomials of (★) (see :func:`_generators`) as coefficient dictionaries."""
+    from .polys import derivative, is_rational_field, to_flint
+
     R = f.ring
     if is_rational_field(R.domain):
-        g = to_flint(f)
-        ctx = g.context()
-        x, y, z = ctx.gens()
-        fx, fy, fz = (g.derivative(i) for i in range(3))
-        polys = [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
-        return [p.to_dict() for p in polys]
+        return [p.to_dict() for p in _generators(to_flint(f))]
     x, y, z = R.gens
     fx, fy, fz = (derivative(f, i) for i in range(3))
     polys = [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
@@ -92,9 +101,11 @@ def infinitesimal_generators(f: Poly) -> list[dict[tuple[int, ...], Any]]:
 
 def symmetry_algebra(f: Poly) -> list[Motion]:
     """A basis of ``L``, the solution space of (★), in reduced (canonical) form."""
+    from .polys import is_rational_field, to_flint
+
     K = f.ring.domain
     if is_rational_field(K):
-        return _rational_symmetry_algebra(f)
+        return rational_symmetry_algebra(to_flint(f))
     columns = infinitesimal_generators(f)
     monomials = sorted(set().union(*columns))
     zero = K.zero
@@ -104,9 +115,9 @@ def symmetry_algebra(f: Poly) -> list[Motion]:
     return [Motion(a=tuple(v[3:]), b=tuple(v[:3])) for v in basis]
 
 
-def _rational_symmetry_algebra(f: Poly) -> list[Motion]:
-    """``L`` over ``QQ`` from the six polynomials of (★) evaluated at rational points, each
-    candidate checked as a polynomial identity in flint.
+def rational_symmetry_algebra(g: fmpq_mpoly) -> list[Motion]:
+    """``L`` of ``g ∈ QQ[x, y, z]`` from the six polynomials of (★) evaluated at rational points,
+    each candidate checked as a polynomial identity in flint.
 
     The values at points give rows whose null space contains ``L``; when every vector of its
     reduced basis satisfies (★) identically, the two null spaces (hence their row spaces and
@@ -114,22 +125,18 @@ def _rational_symmetry_algebra(f: Poly) -> list[Motion]:
     monomial, at the cost of a few evaluations instead of a pass over every coefficient.
     Points are added until that holds (the full system is the last resort).
     """
-    g = to_flint(f)
-    x, y, z = g.context().gens()
-    fx, fy, fz = (g.derivative(i) for i in range(3))
-    polys = [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
+    polys = _generators(g)
     rows: list[list[Any]] = []
     for batch in range(EVALUATION_BATCHES):
         for point in _points(batch):
-            values = [p(*point) for p in polys]
-            rows.append([QQ(int(v.p), int(v.q)) for v in values])
-        basis = linalg.nullspace(rows, 6, QQ)
+            rows.append([p(*point) for p in polys])
+        basis = linalg.nullspace(rows, 6, RATIONALS)
         if all(_vanishes(polys, v) for v in basis):
             return [Motion(a=tuple(v[3:]), b=tuple(v[:3])) for v in basis]
     columns = [p.to_dict() for p in polys]
     monomials = sorted(set().union(*columns))
-    rows = [[QQ(int(c.p), int(c.q)) for c in (col.get(m, fmpq(0)) for col in columns)] for m in monomials]
-    basis = linalg.nullspace(rows, 6, QQ)
+    rows = [[col.get(m, fmpq(0)) for col in columns] for m in monomials]
+    basis = linalg.nullspace(rows, 6, RATIONALS)
     return [Motion(a=tuple(v[3:]), b=tuple(v[:3])) for v in basis]
 
 
@@ -152,7 +159,7 @@ def _vanishes(polys: list[Any], weights: Sequence[Any]) -> bool:
     total = polys[0] * 0
     for p, w in zip(polys, weights):
         if w:
-            total += p * fmpq(int(w.numerator), int(w.denominator))
+            total += p * fmpq(w)
     return total.is_zero()
 
 
@@ -237,3 +244,31 @@ def _common_center(basis: Sequence[Motion], K: Domain) -> Vector:
 def recognize_symmetry(f: Poly) -> Symmetry:
     """The symmetry method: compute ``L`` from (★) and classify it."""
     return classify(symmetry_algebra(f), f.ring.domain)
+
+
+def rational_symmetry(g: fmpq_mpoly) -> Symmetry:
+    """The symmetry method over ``QQ`` on python-flint alone (``g ∈ QQ[x, y, z]``)."""
+    return classify(rational_symmetry_algebra(g), RATIONALS)
+
+
+SOR_EVIDENCE = CanalEvidence(
+    "symmetry", "X is a surface of revolution (symmetry algebra): its parallels are the characteristic "
+    "circles of the spheres centred on the axis that touch X along them", True)
+"""The canal certificate of a surface of revolution (docs/math.md §9): its symmetry algebra."""
+
+PLANE_CANAL = Canal(True, "canal: a plane (the limit of a family of spheres)", ("developable", "revolution"),
+                    certificate=CanalEvidence("symmetry", "a plane is a surface of revolution about each normal line",
+                                              True))
+"""The canal answer for a plane."""
+
+RECOGNITION_ONLY_NOTE = ("recognition only: the symmetry algebra's answer; the other sphere families (the Dupin, "
+                         "pipe and developable kinds) come with the full analysis")
+
+
+def revolution_canal(degree: int) -> Canal:
+    """The canal answer of a surface of revolution of the given degree from its symmetry algebra
+    alone, as a recognition-only analysis gives it (no line test, no Singular)."""
+    if degree == 1:
+        return PLANE_CANAL
+    return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE,
+                 notes=(RECOGNITION_ONLY_NOTE,))

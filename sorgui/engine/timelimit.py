@@ -16,10 +16,13 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import replace
 from types import FrameType
+from typing import TYPE_CHECKING
 
 from .errors import TimeLimitReached
-from .polys import Poly, field_name, poly_str, total_degree
 from .report import Analysis, Rationality, Recognition
+
+if TYPE_CHECKING:
+    from .polys import Poly
 
 
 @contextmanager
@@ -63,6 +66,8 @@ def unfinished_analysis(
     """The analysis as far as it got: ``latest`` (the last complete group of stages) or just the
     ``recognition``; ``unfinished`` lists the stage that was running (``current``) and the
     stages that were still to come."""
+    from .polys import field_name, poly_str, total_degree
+
     if latest is None:
         if recognition is None:
             recognition = Recognition(polynomial=poly_str(f), degree=total_degree(f), is_sor=False,

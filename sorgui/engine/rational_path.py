@@ -1,0 +1,211 @@
+"""The recognition-only analysis of an equation over ``QQ``, on python-flint alone.
+
+A whole ``sorgui analyze --recognition-only`` process on a small equation is mostly imports:
+sympy's alone takes longer than the whole analysis (docs/benchmarks.md). Over ``QQ`` the
+recognition needs none of sympy: the parser evaluates into flint's ``QQ[x, y, z]``
+(:func:`.parsing.parse_rational`), the symmetry algebra ``L`` of (★) is flint's linear algebra
+(:func:`.symmetry.rational_symmetry`), the profile ``p̃(s, r) = f(c + s·a + r·u)`` and the exact
+frame test are flint compositions (docs/math.md §3), the factors are flint's, and the canal
+answer of a surface of revolution is its symmetry algebra's (:func:`.symmetry.revolution_canal`).
+
+:func:`recognition_only_analysis` gives exactly the :class:`~.report.Analysis` of the general
+pipeline (a test compares the two), and declines (``None``) what needs sympy: square roots in
+the input, the canal verdict of a surface that is not one of revolution (its line test), and
+an axis direction with a large ``|a|²`` (:data:`MAX_NORM`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+from flint import fmpq, fmpq_mpoly
+
+from .errors import AnalysisError
+from .linalg import Vector, cross, dot, perpendicular, primitive_vector
+from .parsing import parse_rational
+from .rationals import RATIONALS, context, factor, flint_str, primitive, rational_surd, terms_str
+from .report import Analysis, Axis, Factor, Profile, Recognition
+from .symmetry import CYLINDER, REVOLUTION, Symmetry, rational_symmetry, revolution_canal
+
+if TYPE_CHECKING:
+    from .analysis import StageClock
+
+XYZ = ("x", "y", "z")
+Monomial = tuple[int, int]
+MAX_NORM = 2**30
+"""The rational path writes ``|a| = k·√d`` with ``d`` square-free, as sympy does when it finds the
+square factors of ``|a|²``; sympy looks for them by trial division up to ``2¹⁵`` only, so larger
+``|a|²`` (which might have a square factor beyond it) are left to the general pipeline."""
+Surd = tuple[fmpq, int]
+"""``(q, d)``: the number ``q·√d`` (``d`` square-free; ``d = 1`` for a rational)."""
+
+
+def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
+    """The recognition-only analysis of ``text`` over ``QQ`` (stages parse, recognition, factors,
+    canal, timed by ``clock``), or ``None`` when it needs sympy. Raises :class:`ParseError` for
+    bad input, as the general pipeline does."""
+    with clock.stage("parse"):
+        g = parse_rational(text)
+    if g is None:
+        return None
+    with clock.stage("recognition"):
+        recognized = recognize_rational(g)
+    if recognized is None or not recognized.is_sor:
+        return None
+    with clock.stage("factors"):
+        factors = _factor_reports(g, recognized)
+    if factors is None:
+        return None
+    reports, distinct = factors
+    squarefree = distinct[0]
+    for h in distinct[1:]:
+        squarefree *= h
+    with clock.stage("canal"):
+        canal = revolution_canal(recognized.degree)
+    clock.check()
+    return Analysis(
+        input=text, field="QQ", method="symmetry", recognition=recognized, factors=reports,
+        squarefree=flint_str(squarefree, XYZ), rationality=None, parametrizations=(),
+        timings=tuple(clock.timings), canal=canal,
+    )
+
+
+def recognize_rational(g: fmpq_mpoly) -> Recognition | None:
+    """The :class:`Recognition` of ``g ∈ QQ[x, y, z]`` by the symmetry method, or ``None`` when the
+    axis direction's ``|a|²`` reaches :data:`MAX_NORM`."""
+    symmetry = rational_symmetry(g)
+    profile = None
+    if symmetry.kind in (REVOLUTION, CYLINDER):
+        if dot(symmetry.axis_direction, symmetry.axis_direction) >= MAX_NORM:  # type: ignore[arg-type]
+            return None
+        profile = _profile(g, symmetry.axis_point, symmetry.axis_direction)  # type: ignore[arg-type]
+    return Recognition(
+        polynomial=flint_str(g, XYZ),
+        degree=int(g.total_degree()),
+        is_sor=symmetry.is_sor,
+        symmetry=symmetry.kind,
+        symmetry_dimension=symmetry.dimension,
+        symmetry_basis=tuple(tuple(str(c) for c in m.a + m.b) for m in symmetry.basis),
+        axis=_axis(symmetry),
+        center=_triple(symmetry.center),
+        normal=_triple(symmetry.normal),
+        direction=_triple(symmetry.direction),
+        profile=profile,
+    )
+
+
+def _factor_reports(g: fmpq_mpoly, whole: Recognition) -> tuple[tuple[Factor, ...], list[fmpq_mpoly]] | None:
+    """The irreducible factors of ``g``, each recognised, and the distinct ones (``None`` when a
+    factor needs sympy). An irreducible ``g`` keeps ``whole`` as its factor's recognition."""
+    factors = factor(g)
+    distinct = [h for h, _ in factors]
+    if len(factors) == 1 and factors[0][1] == 1:
+        return (Factor(flint_str(factors[0][0], XYZ), 1, whole),), distinct
+    reports = []
+    for h, e in factors:
+        recognized = recognize_rational(h)
+        if recognized is None:
+            return None
+        reports.append(Factor(flint_str(h, XYZ), e, recognized))
+    return tuple(reports), distinct
+
+
+def _triple(v: Vector | None) -> tuple[str, str, str] | None:
+    return None if v is None else tuple(str(c) for c in v)  # type: ignore[return-value]
+
+
+def _axis(symmetry: Symmetry) -> Axis | None:
+    """The axis report: point, direction and Plücker coordinates ``(v : p × v)``."""
+    if symmetry.axis_point is None:
+        return None
+    point, direction = symmetry.axis_point, symmetry.axis_direction
+    plucker = primitive_vector(tuple(direction) + cross(point, direction), RATIONALS)  # type: ignore[arg-type]
+    return Axis(point=_triple(point), direction=_triple(direction),  # type: ignore[arg-type]
+                plucker=tuple(str(c) for c in plucker))  # type: ignore[arg-type]
+
+
+def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> Profile:
+    """The profile in the frame ``(c, a, u)`` of :func:`.profile.axis_frame`, with the exact test
+    ``f(c + s·a + r₁·u + r₂·w) = P²(s, r₁² + |a|²·r₂²)``; the presented ``p(x, y)`` lies over
+    ``QQ(|a|)``."""
+    c, a, u = point, direction, perpendicular(direction, RATIONALS)
+    s, r = context(("s", "r")).gens()
+    raw = g.compose(*[c[i] + s * a[i] + r * u[i] for i in range(3)], ctx=context(("s", "r")))
+    if any(int(m[1]) % 2 for m in raw.monoms()):
+        raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
+    ctx3 = context(("s", "r1", "r2"))
+    s3, r1, r2 = ctx3.gens()
+    w = cross(a, u)
+    lhs = g.compose(*[c[i] + s3 * a[i] + r1 * u[i] + r2 * w[i] for i in range(3)], ctx=ctx3)
+    rhs = _halve_second(raw, ("s", "w")).compose(s3, r1**2 + dot(a, a) * r2**2, ctx=ctx3)
+    if lhs != rhs:
+        raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
+    rational = primitive(raw)
+    orthonormal, _ = _orthonormal(rational, dot(a, a), dot(u, u))
+    return Profile(
+        polynomial=_surd_str(orthonormal, ("x", "y")),
+        square=_surd_str({(i, j // 2): c for (i, j), c in orthonormal.items()}, ("x", "y")),
+        rational=flint_str(rational, ("s", "r")),
+        rational_square=flint_str(_halve_second(rational, ("s", "w")), ("s", "w")),
+        frame_point=_triple(c), frame_direction=_triple(a), frame_normal=_triple(u),  # type: ignore[arg-type]
+        even=True, verified=True,
+    )
+
+
+def _halve_second(p: fmpq_mpoly, names: Sequence[str]) -> fmpq_mpoly:
+    """``p(s, r)``, even in ``r``, with ``r²`` replaced by ``w`` (``P²``), in the ring ``names``."""
+    return context(tuple(names)).from_dict({(int(i), int(j) // 2): q for (i, j), q in p.terms()})
+
+
+def _orthonormal(p: fmpq_mpoly, norm_a: fmpq, norm_u: fmpq) -> tuple[dict[Monomial, Surd], bool]:
+    """``p(x, y) = p̃(x/|a|, y/|u|)`` in the canonical scale of :func:`.profile.orthonormal_profile`,
+    as terms with coefficients ``q·√d`` (:data:`Surd`), and whether they are all rational.
+
+    ``y`` occurs squared only, so ``|u|`` needs no root; ``1/|a|^i = |a|^(i mod 2)/|a|²^⌈i/2⌉``
+    with ``|a| = k·√d`` (``d`` square-free), so every coefficient is a rational or a rational
+    times ``√d``. Scaled by the top coefficient in ``y``: when all are rational, to integers with
+    content 1 and that coefficient positive; otherwise that coefficient is 1.
+    """
+    k, d = rational_surd(norm_a)
+    terms: dict[Monomial, Surd] = {}
+    for (i, j), q in p.terms():
+        i, j = int(i), int(j)
+        value = q / norm_a ** ((i + 1) // 2) / norm_u ** (j // 2)
+        terms[(i, j)] = (value * k, d) if i % 2 else (value, 1)
+    top_monomial = max(terms, key=lambda m: (m[1], m[0]))
+    top, top_root = terms[top_monomial]
+    scaled = {m: _divide(c, (top, top_root)) for m, c in terms.items()}
+    if all(root == 1 for _, root in scaled.values()):
+        rational = primitive(context(("x", "y")).from_dict({m: q for m, (q, _) in scaled.items()}))
+        if rational[top_monomial] < 0:
+            rational = -rational
+        return {m: (q, 1) for m, q in _terms(rational)}, True
+    return scaled, False
+
+
+def _divide(c: Surd, top: Surd) -> Surd:
+    """``(q·√d) / (t·√e)`` for ``d, e ∈ {1, d₀}``: a rational or a rational times ``√d₀``."""
+    (q, d), (t, e) = c, top
+    if e == 1:
+        return q / t, d
+    return (q / t, 1) if d == e else (q / (t * e), e)
+
+
+def _terms(p: fmpq_mpoly) -> list[tuple[Monomial, fmpq]]:
+    return [(tuple(int(e) for e in m), q) for m, q in p.terms()]
+
+
+def _surd_text(c: Surd) -> tuple[bool, str]:
+    """The sign and the magnitude of ``q·√d`` as sympy prints it (``2*sqrt(3)/3``)."""
+    q, d = c
+    negative, q = q < 0, abs(q)
+    if d == 1:
+        return negative, str(q)
+    numerator, denominator = int(q.p), int(q.q)
+    text = f"sqrt({d})" if numerator == 1 else f"{numerator}*sqrt({d})"
+    return negative, text if denominator == 1 else f"{text}/{denominator}"
+
+
+def _surd_str(terms: dict[Monomial, Surd], names: Sequence[str]) -> str:
+    return terms_str(names, terms.items(), _surd_text)

@@ -1,0 +1,124 @@
+"""The rational field ``QQ`` on python-flint alone: what the engine's sympy-free path needs.
+
+A recognition-only run of an equation over ``QQ`` never needs sympy (whose import alone costs
+more than the whole analysis, docs/benchmarks.md): its polynomials are flint ``fmpq_mpoly``, its
+numbers ``fmpq``, and its linear algebra ``fmpq_mat``. This module holds the pieces of that path
+that the sympy-based modules share with it, so that both print and normalise alike:
+:data:`RATIONALS`, a stand-in for sympy's domain ``QQ`` (whose elements are ``fmpq`` too), the
+flint contexts, the printer of polynomials, primitive parts and factorization over ``QQ``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from functools import lru_cache
+from typing import Any
+
+from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpz
+
+Monomial = tuple[int, ...]
+
+
+class RationalField:
+    """``QQ`` with ``fmpq`` elements: the part of sympy's ``Domain`` interface that the exact
+    linear algebra and the classification of the symmetry algebra use (``is_QQ``, ``zero``,
+    ``one``, ``quo``, ``convert``)."""
+
+    is_QQ = True
+    zero = fmpq(0)
+    one = fmpq(1)
+
+    def __call__(self, p: Any, q: Any = 1) -> fmpq:
+        return fmpq(int(p), int(q))
+
+    def quo(self, a: Any, b: Any) -> fmpq:
+        """``a / b`` (exact)."""
+        return fmpq(a) / fmpq(b)
+
+    def convert(self, a: Any, _base: Any = None) -> fmpq:
+        """``a`` as an ``fmpq``."""
+        return fmpq(a)
+
+    def is_zero(self, a: Any) -> bool:
+        return not a
+
+    def __repr__(self) -> str:
+        return "QQ"
+
+
+RATIONALS = RationalField()
+
+
+@lru_cache(maxsize=64)
+def context(names: tuple[str, ...]) -> fmpq_mpoly_ctx:
+    """The flint ring ``QQ[names]`` in lex order (the order of sympy's rings)."""
+    return fmpq_mpoly_ctx.get(names, "lex")
+
+
+def terms_str(names: Sequence[str], terms: Iterable[tuple[Monomial, Any]],
+              coefficient: Any = None) -> str:
+    """A polynomial as a string that sympy and the project's parser read back exactly.
+
+    Terms come in decreasing total degree, then decreasing lex order. ``coefficient`` maps a
+    coefficient to ``(negative, text of its magnitude)``; by default it prints rationals.
+    """
+    sign = coefficient or _rational_coefficient
+    out: list[str] = []
+    for monom, c in sorted(terms, key=lambda t: (sum(t[0]), tuple(t[0])), reverse=True):
+        negative, magnitude = sign(c)
+        variables = "*".join(n if e == 1 else f"{n}**{e}" for n, e in zip(names, monom) if e)
+        if not variables:
+            body = magnitude
+        elif magnitude == "1":
+            body = variables
+        else:
+            body = f"{magnitude}*{variables}"
+        if out:
+            out.append(f" - {body}" if negative else f" + {body}")
+        else:
+            out.append(f"-{body}" if negative else body)
+    return "".join(out) or "0"
+
+
+def _rational_coefficient(c: Any) -> tuple[bool, str]:
+    return c < 0, str(-c if c < 0 else c)
+
+
+def flint_str(g: fmpq_mpoly, names: Sequence[str] | None = None) -> str:
+    """:func:`terms_str` of a flint polynomial (named ``names``, else its context's names)."""
+    names = names or g.context().names()
+    return terms_str(names, ((tuple(int(e) for e in m), c) for m, c in g.terms()))
+
+
+def primitive(g: fmpq_mpoly) -> fmpq_mpoly:
+    """``g`` scaled to integer coefficients with gcd 1 and a positive leading (lex) coefficient."""
+    if g.is_zero():
+        return g
+    coefficients = g.coeffs()
+    denominator = fmpz(1)
+    for c in coefficients:
+        denominator = denominator.lcm(c.q)
+    numerator = fmpz(0)
+    for c in coefficients:
+        numerator = numerator.gcd(c.p * (denominator // c.q))
+    scale = fmpq(denominator, numerator)
+    return -g * scale if g.leading_coefficient() < 0 else g * scale
+
+
+def factor(g: fmpq_mpoly) -> list[tuple[fmpq_mpoly, int]]:
+    """The irreducible factors of ``g`` over ``QQ`` with multiplicities, primitive, in the
+    engine's deterministic order (degree in the first variable, then the printed text)."""
+    _, factors = g.factor()
+    normal = [(primitive(h), int(e)) for h, e in factors]
+    normal.sort(key=lambda he: (int(he[0].degrees()[0]), flint_str(he[0])))
+    return normal
+
+
+def rational_surd(q: fmpq) -> tuple[fmpq, int]:
+    """``√q = k·√d`` for a rational ``q > 0``: the rational ``k`` and the square-free integer ``d``."""
+    n = fmpz(q.p) * fmpz(q.q)  # √(a/b) = √(ab)/b
+    square, free = fmpz(1), fmpz(1)
+    for p, e in n.factor():
+        square *= p ** (e // 2)
+        free *= p ** (e % 2)
+    return fmpq(square, q.q), int(free)

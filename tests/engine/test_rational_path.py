@@ -1,0 +1,94 @@
+"""The recognition-only analysis over QQ on python-flint alone gives exactly the general
+pipeline's result (:mod:`sorgui.engine.rational_path`), and declines what needs sympy."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from sorgui.engine.analysis import StageClock, analyze_polynomial
+from sorgui.engine.errors import ParseError
+from sorgui.engine.parsing import parse_polynomial
+from sorgui.engine.polys import poly_str
+from sorgui.engine.precision import has_decimals
+from sorgui.engine.rational_path import recognition_only_analysis
+from sorgui.engine.report import Analysis
+
+from ..conftest import corpus_cases
+from .helpers import move, quaternion_rotation, rational_vector, revolve
+from .test_properties import directions, fractions, profiles, quaternions
+
+SURFACES = [
+    "x^2 + y^2 - z",
+    "y^2 + z^2 = x^3 + 3x^2 - 2x",
+    "(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)",
+    "(x^2 + y^2 + z^2 - 1)^5 + x",
+    "(x^2 + y^2 - 1)^2 (x^2 + y^2 - 4)",
+    "x^2 + y^2 + z^2 - 1",
+    "x^2 + y^2 - 1",
+    "(x - 1)(x - 2)",
+    "3x - 4y + 12z - 1/2",
+    "(y^2 + z^2)^2 - 2/3 x (y^2 + z^2) + x^5 - 7",
+    "((x-1)^2 + (y+2)^2 + z^2 + 3)^2 - 16((x-1)^2 + (y+2)^2)",
+    "(3x+4y)^2/25 + z^2 - ((4x-3y)/5)^3",
+    "(x^2 + y^2 + z^2)^2 - x - y - z",  # axis (1, 1, 1): p(x, y) lies over QQ(sqrt(3))
+    "(x^2 + y^2 + z^2)^3 - (x + y + 2z)^3 + 5",  # axis (1, 1, 2): |a|² = 6
+    "(x^2 + y^2 + z^2)^2 - (2x + 2y + 2z)^2 + x + y + z",  # QQ(sqrt(3)), odd and even powers of x
+    "(x^2 + y^2 + z^2) - (5x + 7y + 11z)^5",  # |a|² = 195
+    "(x^2 + y^2 + z^2) - (3x + 3y)^2 + x + y",  # |a|² = 2: cylinder-like quadric
+]
+
+
+def _general(text: str) -> Analysis:
+    """The general pipeline's recognition-only analysis of ``text`` (sympy's polynomials)."""
+    return analyze_polynomial(parse_polynomial(text).polynomial, text=text, recognition_only=True)
+
+
+def _without_timings(analysis: Analysis) -> Analysis:
+    return replace(analysis, timings=())
+
+
+@pytest.mark.parametrize("text", SURFACES)
+def test_same_analysis_as_the_general_pipeline(text: str) -> None:
+    quick = recognition_only_analysis(text, StageClock(None, None))
+    assert quick is not None
+    assert [name for name, _ in quick.timings] == ["parse", "recognition", "factors", "canal"]
+    assert _without_timings(quick) == _without_timings(_general(text))
+
+
+@pytest.mark.parametrize("text", [
+    "x^2 + y^2 - sqrt(2) z",  # a square root: K = QQ(sqrt(2))
+    "x^3 + y^2 z - x y z + 1",  # not a surface of revolution: the canal verdict needs the line test
+])
+def test_declines_what_needs_sympy(text: str) -> None:
+    assert recognition_only_analysis(text, StageClock(None, None)) is None
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(profiles(), st.tuples(fractions, fractions, fractions), directions, quaternions)
+def test_rotated_profiles_agree(F, point, direction, q) -> None:  # type: ignore[no-untyped-def]
+    """A random profile on a random axis, turned by a random rational rotation: whenever the
+    rational path answers, as the general pipeline does."""
+    f = move(revolve(F, rational_vector(point), rational_vector(direction)), quaternion_rotation(q),
+             rational_vector((0, 0, 0)))
+    text = poly_str(f)
+    quick = recognition_only_analysis(text, StageClock(None, None))
+    assert quick is not None
+    assert _without_timings(quick) == _without_timings(_general(text))
+
+
+@pytest.mark.parametrize("case", corpus_cases(), ids=lambda case: case["name"])
+def test_corpus_cases_agree(case: dict) -> None:
+    """Every corpus case the rational path answers, it answers as the general pipeline does."""
+    text = case["input"]
+    try:
+        quick = recognition_only_analysis(text, StageClock(None, None)) if not has_decimals(text) else None
+    except ParseError:
+        with pytest.raises(ParseError):
+            _general(text)
+        return
+    if quick is not None:
+        assert _without_timings(quick) == _without_timings(_general(text))
