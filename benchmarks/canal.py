@@ -12,7 +12,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from benchmarks.report import median_time, run
-from sorgui.engine.canal import LINES, SEED, _Lines, _NotCanal, analyze_canal
+from sorgui.engine.canal import analyze_canal
+from sorgui.engine.canal_lines import LINES, SEED, Lines, NotCanal
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.polys import to_flint
 
@@ -33,11 +34,11 @@ def example(prefix: str) -> str:
 
 def line_test(f) -> str:  # noqa: ANN001 - a polynomial of the engine
     """The focal-sheet test on LINES lines (or up to the first witness line)."""
-    lines = _Lines(to_flint(f), SEED)
+    lines = Lines(to_flint(f), SEED)
     try:
         for _ in range(LINES):
             lines.next()
-    except _NotCanal:
+    except NotCanal:
         return "not canal"
     return "canal condition holds"
 

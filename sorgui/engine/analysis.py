@@ -119,12 +119,12 @@ def analyze(
     """
     clock = StageClock(progress, cancel, partial)
     start = time.monotonic()
-    if recognition_only and method == "symmetry" and tolerance is None and not has_decimals(text):
+    if recognition_only and method == "symmetry" and tolerance is None:
         from .rational_path import recognition_only_analysis
 
-        try:
+        try:  # milliseconds: its stages are not announced to ``progress``
             with time_limit(timeout):
-                quick = recognition_only_analysis(text, StageClock(progress, cancel))
+                quick = recognition_only_analysis(text, StageClock(None, cancel))
         except TimeLimitReached:
             quick = None  # the general pipeline below reports what was done in the time left
         if quick is not None:

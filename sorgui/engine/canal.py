@@ -3,7 +3,7 @@
 A canal surface is the envelope of a one-parameter family of spheres ``|X − m(t)|² = ρ(t)``.
 
 * **Not canal** is proved by one witness line on which the focal-sheet condition fails exactly
-  (:mod:`.canal_focal`).
+  (:mod:`.canal_focal`, tested on lines by :mod:`.canal_lines`).
 * **Canal** is proved by the envelope certificate of the recovered family (:mod:`.canal_spine`):
   ``f | Res_t(S, ∂S/∂t)`` for a rational family over ``QQ``, otherwise ``f`` divides every
   generator of the ideal ``⟨SMAT, |X − m|² − ρ, 4×4 minors of [Jac; 2(X − m), 1]⟩ ∩ QQ[x, y, z]``
@@ -17,20 +17,29 @@ component does not change when other components are multiplied in.
 
 from __future__ import annotations
 
-import random
 import threading
-import time
 from math import lcm
-from collections.abc import Iterator
-from contextlib import contextmanager
-from dataclasses import dataclass, field, replace
 
 import sympy
-from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpq_poly
+from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 from sympy.polys.domains import QQ
 
 from . import curves, numberfields
-from .canal_focal import DEVELOPABLE, DUPIN, UMBILIC, Derivatives, LineTest, SmatSample, UnluckyLine, line_test
+from .canal_focal import DEVELOPABLE, DUPIN, UMBILIC
+from .canal_lines import (
+    MAX_DEGREE,
+    SEED,
+    SOR_NOTE,
+    SOR_SPINE_DEGREE,
+    CanalClock,
+    Lines,
+    NotCanal,
+    assemble,
+    factor_verdict,
+    not_canal,
+    squarefree,
+    undecided,
+)
 from .canal_param import (
     RationalFamily,
     family_resultant_certificate,
@@ -47,18 +56,7 @@ from .linalg import cross, primitive_vector, solve_unique
 from .polys import Poly, compose, derivative, from_flint, is_rational_field, poly_ring, poly_str, to_flint, total_degree
 from .report import Canal, CanalEvidence, CanalFamily, Parametrization
 from .singular import emit, parse_int, poly_to_singular, run_script
-from .symmetry import PLANE_CANAL, SOR_EVIDENCE, Motion, satisfies_identity
-
-LINES = 3
-"""Canal lines tested before the SMAT is computed (one failing line already decides)."""
-
-MAX_LINES = 60
-"""Lines tried at most (unlucky lines are skipped)."""
-
-SEED = 20261127
-
-MAX_DEGREE = 30
-"""Surfaces of higher degree are not analysed (the line test costs grow with the degree)."""
+from .symmetry import SOR_EVIDENCE, Motion, satisfies_identity
 
 GENUS_DEGREE = 12
 """The genus of a SMAT plane model of higher degree is not computed (Singular's time)."""
@@ -72,65 +70,6 @@ RADICAL_ROOTS = 2
 for at most this many roots: each root doubles the size of the check (two roots take about
 2 s at degree 24)."""
 
-SOR_SPINE_DEGREE = 8
-"""Above this degree the SMAT of a surface of revolution is not computed: the symmetry algebra
-already certifies it, and its spine is the axis."""
-
-
-class _NotCanal(Exception):
-    def __init__(self, test: LineTest) -> None:
-        super().__init__("not canal")
-        self.test = test
-
-
-@dataclass
-class _Clock:
-    cancel: threading.Event | None
-    timings: list[tuple[str, float]] = field(default_factory=list)
-
-    @contextmanager
-    def stage(self, name: str) -> Iterator[None]:
-        if self.cancel is not None and self.cancel.is_set():
-            raise Cancelled("the analysis was cancelled")
-        start = time.perf_counter()
-        try:
-            yield
-        finally:
-            self.timings.append((name, time.perf_counter() - start))
-
-
-class _Lines:
-    """Deterministic random lines and their tests; every canal line is kept for the SMAT."""
-
-    def __init__(self, f: fmpq_mpoly, seed: int) -> None:
-        self.D = Derivatives(f)
-        self.rnd = random.Random(seed)
-        self.tried = 0
-        self.canal: list[LineTest] = []
-
-    def next(self) -> LineTest:
-        while self.tried < MAX_LINES:
-            self.tried += 1
-            point = tuple(self.rnd.randint(-7, 7) for _ in range(3))
-            direction = tuple(self.rnd.randint(-7, 7) or 1 for _ in range(3))
-            try:
-                test = line_test(self.D, point, direction)
-            except UnluckyLine:
-                continue
-            if not test.canal:
-                raise _NotCanal(test)
-            if self.canal and test.branch != self.canal[0].branch:
-                continue
-            self.canal.append(test)
-            return test
-        raise AnalysisError(f"no usable line among {MAX_LINES} for the canal test")
-
-    def sample(self, points: int) -> SmatSample:
-        while SmatSample(tuple(self.canal)).point_count < points:
-            self.next()
-        return SmatSample(tuple(self.canal))
-
-
 def analyze_canal(
     f: Poly, *, is_sor: bool | None = None, full: bool = True, timeout: float = 60.0,
     cancel: threading.Event | None = None,
@@ -139,7 +78,7 @@ def analyze_canal(
     parameterizations (genus, ``m(t)``, ``ρ(t)`` and surface parameterizations only when
     ``full``). ``is_sor`` (from the symmetry algebra) decides the ``revolution`` kind of a
     reducible surface, is cross-checked otherwise, and certifies a surface of revolution."""
-    clock = _Clock(cancel)
+    clock = CanalClock(cancel)
     if total_degree(f) > MAX_DEGREE:
         if is_sor:
             return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE,
@@ -155,36 +94,14 @@ def analyze_canal(
     _, factors = g.factor()
     parts = [_analyze_factor(h, clock, full, is_sor if len(factors) == 1 else None, timeout, cancel)
              for h, _ in factors]
-    if len(parts) == 1:
-        result = parts[0]
-    else:
-        result = _combine(parts, is_sor)
-    if is_sor and result.is_canal is None:
-        result = replace(result, is_canal=True, status="canal: a surface of revolution",
-                         kinds=tuple(sorted(set(result.kinds) | {"revolution"})), certificate=SOR_EVIDENCE)
-    notes = list(result.notes)
-    if not is_rational_field(f.ring.domain):
-        notes.append("coefficients outside QQ: analysed through the norm of f over QQ (all conjugate surfaces)")
-    if is_sor is not None and result.is_canal is not None and is_sor != ("revolution" in result.kinds):
-        notes.append("the symmetry algebra and the canal spine disagree about revolution (internal inconsistency)")
-    return Canal(
-        is_canal=result.is_canal, status=result.status, kinds=result.kinds, families=result.families,
-        certificate=result.certificate, witness=result.witness, parametrizations=result.parametrizations,
-        lines_tested=result.lines_tested, timings=tuple(clock.timings), notes=tuple(notes),
-    )
+    notes = () if is_rational_field(f.ring.domain) else (
+        "coefficients outside QQ: analysed through the norm of f over QQ (all conjugate surfaces)",)
+    return assemble(parts, is_sor, clock, notes)
 
 
 def _rational_squarefree(f: Poly) -> fmpq_mpoly:
     """The square-free part over ``QQ`` of ``f`` (of its norm when ``K ≠ QQ``), as flint."""
-    if is_rational_field(f.ring.domain):
-        F = to_flint(f)
-    else:
-        F = _norm(f)
-    _, parts = F.factor_squarefree()
-    out = F.context().from_dict({(0, 0, 0): 1})
-    for h, _ in parts:
-        out *= h
-    return out
+    return squarefree(to_flint(f) if is_rational_field(f.ring.domain) else _norm(f))
 
 
 def _norm(f: Poly) -> fmpq_mpoly:
@@ -216,24 +133,14 @@ def _fmpq(q: object) -> fmpq:
 
 
 def _analyze_factor(
-    h: fmpq_mpoly, clock: _Clock, full: bool, is_sor: bool | None, timeout: float, cancel: threading.Event | None,
+    h: fmpq_mpoly, clock: CanalClock, full: bool, is_sor: bool | None, timeout: float, cancel: threading.Event | None,
 ) -> Canal:
     """The verdict for one irreducible factor over ``QQ``."""
+    verdict, lines = factor_verdict(h, clock, is_sor)
+    if verdict is not None:
+        return verdict
     poly = from_flint(h, poly_ring(("x", "y", "z"), QQ))
-    if total_degree(poly) == 1:
-        return PLANE_CANAL
-    if is_sor and total_degree(poly) > SOR_SPINE_DEGREE:
-        # Above degree 4 a surface is neither a Dupin cyclide, nor a cone or cylinder, nor a pipe
-        # with rotational symmetry (its spine would be the axis or a circle about it: a cylinder or
-        # a torus): the symmetry algebra's certificate is the whole answer, no line is needed.
-        return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE,
-                     notes=("the spine is the axis; the SMAT of a surface of revolution is computed only for "
-                            f"quadrics and for Dupin cyclides up to degree {SOR_SPINE_DEGREE}",))
-    lines = _Lines(h, SEED)
     try:
-        with clock.stage("canal test"):
-            for _ in range(LINES):
-                lines.next()
         branch = lines.canal[0].branch
         if branch == UMBILIC:
             return _umbilic(poly, lines)
@@ -242,40 +149,19 @@ def _analyze_factor(
             if constant_radius(lines.sample(len(monomials(1)) + MARGIN)):
                 kinds.add("pipe")
             return Canal(True, "canal: a surface of revolution", tuple(sorted(kinds)), certificate=SOR_EVIDENCE,
-                         lines_tested=lines.tried,
-                         notes=("the spine is the axis; the SMAT of a surface of revolution is computed only for "
-                                f"quadrics and for Dupin cyclides up to degree {SOR_SPINE_DEGREE}",))
+                         lines_tested=lines.tried, notes=(SOR_NOTE,))
         with clock.stage("canal spine"):
             smat, _ = smat_curves(lines.sample, seed=SEED, timeout=timeout, cancel=cancel)
-    except _NotCanal as witness:
-        return _not_canal(witness.test, lines.tried)
+    except NotCanal as witness:
+        return not_canal(witness.test, lines.tried)
     except (SingularError, AnalysisError) as error:
         if isinstance(error, Cancelled):
             raise
-        return Canal(None, f"undecided: the canal condition holds on {len(lines.canal)} lines, "
-                     f"but the spine could not be computed ({error.message})", lines_tested=lines.tried)
+        return undecided(lines, error)
     return _canal(poly, smat, branch, lines, clock, full, timeout, cancel)
 
 
-def _not_canal(test: LineTest, tried: int) -> Canal:
-    F = test.F
-    witness = CanalEvidence(
-        method="line",
-        statement=(
-            "on the line point + τ·direction the canal condition fails exactly: "
-            + ("the finite focal root does not satisfy C" if test.branch == DEVELOPABLE
-               else "R = a₂C₀² − a₁C₀C₁ + a₀C₁² is not 0 modulo F")
-            + f" (F of degree {F.degree()}, the square-free part of f on the line)"
-        ),
-        verified=True,
-        point=tuple(str(c) for c in test.point),  # type: ignore[arg-type]
-        direction=tuple(str(c) for c in test.direction),  # type: ignore[arg-type]
-        restriction=_univariate_str(F, "tau"),
-    )
-    return Canal(False, "not canal", witness=witness, lines_tested=tried)
-
-
-def _umbilic(poly: Poly, lines: _Lines) -> Canal:
+def _umbilic(poly: Poly, lines: Lines) -> Canal:
     """Every point umbilic on the lines: a sphere, checked exactly from the coefficients."""
     x, y, z = poly.ring.gens
     quadratic = total_degree(poly) == 2 and all(
@@ -288,7 +174,7 @@ def _umbilic(poly: Poly, lines: _Lines) -> Canal:
 
 
 def _canal(
-    poly: Poly, smat: list[SmatCurve], branch: str, lines: _Lines, clock: _Clock, full: bool, timeout: float,
+    poly: Poly, smat: list[SmatCurve], branch: str, lines: Lines, clock: CanalClock, full: bool, timeout: float,
     cancel: threading.Event | None,
 ) -> Canal:
     families: list[CanalFamily] = []
@@ -612,34 +498,3 @@ def _rational(found: tuple[tuple[sympy.Expr, ...], bool]) -> Parametrization:
         method="canal: rational (unit normals on the characteristic circles, sum of two squares)",
         verified=verified,
     )
-
-
-def _combine(parts: list[Canal], is_sor: bool | None) -> Canal:
-    """The verdict of a reducible surface from its factors over ``QQ``."""
-    if any(p.is_canal is False for p in parts):
-        bad = next(p for p in parts if p.is_canal is False)
-        return Canal(False, "not canal: a component is not canal", witness=bad.witness,
-                     lines_tested=sum(p.lines_tested for p in parts))
-    if any(p.is_canal is None for p in parts):
-        return Canal(None, "undecided for a component", lines_tested=sum(p.lines_tested for p in parts))
-    kinds = set(parts[0].kinds)
-    for p in parts[1:]:
-        kinds &= set(p.kinds)
-    kinds.discard("revolution")
-    if is_sor:
-        kinds.add("revolution")
-    return Canal(
-        True, f"canal: each of the {len(parts)} components is canal", tuple(sorted(kinds)),
-        tuple(f for p in parts for f in p.families),
-        CanalEvidence("components", "; ".join(p.certificate.statement for p in parts if p.certificate), True),
-        parametrizations=tuple(q for p in parts for q in p.parametrizations),
-        lines_tested=sum(p.lines_tested for p in parts),
-        notes=tuple(n for p in parts for n in p.notes),
-    )
-
-
-def _univariate_str(F: fmpq_poly, name: str) -> str:
-    """``F`` as a string in ``name`` that sympy reads back."""
-    tau = sympy.Symbol(name)
-    return str(sum(sympy.Rational(int(c.p), int(c.q)) * tau**i for i, c in enumerate(F.coeffs()) if c))
-

@@ -6,24 +6,27 @@ recognition needs none of sympy: the parser evaluates into flint's ``QQ[x, y, z]
 (:func:`.parsing.parse_rational`), the symmetry algebra ``L`` of (★) is flint's linear algebra
 (:func:`.symmetry.rational_symmetry`), the profile ``p̃(s, r) = f(c + s·a + r·u)`` and the exact
 frame test are flint compositions (docs/math.md §3), the factors are flint's, and the canal
-answer of a surface of revolution is its symmetry algebra's (:func:`.symmetry.revolution_canal`).
+answer of a surface of revolution is its symmetry algebra's (:func:`.symmetry.revolution_canal`);
+that of another surface is "not canal" when a line refutes it (:mod:`.canal_lines`).
 
 :func:`recognition_only_analysis` gives exactly the :class:`~.report.Analysis` of the general
 pipeline (a test compares the two), and declines (``None``) what needs sympy: square roots in
-the input, the canal verdict of a surface that is not one of revolution (its line test), and
-an axis direction with a large ``|a|²`` (:data:`MAX_NORM`).
+the input, decimals (the rounded-input stage, docs/math.md §8), a surface that passes the canal test on its lines (its spine is computed with
+Singular and sympy), and an axis direction with a large ``|a|²`` (:data:`MAX_NORM`).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from flint import fmpq, fmpq_mpoly
 
+from .canal_lines import verdict_without_smat
 from .errors import AnalysisError
 from .linalg import Vector, cross, dot, perpendicular, primitive_vector
 from .parsing import parse_rational
+from .precision import has_decimals
 from .rationals import RATIONALS, context, factor, flint_str, primitive, rational_surd, terms_str
 from .report import Analysis, Axis, Factor, Profile, Recognition
 from .symmetry import CYLINDER, REVOLUTION, Symmetry, rational_symmetry, revolution_canal
@@ -45,13 +48,15 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
     """The recognition-only analysis of ``text`` over ``QQ`` (stages parse, recognition, factors,
     canal, timed by ``clock``), or ``None`` when it needs sympy. Raises :class:`ParseError` for
     bad input, as the general pipeline does."""
+    if has_decimals(text):
+        return None
     with clock.stage("parse"):
         g = parse_rational(text)
     if g is None:
         return None
     with clock.stage("recognition"):
         recognized = recognize_rational(g)
-    if recognized is None or not recognized.is_sor:
+    if recognized is None:
         return None
     with clock.stage("factors"):
         factors = _factor_reports(g, recognized)
@@ -62,7 +67,9 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
     for h in distinct[1:]:
         squarefree *= h
     with clock.stage("canal"):
-        canal = revolution_canal(recognized.degree)
+        canal = revolution_canal(recognized.degree) if recognized.is_sor else verdict_without_smat(g, clock.cancel)
+    if canal is None:
+        return None
     clock.check()
     return Analysis(
         input=text, field="QQ", method="symmetry", recognition=recognized, factors=reports,

@@ -63,7 +63,7 @@ def terms_str(names: Sequence[str], terms: Iterable[tuple[Monomial, Any]],
     coefficient to ``(negative, text of its magnitude)``; by default it prints rationals.
     """
     sign = coefficient or _rational_coefficient
-    out: list[str] = []
+    bodies: list[tuple[bool, str]] = []
     for monom, c in sorted(terms, key=lambda t: (sum(t[0]), tuple(t[0])), reverse=True):
         negative, magnitude = sign(c)
         variables = "*".join(n if e == 1 else f"{n}**{e}" for n, e in zip(names, monom) if e)
@@ -73,6 +73,14 @@ def terms_str(names: Sequence[str], terms: Iterable[tuple[Monomial, Any]],
             body = variables
         else:
             body = f"{magnitude}*{variables}"
+        bodies.append((negative, body))
+    return signed_sum(bodies)
+
+
+def signed_sum(terms: Iterable[tuple[bool, str]]) -> str:
+    """``[(negative, magnitude text), ...]`` as the sum ``a - b + c`` (``"0"`` when empty)."""
+    out: list[str] = []
+    for negative, body in terms:
         if out:
             out.append(f" - {body}" if negative else f" + {body}")
         else:

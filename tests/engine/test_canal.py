@@ -12,7 +12,8 @@ import sympy
 from sorgui.engine.analysis import analyze
 from sorgui.engine import numberfields
 from sorgui.engine import canal as canal_module
-from sorgui.engine.canal import CERTIFICATE_LINE, LINES, SEED, _Lines, _rational_squarefree, analyze_canal, envelope_certificate
+from sorgui.engine.canal import CERTIFICATE_LINE, _rational_squarefree, analyze_canal, envelope_certificate
+from sorgui.engine.canal_lines import LINES, SEED, Lines
 from sorgui.engine.canal_spine import SmatCurve, smat_curves
 from sorgui.engine.polys import Poly, to_flint
 from sorgui.engine.parsing import parse_polynomial
@@ -202,7 +203,7 @@ def test_two_cylinder_blend(name: str) -> None:
 
 def _pipe_parabola_and_its_smat() -> tuple[Poly, SmatCurve]:
     f = parse_polynomial(examples()["pipe parabola"]).polynomial
-    lines = _Lines(to_flint(f), SEED)
+    lines = Lines(to_flint(f), SEED)
     for _ in range(LINES):
         lines.next()
     (curve,), _ = smat_curves(lines.sample, seed=SEED, timeout=60.0, cancel=None)

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 import sympy
 
-from sorgui.engine.canal import LINES, SEED, _Lines
+from sorgui.engine.canal_lines import LINES, SEED, Lines
 from sorgui.engine.canal_param import T, square_root
 from sorgui.engine.canal_radical import RadicalFamily, radical_family, radical_surface
 from sorgui.engine.canal_spine import SmatCurve, smat_curves
@@ -26,7 +26,7 @@ def _example(prefix: str) -> Poly:
 @pytest.fixture(scope="module")
 def blend() -> tuple[Poly, SmatCurve]:
     f = _example("blend cylinders R=2")
-    lines = _Lines(to_flint(f), SEED)
+    lines = Lines(to_flint(f), SEED)
     for _ in range(LINES):
         lines.next()
     (curve,), _ = smat_curves(lines.sample, seed=SEED, timeout=60.0, cancel=None)

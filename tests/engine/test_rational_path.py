@@ -1,24 +1,28 @@
 """The recognition-only analysis over QQ on python-flint alone gives exactly the general
-pipeline's result (:mod:`sorgui.engine.rational_path`), and declines what needs sympy."""
+pipeline's result (:mod:`sorgui.engine.rational_path`), declines what needs sympy, and prints
+numbers as sympy does."""
 
 from __future__ import annotations
 
 from dataclasses import replace
 
 import pytest
+import sympy
+from flint import fmpq, fmpq_poly
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from sorgui.engine.analysis import StageClock, analyze_polynomial
+from sorgui.engine.canal_lines import univariate_str
 from sorgui.engine.errors import ParseError
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.polys import poly_str
-from sorgui.engine.precision import has_decimals
-from sorgui.engine.rational_path import recognition_only_analysis
+from sorgui.engine.rational_path import _surd_text, recognition_only_analysis
 from sorgui.engine.report import Analysis
 
 from ..conftest import corpus_cases
 from .helpers import move, quaternion_rotation, rational_vector, revolve
+from .test_canal import examples
 from .test_properties import directions, fractions, profiles, quaternions
 
 SURFACES = [
@@ -39,6 +43,11 @@ SURFACES = [
     "(x^2 + y^2 + z^2)^2 - (2x + 2y + 2z)^2 + x + y + z",  # QQ(sqrt(3)), odd and even powers of x
     "(x^2 + y^2 + z^2) - (5x + 7y + 11z)^5",  # |a|² = 195
     "(x^2 + y^2 + z^2) - (3x + 3y)^2 + x + y",  # |a|² = 2: cylinder-like quadric
+    "x^3 + y^2 z - x y z + 1",  # not a surface of revolution, refuted by a line: not canal
+    "x y",  # two planes: canal, developable, not of revolution
+    "(x^3 + y^2 z - x y z + 1)(x - y + 3)",
+    "x^2 + 2y^2 + 3z^2 - 1",  # the triaxial ellipsoid: not canal
+    examples()["pipe parabola + z^6/1000"],
 ]
 
 
@@ -48,7 +57,8 @@ def _general(text: str) -> Analysis:
 
 
 def _without_timings(analysis: Analysis) -> Analysis:
-    return replace(analysis, timings=())
+    canal = analysis.canal and replace(analysis.canal, timings=())
+    return replace(analysis, timings=(), canal=canal)
 
 
 @pytest.mark.parametrize("text", SURFACES)
@@ -61,7 +71,8 @@ def test_same_analysis_as_the_general_pipeline(text: str) -> None:
 
 @pytest.mark.parametrize("text", [
     "x^2 + y^2 - sqrt(2) z",  # a square root: K = QQ(sqrt(2))
-    "x^3 + y^2 z - x y z + 1",  # not a surface of revolution: the canal verdict needs the line test
+    examples()["pipe parabola"],  # canal on the lines tested: the spine needs Singular and sympy
+    "x^2 + y^2 + z^2 - 1.5",  # decimals: the rounded-input stage
 ])
 def test_declines_what_needs_sympy(text: str) -> None:
     assert recognition_only_analysis(text, StageClock(None, None)) is None
@@ -85,10 +96,32 @@ def test_corpus_cases_agree(case: dict) -> None:
     """Every corpus case the rational path answers, it answers as the general pipeline does."""
     text = case["input"]
     try:
-        quick = recognition_only_analysis(text, StageClock(None, None)) if not has_decimals(text) else None
+        quick = recognition_only_analysis(text, StageClock(None, None))
     except ParseError:
         with pytest.raises(ParseError):
             _general(text)
         return
     if quick is not None:
         assert _without_timings(quick) == _without_timings(_general(text))
+
+
+rationals = st.fractions(min_value=-50, max_value=50, max_denominator=12)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(rationals, max_size=6))
+def test_univariate_printer_is_sympys(coefficients: list) -> None:  # type: ignore[type-arg]
+    """The witness restriction is printed as sympy prints the expression (without sympy)."""
+    F = fmpq_poly([fmpq(c.numerator, c.denominator) for c in coefficients])
+    tau = sympy.Symbol("tau")
+    expected = str(sum((sympy.Rational(c.numerator, c.denominator) * tau**i for i, c in enumerate(coefficients)),
+                       start=sympy.Integer(0)))
+    assert univariate_str(F, "tau") == expected
+
+
+@settings(max_examples=60, deadline=None)
+@given(rationals.filter(bool), st.sampled_from([2, 3, 5, 6, 7, 10, 15, 195]))
+def test_surd_printer_is_sympys(q, d: int) -> None:  # type: ignore[no-untyped-def]
+    expr = sympy.Rational(q.numerator, q.denominator) * sympy.sqrt(d)
+    negative, text = _surd_text((fmpq(q.numerator, q.denominator), d))
+    assert (negative, text) == (bool(expr.could_extract_minus_sign()), str(abs(expr)))
