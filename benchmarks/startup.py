@@ -13,13 +13,17 @@ import subprocess
 import sys
 import time
 
+from benchmarks.recognition import surface
 from benchmarks.report import ROOT, run
+from sorgui.engine.polys import poly_str
 
 CASES = [
     ("paraboloid, degree 2", "x^2 + y^2 - z"),
     ("paper Example 1, degree 3", "y^2 + z^2 = x^3 + 3x^2 - 2x"),
     ("torus, degree 4", "(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)"),
     ("(x^2+y^2+z^2-1)^5 + x, degree 10", "(x^2 + y^2 + z^2 - 1)^5 + x"),
+    ("a cubic, neither of revolution nor canal, degree 3", "x^3 + y^2 z - x y z + 1"),
+    ("a surface of revolution in general position, degree 10 (286 terms)", poly_str(surface(10))),
 ]
 IMPORTS = [("sympy", "import sympy"), ("numpy", "import numpy"), ("sorgui.engine", "import sorgui.engine"),
            ("sorgui.cli", "import sorgui.cli")]

@@ -234,4 +234,6 @@ def univariate_str(F: fmpq_poly, name: str) -> str:
             if denominator != 1:
                 body = f"{body}/{denominator}"
         terms.append((negative, body))
+    if len(terms) == 2 and terms[0][0] and not terms[1][0] and coefficients[0]:
+        terms.reverse()  # sympy's special case: ``1 - tau``, not ``-tau + 1``
     return signed_sum(terms)

@@ -691,6 +691,8 @@ class _Evaluator:
                 coeff = coeff * self._constant(factor.value)
             elif isinstance(factor, Neg) and isinstance(factor.arg, Num):
                 coeff = -coeff * self._constant(factor.arg.value)
+            elif isinstance(factor, Reciprocal) and isinstance(factor.arg, Num) and factor.arg.value:
+                coeff = self._ring.quo(coeff, self._constant(factor.arg.value))
             elif (isinstance(factor, Power) and isinstance(factor.base, Var)
                   and isinstance(factor.exponent, Num)):  # a non-negative integer: checked
                 exponents[factor.base.index] += int(factor.exponent.value)

@@ -65,9 +65,15 @@ class Rounding:
         return self.bounds.get(monomial, self.default)
 
 
+_DECIMAL_MARK = re.compile(r"[0-9]\.|\.[0-9]|[0-9][eE][+-]?[0-9]")
+"""A decimal point or an exponent inside a number literal of the parser's tokenizer (which reads
+``2.``, ``.5`` and ``2e-3`` as numbers and nothing else of a valid equation as a point or an
+``e``); a search, so that the check costs no second parse of a long pasted equation."""
+
+
 def has_decimals(text: str) -> bool:
     """Whether ``text`` prints a number with a decimal point or an exponent (``1.5``, ``2e-3``)."""
-    return any(isinstance(node, Num) and _is_decimal(text, node) for node in _nodes(syntax_tree(text)))
+    return _DECIMAL_MARK.search(text) is not None
 
 
 def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:

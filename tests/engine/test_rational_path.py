@@ -108,7 +108,7 @@ def test_corpus_cases_agree(case: dict) -> None:
 rationals = st.fractions(min_value=-50, max_value=50, max_denominator=12)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=200, deadline=None)
 @given(st.lists(rationals, max_size=6))
 def test_univariate_printer_is_sympys(coefficients: list) -> None:  # type: ignore[type-arg]
     """The witness restriction is printed as sympy prints the expression (without sympy)."""
