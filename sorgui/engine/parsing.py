@@ -29,7 +29,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
-from typing import TYPE_CHECKING, Any, NamedTuple, TypeAlias
+from typing import TYPE_CHECKING, Any, NamedTuple, Protocol, TypeAlias
 
 from flint import fmpq, fmpq_mpoly, fmpz
 
@@ -753,53 +753,58 @@ class _Evaluator:
                              f"{MAX_WORK:,} coefficient multiplications)", node.start, node.end)
 
 
-class _Ring:
+class _Ring(Protocol):
     """The arithmetic of pass 2: polynomials in x, y, z over the field, and its constants."""
 
-    cost = 1  # rational multiplications per coefficient product
+    cost: int  # rational multiplications per coefficient product
     one: Any
     gens: tuple[Any, ...]
 
     def rational(self, q: Rational) -> Any:
         """The rational ``q`` in the field."""
-        raise NotImplementedError
+        ...
 
     def square_root(self, m: int) -> Any:
         """``sqrt(m)`` in the field (``m`` one of its radicands)."""
-        raise NotImplementedError
+        ...
 
     def quo(self, a: Any, b: Any) -> Any:
         """``a / b`` in the field."""
-        raise NotImplementedError
+        ...
 
     def ground(self, c: Any) -> Any:
         """The constant polynomial ``c``."""
-        raise NotImplementedError
+        ...
 
     def is_constant(self, p: Any) -> bool:
-        raise NotImplementedError
+        ...
 
     def constant_term(self, p: Any) -> Any:
-        raise NotImplementedError
+        ...
 
     def terms(self, p: Any) -> Iterator[tuple[tuple[int, ...], Any]]:
-        raise NotImplementedError
+        ...
 
     def from_terms(self, terms: dict[tuple[int, ...], Any]) -> Any:
-        raise NotImplementedError
+        ...
 
     def scale(self, p: Any, c: Any) -> Any:
         """``c·p`` for a constant ``c`` of the field."""
-        raise NotImplementedError
+        ...
 
 
-class _FlintRationals(_Ring):
+class _FlintRationals:
     """``QQ[x, y, z]`` in python-flint (no sympy)."""
+
+    cost = 1
 
     def __init__(self) -> None:
         self._context = context(("x", "y", "z"))
         self.gens = self._context.gens()
         self.one = fmpq(1)
+
+    def square_root(self, m: int) -> fmpq:
+        raise ValueError(f"sqrt({m}) is not in QQ: an equation with square roots is evaluated over its field K")
 
     def rational(self, q: Rational) -> fmpq:
         return fmpq(q.numerator, q.denominator)
@@ -826,7 +831,7 @@ class _FlintRationals(_Ring):
         return p * c
 
 
-class _SympyField(_Ring):
+class _SympyField:
     """``K[x, y, z]`` in sympy's sparse polynomials, ``K`` a real field with square roots."""
 
     cost = 8  # an ANP product costs ~8 rational ones

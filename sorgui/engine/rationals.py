@@ -21,26 +21,15 @@ Monomial = tuple[int, ...]
 
 class RationalField:
     """``QQ`` with ``fmpq`` elements: the part of sympy's ``Domain`` interface that the exact
-    linear algebra and the classification of the symmetry algebra use (``is_QQ``, ``zero``,
-    ``one``, ``quo``, ``convert``)."""
+    linear algebra and the classification of the symmetry algebra use."""
 
     is_QQ = True
     zero = fmpq(0)
     one = fmpq(1)
 
-    def __call__(self, p: Any, q: Any = 1) -> fmpq:
-        return fmpq(int(p), int(q))
-
     def quo(self, a: Any, b: Any) -> fmpq:
         """``a / b`` (exact)."""
         return fmpq(a) / fmpq(b)
-
-    def convert(self, a: Any, _base: Any = None) -> fmpq:
-        """``a`` as an ``fmpq``."""
-        return fmpq(a)
-
-    def is_zero(self, a: Any) -> bool:
-        return not a
 
     def __repr__(self) -> str:
         return "QQ"
