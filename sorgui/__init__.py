@@ -8,4 +8,8 @@ import os
 # threads and 0.02 s with one). Set before numpy loads OpenBLAS; a user's setting wins.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
+# The engine passes python-flint's numbers between sympy's domains and flint's polynomials, which
+# needs sympy's rationals to be flint's. sympy reads this when it is first imported.
+os.environ["SYMPY_GROUND_TYPES"] = "flint"
+
 __version__ = "0.1.0"

@@ -194,3 +194,12 @@ def test_a_failed_write_names_the_file(tmp_path: Path, monkeypatch: pytest.Monke
     target = tmp_path / "r.json"
     with pytest.raises(cli._OutputError, match=f"cannot write {target}: No space left on device"):
         cli.write_outputs(analyze("x^2+y^2-z", recognition_only=True), [target])
+
+
+@pytest.mark.parametrize("ground_types", ["python", "gmpy"])
+def test_a_users_sympy_ground_types_do_not_break_the_engine(ground_types: str) -> None:
+    """The engine hands flint's rationals to sympy's domains: sorgui sets sympy's ground types."""
+    env = {**os.environ, "SYMPY_GROUND_TYPES": ground_types}
+    out = sorgui("analyze", "--json", "x^2 + y^2 - sqrt(2) z", env=env)
+    assert out.returncode == 0, out.stderr
+    assert json.loads(out.stdout)["is_sor"]

@@ -22,7 +22,6 @@ import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import replace
-
 from typing import TYPE_CHECKING
 
 from .errors import Cancelled, TimeLimitReached

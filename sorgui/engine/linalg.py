@@ -3,17 +3,15 @@
 Algorithm choice: over ``QQ`` (sympy's domain or :data:`.rationals.RATIONALS`, both with ``fmpq``
 elements) the matrices go to python-flint's ``fmpq_mat`` (reduced row echelon form in C); over an
 algebraic field they go to sympy's ``DomainMatrix``, whose ``ANP`` arithmetic is exact (sympy is
-imported only then). Both return a basis of the null space in reduced form, so the answers are canonical:
-the same input always gives the same basis, whichever method produced the matrix.
+imported only then). Both return a basis of the null space in reduced form, so the answers are
+canonical: the same input always gives the same basis, whichever method produced the matrix.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from math import gcd
-from typing import Any
-
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from flint import fmpq, fmpq_mat
 

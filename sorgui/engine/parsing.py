@@ -3,9 +3,9 @@
 The user's text is never evaluated (no ``eval``, no ``sympify``). A tokenizer feeds a
 recursive-descent parser that builds a small AST; a checking pass bounds the degree, the
 exponents and the size of every number and collects the square roots (so ``K`` is known);
-only then is the AST evaluated: over ``QQ`` into python-flint's ``QQ[x, y, z]`` (no sympy needed,
-:func:`parse_rational`), over a real field ``K`` into sympy's sparse ring ``K[x, y, z]``. Every limit is
-checked before any expansion, so hostile or mistyped input fails fast with a
+only then is the AST evaluated: over ``QQ`` into python-flint's ``QQ[x, y, z]`` (no sympy
+needed, :func:`parse_rational`), over a real field ``K`` into sympy's sparse ring ``K[x, y, z]``.
+Every limit is checked before any expansion, so hostile or mistyped input fails fast with a
 :class:`ParseError` that points at the offending characters.
 
 Grammar, from the lowest to the highest precedence::

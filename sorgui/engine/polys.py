@@ -16,13 +16,17 @@ from functools import lru_cache
 from typing import Any
 
 import sympy
-from flint import fmpq_mpoly, fmpq_mpoly_ctx
+from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.rings import PolyElement, PolyRing, ring
 
 from . import numberfields
 from .rationals import terms_str
+
+if QQ.dtype is not fmpq:  # sympy was imported before sorgui, with other ground types
+    raise ImportError("sorgui needs sympy's flint ground types: import sorgui before sympy, or set "
+                      "SYMPY_GROUND_TYPES=flint")
 
 Poly = PolyElement
 """A polynomial of the engine: sympy's sparse ``PolyElement`` over ``K``."""

@@ -11,8 +11,9 @@ that of another surface is "not canal" when a line refutes it (:mod:`.canal_line
 
 :func:`recognition_only_analysis` gives exactly the :class:`~.report.Analysis` of the general
 pipeline (a test compares the two), and declines (``None``) what needs sympy: square roots in
-the input, decimals (the rounded-input stage, docs/math.md §8), a surface that passes the canal test on its lines (its spine is computed with
-Singular and sympy), and an axis direction with a large ``|a|²`` (:data:`MAX_NORM`).
+the input, decimals (the rounded-input stage, docs/math.md §8), a surface that passes the canal
+test on its lines (its spine is computed with Singular and sympy), and an axis direction with a
+large ``|a|²`` (:data:`MAX_NORM`).
 """
 
 from __future__ import annotations

@@ -11,7 +11,7 @@ a rotation in ``L`` gives the axis with a ``K``-rational point and direction (th
 Corollary on ``K``-rational axes, made constructive).
 
 Over ``QQ`` everything here runs on python-flint (:func:`rational_symmetry` needs no sympy, for the
-sympy-free recognition of :mod:`.flint_path`); sympy's polynomials are read only over other ``K``.
+sympy-free recognition of :mod:`.rational_path`); sympy's polynomials are read only over other ``K``.
 """
 
 from __future__ import annotations
