@@ -30,7 +30,6 @@ from .canal_lines import (
     MAX_DEGREE,
     SEED,
     SOR_NOTE,
-    SOR_SPINE_DEGREE,
     CanalClock,
     Lines,
     NotCanal,
@@ -144,7 +143,7 @@ def _analyze_factor(
         branch = lines.canal[0].branch
         if branch == UMBILIC:
             return _umbilic(poly, lines)
-        if is_sor and (total_degree(poly) > SOR_SPINE_DEGREE or (branch != DUPIN and total_degree(poly) > 2)):
+        if is_sor and branch != DUPIN and total_degree(poly) > 2:  # higher degrees: factor_verdict
             kinds = {"revolution"} | ({branch} & {DUPIN, DEVELOPABLE})
             if constant_radius(lines.sample(len(monomials(1)) + MARGIN)):
                 kinds.add("pipe")

@@ -21,7 +21,7 @@ from flint import fmpq_mpoly, fmpq_poly
 
 from .canal_focal import DEVELOPABLE, Derivatives, LineTest, SmatSample, UnluckyLine, line_test
 from .errors import AnalysisError, Cancelled
-from .rationals import signed_sum
+from .rationals import signed_sum, times_text
 from .report import Canal, CanalEvidence
 from .symmetry import PLANE_CANAL, SOR_EVIDENCE
 
@@ -225,14 +225,7 @@ def univariate_str(F: fmpq_poly, name: str) -> str:
         if not c:
             continue
         negative, c = c < 0, abs(c)
-        numerator, denominator = int(c.p), int(c.q)
-        if i == 0:
-            body = str(c)
-        else:
-            power = name if i == 1 else f"{name}**{i}"
-            body = power if numerator == 1 else f"{numerator}*{power}"
-            if denominator != 1:
-                body = f"{body}/{denominator}"
+        body = str(c) if i == 0 else times_text(c, name if i == 1 else f"{name}**{i}")
         terms.append((negative, body))
     if len(terms) == 2 and terms[0][0] and not terms[1][0] and coefficients[0]:
         terms.reverse()  # sympy's special case: ``1 - tau``, not ``-tau + 1``

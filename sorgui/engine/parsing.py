@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple, Protocol, TypeAlias
 from flint import fmpq, fmpq_mpoly, fmpz
 
 from .errors import ParseError
-from .rationals import context
+from . import rationals
 
 if TYPE_CHECKING:
     from sympy.polys.domains.domain import Domain
@@ -799,7 +799,7 @@ class _FlintRationals:
     cost = 1
 
     def __init__(self) -> None:
-        self._context = context(("x", "y", "z"))
+        self._context = rationals.context(("x", "y", "z"))
         self.gens = self._context.gens()
         self.one = fmpq(1)
 
@@ -822,7 +822,7 @@ class _FlintRationals:
         return p[(0, 0, 0)]
 
     def terms(self, p: fmpq_mpoly) -> Iterator[tuple[tuple[int, ...], Any]]:
-        return ((tuple(int(e) for e in m), c) for m, c in p.terms())
+        return iter(rationals.terms(p))
 
     def from_terms(self, terms: dict[tuple[int, ...], Any]) -> fmpq_mpoly:
         return self._context.from_dict(terms)

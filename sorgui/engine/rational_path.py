@@ -28,7 +28,7 @@ from .errors import AnalysisError
 from .linalg import Vector, cross, dot, perpendicular, primitive_vector
 from .parsing import parse_rational
 from .precision import has_decimals
-from .rationals import RATIONALS, context, factor, flint_str, primitive, rational_surd, terms_str
+from .rationals import RATIONALS, context, factor, flint_str, primitive, rational_surd, terms, terms_str, times_text
 from .report import Analysis, Axis, Factor, Profile, Recognition
 from .symmetry import CYLINDER, REVOLUTION, Symmetry, rational_symmetry, revolution_canal
 
@@ -150,7 +150,7 @@ def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> Profile:
     if lhs != rhs:
         raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
     rational = primitive(raw)
-    orthonormal, _ = _orthonormal(rational, dot(a, a), dot(u, u))
+    orthonormal = _orthonormal(rational, dot(a, a), dot(u, u))
     return Profile(
         polynomial=_surd_str(orthonormal, ("x", "y")),
         square=_surd_str({(i, j // 2): c for (i, j), c in orthonormal.items()}, ("x", "y")),
@@ -163,12 +163,12 @@ def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> Profile:
 
 def _halve_second(p: fmpq_mpoly, names: Sequence[str]) -> fmpq_mpoly:
     """``p(s, r)``, even in ``r``, with ``r²`` replaced by ``w`` (``P²``), in the ring ``names``."""
-    return context(tuple(names)).from_dict({(int(i), int(j) // 2): q for (i, j), q in p.terms()})
+    return context(tuple(names)).from_dict({(i, j // 2): q for (i, j), q in terms(p)})
 
 
-def _orthonormal(p: fmpq_mpoly, norm_a: fmpq, norm_u: fmpq) -> tuple[dict[Monomial, Surd], bool]:
+def _orthonormal(p: fmpq_mpoly, norm_a: fmpq, norm_u: fmpq) -> dict[Monomial, Surd]:
     """``p(x, y) = p̃(x/|a|, y/|u|)`` in the canonical scale of :func:`.profile.orthonormal_profile`,
-    as terms with coefficients ``q·√d`` (:data:`Surd`), and whether they are all rational.
+    as terms with coefficients ``q·√d`` (:data:`Surd`).
 
     ``y`` occurs squared only, so ``|u|`` needs no root; ``1/|a|^i = |a|^(i mod 2)/|a|²^⌈i/2⌉``
     with ``|a| = k·√d`` (``d`` square-free), so every coefficient is a rational or a rational
@@ -176,20 +176,18 @@ def _orthonormal(p: fmpq_mpoly, norm_a: fmpq, norm_u: fmpq) -> tuple[dict[Monomi
     content 1 and that coefficient positive; otherwise that coefficient is 1.
     """
     k, d = rational_surd(norm_a)
-    terms: dict[Monomial, Surd] = {}
-    for (i, j), q in p.terms():
-        i, j = int(i), int(j)
+    coefficients: dict[Monomial, Surd] = {}
+    for (i, j), q in terms(p):
         value = q / norm_a ** ((i + 1) // 2) / norm_u ** (j // 2)
-        terms[(i, j)] = (value * k, d) if i % 2 else (value, 1)
-    top_monomial = max(terms, key=lambda m: (m[1], m[0]))
-    top, top_root = terms[top_monomial]
-    scaled = {m: _divide(c, (top, top_root)) for m, c in terms.items()}
+        coefficients[(i, j)] = (value * k, d) if i % 2 else (value, 1)
+    top_monomial = max(coefficients, key=lambda m: (m[1], m[0]))
+    scaled = {m: _divide(c, coefficients[top_monomial]) for m, c in coefficients.items()}
     if all(root == 1 for _, root in scaled.values()):
         rational = primitive(context(("x", "y")).from_dict({m: q for m, (q, _) in scaled.items()}))
         if rational[top_monomial] < 0:
             rational = -rational
-        return {m: (q, 1) for m, q in _terms(rational)}, True
-    return scaled, False
+        return {m: (q, 1) for m, q in terms(rational)}
+    return scaled
 
 
 def _divide(c: Surd, top: Surd) -> Surd:
@@ -200,19 +198,10 @@ def _divide(c: Surd, top: Surd) -> Surd:
     return (q / t, 1) if d == e else (q / (t * e), e)
 
 
-def _terms(p: fmpq_mpoly) -> list[tuple[Monomial, fmpq]]:
-    return [(tuple(int(e) for e in m), q) for m, q in p.terms()]
-
-
 def _surd_text(c: Surd) -> tuple[bool, str]:
     """The sign and the magnitude of ``q·√d`` as sympy prints it (``2*sqrt(3)/3``)."""
     q, d = c
-    negative, q = q < 0, abs(q)
-    if d == 1:
-        return negative, str(q)
-    numerator, denominator = int(q.p), int(q.q)
-    text = f"sqrt({d})" if numerator == 1 else f"{numerator}*sqrt({d})"
-    return negative, text if denominator == 1 else f"{text}/{denominator}"
+    return q < 0, str(abs(q)) if d == 1 else times_text(abs(q), f"sqrt({d})")
 
 
 def _surd_str(terms: dict[Monomial, Surd], names: Sequence[str]) -> str:

@@ -81,10 +81,21 @@ def _rational_coefficient(c: Any) -> tuple[bool, str]:
     return c < 0, str(-c if c < 0 else c)
 
 
+def terms(g: fmpq_mpoly) -> list[tuple[Monomial, fmpq]]:
+    """The terms of a flint polynomial, exponents as Python ints."""
+    return [(tuple(int(e) for e in m), c) for m, c in g.terms()]
+
+
 def flint_str(g: fmpq_mpoly, names: Sequence[str] | None = None) -> str:
     """:func:`terms_str` of a flint polynomial (named ``names``, else its context's names)."""
-    names = names or g.context().names()
-    return terms_str(names, ((tuple(int(e) for e in m), c) for m, c in g.terms()))
+    return terms_str(names or g.context().names(), terms(g))
+
+
+def times_text(q: fmpq, atom: str) -> str:
+    """``q·atom`` for ``q > 0`` as sympy prints it: ``atom``, ``3*atom``, ``atom/2``, ``3*atom/2``."""
+    numerator, denominator = int(q.p), int(q.q)
+    text = atom if numerator == 1 else f"{numerator}*{atom}"
+    return text if denominator == 1 else f"{text}/{denominator}"
 
 
 def primitive(g: fmpq_mpoly) -> fmpq_mpoly:
