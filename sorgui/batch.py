@@ -3,10 +3,15 @@
 Every non-blank line is analysed on its own (``#`` starts a comment: no equation contains it).
 Its line of output is the analysis JSON of ``sorgui analyze --json`` with ``"line"`` (1-based)
 added, or ``{"line", "input", "error": {"message", "position"}}``; a bad line never stops the
-others. The output keeps the order of the input. ``--jobs N`` analyses in N worker processes,
-forked after the engine is imported (so each starts at once); each worker dies with sorgui
-(``PR_SET_PDEATHSIG``) and, on ``SIGTERM``, unwinds so that its Singular is killed. A worker
-that dies (killed, out of memory) is replaced, and its line answered with an error object. When stderr is a terminal, a progress bar is drawn there.
+others. The output keeps the order of the input. The input is read as it is analysed, a line
+at a time: the length limit of one equation applies to each line, not to the file.
+
+Each line is analysed in a worker process (:class:`~sorgui.session.supervised.Supervised`,
+``--jobs`` of them, forked after the engine is imported so that each starts at once) under the
+time limit of one analysis: a worker that does not answer in time is killed with its Singular,
+its line answered with the stages it finished, and the worker replaced; so is a worker that
+dies (killed, out of memory), its line answered with an error object. Every worker dies with
+sorgui. When stderr is a terminal, a progress bar is drawn there.
 
 Exit status: 0 when every line was analysed, 1 when an analysis failed, else 2 when a line was
 not a polynomial.
@@ -16,80 +21,81 @@ from __future__ import annotations
 
 import argparse
 import json
-import multiprocessing
-import signal
 import sys
-from collections.abc import Callable, Generator
-from multiprocessing.connection import Connection, wait
-from typing import Any
+import time
+from collections.abc import Callable, Generator, Iterable, Iterator
+from multiprocessing.connection import wait
+from typing import TYPE_CHECKING, Any, TextIO
 
-Job = tuple[int, str, dict[str, Any]]
-"""(line number, equation, options of :func:`sorgui.engine.analyze`)."""
+if TYPE_CHECKING:
+    from sorgui.session.supervised import AnalysisRequest, Supervised
+
+Job = tuple[int, str]
+"""(line number, equation)."""
+
+Answer = tuple[str, int]
+"""A line's JSON text and its status (0 analysed, 1 failed, 2 not a polynomial)."""
 
 
-def equations(text: str) -> list[tuple[int, str]]:
-    """The equations of ``text`` with their 1-based line numbers (comments and blank lines
-    dropped)."""
-    found = []
-    for number, line in enumerate(text.splitlines(), 1):
+def read_lines(stream: TextIO, limit: int) -> Iterator[str]:
+    """The lines of ``stream`` as they are read; a line longer than ``limit`` characters is
+    given as its first ``limit + 1`` characters (the rest of it is skipped)."""
+    while True:
+        line = stream.readline(limit + 1)
+        if not line:
+            return
+        if len(line) > limit and not line.endswith("\n"):
+            while (rest := stream.readline(limit + 1)) and not rest.endswith("\n"):
+                pass
+        yield line.rstrip("\n")
+
+
+def equations(lines: str | Iterable[str]) -> Iterator[Job] | list[Job]:
+    """The equations of ``lines`` with their 1-based line numbers (comments and blank lines
+    dropped); a list for a text, a lazy iterator for lines being read."""
+    if isinstance(lines, str):
+        return list(_equations(lines.splitlines()))
+    return _equations(lines)
+
+
+def _equations(lines: Iterable[str]) -> Iterator[Job]:
+    for number, line in enumerate(lines, 1):
         equation = line.split("#", 1)[0].strip()
         if equation:
-            found.append((number, equation))
-    return found
+            yield number, equation
 
 
-def analyze_line(job: Job) -> tuple[str, int]:
-    """One line's JSON text and exit status (0 analysed, 1 failed, 2 not a polynomial)."""
-    from sorgui.engine import ParseError, SorguiError, analyze
-
-    number, text, options = job
-    try:
-        data = {"line": number, **analyze(text, **options).to_json()}
-        status = 0
-    except ParseError as exc:
-        data, status = _error(number, text, str(exc), exc.position), 2
-    except SorguiError as exc:
-        data, status = _error(number, text, exc.message, None), 1
-    except Exception as exc:  # noqa: BLE001 - one bad line must not stop the others
-        data, status = _error(number, text, f"internal error ({type(exc).__name__}: {exc})", None), 1
-    return json.dumps(data), status
+def _line_json(number: int, text: str, message: tuple[str, Any]) -> Answer:
+    """The output line of a final message of an analysis process."""
+    kind, payload = message
+    if kind == "finished":
+        return json.dumps({"line": number, **payload.to_json()}), 0
+    if kind == "invalid":
+        text_of, position = payload
+        return json.dumps(_error(number, text, text_of, position)), 2
+    return json.dumps(_error(number, text, str(payload), None)), 1
 
 
 def _error(number: int, text: str, message: str, position: int | None) -> dict[str, Any]:
     return {"line": number, "input": text, "error": {"message": message, "position": position}}
 
 
-def _worker_start() -> None:
-    """A worker leaves Ctrl+C to sorgui, dies with it, and unwinds on ``SIGTERM``."""
-    from sorgui.engine.singular import die_with_parent
-
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, _exit_on_signal)
-    signal.signal(signal.SIGHUP, _exit_on_signal)
-    signal.pthread_sigmask(signal.SIG_UNBLOCK, _ENDING)  # blocked across the fork (see _Worker)
-    die_with_parent(signal.SIGTERM)
-
-
-_ENDING = {signal.SIGTERM, signal.SIGHUP}
-
-
-def _exit_on_signal(signum: int, _frame: Any) -> None:
-    raise SystemExit(128 + signum)
-
-
 class _Progress:
-    """A one-line progress bar on stderr: ``[#####.....] 37/100``."""
+    """A one-line progress bar on stderr: ``[#####.....] 37/100`` (``37`` when the total is not
+    known yet, the input still being read)."""
 
     WIDTH = 30
 
-    def __init__(self, total: int) -> None:
-        self.total = max(total, 1)
+    def __init__(self) -> None:
         self.done = 0
 
-    def step(self) -> None:
+    def step(self, total: int | None) -> None:
         self.done += 1
-        filled = self.WIDTH * self.done // self.total
-        sys.stderr.write(f"\r[{'#' * filled}{'.' * (self.WIDTH - filled)}] {self.done}/{self.total}")
+        if total is None:
+            sys.stderr.write(f"\r{self.done} analysed")
+        else:
+            filled = self.WIDTH * self.done // max(total, 1)
+            sys.stderr.write(f"\r[{'#' * filled}{'.' * (self.WIDTH - filled)}] {self.done}/{total}")
         sys.stderr.flush()
 
     def close(self) -> None:
@@ -97,112 +103,96 @@ class _Progress:
         sys.stderr.flush()
 
 
-class _Worker:
-    """A forked worker process that analyses one line at a time, sent through its pipe."""
+class _Pool:
+    """``size`` analysis processes, each given one line at a time."""
 
-    def __init__(self, context: multiprocessing.context.ForkContext) -> None:
-        self.conn, child = context.Pipe()
-        self.process = context.Process(target=_serve, args=(child,), name="sorgui-batch", daemon=True)
-        # The child starts with sorgui's own SIGTERM handler, which unwinds sorgui's stack: a
-        # SIGTERM before the worker installs its own would print a traceback from the fork's
-        # clean-up. Blocked here, such a signal waits for the worker's handler.
-        previous = signal.pthread_sigmask(signal.SIG_BLOCK, _ENDING)
-        try:
-            self.process.start()
-        finally:
-            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
-        child.close()
-        self.index: int | None = None  # the job it is analysing
+    def __init__(self, size: int, request: Callable[[str], AnalysisRequest]) -> None:
+        import multiprocessing
 
-    def give(self, index: int, job: Job) -> None:
-        self.index = index
-        self.conn.send(job)
+        import sorgui.engine  # noqa: F401 - loaded once, before the forks, for every worker
 
-    def answer(self, job: Job) -> tuple[str, int]:
-        """The worker's answer to ``job``; if the process died instead (killed, out of memory),
-        an error object for the line, and the worker is to be replaced."""
-        try:
-            return self.conn.recv()
-        except (EOFError, OSError):
-            self.process.join(10)  # its pipe closes a moment before it can be reaped
-            code = self.process.exitcode
-            how = f"signal {-code}" if code is not None and code < 0 else f"exit status {code}"
-            message = f"the analysis process died ({how}); it may have run out of memory"
-            return json.dumps(_error(job[0], job[1], message, None)), 1
+        self.context = multiprocessing.get_context("fork")
+        self.request = request
+        self.size = size
+        self.idle: list[Supervised] = []
+        self.busy: dict[int, tuple[Supervised, Job]] = {}  # by the index of the job
 
-    def stop(self) -> None:
-        """``SIGTERM`` (the worker unwinds: its Singular is killed), then ``SIGKILL`` if needed."""
-        self.conn.close()
-        if self.process.is_alive():
-            self.process.terminate()
-            self.process.join(5)
-        if self.process.is_alive():
-            self.process.kill()
-            self.process.join()
+    def start(self, index: int, job: Job) -> None:
+        from sorgui.session.supervised import Supervised
 
+        worker = self.idle.pop() if self.idle else Supervised(self.context)
+        worker.give(self.request(job[1]))
+        self.busy[index] = (worker, job)
 
-def _serve(conn: Connection) -> None:
-    """A worker's loop: analyse every job that arrives until the pipe closes."""
-    _worker_start()
-    while True:
-        try:
-            job = conn.recv()
-        except (EOFError, OSError):
-            return
-        conn.send(analyze_line(job))
+    def answers(self) -> list[tuple[int, Answer]]:
+        """The answers that came (waiting for one, or for the nearest deadline)."""
+        now = time.monotonic()
+        nearest = min(worker.deadline for worker, _job in self.busy.values())
+        wait([worker.child.conn for worker, _job in self.busy.values()], timeout=min(max(nearest - now, 0.0), 1.0))
+        found = []
+        for index, (worker, job) in list(self.busy.items()):
+            message = worker.collect()
+            if message is None:
+                continue
+            del self.busy[index]
+            found.append((index, _line_json(*job, message)))
+            if worker.child.ended or not worker.child.is_alive():
+                worker.close()  # killed at its deadline, or died: a new one takes the next line
+            else:
+                self.idle.append(worker)
+        return found
+
+    def close(self) -> None:
+        for worker in [*self.idle, *(w for w, _job in self.busy.values())]:
+            worker.close()
+        self.idle, self.busy = [], {}
 
 
-def _results(jobs: list[Job], workers: int) -> Generator[tuple[str, int], None, None]:
-    """The answers in input order, from this process or from ``workers`` forked processes; a
-    worker that dies is replaced, and its line answered with an error object."""
-    if workers == 1 or len(jobs) <= 1:
-        yield from map(analyze_line, jobs)
-        return
-    import sorgui.engine  # noqa: F401 - loaded once, before the fork, for every worker
-
-    context = multiprocessing.get_context("fork")
-    todo = list(enumerate(jobs))[::-1]
-    pool: list[_Worker] = []
-    answers: dict[int, tuple[str, int]] = {}
+def _results(jobs: Iterator[Job], workers: int,
+             request: Callable[[str], AnalysisRequest]) -> Generator[Answer, None, None]:
+    """The answers in input order, ``workers`` lines at a time."""
+    pool = _Pool(workers, request)
+    answers: dict[int, Answer] = {}
     emitted = 0
+    todo = enumerate(jobs)
     try:
-        pool = [_Worker(context) for _ in range(min(workers, len(jobs)))]
-        for worker in pool:
-            worker.give(*todo.pop())
-        while emitted < len(jobs):
-            busy = {worker.conn: worker for worker in pool if worker.index is not None}
-            for conn in wait(list(busy)):
-                worker = busy[conn]
-                index = worker.index
-                answers[index] = worker.answer(jobs[index])
-                worker.index = None
-                if not worker.process.is_alive():
-                    worker.stop()
-                    pool[pool.index(worker)] = worker = _Worker(context)
-                if todo:
-                    worker.give(*todo.pop())
+        for index, job in todo:
+            pool.start(index, job)
+            if len(pool.busy) < workers:
+                continue
+            while len(pool.busy) >= workers:
+                answers.update(pool.answers())
+                while emitted in answers:
+                    yield answers.pop(emitted)
+                    emitted += 1
+        while pool.busy:
+            answers.update(pool.answers())
             while emitted in answers:
                 yield answers.pop(emitted)
                 emitted += 1
     finally:
-        for worker in pool:  # Ctrl+C, a signal, a closed pipe, or done: the workers go too
-            worker.stop()
+        pool.close()  # Ctrl+C, a signal, a closed pipe, or done: the workers go too
 
 
-def run_batch(text: str, args: argparse.Namespace, emit: Callable[[str], None]) -> int:
-    """Analyse every line of ``text`` with the options of ``args``; ``emit`` writes a line."""
-    options = {"method": args.method, "recognition_only": args.recognition_only, "tolerance": args.tolerance,
-               "singular_timeout": args.timeout, "timeout": args.timeout}
-    jobs = [(number, equation, options) for number, equation in equations(text)]
-    progress = _Progress(len(jobs)) if sys.stderr.isatty() else None
+def run_batch(lines: Iterable[str], args: argparse.Namespace, emit: Callable[[str], None],
+              total: int | None = None) -> int:
+    """Analyse every line of ``lines`` with the options of ``args``; ``emit`` writes a line.
+    ``total`` (the number of equations, when known) sizes the progress bar."""
+    from sorgui.session.supervised import AnalysisRequest
+
+    def request(text: str) -> AnalysisRequest:
+        return AnalysisRequest(text, method=args.method, recognition_only=args.recognition_only,
+                               tolerance=args.tolerance, timeout=args.timeout)
+
+    progress = _Progress() if sys.stderr.isatty() else None
     statuses: set[int] = set()
-    answers = _results(jobs, args.jobs)
+    answers = _results(iter(equations(lines)), args.jobs, request)
     try:
         for line, status in answers:
             emit(line)
             statuses.add(status)
             if progress is not None:
-                progress.step()
+                progress.step(total)
     finally:
         answers.close()  # ends the workers now, also when emit failed
         if progress is not None:

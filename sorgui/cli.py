@@ -7,7 +7,9 @@ Exit status of ``sorgui analyze``: 0 for every analysed input (surface of revolu
 sorgui cleanly: Singular is killed on the way out (and dies with sorgui even on ``kill -9``).
 
 ``--timeout`` bounds the whole analysis; stages not finished by then are reported as
-undecided. ``--each-line`` analyses one equation per line (:mod:`sorgui.batch`, JSON Lines).
+undecided. The analysis runs in a child process (:mod:`sorgui.session.supervised`), which is
+killed at the time limit or on a signal even when it is stuck inside one C call, so sorgui
+always answers within a second of either. ``--each-line`` analyses one equation per line (:mod:`sorgui.batch`, JSON Lines).
 
 The engine (sympy, flint, Singular) is imported only once an equation is to be analysed, so
 that ``--help`` and bad command lines answer at once.
@@ -177,8 +179,6 @@ def read_input(args: argparse.Namespace) -> tuple[str, Path | None]:
             reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
             raise UsageError(f"cannot read {args.file}: {reason}") from None
     if args.expression is None:
-        if args.each_line:
-            raise UsageError("--each-line reads -f FILE or '-' (standard input)")
         from sorgui.examples import example_text
 
         return example_text(DEFAULT_EXAMPLE), None
@@ -282,30 +282,25 @@ def analyze_main(argv: Sequence[str]) -> int:
     as_json = "--json" in argv
     try:
         args = parse_arguments(analyze_parser(), argv)
-        text, source = read_input(args)
         if args.each_line:
-            if args.output:
-                raise UsageError("-o cannot be combined with --each-line")
-            from sorgui.batch import run_batch
-
-            return run_batch(text, args, emit)
+            return each_line(args)
+        text, source = read_input(args)
         check_outputs(args.output, source, args.export_format)
     except UsageError as exc:
         return fail(str(exc), None, as_json, 2)
     except _OutputError as exc:
         return fail(str(exc), None, False, 1)
-    from sorgui.engine import ParseError, SorguiError, analyze
+    from sorgui.session.supervised import AnalysisRequest, analyze_supervised
 
-    try:
-        result = analyze(text, method=args.method, recognition_only=args.recognition_only,
-                         singular_timeout=args.timeout, timeout=args.timeout, tolerance=args.tolerance)
-    except ParseError as exc:
-        return fail(str(exc), exc.position, args.json, 2)
-    except SorguiError as exc:
-        return fail(exc.message, None, args.json, 1)
-    except Exception as exc:  # noqa: BLE001 - a bug must still end in one line, not a traceback
-        return fail(f"internal error ({type(exc).__name__}: {exc}); please report it with the input",
-                    None, args.json, 1)
+    kind, payload = analyze_supervised(AnalysisRequest(
+        text, method=args.method, recognition_only=args.recognition_only, tolerance=args.tolerance,
+        timeout=args.timeout))
+    if kind == "invalid":
+        message, position = payload
+        return fail(message, position, args.json, 2)
+    if kind == "failed":
+        return fail(payload, None, args.json, 1)
+    result = payload
     try:
         write_outputs(result, args.output, args.export_format)
         if args.json:
@@ -317,6 +312,35 @@ def analyze_main(argv: Sequence[str]) -> int:
     except _OutputError as exc:
         return fail(str(exc), None, False, 1)
     return 0
+
+
+def each_line(args: argparse.Namespace) -> int:
+    """``--each-line``: the lines of ``-f FILE`` or standard input, read as they are analysed
+    (:mod:`sorgui.batch`); each line may be as long as one equation (:data:`MAX_INPUT`)."""
+    if args.output:
+        raise UsageError("-o cannot be combined with --each-line")
+    if args.file is not None and args.expression is not None:
+        raise UsageError("give either an expression or -f FILE, not both")
+    if args.file is None and args.expression != "-":
+        raise UsageError("--each-line reads -f FILE or '-' (standard input)")
+    from sorgui.batch import equations, read_lines, run_batch
+
+    source = str(args.file) if args.file is not None else "standard input"
+    try:
+        stream = open(args.file, encoding="utf-8") if args.file is not None else sys.stdin
+    except OSError as exc:
+        raise UsageError(f"cannot read {args.file}: {exc.strerror or exc}") from None
+    try:
+        total = None
+        if args.file is not None and sys.stderr.isatty() and args.file.is_file():
+            total = sum(1 for _ in equations(read_lines(stream, MAX_INPUT)))  # for the progress bar
+            stream.seek(0)
+        return run_batch(read_lines(stream, MAX_INPUT), args, emit, total)
+    except UnicodeDecodeError as exc:
+        raise UsageError(f"cannot read {source}: {exc}") from None
+    finally:
+        if stream is not sys.stdin:
+            stream.close()
 
 
 def gui_main(argv: Sequence[str]) -> int:

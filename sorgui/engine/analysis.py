@@ -30,13 +30,14 @@ from .parsing import parse_polynomial
 from .precision import has_decimals
 from .report import Analysis, Approximation, Canal, Parametrization, Rationality, Recognition
 from .symmetry import revolution_canal
-from .timelimit import time_limit, unfinished_analysis
+from .timelimit import skeleton, time_limit, unfinished_analysis
 
 if TYPE_CHECKING:
     from .polys import Poly
 
 ProgressCallback = Callable[[str], None]
 PartialCallback = Callable[[Analysis], None]
+DoneCallback = Callable[[str, float], None]
 
 STAGES = ("parse", "recognition", "factors", "real locus", "approximate", "rationality", "parametrizations", "canal",
           "nearest")
@@ -53,7 +54,7 @@ class StageClock:
 
     ``partial`` is given the :class:`Analysis` known so far whenever a group of stages is done
     (after the factors, then at the end), so that a window can show the verdict and the axis
-    while Singular still runs.
+    while Singular still runs; ``done`` the name and seconds of every stage as it ends.
     """
 
     def __init__(
@@ -61,10 +62,12 @@ class StageClock:
         progress: ProgressCallback | None,
         cancel: threading.Event | None,
         partial: PartialCallback | None = None,
+        done: DoneCallback | None = None,
     ) -> None:
         self.progress = progress
         self.cancel = cancel
         self.partial = partial
+        self.done = done
         self.timings: list[tuple[str, float]] = []
         self.current: str | None = None
         self.recognition: Recognition | None = None  # kept for a time limit met before publish
@@ -90,7 +93,10 @@ class StageClock:
             self.progress(name)
         start = time.perf_counter()
         yield
-        self.timings.append((name, time.perf_counter() - start))
+        seconds = time.perf_counter() - start
+        self.timings.append((name, seconds))
+        if self.done is not None:
+            self.done(name, seconds)
 
 
 def analyze(
@@ -104,10 +110,17 @@ def analyze(
     partial: PartialCallback | None = None,
     tolerance: float | None = None,
     timeout: float | None = None,
+    stage_done: DoneCallback | None = None,
+    parsed: PartialCallback | None = None,
 ) -> Analysis:
     """Analyse the equation ``text`` exactly and return the immutable :class:`Analysis`.
 
     ``timeout`` (seconds) bounds the whole analysis; each Singular call is bounded by it too.
+    Inside one long C call (flint, sympy's compiled parts) that bound waits for the call to
+    return: a caller that must stop at once runs the analysis in a process it can kill
+    (:mod:`sorgui.session.supervised`), which ``stage_done`` (each stage's name and seconds as
+    it ends) and ``parsed`` (the :func:`~.timelimit.skeleton` of the equation once it is read)
+    keep informed.
 
     ``tolerance`` (relative) asks whether ``f`` is near a surface of revolution; without it,
     that is asked whenever ``text`` prints decimals, with the tolerance their digits give.
@@ -116,7 +129,7 @@ def analyze(
     Raises :class:`~sorgui.engine.errors.ParseError` for bad input, :class:`Cancelled` when
     ``cancel`` is set; every other engine failure is a :class:`SorguiError` too.
     """
-    clock = StageClock(progress, cancel, partial)
+    clock = StageClock(progress, cancel, partial, stage_done)
     start = time.monotonic()
     if recognition_only and method == "symmetry" and tolerance is None:
         from .rational_path import recognition_only_analysis
@@ -130,12 +143,15 @@ def analyze(
             clock.publish(quick)
             return quick
     with clock.stage("parse"):
-        parsed = parse_polynomial(text)
+        f = parse_polynomial(text).polynomial
+    begun = skeleton(f, text=text, method=method)
+    if parsed is not None:
+        parsed(begun)
     remaining = None if timeout is None else max(timeout - (time.monotonic() - start), 0.001)
     try:
         with time_limit(remaining, timeout):
             return analyze_polynomial(
-                parsed.polynomial,
+                f,
                 text=text,
                 method=method,
                 recognition_only=recognition_only,
@@ -145,9 +161,8 @@ def analyze(
             )
     except TimeLimitReached as exc:
         return unfinished_analysis(
-            parsed.polynomial, text=text, method=method, recognition=clock.recognition, latest=clock.latest,
-            timings=tuple(clock.timings), current=clock.current, message=exc.message,
-            recognition_only=recognition_only,
+            begun, recognition=clock.recognition, latest=clock.latest, timings=tuple(clock.timings),
+            current=clock.current, message=exc.message, recognition_only=recognition_only,
         )
 
 

@@ -25,7 +25,6 @@ output. Text from the subprocess is never evaluated.
 
 from __future__ import annotations
 
-import ctypes
 import importlib.metadata
 import importlib.resources
 import importlib.util
@@ -36,7 +35,6 @@ import secrets
 import shutil
 import signal
 import subprocess
-import sys
 import tempfile
 import threading
 import time
@@ -51,6 +49,7 @@ from sympy.polys.domains.domain import Domain
 
 from .errors import Cancelled, ExpressionError, SingularError, SingularNotFound, SingularTimeout
 from .expressions import read, singular_syntax
+from .lifetime import die_with_parent
 from .polys import Poly, is_rational_field
 
 ENV_VARIABLE = "SORGUI_SINGULAR"
@@ -64,8 +63,6 @@ LIBRARY = "sorgui.lib"
 
 CPU_MARGIN = 5
 """Seconds of CPU time Singular may use beyond its wall-clock limit before the kernel stops it."""
-
-_PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
 
 POLL_INTERVAL = 0.05
 """Seconds between checks of the cancel event and the time limit while Singular runs."""
@@ -214,25 +211,6 @@ def _child_limits(timeout: float) -> Callable[[], None]:
         resource.setrlimit(resource.RLIMIT_CPU, (seconds, seconds + 1))
 
     return limit
-
-
-def die_with_parent(signum: int) -> bool:
-    """Ask the kernel to send ``signum`` to this process when the thread that started it dies
-    (Linux ``PR_SET_PDEATHSIG``, also after ``kill -9``); ``False`` where that is not possible."""
-    return _prctl is not None and _prctl(_PR_SET_PDEATHSIG, int(signum), 0, 0, 0) == 0
-
-
-def _load_prctl() -> Callable[..., int] | None:
-    """Linux's ``prctl`` from the C library, or ``None`` on other systems."""
-    if not sys.platform.startswith("linux"):
-        return None
-    try:
-        return ctypes.CDLL(None, use_errno=True).prctl
-    except (OSError, AttributeError):
-        return None
-
-
-_prctl = _load_prctl()
 
 
 def library_path() -> Path:

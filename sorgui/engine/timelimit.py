@@ -51,11 +51,21 @@ UNDECIDED = "undecided"
 """The ``symmetry`` of a recognition that did not finish within the time limit."""
 
 
+def skeleton(f: Poly, *, text: str, method: str) -> Analysis:
+    """The analysis of ``f`` before any stage has finished: its polynomial, degree and field, with
+    the symmetry :data:`UNDECIDED`. What a time limit met before the recognition reports; an
+    analysis process sends it to its parent as soon as the equation is read."""
+    from .polys import field_name, poly_str, total_degree
+
+    recognition = Recognition(polynomial=poly_str(f), degree=total_degree(f), is_sor=False,
+                              symmetry=UNDECIDED, symmetry_dimension=0, symmetry_basis=())
+    return Analysis(input=text, field=field_name(f.ring.domain), method=method, recognition=recognition,
+                    factors=(), squarefree=recognition.polynomial)
+
+
 def unfinished_analysis(
-    f: Poly,
+    start: Analysis,
     *,
-    text: str,
-    method: str,
     recognition: Recognition | None,
     latest: Analysis | None,
     timings: tuple[tuple[str, float], ...],
@@ -63,17 +73,15 @@ def unfinished_analysis(
     message: str,
     recognition_only: bool,
 ) -> Analysis:
-    """The analysis as far as it got: ``latest`` (the last complete group of stages) or just the
-    ``recognition``; ``unfinished`` lists the stage that was running (``current``) and the
-    stages that were still to come."""
-    from .polys import field_name, poly_str, total_degree
+    """The analysis as far as it got: ``latest`` (the last complete group of stages), else
+    ``start`` (the :func:`skeleton`) with the ``recognition`` if there is one; ``unfinished``
+    lists the stage that was running (``current``) and the stages that were still to come.
 
+    Needs no sympy: the parent of a killed analysis process composes it from what the process
+    sent before it was ended."""
     if latest is None:
-        if recognition is None:
-            recognition = Recognition(polynomial=poly_str(f), degree=total_degree(f), is_sor=False,
-                                      symmetry=UNDECIDED, symmetry_dimension=0, symmetry_basis=())
-        latest = Analysis(input=text, field=field_name(f.ring.domain), method=method, recognition=recognition,
-                          factors=(), squarefree=poly_str(f))
+        latest = start if recognition is None else replace(start, recognition=recognition,
+                                                            squarefree=recognition.polynomial)
     rec = latest.recognition
     needs_rationality = not recognition_only and (rec.symmetry == UNDECIDED or (rec.is_sor and rec.profile is not None))
     pipeline = ["recognition", "factors", *(("rationality", "parametrizations") if needs_rationality else ())]

@@ -8,9 +8,9 @@ signals :attr:`~AnalysisWorker.progress`, :attr:`~AnalysisWorker.finished`,
 :attr:`~AnalysisWorker.failed` and :attr:`~AnalysisWorker.cancelled`.
 
 Cancelling sets the job's ``multiprocessing.Event`` (the engine checks it between stages and
-kills Singular at once); a process still alive :data:`CANCEL_GRACE_S` later is frozen with
-``SIGSTOP`` and killed with ``SIGKILL`` together with its process group and the process groups
-of all its descendants (Singular runs in a session of its own). Starting a job supersedes the
+kills Singular at once); a process still alive :data:`CANCEL_GRACE_S` later is killed with its
+whole tree, Singular included (:meth:`sorgui.session.child.ChildProcess.kill`, the mechanism
+``sorgui analyze`` and ``--each-line`` use too). Starting a job supersedes the
 running one the same way, silently. The next process is started ahead of time (a warm spare),
 so an analysis does not wait for Python to import sympy, flint and VTK; it is started a little
 after the previous job ends, so that it competes neither with a running job nor with the GUI
@@ -20,15 +20,15 @@ showing the result. Worker processes run at a lower priority (``nice``) than the
 from __future__ import annotations
 
 import multiprocessing
-import os
-from collections import deque
+import multiprocessing.context
 import signal
 import time
-from pathlib import Path
+from collections import deque
 from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QObject, QTimer, Signal
 
+from sorgui.session.child import ChildProcess
 from sorgui.session.process import worker_main
 
 if TYPE_CHECKING:
@@ -47,70 +47,28 @@ SPARE_DELAY_MS = 2000
 """The next worker process starts this long after a job ends, once the result is on screen."""
 
 
-def descendants(pid: int) -> list[tuple[int, int]]:
-    """``(pid, pgid)`` of every descendant of ``pid``, read from ``/proc`` (empty elsewhere)."""
-    parents: dict[int, list[tuple[int, int]]] = {}
-    proc = Path("/proc")
-    if not proc.is_dir():
-        return []
-    for entry in proc.iterdir():
-        if not entry.name.isdigit():
-            continue
-        try:
-            stat = (entry / "stat").read_text()
-        except OSError:
-            continue
-        fields = stat.rsplit(")", 1)[1].split()  # after "pid (comm)": state ppid pgrp ...
-        parents.setdefault(int(fields[1]), []).append((int(entry.name), int(fields[2])))
-    found, stack = [], [pid]
-    while stack:
-        for child in parents.get(stack.pop(), []):
-            found.append(child)
-            stack.append(child[0])
-    return found
-
-
-def kill_process_tree(pid: int) -> None:
-    """Kill the process ``pid``, its process group and the groups of all its descendants.
-
-    The group is stopped first, so that nothing new is started between listing and killing.
-    """
-    _signal_group(pid, signal.SIGSTOP)
-    groups = {pgid for _pid, pgid in descendants(pid)} | {pid}
-    groups.discard(os.getpgrp())  # a child that has not yet left our group: never kill ourselves
-    for group in groups:
-        _signal_group(group, signal.SIGKILL)
-    try:
-        os.kill(pid, signal.SIGKILL)
-    except ProcessLookupError:
-        pass
-
-
-def _signal_group(pgid: int, signum: int) -> None:
-    try:
-        os.killpg(pgid, signum)
-    except (ProcessLookupError, PermissionError):
-        pass
-
-
 class _Job:
-    """One worker process, its pipe and its cancel event."""
+    """One worker process (:class:`~sorgui.session.child.ChildProcess`) and its cancel event."""
 
     def __init__(self, context: multiprocessing.context.SpawnContext) -> None:
-        self.conn, child_conn = context.Pipe(duplex=True)
         self.cancel_event = context.Event()
-        self.process = context.Process(
-            target=worker_main, args=(child_conn, self.cancel_event), name="sorgui-analysis", daemon=True
-        )
-        self.process.start()
-        child_conn.close()
+        self.child = ChildProcess(context, worker_main, (self.cancel_event,))
+        self.conn = self.child.conn
+        self.process = self.child.process
         self.kill_at: float | None = None
-        self.ended = False
         self.pending: deque[tuple[str, object]] = deque()
 
     @property
     def pid(self) -> int | None:
-        return self.process.pid
+        return self.child.pid
+
+    @property
+    def ended(self) -> bool:
+        return self.child.ended
+
+    @ended.setter
+    def ended(self, value: bool) -> None:
+        self.child.ended = value
 
     def request_cancel(self) -> None:
         if self.kill_at is None:
@@ -118,27 +76,13 @@ class _Job:
             self.kill_at = time.monotonic() + CANCEL_GRACE_S
 
     def messages(self) -> list[tuple[str, object]]:
-        """The messages waiting in the pipe; ``("eof", None)`` once the child has hung up."""
-        out: list[tuple[str, object]] = []
-        try:
-            while not self.ended and self.conn.poll():
-                out.append(self.conn.recv())
-        except (EOFError, OSError):
-            out.append(("eof", None))
-        return out
+        return self.child.messages()
 
     def kill(self) -> None:
-        if self.process.is_alive() and self.pid is not None:
-            kill_process_tree(self.pid)
-        self.ended = True
+        self.child.kill()
 
     def reap(self) -> bool:
-        """Release the process once it has exited; ``True`` when it is gone."""
-        if self.process.is_alive():
-            return False
-        self.conn.close()
-        self.process.join(0)
-        return True
+        return self.child.reap()
 
 
 class AnalysisWorker(QObject):

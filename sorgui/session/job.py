@@ -27,7 +27,6 @@ from __future__ import annotations
 import gc
 import importlib
 import os
-import signal
 import sys
 import threading
 import time
@@ -38,7 +37,7 @@ from multiprocessing.connection import Connection
 from typing import Any
 
 from sorgui.engine import Analysis, Cancelled, ParseError, SorguiError, analyze
-from sorgui.engine.singular import die_with_parent
+from sorgui.session.child import become_child
 from sorgui.session.formulas import (
     WARM_UP,
     WARM_UP_EXPRESSION,
@@ -313,11 +312,7 @@ def serve(conn: Connection, cancel: Any) -> None:
     process starts before it is needed (a warm spare), so waiting here is the normal case;
     the pipe closing without a request means it is not needed any more.
     """
-    if hasattr(os, "setpgrp"):
-        os.setpgrp()
-    die_with_parent(signal.SIGKILL)  # the window killed (even by kill -9): the worker goes too
-    if hasattr(os, "nice"):
-        os.nice(WORKER_NICENESS)
+    become_child(niceness=WORKER_NICENESS)  # the window killed (even by kill -9): the worker goes too
     warm_up(waited_for=conn.poll)
 
     try:

@@ -12,7 +12,7 @@ import pytest
 from sorgui.engine import Analysis, analyze
 from sorgui.engine.errors import TimeLimitReached
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.timelimit import UNDECIDED, time_limit, unfinished_analysis
+from sorgui.engine.timelimit import UNDECIDED, skeleton, time_limit, unfinished_analysis
 
 SLOW = (Path(__file__).resolve().parents[1] / "data" / "slow-singular.txt").read_text(encoding="utf-8")
 
@@ -42,9 +42,9 @@ def test_a_limit_met_in_python_keeps_what_finished() -> None:
 
 def test_nothing_finished_is_reported_undecided() -> None:
     f = parse_polynomial("x^2 + y^2 - z").polynomial
-    result = unfinished_analysis(f, text="x^2+y^2-z", method="symmetry", recognition=None, latest=None,
-                                 timings=(("parse", 0.01),), current="recognition", message="too slow",
-                                 recognition_only=False)
+    start = skeleton(f, text="x^2+y^2-z", method="symmetry")
+    result = unfinished_analysis(start, recognition=None, latest=None, timings=(("parse", 0.01),),
+                                 current="recognition", message="too slow", recognition_only=False)
     assert result.recognition.symmetry == UNDECIDED and not result.is_sor
     assert result.unfinished == ("recognition", "factors", "rationality", "parametrizations")
     assert result.rationality.status == "undecided: too slow"

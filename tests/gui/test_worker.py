@@ -17,7 +17,7 @@ import pytest
 from PySide6.QtCore import Qt
 
 from sorgui.examples import example_text
-from sorgui.gui.worker import descendants, kill_process_tree
+from sorgui.session.child import descendants, kill_process_tree
 
 linux_only = pytest.mark.skipif(not Path("/proc").is_dir(), reason="needs /proc")
 

@@ -1,0 +1,174 @@
+"""Child processes that can always be ended, whatever they are doing.
+
+A Python signal handler runs only between bytecodes, so neither a time limit (``SIGALRM``) nor
+a ``SIGTERM`` handler can stop work stuck inside one long C call (flint, sympy's compiled
+parts). Every analysis therefore runs in a :class:`ChildProcess` — for ``sorgui analyze``, for
+each line of ``--each-line`` and for the window alike — and its parent ends it from outside:
+
+* the child leads a process group of its own (so the terminal's Ctrl+C reaches only the
+  parent), dies with its parent (``PR_SET_PDEATHSIG``, even after ``kill -9``) and takes the
+  default action for ``SIGTERM`` and ``SIGHUP`` (:func:`become_child`);
+* it sends plain picklable messages through a pipe (:meth:`ChildProcess.messages`,
+  :meth:`ChildProcess.receive`);
+* :meth:`ChildProcess.kill` stops its group, then kills it and the process groups of all its
+  descendants (Singular runs in a session of its own) with ``SIGKILL``
+  (:func:`kill_process_tree`).
+
+Light to import (the standard library only), so that a process can be started before the
+engine is loaded.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import multiprocessing.context
+import os
+import signal
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+Message = tuple[str, Any]
+"""``(kind, payload)``: what a child sends; ``("eof", None)`` stands for a closed pipe."""
+
+ENDING = frozenset({signal.SIGTERM, signal.SIGHUP, signal.SIGINT})
+"""Blocked while a child is started, so that it never runs its parent's handlers of them."""
+
+
+def become_child(*, niceness: int = 0) -> None:
+    """What a child process does first: lead a process group, die with its parent, take the
+    default action for the ending signals (no handler of the parent's, none that a C call would
+    delay), and run ``niceness`` steps below its parent's priority."""
+    from sorgui.engine.lifetime import die_with_parent
+
+    if hasattr(os, "setpgrp"):
+        os.setpgrp()
+    die_with_parent(signal.SIGKILL)
+    for signum in ENDING:
+        signal.signal(signum, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, ENDING)
+    if niceness and hasattr(os, "nice"):
+        os.nice(niceness)
+
+
+class ChildProcess:
+    """A process running ``target(conn, *args)``, its end of a duplex pipe being ``conn``."""
+
+    def __init__(
+        self,
+        context: multiprocessing.context.BaseContext,
+        target: Callable[..., None],
+        args: tuple[Any, ...] = (),
+        name: str = "sorgui-analysis",
+    ) -> None:
+        self.conn, child_conn = context.Pipe(duplex=True)
+        self.process = context.Process(target=target, args=(child_conn, *args), name=name, daemon=True)
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING)
+        try:
+            self.process.start()
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+        child_conn.close()
+        self.ended = False
+
+    @property
+    def pid(self) -> int | None:
+        return self.process.pid
+
+    def is_alive(self) -> bool:
+        return self.process.is_alive()
+
+    def send(self, request: object) -> None:
+        self.conn.send(request)
+
+    def messages(self) -> list[Message]:
+        """The messages waiting in the pipe, without blocking; ``("eof", None)`` once the child
+        has hung up."""
+        out: list[Message] = []
+        try:
+            while not self.ended and self.conn.poll():
+                out.append(self.conn.recv())
+        except (EOFError, OSError):
+            out.append(("eof", None))
+        return out
+
+    def receive(self, timeout: float) -> Message | None:
+        """The next message, waiting at most ``timeout`` seconds (``None``: nothing came)."""
+        try:
+            if self.conn.poll(max(timeout, 0.0)):
+                return self.conn.recv()
+        except (EOFError, OSError):
+            return "eof", None
+        return None
+
+    def kill(self) -> None:
+        """End the child and everything it started, at once (:func:`kill_process_tree`)."""
+        if self.process.is_alive() and self.pid is not None:
+            kill_process_tree(self.pid)
+        self.ended = True
+
+    def reap(self) -> bool:
+        """Release the process once it has exited; ``True`` when it is gone."""
+        if self.process.is_alive():
+            return False
+        self.conn.close()
+        self.process.join(0)
+        return True
+
+    def close(self, wait: float = 1.0) -> None:
+        """Kill the child and release it, waiting at most ``wait`` seconds for the kernel."""
+        self.kill()
+        self.process.join(wait)
+        self.conn.close()
+
+    def exit_description(self) -> str:
+        """How the process ended, in words (``signal 9``, ``exit status 1``)."""
+        self.process.join(0.05)
+        code = self.process.exitcode
+        return f"signal {-code}" if code is not None and code < 0 else f"exit status {code}"
+
+
+def descendants(pid: int) -> list[tuple[int, int]]:
+    """``(pid, pgid)`` of every descendant of ``pid``, read from ``/proc`` (empty elsewhere)."""
+    parents: dict[int, list[tuple[int, int]]] = {}
+    proc = Path("/proc")
+    if not proc.is_dir():
+        return []
+    for entry in proc.iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            stat = (entry / "stat").read_text()
+        except OSError:
+            continue
+        fields = stat.rsplit(")", 1)[1].split()  # after "pid (comm)": state ppid pgrp ...
+        parents.setdefault(int(fields[1]), []).append((int(entry.name), int(fields[2])))
+    found, stack = [], [pid]
+    while stack:
+        for child in parents.get(stack.pop(), []):
+            found.append(child)
+            stack.append(child[0])
+    return found
+
+
+def kill_process_tree(pid: int) -> None:
+    """Kill the process ``pid``, its process group and the groups of all its descendants.
+
+    The group is stopped first, so that nothing new is started between listing and killing.
+    """
+    _signal_group(pid, signal.SIGSTOP)
+    groups = {pgid for _pid, pgid in descendants(pid)} | {pid}
+    groups.discard(os.getpgrp())  # a child that has not yet left our group: never kill ourselves
+    for group in groups:
+        _signal_group(group, signal.SIGKILL)
+    try:
+        os.kill(pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+
+
+def _signal_group(pgid: int, signum: int) -> None:
+    try:
+        os.killpg(pgid, signum)
+    except (ProcessLookupError, PermissionError):
+        pass

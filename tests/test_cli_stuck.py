@@ -1,0 +1,141 @@
+"""The time limit and the ending signals hold whatever the analysis is doing.
+
+A Python signal handler cannot interrupt one long C call, so sorgui runs each analysis in a
+child process that it kills. The most stuck an analysis can be is a process that runs nothing
+at all: each test here freezes sorgui's analysis process with ``SIGSTOP`` (neither Python nor
+C code runs in it any more) and checks that ``--timeout T`` still answers within ``T + 1`` s,
+with the stages it finished, and that ``SIGTERM``, ``SIGINT`` and ``SIGHUP`` end sorgui within
+a second, its analysis process and Singular with it. The last test does the same with the
+sphere envelope whose verification once sat in one flint composition for 20 minutes.
+"""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from tests.test_cli_signals import dead, descendants, launch, singular_processes, wait_for
+
+pytestmark = [pytest.mark.slow, pytest.mark.skipif(not Path("/proc").is_dir(), reason="reads /proc")]
+
+DATA = Path(__file__).resolve().parent / "data"
+SLOW = str(DATA / "slow-singular.txt")
+TORUS = "(x^2+y^2+z^2+21)^2-100(x^2+y^2)"
+ANALYZE = [sys.executable, "-m", "sorgui.cli", "analyze"]
+
+
+def analysis_processes(pid: int) -> list[int]:
+    """sorgui's analysis processes: its descendants that are Python, not Singular."""
+    singular = set(singular_processes(pid))
+    return [child for child in descendants(pid) if child not in singular]
+
+
+def freeze_analysis(proc: subprocess.Popen[str]) -> list[int]:
+    """Wait for sorgui's analysis process and stop it dead (``SIGSTOP``)."""
+    children = wait_for(lambda: analysis_processes(proc.pid), 60)
+    for child in children:
+        signal_quietly(child, signal.SIGSTOP)
+    return children
+
+
+def signal_quietly(pid: int, signum: int) -> None:
+    try:
+        import os
+
+        os.kill(pid, signum)
+    except ProcessLookupError:
+        pass
+
+
+@pytest.fixture(autouse=True)
+def _nothing_left_stopped() -> Iterator[None]:
+    yield
+    for pid in [int(p.name) for p in Path("/proc").iterdir() if p.name.isdigit()]:
+        try:
+            cmdline = Path(f"/proc/{pid}/cmdline").read_bytes()
+        except OSError:
+            continue
+        if b"sorgui.cli" in cmdline and b"analyze" in cmdline:
+            signal_quietly(pid, signal.SIGCONT)
+
+
+def test_the_time_limit_holds_when_the_analysis_is_frozen() -> None:
+    timeout = 4.0
+    started = time.monotonic()
+    proc = launch([*ANALYZE, "--json", "--timeout", str(timeout), TORUS])
+    children = freeze_analysis(proc)
+    out, err = proc.communicate(timeout=60)
+    elapsed = time.monotonic() - started
+    assert proc.returncode in (0, 1) and "Traceback" not in err, err
+    assert elapsed < timeout + 1.0, elapsed
+    wait_for(lambda: all(dead(pid) for pid in children), 5)
+    data = json.loads(out)
+    if proc.returncode == 0:  # the equation had been read: the stages done, the rest unfinished
+        assert data["unfinished"] and data["symmetry"] in ("undecided", "revolution")
+    else:  # frozen while still reading the equation
+        assert "did not finish within the time limit of 4 s" in data["error"]["message"]
+
+
+def test_the_time_limit_keeps_the_finished_stages() -> None:
+    """Frozen while Singular decides the rationality: the recognition is kept, the rest is unfinished."""
+    timeout = 8.0
+    started = time.monotonic()
+    proc = launch([*ANALYZE, "--json", "--timeout", str(timeout), "-f", SLOW])
+    singulars = wait_for(lambda: singular_processes(proc.pid), 60)
+    children = freeze_analysis(proc)
+    out, err = proc.communicate(timeout=60)
+    assert time.monotonic() - started < timeout + 1.0
+    assert proc.returncode == 0 and "Traceback" not in err, err
+    data = json.loads(out)
+    assert data["is_sor"] is True and "rationality" in data["unfinished"]
+    assert "recognition" in data["timings"] and "factors" in data["timings"]
+    assert data["rationality"]["status"].startswith("undecided: the analysis did not finish within")
+    wait_for(lambda: all(dead(pid) for pid in children + singulars), 5)
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT, signal.SIGHUP])
+def test_a_signal_ends_sorgui_within_a_second_when_the_analysis_is_frozen(signum: int) -> None:
+    proc = launch([*ANALYZE, "--timeout", "600", "-f", SLOW])
+    singulars = wait_for(lambda: singular_processes(proc.pid), 60)
+    children = freeze_analysis(proc)
+    sent = time.monotonic()
+    proc.send_signal(signum)
+    _out, err = proc.communicate(timeout=60)
+    assert time.monotonic() - sent < 1.0
+    assert proc.returncode == (130 if signum == signal.SIGINT else 128 + signum) and "Traceback" not in err
+    wait_for(lambda: all(dead(pid) for pid in children + singulars), 5)
+
+
+def test_each_line_answers_a_frozen_line_at_its_time_limit(tmp_path: Path) -> None:
+    lines = tmp_path / "lines.txt"
+    lines.write_text(f"{Path(SLOW).read_text(encoding='utf-8').strip()}\nx^2 + 2y^2 - z\n", encoding="utf-8")
+    started = time.monotonic()
+    proc = launch([*ANALYZE, "--each-line", "--timeout", "6", "-f", str(lines)])
+    wait_for(lambda: singular_processes(proc.pid), 60)
+    freeze_analysis(proc)
+    out, err = proc.communicate(timeout=60)
+    assert time.monotonic() - started < 6 + 1.0 + 5  # the second line after the first's limit
+    assert proc.returncode == 0 and "Traceback" not in err, err
+    rows = [json.loads(line) for line in out.splitlines()]
+    assert [row["line"] for row in rows] == [1, 2]
+    assert rows[0]["is_sor"] is True and "rationality" in rows[0]["unfinished"]
+    assert rows[1]["is_sor"] is False and not rows[1]["unfinished"]
+
+
+def test_a_long_c_call_is_ended_at_the_time_limit() -> None:
+    """The envelope of the spheres centred on ``(1, 2, -1) + t·(2, -1, 3)`` with radius ``1 + t²``."""
+    text = (DATA / "sphere-envelope.txt").read_text(encoding="utf-8")
+    started = time.monotonic()
+    proc = subprocess.run([*ANALYZE, "--json", "--timeout", "3", text], capture_output=True, text=True,
+                          timeout=60)
+    assert time.monotonic() - started < 3 + 1.0
+    assert proc.returncode == 0 and "Traceback" not in proc.stderr
+    data = json.loads(proc.stdout)
+    assert data["is_sor"] is True and data["axis"]["direction"] == ["2", "-1", "3"]
