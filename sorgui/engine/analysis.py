@@ -208,7 +208,7 @@ def analyze_polynomial(
 
         with clock.stage("approximate"):
             rounding, rounding_notes = rounding_of(f, text, tolerance)
-            near = approximate_symmetry(f, rounding, notes=rounding_notes)
+            near = approximate_symmetry(f, rounding, notes=rounding_notes, snap_exact=not recognition.is_sor)
         approximation = near.approximation
 
     canal_result: Canal | None = None

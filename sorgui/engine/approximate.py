@@ -37,6 +37,11 @@ from .symmetry import CYLINDER, EXTRUSION, PLANE, REVOLUTION, SOR_KINDS, SPHERE
 MAX_SPAN = 1e100
 """Coefficients whose sizes differ by more than this are not compared in floating point."""
 
+COARSEST = 0.1
+"""A rounding read off the printed digits coarser than this (relative) says nothing about the
+intended surface: decimals such as ``0.5`` or ``3.0`` (a gallery's exact numbers) are taken as
+exact, and nearness is only decided with ``--tolerance``."""
+
 GATE = 1e4
 """A kind is tried when its singular values are below ``GATE·τ`` (and 10⁻²): a cheap filter;
 the weighted residual decides."""
@@ -90,6 +95,12 @@ def approximate_symmetry(f: Poly, rounding: Rounding, *, snap_exact: bool = True
                 "nearness was not decided")
         tolerance = rounding.tolerance if math.isfinite(rounding.tolerance) else None
         return NearResult(Approximation(tolerance, rounding.source, False, None, None, None, (),
+                                        notes=(*notes, note)), None)
+    if rounding.source == "input" and rounding.tolerance > COARSEST:
+        note = (f"the input's decimals have at most {rounding.digits} significant digits, a rounding of "
+                f"{rounding.tolerance:.2g} (relative): too coarse to tell which surface was meant, so its numbers "
+                "are taken as exact; give --tolerance to ask whether it is near a surface of revolution")
+        return NearResult(Approximation(rounding.tolerance, rounding.source, False, None, None, None, (),
                                         notes=(*notes, note)), None)
     normalised = normalise(coefficients, rounding)
     sigma, vectors = killing_system(normalised)

@@ -38,7 +38,7 @@ from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
 from .errors import AnalysisError, SingularError
-from .polys import Poly, field_generators, is_rational_field, poly_ring, primitive, to_expr, total_degree
+from .polys import Poly, compose, field_generators, is_rational_field, poly_ring, primitive, to_expr, total_degree
 from .singular import (
     emit,
     minpoly_to_singular,
@@ -456,7 +456,7 @@ def parametrize(
             candidates, method = [conic], "conic"
         else:
             try:
-                candidates = _para_plane_curve(rational, timeout, cancel, known_genus_zero)
+                candidates = _sheared_candidates(rational, timeout, cancel, known_genus_zero)
             except SingularError:
                 conic = _conic(rational)
                 if conic is None:
@@ -637,9 +637,38 @@ def _para_plane_curve(
             para.append(R.from_dict(terms))
         if para[2]:
             candidates.append((_reduced(para[0], para[2]), _reduced(para[1], para[2])))
-    if not candidates:
-        raise AnalysisError("a parameterization has a zero denominator at every root of its field's minimal polynomial")
     return candidates
+
+
+SHEARS = ((0, 0), (1, 1), (-2, 3), (3, -2))
+"""The birational changes of coordinates ``(x, y) ↦ (x + k·y, y + m)`` tried in turn when
+paraPlaneCurve's answer for a curve is no parameterization of it (a zero denominator at every
+root of its field, or a map off the curve): another position of the same curve gives it other
+adjoint curves and another rational point."""
+
+
+def _sheared_candidates(
+    F: Poly, timeout: float, cancel: threading.Event | None, checked: bool
+) -> list[tuple[_Fraction, _Fraction]]:
+    """Candidate parameterizations of ``F ∈ QQ[x, y]`` from paraPlaneCurve, of ``F`` itself first
+    and then of its images under :data:`SHEARS`, mapped back; raises :class:`AnalysisError`
+    when none of them gives one."""
+    x, y = F.ring.gens
+    for k, m in SHEARS:
+        G = compose(F, [x + k * y, y + m]) if (k, m) != (0, 0) else F
+        candidates = [_unshear(c, k, m) for c in _para_plane_curve(G, timeout, cancel, checked)]
+        good = [c for c in candidates if _vanishes(F, *c[0], *c[1])]
+        if good:
+            return good
+        checked = True  # the first call has checked irreducibility and genus
+    raise AnalysisError("paraPlaneCurve gave no parameterization of the curve, in any of "
+                        f"{len(SHEARS)} positions (a zero denominator, or a map off the curve)")
+
+
+def _unshear(candidate: tuple[_Fraction, _Fraction], k: int, m: int) -> tuple[_Fraction, _Fraction]:
+    """``(X + k·Y, Y + m)`` for a parameterization ``(X, Y)`` of ``F(x + k·y, y + m)``."""
+    (p1, q1), (p2, q2) = candidate
+    return _reduced(p1 * q2 + p2 * q1 * k, q1 * q2), _reduced(p2 + q2 * m, q2)
 
 
 def _quadratic_roots(mu: sympy.Expr, a: sympy.Symbol) -> tuple[Domain, list[object]]:

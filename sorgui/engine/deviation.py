@@ -97,13 +97,13 @@ def distance_to_zero_set(array: np.ndarray, points: np.ndarray) -> np.ndarray:
 def max_deviation(first: np.ndarray, second: np.ndarray, center: np.ndarray,
                   axis: np.ndarray | None) -> float | None:
     """The largest distance between the zero sets of two polynomials (dense arrays in the same
-    coordinates) inside the view ball of ``second``; ``None`` when neither has real points there."""
+    coordinates) inside the view ball of ``second``; ``None`` when neither has real points there
+    that Newton's steps move onto the other (every sample next to a singular point, say)."""
     ball, radius = view_ball(second, center, axis)
-    distances = []
+    distances = [np.zeros(0)]
     for source, target in ((second, first), (first, second)):
         points = sample_zero_set(source, ball, radius)
         if len(points):
             distances.append(distance_to_zero_set(target, points))
-    if not distances:
-        return None
-    return float(np.concatenate(distances).max())
+    moved = np.concatenate(distances)
+    return float(moved.max()) if moved.size else None

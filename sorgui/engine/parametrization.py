@@ -17,8 +17,10 @@ Every parameterization is substituted back into ``f`` and must reduce to 0 exact
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
+import mpmath
 import sympy
 from flint import fmpq_mpoly
 from sympy.polys.domains import QQ
@@ -44,6 +46,10 @@ class Section:
     rho_u: sympy.Expr
     rho_w: sympy.Expr
     named: tuple[tuple[sympy.Symbol, sympy.Expr], ...] = ()
+
+
+Quadric = tuple[sympy.Expr, sympy.Expr, sympy.Expr]
+"""``(x, Y, Z)(s, t)``: a parameterization of the quadric ``Y² + n·Z² = h(x)``."""
 
 
 @dataclass(frozen=True)
@@ -176,7 +182,7 @@ def _times(A: sympy.Expr, B: sympy.Expr, C: sympy.Expr, D: sympy.Expr, n: sympy.
     return A * C - n * B * D, A * D + B * C
 
 
-def quadric_section(h: sympy.Expr, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None:
+def quadric_section(h: sympy.Expr, n: sympy.Expr) -> Quadric | None:
     """A proper real parameterization ``(x, Y, Z)(s, t)`` of ``Y² + n·Z² = h(x)`` when
     ``h = N·u²·q`` with ``deg q ≤ 2`` and ``q`` positive somewhere (docs/math.md §6): the quadric
     ``y'² + n·z'² = q(x)`` is projected stereographically from a real point (a real root of
@@ -281,54 +287,134 @@ def vanishes_on(f: Poly, surface: SurfaceMap) -> bool:
     return sympy.Poly(ring.to_expr(total), *ring.symbols, extension=True).is_zero
 
 
-def vanishes_in_frame(profile: ProfileCurve, surface: SurfaceMap) -> bool:
-    """Whether the map, written in the axis frame, satisfies ``P²(s, y² + n·z²) = 0`` exactly.
+def section_vanishes(profile: ProfileCurve, section: Section) -> bool:
+    """The exact check of a swept section: ``P²(φ, ρ₁² + n·ρ₂²) ≡ 0`` in ``t`` alone.
 
-    ``f(c + s·a + y·u + z·w) = P²(s, y² + n·z²)`` is itself an exact identity, checked when the
-    profile was computed (``profile.verified``), so this is the substitution into ``f`` with the
-    frame change done first: far cheaper for high degrees than composing ``f`` itself.
-    """
-    if not profile.verified:
+    ``f(c + s·a + y·u + z·w) = P²(s, y² + n·z²)`` is an exact identity (``profile.verified``)
+    and the rotation of :func:`sweep` keeps ``y² + n·z²`` (``(1 − nσ²)² + n(2σ)² = (1 + nσ²)²``),
+    so ``f`` vanishes on the whole map exactly when ``P²`` vanishes on the section: one
+    univariate identity instead of ``f`` composed with a map in two parameters."""
+    n = _frame_norm(profile)
+    ring, (phi, rho_u, rho_w) = _univariate(profile, (section.phi, section.rho_u, section.rho_w), section.named)
+    (nu, du), (nw, dw) = rho_u, rho_w
+    radius = (ring.reduce(nu**2 * dw**2 + ring.from_expr(n) * nw**2 * du**2), ring.reduce(du**2 * dw**2))
+    return _square_vanishes(profile, ring, phi, radius)
+
+
+def quadric_vanishes(profile: ProfileCurve, phi: sympy.Expr, radius: sympy.Expr, quadric: Quadric,
+                     h: sympy.Expr) -> bool:
+    """The exact check of the stereographic map through ``T``: ``P²(φ, d²h/q̃²) ≡ 0`` in ``t``
+    (``T`` maps onto ``X``), and ``Y² + n·Z² ≡ h(x)`` on the quadric's parameterization, which
+    makes the map's radius ``(d/q̃)²·(Y² + n·Z²)`` that of ``T``. Small identities instead of
+    ``f`` composed with the map."""
+    n = _frame_norm(profile)
+    ring, (phi_fraction, radius_fraction) = _univariate(profile, (phi, radius), ())
+    if not _square_vanishes(profile, ring, phi_fraction, radius_fraction):
         return False
-    ring = surface.ring
+    x, Y, Z = quadric
+    flat = RadicalRing(PARAMETERS, radicals_of([x, Y, Z, h, n]))
+    num, _den = flat.fraction(sympy.together(Y**2 + n * Z**2 - h.subs(T, x)))
+    return num.is_zero()
+
+
+def _frame_norm(profile: ProfileCurve) -> sympy.Expr:
     K = profile.square.ring.domain
-    ring = ring.extended(radicals_of([sympy.Add(*field_generators(K))]))
-    kept = ring.context.gens()[: len(surface.ring.variables) + len(surface.ring.radicals)]
-    lift = [p.compose(*kept, ctx=ring.context) for p in (surface.axial, *surface.radial, surface.denominator)]
-    axial, along_u, along_w, den = lift
-    n = ring.from_expr(to_expr(K, dot(profile.frame.direction, profile.frame.direction)))
-    radius = ring.reduce(along_u**2 + n * along_w**2)
-    top = max(i + 2 * j for i, j in profile.square.itermonoms())
-    axial_powers, radius_powers, den_powers = (_powers(ring, p, top) for p in (axial, radius, den))
+    return to_expr(K, dot(profile.frame.direction, profile.frame.direction))
+
+
+def _univariate(
+    profile: ProfileCurve, expressions: tuple[sympy.Expr, ...], named: tuple[tuple[sympy.Symbol, sympy.Expr], ...],
+) -> tuple[RadicalRing, list[tuple[fmpq_mpoly, fmpq_mpoly]]]:
+    """A radical ring in ``t`` holding ``expressions``, ``n`` and ``K``, and the expressions in it
+    as (numerator, denominator)."""
+    K = profile.square.ring.domain
+    ring = RadicalRing(("t",), radicals_of([*expressions, _frame_norm(profile), *field_generators(K)], dict(named)))
+    return ring, [ring.fraction(e) for e in expressions]
+
+
+def _square_vanishes(
+    profile: ProfileCurve, ring: RadicalRing, phi: tuple[fmpq_mpoly, fmpq_mpoly], radius: tuple[fmpq_mpoly, fmpq_mpoly],
+) -> bool:
+    """``P²(φ, R) ≡ 0`` for the fractions ``φ`` and ``R`` of ``ring``, denominators cleared."""
+    K = profile.square.ring.domain
+    (nphi, dphi), (nrad, drad) = phi, radius
+    top_s = max(i for i, _ in profile.square.itermonoms())
+    top_r = max(j for _, j in profile.square.itermonoms())
     total = ring.context.from_dict({})
     for (i, j), c in profile.square.items():
-        product = ring.reduce(axial_powers[i] * radius_powers[j])
-        total += ring.from_expr(to_expr(K, c)) * product * den_powers[top - i - 2 * j]
+        term = ring.from_expr(to_expr(K, c)) * nphi**i * dphi ** (top_s - i) * nrad**j * drad ** (top_r - j)
+        total += ring.reduce(term)
     total = ring.reduce(total)
     if total.is_zero() or len(ring.radicals) < 2:
         return total.is_zero()
     return sympy.Poly(ring.to_expr(total), *ring.symbols, extension=True).is_zero
 
 
-def _powers(ring: RadicalRing, p: fmpq_mpoly, top: int) -> list[fmpq_mpoly]:
-    """``p⁰, p¹, …, p^top`` reduced modulo the radicals' relations (each power computed once)."""
-    out = [ring.context.from_dict({(0,) * ring.context.nvars(): 1})]
-    for _ in range(top):
-        out.append(ring.reduce(out[-1] * p))
+SCREEN_POINTS = ((0.3718, -1.2261), (1.9093, 0.5477), (-0.6632, 2.3149))
+"""Parameter values ``(s, t)`` of the numerical screen (:func:`numerically_vanishes`)."""
+
+SCREEN_TOLERANCE = 1e-7
+"""``|f(X(s, t))|`` relative to the sum of the absolute values of its terms, above which the
+screen rejects a map (the rounding of a true zero stays far below it)."""
+
+
+def numerically_vanishes(f: Poly, surface: SurfaceMap) -> bool:
+    """A screen before the exact check: ``f`` at the map's points for a few parameter values, in
+    complex floating point of 30 digits (mpmath: any exponent, so huge coefficients are no
+    trouble). ``False`` only when ``f`` is clearly not zero there (a wrong map); ``True`` proves
+    nothing: the exact check follows."""
+    with mpmath.workdps(30):
+        values = [mpmath.mpmathify(complex(sympy.N(r.value, 30))) for r in surface.ring.radicals]
+        K = f.ring.domain
+        coefficients = [(m, mpmath.mpmathify(sympy.N(to_expr(K, c), 30))) for m, c in f.items()]
+        for s, t in SCREEN_POINTS:
+            point = (mpmath.mpf(s), mpmath.mpf(t), *values)
+            den = _evaluate(surface.denominator, point)
+            if abs(den) < mpmath.mpf(10) ** -9 * _size(surface.denominator, point):
+                continue  # near a pole of the map: the other points tell
+            X = [_evaluate(n, point) / den for n in surface.numerators]
+            terms = [c * X[0] ** m[0] * X[1] ** m[1] * X[2] ** m[2] for m, c in coefficients]
+            if abs(mpmath.fsum(terms)) > SCREEN_TOLERANCE * mpmath.fsum(abs(term) for term in terms):
+                return False
+    return True
+
+
+def _evaluate(p: fmpq_mpoly, point: tuple[object, ...]) -> object:
+    """``p`` at ``point`` (its variables, then its radicals), in mpmath's current precision."""
+    return mpmath.fsum(_terms(p, point))
+
+
+def _size(p: fmpq_mpoly, point: tuple[object, ...]) -> object:
+    """The sum of the absolute values of the terms of ``p`` at ``point``."""
+    return mpmath.fsum(abs(term) for term in _terms(p, point))
+
+
+def _terms(p: fmpq_mpoly, point: tuple[object, ...]) -> list[object]:
+    out = []
+    for monom, c in p.to_dict().items():
+        term = mpmath.mpf(int(c.p)) / int(c.q)
+        for value, e in zip(point, monom):
+            if e:
+                term *= value ** int(e)
+        out.append(term)
     return out
 
 
-LITERAL_DEGREE = 6
-"""Up to this degree of ``f`` the parameterization is substituted into ``f`` itself; above it,
-into ``f`` written in the axis frame (:func:`vanishes_in_frame`), which is as exact and cheaper."""
-
-
 def make_parametrization(
-    f: Poly, profile: ProfileCurve, surface: SurfaceMap, *, method: str, proper: bool | None
+    f: Poly, profile: ProfileCurve, surface: SurfaceMap, identity: Callable[[], bool], *, method: str,
+    proper: bool | None,
 ) -> Parametrization | None:
-    """A verified :class:`Parametrization`, or ``None`` when the substitution does not vanish."""
-    literal = max(sum(m) for m in f.itermonoms()) <= LITERAL_DEGREE
-    if not (vanishes_on(f, surface) if literal else vanishes_in_frame(profile, surface)):
+    """A verified :class:`Parametrization`, or ``None`` when the substitution does not vanish.
+
+    Verifying must not cost more than finding the map: a numerical screen of ``f`` on the map
+    first (:func:`numerically_vanishes`), then the exact check in the axis frame, ``identity``
+    (:func:`section_vanishes` or :func:`quadric_vanishes`: small identities that the verified
+    profile identity makes equivalent to ``f`` vanishing on the map), and the literal
+    substitution into ``f`` (:func:`vanishes_on`) only when that identity was not verified."""
+    if not numerically_vanishes(f, surface):
+        return None
+    in_frame = profile.verified
+    if not (identity() if in_frame else vanishes_on(f, surface)):
         return None
     return Parametrization(
         coordinates=tuple(str(c) for c in surface.coordinates()),  # type: ignore[arg-type]
@@ -338,5 +424,9 @@ def make_parametrization(
         proper=proper,
         method=method,
         verified=True,
-        verification="substituted into f" if literal else "substituted into f in the axis frame",
+        verification=IN_FRAME if in_frame else "substituted into f",
     )
+
+
+IN_FRAME = "substituted into f in the axis frame"
+"""The verification of a map checked through the profile identity (docs/math.md §6)."""

@@ -74,7 +74,7 @@ class RadicalRing:
     def field(self) -> str:
         """``QQ`` or ``QQ(sqrt(3), sqrt(-14))``."""
         cores = [sympy.sqrt(r.square).as_coeff_Mul()[1] for r in self.radicals]
-        names = [f"sqrt({sympy.expand(core**2)})" for core in cores]
+        names = list(dict.fromkeys(f"sqrt({sympy.expand(core**2)})" for core in cores))  # √-n may be i again
         return "QQ(" + ", ".join(names) + ")" if names else "QQ"
 
     def reduce(self, p: fmpq_mpoly) -> fmpq_mpoly:

@@ -35,6 +35,8 @@ from .parametrization import (
     make_parametrization,
     norm_decomposition,
     quadric_section,
+    quadric_vanishes,
+    section_vanishes,
     sweep,
     tubular_section,
 )
@@ -45,7 +47,10 @@ from .report import Parametrization, Rationality
 
 UNSUPPORTED = (BasePolynomialError, NotImplementedError)
 """What sympy raises for coefficient fields it cannot handle; a parameterization is then left
-out with a note, and the rest of the analysis stands."""
+out with a note (:data:`UNSUPPORTED_NOTE`), and the rest of the analysis stands."""
+
+UNSUPPORTED_NOTE = ("not computed: it needs exact arithmetic over a field that sorgui cannot handle "
+                    "(nested square roots, or roots that are not written in radicals)")
 
 ALPHA = sympy.Symbol("alpha")
 """Stands for ``√-n`` (``n = |a|²``) in the complex parameterization through ``T``."""
@@ -96,7 +101,11 @@ def _univariate(expr: sympy.Expr, generators: tuple[sympy.Expr, ...]) -> Poly:
     radicands = numberfields.real_radicands(generators)
     if radicands is not None:
         return numberfields.from_expr(expr, poly_ring(("t",), number_field(radicands)))
-    return poly_ring(("t",), QQ.algebraic_field(*generators)).from_expr(expr)
+    K = QQ.algebraic_field(*generators)
+    # Coefficient by coefficient: sympy's ring would convert the factors of ``I*sqrt(5)`` one by
+    # one, and ``I`` alone is not in ``QQ(sqrt(-5))``.
+    terms = sympy.Poly(sympy.expand(expr), T, domain="EX").terms()
+    return poly_ring(("t",), K).from_dict({monom: K.from_sympy(c.as_expr()) for monom, c in terms})
 
 
 def has_real_surface(h: sympy.Expr, real_roots: int) -> bool:
@@ -218,19 +227,19 @@ def parametrizations(
         try:
             section = _profile_section(profile, rationality, timeout=timeout, cancel=cancel)
             proper = False if not rationality.profile_reducible else None
-            par = make_parametrization(f, profile, sweep(section, frame, K), method="rotated profile", proper=proper)
+            par = _swept(f, profile, section, method="rotated profile", proper=proper)
             if par is not None:
                 found.append(par)
         except (AnalysisError, SingularError) as exc:
             notes.append(f"rotated profile: {exc.message}")
-        except UNSUPPORTED as exc:
-            notes.append(f"rotated profile: not computed ({type(exc).__name__}: {exc})")
+        except UNSUPPORTED:
+            notes.append(f"rotated profile: {UNSUPPORTED_NOTE}")
     if tube is not None:
         n = to_expr(K, dot(frame.direction, frame.direction))
         try:
             par, note = _tubular_parametrization(f, profile, tube, n, K, rationality)
-        except UNSUPPORTED as exc:
-            par, note = None, f"parameterization through T: not computed ({type(exc).__name__}: {exc})"
+        except UNSUPPORTED:
+            par, note = None, f"parameterization through T: {UNSUPPORTED_NOTE}"
         found += [par] if par is not None else []
         notes += [note] if note else []
     return tuple(found), tuple(notes)
@@ -246,19 +255,22 @@ def _tubular_parametrization(
     real = norm_decomposition(tube.h, n)
     if real is not None:
         section = tubular_section(tube.phi, tube.d, tube.q, *real)
-        return make_parametrization(f, profile, sweep(section, frame, K), method="via tubular surface (real)",
-                                    proper=True), ""
+        return _swept(f, profile, section, method="via tubular surface (real)", proper=True), ""
     quadric = quadric_section(tube.h, n)
     if quadric is not None:
         x, Y, Z = quadric
         scale = (tube.d / tube.q).subs(T, x)
         surface = frame_map(tube.phi.subs(T, x), scale * Y, scale * Z, frame, K)
-        return make_parametrization(f, profile, surface, method="via tubular surface (real, stereographic)",
+        radius = tube.d**2 * tube.h / tube.q**2
+
+        def on_tube() -> bool:
+            return quadric_vanishes(profile, tube.phi, radius, quadric, tube.h)
+
+        return make_parametrization(f, profile, surface, on_tube, method="via tubular surface (real, stereographic)",
                                     proper=True), ""
     A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * ALPHA)
     section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
-    complex_par = make_parametrization(f, profile, sweep(section, frame, K), method="via tubular surface (complex)",
-                                       proper=True)
+    complex_par = _swept(f, profile, section, method="via tubular surface (complex)", proper=True)
     if not rationality.unirational:
         note = ""
     elif (rationality.real_roots_of_h or 0) > 2:
@@ -268,6 +280,13 @@ def _tubular_parametrization(
         note = ("no real parameterization through T was found: h = N·u²·q with q of degree > 2, or h "
                 "has irrational coefficients; sorgui gives the complex parameterization only")
     return complex_par, note
+
+
+def _swept(f: Poly, profile: ProfileCurve, section: Section, *, method: str, proper: bool | None) -> Parametrization | None:
+    """The verified parameterization sweeping ``section`` about the axis (docs/math.md §6)."""
+    surface = sweep(section, profile.frame, f.ring.domain)
+    return make_parametrization(f, profile, surface, lambda: section_vanishes(profile, section), method=method,
+                                proper=proper)
 
 
 def _profile_section(
@@ -292,15 +311,17 @@ def _real_component(p: Poly, *, timeout: float, cancel: threading.Event | None) 
             candidates = [fac.factor.subs(curves.ALGEBRAIC, root) for root in _real_roots(fac.minpoly)]
         for expr in candidates:
             expr = sympy.expand(expr)
-            numbers = sorted({a for a in expr.atoms(sympy.Pow) if a.exp == sympy.Rational(1, 2)}, key=str)
-            if expr.has(sympy.CRootOf):
-                continue  # not in radicals: no field sorgui can write it over
+            roots = {a for a in expr.atoms(sympy.Pow) if not a.exp.is_Integer}
+            numbers = sorted(roots, key=str)
+            if expr.has(sympy.CRootOf) or not all(a.exp == sympy.Rational(1, 2) and a.base.is_Rational for a in roots):
+                continue  # not in square roots of rationals: no field sorgui can write it over
             K = QQ.algebraic_field(*numbers) if numbers else QQ
             R = poly_ring(("s", "r"), K)
             return R.from_expr(expr.subs({s: R.symbols[0], r: R.symbols[1]})) if numbers else R(
                 sympy.Poly(expr, s, r).as_expr()
             )
-    raise AnalysisError("the profile has no component over a real field written in square roots")
+    raise AnalysisError("not computed: no component of the profile is defined over a real field of square "
+                        "roots of rational numbers (its components need nested or higher roots)")
 
 
 def _real_roots(minpoly: sympy.Expr) -> list[sympy.Expr]:

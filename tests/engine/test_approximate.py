@@ -313,3 +313,28 @@ def test_quadratic_directions_of_cad_turns(direction: tuple[float, ...], d: int)
 @pytest.mark.parametrize("direction", [(0.6, 0.8, 0.0), (0.0, 0.0, 1.0), (0.123456789, 0.456789123, 0.881097)])
 def test_rational_or_generic_directions_have_no_quadratic_one(direction: tuple[float, ...]) -> None:
     assert quadratic_direction(np.array(direction), 1e-12) is None
+
+
+KUMMER_AS_SURFER_PRINTS_IT = (
+    "(x^2+y^2+z^2-(0.5+2*(0.5))^2)^2-(3.0*((0.5+2*(0.5))^2)-1.0)/(3.0-((0.5+2*(0.5))^2))"
+    "*(1-z-sqrt(2)*x)*(1-z+sqrt(2)*x)*(1+z+sqrt(2)*y)*(1+z-sqrt(2)*y)"
+)
+"""Kummer's quartic from the SURFER gallery: exact numbers written as decimals, with ``sqrt(2)``."""
+
+
+def test_a_gallery_surface_with_decimals_and_square_roots() -> None:
+    """Its decimals (``0.5``, ``3.0``) carry a rounding of more than 100 %: they are taken as
+    exact, and the analysis says why it does not ask about nearness (it once ended in an
+    internal error while measuring the distance to a nearest surface)."""
+    result = analyze(KUMMER_AS_SURFER_PRINTS_IT)
+    assert not result.is_sor and result.recognition.degree == 4
+    approximation = result.approximate
+    assert approximation is not None and not approximation.near_sor and approximation.nearest is None
+    assert any("too coarse to tell which surface was meant" in note for note in approximation.notes)
+    assert result.canal is not None and result.canal.is_canal is False
+
+
+def test_exact_input_printed_with_decimals_is_its_own_nearest_surface() -> None:
+    """``x² + y² − 0.0015·z`` is exactly a paraboloid of revolution: no other surface is snapped to."""
+    result = analyze("x^2+y^2-1.5e-3*z")
+    assert result.is_sor and result.approximate is not None and result.approximate.nearest is None

@@ -420,3 +420,28 @@ def test_a_reducible_minimal_polynomial_gives_both_rational_roots() -> None:
     assert D == QQ and sorted(roots) == [QQ(-1), QQ(1)]
     D, roots = curves._quadratic_roots(2 * a**2 - 4, a)
     assert {D.to_sympy(r) for r in roots} == {sympy.sqrt(2), -sympy.sqrt(2)}
+
+
+def test_a_sheared_position_parameterizes_what_paraplanecurve_gives_no_map_for(monkeypatch: pytest.MonkeyPatch) -> None:
+    """When paraPlaneCurve's answer is no parameterization of the curve itself (a zero denominator
+    at every root of its field), the curve is moved by a shear (x, y) ↦ (x + k·y, y + m), which
+    is birational, parameterized there, and the map brought back and verified."""
+    original = curves._para_plane_curve
+    calls: list[Poly] = []
+
+    def fails_on_the_curve_itself(F: Poly, timeout: float, cancel: object, checked: bool = False) -> list:
+        calls.append(F)
+        return [] if len(calls) == 1 else original(F, timeout, cancel, checked)
+
+    monkeypatch.setattr(curves, "_para_plane_curve", fails_on_the_curve_itself)
+    F = x**3 + y**3 - 3 * x * y  # the folium of Descartes, linear in neither variable
+    par = parametrize(F)
+    assert len(calls) == 2 and calls[1] != F
+    assert is_on_curve(F, par.x, par.y, par.parameter, par.generators)
+    assert is_proper(F, par.x, par.y, par.parameter, par.generators)
+
+
+def test_no_position_gives_a_map_says_so(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(curves, "_para_plane_curve", lambda *_args: [])
+    with pytest.raises(AnalysisError, match="paraPlaneCurve gave no parameterization of the curve"):
+        parametrize(x**3 + y**3 - 3 * x * y)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import random
 
 import pytest
@@ -164,22 +165,32 @@ def test_high_degree_parametrization_is_verified_in_the_axis_frame() -> None:
     assert {p.verification for p in result.parametrizations} == {"substituted into f in the axis frame"}
 
 
-@pytest.mark.parametrize("degree_limit", [0, 60])
-def test_a_wrong_parametrization_is_never_reported(monkeypatch, degree_limit: int) -> None:
-    """Both checks (into f, and into f in the axis frame) accept a section on the surface and
-    reject one that is off it."""
+@pytest.mark.parametrize("in_frame", [True, False])
+def test_a_wrong_parametrization_is_never_reported(monkeypatch, in_frame: bool) -> None:
+    """The numerical screen and both exact checks (into f in the axis frame through the section,
+    and into f itself) accept a section on the surface and reject one that is off it."""
     from sorgui.engine import parametrization as pm
     from sorgui.engine.recognition import recognize
 
-    monkeypatch.setattr(pm, "LITERAL_DEGREE", degree_limit)
     f = on_x_axis({(0, 1): 1, (2, 0): -1, (0, 0): -1})  # y² + z² = x² + 1
     _, _, profile = recognize(f)
     zero = sympy.Integer(0)
     good = pm.Section(phi=(t**2 - 1) / (2 * t), rho_u=(t**2 + 1) / (2 * t), rho_w=zero)
     wrong = pm.Section(phi=(t**2 - 1) / (2 * t), rho_u=(t**2 + 2) / (2 * t), rho_w=zero)
-    found = pm.make_parametrization(f, profile, pm.sweep(good, profile.frame, QQ), method="test", proper=None)
-    assert found is not None and found.verified and found.real
-    assert pm.make_parametrization(f, profile, pm.sweep(wrong, profile.frame, QQ), method="test", proper=None) is None
+    good_map, wrong_map = (pm.sweep(section, profile.frame, QQ) for section in (good, wrong))
+    assert pm.numerically_vanishes(f, good_map) and not pm.numerically_vanishes(f, wrong_map)
+    assert pm.section_vanishes(profile, good) and not pm.section_vanishes(profile, wrong)
+    assert pm.vanishes_on(f, good_map) and not pm.vanishes_on(f, wrong_map)
+    monkeypatch.setattr(pm, "numerically_vanishes", lambda *_: True)  # the exact check alone
+    if not in_frame:  # make_parametrization substitutes into f itself
+        profile = dataclasses.replace(profile, verified=False)
+    for section, surface, expected in ((good, good_map, True), (wrong, wrong_map, False)):
+        found = pm.make_parametrization(f, profile, surface, lambda s=section: pm.section_vanishes(profile, s),
+                                        method="test", proper=None)
+        assert (found is not None) == expected
+        if found is not None:
+            assert found.verified and found.real
+            assert found.verification == ("substituted into f in the axis frame" if in_frame else "substituted into f")
 
 
 @pytest.mark.parametrize(("equation", "row", "field"), [
@@ -232,3 +243,30 @@ def test_real_parametrization_over_an_algebraic_field_of_definition() -> None:
     assert result.field == "QQ(sqrt(2))" and result.rationality.table_row == 3
     proper_real = [p for p in result.parametrizations if p.real and p.proper]
     assert proper_real and all(p.verified for p in proper_real)
+
+
+def test_the_paraplanecurve_sextic_with_its_roles_swapped_is_parameterized() -> None:
+    """``P²(s, w) = f2(w, s, 1)`` of paraPlaneCurve's example: Singular parameterizes it over
+    ``QQ(sqrt(-5))``, whose elements sympy prints with ``I`` and ``sqrt(5)`` apart (once an internal
+    error); X_C is rational and gets its complex parameterization, verified."""
+    coefficients = {
+        (6, 0): 1, (4, 2): 3, (2, 4): 3, (0, 6): 1, (4, 0): -4, (3, 1): -34, (2, 2): -7, (1, 3): 12,
+        (0, 4): 6, (2, 0): 36, (1, 1): 36, (0, 2): 9,
+    }
+    swapped = {(j, i): c for (i, j), c in coefficients.items()}
+    result = analyze_polynomial(revolve(swapped, rational_vector((0, 0, 0)), rational_vector((1, 0, 0)),
+                                        axis_distance=True))
+    rationality = result.rationality
+    assert rationality.table_row == 4 and rationality.complex_rational and rationality.real_rational is False
+    assert "QQ(sqrt(-5))" in " ".join(rationality.notes)
+    (par,) = result.parametrizations
+    assert par.verified and not par.real and par.method == "via tubular surface (complex)"
+    assert par.field.count("sqrt(-1)") <= 1
+
+
+def test_a_profile_in_nested_roots_is_explained_in_words() -> None:
+    """Two coaxial cylinders joined by a potential blend: the profile's components are lines
+    ``r = √((5 ± √13)/2)``, in nested roots, which no field of sorgui's holds."""
+    result = analyze("(x^2+y^2-1)*(x^2+y^2-4)-1")
+    notes = " ".join(result.rationality.notes)
+    assert "nested or higher roots" in notes and "Error" not in notes and "_rho" not in notes
