@@ -1,6 +1,6 @@
 """The whole analysis of one pasted equation, stage by stage, with timings and cancellation.
 
-Stages: parse → recognition (symmetry, axis, profile) → factors → real locus (what the real
+Stages: engine (loading sympy, when a process has not yet) → parse → recognition (symmetry, axis, profile) → factors → real locus (what the real
 surface of a surface of revolution is, docs/math.md §3.4) → approximate (rounded input
 or a given tolerance: the nearest surface of revolution, docs/math.md §8) → rationality and
 parameterizations (docs/math.md §5–§6; only for a surface of revolution with a unique axis) →
@@ -39,7 +39,7 @@ ProgressCallback = Callable[[str], None]
 PartialCallback = Callable[[Analysis], None]
 DoneCallback = Callable[[str, float], None]
 
-STAGES = ("parse", "recognition", "factors", "real locus", "approximate", "rationality", "parametrizations", "canal",
+STAGES = ("engine", "parse", "recognition", "factors", "real locus", "approximate", "rationality", "parametrizations", "canal",
           "nearest")
 
 NEAREST_SINGULAR_TIMEOUT = 10.0
@@ -142,6 +142,8 @@ def analyze(
         if quick is not None:
             clock.publish(quick)
             return quick
+    with clock.stage("engine"):
+        load_engine()
     with clock.stage("parse"):
         f = parse_polynomial(text).polynomial
     begun = skeleton(f, text=text, method=method)
@@ -164,6 +166,12 @@ def analyze(
             begun, recognition=clock.recognition, latest=clock.latest, timings=tuple(clock.timings),
             current=clock.current, message=exc.message, recognition_only=recognition_only,
         )
+
+
+def load_engine() -> None:
+    """Import sympy and the engine's sympy-based modules: the stage ``engine``, so that their
+    import (a few tenths of a second in a new process) is not charged to reading the equation."""
+    from . import polys, recognition  # noqa: F401 - imported for their side effect of loading
 
 
 def analyze_polynomial(

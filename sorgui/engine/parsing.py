@@ -98,6 +98,10 @@ def parse_polynomial(text: str) -> ParsedPolynomial:
     """
     from .polys import XYZ, from_flint, number_field, poly_ring
 
+    plain = expanded_polynomial(text)
+    if plain is not None:
+        ring = poly_ring(XYZ, number_field(()))
+        return ParsedPolynomial(text, from_flint(plain, ring), ring.domain, ())
     tree, evaluator, saw_variable = _checked(text)
     radicands = tuple(sorted(evaluator.radicands))
     if not radicands:
@@ -118,10 +122,55 @@ def parse_rational(text: str) -> fmpq_mpoly | None:
     """``f ∈ QQ[x, y, z]`` as a flint polynomial (variables ``x, y, z``), without sympy; ``None``
     when the text has square roots (:func:`parse_polynomial` then gives its field). Raises
     :class:`ParseError` as :func:`parse_polynomial` does."""
+    plain = expanded_polynomial(text)
+    if plain is not None:
+        return plain
     tree, evaluator, saw_variable = _checked(text)
     if evaluator.radicands:
         return None
     return _evaluate(text, evaluator, tree, _FlintRationals(), saw_variable)
+
+
+_PLAIN_TERM = re.compile(
+    r"\s*(?P<sign>[-+])?\s*(?:(?P<num>[0-9]+)(?:\s*/\s*(?P<den>[0-9]+))?)?"
+    r"(?P<vars>(?:\s*\*?\s*[xyz](?:\s*(?:\*\*|\^)\s*[0-9]{1,6})?)*)\s*"
+)
+_PLAIN_FACTOR = re.compile(r"([xyz])(?:\s*(?:\*\*|\^)\s*([0-9]+))?")
+
+
+def expanded_polynomial(text: str) -> fmpq_mpoly | None:
+    """The fast path for an expanded polynomial with rational coefficients, as CAS and sorgui
+    itself print them (``3*x**2*y - 5/2*z + 1``, ``2x^2y - z``): one regular-expression pass
+    straight into flint, no syntax tree. ``None`` for anything else (parentheses, decimals,
+    roots, ``=``, a limit exceeded, a constant), which the general parser then reads and
+    reports on exactly."""
+    if len(text) > MAX_LENGTH or not text.strip():
+        return None
+    terms: dict[tuple[int, int, int], Fraction] = {}
+    position, end = 0, len(text)
+    while position < end:
+        match = _PLAIN_TERM.match(text, position)
+        if match is None or match.end() == position:
+            return None
+        num, den, variables = match.group("num"), match.group("den"), match.group("vars")
+        if (num is None and (not variables.strip() or variables.lstrip().startswith("*"))) or (
+                position > 0 and match.group("sign") is None):
+            return None  # an empty term, a '*' with nothing before it, two terms without a sign between them
+        if (num is not None and len(num) > MAX_DIGITS) or (den is not None and (len(den) > MAX_DIGITS or int(den) == 0)):
+            return None
+        monomial = [0, 0, 0]
+        for name, exponent in _PLAIN_FACTOR.findall(variables):
+            monomial[_VARIABLE_INDEX[name]] += int(exponent) if exponent else 1
+        if sum(monomial) > MAX_DEGREE:
+            return None
+        value = Fraction(int(num) if num is not None else 1, int(den) if den is not None else 1)
+        key = (monomial[0], monomial[1], monomial[2])
+        terms[key] = terms.get(key, 0) + (-value if match.group("sign") == "-" else value)
+        position = match.end()
+    kept = {m: fmpq(c.numerator, c.denominator) for m, c in terms.items() if c}
+    if not any(sum(m) for m in kept):
+        return None  # constant or empty: the general parser says which
+    return rationals.context(("x", "y", "z")).from_dict(kept)
 
 
 def _checked(text: str) -> tuple[Node, _Evaluator, bool]:

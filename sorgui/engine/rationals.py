@@ -78,7 +78,8 @@ def signed_sum(terms: Iterable[tuple[bool, str]]) -> str:
 
 
 def _rational_coefficient(c: Any) -> tuple[bool, str]:
-    return c < 0, str(-c if c < 0 else c)
+    text = str(c)  # one conversion: comparing a flint rational with 0 costs as much again
+    return (True, text[1:]) if text.startswith("-") else (False, text)
 
 
 def terms(g: fmpq_mpoly) -> list[tuple[Monomial, fmpq]]:

@@ -123,6 +123,10 @@ class BusyIndicator(QWidget):
         painter.drawArc(self.rect().adjusted(2, 2, -2, -2), self._angle * 16, 270 * 16)
 
 
+DEFAULT_TIME_LIMIT = 60.0
+"""The window's time limit of one analysis, in seconds."""
+
+
 class MainWindow(QMainWindow):
     """sorgui's window. ``prestart_worker`` keeps a warm worker process ready (off in tests
     that never analyse). :attr:`result_shown` is emitted once a result is on screen (results
@@ -139,6 +143,8 @@ class MainWindow(QMainWindow):
         worker.setParent(self)
         self.worker = worker
         self.session = Session(runner=self.worker)
+        self.time_limit = DEFAULT_TIME_LIMIT
+        """Seconds for each whole analysis (the stages not finished by then are shown as such)."""
         self.worker.message.connect(self.session.handle)
         self.editor = EquationEditor(self)
         self.results = ResultsPane(self)
@@ -427,7 +433,7 @@ class MainWindow(QMainWindow):
             return False
         superseded = self.worker.is_busy
         self.session.analyze(self.editor.text(), resolution=self.viewport.mesh_resolution(),
-                             style=self._formula_style())
+                             style=self._formula_style(), singular_timeout=self.time_limit)
         if superseded:
             self.statusBar().showMessage("The running analysis was stopped: this one replaces it", 5000)
         return True

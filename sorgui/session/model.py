@@ -28,7 +28,7 @@ from sorgui.session.job import JobRequest, JobResult, run_job
 if TYPE_CHECKING:
     from sorgui.session.scene_data import SceneData
 
-STAGES = ("parse", "recognition", "factors", "scene", "rationality", "parametrizations", "formulas")
+STAGES = ("engine", "parse", "recognition", "factors", "scene", "rationality", "parametrizations", "formulas")
 """The stages of a run in the order they usually start (the engine may add others, such as
 ``approximate`` for rounded input: they are inserted where they start)."""
 
@@ -36,6 +36,7 @@ WORKER_STAGES = ("scene", "formulas", "components")
 """Stages of the worker itself, which may run more than once (their times add up)."""
 
 STAGE_TITLES = {
+    "engine": "Loading the exact engine (sympy)",
     "parse": "Reading the equation",
     "recognition": "Symmetry algebra, axis and profile",
     "factors": "Factors over K",

@@ -424,3 +424,56 @@ def test_equations_parse_as_lhs_minus_rhs(poly, data) -> None:
     text = _print(lhs, "^") + " = " + (_print(rhs, "^") if rhs else "0")
     expected = R.from_dict({m: q(c) for m, c in poly.items()})
     assert parse_polynomial(text).polynomial == expected, text
+
+
+# --- the fast path for expanded polynomials ------------------------------------------------
+
+
+def _general(text: str):  # noqa: ANN202 - the flint polynomial of the general parser
+    from sorgui.engine.parsing import _checked, _evaluate, _FlintRationals
+
+    tree, evaluator, saw_variable = _checked(text)
+    return _evaluate(text, evaluator, tree, _FlintRationals(), saw_variable)
+
+
+_MONOMIALS = st.tuples(st.integers(0, 4), st.integers(0, 4), st.integers(0, 4))
+_COEFFICIENTS = st.fractions(min_value=-50, max_value=50, max_denominator=12).filter(bool)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.dictionaries(_MONOMIALS, _COEFFICIENTS, min_size=1, max_size=8), st.sampled_from(["**", "^"]),
+       st.sampled_from(["*", "", " "]))
+def test_the_fast_path_reads_expanded_polynomials_as_the_parser_does(terms, power: str, times: str) -> None:
+    from sorgui.engine.parsing import expanded_polynomial
+
+    parts = []
+    for (i, j, k), c in terms.items():
+        factors = [f"{v}{power}{e}" if e > 1 else v for v, e in zip("xyz", (i, j, k)) if e]
+        coefficient = f"{abs(c.numerator)}/{c.denominator}" if c.denominator > 1 else str(abs(c.numerator))
+        body = times.join(factors) if factors else coefficient
+        if factors and (abs(c) != 1 or times == " "):
+            body = f"{coefficient}{times or '*' if c.denominator > 1 else times}{body}"
+        parts.append(("- " if c < 0 else "+ ") + body)
+    text = " ".join(parts).removeprefix("+ ")
+    if not any(sum(m) for m, c in terms.items()):
+        assert expanded_polynomial(text) is None
+        return
+    assert expanded_polynomial(text) == _general(text), text
+
+
+@pytest.mark.parametrize("text", ["x/2 + y", "2*3*x", "x**2**3", "3 4x", "x - - y", "(x+y)^2", "1.5x", "x +",
+                                  "2^3 x", "sqrt(2) x", "x = y", "x^61", "0*x + 1", "1/0 x", "f(x,y,z) = x", "2*-x", "*x + 1", "x + *y", "2* + x"])
+def test_the_fast_path_leaves_everything_else_to_the_parser(text: str) -> None:
+    from sorgui.engine.parsing import expanded_polynomial
+
+    assert expanded_polynomial(text) is None
+
+
+@settings(max_examples=500, deadline=None)
+@given(st.text(alphabet="xyz0123456789+-*/^ ", min_size=1, max_size=25))
+def test_whatever_the_fast_path_reads_the_parser_reads_the_same(text: str) -> None:
+    from sorgui.engine.parsing import expanded_polynomial
+
+    fast = expanded_polynomial(text)
+    if fast is not None:
+        assert _general(text) == fast, text

@@ -141,6 +141,7 @@ def run_analysis(qtbot):  # noqa: ANN001, ANN201
         try:
             if text is not None:
                 window.set_equation(text)
+            window.time_limit = timeout_ms / 1000  # a loaded machine must not cut the analysis short
             assert window.analyze(), window.editor.status_label.text()
             qtbot.waitUntil(lambda: bool(outcome), timeout=timeout_ms)
         finally:
