@@ -30,6 +30,10 @@ from .errors import ExpressionError
 MAX_EXPONENT = 10_000
 """The largest ``|n|`` accepted in ``base^n``: a larger power is never a sensible answer."""
 
+MAX_NUMBER_BITS = 1_000_000
+"""A power of a number is refused when it would exceed this many bits (``(2^10000)^10000``):
+each exponent is bounded, but a power of a power would still grow without end."""
+
 _TOKEN = re.compile(r"\s*(?:(\d+(?:\.\d+)?)|([A-Za-z_]\w*)|(\*\*|[-+*/^()]))")
 
 
@@ -57,7 +61,14 @@ def singular_syntax(names: Mapping[str, sympy.Expr]) -> Syntax:
 
 def read(text: str, syntax: Syntax = SYMPY) -> sympy.Expr:
     """The exact sympy expression written in ``text``; :class:`ExpressionError` otherwise."""
-    return _Reader(text, syntax).read()
+    try:
+        return _Reader(text, syntax).read()
+    except RecursionError:
+        raise ExpressionError("it is nested too deeply") from None
+
+
+def _bits(number: sympy.Rational) -> int:
+    return int(number.p).bit_length() + int(number.q).bit_length()
 
 
 class _Reader:
@@ -139,6 +150,8 @@ class _Reader:
                 raise ExpressionError(f"an exponent must be {kind} number of size at most {MAX_EXPONENT}")
             if base == 0 and exponent < 0:
                 raise ExpressionError("division by zero")
+            if base.is_Rational and exponent.is_Integer and _bits(base) * abs(int(exponent)) > MAX_NUMBER_BITS:
+                raise ExpressionError(f"a power of a number larger than {MAX_NUMBER_BITS:,} bits")
             return sympy.Pow(base, exponent)
         return base
 

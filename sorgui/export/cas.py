@@ -20,6 +20,7 @@ from sympy.printing.mathematica import mathematica_code
 
 from sorgui.engine.report import Analysis, Approximation
 from sorgui.export.formulas import CoverageStyle, Formula, analysis_formulas
+from sorgui.export.quoting import hash_comment, mathematica_comment, one_line
 from sorgui.export.text import TABLE_1
 
 LATEX_LINE = 100
@@ -89,7 +90,7 @@ def latex_name(name: str) -> str:
 def tex_text(text: str) -> str:
     """``text`` escaped for LaTeX's text mode (special characters and the Unicode sorgui uses)."""
     out = []
-    for char in text:
+    for char in one_line(text):
         if char in _TEX_SPECIAL:
             out.append(_TEX_SPECIAL[char])
         elif char in _TEX_UNICODE:
@@ -210,14 +211,10 @@ def _code_file(
     return write
 
 
-def _mathematica_comment(text: str) -> str:
-    return "(* " + text.replace("*)", "* )").replace("(*", "( *") + " *)"
-
-
-maple_file = _code_file(maple_code, " := ", lambda text: "# " + text,
+maple_file = _code_file(maple_code, " := ", hash_comment,
                         CoverageStyle(expr=maple_code, infinity="infinity"))
 """The Maple file: ``name := value;`` with ``#`` comments; vectors are Maple lists."""
 
-mathematica_file = _code_file(mathematica_code, " = ", _mathematica_comment,
+mathematica_file = _code_file(mathematica_code, " = ", mathematica_comment,
                               CoverageStyle(expr=mathematica_code, infinity="Infinity"))
 """The Mathematica file: ``name = value;`` with ``(* *)`` comments; vectors are lists."""

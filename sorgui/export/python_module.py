@@ -26,6 +26,7 @@ from sympy.printing.numpy import NumPyPrinter
 from sorgui.engine.report import Analysis
 from sorgui.export.cas import summary_lines
 from sorgui.export.formulas import CANAL_PREFIX, Formula, analysis_formulas
+from sorgui.export.quoting import hash_comment, one_line, python_literal
 
 _NUMPY = NumPyPrinter({"fully_qualified_modules": True})
 
@@ -42,14 +43,16 @@ def _numpy_code(expr: sympy.Expr) -> str:
 
 
 def _function(formula: Formula) -> list[str]:
+    if not all(str(p).isidentifier() for p in formula.parameters):
+        raise ValueError(f"the parameters of {formula.name} are not names: {formula.parameters}")
     args = ", ".join(str(p) for p in formula.parameters)
     outputs = {"P2param": "s, w"}.get(formula.name, "x, y, z" if formula.name.startswith(("X", CANAL_PREFIX)) else
                                       f"its {len(formula.value)} coordinates")
     assert formula.coverage is not None
-    doc = [f'    """{formula.description[0].upper() + formula.description[1:]}.', "",
-           f"    Vectorised over NumPy arrays ({args} broadcast together); returns the arrays {outputs}.",
-           "    Where a denominator vanishes the values are inf or nan."]
-    doc += ["", *[f"    {line}" for line in formula.coverage.lines()], '    """']
+    text = [f"{formula.description[0].upper() + formula.description[1:]}.", "",
+            f"Vectorised over NumPy arrays ({args} broadcast together); returns the arrays {outputs}.",
+            "Where a denominator vanishes the values are inf or nan.", "", *formula.coverage.lines()]
+    doc = [f"    {python_literal(chr(10).join(one_line(line) for line in text) + chr(10))}"]
     body = [f"    {p} = numpy.asarray({p})" for p in formula.parameters]
     zero = " + ".join(f"0 * {p}" for p in formula.parameters)
     body.append(f"    zero = {zero}")
@@ -108,14 +111,14 @@ def python_module(analysis: Analysis) -> str:
     formulas = analysis_formulas(analysis)
     maps = [f for f in formulas if f.coverage is not None and f.name != "tau"]
     head = summary_lines(analysis)
-    lines = ['"""' + head[0] + ".", "", *head[1:], "",
-             "Written by sorgui. The parameterizations are NumPy functions; the results are exact sympy",
-             "expressions; check() verifies by exact substitution that each parameterization lies on the surface.",
-             '"""', "", "import numpy", "from sympy import I, Poly, S, Symbol, sqrt, together  # noqa: F401 (I, sqrt: in the formulas)", "",
+    docstring = [head[0] + ".", "", *head[1:], "",
+                 "Written by sorgui. The parameterizations are NumPy functions; the results are exact sympy",
+                 "expressions; check() verifies by exact substitution that each parameterization lies on the surface."]
+    lines = [python_literal("\n".join(one_line(line) for line in docstring) + "\n"), "", "import numpy", "from sympy import I, Poly, S, Symbol, sqrt, together  # noqa: F401 (I, sqrt: in the formulas)", "",
              'x, y, z, s, t, w = (Symbol(name) for name in ("x", "y", "z", "s", "t", "w"))',
              'm1, m2, m3, r = (Symbol(name) for name in ("m1", "m2", "m3", "r"))', ""]
     for formula in formulas:
-        lines.append(f"# {formula.description}")
+        lines.append(hash_comment(formula.description))
         lines.append(f"{_exact_name(formula, maps)} = {exact_code(formula.value)}")
     lines += ["", "PARAMETERS = {", *[f"    {f.name!r}: ({', '.join(map(str, f.parameters))},)," for f in maps],
               "}", '"""The parameters of each parameterization, in order."""', "", ""]

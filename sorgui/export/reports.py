@@ -26,6 +26,7 @@ from sorgui.engine.errors import SorguiError
 from sorgui.engine.report import Analysis, Canal
 from sorgui.export.cas import LATEX_STYLE, approximate_line, latex_name, verdict
 from sorgui.export.formulas import Formula, canal_formulas, surface_formulas
+from sorgui.export.quoting import code_fence, markup_text
 from sorgui.export.text import CANAL_KINDS, SYMMETRY_NAMES, TABLE_1, format_report
 
 KNOWN_KEYS = frozenset({
@@ -48,20 +49,51 @@ class ReportError(SorguiError):
     """A file is not a JSON report of sorgui (unreadable, not JSON, or not an analysis)."""
 
 
+MAX_REPORT_BYTES = 64 * 1024 * 1024
+"""A report larger than this is refused before it is decoded (sorgui's largest are a few MB)."""
+
+
 def read_report(path: str | Path) -> Analysis:
-    """The analysis saved in the JSON report ``path`` (the inverse of :func:`json_report`)."""
+    """The analysis saved in the JSON report ``path`` (the inverse of :func:`json_report`),
+    validated (:func:`sorgui.export.validation.validate`): a report is a file from elsewhere.
+
+    At most :data:`MAX_REPORT_BYTES` are read (``/dev/zero`` is refused, not read whole)."""
+    from sorgui.export.validation import ReportInvalid, validate
+
     try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
+        with open(path, "rb") as stream:
+            raw = stream.read(MAX_REPORT_BYTES + 1)
     except OSError as exc:
         raise ReportError(f"cannot read {path}: {exc.strerror or exc}") from None
-    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise ReportError(f"{path} is not a JSON report: {exc}") from None
-    if isinstance(data, dict) and "error" in data and "input" not in data:
-        raise ReportError(f"{path} holds an error, not an analysis: {data['error']}")
+    if len(raw) > MAX_REPORT_BYTES:
+        raise ReportError(f"{path} is too large to be a report (more than {MAX_REPORT_BYTES // 2**20} MB)")
     try:
-        return Analysis.from_json(data)
+        data = json.loads(raw.decode("utf-8"))
+    except (UnicodeDecodeError, ValueError) as exc:  # JSONDecodeError, and integers too long to read
+        raise ReportError(f"{path} is not a JSON report: {_one_line(str(exc))}") from None
+    except RecursionError:
+        raise ReportError(f"{path} is not a sorgui report: it is nested too deeply") from None
+    if not isinstance(data, dict):
+        raise ReportError(f"{path} is not a sorgui report: it is not a JSON object")
+    if "error" in data and "input" not in data:
+        raise ReportError(f"{path} holds an error, not an analysis")
+    try:
+        analysis = Analysis.from_json(data)
     except (KeyError, TypeError, AttributeError, ValueError) as exc:
-        raise ReportError(f"{path} is not a sorgui report (missing or bad {exc})") from None
+        raise ReportError(f"{path} is not a sorgui report (missing or bad {_one_line(str(exc))})") from None
+    except RecursionError:
+        raise ReportError(f"{path} is not a sorgui report: it is nested too deeply") from None
+    try:
+        validate(analysis)
+    except ReportInvalid as exc:
+        raise ReportError(f"{path} is not a valid sorgui report: {exc.message}") from None
+    return analysis
+
+
+def _one_line(text: str) -> str:
+    """``text`` on one line of at most 120 characters (a message quoting a file's content)."""
+    flat = " ".join(text.split())
+    return flat if len(flat) <= 120 else flat[:120] + "…"
 
 
 def text_report(analysis: Analysis) -> str:
@@ -192,26 +224,27 @@ def markdown_report(analysis: Analysis, picture: str | None = None) -> str:
     out = []
     for block in report_blocks(analysis, picture):
         if block.kind == "h1":
-            out.append(f"# {block.text}")
+            out.append(f"# {markup_text(str(block.text))}")
         elif block.kind == "h2":
-            out.append(f"## {block.text}")
+            out.append(f"## {markup_text(str(block.text))}")
         elif block.kind == "math":
             out.append(f"$$\n{block.text}\n$$")
         elif block.kind == "list":
-            out.append("\n".join(f"- {line}" for line in block.text))
+            out.append("\n".join(f"- {markup_text(line)}" for line in block.text))
         elif block.kind == "code":
-            out.append(f"```json\n{block.text}\n```")
+            fence = code_fence(str(block.text))
+            out.append(f"{fence}json\n{block.text}\n{fence}")
         elif block.kind == "image":
             out.append(f"![The surface and its axis]({block.text})")
         else:
-            out.append(str(block.text))
+            out.append(markup_text(str(block.text)))
     return "\n\n".join(out) + "\n"
 
 
 def _html_words(text: str) -> str:
-    """Words with ``$…$`` formulas: the words escaped, the formulas kept for KaTeX."""
+    """Words with ``$…$`` formulas: the words escaped, the formulas kept for KaTeX (escaped too)."""
     parts = text.split("$")
-    return "".join(html.escape(part) if i % 2 == 0 else f'<span class="math">${html.escape(part)}$</span>'
+    return "".join(markup_text(part) if i % 2 == 0 else f'<span class="math">${markup_text(part)}$</span>'
                    for i, part in enumerate(parts))
 
 
