@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import time
 from collections.abc import Callable, Generator, Iterable, Iterator
@@ -117,12 +118,19 @@ class _Pool:
         self.idle: list[Supervised] = []
         self.busy: dict[int, tuple[Supervised, Job]] = {}  # by the index of the job
 
-    def start(self, index: int, job: Job) -> None:
+    def start(self, index: int, job: Job) -> Answer | None:
+        """Give ``job`` to a worker; the line's error object when no worker can be started (a
+        limit on processes, ``ulimit -u``)."""
         from sorgui.session.supervised import Supervised
 
-        worker = self.idle.pop() if self.idle else Supervised(self.context)
+        try:
+            worker = self.idle.pop() if self.idle else Supervised(self.context)
+        except OSError as exc:
+            message = f"the analysis process could not be started: {exc.strerror or exc}"
+            return json.dumps(_error(job[0], job[1], message, None)), 1
         worker.give(self.request(job[1]))
         self.busy[index] = (worker, job)
+        return None
 
     def answers(self) -> list[tuple[int, Answer]]:
         """The answers that came (waiting for one, or for the nearest deadline)."""
@@ -157,7 +165,9 @@ def _results(jobs: Iterator[Job], workers: int,
     todo = enumerate(jobs)
     try:
         for index, job in todo:
-            pool.start(index, job)
+            refused = pool.start(index, job)
+            if refused is not None:
+                answers[index] = refused
             if len(pool.busy) < workers:
                 continue
             while len(pool.busy) >= workers:
@@ -165,13 +175,32 @@ def _results(jobs: Iterator[Job], workers: int,
                 while emitted in answers:
                     yield answers.pop(emitted)
                     emitted += 1
-        while pool.busy:
-            answers.update(pool.answers())
+        while pool.busy or emitted in answers:
+            if pool.busy:
+                answers.update(pool.answers())
             while emitted in answers:
                 yield answers.pop(emitted)
                 emitted += 1
     finally:
         pool.close()  # Ctrl+C, a signal, a closed pipe, or done: the workers go too
+
+
+WORKER_MEMORY = 400 * 2**20
+"""Bytes of memory counted for each worker process (an analysis of degree 20 with Singular)."""
+
+
+def worker_count(requested: int) -> tuple[int, str]:
+    """``--jobs`` bounded by twice the cores and by the available memory, and why, if lowered."""
+    cores = os.cpu_count() or 1
+    try:
+        available = os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        available = WORKER_MEMORY * 2 * cores
+    allowed = max(1, min(2 * cores, available // WORKER_MEMORY))
+    if requested <= allowed:
+        return requested, ""
+    return allowed, (f"--jobs {requested} lowered to {allowed} ({cores} cores, "
+                     f"{available / 2**30:.1f} GB of memory available)")
 
 
 def run_batch(lines: Iterable[str], args: argparse.Namespace, emit: Callable[[str], None],
@@ -180,13 +209,17 @@ def run_batch(lines: Iterable[str], args: argparse.Namespace, emit: Callable[[st
     ``total`` (the number of equations, when known) sizes the progress bar."""
     from sorgui.session.supervised import AnalysisRequest
 
+    jobs, lowered = worker_count(args.jobs)
+    if lowered:
+        print(f"sorgui: {lowered}", file=sys.stderr, flush=True)
+
     def request(text: str) -> AnalysisRequest:
         return AnalysisRequest(text, method=args.method, recognition_only=args.recognition_only,
                                tolerance=args.tolerance, timeout=args.timeout)
 
     progress = _Progress() if sys.stderr.isatty() else None
     statuses: set[int] = set()
-    answers = _results(iter(equations(lines)), args.jobs, request)
+    answers = _results(iter(equations(lines)), jobs, request)
     try:
         for line, status in answers:
             emit(line)

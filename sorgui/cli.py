@@ -22,7 +22,9 @@ import json
 import math
 import os
 import signal
+import stat
 import sys
+import unicodedata
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
@@ -196,22 +198,60 @@ def _bounded(text: str, source: str) -> str:
     return text
 
 
+SIDE_FILES = {".md": ".png"}
+"""The file a format writes beside its target (a Markdown report's picture ``NAME.png``)."""
+
+
 def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None = None) -> None:
     """Refuse, before any analysis, ``-o`` targets that cannot be written: an unknown format, a
-    missing or read-only folder, a folder or read-only file in the way, the input file itself."""
+    missing or read-only folder, a folder or read-only file in the way, the input file itself
+    (also when it was read on standard input), a file that is neither a regular file nor a
+    character device or a pipe. The file a format writes beside its target (the Markdown
+    report's picture) gets the same checks."""
+    inputs = [os.stat(source)] if source is not None and source.exists() else []
+    inputs += _stdin_file()
     for path in outputs:
+        if fmt is not None and not fmt.strip(" ."):
+            raise UsageError("--format needs the name of a format (json, md, tex, stl, ...)")
         suffix = "." + fmt.lower().lstrip(".").removeprefix("patch.") if fmt else path.suffix.lower()
         if suffix not in EXPORT_SUFFIXES:
             raise UsageError(f"unknown export format of {path}; use {', '.join(EXPORT_SUFFIXES)}")
-        if source is not None and path.exists() and source.exists() and path.samefile(source):
-            raise UsageError(f"refusing to overwrite the input file {path}")
-        folder = path.parent
-        if not folder.is_dir():
-            raise UsageError(f"cannot write {path}: the folder {folder} does not exist")
-        if path.is_dir():
-            raise UsageError(f"cannot write {path}: it is a folder")
-        if not os.access(folder, os.W_OK | os.X_OK) or (path.exists() and not os.access(path, os.W_OK)):
-            raise UsageError(f"cannot write {path}: permission denied")
+        side = [path.with_suffix(SIDE_FILES[suffix])] if suffix in SIDE_FILES else []
+        for target in (path, *side):
+            _check_target(target, inputs, beside=path if target is not path else None)
+
+
+def _stdin_file() -> list[os.stat_result]:
+    """The status of standard input when it is a regular file (``< eq.txt``), to be protected."""
+    try:
+        status = os.fstat(sys.stdin.fileno())
+    except (OSError, ValueError, AttributeError):
+        return []
+    return [status] if stat.S_ISREG(status.st_mode) else []
+
+
+def _check_target(path: Path, inputs: list[os.stat_result], beside: Path | None) -> None:
+    what = f"{path} (written beside {beside})" if beside is not None else str(path)
+    try:
+        status = os.stat(path)
+    except FileNotFoundError:
+        status = None
+    except OSError as exc:
+        raise UsageError(f"cannot write {what}: {exc.strerror or exc}") from None
+    if status is not None and any((status.st_dev, status.st_ino) == (i.st_dev, i.st_ino) for i in inputs):
+        raise UsageError(f"refusing to overwrite the input file {what}")
+    folder = path.parent
+    if not folder.is_dir():
+        raise UsageError(f"cannot write {what}: the folder {folder} does not exist")
+    if status is not None and stat.S_ISDIR(status.st_mode):
+        raise UsageError(f"cannot write {what}: it is a folder")
+    if status is not None and not (stat.S_ISREG(status.st_mode) or stat.S_ISCHR(status.st_mode)
+                                   or stat.S_ISFIFO(status.st_mode)):
+        raise UsageError(f"cannot write {what}: it is not a regular file")
+    if not os.access(folder, os.W_OK | os.X_OK) and (status is None or stat.S_ISREG(status.st_mode)):
+        raise UsageError(f"cannot write {what}: permission denied")
+    if status is not None and not os.access(path, os.W_OK):
+        raise UsageError(f"cannot write {what}: permission denied")
 
 
 def write_outputs(result: Analysis, outputs: Sequence[Path], fmt: str | None = None) -> None:
@@ -248,9 +288,10 @@ def emit(text: str) -> None:
     try:
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
         sys.stdout.flush()
-    except OSError as exc:
+    except (OSError, ValueError) as exc:  # ValueError: standard output was closed (>&-)
         _silence_stdout()
-        raise _OutputError(f"cannot write the output: {exc.strerror or exc}") from None
+        reason = (exc.strerror or str(exc)) if isinstance(exc, OSError) else "standard output is closed"
+        raise _OutputError(f"cannot write the output: {reason}") from None
 
 
 def _silence_stdout() -> None:
@@ -264,14 +305,23 @@ def _silence_stdout() -> None:
 
 
 def fail(message: str, position: int | None, as_json: bool, status: int) -> int:
-    """Report an error in one line on stderr (and as an ``error`` object with ``--json``)."""
+    """Report an error in one line on stderr (and as an ``error`` object with ``--json``): a
+    file name with a newline in it is shown escaped, so the message stays one line."""
     if as_json:
         try:
             emit(json.dumps({"error": {"message": message, "position": position}}))
         except _OutputError:
             pass
-    print(f"sorgui: {message}", file=sys.stderr)
+    try:
+        print(f"sorgui: {one_line(message)}", file=sys.stderr, flush=True)
+    except (OSError, ValueError):
+        pass  # stderr is closed or full: the status still says it
     return status
+
+
+def one_line(text: str) -> str:
+    """``text`` with its control characters written as escapes (``\\n``)."""
+    return "".join(repr(char)[1:-1] if unicodedata.category(char) in ("Cc", "Zl", "Zp") else char for char in text)
 
 
 # --- the commands ------------------------------------------------------------------------
@@ -401,6 +451,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``sorgui`` console script (``argv`` ``None``: this process's own
     arguments; a finished subcommand then ends the process at once, see :func:`_exit_now`)."""
     own_process = argv is None
+    if own_process:
+        _usable_streams()
     argv = list(sys.argv[1:] if argv is None else argv)
     command = COMMANDS.get(argv[0]) if argv else None
     try:
@@ -414,6 +466,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     if own_process and command is not None:
         _exit_now(status)
     return status
+
+
+def _usable_streams() -> None:
+    """Standard streams that the shell closed (``<&-``, ``2>&-``) read as empty or discard what is
+    written (a closed standard output is still reported, by :func:`emit`); text that the locale's
+    encoding cannot hold (``LC_ALL=C``: the ``·`` of the report) is written escaped."""
+    for name, mode in (("stdin", "r"), ("stdout", "w"), ("stderr", "w")):
+        if getattr(sys, name) is None:
+            setattr(sys, name, open(os.devnull, mode, encoding="utf-8"))  # noqa: SIM115 - for the process
+            if name == "stdout":
+                sys.stdout.close()  # emit() then reports that the output cannot be written
+    for stream in (sys.stdout, sys.stderr):
+        if not stream.closed and hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="backslashreplace")
 
 
 def _exit_now(status: int) -> None:

@@ -145,16 +145,19 @@ def run_singular(
     """
     if cancel is not None and cancel.is_set():
         raise Cancelled("the Singular computation was cancelled")
-    proc = subprocess.Popen(
-        [str(find_singular()), *_FLAGS],
-        stdin=subprocess.PIPE,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        cwd=tempfile.gettempdir(),
-        start_new_session=True,
-        preexec_fn=_child_limits(timeout),
-        text=True,
-    )
+    try:
+        proc = subprocess.Popen(
+            [str(find_singular()), *_FLAGS],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            cwd=tempfile.gettempdir(),
+            start_new_session=True,
+            preexec_fn=_child_limits(timeout),
+            text=True,
+        )
+    except OSError as exc:  # a limit on processes (ulimit -u) or on memory
+        raise SingularError(f"Singular could not be started: {exc.strerror or exc}") from None
     out, err = _wait(proc, script + "\nquit;\n", timeout, cancel)
     errors = _ERROR_LINE.findall(out) + _ERROR_LINE.findall(err)
     if errors:

@@ -25,6 +25,11 @@ if TYPE_CHECKING:
     from .polys import Poly
 
 
+LONGEST_ALARM = 1e8
+"""Seconds (three years): a longer limit (``--timeout 1e10``) is this one, which the system's
+timer can hold."""
+
+
 @contextmanager
 def time_limit(seconds: float | None, stated: float | None = None) -> Iterator[None]:
     """Raise :class:`TimeLimitReached` inside the block once ``seconds`` have passed (main thread
@@ -39,7 +44,7 @@ def time_limit(seconds: float | None, stated: float | None = None) -> Iterator[N
         raise TimeLimitReached(f"the analysis did not finish within the time limit of {stated or seconds:g} s")
 
     previous = signal.signal(signal.SIGALRM, expire)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
+    signal.setitimer(signal.ITIMER_REAL, min(seconds, LONGEST_ALARM))
     try:
         yield
     finally:

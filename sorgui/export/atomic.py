@@ -4,14 +4,19 @@ Every export goes through here. The new content is written to a temporary file i
 folder (so the final rename never crosses a file system), flushed and ``fsync``-ed, and then
 moved over the target with ``os.replace``, which POSIX and Windows both perform atomically.
 If anything fails on the way — the folder is read-only, the disk is full, a writer raises
-half-way — the temporary file is removed and the old file stays exactly as it was; the error
-propagates as the ``OSError`` (or the writer's own exception) for the caller to report.
+half-way, a signal arrives — the temporary file is removed and the old file stays exactly as it
+was; the error propagates as the ``OSError`` (or the writer's own exception) for the caller to
+report. A character device or a FIFO named as the target (``-o /dev/null``) is written in
+place, never replaced by a regular file; any other kind of file is refused.
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
+import signal
+import stat
 import tempfile
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -40,22 +45,64 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     the suffix of ``path``, since some writers choose the format by it.
     """
     target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    fd, name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=f".tmp{target.suffix}", dir=folder)
-    os.close(fd)
-    temporary = Path(name)
+    in_place = _special(target)
+    folder = Path(tempfile.gettempdir()) if in_place else (target.parent if str(target.parent) else Path("."))
+    # Ctrl+C or SIGTERM between creating the temporary file and the clean-up below would leave it
+    # behind: the ending signals wait until the clean-up is in place.
+    blocked = signal.pthread_sigmask(signal.SIG_BLOCK, _ENDING) if _MASKABLE else None
     try:
-        yield temporary
-        with open(temporary, "rb+") as stream:
-            stream.flush()
-            os.fsync(stream.fileno())
-        _keep_mode(target, temporary)
-        os.replace(temporary, target)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            temporary.unlink()
-        raise
+        fd, name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=f".tmp{target.suffix}", dir=folder)
+        os.close(fd)
+        temporary = Path(name)
+        try:
+            if blocked is not None:
+                signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
+                blocked = None
+            yield temporary
+            if in_place:
+                _copy_into(temporary, target)
+                temporary.unlink()
+                return
+            with open(temporary, "rb+") as stream:
+                stream.flush()
+                os.fsync(stream.fileno())
+            _keep_mode(target, temporary)
+            os.replace(temporary, target)
+        except BaseException:
+            with contextlib.suppress(OSError):
+                temporary.unlink()
+            raise
+    finally:
+        if blocked is not None:
+            signal.pthread_sigmask(signal.SIG_SETMASK, blocked)
     _fsync_directory(folder)
+
+
+_ENDING = {signal.SIGTERM, signal.SIGHUP, signal.SIGINT}
+_MASKABLE = hasattr(signal, "pthread_sigmask")
+
+
+def _special(target: Path) -> bool:
+    """Whether ``target`` is a character device or a FIFO (``/dev/null``, a named pipe), which is
+    written in place: renaming a regular file over it would replace the device itself. Anything
+    else that is not a regular file (a folder, a block device, a socket) is refused."""
+    try:
+        mode = target.stat().st_mode
+    except FileNotFoundError:
+        return False
+    if stat.S_ISREG(mode):
+        return False
+    if stat.S_ISCHR(mode) or stat.S_ISFIFO(mode):
+        return True
+    raise IsADirectoryError(errno.EISDIR, "not a regular file", str(target)) if stat.S_ISDIR(mode) else OSError(
+        errno.EINVAL, "not a regular file, a character device or a pipe", str(target))
+
+
+def _copy_into(source: Path, target: Path) -> None:
+    """The bytes of ``source`` written into the existing ``target`` (a device or a pipe)."""
+    with open(source, "rb") as reading, open(target, "wb") as writing:
+        while chunk := reading.read(1 << 20):
+            writing.write(chunk)
 
 
 def _keep_mode(target: Path, temporary: Path) -> None:

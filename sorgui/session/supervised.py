@@ -201,7 +201,10 @@ def analyze_supervised(request: AnalysisRequest) -> Message:
 
     import sorgui.engine  # noqa: F401 - loaded before the fork: the child starts at once
 
-    worker = Supervised(multiprocessing.get_context("fork"))
+    try:
+        worker = Supervised(multiprocessing.get_context("fork"))
+    except OSError as exc:  # a limit on processes (ulimit -u) or on memory
+        return "failed", f"the analysis process could not be started: {exc.strerror or exc}"
     try:
         return worker.run(request)
     finally:
