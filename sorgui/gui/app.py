@@ -8,11 +8,13 @@ on a first start with the paper's Example 1, and analyses it at once.
 from __future__ import annotations
 
 import os
+import signal
+import socket
 import sys
 from importlib import resources
 from typing import TYPE_CHECKING
 
-from PySide6.QtCore import QTimer
+from PySide6.QtCore import QSocketNotifier, QTimer
 from PySide6.QtGui import QIcon
 from PySide6.QtWidgets import QApplication
 
@@ -77,8 +79,48 @@ def open_main_window(path: str | None = None) -> MainWindow:
     return window
 
 
+ENDING_SIGNALS = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP", "SIGINT") if hasattr(signal, name))
+
+
+def end_on_signals(app: QApplication, window: MainWindow) -> QSocketNotifier | None:
+    """``SIGTERM``, ``SIGHUP`` (a session's logout) and ``SIGINT`` close the window at once and
+    cleanly: the typed text is kept for the next start (nothing is asked, nothing lost), the
+    worker processes are killed, and the event loop ends with status ``128 + signal``.
+
+    Qt's event loop runs in C++, where Python's signal handlers wait: the handler only writes
+    the signal to a socket (``signal.set_wakeup_fd``) that a ``QSocketNotifier`` watches, and the
+    window is closed from the event loop, never from inside another slot."""
+    try:
+        reading, writing = socket.socketpair()
+    except OSError:
+        return None
+    for end in (reading, writing):
+        end.setblocking(False)
+    signal.set_wakeup_fd(writing.fileno(), warn_on_full_buffer=False)
+    for signum in ENDING_SIGNALS:
+        signal.signal(signum, lambda _signum, _frame: None)
+    notifier = QSocketNotifier(reading.fileno(), QSocketNotifier.Type.Read, app)
+
+    def on_signal() -> None:
+        try:
+            received = reading.recv(64)
+        except OSError:
+            return
+        ending = [n for n in received if n in ENDING_SIGNALS]
+        if ending:
+            notifier.setEnabled(False)
+            window.setWindowModified(False)  # the text is kept in the settings: nothing to ask
+            window.close()
+            app.exit(128 + ending[0])
+
+    notifier.activated.connect(on_signal)
+    notifier.sockets = (reading, writing)  # type: ignore[attr-defined] - kept open with the notifier
+    return notifier
+
+
 def run_gui(path: str | None = None) -> int:
     """Open the main window (with ``path``, if given) and run the event loop; the exit status."""
     app = create_application()
-    window = open_main_window(path)  # noqa: F841 (kept alive while the event loop runs)
+    window = open_main_window(path)
+    notifier = end_on_signals(app, window)  # noqa: F841 (kept alive while the event loop runs)
     return app.exec()
