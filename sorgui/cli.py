@@ -453,6 +453,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     own_process = argv is None
     if own_process:
         _usable_streams()
+        _writable_matplotlib_cache()
     argv = list(sys.argv[1:] if argv is None else argv)
     command = COMMANDS.get(argv[0]) if argv else None
     try:
@@ -466,6 +467,38 @@ def main(argv: Sequence[str] | None = None) -> int:
     if own_process and command is not None:
         _exit_now(status)
     return status
+
+
+def _writable_matplotlib_cache() -> None:
+    """Point matplotlib (the typesetting of formulas, the pictures) at a folder it can write when
+    the usual one (``~/.config/matplotlib``) cannot be made: a read-only home would otherwise
+    print matplotlib's warning and rebuild its font cache in a new temporary folder every time.
+    The folder is this user's own (``sorgui-matplotlib-UID`` in the temporary folder, checked to be
+    a folder owned by the user and closed to others), else a new private one."""
+    if "MPLCONFIGDIR" in os.environ:
+        return
+    try:
+        usual = Path(os.environ.get("XDG_CONFIG_HOME") or Path.home() / ".config") / "matplotlib"
+        usual.mkdir(parents=True, exist_ok=True)
+        if os.access(usual, os.W_OK | os.X_OK):
+            return
+    except (OSError, RuntimeError):
+        pass
+    import tempfile
+
+    shared = Path(tempfile.gettempdir()) / f"sorgui-matplotlib-{os.getuid()}"
+    try:
+        shared.mkdir(mode=0o700, exist_ok=True)
+        status = os.lstat(shared)
+        if stat.S_ISDIR(status.st_mode) and status.st_uid == os.getuid() and not status.st_mode & 0o077:
+            os.environ["MPLCONFIGDIR"] = str(shared)
+            return
+    except OSError:
+        pass
+    try:
+        os.environ["MPLCONFIGDIR"] = tempfile.mkdtemp(prefix="sorgui-matplotlib-")
+    except OSError:
+        pass
 
 
 def _usable_streams() -> None:

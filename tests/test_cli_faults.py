@@ -74,3 +74,13 @@ def test_a_process_limit_is_said_in_one_line() -> None:
         pytest.skip("root is not bound by RLIMIT_NPROC")
     done = shell(f"ulimit -u 1; SORGUI --recognition-only '{EQUATION}'")
     assert done.returncode == 1 and "could not be started" in one_line(done.stderr)
+
+
+def test_a_home_that_cannot_be_written_gets_no_matplotlib_warning(tmp_path: Path) -> None:
+    """The picture needs matplotlib's cache; with no writable home sorgui gives it its own folder."""
+    env = {key: value for key, value in os.environ.items() if key not in ("MPLCONFIGDIR", "XDG_CONFIG_HOME")}
+    env["HOME"] = "/proc/self/fdinfo"  # no folder can be made there, not even by root
+    done = subprocess.run([*SORGUI, "--recognition-only", EQUATION, "-o", str(tmp_path / "surface.png")],
+                          capture_output=True, text=True, timeout=300, env=env)
+    assert done.returncode == 0 and done.stderr == "", done.stderr
+    assert (tmp_path / "surface.png").stat().st_size > 1000

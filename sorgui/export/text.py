@@ -247,12 +247,12 @@ def canal_lines(canal: Canal) -> list[str]:
         lines.append(f"    SMAT equations (m1, m2, m3 centre, r = radius²): {', '.join(fam.equations)}")
         if fam.parametrization is not None:
             check = "verified" if fam.verified else "NOT verified"
-            lines.append(f"    m(t) = ({', '.join(fam.parametrization)}), ρ(t) = {fam.radius_squared} (over {fam.field}; {check})")
+            lines.append(f"    m(t) = ({', '.join(fam.parametrization)}), r²(t) = {fam.radius_squared} (over {fam.field}; {check})")
         elif fam.radical_spine is not None:
             lines.append(f"    m(t) in square roots (t = {fam.radical_parameter}) = ({', '.join(fam.radical_spine)}), "
-                         f"ρ(t) = {fam.radical_radius_squared} (verified on the SMAT equations)")
+                         f"r²(t) = {fam.radical_radius_squared} (verified on the SMAT equations)")
         elif fam.pipe:
-            lines.append(f"    ρ = {fam.radius_squared}")
+            lines.append(f"    r² = {fam.radius_squared} (radius squared)")
         if fam.circle_center is not None:
             lines.append(f"    characteristic circles: centre ({', '.join(fam.circle_center)}), "
                          f"radius² {fam.circle_radius_squared}, plane normal ({', '.join(fam.circle_normal or ())})")

@@ -116,7 +116,7 @@ def spine_words(family: CanalFamily) -> str:
 def radius_words(family: CanalFamily) -> str:
     """Whether the radius of the family's spheres is constant."""
     if family.pipe:
-        value = f": ρ = {family.radius_squared}" if family.radius_squared else ""
+        value = f": r² = {family.radius_squared} (radius squared)" if family.radius_squared else ""
         return "constant (a pipe)" + value
     return "varies along the spine"
 
