@@ -25,6 +25,7 @@ output. Text from the subprocess is never evaluated.
 
 from __future__ import annotations
 
+import contextlib
 import importlib.metadata
 import importlib.resources
 import importlib.util
@@ -32,6 +33,7 @@ import os
 import re
 import resource
 import secrets
+import selectors
 import shutil
 import signal
 import subprocess
@@ -66,6 +68,10 @@ CPU_MARGIN = 5
 
 POLL_INTERVAL = 0.05
 """Seconds between checks of the cancel event and the time limit while Singular runs."""
+
+MAX_OUTPUT = 256 * 2**20
+"""Bytes of output Singular may print for one script; more is no answer (a broken or foreign
+executable flooding its output), and Singular is killed."""
 
 _FLAGS = ("-q", "-t", "--no-rc", "--no-warn", "--random=4711")
 # -q: no banner or library messages; -t: no terminal handling; --no-rc: ignore ~/.singularrc;
@@ -154,7 +160,6 @@ def run_singular(
             cwd=tempfile.gettempdir(),
             start_new_session=True,
             preexec_fn=_child_limits(timeout),
-            text=True,
         )
     except OSError as exc:  # a limit on processes (ulimit -u) or on memory
         raise SingularError(f"Singular could not be started: {exc.strerror or exc}") from None
@@ -170,36 +175,70 @@ def run_singular(
 
 
 def _wait(
-    proc: subprocess.Popen[str], script: str, timeout: float, cancel: threading.Event | None
+    proc: subprocess.Popen[bytes], script: str, timeout: float, cancel: threading.Event | None
 ) -> tuple[str, str]:
-    """Send ``script`` to ``proc`` and collect its output, killing its process group on
-    timeout, cancel or any exception."""
+    """Send ``script`` to ``proc`` and collect its output (at most :data:`MAX_OUTPUT`), killing
+    its process group on timeout, cancel, a flood of output or any exception."""
     deadline = time.monotonic() + timeout
-    pending: str | None = script  # communicate() keeps sending it across its own timeouts
     try:
-        while True:
-            try:
-                return proc.communicate(pending, timeout=POLL_INTERVAL)
-            except subprocess.TimeoutExpired:
-                pending = None
-            if cancel is not None and cancel.is_set():
-                raise Cancelled("the Singular computation was cancelled")
-            if time.monotonic() > deadline:
-                raise SingularTimeout(
-                    f"Singular did not finish within the time limit of {timeout:g} s"
-                )
+        assert proc.stdin is not None and proc.stdout is not None and proc.stderr is not None
+        with selectors.DefaultSelector() as selector:
+            data = script.encode("utf-8")
+            sent = 0
+            os.set_blocking(proc.stdin.fileno(), False)
+            selector.register(proc.stdin, selectors.EVENT_WRITE)
+            chunks: dict[int, list[bytes]] = {proc.stdout.fileno(): [], proc.stderr.fileno(): []}
+            for stream in (proc.stdout, proc.stderr):
+                selector.register(stream, selectors.EVENT_READ)
+            size = 0
+            while selector.get_map():
+                for key, _events in selector.select(POLL_INTERVAL):
+                    if key.fileobj is proc.stdin:
+                        try:
+                            sent += os.write(key.fd, data[sent:sent + 65536])
+                        except BrokenPipeError:
+                            sent = len(data)
+                        if sent >= len(data):
+                            selector.unregister(proc.stdin)
+                            proc.stdin.close()
+                        continue
+                    chunk = os.read(key.fd, 65536)
+                    if not chunk:
+                        selector.unregister(key.fileobj)
+                        continue
+                    chunks[key.fd].append(chunk)
+                    size += len(chunk)
+                    if size > MAX_OUTPUT:
+                        raise SingularError(f"Singular printed more than {MAX_OUTPUT // 2**20} MB: "
+                                            "not an answer of sorgui's script")
+                if cancel is not None and cancel.is_set():
+                    raise Cancelled("the Singular computation was cancelled")
+                if time.monotonic() > deadline:
+                    raise SingularTimeout(f"Singular did not finish within the time limit of {timeout:g} s")
+            while proc.poll() is None:  # its output is closed: it is exiting
+                if time.monotonic() > deadline:
+                    raise SingularTimeout(f"Singular did not finish within the time limit of {timeout:g} s")
+                time.sleep(0.001)
+        out, err = (b"".join(chunks[s.fileno()]).decode("utf-8", "replace") for s in (proc.stdout, proc.stderr))
+        proc.stdout.close()
+        proc.stderr.close()
+        return out, err
     except BaseException:  # cancel, timeout, KeyboardInterrupt: never leave Singular running
         _kill(proc)
         raise
 
 
-def _kill(proc: subprocess.Popen[str]) -> None:
+def _kill(proc: subprocess.Popen[bytes]) -> None:
     """Kill the whole process group of ``proc`` (Singular may fork helpers) and reap it."""
     try:
         os.killpg(proc.pid, signal.SIGKILL)
     except ProcessLookupError:
         pass
-    proc.communicate()
+    for stream in (proc.stdin, proc.stdout, proc.stderr):
+        if stream is not None:
+            with contextlib.suppress(OSError, ValueError):
+                stream.close()
+    proc.wait()
 
 
 def _child_limits(timeout: float) -> Callable[[], None]:
@@ -245,10 +284,18 @@ def emit(name: str, value: str) -> str:
     return f'sorguiEmit("{name}", {value});\n'
 
 
-def results(output: str) -> dict[str, list[str]]:
+class Results(dict[str, list[str]]):
+    """The results of a script by name; a name Singular did not report raises
+    :class:`SingularError` (its output was garbled, or it stopped early), never ``KeyError``."""
+
+    def __missing__(self, name: str) -> list[str]:
+        raise SingularError(f"Singular did not report {name!r}: its output is not what sorgui's script prints")
+
+
+def results(output: str) -> Results:
     """The results printed by :func:`emit` in ``output``: for each name, its texts in order
     (a name emitted inside a Singular loop has several)."""
-    found: dict[str, list[str]] = {}
+    found = Results()
     for name, text in _BLOCK.findall(output):
         found.setdefault(name, []).append(text.strip())
     return found
@@ -256,7 +303,7 @@ def results(output: str) -> dict[str, list[str]]:
 
 def run_script(
     script: str, *, timeout: float = 60.0, cancel: threading.Event | None = None
-) -> dict[str, list[str]]:
+) -> Results:
     """:func:`run_singular` on ``script_header() + script``, returning :func:`results`."""
     return results(run_singular(script_header() + script, timeout=timeout, cancel=cancel))
 

@@ -30,6 +30,7 @@ from PySide6.QtCore import QObject, QTimer, Signal
 
 from sorgui.session.child import ChildProcess
 from sorgui.session.process import worker_main
+from sorgui.session.supervised import GRACE, StageLog, time_limit_message
 
 if TYPE_CHECKING:
     from sorgui.session.job import JobRequest
@@ -42,6 +43,9 @@ CANCEL_GRACE_S = 0.5
 
 INTERMEDIATE = ("done", "analysis", "scene", "nearest_scene", "formulas", "components")
 """Messages a job sends before its final one (see :mod:`sorgui.session.job`)."""
+
+SUPERVISION = ("parsed", "analysed")
+"""Messages for the worker alone: the equation's skeleton, and the end of the engine's part."""
 
 SPARE_DELAY_MS = 2000
 """The next worker process starts this long after a job ends, once the result is on screen."""
@@ -57,6 +61,18 @@ class _Job:
         self.process = self.child.process
         self.kill_at: float | None = None
         self.pending: deque[tuple[str, object]] = deque()
+        self.deadline = float("inf")
+        self.limit: float | None = None
+        self.log: StageLog | None = None
+
+    def give(self, request: JobRequest) -> None:
+        """Send ``request``; an analysis must be done by its time limit plus :data:`GRACE`, else the
+        process is killed (stuck inside one C call, where the engine's own limit cannot act)."""
+        self.child.send(request)
+        if request.analysis is None:
+            self.limit = request.singular_timeout
+            self.deadline = time.monotonic() + request.singular_timeout + GRACE
+            self.log = StageLog(request.recognition_only)
 
     @property
     def pid(self) -> int | None:
@@ -138,7 +154,7 @@ class AnalysisWorker(QObject):
         job, self._spare = self._spare, None
         if job is None or not job.process.is_alive():
             job = _Job(self._context)
-        job.conn.send(request)
+        job.give(request)
         self._current = job
         self._timer.start()
         self.busy_changed.emit(True)
@@ -194,6 +210,12 @@ class AnalysisWorker(QObject):
         job.pending.extend(job.messages())
         while job.pending:
             kind, payload = job.pending.popleft()
+            if job.log is not None and kind != "eof":
+                job.log.take((kind, payload))
+            if kind in SUPERVISION:
+                if kind == "analysed":
+                    job.deadline = float("inf")
+                continue
             if kind == "progress":
                 self.message.emit(kind, payload)
                 self.progress.emit(str(payload))
@@ -214,6 +236,15 @@ class AnalysisWorker(QObject):
         if job.kill_at is not None and time.monotonic() >= job.kill_at:
             job.kill()
             self._end_current(job, "cancelled", None)
+        elif job.kill_at is None and time.monotonic() >= job.deadline and job.log is not None:
+            job.kill()  # stuck past the time limit inside one computation: what it finished stands
+            kind, payload = job.log.outcome(time_limit_message(job.limit or 0.0))
+            if kind == "finished":
+                from sorgui.session.job import JobResult
+
+                payload = JobResult(payload, None, None, ())
+                self.message.emit("analysis", payload.analysis)
+            self._end_current(job, kind, payload)
 
     def _end_current(self, job: _Job, kind: str, payload: object) -> None:
         job.ended = True

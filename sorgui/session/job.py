@@ -6,8 +6,10 @@ This module is the target of the worker process (started with the ``spawn`` meth
 leader, waits for one :class:`JobRequest`, and sends plain picklable messages back:
 
 * ``("progress", stage)`` when a stage starts (the engine's stages, ``"scene"``, ``"formulas"``);
-* ``("done", (stage, seconds))`` when one of the worker's own stages ends (the engine's stage
-  times come with the analysis);
+* ``("done", (stage, seconds))`` when a stage ends, the engine's and the worker's own;
+* ``("parsed", Analysis)``: the equation's skeleton once it is read, and ``("analysed", None)``
+  once the engine is done (the window's time limit then no longer applies; both are for the
+  worker's supervision, :mod:`sorgui.gui.worker`, which kills a job stuck past its limit);
 * ``("analysis", Analysis)``: the results known so far, first after the factors (verdict, axis,
   profile), then after the rationality (Table 1 row, genera), then complete;
 * ``("scene", SceneData)``: the typed surface's scene (first without the parameterization
@@ -253,7 +255,10 @@ def run_job(
                 cancel=cancel,
                 progress=lambda stage: deliver("progress", stage),
                 partial=presenter.present,
+                stage_done=lambda stage, seconds: deliver("done", (stage, seconds)),
+                parsed=lambda start: deliver("parsed", start),
             )
+            deliver("analysed", None)  # the engine is done: its time limit is over
             canal = analysis.canal is not None and bool(analysis.canal.is_canal)
             if analysis.parametrizations or analysis.approximate is not None or analysis.rationality is not None or canal:
                 presenter.present(analysis)  # the complete analysis: patch, rounded-input extras, canal

@@ -61,9 +61,10 @@ def time_limit_message(seconds: float) -> str:
 
 @dataclass
 class StageLog:
-    """What an analysis process has said so far about one request."""
+    """What an analysis process has said so far about one request (``recognition_only``: whether
+    the request skipped the rationality, which decides the stages still to come)."""
 
-    request: AnalysisRequest
+    recognition_only: bool
     start: Analysis | None = None
     latest: Analysis | None = None
     timings: list[tuple[str, float]] = field(default_factory=list)
@@ -99,7 +100,7 @@ class StageLog:
         timings = tuple(self.timings) if self.timings or self.latest is None else self.latest.timings
         return "finished", unfinished_analysis(
             start, recognition=None, latest=self.latest, timings=timings, current=self.current,
-            message=reason, recognition_only=self.request.recognition_only,
+            message=reason, recognition_only=self.recognition_only,
         )
 
 
@@ -152,11 +153,13 @@ class Supervised:
 
     def __init__(self, context: Any) -> None:  # noqa: ANN401 (a multiprocessing context)
         self.child = ChildProcess(context, analysis_child)
+        self.request: AnalysisRequest | None = None
         self.log: StageLog | None = None
         self.deadline = float("inf")
 
     def give(self, request: AnalysisRequest) -> None:
-        self.log = StageLog(request)
+        self.request = request
+        self.log = StageLog(request.recognition_only)
         limit = request.timeout
         self.deadline = float("inf") if limit is None else time.monotonic() + limit + GRACE
         self.child.send(request)
@@ -175,8 +178,8 @@ class Supervised:
                 return self.log.final
         if time.monotonic() >= self.deadline:
             self.child.kill()
-            limit = self.log.request.timeout
-            assert limit is not None
+            assert self.request is not None and self.request.timeout is not None
+            limit = self.request.timeout
             return self.log.outcome(time_limit_message(limit))
         return None
 

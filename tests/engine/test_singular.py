@@ -291,3 +291,21 @@ def test_sorguis_procedures_are_a_singular_library_shipped_as_package_data() -> 
     assert f'LIB "{path}";' in script_header()
     pyproject = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text(encoding="utf-8"))
     assert "engine/*.lib" in pyproject["tool"]["setuptools"]["package-data"]["sorgui"]
+
+
+@pytest.mark.parametrize(("body", "said"), [
+    ('cat > /dev/null\necho "%%%% garbage ? not Singular"\n', "did not report"),
+    ('exec yes "garbage garbage garbage garbage"\n', "printed more than"),
+])
+def test_a_singular_that_prints_garbage_or_floods_is_one_line(tmp_path, monkeypatch, body: str, said: str) -> None:
+    """A broken or foreign executable named by ``$SORGUI_SINGULAR``: the analysis says so in one
+    line (the rationality undecided), never an internal error, and a flood is cut off."""
+    from sorgui.engine import analyze
+
+    fake = tmp_path / "Singular"
+    fake.write_text("#!/bin/sh\n" + body)
+    fake.chmod(0o755)
+    monkeypatch.setenv("SORGUI_SINGULAR", str(fake))
+    result = analyze("x^2 + y^2 - z", timeout=60)
+    status = result.rationality.status
+    assert status.startswith("undecided: Singular") and said in status and "\n" not in status

@@ -154,3 +154,25 @@ def _cmdline(pid: int) -> str:
         return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode()
     except OSError:
         return ""
+
+
+@linux_only
+@pytest.mark.gui
+def test_the_time_limit_holds_when_the_worker_is_stuck(make_window, qtbot, fake_singular: Path) -> None:
+    """The worker process frozen (``SIGSTOP``: not even C code runs in it, the most stuck an
+    analysis can be) while Singular runs: at the window's time limit the process is killed and
+    the window shows what was finished, the rest as unfinished."""
+    window = make_window()
+    window.time_limit = 4.0
+    window.set_equation("(x^2+y^2+z^2+3)^2-16(x^2+y^2)")
+    started = time.monotonic()
+    with qtbot.waitSignal(window.worker.finished, timeout=30_000) as blocker:
+        assert window.analyze()
+        qtbot.waitUntil(lambda: any("sleep" in _cmdline(p) for p, _ in descendants(window.worker.current_pid or 0)),
+                        timeout=20_000)
+        pid = window.worker.current_pid
+        os.kill(pid, signal.SIGSTOP)
+    assert time.monotonic() - started < 4.0 + 2.0
+    analysis = blocker.args[0].analysis
+    assert analysis.is_sor and "rationality" in analysis.unfinished
+    qtbot.waitUntil(lambda: process_gone(pid), timeout=10_000)

@@ -20,7 +20,7 @@ def test_the_streamed_messages_rebuild_an_unfinished_analysis() -> None:
     kinds = [kind for kind, _ in sent]
     assert kinds[:2] == ["progress", "done"] and "parsed" in kinds and "analysis" in kinds
     cut = kinds.index("progress", kinds.index("analysis"))  # killed while the stage after the verdict ran
-    log = StageLog(request)
+    log = StageLog(request.recognition_only)
     for message in sent[:cut + 1]:
         assert not log.take(message)
     kind, analysis = log.outcome("the analysis did not finish within the time limit of 60 s")
@@ -30,7 +30,7 @@ def test_the_streamed_messages_rebuild_an_unfinished_analysis() -> None:
 
 
 def test_killed_before_the_equation_was_read_is_a_failure() -> None:
-    log = StageLog(AnalysisRequest("x^2", timeout=1))
+    log = StageLog(recognition_only=False)
     log.take(("progress", "engine"))
     assert log.outcome("the analysis did not finish within the time limit of 1 s") == (
         "failed", "the analysis did not finish within the time limit of 1 s (while reading the equation)")
