@@ -30,7 +30,7 @@ from .parsing import parse_rational
 from .precision import has_decimals
 from .rationals import RATIONALS, context, factor, flint_str, primitive, rational_surd, terms, terms_str, times_text
 from .report import Analysis, Axis, Factor, Profile, Recognition
-from .symmetry import CYLINDER, REVOLUTION, Symmetry, rational_symmetry, revolution_canal
+from .symmetry import CYLINDER, REVOLUTION, SPHERE, Symmetry, rational_symmetry, revolution_canal
 
 if TYPE_CHECKING:
     from .analysis import StageClock
@@ -100,7 +100,15 @@ def recognize_rational(g: fmpq_mpoly) -> Recognition | None:
         normal=_triple(symmetry.normal),
         direction=_triple(symmetry.direction),
         profile=profile,
+        radius_squared=_radius_squared(g, symmetry),
     )
+
+
+def _radius_squared(g: fmpq_mpoly, symmetry: Symmetry) -> str | None:
+    """``r² = −g(c)/a`` of a sphere of degree 2 (``a`` the coefficient of ``x²``)."""
+    if symmetry.kind != SPHERE or g.total_degree() != 2 or symmetry.center is None:
+        return None
+    return str(-g(*symmetry.center) / g[2, 0, 0])
 
 
 def _factor_reports(g: fmpq_mpoly, whole: Recognition) -> tuple[tuple[Factor, ...], list[fmpq_mpoly]] | None:

@@ -17,7 +17,7 @@ from .paper_method import recognize_paper
 from .polys import Poly, factor, poly_str, to_str, total_degree
 from .profile import ProfileCurve, profile_curve
 from .report import Axis, Factor, Profile, Recognition
-from .symmetry import CYLINDER, REVOLUTION, Symmetry, recognize_symmetry
+from .symmetry import CYLINDER, REVOLUTION, SPHERE, Symmetry, recognize_symmetry
 
 METHODS: dict[str, Callable[[Poly], Symmetry]] = {
     "symmetry": recognize_symmetry,
@@ -96,8 +96,15 @@ def recognize(
         normal=_triple(K, sym.normal),
         direction=_triple(K, sym.direction),
         profile=profile_report(profile, K) if profile is not None else None,
+        radius_squared=None if sym.kind != SPHERE or total_degree(f) != 2 else to_str(K, _radius_squared(f, sym.center)),
     )
     return report, sym, profile
+
+
+def _radius_squared(f: Poly, center: Vector) -> object:
+    """``r²`` of the sphere ``f = a·|p − c|² − a·r²``: ``−f(c)/a``."""
+    x = f.ring.gens[0]
+    return -f(*center) / f.coeff(x**2)
 
 
 def _same_line(first: tuple[Vector, Vector], second: tuple[Vector, Vector]) -> bool:

@@ -60,6 +60,8 @@ class Recognition:
     normal: Triple | None = None
     direction: Triple | None = None
     profile: Profile | None = None
+    radius_squared: str | None = None
+    """A sphere of degree 2: the square of its radius (negative: no real point)."""
 
 
 @dataclass(frozen=True)
@@ -373,6 +375,7 @@ class Analysis:
             "symmetry_basis": rec["symmetry_basis"],
             "axis": rec["axis"],
             "center": rec["center"],
+            "radius_squared": rec["radius_squared"],
             "normal": rec["normal"],
             "direction": rec["direction"],
             "profile": rec["profile"],
@@ -457,4 +460,5 @@ def _recognition_from(data: dict[str, Any]) -> Recognition:
         normal=_tuples(data.get("normal")),
         direction=_tuples(data.get("direction")),
         profile=_build(Profile, data.get("profile")),
+        radius_squared=data.get("radius_squared"),
     )

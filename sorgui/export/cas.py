@@ -68,7 +68,8 @@ def approximate_line(approx: Approximation) -> str:
 
 LATEX_NAMES = {"P2": "P^2", "P2K": r"\tilde{p}^2", "P2param": r"\mathrm{P2param}", "tau": r"\tau",
                "axisPoint": r"\mathrm{axisPoint}", "axisDirection": r"\mathrm{axisDirection}",
-               "center": r"\mathrm{center}", "normal": r"\mathrm{normal}", "direction": r"\mathrm{direction}"}
+               "center": r"\mathrm{center}", "normal": r"\mathrm{normal}", "direction": r"\mathrm{direction}",
+               "radiusSquared": "r^{2}"}
 """How the formulas' names are typeset (``X1`` becomes ``X_{1}`` by sympy's rule)."""
 
 

@@ -247,6 +247,8 @@ def surface_formulas(analysis: Analysis) -> list[Formula]:
         ("direction", "the direction of the extrusion", rec.direction),
     )
     out += [Formula(name, text, _vector(value)) for name, text, value in vectors if value is not None]
+    if rec.radius_squared is not None:
+        out.append(Formula("radiusSquared", "the square of the sphere's radius", read_expression(rec.radius_squared)))
     if rec.profile is not None:
         out.append(Formula("p", "the profile p(x, y) = 0 (x along the axis, y the distance to it)",
                            read_expression(rec.profile.polynomial)))

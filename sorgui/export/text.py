@@ -46,7 +46,8 @@ def recognition_lines(rec: Recognition, indent: str = "") -> list[str]:
         lines.append(f"{indent}axis:      {_vec(rec.axis.point)} + t·{_vec(rec.axis.direction)}")
         lines.append(f"{indent}Plücker:   ({' : '.join(rec.axis.plucker)})")
     if rec.center is not None:
-        lines.append(f"{indent}centre:    {_vec(rec.center)}")
+        radius = "" if rec.radius_squared is None else f", radius² {rec.radius_squared}"
+        lines.append(f"{indent}centre:    {_vec(rec.center)}{radius}")
     if rec.normal is not None:
         lines.append(f"{indent}normal:    {_vec(rec.normal)}")
     if rec.direction is not None:

@@ -69,7 +69,7 @@ EXPRESSIONS: dict[str, frozenset[str]] = {
     "Axis": frozenset({"point", "direction", "plucker"}),
     "Profile": frozenset({"polynomial", "square", "rational", "rational_square", "frame_point", "frame_direction",
                           "frame_normal"}),
-    "Recognition": frozenset({"polynomial", "symmetry_basis", "center", "normal", "direction"}),
+    "Recognition": frozenset({"polynomial", "symmetry_basis", "center", "normal", "direction", "radius_squared"}),
     "Factor": frozenset({"polynomial"}),
     "Rationality": frozenset({"absolute_factors", "square_parametrization", "tubular_surface", "h", "tau"}),
     "Parametrization": frozenset({"coordinates"}),

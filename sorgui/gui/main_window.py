@@ -11,6 +11,7 @@ Open, New, Quit); the window works down to 800×560 (the panes scroll).
 
 from __future__ import annotations
 
+import html
 from collections.abc import Callable
 from pathlib import Path
 
@@ -18,6 +19,7 @@ from PySide6.QtCore import QEvent, QObject, Qt, QTimer, Signal
 from PySide6.QtGui import (
     QAction,
     QCloseEvent,
+    QDropEvent,
     QFontInfo,
     QGuiApplication,
     QKeySequence,
@@ -26,6 +28,7 @@ from PySide6.QtGui import (
     QPen,
 )
 from PySide6.QtWidgets import (
+    QApplication,
     QFileDialog,
     QHBoxLayout,
     QLabel,
@@ -70,6 +73,7 @@ from sorgui.gui.settings import (
     write_equation,
 )
 from sorgui.gui.viewport import Viewport
+from sorgui.gui.wording import invalid_heading
 from sorgui.gui.worker import AnalysisWorker
 from sorgui.render.picking import PickInfo
 from sorgui.session.formulas import Style
@@ -123,6 +127,11 @@ class BusyIndicator(QWidget):
         painter.drawArc(self.rect().adjusted(2, 2, -2, -2), self._angle * 16, 270 * 16)
 
 
+DROPPED_SUFFIXES = (".sor", ".poly", ".txt", ".json")
+"""The files a drop on the window opens: equation files and reports."""
+
+_DROP_EVENTS = (QEvent.Type.DragEnter, QEvent.Type.DragMove, QEvent.Type.Drop)
+
 DEFAULT_TIME_LIMIT = 60.0
 """The window's time limit of one analysis, in seconds."""
 
@@ -143,6 +152,8 @@ class MainWindow(QMainWindow):
         worker.setParent(self)
         self.worker = worker
         self.session = Session(runner=self.worker)
+        self._discarded = False
+        """Whether the last unsaved-changes question was answered Discard."""
         self.time_limit = DEFAULT_TIME_LIMIT
         """Seconds for each whole analysis (the stages not finished by then are shown as such)."""
         self.worker.message.connect(self.session.handle)
@@ -181,6 +192,8 @@ class MainWindow(QMainWindow):
         self.viewport.radius_requested.connect(self._on_radius_change)
         self.viewport.picked.connect(self._on_pick_change)
         self.results.viewport().installEventFilter(self)
+        self.setAcceptDrops(True)
+        QApplication.instance().installEventFilter(self)  # drops on any of the window's widgets
         self._restore_layout()
         self._update_title()
 
@@ -302,8 +315,10 @@ class MainWindow(QMainWindow):
     # --- public API ---
 
     def set_equation(self, text: str, file: str | None = None) -> None:
-        """Put ``text`` into the editor; ``file`` is where it came from (or ``None``)."""
+        """Put ``text`` into the editor as a new document (``file``: where it came from, or
+        ``None``): it starts a fresh undo history, so Undo never brings back another document."""
         self.editor.set_text(text)
+        self.editor.text_edit.document().clearUndoRedoStacks()
         self._file = file
         self.setWindowModified(False)
         self._update_title()
@@ -325,7 +340,8 @@ class MainWindow(QMainWindow):
         if answer == QMessageBox.StandardButton.Save:
             self._on_save_change()
             return not self.isWindowModified()
-        return answer == QMessageBox.StandardButton.Discard
+        self._discarded = answer == QMessageBox.StandardButton.Discard
+        return self._discarded
 
     def ask_to_save(self, name: str) -> QMessageBox.StandardButton:
         """The unsaved-changes question (Save, Discard or Cancel)."""
@@ -465,8 +481,10 @@ class MainWindow(QMainWindow):
         self.viewport.radius_box.setEnabled(not busy and self._finished_analysis() is not None)
 
     def _show_invalid(self, message: str) -> None:
-        self.results.show_message("Not a polynomial in x, y, z", message, "error")
-        self.run_panel.set_notice("error", f"<b>Not a polynomial:</b> {message}")
+        heading = invalid_heading(message)
+        self.results.show_message(heading, message, "error")
+        self.run_panel.show_run(None)  # the previous equation's stages are not this one's
+        self.run_panel.set_notice("error", f"<b>{html.escape(heading)}:</b> {html.escape(message)}")
         self.viewport.clear(caption="No surface: the equation is not a polynomial")
         self.stage_label.setText("Fix the equation to analyse it")
 
@@ -610,7 +628,11 @@ class MainWindow(QMainWindow):
         self.settings.save_layout("left", self.left_splitter.saveState())
 
     def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 (Qt override)
-        """Ctrl+wheel over the results zooms the formulas."""
+        """Ctrl+wheel over the results zooms the formulas; a file dropped anywhere on the window
+        (the editor, the 3D view) is opened, never pasted as ``file://`` text or handed to the
+        3D view."""
+        if event.type() in _DROP_EVENTS and isinstance(watched, QWidget) and watched.window() is self:
+            return self._on_drop_change(event)  # type: ignore[arg-type]
         if (event.type() == QEvent.Type.Wheel and watched is self.results.viewport()
                 and event.modifiers() & Qt.KeyboardModifier.ControlModifier):
             delta = event.angleDelta().y()  # type: ignore[union-attr]
@@ -619,13 +641,49 @@ class MainWindow(QMainWindow):
             return True
         return super().eventFilter(watched, event)
 
+    def _on_drop_change(self, event: QDropEvent) -> bool:
+        """Take a drag of files: an equation file (``.sor``, ``.poly``, ``.txt``) or a report
+        (``.json``) is opened; anything else is refused with a word in the status bar."""
+        mime = event.mimeData()
+        if not mime.hasUrls():
+            return False
+        paths = [url.toLocalFile() for url in mime.urls() if url.isLocalFile()]
+        openable = [p for p in paths if Path(p).suffix.lower() in DROPPED_SUFFIXES]
+        if event.type() != QEvent.Type.Drop:
+            if openable:
+                event.acceptProposedAction()
+            else:
+                event.ignore()
+            return True
+        if not openable:
+            self.statusBar().showMessage("sorgui opens equation files (.sor, .poly, .txt) and reports (.json)", 6000)
+            event.ignore()
+            return True
+        event.acceptProposedAction()
+        if self.confirm_discard():
+            self.open_file(openable[0])
+        return True
+
+    def _kept_text(self) -> str:
+        """The text the next start restores: the editor's, unless the user chose Discard (then the
+        saved file's text, or nothing: the next start shows Example 1)."""
+        if not self._discarded:
+            return self.editor.text()
+        if self._file:
+            try:
+                return read_equation(self._file)
+            except EquationFileError:
+                return ""
+        return ""
+
     def closeEvent(self, event: QCloseEvent) -> None:  # noqa: N802 (Qt override)
         """Ask about unsaved changes; then remember the text, layout and camera, kill the worker
         processes and release the render window."""
+        self._discarded = False
         if not self.confirm_discard():
             event.ignore()
             return
-        self.settings.equation = self.editor.text()
+        self.settings.equation = self._kept_text()
         self.settings.current_file = self._file
         if self.viewport.detected_software is not None:
             self.settings.software_rendering = self.viewport.detected_software

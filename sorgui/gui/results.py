@@ -273,7 +273,10 @@ class ResultsPane(QScrollArea):
                 ("Plücker (a : c × a)", f"{key}axis.plucker"),
             ])
         if rec.center is not None:
-            self._section(column, "Centre (every line through it is an axis)", [("centre", f"{key}center")])
+            rows = [("centre", f"{key}center")]
+            if rec.radius_squared is not None:
+                rows.append(("radius²", f"{key}radius_squared"))
+            self._section(column, "Centre (every line through it is an axis)", rows)
         if rec.normal is not None:
             self._section(column, "Normal (every line along it is an axis)", [("normal", f"{key}normal")])
         if rec.direction is not None:

@@ -15,6 +15,8 @@ the run panel, the results pane, the 3D viewport and the status line:
 
 from __future__ import annotations
 
+import html
+
 from PySide6.QtCore import QObject, QTimer, Signal
 from PySide6.QtWidgets import QLabel
 
@@ -24,6 +26,7 @@ from sorgui.gui.editor import EquationEditor
 from sorgui.gui.results import ResultsPane
 from sorgui.gui.stages import RunPanel, seconds_text
 from sorgui.gui.viewport import Viewport
+from sorgui.gui.wording import invalid_heading
 from sorgui.session.model import WORKER_STAGES, Run, Session, StageState
 
 PANE_DELAY_MS = 120
@@ -73,6 +76,8 @@ class SessionView(QObject):
         self._pane_timer.setInterval(PANE_DELAY_MS)
         self._dirty = False
         self._shown: tuple[object, bool] | None = None
+        self._shown_pending = False
+        """Whether the page shown names stages still to come."""
         """The analysis the results pane shows, and whether it is the nearest surface's."""
         self._pane_timer.timeout.connect(self.refresh_pane)
         events = session.events
@@ -105,7 +110,7 @@ class SessionView(QObject):
         if run is None:
             return
         if run.outcome == "invalid":
-            self.results.show_message("Not a polynomial in x, y, z", run.message or "", "error")
+            self.results.show_message(invalid_heading(run.message or ""), run.message or "", "error")
         elif run.analysis is None:
             if run.running:
                 running = next((s.title for s in run.stage_list() if s.state is StageState.RUNNING), "Starting")
@@ -130,6 +135,7 @@ class SessionView(QObject):
             self.results.show_analysis(analysis, formulas, worker, pending=pending, nearest=nearest,
                                        components=() if nearest else run.components)
             self._shown = (analysis, nearest)
+            self._shown_pending = bool(pending)
         self.results.set_stale(self.session.stale)
         self.panel.set_nearest_available(self.session.nearest_analysis is not None, self.session.view)
 
@@ -150,7 +156,8 @@ class SessionView(QObject):
         elif run is None or run.running or run.outcome == "finished":
             self.panel.set_notice(None)
         elif run.outcome == "invalid":
-            self.panel.set_notice("error", f"<b>Not a polynomial:</b> {run.message}")
+            message = run.message or ""
+            self.panel.set_notice("error", f"<b>{html.escape(invalid_heading(message))}:</b> {html.escape(message)}")
         elif run.outcome == "failed":
             failed = run.failed_stage()
             where = f" in the stage “{failed.title}”" if failed is not None else ""
@@ -226,7 +233,9 @@ class SessionView(QObject):
             self.viewport.set_stale(True, "Previous equation (out of date): " + caption)
 
     def _on_run_finish_change(self, run: Run) -> None:
-        if self._dirty or run.outcome != "finished":
+        # A page that says a stage is still coming ("being decided") is rebuilt at the end, even
+        # when no new result came: a stage that did not run (a sphere has no rationality) is over.
+        if self._dirty or run.outcome != "finished" or self._shown_pending:
             self.refresh_pane()
         self.panel.show_run(run)
         self._update_notice()

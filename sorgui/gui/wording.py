@@ -121,6 +121,20 @@ def radius_words(family: CanalFamily) -> str:
     return "varies along the spine"
 
 
+def invalid_heading(message: str) -> str:
+    """The heading of a refused equation: what is wrong with it, in a few words (a degree above
+    the limit is a polynomial, just too large; an empty editor holds no equation at all)."""
+    if "degree is too high" in message:
+        return "The degree is above sorgui's limit"
+    if "too long" in message or "more than" in message and "digits" in message:
+        return "The equation is too large"
+    if "is empty" in message or "editor is empty" in message:
+        return "No equation"
+    if "constant" in message or "no variables" in message:
+        return "No surface: the equation is constant"
+    return "Not a polynomial in x, y, z"
+
+
 def caption_tip(caption: str) -> str:
     """The tooltip of a caption of the results pane (a stage name in the timings gets its title)."""
     if caption in CAPTION_TIPS:

@@ -30,7 +30,7 @@ from PySide6.QtCore import QObject, QTimer, Signal
 
 from sorgui.session.child import ChildProcess
 from sorgui.session.process import worker_main
-from sorgui.session.supervised import GRACE, StageLog, time_limit_message
+from sorgui.session.supervised import GRACE, SUPERVISION, StageLog, time_limit_message
 
 if TYPE_CHECKING:
     from sorgui.session.job import JobRequest
@@ -44,8 +44,6 @@ CANCEL_GRACE_S = 0.5
 INTERMEDIATE = ("done", "analysis", "scene", "nearest_scene", "formulas", "components")
 """Messages a job sends before its final one (see :mod:`sorgui.session.job`)."""
 
-SUPERVISION = ("parsed", "analysed")
-"""Messages for the worker alone: the equation's skeleton, and the end of the engine's part."""
 
 SPARE_DELAY_MS = 2000
 """The next worker process starts this long after a job ends, once the result is on screen."""

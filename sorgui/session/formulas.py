@@ -194,6 +194,8 @@ def _recognition_formulas(rec: Recognition, key: str, make: _Builders) -> Iterab
         value = getattr(rec, name)
         if value is not None:
             yield f"{key}{name}", make.vector(value)
+    if rec.radius_squared is not None:
+        yield f"{key}radius_squared", make.expression(rec.radius_squared, "r^2 =")
 
 
 def analysis_formulas(analysis: Analysis, plain: bool = False) -> dict[str, Formula]:

@@ -24,6 +24,7 @@ from sorgui.session.components import Component
 from sorgui.session.events import SessionEvents
 from sorgui.session.formulas import Formula
 from sorgui.session.job import JobRequest, JobResult, run_job
+from sorgui.session.supervised import SUPERVISION
 
 if TYPE_CHECKING:
     from sorgui.session.scene_data import SceneData
@@ -273,7 +274,7 @@ class Session:
         if self._refresh is not None:
             self._handle_refresh(run, kind, payload)
             return
-        if not run.running:
+        if not run.running or kind in SUPERVISION:
             return
         if kind == "progress":
             self._start_stage(run, str(payload))

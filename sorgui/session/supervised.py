@@ -37,6 +37,10 @@ GRACE = 0.4
 
 FINAL = ("finished", "invalid", "failed")
 
+SUPERVISION = ("parsed", "analysed")
+"""Messages for the supervising parent alone: the equation's skeleton, and the end of the
+engine's part of a window's job (:mod:`sorgui.session.job`); views never see them."""
+
 
 @dataclass(frozen=True)
 class AnalysisRequest:

@@ -188,3 +188,95 @@ def test_sorgui_opens_the_window_first_then_analyses_example_1(qtbot) -> None:
         window.close()
         window.deleteLater()
         QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
+
+
+def test_a_refused_equation_says_what_is_wrong_and_drops_the_old_stages(window, qtbot, run_analysis,
+                                                                       artifacts) -> None:
+    """After an analysis, an equation above the degree limit or an empty editor: the heading names
+    the problem, and the stages of the previous equation are no longer shown."""
+    run_analysis(window, "x^2 + 2y^2 + 3z^2 - 1")
+    assert window.run_panel.stage_line.text()
+    for text, heading in (("x^200", "The degree is above sorgui's limit"), ("", "No equation"),
+                          ("x^2 + * y", "Not a polynomial in x, y, z")):
+        window.set_equation(text)
+        assert window.analyze() is False
+        assert heading in window.results.banner.text(), window.results.banner.text()
+        assert window.run_panel.stage_line.text() == "" and not window.run_panel.progress_bar.isVisible()
+    window.save_screenshots(artifacts / "refused-window.png", artifacts / "refused-viewport.png")
+
+
+def test_discard_on_quit_is_not_restored_at_the_next_start(make_window, monkeypatch) -> None:
+    from PySide6.QtWidgets import QMessageBox
+
+    window = make_window(prestart_worker=False)
+    window.set_equation("x^2 + y^2 - 7")
+    window.setWindowModified(True)
+    monkeypatch.setattr(window, "ask_to_save", lambda _name: QMessageBox.StandardButton.Discard)
+    window.close()
+    assert not window.isVisible()
+    assert make_window(prestart_worker=False).settings.equation != "x^2 + y^2 - 7"
+
+
+def test_cancel_on_quit_keeps_the_window(make_window, monkeypatch) -> None:
+    from PySide6.QtWidgets import QMessageBox
+
+    window = make_window(prestart_worker=False)
+    window.set_equation("x^2 + y^2 - 7")
+    window.setWindowModified(True)
+    monkeypatch.setattr(window, "ask_to_save", lambda _name: QMessageBox.StandardButton.Cancel)
+    window.close()
+    assert window.isVisible()
+    monkeypatch.setattr(window, "ask_to_save", lambda _name: QMessageBox.StandardButton.Discard)
+
+
+def test_undo_stays_within_the_loaded_document(make_window, qtbot) -> None:
+    window = make_window(prestart_worker=False)
+    window.set_equation(example_text("torus"))
+    window.set_equation(example_text("cone"))
+    edit = window.editor.text_edit
+    edit.moveCursor(edit.textCursor().MoveOperation.End)
+    qtbot.keyClicks(edit, " + 1")
+    for _ in range(3):
+        edit.undo()
+    assert edit.toPlainText() == example_text("cone")
+
+
+@pytest.mark.parametrize("target", ["editor", "viewport"])
+def test_a_dropped_equation_file_is_opened(window, qtbot, tmp_path, target: str) -> None:
+    """A file dropped on the editor or on the 3D view opens (it is not pasted as ``file://``
+    text, and the 3D view does not try to read it); anything else is refused."""
+    from PySide6.QtCore import QMimeData, QPointF, QUrl
+    from PySide6.QtGui import QDropEvent
+
+    part = tmp_path / "part.sor"
+    part.write_text("x^2 + y^2 - 4z^2 - 1\n", encoding="utf-8")
+    mime = QMimeData()
+    mime.setUrls([QUrl.fromLocalFile(str(part))])
+    widget = window.editor.text_edit.viewport() if target == "editor" else window.viewport
+    drop = QDropEvent(QPointF(10, 10), Qt.DropAction.CopyAction, mime, Qt.MouseButton.LeftButton,
+                      Qt.KeyboardModifier.NoModifier)
+    # Qt delivers a drop only during a real drag (none can be made under Xvfb without a drag
+    # source): the window's event filter, which sees every event of its widgets, gets it here.
+    assert window.eventFilter(widget, drop) is True
+    assert window.editor.text() == "x^2 + y^2 - 4z^2 - 1"
+    assert "file://" not in window.editor.text()
+    qtbot.waitUntil(lambda: not window.worker.is_busy, timeout=120_000)
+    picture = tmp_path / "photo.png"
+    picture.write_bytes(b"not an equation")
+    mime.setUrls([QUrl.fromLocalFile(str(picture))])
+    other = QDropEvent(QPointF(10, 10), Qt.DropAction.CopyAction, mime, Qt.MouseButton.LeftButton,
+                       Qt.KeyboardModifier.NoModifier)
+    assert window.eventFilter(widget, other) is True
+    assert window.editor.text() == "x^2 + y^2 - 4z^2 - 1" and "reports (.json)" in window.statusBar().currentMessage()
+
+
+def test_the_sphere_settles_with_its_centre_and_radius(window, run_analysis, artifacts) -> None:
+    """A sphere has no rationality stage (no unique axis): once done, the pane says nothing is
+    still being decided, and it gives the centre and the squared radius."""
+    run_analysis(window, example_text("sphere"))
+    from PySide6.QtWidgets import QLabel
+
+    text = "\n".join(label.text() for label in window.results.widget().findChildren(QLabel))
+    assert "being decided" not in text and "being computed" not in text
+    assert "radius²" in text and "radius_squared" in window.results.views
+    window.save_screenshots(artifacts / "sphere-window.png", artifacts / "sphere-viewport.png")
