@@ -205,28 +205,27 @@ def test_a_refused_equation_says_what_is_wrong_and_drops_the_old_stages(window, 
     window.save_screenshots(artifacts / "refused-window.png", artifacts / "refused-viewport.png")
 
 
-def test_discard_on_quit_is_not_restored_at_the_next_start(make_window, monkeypatch) -> None:
+def _close_answering(make_window, monkeypatch, answer: str):  # noqa: ANN001, ANN202
+    """A window with a changed equation, closed with ``answer`` to the unsaved-changes question."""
     from PySide6.QtWidgets import QMessageBox
 
     window = make_window(prestart_worker=False)
     window.set_equation("x^2 + y^2 - 7")
     window.setWindowModified(True)
-    monkeypatch.setattr(window, "ask_to_save", lambda _name: QMessageBox.StandardButton.Discard)
+    monkeypatch.setattr(window, "ask_to_save", lambda _name: getattr(QMessageBox.StandardButton, answer))
     window.close()
+    return window
+
+
+def test_discard_on_quit_is_not_restored_at_the_next_start(make_window, monkeypatch) -> None:
+    window = _close_answering(make_window, monkeypatch, "Discard")
     assert not window.isVisible()
     assert make_window(prestart_worker=False).settings.equation != "x^2 + y^2 - 7"
 
 
 def test_cancel_on_quit_keeps_the_window(make_window, monkeypatch) -> None:
-    from PySide6.QtWidgets import QMessageBox
-
-    window = make_window(prestart_worker=False)
-    window.set_equation("x^2 + y^2 - 7")
-    window.setWindowModified(True)
-    monkeypatch.setattr(window, "ask_to_save", lambda _name: QMessageBox.StandardButton.Cancel)
-    window.close()
+    window = _close_answering(make_window, monkeypatch, "Cancel")
     assert window.isVisible()
-    monkeypatch.setattr(window, "ask_to_save", lambda _name: QMessageBox.StandardButton.Discard)
 
 
 def test_undo_stays_within_the_loaded_document(make_window, qtbot) -> None:
