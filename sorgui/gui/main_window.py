@@ -31,6 +31,7 @@ from PySide6.QtWidgets import (
     QApplication,
     QFileDialog,
     QHBoxLayout,
+    QInputDialog,
     QLabel,
     QMainWindow,
     QMenu,
@@ -130,10 +131,26 @@ class BusyIndicator(QWidget):
 DROPPED_SUFFIXES = (".sor", ".poly", ".txt", ".json")
 """The files a drop on the window opens: equation files and reports."""
 
+OPENABLE_FILTER = "Equations and reports (*.txt *.sor *.poly *.json)"
+"""The Open dialog's first filter: everything sorgui opens, reports included."""
+
 _DROP_EVENTS = (QEvent.Type.DragEnter, QEvent.Type.DragMove, QEvent.Type.Drop)
 
 DEFAULT_TIME_LIMIT = 60.0
 """The window's time limit of one analysis, in seconds."""
+
+
+def parse_tolerance(text: str) -> float | None | bool:
+    """``None`` for ``auto`` (or nothing), the tolerance for a number strictly between 0 and 1,
+    ``False`` for anything else."""
+    word = text.strip().lower()
+    if word in ("", "auto"):
+        return None
+    try:
+        value = float(word)
+    except ValueError:
+        return False
+    return value if 0.0 < value < 1.0 else False
 
 
 class MainWindow(QMainWindow):
@@ -154,7 +171,10 @@ class MainWindow(QMainWindow):
         self.session = Session(runner=self.worker)
         self._discarded = False
         """Whether the last unsaved-changes question was answered Discard."""
-        self.time_limit = DEFAULT_TIME_LIMIT
+        self.time_limit = self.settings.time_limit or DEFAULT_TIME_LIMIT
+        """Seconds for each whole analysis (Analysis → Time Limit…, ``--timeout`` of the command line)."""
+        self.tolerance = self.settings.tolerance
+        """The relative tolerance of rounded input; ``None``: from the printed digits (``--tolerance``)."""
         """Seconds for each whole analysis (the stages not finished by then are shown as such)."""
         self.worker.message.connect(self.session.handle)
         self.editor = EquationEditor(self)
@@ -163,6 +183,8 @@ class MainWindow(QMainWindow):
         self.viewport = Viewport(self)
         self.help_dialog: HelpDialog | None = None
         self._file: str | None = None
+        self._report: str | None = None
+        """The report shown (File → Open of a ``.json``), when the editor holds its equation."""
         self._zoom = 1.0
 
         self.analyze_button = QPushButton("Analyze")
@@ -260,6 +282,9 @@ class MainWindow(QMainWindow):
         self.analyze_action.setShortcuts([QKeySequence("Ctrl+Return"), QKeySequence("Ctrl+Enter")])
         self.cancel_action = self._action(analysis_menu, "&Cancel", self.cancel, "Esc")
         self.cancel_action.setEnabled(False)
+        analysis_menu.addSeparator()
+        self._action(analysis_menu, "&Time Limit…", self.ask_time_limit)
+        self._action(analysis_menu, "&Rounding Tolerance…", self.ask_tolerance)
 
         self.examples_menu = ExamplesMenu(self)
         self.examples_menu.example_chosen.connect(self._on_example_change)
@@ -320,6 +345,7 @@ class MainWindow(QMainWindow):
         self.editor.set_text(text)
         self.editor.text_edit.document().clearUndoRedoStacks()
         self._file = file
+        self._report = None
         self.setWindowModified(False)
         self._update_title()
 
@@ -421,6 +447,9 @@ class MainWindow(QMainWindow):
             self._show_error("Cannot open report", exc.message)
             return False
         self.set_equation(analysis.input)
+        self._report = path
+        self._update_title()
+        self.settings.add_recent_file(path)
         self.session.analyze(analysis.input, analysis=analysis, resolution=self.viewport.mesh_resolution(),
                              style=self._formula_style())
         self.statusBar().showMessage(f"Report {Path(path).name}: shown as saved, not analysed again", 6000)
@@ -449,7 +478,8 @@ class MainWindow(QMainWindow):
             return False
         superseded = self.worker.is_busy
         self.session.analyze(self.editor.text(), resolution=self.viewport.mesh_resolution(),
-                             style=self._formula_style(), singular_timeout=self.time_limit)
+                             style=self._formula_style(), singular_timeout=self.time_limit,
+                             tolerance=self.tolerance)
         if superseded:
             self.statusBar().showMessage("The running analysis was stopped: this one replaces it", 5000)
         return True
@@ -512,7 +542,7 @@ class MainWindow(QMainWindow):
             return
         start = str(Path(self._file).parent) if self._file else ""
         path, _ = QFileDialog.getOpenFileName(self, "Open equation or report", start,
-                                              f"{EQUATION_FILTER};;{REPORT_FILTER}")
+                                              f"{OPENABLE_FILTER};;{EQUATION_FILTER};;{REPORT_FILTER}")
         if path:
             self.open_file(path)
 
@@ -550,6 +580,42 @@ class MainWindow(QMainWindow):
             picture = png_bytes(viewport_image(self.viewport, REPORT_PICTURE_WIDTH))
         return export_analysis(analysis, path, fmt, scene=self.viewport.scene, picture=picture)
 
+    def ask_time_limit(self) -> None:
+        """Analysis → Time Limit…: the seconds one analysis may take (kept for the next start)."""
+        seconds, ok = QInputDialog.getDouble(
+            self, "Time limit", "Seconds for one analysis (the stages not finished by then are shown as such):",
+            self.time_limit, 1.0, 86_400.0, 0)
+        if ok:
+            self.time_limit = seconds
+            self.settings.time_limit = seconds
+            self.statusBar().showMessage(f"Time limit: {seconds:g} s from the next analysis", 5000)
+
+    def ask_tolerance(self) -> None:
+        """Analysis → Rounding Tolerance…: ``auto`` (from the printed digits) or a relative tolerance."""
+        current = "auto" if self.tolerance is None else f"{self.tolerance:g}"
+        text, ok = QInputDialog.getText(
+            self, "Rounding tolerance",
+            "Relative tolerance for rounded input: 'auto' reads it off the printed digits, "
+            "or a number between 0 and 1 such as 1e-8:", text=current)
+        if not ok:
+            return
+        tolerance = parse_tolerance(text)
+        if tolerance is False:
+            self._show_error("Not a tolerance", f"{text!r} is neither 'auto' nor a number between 0 and 1.")
+            return
+        self.tolerance = tolerance
+        self.settings.tolerance = tolerance
+        self.statusBar().showMessage(f"Rounding tolerance: {text.strip() or 'auto'} from the next analysis", 5000)
+
+    def confirm_replace(self, side: Path) -> bool:
+        """Whether the picture a Markdown report writes beside itself may replace ``side``, which
+        exists (the file dialog asked only about the report)."""
+        answer = QMessageBox.question(
+            self, "Replace the picture?",
+            f"The Markdown report writes its picture as {side.name}, which exists already. Replace it?",
+            QMessageBox.StandardButton.Yes | QMessageBox.StandardButton.Cancel, QMessageBox.StandardButton.Cancel)
+        return answer == QMessageBox.StandardButton.Yes
+
     def save_picture(self, path: str | Path, width: int | None = None, transparent: bool = False) -> Path:
         """Save the 3D view as a PNG ``width`` pixels wide (default: as on screen), optionally
         with a transparent background (written atomically)."""
@@ -564,6 +630,9 @@ class MainWindow(QMainWindow):
             return
         if Path(path).suffix.lower() not in EXPORT_FILTERS:
             path += suffix_of_filter(chosen)
+        picture = Path(path).with_suffix(".png")
+        if Path(path).suffix.lower() == ".md" and picture.exists() and not self.confirm_replace(picture):
+            return
         try:
             written = self.export_results(path)
         except (OSError, ValueError) as exc:
@@ -609,7 +678,9 @@ class MainWindow(QMainWindow):
         QMessageBox.warning(self, title, message)
 
     def _update_title(self) -> None:
-        name = Path(self._file).name if self._file else "Untitled"
+        """The window's title: the equation file, the report shown, or Untitled."""
+        report = self._report
+        name = Path(self._file).name if self._file else (f"{Path(report).name} (report)" if report else "Untitled")
         self.setWindowTitle(f"{name}[*] — sorgui")
 
     def _restore_layout(self) -> None:

@@ -9,6 +9,7 @@ folder, so they never touch the user's file. Equation files are plain UTF-8 text
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 from PySide6.QtCore import QByteArray, QObject, QSettings, Signal
@@ -151,6 +152,28 @@ class Settings(QObject):
     def software_rendering(self, software: bool) -> None:
         self._store.setValue("view/software_rendering", bool(software))
 
+    @property
+    def time_limit(self) -> float | None:
+        """The time limit of one analysis in seconds (``None``: never set, the default applies)."""
+        return _positive(self._store.value("analysis/time_limit"))
+
+    @time_limit.setter
+    def time_limit(self, seconds: float) -> None:
+        self._store.setValue("analysis/time_limit", float(seconds))
+
+    @property
+    def tolerance(self) -> float | None:
+        """The relative tolerance of rounded input (``None``: read off the input's digits)."""
+        value = _positive(self._store.value("analysis/tolerance"))
+        return value if value is not None and value < 1 else None
+
+    @tolerance.setter
+    def tolerance(self, tolerance: float | None) -> None:
+        if tolerance is None:
+            self._store.remove("analysis/tolerance")
+        else:
+            self._store.setValue("analysis/tolerance", float(tolerance))
+
     # --- window layout ---
 
     def save_layout(self, name: str, state: QByteArray) -> None:
@@ -193,3 +216,12 @@ class RecentFilesMenu(QMenu):
         clear.setEnabled(bool(files))
         clear.triggered.connect(self._settings.clear_recent_files)
         self.setEnabled(bool(files))
+
+
+def _positive(value: object) -> float | None:
+    """A stored positive finite number, or ``None`` (absent or not a number)."""
+    try:
+        number = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        return None
+    return number if math.isfinite(number) and number > 0 else None

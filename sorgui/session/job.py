@@ -75,6 +75,7 @@ class JobRequest:
     method: str = "symmetry"
     recognition_only: bool = False
     singular_timeout: float = 60.0
+    tolerance: float | None = None
     analysis: Analysis | None = None
     radius: float | None = None
     resolution: int = DEFAULT_RESOLUTION
@@ -252,6 +253,7 @@ def run_job(
                 recognition_only=request.recognition_only,
                 singular_timeout=request.singular_timeout,
                 timeout=request.singular_timeout,  # the window's limit bounds the whole analysis
+                tolerance=request.tolerance,
                 cancel=cancel,
                 progress=lambda stage: deliver("progress", stage),
                 partial=presenter.present,

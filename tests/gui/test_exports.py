@@ -48,6 +48,8 @@ def test_saved_report_opens_without_analysing_again(window, qtbot, tmp_path) -> 
     assert window.editor.text() == analysis.input
     assert window.viewport.scene is not None and window.viewport.scene.surface.n_faces > 1000
     assert "Surface of revolution" in window.results.plain_text() or analysis.is_sor
+    assert window.windowTitle().startswith("torus.sorgui.json (report)")
+    assert str(path.resolve()) in window.settings.recent_files
 
 
 def test_a_file_that_is_not_a_report_is_refused_with_a_dialog(window, qtbot, tmp_path, monkeypatch) -> None:
@@ -97,3 +99,20 @@ def test_export_dialog_offers_every_format_and_the_patches() -> None:
     assert suffix_of_filter("STL mesh (binary), parametric patch (*.patch.stl)") == ".patch.stl"
     assert suffix_of_filter("STL mesh (binary) (*.stl)") == ".stl"
     assert suffix_of_filter("Python module (NumPy and SymPy) (*.py)") == ".py"
+
+
+def test_exporting_markdown_asks_before_replacing_its_picture(window, run_analysis, tmp_path, monkeypatch) -> None:
+    """File → Export of ``part.md`` beside an existing ``part.png``: the picture is replaced only
+    after the window asks (the file dialog asked about the report alone)."""
+    from PySide6.QtWidgets import QFileDialog, QMessageBox
+
+    run_analysis(window, TORUS)
+    picture = tmp_path / "part.png"
+    picture.write_bytes(b"the user's own picture")
+    monkeypatch.setattr(QFileDialog, "getSaveFileName", lambda *_args: (str(tmp_path / "part.md"), ""))
+    asked: list[str] = []
+    monkeypatch.setattr(QMessageBox, "question",
+                        lambda *args, **_kw: asked.append(args[2]) or QMessageBox.StandardButton.Cancel)
+    window._on_export_change()
+    assert asked and "part.png" in asked[0]
+    assert picture.read_bytes() == b"the user's own picture" and not (tmp_path / "part.md").exists()

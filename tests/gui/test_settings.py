@@ -89,3 +89,30 @@ def test_the_last_sessions_opengl_sets_the_first_mesh(make_window, run_analysis)
     Settings().software_rendering = False  # as a machine with a graphics card would have found
     second = make_window(prestart_worker=False)
     assert not second.viewport.rendering and second.viewport.mesh_resolution() == HARDWARE_RESOLUTION
+
+
+def test_the_time_limit_and_the_tolerance_are_settings(make_window, monkeypatch) -> None:
+    """Analysis → Time Limit… and Rounding Tolerance… set what ``--timeout`` and ``--tolerance`` set
+    on the command line, for the next analyses and the next start."""
+    from PySide6.QtWidgets import QInputDialog
+
+    window = make_window(prestart_worker=False)
+    monkeypatch.setattr(QInputDialog, "getDouble", lambda *_args: (15.0, True))
+    window.ask_time_limit()
+    monkeypatch.setattr(QInputDialog, "getText", lambda *_args, **_kw: ("1e-6", True))
+    window.ask_tolerance()
+    assert (window.time_limit, window.tolerance) == (15.0, 1e-6)
+    again = make_window(prestart_worker=False)
+    assert (again.time_limit, again.tolerance) == (15.0, 1e-6)
+    monkeypatch.setattr(QInputDialog, "getText", lambda *_args, **_kw: ("auto", True))
+    again.ask_tolerance()
+    assert again.tolerance is None and make_window(prestart_worker=False).tolerance is None
+
+
+def test_the_tolerance_of_the_window_reaches_the_engine() -> None:
+    from sorgui.gui.main_window import parse_tolerance
+    from sorgui.session.job import JobRequest, run_job
+
+    assert [parse_tolerance(t) for t in ("auto", "", "1e-8", "2", "x")] == [None, None, 1e-8, False, False]
+    kind, result = run_job(JobRequest("x^2 + y^2 - z", tolerance=1e-8, scene=False, style=None))
+    assert kind == "finished" and result.analysis.approximate.tolerance == 1e-8
