@@ -137,8 +137,11 @@ NEAR_KINDS = {
 }
 
 
-def _floats(v: tuple[float, ...]) -> str:
-    return "(" + ", ".join(f"{c:.9g}" for c in v) + ")"
+def _floats(v: tuple[float, ...], tolerance: float | None = None) -> str:
+    """An approximate vector: 9 significant digits, entries below the rounding (``tolerance``
+    relative to the largest entry, or to 1) shown as 0, so no rounding noise is printed."""
+    noise = max(1e-12, tolerance or 0.0) * max(1.0, *(abs(c) for c in v))
+    return "(" + ", ".join(f"{(0.0 if abs(c) < noise else c):.9g}" for c in v) + ")"
 
 
 def approximation_lines(analysis: Analysis) -> list[str]:
@@ -151,11 +154,11 @@ def approximation_lines(analysis: Analysis) -> list[str]:
     lines = [f"rounded input: tolerance {tolerance} (relative, {source})"]
     where = ""
     if ap.axis is not None:
-        where = f" about the axis {_floats(ap.axis.point)} + t·{_floats(ap.axis.direction)}"
+        where = f" about the axis {_floats(ap.axis.point, ap.tolerance)} + t·{_floats(ap.axis.direction, ap.tolerance)}"
     elif ap.center is not None:
-        where = f" centred at {_floats(ap.center)}"
+        where = f" centred at {_floats(ap.center, ap.tolerance)}"
     elif ap.normal is not None:
-        where = f" with normal {_floats(ap.normal)}"
+        where = f" with normal {_floats(ap.normal, ap.tolerance)}"
     kind = NEAR_KINDS.get(ap.kind or "", "a surface of revolution")
     if ap.near_sor and analysis.is_sor:
         lines.append(f"  exactly {kind}, and within the tolerance{where}")

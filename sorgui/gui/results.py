@@ -182,7 +182,8 @@ class ResultsPane(QScrollArea):
             ("singular values", f"smallest: {smallest}" if smallest else "–"),
         ]
         if approx.axis is not None:
-            rows.append(("approximate axis", f"{floats(approx.axis.point)} + t·{floats(approx.axis.direction)}"))
+            rows.append(("approximate axis", f"{floats(approx.axis.point, tolerance=approx.tolerance)} + "
+                                             f"t·{floats(approx.axis.direction, tolerance=approx.tolerance)}"))
         nearest = approx.nearest
         if nearest is not None:
             rows.append(("nearest exact surface", "approximate.nearest"))

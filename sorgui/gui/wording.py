@@ -148,19 +148,20 @@ def caption_tip(caption: str) -> str:
     return ""
 
 
-def floats(values: tuple[float, ...] | None, digits: int = 6) -> str:
-    """A float vector for people: ``digits`` significant digits, rounding noise (below 1e-12
-    of the largest entry, or of 1) shown as 0."""
+def floats(values: tuple[float, ...] | None, digits: int = 6, tolerance: float | None = None) -> str:
+    """A float vector for people: ``digits`` significant digits, rounding noise (below 1e-12, or
+    the input's rounding ``tolerance``, of the largest entry or of 1) shown as 0."""
     if not values:
         return "–"
-    noise = 1e-12 * max(1.0, *(abs(v) for v in values))
+    noise = max(1e-12, tolerance or 0.0) * max(1.0, *(abs(v) for v in values))
     return "(" + ", ".join(f"{(0.0 if abs(v) < noise else v):.{digits}g}" for v in values) + ")"
 
 
 def near_words(approx: Approximation) -> str:
     """The near case in one sentence, as the issue's user expects it."""
     axis = approx.axis
-    about = f" about the line {floats(axis.point)} + t·{floats(axis.direction)}" if axis is not None else ""
+    about = (f" about the line {floats(axis.point, tolerance=approx.tolerance)} + "
+             f"t·{floats(axis.direction, tolerance=approx.tolerance)}" if axis is not None else "")
     kind = "a surface of revolution" if approx.kind in (None, "revolution") else KIND_WORDS.get(approx.kind, approx.kind)
     return f"not exactly, but within {approx.relative_distance:.2g} (relative) of {kind}{about}"
 
