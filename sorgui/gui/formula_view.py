@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 from PySide6.QtCore import QPoint, Qt
-from PySide6.QtGui import QFontDatabase, QGuiApplication, QImage, QPixmap
+from PySide6.QtGui import QFontDatabase, QGuiApplication, QImage, QPixmap, QWheelEvent
 from PySide6.QtWidgets import (
     QFrame,
     QHBoxLayout,
@@ -60,6 +60,19 @@ def formula_pixmap(masks: tuple[np.ndarray, ...], color: tuple[int, int, int], r
     pixmap = QPixmap.fromImage(image)
     pixmap.setDevicePixelRatio(ratio)
     return pixmap
+
+
+class RowScroll(QScrollArea):
+    """The horizontal scroll area of one long formula: a vertical turn of the wheel scrolls the
+    results pane (it goes on to the parent), only a horizontal one (or Shift+wheel) this row."""
+
+    def wheelEvent(self, event: QWheelEvent) -> None:  # noqa: N802 (Qt override)
+        delta = event.angleDelta()
+        sideways = abs(delta.x()) > abs(delta.y()) or bool(event.modifiers() & Qt.KeyboardModifier.ShiftModifier)
+        if sideways:
+            super().wheelEvent(event)
+        else:
+            event.ignore()
 
 
 class FormulaView(QFrame):
@@ -175,7 +188,7 @@ class FormulaView(QFrame):
             self.show_all_button.setText(f"show all ({hidden:,} more characters)")
         hint = self.content.sizeHint()
         if formula.masks and hint.width() > self._max_width:
-            scroll = QScrollArea()
+            scroll = RowScroll()
             scroll.setWidget(self.content)
             scroll.setFrameShape(QFrame.Shape.NoFrame)
             scroll.setContextMenuPolicy(Qt.ContextMenuPolicy.NoContextMenu)

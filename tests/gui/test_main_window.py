@@ -279,3 +279,30 @@ def test_the_sphere_settles_with_its_centre_and_radius(window, run_analysis, art
     assert "being decided" not in text and "being computed" not in text
     assert "radius²" in text and "radius_squared" in window.results.views
     window.save_screenshots(artifacts / "sphere-window.png", artifacts / "sphere-viewport.png")
+
+
+def test_the_wheel_over_a_long_formula_scrolls_the_pane(qtbot) -> None:
+    """A vertical turn of the wheel over a formula row with its own horizontal scroll bar goes on
+    to the results pane; a horizontal one (or Shift+wheel) scrolls the row."""
+    from PySide6.QtCore import QPoint, QPointF
+    from PySide6.QtGui import QWheelEvent
+    from PySide6.QtWidgets import QLabel
+
+    from sorgui.gui.formula_view import RowScroll
+
+    row = RowScroll()
+    row.setWidget(QLabel("x" * 3000))
+    row.resize(300, 60)
+    qtbot.addWidget(row)
+    row.show()
+    qtbot.waitExposed(row)
+
+    def wheel(dx: int, dy: int) -> QWheelEvent:
+        return QWheelEvent(QPointF(10, 10), QPointF(row.mapToGlobal(QPoint(10, 10))), QPoint(0, 0), QPoint(dx, dy),
+                           Qt.MouseButton.NoButton, Qt.KeyboardModifier.NoModifier, Qt.ScrollPhase.NoScrollPhase, False)
+
+    vertical = wheel(0, -120)
+    row.wheelEvent(vertical)
+    assert not vertical.isAccepted() and row.horizontalScrollBar().value() == 0
+    row.wheelEvent(wheel(-120, 0))
+    assert row.horizontalScrollBar().value() > 0
