@@ -46,6 +46,11 @@ def short(text: str, limit: int = CAPTION_CHARACTERS) -> str:
     return flat if len(flat) <= limit else flat[: limit - 1] + "…"
 
 
+STARTING = ("Starting the analysis process (on the very first start it also builds the font cache of the "
+            "formulas, once, which can take a while)")
+"""What the pane says before the first stage of a run has started."""
+
+
 class SessionView(QObject):
     """Renders one :class:`Session` into the window's widgets.
 
@@ -113,7 +118,8 @@ class SessionView(QObject):
             self.results.show_message(invalid_heading(run.message or ""), run.message or "", "error")
         elif run.analysis is None:
             if run.running:
-                running = next((s.title for s in run.stage_list() if s.state is StageState.RUNNING), "Starting")
+                running = next((s.title for s in run.stage_list() if s.state is StageState.RUNNING),
+                               STARTING)
                 self.results.show_message("Analysing…", f"{running}. The verdict appears as soon as it is known.",
                                           "info")
             elif run.outcome == "cancelled":
