@@ -170,9 +170,15 @@ class SessionView(QObject):
             kept = " The results of the stages before it are shown." if run.analysis is not None else ""
             self.panel.set_notice("error", f"<b>The analysis failed{where}:</b> {run.message}.{kept}")
         else:
-            kept = "what was done is shown" if run.analysis is not None else "nothing was finished"
+            done = sum(1 for stage in run.stage_list() if stage.state is StageState.DONE)
+            if run.analysis is not None:
+                kept = "what was done is shown"
+            elif done:
+                kept = f"{done} stage{'s' if done > 1 else ''} finished before the verdict was known, so no result is shown"
+            else:
+                kept = "nothing was finished"
             self.panel.set_notice("cancelled", f"<b>Cancelled</b> after {seconds_text(run.elapsed())}: "
-                                               f"{kept}, the rest is marked cancelled.")
+                                               f"{kept}; the rest is marked cancelled.")
 
     # --- handlers ---
 
@@ -266,6 +272,8 @@ class SessionView(QObject):
                 self.viewport.clear(caption="No surface: the analysis failed")
         else:
             self.status.setText("Cancelled")
+            if run.scene is None:
+                self.viewport.clear(caption="Cancelled before the surface was drawn: " + short(run.text))
 
     def _on_stale_change(self, stale: bool) -> None:
         run = self.session.run

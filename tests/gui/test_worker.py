@@ -96,6 +96,9 @@ def test_cancel_kills_a_worker_busy_in_compiled_code(make_window, qtbot) -> None
     assert time.monotonic() - started < 2.0
     qtbot.waitUntil(lambda: process_gone(pid), timeout=5000)
     assert stages[-1] == "recognition", "cancelled in the middle of the recognition"
+    notice = window.run_panel.notice.text()  # the stages done before are not "nothing"
+    assert "finished before the verdict was known" in notice and "nothing was finished" not in notice
+    assert window.viewport.caption.text().startswith("Cancelled before the surface was drawn")
 
 
 @pytest.mark.gui
