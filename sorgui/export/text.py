@@ -175,7 +175,13 @@ def approximation_lines(analysis: Analysis) -> list[str]:
                      f"of (★): {', '.join(f'{v:.2g}' for v in ap.singular_values)}")
     lines += [f"  note: {note}" for note in ap.notes]
     near = ap.nearest
-    if near is not None:
+    if near is not None and not near.within_rounding:
+        # Not the part that was meant: said plainly, its analysis only in the JSON (on request).
+        deviation = "-" if near.max_deviation is None else f"{near.max_deviation:.2g}"
+        lines.append("  no simple exact surface was found within the rounding: the nearest one found lies "
+                     f"outside it (relative distance {near.relative_distance:.2g}, largest deviation of the zero "
+                     f"sets {deviation}); its exact analysis is in the JSON (--json)")
+    elif near is not None:
         deviation = "-" if near.max_deviation is None else f"{near.max_deviation:.2g}"
         lines.append(f"  nearest exact surface: g = {near.polynomial}")
         lines.append(f"    relative distance {near.relative_distance:.2g}, largest deviation of the zero sets "

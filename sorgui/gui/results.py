@@ -185,7 +185,12 @@ class ResultsPane(QScrollArea):
             rows.append(("approximate axis", f"{floats(approx.axis.point, tolerance=approx.tolerance)} + "
                                              f"t·{floats(approx.axis.direction, tolerance=approx.tolerance)}"))
         nearest = approx.nearest
-        if nearest is not None:
+        if nearest is not None and not nearest.within_rounding:
+            rows.append(("nearest exact surface",
+                         "none within the rounding: no simple exact surface was found within it; the nearest one "
+                         f"found lies outside it (coefficient distance {nearest.relative_distance:.3g}, relative), "
+                         "and its analysis is shown only when you switch the view to it"))
+        elif nearest is not None:
             rows.append(("nearest exact surface", "approximate.nearest"))
             if nearest.axis is not None:
                 rows.append(("", "approximate.nearest.axis"))

@@ -85,3 +85,23 @@ def test_format_names() -> None:
     assert format_of("a", "md").kind == "report"
     with pytest.raises(ValueError, match="unknown export format"):
         format_of("a.docx")
+
+
+def test_a_nearest_surface_outside_the_rounding_is_not_presented_as_the_part() -> None:
+    """``x² + 1.000001y² + 0.999999z² − 2.5`` snaps to ``x² + y² + 871605/871606·z² − 5/2``, which
+    lies outside the rounding of the input: the report says that no simple exact surface was found
+    within it, and does not go on with that surface's analysis (it is in the JSON)."""
+    import dataclasses
+
+    from sorgui.engine import analyze
+    from sorgui.export.text import format_report
+
+    analysis = analyze("x^2 + 1.000001y^2 + 0.999999z^2 - 2.5")
+    approx = analysis.approximate
+    assert approx is not None and approx.nearest is not None and not approx.nearest.within_rounding
+    text = format_report(analysis)
+    assert "no simple exact surface was found within the rounding" in text
+    assert "the analysis of the nearest exact surface" not in text
+    inside = dataclasses.replace(analysis, approximate=dataclasses.replace(
+        approx, nearest=dataclasses.replace(approx.nearest, within_rounding=True)))
+    assert "the analysis of the nearest exact surface" in format_report(inside)
