@@ -29,7 +29,7 @@ from .linalg import Vector
 from .parsing import parse_polynomial
 from .precision import has_decimals
 from .report import Analysis, Approximation, Canal, Parametrization, Rationality, Recognition
-from .symmetry import revolution_canal
+from .symmetry import NEAREST_CANAL_NOTE, revolution_canal
 from .timelimit import skeleton, time_limit, unfinished_analysis
 
 if TYPE_CHECKING:
@@ -271,6 +271,8 @@ def analyze_polynomial(
             of_nearest = analyze_polynomial(near.nearest, method=method, clock=StageClock(None, cancel),
                                             singular_timeout=min(singular_timeout, NEAREST_SINGULAR_TIMEOUT),
                                             frame=near.frame, canal=False)
+        if of_nearest.is_sor:  # canal by its symmetry: said without a line test or Singular
+            of_nearest = replace(of_nearest, canal=revolution_canal(of_nearest.recognition.degree, NEAREST_CANAL_NOTE))
         approximation = replace(approximation, nearest=replace(approximation.nearest, analysis=of_nearest))
     clock.check()
     return result(rationality, found)

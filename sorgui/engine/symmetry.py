@@ -265,10 +265,14 @@ RECOGNITION_ONLY_NOTE = ("recognition only: the symmetry algebra's answer; the o
                          "pipe and developable kinds) come with the full analysis")
 
 
-def revolution_canal(degree: int) -> Canal:
+def revolution_canal(degree: int, note: str = RECOGNITION_ONLY_NOTE) -> Canal:
     """The canal answer of a surface of revolution of the given degree from its symmetry algebra
-    alone, as a recognition-only analysis gives it (no line test, no Singular)."""
+    alone, as a recognition-only analysis (or the nearest exact surface of rounded input) gives
+    it: no line test, no Singular."""
     if degree == 1:
         return PLANE_CANAL
-    return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE,
-                 notes=(RECOGNITION_ONLY_NOTE,))
+    return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE, notes=(note,))
+
+
+NEAREST_CANAL_NOTE = ("the nearest exact surface is a surface of revolution, so canal (the spheres centred on "
+                      "its axis); its other sphere families are not computed")

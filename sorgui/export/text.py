@@ -229,6 +229,9 @@ def analysis_lines(analysis: Analysis) -> list[str]:
             lines.append(f"  {name}({', '.join(par.parameters)}) = {coord}")
     if analysis.canal is not None:
         lines += canal_lines(analysis.canal)
+        nearly = nearly_canal(analysis)
+        if nearly:
+            lines.append(f"  rounded input: {nearly}")
     if analysis.unfinished:
         lines.append(f"not finished within the time limit (undecided): {', '.join(analysis.unfinished)}")
     lines += approximation_lines(analysis)
@@ -241,6 +244,20 @@ CANAL_KINDS = {
     "dupin": "a Dupin cyclide (canal in two ways)",
     "developable": "developable (a cone or cylinder)",
 }
+
+
+def nearly_canal(analysis: Analysis) -> str:
+    """For rounded input that is not exactly canal but near a surface of revolution: that its
+    nearest exact surface is canal, in words (empty otherwise)."""
+    approx, canal = analysis.approximate, analysis.canal
+    if approx is None or canal is None or canal.is_canal is not False or approx.nearest is None:
+        return ""
+    nearest = approx.nearest.analysis
+    if nearest is None or nearest.canal is None or not nearest.canal.is_canal:
+        return ""
+    where = "within the rounding" if approx.nearest.within_rounding else "outside the rounding"
+    return ("not exactly canal, but nearly: its nearest exact surface (" + where + ") is a surface of "
+            "revolution, canal by its symmetry")
 
 
 def canal_lines(canal: Canal) -> list[str]:

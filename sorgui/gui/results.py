@@ -29,7 +29,7 @@ from PySide6.QtWidgets import (
 )
 
 from sorgui.engine.report import Analysis, Approximation, Canal, Rationality, Recognition
-from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, TABLE_1_WORDS, format_report
+from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, TABLE_1_WORDS, format_report, nearly_canal
 from sorgui.gui.formula_view import FormulaView
 from sorgui.gui.wording import (
     canal_evidence,
@@ -138,7 +138,7 @@ class ResultsPane(QScrollArea):
                           [("", "being decided (Singular): the row, the genera and the parameterizations follow")])
         self._parametrization_section(column, analysis)
         if analysis.canal is not None:
-            self._canal_section(column, analysis.canal)
+            self._canal_section(column, analysis.canal, nearly_canal(analysis))
         elif "canal" in pending:
             self._section(column, "Canal surface", [("", "being decided: the sphere family and its certificate follow")])
         if analysis.rationality is not None and "parametrizations" in pending:
@@ -384,8 +384,10 @@ class ResultsPane(QScrollArea):
                 ("z", f"parametrization.{index}.z"),
             ])
 
-    def _canal_section(self, column: QVBoxLayout, canal: Canal) -> None:
+    def _canal_section(self, column: QVBoxLayout, canal: Canal, nearly: str = "") -> None:
         rows = [("canal", canal_verdict(canal))]
+        if nearly:
+            rows.append(("rounded input", nearly))
         evidence = canal_evidence(canal)
         if evidence is not None:
             rows.append(evidence)

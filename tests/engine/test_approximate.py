@@ -239,7 +239,8 @@ def test_a_torus_printed_on_an_irrational_axis_snaps_back_over_its_quadratic_fie
     direction = np.array(approx.axis.direction)
     assert abs(abs(direction @ np.array([-1.0, 1.0, -math.sqrt(6)])) / math.sqrt(8) - 1.0) < 1e-6
     nearest = approx.nearest.analysis
-    assert nearest is not None and nearest.is_sor and nearest.field == "QQ(sqrt(6))" and nearest.canal is None
+    assert nearest is not None and nearest.is_sor and nearest.field == "QQ(sqrt(6))"
+    assert nearest.canal.is_canal and not nearest.canal.families  # the symmetry algebra's answer
     assert nearest.rationality is not None and nearest.rationality.table_row == 1
     profile = nearest.recognition.profile  # in the snapped frame: through (16/5, -3/2, 7), rational
     assert "sqrt" not in profile.polynomial and profile.frame_point == ("16/5", "-3/2", "7")
@@ -338,3 +339,16 @@ def test_exact_input_printed_with_decimals_is_its_own_nearest_surface() -> None:
     """``x² + y² − 0.0015·z`` is exactly a paraboloid of revolution: no other surface is snapped to."""
     result = analyze("x^2+y^2-1.5e-3*z")
     assert result.is_sor and result.approximate is not None and result.approximate.nearest is None
+
+
+def test_rounded_input_is_nearly_canal_when_its_nearest_surface_is() -> None:
+    """A surface of revolution printed with 10 digits is exactly no canal surface (a witness line
+    says so), but its nearest exact surface is one: the report says both, labelled."""
+    from sorgui.export.text import format_report
+
+    array, _point, _direction = random_sor(np.random.default_rng(3), 4)
+    result = analyze(printed(array, 10))
+    assert not result.is_sor and result.approximate.near_sor and result.canal.is_canal is False
+    nearest = result.approximate.nearest.analysis
+    assert nearest.is_sor and nearest.canal.is_canal and nearest.canal.kinds == ("revolution",)
+    assert "not exactly canal, but nearly: its nearest exact surface (within the rounding)" in format_report(result)
