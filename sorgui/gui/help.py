@@ -12,6 +12,22 @@ import html
 from PySide6.QtWidgets import QDialog, QDialogButtonBox, QTextBrowser, QVBoxLayout, QWidget
 
 from sorgui.export.text import TABLE_1, TABLE_1_WORDS
+from sorgui.gui.viewport import (
+    APPROXIMATE_AXIS_COLOR,
+    AXIS_COLOR,
+    BACK_COLOR,
+    CANAL_CIRCLE_COLOR,
+    CANAL_SPINE_COLOR,
+    CENTER_COLOR,
+    FACTOR_AXES_COLOR,
+    FRONT_COLOR,
+    LATITUDE_COLOR,
+    NORMAL_COLOR,
+    PATCH_COLOR,
+    PROFILE_COLOR,
+    STALE_COLOR,
+    TOUCH_SPHERE_COLOR,
+)
 
 SYNTAX_EXAMPLES = (
     ("(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)", "a torus: powers with ^, implicit multiplication"),
@@ -76,6 +92,54 @@ the rounding of its printed digits, a surface of revolution: it then shows the r
 the approximate axis, and the <b>nearest exact surface</b>, whose exact analysis you can switch to.</p>
 """
 
+CANAL_HTML = """
+<h3>Canal surfaces</h3>
+<p>A <b>canal surface</b> is the envelope of a one-parameter family of spheres: each sphere touches
+the surface along a circle, its <b>characteristic circle</b>. sorgui decides exactly whether X is
+one (docs/math.md §9): <b>not canal</b> is proved by a <b>witness line</b> on which the condition
+fails exactly; <b>canal</b> by a certificate that X is the envelope of the family found.</p>
+<ul>
+<li>A <b>family</b> is given by its sphere centres m(t), the <b>spine</b>, and the squared radii
+r²(t) (ρ in docs/math.md); the <b>SMAT</b> equations are the curve of (centre, r²) in the space of
+spheres. A surface may have several families: a Dupin cyclide, such as a torus, has two.</li>
+<li><b>Kinds</b>: a <b>pipe</b> has a constant radius (shown as r², the radius squared); a surface of
+revolution has a family whose spine is its axis; a <b>Dupin cyclide</b> is canal in two ways; a
+<b>developable</b> canal surface is a cone or a cylinder of revolution.</li>
+<li>A spine of genus 0 has a rational m(t), r²(t); its characteristic circles then give a
+parameterization of X (checked exactly on f). A spine of positive genus is given in square roots
+and drawn numerically.</li>
+<li>Inspect a point of a canal surface (right click): the <b>touching sphere</b> of each family there
+is drawn, with its characteristic circle.</li>
+<li>For rounded input the verdict is about the equation as typed; when it is exactly not canal but its
+nearest exact surface of revolution is, the window says "not exactly canal, but nearly".</li>
+</ul>
+"""
+
+COLOURS = (
+    (FRONT_COLOR, "the surface, on the side its mesh normals face"),
+    (BACK_COLOR, "the other side of the surface"),
+    (AXIS_COLOR, "the axis of revolution"),
+    (PROFILE_COLOR, "the profile curve in the meridian plane"),
+    (CENTER_COLOR, "the centre of a sphere"),
+    (PATCH_COLOR, "the patch of the first real parameterization (wireframe)"),
+    (APPROXIMATE_AXIS_COLOR, "the approximate axis of rounded input"),
+    (FACTOR_AXES_COLOR, "the axes of the factors or typed components of a blend"),
+    (CANAL_SPINE_COLOR, "the spine of a canal surface (the sphere centres)"),
+    (CANAL_CIRCLE_COLOR, "characteristic circles of a canal surface"),
+    (NORMAL_COLOR, "the normal line at an inspected point"),
+    (LATITUDE_COLOR, "the circle of latitude through an inspected point"),
+    (TOUCH_SPHERE_COLOR, "the sphere touching a canal surface at an inspected point"),
+    (STALE_COLOR, "a surface of the previous equation (out of date)"),
+)
+"""Each colour of the 3D view (the viewport's own constants) and what it shows."""
+
+
+def colours_html() -> str:
+    rows = "".join(f"<tr><td style='background:{colour}'>&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;</td>"
+                   f"<td>{words}</td></tr>" for colour, words in COLOURS)
+    return f"<h3>Colours of the 3D view</h3><table cellspacing='4'>{rows}</table>"
+
+
 LIMITS_HTML = """
 <ul>
 <li>Total degree at most 60; coefficients rational or in ℚ(√n₁, √n₂, …).</li>
@@ -125,6 +189,8 @@ TOPICS = {
     "keys": ("Mouse and Keys", "<h3>Keys</h3>" + _rows(KEYS) + "<h3>Mouse in the 3D view</h3>" + _rows(MOUSE)
              + "<p>VTK's own keys (wireframe, stereo, quit, …) are switched off.</p>"),
     "results": ("What the Results Mean", RESULTS_HTML.replace("{table}", table_1_html())),
+    "canal": ("Canal Surfaces", CANAL_HTML),
+    "colours": ("Colours of the 3D View", colours_html()),
     "paper": ("The Paper", PAPER_HTML),
     "limits": ("Known Limits", "<h3>Known limits</h3>" + LIMITS_HTML),
 }

@@ -303,6 +303,12 @@ def test_help_menu_has_every_topic(window, qtbot) -> None:
     assert "Vršek" in window.help_dialog.browser.toPlainText()
     window.show_help("keys")
     assert "Ctrl+Alt+A" in window.help_dialog.browser.toPlainText()
+    window.show_help("canal")
+    canal = window.help_dialog.browser.toPlainText()
+    assert "characteristic circle" in canal and "r²" in canal and "witness line" in canal and "spine" in canal
+    window.show_help("colours")
+    colours = window.help_dialog.browser.toPlainText()
+    assert "the axis of revolution" in colours and "spine of a canal surface" in colours
     window.help_dialog.close()
 
 
