@@ -24,6 +24,7 @@ import os
 import signal
 import stat
 import sys
+import time
 import unicodedata
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
@@ -32,6 +33,9 @@ from typing import TYPE_CHECKING, Any, NoReturn
 
 if TYPE_CHECKING:
     from sorgui.engine import Analysis
+
+STARTED = time.monotonic()
+"""When this process started sorgui (``--timeout`` counts from here)."""
 
 DEFAULT_EXAMPLE = "paper-example-1"
 DEFAULT_TIMEOUT = 120.0
@@ -344,7 +348,7 @@ def analyze_main(argv: Sequence[str]) -> int:
 
     kind, payload = analyze_supervised(AnalysisRequest(
         text, method=args.method, recognition_only=args.recognition_only, tolerance=args.tolerance,
-        timeout=args.timeout))
+        timeout=args.timeout), started=STARTED)
     if kind == "invalid":
         message, position = payload
         return fail(message, position, args.json, 2)

@@ -139,3 +139,27 @@ def test_a_long_c_call_is_ended_at_the_time_limit() -> None:
     assert proc.returncode == 0 and "Traceback" not in proc.stderr
     data = json.loads(proc.stdout)
     assert data["is_sor"] is True and data["axis"]["direction"] == ["2", "-1", "3"]
+
+
+def test_the_time_limit_and_the_signals_hold_inside_one_flint_factorization(tmp_path: Path) -> None:
+    """The factors stage of a product of three dense polynomials is one flint call of 10 s or more."""
+    from tests.long_c_call import factored_product
+
+    equation = tmp_path / "product.txt"
+    equation.write_text(factored_product(), encoding="utf-8")
+    started = time.monotonic()
+    done = subprocess.run([*ANALYZE, "--json", "--timeout", "8", "-f", str(equation)], capture_output=True,
+                          text=True, timeout=120)
+    assert time.monotonic() - started < 8 + 1.0
+    data = json.loads(done.stdout)
+    assert done.returncode == 0 and "factors" in data["unfinished"], data["unfinished"]
+    for signum in (signal.SIGTERM, signal.SIGINT):
+        proc = launch([*ANALYZE, "--timeout", "600", "-f", str(equation)])
+        children = wait_for(lambda: analysis_processes(proc.pid), 60)
+        time.sleep(6)  # reading and recognising the equation: then inside the factorization
+        sent = time.monotonic()
+        proc.send_signal(signum)
+        proc.communicate(timeout=60)
+        assert time.monotonic() - sent < 1.0
+        assert proc.returncode == (130 if signum == signal.SIGINT else 128 + signum)
+        wait_for(lambda: all(dead(pid) for pid in children), 5)

@@ -161,11 +161,15 @@ class Supervised:
         self.log: StageLog | None = None
         self.deadline = float("inf")
 
-    def give(self, request: AnalysisRequest) -> None:
+    def give(self, request: AnalysisRequest, started: float | None = None) -> None:
+        """Send ``request``; its time limit counts from ``started`` (``time.monotonic()``, by
+        default now): a command line counts from its own start, so that starting Python and
+        importing the engine are inside the limit too."""
         self.request = request
         self.log = StageLog(request.recognition_only)
         limit = request.timeout
-        self.deadline = float("inf") if limit is None else time.monotonic() + limit + GRACE
+        begun = time.monotonic() if started is None else started
+        self.deadline = float("inf") if limit is None else begun + limit + GRACE
         self.child.send(request)
 
     def collect(self, timeout: float = 0.0) -> Message | None:
@@ -187,9 +191,9 @@ class Supervised:
             return self.log.outcome(time_limit_message(limit))
         return None
 
-    def run(self, request: AnalysisRequest) -> Message:
+    def run(self, request: AnalysisRequest, started: float | None = None) -> Message:
         """Give ``request`` and wait for its final message."""
-        self.give(request)
+        self.give(request, started)
         while True:
             answer = self.collect(timeout=0.5)
             if answer is not None:
@@ -199,8 +203,9 @@ class Supervised:
         self.child.close()
 
 
-def analyze_supervised(request: AnalysisRequest) -> Message:
-    """Analyse ``request`` in a forked child process under its time limit (``sorgui analyze``).
+def analyze_supervised(request: AnalysisRequest, started: float | None = None) -> Message:
+    """Analyse ``request`` in a forked child process under its time limit, counted from
+    ``started`` (``sorgui analyze``: the start of the process).
 
     A signal that reaches this process (Ctrl+C, ``SIGTERM``, ``SIGHUP``) unwinds through here and
     kills the child and its Singular at once."""
@@ -213,6 +218,6 @@ def analyze_supervised(request: AnalysisRequest) -> Message:
     except OSError as exc:  # a limit on processes (ulimit -u) or on memory
         return "failed", f"the analysis process could not be started: {exc.strerror or exc}"
     try:
-        return worker.run(request)
+        return worker.run(request, started)
     finally:
         worker.close()

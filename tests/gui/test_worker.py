@@ -179,3 +179,26 @@ def test_the_time_limit_holds_when_the_worker_is_stuck(make_window, qtbot, fake_
     analysis = blocker.args[0].analysis
     assert analysis.is_sor and "rationality" in analysis.unfinished
     qtbot.waitUntil(lambda: process_gone(pid), timeout=10_000)
+
+
+@linux_only
+@pytest.mark.gui
+def test_cancel_stops_a_worker_inside_one_flint_factorization(make_window, qtbot) -> None:
+    """Cancel while the worker is inside one flint factorization of 10 s or more (its factors
+    stage): the process is killed after the grace time."""
+    from tests.long_c_call import factored_product
+
+    window = make_window()
+    stages: list[str] = []
+    window.worker.progress.connect(stages.append)
+    window.set_equation(factored_product())
+    assert window.analyze()
+    pid = window.worker.current_pid
+    qtbot.waitUntil(lambda: "factors" in stages, timeout=120_000)
+    qtbot.wait(1000)  # well inside the factorization
+    started = time.monotonic()
+    with qtbot.waitSignal(window.worker.cancelled, timeout=5000):
+        window.cancel()
+    assert time.monotonic() - started < 2.0
+    qtbot.waitUntil(lambda: process_gone(pid), timeout=5000)
+    assert stages[-1] == "factors"
