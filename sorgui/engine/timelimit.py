@@ -25,6 +25,12 @@ if TYPE_CHECKING:
     from .polys import Poly
 
 
+def limit_message(seconds: float) -> str:
+    """The words of a time limit that was reached, by the engine's alarm or by a parent that
+    ended the analysis process (:mod:`sorgui.session.supervised`)."""
+    return f"the analysis did not finish within the time limit of {seconds:g} s"
+
+
 LONGEST_ALARM = 1e8
 """Seconds (three years): a longer limit (``--timeout 1e10``) is this one, which the system's
 timer can hold."""
@@ -41,7 +47,7 @@ def time_limit(seconds: float | None, stated: float | None = None) -> Iterator[N
         return
 
     def expire(_signum: int, _frame: FrameType | None) -> None:
-        raise TimeLimitReached(f"the analysis did not finish within the time limit of {stated or seconds:g} s")
+        raise TimeLimitReached(limit_message(stated or seconds))
 
     previous = signal.signal(signal.SIGALRM, expire)
     signal.setitimer(signal.ITIMER_REAL, min(seconds, LONGEST_ALARM))

@@ -30,7 +30,7 @@ from PySide6.QtCore import QObject, QTimer, Signal
 
 from sorgui.session.child import ChildProcess
 from sorgui.session.process import worker_main
-from sorgui.session.supervised import GRACE, SUPERVISION, StageLog, time_limit_message
+from sorgui.session.supervised import GRACE, SUPERVISION, StageLog
 
 if TYPE_CHECKING:
     from sorgui.session.job import JobRequest
@@ -235,8 +235,10 @@ class AnalysisWorker(QObject):
             job.kill()
             self._end_current(job, "cancelled", None)
         elif job.kill_at is None and time.monotonic() >= job.deadline and job.log is not None:
+            from sorgui.engine.timelimit import limit_message
+
             job.kill()  # stuck past the time limit inside one computation: what it finished stands
-            kind, payload = job.log.outcome(time_limit_message(job.limit or 0.0))
+            kind, payload = job.log.outcome(limit_message(job.limit or 0.0))
             if kind == "finished":
                 from sorgui.session.job import JobResult
 

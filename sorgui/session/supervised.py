@@ -58,11 +58,6 @@ class AnalysisRequest:
                 "timeout": self.timeout, "singular_timeout": singular}
 
 
-def time_limit_message(seconds: float) -> str:
-    """The words of a time limit that was reached (the engine's own)."""
-    return f"the analysis did not finish within the time limit of {seconds:g} s"
-
-
 @dataclass
 class StageLog:
     """What an analysis process has said so far about one request (``recognition_only``: whether
@@ -188,7 +183,9 @@ class Supervised:
             self.child.kill()
             assert self.request is not None and self.request.timeout is not None
             limit = self.request.timeout
-            return self.log.outcome(time_limit_message(limit))
+            from sorgui.engine.timelimit import limit_message
+
+            return self.log.outcome(limit_message(limit))
         return None
 
     def run(self, request: AnalysisRequest, started: float | None = None) -> Message:
