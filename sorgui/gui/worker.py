@@ -49,14 +49,13 @@ SPARE_DELAY_MS = 2000
 """The next worker process starts this long after a job ends, once the result is on screen."""
 
 
-class _Job:
-    """One worker process (:class:`~sorgui.session.child.ChildProcess`) and its cancel event."""
+class _Job(ChildProcess):
+    """One worker process with its cancel event, the messages not yet handed on, and the
+    deadline of its analysis."""
 
     def __init__(self, context: multiprocessing.context.SpawnContext) -> None:
         self.cancel_event = context.Event()
-        self.child = ChildProcess(context, worker_main, (self.cancel_event,))
-        self.conn = self.child.conn
-        self.process = self.child.process
+        super().__init__(context, worker_main, (self.cancel_event,))
         self.kill_at: float | None = None
         self.pending: deque[tuple[str, object]] = deque()
         self.deadline = float("inf")
@@ -66,37 +65,16 @@ class _Job:
     def give(self, request: JobRequest) -> None:
         """Send ``request``; an analysis must be done by its time limit plus :data:`GRACE`, else the
         process is killed (stuck inside one C call, where the engine's own limit cannot act)."""
-        self.child.send(request)
+        self.send(request)
         if request.analysis is None:
             self.limit = request.singular_timeout
             self.deadline = time.monotonic() + request.singular_timeout + GRACE
             self.log = StageLog(request.recognition_only)
 
-    @property
-    def pid(self) -> int | None:
-        return self.child.pid
-
-    @property
-    def ended(self) -> bool:
-        return self.child.ended
-
-    @ended.setter
-    def ended(self, value: bool) -> None:
-        self.child.ended = value
-
     def request_cancel(self) -> None:
         if self.kill_at is None:
             self.cancel_event.set()
             self.kill_at = time.monotonic() + CANCEL_GRACE_S
-
-    def messages(self) -> list[tuple[str, object]]:
-        return self.child.messages()
-
-    def kill(self) -> None:
-        self.child.kill()
-
-    def reap(self) -> bool:
-        return self.child.reap()
 
 
 class AnalysisWorker(QObject):
