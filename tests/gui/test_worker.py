@@ -166,7 +166,7 @@ def test_the_time_limit_holds_when_the_worker_is_stuck(make_window, qtbot, fake_
     analysis can be) while Singular runs: at the window's time limit the process is killed and
     the window shows what was finished, the rest as unfinished."""
     window = make_window()
-    window.time_limit = 4.0
+    window.time_limit = 20.0  # Singular must start within it, also on a loaded machine
     window.set_equation("(x^2+y^2+z^2+3)^2-16(x^2+y^2)")
     started = time.monotonic()
     with qtbot.waitSignal(window.worker.finished, timeout=30_000) as blocker:
@@ -175,7 +175,7 @@ def test_the_time_limit_holds_when_the_worker_is_stuck(make_window, qtbot, fake_
                         timeout=20_000)
         pid = window.worker.current_pid
         os.kill(pid, signal.SIGSTOP)
-    assert time.monotonic() - started < 4.0 + 2.0
+    assert time.monotonic() - started < 20.0 + 2.0
     analysis = blocker.args[0].analysis
     assert analysis.is_sor and "rationality" in analysis.unfinished
     qtbot.waitUntil(lambda: process_gone(pid), timeout=10_000)
