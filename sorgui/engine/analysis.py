@@ -146,9 +146,8 @@ def analyze(
         load_engine()
     with clock.stage("parse"):
         f = parse_polynomial(text).polynomial
-    begun = skeleton(f, text=text, method=method)
-    if parsed is not None:
-        parsed(begun)
+    if parsed is not None:  # printing f costs at high degree: only for a caller that asks
+        parsed(skeleton(f, text=text, method=method))
     remaining = None if timeout is None else max(timeout - (time.monotonic() - start), 0.001)
     try:
         with time_limit(remaining, timeout):
@@ -163,7 +162,7 @@ def analyze(
             )
     except TimeLimitReached as exc:
         return unfinished_analysis(
-            begun, recognition=clock.recognition, latest=clock.latest, timings=tuple(clock.timings),
+            skeleton(f, text=text, method=method), recognition=clock.recognition, latest=clock.latest, timings=tuple(clock.timings),
             current=clock.current, message=exc.message, recognition_only=recognition_only,
         )
 
