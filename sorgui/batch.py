@@ -105,16 +105,15 @@ class _Progress:
 
 
 class _Pool:
-    """``size`` analysis processes, each given one line at a time."""
+    """Analysis processes, each given one line at a time (the caller bounds how many are busy)."""
 
-    def __init__(self, size: int, request: Callable[[str], AnalysisRequest]) -> None:
+    def __init__(self, request: Callable[[str], AnalysisRequest]) -> None:
         import multiprocessing
 
         import sorgui.engine  # noqa: F401 - loaded once, before the forks, for every worker
 
         self.context = multiprocessing.get_context("fork")
         self.request = request
-        self.size = size
         self.idle: list[Supervised] = []
         self.busy: dict[int, tuple[Supervised, Job]] = {}  # by the index of the job
 
@@ -159,28 +158,28 @@ class _Pool:
 def _results(jobs: Iterator[Job], workers: int,
              request: Callable[[str], AnalysisRequest]) -> Generator[Answer, None, None]:
     """The answers in input order, ``workers`` lines at a time."""
-    pool = _Pool(workers, request)
+    pool = _Pool(request)
     answers: dict[int, Answer] = {}
     emitted = 0
-    todo = enumerate(jobs)
+
+    def in_order() -> Iterator[Answer]:
+        nonlocal emitted
+        while emitted in answers:
+            yield answers.pop(emitted)
+            emitted += 1
+
     try:
-        for index, job in todo:
+        for index, job in enumerate(jobs):
             refused = pool.start(index, job)
             if refused is not None:
                 answers[index] = refused
-            if len(pool.busy) < workers:
-                continue
             while len(pool.busy) >= workers:
                 answers.update(pool.answers())
-                while emitted in answers:
-                    yield answers.pop(emitted)
-                    emitted += 1
-        while pool.busy or emitted in answers:
-            if pool.busy:
-                answers.update(pool.answers())
-            while emitted in answers:
-                yield answers.pop(emitted)
-                emitted += 1
+                yield from in_order()
+        while pool.busy:
+            answers.update(pool.answers())
+            yield from in_order()
+        yield from in_order()
     finally:
         pool.close()  # Ctrl+C, a signal, a closed pipe, or done: the workers go too
 
