@@ -34,8 +34,9 @@ from typing import TYPE_CHECKING, Any, NoReturn
 if TYPE_CHECKING:
     from sorgui.engine import Analysis
 
-STARTED = time.monotonic()
-"""When this process started sorgui (``--timeout`` counts from here)."""
+_started: list[float] = []
+"""When :func:`main` was called (``--timeout`` counts from there, reading the input and
+importing the engine included)."""
 
 DEFAULT_EXAMPLE = "paper-example-1"
 DEFAULT_TIMEOUT = 120.0
@@ -348,7 +349,7 @@ def analyze_main(argv: Sequence[str]) -> int:
 
     kind, payload = analyze_supervised(AnalysisRequest(
         text, method=args.method, recognition_only=args.recognition_only, tolerance=args.tolerance,
-        timeout=args.timeout), started=STARTED)
+        timeout=args.timeout), started=_started[-1] if _started else None)
     if kind == "invalid":
         message, position = payload
         return fail(message, position, args.json, 2)
@@ -454,6 +455,7 @@ def ending_signals() -> Iterator[None]:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``sorgui`` console script (``argv`` ``None``: this process's own
     arguments; a finished subcommand then ends the process at once, see :func:`_exit_now`)."""
+    _started[:] = [time.monotonic()]
     own_process = argv is None
     if own_process:
         _usable_streams()
