@@ -263,7 +263,7 @@ def analyze_polynomial(
         clock.publish(result(rationality, found))
         with clock.stage("canal"):
             canal_result = analyze_canal(f, is_sor=recognition.is_sor, full=not recognition_only,
-                                         timeout=singular_timeout, cancel=cancel)
+                                         timeout=singular_timeout, cancel=cancel, profile=profile)
     if near is not None and near.nearest is not None and approximation.nearest is not None and not recognition_only:
         clock.publish(result(rationality, found))
         with clock.stage("nearest"):

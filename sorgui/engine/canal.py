@@ -50,9 +50,22 @@ from .canal_param import (
 )
 from .canal_radical import RadicalFamily, radical_family, radical_surface
 from .canal_spine import MARGIN, SmatCurve, constant_radius, monomials, smat_curves
+from .canal_torus import CERTIFICATE as TORUS_CERTIFICATE
+from .canal_torus import torus_canal, torus_of
 from .errors import AnalysisError, Cancelled, SingularError
 from .linalg import cross, primitive_vector, solve_unique
-from .polys import Poly, compose, derivative, from_flint, is_rational_field, poly_ring, poly_str, to_flint, total_degree
+from .polys import (
+    Poly,
+    compose,
+    derivative,
+    from_flint,
+    is_rational_field,
+    poly_ring,
+    poly_str,
+    to_flint,
+    total_degree,
+)
+from .profile import ProfileCurve
 from .report import Canal, CanalEvidence, CanalFamily, Parametrization
 from .singular import emit, parse_int, poly_to_singular, run_script
 from .symmetry import SOR_EVIDENCE, Motion, satisfies_identity
@@ -71,12 +84,16 @@ for at most this many roots: each root doubles the size of the check (two roots 
 
 def analyze_canal(
     f: Poly, *, is_sor: bool | None = None, full: bool = True, timeout: float = 60.0,
-    cancel: threading.Event | None = None,
+    cancel: threading.Event | None = None, profile: ProfileCurve | None = None,
 ) -> Canal:
     """The canal verdict of ``f = 0`` with certificate or witness, kinds, families and
     parameterizations (genus, ``m(t)``, ``ρ(t)`` and surface parameterizations only when
     ``full``). ``is_sor`` (from the symmetry algebra) decides the ``revolution`` kind of a
-    reducible surface, is cross-checked otherwise, and certifies a surface of revolution."""
+    reducible surface, is cross-checked otherwise, and certifies a surface of revolution.
+    A torus's answer is read off its ``profile`` (:mod:`.canal_torus`): no line test, no SMAT."""
+    torus = torus_of(profile) if is_sor and profile is not None else None
+    if torus is not None:
+        return torus_canal(torus, CanalEvidence("profile+rotation", _statement(["profile", "rotation"]), True))
     clock = CanalClock(cancel)
     if total_degree(f) > MAX_DEGREE:
         if is_sor:
@@ -334,13 +351,18 @@ def _certificate(
         if len(smat) > 1:
             statement += f", for each of the {len(smat)} families"
         return CanalEvidence(methods[0], statement, True)
-    statement = "; ".join(f"family {number}: {CERTIFICATES[m]}" for number, m in enumerate(methods, 1))
-    return CanalEvidence("+".join(methods), statement, True)
+    return CanalEvidence("+".join(methods), _statement(methods), True)
+
+
+def _statement(methods: list[str]) -> str:
+    """What the certificates of the families prove, family by family."""
+    return "; ".join(f"family {number}: {CERTIFICATES[m]}" for number, m in enumerate(methods, 1))
 
 
 CERTIFICATES = {
     "rotation": ("the spine is a line and f is invariant under the rotations about it (the identity "
                  "∇f·(a × (p − c)) ≡ 0): X is a surface of revolution, and its parallels are characteristic circles"),
+    "profile": TORUS_CERTIFICATE,
     "resultant": "f divides Res_t(S, ∂S/∂t) for S = |X − m(t)|² − ρ(t) (denominators cleared)",
     "incidence": ("f lies in the incidence ideal E of the SMAT curve (SMAT, |X − m|² = ρ, tangency), "
                   "a complete intersection of dimension 2 whose points over a line are finitely many: "

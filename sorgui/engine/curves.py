@@ -38,7 +38,17 @@ from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
 from .errors import AnalysisError, SingularError
-from .polys import Poly, compose, field_generators, is_rational_field, poly_ring, primitive, to_expr, total_degree
+from .polys import (
+    Poly,
+    compose,
+    field_generators,
+    is_rational_field,
+    poly_ring,
+    primitive,
+    to_expr,
+    to_flint,
+    total_degree,
+)
 from .singular import (
     emit,
     minpoly_to_singular,
@@ -193,6 +203,9 @@ def _smooth_double_cover(
     d = total_degree(P)
     if not is_rational_field(P.ring.domain) or d < 3 or any(m[1] % 2 for m in P.itermonoms()):
         return None
+    factors = to_flint(P).factor()[1]
+    if len(factors) > 1 or factors[0][1] > 1:
+        return None  # reducible over QQ, so singular: no smoothness test
     H = poly_ring(("s", "r", "z"), QQ).from_dict({(i, j, d - i - j): c for (i, j), c in primitive(P).items()})
     if all(int(c) % SMOOTHNESS_PRIME == 0 for c in H.values()):
         return None
@@ -248,7 +261,6 @@ def _linear_curve(F: Poly) -> CurveAnalysis | None:
         return None
     factor = AbsoluteFactor(F.monic().as_expr(), 1, 1)
     return CurveAnalysis(AbsoluteFactorization(_variables(F), (factor,)), 0)
-    return None
 
 
 def analyze_curve(
@@ -451,7 +463,7 @@ def parametrize(
                 "coefficients (ground field is not Q)"
             )
         curve, method = rational, "paraPlaneCurve"
-        conic = _conic(rational) if _large(rational) else None
+        conic = _conic(rational)
         if conic is not None:
             candidates, method = [conic], "conic"
         else:

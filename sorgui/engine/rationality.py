@@ -29,8 +29,8 @@ from .curves import CurveAnalysis, CurveParametrization
 from .errors import AnalysisError, SingularError, SingularTimeout
 from .linalg import dot
 from .parametrization import (
-    T,
     Section,
+    T,
     frame_map,
     make_parametrization,
     norm_decomposition,
@@ -40,7 +40,15 @@ from .parametrization import (
     sweep,
     tubular_section,
 )
-from .polys import Poly, number_field, poly_ring, to_expr
+from .polys import (
+    Poly,
+    from_flint,
+    is_rational_field,
+    number_field,
+    poly_ring,
+    to_expr,
+    to_flint,
+)
 from .profile import ProfileCurve
 from .realroots import count_real_roots
 from .report import Parametrization, Rationality
@@ -301,7 +309,11 @@ def _profile_section(
 
 
 def _real_component(p: Poly, *, timeout: float, cancel: threading.Event | None) -> Poly:
-    """A component ``g(s, r)`` of ``p̃ = g(s, r)·g(s, -r)`` over a real field, as a polynomial."""
+    """A component ``g(s, r)`` of ``p̃ = g(s, r)·g(s, -r)`` over a real field, as a polynomial: over
+    ``QQ`` when flint's factorization finds one (no Singular run), else from the absolute one."""
+    rational = _rational_component(p)
+    if rational is not None:
+        return rational
     factorization = curves.absolute_factorization(p, timeout=timeout, cancel=cancel)
     s, r = sympy.symbols("s r")
     for fac in factorization.factors:
@@ -322,6 +334,19 @@ def _real_component(p: Poly, *, timeout: float, cancel: threading.Event | None) 
             )
     raise AnalysisError("not computed: no component of the profile is defined over a real field of square "
                         "roots of rational numbers (its components need nested or higher roots)")
+
+
+def _rational_component(p: Poly) -> Poly | None:
+    """An irreducible factor ``g`` of ``p̃`` over ``QQ`` that is not even in ``r``, so that
+    ``g(s, r)·g(s, -r)`` divides ``p̃``: a real component (``None`` over another field)."""
+    if not is_rational_field(p.ring.domain):
+        return None
+    _, factors = to_flint(p).factor()
+    for g, _ in factors:
+        component = from_flint(g, p.ring)
+        if any(m[1] % 2 for m in component.itermonoms()):
+            return component
+    return None
 
 
 def _real_roots(minpoly: sympy.Expr) -> list[sympy.Expr]:

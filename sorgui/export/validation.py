@@ -63,7 +63,7 @@ VOCABULARY: dict[tuple[str, str], frozenset[str]] = {
 }
 """Fields whose every string comes from a fixed list."""
 
-CERTIFICATE_METHODS = frozenset({"resultant", "incidence", "elimination", "rotation", "symmetry", "line", "components"})
+CERTIFICATE_METHODS = frozenset({"profile", "resultant", "incidence", "elimination", "rotation", "symmetry", "line", "components"})
 
 EXPRESSIONS: dict[str, frozenset[str]] = {
     "Axis": frozenset({"point", "direction", "plucker"}),

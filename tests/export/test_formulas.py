@@ -25,15 +25,15 @@ def test_torus_parameterization_misses_two_circles(analyses) -> None:
     by_name = {f.name: f for f in analysis_formulas(analyses["torus"])}
     cov = by_name["X2"].coverage
     assert cov is not None and cov.real and cov.parameters == (s, t)
-    assert {sympy.expand(e.factor) for e in cov.excluded} == {s**2 + 1, t**2 + 16}
+    assert {sympy.expand(e.factor) for e in cov.excluded} == {s**2 + 1, t**2 + 64}
     assert all(e.real_zeros is False for e in cov.excluded)
     at_s, at_t = cov.limits
     assert at_s.parameter == s and at_t.parameter == t
-    expected = [(3 - 3 * s**2) / (s**2 + 1), 6 * s / (s**2 + 1), 0]
+    expected = [(1 - s**2) / (s**2 + 1), 2 * s / (s**2 + 1), 0]
     assert all(sympy.simplify(c - e) == 0 for c, e in zip(at_t.point, expected))
-    # the circle x² + y² = 9, z = 0 of the torus (x² + y² + z² + 8)² = 36(x² + y²)
+    # the inner equator x² + y² = 1, z = 0 of the torus (x² + y² + z² + 3)² = 16(x² + y²)
     circle = [c for c in at_t.point]
-    assert sympy.simplify(circle[0] ** 2 + circle[1] ** 2 - 9) == 0
+    assert sympy.simplify(circle[0] ** 2 + circle[1] ** 2 - 1) == 0
     assert at_s.check == (sympy.Rational(7, 3), True) and at_t.check == (sympy.Rational(7, 3), True)
     assert cov.lines()[0] == "parameter domain: (s, t) in R^2"
 
