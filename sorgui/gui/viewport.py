@@ -43,12 +43,19 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from sorgui.gui.camera import CameraState, coordinate_view, meridian_normal, view_across, view_along
-from sorgui.session.scene_data import SceneData
+from sorgui.gui.camera import (
+    CameraState,
+    coordinate_view,
+    meridian_normal,
+    view_across,
+    view_along,
+)
+from sorgui.gui.wording import floats
 from sorgui.render import mesh_to_polydata, pick_info, to_polydata
 from sorgui.render.canal_touch import Touch, touching_spheres
 from sorgui.render.picking import PickInfo
 from sorgui.render.scene import LineData
+from sorgui.session.scene_data import SceneData
 
 if TYPE_CHECKING:
     import pyvista
@@ -664,10 +671,14 @@ class Viewport(QWidget):
 
 
 def _touch_text(touch: Touch) -> str:
-    """The sphere of a canal family touching the surface at the picked point, in words."""
-    x, y, z = touch.center
-    return (f"touching sphere of family {touch.family + 1}: centre ({x:.4g}, {y:.4g}, {z:.4g}), "
-            f"radius {touch.radius:.4g}")
+    """The sphere of a canal family touching the surface at the picked point, in words (the
+    search's floating-point noise, below 1e-9 of the centre's size, shown as 0)."""
+    centre = floats(tuple(float(c) for c in touch.center), digits=4, tolerance=TOUCH_NOISE)
+    return f"touching sphere of family {touch.family + 1}: centre {centre}, radius {touch.radius:.4g}"
+
+
+TOUCH_NOISE = 1e-9
+"""The relative precision of the touching sphere's centre (a search over the family's parameter)."""
 
 
 def _pick_text(info: PickInfo) -> str:

@@ -70,6 +70,23 @@ def evaluate(fn: Function, t: np.ndarray) -> np.ndarray:
         return np.polyval(fn[0], t) / np.polyval(fn[1], t)
 
 
+def evaluate_angle(fn: Function, phi: np.ndarray) -> np.ndarray:
+    """Values of a :data:`Function` at ``t = tan φ``, the numerator and denominator homogenized
+    to one degree in ``(sin φ, cos φ)``: finite at ``φ = ±π/2`` (``t = ∞``) where the function
+    has a limit, so a search over ``φ`` reaches the parameter's point at infinity too."""
+    num, den = fn
+    n = max(len(num), len(den)) - 1
+    s, c = np.sin(phi), np.cos(phi)
+
+    def homogeneous(coefficients: np.ndarray) -> np.ndarray:
+        degree = len(coefficients) - 1
+        return sum((a * s ** (degree - i) * c ** (n - degree + i) for i, a in enumerate(coefficients)),
+                   np.zeros_like(phi))
+
+    with np.errstate(all="ignore"):
+        return homogeneous(num) / homogeneous(den)
+
+
 def _parameters(samples: int) -> np.ndarray:
     """``t = tan φ`` for ``φ`` evenly spaced in ``(−π/2, π/2)``: the whole real line."""
     phi = np.linspace(-np.pi / 2, np.pi / 2, samples + 2)[1:-1]

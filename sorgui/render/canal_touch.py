@@ -24,10 +24,13 @@ import sympy
 
 from sorgui.engine.expressions import SYMPY, read
 from sorgui.engine.report import Canal
-from sorgui.render.canal_scene import Function, circle, evaluate, rational_function
+from sorgui.render.canal_scene import Function, circle, evaluate_angle, rational_function
 
 SCAN = 2000
 """Samples of ``φ`` in the coarse scan over the whole real line of ``t``."""
+
+REFINEMENTS = 10
+"""Refinements of the scan, each twenty times finer: down to the precision of a double."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -101,27 +104,29 @@ def touching_spheres(families: tuple[FamilyCurves | SmatFamily, ...], point: np.
                 out += [t for t in _smat_touches(index, family, point, np.asarray(normal, dtype=np.float64),
                                                  circle_points) if t.distance <= tolerance]
             continue
-        t, distance = _nearest_circle(family, point)
+        phi, distance = _nearest_circle(family, point)
         if not np.isfinite(distance) or distance > tolerance:
             continue
-        center = _vector(family.center, np.array([t]))[0]
-        rho = float(evaluate(family.radius_squared, np.array([t]))[0])
-        ring = _circle(family, t, circle_points)
+        angle = np.array([phi])
+        center = _vector(family.center, angle)[0]
+        rho = float(evaluate_angle(family.radius_squared, angle)[0])
+        ring = _circle(family, phi, circle_points)
         if ring is None or not (np.all(np.isfinite(center)) and rho > 0):
             continue
-        out.append(Touch(index, t, center, float(np.sqrt(rho)), ring, distance))
+        out.append(Touch(index, float(np.tan(phi)), center, float(np.sqrt(rho)), ring, distance))
     return out
 
 
-def _vector(fns: tuple[Function, Function, Function], t: np.ndarray) -> np.ndarray:
-    return np.column_stack([evaluate(fn, t) for fn in fns])
+def _vector(fns: tuple[Function, Function, Function], phi: np.ndarray) -> np.ndarray:
+    """The vector function at the angles ``phi`` (``t = tan φ``)."""
+    return np.column_stack([evaluate_angle(fn, phi) for fn in fns])
 
 
-def _circle_distance(family: FamilyCurves, point: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """The distance from ``point`` to the characteristic circle of each parameter in ``t``."""
-    c = _vector(family.circle_center, t)
-    n = _vector(family.circle_normal, t)
-    r2 = evaluate(family.circle_radius_squared, t)
+def _circle_distance(family: FamilyCurves, point: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """The distance from ``point`` to the characteristic circle of each parameter ``tan φ``."""
+    c = _vector(family.circle_center, phi)
+    n = _vector(family.circle_normal, phi)
+    r2 = evaluate_angle(family.circle_radius_squared, phi)
     with np.errstate(all="ignore"):
         n = n / np.linalg.norm(n, axis=1, keepdims=True)
         d = point - c
@@ -132,22 +137,24 @@ def _circle_distance(family: FamilyCurves, point: np.ndarray, t: np.ndarray) -> 
 
 
 def _nearest_circle(family: FamilyCurves, point: np.ndarray) -> tuple[float, float]:
-    """``(t, distance)`` of the circle nearest ``point``: a scan of ``φ``, then three refinements."""
-    phi = np.linspace(-np.pi / 2, np.pi / 2, SCAN + 2)[1:-1]
+    """``(φ, distance)`` of the circle nearest ``point`` (``t = tan φ``, the point at infinity
+    ``φ = π/2`` included): a scan of ``φ``, then refinements down to the precision of a double
+    (each narrows the step twentyfold)."""
+    phi = np.linspace(-np.pi / 2, np.pi / 2, SCAN + 1)
     step = phi[1] - phi[0]
-    for _round in range(4):
-        distance = _circle_distance(family, point, np.tan(phi))
+    for _round in range(REFINEMENTS):
+        distance = _circle_distance(family, point, phi)
         best = int(np.argmin(distance))
         centre = phi[best]
-        phi = np.clip(np.linspace(centre - 2 * step, centre + 2 * step, 81), -np.pi / 2 + 1e-9, np.pi / 2 - 1e-9)
+        phi = np.linspace(centre - 2 * step, centre + 2 * step, 81)
         step = phi[1] - phi[0]
-    return float(np.tan(centre)), float(distance[best])
+    return float(centre), float(distance[best])
 
 
-def _circle(family: FamilyCurves, t: float, points: int) -> np.ndarray | None:
-    ts = np.array([t])
-    return circle(_vector(family.circle_center, ts)[0], _vector(family.circle_normal, ts)[0],
-                  float(evaluate(family.circle_radius_squared, ts)[0]), points)
+def _circle(family: FamilyCurves, phi: float, points: int) -> np.ndarray | None:
+    angle = np.array([phi])
+    return circle(_vector(family.circle_center, angle)[0], _vector(family.circle_normal, angle)[0],
+                  float(evaluate_angle(family.circle_radius_squared, angle)[0]), points)
 
 
 SMAT_VARIABLES = sympy.symbols("m1 m2 m3 r")
