@@ -26,8 +26,8 @@ from pathlib import Path
 
 from benchmarks.recognition import surface
 from benchmarks.report import ROOT, run
-from sorgui.engine.polys import poly_str
-from sorgui.engine.singular import find_singular, poly_to_singular
+from sorgui.engine.algebra.polys import poly_str
+from sorgui.engine.singular.process import find_singular, poly_to_singular
 
 DEGREES = (10, 20)
 

@@ -20,8 +20,8 @@ import numpy as np
 
 from benchmarks.report import median_time, run
 from sorgui.engine.analysis import analyze
-from sorgui.engine.approximate import approximate_symmetry, rounding_of
 from sorgui.engine.parsing import parse_polynomial
+from sorgui.engine.rounded.approximate import approximate_symmetry, rounding_of
 from tests.engine.rounded import printed, random_sor
 
 DEGREES = (4, 6, 8, 10, 12, 16, 20)

@@ -22,7 +22,7 @@ from pathlib import Path
 from sympy.polys.domains import QQ
 
 from benchmarks.report import ROOT, run
-from sorgui.engine.polys import poly_str
+from sorgui.engine.algebra.polys import poly_str
 from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve
 
 EQUATIONS = Path(__file__).resolve().parent / "batch-100.txt"

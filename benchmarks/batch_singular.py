@@ -20,8 +20,8 @@ from pathlib import Path
 from benchmarks.algorithm2_singular import ALGORITHM_II, process_times
 from benchmarks.recognition import surface
 from benchmarks.report import run
-from sorgui.engine.polys import poly_str
-from sorgui.engine.singular import find_singular, poly_to_singular
+from sorgui.engine.algebra.polys import poly_str
+from sorgui.engine.singular.process import find_singular, poly_to_singular
 
 DEGREES = (10, 20)
 COUNT = 20

@@ -12,10 +12,10 @@ from __future__ import annotations
 from pathlib import Path
 
 from benchmarks.report import median_time, run
-from sorgui.engine.canal import analyze_canal
-from sorgui.engine.canal_lines import LINES, SEED, Lines, NotCanal
+from sorgui.engine.algebra.polys import to_flint
+from sorgui.engine.canal.lines import LINES, SEED, Lines, NotCanal
+from sorgui.engine.canal.verdict import analyze_canal
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.polys import to_flint
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "tests" / "data" / "canal-examples.txt"
 

@@ -36,7 +36,7 @@ AFTER_MS = 300
 def sor_in_general_position(degree: int) -> str:
     """A surface of revolution of the given degree on a tilted rational axis (dense in x, y, z)."""
     from benchmarks.recognition import surface
-    from sorgui.engine.polys import poly_str
+    from sorgui.engine.algebra.polys import poly_str
 
     return poly_str(surface(degree, seed=degree))
 

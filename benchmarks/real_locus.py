@@ -11,10 +11,10 @@ from __future__ import annotations
 
 from benchmarks.recognition import surface
 from benchmarks.report import median_time, run
+from sorgui.engine.algebra.polys import Poly, field_name
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.polys import Poly, field_name
-from sorgui.engine.real_locus import real_locus
-from sorgui.engine.recognition import recognize
+from sorgui.engine.recognition.recognize import recognize
+from sorgui.engine.revolution.real_locus import real_locus
 
 DEGREES = (4, 8, 12, 16, 20, 25, 30)
 

@@ -15,7 +15,7 @@ import time
 
 from benchmarks.recognition import surface
 from benchmarks.report import ROOT, run
-from sorgui.engine.polys import poly_str
+from sorgui.engine.algebra.polys import poly_str
 
 CASES = [
     ("paraboloid, degree 2", "x^2 + y^2 - z"),

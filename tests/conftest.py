@@ -22,7 +22,7 @@ def paper_example_1():
     """The paper's Example 1 as a polynomial over QQ, built without the parser."""
     from sympy import QQ
 
-    from sorgui.engine.polys import XYZ, poly_ring
+    from sorgui.engine.algebra.polys import XYZ, poly_ring
 
     text = next(c["input"] for c in corpus_cases() if c["name"] == "paper-example-1")
     R = poly_ring(XYZ, QQ)

@@ -21,7 +21,13 @@ from pathlib import Path
 
 import pytest
 
-from tests.test_cli_signals import dead, descendants, launch, singular_processes, wait_for
+from tests.test_cli_signals import (
+    dead,
+    descendants,
+    launch,
+    singular_processes,
+    wait_for,
+)
 
 pytestmark = [pytest.mark.slow, pytest.mark.skipif(not Path("/proc").is_dir(), reason="reads /proc")]
 

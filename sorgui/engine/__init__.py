@@ -14,8 +14,23 @@ only when an analysis needs them.
 """
 
 from .analysis import STAGES, analyze, analyze_polynomial
-from .errors import AnalysisError, Cancelled, ParseError, SingularError, SingularTimeout, SorguiError
-from .report import Analysis, Axis, Factor, Parametrization, Profile, Rationality, Recognition
+from .errors import (
+    AnalysisError,
+    Cancelled,
+    ParseError,
+    SingularError,
+    SingularTimeout,
+    SorguiError,
+)
+from .report import (
+    Analysis,
+    Axis,
+    Factor,
+    Parametrization,
+    Profile,
+    Rationality,
+    Recognition,
+)
 
 __all__ = [
     "STAGES",

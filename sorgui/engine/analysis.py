@@ -24,16 +24,23 @@ from contextlib import contextmanager
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
+from .algebra.linalg import Vector
 from .errors import Cancelled, TimeLimitReached
-from .linalg import Vector
 from .parsing import parse_polynomial
-from .precision import has_decimals
-from .report import Analysis, Approximation, Canal, Parametrization, Rationality, Recognition
-from .symmetry import NEAREST_CANAL_NOTE, revolution_canal
+from .recognition.symmetry import NEAREST_CANAL_NOTE, revolution_canal
+from .report import (
+    Analysis,
+    Approximation,
+    Canal,
+    Parametrization,
+    Rationality,
+    Recognition,
+)
+from .rounded.precision import has_decimals
 from .timelimit import skeleton, time_limit, unfinished_analysis
 
 if TYPE_CHECKING:
-    from .polys import Poly
+    from .algebra.polys import Poly
 
 ProgressCallback = Callable[[str], None]
 PartialCallback = Callable[[Analysis], None]
@@ -170,7 +177,8 @@ def analyze(
 def load_engine() -> None:
     """Import sympy and the engine's sympy-based modules: the stage ``engine``, so that their
     import (a few tenths of a second in a new process) is not charged to reading the equation."""
-    from . import polys, recognition  # noqa: F401 - imported for their side effect of loading
+    from .algebra import polys  # noqa: F401 - imported for their side effect of loading
+    from .recognition import recognize  # noqa: F401
 
 
 def analyze_polynomial(
@@ -192,10 +200,10 @@ def analyze_polynomial(
     ``canal=False`` skips the canal stage (the nearest exact surface is a surface of revolution,
     hence canal; the typed equation's canal analysis is the one shown).
     """
-    from .polys import field_name, poly_str
-    from .profile import profile_curve
-    from .real_locus import real_locus
-    from .recognition import factor_reports, recognize
+    from .algebra.polys import field_name, poly_str
+    from .recognition.profile import profile_curve
+    from .recognition.recognize import factor_reports, recognize
+    from .revolution.real_locus import real_locus
 
     clock = clock or StageClock(None, None)
     cancel = clock.cancel
@@ -211,7 +219,10 @@ def analyze_polynomial(
     approximation: Approximation | None = None
     near = None
     if tolerance is not None or (text is not None and has_decimals(text)):
-        from .approximate import approximate_symmetry, rounding_of  # numpy: only for rounded input
+        from .rounded.approximate import (  # numpy: only for rounded input
+            approximate_symmetry,
+            rounding_of,
+        )
 
         with clock.stage("approximate"):
             rounding, rounding_notes = rounding_of(f, text, tolerance)
@@ -243,7 +254,10 @@ def analyze_polynomial(
         if len(distinct) > 1:
             rationality = Rationality(status="not analysed: X is reducible over K; see its factors")
         else:
-            from .rationality import analyze_rationality, parametrizations  # Singular's layer: only here
+            from .revolution.rationality import (  # Singular's layer: only here
+                analyze_rationality,
+                parametrizations,
+            )
 
             g = distinct[0]
             if g != f:
@@ -258,7 +272,7 @@ def analyze_polynomial(
         with clock.stage("canal"):
             canal_result = revolution_canal(recognition.degree)
     elif canal:
-        from .canal import analyze_canal  # Singular's layer: only here
+        from .canal.verdict import analyze_canal  # Singular's layer: only here
 
         clock.publish(result(rationality, found))
         with clock.stage("canal"):

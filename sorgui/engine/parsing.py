@@ -33,8 +33,8 @@ from typing import TYPE_CHECKING, Any, NamedTuple, Protocol, TypeAlias
 
 from flint import fmpq, fmpq_mpoly, fmpz
 
+from .algebra import rationals
 from .errors import ParseError
-from . import rationals
 
 if TYPE_CHECKING:
     from sympy.polys.domains.domain import Domain
@@ -96,7 +96,7 @@ def parse_polynomial(text: str) -> ParsedPolynomial:
     Raises :class:`ParseError` (and nothing else) for every input that is not a non-constant
     polynomial in x, y, z of total degree at most ``MAX_DEGREE``.
     """
-    from .polys import XYZ, from_flint, number_field, poly_ring
+    from .algebra.polys import XYZ, from_flint, number_field, poly_ring
 
     plain = expanded_polynomial(text)
     if plain is not None:
@@ -893,7 +893,7 @@ class _SympyField:
         self.one = self._field.one
 
     def rational(self, q: Rational) -> Any:
-        from .polys import from_rational
+        from .algebra.polys import from_rational
 
         return from_rational(self._field, q)
 

@@ -23,14 +23,31 @@ from typing import TYPE_CHECKING
 
 from flint import fmpq, fmpq_mpoly
 
-from .canal_lines import verdict_without_smat
+from .algebra.linalg import Vector, cross, dot, perpendicular, primitive_vector
+from .algebra.rationals import (
+    RATIONALS,
+    context,
+    factor,
+    flint_str,
+    primitive,
+    rational_surd,
+    terms,
+    terms_str,
+    times_text,
+)
+from .canal.lines import verdict_without_smat
 from .errors import AnalysisError
-from .linalg import Vector, cross, dot, perpendicular, primitive_vector
 from .parsing import parse_rational
-from .precision import has_decimals
-from .rationals import RATIONALS, context, factor, flint_str, primitive, rational_surd, terms, terms_str, times_text
+from .recognition.symmetry import (
+    CYLINDER,
+    REVOLUTION,
+    SPHERE,
+    Symmetry,
+    rational_symmetry,
+    revolution_canal,
+)
 from .report import Analysis, Axis, Factor, Profile, Recognition
-from .symmetry import CYLINDER, REVOLUTION, SPHERE, Symmetry, rational_symmetry, revolution_canal
+from .rounded.precision import has_decimals
 
 if TYPE_CHECKING:
     from .analysis import StageClock

@@ -22,7 +22,7 @@ from .errors import TimeLimitReached
 from .report import Analysis, Rationality, Recognition
 
 if TYPE_CHECKING:
-    from .polys import Poly
+    from .algebra.polys import Poly
 
 
 def limit_message(seconds: float) -> str:
@@ -66,7 +66,7 @@ def skeleton(f: Poly, *, text: str, method: str) -> Analysis:
     """The analysis of ``f`` before any stage has finished: its polynomial, degree and field, with
     the symmetry :data:`UNDECIDED`. What a time limit met before the recognition reports; an
     analysis process sends it to its parent as soon as the equation is read."""
-    from .polys import field_name, poly_str, total_degree
+    from .algebra.polys import field_name, poly_str, total_degree
 
     recognition = Recognition(polynomial=poly_str(f), degree=total_degree(f), is_sor=False,
                               symmetry=UNDECIDED, symmetry_dimension=0, symmetry_basis=())

@@ -24,9 +24,9 @@ from PySide6.QtGui import (
 )
 from PySide6.QtWidgets import QLabel, QPlainTextEdit, QTextEdit, QVBoxLayout, QWidget
 
+from sorgui.engine.algebra.polys import field_name, total_degree
 from sorgui.engine.errors import ParseError
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.polys import field_name, total_degree
 
 VALIDATION_DELAY_MS = 250
 """Debounce of the live validation: the parser runs this long after the last keystroke."""

@@ -64,7 +64,6 @@ from sorgui.gui.exporting import (
 from sorgui.gui.help import TOPICS, HelpDialog
 from sorgui.gui.results import FORMULA_MARGIN, ResultsPane
 from sorgui.gui.session_view import SessionView
-from sorgui.gui.stages import RunPanel
 from sorgui.gui.settings import (
     EQUATION_FILTER,
     EquationFileError,
@@ -73,6 +72,7 @@ from sorgui.gui.settings import (
     read_equation,
     write_equation,
 )
+from sorgui.gui.stages import RunPanel
 from sorgui.gui.viewport import Viewport
 from sorgui.gui.wording import invalid_heading
 from sorgui.gui.worker import AnalysisWorker

@@ -28,8 +28,20 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from sorgui.engine.report import Analysis, Approximation, Canal, Rationality, Recognition
-from sorgui.export.text import SYMMETRY_NAMES, TABLE_1, TABLE_1_WORDS, format_report, nearly_canal
+from sorgui.engine.report import (
+    Analysis,
+    Approximation,
+    Canal,
+    Rationality,
+    Recognition,
+)
+from sorgui.export.text import (
+    SYMMETRY_NAMES,
+    TABLE_1,
+    TABLE_1_WORDS,
+    format_report,
+    nearly_canal,
+)
 from sorgui.gui.formula_view import FormulaView
 from sorgui.gui.wording import (
     canal_evidence,

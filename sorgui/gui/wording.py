@@ -10,7 +10,13 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from sorgui.engine.report import Analysis, Approximation, Canal, CanalFamily, Recognition
+from sorgui.engine.report import (
+    Analysis,
+    Approximation,
+    Canal,
+    CanalFamily,
+    Recognition,
+)
 from sorgui.session.components import Component
 from sorgui.session.model import STAGE_TITLES
 

@@ -232,7 +232,7 @@ def _smat_touches(index: int, family: SmatFamily, point: np.ndarray, normal: np.
                   circle_points: int) -> list[Touch]:
     """The spheres of ``family`` touching the surface at ``point``: the real ``s ≠ 0`` where every
     SMAT equation vanishes on ``(point + s·normal, s²)``."""
-    from sorgui.engine.dense import real_roots
+    from sorgui.engine.rounded.dense import real_roots
 
     normal = normal / np.linalg.norm(normal)
     lines = [_on_normal_line(g, point, normal) for g in family.equations]

@@ -37,7 +37,11 @@ import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints, vtkSMPTools
 from vtkmodules.vtkCommonDataModel import vtkBox, vtkImageData, vtkPolyData, vtkSphere
-from vtkmodules.vtkFiltersCore import vtkClipPolyData, vtkFlyingEdges3D, vtkTriangleFilter
+from vtkmodules.vtkFiltersCore import (
+    vtkClipPolyData,
+    vtkFlyingEdges3D,
+    vtkTriangleFilter,
+)
 
 from sorgui.render.geometry import (
     ClipBox,

@@ -32,7 +32,12 @@ from sorgui.render.geometry import (
     split_cells,
     unit,
 )
-from sorgui.render.mesh import GRID_OFFSET, NEWTON_STEP_LIMIT, clip_to_region, set_points
+from sorgui.render.mesh import (
+    GRID_OFFSET,
+    NEWTON_STEP_LIMIT,
+    clip_to_region,
+    set_points,
+)
 from sorgui.render.sampling import Terms, newton_step, sample_grid_2d
 
 if TYPE_CHECKING:

@@ -12,7 +12,15 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from sorgui.session.events import EventEmitter, SessionEvents
     from sorgui.session.job import JobRequest, JobResult
-    from sorgui.session.model import STAGES, InlineRunner, Run, Runner, Session, Stage, StageState
+    from sorgui.session.model import (
+        STAGES,
+        InlineRunner,
+        Run,
+        Runner,
+        Session,
+        Stage,
+        StageState,
+    )
 
 _HOMES = {
     "EventEmitter": "events", "SessionEvents": "events", "JobRequest": "job", "JobResult": "job",

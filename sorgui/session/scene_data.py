@@ -19,9 +19,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from sorgui.engine import dense
-from sorgui.engine.deviation import view_ball
 from sorgui.engine.report import Analysis, Parametrization, Recognition
+from sorgui.engine.rounded import dense
+from sorgui.engine.rounded.deviation import view_ball
 from sorgui.export.exact import (
     ExpressionError,
     Terms,
@@ -45,7 +45,6 @@ from sorgui.render.canal_touch import FamilyCurves, SmatFamily, family_curves
 from sorgui.render.geometry import foot_on_line
 from sorgui.render.sampling import evaluate_points, term_arrays, value_and_gradient
 from sorgui.session.job import DEFAULT_RESOLUTION
-
 
 PATCH_RANGE = (-3.0, 3.0)
 """Range of both parameters of the drawn parametric patch (the rotation parameter ``s`` is the
@@ -107,7 +106,7 @@ def view_region(
     terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
 ) -> ClipSphere:
     """A ball that shows the interesting part of ``f = 0`` around ``center``: the engine's
-    :func:`~sorgui.engine.deviation.view_ball` (real points on a star of lines, far branches
+    :func:`~sorgui.engine.rounded.deviation.view_ball` (real points on a star of lines, far branches
     dropped), the same ball in which a rounded input's deviation is measured (docs/math.md §8.6)."""
     exps, coefs = term_arrays(terms, 3)
     degree = int(exps.sum(axis=1).max(initial=0))

@@ -8,8 +8,8 @@ from fractions import Fraction
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
-from sorgui.engine.linalg import Vector, cross, dot, is_zero
-from sorgui.engine.polys import XYZ, Poly, compose, poly_ring
+from sorgui.engine.algebra.linalg import Vector, cross, dot, is_zero
+from sorgui.engine.algebra.polys import XYZ, Poly, compose, poly_ring
 
 
 def rational_vector(values: Sequence[object], K: Domain = QQ) -> Vector:

@@ -13,7 +13,7 @@ from fractions import Fraction
 import numpy as np
 from flint import fmpq, fmpq_mpoly_ctx
 
-from sorgui.engine import dense
+from sorgui.engine.rounded import dense
 
 
 def rotation(quaternion: np.ndarray) -> np.ndarray:

@@ -13,14 +13,23 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sorgui.engine import analyze
-from sorgui.engine.approximate import approximate_symmetry, rounding_of
 from sorgui.engine.errors import AnalysisError
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.precision import input_rounding
 from sorgui.engine.report import Analysis
-from sorgui.engine.snapping import quadratic_direction, simplest_between
+from sorgui.engine.rounded.approximate import approximate_symmetry, rounding_of
+from sorgui.engine.rounded.precision import input_rounding
+from sorgui.engine.rounded.snapping import quadratic_direction, simplest_between
 
-from .rounded import cylinder, printed, printed_exact, printed_fixed, random_sor, rational_sor, rotation, sphere
+from .rounded import (
+    cylinder,
+    printed,
+    printed_exact,
+    printed_fixed,
+    random_sor,
+    rational_sor,
+    rotation,
+    sphere,
+)
 
 DIGITS = (6, 8, 10, 12, 15)
 
@@ -138,7 +147,7 @@ def test_the_rounded_torus_gets_the_whole_analysis_of_its_nearest_surface() -> N
 
 def _turned_torus() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The torus (R = 3, r = 1) about a line turned by 0.7 rad about z, through (0.3, -1.2, 0.5)."""
-    from sorgui.engine import dense
+    from sorgui.engine.rounded import dense
 
     direction = np.array([math.cos(0.7), math.sin(0.7), 0.0])
     point = np.array([0.3, -1.2, 0.5])
@@ -183,7 +192,7 @@ def test_a_bad_tolerance_is_refused(tolerance: float) -> None:
 def test_the_tolerance_follows_the_printed_digits() -> None:
     def tol(text: str) -> float:
         f = parse_polynomial(text).polynomial
-        from sorgui.engine.dense import float_coefficients
+        from sorgui.engine.rounded.dense import float_coefficients
 
         return input_rounding(text, float_coefficients(f)).tolerance
 

@@ -9,13 +9,18 @@ from pathlib import Path
 import pytest
 import sympy
 
+from sorgui.engine.algebra import numberfields
+from sorgui.engine.algebra.polys import Poly, to_flint
 from sorgui.engine.analysis import analyze
-from sorgui.engine import numberfields
-from sorgui.engine import canal as canal_module
-from sorgui.engine.canal import CERTIFICATE_LINE, _rational_squarefree, analyze_canal, envelope_certificate
-from sorgui.engine.canal_lines import LINES, SEED, Lines
-from sorgui.engine.canal_spine import SmatCurve, smat_curves
-from sorgui.engine.polys import Poly, to_flint
+from sorgui.engine.canal import verdict as canal_module
+from sorgui.engine.canal.lines import LINES, SEED, Lines
+from sorgui.engine.canal.spine import SmatCurve, smat_curves
+from sorgui.engine.canal.verdict import (
+    CERTIFICATE_LINE,
+    _rational_squarefree,
+    analyze_canal,
+    envelope_certificate,
+)
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.report import Analysis, Canal
 from sorgui.export.text import format_report

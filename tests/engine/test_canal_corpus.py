@@ -9,9 +9,9 @@ from pathlib import Path
 
 import pytest
 
-from sorgui.engine.canal import analyze_canal
+from sorgui.engine.canal.verdict import analyze_canal
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.recognition import recognize
+from sorgui.engine.recognition.recognize import recognize
 
 from ..conftest import corpus_cases
 

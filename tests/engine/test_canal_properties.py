@@ -10,8 +10,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from sympy.polys.domains import QQ
 
-from sorgui.engine.canal import analyze_canal
-from sorgui.engine.polys import XYZ, Poly, poly_ring
+from sorgui.engine.algebra.polys import XYZ, Poly, poly_ring
+from sorgui.engine.canal.verdict import analyze_canal
 
 from .helpers import quaternion_rotation
 

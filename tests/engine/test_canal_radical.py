@@ -8,12 +8,12 @@ from pathlib import Path
 import pytest
 import sympy
 
-from sorgui.engine.canal_lines import LINES, SEED, Lines
-from sorgui.engine.canal_param import T, square_root
-from sorgui.engine.canal_radical import RadicalFamily, radical_family, radical_surface
-from sorgui.engine.canal_spine import SmatCurve, smat_curves
+from sorgui.engine.algebra.polys import Poly, to_flint
+from sorgui.engine.canal.lines import LINES, SEED, Lines
+from sorgui.engine.canal.parametrization import T, square_root
+from sorgui.engine.canal.radical import RadicalFamily, radical_family, radical_surface
+from sorgui.engine.canal.spine import SmatCurve, smat_curves
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.polys import Poly, to_flint
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "data" / "canal-examples.txt"
 

@@ -11,12 +11,12 @@ import sympy
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from sorgui.engine.canal import analyze_canal
-from sorgui.engine.canal_torus import torus_of
-from sorgui.engine.linalg import cross, dot
-from sorgui.engine.polys import poly_str
-from sorgui.engine.profile import profile_curve
-from sorgui.engine.recognition import recognize
+from sorgui.engine.algebra.linalg import cross, dot
+from sorgui.engine.algebra.polys import poly_str
+from sorgui.engine.canal.torus import torus_of
+from sorgui.engine.canal.verdict import analyze_canal
+from sorgui.engine.recognition.profile import profile_curve
+from sorgui.engine.recognition.recognize import recognize
 from sorgui.engine.report import CanalFamily
 
 from .helpers import rational_vector, revolve

@@ -13,8 +13,15 @@ import pytest
 import sympy
 from sympy.polys.domains import QQ
 
-from sorgui.engine import curves
-from sorgui.engine.curves import (
+from sorgui.engine.algebra.polys import Poly, number_field, poly_ring
+from sorgui.engine.errors import (
+    AnalysisError,
+    Cancelled,
+    SingularError,
+    SingularNotFound,
+)
+from sorgui.engine.singular import curves
+from sorgui.engine.singular.curves import (
     ALGEBRAIC,
     AbsoluteFactorization,
     absolute_factorization,
@@ -25,8 +32,6 @@ from sorgui.engine.curves import (
     is_proper,
     parametrize,
 )
-from sorgui.engine.errors import AnalysisError, Cancelled, SingularError, SingularNotFound
-from sorgui.engine.polys import Poly, number_field, poly_ring
 
 R = poly_ring(("x", "y"), QQ)
 x, y = R.gens
@@ -399,7 +404,7 @@ def test_profile_square_of_the_paraplanecurve_sextic_on_a_rational_axis(point, d
     """A surface of revolution whose ``P²`` is ``f2(s, w, 1)`` of the example of ``paraPlaneCurve``
     (paraplanecurves.lib: x⁶+3x⁴y²+3x²y⁴+y⁶-4x⁴z²-34x³yz²-7x²y²z²+12xy³z²+6y⁴z²+36x²z⁴+36xyz⁴+9y²z⁴,
     a rational sextic) about a rational axis: P² is parameterized properly and exactly."""
-    from sorgui.engine.recognition import recognize
+    from sorgui.engine.recognition.recognize import recognize
     from tests.engine.helpers import rational_vector, revolve
 
     coefficients = {

@@ -8,8 +8,8 @@ import random
 import pytest
 from sympy.polys.domains import QQ
 
-from sorgui.engine import curves
-from sorgui.engine.recognition import recognize
+from sorgui.engine.recognition.recognize import recognize
+from sorgui.engine.singular import curves
 from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve
 
 
@@ -40,7 +40,7 @@ def test_degree_12_in_general_position_has_the_expected_genera() -> None:
 
 
 def test_a_singular_profile_falls_back_to_singular() -> None:
-    from sorgui.engine.polys import poly_ring
+    from sorgui.engine.algebra.polys import poly_ring
 
     R = poly_ring(("s", "r"), QQ)
     s, r = R.gens

@@ -10,11 +10,17 @@ from hypothesis import strategies as st
 from sympy.polys.domains import QQ
 
 from benchmarks.numberfields import BARTH, SARTI
-from sorgui.engine import numberfields as nf
+from sorgui.engine.algebra import numberfields as nf
+from sorgui.engine.algebra.polys import (
+    compose,
+    factor,
+    number_field,
+    poly_ring,
+    sqrt_in_field,
+)
 from sorgui.engine.analysis import analyze
-from sorgui.engine.curves import analyze_curves
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.polys import compose, factor, number_field, poly_ring, sqrt_in_field
+from sorgui.engine.singular.curves import analyze_curves
 
 FIELDS = [(5,), (2, 3), (2, 3, 6), (2, 3, 5)]
 

@@ -16,9 +16,14 @@ from hypothesis import strategies as st
 from sympy.polys.domains import QQ
 
 from sorgui.engine import parsing
+from sorgui.engine.algebra.polys import XYZ, number_field, poly_ring
 from sorgui.engine.errors import ParseError
-from sorgui.engine.parsing import MAX_DEGREE, MAX_NESTING, ParsedPolynomial, parse_polynomial
-from sorgui.engine.polys import XYZ, number_field, poly_ring
+from sorgui.engine.parsing import (
+    MAX_DEGREE,
+    MAX_NESTING,
+    ParsedPolynomial,
+    parse_polynomial,
+)
 
 R = poly_ring(XYZ, QQ)
 X, Y, Z = R.gens

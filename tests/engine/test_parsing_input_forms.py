@@ -6,9 +6,9 @@ from __future__ import annotations
 import pytest
 from sympy import QQ
 
+from sorgui.engine.algebra.polys import XYZ, poly_ring, poly_str
 from sorgui.engine.errors import ParseError
 from sorgui.engine.parsing import MAX_DIGITS, MAX_PRINTED_DIGITS, parse_polynomial
-from sorgui.engine.polys import XYZ, poly_ring, poly_str
 
 R = poly_ring(XYZ, QQ)
 X, Y, Z = R.gens

@@ -6,9 +6,16 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from sympy.polys.domains import QQ
 
-from sorgui.engine.recognition import METHODS, recognize
+from sorgui.engine.recognition.recognize import METHODS, recognize
 
-from .helpers import apply, move, quaternion_rotation, rational_vector, revolve, same_line
+from .helpers import (
+    apply,
+    move,
+    quaternion_rotation,
+    rational_vector,
+    revolve,
+    same_line,
+)
 
 small = st.integers(min_value=-5, max_value=5)
 fractions = st.fractions(min_value=-3, max_value=3, max_denominator=4)

@@ -12,11 +12,11 @@ from flint import fmpq, fmpq_poly
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from sorgui.engine.algebra.polys import poly_str
 from sorgui.engine.analysis import StageClock, analyze_polynomial
-from sorgui.engine.canal_lines import univariate_str
+from sorgui.engine.canal.lines import univariate_str
 from sorgui.engine.errors import ParseError
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.polys import poly_str
 from sorgui.engine.rational_path import _surd_text, recognition_only_analysis
 from sorgui.engine.report import Analysis
 

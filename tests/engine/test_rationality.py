@@ -10,7 +10,7 @@ import sympy
 from sympy.polys.domains import QQ
 
 from sorgui.engine.analysis import analyze, analyze_polynomial
-from sorgui.engine.rationality import table_row
+from sorgui.engine.revolution.rationality import table_row
 from sorgui.examples import example_text
 
 from .helpers import move, quaternion_rotation, rational_vector, revolve
@@ -169,8 +169,8 @@ def test_high_degree_parametrization_is_verified_in_the_axis_frame() -> None:
 def test_a_wrong_parametrization_is_never_reported(monkeypatch, in_frame: bool) -> None:
     """The numerical screen and both exact checks (into f in the axis frame through the section,
     and into f itself) accept a section on the surface and reject one that is off it."""
-    from sorgui.engine import parametrization as pm
-    from sorgui.engine.recognition import recognize
+    from sorgui.engine.recognition.recognize import recognize
+    from sorgui.engine.revolution import parametrization as pm
 
     f = on_x_axis({(0, 1): 1, (2, 0): -1, (0, 0): -1})  # y² + z² = x² + 1
     _, _, profile = recognize(f)
@@ -208,7 +208,7 @@ def test_sign_changing_h_gets_a_real_proper_parametrization(equation: str, row: 
 
 
 def test_quadric_section_of_a_rational_root() -> None:
-    from sorgui.engine.parametrization import quadric_section
+    from sorgui.engine.revolution.parametrization import quadric_section
 
     x, Y, Z = quadric_section(t**2 - 1, sympy.Integer(1))
     assert sympy.simplify(Y**2 + Z**2 - (x**2 - 1)) == 0
@@ -221,7 +221,7 @@ def test_a_time_limit_ends_in_an_undecided_result() -> None:
 
 
 def test_missing_singular_is_reported_not_raised(monkeypatch) -> None:
-    from sorgui.engine.singular import ENV_VARIABLE
+    from sorgui.engine.singular.process import ENV_VARIABLE
 
     monkeypatch.setenv(ENV_VARIABLE, "/nonexistent/Singular")
     result = analyze("y^2 + z^2 = x^3 + 3x^2 - 2x")

@@ -7,9 +7,9 @@ import sympy
 
 from sorgui.engine.analysis import analyze
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.real_locus import _norm_in_s, real_locus
-from sorgui.engine.recognition import recognize
+from sorgui.engine.recognition.recognize import recognize
 from sorgui.engine.report import Analysis, RealLocus
+from sorgui.engine.revolution.real_locus import _norm_in_s, real_locus
 from sorgui.export.text import format_report, real_locus_line
 
 

@@ -10,8 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from sympy.polys.domains import QQ
 
-from sorgui.engine.polys import Poly, number_field, poly_ring
-from sorgui.engine.realroots import count_real_roots
+from sorgui.engine.algebra.polys import Poly, number_field, poly_ring
+from sorgui.engine.algebra.realroots import count_real_roots
 
 T = sympy.Symbol("t")
 x, y = poly_ring(("x", "y"), QQ).gens

@@ -18,10 +18,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from sympy.polys.domains import QQ
 
-from sorgui.engine import singular
-from sorgui.engine.errors import Cancelled, SingularError, SingularNotFound, SingularTimeout
-from sorgui.engine.polys import number_field, poly_ring
-from sorgui.engine.singular import (
+from sorgui.engine.algebra.polys import number_field, poly_ring
+from sorgui.engine.errors import (
+    Cancelled,
+    SingularError,
+    SingularNotFound,
+    SingularTimeout,
+)
+from sorgui.engine.singular import process as singular
+from sorgui.engine.singular.process import (
     emit,
     find_singular,
     minpoly_to_singular,
@@ -281,7 +286,7 @@ def test_sending_and_reading_back_is_the_identity_up_to_scale(terms: dict) -> No
 def test_sorguis_procedures_are_a_singular_library_shipped_as_package_data() -> None:
     import tomllib
 
-    from sorgui.engine.singular import library_path, script_header
+    from sorgui.engine.singular.process import library_path, script_header
 
     path = library_path()
     text = path.read_text(encoding="utf-8")
@@ -290,7 +295,7 @@ def test_sorguis_procedures_are_a_singular_library_shipped_as_package_data() -> 
         assert f"proc {proc}(" in text
     assert f'LIB "{path}";' in script_header()
     pyproject = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text(encoding="utf-8"))
-    assert "engine/*.lib" in pyproject["tool"]["setuptools"]["package-data"]["sorgui"]
+    assert "engine/singular/*.lib" in pyproject["tool"]["setuptools"]["package-data"]["sorgui"]
 
 
 @pytest.mark.parametrize(("body", "said"), [

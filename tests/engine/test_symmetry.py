@@ -6,10 +6,10 @@ import pytest
 import sympy
 from sympy.polys.domains import QQ
 
-from sorgui.engine.linalg import is_zero
-from sorgui.engine.polys import XYZ, number_field, poly_ring
-from sorgui.engine.recognition import METHODS, recognize
-from sorgui.engine.symmetry import satisfies_identity, symmetry_algebra
+from sorgui.engine.algebra.linalg import is_zero
+from sorgui.engine.algebra.polys import XYZ, number_field, poly_ring
+from sorgui.engine.recognition.recognize import METHODS, recognize
+from sorgui.engine.recognition.symmetry import satisfies_identity, symmetry_algebra
 
 from .helpers import rational_vector, revolve, same_line
 

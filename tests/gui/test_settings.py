@@ -7,7 +7,12 @@ from pathlib import Path
 import pytest
 
 from sorgui.examples import example_text
-from sorgui.gui.settings import EquationFileError, Settings, read_equation, write_equation
+from sorgui.gui.settings import (
+    EquationFileError,
+    Settings,
+    read_equation,
+    write_equation,
+)
 
 
 def test_settings_live_in_the_test_folder(settings_folder: Path) -> None:

@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from sorgui.engine.canal import analyze_canal
+from sorgui.engine.algebra.polys import to_flint
+from sorgui.engine.canal.verdict import analyze_canal
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.polys import to_flint
 from sorgui.render.canal_scene import canal_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "data" / "canal-examples.txt"
@@ -65,8 +65,8 @@ def test_touching_sphere_of_a_spine_of_genus_1() -> None:
     """The two-cylinder blend's spine has genus 1 (no m(t)): the sphere touching the surface at
     a point is found from the SMAT equations on the normal line, its centre on the spine
     (y² + z² = 16, x² + z² = 9), its radius 1, and its characteristic circle on the surface."""
-    from sorgui.engine import dense
-    from sorgui.engine.canal import analyze_canal
+    from sorgui.engine.canal.verdict import analyze_canal
+    from sorgui.engine.rounded import dense
     from sorgui.export.exact import polynomial_terms
     from sorgui.render.canal_touch import SmatFamily, family_curves, touching_spheres
     from sorgui.render.picking import pick_info
@@ -95,8 +95,8 @@ def test_touching_sphere_of_a_spine_of_genus_1() -> None:
 def test_a_spine_of_genus_1_is_traced_with_its_circles() -> None:
     """The two-cylinder blend's spine (y² + z² = 16, x² + z² = 9: two closed curves) is traced
     from points of the surface, and its characteristic circles lie on the surface."""
-    from sorgui.engine import dense
-    from sorgui.engine.canal import analyze_canal
+    from sorgui.engine.canal.verdict import analyze_canal
+    from sorgui.engine.rounded import dense
     from sorgui.export.exact import polynomial_terms
     from sorgui.render.canal_touch import family_curves
     from sorgui.render.canal_trace import smat_scene

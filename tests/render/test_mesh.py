@@ -15,7 +15,14 @@ from sorgui.render.mesh import (
 )
 from sorgui.render.picking import pick_many
 from sorgui.render.sampling import value_and_gradient
-from tests.render.surfaces import CONE, EMPTY_ELLIPSOID, SPHERE, TORUS, corpus_terms, direct
+from tests.render.surfaces import (
+    CONE,
+    EMPTY_ELLIPSOID,
+    SPHERE,
+    TORUS,
+    corpus_terms,
+    direct,
+)
 
 BOX = (-1.5, 1.5, -1.5, 1.5, -1.5, 1.5)
 

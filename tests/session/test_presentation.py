@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 import sympy
 
+from sorgui.engine.rounded import dense
 from sorgui.examples import example_text
 from sorgui.export.exact import (
     ExpressionError,
@@ -20,9 +21,13 @@ from sorgui.export.exact import (
     rational_function_terms,
     read_expression,
 )
-from sorgui.session.formulas import Style, expression_formula, render_formulas, vector_formula
+from sorgui.session.formulas import (
+    Style,
+    expression_formula,
+    render_formulas,
+    vector_formula,
+)
 from sorgui.session.job import JobRequest, run_job
-from sorgui.engine import dense
 from sorgui.session.scene_data import view_region
 
 s, t = sympy.symbols("s t")

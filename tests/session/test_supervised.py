@@ -7,7 +7,12 @@ import multiprocessing
 
 import pytest
 
-from sorgui.session.supervised import AnalysisRequest, StageLog, analyze_supervised, run_request
+from sorgui.session.supervised import (
+    AnalysisRequest,
+    StageLog,
+    analyze_supervised,
+    run_request,
+)
 
 
 def test_the_streamed_messages_rebuild_an_unfinished_analysis() -> None:

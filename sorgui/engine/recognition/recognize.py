@@ -2,7 +2,7 @@
 
 Two interchangeable methods find the symmetry: ``"symmetry"`` (the algebra ``L`` of (★),
 deterministic, the default) and ``"paper"`` (the paper's Algorithm II with random points). Both
-return a :class:`~sorgui.engine.symmetry.Symmetry`; everything after that is shared.
+return a :class:`~sorgui.engine.recognition.symmetry.Symmetry`; everything after that is shared.
 """
 
 from __future__ import annotations
@@ -11,12 +11,12 @@ from collections.abc import Callable
 
 from sympy.polys.domains.domain import Domain
 
-from .errors import AnalysisError
-from .linalg import Vector, cross, is_zero, primitive_vector, sub
+from ..algebra.linalg import Vector, cross, is_zero, primitive_vector, sub
+from ..algebra.polys import Poly, factor, poly_str, to_str, total_degree
+from ..errors import AnalysisError
+from ..report import Axis, Factor, Profile, Recognition
 from .paper_method import recognize_paper
-from .polys import Poly, factor, poly_str, to_str, total_degree
 from .profile import ProfileCurve, profile_curve
-from .report import Axis, Factor, Profile, Recognition
 from .symmetry import CYLINDER, REVOLUTION, SPHERE, Symmetry, recognize_symmetry
 
 METHODS: dict[str, Callable[[Poly], Symmetry]] = {

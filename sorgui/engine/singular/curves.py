@@ -37,8 +37,7 @@ from flint import fmpq, fmpq_poly
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
-from .errors import AnalysisError, SingularError
-from .polys import (
+from ..algebra.polys import (
     Poly,
     compose,
     field_generators,
@@ -49,7 +48,8 @@ from .polys import (
     to_flint,
     total_degree,
 )
-from .singular import (
+from ..errors import AnalysisError, SingularError
+from .process import (
     emit,
     minpoly_to_singular,
     parse_int,

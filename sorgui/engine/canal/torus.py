@@ -27,10 +27,10 @@ from math import gcd, isqrt, lcm
 from flint import fmpq, fmpq_poly
 from sympy.polys.domains import QQ
 
-from .linalg import Vector, cross, dot
-from .polys import Poly, compose, poly_ring, poly_str, primitive, total_degree
-from .profile import ProfileCurve
-from .report import Canal, CanalEvidence, CanalFamily
+from ..algebra.linalg import Vector, cross, dot
+from ..algebra.polys import Poly, compose, poly_ring, poly_str, primitive, total_degree
+from ..recognition.profile import ProfileCurve
+from ..report import Canal, CanalEvidence, CanalFamily
 
 HEIGHT = 12
 """Rational points ``Y = p/q`` with ``q ≤ HEIGHT`` are tried on each family's conic."""

@@ -21,10 +21,10 @@ from dataclasses import dataclass
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpq_poly
 
-from .canal_spine import SMAT_NAMES, SmatCurve
-from .curves import CurveParametrization
-from .errors import AnalysisError
-from .polys import Poly, to_flint
+from ..algebra.polys import Poly, to_flint
+from ..errors import AnalysisError
+from ..singular.curves import CurveParametrization
+from .spine import SMAT_NAMES, SmatCurve
 
 T = sympy.Symbol("t")
 THETA = sympy.Symbol("theta")

@@ -33,7 +33,7 @@ from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.rings import PolyElement, PolyRing
 
-from .errors import AnalysisError
+from ..errors import AnalysisError
 
 Poly = PolyElement
 

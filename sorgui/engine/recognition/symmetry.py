@@ -22,16 +22,16 @@ from typing import TYPE_CHECKING, Any
 
 from flint import fmpq, fmpq_mpoly
 
-from . import linalg
-from .errors import AnalysisError
-from .linalg import Vector, cross, dot, is_zero, primitive_vector, scale, sub
-from .rationals import RATIONALS
-from .report import Canal, CanalEvidence
+from ..algebra import linalg
+from ..algebra.linalg import Vector, cross, dot, is_zero, primitive_vector, scale, sub
+from ..algebra.rationals import RATIONALS
+from ..errors import AnalysisError
+from ..report import Canal, CanalEvidence
 
 if TYPE_CHECKING:
     from sympy.polys.domains.domain import Domain
 
-    from .polys import Poly
+    from ..algebra.polys import Poly
 
 REVOLUTION = "revolution"
 CYLINDER = "cylinder_of_revolution"
@@ -88,7 +88,7 @@ def _generators(g: fmpq_mpoly) -> list[fmpq_mpoly]:
 
 def infinitesimal_generators(f: Poly) -> list[dict[tuple[int, ...], Any]]:
     """The six polynomials of (★) (see :func:`_generators`) as coefficient dictionaries."""
-    from .polys import derivative, is_rational_field, to_flint
+    from ..algebra.polys import derivative, is_rational_field, to_flint
 
     R = f.ring
     if is_rational_field(R.domain):
@@ -101,7 +101,7 @@ def infinitesimal_generators(f: Poly) -> list[dict[tuple[int, ...], Any]]:
 
 def symmetry_algebra(f: Poly) -> list[Motion]:
     """A basis of ``L``, the solution space of (★), in reduced (canonical) form."""
-    from .polys import is_rational_field, to_flint
+    from ..algebra.polys import is_rational_field, to_flint
 
     K = f.ring.domain
     if is_rational_field(K):

@@ -34,11 +34,17 @@ import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 from sympy.polys.domains import QQ
 
+from ..algebra.polys import XYZ, Poly, from_flint, poly_ring, to_flint
+from ..recognition.symmetry import (
+    CYLINDER,
+    PLANE,
+    REVOLUTION,
+    Symmetry,
+    recognize_symmetry,
+)
 from . import dense
 from .near_symmetry import Fit, Normalised, fit, invariant_basis, refine_fixed
-from .polys import XYZ, Poly, from_flint, poly_ring, to_flint
 from .precision import Rounding
-from .symmetry import CYLINDER, PLANE, REVOLUTION, Symmetry, recognize_symmetry
 
 Vector = tuple[Fraction, Fraction, Fraction]
 EPSILONS = tuple(10.0 ** -k for k in range(2, 14))

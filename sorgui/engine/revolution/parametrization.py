@@ -27,11 +27,11 @@ from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.solvers.diophantine.diophantine import diop_ternary_quadratic
 
-from .linalg import dot
-from .polys import Poly, field_generators, to_expr
-from .radicals import RadicalRing, radicals_of
-from .profile import AxisFrame, ProfileCurve
-from .report import Parametrization
+from ..algebra.linalg import dot
+from ..algebra.polys import Poly, field_generators, to_expr
+from ..algebra.radicals import RadicalRing, radicals_of
+from ..recognition.profile import AxisFrame, ProfileCurve
+from ..report import Parametrization
 
 T = sympy.Symbol("t")
 PARAMETERS = ("s", "t")

@@ -24,10 +24,23 @@ from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.polyerrors import BasePolynomialError
 
-from . import curves, numberfields
-from .curves import CurveAnalysis, CurveParametrization
-from .errors import AnalysisError, SingularError, SingularTimeout
-from .linalg import dot
+from ..algebra import numberfields
+from ..algebra.linalg import dot
+from ..algebra.polys import (
+    Poly,
+    from_flint,
+    is_rational_field,
+    number_field,
+    poly_ring,
+    to_expr,
+    to_flint,
+)
+from ..algebra.realroots import count_real_roots
+from ..errors import AnalysisError, SingularError, SingularTimeout
+from ..recognition.profile import ProfileCurve
+from ..report import Parametrization, Rationality
+from ..singular import curves
+from ..singular.curves import CurveAnalysis, CurveParametrization
 from .parametrization import (
     Section,
     T,
@@ -40,18 +53,6 @@ from .parametrization import (
     sweep,
     tubular_section,
 )
-from .polys import (
-    Poly,
-    from_flint,
-    is_rational_field,
-    number_field,
-    poly_ring,
-    to_expr,
-    to_flint,
-)
-from .profile import ProfileCurve
-from .realroots import count_real_roots
-from .report import Parametrization, Rationality
 
 UNSUPPORTED = (BasePolynomialError, NotImplementedError)
 """What sympy raises for coefficient fields it cannot handle; a parameterization is then left

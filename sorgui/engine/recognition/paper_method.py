@@ -15,9 +15,9 @@ from __future__ import annotations
 import random
 from collections.abc import Callable
 
-from . import linalg
-from .linalg import Vector, cross, dot, is_zero
-from .polys import Poly, derivative, is_rational_field, to_flint
+from ..algebra import linalg
+from ..algebra.linalg import Vector, cross, dot, is_zero
+from ..algebra.polys import Poly, derivative, is_rational_field, to_flint
 from .profile import profile_curve
 from .symmetry import NONE, Motion, Symmetry, classify, satisfies_identity
 

@@ -22,17 +22,32 @@ import sympy
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
+from ..algebra.linalg import Vector, cross, primitive_vector
+from ..algebra.polys import Poly, poly_str, to_str
+from ..errors import AnalysisError
+from ..recognition.recognize import axis_report
+from ..recognition.symmetry import (
+    CYLINDER,
+    EXTRUSION,
+    PLANE,
+    REVOLUTION,
+    SOR_KINDS,
+    SPHERE,
+)
+from ..report import ApproximateAxis, Approximation, NearestSurface
 from . import dense
 from .deviation import max_deviation
-from .errors import AnalysisError
-from .linalg import Vector, cross, primitive_vector
-from .near_symmetry import Fit, Normalised, candidates, fit, killing_system, normalise, refine
-from .polys import Poly, poly_str, to_str
+from .near_symmetry import (
+    Fit,
+    Normalised,
+    candidates,
+    fit,
+    killing_system,
+    normalise,
+    refine,
+)
 from .precision import Rounding, given_rounding, input_rounding
-from .recognition import axis_report
-from .report import ApproximateAxis, Approximation, NearestSurface
 from .snapping import ExactSurface, Quadratic, perpendicular, snap
-from .symmetry import CYLINDER, EXTRUSION, PLANE, REVOLUTION, SOR_KINDS, SPHERE
 
 MAX_SPAN = 1e100
 """Coefficients whose sizes differ by more than this are not compared in floating point."""

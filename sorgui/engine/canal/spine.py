@@ -25,10 +25,10 @@ import sympy
 from flint import fmpq, fmpq_poly, fmpz_mat
 from sympy.polys.domains import QQ
 
-from .canal_focal import Pair, PairRing, SmatSample
-from .errors import AnalysisError
-from .polys import Poly, poly_ring, poly_str, total_degree
-from .singular import emit, parse_int, parse_list, poly_to_singular, run_script
+from ..algebra.polys import Poly, poly_ring, poly_str, total_degree
+from ..errors import AnalysisError
+from ..singular.process import emit, parse_int, parse_list, poly_to_singular, run_script
+from .focal import Pair, PairRing, SmatSample
 
 SMAT_NAMES = ("m1", "m2", "m3", "r")
 """The SMAT coordinates: the centre ``m`` and ``r`` for the squared radius ``ρ``."""

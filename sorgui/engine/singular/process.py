@@ -49,10 +49,16 @@ import sympy
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
-from .errors import Cancelled, ExpressionError, SingularError, SingularNotFound, SingularTimeout
-from .expressions import read, singular_syntax
-from .lifetime import die_with_parent
-from .polys import Poly, is_rational_field
+from ..algebra.polys import Poly, is_rational_field
+from ..errors import (
+    Cancelled,
+    ExpressionError,
+    SingularError,
+    SingularNotFound,
+    SingularTimeout,
+)
+from ..expressions import read, singular_syntax
+from ..lifetime import die_with_parent
 
 ENV_VARIABLE = "SORGUI_SINGULAR"
 """Environment variable naming a ``Singular`` executable to use instead of the bundled one."""

@@ -16,7 +16,7 @@ from collections.abc import Iterable, Iterator
 import numpy as np
 from flint import fmpq
 
-from .polys import Poly, is_rational_field, to_flint
+from ..algebra.polys import Poly, is_rational_field, to_flint
 
 Monomial = tuple[int, int, int]
 SparseForm = list[tuple[Monomial, float]]

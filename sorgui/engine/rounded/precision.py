@@ -29,7 +29,18 @@ import re
 from dataclasses import dataclass
 from math import comb
 
-from .parsing import Neg, Node, Num, Power, Product, Reciprocal, Sqrt, Sum, Var, syntax_tree
+from ..parsing import (
+    Neg,
+    Node,
+    Num,
+    Power,
+    Product,
+    Reciprocal,
+    Sqrt,
+    Sum,
+    Var,
+    syntax_tree,
+)
 
 FLOAT_FLOOR = 1e-15
 """Relative noise of coefficients computed in double precision, below any printed digit."""

@@ -25,9 +25,17 @@ from dataclasses import dataclass
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 
-from .canal_param import THETA, T, compose_fraction, frame, rational_root, reduce_square, square_root
-from .canal_spine import SMAT_NAMES, SmatCurve
-from .polys import Poly, to_flint
+from ..algebra.polys import Poly, to_flint
+from .parametrization import (
+    THETA,
+    T,
+    compose_fraction,
+    frame,
+    rational_root,
+    reduce_square,
+    square_root,
+)
+from .spine import SMAT_NAMES, SmatCurve
 
 A, B = sympy.symbols("a b")
 """The circle's coordinates in the verification: the point ``c + a·e₁ + b·e₂``."""

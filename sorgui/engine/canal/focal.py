@@ -25,7 +25,7 @@ from functools import cached_property
 
 from flint import fmpq, fmpq_mpoly, fmpq_poly
 
-from .errors import AnalysisError
+from ..errors import AnalysisError
 
 NuPoly = list[fmpq_poly]
 """A polynomial in ``ν`` with coefficients in ``A``: coefficient of ``ν^i`` at index ``i``."""

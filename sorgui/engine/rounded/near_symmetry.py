@@ -29,9 +29,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..recognition.symmetry import CYLINDER, EXTRUSION, PLANE, REVOLUTION, SPHERE
 from . import dense
 from .precision import Rounding
-from .symmetry import CYLINDER, EXTRUSION, PLANE, REVOLUTION, SPHERE
 
 GN_ITERATIONS = 12
 GN_GAIN = 1e-4

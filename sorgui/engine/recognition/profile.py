@@ -21,9 +21,9 @@ from flint import fmpq
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
-from .linalg import Vector, cross, dot, perpendicular
-from . import numberfields
-from .polys import (
+from ..algebra import numberfields
+from ..algebra.linalg import Vector, cross, dot, perpendicular
+from ..algebra.polys import (
     Poly,
     compose,
     field_generators,

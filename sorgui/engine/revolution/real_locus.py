@@ -28,14 +28,14 @@ import sympy
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
-from . import numberfields
-from .errors import AnalysisError
-from .linalg import Vector
-from .polys import Poly, compose, is_rational_field, poly_ring, to_flint
-from .profile import ProfileCurve
-from .realroots import count_real_roots, sign, sign_changes
-from .report import RealLocus
-from .symmetry import PLANE, SPHERE, Symmetry
+from ..algebra import numberfields
+from ..algebra.linalg import Vector
+from ..algebra.polys import Poly, compose, is_rational_field, poly_ring, to_flint
+from ..algebra.realroots import count_real_roots, sign, sign_changes
+from ..errors import AnalysisError
+from ..recognition.profile import ProfileCurve
+from ..recognition.symmetry import PLANE, SPHERE, Symmetry
+from ..report import RealLocus
 
 S, W, T = sympy.symbols("s w t")
 

@@ -17,7 +17,7 @@ from sympy.polys.domains.domain import Domain
 from sympy.polys.rootisolation import dup_sturm
 from sympy.polys.sqfreetools import dup_sqf_part
 
-from .errors import AnalysisError
+from ..errors import AnalysisError
 from .polys import Poly, is_rational_field, to_expr
 
 

@@ -24,9 +24,27 @@ import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 from sympy.polys.domains import QQ
 
-from . import curves, numberfields
-from .canal_focal import DEVELOPABLE, DUPIN, UMBILIC
-from .canal_lines import (
+from ..algebra import numberfields
+from ..algebra.linalg import cross, primitive_vector, solve_unique
+from ..algebra.polys import (
+    Poly,
+    compose,
+    derivative,
+    from_flint,
+    is_rational_field,
+    poly_ring,
+    poly_str,
+    to_flint,
+    total_degree,
+)
+from ..errors import AnalysisError, Cancelled, SingularError
+from ..recognition.profile import ProfileCurve
+from ..recognition.symmetry import SOR_EVIDENCE, Motion, satisfies_identity
+from ..report import Canal, CanalEvidence, CanalFamily, Parametrization
+from ..singular import curves
+from ..singular.process import emit, parse_int, poly_to_singular, run_script
+from .focal import DEVELOPABLE, DUPIN, UMBILIC
+from .lines import (
     MAX_DEGREE,
     SEED,
     SOR_NOTE,
@@ -39,7 +57,7 @@ from .canal_lines import (
     squarefree,
     undecided,
 )
-from .canal_param import (
+from .parametrization import (
     RationalFamily,
     family_resultant_certificate,
     family_strings,
@@ -48,27 +66,10 @@ from .canal_param import (
     recover_family,
     verify_radical,
 )
-from .canal_radical import RadicalFamily, radical_family, radical_surface
-from .canal_spine import MARGIN, SmatCurve, constant_radius, monomials, smat_curves
-from .canal_torus import CERTIFICATE as TORUS_CERTIFICATE
-from .canal_torus import torus_canal, torus_of
-from .errors import AnalysisError, Cancelled, SingularError
-from .linalg import cross, primitive_vector, solve_unique
-from .polys import (
-    Poly,
-    compose,
-    derivative,
-    from_flint,
-    is_rational_field,
-    poly_ring,
-    poly_str,
-    to_flint,
-    total_degree,
-)
-from .profile import ProfileCurve
-from .report import Canal, CanalEvidence, CanalFamily, Parametrization
-from .singular import emit, parse_int, poly_to_singular, run_script
-from .symmetry import SOR_EVIDENCE, Motion, satisfies_identity
+from .radical import RadicalFamily, radical_family, radical_surface
+from .spine import MARGIN, SmatCurve, constant_radius, monomials, smat_curves
+from .torus import CERTIFICATE as TORUS_CERTIFICATE
+from .torus import torus_canal, torus_of
 
 GENUS_DEGREE = 12
 """The genus of a SMAT plane model of higher degree is not computed (Singular's time)."""

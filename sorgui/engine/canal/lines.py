@@ -19,11 +19,18 @@ from dataclasses import dataclass, field, replace
 
 from flint import fmpq_mpoly, fmpq_poly
 
-from .canal_focal import DEVELOPABLE, Derivatives, LineTest, SmatSample, UnluckyLine, line_test
-from .errors import AnalysisError, Cancelled
-from .rationals import signed_sum, times_text
-from .report import Canal, CanalEvidence
-from .symmetry import PLANE_CANAL, SOR_EVIDENCE
+from ..algebra.rationals import signed_sum, times_text
+from ..errors import AnalysisError, Cancelled
+from ..recognition.symmetry import PLANE_CANAL, SOR_EVIDENCE
+from ..report import Canal, CanalEvidence
+from .focal import (
+    DEVELOPABLE,
+    Derivatives,
+    LineTest,
+    SmatSample,
+    UnluckyLine,
+    line_test,
+)
 
 LINES = 3
 """Canal lines tested before the SMAT is computed (one failing line already decides)."""
