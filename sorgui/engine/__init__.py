@@ -1,16 +1,20 @@
 """The exact engine: pure mathematics over K, with no Qt and no VTK.
 
-Entry point: :func:`analyze` turns pasted text into an immutable :class:`Analysis`.
-Modules, one idea each (following sympy's ``polys``): ``parsing`` (safe parser), ``polys``
-(exact polynomial facade over sympy and flint), ``rationals`` (``QQ`` on flint alone),
-``rational_path`` (the recognition-only analysis over ``QQ`` without sympy), ``linalg`` (null
-spaces over K), ``symmetry`` (the symmetry algebra L of (★)), ``paper_method`` (the paper's
-Algorithm II), ``profile`` (profile curve and axis frames), ``recognition`` (axis, profile,
-factors), ``singular`` and ``curves`` (plane curves with Singular), ``rationality`` (Table 1,
-tubular surface), ``parametrization`` (rational parameterizations of X), ``canal`` and its
-``canal_*`` modules (canal surfaces), ``report`` (result objects and JSON), ``analysis`` (the
-staged pipeline), ``errors`` (the one exception hierarchy). The sympy-based modules are loaded
-only when an analysis needs them.
+Entry point: :func:`analyze` turns pasted text into an immutable :class:`Analysis`. Laid out as
+sympy's ``polys``: a core of one module per idea, and subpackages, one idea each.
+
+The core: ``parsing`` (the safe parser of pasted text), ``expressions`` (reading the engine's
+own strings), ``report`` (the result objects and their JSON), ``errors`` (the one exception
+hierarchy), ``timelimit`` and ``lifetime`` (ending an analysis when asked), ``analysis`` (the
+staged pipeline) and ``rational_path`` (the recognition-only pipeline over ``QQ`` without
+sympy).
+
+Subpackages: ``algebra`` (polynomials, ``QQ`` on flint, number fields, radicals, linear algebra,
+real roots), ``singular`` (the Singular process, plane curves, sorgui's Singular library),
+``recognition`` (the symmetry algebra, the paper's method, the profile, the recognizer),
+``revolution`` (real points, Table 1, parameterizations), ``canal`` (canal surfaces) and
+``rounded`` (decimal input). A subpackage's ``__init__`` imports nothing, and the sympy-based
+modules are loaded only when an analysis needs them.
 """
 
 from .analysis import STAGES, analyze, analyze_polynomial

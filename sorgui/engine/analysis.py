@@ -6,7 +6,7 @@ or a given tolerance: the nearest surface of revolution, docs/math.md §8) → r
 parameterizations (docs/math.md §5–§6; only for a surface of revolution with a unique axis) →
 nearest (the whole analysis of the snapped exact surface).
 Between stages the ``cancel`` event is checked, and ``progress`` is told the stage's name, so a
-GUI worker can show it; Singular subprocesses are killed on cancel by :mod:`.singular`.
+GUI worker can show it; Singular subprocesses are killed on cancel by :mod:`.singular.process`.
 ``timeout`` bounds the whole analysis (:mod:`.timelimit`): the stages not finished by then are
 reported as undecided, those done are kept.
 
@@ -196,7 +196,7 @@ def analyze_polynomial(
     """The analysis of a polynomial over ``K`` that is already parsed (``text`` defaults to it).
 
     The tolerance is read off ``text``'s digits unless ``tolerance`` is given (docs/math.md §8);
-    ``frame`` is a preferred axis frame for the profile (see :func:`.recognition.recognize`).
+    ``frame`` is a preferred axis frame for the profile (see :func:`.recognition.recognize.recognize`).
     ``canal=False`` skips the canal stage (the nearest exact surface is a surface of revolution,
     hence canal; the typed equation's canal analysis is the one shown).
     """

@@ -1,6 +1,6 @@
 """Processes that never outlive the one that started them (Linux ``PR_SET_PDEATHSIG``).
 
-Singular (:mod:`.singular`) and the analysis processes of the command line and the window
+Singular (:mod:`.singular.process`) and the analysis processes of the command line and the window
 (:mod:`sorgui.session.child`) ask the kernel to end them when their parent dies, even by
 ``kill -9``. Light to import: ``ctypes`` only.
 """

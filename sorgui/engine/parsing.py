@@ -203,7 +203,7 @@ def _evaluate(text: str, evaluator: _Evaluator, tree: Node, ring: _Ring, saw_var
 
 
 def syntax_tree(text: str) -> Node:
-    """The syntax tree of ``text``, unchecked and unevaluated: what :mod:`.precision` reads to
+    """The syntax tree of ``text``, unchecked and unevaluated: what :mod:`.rounded.precision` reads to
     learn how many digits each number was printed with (docs/math.md §8)."""
     try:
         return _Parser(text).equation()

@@ -4,10 +4,10 @@ A whole ``sorgui analyze --recognition-only`` process on a small equation is mos
 sympy's alone takes longer than the whole analysis (docs/benchmarks.md). Over ``QQ`` the
 recognition needs none of sympy: the parser evaluates into flint's ``QQ[x, y, z]``
 (:func:`.parsing.parse_rational`), the symmetry algebra ``L`` of (★) is flint's linear algebra
-(:func:`.symmetry.rational_symmetry`), the profile ``p̃(s, r) = f(c + s·a + r·u)`` and the exact
+(:func:`.recognition.symmetry.rational_symmetry`), the profile ``p̃(s, r) = f(c + s·a + r·u)`` and the exact
 frame test are flint compositions (docs/math.md §3), the factors are flint's, and the canal
-answer of a surface of revolution is its symmetry algebra's (:func:`.symmetry.revolution_canal`);
-that of another surface is "not canal" when a line refutes it (:mod:`.canal_lines`).
+answer of a surface of revolution is its symmetry algebra's (:func:`.recognition.symmetry.revolution_canal`);
+that of another surface is "not canal" when a line refutes it (:mod:`.canal.lines`).
 
 :func:`recognition_only_analysis` gives exactly the :class:`~.report.Analysis` of the general
 pipeline (a test compares the two), and declines (``None``) what needs sympy: square roots in
@@ -159,7 +159,7 @@ def _axis(symmetry: Symmetry) -> Axis | None:
 
 
 def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> Profile:
-    """The profile in the frame ``(c, a, u)`` of :func:`.profile.axis_frame`, with the exact test
+    """The profile in the frame ``(c, a, u)`` of :func:`.recognition.profile.axis_frame`, with the exact test
     ``f(c + s·a + r₁·u + r₂·w) = P²(s, r₁² + |a|²·r₂²)``; the presented ``p(x, y)`` lies over
     ``QQ(|a|)``."""
     c, a, u = point, direction, perpendicular(direction, RATIONALS)
@@ -192,7 +192,7 @@ def _halve_second(p: fmpq_mpoly, names: Sequence[str]) -> fmpq_mpoly:
 
 
 def _orthonormal(p: fmpq_mpoly, norm_a: fmpq, norm_u: fmpq) -> dict[Monomial, Surd]:
-    """``p(x, y) = p̃(x/|a|, y/|u|)`` in the canonical scale of :func:`.profile.orthonormal_profile`,
+    """``p(x, y) = p̃(x/|a|, y/|u|)`` in the canonical scale of :func:`.recognition.profile.orthonormal_profile`,
     as terms with coefficients ``q·√d`` (:data:`Surd`).
 
     ``y`` occurs squared only, so ``|u|`` needs no root; ``1/|a|^i = |a|^(i mod 2)/|a|²^⌈i/2⌉``

@@ -4,7 +4,7 @@ The Python stages (recognition, factors over ``K``, parameterizations) can run f
 inside sympy, where no cancel event is looked at. In the main thread, :func:`time_limit`
 therefore arms a one-shot ``SIGALRM`` timer whose handler raises :class:`TimeLimitReached`
 wherever the analysis is; a Singular call it interrupts kills Singular on the way out
-(:mod:`.singular`). In other threads only the Singular calls are bounded (by the time left). :func:`unfinished_analysis` then reports the stages that did not finish as
+(:mod:`.singular.process`). In other threads only the Singular calls are bounded (by the time left). :func:`unfinished_analysis` then reports the stages that did not finish as
 undecided and keeps those that did.
 """
 

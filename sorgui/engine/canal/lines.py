@@ -1,10 +1,10 @@
 """The canal test on lines, and the canal verdicts that need no SMAT (docs/math.md §9).
 
-On deterministic random lines the focal-sheet condition of :mod:`.canal_focal` is tested exactly;
+On deterministic random lines the focal-sheet condition of :mod:`.focal` is tested exactly;
 one line on which it fails is the witness of **not canal**. A plane is canal, and so is a
 surface of revolution of high degree, by its symmetry algebra. These verdicts need python-flint
 only: :func:`verdict_without_smat` gives them for the recognition-only path over ``QQ``
-(:mod:`.rational_path`), and :mod:`.canal` builds on the same pieces (:func:`factor_verdict`,
+(:mod:`.rational_path`), and :mod:`.verdict` builds on the same pieces (:func:`factor_verdict`,
 :func:`assemble`) when the spine must be computed.
 """
 
@@ -184,7 +184,7 @@ def assemble(parts: list[Canal], is_sor: bool | None, clock: CanalClock, notes: 
 
 def verdict_without_smat(f: fmpq_mpoly, cancel: threading.Event | None = None) -> Canal | None:
     """The canal verdict of ``f ∈ QQ[x, y, z]``, not a surface of revolution, when no factor
-    needs its SMAT (as :func:`.canal.analyze_canal` gives it), else ``None``."""
+    needs its SMAT (as :func:`.verdict.analyze_canal` gives it), else ``None``."""
     if f.total_degree() > MAX_DEGREE:
         return Canal(None, f"not analysed: degree above {MAX_DEGREE}")
     clock = CanalClock(cancel)

@@ -2,8 +2,8 @@
 (docs/math.md §9).
 
 * ``m(t), ρ(t)`` of a genus-0 SMAT curve: its plane model ``G(u, v)`` is parameterized
-  (:func:`.curves.parametrize`), and the coordinates are rational functions of ``(u, v)`` on
-  the curve (:mod:`.canal_spine`, shape lemma). The result is verified by substitution into every
+  (:func:`sorgui.engine.singular.curves.parametrize`), and the coordinates are rational functions of ``(u, v)`` on
+  the curve (:mod:`.spine`, shape lemma). The result is verified by substitution into every
   equation of the SMAT ideal.
 * Characteristic circles: centre ``c = m − (ρ′/(2|m′|²))·m′``, radius² ``R² = ρ − ρ′²/(4|m′|²)``,
   in the plane through ``c`` perpendicular to ``m′``.

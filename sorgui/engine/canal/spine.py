@@ -1,7 +1,7 @@
 """The SMAT curve of a canal surface: its ideal, spine, degree, planarity and plane model
 (docs/math.md §9).
 
-The SMAT points ``(m₁, m₂, m₃, ρ)`` of canal lines (:mod:`.canal_focal`) are algebraic points; a
+The SMAT points ``(m₁, m₂, m₃, ρ)`` of canal lines (:mod:`.focal`) are algebraic points; a
 polynomial ``P`` vanishes on the ``deg F`` conjugate points of one line exactly when
 ``P(m, ρ) ≡ 0 mod F``, which is ``deg F`` linear equations over ``QQ`` on its coefficients. The
 null space for polynomials of degree ≤ k (k = 1, 2, … until the ideal is one-dimensional) gives
@@ -9,7 +9,7 @@ an ideal ``J_k`` whose zero set contains the SMAT curve; Singular's ``minAssGTZ`
 the components that carry the sampled points are the SMAT curve (two of them, the focal conics,
 for a Dupin cyclide). The same Singular run gives the spine ideal (``ρ`` eliminated), the degrees
 (points on a random hyperplane) and a plane model ``G(u, v)`` under a random projection, whose
-genus is the genus of the SMAT (Singular ``genus`` through :mod:`.curves`).
+genus is the genus of the SMAT (Singular ``genus`` through :mod:`sorgui.engine.singular.curves`).
 """
 
 from __future__ import annotations

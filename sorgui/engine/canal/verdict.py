@@ -3,8 +3,8 @@
 A canal surface is the envelope of a one-parameter family of spheres ``|X − m(t)|² = ρ(t)``.
 
 * **Not canal** is proved by one witness line on which the focal-sheet condition fails exactly
-  (:mod:`.canal_focal`, tested on lines by :mod:`.canal_lines`).
-* **Canal** is proved by the envelope certificate of the recovered family (:mod:`.canal_spine`):
+  (:mod:`.focal`, tested on lines by :mod:`.lines`).
+* **Canal** is proved by the envelope certificate of the recovered family (:mod:`.spine`):
   ``f | Res_t(S, ∂S/∂t)`` for a rational family over ``QQ``, otherwise ``f`` divides every
   generator of the ideal ``⟨SMAT, |X − m|² − ρ, 4×4 minors of [Jac; 2(X − m), 1]⟩ ∩ QQ[x, y, z]``
   of the envelope of the SMAT curve (tangency: ``(2(X − m), 1)`` is normal to the curve).
@@ -91,7 +91,7 @@ def analyze_canal(
     parameterizations (genus, ``m(t)``, ``ρ(t)`` and surface parameterizations only when
     ``full``). ``is_sor`` (from the symmetry algebra) decides the ``revolution`` kind of a
     reducible surface, is cross-checked otherwise, and certifies a surface of revolution.
-    A torus's answer is read off its ``profile`` (:mod:`.canal_torus`): no line test, no SMAT."""
+    A torus's answer is read off its ``profile`` (:mod:`.torus`): no line test, no SMAT."""
     torus = torus_of(profile) if is_sor and profile is not None else None
     if torus is not None:
         return torus_canal(torus, CanalEvidence("profile+rotation", _statement(["profile", "rotation"]), True))
@@ -124,7 +124,7 @@ def _rational_squarefree(f: Poly) -> fmpq_mpoly:
 def _norm(f: Poly) -> fmpq_mpoly:
     """``Res_θ(f(x, y, z, θ), m(θ))``: the product of the conjugates of ``f`` over ``QQ`` (up to a
     constant). For ``K = QQ(√d₁, …)`` it is taken in the radical basis, one square root at a time
-    (:func:`.numberfields.norm`), much faster than the resultant in the primitive element."""
+    (:func:`sorgui.engine.algebra.numberfields.norm`), much faster than the resultant in the primitive element."""
     K = f.ring.domain
     ctx3 = fmpq_mpoly_ctx.get(tuple(f"v{i}" for i in range(3)), "lex")
     if numberfields.supports(K):

@@ -74,7 +74,7 @@ class ProfileCurve:
 
 
 def axis_frame(point: Vector, direction: Vector, K: Domain) -> AxisFrame:
-    """A frame with a simple ``u`` (:func:`.linalg.perpendicular`)."""
+    """A frame with a simple ``u`` (:func:`sorgui.engine.algebra.linalg.perpendicular`)."""
     return AxisFrame(point=point, direction=direction, normal=perpendicular(direction, K))
 
 

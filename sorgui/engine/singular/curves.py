@@ -1,7 +1,7 @@
 """Plane-curve algorithms of the rationality analysis (docs/math.md §4–§5, the paper's Section 3).
 
 Every function takes a bivariate polynomial ``F`` over ``K`` (``QQ`` or a real algebraic field
-``QQ(θ)``) and starts at most one Singular process (:mod:`.singular`), which ``timeout`` and
+``QQ(θ)``) and starts at most one Singular process (:mod:`.process`), which ``timeout`` and
 ``cancel`` control; :func:`analyze_curves` handles several curves (``P`` and ``P²``) in one run.
 Algorithm choice:
 
