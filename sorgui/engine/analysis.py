@@ -19,13 +19,11 @@ from __future__ import annotations
 
 import threading
 import time
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from .algebra.linalg import Vector
-from .errors import Cancelled, TimeLimitReached
+from .errors import TimeLimitReached
 from .parsing import parse_polynomial
 from .recognition.symmetry import NEAREST_CANAL_NOTE, revolution_canal
 from .report import (
@@ -34,76 +32,19 @@ from .report import (
     Canal,
     Parametrization,
     Rationality,
-    Recognition,
 )
 from .rounded.precision import has_decimals
+from .stages import DoneCallback, PartialCallback, ProgressCallback, StageClock
 from .timelimit import skeleton, time_limit, unfinished_analysis
 
 if TYPE_CHECKING:
     from .algebra.polys import Poly
-
-ProgressCallback = Callable[[str], None]
-PartialCallback = Callable[[Analysis], None]
-DoneCallback = Callable[[str, float], None]
-
-STAGES = ("engine", "parse", "recognition", "factors", "real locus", "approximate", "rationality", "parametrizations", "canal",
-          "nearest")
 
 NEAREST_SINGULAR_TIMEOUT = 10.0
 """Each Singular call of the nearest exact surface's analysis stops after this many seconds (or
 the analysis' own limit, if shorter). That surface can have coefficients of a hundred digits
 (the rational axis nearest an irrational one), on which paraPlaneCurve runs for minutes; the
 typed equation's answer must not wait for that."""
-
-
-class StageClock:
-    """Times named stages, reports them to ``progress`` and stops at a set ``cancel`` event.
-
-    ``partial`` is given the :class:`Analysis` known so far whenever a group of stages is done
-    (after the factors, then at the end), so that a window can show the verdict and the axis
-    while Singular still runs; ``done`` the name and seconds of every stage as it ends.
-    """
-
-    def __init__(
-        self,
-        progress: ProgressCallback | None,
-        cancel: threading.Event | None,
-        partial: PartialCallback | None = None,
-        done: DoneCallback | None = None,
-    ) -> None:
-        self.progress = progress
-        self.cancel = cancel
-        self.partial = partial
-        self.done = done
-        self.timings: list[tuple[str, float]] = []
-        self.current: str | None = None
-        self.recognition: Recognition | None = None  # kept for a time limit met before publish
-        self.latest: Analysis | None = None
-
-    def publish(self, analysis: Analysis) -> None:
-        """Hand the analysis known so far to ``partial`` (if any), and keep it."""
-        self.latest = analysis
-        if self.partial is not None:
-            self.partial(analysis)
-
-    def check(self) -> None:
-        """Raise :class:`Cancelled` when the caller asked to stop."""
-        if self.cancel is not None and self.cancel.is_set():
-            raise Cancelled("the analysis was cancelled")
-
-    @contextmanager
-    def stage(self, name: str) -> Iterator[None]:
-        """Run one stage: check for cancellation, announce it, and record its duration."""
-        self.check()
-        self.current = name
-        if self.progress is not None:
-            self.progress(name)
-        start = time.perf_counter()
-        yield
-        seconds = time.perf_counter() - start
-        self.timings.append((name, seconds))
-        if self.done is not None:
-            self.done(name, seconds)
 
 
 def analyze(

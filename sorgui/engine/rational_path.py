@@ -50,7 +50,7 @@ from .report import Analysis, Axis, Factor, Profile, Recognition
 from .rounded.precision import has_decimals
 
 if TYPE_CHECKING:
-    from .analysis import StageClock
+    from .stages import StageClock
 
 XYZ = ("x", "y", "z")
 Monomial = tuple[int, int]

@@ -1,11 +1,11 @@
 """Scene data of a canal surface (docs/math.md §9): the spine curves and a few characteristic
 circles as plain ``float64`` polylines, for the 3D view (no Qt, no VTK).
 
-The exact ``m(t)`` and the circles ``c(t)``, ``R²(t)``, ``m′(t)`` of each rational sphere family
-are read with the engine's reader of machine-written formulas (never ``eval``), turned into
-numerator and denominator coefficient arrays, and sampled at ``t = tan φ`` so that the whole
-rational curve is covered; points outside the ball of radius ``bound`` are dropped (a polyline is
-split there).
+The families come as plain data (:class:`FamilyCurves`, :class:`SmatFamily`), read from the
+engine's exact strings once, in the worker (:mod:`sorgui.session.canal_data`): ``m(t)`` and the
+circles ``c(t)``, ``R²(t)``, ``m′(t)`` of a rational family as numerator and denominator
+coefficient arrays, sampled at ``t = tan φ`` so that the whole rational curve is covered; points
+outside the ball of radius ``bound`` are dropped (a polyline is split there).
 """
 
 from __future__ import annotations
@@ -14,12 +14,32 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-import sympy
 
-from sorgui.engine.expressions import SYMPY, read
-from sorgui.engine.report import Canal, CanalFamily
+Function = tuple[np.ndarray, np.ndarray]
+"""A rational function of ``t``: numerator and denominator coefficients, highest degree first."""
 
-T = sympy.Symbol("t")
+Terms4 = tuple[tuple[tuple[int, int, int, int], float], ...]
+"""A polynomial in ``m1, m2, m3, r`` as ``(exponents, coefficient)`` pairs."""
+
+
+@dataclass(frozen=True, eq=False)
+class FamilyCurves:
+    """One rational sphere family as float coefficient arrays: the centre ``m(t)``, the squared
+    radius ``ρ(t)``, and the characteristic circle's centre ``c(t)``, ``R²(t)`` and plane normal."""
+
+    center: tuple[Function, Function, Function]
+    radius_squared: Function
+    circle_center: tuple[Function, Function, Function]
+    circle_radius_squared: Function
+    circle_normal: tuple[Function, Function, Function]
+
+
+@dataclass(frozen=True, eq=False)
+class SmatFamily:
+    """A sphere family with no rational ``m(t)``: the equations of its SMAT curve in
+    ``m1, m2, m3, r`` as float terms (exponents in that order)."""
+
+    equations: tuple[Terms4, ...]
 
 
 @dataclass(frozen=True)
@@ -30,38 +50,20 @@ class CanalScene:
     circles: tuple[np.ndarray, ...]
 
 
-def canal_scene(canal: Canal, *, bound: float = 20.0, samples: int = 400, circles: int = 12,
-                circle_points: int = 64) -> CanalScene:
-    """The spines and ``circles`` characteristic circles of every rational family of ``canal``.
+def canal_scene(families: Sequence[FamilyCurves | SmatFamily], *, bound: float = 20.0, samples: int = 400,
+                circles: int = 12, circle_points: int = 64) -> CanalScene:
+    """The spines and ``circles`` characteristic circles of every rational family.
 
-    Families without ``m(t)`` (a spine of positive genus) contribute nothing.
+    Families without ``m(t)`` (a :class:`SmatFamily`, a spine of positive genus) contribute
+    nothing here: they are traced from the surface (:mod:`sorgui.render.canal_trace`).
     """
     spines: list[np.ndarray] = []
     rings: list[np.ndarray] = []
-    for family in canal.families:
-        if family.parametrization is None:
-            continue
-        spines += _spine(family, bound, samples)
-        if family.circle_center is not None:
+    for family in families:
+        if isinstance(family, FamilyCurves):
+            spines += _split(_vectors(family.center, _parameters(samples)), bound)
             rings += _circles(family, bound, circles, circle_points)
     return CanalScene(tuple(spines), tuple(rings))
-
-
-Function = tuple[np.ndarray, np.ndarray]
-"""A rational function of ``t``: numerator and denominator coefficients, highest degree first."""
-
-
-def rational_function(text: str) -> Function:
-    """A rational function of ``t`` (engine string) as numerator and denominator coefficients
-    (highest degree first, for :func:`numpy.polyval`)."""
-    expr = sympy.together(read(text, SYMPY))
-    num, den = sympy.fraction(expr)
-    return _coefficients(num), _coefficients(den)
-
-
-def _coefficients(expr: sympy.Expr) -> np.ndarray:
-    poly = sympy.Poly(sympy.expand(expr), T)
-    return np.array([float(sympy.re(c.evalf(20))) for c in poly.all_coeffs()], dtype=np.float64)
 
 
 def evaluate(fn: Function, t: np.ndarray) -> np.ndarray:
@@ -93,13 +95,8 @@ def _parameters(samples: int) -> np.ndarray:
     return np.tan(phi)
 
 
-def _vectors(triple: Sequence[str], t: np.ndarray) -> np.ndarray:
-    return np.column_stack([evaluate(rational_function(c), t) for c in triple])
-
-
-def _spine(family: CanalFamily, bound: float, samples: int) -> list[np.ndarray]:
-    points = _vectors(family.parametrization or (), _parameters(samples))
-    return _split(points, bound)
+def _vectors(triple: Sequence[Function], t: np.ndarray) -> np.ndarray:
+    return np.column_stack([evaluate(fn, t) for fn in triple])
 
 
 def _split(points: np.ndarray, bound: float) -> list[np.ndarray]:
@@ -116,11 +113,11 @@ def _split(points: np.ndarray, bound: float) -> list[np.ndarray]:
     return pieces
 
 
-def _circles(family: CanalFamily, bound: float, count: int, points: int) -> list[np.ndarray]:
+def _circles(family: FamilyCurves, bound: float, count: int, points: int) -> list[np.ndarray]:
     t = _parameters(count)
-    centers = _vectors(family.circle_center or (), t)
-    normals = _vectors(family.circle_normal or (), t)
-    radius2 = evaluate(rational_function(family.circle_radius_squared or "0"), t)
+    centers = _vectors(family.circle_center, t)
+    normals = _vectors(family.circle_normal, t)
+    radius2 = evaluate(family.circle_radius_squared, t)
     out = []
     for c, n, r2 in zip(centers, normals, radius2):
         ring = circle(c, n, float(r2), points)

@@ -10,8 +10,9 @@ the equations of its SMAT curve in ``m1, m2, m3, r``: the touching sphere's cent
 normal line ``p + s·n`` at distance ``|s|``, so ``(p + s·n, s²)`` is a common real root of
 those equations restricted to the line; the circle's plane has the normal ``m′`` and passes
 through ``p`` (``(X − m)·m′ + ρ′/2 = 0``, with ``(m′, ρ′)`` the SMAT curve's tangent). Everything
-here is ``float64`` numpy data read once from the engine's exact strings (:func:`family_curves`,
-in the worker), so the GUI thread only evaluates polynomials.
+here is ``float64`` numpy data read once from the engine's exact strings
+(:func:`sorgui.session.canal_data.family_curves`, in the worker), so the GUI thread only
+evaluates polynomials.
 """
 
 from __future__ import annotations
@@ -20,41 +21,14 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-import sympy
 
-from sorgui.engine.expressions import SYMPY, read
-from sorgui.engine.report import Canal
-from sorgui.render.canal_scene import Function, circle, evaluate_angle, rational_function
+from sorgui.render.canal_scene import FamilyCurves, Function, SmatFamily, Terms4, circle, evaluate_angle
 
 SCAN = 2000
 """Samples of ``φ`` in the coarse scan over the whole real line of ``t``."""
 
 REFINEMENTS = 10
 """Refinements of the scan, each twenty times finer: down to the precision of a double."""
-
-
-@dataclass(frozen=True, eq=False)
-class FamilyCurves:
-    """One rational sphere family as float coefficient arrays: the centre ``m(t)``, the squared
-    radius ``ρ(t)``, and the characteristic circle's centre ``c(t)``, ``R²(t)`` and plane normal."""
-
-    center: tuple[Function, Function, Function]
-    radius_squared: Function
-    circle_center: tuple[Function, Function, Function]
-    circle_radius_squared: Function
-    circle_normal: tuple[Function, Function, Function]
-
-
-@dataclass(frozen=True, eq=False)
-class SmatFamily:
-    """A sphere family with no rational ``m(t)``: the equations of its SMAT curve in
-    ``m1, m2, m3, r`` as float terms (exponents in that order)."""
-
-    equations: tuple[Terms4, ...]
-
-
-Terms4 = tuple[tuple[tuple[int, int, int, int], float], ...]
-"""A polynomial in ``m1, m2, m3, r`` as ``(exponents, coefficient)`` pairs."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,26 +43,6 @@ class Touch:
     radius: float
     circle: np.ndarray
     distance: float
-
-
-def family_curves(canal: Canal) -> tuple[FamilyCurves | SmatFamily, ...]:
-    """The float curves of every family of ``canal``: ``m(t)``, ``ρ(t)`` and the circles when the
-    family has them, else the equations of its SMAT curve."""
-    out: list[FamilyCurves | SmatFamily] = []
-    for family in canal.families:
-        if (family.parametrization is None or family.radius_squared is None or family.circle_center is None
-                or family.circle_radius_squared is None or family.circle_normal is None):
-            if family.equations:
-                out.append(SmatFamily(tuple(_smat_terms(g) for g in family.equations)))
-            continue
-        out.append(FamilyCurves(
-            tuple(rational_function(c) for c in family.parametrization),  # type: ignore[arg-type]
-            rational_function(family.radius_squared),
-            tuple(rational_function(c) for c in family.circle_center),  # type: ignore[arg-type]
-            rational_function(family.circle_radius_squared),
-            tuple(rational_function(c) for c in family.circle_normal),  # type: ignore[arg-type]
-        ))
-    return tuple(out)
 
 
 def touching_spheres(families: tuple[FamilyCurves | SmatFamily, ...], point: np.ndarray, tolerance: float,
@@ -155,16 +109,6 @@ def _circle(family: FamilyCurves, phi: float, points: int) -> np.ndarray | None:
     angle = np.array([phi])
     return circle(_vector(family.circle_center, angle)[0], _vector(family.circle_normal, angle)[0],
                   float(evaluate_angle(family.circle_radius_squared, angle)[0]), points)
-
-
-SMAT_VARIABLES = sympy.symbols("m1 m2 m3 r")
-
-
-def _smat_terms(text: str) -> Terms4:
-    """An equation of a SMAT curve (engine string in ``m1, m2, m3, r``) as float terms."""
-    poly = sympy.Poly(sympy.expand(read(text, SYMPY)), *SMAT_VARIABLES)
-    return tuple((tuple(int(e) for e in monomial), float(sympy.re(c.evalf(20))))
-                 for monomial, c in poly.terms())  # type: ignore[misc]
 
 
 def _evaluate4(terms: Terms4, points: np.ndarray) -> np.ndarray:

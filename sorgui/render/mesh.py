@@ -327,10 +327,14 @@ def finish_mesh(
     )
 
 
+DEFAULT_RESOLUTION = 150
+"""Grid nodes along each side of the sampled box (150³ samples, docs/benchmarks.md's mesh table)."""
+
+
 def surface_mesh(
     terms: Terms,
     bounds: tuple[float, ...],
-    resolution: int = 150,
+    resolution: int = DEFAULT_RESOLUTION,
     clip: Region | None = None,
     refine: bool = True,
 ) -> MeshData:

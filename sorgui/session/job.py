@@ -55,9 +55,6 @@ from sorgui.session.formulas import (
 Message = tuple[str, Any]
 Send = Callable[[str, Any], None]
 
-DEFAULT_RESOLUTION = 150
-"""Grid nodes along the diameter of the drawn ball."""
-
 WORKER_NICENESS = 10
 """The worker runs at a lower priority than the GUI, which then always gets the processor."""
 
@@ -78,7 +75,7 @@ class JobRequest:
     tolerance: float | None = None
     analysis: Analysis | None = None
     radius: float | None = None
-    resolution: int = DEFAULT_RESOLUTION
+    resolution: int | None = None
     style: Style | None = Style()
     scene: bool = True
 

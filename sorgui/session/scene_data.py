@@ -41,10 +41,10 @@ from sorgui.render import (
     sphere_center_marker,
     surface_mesh,
 )
-from sorgui.render.canal_touch import FamilyCurves, SmatFamily, family_curves
+from sorgui.render.canal_scene import FamilyCurves, SmatFamily
 from sorgui.render.geometry import foot_on_line
+from sorgui.render.mesh import DEFAULT_RESOLUTION
 from sorgui.render.sampling import evaluate_points, term_arrays, value_and_gradient
-from sorgui.session.job import DEFAULT_RESOLUTION
 
 PATCH_RANGE = (-3.0, 3.0)
 """Range of both parameters of the drawn parametric patch (the rotation parameter ``s`` is the
@@ -151,13 +151,14 @@ def _patch(param: Parametrization, region: ClipSphere) -> PatchData | None:
 def build_scene(
     analysis: Analysis,
     radius: float | None = None,
-    resolution: int = DEFAULT_RESOLUTION,
+    resolution: int | None = None,
     region: ClipSphere | None = None,
     patch: bool = True,
 ) -> SceneData:
     """The scene of ``analysis``; ``radius`` overrides the automatic size of the drawn ball,
     ``region`` the whole ball (the nearest exact surface is drawn in the typed one's ball);
-    ``patch=False`` leaves the parameterization patch for :func:`with_patch`."""
+    ``patch=False`` leaves the parameterization patch for :func:`with_patch`; ``resolution`` is
+    the mesh's grid (:data:`~sorgui.render.mesh.DEFAULT_RESOLUTION` when not given)."""
     rec = analysis.recognition
     terms = polynomial_terms(analysis.squarefree)
     center, axis_direction = natural_center(rec)
@@ -167,7 +168,7 @@ def build_scene(
         region = ClipSphere(region.center, radius)
     c, r = np.asarray(region.center), region.radius
     bounds = tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
-    surface = surface_mesh(terms, bounds, resolution=resolution, clip=region)
+    surface = surface_mesh(terms, bounds, resolution=resolution or DEFAULT_RESOLUTION, clip=region)
     notes = []
     if surface.is_empty:
         notes.append("The surface has no real points that can be drawn inside the ball.")
@@ -235,10 +236,11 @@ def with_canal(scene: SceneData, analysis: Analysis) -> SceneData:
     if canal is None or not canal.is_canal:
         return scene
     from sorgui.render.canal_scene import canal_scene
+    from sorgui.session.canal_data import family_curves
 
     bound = float(np.linalg.norm(scene.region.center)) + 1.5 * scene.region.radius
-    drawn = canal_scene(canal, bound=bound)
     families = family_curves(canal)
+    drawn = canal_scene(families, bound=bound)
     spines, circles = list(drawn.spines), list(drawn.circles)
     implicit = [f for f in families if isinstance(f, SmatFamily)]
     if implicit and not scene.surface.is_empty:  # spines of positive genus: traced from the surface

@@ -11,6 +11,7 @@ from sorgui.engine.algebra.polys import to_flint
 from sorgui.engine.canal.verdict import analyze_canal
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.render.canal_scene import canal_scene
+from sorgui.session.canal_data import family_curves
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "data" / "canal-examples.txt"
 
@@ -34,7 +35,7 @@ def relative_values(text: str, points: np.ndarray) -> np.ndarray:
 @pytest.fixture(scope="module")
 def blend() -> tuple[str, object]:
     text = example("blend cyl R=2 / plane 3x+4z=0")
-    return text, canal_scene(analyze_canal(parse_polynomial(text).polynomial), bound=10.0)
+    return text, canal_scene(family_curves(analyze_canal(parse_polynomial(text).polynomial)), bound=10.0)
 
 
 def test_spine_is_the_ellipse_of_ball_centres(blend) -> None:
@@ -57,7 +58,7 @@ def test_characteristic_circles_lie_on_the_surface(blend) -> None:
 def test_no_rational_family_gives_an_empty_scene() -> None:
     from sorgui.engine.report import Canal
 
-    scene = canal_scene(Canal(False, "not canal"))
+    scene = canal_scene(family_curves(Canal(False, "not canal")))
     assert scene.spines == () and scene.circles == ()
 
 
@@ -68,7 +69,8 @@ def test_touching_sphere_of_a_spine_of_genus_1() -> None:
     from sorgui.engine.canal.verdict import analyze_canal
     from sorgui.engine.rounded import dense
     from sorgui.export.exact import polynomial_terms
-    from sorgui.render.canal_touch import SmatFamily, family_curves, touching_spheres
+    from sorgui.render.canal_scene import SmatFamily
+    from sorgui.render.canal_touch import touching_spheres
     from sorgui.render.picking import pick_info
 
     text = example("blend cylinders R=2")
@@ -98,7 +100,6 @@ def test_a_spine_of_genus_1_is_traced_with_its_circles() -> None:
     from sorgui.engine.canal.verdict import analyze_canal
     from sorgui.engine.rounded import dense
     from sorgui.export.exact import polynomial_terms
-    from sorgui.render.canal_touch import family_curves
     from sorgui.render.canal_trace import smat_scene
     from sorgui.render.sampling import value_and_gradient
 
