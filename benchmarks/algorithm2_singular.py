@@ -115,34 +115,35 @@ def process_times(args: list[str], repeats: int) -> tuple[float, float, str]:
 
 def stages(args: list[str]) -> str:
     """The stage timings that ``analyze --json`` reports inside its process, checked to be a SOR."""
-    report = json.loads(subprocess.run([*args, "--json"], capture_output=True, text=True, cwd=ROOT,
-                                       check=True).stdout)
+    report = json.loads(subprocess.run([*args, "--json"], capture_output=True, text=True, cwd=ROOT, check=True).stdout)
     assert report["is_sor"], report
     return ", ".join(f"{name} {seconds:.2f}" for name, seconds in report["timings"].items())
 
 
 def table(repeats: int) -> str:
     """The markdown table of both whole-process times per degree and their ratios."""
-    rows = ["| degree | terms | sorgui wall (s) | sorgui CPU (s) | Singular Algorithm II wall (s) "
-            "| Singular CPU (s) | Singular ÷ sorgui, wall | Singular ÷ sorgui, CPU "
-            "| stages inside sorgui (s) |", "|---:|---:|" + "---:|" * 6 + "---|"]
+    rows = [
+        "| degree | terms | sorgui wall (s) | sorgui CPU (s) | Singular Algorithm II wall (s) "
+        "| Singular CPU (s) | Singular ÷ sorgui, wall | Singular ÷ sorgui, CPU "
+        "| stages inside sorgui (s) |",
+        "|---:|---:|" + "---:|" * 6 + "---|",
+    ]
     singular = str(find_singular())
     with tempfile.TemporaryDirectory() as folder:
         for degree in DEGREES:
             f = surface(degree)
             equation, script = Path(folder, f"sor{degree}.txt"), Path(folder, f"sor{degree}.sing")
             equation.write_text(poly_str(f) + "\n", encoding="utf-8")
-            script.write_text(ALGORITHM_II % {"f": poly_to_singular(f, ["x", "y", "z"])},
-                              encoding="utf-8")
-            analyze = [sys.executable, "-m", "sorgui.cli", "analyze", "--recognition-only",
-                       "-f", str(equation)]
+            script.write_text(ALGORITHM_II % {"f": poly_to_singular(f, ["x", "y", "z"])}, encoding="utf-8")
+            analyze = [sys.executable, "-m", "sorgui.cli", "analyze", "--recognition-only", "-f", str(equation)]
             ours = process_times(analyze, repeats)
-            theirs = process_times([singular, "-q", "-t", "--no-rc", "--random=4711",
-                                    str(script)], repeats)
+            theirs = process_times([singular, "-q", "-t", "--no-rc", "--random=4711", str(script)], repeats)
             assert "SOR yes" in theirs[2], theirs[2]
-            rows.append(f"| {degree} | {len(f)} | {ours[0]:.2f} | {ours[1]:.2f} | {theirs[0]:.2f} "
-                        f"| {theirs[1]:.2f} | {theirs[0] / ours[0]:.2f} | {theirs[1] / ours[1]:.2f} "
-                        f"| {stages(analyze)} |")
+            rows.append(
+                f"| {degree} | {len(f)} | {ours[0]:.2f} | {ours[1]:.2f} | {theirs[0]:.2f} "
+                f"| {theirs[1]:.2f} | {theirs[0] / ours[0]:.2f} | {theirs[1] / ours[1]:.2f} "
+                f"| {stages(analyze)} |"
+            )
             print(rows[-1], flush=True)
     return "\n".join(rows)
 

@@ -30,16 +30,20 @@ def tube(degree: int, seed: int = 2):
 
 def table(repeats: int) -> str:
     """The markdown table: total and per-stage times of each case."""
-    rows = ["| case | degree | Table 1 row | parameterizations | total (s) | stages (s) |",
-            "|---|---:|---:|---:|---:|---|"]
+    rows = [
+        "| case | degree | Table 1 row | parameterizations | total (s) | stages (s) |",
+        "|---|---:|---:|---:|---:|---|",
+    ]
     cases = [("paper Example 1/2", lambda: analyze(example_text("paper-example-1")))]
     cases += [(f"general position, degree {d}", (lambda d=d: analyze_polynomial(tube(d)))) for d in DEGREES]
     for name, analysis in cases:
         seconds, result = median_time(analysis, repeats)
         stages = ", ".join(f"{n} {s:.3f}" for n, s in result.timings)
         row = result.rationality.table_row if result.rationality else "-"
-        rows.append(f"| {name} | {result.recognition.degree} | {row} | {len(result.parametrizations)} "
-                    f"| {seconds:.3f} | {stages} |")
+        rows.append(
+            f"| {name} | {result.recognition.degree} | {row} | {len(result.parametrizations)} "
+            f"| {seconds:.3f} | {stages} |"
+        )
         print(rows[-1], flush=True)
     return "\n".join(rows)
 

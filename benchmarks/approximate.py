@@ -56,9 +56,11 @@ def table(repeats: int) -> str:
     rows = ["| degree | terms | recognition (s) | snapped (s) | whole report (s) |", "|---:|---:|---:|---:|---:|"]
     for degree in DEGREES:
         text = rounded_surface(degree)
-        recognition = median_time(lambda: approximate(text, False), repeats)[0]
-        snapped = median_time(lambda: approximate(text, True), repeats)[0]
-        report = f"{median_time(lambda: whole_report(text), repeats)[0]:.3f}" if degree in WHOLE_REPORT else "-"
+        recognition = median_time(lambda text=text: approximate(text, False), repeats)[0]
+        snapped = median_time(lambda text=text: approximate(text, True), repeats)[0]
+        report = (
+            f"{median_time(lambda text=text: whole_report(text), repeats)[0]:.3f}" if degree in WHOLE_REPORT else "-"
+        )
         terms = len(parse_polynomial(text).polynomial)
         rows.append(f"| {degree} | {terms} | {recognition:.3f} | {snapped:.3f} | {report} |")
         print(rows[-1], flush=True)

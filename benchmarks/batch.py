@@ -48,7 +48,10 @@ CLASSIC = [
     ("Dupin cyclide (ring)", "(x^2 + y^2 + z^2 - 4 + 1)^2 - 4(2x - 1)^2 - 4*3 y^2"),
     ("paper Example 1", "y^2 + z^2 = x^3 + 3x^2 - 2x"),
     ("sphere-cylinder blend", "(x^2 + y^2 - 1)(x^2 + y^2 + z^2 - 4) - 1/10"),
-    ("Kummer-like quartic", "(x^2 + y^2 + z^2 - 2)^2 - 3(1 - z - sqrt(2) x)(1 - z + sqrt(2) x)(1 + z + sqrt(2) y)(1 + z - sqrt(2) y)/3"),
+    (
+        "Kummer-like quartic",
+        "(x^2 + y^2 + z^2 - 2)^2 - 3(1 - z - sqrt(2) x)(1 - z + sqrt(2) x)(1 + z + sqrt(2) y)(1 + z - sqrt(2) y)/3",
+    ),
 ]
 
 
@@ -56,8 +59,12 @@ def surface_of_revolution(rng: random.Random) -> str:
     """``F(s, w) = 0`` with ``s`` along a random rational axis and ``w`` the squared distance,
     ``F`` random of degree ≤ 4 in ``(s, w)`` (so ``f`` has degree ≤ 8), moved rigidly."""
     degree = rng.randint(2, 4)
-    profile = {(i, j): rng.randint(-6, 6) for i in range(degree + 1) for j in range(degree + 1 - i)
-               if (i + 2 * j <= 8) and rng.random() < 0.6}
+    profile = {
+        (i, j): rng.randint(-6, 6)
+        for i in range(degree + 1)
+        for j in range(degree + 1 - i)
+        if (i + 2 * j <= 8) and rng.random() < 0.6
+    }
     profile[(0, 1)] = 1
     profile[(degree, 0)] = rng.choice((-1, 1))
     axis = rational_vector((rng.randint(1, 3), rng.randint(-3, 3), rng.randint(-3, 3)))
@@ -72,8 +79,13 @@ def surface_of_revolution(rng: random.Random) -> str:
 def random_polynomial(rng: random.Random) -> str:
     """A sparse random polynomial of degree 2…8 in x, y, z with small integer coefficients."""
     degree = rng.randint(2, 8)
-    terms = [f"{rng.randint(-9, 9)}*x^{a}*y^{b}*z^{c}" for a in range(degree + 1) for b in range(degree + 1 - a)
-             for c in range(degree + 1 - a - b) if rng.random() < 0.25]
+    terms = [
+        f"{rng.randint(-9, 9)}*x^{a}*y^{b}*z^{c}"
+        for a in range(degree + 1)
+        for b in range(degree + 1 - a)
+        for c in range(degree + 1 - a - b)
+        if rng.random() < 0.25
+    ]
     terms.append(f"x^{degree}")
     return " + ".join(terms)
 
@@ -89,18 +101,28 @@ def generate() -> None:
 
 
 def table(repeats: int) -> str:
-    rows = ["| equations | jobs | wall (s) | analysed | bad lines | surfaces of revolution |",
-            "|---|---|---|---|---|---|"]
+    rows = [
+        "| equations | jobs | wall (s) | analysed | bad lines | surfaces of revolution |",
+        "|---|---|---|---|---|---|",
+    ]
     times, answers = [], []
     for _ in range(repeats):
         start = time.perf_counter()
-        out = subprocess.run([sys.executable, "-m", "sorgui.cli", "analyze", "--each-line", "--jobs", str(JOBS),
-                              "-f", str(EQUATIONS)], capture_output=True, text=True, cwd=ROOT, check=False)
+        out = subprocess.run(
+            [sys.executable, "-m", "sorgui.cli", "analyze", "--each-line", "--jobs", str(JOBS), "-f", str(EQUATIONS)],
+            capture_output=True,
+            text=True,
+            cwd=ROOT,
+            check=False,
+        )
         times.append(time.perf_counter() - start)
         answers = [json.loads(line) for line in out.stdout.splitlines()]
     errors = sum("error" in a for a in answers)
     sors = sum(bool(a.get("is_sor")) for a in answers)
-    rows.append(f"| {len(answers)} | {JOBS} | {min(times):.1f} (min of {repeats}) | {len(answers) - errors} | {errors} | {sors} |")
+    rows.append(
+        f"| {len(answers)} | {JOBS} | {min(times):.1f} (min of {repeats}) | {len(answers) - errors} "
+        f"| {errors} | {sors} |"
+    )
     print("\n".join(rows), flush=True)
     return "\n".join(rows)
 

@@ -37,8 +37,10 @@ def singular_loop(polynomials: list[str]) -> str:
 
 
 def table(repeats: int) -> str:
-    rows = ["| degree | equations | sorgui --each-line (s) | Singular loop (s) | Singular ÷ sorgui |",
-            "|---:|---:|---:|---:|---:|"]
+    rows = [
+        "| degree | equations | sorgui --each-line (s) | Singular loop (s) | Singular ÷ sorgui |",
+        "|---:|---:|---:|---:|---:|",
+    ]
     singular = str(find_singular())
     with tempfile.TemporaryDirectory() as folder:
         for degree in DEGREES:
@@ -46,10 +48,22 @@ def table(repeats: int) -> str:
             lines = Path(folder, f"sor{degree}.txt")
             lines.write_text("".join(poly_str(f) + "\n" for f in surfaces), encoding="utf-8")
             script = Path(folder, f"sor{degree}.sing")
-            script.write_text(singular_loop([poly_to_singular(f, ["x", "y", "z"]) for f in surfaces]),
-                              encoding="utf-8")
-            ours = process_times([sys.executable, "-m", "sorgui.cli", "analyze", "--each-line",
-                                  "--recognition-only", "--jobs", "1", "-f", str(lines)], repeats)
+            script.write_text(singular_loop([poly_to_singular(f, ["x", "y", "z"]) for f in surfaces]), encoding="utf-8")
+            ours = process_times(
+                [
+                    sys.executable,
+                    "-m",
+                    "sorgui.cli",
+                    "analyze",
+                    "--each-line",
+                    "--recognition-only",
+                    "--jobs",
+                    "1",
+                    "-f",
+                    str(lines),
+                ],
+                repeats,
+            )
             answers = [json.loads(line) for line in ours[2].splitlines()]
             assert len(answers) == COUNT and all(a["is_sor"] for a in answers)
             theirs = process_times([singular, "-q", "-t", "--no-rc", "--random=4711", str(script)], repeats)

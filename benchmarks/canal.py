@@ -44,13 +44,15 @@ def line_test(f) -> str:  # noqa: ANN001 - a polynomial of the engine
 
 
 def table(repeats: int) -> str:
-    rows = ["| case | degree | test on lines (s) | verdict + certificate (s) | with spine, genus, m(t) (s) | answer |",
-            "|---|---:|---:|---:|---:|---|"]
+    rows = [
+        "| case | degree | test on lines (s) | verdict + certificate (s) | with spine, genus, m(t) (s) | answer |",
+        "|---|---:|---:|---:|---:|---|",
+    ]
     for prefix, label in CASES:
         f = parse_polynomial(example(prefix)).polynomial
-        test, _ = median_time(lambda: line_test(f), repeats)
-        verdict, quick = median_time(lambda: analyze_canal(f, full=False), repeats)
-        whole, full = median_time(lambda: analyze_canal(f, full=True), repeats)
+        test, _ = median_time(lambda f=f: line_test(f), repeats)
+        verdict, quick = median_time(lambda f=f: analyze_canal(f, full=False), repeats)
+        whole, full = median_time(lambda f=f: analyze_canal(f, full=True), repeats)
         answer = {True: "canal", False: "not canal", None: "undecided"}[full.is_canal]
         if full.kinds:
             answer += " (" + ", ".join(full.kinds) + ")"
@@ -59,8 +61,10 @@ def table(repeats: int) -> str:
             answer += f"; spine degree {fam.degree}, genus {fam.genus}"
         if quick.certificate is not None:
             answer += f"; certificate {quick.certificate.method}"
-        rows.append(f"| {label} | {f.ring and max(sum(m) for m in f.monoms())} | {test:.2f} | {verdict:.2f} "
-                    f"| {whole:.2f} | {answer} |")
+        rows.append(
+            f"| {label} | {f.ring and max(sum(m) for m in f.monoms())} | {test:.2f} | {verdict:.2f} "
+            f"| {whole:.2f} | {answer} |"
+        )
         print(rows[-1], flush=True)
     return "\n".join(rows)
 

@@ -25,8 +25,10 @@ SURFACES = ("paper-example-1", "torus")
 
 
 def table(repeats: int) -> str:
-    rows = ["| format | " + " | ".join(f"{name}: median s (size)" for name in SURFACES) + " |",
-            "| --- |" + " --- |" * len(SURFACES)]
+    rows = [
+        "| format | " + " | ".join(f"{name}: median s (size)" for name in SURFACES) + " |",
+        "| --- |" + " --- |" * len(SURFACES),
+    ]
     prepared = {name: analyze(example_text(name)) for name in SURFACES}
     scenes = {name: build_scene(analysis) for name, analysis in prepared.items()}
     with tempfile.TemporaryDirectory() as folder:
@@ -34,12 +36,15 @@ def table(repeats: int) -> str:
         for name in SURFACES:
             for suffix in FORMATS:
                 path = Path(folder) / f"{name}{suffix}"
-                seconds, _ = median_time(lambda: export_analysis(prepared[name], path, scene=scenes[name]), repeats)
+                seconds, _ = median_time(
+                    lambda name=name, path=path: export_analysis(prepared[name], path, scene=scenes[name]), repeats
+                )
                 cells[suffix].append(f"{seconds:.3f} ({path.stat().st_size / 1024:,.0f} KiB)")
         rows += [f"| `{suffix}` | " + " | ".join(cells[suffix]) + " |" for suffix in FORMATS]
     machine = f"{platform.python_implementation()} {platform.python_version()}, {os.cpu_count()} cores"
-    text = "\n".join(rows) + (f"\n\nMedian of {repeats} runs, {machine}; command: "
-                              "`python -m benchmarks.exports --repeats 3 --write`.")
+    text = "\n".join(rows) + (
+        f"\n\nMedian of {repeats} runs, {machine}; command: `python -m benchmarks.exports --repeats 3 --write`."
+    )
     print(text)
     return text
 

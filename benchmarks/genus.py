@@ -23,8 +23,10 @@ def table(repeats: int) -> str:
         seconds, result = median_time(lambda f=f: analyze_polynomial(f), repeats)
         rat = result.rationality
         stages = ", ".join(f"{n} {s:.3f}" for n, s in result.timings)
-        rows.append(f"| degree 12, seed {seed} | {rat.genus_profile} | {rat.genus_profile_square} | {rat.table_row} "
-                    f"| {seconds:.3f} | {stages} |")
+        rows.append(
+            f"| degree 12, seed {seed} | {rat.genus_profile} | {rat.genus_profile_square} | {rat.table_row} "
+            f"| {seconds:.3f} | {stages} |"
+        )
         print(rows[-1], flush=True)
     return "\n".join(rows)
 

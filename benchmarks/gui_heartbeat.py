@@ -147,8 +147,14 @@ def launch() -> None:
 def launch_times() -> dict[str, float]:
     """Seconds from starting a fresh interpreter to the window drawn and to Example 1's verdict."""
     start = time.time()
-    out = subprocess.run([sys.executable, "-m", "benchmarks.gui_heartbeat", "--launch"], capture_output=True,
-                         text=True, check=True, timeout=300, env=os.environ.copy())
+    out = subprocess.run(
+        [sys.executable, "-m", "benchmarks.gui_heartbeat", "--launch"],
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=300,
+        env=os.environ.copy(),
+    )
     times = json.loads(out.stdout.strip().splitlines()[-1])
     return {name: value - start for name, value in times.items()}
 
@@ -166,9 +172,12 @@ def main() -> None:
     starts = [launch_times() for _ in range(args.launches)]
     drawn = statistics.median(t["drawn"] for t in starts)
     shown = statistics.median(t.get("verdict", float("nan")) for t in starts)
-    launch_row = (f"From starting the process (median of {args.launches}): window drawn after **{drawn:.2f} s** "
-                  f"(goal 2 s), Example 1's verdict on screen after **{shown:.2f} s** (goal 3 s); each run: "
-                  + "; ".join(f"{t['drawn']:.2f}/{t.get('verdict', float('nan')):.2f} s" for t in starts) + ".")
+    launch_row = (
+        f"From starting the process (median of {args.launches}): window drawn after **{drawn:.2f} s** "
+        f"(goal 2 s), Example 1's verdict on screen after **{shown:.2f} s** (goal 3 s); each run: "
+        + "; ".join(f"{t['drawn']:.2f}/{t.get('verdict', float('nan')):.2f} s" for t in starts)
+        + "."
+    )
     print(launch_row, flush=True)
 
     from PySide6.QtCore import QCoreApplication, QSettings

@@ -64,12 +64,11 @@ def main() -> None:
     finishing, _ = wall_times(lambda: finish_mesh(terms, points, triangles, grid), args.runs)
     total, mesh = wall_times(lambda: surface_mesh(terms, BOUNDS, args.resolution), args.runs)
     clip = ClipSphere((0.6, -0.8, 0.0), 7.0)
-    clipped_total, clipped = wall_times(
-        lambda: surface_mesh(terms, BOUNDS, args.resolution, clip=clip), args.runs
-    )
+    clipped_total, clipped = wall_times(lambda: surface_mesh(terms, BOUNDS, args.resolution, clip=clip), args.runs)
 
     lines = [
-        f"`{CASE}` (degree 6, {len(terms)} terms): grid {grid.dims[0]}×{grid.dims[1]}×{grid.dims[2]} = {int(np.prod(grid.dims)):,} nodes, "
+        f"`{CASE}` (degree 6, {len(terms)} terms): grid {grid.dims[0]}×{grid.dims[1]}×{grid.dims[2]} "
+        f"= {int(np.prod(grid.dims)):,} nodes, "
         f"spacing {grid.spacing:.4g}; {mesh.n_points:,} points, {mesh.n_faces:,} triangles; "
         f"{args.runs} runs; VTK SMP backend {vtkSMPTools().GetBackend()} "
         f"({vtkSMPTools().GetEstimatedNumberOfThreads()} threads), {os.cpu_count()} CPUs, "

@@ -50,13 +50,17 @@ CASES = (
 
 def table(repeats: int) -> str:
     """The markdown table: total and per-stage times of each case."""
-    rows = ["| case | degree | field | surface of revolution | factors | total (s) | stages (s) |",
-            "|---|---:|---|---|---:|---:|---|"]
+    rows = [
+        "| case | degree | field | surface of revolution | factors | total (s) | stages (s) |",
+        "|---|---:|---|---|---:|---:|---|",
+    ]
     for name, text in CASES:
         seconds, result = median_time(lambda text=text: analyze(text), repeats)
         stages = ", ".join(f"{n} {s:.3f}" for n, s in result.timings)
-        rows.append(f"| {name} | {result.recognition.degree} | {result.field} | "
-                    f"{'yes' if result.recognition.is_sor else 'no'} | {len(result.factors)} | {seconds:.3f} | {stages} |")
+        rows.append(
+            f"| {name} | {result.recognition.degree} | {result.field} | "
+            f"{'yes' if result.recognition.is_sor else 'no'} | {len(result.factors)} | {seconds:.3f} | {stages} |"
+        )
         print(rows[-1], flush=True)
     return "\n".join(rows)
 

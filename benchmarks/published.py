@@ -39,16 +39,22 @@ def whole_process(equation: str, repeats: int) -> tuple[float, dict]:
     walls, report = [], {}
     for _ in range(repeats):
         start = time.perf_counter()
-        done = subprocess.run([sys.executable, "-m", "sorgui.cli", "analyze", "--json", "--timeout", str(TIMEOUT),
-                               "--", equation], capture_output=True, text=True, cwd=ROOT)
+        done = subprocess.run(
+            [sys.executable, "-m", "sorgui.cli", "analyze", "--json", "--timeout", str(TIMEOUT), "--", equation],
+            capture_output=True,
+            text=True,
+            cwd=ROOT,
+        )
         walls.append(time.perf_counter() - start)
         report = json.loads(done.stdout) if done.stdout.strip() else {"error": done.stderr.strip()}
     return statistics.median(walls), report
 
 
 def table(repeats: int) -> str:
-    rows = ["| surface | degree | SOR | whole process (s) | longest stage (s) | goal |",
-            "|---|---:|:---:|---:|---|:---:|"]
+    rows = [
+        "| surface | degree | SOR | whole process (s) | longest stage (s) | goal |",
+        "|---|---:|:---:|---:|---|:---:|",
+    ]
     met = {8: [0, 0], 12: [0, 0]}
     for name, _source, equation in surfaces():
         seconds, report = whole_process(equation, repeats)
@@ -64,12 +70,16 @@ def table(repeats: int) -> str:
         bucket[0] += ok
         bucket[1] += 1
         unfinished = f", unfinished: {', '.join(report['unfinished'])}" if report.get("unfinished") else ""
-        rows.append(f"| {name} | {degree} | {'yes' if report['is_sor'] else 'no'} | {seconds:.2f} "
-                    f"| {stage} {longest:.2f}{unfinished} | {'✓' if ok else '✗'} |")
+        rows.append(
+            f"| {name} | {degree} | {'yes' if report['is_sor'] else 'no'} | {seconds:.2f} "
+            f"| {stage} {longest:.2f}{unfinished} | {'✓' if ok else '✗'} |"
+        )
         print(rows[-1], flush=True)
     rows.append("")
-    rows.append(f"Within the goal: degree ≤ 8 under 1 s: {met[8][0]} of {met[8][1]}; "
-                f"degree 9–12 under 3 s: {met[12][0]} of {met[12][1]}.")
+    rows.append(
+        f"Within the goal: degree ≤ 8 under 1 s: {met[8][0]} of {met[8][1]}; "
+        f"degree 9–12 under 3 s: {met[12][0]} of {met[12][1]}."
+    )
     return "\n".join(rows)
 
 

@@ -34,8 +34,11 @@ def timed_row(name: str, f: Poly, repeats: int) -> str:
     """One table row: the median time of the real-locus stage of ``f`` and its answer."""
     _, symmetry, profile = recognize(f)
     seconds, locus = median_time(lambda: real_locus(f, symmetry, profile), repeats)
-    counts = ", ".join(f"{k} {v}" for k, v in (("points", locus.points), ("circles", locus.circles),
-                                                ("axis line", locus.axis_line)) if v)
+    counts = ", ".join(
+        f"{k} {v}"
+        for k, v in (("points", locus.points), ("circles", locus.circles), ("axis line", locus.axis_line))
+        if v
+    )
     return f"| {name} | {field_name(f.ring.domain)} | {locus.kind}{f' ({counts})' if counts else ''} | {seconds:.3f} |"
 
 

@@ -43,11 +43,13 @@ def recognised(f, method: str):
 
 def table(repeats: int) -> str:
     """The markdown table of median recognition times per degree and method."""
-    rows = ["| degree | terms | " + " | ".join(f"{m} (s)" for m in METHODS) + " |",
-            "|---:|---:|" + "---:|" * len(METHODS)]
+    rows = [
+        "| degree | terms | " + " | ".join(f"{m} (s)" for m in METHODS) + " |",
+        "|---:|---:|" + "---:|" * len(METHODS),
+    ]
     for degree in DEGREES:
         f = surface(degree)
-        cells = [f"{median_time(lambda m=m: recognised(f, m), repeats)[0]:.3f}" for m in METHODS]
+        cells = [f"{median_time(lambda m=m, f=f: recognised(f, m), repeats)[0]:.3f}" for m in METHODS]
         rows.append(f"| {degree} | {len(f)} | " + " | ".join(cells) + " |")
         print(rows[-1], flush=True)
     return "\n".join(rows)

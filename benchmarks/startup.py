@@ -25,8 +25,12 @@ CASES = [
     ("a cubic, neither of revolution nor canal, degree 3", "x^3 + y^2 z - x y z + 1"),
     ("a surface of revolution in general position, degree 10 (286 terms)", poly_str(surface(10))),
 ]
-IMPORTS = [("sympy", "import sympy"), ("numpy", "import numpy"), ("sorgui.engine", "import sorgui.engine"),
-           ("sorgui.cli", "import sorgui.cli")]
+IMPORTS = [
+    ("sympy", "import sympy"),
+    ("numpy", "import numpy"),
+    ("sorgui.engine", "import sorgui.engine"),
+    ("sorgui.cli", "import sorgui.cli"),
+]
 
 
 def process_times(args: list[str], repeats: int) -> tuple[float, float]:
@@ -47,9 +51,9 @@ def table(repeats: int) -> str:
     for name, text in CASES:
         wall, cpu = process_times(["-m", "sorgui.cli", "analyze", "--recognition-only", text], repeats)
         rows.append(f"| `sorgui analyze --recognition-only`: {name} | {wall:.2f} | {cpu:.2f} |")
-    for name, statement in IMPORTS:
+    for _name, statement in IMPORTS:
         wall, cpu = process_times(["-c", statement], repeats)
-        rows.append(f"| `python -c \"{statement}\"` | {wall:.2f} | {cpu:.2f} |")
+        rows.append(f'| `python -c "{statement}"` | {wall:.2f} | {cpu:.2f} |')
     print("\n".join(rows), flush=True)
     return "\n".join(rows)
 

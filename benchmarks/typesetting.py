@@ -33,19 +33,35 @@ def child(name: str) -> None:
     warm_up()
     messages: list[tuple[str, object]] = []
     start = time.perf_counter()
-    kind, result = run_job(JobRequest(example_text(name), scene=False), send=lambda k, p: messages.append((k, p)),
-                           processes=min(2, os.cpu_count() or 1))
+    kind, result = run_job(
+        JobRequest(example_text(name), scene=False),
+        send=lambda k, p: messages.append((k, p)),
+        processes=min(2, os.cpu_count() or 1),
+    )
     total = time.perf_counter() - start
     assert kind == "finished", (kind, result)
     typesetting = sum(seconds for stage, seconds in result.timings if stage == "formulas")
     formulas = next(p for k, p in reversed(messages) if k == "formulas")
-    print(json.dumps({"typesetting": typesetting, "job": total, "formulas": len(formulas),
-                      "lines": sum(len(f.lines) for f in formulas.values())}))
+    print(
+        json.dumps(
+            {
+                "typesetting": typesetting,
+                "job": total,
+                "formulas": len(formulas),
+                "lines": sum(len(f.lines) for f in formulas.values()),
+            }
+        )
+    )
 
 
 def measure(name: str) -> dict[str, float]:
-    out = subprocess.run([sys.executable, "-m", "benchmarks.typesetting", "--child", name],
-                         capture_output=True, text=True, check=True, timeout=600)
+    out = subprocess.run(
+        [sys.executable, "-m", "benchmarks.typesetting", "--child", name],
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=600,
+    )
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
@@ -53,9 +69,11 @@ def table(repeats: int) -> str:
     rows = ["| example | formulas | typeset lines | typesetting (s) | whole job (s) |", "|---|---:|---:|---:|---:|"]
     for name in CASES:
         runs = [measure(name) for _ in range(repeats)]
-        rows.append(f"| {name} | {runs[0]['formulas']} | {runs[0]['lines']} "
-                    f"| {statistics.median(r['typesetting'] for r in runs):.3f} "
-                    f"| {statistics.median(r['job'] for r in runs):.2f} |")
+        rows.append(
+            f"| {name} | {runs[0]['formulas']} | {runs[0]['lines']} "
+            f"| {statistics.median(r['typesetting'] for r in runs):.3f} "
+            f"| {statistics.median(r['job'] for r in runs):.2f} |"
+        )
         print(rows[-1], flush=True)
     return "\n".join(rows)
 

@@ -155,8 +155,9 @@ class _Pool:
         self.idle, self.busy = [], {}
 
 
-def _results(jobs: Iterator[Job], workers: int,
-             request: Callable[[str], AnalysisRequest]) -> Generator[Answer, None, None]:
+def _results(
+    jobs: Iterator[Job], workers: int, request: Callable[[str], AnalysisRequest]
+) -> Generator[Answer, None, None]:
     """The answers in input order, ``workers`` lines at a time."""
     pool = _Pool(request)
     answers: dict[int, Answer] = {}
@@ -198,12 +199,14 @@ def worker_count(requested: int) -> tuple[int, str]:
     allowed = max(1, min(2 * cores, available // WORKER_MEMORY))
     if requested <= allowed:
         return requested, ""
-    return allowed, (f"--jobs {requested} lowered to {allowed} ({cores} cores, "
-                     f"{available / 2**30:.1f} GB of memory available)")
+    return allowed, (
+        f"--jobs {requested} lowered to {allowed} ({cores} cores, {available / 2**30:.1f} GB of memory available)"
+    )
 
 
-def run_batch(lines: Iterable[str], args: argparse.Namespace, emit: Callable[[str], None],
-              total: int | None = None) -> int:
+def run_batch(
+    lines: Iterable[str], args: argparse.Namespace, emit: Callable[[str], None], total: int | None = None
+) -> int:
     """Analyse every line of ``lines`` with the options of ``args``; ``emit`` writes a line.
     ``total`` (the number of equations, when known) sizes the progress bar."""
     from sorgui.session.supervised import AnalysisRequest
@@ -213,8 +216,13 @@ def run_batch(lines: Iterable[str], args: argparse.Namespace, emit: Callable[[st
         print(f"sorgui: {lowered}", file=sys.stderr, flush=True)
 
     def request(text: str) -> AnalysisRequest:
-        return AnalysisRequest(text, method=args.method, recognition_only=args.recognition_only,
-                               tolerance=args.tolerance, timeout=args.timeout)
+        return AnalysisRequest(
+            text,
+            method=args.method,
+            recognition_only=args.recognition_only,
+            tolerance=args.tolerance,
+            timeout=args.timeout,
+        )
 
     progress = _Progress() if sys.stderr.isatty() else None
     statuses: set[int] = set()

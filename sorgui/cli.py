@@ -9,7 +9,8 @@ sorgui cleanly: Singular is killed on the way out (and dies with sorgui even on 
 ``--timeout`` bounds the whole analysis; stages not finished by then are reported as
 undecided. The analysis runs in a child process (:mod:`sorgui.session.supervised`), which is
 killed at the time limit or on a signal even when it is stuck inside one C call, so sorgui
-always answers within a second of either. ``--each-line`` analyses one equation per line (:mod:`sorgui.batch`, JSON Lines).
+always answers within a second of either. ``--each-line`` analyses one equation per line
+(:mod:`sorgui.batch`, JSON Lines).
 
 The engine (sympy, flint, Singular) is imported only once an equation is to be analysed, so
 that ``--help`` and bad command lines answer at once.
@@ -44,8 +45,7 @@ DEFAULT_TIMEOUT = 120.0
 MAX_INPUT = 1_000_000
 """Characters of input read at most (plus one, to tell that there is more); the parser's
 ``MAX_LENGTH``, repeated here so that reading needs no engine import (a test checks they agree)."""
-EXPORT_SUFFIXES = (".json", ".txt", ".md", ".html", ".tex", ".mpl", ".m", ".py", ".stl", ".obj", ".ply", ".vtp",
-                   ".png")
+EXPORT_SUFFIXES = (".json", ".txt", ".md", ".html", ".tex", ".mpl", ".m", ".py", ".stl", ".obj", ".ply", ".vtp", ".png")
 """Suffixes ``-o`` accepts (the keys of ``sorgui.export.files.FORMATS``; a test checks it)."""
 
 
@@ -112,34 +112,60 @@ def analyze_parser() -> argparse.ArgumentParser:
         description="Decide exactly whether f(x, y, z) = 0 is a surface of revolution.",
         allow_abbrev=False,
     )
-    parser.add_argument("expression", nargs="?",
-                        help="the equation (it may start with '-'), or '-' to read standard input")
+    parser.add_argument(
+        "expression", nargs="?", help="the equation (it may start with '-'), or '-' to read standard input"
+    )
     parser.add_argument("-f", "--file", type=Path, help="read the equation from a file")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("--recognition-only", action="store_true", help="skip the rationality analysis")
-    parser.add_argument("--method", choices=("symmetry", "paper"), default="symmetry",
-                        help="symmetry algebra (default, deterministic) or the paper's Algorithm II")
-    parser.add_argument("--timeout", type=positive_seconds, default=DEFAULT_TIMEOUT,
-                        help=f"time limit of the whole analysis, in seconds (default {DEFAULT_TIMEOUT:g}); "
-                             "stages not finished are reported as undecided")
-    parser.add_argument("--tolerance", type=tolerance_value, default=None, metavar="auto|T",
-                        help="also ask whether the surface is, within a relative tolerance T (e.g. 1e-8), "
-                             "a surface of revolution, and find the exact surface it was meant to be; "
-                             "'auto' (the default) does so whenever the input prints decimals, with the "
-                             "tolerance their digits give")
-    parser.add_argument("-o", "--output", type=Path, action="append", default=[],
-                        help="also write the results to a file, in the format its suffix names: reports "
-                             ".json .txt .md .html; formulas .tex (LaTeX) .mpl (Maple) .m (Mathematica) "
-                             ".py (NumPy/SymPy); meshes .stl .obj .ply .vtp (NAME.patch.stl: the "
-                             "parametric patch); .png (a picture); may be given several times")
-    parser.add_argument("--format", dest="export_format", metavar="FORMAT",
-                        help="the format of every -o file whatever its suffix (json, md, tex, stl, "
-                             "patch.stl, ...)")
-    parser.add_argument("--each-line", action="store_true",
-                        help="analyse every line of the input (-f FILE or '-') on its own and print "
-                             "JSON Lines; '#' starts a comment")
-    parser.add_argument("--jobs", type=positive_int, default=1,
-                        help="with --each-line: the number of worker processes (default 1)")
+    parser.add_argument(
+        "--method",
+        choices=("symmetry", "paper"),
+        default="symmetry",
+        help="symmetry algebra (default, deterministic) or the paper's Algorithm II",
+    )
+    parser.add_argument(
+        "--timeout",
+        type=positive_seconds,
+        default=DEFAULT_TIMEOUT,
+        help=f"time limit of the whole analysis, in seconds (default {DEFAULT_TIMEOUT:g}); "
+        "stages not finished are reported as undecided",
+    )
+    parser.add_argument(
+        "--tolerance",
+        type=tolerance_value,
+        default=None,
+        metavar="auto|T",
+        help="also ask whether the surface is, within a relative tolerance T (e.g. 1e-8), "
+        "a surface of revolution, and find the exact surface it was meant to be; "
+        "'auto' (the default) does so whenever the input prints decimals, with the "
+        "tolerance their digits give",
+    )
+    parser.add_argument(
+        "-o",
+        "--output",
+        type=Path,
+        action="append",
+        default=[],
+        help="also write the results to a file, in the format its suffix names: reports "
+        ".json .txt .md .html; formulas .tex (LaTeX) .mpl (Maple) .m (Mathematica) "
+        ".py (NumPy/SymPy); meshes .stl .obj .ply .vtp (NAME.patch.stl: the "
+        "parametric patch); .png (a picture); may be given several times",
+    )
+    parser.add_argument(
+        "--format",
+        dest="export_format",
+        metavar="FORMAT",
+        help="the format of every -o file whatever its suffix (json, md, tex, stl, patch.stl, ...)",
+    )
+    parser.add_argument(
+        "--each-line",
+        action="store_true",
+        help="analyse every line of the input (-f FILE or '-') on its own and print JSON Lines; '#' starts a comment",
+    )
+    parser.add_argument(
+        "--jobs", type=positive_int, default=1, help="with --each-line: the number of worker processes (default 1)"
+    )
     return parser
 
 
@@ -250,8 +276,9 @@ def _check_target(path: Path, inputs: list[os.stat_result], beside: Path | None)
         raise UsageError(f"cannot write {what}: the folder {folder} does not exist")
     if status is not None and stat.S_ISDIR(status.st_mode):
         raise UsageError(f"cannot write {what}: it is a folder")
-    if status is not None and not (stat.S_ISREG(status.st_mode) or stat.S_ISCHR(status.st_mode)
-                                   or stat.S_ISFIFO(status.st_mode)):
+    if status is not None and not (
+        stat.S_ISREG(status.st_mode) or stat.S_ISCHR(status.st_mode) or stat.S_ISFIFO(status.st_mode)
+    ):
         raise UsageError(f"cannot write {what}: it is not a regular file")
     if not os.access(folder, os.W_OK | os.X_OK) and (status is None or stat.S_ISREG(status.st_mode)):
         raise UsageError(f"cannot write {what}: permission denied")
@@ -269,8 +296,10 @@ def write_outputs(result: Analysis, outputs: Sequence[Path], fmt: str | None = N
     from sorgui.export.files import export_analysis, format_of
 
     scene = None
-    if any(format_of(path, fmt).kind in ("mesh", "picture") or format_of(path, fmt).suffix in (".md", ".html")
-           for path in outputs):
+    if any(
+        format_of(path, fmt).kind in ("mesh", "picture") or format_of(path, fmt).suffix in (".md", ".html")
+        for path in outputs
+    ):
         from sorgui.session.scene_data import build_scene
 
         scene = build_scene(result)
@@ -347,9 +376,16 @@ def analyze_main(argv: Sequence[str]) -> int:
         return fail(str(exc), None, False, 1)
     from sorgui.session.supervised import AnalysisRequest, analyze_supervised
 
-    kind, payload = analyze_supervised(AnalysisRequest(
-        text, method=args.method, recognition_only=args.recognition_only, tolerance=args.tolerance,
-        timeout=args.timeout), started=_started[-1] if _started else None)
+    kind, payload = analyze_supervised(
+        AnalysisRequest(
+            text,
+            method=args.method,
+            recognition_only=args.recognition_only,
+            tolerance=args.tolerance,
+            timeout=args.timeout,
+        ),
+        started=_started[-1] if _started else None,
+    )
     if kind == "invalid":
         message, position = payload
         return fail(message, position, args.json, 2)
@@ -400,8 +436,11 @@ def each_line(args: argparse.Namespace) -> int:
 
 def gui_main(argv: Sequence[str]) -> int:
     """``sorgui [FILE]``: the window."""
-    parser = _Parser(prog="sorgui", description="sorgui: surfaces of revolution, exactly.",
-                     epilog="Use 'sorgui analyze --help' for the command line.")
+    parser = _Parser(
+        prog="sorgui",
+        description="sorgui: surfaces of revolution, exactly.",
+        epilog="Use 'sorgui analyze --help' for the command line.",
+    )
     parser.add_argument("file", nargs="?", help="an equation file to open")
     try:
         args = parser.parse_args(argv)
@@ -414,8 +453,11 @@ def gui_main(argv: Sequence[str]) -> int:
 
 def open_main(argv: Sequence[str]) -> int:
     """``sorgui open REPORT.json``: the window with a saved report, shown without recomputing."""
-    parser = _Parser(prog="sorgui open", description="Show a report saved as JSON (sorgui analyze --json "
-                     "or -o FILE.json, File > Export) in the window, without analysing again.")
+    parser = _Parser(
+        prog="sorgui open",
+        description="Show a report saved as JSON (sorgui analyze --json "
+        "or -o FILE.json, File > Export) in the window, without analysing again.",
+    )
     parser.add_argument("report", type=Path, help="the JSON report")
     try:
         args = parser.parse_args(argv)

@@ -13,9 +13,13 @@ def factored_product(seed: int = 2, degree: int = 15, digits: int = 300, factors
     bound = 10**digits
 
     def dense() -> str:
-        terms = [f"{rng.randint(-bound, bound)}*x^{i}*y^{j}*z^{k}"
-                 for i in range(degree + 1) for j in range(degree + 1 - i) for k in range(degree + 1 - i - j)
-                 if rng.random() < 0.5]
+        terms = [
+            f"{rng.randint(-bound, bound)}*x^{i}*y^{j}*z^{k}"
+            for i in range(degree + 1)
+            for j in range(degree + 1 - i)
+            for k in range(degree + 1 - i - j)
+            if rng.random() < 0.5
+        ]
         return "(" + "+".join(terms) + ")"
 
     return "*".join(dense() for _ in range(factors))

@@ -22,15 +22,18 @@ x^2 + 2y^2 + 3z^2 - 1
 
 
 def test_lines_comments_and_blank_lines() -> None:
-    assert equations(LINES) == [(2, "x^2 + y^2 - z"), (4, "x^2 + sin(y)"), (5, "-x^2-y^2+z^2-1"),
-                                (6, "x^2 + 2y^2 + 3z^2 - 1")]
+    assert equations(LINES) == [
+        (2, "x^2 + y^2 - z"),
+        (4, "x^2 + sin(y)"),
+        (5, "-x^2-y^2+z^2-1"),
+        (6, "x^2 + 2y^2 + 3z^2 - 1"),
+    ]
 
 
 def run_batch(tmp_path: Path, *args: str) -> subprocess.CompletedProcess[str]:
     path = tmp_path / "lines.txt"
     path.write_text(LINES, encoding="utf-8")
-    return subprocess.run([*SORGUI, "--each-line", *args, "-f", str(path)], capture_output=True, text=True,
-                          timeout=300)
+    return subprocess.run([*SORGUI, "--each-line", *args, "-f", str(path)], capture_output=True, text=True, timeout=300)
 
 
 def test_json_lines_in_input_order_with_an_error_object_for_the_bad_line(tmp_path: Path) -> None:
@@ -51,8 +54,12 @@ def test_a_progress_bar_on_a_terminal(tmp_path: Path) -> None:
     path.write_text("x^2+y^2-z\nx^2+y^2+z^2-1\n", encoding="utf-8")
     master, slave = pty.openpty()
     try:
-        proc = subprocess.Popen([*SORGUI, "--each-line", "--recognition-only", "-f", str(path)],
-                                stdout=subprocess.PIPE, stderr=slave, text=True)
+        proc = subprocess.Popen(
+            [*SORGUI, "--each-line", "--recognition-only", "-f", str(path)],
+            stdout=subprocess.PIPE,
+            stderr=slave,
+            text=True,
+        )
         os.close(slave)
         out, _ = proc.communicate(timeout=120)
         shown = b""
@@ -73,6 +80,11 @@ def test_a_progress_bar_on_a_terminal(tmp_path: Path) -> None:
 def test_each_line_needs_a_file_or_standard_input() -> None:
     out = subprocess.run([*SORGUI, "--each-line"], capture_output=True, text=True, timeout=60)
     assert out.returncode == 2 and out.stderr.count("\n") == 1 and "--each-line reads" in out.stderr
-    piped = subprocess.run([*SORGUI, "--each-line", "--recognition-only", "-"], input="x^2+y^2-z\n",
-                           capture_output=True, text=True, timeout=120)
+    piped = subprocess.run(
+        [*SORGUI, "--each-line", "--recognition-only", "-"],
+        input="x^2+y^2-z\n",
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert piped.returncode == 0 and json.loads(piped.stdout)["symmetry"] == "revolution"

@@ -41,18 +41,21 @@ def test_an_equation_may_start_with_a_minus_sign() -> None:
     assert data["polynomial"] == "-x**2 - y**2 + z**2 - 1" and data["is_sor"] is True
 
 
-@pytest.mark.parametrize("args, words", [
-    (["--timeout", "nan", "x^2+y^2-z"], "positive number of seconds"),
-    (["--timeout", "0", "x^2+y^2-z"], "positive number of seconds"),
-    (["--timeout", "-5", "x^2+y^2-z"], "positive number of seconds"),
-    (["--timeout", "inf", "x^2+y^2-z"], "positive number of seconds"),
-    (["--timeout", "soon", "x^2+y^2-z"], "not a number of seconds"),
-    (["--method", "guess", "x^2+y^2-z"], "invalid choice"),
-    (["--frobnicate", "x^2+y^2-z"], "unrecognized arguments"),
-    (["x^2+y^2-z", "x^2"], "unrecognized arguments"),
-    (["-f", "missing-file.txt"], "cannot read missing-file.txt"),
-    (["--jobs", "0", "-"], "must be at least 1"),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--timeout", "nan", "x^2+y^2-z"], "positive number of seconds"),
+        (["--timeout", "0", "x^2+y^2-z"], "positive number of seconds"),
+        (["--timeout", "-5", "x^2+y^2-z"], "positive number of seconds"),
+        (["--timeout", "inf", "x^2+y^2-z"], "positive number of seconds"),
+        (["--timeout", "soon", "x^2+y^2-z"], "not a number of seconds"),
+        (["--method", "guess", "x^2+y^2-z"], "invalid choice"),
+        (["--frobnicate", "x^2+y^2-z"], "unrecognized arguments"),
+        (["x^2+y^2-z", "x^2"], "unrecognized arguments"),
+        (["-f", "missing-file.txt"], "cannot read missing-file.txt"),
+        (["--jobs", "0", "-"], "must be at least 1"),
+    ],
+)
 def test_every_argument_error_is_one_line_and_an_error_object(args: list[str], words: str) -> None:
     plain = sorgui("analyze", *args)
     assert plain.returncode == 2 and plain.stdout == ""
@@ -87,8 +90,10 @@ def test_the_input_limit_is_the_parsers() -> None:
 
 
 def test_numbers_of_more_than_4300_digits_are_analysed() -> None:
-    for text, symmetry in [("10^4300*x+y^2-z", "extrusion"),  # the example: a parabolic cylinder
-                           ("1" + "0" * 4400 + "*(x^2+y^2)-z", "revolution")]:
+    for text, symmetry in [
+        ("10^4300*x+y^2-z", "extrusion"),  # the example: a parabolic cylinder
+        ("1" + "0" * 4400 + "*(x^2+y^2)-z", "revolution"),
+    ]:
         out = sorgui("analyze", "--json", "--recognition-only", text)
         assert out.returncode == 0, out.stderr
         data = json.loads(out.stdout)
@@ -138,16 +143,25 @@ def test_the_input_file_is_never_overwritten(tmp_path: Path) -> None:
 
 
 def test_a_closed_pipe_and_a_full_disk_give_one_line() -> None:
-    proc = subprocess.Popen([*SORGUI, "analyze", "--json", "--recognition-only", "x^2+y^2-z"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [*SORGUI, "analyze", "--json", "--recognition-only", "x^2+y^2-z"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     proc.stdout.close()  # like `| head` having exited
     err = proc.stderr.read()
     proc.stderr.close()
     assert proc.wait(timeout=120) == 1
     assert "cannot write the output" in one_line(err)
     with open("/dev/full", "w") as full:
-        out = subprocess.run([*SORGUI, "analyze", "--recognition-only", "x^2+y^2-z"], stdout=full,
-                             stderr=subprocess.PIPE, text=True, timeout=120)
+        out = subprocess.run(
+            [*SORGUI, "analyze", "--recognition-only", "x^2+y^2-z"],
+            stdout=full,
+            stderr=subprocess.PIPE,
+            text=True,
+            timeout=120,
+        )
     assert out.returncode == 1 and "No space left on device" in one_line(out.stderr)
 
 
@@ -173,8 +187,10 @@ def test_the_time_limit_bounds_the_whole_analysis_and_keeps_what_is_done() -> No
 
 
 def test_the_command_line_loads_the_engine_only_to_analyse() -> None:
-    code = ("import sys; from sorgui.cli import main; status = main(['analyze', '--timeout', '0']); "
-            "print(status, sorted({m.split('.')[0] for m in sys.modules} & {'sympy', 'flint', 'numpy'}))")
+    code = (
+        "import sys; from sorgui.cli import main; status = main(['analyze', '--timeout', '0']); "
+        "print(status, sorted({m.split('.')[0] for m in sys.modules} & {'sympy', 'flint', 'numpy'}))"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert out.stdout.strip() == "2 []", out.stdout + out.stderr
 

@@ -17,8 +17,13 @@ EQUATION = "x^2 + y^2 - z"
 def shell(command: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
     """``command`` in a shell, where ``sorgui`` is this Python's command line."""
     line = " ".join(SORGUI)
-    return subprocess.run(["bash", "-c", command.replace("SORGUI", line)], capture_output=True, text=True,
-                          timeout=300, env={**os.environ, **(env or {})})
+    return subprocess.run(
+        ["bash", "-c", command.replace("SORGUI", line)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={**os.environ, **(env or {})},
+    )
 
 
 def one_line(err: str) -> str:
@@ -44,17 +49,18 @@ def test_an_ascii_locale_gets_the_report_escaped(env: dict[str, str]) -> None:
 def test_file_names_and_option_values_give_one_line(tmp_path: Path) -> None:
     newline = subprocess.run([*SORGUI, "-f", str(tmp_path / "a\nb.txt")], capture_output=True, text=True, timeout=60)
     assert newline.returncode == 2 and "a\\nb.txt" in one_line(newline.stderr)
-    long_name = subprocess.run([*SORGUI, "-f", str(tmp_path / ("a" * 300))], capture_output=True, text=True,
-                               timeout=60)
+    long_name = subprocess.run([*SORGUI, "-f", str(tmp_path / ("a" * 300))], capture_output=True, text=True, timeout=60)
     assert long_name.returncode == 2 and "too long" in one_line(long_name.stderr)
-    empty_format = subprocess.run([*SORGUI, "--format", "", EQUATION, "-o", str(tmp_path / "x.txt")],
-                                  capture_output=True, text=True, timeout=60)
+    empty_format = subprocess.run(
+        [*SORGUI, "--format", "", EQUATION, "-o", str(tmp_path / "x.txt")], capture_output=True, text=True, timeout=60
+    )
     assert empty_format.returncode == 2 and "--format needs" in one_line(empty_format.stderr)
 
 
 def test_an_enormous_time_limit_is_no_limit() -> None:
-    done = subprocess.run([*SORGUI, "--json", "--timeout", "1e10", EQUATION], capture_output=True, text=True,
-                          timeout=300)
+    done = subprocess.run(
+        [*SORGUI, "--json", "--timeout", "1e10", EQUATION], capture_output=True, text=True, timeout=300
+    )
     assert done.returncode == 0 and done.stderr == ""
     assert json.loads(done.stdout)["rationality"]["table_row"] == 3
 
@@ -62,8 +68,12 @@ def test_an_enormous_time_limit_is_no_limit() -> None:
 def test_jobs_are_bounded_by_the_machine(tmp_path: Path) -> None:
     lines = tmp_path / "lines.txt"
     lines.write_text("x^2+y^2-z\nx^2+2y^2-z\n", encoding="utf-8")
-    done = subprocess.run([*SORGUI, "--each-line", "--recognition-only", "--jobs", "1000", "-f", str(lines)],
-                          capture_output=True, text=True, timeout=300)
+    done = subprocess.run(
+        [*SORGUI, "--each-line", "--recognition-only", "--jobs", "1000", "-f", str(lines)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert done.returncode == 0 and len(done.stdout.splitlines()) == 2
     assert "--jobs 1000 lowered to" in one_line(done.stderr)
 
@@ -80,8 +90,13 @@ def test_a_home_that_cannot_be_written_gets_no_matplotlib_warning(tmp_path: Path
     """The picture needs matplotlib's cache; with no writable home sorgui gives it its own folder."""
     env = {key: value for key, value in os.environ.items() if key not in ("MPLCONFIGDIR", "XDG_CONFIG_HOME")}
     env["HOME"] = "/proc/self/fdinfo"  # no folder can be made there, not even by root
-    done = subprocess.run([*SORGUI, "--recognition-only", EQUATION, "-o", str(tmp_path / "surface.png")],
-                          capture_output=True, text=True, timeout=300, env=env)
+    done = subprocess.run(
+        [*SORGUI, "--recognition-only", EQUATION, "-o", str(tmp_path / "surface.png")],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env=env,
+    )
     # the cache folder is built once: matplotlib says so the first time, which is no warning of trouble
     errors = [line for line in done.stderr.splitlines() if "building the font cache" not in line]
     assert done.returncode == 0 and errors == [], done.stderr

@@ -40,7 +40,9 @@ def test_a_reports_picture_never_replaces_the_input(tmp_path: Path) -> None:
     source = tmp_path / "surf.png"
     source.write_text(EQUATION, encoding="utf-8")  # an equation file that happens to end in .png
     done = run(["--recognition-only", "-f", "surf.png", "-o", "surf.md"], tmp_path)
-    assert done.returncode == 2 and "refusing to overwrite the input file surf.png (written beside surf.md)" in done.stderr
+    assert (
+        done.returncode == 2 and "refusing to overwrite the input file surf.png (written beside surf.md)" in done.stderr
+    )
     assert source.read_text(encoding="utf-8") == EQUATION and not (tmp_path / "surf.md").exists()
 
 
@@ -73,9 +75,25 @@ def test_no_temporary_file_is_left_when_ended_while_writing(tmp_path: Path) -> N
     for attempt in range(6):
         folder = tmp_path / str(attempt)
         folder.mkdir()
-        proc = subprocess.Popen([*SORGUI, "--recognition-only", "x^2 + y^2 - z", "-o", "a.json", "-o", "b.txt",
-                                 "-o", "c.tex", "-o", "d.py"], cwd=folder, stdout=subprocess.DEVNULL,
-                                stderr=subprocess.PIPE, text=True)
+        proc = subprocess.Popen(
+            [
+                *SORGUI,
+                "--recognition-only",
+                "x^2 + y^2 - z",
+                "-o",
+                "a.json",
+                "-o",
+                "b.txt",
+                "-o",
+                "c.tex",
+                "-o",
+                "d.py",
+            ],
+            cwd=folder,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         deadline = time.monotonic() + 60
         while proc.poll() is None and time.monotonic() < deadline:
             if any(p.name.startswith(".") and ".tmp" in p.name for p in folder.iterdir()):

@@ -31,8 +31,16 @@ def test_json_has_the_approximate_object_with_the_nearest_analysis(torus_text: s
     data = json.loads(out.stdout)
     assert data["is_sor"] is False
     ap = data["approximate"]
-    assert set(ap) >= {"tolerance", "near_sor", "kind", "relative_distance", "singular_values", "axis",
-                       "nearest", "notes"}
+    assert set(ap) >= {
+        "tolerance",
+        "near_sor",
+        "kind",
+        "relative_distance",
+        "singular_values",
+        "axis",
+        "nearest",
+        "notes",
+    }
     assert ap["near_sor"] is True and ap["kind"] == "revolution"
     assert ap["tolerance_source"] == "input" and 0 < ap["tolerance"] < 1e-9
     direction = ap["axis"]["direction"]
@@ -54,7 +62,9 @@ def test_the_text_report_says_it_in_words(torus_text: str) -> None:
     out = sorgui(torus_text)
     assert out.returncode == 0, out.stderr
     assert "surface of revolution: NO" in out.stdout
-    assert "not exactly, but within" in out.stdout and "(relative) of a surface of revolution about the axis" in out.stdout
+    assert (
+        "not exactly, but within" in out.stdout and "(relative) of a surface of revolution about the axis" in out.stdout
+    )
     assert "the analysis of the nearest exact surface:" in out.stdout
     assert out.stdout.endswith("\n")
 

@@ -45,7 +45,7 @@ def analysis_processes(pid: int) -> list[int]:
 
 def freeze_analysis(proc: subprocess.Popen[str]) -> list[int]:
     """Wait for sorgui's analysis process and stop it dead (``SIGSTOP``)."""
-    children = wait_for(lambda: analysis_processes(proc.pid), 60)
+    children = wait_for(lambda proc=proc: analysis_processes(proc.pid), 60)
     for child in children:
         signal_quietly(child, signal.SIGSTOP)
     return children
@@ -81,7 +81,7 @@ def test_the_time_limit_holds_when_the_analysis_is_frozen() -> None:
     elapsed = time.monotonic() - started
     assert proc.returncode in (0, 1) and "Traceback" not in err, err
     assert elapsed < timeout + 1.0, elapsed
-    wait_for(lambda: all(dead(pid) for pid in children), 5)
+    wait_for(lambda children=children: all(dead(pid) for pid in children), 5)
     data = json.loads(out)
     if proc.returncode == 0:  # the equation had been read: the stages done, the rest unfinished
         assert data["unfinished"] and data["symmetry"] in ("undecided", "revolution")
@@ -139,8 +139,7 @@ def test_a_long_c_call_is_ended_at_the_time_limit() -> None:
     """The envelope of the spheres centred on ``(1, 2, -1) + t·(2, -1, 3)`` with radius ``1 + t²``."""
     text = (DATA / "sphere-envelope.txt").read_text(encoding="utf-8")
     started = time.monotonic()
-    proc = subprocess.run([*ANALYZE, "--json", "--timeout", "3", text], capture_output=True, text=True,
-                          timeout=60)
+    proc = subprocess.run([*ANALYZE, "--json", "--timeout", "3", text], capture_output=True, text=True, timeout=60)
     assert time.monotonic() - started < 3 + 1.0
     assert proc.returncode == 0 and "Traceback" not in proc.stderr
     data = json.loads(proc.stdout)
@@ -154,18 +153,19 @@ def test_the_time_limit_and_the_signals_hold_inside_one_flint_factorization(tmp_
     equation = tmp_path / "product.txt"
     equation.write_text(factored_product(), encoding="utf-8")
     started = time.monotonic()
-    done = subprocess.run([*ANALYZE, "--json", "--timeout", "8", "-f", str(equation)], capture_output=True,
-                          text=True, timeout=120)
+    done = subprocess.run(
+        [*ANALYZE, "--json", "--timeout", "8", "-f", str(equation)], capture_output=True, text=True, timeout=120
+    )
     assert time.monotonic() - started < 8 + 1.0
     data = json.loads(done.stdout)
     assert done.returncode == 0 and "factors" in data["unfinished"], data["unfinished"]
     for signum in (signal.SIGTERM, signal.SIGINT):
         proc = launch([*ANALYZE, "--timeout", "600", "-f", str(equation)])
-        children = wait_for(lambda: analysis_processes(proc.pid), 60)
+        children = wait_for(lambda proc=proc: analysis_processes(proc.pid), 60)
         time.sleep(6)  # reading and recognising the equation: then inside the factorization
         sent = time.monotonic()
         proc.send_signal(signum)
         proc.communicate(timeout=60)
         assert time.monotonic() - sent < 1.0
         assert proc.returncode == (130 if signum == signal.SIGINT else 128 + signum)
-        wait_for(lambda: all(dead(pid) for pid in children), 5)
+        wait_for(lambda children=children: all(dead(pid) for pid in children), 5)

@@ -17,7 +17,9 @@ def loaded_modules(statement: str) -> set[str]:
 
 
 def test_engine_imports_neither_qt_nor_vtk() -> None:
-    modules = loaded_modules("import sorgui.engine; from sorgui.engine import analyze; analyze('x^2+y^2-z^2', recognition_only=True)")
+    modules = loaded_modules(
+        "import sorgui.engine; from sorgui.engine import analyze; analyze('x^2+y^2-z^2', recognition_only=True)"
+    )
     top = {m.split(".")[0] for m in modules}
     assert not top & set(FORBIDDEN), sorted(top & set(FORBIDDEN))
 
@@ -41,6 +43,8 @@ def test_session_imports_neither_qt_nor_vtk() -> None:
 def test_recognition_only_over_the_rationals_loads_no_sympy() -> None:
     """The rational path (docs/benchmarks.md, "the start of one process"): a surface of revolution
     over QQ is recognised, its profile and canal answer given, with flint alone."""
-    modules = loaded_modules("from sorgui.engine import analyze; "
-                             "assert analyze('(x^2+y^2+z^2+3)^2-16(x^2+y^2)', recognition_only=True).recognition.is_sor")
+    modules = loaded_modules(
+        "from sorgui.engine import analyze; "
+        "assert analyze('(x^2+y^2+z^2+3)^2-16(x^2+y^2)', recognition_only=True).recognition.is_sor"
+    )
     assert "sympy" not in modules and "numpy" not in modules

@@ -1,6 +1,7 @@
 """The whole analysis of one pasted equation, stage by stage, with timings and cancellation.
 
-Stages: engine (loading sympy, when a process has not yet) → parse → recognition (symmetry, axis, profile) → factors → real locus (what the real
+Stages: engine (loading sympy, when a process has not yet) → parse → recognition (symmetry, axis,
+profile) → factors → real locus (what the real
 surface of a surface of revolution is, docs/math.md §3.4) → approximate (rounded input
 or a given tolerance: the nearest surface of revolution, docs/math.md §8) → rationality and
 parameterizations (docs/math.md §5–§6; only for a surface of revolution with a unique axis) →
@@ -110,8 +111,13 @@ def analyze(
             )
     except TimeLimitReached as exc:
         return unfinished_analysis(
-            skeleton(f, text=text, method=method), recognition=clock.recognition, latest=clock.latest, timings=tuple(clock.timings),
-            current=clock.current, message=exc.message, recognition_only=recognition_only,
+            skeleton(f, text=text, method=method),
+            recognition=clock.recognition,
+            latest=clock.latest,
+            timings=tuple(clock.timings),
+            current=clock.current,
+            message=exc.message,
+            recognition_only=recognition_only,
         )
 
 
@@ -217,14 +223,25 @@ def analyze_polynomial(
 
         clock.publish(result(rationality, found))
         with clock.stage("canal"):
-            canal_result = analyze_canal(f, is_sor=recognition.is_sor, full=not recognition_only,
-                                         timeout=singular_timeout, cancel=cancel, profile=profile)
+            canal_result = analyze_canal(
+                f,
+                is_sor=recognition.is_sor,
+                full=not recognition_only,
+                timeout=singular_timeout,
+                cancel=cancel,
+                profile=profile,
+            )
     if near is not None and near.nearest is not None and approximation.nearest is not None and not recognition_only:
         clock.publish(result(rationality, found))
         with clock.stage("nearest"):
-            of_nearest = analyze_polynomial(near.nearest, method=method, clock=StageClock(None, cancel),
-                                            singular_timeout=min(singular_timeout, NEAREST_SINGULAR_TIMEOUT),
-                                            frame=near.frame, canal=False)
+            of_nearest = analyze_polynomial(
+                near.nearest,
+                method=method,
+                clock=StageClock(None, cancel),
+                singular_timeout=min(singular_timeout, NEAREST_SINGULAR_TIMEOUT),
+                frame=near.frame,
+                canal=False,
+            )
         if of_nearest.is_sor:  # canal by its symmetry: said without a line test or Singular
             of_nearest = replace(of_nearest, canal=revolution_canal(of_nearest.recognition.degree, NEAREST_CANAL_NOTE))
         approximation = replace(approximation, nearest=replace(approximation.nearest, analysis=of_nearest))

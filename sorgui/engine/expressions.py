@@ -50,7 +50,9 @@ class Syntax:
     names: Mapping[str, sympy.Expr] | None = None
 
 
-SYMPY = Syntax(powers=("**", "^"), decimals=True, rational_exponents=True, functions={"sqrt": sympy.sqrt}, constants={"I": sympy.I})
+SYMPY = Syntax(
+    powers=("**", "^"), decimals=True, rational_exponents=True, functions={"sqrt": sympy.sqrt}, constants={"I": sympy.I}
+)
 """sympy's output syntax, the form of every exact string in the engine's results."""
 
 

@@ -62,8 +62,19 @@ if 0 < sys.get_int_max_str_digits() < MAX_PRINTED_DIGITS:
 Rational: TypeAlias = int | Fraction  # exact; integer literals stay ints (faster)
 _VARIABLES = "xyz"
 _VARIABLE_INDEX = {name: i for i, name in enumerate(_VARIABLES)}
-_OPERATORS = {"**": "^", "−": "-", "–": "-", "·": "*", "⋅": "*", "×": "*", "∗": "*",
-              "{": "(", "}": ")", "\\cdot": "*", "\\times": "*"}
+_OPERATORS = {
+    "**": "^",
+    "−": "-",
+    "–": "-",
+    "·": "*",
+    "⋅": "*",
+    "×": "*",
+    "∗": "*",
+    "{": "(",
+    "}": ")",
+    "\\cdot": "*",
+    "\\times": "*",
+}
 _SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
 _TOKEN = re.compile(
     r"(?P<space>[\s\ufeff]+|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:!]))"
@@ -154,9 +165,12 @@ def expanded_polynomial(text: str) -> fmpq_mpoly | None:
             return None
         num, den, variables = match.group("num"), match.group("den"), match.group("vars")
         if (num is None and (not variables.strip() or variables.lstrip().startswith("*"))) or (
-                position > 0 and match.group("sign") is None):
+            position > 0 and match.group("sign") is None
+        ):
             return None  # an empty term, a '*' with nothing before it, two terms without a sign between them
-        if (num is not None and len(num) > MAX_DIGITS) or (den is not None and (len(den) > MAX_DIGITS or int(den) == 0)):
+        if (num is not None and len(num) > MAX_DIGITS) or (
+            den is not None and (len(den) > MAX_DIGITS or int(den) == 0)
+        ):
             return None
         monomial = [0, 0, 0]
         for name, exponent in _PLAIN_FACTOR.findall(variables):
@@ -177,8 +191,7 @@ def _checked(text: str) -> tuple[Node, _Evaluator, bool]:
     """The syntax tree of ``text`` after pass 1 (every limit checked, the radicands known),
     its evaluator, and whether a variable was written."""
     if len(text) > MAX_LENGTH:
-        raise ParseError(f"the input is too long (more than {MAX_LENGTH:,} characters)", 0,
-                         len(text))
+        raise ParseError(f"the input is too long (more than {MAX_LENGTH:,} characters)", 0, len(text))
     try:
         parser = _Parser(text)
         tree = parser.equation()
@@ -196,8 +209,11 @@ def _evaluate(text: str, evaluator: _Evaluator, tree: Node, ring: _Ring, saw_var
     except RecursionError:
         raise ParseError("the expression is nested too deeply", 0, len(text)) from None
     if ring.is_constant(polynomial):
-        message = ("the equation is constant: its variables cancel" if saw_variable
-                   else "the equation has no variables (use x, y and z)")
+        message = (
+            "the equation is constant: its variables cancel"
+            if saw_variable
+            else "the equation has no variables (use x, y and z)"
+        )
         raise ParseError(message, 0, len(text))
     return polynomial
 
@@ -264,8 +280,9 @@ def _name(word: str, start: int) -> Iterator[Token]:
         for i, letter in enumerate(word):
             yield Token("var", start + i, start + i + 1, _VARIABLES.index(letter))
     else:
-        raise ParseError(f"unknown name '{word}' (the variables are x, y, z; the only function "
-                         "is sqrt)", start, start + len(word))
+        raise ParseError(
+            f"unknown name '{word}' (the variables are x, y, z; the only function is sqrt)", start, start + len(word)
+        )
 
 
 def _number(text: str, start: int, end: int) -> Rational:
@@ -277,12 +294,11 @@ def _number(text: str, start: int, end: int) -> Rational:
     scale = -len(fraction or "")
     if exponent is not None:
         if len(exponent.lstrip("+-").lstrip("0")) > 6 or abs(int(exponent)) > MAX_DECIMAL_EXPONENT:
-            raise ParseError("the decimal exponent is too large (the limit is "
-                             f"±{MAX_DECIMAL_EXPONENT})", start, end)
+            raise ParseError(f"the decimal exponent is too large (the limit is ±{MAX_DECIMAL_EXPONENT})", start, end)
         scale += int(exponent)
     value = 0
     for i in range(0, len(digits), 500):  # chunks: independent of sys.set_int_max_str_digits
-        chunk = digits[i:i + 500]
+        chunk = digits[i : i + 500]
         value = value * 10 ** len(chunk) + int(chunk)
     return Fraction(value * 10**scale) if scale >= 0 else Fraction(value, 10**-scale)
 
@@ -364,7 +380,7 @@ class _Parser:
         return self._prev
 
     def _show(self, tok: Token) -> str:
-        return self._text[tok.start:tok.end]
+        return self._text[tok.start : tok.end]
 
     def equation(self) -> Node:
         if self._tok.kind == "end":
@@ -403,8 +419,9 @@ class _Parser:
                 elif tok.kind in _IMPLICIT:
                     factors.append(self._factor(depth))
                 elif tok.kind == "num":
-                    raise ParseError(f"missing operator before '{self._show(tok)}' (write '*' or "
-                                     "'^')", tok.start, tok.end)
+                    raise ParseError(
+                        f"missing operator before '{self._show(tok)}' (write '*' or '^')", tok.start, tok.end
+                    )
                 else:
                     break
             end = self._prev.end
@@ -417,8 +434,9 @@ class _Parser:
 
     def _factor(self, depth: int) -> Node:
         if depth > MAX_NESTING:
-            raise ParseError(f"the expression is nested too deeply (the limit is {MAX_NESTING})",
-                             self._tok.start, self._tok.end)
+            raise ParseError(
+                f"the expression is nested too deeply (the limit is {MAX_NESTING})", self._tok.start, self._tok.end
+            )
         start = self._tok.start
         negative = False
         while self._tok.kind in ("+", "-"):
@@ -456,12 +474,12 @@ class _Parser:
         parts = []
         for _ in range(2):
             if self._tok.kind != "(":
-                raise ParseError("'\\frac' must be followed by '{numerator}{denominator}'", frac.start,
-                                 self._tok.end)
+                raise ParseError("'\\frac' must be followed by '{numerator}{denominator}'", frac.start, self._tok.end)
             parts.append(self._group(depth))
         numerator, denominator = parts
-        return Product(frac.start, self._prev.end, (numerator, Reciprocal(denominator.start, denominator.end,
-                                                                         denominator)))
+        return Product(
+            frac.start, self._prev.end, (numerator, Reciprocal(denominator.start, denominator.end, denominator))
+        )
 
     def _group(self, depth: int) -> Node:
         """``'(' sum ')'``; the error for a missing ')' points at the unmatched '('."""
@@ -480,21 +498,21 @@ class _Parser:
     def _missing_operand(self, tok: Token) -> ParseError:
         if tok.kind == "end":
             prev = self._prev
-            return ParseError(f"something is missing after '{self._show(prev)}'", prev.start,
-                              prev.end)
+            return ParseError(f"something is missing after '{self._show(prev)}'", prev.start, prev.end)
         if tok.kind == ")":
             message = "expected an expression before ')'" if self._open else "unmatched ')'"
             return ParseError(message, tok.start, tok.end)
-        return ParseError(f"unexpected '{self._show(tok)}': expected a number, a variable or '('",
-                          tok.start, tok.end)
+        return ParseError(f"unexpected '{self._show(tok)}': expected a number, a variable or '('", tok.start, tok.end)
 
 
 # --- checking and evaluating the tree ----------------------------------------------------
 
 _NOT_RATIONAL = {
     "exponent": ("an exponent must be a constant number", "an exponent must be rational"),
-    "radicand": ("the square root of a non-constant expression is not a polynomial",
-                 "nested square roots are not supported"),
+    "radicand": (
+        "the square root of a non-constant expression is not a polynomial",
+        "nested square roots are not supported",
+    ),
 }
 
 
@@ -557,8 +575,11 @@ class _Evaluator:
         degree, bits = self.check(node.base)
         if degree > 0:
             if n.denominator != 1 or n < 0:
-                raise ParseError("a non-constant expression can only be raised to a non-negative "
-                                 "integer power", node.exponent.start, node.exponent.end)
+                raise ParseError(
+                    "a non-constant expression can only be raised to a non-negative integer power",
+                    node.exponent.start,
+                    node.exponent.end,
+                )
             return self._within_limits(node, degree * int(n), bits * int(n))
         if n.denominator == 1:
             self._check_exponent(node, n)
@@ -569,18 +590,25 @@ class _Evaluator:
     @staticmethod
     def _within_limits(node: Node, degree: int, bits: int) -> tuple[int, int]:
         if degree > MAX_DEGREE:
-            raise ParseError(f"the degree is too high: this part has degree up to {_show(degree)}, "
-                             f"the limit is {MAX_DEGREE}", node.start, node.end)
+            raise ParseError(
+                f"the degree is too high: this part has degree up to {_show(degree)}, the limit is {MAX_DEGREE}",
+                node.start,
+                node.end,
+            )
         if bits > MAX_BITS:
-            raise ParseError(f"the numbers are too large: this part needs up to {_show(bits)} "
-                             f"bits, the limit is {MAX_BITS:,}", node.start, node.end)
+            raise ParseError(
+                f"the numbers are too large: this part needs up to {_show(bits)} bits, the limit is {MAX_BITS:,}",
+                node.start,
+                node.end,
+            )
         return degree, bits
 
     @staticmethod
     def _check_exponent(node: Power, n: Rational) -> None:
         if abs(n) > MAX_EXPONENT:
-            raise ParseError(f"the exponent is too large (the limit is {MAX_EXPONENT})",
-                             node.exponent.start, node.exponent.end)
+            raise ParseError(
+                f"the exponent is too large (the limit is {MAX_EXPONENT})", node.exponent.start, node.exponent.end
+            )
 
     def _exponent(self, node: Power) -> Rational:
         exponent = node.exponent
@@ -646,14 +674,15 @@ class _Evaluator:
         else:
             n = self._exponent(node)
             if n.denominator != 2:
-                raise ParseError("only square roots are supported: the exponent must be an "
-                                 "integer or a half-integer", node.exponent.start,
-                                 node.exponent.end)
+                raise ParseError(
+                    "only square roots are supported: the exponent must be an integer or a half-integer",
+                    node.exponent.start,
+                    node.exponent.end,
+                )
             self._check_exponent(node, n)
             q, k = self._rational(node.base, "radicand"), n.numerator
         if q < 0:
-            raise ParseError("the square root of a negative number is not real", node.start,
-                             node.end)
+            raise ParseError("the square root of a negative number is not real", node.start, node.end)
         if q == 0:
             if k < 0:
                 raise ParseError("division by zero", node.start, node.end)
@@ -663,8 +692,9 @@ class _Evaluator:
         if m > 1:
             self.radicands.add(m)
             if len(self.radicands) > MAX_RADICANDS:
-                raise ParseError(f"too many different square roots (the limit is {MAX_RADICANDS})",
-                                 node.start, node.end)
+                raise ParseError(
+                    f"too many different square roots (the limit is {MAX_RADICANDS})", node.start, node.end
+                )
         return self._surds.setdefault(node, (c * q ** ((k - 1) // 2), m))
 
     # pass 2 ---------------------------------------------------------------------------
@@ -742,8 +772,9 @@ class _Evaluator:
                 coeff = -coeff * self._constant(factor.arg.value)
             elif isinstance(factor, Reciprocal) and isinstance(factor.arg, Num) and factor.arg.value:
                 coeff = self._ring.quo(coeff, self._constant(factor.arg.value))
-            elif (isinstance(factor, Power) and isinstance(factor.base, Var)
-                  and isinstance(factor.exponent, Num)):  # a non-negative integer: checked
+            elif (
+                isinstance(factor, Power) and isinstance(factor.base, Var) and isinstance(factor.exponent, Num)
+            ):  # a non-negative integer: checked
                 exponents[factor.base.index] += int(factor.exponent.value)
             else:
                 return None
@@ -798,8 +829,11 @@ class _Evaluator:
     def _charge(self, node: Node, products: int) -> None:
         self._work += products * self._ring.cost
         if self._work > MAX_WORK:
-            raise ParseError("the expression is too large to expand (it needs more than "
-                             f"{MAX_WORK:,} coefficient multiplications)", node.start, node.end)
+            raise ParseError(
+                f"the expression is too large to expand (it needs more than {MAX_WORK:,} coefficient multiplications)",
+                node.start,
+                node.end,
+            )
 
 
 class _Ring(Protocol):
@@ -825,17 +859,13 @@ class _Ring(Protocol):
         """The constant polynomial ``c``."""
         ...
 
-    def is_constant(self, p: Any) -> bool:
-        ...
+    def is_constant(self, p: Any) -> bool: ...
 
-    def constant_term(self, p: Any) -> Any:
-        ...
+    def constant_term(self, p: Any) -> Any: ...
 
-    def terms(self, p: Any) -> Iterator[tuple[tuple[int, ...], Any]]:
-        ...
+    def terms(self, p: Any) -> Iterator[tuple[tuple[int, ...], Any]]: ...
 
-    def from_terms(self, terms: dict[tuple[int, ...], Any]) -> Any:
-        ...
+    def from_terms(self, terms: dict[tuple[int, ...], Any]) -> Any: ...
 
     def scale(self, p: Any, c: Any) -> Any:
         """``c·p`` for a constant ``c`` of the field."""
@@ -929,8 +959,11 @@ def _square_free_part(q: Fraction, node: Node) -> tuple[Fraction, int]:
     if root * root == n:
         return Fraction(root, q.denominator), 1
     if n >= 10**MAX_RADICAND_DIGITS:
-        raise ParseError(f"the number under the square root is too large to factor (more than "
-                         f"{MAX_RADICAND_DIGITS} digits)", node.start, node.end)
+        raise ParseError(
+            f"the number under the square root is too large to factor (more than {MAX_RADICAND_DIGITS} digits)",
+            node.start,
+            node.end,
+        )
     square, free = 1, 1
     for p, e in fmpz(n).factor():  # flint: far faster than sympy.factorint at 40+ digits
         square *= int(p) ** (e // 2)

@@ -90,9 +90,16 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
         return None
     clock.check()
     return Analysis(
-        input=text, field="QQ", method="symmetry", recognition=recognized, factors=reports,
-        squarefree=flint_str(squarefree, XYZ), rationality=None, parametrizations=(),
-        timings=tuple(clock.timings), canal=canal,
+        input=text,
+        field="QQ",
+        method="symmetry",
+        recognition=recognized,
+        factors=reports,
+        squarefree=flint_str(squarefree, XYZ),
+        rationality=None,
+        parametrizations=(),
+        timings=tuple(clock.timings),
+        canal=canal,
     )
 
 
@@ -154,8 +161,11 @@ def _axis(symmetry: Symmetry) -> Axis | None:
         return None
     point, direction = symmetry.axis_point, symmetry.axis_direction
     plucker = primitive_vector(tuple(direction) + cross(point, direction), RATIONALS)  # type: ignore[arg-type]
-    return Axis(point=_triple(point), direction=_triple(direction),  # type: ignore[arg-type]
-                plucker=tuple(str(c) for c in plucker))  # type: ignore[arg-type]
+    return Axis(
+        point=_triple(point),
+        direction=_triple(direction),  # type: ignore[arg-type]
+        plucker=tuple(str(c) for c in plucker),
+    )  # type: ignore[arg-type]
 
 
 def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> Profile:
@@ -181,8 +191,11 @@ def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> Profile:
         square=_surd_str({(i, j // 2): c for (i, j), c in orthonormal.items()}, ("x", "y")),
         rational=flint_str(rational, ("s", "r")),
         rational_square=flint_str(_halve_second(rational, ("s", "w")), ("s", "w")),
-        frame_point=_triple(c), frame_direction=_triple(a), frame_normal=_triple(u),  # type: ignore[arg-type]
-        even=True, verified=True,
+        frame_point=_triple(c),
+        frame_direction=_triple(a),
+        frame_normal=_triple(u),  # type: ignore[arg-type]
+        even=True,
+        verified=True,
     )
 
 

@@ -197,8 +197,9 @@ class Approximation:
         data["axis"] = _plain(self.axis)
         nearest = self.nearest
         if nearest is not None:
-            data["nearest"] = _lists({k: getattr(nearest, k) for k in _field_names(NearestSurface)
-                                      if k not in ("axis", "analysis")})
+            data["nearest"] = _lists(
+                {k: getattr(nearest, k) for k in _field_names(NearestSurface) if k not in ("axis", "analysis")}
+            )
             data["nearest"]["axis"] = _plain(nearest.axis)
             data["nearest"]["analysis"] = None if nearest.analysis is None else nearest.analysis.to_json()
         else:
@@ -400,8 +401,7 @@ class Analysis:
             method=data["method"],
             recognition=recognition,
             factors=tuple(
-                Factor(f["polynomial"], f["multiplicity"], _recognition_from(f["recognition"]))
-                for f in data["factors"]
+                Factor(f["polynomial"], f["multiplicity"], _recognition_from(f["recognition"])) for f in data["factors"]
             ),
             squarefree=data["squarefree"],
             rationality=_build(Rationality, data.get("rationality")),

@@ -23,8 +23,18 @@ ProgressCallback = Callable[[str], None]
 PartialCallback = Callable[[Analysis], None]
 DoneCallback = Callable[[str, float], None]
 
-STAGES = ("engine", "parse", "recognition", "factors", "real locus", "approximate", "rationality", "parametrizations", "canal",
-          "nearest")
+STAGES = (
+    "engine",
+    "parse",
+    "recognition",
+    "factors",
+    "real locus",
+    "approximate",
+    "rationality",
+    "parametrizations",
+    "canal",
+    "nearest",
+)
 
 
 class StageClock:

@@ -4,7 +4,8 @@ The Python stages (recognition, factors over ``K``, parameterizations) can run f
 inside sympy, where no cancel event is looked at. In the main thread, :func:`time_limit`
 therefore arms a one-shot ``SIGALRM`` timer whose handler raises :class:`TimeLimitReached`
 wherever the analysis is; a Singular call it interrupts kills Singular on the way out
-(:mod:`.singular.process`). In other threads only the Singular calls are bounded (by the time left). :func:`unfinished_analysis` then reports the stages that did not finish as
+(:mod:`.singular.process`). In other threads only the Singular calls are bounded (by the time left).
+:func:`unfinished_analysis` then reports the stages that did not finish as
 undecided and keeps those that did.
 """
 
@@ -68,10 +69,22 @@ def skeleton(f: Poly, *, text: str, method: str) -> Analysis:
     analysis process sends it to its parent as soon as the equation is read."""
     from .algebra.polys import field_name, poly_str, total_degree
 
-    recognition = Recognition(polynomial=poly_str(f), degree=total_degree(f), is_sor=False,
-                              symmetry=UNDECIDED, symmetry_dimension=0, symmetry_basis=())
-    return Analysis(input=text, field=field_name(f.ring.domain), method=method, recognition=recognition,
-                    factors=(), squarefree=recognition.polynomial)
+    recognition = Recognition(
+        polynomial=poly_str(f),
+        degree=total_degree(f),
+        is_sor=False,
+        symmetry=UNDECIDED,
+        symmetry_dimension=0,
+        symmetry_basis=(),
+    )
+    return Analysis(
+        input=text,
+        field=field_name(f.ring.domain),
+        method=method,
+        recognition=recognition,
+        factors=(),
+        squarefree=recognition.polynomial,
+    )
 
 
 def unfinished_analysis(
@@ -91,8 +104,9 @@ def unfinished_analysis(
     Needs no sympy: the parent of a killed analysis process composes it from what the process
     sent before it was ended."""
     if latest is None:
-        latest = start if recognition is None else replace(start, recognition=recognition,
-                                                            squarefree=recognition.polynomial)
+        latest = (
+            start if recognition is None else replace(start, recognition=recognition, squarefree=recognition.polynomial)
+        )
     rec = latest.recognition
     needs_rationality = not recognition_only and (rec.symmetry == UNDECIDED or (rec.is_sor and rec.profile is not None))
     pipeline = ["recognition", "factors", *(("rationality", "parametrizations") if needs_rationality else ())]

@@ -94,8 +94,11 @@ def _special(target: Path) -> bool:
         return False
     if stat.S_ISCHR(mode) or stat.S_ISFIFO(mode):
         return True
-    raise IsADirectoryError(errno.EISDIR, "not a regular file", str(target)) if stat.S_ISDIR(mode) else OSError(
-        errno.EINVAL, "not a regular file, a character device or a pipe", str(target))
+    raise (
+        IsADirectoryError(errno.EISDIR, "not a regular file", str(target))
+        if stat.S_ISDIR(mode)
+        else OSError(errno.EINVAL, "not a regular file, a character device or a pipe", str(target))
+    )
 
 
 def _copy_into(source: Path, target: Path) -> None:
@@ -128,9 +131,10 @@ def atomic_write_bytes(path: str | Path, chunks: bytes | Callable[[], Iterator[b
 
     A generator that raises half-way leaves ``path`` as it was.
     """
+
     def write(temporary: Path) -> None:
         with open(temporary, "wb") as stream:
-            for chunk in ([chunks] if isinstance(chunks, bytes) else chunks()):
+            for chunk in [chunks] if isinstance(chunks, bytes) else chunks():
                 stream.write(chunk)
             stream.flush()
             os.fsync(stream.fileno())

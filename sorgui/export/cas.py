@@ -26,11 +26,38 @@ from sorgui.export.text import TABLE_1
 LATEX_LINE = 100
 """Characters of LaTeX source per displayed line before a long sum is broken."""
 
-_TEX_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
-                "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}"}
-_TEX_UNICODE = {"τ": r"$\tau$", "·": r"$\cdot$", "×": r"$\times$", "²": r"$^2$", "³": r"$^3$", "→": r"$\to$",
-                "≤": r"$\le$", "≥": r"$\ge$", "−": "-", "√": r"$\surd$", "̂": "", "±": r"$\pm$", "∞": r"$\infty$",
-                "ℂ": r"$\mathbb{C}$", "ℝ": r"$\mathbb{R}$", "ℚ": r"$\mathbb{Q}$", "–": "--", "—": "---"}
+_TEX_SPECIAL = {
+    "\\": r"\textbackslash{}",
+    "&": r"\&",
+    "%": r"\%",
+    "$": r"\$",
+    "#": r"\#",
+    "_": r"\_",
+    "{": r"\{",
+    "}": r"\}",
+    "~": r"\textasciitilde{}",
+    "^": r"\textasciicircum{}",
+}
+_TEX_UNICODE = {
+    "τ": r"$\tau$",
+    "·": r"$\cdot$",
+    "×": r"$\times$",
+    "²": r"$^2$",
+    "³": r"$^3$",
+    "→": r"$\to$",
+    "≤": r"$\le$",
+    "≥": r"$\ge$",
+    "−": "-",
+    "√": r"$\surd$",
+    "̂": "",
+    "±": r"$\pm$",
+    "∞": r"$\infty$",
+    "ℂ": r"$\mathbb{C}$",
+    "ℝ": r"$\mathbb{R}$",
+    "ℚ": r"$\mathbb{Q}$",
+    "–": "--",
+    "—": "---",
+}
 
 
 def verdict(analysis: Analysis) -> str:
@@ -41,13 +68,14 @@ def verdict(analysis: Analysis) -> str:
 def summary_lines(analysis: Analysis) -> list[str]:
     """The verdict, symmetry, field and Table 1 row in plain words (the files' header)."""
     rec = analysis.recognition
-    lines = [f"sorgui: {verdict(analysis)}",
-             f"symmetry: {rec.symmetry.replace('_', ' ')} (dim L = {rec.symmetry_dimension}); field K = {analysis.field}"]
+    lines = [
+        f"sorgui: {verdict(analysis)}",
+        f"symmetry: {rec.symmetry.replace('_', ' ')} (dim L = {rec.symmetry_dimension}); field K = {analysis.field}",
+    ]
     rat = analysis.rationality
     if rat is not None and rat.table_row is not None:
         row = TABLE_1[rat.table_row - 1]
-        lines.append(f"Table 1, row {rat.table_row}: genus(P) {row[0]}, genus(P^2) {row[1]}, "
-                     f"X_C {row[2]}, X {row[3]}")
+        lines.append(f"Table 1, row {rat.table_row}: genus(P) {row[0]}, genus(P^2) {row[1]}, X_C {row[2]}, X {row[3]}")
     canal = analysis.canal
     if canal is not None:
         answer = {True: "yes", False: "no", None: "undecided"}[canal.is_canal]
@@ -62,19 +90,36 @@ def summary_lines(analysis: Analysis) -> list[str]:
 def approximate_line(approx: Approximation) -> str:
     """The verdict on a rounded input in one line."""
     kind = f" ({approx.kind})" if approx.kind else ""
-    return (f"{'near' if approx.near_sor else 'not near'} a surface of revolution{kind} within the relative "
-            f"tolerance {approx.tolerance:g} ({approx.tolerance_source}); residual {approx.residual:.3g} roundings")
+    return (
+        f"{'near' if approx.near_sor else 'not near'} a surface of revolution{kind} within the relative "
+        f"tolerance {approx.tolerance:g} ({approx.tolerance_source}); residual {approx.residual:.3g} roundings"
+    )
 
 
-LATEX_NAMES = {"P2": "P^2", "P2K": r"\tilde{p}^2", "P2param": r"\mathrm{P2param}", "tau": r"\tau",
-               "axisPoint": r"\mathrm{axisPoint}", "axisDirection": r"\mathrm{axisDirection}",
-               "center": r"\mathrm{center}", "normal": r"\mathrm{normal}", "direction": r"\mathrm{direction}",
-               "radiusSquared": "r^{2}"}
+LATEX_NAMES = {
+    "P2": "P^2",
+    "P2K": r"\tilde{p}^2",
+    "P2param": r"\mathrm{P2param}",
+    "tau": r"\tau",
+    "axisPoint": r"\mathrm{axisPoint}",
+    "axisDirection": r"\mathrm{axisDirection}",
+    "center": r"\mathrm{center}",
+    "normal": r"\mathrm{normal}",
+    "direction": r"\mathrm{direction}",
+    "radiusSquared": "r^{2}",
+}
 """How the formulas' names are typeset (``X1`` becomes ``X_{1}`` by sympy's rule)."""
 
 
-CANAL_LATEX = {"Spine": r"\mathrm{spine}_{%s}", "SMAT": r"\mathrm{SMAT}_{%s}", "M": "m_{%s}", "Rho": r"\rho_{%s}(t)",
-               "C": "c_{%s}", "R2": "R^{2}_{%s}(t)", "N": "n_{%s}(t)"}
+CANAL_LATEX = {
+    "Spine": r"\mathrm{spine}_{%s}",
+    "SMAT": r"\mathrm{SMAT}_{%s}",
+    "M": "m_{%s}",
+    "Rho": r"\rho_{%s}(t)",
+    "C": "c_{%s}",
+    "R2": "R^{2}_{%s}(t)",
+    "N": "n_{%s}(t)",
+}
 """How the canal formulas ``canal{i}…`` of family ``i`` are typeset (docs/math.md §9 names)."""
 
 _CANAL_NAME = re.compile(r"canal(\d+)(Spine|SMAT|M|Rho|C|R2|N)")
@@ -140,9 +185,16 @@ def _tex_math(text: str) -> str:
     return f"${text}$"
 
 
-LATEX_STYLE = CoverageStyle(expr=sympy.latex, math=_tex_math, real=r"\mathbb{R}", complex=r"\mathbb{C}",
-                            element=r"\in", to=r"\to", infinity=r"\infty",
-                            power=lambda n: "" if n == 1 else f"^{{{n}}}")
+LATEX_STYLE = CoverageStyle(
+    expr=sympy.latex,
+    math=_tex_math,
+    real=r"\mathbb{R}",
+    complex=r"\mathbb{C}",
+    element=r"\in",
+    to=r"\to",
+    infinity=r"\infty",
+    power=lambda n: "" if n == 1 else f"^{{{n}}}",
+)
 
 
 def _latex_formula(formula: Formula) -> list[str]:
@@ -212,10 +264,10 @@ def _code_file(
     return write
 
 
-maple_file = _code_file(maple_code, " := ", hash_comment,
-                        CoverageStyle(expr=maple_code, infinity="infinity"))
+maple_file = _code_file(maple_code, " := ", hash_comment, CoverageStyle(expr=maple_code, infinity="infinity"))
 """The Maple file: ``name := value;`` with ``#`` comments; vectors are Maple lists."""
 
-mathematica_file = _code_file(mathematica_code, " = ", mathematica_comment,
-                              CoverageStyle(expr=mathematica_code, infinity="Infinity"))
+mathematica_file = _code_file(
+    mathematica_code, " = ", mathematica_comment, CoverageStyle(expr=mathematica_code, infinity="Infinity")
+)
 """The Mathematica file: ``name = value;`` with ``(* *)`` comments; vectors are lists."""

@@ -25,8 +25,16 @@ from sorgui.engine.parsing import parse_polynomial
 Terms = list[tuple[tuple[int, ...], float]]
 """A polynomial as plain data for :mod:`sorgui.render`: ``[(exponents, coefficient), ...]``."""
 
-__all__ = ["ExpressionError", "Terms", "float_vector", "polynomial_terms", "rational_function_terms",
-           "read_expression", "read_number", "to_float"]
+__all__ = [
+    "ExpressionError",
+    "Terms",
+    "float_vector",
+    "polynomial_terms",
+    "rational_function_terms",
+    "read_expression",
+    "read_number",
+    "to_float",
+]
 
 
 def read_expression(text: str) -> sympy.Expr:
@@ -66,8 +74,7 @@ def polynomial_terms(text: str, names: Sequence[str] = ("x", "y", "z")) -> Terms
     K = parsed.field
     nvars = len(names)
     return [
-        (tuple(int(e) for e in monom[:nvars]), float(K.to_sympy(c).evalf(20)))
-        for monom, c in parsed.polynomial.items()
+        (tuple(int(e) for e in monom[:nvars]), float(K.to_sympy(c).evalf(20))) for monom, c in parsed.polynomial.items()
     ]
 
 

@@ -40,21 +40,24 @@ class Format:
         return self.kind in ("mesh", "picture")
 
 
-FORMATS: dict[str, Format] = {f.suffix: f for f in (
-    Format(".json", "JSON report", "report"),
-    Format(".txt", "Text report", "report"),
-    Format(".md", "Markdown report", "report"),
-    Format(".html", "HTML report", "report"),
-    Format(".tex", "LaTeX document", "formula"),
-    Format(".mpl", "Maple", "formula"),
-    Format(".m", "Mathematica", "formula"),
-    Format(".py", "Python module (NumPy and SymPy)", "formula"),
-    Format(".stl", "STL mesh (binary)", "mesh"),
-    Format(".obj", "OBJ mesh", "mesh"),
-    Format(".ply", "PLY mesh (binary)", "mesh"),
-    Format(".vtp", "VTK PolyData (VTP)", "mesh"),
-    Format(".png", "PNG picture", "picture"),
-)}
+FORMATS: dict[str, Format] = {
+    f.suffix: f
+    for f in (
+        Format(".json", "JSON report", "report"),
+        Format(".txt", "Text report", "report"),
+        Format(".md", "Markdown report", "report"),
+        Format(".html", "HTML report", "report"),
+        Format(".tex", "LaTeX document", "formula"),
+        Format(".mpl", "Maple", "formula"),
+        Format(".m", "Mathematica", "formula"),
+        Format(".py", "Python module (NumPy and SymPy)", "formula"),
+        Format(".stl", "STL mesh (binary)", "mesh"),
+        Format(".obj", "OBJ mesh", "mesh"),
+        Format(".ply", "PLY mesh (binary)", "mesh"),
+        Format(".vtp", "VTK PolyData (VTP)", "mesh"),
+        Format(".png", "PNG picture", "picture"),
+    )
+}
 """Suffix → format."""
 
 TEXT_WRITERS: dict[str, Callable[[Analysis], str]] = {

@@ -99,9 +99,14 @@ class Coverage:
             if limit.check is not None and moving:
                 value, missed = limit.check
                 at = st.math(f"{st.expr(moving[0])} = {st.expr(value)}")
-                out.append(f"  checked exactly at {at}: " + (
-                    "no parameter value, complex ones included, gives that point: it is missed"
-                    if missed else "some other parameter value gives that point: it is not missed there"))
+                out.append(
+                    f"  checked exactly at {at}: "
+                    + (
+                        "no parameter value, complex ones included, gives that point: it is missed"
+                        if missed
+                        else "some other parameter value gives that point: it is not missed there"
+                    )
+                )
         return out
 
 
@@ -164,8 +169,9 @@ def coverage(
     excluded = tuple(_excluded(g, parameters, real) for g in factors)
     if not limits:
         return Coverage(parameters, real, excluded, ())
-    return Coverage(parameters, real, excluded, tuple(_checked(_limit(fractions, p), fractions, parameters)
-                                                      for p in parameters))
+    return Coverage(
+        parameters, real, excluded, tuple(_checked(_limit(fractions, p), fractions, parameters) for p in parameters)
+    )
 
 
 def _excluded(factor: sympy.Expr, parameters: tuple[sympy.Symbol, ...], real: bool) -> Excluded:
@@ -203,8 +209,9 @@ SAMPLE_VALUES = (sympy.Rational(7, 3), sympy.Rational(-5, 11), sympy.Rational(13
 """Sample values of the free parameter for that test (the first where the limit is defined)."""
 
 
-def _checked(limit: Limit, fractions: list[tuple[sympy.Expr, sympy.Expr]],
-             parameters: tuple[sympy.Symbol, ...]) -> Limit:
+def _checked(
+    limit: Limit, fractions: list[tuple[sympy.Expr, sympy.Expr]], parameters: tuple[sympy.Symbol, ...]
+) -> Limit:
     """``limit`` with its exact missed-point test (see :class:`Limit`), when it is affordable."""
     rest = [p for p in parameters if p != limit.parameter]
     if limit.point is None or len(rest) != 1:
@@ -250,36 +257,78 @@ def surface_formulas(analysis: Analysis) -> list[Formula]:
     if rec.radius_squared is not None:
         out.append(Formula("radiusSquared", "the square of the sphere's radius", read_expression(rec.radius_squared)))
     if rec.profile is not None:
-        out.append(Formula("p", "the profile p(x, y) = 0 (x along the axis, y the distance to it)",
-                           read_expression(rec.profile.polynomial)))
-        out.append(Formula("P2", "the curve P2 = 0 (the profile p with y^2 replaced by y)",
-                           read_expression(rec.profile.square)))
-        frame = ", ".join(f"({', '.join(v)})" for v in (rec.profile.frame_point, rec.profile.frame_direction,
-                                                         rec.profile.frame_normal))
-        out.append(Formula("P2K", "the curve P2K(s, w) = 0: the K-rational profile in the points c + s*a + r*u "
-                           f"with w = r^2, for (c, a, u) = {frame}", read_expression(rec.profile.rational_square)))
+        out.append(
+            Formula(
+                "p",
+                "the profile p(x, y) = 0 (x along the axis, y the distance to it)",
+                read_expression(rec.profile.polynomial),
+            )
+        )
+        out.append(
+            Formula(
+                "P2", "the curve P2 = 0 (the profile p with y^2 replaced by y)", read_expression(rec.profile.square)
+            )
+        )
+        frame = ", ".join(
+            f"({', '.join(v)})"
+            for v in (rec.profile.frame_point, rec.profile.frame_direction, rec.profile.frame_normal)
+        )
+        out.append(
+            Formula(
+                "P2K",
+                "the curve P2K(s, w) = 0: the K-rational profile in the points c + s*a + r*u "
+                f"with w = r^2, for (c, a, u) = {frame}",
+                read_expression(rec.profile.rational_square),
+            )
+        )
     rat = analysis.rationality
     t = sympy.Symbol("t")
     x, y, z = sympy.symbols("x y z")
     if rat is not None and rat.square_parametrization is not None:
         value = _vector(rat.square_parametrization)
-        out.append(Formula("P2param", "a parameterization t -> (s(t), w(t)) of the curve P2K = 0", value, (t,),
-                           coverage(value, (t,), _is_real(value))))
+        out.append(
+            Formula(
+                "P2param",
+                "a parameterization t -> (s(t), w(t)) of the curve P2K = 0",
+                value,
+                (t,),
+                coverage(value, (t,), _is_real(value)),
+            )
+        )
     if rat is not None and rat.tubular_surface is not None:
-        out.append(Formula("T", "the tubular surface T(x, y, z) = 0 (in the axis frame of the profile)",
-                           read_expression(rat.tubular_surface)))
+        out.append(
+            Formula(
+                "T",
+                "the tubular surface T(x, y, z) = 0 (in the axis frame of the profile)",
+                read_expression(rat.tubular_surface),
+            )
+        )
     if rat is not None and rat.tau is not None:
         value = _vector(rat.tau)
-        out.append(Formula("tau", "the map tau from T to X (in the axis frame of the profile)", value,
-                           (x, y, z), coverage(value, (x, y, z), True, limits=False)))
+        out.append(
+            Formula(
+                "tau",
+                "the map tau from T to X (in the axis frame of the profile)",
+                value,
+                (x, y, z),
+                coverage(value, (x, y, z), True, limits=False),
+            )
+        )
     for i, par in enumerate(analysis.parametrizations, 1):
         parameters = tuple(sympy.Symbol(p) for p in par.parameters)
         value = _vector(par.coordinates)
         kind = "real" if par.real else "complex"
         proper = {True: "proper", False: "not proper", None: "properness not decided"}[par.proper]
-        out.append(Formula(f"X{i}", f"parameterization {i} of X: {par.method} ({kind}, {proper}, over {par.field})",
-                           value, parameters, coverage(value, parameters, par.real),
-                           {"verified": par.verified, "verification": par.verification}))
+        out.append(
+            Formula(
+                f"X{i}",
+                f"parameterization {i} of X: {par.method} ({kind}, {proper}, over {par.field})",
+                value,
+                parameters,
+                coverage(value, parameters, par.real),
+                {"verified": par.verified, "verification": par.verification},
+            )
+        )
     return out
 
 
@@ -298,38 +347,87 @@ def canal_formulas(canal: Canal) -> list[Formula]:
     for i, fam in enumerate(canal.families, 1):
         name = f"{CANAL_PREFIX}{i}"
         radius = "constant" if fam.pipe else "varying"
-        out.append(Formula(f"{name}Spine", f"the spine of sphere family {i} (centres m1, m2, m3; degree {fam.degree}, "
-                           f"{'on a line' if fam.on_line else 'planar' if fam.planar else 'not planar'}): "
-                           "these equations are zero", tuple(read_expression(e) for e in fam.spine_equations)))
-        out.append(Formula(f"{name}SMAT", f"the SMAT curve of sphere family {i} (centre m1, m2, m3, squared radius r; "
-                           f"genus {'undecided' if fam.genus is None else fam.genus}, radius {radius}): "
-                           "these equations are zero", tuple(read_expression(e) for e in fam.equations)))
+        out.append(
+            Formula(
+                f"{name}Spine",
+                f"the spine of sphere family {i} (centres m1, m2, m3; degree {fam.degree}, "
+                f"{'on a line' if fam.on_line else 'planar' if fam.planar else 'not planar'}): "
+                "these equations are zero",
+                tuple(read_expression(e) for e in fam.spine_equations),
+            )
+        )
+        out.append(
+            Formula(
+                f"{name}SMAT",
+                f"the SMAT curve of sphere family {i} (centre m1, m2, m3, squared radius r; "
+                f"genus {'undecided' if fam.genus is None else fam.genus}, radius {radius}): "
+                "these equations are zero",
+                tuple(read_expression(e) for e in fam.equations),
+            )
+        )
         if fam.parametrization is not None:
             value = _vector(fam.parametrization)
             check = "verified" if fam.verified else "not verified"
-            out.append(Formula(f"{name}M", f"the spine t -> m(t) of sphere family {i} (over {fam.field}, {check})",
-                               value, (t,), coverage(value, (t,), _is_real(value)), {"verified": fam.verified}))
+            out.append(
+                Formula(
+                    f"{name}M",
+                    f"the spine t -> m(t) of sphere family {i} (over {fam.field}, {check})",
+                    value,
+                    (t,),
+                    coverage(value, (t,), _is_real(value)),
+                    {"verified": fam.verified},
+                )
+            )
         elif fam.radical_spine is not None:
-            out.append(Formula(f"{name}M", f"the spine t -> m(t) of sphere family {i} in square roots "
-                               f"(t = {fam.radical_parameter}; verified on the SMAT equations)",
-                               _vector(fam.radical_spine), (t,), None, {"verified": True}))
+            out.append(
+                Formula(
+                    f"{name}M",
+                    f"the spine t -> m(t) of sphere family {i} in square roots "
+                    f"(t = {fam.radical_parameter}; verified on the SMAT equations)",
+                    _vector(fam.radical_spine),
+                    (t,),
+                    None,
+                    {"verified": True},
+                )
+            )
         rho = fam.radius_squared or fam.radical_radius_squared
         if rho is not None:
-            out.append(Formula(f"{name}Rho", f"the squared radius rho(t) of the spheres of family {i} ({radius})",
-                               read_expression(rho)))
+            out.append(
+                Formula(
+                    f"{name}Rho",
+                    f"the squared radius rho(t) of the spheres of family {i} ({radius})",
+                    read_expression(rho),
+                )
+            )
         if fam.circle_center is not None:
             value = _vector(fam.circle_center)
-            out.append(Formula(f"{name}C", f"the centre t -> c(t) of the characteristic circles of family {i}",
-                               value, (t,), coverage(value, (t,), _is_real(value))))
+            out.append(
+                Formula(
+                    f"{name}C",
+                    f"the centre t -> c(t) of the characteristic circles of family {i}",
+                    value,
+                    (t,),
+                    coverage(value, (t,), _is_real(value)),
+                )
+            )
         if fam.circle_radius_squared is not None:
-            out.append(Formula(f"{name}R2", f"the squared radius R2(t) of the characteristic circles of family {i}",
-                               read_expression(fam.circle_radius_squared)))
+            out.append(
+                Formula(
+                    f"{name}R2",
+                    f"the squared radius R2(t) of the characteristic circles of family {i}",
+                    read_expression(fam.circle_radius_squared),
+                )
+            )
         if fam.circle_normal is not None:
-            out.append(Formula(f"{name}N", f"the normal n(t) of the planes of the characteristic circles of family {i}",
-                               _vector(fam.circle_normal)))
+            out.append(
+                Formula(
+                    f"{name}N",
+                    f"the normal n(t) of the planes of the characteristic circles of family {i}",
+                    _vector(fam.circle_normal),
+                )
+            )
     return out
 
 
 def _is_real(value: tuple[sympy.Expr, ...]) -> bool:
     return not any(c.has(sympy.I) for c in value)
-

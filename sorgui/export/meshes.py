@@ -56,8 +56,12 @@ class MeshInfo:
 
     def lines(self) -> list[str]:
         """The header lines of the text formats."""
-        return [f"sorgui: {self.kind}", f"equation: {self.equation} = 0", f"units: {UNITS}",
-                f"bounding box: {self.bounds_text()}"]
+        return [
+            f"sorgui: {self.kind}",
+            f"equation: {self.equation} = 0",
+            f"units: {UNITS}",
+            f"bounding box: {self.bounds_text()}",
+        ]
 
 
 def is_patch_path(path: str | Path) -> bool:
@@ -96,8 +100,11 @@ def write_mesh(
         raise ValueError(f"unknown mesh format {suffix!r}; use one of {', '.join(MESH_SUFFIXES)}")
     patch = is_patch_path(path) if patch is None else patch
     poly = mesh_polydata(scene, patch)
-    kind = ("parametric patch of the first real parameterization" if patch
-            else "triangulated surface f = 0 inside the drawn ball")
+    kind = (
+        "parametric patch of the first real parameterization"
+        if patch
+        else "triangulated surface f = 0 inside the drawn ball"
+    )
     info = MeshInfo(equation, kind, tuple(float(v) for v in poly.bounds))  # type: ignore[arg-type]
     writer = {".stl": _write_stl, ".obj": _write_obj, ".ply": _write_ply, ".vtp": _write_vtp}[suffix]
     with atomic_path(path) as temporary:
@@ -109,8 +116,10 @@ def _write_stl(poly: pyvista.PolyData, info: MeshInfo, path: Path) -> None:
     from vtkmodules.vtkIOGeometry import vtkSTLWriter
 
     b = info.bounds
-    header = (f"sorgui f=0 {'patch' if 'patch' in info.kind else 'surface'}; input units; "
-              f"bbox {b[0]:.4g} {b[1]:.4g} {b[2]:.4g} {b[3]:.4g} {b[4]:.4g} {b[5]:.4g}")
+    header = (
+        f"sorgui f=0 {'patch' if 'patch' in info.kind else 'surface'}; input units; "
+        f"bbox {b[0]:.4g} {b[1]:.4g} {b[2]:.4g} {b[3]:.4g} {b[4]:.4g} {b[5]:.4g}"
+    )
     writer = vtkSTLWriter()
     writer.SetInputData(poly)
     writer.SetFileName(str(path))

@@ -50,8 +50,13 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
         try:
             plotter.set_background("white")
             if not scene.surface.is_empty:
-                actor = plotter.add_mesh(mesh_to_polydata(scene.surface), color=SURFACE_COLOR, specular=0.35,
-                                         backface_params={"color": BACK_COLOR}, smooth_shading=True)
+                actor = plotter.add_mesh(
+                    mesh_to_polydata(scene.surface),
+                    color=SURFACE_COLOR,
+                    specular=0.35,
+                    backface_params={"color": BACK_COLOR},
+                    smooth_shading=True,
+                )
                 actor.prop.interpolation = "gouraud"
             for data, color in ((scene.axis_segment, AXIS_COLOR), (scene.profile_curve, PROFILE_COLOR)):
                 if not data.is_empty:

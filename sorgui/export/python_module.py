@@ -46,12 +46,19 @@ def _function(formula: Formula) -> list[str]:
     if not all(str(p).isidentifier() for p in formula.parameters):
         raise ValueError(f"the parameters of {formula.name} are not names: {formula.parameters}")
     args = ", ".join(str(p) for p in formula.parameters)
-    outputs = {"P2param": "s, w"}.get(formula.name, "x, y, z" if formula.name.startswith(("X", CANAL_PREFIX)) else
-                                      f"its {len(formula.value)} coordinates")
+    outputs = {"P2param": "s, w"}.get(
+        formula.name,
+        "x, y, z" if formula.name.startswith(("X", CANAL_PREFIX)) else f"its {len(formula.value)} coordinates",
+    )
     assert formula.coverage is not None
-    text = [f"{formula.description[0].upper() + formula.description[1:]}.", "",
-            f"Vectorised over NumPy arrays ({args} broadcast together); returns the arrays {outputs}.",
-            "Where a denominator vanishes the values are inf or nan.", "", *formula.coverage.lines()]
+    text = [
+        f"{formula.description[0].upper() + formula.description[1:]}.",
+        "",
+        f"Vectorised over NumPy arrays ({args} broadcast together); returns the arrays {outputs}.",
+        "Where a denominator vanishes the values are inf or nan.",
+        "",
+        *formula.coverage.lines(),
+    ]
     doc = [f"    {python_literal(chr(10).join(one_line(line) for line in text) + chr(10))}"]
     body = [f"    {p} = numpy.asarray({p})" for p in formula.parameters]
     zero = " + ".join(f"0 * {p}" for p in formula.parameters)
@@ -97,12 +104,16 @@ def _canal_checks(formulas: list[Formula]) -> list[str]:
     lines = []
     for spine in (f.name for f in formulas if f.name.startswith(CANAL_PREFIX) and f.name.endswith("M")):
         family = spine[:-1]
-        lines += [f"    assert all(_vanishes(e, (m1, m2, m3), {spine}_EXACT, (t,)) for e in {family}Spine), {spine!r}",
-                  f"    checked.append({spine!r})"]
+        lines += [
+            f"    assert all(_vanishes(e, (m1, m2, m3), {spine}_EXACT, (t,)) for e in {family}Spine), {spine!r}",
+            f"    checked.append({spine!r})",
+        ]
         if f"{family}Rho" in names:
-            lines += [f"    assert all(_vanishes(e, (m1, m2, m3, r), {spine}_EXACT + ({family}Rho,), (t,))",
-                      f"               for e in {family}SMAT), {family + 'Rho'!r}",
-                      f"    checked.append({family + 'Rho'!r})"]
+            lines += [
+                f"    assert all(_vanishes(e, (m1, m2, m3, r), {spine}_EXACT + ({family}Rho,), (t,))",
+                f"               for e in {family}SMAT), {family + 'Rho'!r}",
+                f"    checked.append({family + 'Rho'!r})",
+            ]
     return lines
 
 
@@ -111,30 +122,63 @@ def python_module(analysis: Analysis) -> str:
     formulas = analysis_formulas(analysis)
     maps = [f for f in formulas if f.coverage is not None and f.name != "tau"]
     head = summary_lines(analysis)
-    docstring = [head[0] + ".", "", *head[1:], "",
-                 "Written by sorgui. The parameterizations are NumPy functions; the results are exact sympy",
-                 "expressions; check() verifies by exact substitution that each parameterization lies on the surface."]
-    lines = [python_literal("\n".join(one_line(line) for line in docstring) + "\n"), "", "import numpy", "from sympy import I, Poly, S, Symbol, sqrt, together  # noqa: F401 (I, sqrt: in the formulas)", "",
-             'x, y, z, s, t, w = (Symbol(name) for name in ("x", "y", "z", "s", "t", "w"))',
-             'm1, m2, m3, r = (Symbol(name) for name in ("m1", "m2", "m3", "r"))', ""]
+    docstring = [
+        head[0] + ".",
+        "",
+        *head[1:],
+        "",
+        "Written by sorgui. The parameterizations are NumPy functions; the results are exact sympy",
+        "expressions; check() verifies by exact substitution that each parameterization lies on the surface.",
+    ]
+    lines = [
+        python_literal("\n".join(one_line(line) for line in docstring) + "\n"),
+        "",
+        "import numpy",
+        "from sympy import I, Poly, S, Symbol, sqrt, together  # noqa: F401 (I, sqrt: in the formulas)",
+        "",
+        'x, y, z, s, t, w = (Symbol(name) for name in ("x", "y", "z", "s", "t", "w"))',
+        'm1, m2, m3, r = (Symbol(name) for name in ("m1", "m2", "m3", "r"))',
+        "",
+    ]
     for formula in formulas:
         lines.append(hash_comment(formula.description))
         lines.append(f"{_exact_name(formula, maps)} = {exact_code(formula.value)}")
-    lines += ["", "PARAMETERS = {", *[f"    {f.name!r}: ({', '.join(map(str, f.parameters))},)," for f in maps],
-              "}", '"""The parameters of each parameterization, in order."""', "", ""]
+    lines += [
+        "",
+        "PARAMETERS = {",
+        *[f"    {f.name!r}: ({', '.join(map(str, f.parameters))},)," for f in maps],
+        "}",
+        '"""The parameters of each parameterization, in order."""',
+        "",
+        "",
+    ]
     for formula in maps:
         lines += _function(formula)
-    targets = {f.name: ("P2K" if f.name == "P2param" else "F") for f in maps
-               if f.name == "P2param" or (f.name.startswith("X") and len(f.value) == 3)}
-    lines += [*_VANISHES.splitlines(), "", "",
-              "def check():",
-              '    """Substitute every exact parameterization into its equation; assert the result is zero."""',
-              "    checked = []"]
+    targets = {
+        f.name: ("P2K" if f.name == "P2param" else "F")
+        for f in maps
+        if f.name == "P2param" or (f.name.startswith("X") and len(f.value) == 3)
+    }
+    lines += [
+        *_VANISHES.splitlines(),
+        "",
+        "",
+        "def check():",
+        '    """Substitute every exact parameterization into its equation; assert the result is zero."""',
+        "    checked = []",
+    ]
     for name, target in targets.items():
         variables = "(s, w)" if target == "P2K" else "(x, y, z)"
-        lines += [f"    assert _vanishes({target}, {variables}, {name}_EXACT, PARAMETERS[{name!r}]), {name!r}",
-                  f"    checked.append({name!r})"]
+        lines += [
+            f"    assert _vanishes({target}, {variables}, {name}_EXACT, PARAMETERS[{name!r}]), {name!r}",
+            f"    checked.append({name!r})",
+        ]
     lines += _canal_checks(formulas)
-    lines += ["    return checked", "", "", 'if __name__ == "__main__":',
-              '    print("verified:", ", ".join(check()) or "nothing to check")']
+    lines += [
+        "    return checked",
+        "",
+        "",
+        'if __name__ == "__main__":',
+        '    print("verified:", ", ".join(check()) or "nothing to check")',
+    ]
     return "\n".join(lines) + "\n"

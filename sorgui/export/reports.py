@@ -29,11 +29,33 @@ from sorgui.export.formulas import Formula, canal_formulas, surface_formulas
 from sorgui.export.quoting import code_fence, markup_text
 from sorgui.export.text import CANAL_KINDS, SYMMETRY_NAMES, TABLE_1, format_report
 
-KNOWN_KEYS = frozenset({
-    "input", "polynomial", "field", "method", "degree", "is_sor", "symmetry", "symmetry_dimension",
-    "symmetry_basis", "axis", "center", "normal", "direction", "profile", "factors", "squarefree",
-    "rationality", "parametrizations", "timings", "approximate", "real_locus", "unfinished", "canal",
-})
+KNOWN_KEYS = frozenset(
+    {
+        "input",
+        "polynomial",
+        "field",
+        "method",
+        "degree",
+        "is_sor",
+        "symmetry",
+        "symmetry_dimension",
+        "symmetry_basis",
+        "axis",
+        "center",
+        "normal",
+        "direction",
+        "profile",
+        "factors",
+        "squarefree",
+        "rationality",
+        "parametrizations",
+        "timings",
+        "approximate",
+        "real_locus",
+        "unfinished",
+        "canal",
+    }
+)
 """The JSON keys the Markdown and HTML reports present in words."""
 
 DISPLAY_LENGTH = 60
@@ -137,20 +159,30 @@ def canal_blocks(canal: Canal) -> list[Block]:
     """The Canal section (docs/math.md §9): the verdict and kinds, each sphere family in words,
     its formulas (spine, m(t), ρ(t), characteristic circles), the certificate or witness."""
     answer = {True: "a canal surface", False: "not a canal surface", None: "undecided whether canal"}[canal.is_canal]
-    blocks = [Block("h2", "Canal"), Block("p", f"The surface is {answer} ({canal.status}). A canal surface is the "
-                                               "envelope of a one-parameter family of spheres: each family below "
-                                               "gives their centres $m$ (the spine) and squared radii $\\rho$.")]
+    blocks = [
+        Block("h2", "Canal"),
+        Block(
+            "p",
+            f"The surface is {answer} ({canal.status}). A canal surface is the "
+            "envelope of a one-parameter family of spheres: each family below "
+            "gives their centres $m$ (the spine) and squared radii $\\rho$.",
+        ),
+    ]
     if canal.kinds:
         blocks.append(Block("p", "Kinds: " + "; ".join(CANAL_KINDS.get(k, k) for k in canal.kinds) + "."))
     formulas = canal_formulas(canal)
     for i, fam in enumerate(canal.families, 1):
         shape = "on a line" if fam.on_line else ("planar" if fam.planar else "not planar")
         genus = "undecided" if fam.genus is None else str(fam.genus)
-        facts = [f"spine of degree {fam.degree} ({shape}); SMAT curve of degree {fam.smat_degree} and genus {genus}",
-                 "radius constant (a pipe)" if fam.pipe else "radius varying"]
+        facts = [
+            f"spine of degree {fam.degree} ({shape}); SMAT curve of degree {fam.smat_degree} and genus {genus}",
+            "radius constant (a pipe)" if fam.pipe else "radius varying",
+        ]
         if fam.parametrization is not None:
-            facts.append(f"rational parameterization $m(t)$, $\\rho(t)$ over {fam.field}: "
-                         + ("verified by substitution" if fam.verified else "NOT verified"))
+            facts.append(
+                f"rational parameterization $m(t)$, $\\rho(t)$ over {fam.field}: "
+                + ("verified by substitution" if fam.verified else "NOT verified")
+            )
         else:
             facts.append("no rational parameterization of the spine")
         blocks += [Block("p", f"Sphere family {i}:"), Block("list", tuple(facts))]
@@ -170,17 +202,28 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
     """The report as blocks; ``picture`` is the image's address (file name or ``data:`` URI)."""
     rec = analysis.recognition
     blocks = [Block("h1", f"sorgui: {verdict(analysis)}")]
-    blocks.append(Block("p", f"Equation: $f(x, y, z) = 0$ of degree {rec.degree} over the field $K$ = "
-                             f"{analysis.field} (the polynomial is under Formulas)."))
-    blocks.append(Block("p", f"Symmetry: {SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)} "
-                             f"(the symmetry algebra has dimension {rec.symmetry_dimension})."))
+    blocks.append(
+        Block(
+            "p",
+            f"Equation: $f(x, y, z) = 0$ of degree {rec.degree} over the field $K$ = "
+            f"{analysis.field} (the polynomial is under Formulas).",
+        )
+    )
+    blocks.append(
+        Block(
+            "p",
+            f"Symmetry: {SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)} "
+            f"(the symmetry algebra has dimension {rec.symmetry_dimension}).",
+        )
+    )
     locus = analysis.to_json().get("real_locus")
     if locus:
         dimension = f" (dimension {locus['dimension']})" if locus.get("dimension") is not None else ""
         blocks.append(Block("p", f"Real points: {locus['kind']}{dimension}."))
     if analysis.unfinished:
-        blocks.append(Block("p", "Not finished within the time limit (undecided): "
-                                 + ", ".join(analysis.unfinished) + "."))
+        blocks.append(
+            Block("p", "Not finished within the time limit (undecided): " + ", ".join(analysis.unfinished) + ".")
+        )
     if picture is not None:
         blocks.append(Block("image", picture))
     rat = analysis.rationality
@@ -189,22 +232,35 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
         facts = [f"status: {rat.status}"]
         if rat.table_row is not None:
             row = TABLE_1[rat.table_row - 1]
-            facts.append(f"Table 1, row {rat.table_row}: genus($P$) {row[0]}, genus($P^2$) {row[1]}, "
-                         f"$X_{{\\mathbb{{C}}}}$ {row[2]}, $X$ {row[3]}")
+            facts.append(
+                f"Table 1, row {rat.table_row}: genus($P$) {row[0]}, genus($P^2$) {row[1]}, "
+                f"$X_{{\\mathbb{{C}}}}$ {row[2]}, $X$ {row[3]}"
+            )
         genus_p = "reducible" if rat.profile_reducible else rat.genus_profile
         facts.append(f"genus($P$) = {genus_p}, genus($P^2$) = {rat.genus_profile_square}")
-        for label, value in (("$X_{\\mathbb{C}}$ rational", rat.complex_rational),
-                             ("$X$ unirational", rat.unirational), ("$X$ rational over the reals", rat.real_rational)):
+        for label, value in (
+            ("$X_{\\mathbb{C}}$ rational", rat.complex_rational),
+            ("$X$ unirational", rat.unirational),
+            ("$X$ rational over the reals", rat.real_rational),
+        ):
             facts.append(f"{label}: {'undecided' if value is None else ('yes' if value else 'no')}")
         facts += [f"note: {n}" for n in rat.notes]
         blocks.append(Block("list", tuple(facts)))
     if analysis.approximate is not None:
         approx = analysis.approximate
         blocks.append(Block("h2", "Rounded input"))
-        blocks.append(Block("list", tuple([approximate_line(approx),
-                                           f"relative distance to the nearest invariant polynomial: "
-                                           f"{approx.relative_distance:.3g}",
-                                           *[f"note: {n}" for n in approx.notes]])))
+        blocks.append(
+            Block(
+                "list",
+                tuple(
+                    [
+                        approximate_line(approx),
+                        f"relative distance to the nearest invariant polynomial: {approx.relative_distance:.3g}",
+                        *[f"note: {n}" for n in approx.notes],
+                    ]
+                ),
+            )
+        )
     blocks.append(Block("h2", "Formulas"))
     for formula in surface_formulas(analysis):
         blocks += _formula_blocks(formula)
@@ -244,8 +300,10 @@ def markdown_report(analysis: Analysis, picture: str | None = None) -> str:
 def _html_words(text: str) -> str:
     """Words with ``$…$`` formulas: the words escaped, the formulas kept for KaTeX (escaped too)."""
     parts = text.split("$")
-    return "".join(markup_text(part) if i % 2 == 0 else f'<span class="math">${markup_text(part)}$</span>'
-                   for i, part in enumerate(parts))
+    return "".join(
+        markup_text(part) if i % 2 == 0 else f'<span class="math">${markup_text(part)}$</span>'
+        for i, part in enumerate(parts)
+    )
 
 
 HTML_STYLE = """body { font-family: sans-serif; max-width: 60em; margin: 2em auto; line-height: 1.5; }
@@ -270,6 +328,9 @@ def html_report(analysis: Analysis, png: bytes | None = None) -> str:
         else:
             body.append(f"<p>{_html_words(str(block.text))}</p>")
     title = html.escape(f"sorgui: {verdict(analysis)}")
-    return ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-            f"<title>{title}</title>\n<style>\n{HTML_STYLE}\n</style>\n</head>\n<body>\n"
-            + "\n".join(body) + "\n</body>\n</html>\n")
+    return (
+        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
+        f"<title>{title}</title>\n<style>\n{HTML_STYLE}\n</style>\n</head>\n<body>\n"
+        + "\n".join(body)
+        + "\n</body>\n</html>\n"
+    )

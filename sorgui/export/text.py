@@ -165,28 +165,36 @@ def approximation_lines(analysis: Analysis) -> list[str]:
     elif ap.near_sor:
         lines.append(f"  not exactly, but within {ap.relative_distance:.2g} (relative) of {kind}{where}")
     elif ap.kind is not None:
-        lines.append(f"  not near a surface of revolution; within {ap.relative_distance:.2g} (relative) of {kind}{where}")
+        lines.append(
+            f"  not near a surface of revolution; within {ap.relative_distance:.2g} (relative) of {kind}{where}"
+        )
     elif ap.residual is None:
         lines.append("  nearness not decided")
     else:
         lines.append("  not near a surface of revolution within the tolerance")
     if ap.residual is not None:
-        lines.append(f"  residual {ap.residual:.3g} times the rounding (at most 1: within it); singular values "
-                     f"of (★): {', '.join(f'{v:.2g}' for v in ap.singular_values)}")
+        lines.append(
+            f"  residual {ap.residual:.3g} times the rounding (at most 1: within it); singular values "
+            f"of (★): {', '.join(f'{v:.2g}' for v in ap.singular_values)}"
+        )
     lines += [f"  note: {note}" for note in ap.notes]
     near = ap.nearest
     if near is not None and not near.within_rounding:
         # Not the part that was meant: said plainly, its analysis only in the JSON (on request).
         deviation = "-" if near.max_deviation is None else f"{near.max_deviation:.2g}"
-        lines.append("  no simple exact surface was found within the rounding: the nearest one found lies "
-                     f"outside it (relative distance {near.relative_distance:.2g}, largest deviation of the zero "
-                     f"sets {deviation}); its exact analysis is in the JSON (--json)")
+        lines.append(
+            "  no simple exact surface was found within the rounding: the nearest one found lies "
+            f"outside it (relative distance {near.relative_distance:.2g}, largest deviation of the zero "
+            f"sets {deviation}); its exact analysis is in the JSON (--json)"
+        )
     elif near is not None:
         deviation = "-" if near.max_deviation is None else f"{near.max_deviation:.2g}"
         lines.append(f"  nearest exact surface: g = {near.polynomial}")
-        lines.append(f"    relative distance {near.relative_distance:.2g}, largest deviation of the zero sets "
-                     f"{deviation} (length units), every coefficient within the rounding: "
-                     f"{'yes' if near.within_rounding else 'no'}")
+        lines.append(
+            f"    relative distance {near.relative_distance:.2g}, largest deviation of the zero sets "
+            f"{deviation} (length units), every coefficient within the rounding: "
+            f"{'yes' if near.within_rounding else 'no'}"
+        )
         if near.analysis is not None:
             lines.append("  the analysis of the nearest exact surface:")
             lines += ["    " + line for line in analysis_lines(near.analysis)]
@@ -256,8 +264,10 @@ def nearly_canal(analysis: Analysis) -> str:
     if nearest is None or nearest.canal is None or not nearest.canal.is_canal:
         return ""
     where = "within the rounding" if approx.nearest.within_rounding else "outside the rounding"
-    return ("not exactly canal, but nearly: its nearest exact surface (" + where + ") is a surface of "
-            "revolution, canal by its symmetry")
+    return (
+        "not exactly canal, but nearly: its nearest exact surface (" + where + ") is a surface of "
+        "revolution, canal by its symmetry"
+    )
 
 
 def canal_lines(canal: Canal) -> list[str]:
@@ -270,19 +280,28 @@ def canal_lines(canal: Canal) -> list[str]:
         shape = "a line" if fam.on_line else ("planar" if fam.planar else "not planar")
         genus = "undecided" if fam.genus is None else str(fam.genus)
         radius = "constant" if fam.pipe else "varying"
-        lines.append(f"  sphere family {i}: spine of degree {fam.degree} ({shape}), SMAT genus {genus}, radius {radius}")
+        lines.append(
+            f"  sphere family {i}: spine of degree {fam.degree} ({shape}), SMAT genus {genus}, radius {radius}"
+        )
         lines.append(f"    SMAT equations (m1, m2, m3 centre, r = radius²): {', '.join(fam.equations)}")
         if fam.parametrization is not None:
             check = "verified" if fam.verified else "NOT verified"
-            lines.append(f"    m(t) = ({', '.join(fam.parametrization)}), r²(t) = {fam.radius_squared} (over {fam.field}; {check})")
+            lines.append(
+                f"    m(t) = ({', '.join(fam.parametrization)}), r²(t) = {fam.radius_squared} "
+                f"(over {fam.field}; {check})"
+            )
         elif fam.radical_spine is not None:
-            lines.append(f"    m(t) in square roots (t = {fam.radical_parameter}) = ({', '.join(fam.radical_spine)}), "
-                         f"r²(t) = {fam.radical_radius_squared} (verified on the SMAT equations)")
+            lines.append(
+                f"    m(t) in square roots (t = {fam.radical_parameter}) = ({', '.join(fam.radical_spine)}), "
+                f"r²(t) = {fam.radical_radius_squared} (verified on the SMAT equations)"
+            )
         elif fam.pipe:
             lines.append(f"    r² = {fam.radius_squared} (radius squared)")
         if fam.circle_center is not None:
-            lines.append(f"    characteristic circles: centre ({', '.join(fam.circle_center)}), "
-                         f"radius² {fam.circle_radius_squared}, plane normal ({', '.join(fam.circle_normal or ())})")
+            lines.append(
+                f"    characteristic circles: centre ({', '.join(fam.circle_center)}), "
+                f"radius² {fam.circle_radius_squared}, plane normal ({', '.join(fam.circle_normal or ())})"
+            )
     if canal.certificate is not None:
         check = "checked" if canal.certificate.verified else "FAILED"
         lines.append(f"  certificate ({canal.certificate.method}, {check}): {canal.certificate.statement}")

@@ -40,9 +40,14 @@ NAMES = ("x", "y", "z", "s", "t", "w", "r", "u", "v", "m1", "m2", "m3", "theta",
 coordinates of canal surfaces, the parameter of a witness line, and the ring parameter of
 Singular's fields."""
 
-EXACT = Syntax(powers=("**", "^"), decimals=False, rational_exponents=True,
-               functions={"sqrt": sympy.sqrt, "sin": sympy.sin, "cos": sympy.cos}, constants={"I": sympy.I},
-               names={name: sympy.Symbol(name) for name in NAMES})
+EXACT = Syntax(
+    powers=("**", "^"),
+    decimals=False,
+    rational_exponents=True,
+    functions={"sqrt": sympy.sqrt, "sin": sympy.sin, "cos": sympy.cos},
+    constants={"I": sympy.I},
+    names={name: sympy.Symbol(name) for name in NAMES},
+)
 """The syntax of every exact string sorgui writes into a report."""
 
 MAX_TEXT = 20_000
@@ -63,27 +68,44 @@ VOCABULARY: dict[tuple[str, str], frozenset[str]] = {
 }
 """Fields whose every string comes from a fixed list."""
 
-CERTIFICATE_METHODS = frozenset({"profile", "resultant", "incidence", "elimination", "rotation", "symmetry", "line", "components"})
+CERTIFICATE_METHODS = frozenset(
+    {"profile", "resultant", "incidence", "elimination", "rotation", "symmetry", "line", "components"}
+)
 
 EXPRESSIONS: dict[str, frozenset[str]] = {
     "Axis": frozenset({"point", "direction", "plucker"}),
-    "Profile": frozenset({"polynomial", "square", "rational", "rational_square", "frame_point", "frame_direction",
-                          "frame_normal"}),
+    "Profile": frozenset(
+        {"polynomial", "square", "rational", "rational_square", "frame_point", "frame_direction", "frame_normal"}
+    ),
     "Recognition": frozenset({"polynomial", "symmetry_basis", "center", "normal", "direction", "radius_squared"}),
     "Factor": frozenset({"polynomial"}),
     "Rationality": frozenset({"absolute_factors", "square_parametrization", "tubular_surface", "h", "tau"}),
     "Parametrization": frozenset({"coordinates"}),
     "NearestSurface": frozenset({"polynomial", "center", "normal"}),
-    "CanalFamily": frozenset({"equations", "spine_equations", "plane_model", "parametrization", "radius_squared",
-                              "circle_center", "circle_radius_squared", "circle_normal", "radical_spine",
-                              "radical_radius_squared"}),
+    "CanalFamily": frozenset(
+        {
+            "equations",
+            "spine_equations",
+            "plane_model",
+            "parametrization",
+            "radius_squared",
+            "circle_center",
+            "circle_radius_squared",
+            "circle_normal",
+            "radical_spine",
+            "radical_radius_squared",
+        }
+    ),
     "CanalEvidence": frozenset({"point", "direction", "restriction"}),
     "Analysis": frozenset({"squarefree"}),
 }
 """Fields that hold exact numbers or polynomials (each string read by :data:`EXACT`)."""
 
-PARAMETER_FIELDS = {("Parametrization", "parameters"), ("CanalFamily", "parameter"),
-                    ("CanalFamily", "radical_parameter")}
+PARAMETER_FIELDS = {
+    ("Parametrization", "parameters"),
+    ("CanalFamily", "parameter"),
+    ("CanalFamily", "radical_parameter"),
+}
 FIELD_FIELDS = {("Analysis", "field"), ("Parametrization", "field"), ("CanalFamily", "field")}
 _FIELD = re.compile(r"QQ(?:\((?P<generators>.+)\))?")
 _STAGE = re.compile(r"[a-z][a-z ]{0,39}")

@@ -83,9 +83,7 @@ class EquationEditor(QWidget):
         super().__init__(parent)
         self.text_edit = QPlainTextEdit(self)
         self.text_edit.setObjectName("equationEdit")
-        self.text_edit.setPlaceholderText(
-            "Paste f(x, y, z), e.g. (x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)"
-        )
+        self.text_edit.setPlaceholderText("Paste f(x, y, z), e.g. (x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)")
         font = QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont)
         font.setPointSizeF(max(font.pointSizeF(), 10.5))
         self.text_edit.setFont(font)
@@ -211,6 +209,4 @@ class EquationEditor(QWidget):
         return [selection]
 
 
-_LONG_TEXT_MESSAGE = (
-    f"Long input (over {LIVE_VALIDATION_LIMIT:,} characters): the analysis will check it."
-)
+_LONG_TEXT_MESSAGE = f"Long input (over {LIVE_VALIDATION_LIMIT:,} characters): the analysis will check it."

@@ -43,8 +43,9 @@ MAX_PICTURE_WIDTH = 8000
 """The widest picture Save Picture offers, in pixels."""
 
 
-PATCH_FILTERS = {f".patch{suffix}": f"{form.name}, parametric patch" for suffix, form in FORMATS.items()
-                 if form.kind == "mesh"}
+PATCH_FILTERS = {
+    f".patch{suffix}": f"{form.name}, parametric patch" for suffix, form in FORMATS.items() if form.kind == "mesh"
+}
 """The meshes once more as the patch of the first real parameterization (``NAME.patch.stl``)."""
 
 

@@ -64,8 +64,10 @@ MOUSE = (
     ("left drag", "rotate the view"),
     ("Shift + left drag, or middle drag", "move the view"),
     ("wheel, or right drag", "zoom the view"),
-    ("right click on the surface", "inspect the point: its normal, whether the normal meets the axis, "
-                                    "and the circle of latitude through it"),
+    (
+        "right click on the surface",
+        "inspect the point: its normal, whether the normal meets the axis, and the circle of latitude through it",
+    ),
 )
 
 RESULTS_HTML = """
@@ -141,8 +143,10 @@ COLOURS = (
 
 
 def colours_html() -> str:
-    rows = "".join(f"<tr><td style='background:{colour}'>&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;</td>"
-                   f"<td>{words}</td></tr>" for colour, words in COLOURS)
+    rows = "".join(
+        f"<tr><td style='background:{colour}'>&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;&nbsp;</td><td>{words}</td></tr>"
+        for colour, words in COLOURS
+    )
     return f"<h3>Colours of the 3D view</h3><table cellspacing='4'>{rows}</table>"
 
 
@@ -189,11 +193,19 @@ def table_1_html() -> str:
 
 
 TOPICS = {
-    "syntax": ("Input Syntax", "<h3>Input syntax</h3><p>Type a polynomial in x, y, z, or an equation "
-               "(left = right). Nothing you type is ever run as code: sorgui has its own parser.</p>"
-               + _rows(SYNTAX_EXAMPLES)),
-    "keys": ("Mouse and Keys", "<h3>Keys</h3>" + _rows(KEYS) + "<h3>Mouse in the 3D view</h3>" + _rows(MOUSE)
-             + "<p>VTK's own keys (wireframe, stereo, quit, …) are switched off.</p>"),
+    "syntax": (
+        "Input Syntax",
+        "<h3>Input syntax</h3><p>Type a polynomial in x, y, z, or an equation "
+        "(left = right). Nothing you type is ever run as code: sorgui has its own parser.</p>" + _rows(SYNTAX_EXAMPLES),
+    ),
+    "keys": (
+        "Mouse and Keys",
+        "<h3>Keys</h3>"
+        + _rows(KEYS)
+        + "<h3>Mouse in the 3D view</h3>"
+        + _rows(MOUSE)
+        + "<p>VTK's own keys (wireframe, stereo, quit, …) are switched off.</p>",
+    ),
     "results": ("What the Results Mean", RESULTS_HTML.replace("{table}", table_1_html())),
     "canal": ("Canal Surfaces", CANAL_HTML),
     "colours": ("Colours of the 3D View", colours_html()),

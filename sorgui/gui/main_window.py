@@ -160,8 +160,9 @@ class MainWindow(QMainWindow):
 
     result_shown = Signal(object)
 
-    def __init__(self, settings: Settings | None = None, prestart_worker: bool = True,
-                 worker: AnalysisWorker | None = None) -> None:
+    def __init__(
+        self, settings: Settings | None = None, prestart_worker: bool = True, worker: AnalysisWorker | None = None
+    ) -> None:
         super().__init__()
         self.settings = settings or Settings(self)
         if worker is None:
@@ -198,8 +199,9 @@ class MainWindow(QMainWindow):
         self._build_layout()
         self._build_actions()
         self._build_status_bar()
-        self.view = SessionView(self.session, self.editor, self.run_panel, self.results, self.viewport,
-                                self.stage_label)
+        self.view = SessionView(
+            self.session, self.editor, self.run_panel, self.results, self.viewport, self.stage_label
+        )
         self.view.shown.connect(self.result_shown)
         self.viewport.software_guess = self.settings.software_rendering is not False
         camera = self.settings.camera
@@ -266,14 +268,15 @@ class MainWindow(QMainWindow):
         self.recent_menu.file_chosen.connect(self._on_recent_file_change)
         file_menu.addMenu(self.recent_menu)
         self.save_action = self._action(file_menu, "&Save", self._on_save_change, QKeySequence.StandardKey.Save)
-        self.save_as_action = self._action(file_menu, "Save &As…", self._on_save_as_change,
-                                           QKeySequence.StandardKey.SaveAs)
+        self.save_as_action = self._action(
+            file_menu, "Save &As…", self._on_save_as_change, QKeySequence.StandardKey.SaveAs
+        )
         file_menu.addSeparator()
-        self.copy_report_action = self._action(file_menu, "&Copy Report", self._on_copy_report_change,
-                                               "Ctrl+Shift+C")
+        self.copy_report_action = self._action(file_menu, "&Copy Report", self._on_copy_report_change, "Ctrl+Shift+C")
         self.export_action = self._action(file_menu, "&Export Results…", self._on_export_change, "Ctrl+E")
-        self.screenshot_action = self._action(file_menu, "Save Screens&hot…", self._on_screenshot_change,
-                                              "Ctrl+Shift+P")
+        self.screenshot_action = self._action(
+            file_menu, "Save Screens&hot…", self._on_screenshot_change, "Ctrl+Shift+P"
+        )
         file_menu.addSeparator()
         self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
 
@@ -297,11 +300,13 @@ class MainWindow(QMainWindow):
             else:
                 view_menu.addAction(self.viewport.view_actions[name])
         view_menu.addSeparator()
-        self.zoom_in_action = self._action(view_menu, "Zoom &In Formulas", lambda: self.zoom_formulas(+1),
-                                           QKeySequence.StandardKey.ZoomIn)
+        self.zoom_in_action = self._action(
+            view_menu, "Zoom &In Formulas", lambda: self.zoom_formulas(+1), QKeySequence.StandardKey.ZoomIn
+        )
         self.zoom_in_action.setShortcuts([QKeySequence("Ctrl++"), QKeySequence("Ctrl+=")])
-        self.zoom_out_action = self._action(view_menu, "Zoom &Out Formulas", lambda: self.zoom_formulas(-1),
-                                            QKeySequence.StandardKey.ZoomOut)
+        self.zoom_out_action = self._action(
+            view_menu, "Zoom &Out Formulas", lambda: self.zoom_formulas(-1), QKeySequence.StandardKey.ZoomOut
+        )
         self.zoom_reset_action = self._action(view_menu, "&Normal Size", lambda: self.zoom_formulas(0), "Ctrl+0")
 
         help_menu = menu.addMenu("&Help")
@@ -371,10 +376,12 @@ class MainWindow(QMainWindow):
 
     def ask_to_save(self, name: str) -> QMessageBox.StandardButton:
         """The unsaved-changes question (Save, Discard or Cancel)."""
-        buttons = (QMessageBox.StandardButton.Save | QMessageBox.StandardButton.Discard
-                   | QMessageBox.StandardButton.Cancel)
-        return QMessageBox.question(self, "Unsaved changes", f"Save the changes to {name}?", buttons,
-                                    QMessageBox.StandardButton.Save)
+        buttons = (
+            QMessageBox.StandardButton.Save | QMessageBox.StandardButton.Discard | QMessageBox.StandardButton.Cancel
+        )
+        return QMessageBox.question(
+            self, "Unsaved changes", f"Save the changes to {name}?", buttons, QMessageBox.StandardButton.Save
+        )
 
     def new_equation(self) -> bool:
         """An empty editor (after asking about unsaved changes)."""
@@ -450,8 +457,9 @@ class MainWindow(QMainWindow):
         self._report = path
         self._update_title()
         self.settings.add_recent_file(path)
-        self.session.analyze(analysis.input, analysis=analysis, resolution=self.viewport.mesh_resolution(),
-                             style=self._formula_style())
+        self.session.analyze(
+            analysis.input, analysis=analysis, resolution=self.viewport.mesh_resolution(), style=self._formula_style()
+        )
         self.statusBar().showMessage(f"Report {Path(path).name}: shown as saved, not analysed again", 6000)
         return True
 
@@ -477,9 +485,13 @@ class MainWindow(QMainWindow):
             self._show_invalid(str(error) if error is not None else "The editor is empty.")
             return False
         superseded = self.worker.is_busy
-        self.session.analyze(self.editor.text(), resolution=self.viewport.mesh_resolution(),
-                             style=self._formula_style(), singular_timeout=self.time_limit,
-                             tolerance=self.tolerance)
+        self.session.analyze(
+            self.editor.text(),
+            resolution=self.viewport.mesh_resolution(),
+            style=self._formula_style(),
+            singular_timeout=self.time_limit,
+            tolerance=self.tolerance,
+        )
         if superseded:
             self.statusBar().showMessage("The running analysis was stopped: this one replaces it", 5000)
         return True
@@ -541,8 +553,9 @@ class MainWindow(QMainWindow):
         if not self.confirm_discard():
             return
         start = str(Path(self._file).parent) if self._file else ""
-        path, _ = QFileDialog.getOpenFileName(self, "Open equation or report", start,
-                                              f"{OPENABLE_FILTER};;{EQUATION_FILTER};;{REPORT_FILTER}")
+        path, _ = QFileDialog.getOpenFileName(
+            self, "Open equation or report", start, f"{OPENABLE_FILTER};;{EQUATION_FILTER};;{REPORT_FILTER}"
+        )
         if path:
             self.open_file(path)
 
@@ -560,8 +573,7 @@ class MainWindow(QMainWindow):
             self.save_file(self._file)
 
     def _on_save_as_change(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Save equation", self._file or "equation.txt",
-                                              EQUATION_FILTER)
+        path, _ = QFileDialog.getSaveFileName(self, "Save equation", self._file or "equation.txt", EQUATION_FILTER)
         if path:
             self.save_file(path)
 
@@ -583,8 +595,14 @@ class MainWindow(QMainWindow):
     def ask_time_limit(self) -> None:
         """Analysis → Time Limit…: the seconds one analysis may take (kept for the next start)."""
         seconds, ok = QInputDialog.getDouble(
-            self, "Time limit", "Seconds for one analysis (the stages not finished by then are shown as such):",
-            self.time_limit, 1.0, 86_400.0, 0)
+            self,
+            "Time limit",
+            "Seconds for one analysis (the stages not finished by then are shown as such):",
+            self.time_limit,
+            1.0,
+            86_400.0,
+            0,
+        )
         if ok:
             self.time_limit = seconds
             self.settings.time_limit = seconds
@@ -594,9 +612,12 @@ class MainWindow(QMainWindow):
         """Analysis → Rounding Tolerance…: ``auto`` (from the printed digits) or a relative tolerance."""
         current = "auto" if self.tolerance is None else f"{self.tolerance:g}"
         text, ok = QInputDialog.getText(
-            self, "Rounding tolerance",
+            self,
+            "Rounding tolerance",
             "Relative tolerance for rounded input: 'auto' reads it off the printed digits, "
-            "or a number between 0 and 1 such as 1e-8:", text=current)
+            "or a number between 0 and 1 such as 1e-8:",
+            text=current,
+        )
         if not ok:
             return
         tolerance = parse_tolerance(text)
@@ -611,9 +632,12 @@ class MainWindow(QMainWindow):
         """Whether the picture a Markdown report writes beside itself may replace ``side``, which
         exists (the file dialog asked only about the report)."""
         answer = QMessageBox.question(
-            self, "Replace the picture?",
+            self,
+            "Replace the picture?",
             f"The Markdown report writes its picture as {side.name}, which exists already. Replace it?",
-            QMessageBox.StandardButton.Yes | QMessageBox.StandardButton.Cancel, QMessageBox.StandardButton.Cancel)
+            QMessageBox.StandardButton.Yes | QMessageBox.StandardButton.Cancel,
+            QMessageBox.StandardButton.Cancel,
+        )
         return answer == QMessageBox.StandardButton.Yes
 
     def save_picture(self, path: str | Path, width: int | None = None, transparent: bool = False) -> Path:
@@ -656,7 +680,8 @@ class MainWindow(QMainWindow):
 
     def _on_about_change(self) -> None:
         QMessageBox.about(
-            self, "About sorgui",
+            self,
+            "About sorgui",
             f"<b>sorgui {__version__}</b><p>Decides exactly whether an algebraic surface "
             "f(x, y, z) = 0 is a surface of revolution, after J. Vršek and M. Lávička, "
             "<i>Determining surfaces of revolution from their implicit equations</i>.</p>"
@@ -704,8 +729,11 @@ class MainWindow(QMainWindow):
         3D view."""
         if event.type() in _DROP_EVENTS and isinstance(watched, QWidget) and watched.window() is self:
             return self._on_drop_change(event)  # type: ignore[arg-type]
-        if (event.type() == QEvent.Type.Wheel and watched is self.results.viewport()
-                and event.modifiers() & Qt.KeyboardModifier.ControlModifier):
+        if (
+            event.type() == QEvent.Type.Wheel
+            and watched is self.results.viewport()
+            and event.modifiers() & Qt.KeyboardModifier.ControlModifier
+        ):
             delta = event.angleDelta().y()  # type: ignore[union-attr]
             if delta:
                 self.zoom_formulas(1 if delta > 0 else -1)
@@ -769,4 +797,3 @@ class MainWindow(QMainWindow):
         self.worker.shutdown()
         self.viewport.close_plotter()
         super().closeEvent(event)
-

@@ -132,7 +132,9 @@ class ResultsPane(QScrollArea):
         title, detail, kind = verdict(analysis)
         if nearest:
             title = "The nearest exact surface: " + title.lower()
-            detail = "the exact analysis of the surface of revolution that the rounded input was meant to be · " + detail
+            detail = (
+                "the exact analysis of the surface of revolution that the rounded input was meant to be · " + detail
+            )
         self._banner(column, title, detail, kind)
         self._section(column, "Equation", [("f(x, y, z)", "polynomial")])
         if analysis.approximate is not None:
@@ -146,13 +148,18 @@ class ResultsPane(QScrollArea):
         if analysis.rationality is not None:
             self._rationality_section(column, analysis.rationality)
         elif "rationality" in pending and rec.is_sor and analysis.rationality is None:
-            self._section(column, "Rationality (Table 1 of the paper)",
-                          [("", "being decided (Singular): the row, the genera and the parameterizations follow")])
+            self._section(
+                column,
+                "Rationality (Table 1 of the paper)",
+                [("", "being decided (Singular): the row, the genera and the parameterizations follow")],
+            )
         self._parametrization_section(column, analysis)
         if analysis.canal is not None:
             self._canal_section(column, analysis.canal, nearly_canal(analysis))
         elif "canal" in pending:
-            self._section(column, "Canal surface", [("", "being decided: the sphere family and its certificate follow")])
+            self._section(
+                column, "Canal surface", [("", "being decided: the sphere family and its certificate follow")]
+            )
         if analysis.rationality is not None and "parametrizations" in pending:
             self._section(column, "Parameterizations", [("", "being computed and verified…")])
         self._timings_section(column, tuple(analysis.timings) + tuple(worker_timings))
@@ -194,23 +201,40 @@ class ResultsPane(QScrollArea):
             ("singular values", f"smallest: {smallest}" if smallest else "–"),
         ]
         if approx.axis is not None:
-            rows.append(("approximate axis", f"{floats(approx.axis.point, tolerance=approx.tolerance)} + "
-                                             f"t·{floats(approx.axis.direction, tolerance=approx.tolerance)}"))
+            rows.append(
+                (
+                    "approximate axis",
+                    f"{floats(approx.axis.point, tolerance=approx.tolerance)} + "
+                    f"t·{floats(approx.axis.direction, tolerance=approx.tolerance)}",
+                )
+            )
         nearest = approx.nearest
         if nearest is not None and not nearest.within_rounding:
-            rows.append(("nearest exact surface",
-                         "none within the rounding: no simple exact surface was found within it; the nearest one "
-                         f"found lies outside it (coefficient distance {nearest.relative_distance:.3g}, relative), "
-                         "and its analysis is shown only when you switch the view to it"))
+            rows.append(
+                (
+                    "nearest exact surface",
+                    "none within the rounding: no simple exact surface was found within it; the nearest one "
+                    f"found lies outside it (coefficient distance {nearest.relative_distance:.3g}, relative), "
+                    "and its analysis is shown only when you switch the view to it",
+                )
+            )
         elif nearest is not None:
             rows.append(("nearest exact surface", "approximate.nearest"))
             if nearest.axis is not None:
                 rows.append(("", "approximate.nearest.axis"))
             deviation = "–" if nearest.max_deviation is None else f"{nearest.max_deviation:.3g} (length units)"
             rows.append(("max deviation", deviation))
-            rows.append(("", f"coefficient distance {nearest.relative_distance:.3g} (relative); "
-                             + ("within the rounding of the input" if nearest.within_rounding
-                                else "NOT within the rounding of the input")))
+            rows.append(
+                (
+                    "",
+                    f"coefficient distance {nearest.relative_distance:.3g} (relative); "
+                    + (
+                        "within the rounding of the input"
+                        if nearest.within_rounding
+                        else "NOT within the rounding of the input"
+                    ),
+                )
+            )
         rows += [("note", note) for note in approx.notes]
         self._section(column, "Rounded input", rows)
 
@@ -231,8 +255,7 @@ class ResultsPane(QScrollArea):
         return column
 
     def _banner(self, column: QVBoxLayout, title: str, detail: str, kind: str) -> None:
-        self.banner = QLabel(f"<div style='font-size: 15pt; font-weight: 600'>{title}</div>"
-                             f"<div>{detail}</div>")
+        self.banner = QLabel(f"<div style='font-size: 15pt; font-weight: 600'>{title}</div><div>{detail}</div>")
         self.banner.setObjectName("verdictBanner")
         self.banner.setWordWrap(True)
         self.banner.setTextFormat(Qt.TextFormat.RichText)
@@ -284,12 +307,16 @@ class ResultsPane(QScrollArea):
 
     def _recognition_sections(self, column: QVBoxLayout, rec: Recognition, key: str) -> None:
         if rec.axis is not None:
-            self._section(column, "Axis", [
-                ("point c", f"{key}axis.point"),
-                ("direction a", f"{key}axis.direction"),
-                ("line", f"{key}axis.line"),
-                ("Plücker (a : c × a)", f"{key}axis.plucker"),
-            ])
+            self._section(
+                column,
+                "Axis",
+                [
+                    ("point c", f"{key}axis.point"),
+                    ("direction a", f"{key}axis.direction"),
+                    ("line", f"{key}axis.line"),
+                    ("Plücker (a : c × a)", f"{key}axis.plucker"),
+                ],
+            )
         if rec.center is not None:
             rows = [("centre", f"{key}center")]
             if rec.radius_squared is not None:
@@ -301,24 +328,35 @@ class ResultsPane(QScrollArea):
             self._section(column, "Direction of translation", [("direction", f"{key}direction")])
         if rec.profile is not None and not key:
             profile = rec.profile
-            self._section(column, "Profile curve", [
-                ("p(x, y) = 0", "profile.polynomial"),
-                ("", "x along the axis, y the distance to it"),
-                ("P²: y² → y", "profile.square"),
-                ("p̃(s, r) = f(c + s·a + r·u)", "profile.rational"),
-                ("frame", "profile.frame_point"),
-                ("", "profile.frame_direction"),
-                ("", "profile.frame_normal"),
-                ("checks", f"p̃ even in r: {YES_NO[profile.even]} · f = p(x, √(y² + z²)) "
-                           f"in the axis frame: {YES_NO[profile.verified]}"),
-            ])
+            self._section(
+                column,
+                "Profile curve",
+                [
+                    ("p(x, y) = 0", "profile.polynomial"),
+                    ("", "x along the axis, y the distance to it"),
+                    ("P²: y² → y", "profile.square"),
+                    ("p̃(s, r) = f(c + s·a + r·u)", "profile.rational"),
+                    ("frame", "profile.frame_point"),
+                    ("", "profile.frame_direction"),
+                    ("", "profile.frame_normal"),
+                    (
+                        "checks",
+                        f"p̃ even in r: {YES_NO[profile.even]} · f = p(x, √(y² + z²)) "
+                        f"in the axis frame: {YES_NO[profile.verified]}",
+                    ),
+                ],
+            )
 
     def _factor_section(self, column: QVBoxLayout, analysis: Analysis) -> None:
         rows = []
         for index, factor in enumerate(analysis.factors):
             rec = factor.recognition
-            rows.append((f"factor {index + 1}" + (f"  (power {factor.multiplicity})" if factor.multiplicity > 1 else ""),
-                         f"factor.{index}"))
+            rows.append(
+                (
+                    f"factor {index + 1}" + (f"  (power {factor.multiplicity})" if factor.multiplicity > 1 else ""),
+                    f"factor.{index}",
+                )
+            )
             rows.append(("", SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)))
             if rec.axis is not None:
                 rows.append(("axis", f"factor.{index}.axis.line"))
@@ -337,8 +375,10 @@ class ResultsPane(QScrollArea):
             ("X rational over ℝ", YES_NO[rat.real_rational]),
         ]
         if rat.square_parametrization:
-            rows += [("P² parameterized by", "rationality.square_parametrization.0"),
-                     ("", "rationality.square_parametrization.1")]
+            rows += [
+                ("P² parameterized by", "rationality.square_parametrization.0"),
+                ("", "rationality.square_parametrization.1"),
+            ]
         if rat.tubular_surface:
             rows.append(("tubular surface T", "rationality.tubular_surface"))
         if rat.h:
@@ -389,12 +429,16 @@ class ResultsPane(QScrollArea):
             proper = {True: "proper", False: "not proper", None: "properness unknown"}[param.proper]
             check = "verified by substitution" if param.verified else "NOT verified"
             names = ", ".join(param.parameters)
-            self._section(column, f"Parameterization {index + 1} ({names})", [
-                ("", f"{param.method} · {kind}, {proper}, over {param.field} · {check}"),
-                ("x", f"parametrization.{index}.x"),
-                ("y", f"parametrization.{index}.y"),
-                ("z", f"parametrization.{index}.z"),
-            ])
+            self._section(
+                column,
+                f"Parameterization {index + 1} ({names})",
+                [
+                    ("", f"{param.method} · {kind}, {proper}, over {param.field} · {check}"),
+                    ("x", f"parametrization.{index}.x"),
+                    ("y", f"parametrization.{index}.y"),
+                    ("z", f"parametrization.{index}.z"),
+                ],
+            )
 
     def _canal_section(self, column: QVBoxLayout, canal: Canal, nearly: str = "") -> None:
         rows = [("canal", canal_verdict(canal))]

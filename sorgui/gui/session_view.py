@@ -36,8 +36,10 @@ thread tens of milliseconds for a pane full of formulas)."""
 CAPTION_CHARACTERS = 90
 """The viewport's caption shows this much of the equation."""
 
-STALE_NOTICE = ("<b>These results are for the previous equation.</b> The equation above has "
-                "changed: press Analyze (Ctrl+Return) to analyse it.")
+STALE_NOTICE = (
+    "<b>These results are for the previous equation.</b> The equation above has "
+    "changed: press Analyze (Ctrl+Return) to analyse it."
+)
 
 
 def short(text: str, limit: int = CAPTION_CHARACTERS) -> str:
@@ -46,8 +48,10 @@ def short(text: str, limit: int = CAPTION_CHARACTERS) -> str:
     return flat if len(flat) <= limit else flat[: limit - 1] + "…"
 
 
-STARTING = ("Starting the analysis process (on the very first start it also builds the font cache of the "
-            "formulas, once, which can take a while)")
+STARTING = (
+    "Starting the analysis process (on the very first start it also builds the font cache of the "
+    "formulas, once, which can take a while)"
+)
 """What the pane says before the first stage of a run has started."""
 
 
@@ -118,28 +122,36 @@ class SessionView(QObject):
             self.results.show_message(invalid_heading(run.message or ""), run.message or "", "error")
         elif run.analysis is None:
             if run.running:
-                running = next((s.title for s in run.stage_list() if s.state is StageState.RUNNING),
-                               STARTING)
-                self.results.show_message("Analysing…", f"{running}. The verdict appears as soon as it is known.",
-                                          "info")
+                running = next((s.title for s in run.stage_list() if s.state is StageState.RUNNING), STARTING)
+                self.results.show_message(
+                    "Analysing…", f"{running}. The verdict appears as soon as it is known.", "info"
+                )
             elif run.outcome == "cancelled":
-                self.results.show_message("Cancelled", "The analysis was stopped before the verdict was known.",
-                                          "info")
+                self.results.show_message("Cancelled", "The analysis was stopped before the verdict was known.", "info")
             else:
                 self.results.show_message("The analysis failed", run.message or "", "error")
         else:
             nearest = self.session.view == "nearest" and self.session.nearest_analysis is not None
             if nearest:
                 analysis = self.session.nearest_analysis
-                formulas = {k[len("nearest."):]: f for k, f in run.formulas.items() if k.startswith("nearest.")}
+                formulas = {k[len("nearest.") :]: f for k, f in run.formulas.items() if k.startswith("nearest.")}
             else:
                 analysis = run.analysis
                 formulas = {k: f for k, f in run.formulas.items() if not k.startswith("nearest.")}
             pending = {s.name for s in run.stage_list() if s.state in (StageState.PENDING, StageState.RUNNING)}
-            worker = tuple((name, run.stages[name].seconds) for name in WORKER_STAGES
-                           if name in run.stages and run.stages[name].state is StageState.DONE)
-            self.results.show_analysis(analysis, formulas, worker, pending=pending, nearest=nearest,
-                                       components=() if nearest else run.components)
+            worker = tuple(
+                (name, run.stages[name].seconds)
+                for name in WORKER_STAGES
+                if name in run.stages and run.stages[name].state is StageState.DONE
+            )
+            self.results.show_analysis(
+                analysis,
+                formulas,
+                worker,
+                pending=pending,
+                nearest=nearest,
+                components=() if nearest else run.components,
+            )
             self._shown = (analysis, nearest)
             self._shown_pending = bool(pending)
         self.results.set_stale(self.session.stale)
@@ -174,11 +186,14 @@ class SessionView(QObject):
             if run.analysis is not None:
                 kept = "what was done is shown"
             elif done:
-                kept = f"{done} stage{'s' if done > 1 else ''} finished before the verdict was known, so no result is shown"
+                plural = "s" if done > 1 else ""
+                kept = f"{done} stage{plural} finished before the verdict was known, so no result is shown"
             else:
                 kept = "nothing was finished"
-            self.panel.set_notice("cancelled", f"<b>Cancelled</b> after {seconds_text(run.elapsed())}: "
-                                               f"{kept}; the rest is marked cancelled.")
+            self.panel.set_notice(
+                "cancelled",
+                f"<b>Cancelled</b> after {seconds_text(run.elapsed())}: {kept}; the rest is marked cancelled.",
+            )
 
     # --- handlers ---
 
@@ -214,8 +229,13 @@ class SessionView(QObject):
             self._schedule_pane()
             return
         prefix = "nearest." if nearest else ""
-        self.results.update_formulas({k[len(prefix):]: f for k, f in formulas.items()
-                                      if k.startswith(prefix) and (nearest or not k.startswith("nearest."))})
+        self.results.update_formulas(
+            {
+                k[len(prefix) :]: f
+                for k, f in formulas.items()
+                if k.startswith(prefix) and (nearest or not k.startswith("nearest."))
+            }
+        )
 
     def _on_scene_change(self, scene: object) -> None:
         run = self.session.run

@@ -79,8 +79,17 @@ CANAL_SPINE_COLOR = "#00838f"
 CANAL_CIRCLE_COLOR = "#26a69a"
 DEVIATION_MAP = "viridis"
 
-SCENE_ACTORS = ("surface", "axis", "profile", "center", "patch", "approx_axis", "factor_axes",
-                "canal_spine", "canal_circles")
+SCENE_ACTORS = (
+    "surface",
+    "axis",
+    "profile",
+    "center",
+    "patch",
+    "approx_axis",
+    "factor_axes",
+    "canal_spine",
+    "canal_circles",
+)
 CANAL_ACTORS = ("canal_spine", "canal_circles")
 PICK_ACTORS = ("pick_normal", "pick_circle", "pick_point", "pick_sphere", "pick_canal_circle")
 TOUCH_SPHERE_COLOR = "#80cbc4"
@@ -168,8 +177,10 @@ class Viewport(QWidget):
         self.profile_box.setToolTip("The profile curve in a plane through the axis")
         self.canal_box = QCheckBox("Canal", self)
         self.canal_box.setChecked(True)
-        self.canal_box.setToolTip("The spine of a canal surface (the spheres' centres) and a few "
-                                  "characteristic circles (where the spheres touch the surface)")
+        self.canal_box.setToolTip(
+            "The spine of a canal surface (the spheres' centres) and a few "
+            "characteristic circles (where the spheres touch the surface)"
+        )
         self.canal_box.setEnabled(False)
         self.reset_button = QToolButton(self)
         self.reset_button.setText("Reset view")
@@ -252,8 +263,11 @@ class Viewport(QWidget):
         plotter.set_background("#fbfcfe", top="#d9e2ee")
         plotter.add_axes(line_width=3, labels_off=False)
         plotter.enable_surface_point_picking(
-            callback=self._on_pick_change, show_message=False, show_point=False,
-            left_clicking=False, clear_on_no_selection=False,
+            callback=self._on_pick_change,
+            show_message=False,
+            show_point=False,
+            left_clicking=False,
+            clear_on_no_selection=False,
         )
         self._remove_default_key_bindings()
         self._clip_plane = vtkPlane()
@@ -282,28 +296,41 @@ class Viewport(QWidget):
         self._clear_pick()
         self._show_surface()
         self._set_actor("axis", to_polydata(scene.axis_segment), color=AXIS_COLOR, line_width=4)
-        self._set_actor("approx_axis", to_polydata(scene.approximate_axis), color=APPROXIMATE_AXIS_COLOR,
-                        line_width=3)
+        self._set_actor("approx_axis", to_polydata(scene.approximate_axis), color=APPROXIMATE_AXIS_COLOR, line_width=3)
         self._set_actor("factor_axes", to_polydata(scene.factor_axes), color=FACTOR_AXES_COLOR, line_width=3)
         self.deviation_box.setEnabled(scene.deviation is not None)
         self.view_actions["along"].setEnabled(self._axis() is not None)
         self.view_actions["across"].setEnabled(self._axis() is not None)
         self.view_actions["clip"].setEnabled(scene.axis is not None)
-        self._set_actor("profile", to_polydata(scene.profile_curve), color=PROFILE_COLOR,
-                        line_width=4, visible=self.profile_box.isChecked())
+        self._set_actor(
+            "profile",
+            to_polydata(scene.profile_curve),
+            color=PROFILE_COLOR,
+            line_width=4,
+            visible=self.profile_box.isChecked(),
+        )
         canal = self.canal_box.isChecked()
-        self._set_actor("canal_spine", to_polydata(scene.canal_spine), color=CANAL_SPINE_COLOR,
-                        line_width=4, visible=canal)
-        self._set_actor("canal_circles", to_polydata(scene.canal_circles), color=CANAL_CIRCLE_COLOR,
-                        line_width=2, visible=canal)
+        self._set_actor(
+            "canal_spine", to_polydata(scene.canal_spine), color=CANAL_SPINE_COLOR, line_width=4, visible=canal
+        )
+        self._set_actor(
+            "canal_circles", to_polydata(scene.canal_circles), color=CANAL_CIRCLE_COLOR, line_width=2, visible=canal
+        )
         self.canal_box.setEnabled(not (scene.canal_spine.is_empty and scene.canal_circles.is_empty))
         import pyvista
 
         center = to_polydata(scene.center_marker) if scene.center_marker else pyvista.PolyData()
         self._set_actor("center", center, color=CENTER_COLOR, interpolation="gouraud")
         patch = scene.patch.to_polydata() if scene.patch is not None else pyvista.PolyData()
-        self._set_actor("patch", patch, color=PATCH_COLOR, style="wireframe", line_width=1,
-                        opacity=0.8, visible=self.patch_box.isChecked())
+        self._set_actor(
+            "patch",
+            patch,
+            color=PATCH_COLOR,
+            style="wireframe",
+            line_width=1,
+            opacity=0.8,
+            visible=self.patch_box.isChecked(),
+        )
         self.patch_box.setEnabled(patch.n_points > 0)
         self.radius_box.blockSignals(True)
         self.radius_box.setValue(scene.region.radius)
@@ -404,8 +431,12 @@ class Viewport(QWidget):
         """The camera now (for the settings)."""
         camera = self.plotter.renderer.GetActiveCamera()
         return CameraState(
-            tuple(camera.GetPosition()), tuple(camera.GetFocalPoint()), tuple(camera.GetViewUp()),
-            camera.GetViewAngle(), camera.GetParallelScale(), bool(camera.GetParallelProjection()),
+            tuple(camera.GetPosition()),
+            tuple(camera.GetFocalPoint()),
+            tuple(camera.GetViewUp()),
+            camera.GetViewAngle(),
+            camera.GetParallelScale(),
+            bool(camera.GetParallelProjection()),
         )
 
     def restore_camera(self, state: CameraState) -> None:
@@ -467,7 +498,9 @@ class Viewport(QWidget):
         if scene is None or point is None or not np.all(np.isfinite(point)):
             return None
         info = pick_info(
-            scene.terms, point, axis=scene.axis,
+            scene.terms,
+            point,
+            axis=scene.axis,
             normal_length=0.6 * scene.region.radius,
             snap_distance=2.0 * scene.surface.spacing,
         )
@@ -475,14 +508,15 @@ class Viewport(QWidget):
         self._set_actor("pick_circle", to_polydata(info.latitude), color=LATITUDE_COLOR, line_width=3)
         marker = pyvista.Sphere(radius=0.012 * scene.region.radius, center=info.point)
         self._set_actor("pick_point", marker, color=PICK_COLOR)
-        touches = touching_spheres(scene.canal_families, info.point, 0.02 * scene.region.radius,
-                                   normal=info.normal_direction)
+        touches = touching_spheres(
+            scene.canal_families, info.point, 0.02 * scene.region.radius, normal=info.normal_direction
+        )
         spheres = pyvista.PolyData()
         for touch in touches:
-            spheres = spheres.merge(pyvista.Sphere(radius=touch.radius, center=touch.center,
-                                                   theta_resolution=36, phi_resolution=18))
-        self._set_actor("pick_sphere", spheres, color=TOUCH_SPHERE_COLOR, style="wireframe", opacity=0.5,
-                        line_width=1)
+            spheres = spheres.merge(
+                pyvista.Sphere(radius=touch.radius, center=touch.center, theta_resolution=36, phi_resolution=18)
+            )
+        self._set_actor("pick_sphere", spheres, color=TOUCH_SPHERE_COLOR, style="wireframe", opacity=0.5, line_width=1)
         circles = LineData.from_polylines([t.circle for t in touches])
         self._set_actor("pick_canal_circle", to_polydata(circles), color=TOUCH_CIRCLE_COLOR, line_width=4)
         self.pick_label.setText(" · ".join([_pick_text(info)] + [_touch_text(t) for t in touches]))
@@ -516,8 +550,12 @@ class Viewport(QWidget):
             self.request_render()
 
     def _set_actor(
-        self, name: str, mesh: pyvista.PolyData, visible: bool = True,
-        interpolation: str | None = None, **kwargs: object,
+        self,
+        name: str,
+        mesh: pyvista.PolyData,
+        visible: bool = True,
+        interpolation: str | None = None,
+        **kwargs: object,
     ) -> None:
         """Add or replace the actor ``name``; an empty mesh removes it."""
         if mesh.n_points == 0:
@@ -585,7 +623,7 @@ class Viewport(QWidget):
         toggles = (
             ("parallel", "&Orthographic Projection", "Ctrl+Alt+O", "Ortho", self.set_parallel_projection),
             ("wireframe", "&Wireframe", "Ctrl+Alt+W", "Wireframe", self.set_wireframe),
-            ("clip", "&Meridian Section", "Ctrl+Alt+M", "Section",  self.set_clip),
+            ("clip", "&Meridian Section", "Ctrl+Alt+M", "Section", self.set_clip),
         )
         for name, text, key, short, slot in toggles:
             action = QAction(text, self)
@@ -595,8 +633,10 @@ class Viewport(QWidget):
             action.setToolTip(f"{text.replace('&', '')} ({key})")
             action.triggered.connect(lambda checked=False, f=slot: f(checked))
             actions[name] = action
-        actions["clip"].setToolTip("Cut the surface along the plane through the axis and the profile: "
-                                   "the cut's edge is the profile curve (Ctrl+Alt+M)")
+        actions["clip"].setToolTip(
+            "Cut the surface along the plane through the axis and the profile: "
+            "the cut's edge is the profile curve (Ctrl+Alt+M)"
+        )
         for name in ("along", "across", "clip"):
             actions[name].setEnabled(False)
         return actions
@@ -622,17 +662,36 @@ class Viewport(QWidget):
         deviation = self.deviation_box.isChecked() and scene.deviation is not None and not self._stale
         self._remove_scalar_bar()
         if self._stale:
-            self._set_actor("surface", mesh, color=STALE_COLOR, opacity=0.45, pickable=False,
-                            interpolation="gouraud")
+            self._set_actor("surface", mesh, color=STALE_COLOR, opacity=0.45, pickable=False, interpolation="gouraud")
         elif deviation and mesh.n_points:
             mesh.point_data["deviation"] = np.asarray(scene.deviation)
-            self._set_actor("surface", mesh, scalars="deviation", cmap=DEVIATION_MAP, pickable=True,
-                            interpolation="gouraud", nan_color=STALE_COLOR,
-                            scalar_bar_args={"title": "deviation", "vertical": True, "fmt": "%.1e",
-                                             "position_x": 0.86, "width": 0.08})
+            self._set_actor(
+                "surface",
+                mesh,
+                scalars="deviation",
+                cmap=DEVIATION_MAP,
+                pickable=True,
+                interpolation="gouraud",
+                nan_color=STALE_COLOR,
+                scalar_bar_args={
+                    "title": "deviation",
+                    "vertical": True,
+                    "fmt": "%.1e",
+                    "position_x": 0.86,
+                    "width": 0.08,
+                },
+            )
         else:
-            self._set_actor("surface", mesh, color=FRONT_COLOR, backface_params={"color": BACK_COLOR},
-                            specular=0.35, specular_power=20.0, pickable=True, interpolation="gouraud")
+            self._set_actor(
+                "surface",
+                mesh,
+                color=FRONT_COLOR,
+                backface_params={"color": BACK_COLOR},
+                specular=0.35,
+                specular_power=20.0,
+                pickable=True,
+                interpolation="gouraud",
+            )
         actor = self.plotter.renderer.actors.get("surface")
         if actor is not None and self.view_actions["wireframe"].isChecked():
             actor.prop.style = "wireframe"
@@ -693,4 +752,3 @@ def _pick_text(info: PickInfo) -> str:
     if np.isfinite(info.radius):
         parts.append(f"height {info.height:.4g}, radius {info.radius:.4g}")
     return " · ".join(parts)
-

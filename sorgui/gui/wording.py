@@ -26,7 +26,7 @@ KIND_WORDS = {
     "sphere": "a sphere (every line through the centre is an axis)",
     "plane": "a plane (every line along the normal is an axis)",
     "extrusion": "an extrusion: a cylindrical surface over a plane curve, invariant only under "
-                 "translations along one direction",
+    "translations along one direction",
     "none": "no continuous symmetry at all",
 }
 
@@ -52,7 +52,9 @@ CAPTION_TIPS = {
     "h = r̂·q̂": "The polynomial whose real roots decide the real rationality (paper, Section 3)",
     "real roots of h": "Number of real roots of h: with none, X is rational over ℝ",
     "τ: X ⇢ T": "The birational map from X to the tubular surface T",
-    "x": "x-coordinate of the parameterization", "y": "y-coordinate", "z": "z-coordinate",
+    "x": "x-coordinate of the parameterization",
+    "y": "y-coordinate",
+    "z": "z-coordinate",
     "tolerance": "The relative tolerance in force: from the digits printed in the input, or --tolerance",
     "near": "Whether f is, within the rounding of its coefficients, a surface of revolution",
     "relative distance": "‖f − f̄‖₂ / ‖f‖₂ over the coefficients, f̄ the nearest rotation-invariant polynomial",
@@ -166,24 +168,33 @@ def floats(values: tuple[float, ...] | None, digits: int = 6, tolerance: float |
 def near_words(approx: Approximation) -> str:
     """The near case in one sentence, as the issue's user expects it."""
     axis = approx.axis
-    about = (f" about the line {floats(axis.point, tolerance=approx.tolerance)} + "
-             f"t·{floats(axis.direction, tolerance=approx.tolerance)}" if axis is not None else "")
-    kind = "a surface of revolution" if approx.kind in (None, "revolution") else KIND_WORDS.get(approx.kind, approx.kind)
+    about = (
+        f" about the line {floats(axis.point, tolerance=approx.tolerance)} + "
+        f"t·{floats(axis.direction, tolerance=approx.tolerance)}"
+        if axis is not None
+        else ""
+    )
+    kind = (
+        "a surface of revolution" if approx.kind in (None, "revolution") else KIND_WORDS.get(approx.kind, approx.kind)
+    )
     return f"not exactly, but within {approx.relative_distance:.2g} (relative) of {kind}{about}"
 
 
 def far_words(approx: Approximation) -> str:
     """Why rounded input is *not* near a surface of revolution: how far it is."""
-    return (f"not near one either: the nearest rotation-invariant polynomial is {approx.relative_distance:.2g} "
-            f"away (relative), {approx.residual:.3g} times the rounding of the input "
-            f"(tolerance {approx.tolerance:.2g})")
+    return (
+        f"not near one either: the nearest rotation-invariant polynomial is {approx.relative_distance:.2g} "
+        f"away (relative), {approx.residual:.3g} times the rounding of the input "
+        f"(tolerance {approx.tolerance:.2g})"
+    )
 
 
 def verdict(analysis: Analysis) -> tuple[str, str, str]:
     """``(title, detail, kind)`` of the verdict banner; ``kind`` is ``sor``, ``near`` or ``not``."""
     rec = analysis.recognition
     approx = analysis.approximate
-    detail = f"{KIND_WORDS.get(rec.symmetry, rec.symmetry)} · degree {rec.degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
+    kind = KIND_WORDS.get(rec.symmetry, rec.symmetry)
+    detail = f"{kind} · degree {rec.degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
     if rec.is_sor:
         return "Surface of revolution", detail, "sor"
     if approx is not None and approx.near_sor:
@@ -208,8 +219,10 @@ def why_not(analysis: Analysis, components: Sequence[Component] = ()) -> list[st
         axes = {r.axis.plucker for r in sor if r.axis is not None}
         centres = [r.center for r in sor if r.center is not None]
         if len(axes) > 1 or (axes and centres):
-            lines.append("They have no axis in common (their axes are drawn in the 3D view), so the surface "
-                         "made from them is not one of revolution.")
+            lines.append(
+                "They have no axis in common (their axes are drawn in the 3D view), so the surface "
+                "made from them is not one of revolution."
+            )
     return lines
 
 
@@ -217,11 +230,15 @@ def _symmetry_lines(analysis: Analysis) -> list[str]:
     rec = analysis.recognition
     lines = [_dimension_sentence(rec)]
     if rec.symmetry == "extrusion" and rec.direction is not None:
-        lines.append(f"It is an extrusion: invariant under the translations along ({', '.join(rec.direction)}), "
-                     "but under no rotation, so it has no axis of revolution.")
+        lines.append(
+            f"It is an extrusion: invariant under the translations along ({', '.join(rec.direction)}), "
+            "but under no rotation, so it has no axis of revolution."
+        )
     elif rec.symmetry == "none":
-        lines.append("A surface of revolution is invariant under the rotations about its axis, a "
-                     "one-dimensional family of isometries; this surface has none, so no line is an axis.")
+        lines.append(
+            "A surface of revolution is invariant under the rotations about its axis, a "
+            "one-dimensional family of isometries; this surface has none, so no line is an axis."
+        )
     factors = analysis.factors
     if len(factors) > 1:
         sor = [(i, f) for i, f in enumerate(factors) if f.recognition.is_sor]
@@ -229,18 +246,24 @@ def _symmetry_lines(analysis: Analysis) -> list[str]:
             lines.append(f"Factor {index + 1}: {_factor_words(factor.recognition)}.")
         axes = {f.recognition.axis.plucker for _, f in sor if f.recognition.axis is not None}
         if len(axes) > 1:
-            lines.append("The factors are surfaces of revolution about different axes (drawn in the 3D "
-                         "view), so their union is not one.")
+            lines.append(
+                "The factors are surfaces of revolution about different axes (drawn in the 3D "
+                "view), so their union is not one."
+            )
     return lines
 
 
 def _dimension_sentence(rec: Recognition) -> str:
     dim = rec.symmetry_dimension
     if dim == 0:
-        return ("The symmetry algebra L (the infinitesimal isometries ω × X + b that keep f = 0, docs/math.md §2) "
-                "is zero: the surface has no continuous symmetry.")
-    return (f"The symmetry algebra L (the infinitesimal isometries ω × X + b that keep f = 0, docs/math.md §2) "
-            f"has dimension {dim}, but contains no rotation about a line.")
+        return (
+            "The symmetry algebra L (the infinitesimal isometries ω × X + b that keep f = 0, docs/math.md §2) "
+            "is zero: the surface has no continuous symmetry."
+        )
+    return (
+        f"The symmetry algebra L (the infinitesimal isometries ω × X + b that keep f = 0, docs/math.md §2) "
+        f"has dimension {dim}, but contains no rotation about a line."
+    )
 
 
 def _factor_words(rec: Recognition) -> str:

@@ -50,8 +50,14 @@ class CanalScene:
     circles: tuple[np.ndarray, ...]
 
 
-def canal_scene(families: Sequence[FamilyCurves | SmatFamily], *, bound: float = 20.0, samples: int = 400,
-                circles: int = 12, circle_points: int = 64) -> CanalScene:
+def canal_scene(
+    families: Sequence[FamilyCurves | SmatFamily],
+    *,
+    bound: float = 20.0,
+    samples: int = 400,
+    circles: int = 12,
+    circle_points: int = 64,
+) -> CanalScene:
     """The spines and ``circles`` characteristic circles of every rational family.
 
     Families without ``m(t)`` (a :class:`SmatFamily`, a spine of positive genus) contribute
@@ -82,8 +88,9 @@ def evaluate_angle(fn: Function, phi: np.ndarray) -> np.ndarray:
 
     def homogeneous(coefficients: np.ndarray) -> np.ndarray:
         degree = len(coefficients) - 1
-        return sum((a * s ** (degree - i) * c ** (n - degree + i) for i, a in enumerate(coefficients)),
-                   np.zeros_like(phi))
+        return sum(
+            (a * s ** (degree - i) * c ** (n - degree + i) for i, a in enumerate(coefficients)), np.zeros_like(phi)
+        )
 
     with np.errstate(all="ignore"):
         return homogeneous(num) / homogeneous(den)
@@ -130,8 +137,13 @@ def circle(center: np.ndarray, normal: np.ndarray, radius_squared: float, points
     """The circle of the given centre, plane normal and squared radius as a closed polyline of
     ``points + 1`` points; ``None`` when it is not a real circle (or not finite)."""
     norm = float(np.linalg.norm(normal))
-    if not (np.all(np.isfinite(center)) and np.isfinite(radius_squared) and radius_squared > 0
-            and np.isfinite(norm) and norm > 0):
+    if not (
+        np.all(np.isfinite(center))
+        and np.isfinite(radius_squared)
+        and radius_squared > 0
+        and np.isfinite(norm)
+        and norm > 0
+    ):
         return None
     n = normal / norm
     helper = np.eye(3)[int(np.argmin(np.abs(n)))]

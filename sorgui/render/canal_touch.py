@@ -45,8 +45,13 @@ class Touch:
     distance: float
 
 
-def touching_spheres(families: tuple[FamilyCurves | SmatFamily, ...], point: np.ndarray, tolerance: float,
-                     circle_points: int = 96, normal: np.ndarray | None = None) -> list[Touch]:
+def touching_spheres(
+    families: tuple[FamilyCurves | SmatFamily, ...],
+    point: np.ndarray,
+    tolerance: float,
+    circle_points: int = 96,
+    normal: np.ndarray | None = None,
+) -> list[Touch]:
     """For each family, the sphere whose characteristic circle passes within ``tolerance`` of
     ``point`` (none for a family whose circles all miss it). A :class:`SmatFamily` needs the
     surface's unit ``normal`` at ``point``."""
@@ -55,8 +60,11 @@ def touching_spheres(families: tuple[FamilyCurves | SmatFamily, ...], point: np.
     for index, family in enumerate(families):
         if isinstance(family, SmatFamily):
             if normal is not None and np.any(normal):
-                out += [t for t in _smat_touches(index, family, point, np.asarray(normal, dtype=np.float64),
-                                                 circle_points) if t.distance <= tolerance]
+                out += [
+                    t
+                    for t in _smat_touches(index, family, point, np.asarray(normal, dtype=np.float64), circle_points)
+                    if t.distance <= tolerance
+                ]
             continue
         phi, distance = _nearest_circle(family, point)
         if not np.isfinite(distance) or distance > tolerance:
@@ -107,8 +115,12 @@ def _nearest_circle(family: FamilyCurves, point: np.ndarray) -> tuple[float, flo
 
 def _circle(family: FamilyCurves, phi: float, points: int) -> np.ndarray | None:
     angle = np.array([phi])
-    return circle(_vector(family.circle_center, angle)[0], _vector(family.circle_normal, angle)[0],
-                  float(evaluate_angle(family.circle_radius_squared, angle)[0]), points)
+    return circle(
+        _vector(family.circle_center, angle)[0],
+        _vector(family.circle_normal, angle)[0],
+        float(evaluate_angle(family.circle_radius_squared, angle)[0]),
+        points,
+    )
 
 
 def _evaluate4(terms: Terms4, points: np.ndarray) -> np.ndarray:
@@ -145,8 +157,9 @@ def smat_tangent(equations: Sequence[Terms4], point: np.ndarray) -> np.ndarray |
     return vt[-1]
 
 
-def characteristic_circle(equations: Sequence[Terms4], point: np.ndarray,
-                          points: int) -> tuple[np.ndarray, np.ndarray, float] | None:
+def characteristic_circle(
+    equations: Sequence[Terms4], point: np.ndarray, points: int
+) -> tuple[np.ndarray, np.ndarray, float] | None:
     """The characteristic circle of the sphere ``point = (m, ρ)`` of a SMAT curve: its polyline,
     centre and squared radius (in the plane ``(X − m)·m′ + ρ′/2 = 0``); ``None`` if not real."""
     tangent = smat_tangent(equations, point)
@@ -172,8 +185,9 @@ def _on_normal_line(terms: Terms4, point: np.ndarray, normal: np.ndarray) -> np.
     return (np.fft.fft(_evaluate4(terms, points)) / n).real
 
 
-def _smat_touches(index: int, family: SmatFamily, point: np.ndarray, normal: np.ndarray,
-                  circle_points: int) -> list[Touch]:
+def _smat_touches(
+    index: int, family: SmatFamily, point: np.ndarray, normal: np.ndarray, circle_points: int
+) -> list[Touch]:
     """The spheres of ``family`` touching the surface at ``point``: the real ``s ≠ 0`` where every
     SMAT equation vanishes on ``(point + s·normal, s²)``."""
     from sorgui.engine.rounded.dense import real_roots
@@ -189,8 +203,10 @@ def _smat_touches(index: int, family: SmatFamily, point: np.ndarray, normal: np.
     for s in real_roots(lines[first]):
         if abs(s) < 1e-9:
             continue
-        if any(abs(np.polynomial.polynomial.polyval(s, c)) > 1e-6 * scale * max(1.0, abs(s)) ** (len(c) - 1)
-               for c, scale in zip(lines, scales)):
+        if any(
+            abs(np.polynomial.polynomial.polyval(s, c)) > 1e-6 * scale * max(1.0, abs(s)) ** (len(c) - 1)
+            for c, scale in zip(lines, scales)
+        ):
             continue
         center = point + s * normal
         found = characteristic_circle(family.equations, np.append(center, s * s), circle_points)

@@ -35,19 +35,28 @@ NEWTON = 8
 """Newton iterations of one correction."""
 
 
-def smat_scene(families: Sequence[SmatFamily], points: np.ndarray, normals: np.ndarray, *, bound: float,
-               step: float, circles: int = 12, circle_points: int = 64, starts: int = 40) -> CanalScene:
+def smat_scene(
+    families: Sequence[SmatFamily],
+    points: np.ndarray,
+    normals: np.ndarray,
+    *,
+    bound: float,
+    step: float,
+    circles: int = 12,
+    circle_points: int = 64,
+    starts: int = 40,
+) -> CanalScene:
     """The spines (polylines of ``m``) and ``circles`` characteristic circles of ``families``,
     started from the spheres touching the surface at up to ``starts`` of ``points`` (with their
     unit ``normals``); ``step`` is the continuation step (length units)."""
     spines: list[np.ndarray] = []
     rings: list[np.ndarray] = []
     picked = np.linspace(0, len(points) - 1, min(starts, len(points))).astype(int) if len(points) else []
-    for index, family in enumerate(families):
+    for family in families:
         traced: list[np.ndarray] = []
         for i in picked:
             for touch in touching_spheres((family,), points[i], 1e-6 * bound, normal=normals[i]):
-                start = np.append(touch.center, touch.radius ** 2)
+                start = np.append(touch.center, touch.radius**2)
                 if any(np.min(np.linalg.norm(curve[:, :3] - start[:3], axis=1)) < 2 * step for curve in traced):
                     continue
                 curve = _trace(family.equations, start, bound, step)
@@ -73,14 +82,14 @@ def _correct(equations: Sequence[Terms4], guess: np.ndarray, tangent: np.ndarray
     scale = 1.0 + float(np.abs(guess).max())
     for _ in range(NEWTON):
         residual = np.append(_values(equations, y), tangent @ (y - guess))
-        if np.abs(residual).max() < 1e-11 * scale ** 2:
+        if np.abs(residual).max() < 1e-11 * scale**2:
             return y
         system = np.vstack([_jacobian(equations, y), tangent])
         y = y - np.linalg.lstsq(system, residual, rcond=None)[0]
         if not np.all(np.isfinite(y)):
             return None
     residual = _values(equations, y)
-    return y if np.abs(residual).max() < 1e-8 * scale ** 2 else None
+    return y if np.abs(residual).max() < 1e-8 * scale**2 else None
 
 
 def _trace(equations: Sequence[Terms4], start: np.ndarray, bound: float, step: float) -> np.ndarray | None:

@@ -161,9 +161,7 @@ def line_in_region(
     return p + t0 * d, p + t1 * d
 
 
-def line_skews(
-    points: np.ndarray, directions: np.ndarray, line_point: Vector, line_direction: Vector
-) -> np.ndarray:
+def line_skews(points: np.ndarray, directions: np.ndarray, line_point: Vector, line_direction: Vector) -> np.ndarray:
     """``|(c - p_i) · (d̂_i × â)|`` for the lines ``p_i + t·d_i`` (rows) against ``c + t·a``.
 
     Zero exactly when the lines meet or are parallel; it equals ``distance · sin(angle)`` and
@@ -180,9 +178,7 @@ def line_skews(
     return np.abs(np.einsum("ij,ij->i", c - pts, np.cross(d, a)))
 
 
-def line_distance(
-    p1: Vector, d1: Vector, p2: Vector, d2: Vector, parallel_tol: float = 1e-12
-) -> float:
+def line_distance(p1: Vector, d1: Vector, p2: Vector, d2: Vector, parallel_tol: float = 1e-12) -> float:
     """The distance between the lines ``p1 + t·d1`` and ``p2 + t·d2``.
 
     Parallel lines (``sin(angle) ≤ parallel_tol``) count as meeting at infinity, the

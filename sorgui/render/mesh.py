@@ -269,9 +269,7 @@ def orient_by_gradient(
     triangles[flip] = triangles[flip][:, ::-1]
     face_normals[flip] *= -1.0
     ids = triangles.ravel()
-    mesh_normals = np.column_stack(
-        [np.bincount(ids, np.repeat(face_normals[:, c], 3), len(points)) for c in range(3)]
-    )
+    mesh_normals = np.column_stack([np.bincount(ids, np.repeat(face_normals[:, c], 3), len(points)) for c in range(3)])
     mesh_norms = np.linalg.norm(mesh_normals, axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         mesh_unit = np.where(mesh_norms[:, None] > 0.0, mesh_normals / mesh_norms[:, None], 0.0)
@@ -285,9 +283,7 @@ def orient_by_gradient(
 
 def grid_bounds(grid: SamplingGrid) -> tuple[float, ...]:
     """The box spanned by the nodes of ``grid``, in pyvista's bounds order."""
-    return tuple(
-        v for o, n in zip(grid.origin, grid.dims) for v in (o, o + (n - 1) * grid.spacing)
-    )
+    return tuple(v for o, n in zip(grid.origin, grid.dims) for v in (o, o + (n - 1) * grid.spacing))
 
 
 def zero_level_triangles(

@@ -130,9 +130,7 @@ def _skew_and_tolerance(
     return skew, rel_tol * np.where(scale > 0.0, scale, 1.0)
 
 
-def axis_coordinates(
-    point: Vector, axis_point: Vector, axis_direction: Vector
-) -> tuple[float, float]:
+def axis_coordinates(point: Vector, axis_point: Vector, axis_direction: Vector) -> tuple[float, float]:
     """``(height, radius)`` of ``point``: signed position along the unit axis from
     ``axis_point``, and distance from the axis (the orthonormal profile frame of docs/math.md §3)."""
     p = as_vector(point, "point")
@@ -142,9 +140,7 @@ def axis_coordinates(
     return height, float(np.linalg.norm(p - foot))
 
 
-def snap_to_surface(
-    terms: Terms, point: Vector, max_distance: float, iterations: int = 8
-) -> np.ndarray:
+def snap_to_surface(terms: Terms, point: Vector, max_distance: float, iterations: int = 8) -> np.ndarray:
     """Newton-project ``point`` onto ``f = 0``, moving it at most ``max_distance`` in total.
 
     A pick lands on a triangle of the mesh, a little off the surface; this moves it onto the

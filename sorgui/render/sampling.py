@@ -93,9 +93,7 @@ class ScaledCoefficients:
     value_exponent: int
 
 
-def scaled_coefficients(
-    terms: Terms, nvars: int, length_scales: Sequence[float]
-) -> ScaledCoefficients:
+def scaled_coefficients(terms: Terms, nvars: int, length_scales: Sequence[float]) -> ScaledCoefficients:
     """Scale ``terms`` exactly by powers of two for coordinates bounded by ``length_scales``."""
     exps, coefs = term_arrays(terms, nvars)
     length_exponents = tuple(_power_of_two_exponent(float(abs(s))) for s in length_scales)
@@ -265,9 +263,7 @@ def value_and_gradient(
     chunk = max(1, _POINT_CHUNK_ELEMENTS // sc.cube.size)
     for start in range(0, len(pts), chunk):
         part = slice(start, start + chunk)
-        values[part], grads[part] = _contract_points(
-            sc.cube, [p[part] for p in powers], [d[part] for d in dpowers]
-        )
+        values[part], grads[part] = _contract_points(sc.cube, [p[part] for p in powers], [d[part] for d in dpowers])
     with np.errstate(over="ignore"):
         if normalise:
             np.ldexp(grads, -e, out=grads)
@@ -279,9 +275,7 @@ def value_and_gradient(
     return values, grads
 
 
-def newton_step(
-    terms: Terms, points: np.ndarray, max_step: float | np.ndarray
-) -> np.ndarray:
+def newton_step(terms: Terms, points: np.ndarray, max_step: float | np.ndarray) -> np.ndarray:
     """One Newton step ``p - f·∇f/|∇f|²`` of every point towards ``f = 0``.
 
     The step is shortened so that no coordinate moves by more than ``max_step`` (a scalar or

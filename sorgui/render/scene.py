@@ -95,9 +95,7 @@ class MarkerData:
     def to_polydata(self) -> pyvista.PolyData:
         import pyvista
 
-        return pyvista.Sphere(
-            radius=self.radius, center=self.center, theta_resolution=24, phi_resolution=16
-        )
+        return pyvista.Sphere(radius=self.radius, center=self.center, theta_resolution=24, phi_resolution=16)
 
 
 @dataclass(frozen=True, eq=False)
@@ -161,9 +159,7 @@ def normal_line(point: Vector, gradient: Vector, length: float) -> LineData:
     return LineData.from_polylines([np.array([p - half, p + half])])
 
 
-def latitude_circle(
-    point_on_surface: Vector, axis_point: Vector, axis_direction: Vector, n: int = 128
-) -> LineData:
+def latitude_circle(point_on_surface: Vector, axis_point: Vector, axis_direction: Vector, n: int = 128) -> LineData:
     """The circle through ``point_on_surface`` about the axis: a closed polyline of ``n`` points.
 
     On a surface of revolution it lies on the surface. Empty for a point on the axis.
@@ -180,9 +176,7 @@ def latitude_circle(
     return LineData.from_polylines([circle], closed=True)
 
 
-def sphere_center_marker(
-    center: Vector, bounds: Region | Sequence[float], relative_size: float = 0.015
-) -> MarkerData:
+def sphere_center_marker(center: Vector, bounds: Region | Sequence[float], relative_size: float = 0.015) -> MarkerData:
     """A marker ball at a sphere's centre, its radius a fraction of the region's size."""
     c = as_vector(center, "center")
     _, radius = enclosing_sphere(bounds)
@@ -192,9 +186,7 @@ def sphere_center_marker(
 # --- the profile curve ----------------------------------------------------------------------
 
 
-def _contour_2d(
-    values: np.ndarray, origin: Sequence[float], spacing: Sequence[float]
-) -> vtkPolyData:
+def _contour_2d(values: np.ndarray, origin: Sequence[float], spacing: Sequence[float]) -> vtkPolyData:
     """Zero level of ``values (nr, ns)`` (s fastest) as joined polylines in ``(s, r, 0)``.
 
     Contoured in index space and mapped in ``float64`` (see ``mesh.contour_zero``).

@@ -23,9 +23,17 @@ if TYPE_CHECKING:
     )
 
 _HOMES = {
-    "EventEmitter": "events", "SessionEvents": "events", "JobRequest": "job", "JobResult": "job",
-    "STAGES": "model", "InlineRunner": "model", "Run": "model", "Runner": "model", "Session": "model",
-    "Stage": "model", "StageState": "model",
+    "EventEmitter": "events",
+    "SessionEvents": "events",
+    "JobRequest": "job",
+    "JobResult": "job",
+    "STAGES": "model",
+    "InlineRunner": "model",
+    "Run": "model",
+    "Runner": "model",
+    "Session": "model",
+    "Stage": "model",
+    "StageState": "model",
 }
 """Where each name lives: imported on first use, so that a worker process can be started
 (:mod:`sorgui.session.process`) before the engine is loaded."""

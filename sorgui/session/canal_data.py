@@ -26,18 +26,25 @@ def family_curves(canal: Canal) -> tuple[FamilyCurves | SmatFamily, ...]:
     family has them, else the equations of its SMAT curve."""
     out: list[FamilyCurves | SmatFamily] = []
     for family in canal.families:
-        if (family.parametrization is None or family.radius_squared is None or family.circle_center is None
-                or family.circle_radius_squared is None or family.circle_normal is None):
+        if (
+            family.parametrization is None
+            or family.radius_squared is None
+            or family.circle_center is None
+            or family.circle_radius_squared is None
+            or family.circle_normal is None
+        ):
             if family.equations:
                 out.append(SmatFamily(tuple(smat_terms(g) for g in family.equations)))
             continue
-        out.append(FamilyCurves(
-            _triple(family.parametrization),
-            rational_function(family.radius_squared),
-            _triple(family.circle_center),
-            rational_function(family.circle_radius_squared),
-            _triple(family.circle_normal),
-        ))
+        out.append(
+            FamilyCurves(
+                _triple(family.parametrization),
+                rational_function(family.radius_squared),
+                _triple(family.circle_center),
+                rational_function(family.circle_radius_squared),
+                _triple(family.circle_normal),
+            )
+        )
     return tuple(out)
 
 
@@ -52,8 +59,7 @@ def rational_function(text: str) -> Function:
 def smat_terms(text: str) -> Terms4:
     """An equation of a SMAT curve (engine string in ``m1, m2, m3, r``) as float terms."""
     poly = sympy.Poly(sympy.expand(read(text, SYMPY)), *SMAT_VARIABLES)
-    return tuple((tuple(int(e) for e in monomial), float(sympy.re(c.evalf(20))))
-                 for monomial, c in poly.terms())  # type: ignore[misc]
+    return tuple((tuple(int(e) for e in monomial), float(sympy.re(c.evalf(20)))) for monomial, c in poly.terms())  # type: ignore[misc]
 
 
 def _triple(texts: tuple[str, str, str]) -> tuple[Function, Function, Function]:

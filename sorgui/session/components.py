@@ -58,7 +58,7 @@ def component_texts(text: str) -> tuple[str, ...]:
         if isinstance(term, Product):
             surfaces = [f for f in term.factors if _is_surface(f)]
             if len(surfaces) >= 2:
-                found += [text[f.start:f.end] for f in surfaces]
+                found += [text[f.start : f.end] for f in surfaces]
     return tuple(found) if 2 <= len(found) <= MAX_COMPONENTS else ()
 
 

@@ -267,11 +267,13 @@ BINARY_CONTEXT = "{}"
 """Put before a piece that starts with ``+``/``-`` so that mathtext spaces the sign as the binary
 operator it is in the whole formula (an empty group is an operand)."""
 
-WARM_UP = (r"f = x^{4} + 2 x^{2} y^{2} - \frac{3 t^{2} + 1}{\sqrt{5} \left(t - 7\right)^{6}} "
-           r"\left(0 : 1, -\frac{8}{9}\right) \varphi \rho \tau_{x} \tilde{p}(s, r) P^{2} \qquad "
-           r"0123456789 abcdefghijklmnopqrstuvwxyz x^{0123456789 abcdefghijklmnopqrstuvwxyz} "
-           r"\frac{0123456789 abcdefghijklmnopqrstuvwxyz + - ( )}{0123456789 abcdefghijklmnopqrstuvwxyz + - ( )} "
-           r"\frac{x^{0123456789}}{y^{0123456789}} \sqrt{0123456789}")
+WARM_UP = (
+    r"f = x^{4} + 2 x^{2} y^{2} - \frac{3 t^{2} + 1}{\sqrt{5} \left(t - 7\right)^{6}} "
+    r"\left(0 : 1, -\frac{8}{9}\right) \varphi \rho \tau_{x} \tilde{p}(s, r) P^{2} \qquad "
+    r"0123456789 abcdefghijklmnopqrstuvwxyz x^{0123456789 abcdefghijklmnopqrstuvwxyz} "
+    r"\frac{0123456789 abcdefghijklmnopqrstuvwxyz + - ( )}{0123456789 abcdefghijklmnopqrstuvwxyz + - ( )} "
+    r"\frac{x^{0123456789}}{y^{0123456789}} \sqrt{0123456789}"
+)
 """Typeset once when a worker process starts, so that loading mathtext's glyphs is not paid
 by the first analysis."""
 
@@ -433,7 +435,7 @@ def _compose(boxes: Sequence[_Box], indent: float = 0.0) -> np.ndarray:
     for left, b in zip(lefts, boxes):
         top = ascent - b.ascent
         h, w = b.image.shape
-        region = canvas[top:top + h, left:left + w]
+        region = canvas[top : top + h, left : left + w]
         np.maximum(region, b.image, out=region)
     return np.pad(canvas, PAD)
 
@@ -484,8 +486,10 @@ def _wanted(formula: Formula, style: Style) -> list[str]:
         return []
     if _likely_fits(formula, style):
         return ["".join(formula.pieces)]
-    return [CONTINUATION, *(piece if index == 0 else BINARY_CONTEXT + piece
-                            for index, piece in enumerate(formula.pieces))]
+    return [
+        CONTINUATION,
+        *(piece if index == 0 else BINARY_CONTEXT + piece for index, piece in enumerate(formula.pieces)),
+    ]
 
 
 def render_formula(formula: Formula, style: Style) -> Formula:

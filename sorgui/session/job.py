@@ -129,8 +129,9 @@ class _Presenter:
         request = self.request
         if request.scene:
             if self.scene is None:
-                self.scene = self.stage("scene", lambda: scene_data.build_scene(
-                    analysis, request.radius, request.resolution, patch=False))
+                self.scene = self.stage(
+                    "scene", lambda: scene_data.build_scene(analysis, request.radius, request.resolution, patch=False)
+                )
                 self.send("scene", self.scene)
                 self._explain(analysis)
             extras = self._extras(analysis)
@@ -139,8 +140,10 @@ class _Presenter:
                 self.send("scene", self.scene)
             if self._approximated and self.nearest_scene is None and _nearest(analysis) is not None:
                 nearest = _nearest(analysis)
-                self.nearest_scene = self.stage("scene", lambda: scene_data.build_scene(
-                    nearest, region=self.scene.region, resolution=request.resolution))
+                self.nearest_scene = self.stage(
+                    "scene",
+                    lambda: scene_data.build_scene(nearest, region=self.scene.region, resolution=request.resolution),
+                )
                 self.send("nearest_scene", self.nearest_scene)
         if request.style is not None:
             style = request.style
@@ -259,7 +262,12 @@ def run_job(
             )
             deliver("analysed", None)  # the engine is done: its time limit is over
             canal = analysis.canal is not None and bool(analysis.canal.is_canal)
-            if analysis.parametrizations or analysis.approximate is not None or analysis.rationality is not None or canal:
+            if (
+                analysis.parametrizations
+                or analysis.approximate is not None
+                or analysis.rationality is not None
+                or canal
+            ):
                 presenter.present(analysis)  # the complete analysis: patch, rounded-input extras, canal
             else:
                 deliver("analysis", analysis)
@@ -324,8 +332,14 @@ def serve(conn: Connection, cancel: Any) -> None:
     except (EOFError, OSError):
         return
     try:
-        conn.send(run_job(request, cancel, send=lambda kind, payload: conn.send((kind, payload)),
-                          processes=min(2, os.cpu_count() or 1)))
+        conn.send(
+            run_job(
+                request,
+                cancel,
+                send=lambda kind, payload: conn.send((kind, payload)),
+                processes=min(2, os.cpu_count() or 1),
+            )
+        )
     except (BrokenPipeError, OSError):
         pass  # the GUI has gone away or superseded this job
     conn.close()

@@ -371,8 +371,9 @@ class Session:
             run.scene = run.scene if run.scene is not None else payload.scene
             run.formulas = run.formulas or (payload.formulas or {})
             run.nearest_scene = run.nearest_scene if run.nearest_scene is not None else payload.nearest_scene
-            run.result = replace(payload, scene=run.scene, formulas=run.formulas or payload.formulas,
-                                 nearest_scene=run.nearest_scene)
+            run.result = replace(
+                payload, scene=run.scene, formulas=run.formulas or payload.formulas, nearest_scene=run.nearest_scene
+            )
         elif kind == "invalid":
             run.error = tuple(payload)  # type: ignore[assignment]
             run.message = str(payload[0])

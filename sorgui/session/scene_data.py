@@ -53,6 +53,7 @@ tangent of half the angle, so ``±3`` covers about 287° and leaves the seam ope
 PATCH_GRID = 41
 """Samples per parameter of the patch, drawn as a wireframe: a readable net of curves."""
 
+
 @dataclass(frozen=True, eq=False)
 class SceneData:
     """Everything the viewport draws for one analysis, as plain data.
@@ -102,9 +103,7 @@ class SceneData:
 # --- where to look --------------------------------------------------------------------------
 
 
-def view_region(
-    terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
-) -> ClipSphere:
+def view_region(terms: Terms, center: np.ndarray, axis: np.ndarray | None = None) -> ClipSphere:
     """A ball that shows the interesting part of ``f = 0`` around ``center``: the engine's
     :func:`~sorgui.engine.rounded.deviation.view_ball` (real points on a star of lines, far branches
     dropped), the same ball in which a rounded input's deviation is measured (docs/math.md §8.6)."""
@@ -247,12 +246,21 @@ def with_canal(scene: SceneData, analysis: Analysis) -> SceneData:
         from sorgui.render.canal_trace import smat_scene
 
         surface = scene.surface
-        traced = smat_scene(implicit, surface.points, np.asarray(surface.normals, dtype=np.float64),
-                            bound=bound, step=scene.region.radius / 80)
+        traced = smat_scene(
+            implicit,
+            surface.points,
+            np.asarray(surface.normals, dtype=np.float64),
+            bound=bound,
+            step=scene.region.radius / 80,
+        )
         spines += traced.spines
         circles += traced.circles
-    return replace(scene, canal_spine=LineData.from_polylines(spines),
-                   canal_circles=LineData.from_polylines(circles), canal_families=families)
+    return replace(
+        scene,
+        canal_spine=LineData.from_polylines(spines),
+        canal_circles=LineData.from_polylines(circles),
+        canal_families=families,
+    )
 
 
 def surface_deviation(terms: Terms, points: np.ndarray) -> np.ndarray:

@@ -54,8 +54,13 @@ class AnalysisRequest:
 
     def options(self) -> dict[str, Any]:
         singular = 60.0 if self.timeout is None else self.timeout
-        return {"method": self.method, "recognition_only": self.recognition_only, "tolerance": self.tolerance,
-                "timeout": self.timeout, "singular_timeout": singular}
+        return {
+            "method": self.method,
+            "recognition_only": self.recognition_only,
+            "tolerance": self.tolerance,
+            "timeout": self.timeout,
+            "singular_timeout": singular,
+        }
 
 
 @dataclass
@@ -98,8 +103,13 @@ class StageLog:
         assert start is not None
         timings = tuple(self.timings) if self.timings or self.latest is None else self.latest.timings
         return "finished", unfinished_analysis(
-            start, recognition=None, latest=self.latest, timings=timings, current=self.current,
-            message=reason, recognition_only=self.recognition_only,
+            start,
+            recognition=None,
+            latest=self.latest,
+            timings=timings,
+            current=self.current,
+            message=reason,
+            recognition_only=self.recognition_only,
         )
 
 
@@ -128,7 +138,8 @@ def run_request(request: AnalysisRequest, send: Any) -> Message:  # noqa: ANN401
 
     try:
         analysis = analyze(
-            request.text, **request.options(),
+            request.text,
+            **request.options(),
             progress=lambda stage: send("progress", stage),
             partial=lambda known: send("analysis", known),
             stage_done=lambda stage, seconds: send("done", (stage, seconds)),
@@ -175,8 +186,10 @@ class Supervised:
         for message in ([first] if first is not None else []) + self.child.messages():
             if message[0] == "eof":
                 self.child.ended = True
-                return "failed", f"the analysis process died ({self.child.exit_description()}); " \
-                                 "it may have run out of memory"
+                return (
+                    "failed",
+                    f"the analysis process died ({self.child.exit_description()}); it may have run out of memory",
+                )
             if self.log.take(message):
                 return self.log.final
         if time.monotonic() >= self.deadline:

@@ -61,7 +61,9 @@ def move(f: Poly, rotation: list[list[Fraction]], shift: Vector) -> Poly:
     gens = R.gens
     d = [gens[i] - shift[i] for i in range(3)]
     images = [
-        sum((K.convert(QQ(rotation[j][i].numerator, rotation[j][i].denominator)) * d[j] for j in range(3)), start=R.zero)
+        sum(
+            (K.convert(QQ(rotation[j][i].numerator, rotation[j][i].denominator)) * d[j] for j in range(3)), start=R.zero
+        )
         for i in range(3)
     ]
     return compose(f, images)
@@ -70,7 +72,9 @@ def move(f: Poly, rotation: list[list[Fraction]], shift: Vector) -> Poly:
 def apply(rotation: list[list[Fraction]], v: Vector, K: Domain = QQ) -> Vector:
     """``R v``."""
     return tuple(
-        sum((K.convert(QQ(rotation[i][j].numerator, rotation[i][j].denominator)) * v[j] for j in range(3)), start=K.zero)
+        sum(
+            (K.convert(QQ(rotation[i][j].numerator, rotation[i][j].denominator)) * v[j] for j in range(3)), start=K.zero
+        )
         for i in range(3)
     )
 

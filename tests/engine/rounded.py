@@ -19,11 +19,13 @@ from sorgui.engine.rounded import dense
 def rotation(quaternion: np.ndarray) -> np.ndarray:
     """The rotation matrix of a quaternion (normalised here)."""
     a, b, c, d = quaternion / np.linalg.norm(quaternion)
-    return np.array([
-        [a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)],
-        [2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)],
-        [2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d],
-    ])
+    return np.array(
+        [
+            [a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)],
+            [2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)],
+            [2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d],
+        ]
+    )
 
 
 def random_sor(rng: np.random.Generator, degree: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -69,14 +71,18 @@ def _print(array: np.ndarray, spec: str) -> str:
     return " ".join(terms)
 
 
-def rational_sor(quaternion: tuple[int, int, int, int], point: tuple[Fraction, ...],
-                 profile: dict[tuple[int, int], Fraction]) -> dict[tuple[int, int, int], Fraction]:
+def rational_sor(
+    quaternion: tuple[int, int, int, int], point: tuple[Fraction, ...], profile: dict[tuple[int, int], Fraction]
+) -> dict[tuple[int, int, int], Fraction]:
     """The exact ``Σ q_ij h^i ρ^j`` about the rational axis through ``point`` along the image of
     the z-axis under the rational rotation of an integer quaternion, as exact coefficients."""
     a, b, c, d = quaternion
     norm = a * a + b * b + c * c + d * d
-    n = [Fraction(2 * (b * d + a * c), norm), Fraction(2 * (c * d - a * b), norm),
-         Fraction(a * a - b * b - c * c + d * d, norm)]
+    n = [
+        Fraction(2 * (b * d + a * c), norm),
+        Fraction(2 * (c * d - a * b), norm),
+        Fraction(a * a - b * b - c * c + d * d, norm),
+    ]
     ctx = fmpq_mpoly_ctx.get(("x", "y", "z"), "lex")
     gens = ctx.gens()
     shifted = [g - fmpq(p.numerator, p.denominator) for g, p in zip(gens, point)]

@@ -159,11 +159,14 @@ def _turned_torus() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return r2 - 20 * r1 + 36 * h2 + 64 * one, direction, point
 
 
-@pytest.mark.parametrize("text", [
-    "x^2 + 2.5y^2 + 3.7z^2 - 1",  # a triaxial ellipsoid
-    # A Dupin cyclide with distinct radii (a = 5, b = 4, c = 3, mu = 2), printed with decimals.
-    "(x^2+y^2+z^2+12.0)^2 - 4(5.0x - 6.0)^2 - 64.0y^2",
-])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "x^2 + 2.5y^2 + 3.7z^2 - 1",  # a triaxial ellipsoid
+        # A Dupin cyclide with distinct radii (a = 5, b = 4, c = 3, mu = 2), printed with decimals.
+        "(x^2+y^2+z^2+12.0)^2 - 4(5.0x - 6.0)^2 - 64.0y^2",
+    ],
+)
 def test_near_misses_say_how_far_they_are(text: str) -> None:
     result = analyze(text, recognition_only=True).approximate
     assert not result.near_sor
@@ -201,7 +204,9 @@ def test_the_tolerance_follows_the_printed_digits() -> None:
     # Trailing zeros dropped (%g): 15.44 of a 10-digit print is good to 5e-9, not 5e-3.
     assert tol("1.234567891x^2 + y^2 - 15.44") < 1e-9
     # Fixed-point printing keeps zeros: every literal's own last place counts.
-    assert tol("1.500000x^2 + y^2 - 15.440000") == pytest.approx(5e-7 * math.sqrt(2) / math.sqrt(2.25 + 1 + 15.44**2), rel=0.01)
+    assert tol("1.500000x^2 + y^2 - 15.440000") == pytest.approx(
+        5e-7 * math.sqrt(2) / math.sqrt(2.25 + 1 + 15.44**2), rel=0.01
+    )
     assert tol("x^2 + y^2 - 1.5e-3") > tol("x^2 + y^2 - 1.50e-3")
 
 
@@ -212,15 +217,19 @@ def test_simplest_rational_in_an_interval() -> None:
     assert simplest_between(Fraction(7, 2), Fraction(4)) == 4
 
 
-@pytest.mark.parametrize("text", ["0.5x", "0.5x + 0.25y - 3.5", "x^2+y^2+1e300z", "10^400*x + 1.5y^2",
-                                  "1e-200x^2+1e200y^2+z^2", "x*y*z - 0.1"])
+@pytest.mark.parametrize(
+    "text",
+    ["0.5x", "0.5x + 0.25y - 3.5", "x^2+y^2+1e300z", "10^400*x + 1.5y^2", "1e-200x^2+1e200y^2+z^2", "x*y*z - 0.1"],
+)
 def test_extreme_inputs_give_strict_json_and_a_clear_word(text: str) -> None:
     analysis = analyze(text, recognition_only=True)
     data = json.loads(json.dumps(analysis.to_json(), allow_nan=False))
     assert Analysis.from_json(data) == analysis
     result = analysis.approximate
     if result.residual is None:
-        assert ("orders of magnitude" in result.notes[-1] or "beyond the range" in result.notes[-1]) and not result.near_sor
+        assert (
+            "orders of magnitude" in result.notes[-1] or "beyond the range" in result.notes[-1]
+        ) and not result.near_sor
     if text.startswith("0.5x"):
         assert result.near_sor and result.kind == "plane"
 

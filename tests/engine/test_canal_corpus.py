@@ -1,5 +1,6 @@
 """The canal answers agree with the surface-of-revolution answers on the whole public corpus
-(tests/data/cases.json) and on the canal examples (tests/data/canal-examples.txt): a surface of revolution is canal with its spine on a line, and a canal
+(tests/data/cases.json) and on the canal examples (tests/data/canal-examples.txt): a surface of
+revolution is canal with its spine on a line, and a canal
 surface whose spine is a line is a surface of revolution. The canal analysis is run without the
 symmetry algebra's answer, so the two are independent."""
 
@@ -35,8 +36,11 @@ CANAL_EXAMPLES = Path(__file__).resolve().parents[1] / "data" / "canal-examples.
 
 def canal_examples() -> list[tuple[str, str]]:
     lines = CANAL_EXAMPLES.read_text(encoding="utf-8").splitlines()
-    return [(line[3:].split(" |")[0], lines[i + 1]) for i, line in enumerate(lines)
-            if line.startswith("## ") and "degree 24" not in line]
+    return [
+        (line[3:].split(" |")[0], lines[i + 1])
+        for i, line in enumerate(lines)
+        if line.startswith("## ") and "degree 24" not in line
+    ]
 
 
 @pytest.mark.parametrize("name,text", canal_examples(), ids=[n for n, _ in canal_examples()])

@@ -17,8 +17,7 @@ from .helpers import quaternion_rotation
 
 small = st.integers(min_value=-3, max_value=3)
 quaternions = st.tuples(small, small, small, small).filter(any)
-SETTINGS = settings(max_examples=6, deadline=None, derandomize=True,
-                    suppress_health_check=[HealthCheck.too_slow])
+SETTINGS = settings(max_examples=6, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 T = sympy.Symbol("t")
 
 
@@ -39,8 +38,13 @@ def families(draw: st.DrawFn) -> tuple[tuple[sympy.Expr, ...], sympy.Expr]:
 
 def moved(m: tuple[sympy.Expr, ...], rotation: list, shift: tuple[int, int, int]) -> tuple[sympy.Expr, ...]:
     """``R·m(t) + shift`` with the rational rotation ``R``."""
-    return tuple(sympy.expand(sum(sympy.Rational(rotation[i][j].numerator, rotation[i][j].denominator) * m[j]
-                                  for j in range(3)) + shift[i]) for i in range(3))
+    return tuple(
+        sympy.expand(
+            sum(sympy.Rational(rotation[i][j].numerator, rotation[i][j].denominator) * m[j] for j in range(3))
+            + shift[i]
+        )
+        for i in range(3)
+    )
 
 
 def envelope(m: tuple[sympy.Expr, ...], r: sympy.Expr) -> Poly:
@@ -50,14 +54,16 @@ def envelope(m: tuple[sympy.Expr, ...], r: sympy.Expr) -> Poly:
 
     def lift(expr: sympy.Expr):  # noqa: ANN202 - flint polynomial
         p = sympy.Poly(expr, T)
-        return sum((fmpq(int(c.p), int(c.q)) * t ** e for (e,), c in p.terms()), ctx.from_dict({}))
+        return sum((fmpq(int(c.p), int(c.q)) * t**e for (e,), c in p.terms()), ctx.from_dict({}))
 
     S = (x - lift(m[0])) ** 2 + (y - lift(m[1])) ** 2 + (z - lift(m[2])) ** 2 - lift(sympy.expand(r * r))
     res = S.resultant(S.derivative(3), "t")
     _, factors = res.factor()
     h = max((g for g, _ in factors), key=lambda g: g.total_degree())
     R = poly_ring(XYZ, QQ)
-    return R.from_dict({tuple(int(e) for e in mono[:3]): QQ(int(c.p), int(c.q)) for mono, c in zip(h.monoms(), h.coeffs())})
+    return R.from_dict(
+        {tuple(int(e) for e in mono[:3]): QQ(int(c.p), int(c.q)) for mono, c in zip(h.monoms(), h.coeffs())}
+    )
 
 
 def vanish(equations: tuple[str, ...], values: dict[str, sympy.Expr]) -> bool:

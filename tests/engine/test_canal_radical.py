@@ -20,7 +20,9 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "data" / "canal-examples.txt"
 
 def _example(prefix: str) -> Poly:
     lines = EXAMPLES.read_text(encoding="utf-8").splitlines()
-    return parse_polynomial(next(lines[i + 1] for i, line in enumerate(lines) if line.startswith("## " + prefix))).polynomial
+    return parse_polynomial(
+        next(lines[i + 1] for i, line in enumerate(lines) if line.startswith("## " + prefix))
+    ).polynomial
 
 
 @pytest.fixture(scope="module")
@@ -62,7 +64,8 @@ def test_the_circles_of_the_family_lie_on_the_blend_and_not_on_another_surface(b
     family = radical_family(curve)
     assert family is not None
     coordinates, verified = radical_surface(f, family)
-    assert verified and all(c.has(sympy.cos(sympy.Symbol("theta"))) or c.has(sympy.sin(sympy.Symbol("theta")))
-                            for c in coordinates)
+    assert verified and all(
+        c.has(sympy.cos(sympy.Symbol("theta"))) or c.has(sympy.sin(sympy.Symbol("theta"))) for c in coordinates
+    )
     x = f.ring.gens[0]
     assert radical_surface(f + x**3, family)[1] is False

@@ -31,8 +31,14 @@ def torus(point: tuple[int, ...], direction: tuple[int, ...], core: Fraction, tu
     distance to the axis: the torus of core radius² ``R²`` and tube radius² ``r²``."""
     A = dot(direction, direction)
     k = A * (core - tube)
-    profile = {(4, 0): 1, (2, 1): 2 * A, (0, 2): A**2, (2, 0): 2 * k, (0, 1): 2 * A * k - 4 * A**2 * core,
-               (0, 0): k * k}
+    profile = {
+        (4, 0): 1,
+        (2, 1): 2 * A,
+        (0, 2): A**2,
+        (2, 0): 2 * k,
+        (0, 1): 2 * A * k - 4 * A**2 * core,
+        (0, 0): k * k,
+    }
     return revolve(profile, rational_vector(point), rational_vector(direction), axis_distance=True)
 
 
@@ -84,8 +90,9 @@ def test_the_torus_of_the_corpus_agrees_with_the_smat_route() -> None:
 
 def test_surfaces_of_revolution_that_are_not_real_tori_take_the_smat_route() -> None:
     point, direction = rational_vector((0, 0, 0)), rational_vector((0, 0, 1))
-    complex_core = revolve({(4, 0): 1, (2, 1): 2, (0, 2): 1, (0, 1): 4, (0, 0): -1}, point, direction,
-                           axis_distance=True)  # (ζ² + d² − 1)² + 4d²: R² = −1
+    complex_core = revolve(
+        {(4, 0): 1, (2, 1): 2, (0, 2): 1, (0, 1): 4, (0, 0): -1}, point, direction, axis_distance=True
+    )  # (ζ² + d² − 1)² + 4d²: R² = −1
     quartic = revolve({(4, 0): 1, (0, 1): 1, (0, 0): -1}, point, direction, axis_distance=True)  # d² = 1 − ζ⁴
     imaginary_tube = torus((0, 0, 0), (0, 0, 1), Fraction(1), Fraction(-1))
     for f in (complex_core, quartic, imaginary_tube):

@@ -76,9 +76,23 @@ def test_both_methods_agree_on_the_corpus(case: dict, capsys: pytest.CaptureFixt
 
 def test_json_has_the_documented_keys(capsys: pytest.CaptureFixture[str]) -> None:
     _, data = run_json(capsys, "y^2 - 2xz")
-    for key in ("input", "polynomial", "field", "degree", "factors", "is_sor", "symmetry",
-                "symmetry_dimension", "axis", "center", "normal", "profile", "timings",
-                "rationality", "parametrizations"):
+    for key in (
+        "input",
+        "polynomial",
+        "field",
+        "degree",
+        "factors",
+        "is_sor",
+        "symmetry",
+        "symmetry_dimension",
+        "axis",
+        "center",
+        "normal",
+        "profile",
+        "timings",
+        "rationality",
+        "parametrizations",
+    ):
         assert key in data
     assert set(data["axis"]) == {"point", "direction", "plucker"}
     assert {"polynomial", "square"} <= set(data["profile"])
@@ -86,15 +100,20 @@ def test_json_has_the_documented_keys(capsys: pytest.CaptureFixture[str]) -> Non
 
 
 def test_console_script_reports_bad_input_without_traceback(tmp_path) -> None:
-    bad = subprocess.run([sys.executable, "-m", "sorgui.cli", "analyze", "x^2 + sin(y)"],
-                         capture_output=True, text=True, timeout=60)
+    bad = subprocess.run(
+        [sys.executable, "-m", "sorgui.cli", "analyze", "x^2 + sin(y)"], capture_output=True, text=True, timeout=60
+    )
     assert bad.returncode == 2
     assert bad.stderr.count("\n") == 1 and "Traceback" not in bad.stderr
     assert "sin" in bad.stderr
     path = tmp_path / "eq.txt"
     path.write_text("x^2 + y^2 + z^2 - 1\n", encoding="utf-8")
-    good = subprocess.run([sys.executable, "-m", "sorgui.cli", "analyze", "--json", "-f", str(path)],
-                          capture_output=True, text=True, timeout=60)
+    good = subprocess.run(
+        [sys.executable, "-m", "sorgui.cli", "analyze", "--json", "-f", str(path)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert good.returncode == 0 and json.loads(good.stdout)["symmetry"] == "sphere"
 
 

@@ -37,14 +37,8 @@ R = poly_ring(("x", "y"), QQ)
 x, y = R.gens
 X, Y = R.symbols
 T = sympy.Symbol("t")
-P = (
-    -400 - 104 * x**2 - x**4 + 200 * y**2 - 48 * x * y**2 + 26 * x**2 * y**2
-    - 29 * y**4 + 12 * x * y**4 + y**6
-)
-P2 = (
-    -400 - 104 * x**2 - x**4 + 200 * y - 48 * x * y + 26 * x**2 * y
-    - 29 * y**2 + 12 * x * y**2 + y**3
-)
+P = -400 - 104 * x**2 - x**4 + 200 * y**2 - 48 * x * y**2 + 26 * x**2 * y**2 - 29 * y**4 + 12 * x * y**4 + y**6
+P2 = -400 - 104 * x**2 - x**4 + 200 * y - 48 * x * y + 26 * x**2 * y - 29 * y**2 + 12 * x * y**2 + y**3
 P2_AS_PRINTED = P2 + 800  # the paper's +400, an erratum
 
 K2 = number_field((2,))
@@ -134,15 +128,11 @@ def test_sum_of_squares_splits_over_the_gaussian_numbers() -> None:
     assert proportional(product_of_norms(result), X**2 + Y**2)
 
 
-@pytest.mark.parametrize(
-    "F", [P, P2, x**2 + y**2 - 3, y**2 * (x + 1), (x**2 - 2) * (x**2 + y**2) ** 2, x**4 + y**4]
-)
+@pytest.mark.parametrize("F", [P, P2, x**2 + y**2 - 3, y**2 * (x + 1), (x**2 - 2) * (x**2 + y**2) ** 2, x**4 + y**4])
 def test_absolute_factors_multiply_to_the_curve(F: Poly) -> None:
     result = absolute_factorization(F)
     assert proportional(product_of_norms(result), F.as_expr())
-    assert result.count == sum(
-        f.multiplicity * f.conjugates for f in result.factors
-    )
+    assert result.count == sum(f.multiplicity * f.conjugates for f in result.factors)
 
 
 def test_multiplicities_are_reported() -> None:
@@ -399,7 +389,10 @@ def test_improper_parametrization_is_detected() -> None:
 
 # --- the degree-6 rational curve of paraPlaneCurve's documentation as P² ---------------------
 
-@pytest.mark.parametrize(("point", "direction"), [((0, 0, 0), (1, 0, 0)), ((1, -2, 3), (2, 1, 2)), ((0, 0, 0), (1, 1, 1))])
+
+@pytest.mark.parametrize(
+    ("point", "direction"), [((0, 0, 0), (1, 0, 0)), ((1, -2, 3), (2, 1, 2)), ((0, 0, 0), (1, 1, 1))]
+)
 def test_profile_square_of_the_paraplanecurve_sextic_on_a_rational_axis(point, direction) -> None:
     """A surface of revolution whose ``P²`` is ``f2(s, w, 1)`` of the example of ``paraPlaneCurve``
     (paraplanecurves.lib: x⁶+3x⁴y²+3x²y⁴+y⁶-4x⁴z²-34x³yz²-7x²y²z²+12xy³z²+6y⁴z²+36x²z⁴+36xyz⁴+9y²z⁴,
@@ -408,8 +401,18 @@ def test_profile_square_of_the_paraplanecurve_sextic_on_a_rational_axis(point, d
     from tests.engine.helpers import rational_vector, revolve
 
     coefficients = {
-        (6, 0): 1, (4, 2): 3, (2, 4): 3, (0, 6): 1, (4, 0): -4, (3, 1): -34, (2, 2): -7, (1, 3): 12,
-        (0, 4): 6, (2, 0): 36, (1, 1): 36, (0, 2): 9,
+        (6, 0): 1,
+        (4, 2): 3,
+        (2, 4): 3,
+        (0, 6): 1,
+        (4, 0): -4,
+        (3, 1): -34,
+        (2, 2): -7,
+        (1, 3): 12,
+        (0, 4): 6,
+        (2, 0): 36,
+        (1, 1): 36,
+        (0, 2): 9,
     }
     f = revolve(coefficients, rational_vector(point), rational_vector(direction), axis_distance=True)
     _, _, profile = recognize(f)

@@ -30,8 +30,23 @@ def test_singular_syntax_is_strict(text: str) -> None:
         read(text, SINGULAR)
 
 
-@pytest.mark.parametrize("text", ["", "x +", "(x", "x)", "1/0", "0^-1", f"x^{MAX_EXPONENT + 1}", "x^y",
-                                  "__import__('os')", "x.real", "lambda: 1", "sqrt"])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "",
+        "x +",
+        "(x",
+        "x)",
+        "1/0",
+        "0^-1",
+        f"x^{MAX_EXPONENT + 1}",
+        "x^y",
+        "__import__('os')",
+        "x.real",
+        "lambda: 1",
+        "sqrt",
+    ],
+)
 def test_everything_else_is_an_expression_error(text: str) -> None:
     with pytest.raises(ExpressionError):
         read(text)

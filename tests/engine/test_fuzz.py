@@ -19,8 +19,9 @@ NUMBERS = st.one_of(
     st.sampled_from(["0.5", "1.5", "3.0", "0.25", "1.5e-3", "2.000001", "-0.333333", "1e-2"]),
     st.sampled_from(["sqrt(2)", "sqrt(3)", "(1/2)", "(2/3)", "sqrt(2)/2"]),
 )
-ATOMS = st.sampled_from(["x", "y", "z", "(x^2+y^2)", "(x^2+y^2+z^2)", "(x-1)", "(y+2z)", "(x+y+z)",
-                         "(y^2+z^2)", "(x-sqrt(2)*y)"])
+ATOMS = st.sampled_from(
+    ["x", "y", "z", "(x^2+y^2)", "(x^2+y^2+z^2)", "(x-1)", "(y+2z)", "(x+y+z)", "(y^2+z^2)", "(x-sqrt(2)*y)"]
+)
 
 
 @st.composite
@@ -62,7 +63,9 @@ def test_no_analysis_ends_in_an_internal_error(text: str) -> None:
     except SorguiError:
         return
     assert result.recognition.symmetry
-    notes = [*(result.rationality.notes if result.rationality else ()),
-             *(result.canal.notes if result.canal else ()),
-             *(result.approximate.notes if result.approximate else ())]
+    notes = [
+        *(result.rationality.notes if result.rationality else ()),
+        *(result.canal.notes if result.canal else ()),
+        *(result.approximate.notes if result.approximate else ()),
+    ]
     assert not any("Error" in note or "internal error" in note for note in notes), notes

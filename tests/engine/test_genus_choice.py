@@ -16,8 +16,12 @@ from tests.engine.helpers import move, quaternion_rotation, rational_vector, rev
 def general_position(degree: int, seed: int, drop: tuple[tuple[int, int], ...] = ()):
     """``F(a·(p - c), |p - c|²) = 0`` with a random dense ``F`` (``i + 2j ≤ degree``), moved."""
     rng = random.Random(seed)
-    profile = {(i, j): rng.randint(-5, 5) or 1 for i in range(degree + 1) for j in range(degree // 2 + 1)
-               if i + 2 * j <= degree and (i, j) not in drop}
+    profile = {
+        (i, j): rng.randint(-5, 5) or 1
+        for i in range(degree + 1)
+        for j in range(degree // 2 + 1)
+        if i + 2 * j <= degree and (i, j) not in drop
+    }
     f = revolve(profile, rational_vector((QQ(1, 2), -1, 2)), rational_vector((2, -1, 3)))
     return move(f, quaternion_rotation((2, 1, -1, 1)), rational_vector((1, QQ(-1, 3), 0)))
 

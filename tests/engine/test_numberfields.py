@@ -89,7 +89,7 @@ def _ours(f):
 @pytest.mark.parametrize(
     "build",
     [
-        lambda K, x, y: (x**2 - 2 * y**2),  # splits over QQ(√2): (x - √2y)(x + √2y)
+        lambda K, x, y: x**2 - 2 * y**2,  # splits over QQ(√2): (x - √2y)(x + √2y)
         lambda K, x, y: (x + 1) * (x**2 + _sqrt(K, 2) * x * y + 3) ** 2,
         lambda K, x, y: (x**2 - 2) * (y**2 - 3) * (x * y - _sqrt(K, 6)),
         lambda K, x, y: (x + _sqrt(K, 3) * y) ** 3 * (x - _sqrt(K, 3) * y),

@@ -52,9 +52,15 @@ def _print(poly: dict, style: str) -> str:
             if e == 1:
                 powers.append(name)
             elif e > 1:
-                powers.append({"**": f"{name}**{e}", "^": f"{name}^{e}", "implicit": f"{name}^{e}",
-                               "spaces": f"{name} ^ {e}", "unicode": name + str(e).translate(
-                                   _SUPERSCRIPT)}[style])
+                powers.append(
+                    {
+                        "**": f"{name}**{e}",
+                        "^": f"{name}^{e}",
+                        "implicit": f"{name}^{e}",
+                        "spaces": f"{name} ^ {e}",
+                        "unicode": name + str(e).translate(_SUPERSCRIPT),
+                    }[style]
+                )
         if not powers:
             terms.append(str(c))
             continue
@@ -145,8 +151,7 @@ def test_decimals_are_exact_rationals_not_floats() -> None:
     coeff = parse_polynomial("0.1x").polynomial.coeff(X)
     assert coeff == q(1, 10)
     assert Fraction(int(coeff.numerator), int(coeff.denominator)) != Fraction(0.1)
-    assert parse_polynomial("0.3333333333333333333333x").polynomial.coeff(X) == q(
-        3333333333333333333333, 10**22)
+    assert parse_polynomial("0.3333333333333333333333x").polynomial.coeff(X) == q(3333333333333333333333, 10**22)
 
 
 def test_long_literals_beyond_pythons_int_string_limit() -> None:
@@ -304,8 +309,7 @@ def test_errors_point_at_the_offending_characters(text, position, end, message) 
 def test_the_parser_never_evaluates_text() -> None:
     """No eval, exec, sympify or parse_expr appears in the parser's code (as names)."""
     source = Path(parsing.__file__).read_text(encoding="utf-8")
-    names = {tok.string for tok in tokenize.generate_tokens(io.StringIO(source).readline)
-             if tok.type == tokenize.NAME}
+    names = {tok.string for tok in tokenize.generate_tokens(io.StringIO(source).readline) if tok.type == tokenize.NAME}
     assert not names & {"eval", "exec", "sympify", "parse_expr", "__import__"}
 
 
@@ -317,8 +321,9 @@ def test_unknown_name_message_lists_the_variables() -> None:
 # --- limits: nothing can hang, eat memory or escape as another exception -----------------
 
 
-@pytest.mark.parametrize("text", ["x^100000", "(x+y+z+1)^100000", "x^(10^10)", "(x+y)^9^9^9",
-                                  "((x+1)^1000)^1000", "x^9999 * y^9999"])
+@pytest.mark.parametrize(
+    "text", ["x^100000", "(x+y+z+1)^100000", "x^(10^10)", "(x+y)^9^9^9", "((x+1)^1000)^1000", "x^9999 * y^9999"]
+)
 def test_degree_limit_is_checked_before_expanding(text) -> None:
     start = time.perf_counter()
     with pytest.raises(ParseError, match="degree|exponent"):
@@ -342,9 +347,14 @@ def test_nesting_limit() -> None:
     assert parse_polynomial("(1+2*-" * depth + "x" + ")" * depth).polynomial.degree() == 1
     half = depth // 2  # the ^1 after each ')' is not nested: five AST nodes per '(' level
     assert parse_polynomial("x+" + "(1+2/-" * half + "1" + ")^1" * half).polynomial.degree() == 1
-    for text in ["(" * (MAX_NESTING + 1) + "x" + ")" * (MAX_NESTING + 1), "(" * 100_000,
-                 "sqrt(" * 5000, "2^" * 5000 + "x", "x" + "^2" * 5000,
-                 "x+" + "(1+2/-" * 1000 + "1" + ")^1" * 1000]:
+    for text in [
+        "(" * (MAX_NESTING + 1) + "x" + ")" * (MAX_NESTING + 1),
+        "(" * 100_000,
+        "sqrt(" * 5000,
+        "2^" * 5000 + "x",
+        "x" + "^2" * 5000,
+        "x+" + "(1+2/-" * 1000 + "1" + ")^1" * 1000,
+    ]:
         with pytest.raises(ParseError, match="nested too deeply"):
             parse_polynomial(text)
 
@@ -362,8 +372,16 @@ def test_long_sums_parse_in_linear_time() -> None:
 
 def test_pasted_degree_30_polynomial_with_5456_terms() -> None:
     rng = random.Random(1)
-    base = sum((rng.randint(-9, 9) * X**i * Y**j * Z**k for i in range(4) for j in range(4)
-                for k in range(4) if i + j + k <= 3), R.zero)
+    base = sum(
+        (
+            rng.randint(-9, 9) * X**i * Y**j * Z**k
+            for i in range(4)
+            for j in range(4)
+            for k in range(4)
+            if i + j + k <= 3
+        ),
+        R.zero,
+    )
     f = base**10
     assert len(f) == 5456
     text = _print({m: int(c) for m, c in f.items()}, "^")  # like str(f) with ^ for **
@@ -401,15 +419,42 @@ def test_grammar_soup_raises_only_parse_errors(text) -> None:
 
 
 @settings(max_examples=200, deadline=None)
-@given(st.lists(st.sampled_from(["x", "y", "z", "2", "0.5", "sqrt(2)", "+", "-", "*", "/", "^",
-                                 "(", ")", "²", "=", " ", "3", "sqrt(", "1e2"]), max_size=30))
+@given(
+    st.lists(
+        st.sampled_from(
+            [
+                "x",
+                "y",
+                "z",
+                "2",
+                "0.5",
+                "sqrt(2)",
+                "+",
+                "-",
+                "*",
+                "/",
+                "^",
+                "(",
+                ")",
+                "²",
+                "=",
+                " ",
+                "3",
+                "sqrt(",
+                "1e2",
+            ]
+        ),
+        max_size=30,
+    )
+)
 def test_token_soup_raises_only_parse_errors(tokens) -> None:
     _only_parse_errors("".join(tokens))
 
 
 exponents = st.tuples(*[st.integers(0, 4)] * 3)
-polynomials = st.dictionaries(exponents, st.integers(-30, 30).filter(bool), min_size=1,
-                              max_size=12).filter(lambda p: any(sum(m) for m in p))
+polynomials = st.dictionaries(exponents, st.integers(-30, 30).filter(bool), min_size=1, max_size=12).filter(
+    lambda p: any(sum(m) for m in p)
+)
 
 
 @settings(max_examples=200, deadline=None)
@@ -446,8 +491,11 @@ _COEFFICIENTS = st.fractions(min_value=-50, max_value=50, max_denominator=12).fi
 
 
 @settings(max_examples=200, deadline=None)
-@given(st.dictionaries(_MONOMIALS, _COEFFICIENTS, min_size=1, max_size=8), st.sampled_from(["**", "^"]),
-       st.sampled_from(["*", "", " "]))
+@given(
+    st.dictionaries(_MONOMIALS, _COEFFICIENTS, min_size=1, max_size=8),
+    st.sampled_from(["**", "^"]),
+    st.sampled_from(["*", "", " "]),
+)
 def test_the_fast_path_reads_expanded_polynomials_as_the_parser_does(terms, power: str, times: str) -> None:
     from sorgui.engine.parsing import expanded_polynomial
 
@@ -466,8 +514,30 @@ def test_the_fast_path_reads_expanded_polynomials_as_the_parser_does(terms, powe
     assert expanded_polynomial(text) == _general(text), text
 
 
-@pytest.mark.parametrize("text", ["x/2 + y", "2*3*x", "x**2**3", "3 4x", "x - - y", "(x+y)^2", "1.5x", "x +",
-                                  "2^3 x", "sqrt(2) x", "x = y", "x^61", "0*x + 1", "1/0 x", "f(x,y,z) = x", "2*-x", "*x + 1", "x + *y", "2* + x"])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "x/2 + y",
+        "2*3*x",
+        "x**2**3",
+        "3 4x",
+        "x - - y",
+        "(x+y)^2",
+        "1.5x",
+        "x +",
+        "2^3 x",
+        "sqrt(2) x",
+        "x = y",
+        "x^61",
+        "0*x + 1",
+        "1/0 x",
+        "f(x,y,z) = x",
+        "2*-x",
+        "*x + 1",
+        "x + *y",
+        "2* + x",
+    ],
+)
 def test_the_fast_path_leaves_everything_else_to_the_parser(text: str) -> None:
     from sorgui.engine.parsing import expanded_polynomial
 

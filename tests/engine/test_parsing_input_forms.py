@@ -14,17 +14,20 @@ R = poly_ring(XYZ, QQ)
 X, Y, Z = R.gens
 
 
-@pytest.mark.parametrize("text", [
-    "\ufeffx^2 + y^2 - z",
-    "f(x,y,z) = x^2 + y^2 - z",
-    "F(x, y, z) := x^2 + y^2 - z",
-    "S ( x , y , z ) = x^2 + y^2 = z",
-    "x^{2} + y^{2} - z",
-    r"\left( x \right)^{2} + \left(y\right)^2 - z",
-    r"x \cdot x + y \times y - z",
-    r"\frac{2}{2} x^2 + \frac{y^2}{1} - z",
-    r"x^2 + y^2\,-\;z",
-])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "\ufeffx^2 + y^2 - z",
+        "f(x,y,z) = x^2 + y^2 - z",
+        "F(x, y, z) := x^2 + y^2 - z",
+        "S ( x , y , z ) = x^2 + y^2 = z",
+        "x^{2} + y^{2} - z",
+        r"\left( x \right)^{2} + \left(y\right)^2 - z",
+        r"x \cdot x + y \times y - z",
+        r"\frac{2}{2} x^2 + \frac{y^2}{1} - z",
+        r"x^2 + y^2\,-\;z",
+    ],
+)
 def test_pasted_forms_of_the_same_paraboloid(text: str) -> None:
     assert parse_polynomial(text).polynomial == X**2 + Y**2 - Z
 
@@ -34,12 +37,15 @@ def test_latex_square_roots_give_the_number_field() -> None:
     assert parsed.radicands == (2,)
 
 
-@pytest.mark.parametrize("text, words", [
-    (r"\frac{1}x", "must be followed by '{numerator}{denominator}'"),
-    (r"\alpha x", "unexpected character"),
-    ("g(x,y) = x^2", "unknown name 'g'"),
-    ("f(x,y,z) = ", "the input is empty"),
-])
+@pytest.mark.parametrize(
+    "text, words",
+    [
+        (r"\frac{1}x", "must be followed by '{numerator}{denominator}'"),
+        (r"\alpha x", "unexpected character"),
+        ("g(x,y) = x^2", "unknown name 'g'"),
+        ("f(x,y,z) = ", "the input is empty"),
+    ],
+)
 def test_malformed_pasted_forms_are_clear_errors(text: str, words: str) -> None:
     with pytest.raises(ParseError) as info:
         parse_polynomial(text)

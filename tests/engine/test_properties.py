@@ -46,7 +46,13 @@ SETTINGS = settings(max_examples=40, deadline=None, suppress_health_check=[Healt
 
 
 @SETTINGS
-@given(profiles(), st.tuples(fractions, fractions, fractions), directions, quaternions, st.tuples(fractions, fractions, fractions))
+@given(
+    profiles(),
+    st.tuples(fractions, fractions, fractions),
+    directions,
+    quaternions,
+    st.tuples(fractions, fractions, fractions),
+)
 def test_random_rotated_profile_is_recognised_with_its_axis(F, point, direction, q, shift):
     c, a = rational_vector(point), rational_vector(direction)
     rotation = quaternion_rotation(q)

@@ -69,11 +69,14 @@ def test_same_analysis_as_the_general_pipeline(text: str) -> None:
     assert _without_timings(quick) == _without_timings(_general(text))
 
 
-@pytest.mark.parametrize("text", [
-    "x^2 + y^2 - sqrt(2) z",  # a square root: K = QQ(sqrt(2))
-    examples()["pipe parabola"],  # canal on the lines tested: the spine needs Singular and sympy
-    "x^2 + y^2 + z^2 - 1.5",  # decimals: the rounded-input stage
-])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "x^2 + y^2 - sqrt(2) z",  # a square root: K = QQ(sqrt(2))
+        examples()["pipe parabola"],  # canal on the lines tested: the spine needs Singular and sympy
+        "x^2 + y^2 + z^2 - 1.5",  # decimals: the rounded-input stage
+    ],
+)
 def test_declines_what_needs_sympy(text: str) -> None:
     assert recognition_only_analysis(text, StageClock(None, None)) is None
 
@@ -83,8 +86,11 @@ def test_declines_what_needs_sympy(text: str) -> None:
 def test_rotated_profiles_agree(F, point, direction, q) -> None:  # type: ignore[no-untyped-def]
     """A random profile on a random axis, turned by a random rational rotation: whenever the
     rational path answers, as the general pipeline does."""
-    f = move(revolve(F, rational_vector(point), rational_vector(direction)), quaternion_rotation(q),
-             rational_vector((0, 0, 0)))
+    f = move(
+        revolve(F, rational_vector(point), rational_vector(direction)),
+        quaternion_rotation(q),
+        rational_vector((0, 0, 0)),
+    )
     text = poly_str(f)
     quick = recognition_only_analysis(text, StageClock(None, None))
     assert quick is not None
@@ -114,8 +120,12 @@ def test_univariate_printer_is_sympys(coefficients: list) -> None:  # type: igno
     """The witness restriction is printed as sympy prints the expression (without sympy)."""
     F = fmpq_poly([fmpq(c.numerator, c.denominator) for c in coefficients])
     tau = sympy.Symbol("tau")
-    expected = str(sum((sympy.Rational(c.numerator, c.denominator) * tau**i for i, c in enumerate(coefficients)),
-                       start=sympy.Integer(0)))
+    expected = str(
+        sum(
+            (sympy.Rational(c.numerator, c.denominator) * tau**i for i, c in enumerate(coefficients)),
+            start=sympy.Integer(0),
+        )
+    )
     assert univariate_str(F, "tau") == expected
 
 

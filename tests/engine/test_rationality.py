@@ -26,8 +26,13 @@ def assert_parametrizations_verified(result) -> None:
 
 
 def test_table_rows() -> None:
-    assert [table_row(True, None, 0), table_row(True, None, 2), table_row(False, 0, 0),
-            table_row(False, 1, 0), table_row(False, 1, 1)] == [1, 2, 3, 4, 5]
+    assert [
+        table_row(True, None, 0),
+        table_row(True, None, 2),
+        table_row(False, 0, 0),
+        table_row(False, 1, 0),
+        table_row(False, 1, 1),
+    ] == [1, 2, 3, 4, 5]
 
 
 def test_paper_example_2(paper_example_1) -> None:
@@ -40,7 +45,7 @@ def test_paper_example_2(paper_example_1) -> None:
     square = sympy.S(result.recognition.profile.square)
     assert sympy.expand(square - corrected) == 0 or sympy.expand(square - corrected.subs(x, -x)) == 0
     # The paper's (-t³+t, t⁴+4t³+6t²+4t+5) lies on it.
-    assert sympy.expand(corrected.subs({x: -t**3 + t, y: t**4 + 4 * t**3 + 6 * t**2 + 4 * t + 5})) == 0
+    assert sympy.expand(corrected.subs({x: -(t**3) + t, y: t**4 + 4 * t**3 + 6 * t**2 + 4 * t + 5})) == 0
     # The tubular surface is the paper's y² + z² = (t+1)⁴ + 4, up to a shift of the parameter.
     h = sympy.Poly(sympy.S(rat.h), t)
     paper_h = t**4 + 4 * t**3 + 6 * t**2 + 4 * t + 5
@@ -185,18 +190,22 @@ def test_a_wrong_parametrization_is_never_reported(monkeypatch, in_frame: bool) 
     if not in_frame:  # make_parametrization substitutes into f itself
         profile = dataclasses.replace(profile, verified=False)
     for section, surface, expected in ((good, good_map, True), (wrong, wrong_map, False)):
-        found = pm.make_parametrization(f, profile, surface, lambda s=section: pm.section_vanishes(profile, s),
-                                        method="test", proper=None)
+        found = pm.make_parametrization(
+            f, profile, surface, lambda s=section: pm.section_vanishes(profile, s), method="test", proper=None
+        )
         assert (found is not None) == expected
         if found is not None:
             assert found.verified and found.real
             assert found.verification == ("substituted into f in the axis frame" if in_frame else "substituted into f")
 
 
-@pytest.mark.parametrize(("equation", "row", "field"), [
-    ("y^2 + z^2 = x^2 - 1", 3, "QQ"),
-    ("y^2 + z^2 = (x^2 + 1)(x^2 - 2)", 4, "QQ(sqrt(2))"),
-])
+@pytest.mark.parametrize(
+    ("equation", "row", "field"),
+    [
+        ("y^2 + z^2 = x^2 - 1", 3, "QQ"),
+        ("y^2 + z^2 = (x^2 + 1)(x^2 - 2)", 4, "QQ(sqrt(2))"),
+    ],
+)
 def test_sign_changing_h_gets_a_real_proper_parametrization(equation: str, row: int, field: str) -> None:
     """h = N·u²·q with deg q ≤ 2: the quadric is projected from a real point (docs/math.md §6)."""
     result = analyze(equation)
@@ -250,12 +259,23 @@ def test_the_paraplanecurve_sextic_with_its_roles_swapped_is_parameterized() -> 
     ``QQ(sqrt(-5))``, whose elements sympy prints with ``I`` and ``sqrt(5)`` apart (once an internal
     error); X_C is rational and gets its complex parameterization, verified."""
     coefficients = {
-        (6, 0): 1, (4, 2): 3, (2, 4): 3, (0, 6): 1, (4, 0): -4, (3, 1): -34, (2, 2): -7, (1, 3): 12,
-        (0, 4): 6, (2, 0): 36, (1, 1): 36, (0, 2): 9,
+        (6, 0): 1,
+        (4, 2): 3,
+        (2, 4): 3,
+        (0, 6): 1,
+        (4, 0): -4,
+        (3, 1): -34,
+        (2, 2): -7,
+        (1, 3): 12,
+        (0, 4): 6,
+        (2, 0): 36,
+        (1, 1): 36,
+        (0, 2): 9,
     }
     swapped = {(j, i): c for (i, j), c in coefficients.items()}
-    result = analyze_polynomial(revolve(swapped, rational_vector((0, 0, 0)), rational_vector((1, 0, 0)),
-                                        axis_distance=True))
+    result = analyze_polynomial(
+        revolve(swapped, rational_vector((0, 0, 0)), rational_vector((1, 0, 0)), axis_distance=True)
+    )
     rationality = result.rationality
     assert rationality.table_row == 4 and rationality.complex_rational and rationality.real_rational is False
     assert "QQ(sqrt(-5))" in " ".join(rationality.notes)

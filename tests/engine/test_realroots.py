@@ -60,11 +60,7 @@ def linear_and_quadratic(factors: Sequence[tuple[int, int, int]]) -> Poly:
 
 
 @settings(max_examples=80, deadline=None)
-@given(
-    st.lists(
-        st.tuples(st.integers(-3, 3), st.integers(-5, 5), st.integers(-5, 5)), min_size=1, max_size=5
-    )
-)
+@given(st.lists(st.tuples(st.integers(-3, 3), st.integers(-5, 5), st.integers(-5, 5)), min_size=1, max_size=5))
 def test_count_real_roots_agrees_with_sympy(factors: list[tuple[int, int, int]]) -> None:
     h = linear_and_quadratic(factors)
     if h.is_ground:

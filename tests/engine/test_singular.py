@@ -101,9 +101,7 @@ def test_override_pointing_nowhere_raises_singular_not_found(
         run_singular("1;")
 
 
-def test_no_singular_anywhere_says_how_to_install_it(
-    clean_cache: None, monkeypatch: pytest.MonkeyPatch
-) -> None:
+def test_no_singular_anywhere_says_how_to_install_it(clean_cache: None, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.delenv(singular.ENV_VARIABLE, raising=False)
     monkeypatch.setattr(singular, "_wheel_singular", lambda: None)
     monkeypatch.setenv("PATH", "")
@@ -139,10 +137,7 @@ def test_syntax_error_raises_singular_error() -> None:
 
 def test_error_inside_a_procedure_raises_singular_error() -> None:
     with pytest.raises(SingularError, match="ground field is not Q"):
-        run_script(
-            "ring q = (0,a),(x,y,z),dp; minpoly = a^2-2;\n"
-            "def P = paraPlaneCurve(x^2+y^2-a*z^2);"
-        )
+        run_script("ring q = (0,a),(x,y,z),dp; minpoly = a^2-2;\ndef P = paraPlaneCurve(x^2+y^2-a*z^2);")
 
 
 def test_timeout_raises_and_kills_singular() -> None:
@@ -265,9 +260,7 @@ def test_integer_readers_reject_non_integers() -> None:
 
 
 coefficients = st.fractions(min_value=-50, max_value=50, max_denominator=12)
-terms = st.dictionaries(
-    st.tuples(st.integers(0, 4), st.integers(0, 4)), coefficients, min_size=1, max_size=8
-)
+terms = st.dictionaries(st.tuples(st.integers(0, 4), st.integers(0, 4)), coefficients, min_size=1, max_size=8)
 
 
 @settings(max_examples=60, deadline=None)
@@ -298,10 +291,13 @@ def test_sorguis_procedures_are_a_singular_library_shipped_as_package_data() -> 
     assert "engine/singular/*.lib" in pyproject["tool"]["setuptools"]["package-data"]["sorgui"]
 
 
-@pytest.mark.parametrize(("body", "said"), [
-    ('cat > /dev/null\necho "%%%% garbage ? not Singular"\n', "did not report"),
-    ('exec yes "garbage garbage garbage garbage"\n', "printed more than"),
-])
+@pytest.mark.parametrize(
+    ("body", "said"),
+    [
+        ('cat > /dev/null\necho "%%%% garbage ? not Singular"\n', "did not report"),
+        ('exec yes "garbage garbage garbage garbage"\n', "printed more than"),
+    ],
+)
 def test_a_singular_that_prints_garbage_or_floods_is_one_line(tmp_path, monkeypatch, body: str, said: str) -> None:
     """A broken or foreign executable named by ``$SORGUI_SINGULAR``: the analysis says so in one
     line (the rationality undecided), never an internal error, and a flood is cut off."""

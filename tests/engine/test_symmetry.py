@@ -30,12 +30,48 @@ TABLE = [
     ("line pair around an axis", x**2 + y**2, "cylinder_of_revolution", 2, ((0, 0, 0), (0, 0, 1)), None),
     ("extrusion", x**3 - y**2 - x, "extrusion", 1, None, None),
     ("ellipsoid", x**2 + 2 * y**2 + 3 * z**2 - 1, "none", 0, None, None),
-    ("hyperboloid off the origin", (x - 1) ** 2 + (y + 2) ** 2 - 3 * (z - 5) ** 2 - 1, "revolution", 1, ((1, -2, 5), (0, 0, 1)), None),
-    ("concentric spheres", ((x - 1) ** 2 + y**2 + z**2 - 1) * ((x - 1) ** 2 + y**2 + z**2 - 4), "sphere", 3, None, (1, 0, 0)),
-    ("coaxial blend", (x**2 + y**2 + (z - 1) ** 2 - 4) * (x**2 + y**2 - 1) - QQ(1, 4), "revolution", 1, ((0, 0, 0), (0, 0, 1)), None),
-    ("non-coaxial blend", (x**2 + y**2 + (z - 1) ** 2 - 4) * ((x - z) ** 2 / 2 + y**2 - 1) - QQ(1, 4), "none", 0, None, None),
-    ("tilted torus", revolve({(0, 2): 1, (0, 1): 6 - 16, (0, 0): 9, (2, 0): 16}, rational_vector((1, 2, 3)), rational_vector((2, -1, 2))),
-     "revolution", 1, ((1, 2, 3), (2, -1, 2)), None),
+    (
+        "hyperboloid off the origin",
+        (x - 1) ** 2 + (y + 2) ** 2 - 3 * (z - 5) ** 2 - 1,
+        "revolution",
+        1,
+        ((1, -2, 5), (0, 0, 1)),
+        None,
+    ),
+    (
+        "concentric spheres",
+        ((x - 1) ** 2 + y**2 + z**2 - 1) * ((x - 1) ** 2 + y**2 + z**2 - 4),
+        "sphere",
+        3,
+        None,
+        (1, 0, 0),
+    ),
+    (
+        "coaxial blend",
+        (x**2 + y**2 + (z - 1) ** 2 - 4) * (x**2 + y**2 - 1) - QQ(1, 4),
+        "revolution",
+        1,
+        ((0, 0, 0), (0, 0, 1)),
+        None,
+    ),
+    (
+        "non-coaxial blend",
+        (x**2 + y**2 + (z - 1) ** 2 - 4) * ((x - z) ** 2 / 2 + y**2 - 1) - QQ(1, 4),
+        "none",
+        0,
+        None,
+        None,
+    ),
+    (
+        "tilted torus",
+        revolve(
+            {(0, 2): 1, (0, 1): 6 - 16, (0, 0): 9, (2, 0): 16}, rational_vector((1, 2, 3)), rational_vector((2, -1, 2))
+        ),
+        "revolution",
+        1,
+        ((1, 2, 3), (2, -1, 2)),
+        None,
+    ),
 ]
 
 
@@ -74,9 +110,13 @@ def test_axis_over_an_algebraic_field():
 
 def test_paper_example_axis_and_profile(paper_example_1):
     report, sym, profile = recognize(paper_example_1)
-    assert same_line(sym.axis_point, sym.axis_direction, rational_vector(("3/5", "-4/5", 0)), rational_vector((4, 3, 0)))
+    assert same_line(
+        sym.axis_point, sym.axis_direction, rational_vector(("3/5", "-4/5", 0)), rational_vector((4, 3, 0))
+    )
     X, Y = sympy.symbols("x y")
-    paper_p = -400 - 104 * X**2 - X**4 + 200 * Y**2 - 48 * X * Y**2 + 26 * X**2 * Y**2 - 29 * Y**4 + 12 * X * Y**4 + Y**6
+    paper_p = (
+        -400 - 104 * X**2 - X**4 + 200 * Y**2 - 48 * X * Y**2 + 26 * X**2 * Y**2 - 29 * Y**4 + 12 * X * Y**4 + Y**6
+    )
     p = profile.orthonormal.as_expr()
     assert sympy.expand(p - paper_p) == 0 or sympy.expand(p - paper_p.subs(X, -X)) == 0
     # docs/math.md §1 erratum: with (v : p × v) the Plücker coordinates are (4:3:0:0:0:5).

@@ -43,8 +43,15 @@ def test_a_limit_met_in_python_keeps_what_finished() -> None:
 def test_nothing_finished_is_reported_undecided() -> None:
     f = parse_polynomial("x^2 + y^2 - z").polynomial
     start = skeleton(f, text="x^2+y^2-z", method="symmetry")
-    result = unfinished_analysis(start, recognition=None, latest=None, timings=(("parse", 0.01),),
-                                 current="recognition", message="too slow", recognition_only=False)
+    result = unfinished_analysis(
+        start,
+        recognition=None,
+        latest=None,
+        timings=(("parse", 0.01),),
+        current="recognition",
+        message="too slow",
+        recognition_only=False,
+    )
     assert result.recognition.symmetry == UNDECIDED and not result.is_sor
     assert result.unfinished == ("recognition", "factors", "rationality", "parametrizations")
     assert result.rationality.status == "undecided: too slow"

@@ -86,10 +86,13 @@ def test_python_module_evaluates_m_and_checks_it_on_the_spine(canal_analysis, tm
     assert sympy.expand(module.canal1Rho - (t + 1) ** 2 / 4) == 0
 
 
-@pytest.mark.parametrize(("old", "new", "failing"), [
-    ("canal1M_EXACT = (", "canal1M_EXACT = (S(1)/7 + ", "canal1M"),
-    ("canal1Rho = ", "canal1Rho = S(1)/7 + ", "canal1Rho"),
-])
+@pytest.mark.parametrize(
+    ("old", "new", "failing"),
+    [
+        ("canal1M_EXACT = (", "canal1M_EXACT = (S(1)/7 + ", "canal1M"),
+        ("canal1Rho = ", "canal1Rho = S(1)/7 + ", "canal1Rho"),
+    ],
+)
 def test_check_fails_for_a_wrong_spine_or_radius(canal_analysis, tmp_path, old: str, new: str, failing: str) -> None:
     path = export_analysis(canal_analysis, tmp_path / f"wrong_{failing}.py")
     text = path.read_text(encoding="utf-8")
@@ -102,7 +105,7 @@ def test_check_fails_for_a_wrong_spine_or_radius(canal_analysis, tmp_path, old: 
 
 def test_reports_have_a_canal_section_in_words_and_formulas(canal_analysis) -> None:
     text = markdown_report(canal_analysis)
-    canal = text[text.index("## Canal"):]
+    canal = text[text.index("## Canal") :]
     assert "The surface is a canal surface (canal)." in canal
     assert "- spine of degree 2 (planar); SMAT curve of degree 2 and genus 0" in canal
     assert "- radius varying" in canal
@@ -125,7 +128,13 @@ def test_latex_names_the_spine_and_radius(canal_analysis) -> None:
 @pytest.mark.skipif(shutil.which("pdflatex") is None, reason="pdflatex is not installed (.ci/run installs it)")
 def test_latex_document_with_the_canal_family_compiles(canal_analysis, tmp_path) -> None:
     path = export_analysis(canal_analysis, tmp_path / "canal.tex")
-    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", path.name],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=120, stdin=subprocess.DEVNULL)
+    run = subprocess.run(
+        ["pdflatex", "-interaction=nonstopmode", "-halt-on-error", path.name],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        stdin=subprocess.DEVNULL,
+    )
     assert run.returncode == 0, run.stdout[-2000:]
     assert (tmp_path / "canal.pdf").stat().st_size > 10_000

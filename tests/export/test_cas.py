@@ -76,7 +76,13 @@ def test_latex_text_is_escaped() -> None:
 @pytest.mark.parametrize("name", NAMES)
 def test_latex_document_compiles(analyses, name: str, tmp_path) -> None:
     path = export_analysis(analyses[name], tmp_path / f"{name}.tex")
-    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", path.name],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=120, stdin=subprocess.DEVNULL)
+    run = subprocess.run(
+        ["pdflatex", "-interaction=nonstopmode", "-halt-on-error", path.name],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        stdin=subprocess.DEVNULL,
+    )
     assert run.returncode == 0, run.stdout[-2000:]
     assert (tmp_path / f"{name}.pdf").stat().st_size > 10_000

@@ -38,21 +38,26 @@ def test_desktop_entry_names_the_categories_icon_and_file_types() -> None:
     assert declared == list(MIME_TYPES)
 
 
-@pytest.mark.skipif(shutil.which("desktop-file-validate") is None,
-                    reason="desktop-file-validate is not installed (.ci/run installs desktop-file-utils)")
+@pytest.mark.skipif(
+    shutil.which("desktop-file-validate") is None,
+    reason="desktop-file-validate is not installed (.ci/run installs desktop-file-utils)",
+)
 def test_desktop_file_validates() -> None:
-    run = subprocess.run(["desktop-file-validate", str(RESOURCES / f"{APP_ID}.desktop")],
-                         capture_output=True, text=True, timeout=60)
+    run = subprocess.run(
+        ["desktop-file-validate", str(RESOURCES / f"{APP_ID}.desktop")], capture_output=True, text=True, timeout=60
+    )
     assert run.returncode == 0, run.stdout + run.stderr
     assert "error" not in run.stdout
 
 
-@pytest.mark.skipif(shutil.which("appstreamcli") is None,
-                    reason="appstreamcli is not installed (.ci/run installs appstream)")
+@pytest.mark.skipif(
+    shutil.which("appstreamcli") is None, reason="appstreamcli is not installed (.ci/run installs appstream)"
+)
 def test_metainfo_validates_and_has_a_screenshot() -> None:
     path = RESOURCES / f"{APP_ID}.metainfo.xml"
-    run = subprocess.run(["appstreamcli", "validate", "--no-net", str(path)],
-                         capture_output=True, text=True, timeout=60)
+    run = subprocess.run(
+        ["appstreamcli", "validate", "--no-net", str(path)], capture_output=True, text=True, timeout=60
+    )
     assert run.returncode == 0, run.stdout + run.stderr
     root = ET.parse(path).getroot()
     assert root.findtext("id") == APP_ID and root.findtext("project_license") == "MIT"
@@ -81,14 +86,19 @@ def test_install_and_uninstall_for_the_current_user(tmp_path) -> None:
     data = tmp_path / "share"
     env = {**os.environ, "XDG_DATA_HOME": str(data), "HOME": str(tmp_path)}
     script = ROOT / "packaging" / "install-desktop.sh"
-    run = subprocess.run(["bash", str(script), "--exec", str(executable)], env=env,
-                         capture_output=True, text=True, timeout=120)
+    run = subprocess.run(
+        ["bash", str(script), "--exec", str(executable)], env=env, capture_output=True, text=True, timeout=120
+    )
     assert run.returncode == 0, run.stderr
     launcher = data / "applications" / f"{APP_ID}.desktop"
     assert f'Exec="{executable}" %f' in launcher.read_text(encoding="utf-8")
-    expected = [launcher, data / "metainfo" / f"{APP_ID}.metainfo.xml", data / "mime" / "packages" / f"{APP_ID}.xml",
-                data / "icons" / "hicolor" / "scalable" / "apps" / f"{APP_ID}.svg",
-                *[data / "icons" / "hicolor" / f"{s}x{s}" / "apps" / f"{APP_ID}.png" for s in SIZES]]
+    expected = [
+        launcher,
+        data / "metainfo" / f"{APP_ID}.metainfo.xml",
+        data / "mime" / "packages" / f"{APP_ID}.xml",
+        data / "icons" / "hicolor" / "scalable" / "apps" / f"{APP_ID}.svg",
+        *[data / "icons" / "hicolor" / f"{s}x{s}" / "apps" / f"{APP_ID}.png" for s in SIZES],
+    ]
     assert all(path.is_file() for path in expected)
     run = subprocess.run(["bash", str(script), "--uninstall"], env=env, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr

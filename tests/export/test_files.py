@@ -17,14 +17,17 @@ from sorgui.export.formulas import analysis_formulas
 x, y, s, t = sympy.symbols("x y s t")
 
 
-@pytest.mark.parametrize(("text", "expected"), [
-    ("-x**2 + y**2", -x**2 + y**2),
-    ("-2**2", sympy.Integer(-4)),
-    ("2**-1*x", x / 2),
-    ("x**2**3", x**8),
-    ("(1 - s**2)/(s**2 + 1)", (1 - s**2) / (s**2 + 1)),
-    ("-sqrt(2)/2 + I*t", -sympy.sqrt(2) / 2 + sympy.I * t),
-])
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("-x**2 + y**2", -(x**2) + y**2),
+        ("-2**2", sympy.Integer(-4)),
+        ("2**-1*x", x / 2),
+        ("x**2**3", x**8),
+        ("(1 - s**2)/(s**2 + 1)", (1 - s**2) / (s**2 + 1)),
+        ("-sqrt(2)/2 + I*t", -sympy.sqrt(2) / 2 + sympy.I * t),
+    ],
+)
 def test_engine_strings_are_read_exactly(text: str, expected: sympy.Expr) -> None:
     assert sympy.simplify(read_expression(text) - expected) == 0
 
@@ -32,7 +35,7 @@ def test_engine_strings_are_read_exactly(text: str, expected: sympy.Expr) -> Non
 def test_formulas_are_the_exact_results() -> None:
     result = analyze("y^2 - 2xz")
     formulas = {f.name: f.value for f in analysis_formulas(result)}
-    assert sympy.expand(formulas["p"] - (-x**2 + y**2)) == 0 or sympy.expand(formulas["p"] - (x**2 - y**2)) == 0
+    assert sympy.expand(formulas["p"] - (-(x**2) + y**2)) == 0 or sympy.expand(formulas["p"] - (x**2 - y**2)) == 0
     assert list(formulas["axisDirection"]) == [1, 0, 1]
     assert {"f", "P2", "T", "X1"} <= set(formulas)
 
@@ -89,7 +92,8 @@ def test_open_refuses_what_is_not_a_report(tmp_path, capsys: pytest.CaptureFixtu
     bad.write_text("x^2 + y^2 - 1", encoding="utf-8")
     assert main(["open", str(bad)]) == 2
     assert capsys.readouterr().err.strip().splitlines() == [
-        f"sorgui: {bad} is not a JSON report: Expecting value: line 1 column 1 (char 0)"]
+        f"sorgui: {bad} is not a JSON report: Expecting value: line 1 column 1 (char 0)"
+    ]
 
 
 def test_open_hands_a_valid_report_to_the_window(analyses, tmp_path, monkeypatch) -> None:

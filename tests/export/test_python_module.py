@@ -43,8 +43,11 @@ def test_module_checks_and_evaluates_on_the_surface(analyses, tmp_path, name: st
     path = export_analysis(analysis, tmp_path / f"{name.replace('-', '_')}.py")
     module = load(path, f"exported_{name.replace('-', '_')}")
     checked = module.check()
-    assert checked == ["P2param", *[f"X{i}" for i in range(1, len(analysis.parametrizations) + 1)],
-                       *canal_checks(analysis)]
+    assert checked == [
+        "P2param",
+        *[f"X{i}" for i in range(1, len(analysis.parametrizations) + 1)],
+        *canal_checks(analysis),
+    ]
     assert sympy.expand(module.F - read_expression(analysis.recognition.polynomial)) == 0
     assert "parameter domain" in module.X1.__doc__ and "parameter domain" in module.P2param.__doc__
     s = np.linspace(-3.0, 3.0, 13)[:, None]

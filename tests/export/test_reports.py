@@ -24,8 +24,15 @@ def test_json_reloads_into_equal_result_objects(analyses, tmp_path, name: str) -
 
 
 def test_approximate_results_are_kept_and_reported(analyses, tmp_path) -> None:
-    approx = Approximation(tolerance=1e-6, tolerance_source="input", near_sor=True, kind="revolution",
-                           relative_distance=2e-7, residual=0.4, singular_values=(1.0, 0.5, 1e-8))
+    approx = Approximation(
+        tolerance=1e-6,
+        tolerance_source="input",
+        near_sor=True,
+        kind="revolution",
+        relative_distance=2e-7,
+        residual=0.4,
+        singular_values=(1.0, 0.5, 1e-8),
+    )
     analysis = dataclasses.replace(analyses["torus"], approximate=approx)
     path = export_analysis(analysis, tmp_path / "rounded.json")
     assert read_report(path) == analysis
@@ -69,8 +76,12 @@ def test_reports_without_a_picture(analyses, tmp_path) -> None:
 
 
 def test_bad_reports_are_refused_with_one_line(tmp_path) -> None:
-    cases = {"missing.json": None, "text.json": "x^2 + y^2", "error.json": '{"error": {"message": "bad"}}',
-             "other.json": '{"input": "x"}'}
+    cases = {
+        "missing.json": None,
+        "text.json": "x^2 + y^2",
+        "error.json": '{"error": {"message": "bad"}}',
+        "other.json": '{"input": "x"}',
+    }
     for name, content in cases.items():
         if content is not None:
             (tmp_path / name).write_text(content, encoding="utf-8")
@@ -102,6 +113,8 @@ def test_a_nearest_surface_outside_the_rounding_is_not_presented_as_the_part() -
     text = format_report(analysis)
     assert "no simple exact surface was found within the rounding" in text
     assert "the analysis of the nearest exact surface" not in text
-    inside = dataclasses.replace(analysis, approximate=dataclasses.replace(
-        approx, nearest=dataclasses.replace(approx.nearest, within_rounding=True)))
+    inside = dataclasses.replace(
+        analysis,
+        approximate=dataclasses.replace(approx, nearest=dataclasses.replace(approx.nearest, within_rounding=True)),
+    )
     assert "the analysis of the nearest exact surface" in format_report(inside)

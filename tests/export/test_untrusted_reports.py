@@ -69,7 +69,9 @@ def write(tmp_path: Path, data: Any, name: str = "crafted.sorgui.json") -> Path:
 
 
 @pytest.mark.parametrize("suffix", sorted(BREAKOUTS))
-def test_every_field_of_a_crafted_report_is_refused_or_shown_literally(tmp_path: Path, torus_report, suffix: str) -> None:
+def test_every_field_of_a_crafted_report_is_refused_or_shown_literally(
+    tmp_path: Path, torus_report, suffix: str
+) -> None:
     payload = BREAKOUTS[suffix]
     refused = shown = 0
     for path in string_paths(torus_report):
@@ -96,8 +98,13 @@ def check_literal(target: Path, suffix: str, payload: str, folder: Path) -> None
     """The exported file holds the payload only as text, and its tool runs nothing."""
     text = target.read_text(encoding="utf-8")
     if suffix == ".py":
-        done = subprocess.run([sys.executable, "-c", f"import runpy; runpy.run_path({str(target)!r})"],
-                              cwd=folder, capture_output=True, text=True, timeout=120)
+        done = subprocess.run(
+            [sys.executable, "-c", f"import runpy; runpy.run_path({str(target)!r})"],
+            cwd=folder,
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
         assert done.returncode == 0, done.stderr[-2000:]
         assert not (folder / MARKER).exists()
     elif suffix == ".mpl":
@@ -113,8 +120,13 @@ def check_literal(target: Path, suffix: str, payload: str, folder: Path) -> None
     elif suffix == ".tex":
         assert "\\write18" not in text and "\\input{/etc" not in text
         if shutil.which("pdflatex"):
-            done = subprocess.run(["pdflatex", "-no-shell-escape", "-interaction=nonstopmode", "-halt-on-error",
-                                   target.name], cwd=folder, capture_output=True, text=True, timeout=180)
+            done = subprocess.run(
+                ["pdflatex", "-no-shell-escape", "-interaction=nonstopmode", "-halt-on-error", target.name],
+                cwd=folder,
+                capture_output=True,
+                text=True,
+                timeout=180,
+            )
             assert done.returncode == 0, done.stdout[-2000:]
             assert not (folder / MARKER).exists()
     else:
@@ -136,18 +148,22 @@ def _without_comments(text: str) -> str:
     return "".join(out)
 
 
-@pytest.mark.parametrize(("where", "value", "named"), [
-    (("parametrizations", 0, "parameters", 0), "s); import os; os.system('id')#", "parameters"),
-    (("symmetry",), "<b>revolution</b>", "symmetry"),
-    (("axis", "point", 0), "((2^10000)^10000)^10000", "axis.point"),
-    (("axis", "point", 0), "__import__('os')", "axis.point"),
-    (("rationality", "notes", 0), "two\nlines", "rationality.notes"),
-    (("field",), "QQ; import os", "field"),
-    (("input",), "x^2 + sin(y)", "input"),
-    (("canal", "kinds", 0), "wormhole", "canal.kinds"),
-])
-def test_a_value_sorgui_does_not_write_is_refused_with_its_field(tmp_path: Path, torus_report, where, value,
-                                                                named: str) -> None:
+@pytest.mark.parametrize(
+    ("where", "value", "named"),
+    [
+        (("parametrizations", 0, "parameters", 0), "s); import os; os.system('id')#", "parameters"),
+        (("symmetry",), "<b>revolution</b>", "symmetry"),
+        (("axis", "point", 0), "((2^10000)^10000)^10000", "axis.point"),
+        (("axis", "point", 0), "__import__('os')", "axis.point"),
+        (("rationality", "notes", 0), "two\nlines", "rationality.notes"),
+        (("field",), "QQ; import os", "field"),
+        (("input",), "x^2 + sin(y)", "input"),
+        (("canal", "kinds", 0), "wormhole", "canal.kinds"),
+    ],
+)
+def test_a_value_sorgui_does_not_write_is_refused_with_its_field(
+    tmp_path: Path, torus_report, where, value, named: str
+) -> None:
     crafted = write(tmp_path, replaced(torus_report, where, value))
     with pytest.raises(ReportError) as caught:
         read_report(crafted)
@@ -160,11 +176,14 @@ def test_a_report_of_sorgui_reads_back_whole(tmp_path: Path, analyses: dict[str,
         assert read_report(write(tmp_path, analysis.to_json(), f"{name}.json")) == analysis
 
 
-@pytest.mark.parametrize("content", [
-    "[" * 100_000 + "]" * 100_000,
-    '{"input": "x", "degree": ' + "9" * 300_000 + "}",
-    '{"input": ' + "(" * 50_000 + "x" + ")" * 50_000 + "}",
-])
+@pytest.mark.parametrize(
+    "content",
+    [
+        "[" * 100_000 + "]" * 100_000,
+        '{"input": "x", "degree": ' + "9" * 300_000 + "}",
+        '{"input": ' + "(" * 50_000 + "x" + ")" * 50_000 + "}",
+    ],
+)
 def test_hostile_json_is_refused_in_one_line(tmp_path: Path, content: str) -> None:
     path = tmp_path / "hostile.json"
     path.write_text(content, encoding="utf-8")

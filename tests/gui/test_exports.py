@@ -68,7 +68,7 @@ def pixels(path) -> np.ndarray:  # noqa: ANN001
 
 
 def count_color(image: np.ndarray, color: str, tolerance: int = 40) -> int:
-    rgb = np.array([int(color[i:i + 2], 16) for i in (1, 3, 5)])
+    rgb = np.array([int(color[i : i + 2], 16) for i in (1, 3, 5)])
     return int((np.abs(image[..., :3].astype(int) - rgb).max(axis=-1) <= tolerance).sum())
 
 
@@ -111,8 +111,9 @@ def test_exporting_markdown_asks_before_replacing_its_picture(window, run_analys
     picture.write_bytes(b"the user's own picture")
     monkeypatch.setattr(QFileDialog, "getSaveFileName", lambda *_args: (str(tmp_path / "part.md"), ""))
     asked: list[str] = []
-    monkeypatch.setattr(QMessageBox, "question",
-                        lambda *args, **_kw: asked.append(args[2]) or QMessageBox.StandardButton.Cancel)
+    monkeypatch.setattr(
+        QMessageBox, "question", lambda *args, **_kw: asked.append(args[2]) or QMessageBox.StandardButton.Cancel
+    )
     window._on_export_change()
     assert asked and "part.png" in asked[0]
     assert picture.read_bytes() == b"the user's own picture" and not (tmp_path / "part.md").exists()

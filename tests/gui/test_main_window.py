@@ -190,14 +190,16 @@ def test_sorgui_opens_the_window_first_then_analyses_example_1(qtbot) -> None:
         QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
 
 
-def test_a_refused_equation_says_what_is_wrong_and_drops_the_old_stages(window, qtbot, run_analysis,
-                                                                       artifacts) -> None:
+def test_a_refused_equation_says_what_is_wrong_and_drops_the_old_stages(window, qtbot, run_analysis, artifacts) -> None:
     """After an analysis, an equation above the degree limit or an empty editor: the heading names
     the problem, and the stages of the previous equation are no longer shown."""
     run_analysis(window, "x^2 + 2y^2 + 3z^2 - 1")
     assert window.run_panel.stage_line.text()
-    for text, heading in (("x^200", "The degree is above sorgui's limit"), ("", "No equation"),
-                          ("x^2 + * y", "Not a polynomial in x, y, z")):
+    for text, heading in (
+        ("x^200", "The degree is above sorgui's limit"),
+        ("", "No equation"),
+        ("x^2 + * y", "Not a polynomial in x, y, z"),
+    ):
         window.set_equation(text)
         assert window.analyze() is False
         assert heading in window.results.banner.text(), window.results.banner.text()
@@ -252,8 +254,9 @@ def test_a_dropped_equation_file_is_opened(window, qtbot, tmp_path, target: str)
     mime = QMimeData()
     mime.setUrls([QUrl.fromLocalFile(str(part))])
     widget = window.editor.text_edit.viewport() if target == "editor" else window.viewport
-    drop = QDropEvent(QPointF(10, 10), Qt.DropAction.CopyAction, mime, Qt.MouseButton.LeftButton,
-                      Qt.KeyboardModifier.NoModifier)
+    drop = QDropEvent(
+        QPointF(10, 10), Qt.DropAction.CopyAction, mime, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier
+    )
     # Qt delivers a drop only during a real drag (none can be made under Xvfb without a drag
     # source): the window's event filter, which sees every event of its widgets, gets it here.
     assert window.eventFilter(widget, drop) is True
@@ -263,8 +266,9 @@ def test_a_dropped_equation_file_is_opened(window, qtbot, tmp_path, target: str)
     picture = tmp_path / "photo.png"
     picture.write_bytes(b"not an equation")
     mime.setUrls([QUrl.fromLocalFile(str(picture))])
-    other = QDropEvent(QPointF(10, 10), Qt.DropAction.CopyAction, mime, Qt.MouseButton.LeftButton,
-                       Qt.KeyboardModifier.NoModifier)
+    other = QDropEvent(
+        QPointF(10, 10), Qt.DropAction.CopyAction, mime, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier
+    )
     assert window.eventFilter(widget, other) is True
     assert window.editor.text() == "x^2 + y^2 - 4z^2 - 1" and "reports (.json)" in window.statusBar().currentMessage()
 
@@ -298,8 +302,16 @@ def test_the_wheel_over_a_long_formula_scrolls_the_pane(qtbot) -> None:
     qtbot.waitExposed(row)
 
     def wheel(dx: int, dy: int) -> QWheelEvent:
-        return QWheelEvent(QPointF(10, 10), QPointF(row.mapToGlobal(QPoint(10, 10))), QPoint(0, 0), QPoint(dx, dy),
-                           Qt.MouseButton.NoButton, Qt.KeyboardModifier.NoModifier, Qt.ScrollPhase.NoScrollPhase, False)
+        return QWheelEvent(
+            QPointF(10, 10),
+            QPointF(row.mapToGlobal(QPoint(10, 10))),
+            QPoint(0, 0),
+            QPoint(dx, dy),
+            Qt.MouseButton.NoButton,
+            Qt.KeyboardModifier.NoModifier,
+            Qt.ScrollPhase.NoScrollPhase,
+            False,
+        )
 
     vertical = wheel(0, -120)
     row.wheelEvent(vertical)

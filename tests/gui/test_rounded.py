@@ -13,8 +13,9 @@ from tests.engine.test_approximate import _turned_torus
 pytestmark = pytest.mark.gui
 
 
-def test_a_rounded_torus_is_shown_near_with_its_axis_and_its_nearest_surface(window, run_analysis, qtbot,
-                                                                             artifacts) -> None:
+def test_a_rounded_torus_is_shown_near_with_its_axis_and_its_nearest_surface(
+    window, run_analysis, qtbot, artifacts
+) -> None:
     run_analysis(window, printed(_turned_torus()[0], 10), timeout_ms=300_000)
     qtbot.waitUntil(lambda: window.session.nearest_analysis is not None, timeout=300_000)
     banner = window.results.banner.text()
@@ -40,7 +41,8 @@ def test_a_rounded_torus_is_shown_near_with_its_axis_and_its_nearest_surface(win
 
 
 def test_a_cad_torus_on_an_irrational_axis_switches_to_its_exact_surface_over_a_quadratic_field(
-        window, run_analysis, qtbot, artifacts) -> None:
+    window, run_analysis, qtbot, artifacts
+) -> None:
     """Turned by 30° and 45°, printed with 10 digits: the nearest exact surface is the torus over
     QQ(√6), and the window shows it (its pane and its mesh) when asked."""
     from tests.engine.test_approximate import _cad_torus

@@ -22,8 +22,9 @@ pytestmark = [pytest.mark.gui, pytest.mark.slow]
 
 def start_window(args: list[str], home: Path) -> subprocess.Popen[str]:
     env = {**os.environ, "HOME": str(home), "XDG_CONFIG_HOME": str(home / "config")}
-    proc = subprocess.Popen([sys.executable, "-m", "sorgui.cli", *args], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, env=env)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sorgui.cli", *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env
+    )
     wait_for(lambda: descendants(proc.pid) or proc.poll() is not None, 60)  # its worker process started
     time.sleep(4)  # the window is up and analysing
     assert proc.poll() is None, proc.communicate()
@@ -44,8 +45,12 @@ def test_the_window_ends_on_a_signal(tmp_path: Path, signum: int) -> None:
 
 def test_the_window_showing_a_report_ends_on_sigterm(tmp_path: Path) -> None:
     report = tmp_path / "torus.sorgui.json"
-    done = subprocess.run([sys.executable, "-m", "sorgui.cli", "analyze", "--json",
-                           "(x^2+y^2+z^2+3)^2-16(x^2+y^2)"], capture_output=True, text=True, timeout=120)
+    done = subprocess.run(
+        [sys.executable, "-m", "sorgui.cli", "analyze", "--json", "(x^2+y^2+z^2+3)^2-16(x^2+y^2)"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     report.write_text(done.stdout, encoding="utf-8")
     assert json.loads(done.stdout)["is_sor"]
     proc = start_window(["open", str(report)], tmp_path)

@@ -39,8 +39,9 @@ def stage_state(window, name: str) -> StageState:  # noqa: ANN001
     return window.session.run.stages[name].state
 
 
-def test_verdict_while_singular_runs_and_no_old_verdict_ever(make_window, qtbot, run_analysis, monkeypatch,
-                                                            hanging_singular, artifacts) -> None:
+def test_verdict_while_singular_runs_and_no_old_verdict_ever(
+    make_window, qtbot, run_analysis, monkeypatch, hanging_singular, artifacts
+) -> None:
     window = make_window(prestart_worker=False)  # each job starts its own process
     run_analysis(window, example_text("ellipsoid"), timeout_ms=SLOW_MS)
     assert "Not a surface of revolution" in window.results.banner.text()
@@ -106,9 +107,13 @@ def test_analyze_during_a_run_supersedes_it(make_window, qtbot, monkeypatch, han
     assert blocker.args[0].analysis.recognition.axis.direction == ("1", "0", "1")
     assert window.session.run.text == example_text("cone")
     assert "(3/5, -4/5, 0)" not in window.results.plain_text() and "(1, 0, 1)" in window.results.plain_text()
-    qtbot.waitUntil(lambda: not Path(f"/proc/{first}").exists()
-                    or "Z" in Path(f"/proc/{first}/stat").read_text().rsplit(")", 1)[1].split()[0],
-                    timeout=10_000)  # the superseded process is gone (or a zombie until reaped)
+    qtbot.waitUntil(
+        lambda: (
+            not Path(f"/proc/{first}").exists()
+            or "Z" in Path(f"/proc/{first}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        ),
+        timeout=10_000,
+    )  # the superseded process is gone (or a zombie until reaped)
 
 
 def _pane_text(window) -> str:  # noqa: ANN001
@@ -249,9 +254,16 @@ def _ctrl_wheel(widget, delta: int) -> None:  # noqa: ANN001
     from PySide6.QtWidgets import QApplication
 
     centre = QPointF(widget.width() / 2, widget.height() / 2)
-    event = QWheelEvent(centre, widget.mapToGlobal(centre), QPoint(0, 0), QPoint(0, delta),
-                        Qt.MouseButton.NoButton, Qt.KeyboardModifier.ControlModifier,
-                        Qt.ScrollPhase.NoScrollPhase, False)
+    event = QWheelEvent(
+        centre,
+        widget.mapToGlobal(centre),
+        QPoint(0, 0),
+        QPoint(0, delta),
+        Qt.MouseButton.NoButton,
+        Qt.KeyboardModifier.ControlModifier,
+        Qt.ScrollPhase.NoScrollPhase,
+        False,
+    )
     QApplication.sendEvent(widget, event)
 
 
@@ -285,8 +297,11 @@ def test_long_formulas_are_folded_with_show_all(window, run_analysis) -> None:
 
     text = sor_in_general_position(8)
     run_analysis(window, text)
-    view = next(v for v in window.results.findChildren(FormulaView) if v.formula.plain.startswith(
-        window.session.run.analysis.recognition.polynomial[:20]))
+    view = next(
+        v
+        for v in window.results.findChildren(FormulaView)
+        if v.formula.plain.startswith(window.session.run.analysis.recognition.polynomial[:20])
+    )
     assert view.folded and "show all" in view.show_all_button.text()
     view.show_all()
     assert not view.folded
@@ -316,8 +331,11 @@ def test_caption_tooltips_on_results(window, run_analysis) -> None:
     from PySide6.QtWidgets import QLabel
 
     run_analysis(window, example_text("torus"))
-    captions = [label for label in window.results.widget().findChildren(QLabel) if label.objectName() == "caption"
-                and label.text()]
+    captions = [
+        label
+        for label in window.results.widget().findChildren(QLabel)
+        if label.objectName() == "caption" and label.text()
+    ]
     assert captions
     assert [label.text() for label in captions if not label.toolTip()] == []
     table = window.results.table  # every row of Table 1 says what it means; the torus's is row 1
@@ -335,7 +353,9 @@ def test_a_no_is_explained(window, run_analysis) -> None:
     assert "factor_axes" in window.viewport.actor_names()
     run_analysis(window, "x^2 + 2y^2 - 1", timeout_ms=SLOW_MS)
     assert "extrusion" in _pane_text(window)
-    run_analysis(window, example_text("non-coaxial-blend"), timeout_ms=SLOW_MS)  # irreducible: its typed components explain
+    run_analysis(
+        window, example_text("non-coaxial-blend"), timeout_ms=SLOW_MS
+    )  # irreducible: its typed components explain
     text = _pane_text(window)
     assert "Component 1, x^2 + y^2 + (z - 1)^2 - 4: a sphere" in text
     assert "Component 2, (x - z)^2/2 + y^2 - 1: a cylinder of revolution" in text and "no axis in common" in text

@@ -171,8 +171,9 @@ def test_the_time_limit_holds_when_the_worker_is_stuck(make_window, qtbot, fake_
     started = time.monotonic()
     with qtbot.waitSignal(window.worker.finished, timeout=30_000) as blocker:
         assert window.analyze()
-        qtbot.waitUntil(lambda: any("sleep" in _cmdline(p) for p, _ in descendants(window.worker.current_pid or 0)),
-                        timeout=20_000)
+        qtbot.waitUntil(
+            lambda: any("sleep" in _cmdline(p) for p, _ in descendants(window.worker.current_pid or 0)), timeout=20_000
+        )
         pid = window.worker.current_pid
         os.kill(pid, signal.SIGSTOP)
     assert time.monotonic() - started < 20.0 + 2.0

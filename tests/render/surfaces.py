@@ -25,9 +25,7 @@ TORUS = [
 ]  # fmt: skip
 """(x² + y² + z² + 3)² - 16(x² + y²): tube radius 1 about the circle of radius 2 in z = 0."""
 
-TORUS_PROFILE_SR = [
-    ((0, 4), 1.0), ((2, 2), 2.0), ((4, 0), 1.0), ((0, 2), -10.0), ((2, 0), 6.0), ((0, 0), 9.0)
-]
+TORUS_PROFILE_SR = [((0, 4), 1.0), ((2, 2), 2.0), ((4, 0), 1.0), ((0, 2), -10.0), ((2, 0), 6.0), ((0, 0), 9.0)]
 """p̃(s, r) of the torus for c = 0, a = (0, 0, 1), u = (1, 0, 0): (r² + s² + 3)² - 16r²."""
 
 
@@ -61,7 +59,4 @@ def corpus_terms(name: str):
 
 def random_terms(rng: np.random.Generator, n: int = 20, degree: int = 5, nvars: int = 3):
     """``n`` random terms of degree ≤ ``degree`` per variable, coefficients normal."""
-    return [
-        (tuple(int(e) for e in rng.integers(0, degree + 1, nvars)), float(rng.normal()))
-        for _ in range(n)
-    ]
+    return [(tuple(int(e) for e in rng.integers(0, degree + 1, nvars)), float(rng.normal())) for _ in range(n)]

@@ -114,8 +114,9 @@ def test_a_spine_of_genus_1_is_traced_with_its_circles() -> None:
         points += [start + t * direction for t in dense.real_roots(dense.restriction_to_line(array, start, direction))]
     points = np.array(points)
     _, gradients = value_and_gradient(terms, points)
-    scene = smat_scene(families, points, gradients / np.linalg.norm(gradients, axis=1, keepdims=True),
-                       bound=12.0, step=0.1)
+    scene = smat_scene(
+        families, points, gradients / np.linalg.norm(gradients, axis=1, keepdims=True), bound=12.0, step=0.1
+    )
     assert len(scene.spines) == 2
     for spine in scene.spines:
         x, y, z = spine.T

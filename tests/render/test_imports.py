@@ -15,9 +15,7 @@ def loaded_after(statement: str) -> set[str]:
 
 
 def test_render_layer_imports_neither_qt_nor_gui_nor_engine_nor_sympy():
-    modules = loaded_after(
-        "import sorgui.render, sorgui.render.mesh, sorgui.render.scene, sorgui.render.picking"
-    )
+    modules = loaded_after("import sorgui.render, sorgui.render.mesh, sorgui.render.scene, sorgui.render.picking")
     for forbidden in ("PySide6", "pyvistaqt", "qtpy", "sorgui.gui", "sorgui.engine", "sympy"):
         assert forbidden not in modules, forbidden
 

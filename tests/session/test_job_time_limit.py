@@ -50,9 +50,11 @@ def test_the_worker_and_its_singular_die_with_the_window(tmp_path: Path) -> None
 
     script = tmp_path / "window.py"
     script.write_text(PARENT, encoding="utf-8")
-    parent = subprocess.Popen([sys.executable, str(script), str(Path(__file__).resolve().parents[1] / "data" /
-                                                                "slow-singular.txt")],
-                              stdout=subprocess.PIPE, text=True)
+    parent = subprocess.Popen(
+        [sys.executable, str(script), str(Path(__file__).resolve().parents[1] / "data" / "slow-singular.txt")],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
     try:
         worker = int(parent.stdout.readline())
         singular = wait_for(lambda: singular_processes(worker), 120)[0]

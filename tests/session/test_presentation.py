@@ -44,9 +44,7 @@ def test_reader_builds_exact_expressions_without_eval() -> None:
 
 
 def test_terms_from_engine_strings() -> None:
-    assert sorted(polynomial_terms("x**2/2 - sqrt(2)*y*z")) == sorted(
-        [((2, 0, 0), 0.5), ((0, 1, 1), -np.sqrt(2))]
-    )
+    assert sorted(polynomial_terms("x**2/2 - sqrt(2)*y*z")) == sorted([((2, 0, 0), 0.5), ((0, 1, 1), -np.sqrt(2))])
     assert sorted(polynomial_terms("3*s**2*r - r", ("s", "r"))) == [((0, 1), -1.0), ((2, 1), 3.0)]
     numerator, denominator = rational_function_terms("2*s/(s**2 + t**2 + 1)", ("s", "t"))
     assert numerator == [((1, 0), 2.0)]
@@ -67,11 +65,21 @@ def test_formulas_wrap_to_the_width_and_keep_exact_plain_text() -> None:
     assert vector.latex == r"\left(3 / 5, - \sqrt{2}, 0\right)"
 
 
-@pytest.mark.parametrize("text", [
-    "x**4 + 2*x**2*y**2 - 10*y**2 + 9", "-x**3 + 3*x/2 - sqrt(2)*y", "-(t**2 - 1)/(t**2 + 1) + 3",
-    "x**2/3 - y/7 - 1", "-x - y", "2*s**2*r - r + sqrt(5)/2", "-2*x*z + y**2", "-7/3", "(x - 1)**2*y",
-    "-x**4 + 26*x**2*y**2 - 104*x**2 + 12*x*y**4 - 48*x*y**2 + y**6 - 29*y**4 + 200*y**2 - 400",
-])
+@pytest.mark.parametrize(
+    "text",
+    [
+        "x**4 + 2*x**2*y**2 - 10*y**2 + 9",
+        "-x**3 + 3*x/2 - sqrt(2)*y",
+        "-(t**2 - 1)/(t**2 + 1) + 3",
+        "x**2/3 - y/7 - 1",
+        "-x - y",
+        "2*s**2*r - r + sqrt(5)/2",
+        "-2*x*z + y**2",
+        "-7/3",
+        "(x - 1)**2*y",
+        "-x**4 + 26*x**2*y**2 - 104*x**2 + 12*x*y**4 - 48*x*y**2 + y**6 - 29*y**4 + 200*y**2 - 400",
+    ],
+)
 def test_a_sums_latex_is_sympys(text: str) -> None:
     """The LaTeX copied is sympy's own, also where it is put together from the pieces."""
     assert expression_formula(text, "f =").latex == sympy.latex(read_expression(text), fold_short_frac=True)
@@ -81,8 +89,9 @@ def test_a_forked_helper_typesets_the_same_pixels() -> None:
     """The worker shares the parsing with a forked helper: same masks as one process alone."""
     from sorgui.session import formulas
 
-    texts = {f"f{k}": expression_formula(" + ".join(f"{k + j}*x**{j}*y" for j in range(1, 12)), "f =")
-             for k in range(3)}
+    texts = {
+        f"f{k}": expression_formula(" + ".join(f"{k + j}*x**{j}*y" for j in range(1, 12)), "f =") for k in range(3)
+    }
     texts["v"] = vector_formula(("3/5", "-sqrt(2)", "(t**2 - 1)/(t**2 + 1)"))
     style = Style(width=260, size=10.5)
     formulas._BOXES.clear()
@@ -129,6 +138,9 @@ def test_job_reports_errors_as_messages() -> None:
 
 def test_worker_process_imports_no_qt() -> None:
     """The worker process (sorgui.session.job) must start without PySide6: it would only slow it."""
-    code = "import sys, sorgui.session.job; print(sorted(m for m in sys.modules if m.split('.')[0] in ('PySide6', 'pyvistaqt', 'shiboken6')))"
+    code = (
+        "import sys, sorgui.session.job; "
+        "print(sorted(m for m in sys.modules if m.split('.')[0] in ('PySide6', 'pyvistaqt', 'shiboken6')))"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"

@@ -26,7 +26,7 @@ def test_the_streamed_messages_rebuild_an_unfinished_analysis() -> None:
     assert kinds[:2] == ["progress", "done"] and "parsed" in kinds and "analysis" in kinds
     cut = kinds.index("progress", kinds.index("analysis"))  # killed while the stage after the verdict ran
     log = StageLog(request.recognition_only)
-    for message in sent[:cut + 1]:
+    for message in sent[: cut + 1]:
         assert not log.take(message)
     kind, analysis = log.outcome("the analysis did not finish within the time limit of 60 s")
     assert kind == "finished" and analysis.is_sor and analysis.unfinished
@@ -38,11 +38,14 @@ def test_killed_before_the_equation_was_read_is_a_failure() -> None:
     log = StageLog(recognition_only=False)
     log.take(("progress", "engine"))
     assert log.outcome("the analysis did not finish within the time limit of 1 s") == (
-        "failed", "the analysis did not finish within the time limit of 1 s (while reading the equation)")
+        "failed",
+        "the analysis did not finish within the time limit of 1 s (while reading the equation)",
+    )
 
 
 def test_no_process_can_be_started(monkeypatch: pytest.MonkeyPatch) -> None:
     """A limit on processes (``ulimit -u``) is said in one line, not as a traceback."""
+
     def refuse(self: object) -> None:
         raise BlockingIOError(errno.EAGAIN, "Resource temporarily unavailable")
 

@@ -273,7 +273,7 @@ def from_flint(g: fmpq_mpoly, R: PolyRing) -> Poly:
     """The reduced ``g`` (radical basis) as an element of ``R = K[...]``."""
     K = R.domain
     basis = radical_basis(K)
-    n, k = basis.degree, len(basis.radicands)
+    n = basis.degree
     grouped: dict[tuple[int, ...], list[fmpq]] = {}
     for monom, c in g.to_dict().items():
         monom = tuple(int(e) for e in monom)
@@ -411,7 +411,7 @@ def factor(f: Poly) -> tuple[Any, list[tuple[Poly, int]]]:
                 G = from_flint(g, R)
                 G = G.monic()
                 factors.append((G, e))
-                lead *= G.LC ** e
+                lead *= G.LC**e
             return K.quo(f.LC, lead), factors
     raise AnalysisError("no shift gave a factorization over the coefficient field (internal error)")
 
@@ -481,9 +481,7 @@ def _proportional(a: fmpq_mpoly, b: fmpq_mpoly) -> bool:
 # --- gcd over K modulo primes -------------------------------------------------------------
 
 
-def _modular_gcd(
-    A: fmpq_mpoly, B: fmpq_mpoly, nv: int, radicands: Sequence[int]
-) -> fmpq_mpoly | None:
+def _modular_gcd(A: fmpq_mpoly, B: fmpq_mpoly, nv: int, radicands: Sequence[int]) -> fmpq_mpoly | None:
     """``gcd_K(A, B)``, monic in lex order, from its images at all ``2^k`` embeddings of ``K``
     into ``GF(p)`` for primes ``p`` where every ``dᵢ`` is a square; lifted by CRT and rational
     reconstruction until two consecutive lifts agree and the lift divides ``A`` exactly."""
@@ -534,7 +532,10 @@ def _modular_gcd(
                     if mask >> i & 1:
                         scale = scale * roots[i] % p
                 current[mono + _bits(mask, k)] = total * inverse_n * pow(scale, -1, p) % p
-        residues = {key: _crt(residues.get(key, fmpz(0)), modulus, current.get(key, 0), p) for key in set(residues) | set(current)}
+        residues = {
+            key: _crt(residues.get(key, fmpz(0)), modulus, current.get(key, 0), p)
+            for key in set(residues) | set(current)
+        }
         modulus *= p
         lifted = {}
         for key, r in residues.items():

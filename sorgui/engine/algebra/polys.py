@@ -25,8 +25,9 @@ from . import numberfields
 from .rationals import terms_str
 
 if QQ.dtype is not fmpq:  # sympy was imported before sorgui, with other ground types
-    raise ImportError("sorgui needs sympy's flint ground types: import sorgui before sympy, or set "
-                      "SYMPY_GROUND_TYPES=flint")
+    raise ImportError(
+        "sorgui needs sympy's flint ground types: import sorgui before sympy, or set SYMPY_GROUND_TYPES=flint"
+    )
 
 Poly = PolyElement
 """A polynomial of the engine: sympy's sparse ``PolyElement`` over ``K``."""
@@ -91,7 +92,7 @@ def sqrt_in_field(K: Domain, c: Any) -> Any | None:
         return K.zero
     if is_rational_field(K):
         q = QQ.convert(c)
-        root = (sympy.sqrt(sympy.Rational(int(QQ.numer(q)), int(QQ.denom(q)))))
+        root = sympy.sqrt(sympy.Rational(int(QQ.numer(q)), int(QQ.denom(q))))
         return QQ.from_sympy(root) if root.is_Rational else None
     vector = numberfields.element_to_radicals(K, c) if numberfields.supports(K) else {}
     if set(vector) == {0}:  # a rational number: its root is a radical monomial (fast path)

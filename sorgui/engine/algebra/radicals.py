@@ -79,7 +79,7 @@ class RadicalRing:
 
     def reduce(self, p: fmpq_mpoly) -> fmpq_mpoly:
         """The normal form of ``p`` modulo the relations (degree ≤ 1 in each ``ρᵢ``)."""
-        gens = self.context.gens()[len(self.variables):]
+        gens = self.context.gens()[len(self.variables) :]
         for g, r in zip(gens, self.radicals):
             p = p % (g**2 - _rational(r.square))
         return p
@@ -100,10 +100,12 @@ class RadicalRing:
     def to_expr(self, p: fmpq_mpoly) -> sympy.Expr:
         """Back to sympy, with the radicals' values in place of the ``ρᵢ``."""
         values = (*self.symbols, *(r.value for r in self.radicals))
-        return sympy.Add(*[
-            sympy.Rational(int(c.p), int(c.q)) * sympy.Mul(*[v ** int(e) for v, e in zip(values, m)])
-            for m, c in p.to_dict().items()
-        ])
+        return sympy.Add(
+            *[
+                sympy.Rational(int(c.p), int(c.q)) * sympy.Mul(*[v ** int(e) for v, e in zip(values, m)])
+                for m, c in p.to_dict().items()
+            ]
+        )
 
     def variable(self, name: str) -> fmpq_mpoly:
         return self.context.gens()[self.variables.index(name)]

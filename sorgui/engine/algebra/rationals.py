@@ -44,8 +44,7 @@ def context(names: tuple[str, ...]) -> fmpq_mpoly_ctx:
     return fmpq_mpoly_ctx.get(names, "lex")
 
 
-def terms_str(names: Sequence[str], terms: Iterable[tuple[Monomial, Any]],
-              coefficient: Any = None) -> str:
+def terms_str(names: Sequence[str], terms: Iterable[tuple[Monomial, Any]], coefficient: Any = None) -> str:
     """A polynomial as a string that sympy and the project's parser read back exactly.
 
     Terms come in decreasing total degree, then decreasing lex order. ``coefficient`` maps a

@@ -78,10 +78,7 @@ class Derivatives:
         self.f = f
         self.g = [f.derivative(i) for i in range(3)]
         self.h = {(i, j): self.g[i].derivative(j) for i in range(3) for j in range(i, 3)}
-        self.t = {
-            (i, j, k): self.h[(i, j)].derivative(k)
-            for i in range(3) for j in range(i, 3) for k in range(j, 3)
-        }
+        self.t = {(i, j, k): self.h[(i, j)].derivative(k) for i in range(3) for j in range(i, 3) for k in range(j, 3)}
 
     def restrict(self, h: fmpq_mpoly, line: Sequence[fmpq_poly]) -> fmpq_poly:
         """``h(p₀ + τd)`` as a univariate polynomial."""
@@ -202,7 +199,9 @@ def _bordered(g: list[fmpq_poly], H: dict[tuple[int, int], fmpq_poly]) -> list[l
     return B
 
 
-def _bordered_derivative(H: dict[tuple[int, int], fmpq_poly], T: dict[tuple[int, int, int], fmpq_poly], k: int) -> list[list[NuPoly]]:
+def _bordered_derivative(
+    H: dict[tuple[int, int], fmpq_poly], T: dict[tuple[int, int, int], fmpq_poly], k: int
+) -> list[list[NuPoly]]:
     """``∂B/∂x_k = [[−ν·∂H/∂x_k, ∂g/∂x_k], [∂gᵀ/∂x_k, 0]]``."""
     zero = fmpq_poly(0)
     dB: list[list[NuPoly]] = [[[zero]] * 4 for _ in range(4)]
@@ -222,7 +221,7 @@ def _det(M: list[list[NuPoly]], ring: _Ring) -> NuPoly:
     for j, entry in enumerate(M[0]):
         if all(c == 0 for c in entry):
             continue
-        minor = [row[:j] + row[j + 1:] for row in M[1:]]
+        minor = [row[:j] + row[j + 1 :] for row in M[1:]]
         term = ring.mul(entry, _det(minor, ring))
         total = ring.add(total, term if j % 2 == 0 else ring.neg(term))
     return total
@@ -244,7 +243,9 @@ def _jacobi(adj: list[list[NuPoly]], dB: list[list[NuPoly]], ring: _Ring) -> NuP
     return ring.add(*(ring.mul(adj[a][b], dB[b][a]) for a in range(4) for b in range(4)))
 
 
-def _pseudo_remainder(C: NuPoly, a0: fmpq_poly, a1: fmpq_poly, a2: fmpq_poly, ring: _Ring) -> tuple[fmpq_poly, fmpq_poly]:
+def _pseudo_remainder(
+    C: NuPoly, a0: fmpq_poly, a1: fmpq_poly, a2: fmpq_poly, ring: _Ring
+) -> tuple[fmpq_poly, fmpq_poly]:
     """``a₂^k·C mod Q`` in ``ν``: the pair ``(C₀, C₁)`` of ``C₁ν + C₀``."""
     C = list(C)
     while len(C) > 2:
@@ -267,7 +268,12 @@ def _evaluate_at_ratio(C: NuPoly, num: fmpq_poly, den: fmpq_poly, ring: _Ring) -
 
 
 def _smat(
-    p: list[fmpq_poly], g: list[fmpq_poly], norm_g: fmpq_poly, nu: Pair, den: fmpq_poly, ring: _Ring,
+    p: list[fmpq_poly],
+    g: list[fmpq_poly],
+    norm_g: fmpq_poly,
+    nu: Pair,
+    den: fmpq_poly,
+    ring: _Ring,
     disc: fmpq_poly | None = None,
 ) -> tuple[Pair, Pair, Pair, Pair, Pair]:
     """The SMAT points for ``ν = nu/den`` in homogeneous form ``(M₁, M₂, M₃, Mρ; W)`` with
@@ -278,7 +284,9 @@ def _smat(
     arith = PairRing(ring.F, disc if disc is not None else fmpq_poly(0))
     zero = fmpq_poly(0)
     d = Pair(ring.reduce(den), zero)
-    m = tuple(arith.mul(d, arith.sub(arith.mul(d, Pair(p[i], zero)), arith.mul(nu, Pair(g[i], zero)))) for i in range(3))
+    m = tuple(
+        arith.mul(d, arith.sub(arith.mul(d, Pair(p[i], zero)), arith.mul(nu, Pair(g[i], zero)))) for i in range(3)
+    )
     rho = arith.mul(arith.mul(nu, nu), Pair(norm_g, zero))
     return (*m, rho, arith.mul(d, d))  # type: ignore[return-value]
 

@@ -126,8 +126,9 @@ def factor_verdict(h: fmpq_mpoly, clock: CanalClock, is_sor: bool | None) -> tup
         # Above that degree a surface is neither a Dupin cyclide, nor a cone or cylinder, nor a pipe
         # with rotational symmetry (its spine would be the axis or a circle about it: a cylinder or
         # a torus): the symmetry algebra's certificate is the whole answer, no line is needed.
-        return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE,
-                     notes=(SOR_NOTE,)), None
+        return Canal(
+            True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE, notes=(SOR_NOTE,)
+        ), None
     lines = Lines(h, SEED)
     try:
         with clock.stage("canal test"):
@@ -140,14 +141,20 @@ def factor_verdict(h: fmpq_mpoly, clock: CanalClock, is_sor: bool | None) -> tup
     return None, lines
 
 
-SOR_NOTE = ("the spine is the axis; the SMAT of a surface of revolution is computed only for quadrics and for "
-            f"Dupin cyclides up to degree {SOR_SPINE_DEGREE}")
+SOR_NOTE = (
+    "the spine is the axis; the SMAT of a surface of revolution is computed only for quadrics and for "
+    f"Dupin cyclides up to degree {SOR_SPINE_DEGREE}"
+)
 
 
 def undecided(lines: Lines, error: AnalysisError) -> Canal:
     """No verdict: the canal condition held on the lines tested, and the next step failed."""
-    return Canal(None, f"undecided: the canal condition holds on {len(lines.canal)} lines, "
-                 f"but the spine could not be computed ({error.message})", lines_tested=lines.tried)
+    return Canal(
+        None,
+        f"undecided: the canal condition holds on {len(lines.canal)} lines, "
+        f"but the spine could not be computed ({error.message})",
+        lines_tested=lines.tried,
+    )
 
 
 def not_canal(test: LineTest, tried: int) -> Canal:
@@ -157,8 +164,11 @@ def not_canal(test: LineTest, tried: int) -> Canal:
         method="line",
         statement=(
             "on the line point + τ·direction the canal condition fails exactly: "
-            + ("the finite focal root does not satisfy C" if test.branch == DEVELOPABLE
-               else "R = a₂C₀² − a₁C₀C₁ + a₀C₁² is not 0 modulo F")
+            + (
+                "the finite focal root does not satisfy C"
+                if test.branch == DEVELOPABLE
+                else "R = a₂C₀² − a₁C₀C₁ + a₀C₁² is not 0 modulo F"
+            )
             + f" (F of degree {F.degree()}, the square-free part of f on the line)"
         ),
         verified=True,
@@ -174,8 +184,13 @@ def assemble(parts: list[Canal], is_sor: bool | None, clock: CanalClock, notes: 
     symmetry algebra's answer) decides the ``revolution`` kind and is cross-checked."""
     result = parts[0] if len(parts) == 1 else _combine(parts, is_sor)
     if is_sor and result.is_canal is None:
-        result = replace(result, is_canal=True, status="canal: a surface of revolution",
-                         kinds=tuple(sorted(set(result.kinds) | {"revolution"})), certificate=SOR_EVIDENCE)
+        result = replace(
+            result,
+            is_canal=True,
+            status="canal: a surface of revolution",
+            kinds=tuple(sorted(set(result.kinds) | {"revolution"})),
+            certificate=SOR_EVIDENCE,
+        )
     all_notes = list(result.notes) + list(notes)
     if is_sor is not None and result.is_canal is not None and is_sor != ("revolution" in result.kinds):
         all_notes.append("the symmetry algebra and the canal spine disagree about revolution (internal inconsistency)")
@@ -202,8 +217,12 @@ def _combine(parts: list[Canal], is_sor: bool | None) -> Canal:
     """The verdict of a reducible surface from its factors over ``QQ``."""
     if any(p.is_canal is False for p in parts):
         bad = next(p for p in parts if p.is_canal is False)
-        return Canal(False, "not canal: a component is not canal", witness=bad.witness,
-                     lines_tested=sum(p.lines_tested for p in parts))
+        return Canal(
+            False,
+            "not canal: a component is not canal",
+            witness=bad.witness,
+            lines_tested=sum(p.lines_tested for p in parts),
+        )
     if any(p.is_canal is None for p in parts):
         return Canal(None, "undecided for a component", lines_tested=sum(p.lines_tested for p in parts))
     kinds = set(parts[0].kinds)
@@ -213,7 +232,9 @@ def _combine(parts: list[Canal], is_sor: bool | None) -> Canal:
     if is_sor:
         kinds.add("revolution")
     return Canal(
-        True, f"canal: each of the {len(parts)} components is canal", tuple(sorted(kinds)),
+        True,
+        f"canal: each of the {len(parts)} components is canal",
+        tuple(sorted(kinds)),
         tuple(f for p in parts for f in p.families),
         CanalEvidence("components", "; ".join(p.certificate.statement for p in parts if p.certificate), True),
         parametrizations=tuple(q for p in parts for q in p.parametrizations),

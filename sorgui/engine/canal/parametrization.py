@@ -65,7 +65,8 @@ def recover_family(curve: SmatCurve, plane: CurveParametrization) -> RationalFam
 
 
 def characteristic_circles(
-    m: tuple[sympy.Expr, sympy.Expr, sympy.Expr], rho: sympy.Expr,
+    m: tuple[sympy.Expr, sympy.Expr, sympy.Expr],
+    rho: sympy.Expr,
 ) -> tuple[tuple[sympy.Expr, sympy.Expr, sympy.Expr], sympy.Expr, tuple[sympy.Expr, sympy.Expr, sympy.Expr]]:
     """``c(t)``, ``R²(t)`` and the plane normal ``m′(t)`` of the characteristic circles."""
     dm = tuple(sympy.diff(c, T) for c in m)
@@ -100,7 +101,9 @@ def radical_parametrization(family: RationalFamily) -> tuple[sympy.Expr, sympy.E
     n2 = square_root(sum(c * c for c in e2))
     R = square_root(family.radius_squared)
     return tuple(  # type: ignore[return-value]
-        c + sympy.factor(sympy.cancel(R * a / n1)) * sympy.cos(THETA) + sympy.factor(sympy.cancel(R * b / n2)) * sympy.sin(THETA)
+        c
+        + sympy.factor(sympy.cancel(R * a / n1)) * sympy.cos(THETA)
+        + sympy.factor(sympy.cancel(R * b / n2)) * sympy.sin(THETA)
         for c, a, b in zip(family.center, e1, e2)
     )
 
@@ -157,8 +160,9 @@ def verify_radical(f: Poly, family: RationalFamily) -> bool:
         coords.append(parts[0] + a * parts[1] + b * parts[2])
     value = compose_fraction(to_flint(f), coords, [D, D, D], ctx, common=D)
     sa, sb = sympy.Symbol("a"), sympy.Symbol("b")
-    circle = sympy.fraction(sympy.cancel(
-        sum(c * c for c in e1) * sa**2 + sum(c * c for c in e2) * sb**2 - family.radius_squared))[0]
+    circle = sympy.fraction(
+        sympy.cancel(sum(c * c for c in e1) * sa**2 + sum(c * c for c in e2) * sb**2 - family.radius_squared)
+    )[0]
     circle = sympy.expand(circle)
     lead = circle.coeff(sa, 2)
     A = _to_ctx_ab(lead, ctx)
@@ -196,8 +200,12 @@ def _to_ctx(expr: sympy.Expr, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
 
 
 def compose_fraction(
-    f: fmpq_mpoly, nums: list[fmpq_mpoly], dens: list[fmpq_mpoly], ctx: fmpq_mpoly_ctx,
-    common: fmpq_mpoly | None = None, reduce: Callable[[fmpq_mpoly], fmpq_mpoly] = lambda p: p,
+    f: fmpq_mpoly,
+    nums: list[fmpq_mpoly],
+    dens: list[fmpq_mpoly],
+    ctx: fmpq_mpoly_ctx,
+    common: fmpq_mpoly | None = None,
+    reduce: Callable[[fmpq_mpoly], fmpq_mpoly] = lambda p: p,
 ) -> fmpq_mpoly:
     """``D^deg f · f(nᵢ/dᵢ)`` with ``D = Π dᵢ`` (or the given common multiple of the ``dᵢ``):
     the numerator of ``f`` at the rational point. ``reduce`` is applied after every product
@@ -216,8 +224,13 @@ def compose_fraction(
     return reduce(total)
 
 
-def _power(cache: dict[tuple[int, int], fmpq_mpoly], bases: tuple[fmpq_mpoly, ...], i: int, e: int,
-           reduce: Callable[[fmpq_mpoly], fmpq_mpoly]) -> fmpq_mpoly:
+def _power(
+    cache: dict[tuple[int, int], fmpq_mpoly],
+    bases: tuple[fmpq_mpoly, ...],
+    i: int,
+    e: int,
+    reduce: Callable[[fmpq_mpoly], fmpq_mpoly],
+) -> fmpq_mpoly:
     """``bases[i]^e``, reduced, from the cached lower powers."""
     if (i, e) not in cache:
         cache[(i, e)] = bases[i] if e == 1 else reduce(_power(cache, bases, i, e - 1, reduce) * bases[i])
@@ -232,7 +245,7 @@ def family_resultant_certificate(f: Poly, family: RationalFamily) -> bool:
     fracs = [sympy.fraction(sympy.cancel(c)) for c in (*family.m, family.rho)]
     polys = [(_univariate(n), _univariate(d)) for n, d in fracs]
     L = fmpq_poly(1)
-    for n, d in polys[:3]:
+    for _n, d in polys[:3]:
         L = _lcm(L, d * d)
     L = _lcm(L, polys[3][1])
     Lc = _lift(L, ctx)

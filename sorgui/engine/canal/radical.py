@@ -85,16 +85,18 @@ def radical_family(curve: SmatCurve) -> RadicalFamily | None:
     found = []
     for index in range(3):
         family = _solve(equations, names, index)
-        if family is not None and all(_vanishes(family, g.subs(dict(zip(names, (*family.m, family.rho)))))
-                                      for g in equations):
+        if family is not None and all(
+            _vanishes(family, g.subs(dict(zip(names, (*family.m, family.rho))))) for g in equations
+        ):
             found.append(family)
     return min(found, key=_size, default=None)
 
 
 def _size(family: RadicalFamily) -> tuple[int, int]:
     """How many roots, and how large their radicands (total degree)."""
-    return len(family.roots), sum(sympy.Poly(P, T, *(s for s, _ in family.roots)).total_degree()
-                                  for _, P in family.roots)
+    return len(family.roots), sum(
+        sympy.Poly(P, T, *(s for s, _ in family.roots)).total_degree() for _, P in family.roots
+    )
 
 
 def _solve(equations: list[sympy.Expr], names: list[sympy.Symbol], index: int) -> RadicalFamily | None:
@@ -165,16 +167,26 @@ def radical_surface(f: Poly, family: RadicalFamily) -> tuple[tuple[sympy.Expr, s
     shown = family.radicals
     radius, length1, length2 = (square_root(shown(family.reduced(q))) for q in (radius_squared, norm1, norm2))
     coordinates = tuple(
-        shown(family.reduced(c)) + radius * (sympy.cos(THETA) * shown(family.reduced(u)) / length1
-                                             + sympy.sin(THETA) * shown(family.reduced(w)) / length2)
+        shown(family.reduced(c))
+        + radius
+        * (
+            sympy.cos(THETA) * shown(family.reduced(u)) / length1
+            + sympy.sin(THETA) * shown(family.reduced(w)) / length2
+        )
         for c, u, w in zip(center, e1, e2)
     )
     return coordinates, verified  # type: ignore[return-value]
 
 
 def _on_circles(
-    f: Poly, family: RadicalFamily, center: tuple[sympy.Expr, ...], radius_squared: sympy.Expr,
-    e1: tuple[sympy.Expr, ...], e2: tuple[sympy.Expr, ...], norm1: sympy.Expr, norm2: sympy.Expr,
+    f: Poly,
+    family: RadicalFamily,
+    center: tuple[sympy.Expr, ...],
+    radius_squared: sympy.Expr,
+    e1: tuple[sympy.Expr, ...],
+    e2: tuple[sympy.Expr, ...],
+    norm1: sympy.Expr,
+    norm2: sympy.Expr,
 ) -> bool:
     """``f(c + a·e₁ + b·e₂) ≡ 0`` modulo the root relations and ``a²|e₁|² + b²|e₂|² = R²``."""
     circle = sympy.numer(sympy.together(A**2 * norm1 + B**2 * norm2 - radius_squared))
@@ -188,7 +200,9 @@ def _on_circles(
     value = compose_fraction(to_flint(f), coords, [D] * 3, ring.ctx, common=D, reduce=ring.reduce)
     lead = sympy.expand(circle).coeff(A, 2)
     rest = sympy.expand(circle - lead * A**2)
-    return ring.reduce(reduce_square(value, len(ring.roots), ring.element(lead), -ring.element(rest), ring.ctx)).is_zero()
+    return ring.reduce(
+        reduce_square(value, len(ring.roots), ring.element(lead), -ring.element(rest), ring.ctx)
+    ).is_zero()
 
 
 class _Ring:
@@ -200,16 +214,19 @@ class _Ring:
         self.roots = [s for s, _ in family.roots]
         self.symbols = (*reversed(self.roots), A, T, B)
         self.ctx = fmpq_mpoly_ctx.get(tuple(str(s) for s in self.symbols), "lex")
-        self.relations = [self.ctx.gens()[len(self.roots) - 1 - k] ** 2 - self.element(radicand)
-                          for k, (_, radicand) in enumerate(family.roots)]
+        self.relations = [
+            self.ctx.gens()[len(self.roots) - 1 - k] ** 2 - self.element(radicand)
+            for k, (_, radicand) in enumerate(family.roots)
+        ]
         if circle is not None:
             self.relations.append(self.reduce(self.element(circle)))
 
     def element(self, expr: sympy.Expr) -> fmpq_mpoly:
         """A polynomial expression in the ring's symbols as an element of the context."""
         poly = sympy.Poly(sympy.expand(expr), *self.symbols)
-        return self.ctx.from_dict({m: fmpq(int(sympy.Rational(c).p), int(sympy.Rational(c).q))
-                                   for m, c in poly.terms()})
+        return self.ctx.from_dict(
+            {m: fmpq(int(sympy.Rational(c).p), int(sympy.Rational(c).q)) for m, c in poly.terms()}
+        )
 
     def reduce(self, p: fmpq_mpoly) -> fmpq_mpoly:
         """``p`` with every ``s_k²`` replaced, the last root first (its radicand holds the
@@ -217,7 +234,6 @@ class _Ring:
         for relation in reversed(self.relations):
             p = p % relation
         return p
-
 
 
 def _vanishes(family: RadicalFamily, expr: sympy.Expr) -> bool:

@@ -151,8 +151,10 @@ def to_poly(vec: Sequence[int], exps: Sequence[tuple[int, ...]], names: Sequence
 
 def vanishes_on_sample(P: Poly, sample: SmatSample) -> bool:
     """Whether ``P(m, ρ) ≡ 0`` at every sampled point (all lines, both roots on the Dupin branch)."""
-    return all(_value(P, test.smat, arith) == Pair(fmpq_poly(0), fmpq_poly(0))  # type: ignore[arg-type]
-               for test, arith in zip(sample.tests, sample.rings))
+    return all(
+        _value(P, test.smat, arith) == Pair(fmpq_poly(0), fmpq_poly(0))  # type: ignore[arg-type]
+        for test, arith in zip(sample.tests, sample.rings)
+    )
 
 
 def _value(P: Poly, point: Sequence[Pair], arith: PairRing) -> Pair:
@@ -228,8 +230,12 @@ def _embed(e: tuple[int, ...], free: list[int]) -> tuple[int, ...]:
 
 
 PROJECTIONS = (
-    ((1, 0, 0, 0), (0, 1, 0, 0)), ((1, 0, 0, 0), (0, 0, 1, 0)), ((0, 1, 0, 0), (0, 0, 1, 0)),
-    ((0, 0, 1, 0), (0, 0, 0, 1)), ((1, 0, 0, 0), (0, 0, 0, 1)), ((0, 1, 0, 0), (0, 0, 0, 1)),
+    ((1, 0, 0, 0), (0, 1, 0, 0)),
+    ((1, 0, 0, 0), (0, 0, 1, 0)),
+    ((0, 1, 0, 0), (0, 0, 1, 0)),
+    ((0, 0, 1, 0), (0, 0, 0, 1)),
+    ((1, 0, 0, 0), (0, 0, 0, 1)),
+    ((0, 1, 0, 0), (0, 0, 0, 1)),
 )
 """Coordinate projections tried first for the plane model (small coefficients); a random one
 follows. The first in shape position (every coordinate a rational function of ``u, v`` on the
@@ -237,15 +243,20 @@ curve) is birational and is kept."""
 
 
 def _decompose(
-    generators: list[Poly], sample: SmatSample, rnd: random.Random, *, timeout: float,
+    generators: list[Poly],
+    sample: SmatSample,
+    rnd: random.Random,
+    *,
+    timeout: float,
     cancel: threading.Event | None,
 ) -> list[SmatCurve]:
     """Singular: the one-dimensional associated primes of the ideal, with spine data; keep the
     smallest set of components whose union carries every sampled point."""
     hyper = [rnd.randint(-9, 9) or 1 for _ in range(5)]
     plane = [rnd.randint(-9, 9) or 1 for _ in range(4)]
-    projections = list(PROJECTIONS) + [(tuple(rnd.randint(-5, 5) or 1 for _ in range(4)),
-                                        tuple(rnd.randint(-5, 5) or 1 for _ in range(4)))]
+    projections = list(PROJECTIONS) + [
+        (tuple(rnd.randint(-5, 5) or 1 for _ in range(4)), tuple(rnd.randint(-5, 5) or 1 for _ in range(4)))
+    ]
     weights = ",".join(str(c) for pair in projections for row in pair for c in row)
     ideal = ",".join(poly_to_singular(g) for g in generators)
     lin = "+".join(f"({c})*{n}" for c, n in zip(hyper, SMAT_NAMES)) + f"+({hyper[4]})"
@@ -317,8 +328,17 @@ if (d == 1) {{
         inverse = None
         if parse_int(found[f"shape{key}"][0]) == 1:
             inverse = _shape_inverse(parse_list(found[f"basis{key}"][0], symbols), symbols)
-        candidates.append(_Candidate(eqs, spine, parse_int(found[f"smatdeg{key}"][0]),
-                                     parse_int(found[f"spinedeg{key}"][0]), planes, projection, inverse))
+        candidates.append(
+            _Candidate(
+                eqs,
+                spine,
+                parse_int(found[f"smatdeg{key}"][0]),
+                parse_int(found[f"spinedeg{key}"][0]),
+                planes,
+                projection,
+                inverse,
+            )
+        )
     chosen = _covering(candidates, sample, rnd)
     return [_curve(c) for c in chosen]
 

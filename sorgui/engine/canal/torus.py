@@ -38,9 +38,11 @@ HEIGHT = 12
 SPAN = 24
 """``|Y| ≤ SPAN`` on a hyperbola (the axis family's conic), where ``|Y|`` is not bounded."""
 
-CERTIFICATE = ("the profile in the axis frame is (|X − m₀|² + R² − r²)² − 4R²·d² up to a constant (d the "
-               "distance to the axis), exactly: the circle (d − R)² + ζ² = r² of the meridian half-plane swept "
-               "about the axis, the envelope of the spheres of radius² r² centred on the core circle")
+CERTIFICATE = (
+    "the profile in the axis frame is (|X − m₀|² + R² − r²)² − 4R²·d² up to a constant (d the "
+    "distance to the axis), exactly: the circle (d − R)² + ζ² = r² of the meridian half-plane swept "
+    "about the axis, the envelope of the spheres of radius² r² centred on the core circle"
+)
 """What the ``profile`` certificate of a torus's pipe family proves."""
 
 
@@ -91,12 +93,20 @@ def torus_canal(torus: Torus, certificate: CanalEvidence) -> Canal:
     """The canal answer of a torus: a pipe about its core circle (family 1), a surface of
     revolution (family 2) and a Dupin cyclide, with ``m(t)``, ``ρ(t)`` and the circles of each
     family that is rational over ``QQ``; ``certificate`` states the two proofs."""
-    return Canal(True, "canal", ("dupin", "pipe", "revolution"), (_pipe_family(torus), _axis_family(torus)),
-                 certificate, notes=(PARAMETRIZATION_NOTE,))
+    return Canal(
+        True,
+        "canal",
+        ("dupin", "pipe", "revolution"),
+        (_pipe_family(torus), _axis_family(torus)),
+        certificate,
+        notes=(PARAMETRIZATION_NOTE,),
+    )
 
 
-PARAMETRIZATION_NOTE = ("the torus's parameterizations are those of the surface of revolution: they run along "
-                        "its parallels and its meridians, the characteristic circles of the two families")
+PARAMETRIZATION_NOTE = (
+    "the torus's parameterizations are those of the surface of revolution: they run along "
+    "its parallels and its meridians, the characteristic circles of the two families"
+)
 
 
 def _pipe_family(torus: Torus) -> CanalFamily:
@@ -118,8 +128,20 @@ def _pipe_family(torus: Torus) -> CanalFamily:
     circle = primitive(compose(sphere, [solved if i == k else g for i, g in enumerate(M.gens)]))
     equations = (primitive(M.gens[3] - _q(torus.tube)), plane, circle)
     normal = tuple(_derivative(c) for c in m)
-    return _report(equations, equations[1:], _rename(circle, keep), keep, m, rho, root, degree=2, smat_degree=2,
-                   on_line=False, pipe=True, circles=(m, rho, normal))
+    return _report(
+        equations,
+        equations[1:],
+        _rename(circle, keep),
+        keep,
+        m,
+        rho,
+        root,
+        degree=2,
+        smat_degree=2,
+        on_line=False,
+        pipe=True,
+        circles=(m, rho, normal),
+    )
 
 
 def _axis_family(torus: Torus) -> CanalFamily:
@@ -130,11 +152,17 @@ def _axis_family(torus: Torus) -> CanalFamily:
     A = dot(a, a)
     (V, tau), root = _conic(torus.tube, -A, torus.core)
     m = tuple(_add(_const(c), _scale(tau, a[i])) for i, c in enumerate(torus.center))
-    rho, ratio = (_const(Fraction(0)), _const(Fraction(0))) if root is not None else (
-        _scale(_mul(_add(V, _const(Fraction(1))), _add(V, _const(Fraction(1)))), torus.tube),
-        _div(_add(V, _const(Fraction(1))), V))
-    centre = tuple(_add(_const(c), _scale(_div(tau, V), -a[i])) if root is None else _const(c)
-                   for i, c in enumerate(torus.center))
+    rho, ratio = (
+        (_const(Fraction(0)), _const(Fraction(0)))
+        if root is not None
+        else (
+            _scale(_mul(_add(V, _const(Fraction(1))), _add(V, _const(Fraction(1)))), torus.tube),
+            _div(_add(V, _const(Fraction(1))), V),
+        )
+    )
+    centre = tuple(
+        _add(_const(c), _scale(_div(tau, V), -a[i])) if root is None else _const(c) for i, c in enumerate(torus.center)
+    )
     radius2 = _scale(_mul(ratio, ratio), torus.core)
     M = poly_ring(("m1", "m2", "m3", "r"), QQ)
     d = [M.gens[i] - _q(torus.center[i]) for i in range(3)]
@@ -144,8 +172,20 @@ def _axis_family(torus: Torus) -> CanalFamily:
     r2, R2 = _q(torus.tube), _q(torus.core)
     model = primitive((M.gens[3] - r2 - R2 - T2) ** 2 - 4 * r2 * (T2 + R2))
     normal = tuple(_derivative(c) for c in m)
-    return _report((*line, model), line, _rename(model, (k, 3)), (k, 3), m, rho, root, degree=1, smat_degree=4,
-                   on_line=True, pipe=False, circles=(centre, radius2, normal))
+    return _report(
+        (*line, model),
+        line,
+        _rename(model, (k, 3)),
+        (k, 3),
+        m,
+        rho,
+        root,
+        degree=1,
+        smat_degree=4,
+        on_line=True,
+        pipe=False,
+        circles=(centre, radius2, normal),
+    )
 
 
 def _conic(a1: Fraction, a2: Fraction, c: Fraction) -> tuple[tuple[Rat, Rat], Fraction | None]:
@@ -183,9 +223,19 @@ def _rational_point(a1: Fraction, a2: Fraction, c: Fraction) -> tuple[Fraction, 
 
 
 def _report(
-    equations: tuple[Poly, ...], spine: tuple[Poly, ...], model: Poly, projection: tuple[int, int],
-    m: tuple[Rat, ...], rho: Rat, root: Fraction | None, *, degree: int, smat_degree: int, on_line: bool,
-    pipe: bool, circles: tuple[tuple[Rat, ...], Rat, tuple[Rat, ...]],
+    equations: tuple[Poly, ...],
+    spine: tuple[Poly, ...],
+    model: Poly,
+    projection: tuple[int, int],
+    m: tuple[Rat, ...],
+    rho: Rat,
+    root: Fraction | None,
+    *,
+    degree: int,
+    smat_degree: int,
+    on_line: bool,
+    pipe: bool,
+    circles: tuple[tuple[Rat, ...], Rat, tuple[Rat, ...]],
 ) -> CanalFamily:
     """The report of a family: ``m(t)``, ``ρ(t)`` and the circles only when they are over ``QQ``
     (``root`` is ``None``) and pass the substitution into every SMAT equation."""
@@ -193,11 +243,19 @@ def _report(
     rational = root is None and all(_vanishes(g, (*m, rho)) for g in equations)
     centre, radius2, normal = circles
     return CanalFamily(
-        degree=degree, smat_degree=smat_degree, genus=0, planar=True, on_line=on_line, pipe=pipe,
-        equations=tuple(poly_str(g) for g in equations), spine_equations=tuple(poly_str(g) for g in spine),
-        plane_model=poly_str(model), projection=rows,  # type: ignore[arg-type]
+        degree=degree,
+        smat_degree=smat_degree,
+        genus=0,
+        planar=True,
+        on_line=on_line,
+        pipe=pipe,
+        equations=tuple(poly_str(g) for g in equations),
+        spine_equations=tuple(poly_str(g) for g in spine),
+        plane_model=poly_str(model),
+        projection=rows,  # type: ignore[arg-type]
         parametrization=tuple(_text(c) for c in m) if rational else None,  # type: ignore[arg-type]
-        radius_squared=_text(rho) if rational or pipe else None, field="QQ" if rational else None,
+        radius_squared=_text(rho) if rational or pipe else None,
+        field="QQ" if rational else None,
         verified=rational,
         circle_center=tuple(_text(c) for c in centre) if rational else None,  # type: ignore[arg-type]
         circle_radius_squared=_text(radius2) if rational else None,

@@ -83,9 +83,15 @@ RADICAL_ROOTS = 2
 for at most this many roots: each root doubles the size of the check (two roots take about
 2 s at degree 24)."""
 
+
 def analyze_canal(
-    f: Poly, *, is_sor: bool | None = None, full: bool = True, timeout: float = 60.0,
-    cancel: threading.Event | None = None, profile: ProfileCurve | None = None,
+    f: Poly,
+    *,
+    is_sor: bool | None = None,
+    full: bool = True,
+    timeout: float = 60.0,
+    cancel: threading.Event | None = None,
+    profile: ProfileCurve | None = None,
 ) -> Canal:
     """The canal verdict of ``f = 0`` with certificate or witness, kinds, families and
     parameterizations (genus, ``m(t)``, ``ρ(t)`` and surface parameterizations only when
@@ -98,21 +104,37 @@ def analyze_canal(
     clock = CanalClock(cancel)
     if total_degree(f) > MAX_DEGREE:
         if is_sor:
-            return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE,
-                         notes=(f"degree above {MAX_DEGREE}: only the symmetry algebra's answer is given",))
+            return Canal(
+                True,
+                "canal: a surface of revolution",
+                ("revolution",),
+                certificate=SOR_EVIDENCE,
+                notes=(f"degree above {MAX_DEGREE}: only the symmetry algebra's answer is given",),
+            )
         return Canal(None, f"not analysed: degree above {MAX_DEGREE}")
     if is_sor and not is_rational_field(f.ring.domain):
         # The norm holds the conjugate surfaces too, about other axes: no surface of revolution,
         # and its SMAT is what Singular would be asked for. The symmetry algebra answers.
-        return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE,
-                     notes=("coefficients outside QQ: the symmetry algebra's answer; the SMAT of the norm (the "
-                            "surface with its conjugates, about other axes) is not computed",))
+        return Canal(
+            True,
+            "canal: a surface of revolution",
+            ("revolution",),
+            certificate=SOR_EVIDENCE,
+            notes=(
+                "coefficients outside QQ: the symmetry algebra's answer; the SMAT of the norm (the "
+                "surface with its conjugates, about other axes) is not computed",
+            ),
+        )
     g = _rational_squarefree(f)
     _, factors = g.factor()
-    parts = [_analyze_factor(h, clock, full, is_sor if len(factors) == 1 else None, timeout, cancel)
-             for h, _ in factors]
-    notes = () if is_rational_field(f.ring.domain) else (
-        "coefficients outside QQ: analysed through the norm of f over QQ (all conjugate surfaces)",)
+    parts = [
+        _analyze_factor(h, clock, full, is_sor if len(factors) == 1 else None, timeout, cancel) for h, _ in factors
+    ]
+    notes = (
+        ()
+        if is_rational_field(f.ring.domain)
+        else ("coefficients outside QQ: analysed through the norm of f over QQ (all conjugate surfaces)",)
+    )
     return assemble(parts, is_sor, clock, notes)
 
 
@@ -150,7 +172,12 @@ def _fmpq(q: object) -> fmpq:
 
 
 def _analyze_factor(
-    h: fmpq_mpoly, clock: CanalClock, full: bool, is_sor: bool | None, timeout: float, cancel: threading.Event | None,
+    h: fmpq_mpoly,
+    clock: CanalClock,
+    full: bool,
+    is_sor: bool | None,
+    timeout: float,
+    cancel: threading.Event | None,
 ) -> Canal:
     """The verdict for one irreducible factor over ``QQ``."""
     verdict, lines = factor_verdict(h, clock, is_sor)
@@ -165,8 +192,14 @@ def _analyze_factor(
             kinds = {"revolution"} | ({branch} & {DUPIN, DEVELOPABLE})
             if constant_radius(lines.sample(len(monomials(1)) + MARGIN)):
                 kinds.add("pipe")
-            return Canal(True, "canal: a surface of revolution", tuple(sorted(kinds)), certificate=SOR_EVIDENCE,
-                         lines_tested=lines.tried, notes=(SOR_NOTE,))
+            return Canal(
+                True,
+                "canal: a surface of revolution",
+                tuple(sorted(kinds)),
+                certificate=SOR_EVIDENCE,
+                lines_tested=lines.tried,
+                notes=(SOR_NOTE,),
+            )
         with clock.stage("canal spine"):
             smat, _ = smat_curves(lines.sample, seed=SEED, timeout=timeout, cancel=cancel)
     except NotCanal as witness:
@@ -181,17 +214,30 @@ def _analyze_factor(
 def _umbilic(poly: Poly, lines: Lines) -> Canal:
     """Every point umbilic on the lines: a sphere, checked exactly from the coefficients."""
     x, y, z = poly.ring.gens
-    quadratic = total_degree(poly) == 2 and all(
-        poly.coeff(m) == 0 for m in (x * y, x * z, y * z)) and poly.coeff(x**2) == poly.coeff(y**2) == poly.coeff(z**2)
+    quadratic = (
+        total_degree(poly) == 2
+        and all(poly.coeff(m) == 0 for m in (x * y, x * z, y * z))
+        and poly.coeff(x**2) == poly.coeff(y**2) == poly.coeff(z**2)
+    )
     if not quadratic:
         return Canal(None, "undecided: totally umbilic on the lines but not a sphere", lines_tested=lines.tried)
-    return Canal(True, "canal: a sphere (a constant family of spheres)", ("pipe", "revolution"),
-                 certificate=CanalEvidence("symmetry", "x², y², z² have equal coefficients and no mixed terms: a sphere", True),
-                 lines_tested=lines.tried)
+    return Canal(
+        True,
+        "canal: a sphere (a constant family of spheres)",
+        ("pipe", "revolution"),
+        certificate=CanalEvidence("symmetry", "x², y², z² have equal coefficients and no mixed terms: a sphere", True),
+        lines_tested=lines.tried,
+    )
 
 
 def _canal(
-    poly: Poly, smat: list[SmatCurve], branch: str, lines: Lines, clock: CanalClock, full: bool, timeout: float,
+    poly: Poly,
+    smat: list[SmatCurve],
+    branch: str,
+    lines: Lines,
+    clock: CanalClock,
+    full: bool,
+    timeout: float,
     cancel: threading.Event | None,
 ) -> Canal:
     families: list[CanalFamily] = []
@@ -233,8 +279,10 @@ def _canal(
             if radical is not None and len(radical.roots) <= RADICAL_ROOTS:
                 parametrizations.append(_radical_surface(poly, radical))
             elif radical is not None:
-                notes.append(f"the circles of a family in {len(radical.roots)} square roots were not "
-                             f"parameterized (more than {RADICAL_ROOTS} roots)")
+                notes.append(
+                    f"the circles of a family in {len(radical.roots)} square roots were not "
+                    f"parameterized (more than {RADICAL_ROOTS} roots)"
+                )
     kinds = set()
     if any(c.constant_radius is not None for c in smat):
         kinds.add("pipe")
@@ -249,14 +297,27 @@ def _canal(
     if not full:
         notes.append("recognition only: no genus, m(t), ρ(t) or parameterization computed")
     elif not any(f is not None for f in rational):
-        notes.append("no rational parameterization of the surface: the SMAT curve is not rational"
-                     if any(g not in (0, None) for g in genera) else
-                     "no parameterization of the surface was computed")
+        notes.append(
+            "no rational parameterization of the surface: the SMAT curve is not rational"
+            if any(g not in (0, None) for g in genera)
+            else "no parameterization of the surface was computed"
+        )
     verdict = certificate is not None and certificate.verified
-    status = ("canal" if verdict else
-              f"undecided: the canal condition holds on {len(lines.canal)} lines, but the envelope certificate failed")
-    return Canal(verdict if verdict else None, status, tuple(sorted(kinds)), tuple(families), certificate,
-                 parametrizations=tuple(parametrizations), lines_tested=lines.tried, notes=tuple(notes))
+    status = (
+        "canal"
+        if verdict
+        else f"undecided: the canal condition holds on {len(lines.canal)} lines, but the envelope certificate failed"
+    )
+    return Canal(
+        verdict if verdict else None,
+        status,
+        tuple(sorted(kinds)),
+        tuple(families),
+        certificate,
+        parametrizations=tuple(parametrizations),
+        lines_tested=lines.tried,
+        notes=tuple(notes),
+    )
 
 
 def _genus(curve: SmatCurve, timeout: float, cancel: threading.Event | None, notes: list[str]) -> int | None:
@@ -288,7 +349,10 @@ def _irreducible_conic(G: Poly) -> bool:
 
 
 def _family_report(
-    curve: SmatCurve, genus: int | None, family: RationalFamily | None, radical: RadicalFamily | None = None,
+    curve: SmatCurve,
+    genus: int | None,
+    family: RationalFamily | None,
+    radical: RadicalFamily | None = None,
 ) -> CanalFamily:
     radius = curve.constant_radius
     par = center = normal = radius2 = field_name = None
@@ -325,8 +389,12 @@ def _family_report(
 
 
 def _certificate(
-    poly: Poly, smat: list[SmatCurve], rational: list[RationalFamily | None], timeout: float,
-    cancel: threading.Event | None, notes: list[str],
+    poly: Poly,
+    smat: list[SmatCurve],
+    rational: list[RationalFamily | None],
+    timeout: float,
+    cancel: threading.Event | None,
+    notes: list[str],
 ) -> CanalEvidence | None:
     """The envelope certificate of every family (both focal conics of a Dupin cyclide)."""
     methods = []
@@ -361,15 +429,21 @@ def _statement(methods: list[str]) -> str:
 
 
 CERTIFICATES = {
-    "rotation": ("the spine is a line and f is invariant under the rotations about it (the identity "
-                 "∇f·(a × (p − c)) ≡ 0): X is a surface of revolution, and its parallels are characteristic circles"),
+    "rotation": (
+        "the spine is a line and f is invariant under the rotations about it (the identity "
+        "∇f·(a × (p − c)) ≡ 0): X is a surface of revolution, and its parallels are characteristic circles"
+    ),
     "profile": TORUS_CERTIFICATE,
     "resultant": "f divides Res_t(S, ∂S/∂t) for S = |X − m(t)|² − ρ(t) (denominators cleared)",
-    "incidence": ("f lies in the incidence ideal E of the SMAT curve (SMAT, |X − m|² = ρ, tangency), "
-                  "a complete intersection of dimension 2 whose points over a line are finitely many: "
-                  "the envelope lies in X and is a surface, so it is X"),
-    "elimination": ("f divides every generator of the envelope ideal of the SMAT curve "
-                    "(SMAT, |X − m|² = ρ, tangency; m and ρ eliminated)"),
+    "incidence": (
+        "f lies in the incidence ideal E of the SMAT curve (SMAT, |X − m|² = ρ, tangency), "
+        "a complete intersection of dimension 2 whose points over a line are finitely many: "
+        "the envelope lies in X and is a surface, so it is X"
+    ),
+    "elimination": (
+        "f divides every generator of the envelope ideal of the SMAT curve "
+        "(SMAT, |X − m|² = ρ, tangency; m and ρ eliminated)"
+    ),
 }
 """What each envelope certificate proves (docs/math.md §9)."""
 
@@ -392,7 +466,11 @@ the elimination."""
 
 
 def envelope_certificate(
-    f: Poly, curve: SmatCurve, *, timeout: float, cancel: threading.Event | None,
+    f: Poly,
+    curve: SmatCurve,
+    *,
+    timeout: float,
+    cancel: threading.Event | None,
 ) -> str | None:
     """Singular: ``"incidence"`` or ``"elimination"`` when ``X`` is proved to lie in the envelope
     of the family (docs/math.md §9), ``None`` when it is not.
@@ -411,11 +489,16 @@ def envelope_certificate(
     S = poly_ring(names + ("x", "y", "z"), QQ)
     images = [S.from_dict({_lift_monom(m, len(names)): c for m, c in expr.items()}) for expr in coords]
     nonlinear = [g for g in (compose(h, images) for h in curve.equations if total_degree(h) > 1) if g]
-    X = S.gens[len(names):]
+    X = S.gens[len(names) :]
     sphere = sum(((X[i] - images[i]) ** 2 for i in range(3)), S.zero) - images[3]
     rows = [[derivative(g, j) for j in range(len(names))] for g in nonlinear]
-    rows.append([sum((2 * (X[i] - images[i]) * derivative(images[i], j) for i in range(3)), S.zero)
-                 + derivative(images[3], j) for j in range(len(names))])
+    rows.append(
+        [
+            sum((2 * (X[i] - images[i]) * derivative(images[i], j) for i in range(3)), S.zero)
+            + derivative(images[3], j)
+            for j in range(len(names))
+        ]
+    )
     rows = [_integer_row(row) for row in rows]
     entries = ",".join(poly_to_singular(e) if e else "0" for row in rows for e in row)
     gens = ",".join([poly_to_singular(g) for g in nonlinear] + [poly_to_singular(sphere)])
@@ -447,7 +530,7 @@ def _affine_coordinates(equations: tuple[Poly, ...]) -> tuple[list[int], list[Po
     R = equations[0].ring
     linear = [g for g in equations if total_degree(g) == 1]
     rows = [[g.coeff(x) for x in R.gens] + [g.coeff(1)] for g in linear]
-    reduced, pivots = (sympy.Matrix(rows).rref() if rows else (sympy.zeros(0, 5), ()))
+    reduced, pivots = sympy.Matrix(rows).rref() if rows else (sympy.zeros(0, 5), ())
     free = [i for i in range(4) if i not in pivots]
     F = poly_ring(tuple(f"u{k}" for k in range(len(free))) or ("u0",), QQ)
     coords: list[Poly] = []
@@ -502,10 +585,10 @@ def _radical_surface(poly: Poly, family: RadicalFamily) -> Parametrization:
         real=True,
         proper=None,
         method=f"canal: characteristic circles (radical, the spine in square roots, t = {family.parameter}; "
-               "real where the radicands are not negative)",
+        "real where the radicands are not negative)",
         verified=verified,
         verification="substituted into f: f(c + a·e₁ + b·e₂) ≡ 0 modulo the roots' squares and the circle "
-                     "a²|e₁|² + b²|e₂|² = R²",
+        "a²|e₁|² + b²|e₂|² = R²",
     )
 
 

@@ -96,7 +96,9 @@ def recognize(
         normal=_triple(K, sym.normal),
         direction=_triple(K, sym.direction),
         profile=profile_report(profile, K) if profile is not None else None,
-        radius_squared=None if sym.kind != SPHERE or total_degree(f) != 2 else to_str(K, _radius_squared(f, sym.center)),
+        radius_squared=None
+        if sym.kind != SPHERE or total_degree(f) != 2
+        else to_str(K, _radius_squared(f, sym.center)),
     )
     return report, sym, profile
 
@@ -113,9 +115,7 @@ def _same_line(first: tuple[Vector, Vector], second: tuple[Vector, Vector]) -> b
     return is_zero(cross(a, b)) and is_zero(cross(sub(p, q), b))
 
 
-def factor_reports(
-    f: Poly, whole: Recognition, method: str = "symmetry"
-) -> tuple[tuple[Factor, ...], list[Poly]]:
+def factor_reports(f: Poly, whole: Recognition, method: str = "symmetry") -> tuple[tuple[Factor, ...], list[Poly]]:
     """The irreducible factors of ``f`` over ``K``, each recognised, and the distinct factors.
 
     When ``f`` is irreducible its only factor's recognition is ``whole`` (not computed twice).

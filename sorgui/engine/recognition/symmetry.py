@@ -252,17 +252,25 @@ def rational_symmetry(g: fmpq_mpoly) -> Symmetry:
 
 
 SOR_EVIDENCE = CanalEvidence(
-    "symmetry", "X is a surface of revolution (symmetry algebra): its parallels are the characteristic "
-    "circles of the spheres centred on the axis that touch X along them", True)
+    "symmetry",
+    "X is a surface of revolution (symmetry algebra): its parallels are the characteristic "
+    "circles of the spheres centred on the axis that touch X along them",
+    True,
+)
 """The canal certificate of a surface of revolution (docs/math.md §9): its symmetry algebra."""
 
-PLANE_CANAL = Canal(True, "canal: a plane (the limit of a family of spheres)", ("developable", "revolution"),
-                    certificate=CanalEvidence("symmetry", "a plane is a surface of revolution about each normal line",
-                                              True))
+PLANE_CANAL = Canal(
+    True,
+    "canal: a plane (the limit of a family of spheres)",
+    ("developable", "revolution"),
+    certificate=CanalEvidence("symmetry", "a plane is a surface of revolution about each normal line", True),
+)
 """The canal answer for a plane."""
 
-RECOGNITION_ONLY_NOTE = ("recognition only: the symmetry algebra's answer; the other sphere families (the Dupin, "
-                         "pipe and developable kinds) come with the full analysis")
+RECOGNITION_ONLY_NOTE = (
+    "recognition only: the symmetry algebra's answer; the other sphere families (the Dupin, "
+    "pipe and developable kinds) come with the full analysis"
+)
 
 
 def revolution_canal(degree: int, note: str = RECOGNITION_ONLY_NOTE) -> Canal:
@@ -274,5 +282,7 @@ def revolution_canal(degree: int, note: str = RECOGNITION_ONLY_NOTE) -> Canal:
     return Canal(True, "canal: a surface of revolution", ("revolution",), certificate=SOR_EVIDENCE, notes=(note,))
 
 
-NEAREST_CANAL_NOTE = ("the nearest exact surface is a surface of revolution, so canal (the spheres centred on "
-                      "its axis); its other sphere families are not computed")
+NEAREST_CANAL_NOTE = (
+    "the nearest exact surface is a surface of revolution, so canal (the spheres centred on "
+    "its axis); its other sphere families are not computed"
+)

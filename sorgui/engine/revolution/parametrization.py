@@ -270,7 +270,7 @@ def vanishes_on(f: Poly, surface: SurfaceMap) -> bool:
     ring = surface.ring.extended(radicals_of([sympy.Add(*field_generators(K))]))
     kept = ring.context.gens()[: len(surface.ring.variables) + len(surface.ring.radicals)]
     images = [p.compose(*kept, ctx=ring.context) for p in (*surface.numerators, surface.denominator)]
-    images += list(ring.context.gens()[len(ring.variables):])
+    images += list(ring.context.gens()[len(ring.variables) :])
     degree = max(sum(m) for m in f.itermonoms())
     source = RadicalRing(("x", "y", "z", "w"), ring.radicals)
     if K == QQ:
@@ -278,9 +278,11 @@ def vanishes_on(f: Poly, surface: SurfaceMap) -> bool:
         H = source.context.from_dict({(*m, degree - sum(m), *zeros): c for m, c in f.items()})
     else:
         x, y, z, w = source.symbols
-        H = source.from_expr(sympy.Add(*[
-            to_expr(K, c) * x ** m[0] * y ** m[1] * z ** m[2] * w ** (degree - sum(m)) for m, c in f.items()
-        ]))
+        H = source.from_expr(
+            sympy.Add(
+                *[to_expr(K, c) * x ** m[0] * y ** m[1] * z ** m[2] * w ** (degree - sum(m)) for m, c in f.items()]
+            )
+        )
     total = ring.reduce(H.compose(*images, ctx=ring.context))
     if total.is_zero() or len(ring.radicals) < 2:
         return total.is_zero()
@@ -301,8 +303,9 @@ def section_vanishes(profile: ProfileCurve, section: Section) -> bool:
     return _square_vanishes(profile, ring, phi, radius)
 
 
-def quadric_vanishes(profile: ProfileCurve, phi: sympy.Expr, radius: sympy.Expr, quadric: Quadric,
-                     h: sympy.Expr) -> bool:
+def quadric_vanishes(
+    profile: ProfileCurve, phi: sympy.Expr, radius: sympy.Expr, quadric: Quadric, h: sympy.Expr
+) -> bool:
     """The exact check of the stereographic map through ``T``: ``P²(φ, d²h/q̃²) ≡ 0`` in ``t``
     (``T`` maps onto ``X``), and ``Y² + n·Z² ≡ h(x)`` on the quadric's parameterization, which
     makes the map's radius ``(d/q̃)²·(Y² + n·Z²)`` that of ``T``. Small identities instead of
@@ -323,7 +326,9 @@ def _frame_norm(profile: ProfileCurve) -> sympy.Expr:
 
 
 def _univariate(
-    profile: ProfileCurve, expressions: tuple[sympy.Expr, ...], named: tuple[tuple[sympy.Symbol, sympy.Expr], ...],
+    profile: ProfileCurve,
+    expressions: tuple[sympy.Expr, ...],
+    named: tuple[tuple[sympy.Symbol, sympy.Expr], ...],
 ) -> tuple[RadicalRing, list[tuple[fmpq_mpoly, fmpq_mpoly]]]:
     """A radical ring in ``t`` holding ``expressions``, ``n`` and ``K``, and the expressions in it
     as (numerator, denominator)."""
@@ -333,7 +338,10 @@ def _univariate(
 
 
 def _square_vanishes(
-    profile: ProfileCurve, ring: RadicalRing, phi: tuple[fmpq_mpoly, fmpq_mpoly], radius: tuple[fmpq_mpoly, fmpq_mpoly],
+    profile: ProfileCurve,
+    ring: RadicalRing,
+    phi: tuple[fmpq_mpoly, fmpq_mpoly],
+    radius: tuple[fmpq_mpoly, fmpq_mpoly],
 ) -> bool:
     """``P²(φ, R) ≡ 0`` for the fractions ``φ`` and ``R`` of ``ring``, denominators cleared."""
     K = profile.square.ring.domain
@@ -401,7 +409,12 @@ def _terms(p: fmpq_mpoly, point: tuple[object, ...]) -> list[object]:
 
 
 def make_parametrization(
-    f: Poly, profile: ProfileCurve, surface: SurfaceMap, identity: Callable[[], bool], *, method: str,
+    f: Poly,
+    profile: ProfileCurve,
+    surface: SurfaceMap,
+    identity: Callable[[], bool],
+    *,
+    method: str,
     proper: bool | None,
 ) -> Parametrization | None:
     """A verified :class:`Parametrization`, or ``None`` when the substitution does not vanish.

@@ -58,8 +58,10 @@ UNSUPPORTED = (BasePolynomialError, NotImplementedError)
 """What sympy raises for coefficient fields it cannot handle; a parameterization is then left
 out with a note (:data:`UNSUPPORTED_NOTE`), and the rest of the analysis stands."""
 
-UNSUPPORTED_NOTE = ("not computed: it needs exact arithmetic over a field that sorgui cannot handle "
-                    "(nested square roots, or roots that are not written in radicals)")
+UNSUPPORTED_NOTE = (
+    "not computed: it needs exact arithmetic over a field that sorgui cannot handle "
+    "(nested square roots, or roots that are not written in radicals)"
+)
 
 ALPHA = sympy.Symbol("alpha")
 """Stands for ``√-n`` (``n = |a|²``) in the complex parameterization through ``T``."""
@@ -132,8 +134,9 @@ def analyze_rationality(
     """The rationality facts of a surface of revolution with the given profile."""
     if all(m == (0, 1) for m in profile.square.itermonoms()):
         # P² = c·w: X is y² + z² = 0 in the axis frame, two complex planes (docs/math.md §4).
-        return Rationality(status="not applicable: X is a pair of complex planes through the axis "
-                                  "(not absolutely irreducible)"), None
+        return Rationality(
+            status="not applicable: X is a pair of complex planes through the axis (not absolutely irreducible)"
+        ), None
     try:
         p, p2 = curves.analyze_profile_pair(profile.rational, profile.square, timeout=timeout, cancel=cancel)
     except SingularTimeout as exc:
@@ -162,18 +165,29 @@ def analyze_rationality(
     try:
         par = curves.parametrize(profile.square, timeout=timeout, cancel=cancel, known_genus_zero=True)
     except SingularTimeout as exc:
-        return Rationality(status=f"partly undecided: {exc.message}", **base,
-                           notes=("no parameterization of P² within the time limit",)), None
+        return Rationality(
+            status=f"partly undecided: {exc.message}",
+            **base,
+            notes=("no parameterization of P² within the time limit",),
+        ), None
     except (AnalysisError, SingularError) as exc:
-        return Rationality(status="partly undecided", **base,
-                           notes=(f"no parameterization of P²: {exc.message}",)), None
+        return Rationality(
+            status="partly undecided", **base, notes=(f"no parameterization of P²: {exc.message}",)
+        ), None
     tube = tubular_surface(par)
     notes = ["T and τ live in the axis frame p = c + s·a + y·u + z·(a × u)/|a| of the profile"]
     if not par.is_real:
-        return Rationality(status="decided", unirational=False, real_rational=False,
-                           square_parametrization=(str(par.x), str(par.y)),
-                           tubular_surface=_tube_str(tube), h=str(tube.h), tau=_tau_str(tube),
-                           notes=(*notes, f"P² has no real parameterization (field {par.field})"), **base), tube
+        return Rationality(
+            status="decided",
+            unirational=False,
+            real_rational=False,
+            square_parametrization=(str(par.x), str(par.y)),
+            tubular_surface=_tube_str(tube),
+            h=str(tube.h),
+            tau=_tau_str(tube),
+            notes=(*notes, f"P² has no real parameterization (field {par.field})"),
+            **base,
+        ), tube
     roots = count_real_roots_of(tube.h, par.generators)
     unirational = has_real_surface(tube.h, roots)
     return Rationality(
@@ -275,27 +289,35 @@ def _tubular_parametrization(
         def on_tube() -> bool:
             return quadric_vanishes(profile, tube.phi, radius, quadric, tube.h)
 
-        return make_parametrization(f, profile, surface, on_tube, method="via tubular surface (real, stereographic)",
-                                    proper=True), ""
+        return make_parametrization(
+            f, profile, surface, on_tube, method="via tubular surface (real, stereographic)", proper=True
+        ), ""
     A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * ALPHA)
     section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
     complex_par = _swept(f, profile, section, method="via tubular surface (complex)", proper=True)
     if not rationality.unirational:
         note = ""
     elif (rationality.real_roots_of_h or 0) > 2:
-        note = ("X is unirational but not rational: h has more than two real roots, so the real surface "
-                "is disconnected (the paper's Corollary); sorgui gives the complex parameterization only")
+        note = (
+            "X is unirational but not rational: h has more than two real roots, so the real surface "
+            "is disconnected (the paper's Corollary); sorgui gives the complex parameterization only"
+        )
     else:
-        note = ("no real parameterization through T was found: h = N·u²·q with q of degree > 2, or h "
-                "has irrational coefficients; sorgui gives the complex parameterization only")
+        note = (
+            "no real parameterization through T was found: h = N·u²·q with q of degree > 2, or h "
+            "has irrational coefficients; sorgui gives the complex parameterization only"
+        )
     return complex_par, note
 
 
-def _swept(f: Poly, profile: ProfileCurve, section: Section, *, method: str, proper: bool | None) -> Parametrization | None:
+def _swept(
+    f: Poly, profile: ProfileCurve, section: Section, *, method: str, proper: bool | None
+) -> Parametrization | None:
     """The verified parameterization sweeping ``section`` about the axis (docs/math.md §6)."""
     surface = sweep(section, profile.frame, f.ring.domain)
-    return make_parametrization(f, profile, surface, lambda: section_vanishes(profile, section), method=method,
-                                proper=proper)
+    return make_parametrization(
+        f, profile, surface, lambda: section_vanishes(profile, section), method=method, proper=proper
+    )
 
 
 def _profile_section(
@@ -330,11 +352,15 @@ def _real_component(p: Poly, *, timeout: float, cancel: threading.Event | None) 
                 continue  # not in square roots of rationals: no field sorgui can write it over
             K = QQ.algebraic_field(*numbers) if numbers else QQ
             R = poly_ring(("s", "r"), K)
-            return R.from_expr(expr.subs({s: R.symbols[0], r: R.symbols[1]})) if numbers else R(
-                sympy.Poly(expr, s, r).as_expr()
+            return (
+                R.from_expr(expr.subs({s: R.symbols[0], r: R.symbols[1]}))
+                if numbers
+                else R(sympy.Poly(expr, s, r).as_expr())
             )
-    raise AnalysisError("not computed: no component of the profile is defined over a real field of square "
-                        "roots of rational numbers (its components need nested or higher roots)")
+    raise AnalysisError(
+        "not computed: no component of the profile is defined over a real field of square "
+        "roots of rational numbers (its components need nested or higher roots)"
+    )
 
 
 def _rational_component(p: Poly) -> Poly | None:
@@ -365,4 +391,3 @@ def _numerically_real(root: sympy.Expr) -> bool:
     parameterizations built from it are checked exactly anyway)."""
     value = sympy.N(root, 60)
     return abs(sympy.im(value)) <= 10**-50 * max(1, abs(sympy.re(value)))
-

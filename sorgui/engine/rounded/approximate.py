@@ -92,31 +92,40 @@ def rounding_of(f: Poly, text: str | None, tolerance: float | None) -> tuple[Rou
         raise AnalysisError(f"the tolerance must be a number between 0 and 1, not {tolerance}")
     notes: tuple[str, ...] = ()
     if printed is not None and tolerance < printed.tolerance:
-        notes = (f"the tolerance {tolerance:.2g} is below the precision of the input's digits "
-                 f"({printed.tolerance:.2g} relative): a rounded surface may be missed",)
+        notes = (
+            f"the tolerance {tolerance:.2g} is below the precision of the input's digits "
+            f"({printed.tolerance:.2g} relative): a rounded surface may be missed",
+        )
     return given_rounding(tolerance, coefficients), notes
 
 
-def approximate_symmetry(f: Poly, rounding: Rounding, *, snap_exact: bool = True,
-                         notes: tuple[str, ...] = ()) -> NearResult:
+def approximate_symmetry(
+    f: Poly, rounding: Rounding, *, snap_exact: bool = True, notes: tuple[str, ...] = ()
+) -> NearResult:
     """The :class:`Approximation` of ``f`` under ``rounding`` (docs/math.md §8)."""
     coefficients = dense.float_coefficients(f)
     sizes = [abs(c) for c in coefficients.values() if c]
     finite = all(math.isfinite(c) for c in coefficients.values()) and math.isfinite(rounding.tolerance)
     if not finite or max(sizes) > MAX_SPAN * min(sizes):
-        note = (f"the coefficients span more than {math.log10(MAX_SPAN):.0f} orders of magnitude: beyond "
-                "what floating point can compare, so nearness was not decided" if finite else
-                "the input's numbers lie beyond the range of floating point (about 1e308): "
-                "nearness was not decided")
+        note = (
+            f"the coefficients span more than {math.log10(MAX_SPAN):.0f} orders of magnitude: beyond "
+            "what floating point can compare, so nearness was not decided"
+            if finite
+            else "the input's numbers lie beyond the range of floating point (about 1e308): nearness was not decided"
+        )
         tolerance = rounding.tolerance if math.isfinite(rounding.tolerance) else None
-        return NearResult(Approximation(tolerance, rounding.source, False, None, None, None, (),
-                                        notes=(*notes, note)), None)
+        return NearResult(
+            Approximation(tolerance, rounding.source, False, None, None, None, (), notes=(*notes, note)), None
+        )
     if rounding.source == "input" and rounding.tolerance > COARSEST:
-        note = (f"the input's decimals have at most {rounding.digits} significant digits, a rounding of "
-                f"{rounding.tolerance:.2g} (relative): too coarse to tell which surface was meant, so its numbers "
-                "are taken as exact; give --tolerance to ask whether it is near a surface of revolution")
-        return NearResult(Approximation(rounding.tolerance, rounding.source, False, None, None, None, (),
-                                        notes=(*notes, note)), None)
+        note = (
+            f"the input's decimals have at most {rounding.digits} significant digits, a rounding of "
+            f"{rounding.tolerance:.2g} (relative): too coarse to tell which surface was meant, so its numbers "
+            "are taken as exact; give --tolerance to ask whether it is near a surface of revolution"
+        )
+        return NearResult(
+            Approximation(rounding.tolerance, rounding.source, False, None, None, None, (), notes=(*notes, note)), None
+        )
     normalised = normalise(coefficients, rounding)
     sigma, vectors = killing_system(normalised)
     notes = list(notes)
@@ -127,8 +136,10 @@ def approximate_symmetry(f: Poly, rounding: Rounding, *, snap_exact: bool = True
     if near and snap_exact:
         exact = snap(normalised, accepted, f, rounding)
         if exact is None:
-            notes.append("no exact surface with rational axis and coefficients was found within the "
-                         "rounding; the axis above is approximate")
+            notes.append(
+                "no exact surface with rational axis and coefficients was found within the "
+                "rounding; the axis above is approximate"
+            )
     if accepted is None:
         notes.append(_far_note(sigma, best, rounding))
     nearest = None if exact is None else _nearest_surface(exact, normalised, f)
@@ -167,8 +178,12 @@ def _in_field(vector: Sequence[Fraction | Quadratic], K: Domain) -> Vector:
     for v in vector:
         if isinstance(v, Quadratic):
             root = sympy.sqrt(v.d)
-            out.append(K.from_sympy(sympy.Rational(v.a.numerator, v.a.denominator)
-                                    + sympy.Rational(v.b.numerator, v.b.denominator) * root))
+            out.append(
+                K.from_sympy(
+                    sympy.Rational(v.a.numerator, v.a.denominator)
+                    + sympy.Rational(v.b.numerator, v.b.denominator) * root
+                )
+            )
         else:
             out.append(K.convert(QQ(v.numerator, v.denominator)))
     return tuple(out)  # type: ignore[return-value]
@@ -196,8 +211,10 @@ def _far_note(sigma: np.ndarray, best: Fit | None, rounding: Rounding) -> str:
     if best is None:
         return f"not near any continuous symmetry: {smallest}"
     kind = KIND_WORDS.get(best.candidate.kind, best.candidate.kind)
-    return (f"not within the rounding of {kind}: the nearest one about the best axis is "
-            f"{best.relative_distance:.2g} away (relative), {best.residual:.3g} times the rounding; {smallest}")
+    return (
+        f"not within the rounding of {kind}: the nearest one about the best axis is "
+        f"{best.relative_distance:.2g} away (relative), {best.residual:.3g} times the rounding; {smallest}"
+    )
 
 
 def _axis(result: Fit, f: Normalised) -> ApproximateAxis | None:
@@ -231,11 +248,17 @@ def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> Near
         axis = axis_report(_in_field(exact.point, K), primitive_vector(sym.axis_direction, K), K)
     elif sym.axis_point is not None:
         axis = axis_report(sym.axis_point, sym.axis_direction, K)  # type: ignore[arg-type]
-    triple = (lambda v: None if v is None else tuple(to_str(K, c) for c in v))
+
+    def triple(v: Vector | None) -> tuple[str, ...] | None:
+        return None if v is None else tuple(to_str(K, c) for c in v)
+
     g = dense.scaled(dense.from_terms(dense.float_coefficients(exact.polynomial), f.degree), f.length) / f.scale
     center = np.zeros(3)
     direction = None
-    floats = (lambda v: np.array([float(K.to_sympy(c)) for c in v]))  # QQ or QQ(√d)
+
+    def floats(v: Vector) -> np.ndarray:  # QQ or QQ(√d)
+        return np.array([float(K.to_sympy(c)) for c in v])
+
     if sym.axis_point is not None:
         center = floats(sym.axis_point) / f.length
         direction = floats(sym.axis_direction)
@@ -252,5 +275,3 @@ def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> Near
         max_deviation=None if deviation is None else deviation * f.length,
         within_rounding=exact.largest <= 1.0,
     )
-
-

@@ -76,8 +76,15 @@ def linear_form(normal: np.ndarray, point: np.ndarray) -> SparseForm:
 def squared_distance(point: np.ndarray) -> SparseForm:
     """``ρ(p) = |p - point|²``."""
     cx, cy, cz = point
-    return [((0, 0, 0), float(point @ point)), ((1, 0, 0), -2 * cx), ((0, 1, 0), -2 * cy), ((0, 0, 1), -2 * cz),
-            ((2, 0, 0), 1.0), ((0, 2, 0), 1.0), ((0, 0, 2), 1.0)]
+    return [
+        ((0, 0, 0), float(point @ point)),
+        ((1, 0, 0), -2 * cx),
+        ((0, 1, 0), -2 * cy),
+        ((0, 0, 1), -2 * cz),
+        ((2, 0, 0), 1.0),
+        ((0, 2, 0), 1.0),
+        ((0, 0, 2), 1.0),
+    ]
 
 
 def form_product(first: SparseForm, second: SparseForm) -> SparseForm:

@@ -45,8 +45,11 @@ def view_ball(array: np.ndarray, center: np.ndarray, axis: np.ndarray | None = N
     ``f`` on lines through ``center``, those farther than ``SPREAD`` times the median distance
     dropped; centred on the middle of the rest (along the axis, if any), radius ``MARGIN``
     times the farthest, clamped to ``[MIN_RADIUS, MAX_RADIUS]``."""
-    points = [center + t * d for d in probe_directions(axis)
-              for t in dense.real_roots(dense.restriction_to_line(array, center, d))]
+    points = [
+        center + t * d
+        for d in probe_directions(axis)
+        for t in dense.real_roots(dense.restriction_to_line(array, center, d))
+    ]
     pts = np.array(points).reshape(-1, 3)
     distances = np.linalg.norm(pts - center, axis=1)
     positive = distances[distances > 1e-9 * max(1.0, float(np.linalg.norm(center)))]
@@ -94,8 +97,7 @@ def distance_to_zero_set(array: np.ndarray, points: np.ndarray) -> np.ndarray:
     return np.linalg.norm(moved - points, axis=1)[converged]
 
 
-def max_deviation(first: np.ndarray, second: np.ndarray, center: np.ndarray,
-                  axis: np.ndarray | None) -> float | None:
+def max_deviation(first: np.ndarray, second: np.ndarray, center: np.ndarray, axis: np.ndarray | None) -> float | None:
     """The largest distance between the zero sets of two polynomials (dense arrays in the same
     coordinates) inside the view ball of ``second``; ``None`` when neither has real points there
     that Newton's steps move onto the other (every sample next to a singular point, say)."""

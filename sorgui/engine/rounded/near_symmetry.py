@@ -113,10 +113,14 @@ def killing_system(f: Normalised) -> tuple[np.ndarray, np.ndarray]:
     A = f.array
     fx, fy, fz = (dense.derivative(A, axis) for axis in range(3))
     x, y, z = ([((1, 0, 0), 1.0)], [((0, 1, 0), 1.0)], [((0, 0, 1), 1.0)])
-    columns = [fx, fy, fz,
-               dense.times(fz, y) - dense.times(fy, z),
-               dense.times(fx, z) - dense.times(fz, x),
-               dense.times(fy, x) - dense.times(fx, y)]
+    columns = [
+        fx,
+        fy,
+        fz,
+        dense.times(fz, y) - dense.times(fy, z),
+        dense.times(fx, z) - dense.times(fz, x),
+        dense.times(fy, x) - dense.times(fx, y),
+    ]
     M = dense.stack(columns, f.selected)
     if len(M) < 6:  # degree 1: fewer monomials than unknowns; zero rows keep all six vectors
         M = np.vstack([M, np.zeros((6 - len(M), 6))])
@@ -175,8 +179,13 @@ def _unit(v: np.ndarray) -> np.ndarray:
 # --- 2. the nearest invariant polynomial ---------------------------------------------------------
 
 
-def invariant_basis(candidate: Candidate, degree: int, selected: np.ndarray, point: np.ndarray | None = None,
-                    direction: np.ndarray | None = None) -> tuple[np.ndarray, list[tuple[int, int]]]:
+def invariant_basis(
+    candidate: Candidate,
+    degree: int,
+    selected: np.ndarray,
+    point: np.ndarray | None = None,
+    direction: np.ndarray | None = None,
+) -> tuple[np.ndarray, list[tuple[int, int]]]:
     """A basis of the polynomials of degree ≤ ``degree`` invariant under the candidate's group,
     as the columns of a matrix over the monomials ``selected``, with the exponents ``(i, j)`` of
     each element ``h^i ρ^j`` (``(i, j)`` = powers of the two coordinates ``u·p, w·p`` for an
@@ -224,8 +233,9 @@ def _least_aligned(n: np.ndarray) -> np.ndarray:
     return e
 
 
-def fit(f: Normalised, candidate: Candidate, point: np.ndarray | None = None,
-        direction: np.ndarray | None = None) -> Fit:
+def fit(
+    f: Normalised, candidate: Candidate, point: np.ndarray | None = None, direction: np.ndarray | None = None
+) -> Fit:
     """The nearest invariant polynomial in the weighted least-squares sense (step 2)."""
     basis, exponents = invariant_basis(candidate, f.degree, f.selected, point, direction)
     w = f.weights
@@ -241,12 +251,14 @@ def fit(f: Normalised, candidate: Candidate, point: np.ndarray | None = None,
     condition = float(sv[0] / sv[-1]) if sv[-1] > 0 else math.inf
     noise = 4 * np.finfo(float).eps * condition * float(np.linalg.norm(target)) / math.sqrt(count)
     degrees = _degrees(f)
-    unscaled = (f.vector - fitted) / f.length ** degrees
-    original = f.vector / f.length ** degrees
+    unscaled = (f.vector - fitted) / f.length**degrees
+    original = f.vector / f.length**degrees
     return Fit(
-        candidate=Candidate(candidate.kind,
-                            candidate.direction if direction is None else direction,
-                            candidate.point if point is None else point),
+        candidate=Candidate(
+            candidate.kind,
+            candidate.direction if direction is None else direction,
+            candidate.point if point is None else point,
+        ),
         coefficients=coefficients,
         exponents=tuple(exponents),
         residual=float(np.linalg.norm(residual) / math.sqrt(count)),
@@ -281,7 +293,9 @@ def refine(f: Normalised, candidate: Candidate) -> Fit:
     return fit(f, build(gauss_newton(residual_vector, params)[0]))
 
 
-def refine_fixed(f: Normalised, candidate: Candidate, coefficients: np.ndarray) -> tuple[Candidate, np.ndarray, np.ndarray]:
+def refine_fixed(
+    f: Normalised, candidate: Candidate, coefficients: np.ndarray
+) -> tuple[Candidate, np.ndarray, np.ndarray]:
     """Refine the axis (or centre, or normal) with the invariant's coefficients held fixed: once
     they are snapped, the axis is determined more sharply than with them free. Returns the
     refined candidate and the standard errors of its direction's and point's coordinates (from

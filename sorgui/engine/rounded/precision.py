@@ -105,8 +105,9 @@ def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
     try:
         propagated = _Propagation(text, digits, fixed_point).run(tree)
         if propagated is None:
-            relative = max(_literal_bound(text, n, digits, fixed_point) / abs(float(n.value))
-                           for n in decimals if n.value)
+            relative = max(
+                _literal_bound(text, n, digits, fixed_point) / abs(float(n.value)) for n in decimals if n.value
+            )
             errors = {m: relative * abs(c) for m, c in coefficients.items()}
         else:
             errors = {m: propagated.get(m, 0.0) for m in coefficients}
@@ -155,7 +156,7 @@ def _nodes(node: Node):
 
 
 def _is_decimal(text: str, node: Num) -> bool:
-    return any(ch in ".eE" for ch in text[node.start:node.end])
+    return any(ch in ".eE" for ch in text[node.start : node.end])
 
 
 def _significant_digits(text: str, node: Num) -> int:
@@ -170,7 +171,7 @@ def _fixed_point(text: str, decimals: list[Num]) -> bool:
     fractions = [_fraction(text, node) for node in decimals]
     if any(f.endswith("0") for f in fractions):
         return True
-    exponents = any(ch in "eE" for node in decimals for ch in text[node.start:node.end])
+    exponents = any(ch in "eE" for node in decimals for ch in text[node.start : node.end])
     return len(decimals) >= 3 and not exponents and len({len(f) for f in fractions}) == 1
 
 
@@ -213,7 +214,9 @@ class _Propagation:
         """``(value, bound)`` of a subtree as float polynomials."""
         match node:
             case Num():
-                return {(0, 0, 0): float(node.value)}, {(0, 0, 0): _literal_bound(self.text, node, self.digits, self.fixed_point)}
+                return {(0, 0, 0): float(node.value)}, {
+                    (0, 0, 0): _literal_bound(self.text, node, self.digits, self.fixed_point)
+                }
             case Var():
                 m = [0, 0, 0]
                 m[node.index] = 1

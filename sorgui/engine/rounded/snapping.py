@@ -47,7 +47,7 @@ from .near_symmetry import Fit, Normalised, fit, invariant_basis, refine_fixed
 from .precision import Rounding
 
 Vector = tuple[Fraction, Fraction, Fraction]
-EPSILONS = tuple(10.0 ** -k for k in range(2, 14))
+EPSILONS = tuple(10.0**-k for k in range(2, 14))
 MAX_DENOMINATOR = 10**6
 AXIS_TRIES = 3
 MAX_CHECKS = 16
@@ -183,8 +183,9 @@ def quadratic_direction(direction: np.ndarray, epsilon: float) -> QuadraticVecto
         fields = {rest for c, rest in scaled if c and rest != 1}
         if len(fields) == 1:
             (d,) = fields
-            return tuple(Quadratic(c if rest == 1 else Fraction(0), c if rest == d else Fraction(0), d)
-                         for c, rest in scaled)  # type: ignore[return-value]
+            return tuple(
+                Quadratic(c if rest == 1 else Fraction(0), c if rest == d else Fraction(0), d) for c, rest in scaled
+            )  # type: ignore[return-value]
     return None
 
 
@@ -247,7 +248,9 @@ profile coefficients simple)."""
 def snapped_directions(direction: np.ndarray, family: DirectionSnap) -> list[Vector]:
     """The distinct exact directions of one family near ``direction``, simplest first."""
     if family is _integer_vector:
-        snapped = [None if a is None else tuple(Fraction(v) for v in a) for a in integer_directions(direction, EPSILONS)]
+        snapped = [
+            None if a is None else tuple(Fraction(v) for v in a) for a in integer_directions(direction, EPSILONS)
+        ]
     else:
         snapped = [family(direction, eps) for eps in EPSILONS]
     found: list[Vector] = []
@@ -339,8 +342,9 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
     return min(found, key=lambda item: (item[1].largest > 1.0, item[0]))[1]
 
 
-def _first_exact(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None,
-                 rounding: Rounding) -> tuple[int, ExactSurface] | None:
+def _first_exact(
+    f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None, rounding: Rounding
+) -> tuple[int, ExactSurface] | None:
     """The first exact surface, in the order of :func:`exact_axes`, with every coefficient
     within the rounding (else the first within twice it, in the mean), with the bits of its
     coefficients. When the simplest coefficients fail on a coarse axis, the axis is refined with
@@ -354,8 +358,9 @@ def _first_exact(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f
     return fallback
 
 
-def _exact_surfaces(f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None,
-                    rounding: Rounding) -> Iterator[tuple[list[Fraction], ExactSurface]]:
+def _exact_surfaces(
+    f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None, rounding: Rounding
+) -> Iterator[tuple[list[Fraction], ExactSurface]]:
     """Exact surfaces within twice the rounding (in the mean), simplest axes first; at most
     ``MAX_CHECKS`` exact surfaces are built, and the axis is refined with fixed coefficients
     on the first axis only (an input with irrational data has no simple exact surface, and
@@ -369,7 +374,9 @@ def _exact_surfaces(f: Normalised, best: Fit, family: DirectionSnap | None, exac
         local = fit(f, best.candidate, point=point, direction=direction)
         degrees = np.array([i + 2 * j for i, j in local.exponents])
 
-        def matched_scales(ratios: list[Fraction]) -> list[Fraction]:
+        def matched_scales(
+            ratios: list[Fraction], a: Vector | None = a, c: Vector | None = c, local: Fit = local
+        ) -> list[Fraction]:
             g = build(kind, a, c, local.exponents, ratios)
             return [] if g is None or exact_f is None else _matched_scales(g, exact_f, rounding)
 
@@ -385,13 +392,18 @@ def _exact_surfaces(f: Normalised, best: Fit, family: DirectionSnap | None, exac
                     return
             if rank >= 2 or first > 0:
                 continue
-            fixed = np.array([float(q) for q in coefficients]) * f.length ** degrees / f.scale
+            fixed = np.array([float(q) for q in coefficients]) * f.length**degrees / f.scale
             moved, direction_sigma, point_sigma = refine_fixed(f, local.candidate, fixed)
             for spread in SPREADS:
                 a2 = None if family is None else family(moved.direction, _radius(direction_sigma, spread, family))
-                c2 = None if moved.point is None else tuple(
-                    simplest_near(float(v) * f.length, float(max(e * spread, 1e-15)) * f.length)
-                    for v, e in zip(moved.point, point_sigma))
+                c2 = (
+                    None
+                    if moved.point is None
+                    else tuple(
+                        simplest_near(float(v) * f.length, float(max(e * spread, 1e-15)) * f.length)
+                        for v, e in zip(moved.point, point_sigma)
+                    )
+                )
                 if family is not None and a2 is None:
                     continue
                 g = build(kind, a2, c2, local.exponents, coefficients)  # type: ignore[arg-type]
@@ -402,13 +414,14 @@ def _exact_surfaces(f: Normalised, best: Fit, family: DirectionSnap | None, exac
                         return
 
 
-def _coefficient_candidates(f: Normalised, local: Fit,
-                            matched_scales: Callable[[list[Fraction]], list[Fraction]]) -> list[list[Fraction]]:
+def _coefficient_candidates(
+    f: Normalised, local: Fit, matched_scales: Callable[[list[Fraction]], list[Fraction]]
+) -> list[list[Fraction]]:
     """Exact coefficients of ``g`` in the original coordinates, simplest candidates first: each
     snapped on its own; the ratios to the best-determined one snapped, times the scales that
     ``matched_scales`` gives them (or that coefficient snapped, or as fitted); as fitted."""
     degrees = np.array([i + 2 * j for i, j in local.exponents])
-    factor = f.scale / f.length ** degrees
+    factor = f.scale / f.length**degrees
     values = local.coefficients * factor
     errors = _standard_errors(f, local) * factor * 3.0 * max(1.0, local.residual)
     found = [[simplest_near(v, e) for v, e in zip(values, errors)]]
@@ -460,8 +473,9 @@ def _standard_errors(f: Normalised, local: Fit) -> np.ndarray:
     return np.sqrt(np.abs(np.diag(covariance))) / norms
 
 
-def build(kind: str, a: Vector | None, c: Vector | None,
-          exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction]) -> Poly | None:
+def build(
+    kind: str, a: Vector | None, c: Vector | None, exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction]
+) -> Poly | None:
     """``g = Σ q_ij h^i ρ^j`` over ``QQ`` (``h = a·(p - c)``, ``ρ = |p - c|²``; for a cylinder
     ``ρ`` is ``|a|²|p - c|² - h²``; for a plane ``h = a·p``); over ``QQ(√d)`` for a direction
     in that field (:func:`build_quadratic`)."""
@@ -488,8 +502,9 @@ def build(kind: str, a: Vector | None, c: Vector | None,
     return from_flint(g, R)
 
 
-def build_quadratic(kind: str, a: QuadraticVector, c: Vector, exponents: tuple[tuple[int, int], ...],
-                    coefficients: list[Fraction]) -> Poly | None:
+def build_quadratic(
+    kind: str, a: QuadraticVector, c: Vector, exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction]
+) -> Poly | None:
     """``g = Σ q_ij h^i ρ^j`` over ``QQ(√d)`` for a direction ``a`` in that field (as
     :func:`build`): computed over ``QQ`` with ``w = √d`` as a fourth variable, ``w²`` replaced by
     ``d``."""
@@ -498,12 +513,22 @@ def build_quadratic(kind: str, a: QuadraticVector, c: Vector, exponents: tuple[t
     x, y, z, w = ctx.gens()
     zero = fmpq_mpoly(0, ctx)
     shifted = [v - fmpq(q.numerator, q.denominator) for v, q in zip((x, y, z), c)]
-    h = sum(((fmpq(q.a.numerator, q.a.denominator) + fmpq(q.b.numerator, q.b.denominator) * w) * s
-             for q, s in zip(a, shifted)), zero)
+    h = sum(
+        (
+            (fmpq(q.a.numerator, q.a.denominator) + fmpq(q.b.numerator, q.b.denominator) * w) * s
+            for q, s in zip(a, shifted)
+        ),
+        zero,
+    )
     rho = sum((s * s for s in shifted), zero)
     if kind == CYLINDER:
-        norm2 = _reduce_root(sum(((fmpq(q.a.numerator, q.a.denominator) + fmpq(q.b.numerator, q.b.denominator) * w) ** 2
-                                  for q in a), zero), d)
+        norm2 = _reduce_root(
+            sum(
+                ((fmpq(q.a.numerator, q.a.denominator) + fmpq(q.b.numerator, q.b.denominator) * w) ** 2 for q in a),
+                zero,
+            ),
+            d,
+        )
         rho = norm2 * rho - h * h
     g = zero
     for (i, j), q in zip(exponents, coefficients):
@@ -533,13 +558,17 @@ def _reduce_root(p: fmpq_mpoly, d: int) -> fmpq_mpoly:
     return p.context().from_dict({m: c for m, c in terms.items() if c})
 
 
-def _check(g: Poly, exact_f: Poly | None, rounding: Rounding, f: Normalised,
-           a: Vector | None, c: Vector | None) -> ExactSurface | None:
+def _check(
+    g: Poly, exact_f: Poly | None, rounding: Rounding, f: Normalised, a: Vector | None, c: Vector | None
+) -> ExactSurface | None:
     """``g`` with its exact residual against ``f``, if the exact recognizer agrees it is a
     surface of revolution and the residual is within twice the rounding."""
     rational = g.ring.domain == QQ
-    g_terms = ({tuple(int(e) for e in m): c for m, c in to_flint(g).to_dict().items()} if rational
-               else dense.float_coefficients(g))
+    g_terms = (
+        {tuple(int(e) for e in m): c for m, c in to_flint(g).to_dict().items()}
+        if rational
+        else dense.float_coefficients(g)
+    )
     if exact_f is not None and rational:
         difference = to_flint(exact_f) - to_flint(g)
         residual_terms = {tuple(int(e) for e in m): float(c) for m, c in difference.to_dict().items()}

@@ -263,9 +263,7 @@ def _linear_curve(F: Poly) -> CurveAnalysis | None:
     return CurveAnalysis(AbsoluteFactorization(_variables(F), (factor,)), 0)
 
 
-def analyze_curve(
-    F: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None
-) -> CurveAnalysis:
+def analyze_curve(F: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None) -> CurveAnalysis:
     """:func:`analyze_curves` for one curve."""
     return analyze_curves([F], timeout=timeout, cancel=cancel)[0]
 
@@ -288,7 +286,6 @@ def genus(F: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = No
             f"({analysis.factorization.count} absolute factors): its genus is not defined"
         )
     return analysis.genus
-
 
 
 class _Plan:
@@ -323,12 +320,16 @@ class _Plan:
         for j, (G, _, is_rational) in enumerate(self.parts):
             k = f"{key}_{j}"
             if is_rational:
-                code.append(f"ring sorguiQ_{k} = 0,(x,y),dp;\n"
-                            f'sorguiAbsQQ({poly_to_singular(G, ["x", "y"])}, "{k}", {wanted});\n')
+                code.append(
+                    f"ring sorguiQ_{k} = 0,(x,y),dp;\n"
+                    f'sorguiAbsQQ({poly_to_singular(G, ["x", "y"])}, "{k}", {wanted});\n'
+                )
             else:
-                code.append(f"ring sorguiN_{k} = 0,(x,y,t),dp;\n"
-                            f"sorguiAbsNorm({poly_to_singular(G, ['x', 'y'], 't')}, {minpoly}, "
-                            f'{self.degree}, "{k}", {wanted});\n')
+                code.append(
+                    f"ring sorguiN_{k} = 0,(x,y,t),dp;\n"
+                    f"sorguiAbsNorm({poly_to_singular(G, ['x', 'y'], 't')}, {minpoly}, "
+                    f'{self.degree}, "{k}", {wanted});\n'
+                )
         self.code = "".join(code)
 
     def read(self, found: dict[str, list[str]]) -> CurveAnalysis:
@@ -380,7 +381,6 @@ class _Plan:
             raise SingularError("the absolute factors of the norm do not match the curve")
         return result
 
-
     def _over_k(self, h: sympy.Expr, mu: sympy.Expr, c: sympy.Expr) -> sympy.Expr:
         """``h(x, y, a)`` over ``K = QQ(θ)`` when ``QQ(a) = K`` and ``θ = c(a)``: solve
         ``a = φ(θ)`` in the basis ``1, c, c², ...`` of ``QQ[a]/(mu)``, then substitute."""
@@ -389,8 +389,7 @@ class _Plan:
         powers = [sympy.Poly(c**j, a).rem(sympy.Poly(mu, a)) for j in range(d)]
         matrix = sympy.Matrix(d, d, lambda i, j: powers[j].coeff_monomial(a**i))
         phi = matrix.solve(sympy.Matrix(d, 1, lambda i, _: 1 if i == 1 else 0))
-        a_in_k = sum((K.convert(QQ.convert(phi[j])) * K([QQ.one, QQ.zero]) ** j for j in range(d)),
-                     K.zero)
+        a_in_k = sum((K.convert(QQ.convert(phi[j])) * K([QQ.one, QQ.zero]) ** j for j in range(d)), K.zero)
         R = poly_ring(tuple(str(v) for v in self.variables), K)
         G = R.zero
         for monom, coeff in sympy.Poly(h, *self.variables).terms():
@@ -621,10 +620,7 @@ def _para_plane_curve(
     already knows the curve is absolutely irreducible of genus 0), then paraPlaneCurve's PARA
     dehomogenised at ``s = 1``, over ``QQ`` or the quadratic field of its ``minpoly``: one
     candidate per root of ``minpoly`` with a nonzero third coordinate."""
-    script = (
-        "ring sorguiP = 0,(x,y),dp;\n"
-        + f"sorguiParaCurve({poly_to_singular(F, ['x', 'y'])}, {int(checked)});\n"
-    )
+    script = "ring sorguiP = 0,(x,y),dp;\n" + f"sorguiParaCurve({poly_to_singular(F, ['x', 'y'])}, {int(checked)});\n"
     found = run_script(script, timeout=timeout, cancel=cancel)
     if _one(found, "irreducible") != "1":
         raise AnalysisError(f"the curve {F.as_expr()} = 0 is not absolutely irreducible")
@@ -673,8 +669,10 @@ def _sheared_candidates(
         if good:
             return good
         checked = True  # the first call has checked irreducibility and genus
-    raise AnalysisError("paraPlaneCurve gave no parameterization of the curve, in any of "
-                        f"{len(SHEARS)} positions (a zero denominator, or a map off the curve)")
+    raise AnalysisError(
+        "paraPlaneCurve gave no parameterization of the curve, in any of "
+        f"{len(SHEARS)} positions (a zero denominator, or a map off the curve)"
+    )
 
 
 def _unshear(candidate: tuple[_Fraction, _Fraction], k: int, m: int) -> tuple[_Fraction, _Fraction]:
@@ -745,18 +743,14 @@ def _fractions(
     return result[0], result[1]
 
 
-def is_on_curve(
-    F: Poly, x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr] = ()
-) -> bool:
+def is_on_curve(F: Poly, x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr] = ()) -> bool:
     """True when ``F(x(t), y(t)) = 0`` exactly in ``QQ(generators)[t]`` (docs/math.md §6: every
     parameterization is checked by substitution)."""
     (p1, q1), (p2, q2) = _fractions(x, y, t, generators)
     return _vanishes(F, p1, q1, p2, q2)
 
 
-def is_proper(
-    F: Poly, x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr] = ()
-) -> bool:
+def is_proper(F: Poly, x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr] = ()) -> bool:
     """True when ``(x(t), y(t))`` parameterizes the irreducible curve ``F = 0`` birationally
     (the degree criterion of :func:`_proper_degree`)."""
     (p1, q1), (p2, q2) = _fractions(x, y, t, generators)

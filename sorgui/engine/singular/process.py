@@ -144,9 +144,7 @@ def _is_executable(path: Path) -> bool:
 # --- running scripts ------------------------------------------------------------------------
 
 
-def run_singular(
-    script: str, *, timeout: float = 60.0, cancel: threading.Event | None = None
-) -> str:
+def run_singular(script: str, *, timeout: float = 60.0, cancel: threading.Event | None = None) -> str:
     """Run ``script`` (Singular code) and return its standard output.
 
     The process runs in its own process group, which is killed when ``timeout`` seconds pass
@@ -201,7 +199,7 @@ def _wait(
                 for key, _events in selector.select(POLL_INTERVAL):
                     if key.fileobj is proc.stdin:
                         try:
-                            sent += os.write(key.fd, data[sent:sent + 65536])
+                            sent += os.write(key.fd, data[sent : sent + 65536])
                         except BrokenPipeError:
                             sent = len(data)
                         if sent >= len(data):
@@ -215,8 +213,9 @@ def _wait(
                     chunks[key.fd].append(chunk)
                     size += len(chunk)
                     if size > MAX_OUTPUT:
-                        raise SingularError(f"Singular printed more than {MAX_OUTPUT // 2**20} MB: "
-                                            "not an answer of sorgui's script")
+                        raise SingularError(
+                            f"Singular printed more than {MAX_OUTPUT // 2**20} MB: not an answer of sorgui's script"
+                        )
                 if cancel is not None and cancel.is_set():
                     raise Cancelled("the Singular computation was cancelled")
                 if time.monotonic() > deadline:
@@ -307,9 +306,7 @@ def results(output: str) -> Results:
     return found
 
 
-def run_script(
-    script: str, *, timeout: float = 60.0, cancel: threading.Event | None = None
-) -> Results:
+def run_script(script: str, *, timeout: float = 60.0, cancel: threading.Event | None = None) -> Results:
     """:func:`run_singular` on ``script_header() + script``, returning :func:`results`."""
     return results(run_singular(script_header() + script, timeout=timeout, cancel=cancel))
 
