@@ -17,7 +17,7 @@ real roots), ``singular`` (the Singular process, plane curves, sorgui's Singular
 modules are loaded only when an analysis needs them.
 """
 
-from .analysis import STAGES, analyze, analyze_polynomial
+from .analysis import analyze, analyze_polynomial
 from .errors import (
     AnalysisError,
     Cancelled,
@@ -35,6 +35,7 @@ from .report import (
     Rationality,
     Recognition,
 )
+from .stages import STAGES
 
 __all__ = [
     "STAGES",

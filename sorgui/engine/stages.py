@@ -12,12 +12,9 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from typing import TYPE_CHECKING
 
 from .errors import Cancelled
-
-if TYPE_CHECKING:
-    from .report import Analysis, Recognition
+from .report import Analysis, Recognition
 
 ProgressCallback = Callable[[str], None]
 PartialCallback = Callable[[Analysis], None]
