@@ -163,7 +163,9 @@ def analyze_rationality(
     if p2.genus > 0:
         return Rationality(status="decided", unirational=False, real_rational=False, **base), None
     try:
-        par = curves.parametrize(profile.square, timeout=timeout, cancel=cancel, known_genus_zero=True)
+        par = curves.parametrize(
+            profile.square, timeout=timeout, cancel=cancel, known_genus_zero=True, prefer_conic=True
+        )
     except SingularTimeout as exc:
         return Rationality(
             status=f"partly undecided: {exc.message}",
@@ -327,7 +329,7 @@ def _profile_section(
     curve = profile.rational
     if rationality.profile_reducible:
         curve = _real_component(profile.rational, timeout=timeout, cancel=cancel)
-    par = curves.parametrize(curve, timeout=timeout, cancel=cancel)
+    par = curves.parametrize(curve, timeout=timeout, cancel=cancel, prefer_conic=True)
     return Section(phi=par.x.subs(par.parameter, T), rho_u=par.y.subs(par.parameter, T), rho_w=sympy.Integer(0))
 
 

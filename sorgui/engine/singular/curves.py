@@ -434,6 +434,7 @@ def parametrize(
     timeout: float = 60.0,
     cancel: threading.Event | None = None,
     known_genus_zero: bool = False,
+    prefer_conic: bool = False,
 ) -> CurveParametrization:
     """A proper rational parameterization of the genus-0 curve ``F = 0``, verified exactly.
 
@@ -446,7 +447,10 @@ def parametrize(
     positive genus, or ``F`` has irrational coefficients and is linear in neither variable
     (``paraPlaneCurve`` accepts only ``QQ``). With ``known_genus_zero`` the caller vouches that
     the curve is absolutely irreducible of genus 0 (as the rationality analysis has just
-    computed), and Singular does not compute it again.
+    computed), and Singular does not compute it again. With ``prefer_conic`` the conic route
+    is tried before Singular whatever the coefficients (a profile's conics: one Singular run
+    fewer); the SMAT curves of a canal surface keep paraPlaneCurve first, whose smaller
+    parameterizations make their sphere families faster to verify.
     """
     if F.ring.ngens != 2 or total_degree(F) < 1:
         raise AnalysisError("parametrize needs a non-constant polynomial in two variables")
@@ -462,7 +466,7 @@ def parametrize(
                 "coefficients (ground field is not Q)"
             )
         curve, method = rational, "paraPlaneCurve"
-        conic = _conic(rational)
+        conic = _conic(rational) if prefer_conic or _large(rational) else None
         if conic is not None:
             candidates, method = [conic], "conic"
         else:
