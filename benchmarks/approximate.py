@@ -22,7 +22,7 @@ from benchmarks.report import median_time, run
 from sorgui.engine.analysis import analyze
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.rounded.approximate import approximate_symmetry, rounding_of
-from tests.engine.rounded import printed, random_sor
+from sorgui.samples import printed, random_sor
 
 DEGREES = (4, 6, 8, 10, 12, 16, 20)
 WHOLE_REPORT = (4, 6)

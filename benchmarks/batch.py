@@ -23,7 +23,7 @@ from sympy.polys.domains import QQ
 
 from benchmarks.report import ROOT, run
 from sorgui.engine.algebra.polys import poly_str
-from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve
+from sorgui.samples import move, quaternion_rotation, rational_vector, revolve
 
 EQUATIONS = Path(__file__).resolve().parent / "batch-100.txt"
 JOBS = 2

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from benchmarks.report import median_time, run
 from sorgui.engine.analysis import analyze_polynomial
-from tests.engine.test_genus_choice import general_position
+from sorgui.samples import general_position
 
 SEEDS = (5, 6, 7)
 

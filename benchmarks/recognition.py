@@ -14,7 +14,7 @@ from sympy.polys.domains import QQ
 
 from benchmarks.report import median_time, run
 from sorgui.engine.recognition.recognize import METHODS, recognize
-from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve
+from sorgui.samples import move, quaternion_rotation, rational_vector, revolve
 
 DEGREES = (4, 6, 8, 10, 12, 16, 20, 25, 30)
 

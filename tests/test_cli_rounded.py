@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-from tests.engine.rounded import printed
+from sorgui.samples import printed
 from tests.engine.test_approximate import _turned_torus
 
 SORGUI = [sys.executable, "-m", "sorgui.cli", "analyze"]

@@ -19,8 +19,7 @@ from sorgui.engine.report import Analysis
 from sorgui.engine.rounded.approximate import approximate_symmetry, rounding_of
 from sorgui.engine.rounded.precision import input_rounding
 from sorgui.engine.rounded.snapping import quadratic_direction, simplest_between
-
-from .rounded import (
+from sorgui.samples import (
     cylinder,
     printed,
     printed_exact,

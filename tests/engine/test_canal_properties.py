@@ -12,8 +12,7 @@ from sympy.polys.domains import QQ
 
 from sorgui.engine.algebra.polys import XYZ, Poly, poly_ring
 from sorgui.engine.canal.verdict import analyze_canal
-
-from .helpers import quaternion_rotation
+from sorgui.samples import quaternion_rotation
 
 small = st.integers(min_value=-3, max_value=3)
 quaternions = st.tuples(small, small, small, small).filter(any)

@@ -18,8 +18,7 @@ from sorgui.engine.canal.verdict import analyze_canal
 from sorgui.engine.recognition.profile import profile_curve
 from sorgui.engine.recognition.recognize import recognize
 from sorgui.engine.report import CanalFamily
-
-from .helpers import rational_vector, revolve
+from sorgui.samples import rational_vector, revolve
 
 small = st.integers(min_value=-3, max_value=3)
 directions = st.tuples(small, small, small).filter(any)

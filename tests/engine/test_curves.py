@@ -398,7 +398,7 @@ def test_profile_square_of_the_paraplanecurve_sextic_on_a_rational_axis(point, d
     (paraplanecurves.lib: x⁶+3x⁴y²+3x²y⁴+y⁶-4x⁴z²-34x³yz²-7x²y²z²+12xy³z²+6y⁴z²+36x²z⁴+36xyz⁴+9y²z⁴,
     a rational sextic) about a rational axis: P² is parameterized properly and exactly."""
     from sorgui.engine.recognition.recognize import recognize
-    from tests.engine.helpers import rational_vector, revolve
+    from sorgui.samples import rational_vector, revolve
 
     coefficients = {
         (6, 0): 1,

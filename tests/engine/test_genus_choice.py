@@ -3,27 +3,12 @@ Riemann–Hurwitz for ``(s, r) ↦ (s, r²)``, checked against Singular's ``genu
 
 from __future__ import annotations
 
-import random
-
 import pytest
 from sympy.polys.domains import QQ
 
 from sorgui.engine.recognition.recognize import recognize
 from sorgui.engine.singular import curves
-from tests.engine.helpers import move, quaternion_rotation, rational_vector, revolve
-
-
-def general_position(degree: int, seed: int, drop: tuple[tuple[int, int], ...] = ()):
-    """``F(a·(p - c), |p - c|²) = 0`` with a random dense ``F`` (``i + 2j ≤ degree``), moved."""
-    rng = random.Random(seed)
-    profile = {
-        (i, j): rng.randint(-5, 5) or 1
-        for i in range(degree + 1)
-        for j in range(degree // 2 + 1)
-        if i + 2 * j <= degree and (i, j) not in drop
-    }
-    f = revolve(profile, rational_vector((QQ(1, 2), -1, 2)), rational_vector((2, -1, 3)))
-    return move(f, quaternion_rotation((2, 1, -1, 1)), rational_vector((1, QQ(-1, 3), 0)))
+from sorgui.samples import general_position
 
 
 @pytest.mark.parametrize(("degree", "seed", "drop"), [(4, 1, ()), (6, 2, ()), (6, 3, ((6, 0),)), (8, 4, ())])

@@ -7,8 +7,7 @@ from hypothesis import strategies as st
 from sympy.polys.domains import QQ
 
 from sorgui.engine.recognition.recognize import METHODS, recognize
-
-from .helpers import (
+from sorgui.samples import (
     apply,
     move,
     quaternion_rotation,

@@ -19,9 +19,9 @@ from sorgui.engine.errors import ParseError
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.rational_path import _surd_text, recognition_only_analysis
 from sorgui.engine.report import Analysis
+from sorgui.samples import move, quaternion_rotation, rational_vector, revolve
 
 from ..conftest import corpus_cases
-from .helpers import move, quaternion_rotation, rational_vector, revolve
 from .test_canal import examples
 from .test_properties import directions, fractions, profiles, quaternions
 

@@ -12,8 +12,7 @@ from sympy.polys.domains import QQ
 from sorgui.engine.analysis import analyze, analyze_polynomial
 from sorgui.engine.revolution.rationality import table_row
 from sorgui.examples import example_text
-
-from .helpers import move, quaternion_rotation, rational_vector, revolve
+from sorgui.samples import move, quaternion_rotation, rational_vector, revolve
 
 t, x, y = sympy.symbols("t x y")
 

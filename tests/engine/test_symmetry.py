@@ -10,8 +10,7 @@ from sorgui.engine.algebra.linalg import is_zero
 from sorgui.engine.algebra.polys import XYZ, number_field, poly_ring
 from sorgui.engine.recognition.recognize import METHODS, recognize
 from sorgui.engine.recognition.symmetry import satisfies_identity, symmetry_algebra
-
-from .helpers import rational_vector, revolve, same_line
+from sorgui.samples import rational_vector, revolve, same_line
 
 R = poly_ring(XYZ, QQ)
 x, y, z = R.gens

@@ -7,7 +7,7 @@ from __future__ import annotations
 import pytest
 from PySide6.QtWidgets import QRadioButton
 
-from tests.engine.rounded import printed
+from sorgui.samples import printed
 from tests.engine.test_approximate import _turned_torus
 
 pytestmark = pytest.mark.gui
