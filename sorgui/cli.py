@@ -397,9 +397,9 @@ def analyze_main(argv: Sequence[str]) -> int:
         if args.json:
             emit(json.dumps(result.to_json(), indent=1))
         else:
-            from sorgui.export.text import format_report
+            from sorgui.export.text import plain_text
 
-            emit(format_report(result))
+            emit(plain_text(result))
     except _OutputError as exc:
         return fail(str(exc), None, False, 1)
     return 0

@@ -4,7 +4,7 @@ Entry point: :func:`analyze` turns pasted text into an immutable :class:`Analysi
 sympy's ``polys``: a core of one module per idea, and subpackages, one idea each.
 
 The core: ``parsing`` (the safe parser of pasted text), ``expressions`` (reading the engine's
-own strings), ``report`` (the result objects and their JSON), ``errors`` (the one exception
+own strings), ``results`` (the result objects and their JSON), ``errors`` (the one exception
 hierarchy), ``timelimit`` and ``lifetime`` (ending an analysis when asked), ``analysis`` (the
 staged pipeline) and ``rational_path`` (the recognition-only pipeline over ``QQ`` without
 sympy).
@@ -26,7 +26,7 @@ from .errors import (
     SingularTimeout,
     SorguiError,
 )
-from .report import (
+from .results import (
     Analysis,
     Axis,
     Factor,

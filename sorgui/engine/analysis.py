@@ -27,7 +27,7 @@ from .algebra.linalg import Vector
 from .errors import TimeLimitReached
 from .parsing import parse_polynomial
 from .recognition.symmetry import NEAREST_CANAL_NOTE, revolution_canal
-from .report import (
+from .results import (
     Analysis,
     Approximation,
     Canal,

@@ -46,7 +46,7 @@ from .recognition.symmetry import (
     rational_symmetry,
     revolution_canal,
 )
-from .report import Analysis, Axis, Factor, Profile, Recognition
+from .results import Analysis, Axis, Factor, Profile, Recognition
 from .rounded.precision import has_decimals
 
 if TYPE_CHECKING:

@@ -14,7 +14,7 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 
 from .errors import Cancelled
-from .report import Analysis, Recognition
+from .results import Analysis, Recognition
 
 ProgressCallback = Callable[[str], None]
 PartialCallback = Callable[[Analysis], None]

@@ -20,7 +20,7 @@ from types import FrameType
 from typing import TYPE_CHECKING
 
 from .errors import TimeLimitReached
-from .report import Analysis, Rationality, Recognition
+from .results import Analysis, Rationality, Recognition
 
 if TYPE_CHECKING:
     from .algebra.polys import Poly

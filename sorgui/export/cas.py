@@ -18,7 +18,7 @@ import sympy
 from sympy.printing.maple import maple_code
 from sympy.printing.mathematica import mathematica_code
 
-from sorgui.engine.report import Analysis, Approximation
+from sorgui.engine.results import Analysis, Approximation
 from sorgui.export.formulas import CoverageStyle, Formula, analysis_formulas
 from sorgui.export.quoting import hash_comment, mathematica_comment, one_line
 from sorgui.export.text import TABLE_1

@@ -1,4 +1,4 @@
-"""Writing an :class:`~sorgui.engine.report.Analysis` to files, in the format the suffix names.
+"""Writing an :class:`~sorgui.engine.results.Analysis` to files, in the format the suffix names.
 
 :data:`FORMATS` lists every format: reports (JSON, text, Markdown, HTML), formula files (LaTeX,
 Maple, Mathematica, Python), meshes (STL, OBJ, PLY, VTP; ``NAME.patch.stl`` is the parametric
@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
 from sorgui.export.cas import latex_document, maple_file, mathematica_file
 from sorgui.export.python_module import python_module

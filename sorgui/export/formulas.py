@@ -29,7 +29,7 @@ from typing import Any
 
 import sympy
 
-from sorgui.engine.report import Analysis, Canal
+from sorgui.engine.results import Analysis, Canal
 from sorgui.export.exact import read_expression
 
 Value = sympy.Expr | tuple[sympy.Expr, ...]

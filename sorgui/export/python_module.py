@@ -23,7 +23,7 @@ from __future__ import annotations
 import sympy
 from sympy.printing.numpy import NumPyPrinter
 
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.export.cas import summary_lines
 from sorgui.export.formulas import CANAL_PREFIX, Formula, analysis_formulas
 from sorgui.export.quoting import hash_comment, one_line, python_literal

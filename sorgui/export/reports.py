@@ -23,11 +23,11 @@ from pathlib import Path
 import sympy
 
 from sorgui.engine.errors import SorguiError
-from sorgui.engine.report import Analysis, Canal
+from sorgui.engine.results import Analysis, Canal
 from sorgui.export.cas import LATEX_STYLE, approximate_line, latex_name, verdict
 from sorgui.export.formulas import Formula, canal_formulas, surface_formulas
 from sorgui.export.quoting import code_fence, markup_text
-from sorgui.export.text import CANAL_KINDS, SYMMETRY_NAMES, TABLE_1, format_report
+from sorgui.export.text import CANAL_KINDS, SYMMETRY_NAMES, TABLE_1, plain_text
 
 KNOWN_KEYS = frozenset(
     {
@@ -120,7 +120,7 @@ def _one_line(text: str) -> str:
 
 def text_report(analysis: Analysis) -> str:
     """The command line's report."""
-    return format_report(analysis) + "\n"
+    return plain_text(analysis) + "\n"
 
 
 @dataclass(frozen=True)

@@ -1,8 +1,8 @@
-"""A short human-readable report of an :class:`~sorgui.engine.report.Analysis` (the CLI's output)."""
+"""A short human-readable report of an :class:`~sorgui.engine.results.Analysis` (the CLI's output)."""
 
 from __future__ import annotations
 
-from sorgui.engine.report import Analysis, Canal, Rationality, RealLocus, Recognition
+from sorgui.engine.results import Analysis, Canal, Rationality, RealLocus, Recognition
 
 TABLE_1 = (
     ("reducible", "0", "rational", "rational"),
@@ -119,7 +119,7 @@ def real_locus_line(real: RealLocus) -> str:
     return f"real points: only a curve (no real surface): {pieces}"
 
 
-def format_report(analysis: Analysis) -> str:
+def plain_text(analysis: Analysis) -> str:
     """The whole report as text (ending with a newline)."""
     rec = analysis.recognition
     lines = [f"f = {rec.polynomial}", *analysis_lines(analysis)]

@@ -1,7 +1,7 @@
 """What a report file may hold: every value checked against what sorgui itself writes.
 
 A report (``*.sorgui.json``) is a file people send each other, so :func:`validate` checks the
-:class:`~sorgui.engine.report.Analysis` decoded from one before anything shows or exports it:
+:class:`~sorgui.engine.results.Analysis` decoded from one before anything shows or exports it:
 
 * every field has the type sorgui writes (a bool where a bool goes, a tuple of three strings
   for a point, …);
@@ -31,7 +31,7 @@ from typing import Any
 
 import sympy
 
-from sorgui.engine import report as results
+from sorgui.engine import results
 from sorgui.engine.errors import ExpressionError, ParseError, SorguiError
 from sorgui.engine.expressions import Syntax, read
 

@@ -43,7 +43,7 @@ from PySide6.QtWidgets import (
 )
 
 from sorgui import __version__
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.examples import EXAMPLES, example_text
 from sorgui.export.atomic import atomic_write_bytes
 from sorgui.export.files import export_analysis, format_of

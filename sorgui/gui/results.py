@@ -1,12 +1,12 @@
 """The results pane: the verdict, the axis, the profile, Table 1 and the parameterizations.
 
-It only reads an :class:`~sorgui.engine.report.Analysis` (possibly partial: the results known
+It only reads an :class:`~sorgui.engine.results.Analysis` (possibly partial: the results known
 so far) and the typeset formulas the worker made for it (:mod:`sorgui.session.formulas`);
 formulas not typeset yet are shown as their exact text. Nothing here computes mathematics.
 Table 1 of the paper is shown whole, with the surface's row highlighted, so the user sees where
 the answer comes from; stages still running are named as such. A *no* is explained in words
 (:mod:`sorgui.gui.wording`), the near case of rounded input too. ``plain_text()`` is the CLI's
-report (:func:`sorgui.export.text.format_report`).
+report (:func:`sorgui.export.text.plain_text`).
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from sorgui.engine.report import (
+from sorgui.engine.results import (
     Analysis,
     Approximation,
     Canal,
@@ -39,8 +39,8 @@ from sorgui.export.text import (
     SYMMETRY_NAMES,
     TABLE_1,
     TABLE_1_WORDS,
-    format_report,
     nearly_canal,
+    plain_text,
 )
 from sorgui.gui.formula_view import FormulaView
 from sorgui.gui.wording import (
@@ -102,7 +102,7 @@ class ResultsPane(QScrollArea):
 
     def plain_text(self) -> str:
         """The shown result as plain text: the CLI's report, or the shown message."""
-        return format_report(self._analysis) if self._analysis is not None else self._message
+        return plain_text(self._analysis) if self._analysis is not None else self._message
 
     def show_message(self, title: str, message: str, kind: str = "info") -> None:
         """Replace the results by a message (``kind``: ``info`` or ``error``)."""

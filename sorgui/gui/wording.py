@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from sorgui.engine.report import (
+from sorgui.engine.results import (
     Analysis,
     Approximation,
     Canal,

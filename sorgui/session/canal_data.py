@@ -14,7 +14,7 @@ import numpy as np
 import sympy
 
 from sorgui.engine.expressions import SYMPY, read
-from sorgui.engine.report import Canal
+from sorgui.engine.results import Canal
 from sorgui.render.canal_scene import FamilyCurves, Function, SmatFamily, Terms4
 
 T = sympy.Symbol("t")

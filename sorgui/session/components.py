@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 from sorgui.engine import SorguiError, analyze
 from sorgui.engine.parsing import Neg, Node, Num, Power, Product, Sum, Var, syntax_tree
-from sorgui.engine.report import Recognition
+from sorgui.engine.results import Recognition
 
 MAX_COMPONENTS = 4
 """More typed factors than this are not a blend one explains factor by factor."""

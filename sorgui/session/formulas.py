@@ -31,7 +31,7 @@ from sympy.printing.maple import maple_code
 from sympy.printing.mathematica import mathematica_code
 from sympy.printing.pycode import pycode
 
-from sorgui.engine.report import Analysis, Recognition
+from sorgui.engine.results import Analysis, Recognition
 from sorgui.export.exact import ExpressionError, read_expression
 
 MAX_CHARACTERS = 6000

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field, replace
 from enum import Enum
 from typing import TYPE_CHECKING, Any, Protocol
 
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.session.components import Component
 from sorgui.session.events import SessionEvents
 from sorgui.session.formulas import Formula

@@ -1,6 +1,6 @@
 """The plain arrays of the 3D scene of one analysis, built in the worker process.
 
-From an :class:`~sorgui.engine.report.Analysis` this computes, with the builders of
+From an :class:`~sorgui.engine.results.Analysis` this computes, with the builders of
 :mod:`sorgui.render`, everything the viewport draws: the mesh of the square-free part of ``f``
 (coloured by side), the axis, the profile curve in a plane through the axis, the centre of a
 sphere, a patch of the first real parameterization, the axes of the factors of a reducible
@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from sorgui.engine.report import Analysis, Parametrization, Recognition
+from sorgui.engine.results import Analysis, Parametrization, Recognition
 from sorgui.engine.rounded import dense
 from sorgui.engine.rounded.deviation import view_ball
 from sorgui.export.exact import (

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from sorgui.engine import analyze
 from sorgui.engine.errors import AnalysisError
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.engine.rounded.approximate import approximate_symmetry, rounding_of
 from sorgui.engine.rounded.precision import input_rounding
 from sorgui.engine.rounded.snapping import quadratic_direction, simplest_between
@@ -361,11 +361,11 @@ def test_exact_input_printed_with_decimals_is_its_own_nearest_surface() -> None:
 def test_rounded_input_is_nearly_canal_when_its_nearest_surface_is() -> None:
     """A surface of revolution printed with 10 digits is exactly no canal surface (a witness line
     says so), but its nearest exact surface is one: the report says both, labelled."""
-    from sorgui.export.text import format_report
+    from sorgui.export.text import plain_text
 
     array, _point, _direction = random_sor(np.random.default_rng(3), 4)
     result = analyze(printed(array, 10))
     assert not result.is_sor and result.approximate.near_sor and result.canal.is_canal is False
     nearest = result.approximate.nearest.analysis
     assert nearest.is_sor and nearest.canal.is_canal and nearest.canal.kinds == ("revolution",)
-    assert "not exactly canal, but nearly: its nearest exact surface (within the rounding)" in format_report(result)
+    assert "not exactly canal, but nearly: its nearest exact surface (within the rounding)" in plain_text(result)

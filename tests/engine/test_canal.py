@@ -22,8 +22,8 @@ from sorgui.engine.canal.verdict import (
     envelope_certificate,
 )
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.report import Analysis, Canal
-from sorgui.export.text import format_report
+from sorgui.engine.results import Analysis, Canal
+from sorgui.export.text import plain_text
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "data" / "canal-examples.txt"
 
@@ -235,14 +235,14 @@ def test_json_round_trip_and_text_report() -> None:
     assert canal["spine"] == canal["families"][0] and canal["radius_squared"] == canal["spine"]["radius_squared"]
     assert canal["certificate"]["verified"] and canal["witness"] is None
     assert Analysis.from_json(data) == analysis
-    text = format_report(analysis)
+    text = plain_text(analysis)
     assert "canal surface: YES" in text and "a Dupin cyclide" in text and "certificate (" in text
 
 
 def test_text_report_of_a_near_miss() -> None:
     analysis = analyze(examples()["triaxial ellipsoid"], recognition_only=True)
     assert analysis.canal is not None and analysis.canal.is_canal is False
-    text = format_report(analysis)
+    text = plain_text(analysis)
     assert "canal surface: NO" in text and "witness line" in text
 
 

@@ -18,7 +18,7 @@ from sorgui.engine.canal.lines import univariate_str
 from sorgui.engine.errors import ParseError
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.rational_path import _surd_text, recognition_only_analysis
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.samples import move, quaternion_rotation, rational_vector, revolve
 
 from ..conftest import corpus_cases

@@ -154,7 +154,7 @@ def test_reducible_surface_is_not_analysed_as_a_whole() -> None:
 
 
 def test_json_round_trip() -> None:
-    from sorgui.engine.report import Analysis
+    from sorgui.engine.results import Analysis
 
     result = analyze("y^2 - 2xz")
     again = Analysis.from_json(result.to_json())

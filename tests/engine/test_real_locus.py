@@ -8,9 +8,9 @@ import sympy
 from sorgui.engine.analysis import analyze
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.recognition.recognize import recognize
-from sorgui.engine.report import Analysis, RealLocus
+from sorgui.engine.results import Analysis, RealLocus
 from sorgui.engine.revolution.real_locus import _norm_in_s, real_locus
-from sorgui.export.text import format_report, real_locus_line
+from sorgui.export.text import plain_text, real_locus_line
 
 
 def locus(text: str) -> RealLocus | None:
@@ -82,21 +82,21 @@ def test_the_analysis_reports_it_in_json_and_words() -> None:
     data = analysis.to_json()
     assert data["real_locus"] == {"kind": "empty", "dimension": -1, "points": 0, "circles": None, "axis_line": None}
     assert Analysis.from_json(data) == analysis
-    assert "real points: none (X has no real point)" in format_report(analysis).splitlines()
+    assert "real points: none (X has no real point)" in plain_text(analysis).splitlines()
 
     circle = analyze("(x^2+y^2+z^2-5)^2+z^2")
     assert Analysis.from_json(circle.to_json()).real_locus == circle.real_locus
-    assert "real points: only a curve (no real surface): 1 circle about the axis" in format_report(circle)
+    assert "real points: only a curve (no real surface): 1 circle about the axis" in plain_text(circle)
 
-    assert "real points: a real surface" in format_report(analyze("(x^2+y^2+z^2+3)^2-16(x^2+y^2)"))
+    assert "real points: a real surface" in plain_text(analyze("(x^2+y^2+z^2+3)^2-16(x^2+y^2)"))
     assert analyze("x^2+2y^2+3z^2-1").to_json()["real_locus"] is None
 
 
 def test_genus_line_says_what_a_reducible_profile_means() -> None:
-    report = format_report(analyze("y^2-2xz"))  # the cone: P is two lines
+    report = plain_text(analyze("y^2-2xz"))  # the cone: P is two lines
     assert "P is reducible over C (no genus), genus(P²) = 0" in report
     assert "None" not in report
-    planes = format_report(analyze("x^2+y^2"))  # P² = w: two complex planes
+    planes = plain_text(analyze("x^2+y^2"))  # P² = w: two complex planes
     assert "genus(P), genus(P²): not computed" in planes
     assert "None" not in planes
 

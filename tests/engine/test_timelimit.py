@@ -55,9 +55,9 @@ def test_nothing_finished_is_reported_undecided() -> None:
     assert result.recognition.symmetry == UNDECIDED and not result.is_sor
     assert result.unfinished == ("recognition", "factors", "rationality", "parametrizations")
     assert result.rationality.status == "undecided: too slow"
-    from sorgui.export.text import format_report
+    from sorgui.export.text import plain_text
 
-    report = format_report(result)
+    report = plain_text(result)
     assert "surface of revolution: undecided" in report and "not finished within the time limit" in report
 
 

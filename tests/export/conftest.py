@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from sorgui.engine import analyze
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.examples import example_text
 from sorgui.export.exact import polynomial_terms
 

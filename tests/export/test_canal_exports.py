@@ -15,7 +15,7 @@ from sympy.parsing.mathematica import parse_mathematica
 from sympy.printing.maple import maple_code
 
 from sorgui.engine import analyze
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.export.cas import latex_document, maple_file, mathematica_file
 from sorgui.export.files import export_analysis
 from sorgui.export.formulas import canal_formulas

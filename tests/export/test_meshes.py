@@ -9,7 +9,7 @@ import pytest
 import pyvista
 import sympy
 
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.export.exact import polynomial_terms
 from sorgui.export.files import export_analysis
 from sorgui.export.formulas import analysis_formulas

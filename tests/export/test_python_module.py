@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import sympy
 
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.export.exact import read_expression
 from sorgui.export.files import export_analysis
 from tests.export.conftest import relative_residual

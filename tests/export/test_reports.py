@@ -8,7 +8,7 @@ import json
 
 import pytest
 
-from sorgui.engine.report import Analysis, Approximation
+from sorgui.engine.results import Analysis, Approximation
 from sorgui.export.files import export_analysis, format_of
 from sorgui.export.reports import ReportError, html_report, markdown_report, read_report
 
@@ -105,16 +105,16 @@ def test_a_nearest_surface_outside_the_rounding_is_not_presented_as_the_part() -
     import dataclasses
 
     from sorgui.engine import analyze
-    from sorgui.export.text import format_report
+    from sorgui.export.text import plain_text
 
     analysis = analyze("x^2 + 1.000001y^2 + 0.999999z^2 - 2.5")
     approx = analysis.approximate
     assert approx is not None and approx.nearest is not None and not approx.nearest.within_rounding
-    text = format_report(analysis)
+    text = plain_text(analysis)
     assert "no simple exact surface was found within the rounding" in text
     assert "the analysis of the nearest exact surface" not in text
     inside = dataclasses.replace(
         analysis,
         approximate=dataclasses.replace(approx, nearest=dataclasses.replace(approx.nearest, within_rounding=True)),
     )
-    assert "the analysis of the nearest exact surface" in format_report(inside)
+    assert "the analysis of the nearest exact surface" in plain_text(inside)

@@ -20,7 +20,7 @@ from typing import Any
 
 import pytest
 
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.export.files import export_analysis
 from sorgui.export.reports import ReportError, json_report, read_report
 

@@ -56,7 +56,7 @@ def test_characteristic_circles_lie_on_the_surface(blend) -> None:
 
 
 def test_no_rational_family_gives_an_empty_scene() -> None:
-    from sorgui.engine.report import Canal
+    from sorgui.engine.results import Canal
 
     scene = canal_scene(family_curves(Canal(False, "not canal")))
     assert scene.spines == () and scene.circles == ()

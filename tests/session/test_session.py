@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import pytest
 
-from sorgui.engine.report import Analysis
+from sorgui.engine.results import Analysis
 from sorgui.examples import example_text
 from sorgui.session import Session, StageState
 from sorgui.session.components import component_texts

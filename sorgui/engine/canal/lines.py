@@ -22,7 +22,7 @@ from flint import fmpq_mpoly, fmpq_poly
 from ..algebra.rationals import signed_sum, times_text
 from ..errors import AnalysisError, Cancelled
 from ..recognition.symmetry import PLANE_CANAL, SOR_EVIDENCE
-from ..report import Canal, CanalEvidence
+from ..results import Canal, CanalEvidence
 from .focal import (
     DEVELOPABLE,
     Derivatives,

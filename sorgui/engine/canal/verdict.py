@@ -40,7 +40,7 @@ from ..algebra.polys import (
 from ..errors import AnalysisError, Cancelled, SingularError
 from ..recognition.profile import ProfileCurve
 from ..recognition.symmetry import SOR_EVIDENCE, Motion, satisfies_identity
-from ..report import Canal, CanalEvidence, CanalFamily, Parametrization
+from ..results import Canal, CanalEvidence, CanalFamily, Parametrization
 from ..singular import curves
 from ..singular.process import emit, parse_int, poly_to_singular, run_script
 from .focal import DEVELOPABLE, DUPIN, UMBILIC

@@ -14,7 +14,7 @@ from sympy.polys.domains.domain import Domain
 from ..algebra.linalg import Vector, cross, is_zero, primitive_vector, sub
 from ..algebra.polys import Poly, factor, poly_str, to_str, total_degree
 from ..errors import AnalysisError
-from ..report import Axis, Factor, Profile, Recognition
+from ..results import Axis, Factor, Profile, Recognition
 from .paper_method import recognize_paper
 from .profile import ProfileCurve, profile_curve
 from .symmetry import CYLINDER, REVOLUTION, SPHERE, Symmetry, recognize_symmetry

@@ -26,7 +26,7 @@ from ..algebra import linalg
 from ..algebra.linalg import Vector, cross, dot, is_zero, primitive_vector, scale, sub
 from ..algebra.rationals import RATIONALS
 from ..errors import AnalysisError
-from ..report import Canal, CanalEvidence
+from ..results import Canal, CanalEvidence
 
 if TYPE_CHECKING:
     from sympy.polys.domains.domain import Domain

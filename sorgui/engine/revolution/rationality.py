@@ -38,7 +38,7 @@ from ..algebra.polys import (
 from ..algebra.realroots import count_real_roots
 from ..errors import AnalysisError, SingularError, SingularTimeout
 from ..recognition.profile import ProfileCurve
-from ..report import Parametrization, Rationality
+from ..results import Parametrization, Rationality
 from ..singular import curves
 from ..singular.curves import CurveAnalysis, CurveParametrization
 from .parametrization import (

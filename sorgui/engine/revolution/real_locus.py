@@ -35,7 +35,7 @@ from ..algebra.realroots import count_real_roots, sign, sign_changes
 from ..errors import AnalysisError
 from ..recognition.profile import ProfileCurve
 from ..recognition.symmetry import PLANE, SPHERE, Symmetry
-from ..report import RealLocus
+from ..results import RealLocus
 
 S, W, T = sympy.symbols("s w t")
 

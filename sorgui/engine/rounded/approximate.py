@@ -7,7 +7,7 @@ Gauss–Newton axis) for the kinds the small singular values allow, most symmetr
 accepts the first whose residual is within the rounding. For a near surface of revolution it
 then snaps to the simplest exact surface (:mod:`.snapping`) and measures how far its zero set
 is from ``f``'s (:mod:`.deviation`). ``is_sor`` keeps its exact meaning; this module only adds
-the :class:`~sorgui.engine.report.Approximation` beside it.
+the :class:`~sorgui.engine.results.Approximation` beside it.
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ from ..recognition.symmetry import (
     SOR_KINDS,
     SPHERE,
 )
-from ..report import ApproximateAxis, Approximation, NearestSurface
+from ..results import ApproximateAxis, Approximation, NearestSurface
 from . import dense
 from .deviation import max_deviation
 from .near_symmetry import (
