@@ -5,7 +5,8 @@ The worker process rasterised each wrapped line of the formula into an alpha mas
 palette's text colour and shown as one pixmap (one widget per formula keeps the pane quick to
 lay out). A long formula is folded to its first :data:`FOLDED_LINES` lines with a "show all"
 button; a formula wider than the pane scrolls sideways. A formula without masks (not typeset
-yet, or too long to typeset) is shown as selectable plain text, elided with "show all" too.
+yet, or too long to typeset) is shown as selectable plain text written as people write it (``x^12``,
+``3·x``: :func:`readable_text`), elided with "show all" too.
 The Copy button puts the exact text on the clipboard; the ▾ button beside it (and the context
 menu) copies as text, LaTeX, Maple, Mathematica or Python.
 """
@@ -60,6 +61,12 @@ def formula_pixmap(masks: tuple[np.ndarray, ...], color: tuple[int, int, int], r
     pixmap = QPixmap.fromImage(image)
     pixmap.setDevicePixelRatio(ratio)
     return pixmap
+
+
+def readable_text(text: str) -> str:
+    """An engine string as people write it: ``x**12`` as ``x^12`` and ``3*x`` as ``3·x`` (what
+    a formula too long to typeset shows; the copy buttons still give the exact string)."""
+    return text.replace("**", "^").replace("*", "·")
 
 
 class RowScroll(QScrollArea):
@@ -177,8 +184,9 @@ class FormulaView(QFrame):
             self.show_all_button.setText(f"show all ({hidden} more lines)")
         else:
             limit = PLAIN_LIMIT if self.expanded else PLAIN_PREVIEW
-            shown = formula.plain[:limit]
-            hidden = len(formula.plain) - len(shown)
+            readable = readable_text(formula.plain)
+            shown = readable[:limit]
+            hidden = len(readable) - len(shown)
             if hidden:
                 shown += f" … ({hidden:,} more characters: copy to get them all)"
             self.content.setText(shown)

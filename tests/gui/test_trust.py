@@ -400,3 +400,20 @@ def test_the_window_works_at_800_by_560(window, run_analysis, qtbot, artifacts) 
     assert reachable, "what does not fit can be scrolled to"
     assert window.analyze_button.isVisible() and window.viewport.plotter.isVisible()
     window.grab().save(str(artifacts / "small-window.png"))
+
+
+def test_a_degree_12_equation_too_long_to_typeset_is_echoed_as_people_write_it(window, run_analysis) -> None:
+    """A surface of revolution of degree 12 in general position has hundreds of terms: its
+    equation is shown as text, with ``^`` and ``·`` (not Python's ``**``), and copied exactly."""
+    from benchmarks.gui_heartbeat import sor_in_general_position
+
+    run_analysis(window, sor_in_general_position(12))
+    polynomial = window.session.run.analysis.recognition.polynomial
+    view = window.results.views["polynomial"]
+    assert not view.formula.masks and view.formula.plain == polynomial
+    shown = view.content.text()
+    assert "**" not in shown and "*" not in shown and "^12" in shown and "·" in shown
+    view.copy_plain()
+    from PySide6.QtGui import QGuiApplication
+
+    assert QGuiApplication.clipboard().text() == polynomial
