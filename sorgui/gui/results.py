@@ -463,7 +463,7 @@ class ResultsPane(QScrollArea):
     def _timings_section(self, column: QVBoxLayout, timings: Sequence[tuple[str, float]]) -> None:
         total = sum(seconds for _name, seconds in timings)
         rows = [(name, f"{seconds * 1000:.0f} ms") for name, seconds in timings]
-        rows.append(("total", f"{total * 1000:.0f} ms"))
+        rows.append(("sum of the stages", f"{total * 1000:.0f} ms"))
         self._section(column, "Timings", rows)
 
 

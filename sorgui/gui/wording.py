@@ -67,7 +67,10 @@ CAPTION_TIPS = {
     "centre": "The centre of this factor, a sphere: every line through it is an axis",
     "direction": "The direction of translation of an extrusion or a cylinder",
     "normal": "The normal of the plane: every line along it is an axis",
-    "total": "The time of the whole analysis, from the worker's start to the last result",
+    "sum of the stages": (
+        "The stages' times added up; the wall time under the 3D view (“Done in …”) also counts "
+        "starting the worker and showing the results"
+    ),
     "note": "A remark of the engine on this result",
     "canal": "Whether X is the envelope of a one-parameter family of spheres (docs/math.md §9)",
     "certificate": "The exact proof that X is the envelope of the sphere family",

@@ -29,9 +29,33 @@ from sorgui.session.supervised import SUPERVISION
 if TYPE_CHECKING:
     from sorgui.session.scene_data import SceneData
 
-STAGES = ("engine", "parse", "recognition", "factors", "scene", "rationality", "parametrizations", "formulas")
-"""The stages of a run in the order they usually start (the engine may add others, such as
-``approximate`` for rounded input: they are inserted where they start)."""
+STAGES = (
+    "engine",
+    "parse",
+    "recognition",
+    "factors",
+    "approximate",
+    "scene",
+    "real locus",
+    "rationality",
+    "parametrizations",
+    "canal",
+    "nearest",
+    "formulas",
+    "components",
+)
+"""Every stage a run may have, in the order they usually start. A run plans the ones its input
+can need (:func:`planned_stages`) and marks those the analysis turns out not to need as
+skipped, so the number of stages shown never changes while it runs."""
+
+REVOLUTION_ONLY = ("real locus", "rationality", "parametrizations")
+"""Stages that run only for a surface of revolution."""
+
+NOT_REVOLUTION_ONLY = ("components",)
+"""Stages that run only when the answer is no (the typed components of a blend)."""
+
+ROUNDED_ONLY = ("approximate", "nearest")
+"""Stages that run only for rounded (decimal) input or a given tolerance."""
 
 WORKER_STAGES = ("scene", "formulas", "components")
 """Stages of the worker itself, which may run more than once (their times add up)."""
@@ -103,7 +127,7 @@ class Run:
 
     text: str
     request: JobRequest
-    stages: dict[str, Stage] = field(default_factory=lambda: {name: Stage(name) for name in STAGES})
+    stages: dict[str, Stage] = field(default_factory=dict)
     analysis: Analysis | None = None
     scene: SceneData | None = None
     nearest_scene: SceneData | None = None
@@ -115,6 +139,10 @@ class Run:
     result: JobResult | None = None
     started: float = field(default_factory=time.monotonic)
     ended: float | None = None
+
+    def __post_init__(self) -> None:
+        if not self.stages:
+            self.stages = {name: Stage(name) for name in planned_stages(self.request)}
 
     @property
     def running(self) -> bool:
@@ -134,6 +162,18 @@ class Run:
 
     def elapsed(self) -> float:
         return (self.ended if self.ended is not None else time.monotonic()) - self.started
+
+
+def planned_stages(request: JobRequest) -> tuple[str, ...]:
+    """The stages a run of ``request`` may need: the rounded-input ones only for decimals or a
+    given tolerance, the analysis' stages only when it is computed (not for a saved report)."""
+    from sorgui.engine.rounded.precision import has_decimals
+
+    rounded = request.tolerance is not None or has_decimals(request.text)
+    names = [n for n in STAGES if rounded or n not in ROUNDED_ONLY]
+    if request.analysis is not None:  # a saved report: only the worker's own stages run
+        names = [n for n in names if n in WORKER_STAGES]
+    return tuple(names)
 
 
 class Runner(Protocol):
@@ -285,6 +325,7 @@ class Session:
             run.analysis = payload
             for name, seconds in payload.timings:
                 self._finish_stage(run, name, seconds, add=False)
+            self._skip_unneeded(run, payload)
             self.events.analysis_changed.emit(payload)
         elif kind == "scene":
             run.scene = payload
@@ -330,6 +371,16 @@ class Session:
             run.stages = {n: old[n] if n in old else Stage(n) for n in names}
         return run.stages[name]
 
+    def _skip_unneeded(self, run: Run, analysis: Analysis) -> None:
+        """Once the verdict is known, the planned stages it does not need are skipped."""
+        unneeded = NOT_REVOLUTION_ONLY if analysis.is_sor else REVOLUTION_ONLY
+        if len(analysis.factors) > 1:
+            unneeded = (*unneeded, *NOT_REVOLUTION_ONLY)
+        for name in unneeded:
+            stage = run.stages.get(name)
+            if stage is not None and stage.state is StageState.PENDING:
+                self._set_state(run, stage, StageState.SKIPPED)
+
     def _start_stage(self, run: Run, name: str) -> None:
         now = time.monotonic()
         for other in run.stages.values():
@@ -339,6 +390,8 @@ class Session:
                 self._set_state(run, other, StageState.DONE)
                 self.events.stage_done.emit(other.name, other.seconds)
         stage = self._stage(run, name)
+        if name in WORKER_STAGES and stage.state is StageState.DONE:
+            return  # drawn again with more of the analysis: it stays done, its time adds up
         stage.started = now
         self._set_state(run, stage, StageState.RUNNING)
 

@@ -45,12 +45,35 @@ def test_results_arrive_stage_by_stage_as_typed_objects() -> None:
     assert names.index("scene_changed") < log.index(("state_changed", ("rationality", StageState.RUNNING)))
     assert isinstance(run.analysis, Analysis) and run.analysis.rationality.table_row == 1
     assert run.analysis.parametrizations and run.scene.patch is not None
-    assert all(state is StageState.DONE for state in states(session).values())
-    assert all(stage.seconds > 0 for stage in run.stage_list())
+    done = {name: StageState.DONE for name in states(session)}
+    assert states(session) == {**done, "components": StageState.SKIPPED}, "a surface of revolution needs no components"
+    assert all(stage.seconds > 0 for stage in run.stage_list() if stage.state is StageState.DONE)
     assert run.progress == (len(run.stages), len(run.stages))
     assert run.formulas["axis.direction"].masks, "typeset in the worker"
     assert run.formulas["axis.direction"].code("Mathematica") == "{0, 0, 1}"
     assert names[-1] == "run_finished"
+
+
+def test_the_stage_list_is_planned_once_and_no_stage_runs_again_after_it_is_done() -> None:
+    """The rows a run shows do not change in number while it runs, and a stage that is done
+    (the mesh drawn again with the patch and the canal spines) never shows as running again."""
+    session = Session()
+    counts: list[int] = []
+    history: dict[str, list[StageState]] = {}
+
+    def seen(name: str, state: StageState) -> None:
+        counts.append(len(session.run.stages))
+        history.setdefault(name, []).append(state)
+
+    session.events.state_changed.connect(seen)
+    run = session.analyze(TORUS, resolution=30)
+    assert run.outcome == "finished" and len(set(counts)) == 1, counts
+    assert "approximate" not in run.stages and "nearest" not in run.stages, "no decimals in the torus"
+    for name, states_seen in history.items():
+        if StageState.DONE in states_seen:
+            assert StageState.RUNNING not in states_seen[states_seen.index(StageState.DONE) :], (name, states_seen)
+    rounded = session.analyze("x^2 + y^2 - 1.5*z", resolution=30, style=None)
+    assert rounded.outcome == "finished" and {"approximate", "nearest"} <= set(rounded.stages)
 
 
 def test_a_surface_that_is_not_one_of_revolution_skips_the_rationality() -> None:
@@ -132,12 +155,13 @@ def test_a_failed_stage_is_marked_and_the_rest_is_not_run() -> None:
 def test_an_unplanned_engine_stage_is_inserted_where_it_starts() -> None:
     session = Session(ScriptedRunner())
     session.analyze("x^2 + y^2 - 1.0000001*z^2")
-    for stage in ("parse", "recognition", "approximate"):
+    assert "approximate" in session.run.stages, "planned for decimals"
+    for stage in ("parse", "recognition", "canal spine"):
         session.handle("progress", stage)
     names = [stage.name for stage in session.run.stage_list()]
-    assert names.index("approximate") == names.index("recognition") + 1
+    assert names.index("canal spine") == names.index("recognition") + 1
     assert states(session)["recognition"] is StageState.DONE
-    assert states(session)["approximate"] is StageState.RUNNING
+    assert states(session)["canal spine"] is StageState.RUNNING
 
 
 def test_messages_after_the_end_and_requests_of_the_nearest_view() -> None:
