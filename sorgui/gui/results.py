@@ -47,7 +47,6 @@ from sorgui.gui.wording import (
     canal_evidence,
     canal_verdict,
     caption_tip,
-    floats,
     radius_words,
     spine_words,
     verdict,
@@ -201,13 +200,7 @@ class ResultsPane(QScrollArea):
             ("singular values", f"smallest: {smallest}" if smallest else "–"),
         ]
         if approx.axis is not None:
-            rows.append(
-                (
-                    "approximate axis",
-                    f"{floats(approx.axis.point, tolerance=approx.tolerance)} + "
-                    f"t·{floats(approx.axis.direction, tolerance=approx.tolerance)}",
-                )
-            )
+            rows.append(("approximate axis", "approximate.axis"))
         nearest = approx.nearest
         if nearest is not None and not nearest.within_rounding:
             rows.append(
@@ -220,8 +213,10 @@ class ResultsPane(QScrollArea):
             )
         elif nearest is not None:
             rows.append(("nearest exact surface", "approximate.nearest"))
-            if nearest.axis is not None:
-                rows.append(("", "approximate.nearest.axis"))
+            if nearest.axis is not None:  # decimals first, the exact line below (each with its copy button)
+                if "approximate.nearest.axis.decimal" in self._formulas:
+                    rows.append(("its axis", "approximate.nearest.axis.decimal"))
+                rows.append(("exactly", "approximate.nearest.axis"))
             deviation = "–" if nearest.max_deviation is None else f"{nearest.max_deviation:.3g} (length units)"
             rows.append(("max deviation", deviation))
             rows.append(

@@ -20,6 +20,7 @@ import gc
 import os
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
+from fractions import Fraction
 from functools import lru_cache
 from multiprocessing import Pipe
 from multiprocessing.connection import Connection
@@ -162,6 +163,41 @@ def line_formula(point: Sequence[str], direction: Sequence[str]) -> Formula:
     return Formula(f"{c.plain} + t*{a.plain}", latex, (shown,))
 
 
+def decimal_line_formula(point: Sequence[float], direction: Sequence[float], tolerance: float | None = None) -> Formula:
+    """The line ``c + t·a`` in decimals: shown with 6 significant digits, copied with 16 (a
+    double's precision); entries below the rounding ``tolerance`` (or 1e-12) of the largest are 0."""
+
+    def cleaned(values: Sequence[float]) -> list[float]:
+        noise = max(1e-12, tolerance or 0.0) * max(1.0, *(abs(v) for v in values))
+        return [0.0 if abs(v) < noise else float(v) for v in values]
+
+    c, a = cleaned(point), cleaned(direction)
+
+    def text(values: list[float], digits: int) -> str:
+        return "(" + ", ".join(f"{v:.{digits}g}" for v in values) + ")"
+
+    plain = f"{text(c, 16)} + t*{text(a, 16)}"
+    shown = f"{text(c, 6)} + t\\,{text(a, 6)}"
+    return Formula(plain, shown, (shown,))
+
+
+def decimals(values: Sequence[str], evaluate: bool = True) -> tuple[float, ...] | None:
+    """Exact engine numbers (rationals, or with square roots when ``evaluate``) as floats;
+    ``None`` if one is not such a number."""
+    out = []
+    for value in values:
+        try:
+            out.append(float(Fraction(value)))
+        except (ValueError, ZeroDivisionError):
+            if not evaluate:
+                return None
+            try:
+                out.append(float(sympy.N(read_expression(value), 17)))
+            except (ExpressionError, TypeError, ValueError):
+                return None
+    return tuple(out)
+
+
 # --- all formulas of an analysis ------------------------------------------------------------
 
 
@@ -245,11 +281,19 @@ def analysis_formulas(analysis: Analysis, plain: bool = False) -> dict[str, Form
             radius = family.radius_squared or family.radical_radius_squared
             if radius is not None:
                 out[f"canal.{index}.radius"] = make.expression(radius, r"\rho(t) =")
-    nearest = analysis.approximate.nearest if analysis.approximate is not None else None
+    approx = analysis.approximate
+    if approx is not None and approx.axis is not None:
+        out["approximate.axis"] = decimal_line_formula(approx.axis.point, approx.axis.direction, approx.tolerance)
+    nearest = approx.nearest if approx is not None else None
     if nearest is not None:
         out["approximate.nearest"] = make.expression(nearest.polynomial, "g =")
         if nearest.axis is not None:
             out["approximate.nearest.axis"] = make.line(nearest.axis.point, nearest.axis.direction)
+            evaluate = make is _EXACT
+            point = decimals(nearest.axis.point, evaluate)
+            direction = decimals(nearest.axis.direction, evaluate)
+            if point is not None and direction is not None:
+                out["approximate.nearest.axis.decimal"] = decimal_line_formula(point, direction)
     return out
 
 

@@ -29,6 +29,20 @@ def test_a_rounded_torus_is_shown_near_with_its_axis_and_its_nearest_surface(
     window.viewport.deviation_box.setChecked(False)
     assert "deviation" not in window.viewport.plotter.scalar_bars
 
+    # the axes in decimals first, copied with a double's 16 digits; the exact one below
+    qtbot.waitUntil(lambda: "approximate.nearest.axis" in window.results.views, timeout=60_000)
+    views = window.results.views
+    approximate = views["approximate.axis"].formula
+    assert approximate.plain.count(",") == 4 and len(approximate.plain) > len(approximate.latex)
+    decimal, exact = views["approximate.nearest.axis.decimal"].formula, views["approximate.nearest.axis"].formula
+    assert "/" not in decimal.plain and "." in decimal.plain and exact.plain != decimal.plain
+    views["approximate.nearest.axis.decimal"].copy_plain()
+    from PySide6.QtGui import QGuiApplication
+
+    assert QGuiApplication.clipboard().text() == decimal.plain
+    views["approximate.nearest.axis"].copy_plain()
+    assert QGuiApplication.clipboard().text() == exact.plain
+
     switch = window.findChild(QRadioButton, "viewNearest")
     assert switch is not None and switch.isEnabled()
     switch.click()
