@@ -520,7 +520,7 @@ class MainWindow(QMainWindow):
         self.cancel_button.setEnabled(busy)
         self.cancel_action.setEnabled(busy)
         self.busy_indicator.set_busy(busy)
-        self.viewport.radius_box.setEnabled(not busy and self._finished_analysis() is not None)
+        self.viewport.radius_box.setEnabled(not busy and self.session.can_redo)
 
     def _show_invalid(self, message: str) -> None:
         heading = invalid_heading(message)

@@ -198,12 +198,23 @@ class SessionView(QObject):
     # --- handlers ---
 
     def _on_run_start_change(self, run: Run) -> None:
-        self._fresh_scene = True
+        """A new run: its stages at once. The same equation analysed again keeps its results on
+        screen until the new ones replace them; another equation's are cleared at once."""
+        shown = self._shown[0] if self._shown is not None else None
+        again = not self._shown_nearest() and getattr(shown, "input", None) == run.text
+        self._fresh_scene = not again
         self.panel.show_run(run)
         self._update_notice()
-        self.refresh_pane()
-        self.viewport.clear(caption="Analysing: " + short(run.text))
+        if again:
+            self._shown = None  # the new run's first verdict replaces the pane at once
+            self.viewport.caption.setText("Analysing again: " + short(run.text))
+        else:
+            self.refresh_pane()
+            self.viewport.clear(caption="Analysing: " + short(run.text))
         self.status.setText("Starting…")
+
+    def _shown_nearest(self) -> bool:
+        return self._shown is not None and self._shown[1]
 
     def _on_stage_change(self, name: str, state: StageState) -> None:
         run = self.session.run

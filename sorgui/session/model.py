@@ -271,10 +271,19 @@ class Session:
         """Typeset the current run's formulas again in ``style`` (e.g. after a zoom)."""
         return self._redo("formulas", {"style": style, "scene": False})
 
-    def _redo(self, what: str, changes: dict[str, Any]) -> bool:
-        """Redo the scene or the formulas of the finished current run (``False`` if there is none)."""
+    @property
+    def can_redo(self) -> bool:
+        """Whether the current run's scene or formulas can be made again: it has ended (finished,
+        or cancelled or stopped after its mesh was drawn) and nothing is being redone."""
         run = self.run
-        if run is None or run.outcome != "finished" or run.analysis is None or self._refresh is not None:
+        if run is None or run.running or run.analysis is None or self._refresh is not None:
+            return False
+        return run.outcome == "finished" or run.scene is not None
+
+    def _redo(self, what: str, changes: dict[str, Any]) -> bool:
+        """Redo the scene or the formulas of the current run (``False`` when :attr:`can_redo` is not)."""
+        run = self.run
+        if not self.can_redo:
             return False
         self._refresh = what
         self.runner.start(replace(run.request, analysis=run.analysis, **changes))
@@ -353,7 +362,10 @@ class Session:
             what, self._refresh = self._refresh, None
             if kind == "finished" and run.result is not None:
                 run.result = replace(run.result, scene=run.scene, formulas=run.formulas)
-            self.events.refreshed.emit(what, run.result if kind == "finished" else None)
+            redone = None
+            if kind == "finished":  # a cancelled run redrawn keeps what it had, with the new mesh
+                redone = run.result or JobResult(run.analysis, run.scene, run.formulas, (), run.nearest_scene)
+            self.events.refreshed.emit(what, redone)
 
     def _set_state(self, run: Run, stage: Stage, state: StageState) -> None:
         if stage.state is not state:

@@ -417,3 +417,26 @@ def test_a_degree_12_equation_too_long_to_typeset_is_echoed_as_people_write_it(w
     from PySide6.QtGui import QGuiApplication
 
     assert QGuiApplication.clipboard().text() == polynomial
+
+
+def test_analysing_the_same_equation_again_keeps_its_results_until_they_are_replaced(
+    window, run_analysis, qtbot
+) -> None:
+    """Analyse pressed again on the shown equation: its results and its mesh stay on screen
+    (the 3D header says it is being analysed again) until the new run's replace them; another
+    equation's results are cleared at once."""
+    from sorgui.examples import example_text
+
+    run_analysis(window, example_text("torus"))
+    assert "axis.direction" in window.results.views and window.viewport.scene is not None
+    started: list[bool] = []
+    window.session.events.run_started.connect(
+        lambda run: started.append("axis.direction" in window.results.views and window.viewport.scene is not None)
+    )
+    run_analysis(window)
+    assert started == [True], "the torus's results stayed while it was analysed again"
+    assert "Analysing again" not in window.viewport.caption.text() and window.session.run.outcome == "finished"
+    seen: list[bool] = []
+    window.session.events.run_started.connect(lambda run: seen.append(window.viewport.scene is None))
+    run_analysis(window, example_text("ellipsoid"))
+    assert seen == [True], "another equation starts from an empty view"

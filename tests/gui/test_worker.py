@@ -74,6 +74,15 @@ def test_cancel_kills_the_running_singular(make_window, qtbot, fake_singular: Pa
     qtbot.waitUntil(lambda: process_gone(pid), timeout=5000)
     qtbot.waitUntil(lambda: all(process_gone(p) for p in singular), timeout=5000)
     assert not window.worker.is_busy and window.stage_label.text() == "Cancelled"
+    # the mesh was drawn before Singular started: the cancelled run can still be redrawn
+    assert window.session.run.scene is not None
+    assert window.viewport.radius_box.isEnabled()
+    radius = window.viewport.scene.region.radius
+    with qtbot.waitSignal(window.session.events.refreshed, timeout=60_000) as refreshed:
+        window.viewport.radius_requested.emit(2 * radius)
+    assert refreshed.args[0] == "scene" and refreshed.args[1] is not None
+    qtbot.waitUntil(lambda: abs(window.viewport.scene.region.radius - 2 * radius) < 1e-9, timeout=10_000)
+    assert window.session.run.outcome == "cancelled", "redrawing does not pretend the run finished"
 
 
 @linux_only
