@@ -37,7 +37,6 @@ from PySide6.QtWidgets import (
     QCheckBox,
     QDoubleSpinBox,
     QLabel,
-    QToolBar,
     QToolButton,
     QVBoxLayout,
     QWidget,
@@ -50,6 +49,7 @@ from sorgui.gui.camera import (
     view_across,
     view_along,
 )
+from sorgui.gui.flow_layout import ElidedLabel, FlowLayout
 from sorgui.gui.wording import floats
 from sorgui.render import mesh_to_polydata, pick_info, to_polydata
 from sorgui.render.canal_touch import Touch, touching_spheres
@@ -142,24 +142,24 @@ class Viewport(QWidget):
         self._clip_plane = None
         """The meridian plane of the section view (a ``vtkPlane``, made with the render window)."""
 
-        self.caption = QLabel("No surface yet", self)
+        self.caption = ElidedLabel("No surface yet", self)  # cut with "…" in a narrow window, whole as tooltip
         self.caption.setObjectName("viewportCaption")
         self.caption.setTextFormat(Qt.TextFormat.PlainText)
         self.caption.setContentsMargins(6, 0, 6, 0)
-        self.caption.setToolTip("The surface the 3D view shows")
         self.deviation_box = QCheckBox("Deviation", self)
         self.deviation_box.setToolTip(
             "Colour the surface by its distance to the nearest exact surface of revolution (rounded input)"
         )
         self.deviation_box.setEnabled(False)
         self.view_actions = self._build_view_actions()
-        self.toolbar = QToolBar(self)
+        self.toolbar = QWidget(self)  # its buttons wrap onto a second line in a narrow window
         self.toolbar.setObjectName("viewToolbar")
-        for name in ("along", "across", "x", "y", "z", "reset", None, "parallel", "wireframe", "clip"):
-            if name is None:
-                self.toolbar.addSeparator()
-            else:
-                self.toolbar.addAction(self.view_actions[name])
+        buttons = FlowLayout(self.toolbar, spacing=2)
+        for name in ("along", "across", "x", "y", "z", "reset", "parallel", "wireframe", "clip"):
+            button = QToolButton(self.toolbar)
+            button.setDefaultAction(self.view_actions[name])
+            button.setAutoRaise(True)
+            buttons.addWidget(button)
 
         self.radius_box = QDoubleSpinBox(self)
         self.radius_box.setObjectName("radiusBox")
@@ -190,10 +190,12 @@ class Viewport(QWidget):
         self.pick_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
 
         self.reset_button.setVisible(False)  # the toolbar's Reset does it
-        self.controls = QToolBar(self)  # a tool bar: in a narrow window the rest goes under »
+        self.controls = QWidget(self)  # like the buttons: wrapped, never hidden behind »
         self.controls.setObjectName("viewControls")
+        controls = FlowLayout(self.controls, spacing=8)
+        controls.setContentsMargins(6, 0, 6, 0)
         for widget in (self.radius_box, self.profile_box, self.canal_box, self.patch_box, self.deviation_box):
-            self.controls.addWidget(widget)
+            controls.addWidget(widget)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         layout.setSpacing(2)

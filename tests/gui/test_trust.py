@@ -440,3 +440,26 @@ def test_analysing_the_same_equation_again_keeps_its_results_until_they_are_repl
     window.session.events.run_started.connect(lambda run: seen.append(window.viewport.scene is None))
     run_analysis(window, example_text("ellipsoid"))
     assert seen == [True], "another equation starts from an empty view"
+
+
+def test_at_1024_by_700_every_view_control_is_on_screen_and_the_header_is_elided(window, run_analysis, qtbot) -> None:
+    """The view's buttons and check boxes wrap onto more lines instead of hiding behind »,
+    and a header too long for the width ends in "…" with the whole text as its tooltip."""
+    from PySide6.QtWidgets import QToolButton
+
+    window.resize(1024, 700)
+    qtbot.waitUntil(lambda: window.width() <= 1100, timeout=5000)
+    long_text = " + ".join(f"{k}*x^2*y^{k % 3}" for k in range(1, 40)) + " - z"
+    run_analysis(window, long_text)
+    viewport = window.viewport
+    qtbot.wait(200)
+    buttons = viewport.toolbar.findChildren(QToolButton)
+    assert {b.defaultAction().iconText() for b in buttons} >= {"Section", "Reset"}
+    for widget in (*buttons, viewport.deviation_box, viewport.radius_box, viewport.canal_box):
+        assert widget.isVisible(), widget
+        corner = widget.mapTo(viewport, widget.rect().bottomRight())
+        assert 0 <= corner.x() <= viewport.width() and 0 <= corner.y() <= viewport.height(), widget
+    caption = viewport.caption
+    assert caption.text().startswith("f = ") and caption.toolTip() == caption.text()
+    assert caption.fontMetrics().horizontalAdvance(caption.text()) > caption.width(), "long enough to be elided"
+    assert caption.width() <= viewport.width()
