@@ -24,10 +24,11 @@ import sympy
 
 from sorgui.engine.errors import SorguiError
 from sorgui.engine.results import Analysis, Canal
+from sorgui.engine.vocabulary import canal_kind
 from sorgui.export.cas import LATEX_STYLE, approximate_line, latex_name, verdict
 from sorgui.export.formulas import Formula, canal_formulas, surface_formulas
 from sorgui.export.quoting import code_fence, markup_text
-from sorgui.export.text import CANAL_KINDS, SYMMETRY_NAMES, TABLE_1, plain_text
+from sorgui.export.text import TABLE_1, plain_text, symmetry_name
 
 KNOWN_KEYS = frozenset(
     {
@@ -169,7 +170,7 @@ def canal_blocks(canal: Canal) -> list[Block]:
         ),
     ]
     if canal.kinds:
-        blocks.append(Block("p", "Kinds: " + "; ".join(CANAL_KINDS.get(k, k) for k in canal.kinds) + "."))
+        blocks.append(Block("p", "Kinds: " + "; ".join(canal_kind(k) for k in canal.kinds) + "."))
     formulas = canal_formulas(canal)
     for i, fam in enumerate(canal.families, 1):
         shape = "on a line" if fam.on_line else ("planar" if fam.planar else "not planar")
@@ -212,8 +213,7 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
     blocks.append(
         Block(
             "p",
-            f"Symmetry: {SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)} "
-            f"(the symmetry algebra has dimension {rec.symmetry_dimension}).",
+            f"Symmetry: {symmetry_name(rec.symmetry)} (the symmetry algebra has dimension {rec.symmetry_dimension}).",
         )
     )
     locus = analysis.to_json().get("real_locus")

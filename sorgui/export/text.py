@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from sorgui.engine.results import Analysis, Canal, Rationality, RealLocus, Recognition
+from sorgui.engine.vocabulary import canal_kind, kind_phrase
 
 TABLE_1 = (
     ("reducible", "0", "rational", "rational"),
@@ -24,15 +25,12 @@ TABLE_1_WORDS = (
 )
 """Each row of Table 1 in words (tooltips and help)."""
 
-SYMMETRY_NAMES = {
-    "revolution": "surface of revolution",
-    "cylinder_of_revolution": "cylinder of revolution",
-    "sphere": "sphere (every line through the centre is an axis)",
-    "plane": "plane (every line along the normal is an axis)",
-    "extrusion": "extrusion (cylindrical surface), not a surface of revolution",
-    "none": "no continuous symmetry: not a surface of revolution",
-    "undecided": "undecided: the recognition did not finish within the time limit",
-}
+
+def symmetry_name(kind: str | None) -> str:
+    """The symmetry kind in the reports' words (:mod:`sorgui.engine.vocabulary`), saying so when
+    the surface is not one of revolution."""
+    phrase = kind_phrase(kind)
+    return f"{phrase}: not a surface of revolution" if kind in ("extrusion", "none") else phrase
 
 
 def _vec(v: tuple[str, ...] | None) -> str:
@@ -41,7 +39,7 @@ def _vec(v: tuple[str, ...] | None) -> str:
 
 def recognition_lines(rec: Recognition, indent: str = "") -> list[str]:
     """The recognition facts of one polynomial, one per line."""
-    lines = [f"{indent}symmetry:  {SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)} (dim L = {rec.symmetry_dimension})"]
+    lines = [f"{indent}symmetry:  {symmetry_name(rec.symmetry)} (dim L = {rec.symmetry_dimension})"]
     if rec.axis is not None:
         lines.append(f"{indent}axis:      {_vec(rec.axis.point)} + t·{_vec(rec.axis.direction)}")
         lines.append(f"{indent}Plücker:   ({' : '.join(rec.axis.plucker)})")
@@ -246,14 +244,6 @@ def analysis_lines(analysis: Analysis) -> list[str]:
     return lines
 
 
-CANAL_KINDS = {
-    "pipe": "a pipe (constant radius)",
-    "revolution": "a surface of revolution (spine on a line)",
-    "dupin": "a Dupin cyclide (canal in two ways)",
-    "developable": "developable (a cone or cylinder)",
-}
-
-
 def nearly_canal(analysis: Analysis) -> str:
     """For rounded input that is not exactly canal but near a surface of revolution: that its
     nearest exact surface is canal, in words (empty otherwise)."""
@@ -275,7 +265,7 @@ def canal_lines(canal: Canal) -> list[str]:
     verdict = {True: "YES", False: "NO", None: "undecided"}[canal.is_canal]
     lines = [f"canal surface: {verdict} ({canal.status})"]
     if canal.kinds:
-        lines.append("  kinds: " + "; ".join(CANAL_KINDS.get(k, k) for k in canal.kinds))
+        lines.append("  kinds: " + "; ".join(canal_kind(k) for k in canal.kinds))
     for i, fam in enumerate(canal.families, 1):
         shape = "a line" if fam.on_line else ("planar" if fam.planar else "not planar")
         genus = "undecided" if fam.genus is None else str(fam.genus)

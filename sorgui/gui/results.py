@@ -36,11 +36,11 @@ from sorgui.engine.results import (
     Recognition,
 )
 from sorgui.export.text import (
-    SYMMETRY_NAMES,
     TABLE_1,
     TABLE_1_WORDS,
     nearly_canal,
     plain_text,
+    symmetry_name,
 )
 from sorgui.gui.formula_view import FormulaView
 from sorgui.gui.wording import (
@@ -352,7 +352,7 @@ class ResultsPane(QScrollArea):
                     f"factor.{index}",
                 )
             )
-            rows.append(("", SYMMETRY_NAMES.get(rec.symmetry, rec.symmetry)))
+            rows.append(("", symmetry_name(rec.symmetry)))
             if rec.axis is not None:
                 rows.append(("axis", f"factor.{index}.axis.line"))
             if rec.center is not None:

@@ -17,18 +17,9 @@ from sorgui.engine.results import (
     CanalFamily,
     Recognition,
 )
+from sorgui.engine.vocabulary import canal_kind, kind_noun, kind_phrase
 from sorgui.session.components import Component
 from sorgui.session.model import STAGE_TITLES
-
-KIND_WORDS = {
-    "revolution": "a surface of revolution about one axis",
-    "cylinder_of_revolution": "a cylinder of revolution (rotations about its axis and translations along it)",
-    "sphere": "a sphere (every line through the centre is an axis)",
-    "plane": "a plane (every line along the normal is an axis)",
-    "extrusion": "an extrusion: a cylindrical surface over a plane curve, invariant only under "
-    "translations along one direction",
-    "none": "no continuous symmetry at all",
-}
 
 CAPTION_TIPS = {
     "f(x, y, z)": "The equation as sorgui read it (exact, expanded): the surface X is f = 0",
@@ -81,13 +72,6 @@ CAPTION_TIPS = {
     "ρ(t)": "The squared radius of the sphere centred at m(t)",
 }
 
-CANAL_KIND_WORDS = {
-    "pipe": "a pipe (all spheres of one radius)",
-    "revolution": "a surface of revolution (centres on a line)",
-    "dupin": "a Dupin cyclide (canal in two ways)",
-    "developable": "developable (a cone or a cylinder)",
-}
-
 
 def canal_verdict(canal: Canal) -> str:
     """The canal verdict in one sentence: canal or not, and of which kinds."""
@@ -95,7 +79,7 @@ def canal_verdict(canal: Canal) -> str:
         return f"undecided ({canal.status})"
     if not canal.is_canal:
         return "not a canal surface: not the envelope of any one-parameter family of spheres"
-    kinds = ", ".join(CANAL_KIND_WORDS.get(k, k) for k in canal.kinds)
+    kinds = ", ".join(canal_kind(k) for k in canal.kinds)
     return "a canal surface, the envelope of a one-parameter family of spheres" + (f": {kinds}" if kinds else "")
 
 
@@ -177,9 +161,7 @@ def near_words(approx: Approximation) -> str:
         if axis is not None
         else ""
     )
-    kind = (
-        "a surface of revolution" if approx.kind in (None, "revolution") else KIND_WORDS.get(approx.kind, approx.kind)
-    )
+    kind = "a surface of revolution" if approx.kind in (None, "revolution") else kind_noun(approx.kind)
     return f"not exactly, but within {approx.relative_distance:.2g} (relative) of {kind}{about}"
 
 
@@ -196,7 +178,7 @@ def verdict(analysis: Analysis) -> tuple[str, str, str]:
     """``(title, detail, kind)`` of the verdict banner; ``kind`` is ``sor``, ``near`` or ``not``."""
     rec = analysis.recognition
     approx = analysis.approximate
-    kind = KIND_WORDS.get(rec.symmetry, rec.symmetry)
+    kind = kind_phrase(rec.symmetry)
     detail = f"{kind} · degree {rec.degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
     if rec.is_sor:
         return "Surface of revolution", detail, "sor"
@@ -270,7 +252,7 @@ def _dimension_sentence(rec: Recognition) -> str:
 
 
 def _factor_words(rec: Recognition) -> str:
-    words = KIND_WORDS.get(rec.symmetry, rec.symmetry)
+    words = kind_phrase(rec.symmetry)
     if rec.axis is not None:
         words += f", axis ({', '.join(rec.axis.point)}) + t·({', '.join(rec.axis.direction)})"
     if rec.center is not None:

@@ -35,6 +35,7 @@ from ..recognition.symmetry import (
     SPHERE,
 )
 from ..results import ApproximateAxis, Approximation, NearestSurface
+from ..vocabulary import kind_noun
 from . import dense
 from .deviation import max_deviation
 from .near_symmetry import (
@@ -60,14 +61,6 @@ exact, and nearness is only decided with ``--tolerance``."""
 GATE = 1e4
 """A kind is tried when its singular values are below ``GATE·τ`` (and 10⁻²): a cheap filter;
 the weighted residual decides."""
-
-KIND_WORDS = {
-    REVOLUTION: "a surface of revolution",
-    CYLINDER: "a cylinder of revolution",
-    SPHERE: "a sphere",
-    PLANE: "a plane",
-    EXTRUSION: "an extrusion (a cylindrical surface)",
-}
 
 
 @dataclass(frozen=True)
@@ -210,7 +203,7 @@ def _far_note(sigma: np.ndarray, best: Fit | None, rounding: Rounding) -> str:
     smallest = f"the smallest singular value of (★) is {sigma[-1]:.2g} against a tolerance of {rounding.tolerance:.2g}"
     if best is None:
         return f"not near any continuous symmetry: {smallest}"
-    kind = KIND_WORDS.get(best.candidate.kind, best.candidate.kind)
+    kind = kind_noun(best.candidate.kind)
     return (
         f"not within the rounding of {kind}: the nearest one about the best axis is "
         f"{best.relative_distance:.2g} away (relative), {best.residual:.3g} times the rounding; {smallest}"

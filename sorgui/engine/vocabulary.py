@@ -1,0 +1,50 @@
+"""The words for the kinds of surface, one list for every place that names them: the engine's
+notes, the text and file reports, and the window.
+
+A symmetry kind (the classification of the symmetry algebra, docs/math.md §2) has a noun
+phrase ("a cylinder of revolution") and what makes it that kind ("rotations about its axis and
+translations along it"); a canal kind (docs/math.md §9) has one phrase.
+"""
+
+from __future__ import annotations
+
+SYMMETRY_KINDS: dict[str, tuple[str, str]] = {
+    "revolution": ("a surface of revolution", "about one axis"),
+    "cylinder_of_revolution": ("a cylinder of revolution", "rotations about its axis and translations along it"),
+    "sphere": ("a sphere", "every line through the centre is an axis"),
+    "plane": ("a plane", "every line along the normal is an axis"),
+    "extrusion": (
+        "an extrusion (a cylindrical surface over a plane curve)",
+        "invariant only under translations along one direction",
+    ),
+    "none": ("no continuous symmetry", "no rotation and no translation leaves it invariant"),
+    "undecided": ("undecided", "the recognition did not finish within the time limit"),
+}
+"""Each symmetry kind: its noun phrase and what makes it that kind."""
+
+CANAL_KINDS: dict[str, str] = {
+    "pipe": "a pipe (all spheres of one radius)",
+    "revolution": "a surface of revolution (the spheres' centres on a line)",
+    "dupin": "a Dupin cyclide (canal in two ways)",
+    "developable": "developable (a cone or a cylinder)",
+}
+"""Each canal kind in words."""
+
+
+def kind_noun(kind: str | None) -> str:
+    """The noun phrase of a symmetry kind (``"a sphere"``); the kind itself if unknown."""
+    return SYMMETRY_KINDS.get(kind or "", (kind or "", ""))[0]
+
+
+def kind_phrase(kind: str | None) -> str:
+    """The noun phrase with what makes the kind: ``"a sphere (every line through the centre is
+    an axis)"``, ``"a surface of revolution about one axis"``."""
+    noun, reason = SYMMETRY_KINDS.get(kind or "", (kind or "", ""))
+    if not reason:
+        return noun
+    return f"{noun} {reason}" if kind == "revolution" else f"{noun} ({reason})"
+
+
+def canal_kind(kind: str) -> str:
+    """A canal kind in words; the kind itself if unknown."""
+    return CANAL_KINDS.get(kind, kind)
