@@ -389,9 +389,9 @@ def test_the_window_works_at_800_by_560(window, run_analysis, qtbot, artifacts) 
     qtbot.wait(100)
     assert (window.width(), window.height()) == (800, 560), "the minimum size"
     run_analysis(window, example_text("paper-example-1"))
-    qtbot.wait(200)
     results = window.results
-    assert results.verticalScrollBar().maximum() > 0, "the results scroll"
+    # the pane is laid out after the result is shown (a loaded machine takes longer)
+    qtbot.waitUntil(lambda: results.verticalScrollBar().maximum() > 0, timeout=10_000)
     page = results.widget()
     copy = page.findChildren(FormulaView)[0].copy_button
     right = copy.mapTo(page, QPoint(copy.width(), 0)).x()

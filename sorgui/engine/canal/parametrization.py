@@ -111,13 +111,16 @@ def radical_parametrization(family: RationalFamily) -> tuple[sympy.Expr, sympy.E
 def square_root(square: sympy.Expr) -> sympy.Expr:
     """A square root of the rational function ``square``, written ``q·√P``: the square factors
     taken out, the denominator's odd factors moved into the polynomial radicand ``P`` (a
-    rational function when ``P`` is 1). A negative constant stays under the root."""
+    rational function when ``P`` is 1). A negative constant stays under the root; a non-real one
+    (a family whose circles are not real) raises :class:`AnalysisError`."""
     square = sympy.factor(sympy.cancel(square))
     if not (square.free_symbols <= {T} and square.is_rational_function(T)):
         return sympy.sqrt(square)
     outside, inside = sympy.Integer(1), sympy.Integer(1)
     for part, sign in zip(sympy.fraction(square), (1, -1)):
         constant, factors = sympy.factor_list(part, T)
+        if constant.is_extended_real is not True:
+            raise AnalysisError(f"the radius of the circles needs the square root of the non-real {constant}")
         outside *= sympy.sqrt(abs(constant)) ** sign
         if constant < 0:
             inside = -inside

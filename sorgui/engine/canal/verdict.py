@@ -277,7 +277,10 @@ def _canal(
                     parametrizations.append(_rational(found))
         for radical in radicals:
             if radical is not None and len(radical.roots) <= RADICAL_ROOTS:
-                parametrizations.append(_radical_surface(poly, radical))
+                try:
+                    parametrizations.append(_radical_surface(poly, radical))
+                except AnalysisError as error:
+                    notes.append(f"the circles of a family in square roots were not parameterized: {error.message}")
             elif radical is not None:
                 notes.append(
                     f"the circles of a family in {len(radical.roots)} square roots were not "
