@@ -82,45 +82,69 @@ def open_main_window(path: str | None = None) -> MainWindow:
 ENDING_SIGNALS = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP", "SIGINT") if hasattr(signal, name))
 
 
-def end_on_signals(app: QApplication, window: MainWindow) -> QSocketNotifier | None:
+class SignalEnding:
     """``SIGTERM``, ``SIGHUP`` (a session's logout) and ``SIGINT`` close the window at once and
     cleanly: the typed text is kept for the next start (nothing is asked, nothing lost), the
     worker processes are killed, and the event loop ends with status ``128 + signal``.
 
-    Qt's event loop runs in C++, where Python's signal handlers wait: the handler only writes
-    the signal to a socket (``signal.set_wakeup_fd``) that a ``QSocketNotifier`` watches, and the
-    window is closed from the event loop, never from inside another slot."""
-    try:
-        reading, writing = socket.socketpair()
-    except OSError:
-        return None
-    for end in (reading, writing):
-        end.setblocking(False)
-    signal.set_wakeup_fd(writing.fileno(), warn_on_full_buffer=False)
-    for signum in ENDING_SIGNALS:
-        signal.signal(signum, lambda _signum, _frame: None)
-    notifier = QSocketNotifier(reading.fileno(), QSocketNotifier.Type.Read, app)
+    Installed before the window is built, so that a signal sent while sorgui starts (its worker
+    process already running) is not met by the default action, which would end the window and
+    leave the worker behind. Qt's event loop runs in C++, where Python's signal handlers wait:
+    the handler only writes the signal to a socket (``signal.set_wakeup_fd``) that a
+    ``QSocketNotifier`` watches, and the window is closed from the event loop, never from inside
+    another slot; a signal met before the loop runs is answered by :meth:`pending`."""
 
-    def on_signal() -> None:
+    def __init__(self, app: QApplication) -> None:
+        self.app = app
+        self.window: MainWindow | None = None
+        self.received: int | None = None
+        self.notifier: QSocketNotifier | None = None
         try:
-            received = reading.recv(64)
+            self._sockets = socket.socketpair()
+        except OSError:
+            return
+        reading, writing = self._sockets
+        for end in self._sockets:
+            end.setblocking(False)
+        signal.set_wakeup_fd(writing.fileno(), warn_on_full_buffer=False)
+        for signum in ENDING_SIGNALS:
+            signal.signal(signum, self._remember)
+        self.notifier = QSocketNotifier(reading.fileno(), QSocketNotifier.Type.Read, app)
+        self.notifier.activated.connect(self._on_signal_change)
+
+    def _remember(self, signum: int, _frame: object) -> None:
+        if self.received is None:
+            self.received = signum
+
+    def pending(self) -> int | None:
+        """The exit status of a signal received while the window was being built (then closed)."""
+        if self.received is None:
+            return None
+        self._end(self.received)
+        return 128 + self.received
+
+    def _on_signal_change(self) -> None:
+        try:
+            received = self._sockets[0].recv(64)
         except OSError:
             return
         ending = [n for n in received if n in ENDING_SIGNALS]
         if ending:
-            notifier.setEnabled(False)
-            window.setWindowModified(False)  # the text is kept in the settings: nothing to ask
-            window.close()
-            app.exit(128 + ending[0])
+            self._end(ending[0])
+            self.app.exit(128 + ending[0])
 
-    notifier.activated.connect(on_signal)
-    notifier.sockets = (reading, writing)  # type: ignore[attr-defined] - kept open with the notifier
-    return notifier
+    def _end(self, signum: int) -> None:
+        if self.notifier is not None:
+            self.notifier.setEnabled(False)
+        if self.window is not None:
+            self.window.setWindowModified(False)  # the text is kept in the settings: nothing to ask
+            self.window.close()
 
 
 def run_gui(path: str | None = None) -> int:
     """Open the main window (with ``path``, if given) and run the event loop; the exit status."""
     app = create_application()
-    window = open_main_window(path)
-    notifier = end_on_signals(app, window)  # noqa: F841 (kept alive while the event loop runs)
-    return app.exec()
+    ending = SignalEnding(app)
+    ending.window = open_main_window(path)
+    early = ending.pending()
+    return early if early is not None else app.exec()

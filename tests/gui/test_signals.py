@@ -43,6 +43,21 @@ def test_the_window_ends_on_a_signal(tmp_path: Path, signum: int) -> None:
     wait_for(lambda: all(dead(pid) for pid in children), 10)
 
 
+def test_a_signal_while_the_window_starts_ends_it_and_its_worker(tmp_path: Path) -> None:
+    """SIGTERM as soon as the worker process exists, while the window is still being built (a
+    logout during start-up): sorgui ends with 143, and no worker keeps its output open."""
+    env = {**os.environ, "HOME": str(tmp_path), "XDG_CONFIG_HOME": str(tmp_path / "config")}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sorgui.cli"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env
+    )
+    wait_for(lambda: descendants(proc.pid) or proc.poll() is not None, 60)
+    children = descendants(proc.pid)
+    proc.send_signal(signal.SIGTERM)
+    _out, err = proc.communicate(timeout=30)
+    assert proc.returncode == 128 + signal.SIGTERM and "Traceback" not in err, (proc.returncode, err)
+    wait_for(lambda children=children: all(dead(pid) for pid in children), 10)
+
+
 def test_the_window_showing_a_report_ends_on_sigterm(tmp_path: Path) -> None:
     report = tmp_path / "torus.sorgui.json"
     done = subprocess.run(
