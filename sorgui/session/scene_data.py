@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from sorgui.engine.results import Analysis, Parametrization, Recognition
+from sorgui.engine.results import Analysis, Approximation, Parametrization, Recognition
 from sorgui.engine.rounded import dense
 from sorgui.engine.rounded.deviation import view_ball
 from sorgui.export.exact import (
@@ -114,11 +114,18 @@ def view_region(terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
     return ClipSphere(tuple(float(v) for v in middle), radius)
 
 
-def natural_center(rec: Recognition) -> tuple[np.ndarray, np.ndarray | None]:
-    """Where to centre the view, and the axis direction if the axis is unique."""
+def natural_center(rec: Recognition, approximate: Approximation | None = None) -> tuple[np.ndarray, np.ndarray | None]:
+    """Where to centre the view, and the axis direction if the axis is unique: the exact axis,
+    else the approximate axis of rounded input (whose surface is probed about that axis, as its
+    exact version is, instead of about the origin, which can leave parts of it outside the
+    ball), else the centre, else the origin."""
     if rec.axis is not None:
         point, direction = float_vector(rec.axis.point), float_vector(rec.axis.direction)
         return foot_on_line(np.zeros(3), point, direction), direction
+    if approximate is not None and approximate.axis is not None:
+        point, direction = np.asarray(approximate.axis.point), np.asarray(approximate.axis.direction)
+        if np.all(np.isfinite(point)) and np.all(np.isfinite(direction)) and np.any(direction):
+            return foot_on_line(np.zeros(3), point, direction), direction
     if rec.center is not None:
         return float_vector(rec.center), None
     return np.zeros(3), None
@@ -160,7 +167,7 @@ def build_scene(
     the mesh's grid (:data:`~sorgui.render.mesh.DEFAULT_RESOLUTION` when not given)."""
     rec = analysis.recognition
     terms = polynomial_terms(analysis.squarefree)
-    center, axis_direction = natural_center(rec)
+    center, axis_direction = natural_center(rec, analysis.approximate)
     if region is None:
         region = view_region(terms, center, axis_direction)
     if radius is not None:

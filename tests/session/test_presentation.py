@@ -144,3 +144,26 @@ def test_worker_process_imports_no_qt() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_a_rounded_surface_is_drawn_in_the_ball_about_its_approximate_axis() -> None:
+    """Rounded input has no exact axis: its view ball is found about the approximate axis, the
+    same ball as the exact surface it rounds (an origin-centred probe can leave parts out)."""
+    import math
+
+    from sorgui.engine import analyze
+    from sorgui.samples import printed
+    from sorgui.session.scene_data import natural_center, view_region
+    from tests.engine.test_approximate import _turned_torus
+
+    array, direction, point = _turned_torus()
+    rounded = analyze(printed(array, 10), recognition_only=True)
+    assert rounded.recognition.axis is None and rounded.approximate.axis is not None
+    center, axis = natural_center(rounded.recognition, rounded.approximate)
+    assert axis is not None and abs(abs(float(np.dot(axis, direction))) - 1) < 1e-8
+    exact_center = point - float(np.dot(point, direction)) * direction  # the foot of the origin on the axis
+    assert np.linalg.norm(center - exact_center) < 1e-6
+    terms = polynomial_terms(printed(array, 10))
+    ball = view_region(terms, center, axis)
+    exact = view_region(terms, exact_center, direction)
+    assert math.isclose(ball.radius, exact.radius, rel_tol=1e-6)
