@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from sorgui.engine.results import Analysis, Canal, Rationality, RealLocus, Recognition
 from sorgui.engine.vocabulary import canal_kind, kind_phrase
 
@@ -135,11 +137,21 @@ NEAR_KINDS = {
 }
 
 
+def without_noise(values: Sequence[float], tolerance: float | None = None) -> list[float]:
+    """A float vector with its rounding noise taken out: entries below the rounding
+    (``tolerance``, or 1e-12, relative to the largest entry or to 1) are 0."""
+    noise = max(1e-12, tolerance or 0.0) * max(1.0, *(abs(c) for c in values))
+    return [0.0 if abs(c) < noise else float(c) for c in values]
+
+
+def float_text(values: Sequence[float], digits: int, tolerance: float | None = None) -> str:
+    """``(a, b, c)`` with ``digits`` significant digits and no rounding noise (:func:`without_noise`)."""
+    return "(" + ", ".join(f"{c:.{digits}g}" for c in without_noise(values, tolerance)) + ")"
+
+
 def _floats(v: tuple[float, ...], tolerance: float | None = None) -> str:
-    """An approximate vector: 9 significant digits, entries below the rounding (``tolerance``
-    relative to the largest entry, or to 1) shown as 0, so no rounding noise is printed."""
-    noise = max(1e-12, tolerance or 0.0) * max(1.0, *(abs(c) for c in v))
-    return "(" + ", ".join(f"{(0.0 if abs(c) < noise else c):.9g}" for c in v) + ")"
+    """An approximate vector in the report: 9 significant digits, no rounding noise."""
+    return float_text(v, 9, tolerance)
 
 
 def approximation_lines(analysis: Analysis) -> list[str]:

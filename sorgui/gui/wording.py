@@ -18,6 +18,7 @@ from sorgui.engine.results import (
     Recognition,
 )
 from sorgui.engine.vocabulary import canal_kind, kind_noun, kind_phrase
+from sorgui.export.text import float_text
 from sorgui.session.components import Component
 from sorgui.session.model import STAGE_TITLES
 
@@ -148,8 +149,7 @@ def floats(values: tuple[float, ...] | None, digits: int = 6, tolerance: float |
     the input's rounding ``tolerance``, of the largest entry or of 1) shown as 0."""
     if not values:
         return "–"
-    noise = max(1e-12, tolerance or 0.0) * max(1.0, *(abs(v) for v in values))
-    return "(" + ", ".join(f"{(0.0 if abs(v) < noise else v):.{digits}g}" for v in values) + ")"
+    return float_text(values, digits, tolerance)
 
 
 def near_words(approx: Approximation) -> str:

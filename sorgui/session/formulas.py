@@ -34,6 +34,7 @@ from sympy.printing.pycode import pycode
 
 from sorgui.engine.results import Analysis, Recognition
 from sorgui.export.exact import ExpressionError, read_expression
+from sorgui.export.text import float_text
 
 MAX_CHARACTERS = 6000
 MAX_TERMS = 100
@@ -167,17 +168,8 @@ def decimal_line_formula(point: Sequence[float], direction: Sequence[float], tol
     """The line ``c + t·a`` in decimals: shown with 6 significant digits, copied with 16 (a
     double's precision); entries below the rounding ``tolerance`` (or 1e-12) of the largest are 0."""
 
-    def cleaned(values: Sequence[float]) -> list[float]:
-        noise = max(1e-12, tolerance or 0.0) * max(1.0, *(abs(v) for v in values))
-        return [0.0 if abs(v) < noise else float(v) for v in values]
-
-    c, a = cleaned(point), cleaned(direction)
-
-    def text(values: list[float], digits: int) -> str:
-        return "(" + ", ".join(f"{v:.{digits}g}" for v in values) + ")"
-
-    plain = f"{text(c, 16)} + t*{text(a, 16)}"
-    shown = f"{text(c, 6)} + t\\,{text(a, 6)}"
+    plain = f"{float_text(point, 16, tolerance)} + t*{float_text(direction, 16, tolerance)}"
+    shown = f"{float_text(point, 6, tolerance)} + t\\,{float_text(direction, 6, tolerance)}"
     return Formula(plain, shown, (shown,))
 
 
