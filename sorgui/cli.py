@@ -36,8 +36,9 @@ if TYPE_CHECKING:
     from sorgui.engine import Analysis
 
 _started: list[float] = []
-"""When :func:`main` was called (``--timeout`` counts from there, reading the input and
-importing the engine included)."""
+"""When the command started (``--timeout`` counts from there): the start of this process when
+:func:`main` is the program (Python's start-up, reading the input and importing the engine
+included), else the call of :func:`main` (a test or a script calling it)."""
 
 DEFAULT_EXAMPLE = "paper-example-1"
 DEFAULT_TIMEOUT = 120.0
@@ -497,8 +498,8 @@ def ending_signals() -> Iterator[None]:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``sorgui`` console script (``argv`` ``None``: this process's own
     arguments; a finished subcommand then ends the process at once, see :func:`_exit_now`)."""
-    _started[:] = [time.monotonic()]
     own_process = argv is None
+    _started[:] = [time.monotonic() - (_process_age() if own_process else 0.0)]
     if own_process:
         _usable_streams()
         _writable_matplotlib_cache()
@@ -515,6 +516,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     if own_process and command is not None:
         _exit_now(status)
     return status
+
+
+def _process_age() -> float:
+    """Seconds since this process started (Python's start-up and imports included), so that
+    ``--timeout`` counts from when the user ran the command; 0 where the kernel does not say."""
+    try:
+        fields = Path("/proc/self/stat").read_text(encoding="ascii").rsplit(")", 1)[1].split()
+        started = int(fields[19]) / os.sysconf("SC_CLK_TCK")  # field 22: start time since boot
+        return max(0.0, time.clock_gettime(time.CLOCK_BOOTTIME) - started)
+    except (OSError, ValueError, IndexError, AttributeError):
+        return 0.0
 
 
 def _writable_matplotlib_cache() -> None:

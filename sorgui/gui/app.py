@@ -133,6 +133,22 @@ class SignalEnding:
             self._end(ending[0])
             self.app.exit(128 + ending[0])
 
+    def close(self) -> None:
+        """Give the signals back to Python and release the notifier and its sockets, before the
+        interpreter ends: Qt objects and Python handlers left to the interpreter's finalization
+        can crash it (a fatal error with the GIL released)."""
+        for signum in ENDING_SIGNALS:
+            signal.signal(signum, signal.SIG_DFL if signum != signal.SIGINT else signal.default_int_handler)
+        signal.set_wakeup_fd(-1)
+        if self.notifier is not None:
+            self.notifier.setEnabled(False)
+            self.notifier.activated.disconnect(self._on_signal_change)
+            self.notifier.deleteLater()
+            self.notifier = None
+        for end in getattr(self, "_sockets", ()):
+            end.close()
+        self.window = None
+
     def _end(self, signum: int) -> None:
         if self.notifier is not None:
             self.notifier.setEnabled(False)
@@ -145,6 +161,9 @@ def run_gui(path: str | None = None) -> int:
     """Open the main window (with ``path``, if given) and run the event loop; the exit status."""
     app = create_application()
     ending = SignalEnding(app)
-    ending.window = open_main_window(path)
-    early = ending.pending()
-    return early if early is not None else app.exec()
+    try:
+        ending.window = open_main_window(path)
+        early = ending.pending()
+        return early if early is not None else app.exec()
+    finally:
+        ending.close()
