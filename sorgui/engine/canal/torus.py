@@ -115,9 +115,7 @@ def _pipe_family(torus: Torus) -> CanalFamily:
     a, u = torus.direction, torus.normal
     v = cross(a, u)
     A, B = dot(a, a), dot(u, u)
-    (X, Y), root = _conic(B, A * B, torus.core)
-    m = tuple(_add(_const(c), _add(_scale(X, u[i]), _scale(Y, v[i]))) for i, c in enumerate(torus.center))
-    rho = _const(torus.tube)
+    conic = _conic(B, A * B, torus.core)
     M = poly_ring(("m1", "m2", "m3", "r"), QQ)
     d = [M.gens[i] - _q(torus.center[i]) for i in range(3)]
     plane = primitive(sum((_q(a[i]) * d[i] for i in range(3)), M.zero))
@@ -127,20 +125,22 @@ def _pipe_family(torus: Torus) -> CanalFamily:
     solved = M.gens[k] - plane * QQ.quo(QQ.one, plane.coeff(M.gens[k]))
     circle = primitive(compose(sphere, [solved if i == k else g for i, g in enumerate(M.gens)]))
     equations = (primitive(M.gens[3] - _q(torus.tube)), plane, circle)
-    normal = tuple(_derivative(c) for c in m)
+    family = None
+    if conic is not None:
+        X, Y = conic
+        m = tuple(_add(_const(c), _add(_scale(X, u[i]), _scale(Y, v[i]))) for i, c in enumerate(torus.center))
+        rho = _const(torus.tube)
+        family = _Family(m, rho, m, rho, tuple(_derivative(c) for c in m))
     return _report(
         equations,
         equations[1:],
         _rename(circle, keep),
         keep,
-        m,
-        rho,
-        root,
+        family,
         degree=2,
         smat_degree=2,
         on_line=False,
-        pipe=True,
-        circles=(m, rho, normal),
+        radius=_fraction_str(torus.tube),
     )
 
 
@@ -150,20 +150,7 @@ def _axis_family(torus: Torus) -> CanalFamily:
     about ``m₀ − (τ/V)·a`` of radius ``R(1 + 1/V)`` (on the line from ``P`` through the core circle)."""
     a = torus.direction
     A = dot(a, a)
-    (V, tau), root = _conic(torus.tube, -A, torus.core)
-    m = tuple(_add(_const(c), _scale(tau, a[i])) for i, c in enumerate(torus.center))
-    rho, ratio = (
-        (_const(Fraction(0)), _const(Fraction(0)))
-        if root is not None
-        else (
-            _scale(_mul(_add(V, _const(Fraction(1))), _add(V, _const(Fraction(1)))), torus.tube),
-            _div(_add(V, _const(Fraction(1))), V),
-        )
-    )
-    centre = tuple(
-        _add(_const(c), _scale(_div(tau, V), -a[i])) if root is None else _const(c) for i, c in enumerate(torus.center)
-    )
-    radius2 = _scale(_mul(ratio, ratio), torus.core)
+    conic = _conic(torus.tube, -A, torus.core)
     M = poly_ring(("m1", "m2", "m3", "r"), QQ)
     d = [M.gens[i] - _q(torus.center[i]) for i in range(3)]
     k = _largest(a)
@@ -171,39 +158,49 @@ def _axis_family(torus: Torus) -> CanalFamily:
     T2 = (d[k] * _q(1 / a[k])) ** 2 * _q(A)  # Aτ² on the axis, τ from the coordinate m_k
     r2, R2 = _q(torus.tube), _q(torus.core)
     model = primitive((M.gens[3] - r2 - R2 - T2) ** 2 - 4 * r2 * (T2 + R2))
-    normal = tuple(_derivative(c) for c in m)
+    family = None
+    if conic is not None:
+        V, tau = conic
+        m = tuple(_add(_const(c), _scale(tau, a[i])) for i, c in enumerate(torus.center))
+        one = _add(V, _const(Fraction(1)))
+        ratio = _div(one, V)
+        centre = tuple(_add(_const(c), _scale(_div(tau, V), -a[i])) for i, c in enumerate(torus.center))
+        family = _Family(
+            m,
+            _scale(_mul(one, one), torus.tube),
+            centre,
+            _scale(_mul(ratio, ratio), torus.core),
+            tuple(_derivative(c) for c in m),
+        )
     return _report(
         (*line, model),
         line,
         _rename(model, (k, 3)),
         (k, 3),
-        m,
-        rho,
-        root,
+        family,
         degree=1,
         smat_degree=4,
         on_line=True,
-        pipe=False,
-        circles=(centre, radius2, normal),
+        radius=None,
     )
 
 
-def _conic(a1: Fraction, a2: Fraction, c: Fraction) -> tuple[tuple[Rat, Rat], Fraction | None]:
+def _conic(a1: Fraction, a2: Fraction, c: Fraction) -> tuple[Rat, Rat] | None:
     """A rational parameterization ``(X(t), Y(t))`` of ``a₁X² + a₂Y² = c`` by the lines through a
-    rational point of small height. When none is found, ``(0, 0)`` and the radicand ``q`` of a
-    point ``(√q, 0)`` or ``(0, √q)``: the family then needs ``√q`` and is given by its equations."""
+    rational point of small height; ``None`` when none is found (the family then needs a square
+    root, and is given by its equations)."""
     point = _rational_point(a1, a2, c)
     if point is None:
-        return (_const(Fraction(0)), _const(Fraction(0))), (c / a1 if c / a1 > 0 else c / a2)
+        return None
     X0, Y0 = point
     t = (fmpq_poly([0, 1]), fmpq_poly([1]))
     p, q = _fq(a1), _fq(a2)
     T = fmpq_poly([0, 1])
     if Y0 == 0:  # the lines X = X₀ + λ, Y = tλ
         lam = _norm(-2 * p * _fq(X0) + 0 * T, p + q * T * T)
-        return (_add(_const(X0), lam), _mul(t, lam)), None
+        return _add(_const(X0), lam), _mul(t, lam)
     lam = _norm(-2 * (p * _fq(X0) * T + q * _fq(Y0)), p * T * T + q)  # X = X₀ + tλ, Y = Y₀ + λ
-    return (_add(_const(X0), _mul(t, lam)), _add(_const(Y0), lam)), None
+    return _add(_const(X0), _mul(t, lam)), _add(_const(Y0), lam)
 
 
 def _rational_point(a1: Fraction, a2: Fraction, c: Fraction) -> tuple[Fraction, Fraction] | None:
@@ -222,44 +219,52 @@ def _rational_point(a1: Fraction, a2: Fraction, c: Fraction) -> tuple[Fraction, 
     return None
 
 
+@dataclass(frozen=True)
+class _Family:
+    """A family's ``m(t)``, ``ρ(t)`` and characteristic circles (centre, radius², normal) over ``QQ``."""
+
+    m: tuple[Rat, ...]
+    rho: Rat
+    centre: tuple[Rat, ...]
+    radius2: Rat
+    normal: tuple[Rat, ...]
+
+
 def _report(
     equations: tuple[Poly, ...],
     spine: tuple[Poly, ...],
     model: Poly,
     projection: tuple[int, int],
-    m: tuple[Rat, ...],
-    rho: Rat,
-    root: Fraction | None,
+    family: _Family | None,
     *,
     degree: int,
     smat_degree: int,
     on_line: bool,
-    pipe: bool,
-    circles: tuple[tuple[Rat, ...], Rat, tuple[Rat, ...]],
+    radius: str | None,
 ) -> CanalFamily:
-    """The report of a family: ``m(t)``, ``ρ(t)`` and the circles only when they are over ``QQ``
-    (``root`` is ``None``) and pass the substitution into every SMAT equation."""
+    """The report of a family: ``m(t)``, ``ρ(t)`` and the circles only when the family is over
+    ``QQ`` and passes the substitution into every SMAT equation; a pipe's ``radius`` always."""
     rows = tuple(tuple(int(i == k) for i in range(4)) for k in projection)
-    rational = root is None and all(_vanishes(g, (*m, rho)) for g in equations)
-    centre, radius2, normal = circles
+    if family is not None and not all(_vanishes(g, (*family.m, family.rho)) for g in equations):
+        family = None
     return CanalFamily(
         degree=degree,
         smat_degree=smat_degree,
         genus=0,
         planar=True,
         on_line=on_line,
-        pipe=pipe,
+        pipe=radius is not None,
         equations=tuple(poly_str(g) for g in equations),
         spine_equations=tuple(poly_str(g) for g in spine),
         plane_model=poly_str(model),
         projection=rows,  # type: ignore[arg-type]
-        parametrization=tuple(_text(c) for c in m) if rational else None,  # type: ignore[arg-type]
-        radius_squared=_text(rho) if rational or pipe else None,
-        field="QQ" if rational else None,
-        verified=rational,
-        circle_center=tuple(_text(c) for c in centre) if rational else None,  # type: ignore[arg-type]
-        circle_radius_squared=_text(radius2) if rational else None,
-        circle_normal=tuple(_text(c) for c in normal) if rational else None,  # type: ignore[arg-type]
+        parametrization=None if family is None else tuple(_text(c) for c in family.m),  # type: ignore[arg-type]
+        radius_squared=radius if family is None else _text(family.rho),
+        field=None if family is None else "QQ",
+        verified=family is not None,
+        circle_center=None if family is None else tuple(_text(c) for c in family.centre),  # type: ignore[arg-type]
+        circle_radius_squared=None if family is None else _text(family.radius2),
+        circle_normal=None if family is None else tuple(_text(c) for c in family.normal),  # type: ignore[arg-type]
     )
 
 
