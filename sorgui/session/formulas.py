@@ -33,7 +33,7 @@ from sympy.printing.mathematica import mathematica_code
 from sympy.printing.pycode import pycode
 
 from sorgui.engine.results import Analysis, Recognition
-from sorgui.export.exact import ExpressionError, read_expression
+from sorgui.export.exact import ExpressionError, float_vector, read_expression
 from sorgui.export.text import float_text
 
 MAX_CHARACTERS = 6000
@@ -174,20 +174,14 @@ def decimal_line_formula(point: Sequence[float], direction: Sequence[float], tol
 
 
 def decimals(values: Sequence[str], evaluate: bool = True) -> tuple[float, ...] | None:
-    """Exact engine numbers (rationals, or with square roots when ``evaluate``) as floats;
-    ``None`` if one is not such a number."""
-    out = []
-    for value in values:
-        try:
-            out.append(float(Fraction(value)))
-        except (ValueError, ZeroDivisionError):
-            if not evaluate:
-                return None
-            try:
-                out.append(float(sympy.N(read_expression(value), 17)))
-            except (ExpressionError, TypeError, ValueError):
-                return None
-    return tuple(out)
+    """Exact engine numbers as floats (:func:`~sorgui.export.exact.float_vector`; without
+    ``evaluate`` only rationals, read without sympy); ``None`` if one is not such a number."""
+    try:
+        if evaluate:
+            return tuple(float(v) for v in float_vector(values))
+        return tuple(float(Fraction(v)) for v in values)
+    except (ExpressionError, ValueError, ZeroDivisionError, TypeError):
+        return None
 
 
 # --- all formulas of an analysis ------------------------------------------------------------
