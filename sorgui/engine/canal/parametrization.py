@@ -15,13 +15,24 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpq_poly
 
+from ..algebra.fractions import (
+    RationalFunction,
+    embed,
+    evaluate,
+    factored,
+    from_expr,
+    poly_expr,
+    square_root_parts,
+)
+from ..algebra.fractions import square_root as fraction_sqrt
 from ..algebra.polys import Poly, to_flint
+from ..algebra.rationals import context
 from ..errors import AnalysisError
 from ..singular.curves import CurveParametrization
 from .spine import SMAT_NAMES, SmatCurve
@@ -30,10 +41,28 @@ T = sympy.Symbol("t")
 THETA = sympy.Symbol("theta")
 
 
+FAMILY_RING = ("t", "s")
+"""The ring of a family over ``QQ``: its functions of ``t``, and ``s`` of the parameterization."""
+S = sympy.Symbol("s")
+
+
+@dataclass(frozen=True)
+class ExactFamily:
+    """A sphere family over ``QQ`` as reduced rational functions of ``t`` (flint): ``m``, ``ρ``,
+    and the characteristic circles' centre ``c``, radius² ``R²`` and plane normal ``m′``."""
+
+    m: tuple[RationalFunction, RationalFunction, RationalFunction]
+    rho: RationalFunction
+    center: tuple[RationalFunction, RationalFunction, RationalFunction]
+    radius_squared: RationalFunction
+    normal: tuple[RationalFunction, RationalFunction, RationalFunction]
+
+
 @dataclass(frozen=True)
 class RationalFamily:
     """A verified rational sphere family ``m(t)``, ``ρ(t)`` (coefficients in ``QQ`` or in the
-    field of ``generators``) and its characteristic circles."""
+    field of ``generators``) and its characteristic circles, as sympy expressions (factored, for
+    the report) and, over ``QQ``, as the :class:`ExactFamily` the checks compute with."""
 
     m: tuple[sympy.Expr, sympy.Expr, sympy.Expr]
     rho: sympy.Expr
@@ -42,6 +71,7 @@ class RationalFamily:
     center: tuple[sympy.Expr, sympy.Expr, sympy.Expr]
     radius_squared: sympy.Expr
     normal: tuple[sympy.Expr, sympy.Expr, sympy.Expr]
+    exact: ExactFamily | None = None
 
     @property
     def over_qq(self) -> bool:
@@ -53,6 +83,8 @@ def recover_family(curve: SmatCurve, plane: CurveParametrization) -> RationalFam
     inverse of the projection, verified by substitution into every SMAT equation."""
     if curve.inverse is None:
         raise AnalysisError("the plane model of the SMAT curve is not known to be birational")
+    if not plane.generators:
+        return _recover_over_qq(curve, plane)
     u, v = sympy.Symbol("u"), sympy.Symbol("v")
     subs = {u: plane.x, v: plane.y}
     coords = [sympy.cancel(h.subs(subs, simultaneous=True)).subs(plane.parameter, T) for h in curve.inverse]
@@ -62,6 +94,46 @@ def recover_family(curve: SmatCurve, plane: CurveParametrization) -> RationalFam
     verified = all(sympy.cancel(g.as_expr().subs(point, simultaneous=True)) == 0 for g in curve.equations)
     center, radius_squared, normal = characteristic_circles(m, rho)
     return RationalFamily(m, rho, tuple(plane.generators), verified, center, radius_squared, normal)
+
+
+def _recover_over_qq(curve: SmatCurve, plane: CurveParametrization) -> RationalFamily:
+    """:func:`recover_family` over ``QQ``, in reduced flint fractions: the inverse of the
+    projection composed with ``(u(t), v(t))``, and each SMAT equation evaluated there."""
+    ring = context(FAMILY_RING)
+    uv = (plane.x, plane.y)
+    at = tuple(from_expr(c, [plane.parameter], ring) for c in uv)
+    coords = []
+    for h in curve.inverse or ():
+        H = from_expr(h, sympy.symbols("u v"))
+        coords.append(_at(H.num, at) / _at(H.den, at))
+    verified = all(_at(to_flint(g), coords).is_zero() for g in curve.equations)
+    m, rho = (coords[0], coords[1], coords[2]), coords[3]
+    dm = tuple(c.derivative(0) for c in m)
+    drho = rho.derivative(0)
+    n2 = dm[0] * dm[0] + dm[1] * dm[1] + dm[2] * dm[2]
+    center = tuple(c - drho / (2 * n2) * d for c, d in zip(m, dm))
+    exact = ExactFamily(m, rho, center, rho - drho * drho / (4 * n2), dm)  # type: ignore[arg-type]
+    shown = _shown
+    return RationalFamily(
+        tuple(shown(c) for c in m),  # type: ignore[arg-type]
+        shown(rho),
+        (),
+        verified,
+        tuple(shown(c) for c in exact.center),  # type: ignore[arg-type]
+        shown(exact.radius_squared),
+        tuple(shown(c) for c in exact.normal),  # type: ignore[arg-type]
+        exact,
+    )
+
+
+def _at(p: fmpq_mpoly, point: Sequence[RationalFunction]) -> RationalFunction:
+    """The polynomial ``p`` at a point of rational functions."""
+    return evaluate(zip(p.monoms(), p.coeffs()), point)
+
+
+def _shown(f: RationalFunction) -> sympy.Expr:
+    """``f`` factored, in ``t`` (and ``s``), as the report prints it."""
+    return factored(f, (T, S))
 
 
 def characteristic_circles(
@@ -96,6 +168,8 @@ def radical_parametrization(family: RationalFamily) -> tuple[sympy.Expr, sympy.E
     """``c(t) + R(t)(cos θ·e₁/|e₁| + sin θ·e₂/|e₂|)``: exact, with square roots where the
     squares of ``|e₁|``, ``|e₂|``, ``R`` are not squares of rational functions (where they are,
     the rational root is taken: its sign only turns or mirrors the angle on the same circle)."""
+    if family.exact is not None:
+        return _exact_radical(family.exact)
     e1, e2 = frame(family.normal)
     n1 = square_root(sum(c * c for c in e1))
     n2 = square_root(sum(c * c for c in e2))
@@ -106,6 +180,19 @@ def radical_parametrization(family: RationalFamily) -> tuple[sympy.Expr, sympy.E
         + sympy.factor(sympy.cancel(R * b / n2)) * sympy.sin(THETA)
         for c, a, b in zip(family.center, e1, e2)
     )
+
+
+def _exact_radical(exact: ExactFamily) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
+    """:func:`radical_parametrization` of a family over ``QQ``: the coefficient of ``cos θ`` is
+    ``e₁·√(R²/|e₁|²)``, of ``sin θ`` ``e₂·√(R²/|e₂|²)``, their rational parts in flint."""
+    e1, e2 = exact_frame(exact.normal)
+    terms = []
+    for e, angle in ((e1, sympy.cos(THETA)), (e2, sympy.sin(THETA))):
+        q, c, N, D = square_root_parts(exact.radius_squared / sum((x * x for x in e[1:]), e[0] * e[0]))
+        root = sympy.sqrt(sympy.Rational(int(c.p), int(c.q))) * sympy.sqrt(_shown(RationalFunction.of(N)))
+        root /= sympy.sqrt(_shown(RationalFunction.of(D)))
+        terms.append([_shown(x * q) * root * angle for x in e])
+    return tuple(_shown(c) + a + b for c, a, b in zip(exact.center, *terms))  # type: ignore[return-value]
 
 
 def square_root(square: sympy.Expr) -> sympy.Expr:
@@ -147,36 +234,49 @@ def verify_radical(f: Poly, family: RationalFamily) -> bool:
     parameterization substituted into ``f`` with ``(a, b) = R(cos θ/|e₁|, sin θ/|e₂|)``. Over
     ``QQ`` only.
     """
-    if family.generators:
+    exact = family.exact
+    if exact is None:
         return False
-    e1, e2 = frame(family.normal)
-    ctx = fmpq_mpoly_ctx.get(("t", "a", "b"), "lex")
+    e1, e2 = exact_frame(exact.normal)
+    ctx = context(("t", "a", "b"))
     _, a, b = ctx.gens()
-    rows = [sympy.cancel(c) for c in (*family.center, *e1, *e2)]
-    den = sympy.Integer(1)
-    for expr in rows:
-        den = sympy.lcm(den, sympy.fraction(expr)[1])
-    D = _to_ctx(den, ctx)
+    rows = (*exact.center, *e1, *e2)
+    den = _lcm_all(r.den for r in rows)
+    D = embed(den, ctx)
     coords = []
     for i in range(3):
-        parts = [_to_ctx(sympy.cancel(rows[j] * den), ctx) for j in (i, 3 + i, 6 + i)]
+        parts = [embed(rows[j].num * (den / rows[j].den), ctx) for j in (i, 3 + i, 6 + i)]
         coords.append(parts[0] + a * parts[1] + b * parts[2])
     value = compose_fraction(to_flint(f), coords, [D, D, D], ctx, common=D)
-    sa, sb = sympy.Symbol("a"), sympy.Symbol("b")
-    circle = sympy.fraction(
-        sympy.cancel(sum(c * c for c in e1) * sa**2 + sum(c * c for c in e2) * sb**2 - family.radius_squared)
-    )[0]
-    circle = sympy.expand(circle)
-    lead = circle.coeff(sa, 2)
-    A = _to_ctx_ab(lead, ctx)
-    rest = _to_ctx_ab(sympy.expand(circle - lead * sa**2), ctx)
-    return reduce_square(value, 1, A, -rest, ctx).is_zero()
+    n1, n2 = (sum((c * c for c in e[1:]), e[0] * e[0]) for e in (e1, e2))
+    common = _lcm_all((n1.den, n2.den, exact.radius_squared.den))
+    lead = embed(n1.num * (common / n1.den), ctx)
+    rest = embed(n2.num * (common / n2.den), ctx) * b * b - embed(
+        exact.radius_squared.num * (common / exact.radius_squared.den), ctx
+    )
+    return reduce_square(value, 1, lead, -rest, ctx).is_zero()
 
 
-def _to_ctx_ab(expr: sympy.Expr, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
-    """A polynomial in ``t, a, b`` as an element of ``ctx``."""
-    p = sympy.Poly(expr, T, sympy.Symbol("a"), sympy.Symbol("b"))
-    return ctx.from_dict({m: fmpq(int(sympy.Rational(c).p), int(sympy.Rational(c).q)) for m, c in p.terms()})
+def exact_frame(
+    normal: tuple[RationalFunction, ...],
+) -> tuple[tuple[RationalFunction, ...], tuple[RationalFunction, ...]]:
+    """:func:`frame` of rational functions over ``QQ``."""
+    zero = normal[0] - normal[0]
+    for k in range(3):
+        a = tuple(zero + (1 if i == k else 0) for i in range(3))
+        e1 = _cross(normal, a)
+        if any(not c.is_zero() for c in e1):
+            return e1, _cross(normal, e1)
+    raise AnalysisError("the spine has a vanishing tangent")
+
+
+def _lcm_all(dens: Iterable[fmpq_mpoly]) -> fmpq_mpoly:
+    """The least common multiple of the polynomials ``dens``."""
+    out = None
+    for d in dens:
+        out = d if out is None else out * (d / d.gcd(out))
+    assert out is not None
+    return out
 
 
 def reduce_square(p: fmpq_mpoly, index: int, A: fmpq_mpoly, B: fmpq_mpoly, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
@@ -189,16 +289,6 @@ def reduce_square(p: fmpq_mpoly, index: int, A: fmpq_mpoly, B: fmpq_mpoly, ctx: 
         rest = list(monom)
         rest[index] -= 2 * k
         out += ctx.from_dict({tuple(rest): coeff}) * B**k * A ** (top - k)
-    return out
-
-
-def _to_ctx(expr: sympy.Expr, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
-    """A polynomial in ``t`` (rational coefficients) as an element of ``ctx``."""
-    p = sympy.Poly(expr, T)
-    t = ctx.gens()[0]
-    out = ctx.from_dict({})
-    for (e,), c in p.terms():
-        out += fmpq(int(sympy.Rational(c).p), int(sympy.Rational(c).q)) * t**e
     return out
 
 
@@ -302,42 +392,46 @@ def rational_parametrization(f: Poly, family: RationalFamily) -> tuple[tuple[sym
     numerator ``|m′|² − r′²`` as ``A² + B²`` over ``QQ`` (factorization over ``QQ(i)``); then the
     circle is ``(u + a, v + b) = (A cos θ − B sin θ, A sin θ + B cos θ)/(m₃′ + r′)`` with the
     rational ``cos θ = (1 − s²)/(1 + s²)``, ``sin θ = 2s/(1 + s²)``. ``None`` when a step fails.
+    All of it is computed in reduced flint fractions of ``QQ(t, s)``.
     """
-    if family.generators:
+    exact = family.exact
+    if exact is None:
         return None
-    r = rational_root(family.rho)
+    r = fraction_sqrt(exact.rho)
     if r is None:
         return None
-    dm = [sympy.cancel(sympy.diff(c, T)) for c in family.m]
-    dr = sympy.cancel(sympy.diff(r, T))
+    dm = [c.derivative(0) for c in exact.m]
+    dr = r.derivative(0)
     for order in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
-        if sympy.cancel(dm[order[2]] + dr) != 0:
+        if not (dm[order[2]] + dr).is_zero():
             break
     else:
         return None
     p, q, w = (dm[i] for i in order)
-    num, den = sympy.fraction(sympy.cancel(p * p + q * q + w * w - dr * dr))
-    split = _two_squares(sympy.Poly(num, T))
+    rest = p * p + q * q + w * w - dr * dr
+    split = _two_squares(sympy.Poly(poly_expr(rest.num, (T, S)), T))
     if split is None:
         return None
-    A, B = (c / den for c in split)
     # den is a square: (p² + q² + w² − r′²) has the square of the common denominator below.
-    root = rational_root(den)
+    root = fraction_sqrt(RationalFunction.of(rest.den))
     if root is None:
         return None
-    A, B = A * root, B * root
-    S = sympy.Symbol("s")
-    cos, sin = (1 - S**2) / (1 + S**2), 2 * S / (1 + S**2)
+    ring = rest.ctx
+    A, B = (from_expr(c, (T,), ring) / root for c in split)
+    s_ = RationalFunction.of(ring.gens()[1])
+    one_plus = 1 + s_ * s_
+    cos, sin = (1 - s_ * s_) / one_plus, 2 * s_ / one_plus
     lead = w + dr
-    u = -p / lead + (A * cos - B * sin) / lead
-    v = -q / lead + (A * sin + B * cos) / lead
-    norm = u * u + v * v + 1
-    n = [2 * u / norm, 2 * v / norm, (u * u + v * v - 1) / norm]
-    normal = [sympy.Integer(0)] * 3
+    u = (A * cos - B * sin - p) / lead
+    v = (A * sin + B * cos - q) / lead
+    uu = u * u + v * v
+    norm = uu + 1
+    n = [2 * u / norm, 2 * v / norm, (uu - 1) / norm]
+    normal: list[RationalFunction] = [n[0]] * 3
     for k, i in enumerate(order):
         normal[i] = n[k]
-    point = tuple(sympy.cancel(family.m[i] + r * normal[i]) for i in range(3))
-    return point, _vanishes_at(f, point, S)
+    point = tuple(exact.m[i] + r * normal[i] for i in range(3))
+    return tuple(c.to_expr((T, S)) for c in point), _at(to_flint(f), point).is_zero()
 
 
 def _two_squares(P: sympy.Poly) -> tuple[sympy.Expr, sympy.Expr] | None:
@@ -391,20 +485,3 @@ def _rational_two_squares(c: sympy.Rational) -> tuple[sympy.Rational | None, sym
     for a, b in sum_of_squares(n, 2, zeros=True):
         return sympy.Rational(a, c.q), sympy.Rational(b, c.q)
     return None, None
-
-
-def _vanishes_at(f: Poly, point: tuple[sympy.Expr, ...], S: sympy.Symbol) -> bool:
-    """``f(X(t, s)) ≡ 0`` exactly (numerators composed with flint)."""
-    ctx = fmpq_mpoly_ctx.get(("t", "s"), "lex")
-    den = sympy.Integer(1)
-    fracs = [sympy.fraction(sympy.cancel(c)) for c in point]
-    for _, d in fracs:
-        den = sympy.lcm(den, d)
-    nums = [_poly_ts(sympy.expand(n * sympy.cancel(den / d)), ctx, S) for n, d in fracs]
-    D = _poly_ts(sympy.expand(den), ctx, S)
-    return compose_fraction(to_flint(f), nums, [D, D, D], ctx, common=D).is_zero()
-
-
-def _poly_ts(expr: sympy.Expr, ctx: fmpq_mpoly_ctx, S: sympy.Symbol) -> fmpq_mpoly:
-    p = sympy.Poly(expr, T, S)
-    return ctx.from_dict({m: fmpq(int(sympy.Rational(c).p), int(sympy.Rational(c).q)) for m, c in p.terms()})

@@ -101,17 +101,22 @@ def integer_directions(direction: np.ndarray, epsilons: Sequence[float]) -> list
     ratios = direction / direction[j]
     D = np.arange(1, MAX_DENOMINATOR + 1, dtype=float)
     error = np.zeros_like(D)
-    for r in ratios:
-        scaled = D * r
-        np.maximum(error, np.abs(scaled - np.round(scaled)), out=error)
+    scaled = np.empty_like(D)
+    for i, r in enumerate(ratios):
+        if i != j:  # the largest ratio is 1: no error at any D
+            np.multiply(D, r, out=scaled)
+            np.subtract(scaled, np.round(scaled), out=scaled)
+            np.maximum(error, np.abs(scaled, out=scaled), out=error)
     error /= D
+    # The running minimum is non-increasing: the first D within ε is found by bisection.
+    best = -np.minimum.accumulate(error)
     found: list[tuple[int, int, int] | None] = []
     for eps in epsilons:
-        hits = np.flatnonzero(error <= eps)
-        if len(hits) == 0:
+        first = int(np.searchsorted(best, -eps, side="left"))
+        if first == len(best):
             found.append(None)
             continue
-        ints = [int(round((hits[0] + 1) * r)) for r in ratios]
+        ints = [int(round((first + 1) * r)) for r in ratios]
         g = math.gcd(*ints)
         found.append(tuple(v // g for v in ints))  # type: ignore[arg-type]
     return found
