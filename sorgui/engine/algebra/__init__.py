@@ -3,6 +3,7 @@
 Modules: ``polys`` (the polynomial facade over sympy's rings and python-flint), ``rationals``
 (``QQ`` on flint alone, for the analyses that load no sympy), ``numberfields`` (``QQ(√d₁, …)``
 in a radical basis: norms, factorization, square roots), ``radicals`` (rational functions in
-square roots), ``fractions`` (rational functions over ``QQ`` as reduced flint fractions), ``linalg`` (vectors and null spaces over ``K``), ``realroots`` (counting real
-roots exactly). Import the module you need: nothing here is loaded until asked for.
+square roots), ``fractions`` (rational functions over ``QQ`` as reduced flint fractions),
+``linalg`` (vectors and null spaces over ``K``), ``realroots`` (counting real roots exactly).
+Import the module you need: nothing here is loaded until asked for.
 """
