@@ -157,7 +157,7 @@ def expanded_polynomial(text: str) -> fmpq_mpoly | None:
     reports on exactly."""
     if len(text) > MAX_LENGTH or not text.strip():
         return None
-    terms: dict[tuple[int, int, int], Fraction] = {}
+    terms: dict[tuple[int, int, int], fmpq] = {}
     position, end = 0, len(text)
     while position < end:
         match = _PLAIN_TERM.match(text, position)
@@ -177,11 +177,11 @@ def expanded_polynomial(text: str) -> fmpq_mpoly | None:
             monomial[_VARIABLE_INDEX[name]] += int(exponent) if exponent else 1
         if sum(monomial) > MAX_DEGREE:
             return None
-        value = Fraction(int(num) if num is not None else 1, int(den) if den is not None else 1)
+        value = fmpq(int(num) if num is not None else 1, int(den) if den is not None else 1)
         key = (monomial[0], monomial[1], monomial[2])
         terms[key] = terms.get(key, 0) + (-value if match.group("sign") == "-" else value)
         position = match.end()
-    kept = {m: fmpq(c.numerator, c.denominator) for m, c in terms.items() if c}
+    kept = {m: c for m, c in terms.items() if c}
     if not any(sum(m) for m in kept):
         return None  # constant or empty: the general parser says which
     return rationals.context(("x", "y", "z")).from_dict(kept)

@@ -84,6 +84,8 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
     squarefree = distinct[0]
     for h in distinct[1:]:
         squarefree *= h
+    # An irreducible g's square-free part is its one factor, already printed.
+    squarefree_text = reports[0].polynomial if len(distinct) == 1 else flint_str(squarefree, XYZ)
     with clock.stage("canal"):
         canal = revolution_canal(recognized.degree) if recognized.is_sor else verdict_without_smat(g, clock.cancel)
     if canal is None:
@@ -95,7 +97,7 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
         method="symmetry",
         recognition=recognized,
         factors=reports,
-        squarefree=flint_str(squarefree, XYZ),
+        squarefree=squarefree_text,
         rationality=None,
         parametrizations=(),
         timings=tuple(clock.timings),
@@ -141,7 +143,9 @@ def _factor_reports(g: fmpq_mpoly, whole: Recognition) -> tuple[tuple[Factor, ..
     factors = factor(g)
     distinct = [h for h, _ in factors]
     if len(factors) == 1 and factors[0][1] == 1:
-        return (Factor(flint_str(factors[0][0], XYZ), 1, whole),), distinct
+        h = factors[0][0]
+        text = whole.polynomial if h == g else flint_str(h, XYZ)  # g printed once when it is primitive
+        return (Factor(text, 1, whole),), distinct
     reports = []
     for h, e in factors:
         recognized = recognize_rational(h)

@@ -87,8 +87,11 @@ def terms(g: fmpq_mpoly) -> list[tuple[Monomial, fmpq]]:
 
 
 def flint_str(g: fmpq_mpoly, names: Sequence[str] | None = None) -> str:
-    """:func:`terms_str` of a flint polynomial (named ``names``, else its context's names)."""
-    return terms_str(names or g.context().names(), terms(g))
+    """:func:`terms_str` of a flint polynomial (named ``names``, else its context's names),
+    printed by flint itself: in the ``deglex`` order its terms come as :func:`terms_str` sorts
+    them, and its rationals read as ours once ``^`` is written ``**`` (a test compares both)."""
+    printer = fmpq_mpoly_ctx.get(tuple(names or g.context().names()), "deglex")
+    return str(printer.from_dict(dict(zip(g.monoms(), g.coeffs())))).replace("^", "**")
 
 
 def times_text(q: fmpq, atom: str) -> str:
@@ -118,7 +121,8 @@ def factor(g: fmpq_mpoly) -> list[tuple[fmpq_mpoly, int]]:
     engine's deterministic order (degree in the first variable, then the printed text)."""
     _, factors = g.factor()
     normal = [(primitive(h), int(e)) for h, e in factors]
-    normal.sort(key=lambda he: (int(he[0].degrees()[0]), flint_str(he[0])))
+    if len(normal) > 1:
+        normal.sort(key=lambda he: (int(he[0].degrees()[0]), flint_str(he[0])))
     return normal
 
 
