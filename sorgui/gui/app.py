@@ -110,7 +110,7 @@ class SignalEnding:
         for signum in ENDING_SIGNALS:
             signal.signal(signum, self._remember)
         self.notifier = QSocketNotifier(reading.fileno(), QSocketNotifier.Type.Read, app)
-        self.notifier.activated.connect(self._on_signal_change)
+        self.notifier.activated.connect(self._end_on_signal)
 
     def _remember(self, signum: int, _frame: object) -> None:
         if self.received is None:
@@ -123,7 +123,7 @@ class SignalEnding:
         self._end(self.received)
         return 128 + self.received
 
-    def _on_signal_change(self) -> None:
+    def _end_on_signal(self) -> None:
         try:
             received = self._sockets[0].recv(64)
         except OSError:
@@ -142,7 +142,7 @@ class SignalEnding:
         signal.set_wakeup_fd(-1)
         if self.notifier is not None:
             self.notifier.setEnabled(False)
-            self.notifier.activated.disconnect(self._on_signal_change)
+            self.notifier.activated.disconnect(self._end_on_signal)
             self.notifier.deleteLater()
             self.notifier = None
         for end in getattr(self, "_sockets", ()):

@@ -106,7 +106,7 @@ class EquationEditor(QWidget):
         self._timer = QTimer(self)
         self._timer.setSingleShot(True)
         self._timer.setInterval(VALIDATION_DELAY_MS)
-        self._timer.timeout.connect(self._on_validation_timer_change)
+        self._timer.timeout.connect(self._validate)
         self._valid: bool | None = None
         self._error: ParseError | None = None
         self.text_edit.textChanged.connect(self._on_text_change)
@@ -173,7 +173,7 @@ class EquationEditor(QWidget):
         else:
             self._timer.stop()
 
-    def _on_validation_timer_change(self) -> None:
+    def _validate(self) -> None:
         self.check()
 
     # --- helpers ---

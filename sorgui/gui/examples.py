@@ -27,12 +27,12 @@ class ExamplesMenu(QMenu):
             action.setData(example.name)
             if index < 9:
                 action.setShortcut(f"Ctrl+{index + 1}")
-            action.triggered.connect(lambda _checked=False, e=example: self._on_example_change(e.name, e.title))
+            action.triggered.connect(lambda _checked=False, e=example: self._choose_example(e.name, e.title))
             self.addAction(action)
 
     def example_actions(self) -> list[QAction]:
         """The example actions, in menu order (for tests)."""
         return [a for a in self.actions() if a.data()]
 
-    def _on_example_change(self, name: str, title: str) -> None:
+    def _choose_example(self, name: str, title: str) -> None:
         self.example_chosen.emit(title, example_text(name))

@@ -99,7 +99,7 @@ class FormulaView(QFrame):
         self._folded = False
         self.setObjectName("formulaView")
         self.setContextMenuPolicy(Qt.ContextMenuPolicy.CustomContextMenu)
-        self.customContextMenuRequested.connect(self._on_context_menu_change)
+        self.customContextMenuRequested.connect(self._show_context_menu)
 
         self.content = QLabel()
         self.content.setContextMenuPolicy(Qt.ContextMenuPolicy.NoContextMenu)
@@ -224,5 +224,5 @@ class FormulaView(QFrame):
     def _on_languages_change(self) -> None:
         self.copy_menu.popup(self.languages_button.mapToGlobal(self.languages_button.rect().bottomLeft()))
 
-    def _on_context_menu_change(self, position: QPoint) -> None:
+    def _show_context_menu(self, position: QPoint) -> None:
         self.copy_menu.popup(self.mapToGlobal(position))

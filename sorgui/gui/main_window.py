@@ -106,7 +106,7 @@ class BusyIndicator(QWidget):
         self._angle = 0
         self._timer = QTimer(self)
         self._timer.setInterval(125)
-        self._timer.timeout.connect(self._on_tick_change)
+        self._timer.timeout.connect(self._tick)
 
     def set_busy(self, busy: bool) -> None:
         self.setVisible(busy)
@@ -115,7 +115,7 @@ class BusyIndicator(QWidget):
         else:
             self._timer.stop()
 
-    def _on_tick_change(self) -> None:
+    def _tick(self) -> None:
         self._angle = (self._angle - 30) % 360
         self.update()
 
@@ -214,7 +214,7 @@ class MainWindow(QMainWindow):
         self.editor.validity_changed.connect(self._on_validity_change)
         self.worker.busy_changed.connect(self._on_busy_change)
         self.viewport.radius_requested.connect(self._on_radius_change)
-        self.viewport.picked.connect(self._on_pick_change)
+        self.viewport.picked.connect(self._show_pick)
         self.results.viewport().installEventFilter(self)
         self.setAcceptDrops(True)
         QApplication.instance().installEventFilter(self)  # drops on any of the window's widgets
@@ -262,21 +262,17 @@ class MainWindow(QMainWindow):
     def _build_actions(self) -> None:
         menu = self.menuBar()
         file_menu = menu.addMenu("&File")
-        self.new_action = self._action(file_menu, "&New", self._on_new_change, QKeySequence.StandardKey.New)
-        self.open_action = self._action(file_menu, "&Open…", self._on_open_change, QKeySequence.StandardKey.Open)
+        self.new_action = self._action(file_menu, "&New", self._new_document, QKeySequence.StandardKey.New)
+        self.open_action = self._action(file_menu, "&Open…", self._open_file, QKeySequence.StandardKey.Open)
         self.recent_menu = RecentFilesMenu(self.settings, self)
-        self.recent_menu.file_chosen.connect(self._on_recent_file_change)
+        self.recent_menu.file_chosen.connect(self._open_recent)
         file_menu.addMenu(self.recent_menu)
-        self.save_action = self._action(file_menu, "&Save", self._on_save_change, QKeySequence.StandardKey.Save)
-        self.save_as_action = self._action(
-            file_menu, "Save &As…", self._on_save_as_change, QKeySequence.StandardKey.SaveAs
-        )
+        self.save_action = self._action(file_menu, "&Save", self._save, QKeySequence.StandardKey.Save)
+        self.save_as_action = self._action(file_menu, "Save &As…", self._save_as, QKeySequence.StandardKey.SaveAs)
         file_menu.addSeparator()
-        self.copy_report_action = self._action(file_menu, "&Copy Report", self._on_copy_report_change, "Ctrl+Shift+C")
-        self.export_action = self._action(file_menu, "&Export Results…", self._on_export_change, "Ctrl+E")
-        self.screenshot_action = self._action(
-            file_menu, "Save Screens&hot…", self._on_screenshot_change, "Ctrl+Shift+P"
-        )
+        self.copy_report_action = self._action(file_menu, "&Copy Report", self._copy_report, "Ctrl+Shift+C")
+        self.export_action = self._action(file_menu, "&Export Results…", self._export_results, "Ctrl+E")
+        self.screenshot_action = self._action(file_menu, "Save Screens&hot…", self._save_screenshot, "Ctrl+Shift+P")
         file_menu.addSeparator()
         self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
 
@@ -290,7 +286,7 @@ class MainWindow(QMainWindow):
         self._action(analysis_menu, "&Rounding Tolerance…", self.ask_tolerance)
 
         self.examples_menu = ExamplesMenu(self)
-        self.examples_menu.example_chosen.connect(self._on_example_change)
+        self.examples_menu.example_chosen.connect(self._load_example)
         menu.addMenu(self.examples_menu)
 
         view_menu = menu.addMenu("&View")
@@ -316,7 +312,7 @@ class MainWindow(QMainWindow):
         }
         self.help_actions["syntax"].setShortcut(QKeySequence.StandardKey.HelpContents)
         help_menu.addSeparator()
-        self._action(help_menu, "&About sorgui", self._on_about_change)
+        self._action(help_menu, "&About sorgui", self._show_about)
 
     def _action(
         self,
@@ -369,7 +365,7 @@ class MainWindow(QMainWindow):
         name = Path(self._file).name if self._file else "the typed equation"
         answer = self.ask_to_save(name)
         if answer == QMessageBox.StandardButton.Save:
-            self._on_save_change()
+            self._save()
             return not self.isWindowModified()
         self._discarded = answer == QMessageBox.StandardButton.Discard
         return self._discarded
@@ -539,17 +535,17 @@ class MainWindow(QMainWindow):
         run = self.session.run
         return run.analysis if run is not None and run.outcome == "finished" else None
 
-    def _on_pick_change(self, info: PickInfo) -> None:
+    def _show_pick(self, info: PickInfo) -> None:
         self.statusBar().showMessage(info.summary(), 15000)
 
-    def _on_example_change(self, title: str, text: str) -> None:
+    def _load_example(self, title: str, text: str) -> None:
         if not self.confirm_discard():
             return
         self.set_equation(text)
         self.statusBar().showMessage(f"Example: {title}", 4000)
         self.analyze()
 
-    def _on_open_change(self) -> None:
+    def _open_file(self) -> None:
         if not self.confirm_discard():
             return
         start = str(Path(self._file).parent) if self._file else ""
@@ -559,25 +555,25 @@ class MainWindow(QMainWindow):
         if path:
             self.open_file(path)
 
-    def _on_recent_file_change(self, path: str) -> None:
+    def _open_recent(self, path: str) -> None:
         if self.confirm_discard():
             self.open_file(path)
 
-    def _on_new_change(self) -> None:
+    def _new_document(self) -> None:
         self.new_equation()
 
-    def _on_save_change(self) -> None:
+    def _save(self) -> None:
         if self._file is None:
-            self._on_save_as_change()
+            self._save_as()
         else:
             self.save_file(self._file)
 
-    def _on_save_as_change(self) -> None:
+    def _save_as(self) -> None:
         path, _ = QFileDialog.getSaveFileName(self, "Save equation", self._file or "equation.txt", EQUATION_FILTER)
         if path:
             self.save_file(path)
 
-    def _on_copy_report_change(self) -> None:
+    def _copy_report(self) -> None:
         QGuiApplication.clipboard().setText(self.results.plain_text())
         self.statusBar().showMessage("Report copied to the clipboard", 3000)
 
@@ -645,7 +641,7 @@ class MainWindow(QMainWindow):
         with a transparent background (written atomically)."""
         return atomic_write_bytes(path, png_bytes(viewport_image(self.viewport, width, transparent)))
 
-    def _on_export_change(self) -> None:
+    def _export_results(self) -> None:
         if self._finished_analysis() is None:
             self.statusBar().showMessage("Analyse an equation first", 4000)
             return
@@ -664,7 +660,7 @@ class MainWindow(QMainWindow):
             return
         self.statusBar().showMessage(f"Exported {written}", 4000)
 
-    def _on_screenshot_change(self) -> None:
+    def _save_screenshot(self) -> None:
         dialog = PictureDialog(int(self.viewport.plotter.window_size[0]), self)
         if dialog.exec() != PictureDialog.DialogCode.Accepted:
             return
@@ -678,7 +674,7 @@ class MainWindow(QMainWindow):
             return
         self.statusBar().showMessage(f"Saved {path}", 4000)
 
-    def _on_about_change(self) -> None:
+    def _show_about(self) -> None:
         QMessageBox.about(
             self,
             "About sorgui",
@@ -728,7 +724,7 @@ class MainWindow(QMainWindow):
         (the editor, the 3D view) is opened, never pasted as ``file://`` text or handed to the
         3D view."""
         if event.type() in _DROP_EVENTS and isinstance(watched, QWidget) and watched.window() is self:
-            return self._on_drop_change(event)  # type: ignore[arg-type]
+            return self._open_dropped(event)  # type: ignore[arg-type]
         if (
             event.type() == QEvent.Type.Wheel
             and watched is self.results.viewport()
@@ -740,7 +736,7 @@ class MainWindow(QMainWindow):
             return True
         return super().eventFilter(watched, event)
 
-    def _on_drop_change(self, event: QDropEvent) -> bool:
+    def _open_dropped(self, event: QDropEvent) -> bool:
         """Take a drag of files: an equation file (``.sor``, ``.poly``, ``.txt``) or a report
         (``.json``) is opened; anything else is refused with a word in the status bar."""
         mime = event.mimeData()

@@ -101,7 +101,7 @@ class SessionView(QObject):
         events.stale_changed.connect(self._on_stale_change)
         events.view_changed.connect(self._on_view_change)
         events.refreshed.connect(self._on_refresh_change)
-        panel.view_requested.connect(self._on_view_request_change)
+        panel.view_requested.connect(self._show_requested_view)
 
     def close(self) -> None:
         """Stop listening (the window is closing)."""
@@ -314,7 +314,7 @@ class SessionView(QObject):
             caption = self._caption(run, self.session.view == "nearest")
             self.viewport.set_stale(stale, ("Previous equation (out of date): " if stale else "") + caption)
 
-    def _on_view_request_change(self, view: str) -> None:
+    def _show_requested_view(self, view: str) -> None:
         if self.session.nearest_analysis is not None or view == "typed":
             self.session.set_view(view)
 

@@ -141,7 +141,7 @@ class RunPanel(QWidget):
         row.addWidget(self.nearest_button)
         row.addStretch(1)
         self.view_row.setVisible(False)
-        self.typed_button.toggled.connect(self._on_view_toggle_change)
+        self.typed_button.toggled.connect(self._show_chosen_view)
 
         layout = QVBoxLayout(self)
         layout.setContentsMargins(8, 2, 8, 2)
@@ -153,7 +153,7 @@ class RunPanel(QWidget):
 
         self._timer = QTimer(self)
         self._timer.setInterval(TICK_MS)
-        self._timer.timeout.connect(self._on_tick_change)
+        self._timer.timeout.connect(self._tick)
         self.show_run(None)
 
     # --- public API ---
@@ -220,9 +220,9 @@ class RunPanel(QWidget):
         total = f"<span style='color:#546e7a'>total {seconds_text(run.elapsed())}</span>"
         return " · ".join(parts) + " · " + total
 
-    def _on_tick_change(self) -> None:
+    def _tick(self) -> None:
         if self._run is not None:
             self.stage_line.setText(self._stage_text(self._run))
 
-    def _on_view_toggle_change(self, typed: bool) -> None:
+    def _show_chosen_view(self, typed: bool) -> None:
         self.view_requested.emit("typed" if typed else "nearest")

@@ -129,7 +129,7 @@ class Viewport(QWidget):
         self._loading: threading.Thread | None = None
         self._loading_timer = QTimer(self)
         self._loading_timer.setInterval(LOADING_POLL_MS)
-        self._loading_timer.timeout.connect(self._on_loading_timer_change)
+        self._loading_timer.timeout.connect(self._show_loading)
         self._placeholder = QLabel("Starting the 3D view…", self)
         self._placeholder.setAlignment(Qt.AlignmentFlag.AlignCenter)
         self._placeholder.setMinimumSize(120, 120)
@@ -209,11 +209,11 @@ class Viewport(QWidget):
         self._render_timer = QTimer(self)
         self._render_timer.setSingleShot(True)
         self._render_timer.setInterval(0)
-        self._render_timer.timeout.connect(self._on_render_timer_change)
+        self._render_timer.timeout.connect(self._render_pending)
         self._radius_timer = QTimer(self)
         self._radius_timer.setSingleShot(True)
         self._radius_timer.setInterval(RADIUS_DELAY_MS)
-        self._radius_timer.timeout.connect(self._on_radius_timer_change)
+        self._radius_timer.timeout.connect(self._apply_radius)
         self.radius_box.valueChanged.connect(self._on_radius_change)
         self.patch_box.toggled.connect(self._on_patch_visibility_change)
         self.profile_box.toggled.connect(self._on_profile_visibility_change)
@@ -245,7 +245,7 @@ class Viewport(QWidget):
         self._loading.start()
         self._loading_timer.start()
 
-    def _on_loading_timer_change(self) -> None:
+    def _show_loading(self) -> None:
         if self._loading is not None and not self._loading.is_alive():
             self._loading_timer.stop()
             self.start_rendering()
@@ -265,7 +265,7 @@ class Viewport(QWidget):
         plotter.set_background("#fbfcfe", top="#d9e2ee")
         plotter.add_axes(line_width=3, labels_off=False)
         plotter.enable_surface_point_picking(
-            callback=self._on_pick_change,
+            callback=self._pick,
             show_message=False,
             show_point=False,
             left_clicking=False,
@@ -466,13 +466,13 @@ class Viewport(QWidget):
         if self._plotter is not None and not self._render_timer.isActive():
             self._render_timer.start()
 
-    def _on_render_timer_change(self) -> None:
+    def _render_pending(self) -> None:
         if self._plotter is not None:
             self._plotter.update()
 
     def pick_point(self, point: np.ndarray | tuple[float, float, float]) -> PickInfo | None:
         """Inspect the surface at ``point`` as if it had been picked there."""
-        return self._on_pick_change(np.asarray(point, dtype=np.float64))
+        return self._pick(np.asarray(point, dtype=np.float64))
 
     def screenshot(self, path: str | Path) -> None:
         """Save the render window as a PNG image."""
@@ -493,7 +493,7 @@ class Viewport(QWidget):
 
     # --- handlers ---
 
-    def _on_pick_change(self, point: np.ndarray) -> PickInfo | None:
+    def _pick(self, point: np.ndarray) -> PickInfo | None:
         import pyvista
 
         scene = self._scene
@@ -529,7 +529,7 @@ class Viewport(QWidget):
     def _on_radius_change(self, _value: float) -> None:
         self._radius_timer.start()
 
-    def _on_radius_timer_change(self) -> None:
+    def _apply_radius(self) -> None:
         if self._scene is not None and abs(self.radius_box.value() - self._scene.region.radius) > 1e-9:
             self.radius_requested.emit(self.radius_box.value())
 

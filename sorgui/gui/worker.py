@@ -104,11 +104,11 @@ class AnalysisWorker(QObject):
         self._prestart = prestart
         self._timer = QTimer(self)
         self._timer.setInterval(POLL_INTERVAL_MS)
-        self._timer.timeout.connect(self._on_poll_timer_change)
+        self._timer.timeout.connect(self._poll)
         self._spare_timer = QTimer(self)
         self._spare_timer.setSingleShot(True)
         self._spare_timer.setInterval(SPARE_DELAY_MS)
-        self._spare_timer.timeout.connect(self._on_spare_timer_change)
+        self._spare_timer.timeout.connect(self._start_spare)
         if prestart:
             self._spare = _Job(self._context)
 
@@ -157,7 +157,7 @@ class AnalysisWorker(QObject):
 
     # --- polling ---
 
-    def _on_spare_timer_change(self) -> None:
+    def _start_spare(self) -> None:
         if self._spare is None:
             self._spare = _Job(self._context)
 
@@ -166,7 +166,7 @@ class AnalysisWorker(QObject):
         job.request_cancel()
         self._retiring.append(job)
 
-    def _on_poll_timer_change(self) -> None:
+    def _poll(self) -> None:
         if self._current is not None:
             self._poll_current(self._current)
         now = time.monotonic()

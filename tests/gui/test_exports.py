@@ -114,6 +114,6 @@ def test_exporting_markdown_asks_before_replacing_its_picture(window, run_analys
     monkeypatch.setattr(
         QMessageBox, "question", lambda *args, **_kw: asked.append(args[2]) or QMessageBox.StandardButton.Cancel
     )
-    window._on_export_change()
+    window._export_results()
     assert asked and "part.png" in asked[0]
     assert picture.read_bytes() == b"the user's own picture" and not (tmp_path / "part.md").exists()
