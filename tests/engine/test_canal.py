@@ -273,3 +273,31 @@ def test_norm_in_the_radical_basis_matches_the_resultant(monkeypatch: pytest.Mon
     fast = _rational_squarefree(f)
     monkeypatch.setattr(numberfields, "supports", lambda K: False)
     assert _rational_squarefree(f) == fast
+
+
+@pytest.mark.parametrize("name", sorted(EXPECTED))
+def test_the_modular_screen_never_contradicts_the_exact_line_test(name: str) -> None:
+    """A line the screen modulo a prime calls "not canal" is not canal over QQ; on non-canal
+    examples of the general branch the screen finds such lines (it is what makes them fast)."""
+    from sorgui.engine.canal import focal
+
+    f = _rational_squarefree(parse_polynomial(examples()[name]).polynomial)
+    D = focal.Derivatives(f)
+    screened = 0
+    lines = Lines(f, SEED)
+    for _ in range(4):
+        point = tuple(lines.rnd.randint(-7, 7) for _ in range(3))
+        direction = tuple(lines.rnd.randint(-7, 7) or 1 for _ in range(3))
+        try:
+            fast = focal.line_test(D, point, direction)
+        except focal.UnluckyLine:
+            continue
+        with pytest.MonkeyPatch.context() as patch:
+            patch.setattr(focal, "_fails_modulo_prime", lambda *_: False)
+            exact = focal.line_test(D, point, direction)
+        assert fast.canal == exact.canal and fast.branch == exact.branch
+        screened += fast.residue is None
+    if EXPECTED[name] is not None:
+        assert screened == 0
+    elif name in ("squashed torus", "Darboux cyclide", "triaxial ellipsoid"):  # the general branch
+        assert screened > 0

@@ -22,13 +22,15 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import Any
 
-from flint import fmpq, fmpq_mpoly, fmpq_poly
+from flint import fmpq, fmpq_mpoly, fmpq_poly, nmod_poly
 
 from ..errors import AnalysisError
 
-NuPoly = list[fmpq_poly]
-"""A polynomial in ``ν`` with coefficients in ``A``: coefficient of ``ν^i`` at index ``i``."""
+NuPoly = list[Any]
+"""A polynomial in ``ν`` with coefficients in ``A`` (``fmpq_poly`` mod ``F``, or ``nmod_poly`` in
+the modular screen): coefficient of ``ν^i`` at index ``i``."""
 
 PRINCIPAL_WEIGHTS = (3, -5, 7, 2)
 """The fixed vector ``w`` of ``(e, s) = adj(B)·w`` (any vector outside a proper subvariety)."""
@@ -58,7 +60,8 @@ class LineTest:
     ``branch`` is ``general``, ``developable`` (``a₂ ≡ 0``), ``dupin`` (``C₀ ≡ C₁ ≡ 0``) or
     ``umbilic`` (``a₁² − 4a₀a₂ ≡ 0``); ``canal`` says whether the canal condition holds on the
     line. ``smat`` are the SMAT points ``(M₁, M₂, M₃, Mρ; W)``, ``(m, ρ) = (M, Mρ)/W``
-    (``None`` when not canal or umbilic).
+    (``None`` when not canal or umbilic). ``residue`` and ``discriminant`` are ``None`` on a
+    line proved not canal modulo a prime (:func:`line_test`).
     """
 
     point: tuple[int, int, int]
@@ -66,9 +69,9 @@ class LineTest:
     F: fmpq_poly
     branch: str
     canal: bool
-    residue: fmpq_poly
+    residue: fmpq_poly | None
     smat: tuple[Pair, Pair, Pair, Pair, Pair] | None
-    discriminant: fmpq_poly
+    discriminant: fmpq_poly | None
 
 
 class Derivatives:
@@ -96,32 +99,35 @@ class Derivatives:
 
 
 def line_test(D: Derivatives, point: Sequence[int], direction: Sequence[int]) -> LineTest:
-    """The focal-sheet test of ``f`` on the line ``point + τ·direction`` (exact)."""
+    """The focal-sheet test of ``f`` on the line ``point + τ·direction`` (exact).
+
+    The test is first computed modulo the prime :data:`SCREEN_PRIME`: reduction modulo ``p`` is a
+    ring homomorphism from ``A`` (its ``p``-integral elements) onto ``F_p[τ]/(F)``, so an element
+    that is not zero there is not zero in ``A``. When ``a₂``, the discriminant, ``(C₀, C₁)`` and
+    ``R`` are all nonzero modulo ``p``, the line is a witness of "not canal" without the
+    computation over ``QQ``, whose coefficients grow with the degree; otherwise ``A`` decides.
+    """
     line = [fmpq_poly([point[i], direction[i]]) for i in range(3)]
     fl = D.restrict(D.f, line)
     if fl.degree() < 1:
         raise UnluckyLine("f is constant on the line")
     F = fl.gcd(fl.derivative())
     F = _monic(fl / F if F.degree() > 0 else fl)
+    key = (tuple(point), tuple(direction))
+    restricted = (
+        [D.restrict(h, line) for h in D.g],
+        {k: D.restrict(h, line) for k, h in D.h.items()},
+        {k: D.restrict(h, line) for k, h in D.t.items()},
+    )
+    if _fails_modulo_prime(F, *restricted):
+        return LineTest(*key, F, GENERAL, False, None, None, None)
     ring = _Ring(F)
-    g = [ring.reduce(D.restrict(h, line)) for h in D.g]
-    H = {key: ring.reduce(D.restrict(h, line)) for key, h in D.h.items()}
-    T = {key: ring.reduce(D.restrict(h, line)) for key, h in D.t.items()}
-    B = _bordered(g, H)
-    adj = _adjugate(B, ring)
-    Q = ring.trim(ring.add(*(ring.mul(B[0][c], adj[c][0]) for c in range(4))))
-    a0, a1, a2 = (Q + [fmpq_poly(0)] * 3)[:3]
-    disc = ring.reduce(a1 * a1 - 4 * a0 * a2)
-    dQ = [_jacobi(adj, _bordered_derivative(H, T, k), ring) for k in range(3)]
-    principal = [ring.add(*(ring.scale(w, adj[a][b]) for b, w in enumerate(PRINCIPAL_WEIGHTS))) for a in range(4)]
-    Qnu = [Q[i] * i for i in range(1, len(Q))] or [fmpq_poly(0)]
-    C = ring.mul(principal[3], Qnu)
-    for k in range(3):
-        C = ring.add(C, ring.neg(ring.mul(dQ[k], principal[k])))
-    C = ring.trim(C)
+    g = [ring.reduce(h) for h in restricted[0]]
+    H = {k: ring.reduce(h) for k, h in restricted[1].items()}
+    T = {k: ring.reduce(h) for k, h in restricted[2].items()}
+    a0, a1, a2, disc, C = _focal_terms(g, H, T, ring)
     p = [ring.reduce(x) for x in line]
     norm_g = ring.reduce(sum((gi * gi for gi in g), fmpq_poly(0)))
-    key = (tuple(point), tuple(direction))
     if a2 == 0:
         if a1 == 0:
             raise UnluckyLine("both focal parameters are infinite on the line")
@@ -144,17 +150,83 @@ def line_test(D: Derivatives, point: Sequence[int], direction: Sequence[int]) ->
     return LineTest(*key, F, GENERAL, True, R, _smat(p, g, norm_g, Pair(-C0, fmpq_poly(0)), C1, ring), disc)
 
 
+def _focal_terms(
+    g: list[Any], H: dict[tuple[int, int], Any], T: dict[tuple[int, int, int], Any], ring: _Ring
+) -> tuple[Any, Any, Any, Any, NuPoly]:
+    """``a₀, a₁, a₂`` of ``Q = det B(ν)``, its discriminant in ``ν`` and the canal polynomial
+    ``C = s·Q_ν − ∇ₓQ·e``, in ``ring`` (``A``, or its image modulo a prime)."""
+    B = _bordered(g, H, ring)
+    adj = _adjugate(B, ring)
+    Q = ring.trim(ring.add(*(ring.mul(B[0][c], adj[c][0]) for c in range(4))))
+    a0, a1, a2 = (Q + [ring.zero] * 3)[:3]
+    disc = ring.reduce(a1 * a1 - 4 * a0 * a2)
+    dQ = [_jacobi(adj, _bordered_derivative(H, T, k, ring), ring) for k in range(3)]
+    principal = [ring.add(*(ring.scale(w, adj[a][b]) for b, w in enumerate(PRINCIPAL_WEIGHTS))) for a in range(4)]
+    Qnu = [Q[i] * i for i in range(1, len(Q))] or [ring.zero]
+    C = ring.mul(principal[3], Qnu)
+    for k in range(3):
+        C = ring.add(C, ring.neg(ring.mul(dQ[k], principal[k])))
+    return a0, a1, a2, disc, ring.trim(C)
+
+
+SCREEN_PRIME = 2**61 - 1
+"""The prime of the modular screen of :func:`line_test` (a Mersenne prime: no rational of a
+surface's derivatives on a line has it in a denominator unless built to)."""
+
+
+def _fails_modulo_prime(
+    F: fmpq_poly,
+    g: list[fmpq_poly],
+    H: dict[tuple[int, int], fmpq_poly],
+    T: dict[tuple[int, int, int], fmpq_poly],
+) -> bool:
+    """Whether the canal condition fails on the line already modulo :data:`SCREEN_PRIME` (a
+    proof that it fails over ``QQ``; ``False`` means only that ``A`` must decide)."""
+    image = _modular(F)
+    if image is None:
+        return False
+    ring = _Ring(image)
+    parts = [_modular(h) for h in (*g, *H.values(), *T.values())]
+    if any(x is None for x in parts):
+        return False
+    gm = [ring.reduce(x) for x in parts[:3]]  # type: ignore[arg-type]
+    Hm = {k: ring.reduce(x) for k, x in zip(H, parts[3 : 3 + len(H)])}  # type: ignore[arg-type]
+    Tm = {k: ring.reduce(x) for k, x in zip(T, parts[3 + len(H) :])}  # type: ignore[arg-type]
+    a0, a1, a2, disc, C = _focal_terms(gm, Hm, Tm, ring)
+    if a2 == 0 or disc == 0:
+        return False
+    C0, C1 = _pseudo_remainder(C, a0, a1, a2, ring)
+    if C0 == 0 and C1 == 0:
+        return False
+    R = ring.reduce(a2 * ring.reduce(C0 * C0) - a1 * ring.reduce(C0 * C1) + a0 * ring.reduce(C1 * C1))
+    return R != 0
+
+
+def _modular(h: fmpq_poly) -> nmod_poly | None:
+    """``h`` modulo :data:`SCREEN_PRIME`, or ``None`` when a denominator is divisible by it."""
+    p = SCREEN_PRIME
+    coefficients = []
+    for c in h.coeffs():
+        q = int(c.q)
+        if q % p == 0:
+            return None
+        coefficients.append(int(c.p) * pow(q, -1, p) % p)
+    return nmod_poly(coefficients, p)
+
+
 class _Ring:
     """Arithmetic in ``A = QQ[τ]/(F)`` and in ``A[ν]``."""
 
-    def __init__(self, F: fmpq_poly) -> None:
+    def __init__(self, F: Any) -> None:
         self.F = F
+        self.zero = F * 0
+        self.one = self.zero + 1
 
-    def reduce(self, a: fmpq_poly) -> fmpq_poly:
+    def reduce(self, a: Any) -> Any:
         return a % self.F
 
     def mul(self, P: NuPoly, Q: NuPoly) -> NuPoly:
-        out = [fmpq_poly(0)] * (len(P) + len(Q) - 1)
+        out = [self.zero] * (len(P) + len(Q) - 1)
         for i, a in enumerate(P):
             if a == 0:
                 continue
@@ -163,10 +235,9 @@ class _Ring:
                     out[i + j] += a * b
         return [c % self.F for c in out]
 
-    @staticmethod
-    def add(*terms: NuPoly) -> NuPoly:
+    def add(self, *terms: NuPoly) -> NuPoly:
         n = max(len(t) for t in terms)
-        return [sum((t[i] for t in terms if i < len(t)), fmpq_poly(0)) for i in range(n)]
+        return [sum((t[i] for t in terms if i < len(t)), self.zero) for i in range(n)]
 
     @staticmethod
     def neg(P: NuPoly) -> NuPoly:
@@ -187,9 +258,9 @@ def _monic(F: fmpq_poly) -> fmpq_poly:
     return F / F.coeffs()[-1]
 
 
-def _bordered(g: list[fmpq_poly], H: dict[tuple[int, int], fmpq_poly]) -> list[list[NuPoly]]:
+def _bordered(g: list[Any], H: dict[tuple[int, int], Any], ring: _Ring) -> list[list[NuPoly]]:
     """``B(ν) = [[I − νH, g], [gᵀ, 0]]`` with entries in ``A[ν]``."""
-    one, zero = fmpq_poly(1), fmpq_poly(0)
+    one, zero = ring.one, ring.zero
     B: list[list[NuPoly]] = [[[zero]] * 4 for _ in range(4)]
     for i in range(3):
         for j in range(3):
@@ -200,10 +271,10 @@ def _bordered(g: list[fmpq_poly], H: dict[tuple[int, int], fmpq_poly]) -> list[l
 
 
 def _bordered_derivative(
-    H: dict[tuple[int, int], fmpq_poly], T: dict[tuple[int, int, int], fmpq_poly], k: int
+    H: dict[tuple[int, int], Any], T: dict[tuple[int, int, int], Any], k: int, ring: _Ring
 ) -> list[list[NuPoly]]:
     """``∂B/∂x_k = [[−ν·∂H/∂x_k, ∂g/∂x_k], [∂gᵀ/∂x_k, 0]]``."""
-    zero = fmpq_poly(0)
+    zero = ring.zero
     dB: list[list[NuPoly]] = [[[zero]] * 4 for _ in range(4)]
     for i in range(3):
         for j in range(3):
@@ -217,7 +288,7 @@ def _det(M: list[list[NuPoly]], ring: _Ring) -> NuPoly:
     """The determinant by expansion along the first row (matrices of size ≤ 3 here)."""
     if len(M) == 1:
         return M[0][0]
-    total: NuPoly = [fmpq_poly(0)]
+    total: NuPoly = [ring.zero]
     for j, entry in enumerate(M[0]):
         if all(c == 0 for c in entry):
             continue
@@ -243,9 +314,7 @@ def _jacobi(adj: list[list[NuPoly]], dB: list[list[NuPoly]], ring: _Ring) -> NuP
     return ring.add(*(ring.mul(adj[a][b], dB[b][a]) for a in range(4) for b in range(4)))
 
 
-def _pseudo_remainder(
-    C: NuPoly, a0: fmpq_poly, a1: fmpq_poly, a2: fmpq_poly, ring: _Ring
-) -> tuple[fmpq_poly, fmpq_poly]:
+def _pseudo_remainder(C: NuPoly, a0: Any, a1: Any, a2: Any, ring: _Ring) -> tuple[Any, Any]:
     """``a₂^k·C mod Q`` in ``ν``: the pair ``(C₀, C₁)`` of ``C₁ν + C₀``."""
     C = list(C)
     while len(C) > 2:
@@ -254,7 +323,7 @@ def _pseudo_remainder(
         C[n - 2] = ring.reduce(C[n - 2] - lead * a0)
         C[n - 1] = ring.reduce(C[n - 1] - lead * a1)
         C.pop()
-    C += [fmpq_poly(0)] * (2 - len(C))
+    C += [ring.zero] * (2 - len(C))
     return C[0], C[1]
 
 
