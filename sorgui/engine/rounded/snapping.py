@@ -28,6 +28,7 @@ import math
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import lru_cache
 
 import numpy as np
 import sympy
@@ -96,20 +97,11 @@ def simplest_near(value: float, radius: float) -> Fraction:
 def integer_directions(direction: np.ndarray, epsilons: Sequence[float]) -> list[tuple[int, int, int] | None]:
     """For each ``ε``, the primitive integer vector with the smallest common denominator ``D``
     whose ratios are within ``ε`` of the direction's (``None`` if none has ``D`` up to
-    ``MAX_DENOMINATOR``): one vectorised pass over all ``D``."""
+    ``MAX_DENOMINATOR``): one vectorised pass over all ``D``, kept for the next ``ε`` asked of
+    the same direction (the refinement asks at several spreads)."""
     j = int(np.argmax(np.abs(direction)))
     ratios = direction / direction[j]
-    D = np.arange(1, MAX_DENOMINATOR + 1, dtype=float)
-    error = np.zeros_like(D)
-    scaled = np.empty_like(D)
-    for i, r in enumerate(ratios):
-        if i != j:  # the largest ratio is 1: no error at any D
-            np.multiply(D, r, out=scaled)
-            np.subtract(scaled, np.round(scaled), out=scaled)
-            np.maximum(error, np.abs(scaled, out=scaled), out=error)
-    error /= D
-    # The running minimum is non-increasing: the first D within ε is found by bisection.
-    best = -np.minimum.accumulate(error)
+    best = _running_error(tuple(float(r) for r in ratios), j)
     found: list[tuple[int, int, int] | None] = []
     for eps in epsilons:
         first = int(np.searchsorted(best, -eps, side="left"))
@@ -120,6 +112,24 @@ def integer_directions(direction: np.ndarray, epsilons: Sequence[float]) -> list
         g = math.gcd(*ints)
         found.append(tuple(v // g for v in ints))  # type: ignore[arg-type]
     return found
+
+
+@lru_cache(maxsize=2)
+def _running_error(ratios: tuple[float, ...], j: int) -> np.ndarray:
+    """``−min_{D' ≤ D} max_i |D'·rᵢ − round(D'·rᵢ)|/D'`` for ``D = 1 … MAX_DENOMINATOR``: non-decreasing,
+    so the first ``D`` within ``ε`` is found by bisection."""
+    D = np.arange(1, MAX_DENOMINATOR + 1, dtype=float)
+    error = np.zeros_like(D)
+    scaled = np.empty_like(D)
+    for i, r in enumerate(ratios):
+        if i != j:  # the largest ratio is 1: no error at any D
+            np.multiply(D, r, out=scaled)
+            np.subtract(scaled, np.round(scaled), out=scaled)
+            np.maximum(error, np.abs(scaled, out=scaled), out=error)
+    error /= D
+    best = -np.minimum.accumulate(error)
+    best.flags.writeable = False
+    return best
 
 
 def rational_unit_direction(direction: np.ndarray, epsilon: float | np.ndarray) -> tuple[Fraction, Fraction, Fraction]:
