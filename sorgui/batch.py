@@ -28,6 +28,8 @@ from collections.abc import Callable, Generator, Iterable, Iterator
 from multiprocessing.connection import wait
 from typing import TYPE_CHECKING, Any, TextIO
 
+from sorgui.session.messages import Failed, FinalMessage, Finished, Invalid
+
 if TYPE_CHECKING:
     from sorgui.session.supervised import AnalysisRequest, Supervised
 
@@ -66,15 +68,16 @@ def _equations(lines: Iterable[str]) -> Iterator[Job]:
             yield number, equation
 
 
-def _line_json(number: int, text: str, message: tuple[str, Any]) -> Answer:
+def _line_json(number: int, text: str, message: FinalMessage) -> Answer:
     """The output line of a final message of an analysis process."""
-    kind, payload = message
-    if kind == "finished":
-        return json.dumps({"line": number, **payload.to_json()}), 0
-    if kind == "invalid":
-        text_of, position = payload
-        return json.dumps(_error(number, text, text_of, position)), 2
-    return json.dumps(_error(number, text, str(payload), None)), 1
+    match message:
+        case Finished(analysis):
+            return json.dumps({"line": number, **analysis.to_json()}), 0
+        case Invalid(text_of, position):
+            return json.dumps(_error(number, text, text_of, position)), 2
+        case Failed(reason):
+            return json.dumps(_error(number, text, reason, None)), 1
+    return json.dumps(_error(number, text, "the analysis was cancelled", None)), 1
 
 
 def _error(number: int, text: str, message: str, position: int | None) -> dict[str, Any]:

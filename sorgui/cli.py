@@ -375,9 +375,10 @@ def analyze_main(argv: Sequence[str]) -> int:
         return fail(str(exc), None, as_json, 2)
     except _OutputError as exc:
         return fail(str(exc), None, False, 1)
+    from sorgui.session.messages import Failed, Finished, Invalid
     from sorgui.session.supervised import AnalysisRequest, analyze_supervised
 
-    kind, payload = analyze_supervised(
+    answer = analyze_supervised(
         AnalysisRequest(
             text,
             method=args.method,
@@ -387,12 +388,15 @@ def analyze_main(argv: Sequence[str]) -> int:
         ),
         started=_started[-1] if _started else None,
     )
-    if kind == "invalid":
-        message, position = payload
-        return fail(message, position, args.json, 2)
-    if kind == "failed":
-        return fail(payload, None, args.json, 1)
-    result = payload
+    match answer:
+        case Invalid(message, position):
+            return fail(message, position, args.json, 2)
+        case Failed(message):
+            return fail(message, None, args.json, 1)
+        case Finished(result):
+            pass
+        case _:
+            return fail("the analysis was cancelled", None, args.json, 1)
     try:
         write_outputs(result, args.output, args.export_format)
         if args.json:

@@ -29,8 +29,22 @@ from typing import TYPE_CHECKING
 from PySide6.QtCore import QObject, QTimer, Signal
 
 from sorgui.session.child import ChildProcess
+from sorgui.session.messages import (
+    INTERMEDIATE,
+    SUPERVISION,
+    Analysed,
+    AnalysisKnown,
+    Failed,
+    Finished,
+    Hangup,
+    Invalid,
+    JobCancelled,
+    Message,
+    StageDone,
+    StageStarted,
+)
 from sorgui.session.process import worker_main
-from sorgui.session.supervised import GRACE, SUPERVISION, StageLog
+from sorgui.session.supervised import GRACE, StageLog
 
 if TYPE_CHECKING:
     from sorgui.session.job import JobRequest
@@ -40,10 +54,6 @@ POLL_INTERVAL_MS = 15
 
 CANCEL_GRACE_S = 0.5
 """How long a cancelled job may take to stop by itself before it is killed."""
-
-INTERMEDIATE = ("done", "analysis", "scene", "nearest_scene", "formulas", "components")
-"""Messages a job sends before its final one (see :mod:`sorgui.session.job`)."""
-
 
 SPARE_DELAY_MS = 2000
 """The next worker process starts this long after a job ends, once the result is on screen."""
@@ -57,7 +67,7 @@ class _Job(ChildProcess):
         self.cancel_event = context.Event()
         super().__init__(context, worker_main, (self.cancel_event,))
         self.kill_at: float | None = None
-        self.pending: deque[tuple[str, object]] = deque()
+        self.pending: deque[Message] = deque()
         self.deadline = float("inf")
         self.limit: float | None = None
         self.log: StageLog | None = None
@@ -83,12 +93,12 @@ class AnalysisWorker(QObject):
     ``finished`` carries a :class:`~sorgui.session.job.JobResult`; ``invalid`` a parse error
     ``(message, position, end)``; ``failed`` a one-line message; ``busy_changed`` whether a
     job is running (for the Analyze and Cancel buttons). ``message`` carries every message of
-    the current job, intermediate results and the final one alike, as ``(kind, payload)``: it
-    feeds :meth:`sorgui.session.Session.handle` (the worker is the session's runner).
+    the current job (:mod:`sorgui.session.messages`), intermediate results and the final one
+    alike: it feeds :meth:`sorgui.session.Session.handle` (the worker is the session's runner).
     """
 
     progress = Signal(str)
-    message = Signal(str, object)
+    message = Signal(object)
     finished = Signal(object)
     invalid = Signal(str, int, int)
     failed = Signal(str)
@@ -185,61 +195,62 @@ class AnalysisWorker(QObject):
         formulas."""
         job.pending.extend(job.messages())
         while job.pending:
-            kind, payload = job.pending.popleft()
-            if job.log is not None and kind != "eof":
-                job.log.take((kind, payload))
-            if kind in SUPERVISION:
-                if kind == "analysed":
+            message = job.pending.popleft()
+            if job.log is not None and not isinstance(message, Hangup):
+                job.log.take(message)
+            if isinstance(message, SUPERVISION):
+                if isinstance(message, Analysed):
                     job.deadline = float("inf")
                 continue
-            if kind == "progress":
-                self.message.emit(kind, payload)
-                self.progress.emit(str(payload))
+            if isinstance(message, StageStarted):
+                self.message.emit(message)
+                self.progress.emit(message.stage)
                 continue
-            if kind in INTERMEDIATE:
+            if isinstance(message, INTERMEDIATE):
                 if job.kill_at is None:
-                    self.message.emit(kind, payload)
-                    if kind != "done":
+                    self.message.emit(message)
+                    if not isinstance(message, StageDone):
                         return
                 continue
             if job.kill_at is not None:
-                kind = "cancelled"  # whatever came back after the user cancelled
-            elif kind == "eof":
+                message = JobCancelled()  # whatever came back after the user cancelled
+            elif isinstance(message, Hangup):
                 job.process.join(0.05)
-                kind, payload = "failed", _exit_message(job.process.exitcode)
-            self._end_current(job, kind, payload)
+                message = Failed(_exit_message(job.process.exitcode))
+            self._end_current(job, message)
             return
         if job.kill_at is not None and time.monotonic() >= job.kill_at:
             job.kill()
-            self._end_current(job, "cancelled", None)
+            self._end_current(job, JobCancelled())
         elif job.kill_at is None and time.monotonic() >= job.deadline and job.log is not None:
             from sorgui.engine.timelimit import limit_message
 
             job.kill()  # stuck past the time limit inside one computation: what it finished stands
-            kind, payload = job.log.outcome(limit_message(job.limit or 0.0))
-            if kind == "finished":
+            outcome = job.log.outcome(limit_message(job.limit or 0.0))
+            if isinstance(outcome, Finished):
                 from sorgui.session.job import JobResult
 
-                payload = JobResult(payload, None, None, ())
-                self.message.emit("analysis", payload.analysis)
-            self._end_current(job, kind, payload)
+                outcome = Finished(JobResult(outcome.result, None, None, ()))
+                self.message.emit(AnalysisKnown(outcome.result.analysis))
+            self._end_current(job, outcome)
 
-    def _end_current(self, job: _Job, kind: str, payload: object) -> None:
+    def _end_current(self, job: _Job, message: Message) -> None:
         job.ended = True
         self._current = None
         self._retiring.append(job)
         if self._prestart:
             self._spare_timer.start()  # soon, but not while the GUI shows the result
-        self.message.emit(kind, payload)
+        self.message.emit(message)
         self.busy_changed.emit(False)
-        if kind == "finished":
-            self.finished.emit(payload)
-        elif kind == "invalid":
-            self.invalid.emit(*payload)  # type: ignore[misc]
-        elif kind == "failed":
-            self.failed.emit(str(payload))
-        else:
-            self.cancelled.emit()
+        match message:
+            case Finished(result):
+                self.finished.emit(result)
+            case Invalid(text, position, end):
+                self.invalid.emit(text, position, end)
+            case Failed(text):
+                self.failed.emit(text)
+            case _:
+                self.cancelled.emit()
 
 
 def _exit_message(exitcode: int | None) -> str:

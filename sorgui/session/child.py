@@ -8,8 +8,8 @@ each line of ``--each-line`` and for the window alike — and its parent ends it
 * the child leads a process group of its own (so the terminal's Ctrl+C reaches only the
   parent), dies with its parent (``PR_SET_PDEATHSIG``, even after ``kill -9``) and takes the
   default action for ``SIGTERM`` and ``SIGHUP`` (:func:`become_child`);
-* it sends plain picklable messages through a pipe (:meth:`ChildProcess.messages`,
-  :meth:`ChildProcess.receive`);
+* it sends the messages of :mod:`sorgui.session.messages` through a pipe
+  (:meth:`ChildProcess.messages`, :meth:`ChildProcess.receive`);
 * :meth:`ChildProcess.kill` stops its group, then kills it and the process groups of all its
   descendants (Singular runs in a session of its own) with ``SIGKILL``
   (:func:`kill_process_tree`).
@@ -28,8 +28,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-Message = tuple[str, Any]
-"""``(kind, payload)``: what a child sends; ``("eof", None)`` stands for a closed pipe."""
+from sorgui.session.messages import Hangup, Message
 
 ENDING = frozenset({signal.SIGTERM, signal.SIGHUP, signal.SIGINT})
 """Blocked while a child is started, so that it never runs its parent's handlers of them."""
@@ -82,14 +81,14 @@ class ChildProcess:
         self.conn.send(request)
 
     def messages(self) -> list[Message]:
-        """The messages waiting in the pipe, without blocking; ``("eof", None)`` once the child
+        """The messages waiting in the pipe, without blocking; :class:`Hangup` once the child
         has hung up."""
         out: list[Message] = []
         try:
             while not self.ended and self.conn.poll():
                 out.append(self.conn.recv())
         except (EOFError, OSError):
-            out.append(("eof", None))
+            out.append(Hangup())
         return out
 
     def receive(self, timeout: float) -> Message | None:
@@ -98,7 +97,7 @@ class ChildProcess:
             if self.conn.poll(max(timeout, 0.0)):
                 return self.conn.recv()
         except (EOFError, OSError):
-            return "eof", None
+            return Hangup()
         return None
 
     def kill(self) -> None:

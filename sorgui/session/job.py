@@ -3,23 +3,22 @@ send every result the moment it is known.
 
 This module is the target of the worker process (started with the ``spawn`` method by
 :mod:`sorgui.gui.worker`) and imports no Qt. :func:`serve` makes the process a process-group
-leader, waits for one :class:`JobRequest`, and sends plain picklable messages back:
+leader, waits for one :class:`JobRequest`, and sends the messages of :mod:`sorgui.session.messages`:
 
-* ``("progress", stage)`` when a stage starts (the engine's stages, ``"scene"``, ``"formulas"``);
-* ``("done", (stage, seconds))`` when a stage ends, the engine's and the worker's own;
-* ``("parsed", Analysis)``: the equation's skeleton once it is read, and ``("analysed", None)``
-  once the engine is done (the window's time limit then no longer applies; both are for the
-  worker's supervision, :mod:`sorgui.gui.worker`, which kills a job stuck past its limit);
-* ``("analysis", Analysis)``: the results known so far, first after the factors (verdict, axis,
+* :class:`StageStarted` and :class:`StageDone` as each stage starts and ends (the engine's
+  stages, ``"scene"``, ``"formulas"``, ``"components"``);
+* :class:`Parsed` once the equation is read and :class:`Analysed` once the engine is done (the
+  window's time limit then no longer applies; both are for the worker's supervision,
+  :mod:`sorgui.gui.worker`, which kills a job stuck past its limit);
+* :class:`AnalysisKnown`: the results known so far, first after the factors (verdict, axis,
   profile), then after the rationality (Table 1 row, genera), then complete;
-* ``("scene", SceneData)``: the typed surface's scene (first without the parameterization
-  patch), and ``("nearest_scene", SceneData)``: the nearest exact surface's, for rounded input;
-* ``("formulas", {key: Formula})``: every formula of the analysis known so far, typeset;
-* ``("components", (Component, …))``: for a *no*, the typed components of a blend, each
-  recognised (:mod:`sorgui.session.components`);
-* exactly one final message: ``("finished", JobResult)`` (without the scenes and formulas,
-  already sent), ``("invalid", (message, position, end))`` for text that is not a polynomial,
-  ``("failed", message)`` or ``("cancelled", None)``.
+* :class:`SceneKnown` (first without the parameterization patch) and, for rounded input,
+  :class:`NearestSceneKnown`; :class:`FormulasKnown`, every formula known so far, typeset;
+  :class:`ComponentsKnown`: for a *no*, the typed components of a blend, each recognised
+  (:mod:`sorgui.session.components`);
+* exactly one final message: :class:`Finished` with a :class:`JobResult` (without the scenes
+  and formulas, already sent), :class:`Invalid` for text that is not a polynomial,
+  :class:`Failed` or :class:`JobCancelled`.
 
 Engine errors come back as one-line messages, never as tracebacks.
 """
@@ -51,9 +50,25 @@ from sorgui.session.formulas import (
     render_line,
     start_helper,
 )
+from sorgui.session.messages import (
+    Analysed,
+    AnalysisKnown,
+    ComponentsKnown,
+    Failed,
+    FinalMessage,
+    Finished,
+    FormulasKnown,
+    Invalid,
+    JobCancelled,
+    Message,
+    NearestSceneKnown,
+    Parsed,
+    SceneKnown,
+    StageDone,
+    StageStarted,
+)
 
-Message = tuple[str, Any]
-Send = Callable[[str, Any], None]
+Send = Callable[[Message], None]
 
 WORKER_NICENESS = 10
 """The worker runs at a lower priority than the GUI, which then always gets the processor."""
@@ -114,46 +129,46 @@ class _Presenter:
 
     def stage(self, name: str, work: Callable[[], Any]) -> Any:
         self.check()
-        self.send("progress", name)
+        self.send(StageStarted(name))
         start = time.perf_counter()
         value = work()
         seconds = time.perf_counter() - start
         self.timings.append((name, seconds))
-        self.send("done", (name, seconds))
+        self.send(StageDone(name, seconds))
         return value
 
     def present(self, analysis: Analysis) -> None:
         from sorgui.session import scene_data
 
-        self.send("analysis", analysis)
+        self.send(AnalysisKnown(analysis))
         request = self.request
         if request.scene:
             if self.scene is None:
                 self.scene = self.stage(
                     "scene", lambda: scene_data.build_scene(analysis, request.radius, request.resolution, patch=False)
                 )
-                self.send("scene", self.scene)
+                self.send(SceneKnown(self.scene))
                 self._explain(analysis)
             extras = self._extras(analysis)
             if extras is not None:
                 self.scene = self.stage("scene", lambda: extras(self.scene))
-                self.send("scene", self.scene)
+                self.send(SceneKnown(self.scene))
             if self._approximated and self.nearest_scene is None and _nearest(analysis) is not None:
                 nearest = _nearest(analysis)
                 self.nearest_scene = self.stage(
                     "scene",
                     lambda: scene_data.build_scene(nearest, region=self.scene.region, resolution=request.resolution),
                 )
-                self.send("nearest_scene", self.nearest_scene)
+                self.send(NearestSceneKnown(self.nearest_scene))
         if request.style is not None:
             style = request.style
             self.formulas = self.stage("formulas", lambda: self._typeset(analysis_formulas(analysis), style))
-            self.send("formulas", self.formulas)
+            self.send(FormulasKnown(self.formulas))
             nearest = _nearest(analysis)
             if nearest is not None:  # the typed equation's first: it is what the pane shows first
                 wanted = {f"nearest.{k}": f for k, f in analysis_formulas(nearest).items()}
                 self.formulas = {**self.formulas, **self.stage("formulas", lambda: self._typeset(wanted, style))}
-                self.send("formulas", self.formulas)
+                self.send(FormulasKnown(self.formulas))
 
     def _explain(self, analysis: Analysis) -> None:
         """For a *no* on irreducible input: the typed components of a blend and their axes."""
@@ -164,10 +179,10 @@ class _Presenter:
             return
         components = self.stage("components", lambda: typed_components(self.request.text))
         if components:
-            self.send("components", components)
+            self.send(ComponentsKnown(tuple(components)))
             recognitions = [c.recognition for c in components]
             self.scene = scene_data.with_component_axes(self.scene, recognitions)
-            self.send("scene", self.scene)
+            self.send(SceneKnown(self.scene))
 
     def _extras(self, analysis: Analysis) -> Callable[[Any], Any] | None:
         """What the scene still lacks of ``analysis``: the patch, the rounded-input extras, the
@@ -221,7 +236,7 @@ def run_job(
     progress: Callable[[str], None] | None = None,
     send: Send | None = None,
     processes: int = 1,
-) -> Message:
+) -> FinalMessage:
     """Do ``request`` and return the final message (also usable without a process).
 
     ``send`` receives every intermediate message; ``progress`` (an older, simpler hook) only
@@ -229,11 +244,11 @@ def run_job(
     process shares them with a helper; see :func:`sorgui.session.formulas.start_helper`).
     """
 
-    def deliver(kind: str, payload: Any) -> None:
+    def deliver(message: Message) -> None:
         if send is not None:
-            send(kind, payload)
-        if kind == "progress" and progress is not None:
-            progress(payload)
+            send(message)
+        if isinstance(message, StageStarted) and progress is not None:
+            progress(message.stage)
 
     def check() -> None:
         if cancel is not None and cancel.is_set():
@@ -255,12 +270,12 @@ def run_job(
                 timeout=request.singular_timeout,  # the window's limit bounds the whole analysis
                 tolerance=request.tolerance,
                 cancel=cancel,
-                progress=lambda stage: deliver("progress", stage),
+                progress=lambda stage: deliver(StageStarted(stage)),
                 partial=presenter.present,
-                stage_done=lambda stage, seconds: deliver("done", (stage, seconds)),
-                parsed=lambda start: deliver("parsed", start),
+                stage_done=lambda stage, seconds: deliver(StageDone(stage, seconds)),
+                parsed=lambda start: deliver(Parsed(start)),
             )
-            deliver("analysed", None)  # the engine is done: its time limit is over
+            deliver(Analysed())  # the engine is done: its time limit is over
             canal = analysis.canal is not None and bool(analysis.canal.is_canal)
             if (
                 analysis.parametrizations
@@ -270,25 +285,25 @@ def run_job(
             ):
                 presenter.present(analysis)  # the complete analysis: patch, rounded-input extras, canal
             else:
-                deliver("analysis", analysis)
+                deliver(AnalysisKnown(analysis))
         check()
         if send is not None:  # the scenes and formulas went out as messages: not pickled twice
-            return "finished", JobResult(analysis, None, None, tuple(presenter.timings))
+            return Finished(JobResult(analysis, None, None, tuple(presenter.timings)))
         formulas = presenter.formulas if request.style is not None else None
-        return "finished", JobResult(
-            analysis, presenter.scene, formulas, tuple(presenter.timings), presenter.nearest_scene
+        return Finished(
+            JobResult(analysis, presenter.scene, formulas, tuple(presenter.timings), presenter.nearest_scene)
         )
     except Cancelled:
-        return "cancelled", None
+        return JobCancelled()
     except ParseError as exc:
-        return "invalid", (exc.message, exc.position, exc.end)
+        return Invalid(exc.message, exc.position, exc.end)
     except SorguiError as exc:
-        return "failed", exc.message
+        return Failed(exc.message)
     except MemoryError:
-        return "failed", "the analysis ran out of memory"
+        return Failed("the analysis ran out of memory")
     except Exception as exc:  # a bug: keep the window alive, print the details for a report
         traceback.print_exc(file=sys.stderr)
-        return "failed", f"internal error ({type(exc).__name__}: {exc})"
+        return Failed(f"internal error ({type(exc).__name__}: {exc})")
 
 
 def warm_up(waited_for: Callable[[], bool] = lambda: False) -> None:
@@ -336,7 +351,7 @@ def serve(conn: Connection, cancel: Any) -> None:
             run_job(
                 request,
                 cancel,
-                send=lambda kind, payload: conn.send((kind, payload)),
+                send=conn.send,
                 processes=min(2, os.cpu_count() or 1),
             )
         )

@@ -15,6 +15,7 @@ belonging to the previous equation.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from enum import Enum
 from typing import TYPE_CHECKING, Any, Protocol
@@ -24,7 +25,23 @@ from sorgui.session.components import Component
 from sorgui.session.events import SessionEvents
 from sorgui.session.formulas import Formula
 from sorgui.session.job import JobRequest, JobResult, run_job
-from sorgui.session.supervised import SUPERVISION
+from sorgui.session.messages import (
+    SUPERVISION,
+    AnalysisKnown,
+    ComponentsKnown,
+    Failed,
+    FinalMessage,
+    Finished,
+    FormulasKnown,
+    Hangup,
+    Invalid,
+    JobCancelled,
+    Message,
+    NearestSceneKnown,
+    SceneKnown,
+    StageDone,
+    StageStarted,
+)
 
 if TYPE_CHECKING:
     from sorgui.session.scene_data import SceneData
@@ -189,7 +206,7 @@ class InlineRunner:
     """Runs a job to its end in the calling thread (the command line, tests): :meth:`start`
     returns when the run is over. :meth:`cancel` may be called from a session callback."""
 
-    def __init__(self, deliver: Any) -> None:
+    def __init__(self, deliver: Callable[[Message], None]) -> None:
         import threading
 
         self._deliver = deliver
@@ -197,8 +214,7 @@ class InlineRunner:
 
     def start(self, request: JobRequest) -> None:
         self._cancel.clear()
-        final = run_job(request, self._cancel, send=self._deliver)
-        self._deliver(*final)
+        self._deliver(run_job(request, self._cancel, send=self._deliver))
 
     def cancel(self) -> None:
         self._cancel.set()
@@ -315,57 +331,58 @@ class Session:
 
     # --- messages of the runner ---
 
-    def handle(self, kind: str, payload: Any) -> None:
-        """Take one message of the current job (see :mod:`sorgui.session.job`)."""
+    def handle(self, message: Message) -> None:
+        """Take one message of the current job (:mod:`sorgui.session.messages`)."""
         run = self.run
         if run is None:
             return
         if self._refresh is not None:
-            self._handle_refresh(run, kind, payload)
+            self._handle_refresh(run, message)
             return
-        if not run.running or kind in SUPERVISION:
+        if not run.running or isinstance(message, SUPERVISION):
             return
-        if kind == "progress":
-            self._start_stage(run, str(payload))
-        elif kind == "done":
-            name, seconds = payload
-            self._finish_stage(run, name, seconds, add=True)
-        elif kind == "analysis":
-            run.analysis = payload
-            for name, seconds in payload.timings:
-                self._finish_stage(run, name, seconds, add=False)
-            self._skip_unneeded(run, payload)
-            self.events.analysis_changed.emit(payload)
-        elif kind == "scene":
-            run.scene = payload
-            self.events.scene_changed.emit(payload)
-        elif kind == "nearest_scene":
-            run.nearest_scene = payload
-            self.events.nearest_scene_changed.emit(payload)
-        elif kind == "formulas":
-            run.formulas = payload
-            self.events.formulas_changed.emit(payload)
-        elif kind == "components":
-            run.components = tuple(payload)
-            self.events.components_changed.emit(run.components)
-        else:
-            self._end(run, kind, payload)
+        match message:
+            case StageStarted(stage):
+                self._start_stage(run, stage)
+            case StageDone(stage, seconds):
+                self._finish_stage(run, stage, seconds, add=True)
+            case AnalysisKnown(analysis):
+                run.analysis = analysis
+                for name, seconds in analysis.timings:
+                    self._finish_stage(run, name, seconds, add=False)
+                self._skip_unneeded(run, analysis)
+                self.events.analysis_changed.emit(analysis)
+            case SceneKnown(scene):
+                run.scene = scene
+                self.events.scene_changed.emit(scene)
+            case NearestSceneKnown(scene):
+                run.nearest_scene = scene
+                self.events.nearest_scene_changed.emit(scene)
+            case FormulasKnown(formulas):
+                run.formulas = formulas
+                self.events.formulas_changed.emit(formulas)
+            case ComponentsKnown(components):
+                run.components = tuple(components)
+                self.events.components_changed.emit(run.components)
+            case Finished() | Invalid() | Failed() | JobCancelled() | Hangup():
+                self._end(run, message)
 
-    def _handle_refresh(self, run: Run, kind: str, payload: Any) -> None:
-        if kind == "scene":
-            run.scene = payload
-            self.events.scene_changed.emit(payload)
-        elif kind == "formulas":
-            run.formulas = payload
-            self.events.formulas_changed.emit(payload)
-        elif kind in ("finished", "failed", "cancelled", "invalid"):
-            what, self._refresh = self._refresh, None
-            if kind == "finished" and run.result is not None:
-                run.result = replace(run.result, scene=run.scene, formulas=run.formulas)
-            redone = None
-            if kind == "finished":  # a cancelled run redrawn keeps what it had, with the new mesh
-                redone = run.result or JobResult(run.analysis, run.scene, run.formulas, (), run.nearest_scene)
-            self.events.refreshed.emit(what, redone)
+    def _handle_refresh(self, run: Run, message: Message) -> None:
+        match message:
+            case SceneKnown(scene):
+                run.scene = scene
+                self.events.scene_changed.emit(scene)
+            case FormulasKnown(formulas):
+                run.formulas = formulas
+                self.events.formulas_changed.emit(formulas)
+            case Finished() | Invalid() | Failed() | JobCancelled():
+                what, self._refresh = self._refresh, None
+                redone = None
+                if isinstance(message, Finished):  # a cancelled run redrawn keeps what it had, with the new mesh
+                    if run.result is not None:
+                        run.result = replace(run.result, scene=run.scene, formulas=run.formulas)
+                    redone = run.result or JobResult(run.analysis, run.scene, run.formulas, (), run.nearest_scene)
+                self.events.refreshed.emit(what, redone)
 
     def _set_state(self, run: Run, stage: Stage, state: StageState) -> None:
         if stage.state is not state:
@@ -416,36 +433,34 @@ class Session:
         if add or not was_done:
             self.events.stage_done.emit(name, stage.seconds)
 
-    def _end(self, run: Run, kind: str, payload: Any) -> None:
-        run.outcome = kind if kind in ("finished", "invalid", "failed", "cancelled") else "failed"
+    def _end(self, run: Run, message: FinalMessage | Hangup) -> None:
+        run.outcome = {Finished: "finished", Invalid: "invalid", JobCancelled: "cancelled"}.get(type(message), "failed")
         run.ended = time.monotonic()
-        rest = {
-            "finished": StageState.SKIPPED,
-            "invalid": StageState.SKIPPED,
-            "failed": StageState.SKIPPED,
-            "cancelled": StageState.CANCELLED,
-        }[run.outcome]
+        rest = StageState.CANCELLED if run.outcome == "cancelled" else StageState.SKIPPED
         running = {
             "finished": StageState.DONE,
             "invalid": StageState.FAILED,
             "failed": StageState.FAILED,
             "cancelled": StageState.CANCELLED,
         }[run.outcome]
-        if kind == "finished":
-            run.analysis = payload.analysis
-            run.scene = run.scene if run.scene is not None else payload.scene
-            run.formulas = run.formulas or (payload.formulas or {})
-            run.nearest_scene = run.nearest_scene if run.nearest_scene is not None else payload.nearest_scene
-            run.result = replace(
-                payload, scene=run.scene, formulas=run.formulas or payload.formulas, nearest_scene=run.nearest_scene
-            )
-        elif kind == "invalid":
-            run.error = tuple(payload)  # type: ignore[assignment]
-            run.message = str(payload[0])
-        elif kind == "failed":
-            run.message = str(payload)
-        else:
-            run.message = "cancelled"
+        match message:
+            case Finished(result):
+                run.analysis = result.analysis
+                run.scene = run.scene if run.scene is not None else result.scene
+                run.formulas = run.formulas or (result.formulas or {})
+                run.nearest_scene = run.nearest_scene if run.nearest_scene is not None else result.nearest_scene
+                run.result = replace(
+                    result, scene=run.scene, formulas=run.formulas or result.formulas, nearest_scene=run.nearest_scene
+                )
+            case Invalid(text, position, end):
+                run.error = (text, position, end)  # type: ignore[assignment]
+                run.message = text
+            case Failed(text):
+                run.message = text
+            case JobCancelled():
+                run.message = "cancelled"
+            case _:
+                run.message = "the analysis process hung up"
         now = time.monotonic()
         for stage in run.stages.values():
             if stage.state is StageState.RUNNING:

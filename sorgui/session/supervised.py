@@ -5,11 +5,11 @@ The child (:func:`analysis_child`, a :class:`~sorgui.session.child.ChildProcess`
 :func:`sorgui.engine.analyze` for each :class:`AnalysisRequest` it is sent and streams what is
 known as it is known:
 
-* ``("parsed", Analysis)``: the equation's :func:`~sorgui.engine.timelimit.skeleton`;
-* ``("progress", stage)`` and ``("done", (stage, seconds))`` as each stage starts and ends;
-* ``("analysis", Analysis)``: the results known so far (after the factors, the rationality, …);
-* one final message: ``("finished", Analysis)``, ``("invalid", (message, position))`` for text
-  that is not a polynomial, or ``("failed", message)``.
+* :class:`~.messages.Parsed`: the equation's :func:`~sorgui.engine.timelimit.skeleton`;
+* :class:`~.messages.StageStarted` and :class:`~.messages.StageDone` as each stage starts and ends;
+* :class:`~.messages.AnalysisKnown`: the results known so far (after the factors, the rationality, …);
+* one final message: :class:`~.messages.Finished` with the ``Analysis``,
+  :class:`~.messages.Invalid` for text that is not a polynomial, or :class:`~.messages.Failed`.
 
 The parent folds the messages into a :class:`StageLog`. The engine bounds itself by the time
 limit wherever Python runs; when it does not answer :data:`GRACE` seconds after the limit
@@ -22,10 +22,24 @@ from __future__ import annotations
 import sys
 import time
 import traceback
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
-from sorgui.session.child import ChildProcess, Message, become_child
+from sorgui.session.child import ChildProcess, become_child
+from sorgui.session.messages import (
+    AnalysisKnown,
+    Failed,
+    FinalMessage,
+    Finished,
+    Hangup,
+    Invalid,
+    JobCancelled,
+    Message,
+    Parsed,
+    StageDone,
+    StageStarted,
+)
 
 if TYPE_CHECKING:
     from multiprocessing.connection import Connection
@@ -34,12 +48,6 @@ if TYPE_CHECKING:
 
 GRACE = 0.4
 """Seconds after its time limit that an analysis process is given to answer before it is killed."""
-
-FINAL = ("finished", "invalid", "failed")
-
-SUPERVISION = ("parsed", "analysed")
-"""Messages for the supervising parent alone: the equation's skeleton, and the end of the
-engine's part of a window's job (:mod:`sorgui.session.job`); views never see them."""
 
 
 @dataclass(frozen=True)
@@ -73,43 +81,45 @@ class StageLog:
     latest: Analysis | None = None
     timings: list[tuple[str, float]] = field(default_factory=list)
     current: str | None = None
-    final: Message | None = None
+    final: FinalMessage | None = None
 
     def take(self, message: Message) -> bool:
         """Fold in one message; ``True`` when it is the final one."""
-        kind, payload = message
-        if kind == "parsed":
-            self.start = payload
-        elif kind == "progress":
-            self.current = payload
-        elif kind == "done":
-            self.timings.append(tuple(payload))  # type: ignore[arg-type]
-        elif kind == "analysis":
-            self.latest = payload
-        elif kind in FINAL:
-            self.final = message
-            return True
+        match message:
+            case Parsed(analysis):
+                self.start = analysis
+            case StageStarted(stage):
+                self.current = stage
+            case StageDone(stage, seconds):
+                self.timings.append((stage, seconds))
+            case AnalysisKnown(analysis):
+                self.latest = analysis
+            case Finished() | Invalid() | Failed() | JobCancelled():
+                self.final = message
+                return True
         return False
 
-    def outcome(self, reason: str) -> Message:
+    def outcome(self, reason: str) -> Finished | Failed:
         """The final message for a process that was ended (``reason``: why, in words): the stages
         it finished as done and the rest unfinished, or ``failed`` if it had not yet read the
         equation."""
         from sorgui.engine.timelimit import unfinished_analysis
 
         if self.start is None and self.latest is None:
-            return "failed", f"{reason} (while reading the equation)"
+            return Failed(f"{reason} (while reading the equation)")
         start = self.start if self.start is not None else self.latest
         assert start is not None
         timings = tuple(self.timings) if self.timings or self.latest is None else self.latest.timings
-        return "finished", unfinished_analysis(
-            start,
-            recognition=None,
-            latest=self.latest,
-            timings=timings,
-            current=self.current,
-            message=reason,
-            recognition_only=self.recognition_only,
+        return Finished(
+            unfinished_analysis(
+                start,
+                recognition=None,
+                latest=self.latest,
+                timings=timings,
+                current=self.current,
+                message=reason,
+                recognition_only=self.recognition_only,
+            )
         )
 
 
@@ -118,8 +128,8 @@ def analysis_child(conn: Connection) -> None:
     is known, until the pipe closes."""
     become_child()
 
-    def send(kind: str, payload: object) -> None:
-        conn.send((kind, payload))
+    def send(message: Message) -> None:
+        conn.send(message)
 
     while True:
         try:
@@ -132,7 +142,7 @@ def analysis_child(conn: Connection) -> None:
             return
 
 
-def run_request(request: AnalysisRequest, send: Any) -> Message:  # noqa: ANN401 (a callable)
+def run_request(request: AnalysisRequest, send: Callable[[Message], None]) -> FinalMessage:
     """Analyse ``request``, sending every intermediate message; return the final one."""
     from sorgui.engine import ParseError, SorguiError, analyze
 
@@ -140,21 +150,21 @@ def run_request(request: AnalysisRequest, send: Any) -> Message:  # noqa: ANN401
         analysis = analyze(
             request.text,
             **request.options(),
-            progress=lambda stage: send("progress", stage),
-            partial=lambda known: send("analysis", known),
-            stage_done=lambda stage, seconds: send("done", (stage, seconds)),
-            parsed=lambda start: send("parsed", start),
+            progress=lambda stage: send(StageStarted(stage)),
+            partial=lambda known: send(AnalysisKnown(known)),
+            stage_done=lambda stage, seconds: send(StageDone(stage, seconds)),
+            parsed=lambda start: send(Parsed(start)),
         )
-        return "finished", analysis
+        return Finished(analysis)
     except ParseError as exc:
-        return "invalid", (str(exc), exc.position)
+        return Invalid(str(exc), exc.position)
     except SorguiError as exc:
-        return "failed", exc.message
+        return Failed(exc.message)
     except MemoryError:
-        return "failed", "the analysis ran out of memory"
+        return Failed("the analysis ran out of memory")
     except Exception as exc:  # noqa: BLE001 - a bug still ends in one line; the details go to stderr
         traceback.print_exc(file=sys.stderr)
-        return "failed", f"internal error ({type(exc).__name__}: {exc}); please report it with the input"
+        return Failed(f"internal error ({type(exc).__name__}: {exc}); please report it with the input")
 
 
 class Supervised:
@@ -178,17 +188,16 @@ class Supervised:
         self.deadline = float("inf") if limit is None else begun + limit + GRACE
         self.child.send(request)
 
-    def collect(self, timeout: float = 0.0) -> Message | None:
+    def collect(self, timeout: float = 0.0) -> FinalMessage | None:
         """The final message of the current request if it has come (waiting at most ``timeout``
         seconds for the first message); the process's death or the deadline make one."""
         assert self.log is not None
         first = self.child.receive(min(timeout, max(self.deadline - time.monotonic(), 0.0)))
         for message in ([first] if first is not None else []) + self.child.messages():
-            if message[0] == "eof":
+            if isinstance(message, Hangup):
                 self.child.ended = True
-                return (
-                    "failed",
-                    f"the analysis process died ({self.child.exit_description()}); it may have run out of memory",
+                return Failed(
+                    f"the analysis process died ({self.child.exit_description()}); it may have run out of memory"
                 )
             if self.log.take(message):
                 return self.log.final
@@ -201,7 +210,7 @@ class Supervised:
             return self.log.outcome(limit_message(limit))
         return None
 
-    def run(self, request: AnalysisRequest, started: float | None = None) -> Message:
+    def run(self, request: AnalysisRequest, started: float | None = None) -> FinalMessage:
         """Give ``request`` and wait for its final message."""
         self.give(request, started)
         while True:
@@ -213,7 +222,7 @@ class Supervised:
         self.child.close()
 
 
-def analyze_supervised(request: AnalysisRequest, started: float | None = None) -> Message:
+def analyze_supervised(request: AnalysisRequest, started: float | None = None) -> FinalMessage:
     """Analyse ``request`` in a forked child process under its time limit, counted from
     ``started`` (``sorgui analyze``: the start of the process).
 
@@ -226,7 +235,7 @@ def analyze_supervised(request: AnalysisRequest, started: float | None = None) -
     try:
         worker = Supervised(multiprocessing.get_context("fork"))
     except OSError as exc:  # a limit on processes (ulimit -u) or on memory
-        return "failed", f"the analysis process could not be started: {exc.strerror or exc}"
+        return Failed(f"the analysis process could not be started: {exc.strerror or exc}")
     try:
         return worker.run(request, started)
     finally:

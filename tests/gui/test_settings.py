@@ -117,7 +117,8 @@ def test_the_time_limit_and_the_tolerance_are_settings(make_window, monkeypatch)
 def test_the_tolerance_of_the_window_reaches_the_engine() -> None:
     from sorgui.gui.main_window import parse_tolerance
     from sorgui.session.job import JobRequest, run_job
+    from sorgui.session.messages import Finished
 
     assert [parse_tolerance(t) for t in ("auto", "", "1e-8", "2", "x")] == [None, None, 1e-8, False, False]
-    kind, result = run_job(JobRequest("x^2 + y^2 - z", tolerance=1e-8, scene=False, style=None))
-    assert kind == "finished" and result.analysis.approximate.tolerance == 1e-8
+    final = run_job(JobRequest("x^2 + y^2 - z", tolerance=1e-8, scene=False, style=None))
+    assert isinstance(final, Finished) and final.result.analysis.approximate.tolerance == 1e-8

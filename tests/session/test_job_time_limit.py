@@ -6,14 +6,16 @@ import time
 from pathlib import Path
 
 from sorgui.session.job import JobRequest, run_job
+from sorgui.session.messages import Finished
 
 SLOW = (Path(__file__).resolve().parents[1] / "data" / "slow-singular.txt").read_text(encoding="utf-8")
 
 
 def test_the_worker_reports_unfinished_stages_and_keeps_the_rest() -> None:
     start = time.monotonic()
-    kind, result = run_job(JobRequest(SLOW, singular_timeout=4, style=None, resolution=30))
-    assert kind == "finished"
+    final = run_job(JobRequest(SLOW, singular_timeout=4, style=None, resolution=30))
+    assert isinstance(final, Finished)
+    result = final.result
     assert time.monotonic() - start < 4 + 20  # plus the scene of the surface, on a busy machine
     analysis = result.analysis
     assert analysis.is_sor and analysis.recognition.axis is not None
@@ -24,6 +26,7 @@ def test_the_worker_reports_unfinished_stages_and_keeps_the_rest() -> None:
 PARENT = """
 import sys, multiprocessing
 from sorgui.session.job import JobRequest, serve
+from sorgui.session.messages import Finished
 
 if __name__ == "__main__":
     context = multiprocessing.get_context("spawn")

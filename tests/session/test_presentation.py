@@ -28,6 +28,7 @@ from sorgui.session.formulas import (
     vector_formula,
 )
 from sorgui.session.job import JobRequest, run_job
+from sorgui.session.messages import Failed, Finished, Invalid, JobCancelled
 from sorgui.session.scene_data import view_region
 
 s, t = sympy.symbols("s t")
@@ -117,8 +118,9 @@ def test_view_region_frames_the_bounded_part() -> None:
 
 
 def test_job_returns_plain_picklable_data() -> None:
-    kind, result = run_job(JobRequest(example_text("cylinder"), resolution=40))
-    assert kind == "finished"
+    final = run_job(JobRequest(example_text("cylinder"), resolution=40))
+    assert isinstance(final, Finished)
+    result = final.result
     blob = pickle.loads(pickle.dumps(result))
     assert blob.analysis.recognition.symmetry == "cylinder_of_revolution"
     assert not blob.scene.surface.is_empty and not blob.scene.axis_segment.is_empty
@@ -127,13 +129,15 @@ def test_job_returns_plain_picklable_data() -> None:
 
 
 def test_job_reports_errors_as_messages() -> None:
-    kind, (message, position, end) = run_job(JobRequest("x^2+*y"))
-    assert kind == "invalid" and position == 4 and end > position and message
+    invalid = run_job(JobRequest("x^2+*y"))
+    assert isinstance(invalid, Invalid) and invalid.position == 4 and invalid.end > invalid.position
+    assert invalid.message
     cancel = threading.Event()
     cancel.set()
-    assert run_job(JobRequest(example_text("torus")), cancel) == ("cancelled", None)
-    kind, message = run_job(JobRequest("x", analysis="not an analysis"))  # type: ignore[arg-type]
-    assert kind == "failed" and message.startswith("internal error") and "Traceback" not in message
+    assert run_job(JobRequest(example_text("torus")), cancel) == JobCancelled()
+    failed = run_job(JobRequest("x", analysis="not an analysis"))  # type: ignore[arg-type]
+    assert isinstance(failed, Failed) and failed.message.startswith("internal error")
+    assert "Traceback" not in failed.message
 
 
 def test_worker_process_imports_no_qt() -> None:

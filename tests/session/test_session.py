@@ -14,6 +14,7 @@ from sorgui.examples import example_text
 from sorgui.session import Session, StageState
 from sorgui.session.components import component_texts
 from sorgui.session.job import JobRequest
+from sorgui.session.messages import AnalysisKnown, Failed, JobCancelled, StageStarted
 
 TORUS = example_text("torus")
 
@@ -143,9 +144,9 @@ def test_a_failed_stage_is_marked_and_the_rest_is_not_run() -> None:
     session = Session(runner)
     session.analyze("x^2 + y^2 - z")
     for stage in ("parse", "recognition", "factors", "rationality"):
-        session.handle("progress", stage)
+        session.handle(StageStarted(stage))
     assert states(session)["factors"] is StageState.DONE
-    session.handle("failed", "Singular: out of memory")
+    session.handle(Failed("Singular: out of memory"))
     run = session.run
     assert run.outcome == "failed" and run.message == "Singular: out of memory"
     assert run.failed_stage().name == "rationality"
@@ -157,7 +158,7 @@ def test_an_unplanned_engine_stage_is_inserted_where_it_starts() -> None:
     session.analyze("x^2 + y^2 - 1.0000001*z^2")
     assert "approximate" in session.run.stages, "planned for decimals"
     for stage in ("parse", "recognition", "canal spine"):
-        session.handle("progress", stage)
+        session.handle(StageStarted(stage))
     names = [stage.name for stage in session.run.stage_list()]
     assert names.index("canal spine") == names.index("recognition") + 1
     assert states(session)["recognition"] is StageState.DONE
@@ -168,8 +169,8 @@ def test_messages_after_the_end_and_requests_of_the_nearest_view() -> None:
     runner = ScriptedRunner()
     session = Session(runner)
     session.analyze("x^2 + y^2 - z")
-    session.handle("cancelled", None)
-    session.handle("analysis", "late")  # a retired job's message: ignored
+    session.handle(JobCancelled())
+    session.handle(AnalysisKnown("late"))  # a retired job's message: ignored
     assert session.run.analysis is None
     with pytest.raises(ValueError):
         session.set_view("nearest")

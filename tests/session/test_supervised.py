@@ -7,6 +7,7 @@ import multiprocessing
 
 import pytest
 
+from sorgui.session.messages import AnalysisKnown, Failed, Finished, Message, Parsed, StageDone, StageStarted
 from sorgui.session.supervised import (
     AnalysisRequest,
     StageLog,
@@ -18,28 +19,29 @@ from sorgui.session.supervised import (
 def test_the_streamed_messages_rebuild_an_unfinished_analysis() -> None:
     """Everything the process sends before it is killed gives the same answer as the engine's own
     time limit: the stages done, the rest unfinished."""
-    sent: list[tuple[str, object]] = []
+    sent: list[Message] = []
     request = AnalysisRequest("(x^2+y^2+z^2+21)^2-100(x^2+y^2)", timeout=60)
-    final = run_request(request, lambda kind, payload: sent.append((kind, payload)))
-    assert final[0] == "finished"
-    kinds = [kind for kind, _ in sent]
-    assert kinds[:2] == ["progress", "done"] and "parsed" in kinds and "analysis" in kinds
-    cut = kinds.index("progress", kinds.index("analysis"))  # killed while the stage after the verdict ran
+    final = run_request(request, sent.append)
+    assert isinstance(final, Finished)
+    kinds = [type(m) for m in sent]
+    assert kinds[:2] == [StageStarted, StageDone] and Parsed in kinds and AnalysisKnown in kinds
+    cut = kinds.index(StageStarted, kinds.index(AnalysisKnown))  # killed while the stage after the verdict ran
     log = StageLog(request.recognition_only)
     for message in sent[: cut + 1]:
         assert not log.take(message)
-    kind, analysis = log.outcome("the analysis did not finish within the time limit of 60 s")
-    assert kind == "finished" and analysis.is_sor and analysis.unfinished
-    assert analysis.unfinished[0] == sent[cut][1]
-    assert {name for name, _ in analysis.timings} == {payload[0] for kind, payload in sent[:cut] if kind == "done"}
+    outcome = log.outcome("the analysis did not finish within the time limit of 60 s")
+    assert isinstance(outcome, Finished)
+    analysis = outcome.result
+    assert analysis.is_sor and analysis.unfinished
+    assert analysis.unfinished[0] == sent[cut].stage  # type: ignore[union-attr]
+    assert {name for name, _ in analysis.timings} == {m.stage for m in sent[:cut] if isinstance(m, StageDone)}
 
 
 def test_killed_before_the_equation_was_read_is_a_failure() -> None:
     log = StageLog(recognition_only=False)
-    log.take(("progress", "engine"))
-    assert log.outcome("the analysis did not finish within the time limit of 1 s") == (
-        "failed",
-        "the analysis did not finish within the time limit of 1 s (while reading the equation)",
+    log.take(StageStarted("engine"))
+    assert log.outcome("the analysis did not finish within the time limit of 1 s") == Failed(
+        "the analysis did not finish within the time limit of 1 s (while reading the equation)"
     )
 
 
@@ -50,5 +52,6 @@ def test_no_process_can_be_started(monkeypatch: pytest.MonkeyPatch) -> None:
         raise BlockingIOError(errno.EAGAIN, "Resource temporarily unavailable")
 
     monkeypatch.setattr(multiprocessing.context.ForkProcess, "start", refuse)
-    kind, message = analyze_supervised(AnalysisRequest("x^2 + y^2 - z", timeout=10))
-    assert kind == "failed" and message == "the analysis process could not be started: Resource temporarily unavailable"
+    assert analyze_supervised(AnalysisRequest("x^2 + y^2 - z", timeout=10)) == Failed(
+        "the analysis process could not be started: Resource temporarily unavailable"
+    )
