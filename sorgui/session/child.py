@@ -55,7 +55,7 @@ class ChildProcess:
 
     def __init__(
         self,
-        context: multiprocessing.context.BaseContext,
+        context: multiprocessing.context.ForkContext | multiprocessing.context.SpawnContext,
         target: Callable[..., None],
         args: tuple[Any, ...] = (),
         name: str = "sorgui-analysis",
@@ -95,7 +95,8 @@ class ChildProcess:
         """The next message, waiting at most ``timeout`` seconds (``None``: nothing came)."""
         try:
             if self.conn.poll(max(timeout, 0.0)):
-                return self.conn.recv()
+                message: Message = self.conn.recv()
+                return message
         except (EOFError, OSError):
             return Hangup()
         return None

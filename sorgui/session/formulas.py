@@ -77,7 +77,7 @@ class Formula:
         except ExpressionError:
             return self.plain
         if not self.vector:
-            return parts[0]
+            return str(parts[0])
         left, right = _BRACKETS[language]
         return left + ", ".join(parts) + right
 
@@ -93,7 +93,7 @@ class Style:
 
 
 def _latex(expr: sympy.Expr) -> str:
-    return sympy.latex(expr, fold_short_frac=True)
+    return str(sympy.latex(expr, fold_short_frac=True))
 
 
 CODE_PRINTERS = (("Maple", maple_code), ("Mathematica", mathematica_code), ("Python", pycode))
@@ -322,7 +322,7 @@ class _Box:
 
     @property
     def ascent(self) -> int:
-        return self.image.shape[0] - self.depth
+        return int(self.image.shape[0]) - self.depth
 
 
 _BOXES: dict[tuple[str, Style], _Box] = {}

@@ -153,12 +153,14 @@ class _Presenter:
             if extras is not None:
                 self.scene = self.stage("scene", lambda: extras(self.scene))
                 self.send(SceneKnown(self.scene))
-            if self._approximated and self.nearest_scene is None and _nearest(analysis) is not None:
-                nearest = _nearest(analysis)
-                self.nearest_scene = self.stage(
-                    "scene",
-                    lambda: scene_data.build_scene(nearest, region=self.scene.region, resolution=request.resolution),
-                )
+            nearest = _nearest(analysis) if self._approximated and self.nearest_scene is None else None
+            if nearest is not None:
+                target: Analysis = nearest
+
+                def draw_nearest() -> Any:
+                    return scene_data.build_scene(target, region=self.scene.region, resolution=request.resolution)
+
+                self.nearest_scene = self.stage("scene", draw_nearest)
                 self.send(NearestSceneKnown(self.nearest_scene))
         if request.style is not None:
             style = request.style
@@ -189,7 +191,7 @@ class _Presenter:
         canal surface's spines and circles."""
         from sorgui.session import scene_data
 
-        steps = []
+        steps: list[Callable[[Any], Any]] = []
         if not self._patched and analysis.parametrizations:
             self._patched = True
             steps.append(lambda scene: scene_data.with_patch(scene, analysis))

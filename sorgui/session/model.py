@@ -299,7 +299,7 @@ class Session:
     def _redo(self, what: str, changes: dict[str, Any]) -> bool:
         """Redo the scene or the formulas of the current run (``False`` when :attr:`can_redo` is not)."""
         run = self.run
-        if not self.can_redo:
+        if run is None or not self.can_redo:
             return False
         self._refresh = what
         self.runner.start(replace(run.request, analysis=run.analysis, **changes))
@@ -381,7 +381,10 @@ class Session:
                 if isinstance(message, Finished):  # a cancelled run redrawn keeps what it had, with the new mesh
                     if run.result is not None:
                         run.result = replace(run.result, scene=run.scene, formulas=run.formulas)
-                    redone = run.result or JobResult(run.analysis, run.scene, run.formulas, (), run.nearest_scene)
+                    if run.result is None and run.analysis is not None:
+                        redone = JobResult(run.analysis, run.scene, run.formulas, (), run.nearest_scene)
+                    else:
+                        redone = run.result
                 self.events.refreshed.emit(what, redone)
 
     def _set_state(self, run: Run, stage: Stage, state: StageState) -> None:

@@ -15,6 +15,7 @@ centre, or the origin), so that bounded parts of the surface are shown whole.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -109,9 +110,9 @@ def view_region(terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
     dropped), the same ball in which a rounded input's deviation is measured (docs/math.md §8.6)."""
     exps, coefs = term_arrays(terms, 3)
     degree = int(exps.sum(axis=1).max(initial=0))
-    array = dense.from_terms({tuple(int(v) for v in e): float(c) for e, c in zip(exps, coefs)}, degree)
+    array = dense.from_terms({(int(e[0]), int(e[1]), int(e[2])): float(c) for e, c in zip(exps, coefs)}, degree)
     middle, radius = view_ball(array, np.asarray(center, dtype=np.float64), axis)
-    return ClipSphere(tuple(float(v) for v in middle), radius)
+    return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
 
 
 def natural_center(rec: Recognition, approximate: Approximation | None = None) -> tuple[np.ndarray, np.ndarray | None]:
@@ -141,12 +142,13 @@ def _patch(param: Parametrization, region: ClipSphere) -> PatchData | None:
     except (ExpressionError, ValueError, TypeError):
         return None
 
-    def coordinate(numerator: Terms, denominator: Terms):
+    def coordinate(numerator: Terms, denominator: Terms) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
         def evaluate(s: np.ndarray, t: np.ndarray) -> np.ndarray:
             st = np.column_stack([np.ravel(s), np.ravel(t)])
             with np.errstate(all="ignore"):
                 value = evaluate_points(numerator, st) / evaluate_points(denominator, st)
-            return value.reshape(np.shape(s))
+            shaped: np.ndarray = value.reshape(np.shape(s))
+            return shaped
 
         return evaluate
 
@@ -207,8 +209,8 @@ def build_scene(
         profile_curve=profile,
         center_marker=marker,
         patch=_patch(real[0], region) if real else None,
-        axis_point=axis_point,  # type: ignore[arg-type]
-        axis_direction=tuple(axis_direction) if axis_direction is not None else None,  # type: ignore[arg-type]
+        axis_point=axis_point,
+        axis_direction=tuple(axis_direction) if axis_direction is not None else None,
         notes=tuple(notes),
         factor_axes=LineData.from_polylines([line.points for line in factor_lines if not line.is_empty]),
     )
