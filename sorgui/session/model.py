@@ -152,7 +152,7 @@ class Run:
     components: tuple[Component, ...] = ()
     outcome: str | None = None
     message: str | None = None
-    error: tuple[str, int, int] | None = None
+    error: tuple[str, int | None, int | None] | None = None
     result: JobResult | None = None
     started: float = field(default_factory=time.monotonic)
     ended: float | None = None
@@ -456,7 +456,7 @@ class Session:
                     result, scene=run.scene, formulas=run.formulas or result.formulas, nearest_scene=run.nearest_scene
                 )
             case Invalid(text, position, end):
-                run.error = (text, position, end)  # type: ignore[assignment]
+                run.error = (text, position, end)
                 run.message = text
             case Failed(text):
                 run.message = text

@@ -112,8 +112,6 @@ class RationalFunction:
             return NotImplemented
         return self.num == other.num and self.den == other.den
 
-    __hash__ = None  # type: ignore[assignment]
-
     def derivative(self, var: int | str) -> RationalFunction:
         """The partial derivative with respect to the generator ``var``."""
         n, d = self.num, self.den

@@ -186,12 +186,15 @@ def _fails_modulo_prime(
     if image is None:
         return False
     ring = _Ring(image)
-    parts = [_modular(h) for h in (*g, *H.values(), *T.values())]
-    if any(x is None for x in parts):
-        return False
-    gm = [ring.reduce(x) for x in parts[:3]]  # type: ignore[arg-type]
-    Hm = {k: ring.reduce(x) for k, x in zip(H, parts[3 : 3 + len(H)])}  # type: ignore[arg-type]
-    Tm = {k: ring.reduce(x) for k, x in zip(T, parts[3 + len(H) :])}  # type: ignore[arg-type]
+    parts = []
+    for h in (*g, *H.values(), *T.values()):
+        part = _modular(h)
+        if part is None:
+            return False
+        parts.append(ring.reduce(part))
+    gm = parts[:3]
+    Hm = dict(zip(H, parts[3 : 3 + len(H)]))
+    Tm = dict(zip(T, parts[3 + len(H) :]))
     a0, a1, a2, disc, C = _focal_terms(gm, Hm, Tm, ring)
     if a2 == 0 or disc == 0:
         return False

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
+from typing import TypeVar
 
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpq_poly
@@ -38,6 +39,7 @@ from ..singular.curves import CurveParametrization
 from .spine import SMAT_NAMES, SmatCurve
 
 T = sympy.Symbol("t")
+Item = TypeVar("Item")
 THETA = sympy.Symbol("theta")
 
 
@@ -111,19 +113,23 @@ def _recover_over_qq(curve: SmatCurve, plane: CurveParametrization) -> RationalF
     dm = tuple(c.derivative(0) for c in m)
     drho = rho.derivative(0)
     n2 = dm[0] * dm[0] + dm[1] * dm[1] + dm[2] * dm[2]
-    center = tuple(c - drho / (2 * n2) * d for c, d in zip(m, dm))
-    exact = ExactFamily(m, rho, center, rho - drho * drho / (4 * n2), dm)  # type: ignore[arg-type]
-    shown = _shown
+    center = _three([c - drho / (2 * n2) * d for c, d in zip(m, dm)])
+    exact = ExactFamily(m, rho, center, rho - drho * drho / (4 * n2), _three(dm))
     return RationalFamily(
-        tuple(shown(c) for c in m),  # type: ignore[arg-type]
-        shown(rho),
+        _three([_shown(c) for c in m]),
+        _shown(rho),
         (),
         verified,
-        tuple(shown(c) for c in exact.center),  # type: ignore[arg-type]
-        shown(exact.radius_squared),
-        tuple(shown(c) for c in exact.normal),  # type: ignore[arg-type]
+        _three([_shown(c) for c in exact.center]),
+        _shown(exact.radius_squared),
+        _three([_shown(c) for c in exact.normal]),
         exact,
     )
+
+
+def _three(values: Sequence[Item]) -> tuple[Item, Item, Item]:
+    """The three coordinates of a point."""
+    return values[0], values[1], values[2]
 
 
 def _at(p: fmpq_mpoly, point: Sequence[RationalFunction]) -> RationalFunction:
@@ -192,7 +198,7 @@ def _exact_radical(exact: ExactFamily) -> tuple[sympy.Expr, sympy.Expr, sympy.Ex
         root = sympy.sqrt(sympy.Rational(int(c.p), int(c.q))) * sympy.sqrt(_shown(RationalFunction.of(N)))
         root /= sympy.sqrt(_shown(RationalFunction.of(D)))
         terms.append([_shown(x * q) * root * angle for x in e])
-    return tuple(_shown(c) + a + b for c, a, b in zip(exact.center, *terms))  # type: ignore[return-value]
+    return _three([_shown(c) + a + b for c, a, b in zip(exact.center, *terms)])
 
 
 def square_root(square: sympy.Expr) -> sympy.Expr:
