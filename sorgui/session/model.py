@@ -352,29 +352,30 @@ class Session:
                     self._finish_stage(run, name, seconds, add=False)
                 self._skip_unneeded(run, analysis)
                 self.events.analysis_changed.emit(analysis)
-            case SceneKnown(scene):
-                run.scene = scene
-                self.events.scene_changed.emit(scene)
+            case SceneKnown() | FormulasKnown():
+                self._take_drawing(run, message)
             case NearestSceneKnown(scene):
                 run.nearest_scene = scene
                 self.events.nearest_scene_changed.emit(scene)
-            case FormulasKnown(formulas):
-                run.formulas = formulas
-                self.events.formulas_changed.emit(formulas)
             case ComponentsKnown(components):
                 run.components = tuple(components)
                 self.events.components_changed.emit(run.components)
             case Finished() | Invalid() | Failed() | JobCancelled() | Hangup():
                 self._end(run, message)
 
+    def _take_drawing(self, run: Run, message: SceneKnown | FormulasKnown) -> None:
+        """The typed surface's scene or the typeset formulas, of a run or of its redrawing."""
+        if isinstance(message, SceneKnown):
+            run.scene = message.scene
+            self.events.scene_changed.emit(message.scene)
+        else:
+            run.formulas = message.formulas
+            self.events.formulas_changed.emit(message.formulas)
+
     def _handle_refresh(self, run: Run, message: Message) -> None:
         match message:
-            case SceneKnown(scene):
-                run.scene = scene
-                self.events.scene_changed.emit(scene)
-            case FormulasKnown(formulas):
-                run.formulas = formulas
-                self.events.formulas_changed.emit(formulas)
+            case SceneKnown() | FormulasKnown():
+                self._take_drawing(run, message)
             case Finished() | Invalid() | Failed() | JobCancelled():
                 what, self._refresh = self._refresh, None
                 redone = None
