@@ -93,9 +93,19 @@ def _no_process_outlives_its_test() -> Iterator[None]:
 
 
 def launch(args: list[str]) -> subprocess.Popen[str]:
-    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    """Start ``args`` as a terminal starts a command: with the default action for ``SIGINT``.
+    A job that a non-interactive shell put in the background inherits ``SIGINT`` ignored (so
+    that Ctrl+C spares it), and Python, like every program, then keeps ignoring it; the suite
+    run that way (``bash .ci/run &``) must still see what a user at a terminal sees."""
+    proc = subprocess.Popen(
+        args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=_default_interrupt
+    )
     STARTED.append(proc)
     return proc
+
+
+def _default_interrupt() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def start(*args: str, command: list[str] | None = None) -> tuple[subprocess.Popen[str], list[int]]:
