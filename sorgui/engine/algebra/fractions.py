@@ -62,9 +62,6 @@ class RationalFunction:
     def is_zero(self) -> bool:
         return self.num.is_zero()
 
-    def is_polynomial(self) -> bool:
-        return self.den.is_one()
-
     def __add__(self, other: RationalFunction | int) -> RationalFunction:
         other = self._lift(other)
         if self.den == other.den:
@@ -99,11 +96,6 @@ class RationalFunction:
         if other.is_zero():
             raise ZeroDivisionError("division by the zero rational function")
         return self * RationalFunction(other.den, other.num)
-
-    def __pow__(self, e: int) -> RationalFunction:
-        if e < 0:
-            return RationalFunction.make(self.den ** (-e), self.num ** (-e))
-        return RationalFunction(self.num**e, self.den**e)
 
     def __eq__(self, other: object) -> bool:
         if isinstance(other, int):
