@@ -144,6 +144,15 @@ def _from_poly(expr: sympy.Expr, symbols: Sequence[sympy.Symbol], ctx: fmpq_mpol
     return ctx.from_dict({(*m, *pad): fmpq(int(c.numerator), int(c.denominator)) for m, c in p.terms()})
 
 
+def lcm_all(polys: Iterable[fmpq_mpoly]) -> fmpq_mpoly:
+    """The least common multiple of the nonempty ``polys`` (a common denominator)."""
+    out = None
+    for p in polys:
+        out = p if out is None else out * (p / p.gcd(out))
+    assert out is not None
+    return out
+
+
 def evaluate(terms: Iterable[tuple[Monomial, Any]], point: Sequence[RationalFunction]) -> RationalFunction:
     """``Σ c·xᵐ`` at ``x = point``, over one common denominator ``D``: the numerator is
     ``Σ c·Π nᵢ^{mᵢ}·(D/dᵢ)^{mᵢ}·D^{deg − |m|}`` and the value that over ``D^deg``."""
@@ -151,9 +160,7 @@ def evaluate(terms: Iterable[tuple[Monomial, Any]], point: Sequence[RationalFunc
     ctx = point[0].ctx
     if not terms:
         return RationalFunction.constant(0, ctx)
-    D = point[0].den
-    for p in point[1:]:
-        D = D * (p.den / p.den.gcd(D))
+    D = lcm_all(p.den for p in point)
     scaled = [p.num * (D / p.den) for p in point]
     degree = max(sum(m) for m, _ in terms)
     powers: dict[tuple[int, int], fmpq_mpoly] = {}

@@ -15,7 +15,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TypeVar
 
@@ -28,6 +28,7 @@ from ..algebra.fractions import (
     evaluate,
     factored,
     from_expr,
+    lcm_all,
     poly_expr,
     square_root_parts,
 )
@@ -247,7 +248,7 @@ def verify_radical(f: Poly, family: RationalFamily) -> bool:
     ctx = context(("t", "a", "b"))
     _, a, b = ctx.gens()
     rows = (*exact.center, *e1, *e2)
-    den = _lcm_all(r.den for r in rows)
+    den = lcm_all(r.den for r in rows)
     D = embed(den, ctx)
     coords = []
     for i in range(3):
@@ -255,7 +256,7 @@ def verify_radical(f: Poly, family: RationalFamily) -> bool:
         coords.append(parts[0] + a * parts[1] + b * parts[2])
     value = compose_fraction(to_flint(f), coords, [D, D, D], ctx, common=D)
     n1, n2 = (sum((c * c for c in e[1:]), e[0] * e[0]) for e in (e1, e2))
-    common = _lcm_all((n1.den, n2.den, exact.radius_squared.den))
+    common = lcm_all((n1.den, n2.den, exact.radius_squared.den))
     lead = embed(n1.num * (common / n1.den), ctx)
     rest = embed(n2.num * (common / n2.den), ctx) * b * b - embed(
         exact.radius_squared.num * (common / exact.radius_squared.den), ctx
@@ -274,15 +275,6 @@ def exact_frame(
         if any(not c.is_zero() for c in e1):
             return e1, _cross(normal, e1)
     raise AnalysisError("the spine has a vanishing tangent")
-
-
-def _lcm_all(dens: Iterable[fmpq_mpoly]) -> fmpq_mpoly:
-    """The least common multiple of the polynomials ``dens``."""
-    out = None
-    for d in dens:
-        out = d if out is None else out * (d / d.gcd(out))
-    assert out is not None
-    return out
 
 
 def reduce_square(p: fmpq_mpoly, index: int, A: fmpq_mpoly, B: fmpq_mpoly, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
