@@ -9,7 +9,7 @@ multivariate ``gcd``), and sympy sees the result only once, when it is printed.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from math import gcd, lcm
 from typing import Any
@@ -154,8 +154,8 @@ def lcm_all(polys: Iterable[fmpq_mpoly]) -> fmpq_mpoly:
 
 
 def evaluate(terms: Iterable[tuple[Monomial, Any]], point: Sequence[RationalFunction]) -> RationalFunction:
-    """``Σ c·xᵐ`` at ``x = point``, over one common denominator ``D``: the numerator is
-    ``Σ c·Π nᵢ^{mᵢ}·(D/dᵢ)^{mᵢ}·D^{deg − |m|}`` and the value that over ``D^deg``."""
+    """``Σ c·xᵐ`` at ``x = point``, over one common denominator ``D``: the numerator of
+    :func:`homogeneous_numerator` at ``xᵢ = (nᵢ·D/dᵢ) / D``, over ``D^deg``."""
     terms = [(tuple(m), fmpq(c)) for m, c in terms]
     ctx = point[0].ctx
     if not terms:
@@ -163,12 +163,30 @@ def evaluate(terms: Iterable[tuple[Monomial, Any]], point: Sequence[RationalFunc
     D = lcm_all(p.den for p in point)
     scaled = [p.num * (D / p.den) for p in point]
     degree = max(sum(m) for m, _ in terms)
+    return RationalFunction.make(homogeneous_numerator(terms, scaled, D, ctx), D**degree)
+
+
+def homogeneous_numerator(
+    terms: Iterable[tuple[Monomial, Any]],
+    scaled: Sequence[fmpq_mpoly],
+    common: fmpq_mpoly,
+    ctx: fmpq_mpoly_ctx,
+    reduce: Callable[[fmpq_mpoly], fmpq_mpoly] = lambda p: p,
+) -> fmpq_mpoly:
+    """``Σ c·Π sᵢ^{mᵢ}·D^{deg − |m|}``: the numerator of ``Σ c·xᵐ`` (of total degree ``deg``)
+    at the point ``xᵢ = sᵢ / D``, whose value is this over ``D^deg``. ``reduce`` is applied
+    after every product (a normal form modulo relations the point satisfies, which keeps the
+    products small); the powers of each ``sᵢ`` and of ``D`` are computed once."""
+    terms = [(tuple(m), c) for m, c in terms]
+    if not terms:
+        return ctx.from_dict({})
+    degree = max(sum(m) for m, _ in terms)
+    bases = (*scaled, common)
     powers: dict[tuple[int, int], fmpq_mpoly] = {}
 
     def power(i: int, e: int) -> fmpq_mpoly:
         if (i, e) not in powers:
-            base = scaled[i] if i < len(scaled) else D
-            powers[(i, e)] = base if e == 1 else power(i, e - 1) * base
+            powers[(i, e)] = bases[i] if e == 1 else reduce(power(i, e - 1) * bases[i])
         return powers[(i, e)]
 
     total = ctx.from_dict({})
@@ -176,9 +194,9 @@ def evaluate(terms: Iterable[tuple[Monomial, Any]], point: Sequence[RationalFunc
         term = ctx.from_dict({(0,) * ctx.nvars(): c})
         for i, e in enumerate((*m, degree - sum(m))):
             if e:
-                term = term * power(i, e)
+                term = reduce(term * power(i, e))
         total += term
-    return RationalFunction.make(total, D**degree)
+    return reduce(total)
 
 
 def factored(f: RationalFunction, symbols: Sequence[sympy.Symbol]) -> sympy.Expr:

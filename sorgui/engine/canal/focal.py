@@ -144,7 +144,7 @@ def line_test(D: Derivatives, point: Sequence[int], direction: Sequence[int]) ->
     if C0 == 0 and C1 == 0:
         nu = Pair(-a1, fmpq_poly(1))
         return LineTest(*key, F, DUPIN, True, fmpq_poly(0), _smat(p, g, norm_g, nu, 2 * a2, ring, disc), disc)
-    R = ring.reduce(a2 * ring.reduce(C0 * C0) - a1 * ring.reduce(C0 * C1) + a0 * ring.reduce(C1 * C1))
+    R = _canal_polynomial(C0, C1, a0, a1, a2, ring)
     if R != 0:
         return LineTest(*key, F, GENERAL, False, R, None, disc)
     return LineTest(*key, F, GENERAL, True, R, _smat(p, g, norm_g, Pair(-C0, fmpq_poly(0)), C1, ring), disc)
@@ -201,7 +201,7 @@ def _fails_modulo_prime(
     C0, C1 = _pseudo_remainder(C, a0, a1, a2, ring)
     if C0 == 0 and C1 == 0:
         return False
-    R = ring.reduce(a2 * ring.reduce(C0 * C0) - a1 * ring.reduce(C0 * C1) + a0 * ring.reduce(C1 * C1))
+    R = _canal_polynomial(C0, C1, a0, a1, a2, ring)
     return R != 0
 
 
@@ -328,6 +328,12 @@ def _pseudo_remainder(C: NuPoly, a0: Any, a1: Any, a2: Any, ring: _Ring) -> tupl
         C.pop()
     C += [ring.zero] * (2 - len(C))
     return C[0], C[1]
+
+
+def _canal_polynomial(C0: Any, C1: Any, a0: Any, a1: Any, a2: Any, ring: _Ring) -> Any:
+    """``R = a₂C₀² − a₁C₀C₁ + a₀C₁²``: the resultant in ``ν`` of ``Q`` and ``C₁ν + C₀``, which
+    vanishes on X exactly when X is canal (docs/math.md §9)."""
+    return ring.reduce(a2 * ring.reduce(C0 * C0) - a1 * ring.reduce(C0 * C1) + a0 * ring.reduce(C1 * C1))
 
 
 def _evaluate_at_ratio(C: NuPoly, num: fmpq_poly, den: fmpq_poly, ring: _Ring) -> fmpq_poly:

@@ -15,7 +15,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TypeVar
 
@@ -28,6 +28,7 @@ from ..algebra.fractions import (
     evaluate,
     factored,
     from_expr,
+    homogeneous_numerator,
     lcm_all,
     poly_expr,
     square_root_parts,
@@ -254,7 +255,8 @@ def verify_radical(f: Poly, family: RationalFamily) -> bool:
     for i in range(3):
         parts = [embed(rows[j].num * (den / rows[j].den), ctx) for j in (i, 3 + i, 6 + i)]
         coords.append(parts[0] + a * parts[1] + b * parts[2])
-    value = compose_fraction(to_flint(f), coords, [D, D, D], ctx, common=D)
+    g = to_flint(f)
+    value = homogeneous_numerator(zip(g.monoms(), g.coeffs()), coords, D, ctx)
     n1, n2 = (sum((c * c for c in e[1:]), e[0] * e[0]) for e in (e1, e2))
     common = lcm_all((n1.den, n2.den, exact.radius_squared.den))
     lead = embed(n1.num * (common / n1.den), ctx)
@@ -288,44 +290,6 @@ def reduce_square(p: fmpq_mpoly, index: int, A: fmpq_mpoly, B: fmpq_mpoly, ctx: 
         rest[index] -= 2 * k
         out += ctx.from_dict({tuple(rest): coeff}) * B**k * A ** (top - k)
     return out
-
-
-def compose_fraction(
-    f: fmpq_mpoly,
-    nums: list[fmpq_mpoly],
-    dens: list[fmpq_mpoly],
-    ctx: fmpq_mpoly_ctx,
-    common: fmpq_mpoly | None = None,
-    reduce: Callable[[fmpq_mpoly], fmpq_mpoly] = lambda p: p,
-) -> fmpq_mpoly:
-    """``D^deg f · f(nᵢ/dᵢ)`` with ``D = Π dᵢ`` (or the given common multiple of the ``dᵢ``):
-    the numerator of ``f`` at the rational point. ``reduce`` is applied after every product
-    (a normal form modulo relations the point satisfies, which keeps the products small)."""
-    d = f.total_degree()
-    total = ctx.from_dict({})
-    common = dens[0] * dens[1] * dens[2] if common is None else common
-    scaled = [nums[i] * (common / dens[i]) for i in range(3)]
-    cache: dict[tuple[int, int], fmpq_mpoly] = {}
-    for monom, coeff in zip(f.monoms(), f.coeffs()):
-        term = ctx.from_dict({(0,) * ctx.nvars(): coeff})
-        for i, e in enumerate((*monom, d - sum(monom))):
-            if e:
-                term = reduce(term * _power(cache, (*scaled, common), i, e, reduce))
-        total += term
-    return reduce(total)
-
-
-def _power(
-    cache: dict[tuple[int, int], fmpq_mpoly],
-    bases: tuple[fmpq_mpoly, ...],
-    i: int,
-    e: int,
-    reduce: Callable[[fmpq_mpoly], fmpq_mpoly],
-) -> fmpq_mpoly:
-    """``bases[i]^e``, reduced, from the cached lower powers."""
-    if (i, e) not in cache:
-        cache[(i, e)] = bases[i] if e == 1 else reduce(_power(cache, bases, i, e - 1, reduce) * bases[i])
-    return cache[(i, e)]
 
 
 def family_resultant_certificate(f: Poly, family: RationalFamily) -> bool:

@@ -25,11 +25,11 @@ from dataclasses import dataclass
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 
+from ..algebra.fractions import homogeneous_numerator
 from ..algebra.polys import Poly, to_flint
 from .parametrization import (
     THETA,
     T,
-    compose_fraction,
     frame,
     rational_root,
     reduce_square,
@@ -197,7 +197,8 @@ def _on_circles(
         common = sympy.lcm(common, den)
     coords = [ring.element(num * sympy.cancel(common / den)) for num, den in points]
     D = ring.element(common)
-    value = compose_fraction(to_flint(f), coords, [D] * 3, ring.ctx, common=D, reduce=ring.reduce)
+    g = to_flint(f)
+    value = homogeneous_numerator(zip(g.monoms(), g.coeffs()), coords, D, ring.ctx, ring.reduce)
     lead = sympy.expand(circle).coeff(A, 2)
     rest = sympy.expand(circle - lead * A**2)
     return ring.reduce(
