@@ -1,5 +1,6 @@
-"""The genus algorithm chosen per curve: a smooth profile ``P`` gives ``genus(P²)`` by
-Riemann–Hurwitz for ``(s, r) ↦ (s, r²)``, checked against Singular's ``genus`` of ``P²``."""
+"""The genus algorithm chosen per curve, each checked against Singular's ``absFactorize`` and
+``genus``: a smooth profile ``P`` gives ``genus(P²)`` by Riemann–Hurwitz for
+``(s, r) ↦ (s, r²)``; a profile made of lines and smooth conics needs no Singular at all."""
 
 from __future__ import annotations
 
@@ -35,3 +36,52 @@ def test_a_singular_profile_falls_back_to_singular() -> None:
     s, r = R.gens
     P = (s**2 + r**2) ** 2 - (s**2 - r**2)  # a lemniscate-like quartic with a node at the origin
     assert curves._smooth_double_cover(P, R.zero, 60.0, None) is None
+
+
+def _profiles(profile):
+    from sorgui.engine.algebra.polys import poly_ring
+
+    R = poly_ring(("s", "r"), QQ)
+    W = poly_ring(("s", "w"), QQ)
+    P = profile(*R.gens)
+    square = W.from_dict({(i, j // 2): c for (i, j), c in P.items()})
+    return P, square
+
+
+@pytest.mark.parametrize(
+    "profile",
+    [
+        lambda s, r: (r**2 - 4 * r + s**2 + 3) * (r**2 + 4 * r + s**2 + 3),  # a ring torus: two circles
+        lambda s, r: (4 * r**2 - 8 * r + 4 * s**2 - 5) * (4 * r**2 + 8 * r + 4 * s**2 - 5),  # a spindle torus
+        lambda s, r: 2 * r**2 + 3 * s**2 - 7,  # an ellipsoid of revolution
+        lambda s, r: r**2 - s**2 - 1,  # a hyperboloid of two sheets
+        lambda s, r: r**2 - s,  # a paraboloid
+        lambda s, r: (r**2 + s**2 - 1) * (r**2 + (s - 3) ** 2 - 1),  # two spheres on one axis
+        lambda s, r: (s - 1) * (r**2 + s**2 - 4),  # a plane across a sphere
+        lambda s, r: (r - s - 1) * (r + s + 1),  # a cone: two lines, mirrors of each other
+    ],
+)
+def test_lines_and_smooth_conics_are_known_without_singular(profile) -> None:
+    P, square = _profiles(profile)
+    chosen = curves._conic_profile_pair(P, square)
+    assert chosen is not None
+    singular = curves.analyze_curves([P, square])
+    for mine, theirs in zip(chosen, singular, strict=True):
+        assert mine.genus == theirs.genus
+        assert mine.factorization.count == theirs.factorization.count
+        assert {str(f.factor) for f in mine.factorization.factors} == {
+            str(f.factor) for f in theirs.factorization.factors
+        }
+
+
+@pytest.mark.parametrize(
+    "profile",
+    [
+        lambda s, r: r**2 - 2 * s**2,  # two lines over QQ(sqrt(2)): absolutely reducible
+        lambda s, r: (r**2 + s**2 - 1) ** 2,  # not square-free
+        lambda s, r: (s**2 + r**2) ** 2 - (s**2 - r**2),  # a quartic
+    ],
+)
+def test_other_profiles_go_to_singular(profile) -> None:
+    P, square = _profiles(profile)
+    assert curves._conic_profile_pair(P, square) is None

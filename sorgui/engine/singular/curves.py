@@ -31,9 +31,10 @@ from __future__ import annotations
 import threading
 from collections.abc import Sequence
 from dataclasses import dataclass
+from math import gcd, lcm
 
 import sympy
-from flint import fmpq, fmpq_poly
+from flint import fmpq, fmpq_mat, fmpq_mpoly, fmpq_poly
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
@@ -181,12 +182,93 @@ def analyze_profile_pair(
     position — its genus is ``(d-1)(d-2)/2`` and Riemann–Hurwitz for the double cover
     ``P → P²``, ``(s, r) ↦ (s, r²)`` gives ``genus(P²)`` (docs/math.md §5): Singular only tests the
     smoothness modulo a prime, instead of computing the genus of the singular curve ``P²``
-    (seconds to minutes at degree 12). Otherwise both go to Singular."""
+    (seconds to minutes at degree 12). When every factor of ``P`` over ``QQ`` is a line or a
+    smooth conic (spheres, quadrics and tori of revolution), Singular is not needed at all
+    (:func:`_conic_profile_pair`). Otherwise both go to Singular."""
+    found = _conic_profile_pair(P, P2)
+    if found is not None:
+        return found
     found = _smooth_double_cover(P, P2, timeout, cancel)
     if found is not None:
         return found
     first, second = analyze_curves([P, P2], timeout=timeout, cancel=cancel)
     return first, second
+
+
+def _conic_profile_pair(P: Poly, P2: Poly) -> tuple[CurveAnalysis, CurveAnalysis] | None:
+    """Both analyses without Singular when ``P`` over ``QQ`` is a product of distinct lines and
+    smooth conics, each absolutely irreducible of genus 0; else ``None``.
+
+    Then every factor ``G`` of ``P²`` over ``QQ`` is absolutely irreducible of genus 0 too
+    (docs/math.md §5): ``G(s, r²)`` is one factor ``F`` of ``P`` (even in ``r``) or a mirror pair
+    ``F(s, r)·F(s, −r)``; a splitting of ``G`` over ``C`` would split ``F`` or give an even
+    polynomial divisible by ``F`` alone, and ``G`` is the image of the rational curve ``F``
+    (Lüroth)."""
+    if not (is_rational_field(P.ring.domain) and is_rational_field(P2.ring.domain)):
+        return None
+    p_factors = _rational_factors(P)
+    if p_factors is None or not all(_is_line_or_smooth_conic(F) for F in p_factors):
+        return None
+    p2_factors = _rational_factors(P2)
+    if p2_factors is None:
+        return None
+    analyses = []
+    for F, factors in ((P, p_factors), (P2, p2_factors)):
+        classes = tuple(AbsoluteFactor(_singular_normal_form(G, _variables(F)), 1, 1) for G in factors)
+        analyses.append(CurveAnalysis(AbsoluteFactorization(_variables(F), classes), 0 if len(classes) == 1 else None))
+    return analyses[0], analyses[1]
+
+
+def _rational_factors(F: Poly) -> list[fmpq_mpoly] | None:
+    """The irreducible factors of ``F`` over ``QQ`` (flint), sorted; ``None`` unless square-free."""
+    _, factors = to_flint(F).factor()
+    if any(e > 1 for _, e in factors):
+        return None
+    return sorted((G for G, _ in factors), key=_dp_key)
+
+
+def _dp_key(G: fmpq_mpoly) -> tuple[int, tuple[tuple[int, ...], ...], tuple[fmpq, ...]]:
+    """Factors in increasing degree, then by their monomials and coefficients in Singular's
+    ``dp`` order: the order in which ``absFactorize`` lists the factors of a torus's profile."""
+    terms = _dp_terms(G)
+    return G.total_degree(), tuple(_dp_monomial(m) for m, _ in terms), tuple(c for _, c in terms)
+
+
+def _dp_monomial(m: tuple[int, ...]) -> tuple[int, ...]:
+    return (sum(m), *m)
+
+
+def _dp_terms(G: fmpq_mpoly) -> list[tuple[tuple[int, ...], fmpq]]:
+    """The terms of ``G``, primitive over ``ZZ`` with a positive leading coefficient in ``dp``
+    (degree, then lexicographic): the normal form of Singular's factors, highest term first."""
+    terms = sorted(
+        ((tuple(map(int, m)), c) for m, c in G.to_dict().items()), key=lambda t: _dp_monomial(t[0]), reverse=True
+    )
+    scale = fmpq(lcm(*(int(c.q) for _, c in terms)), gcd(*(int(c.p) for _, c in terms)))
+    if terms[0][1] < 0:
+        scale = -scale
+    return [(m, c * scale) for m, c in terms]
+
+
+def _singular_normal_form(G: fmpq_mpoly, variables: tuple[sympy.Symbol, sympy.Symbol]) -> sympy.Expr:
+    """``G`` as a sympy expression in ``variables``, in the normal form of :func:`_dp_terms`."""
+    x, y = variables
+    return sympy.Add(*(sympy.Integer(int(c.p)) * x ** m[0] * y ** m[1] for m, c in _dp_terms(G)))
+
+
+def _is_line_or_smooth_conic(F: fmpq_mpoly) -> bool:
+    """Degree 1, or degree 2 with the nonsingular symmetric matrix of its homogenisation: then
+    ``F`` is absolutely irreducible of genus 0."""
+    degree = F.total_degree()
+    if degree == 1:
+        return True
+    if degree != 2:
+        return False
+    c = {tuple(map(int, m)): v for m, v in F.to_dict().items()}
+    a, b, cc = c.get((2, 0), 0), c.get((1, 1), 0), c.get((0, 2), 0)
+    d, e, f = c.get((1, 0), 0), c.get((0, 1), 0), c.get((0, 0), 0)
+    matrix = fmpq_mat([[2 * a, b, d], [b, 2 * cc, e], [d, e, 2 * f]])
+    return matrix.det() != 0
 
 
 def _smooth_double_cover(
