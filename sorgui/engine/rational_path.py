@@ -73,11 +73,12 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
     if g is None:
         return None
     with clock.stage("recognition"):
-        recognized = recognize_rational(g)
-    if recognized is None:
+        found = recognize_rational(g)
+    if found is None:
         return None
+    recognized, square = found
     with clock.stage("factors"):
-        factors = _factor_reports(g, recognized)
+        factors = _factor_reports(g, recognized, square)
     if factors is None:
         return None
     reports, distinct = factors
@@ -105,15 +106,16 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
     )
 
 
-def recognize_rational(g: fmpq_mpoly) -> Recognition | None:
-    """The :class:`Recognition` of ``g ∈ QQ[x, y, z]`` by the symmetry method, or ``None`` when the
-    axis direction's ``|a|²`` reaches :data:`MAX_NORM`."""
+def recognize_rational(g: fmpq_mpoly) -> tuple[Recognition, fmpq_mpoly | None] | None:
+    """The :class:`Recognition` of ``g ∈ QQ[x, y, z]`` by the symmetry method and, for a surface
+    with a unique axis, its ``P²(s, w)``; ``None`` when the axis direction's ``|a|²`` reaches
+    :data:`MAX_NORM`."""
     symmetry = rational_symmetry(g)
-    profile = None
+    profile = square = None
     if symmetry.kind in (REVOLUTION, CYLINDER):
         if dot(symmetry.axis_direction, symmetry.axis_direction) >= MAX_NORM:  # type: ignore[arg-type]
             return None
-        profile = _profile(g, symmetry.axis_point, symmetry.axis_direction)  # type: ignore[arg-type]
+        profile, square = _profile(g, symmetry.axis_point, symmetry.axis_direction)  # type: ignore[arg-type]
     return Recognition(
         polynomial=flint_str(g, XYZ),
         degree=int(g.total_degree()),
@@ -127,7 +129,7 @@ def recognize_rational(g: fmpq_mpoly) -> Recognition | None:
         direction=_triple(symmetry.direction),
         profile=profile,
         radius_squared=_radius_squared(g, symmetry),
-    )
+    ), square
 
 
 def _radius_squared(g: fmpq_mpoly, symmetry: Symmetry) -> str | None:
@@ -137,10 +139,20 @@ def _radius_squared(g: fmpq_mpoly, symmetry: Symmetry) -> str | None:
     return str(-g(*symmetry.center) / g[2, 0, 0])
 
 
-def _factor_reports(g: fmpq_mpoly, whole: Recognition) -> tuple[tuple[Factor, ...], list[fmpq_mpoly]] | None:
+def _factor_reports(
+    g: fmpq_mpoly, whole: Recognition, square: fmpq_mpoly | None
+) -> tuple[tuple[Factor, ...], list[fmpq_mpoly]] | None:
     """The irreducible factors of ``g``, each recognised, and the distinct ones (``None`` when a
-    factor needs sympy). An irreducible ``g`` keeps ``whole`` as its factor's recognition."""
-    factors = factor(g)
+    factor needs sympy). An irreducible ``g`` keeps ``whole`` as its factor's recognition.
+
+    A surface with a unique axis factors as its ``P²`` does (docs/math.md §4: every factor of
+    ``f`` over ``QQ`` is invariant under the rotations about the axis, so a polynomial in ``s``
+    and ``w``), and ``P²`` has two variables and half the degree in ``w``: when it is
+    irreducible and square-free, so is ``g``, without factoring ``g`` itself."""
+    if square is not None and _irreducible(square):
+        factors = [(primitive(g), 1)]
+    else:
+        factors = factor(g)
     distinct = [h for h, _ in factors]
     if len(factors) == 1 and factors[0][1] == 1:
         h = factors[0][0]
@@ -148,11 +160,17 @@ def _factor_reports(g: fmpq_mpoly, whole: Recognition) -> tuple[tuple[Factor, ..
         return (Factor(text, 1, whole),), distinct
     reports = []
     for h, e in factors:
-        recognized = recognize_rational(h)
-        if recognized is None:
+        found = recognize_rational(h)
+        if found is None:
             return None
-        reports.append(Factor(flint_str(h, XYZ), e, recognized))
+        reports.append(Factor(flint_str(h, XYZ), e, found[0]))
     return tuple(reports), distinct
+
+
+def _irreducible(p: fmpq_mpoly) -> bool:
+    """Whether ``p`` is irreducible over ``QQ`` and square-free (one factor, multiplicity 1)."""
+    _, factors = p.factor()
+    return len(factors) == 1 and factors[0][1] == 1
 
 
 def _triple(v: Vector | None) -> tuple[str, str, str] | None:
@@ -172,35 +190,33 @@ def _axis(symmetry: Symmetry) -> Axis | None:
     )  # type: ignore[arg-type]
 
 
-def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> Profile:
-    """The profile in the frame ``(c, a, u)`` of :func:`.recognition.profile.axis_frame`, with the exact test
-    ``f(c + s·a + r₁·u + r₂·w) = P²(s, r₁² + |a|²·r₂²)``; the presented ``p(x, y)`` lies over
-    ``QQ(|a|)``."""
+def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> tuple[Profile, fmpq_mpoly]:
+    """The profile in the frame ``(c, a, u)`` of :func:`.recognition.profile.axis_frame` and its
+    ``P²(s, w)``; the presented ``p(x, y)`` lies over ``QQ(|a|)``.
+
+    The paper's exact test ``f(c + s·a + r₁·u + r₂·w) = P²(s, r₁² + |a|²·r₂²)`` is not computed
+    again: the rotation about this axis satisfies (★) identically (checked exactly in flint by
+    :func:`.recognition.symmetry.rational_symmetry_algebra`), so ``f`` is constant on every circle
+    about the axis, which is that identity (docs/math.md §3.1). ``p̃`` even in ``r`` is asserted."""
     c, a, u = point, direction, perpendicular(direction, RATIONALS)
     s, r = context(("s", "r")).gens()
     raw = g.compose(*[c[i] + s * a[i] + r * u[i] for i in range(3)], ctx=context(("s", "r")))
     if any(int(m[1]) % 2 for m in raw.monoms()):
         raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
-    ctx3 = context(("s", "r1", "r2"))
-    s3, r1, r2 = ctx3.gens()
-    w = cross(a, u)
-    lhs = g.compose(*[c[i] + s3 * a[i] + r1 * u[i] + r2 * w[i] for i in range(3)], ctx=ctx3)
-    rhs = _halve_second(raw, ("s", "w")).compose(s3, r1**2 + dot(a, a) * r2**2, ctx=ctx3)
-    if lhs != rhs:
-        raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
     rational = primitive(raw)
     orthonormal = _orthonormal(rational, dot(a, a), dot(u, u))
+    square = _halve_second(rational, ("s", "w"))
     return Profile(
         polynomial=_surd_str(orthonormal, ("x", "y")),
         square=_surd_str({(i, j // 2): c for (i, j), c in orthonormal.items()}, ("x", "y")),
         rational=flint_str(rational, ("s", "r")),
-        rational_square=flint_str(_halve_second(rational, ("s", "w")), ("s", "w")),
+        rational_square=flint_str(square, ("s", "w")),
         frame_point=_triple(c),
         frame_direction=_triple(a),
         frame_normal=_triple(u),  # type: ignore[arg-type]
         even=True,
         verified=True,
-    )
+    ), square
 
 
 def _halve_second(p: fmpq_mpoly, names: Sequence[str]) -> fmpq_mpoly:

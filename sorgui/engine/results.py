@@ -31,7 +31,8 @@ class Profile:
     it); ``square`` is ``P²``, i.e. ``p`` with ``y²`` replaced by ``y``. ``rational`` is the
     ``K``-rational ``p̃(s, r) = f(c + s·a + r·u)`` with the frame ``frame_point = c``,
     ``frame_direction = a``, ``frame_normal = u``; ``rational_square`` is ``p̃²(s, w)``.
-    ``verified`` is the exact test ``f = p(x, y² + z²)`` in the axis frame.
+    ``verified`` is the exact test ``f = p(x, y² + z²)`` in the axis frame (over ``QQ`` proved by
+    (★) holding identically for the rotation about the axis, docs/math.md §3.1).
     """
 
     polynomial: str
