@@ -157,15 +157,16 @@ def expanded_polynomial(text: str) -> fmpq_mpoly | None:
     reports on exactly."""
     if len(text) > MAX_LENGTH or not text.strip():
         return None
-    terms: dict[tuple[int, int, int], fmpq] = {}
+    terms: dict[tuple[int, int, int], fmpq | int] = {}
     position, end = 0, len(text)
+    match_term, factors = _PLAIN_TERM.match, _PLAIN_FACTOR.findall
     while position < end:
-        match = _PLAIN_TERM.match(text, position)
+        match = match_term(text, position)
         if match is None or match.end() == position:
             return None
-        num, den, variables = match.group("num"), match.group("den"), match.group("vars")
+        sign, num, den, variables = match.groups()
         if (num is None and (not variables.strip() or variables.lstrip().startswith("*"))) or (
-            position > 0 and match.group("sign") is None
+            position > 0 and sign is None
         ):
             return None  # an empty term, a '*' with nothing before it, two terms without a sign between them
         if (num is not None and len(num) > MAX_DIGITS) or (
@@ -173,13 +174,15 @@ def expanded_polynomial(text: str) -> fmpq_mpoly | None:
         ):
             return None
         monomial = [0, 0, 0]
-        for name, exponent in _PLAIN_FACTOR.findall(variables):
+        for name, exponent in factors(variables) if variables else ():
             monomial[_VARIABLE_INDEX[name]] += int(exponent) if exponent else 1
         if sum(monomial) > MAX_DEGREE:
             return None
-        value = fmpq(int(num) if num is not None else 1, int(den) if den is not None else 1)
+        value: fmpq | int = (int(num) if num is not None else 1) if den is None else fmpq(int(num or 1), int(den))
         key = (monomial[0], monomial[1], monomial[2])
-        terms[key] = terms.get(key, 0) + (-value if match.group("sign") == "-" else value)
+        previous = terms.get(key)
+        value = -value if sign == "-" else value
+        terms[key] = value if previous is None else previous + value
         position = match.end()
     kept = {m: c for m, c in terms.items() if c}
     if not any(sum(m) for m in kept):

@@ -129,7 +129,7 @@ def rational_symmetry_algebra(g: fmpq_mpoly) -> list[Motion]:
     rows: list[list[Any]] = []
     for batch in range(EVALUATION_BATCHES):
         for point in _points(batch):
-            rows.append([p(*point) for p in polys])
+            rows.append(_values(polys, point))
         basis = linalg.nullspace(rows, 6, RATIONALS)
         if all(_vanishes(polys, v) for v in basis):
             return [Motion(a=tuple(v[3:]), b=tuple(v[:3])) for v in basis]
@@ -152,6 +152,14 @@ def _points(batch: int) -> list[tuple[fmpq, fmpq, fmpq]]:
         a, b, c = (7 * k + 3) % 19 - 9, (11 * k + 5) % 23 - 11, (13 * k + 2) % 29 - 14
         found.append((fmpq(a), fmpq(b), fmpq(c)))
     return found
+
+
+def _values(polys: list[fmpq_mpoly], point: tuple[fmpq, fmpq, fmpq]) -> list[fmpq]:
+    """The six polynomials of :func:`_generators` at ``point``: ``∇f`` evaluated, and ``p × ∇f``
+    from it (three evaluations of a polynomial instead of six)."""
+    fx, fy, fz = (p(*point) for p in polys[:3])
+    x, y, z = point
+    return [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
 
 
 def _vanishes(polys: list[Any], weights: Sequence[Any]) -> bool:

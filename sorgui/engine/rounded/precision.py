@@ -83,7 +83,10 @@ _DECIMAL_MARK = re.compile(r"[0-9]\.|\.[0-9]|[0-9][eE][+-]?[0-9]")
 
 
 def has_decimals(text: str) -> bool:
-    """Whether ``text`` prints a number with a decimal point or an exponent (``1.5``, ``2e-3``)."""
+    """Whether ``text`` prints a number with a decimal point or an exponent (``1.5``, ``2e-3``).
+    Most equations have no ``.``, ``e`` or ``E`` at all, which ``in`` finds faster than a search."""
+    if "." not in text and "e" not in text and "E" not in text:
+        return False
     return _DECIMAL_MARK.search(text) is not None
 
 
