@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
+from functools import lru_cache
 
 import numpy as np
 import sympy
@@ -37,9 +38,13 @@ __all__ = [
 ]
 
 
+@lru_cache(maxsize=4096)
 def read_expression(text: str) -> sympy.Expr:
     """The engine string ``text`` as an exact sympy expression; every name other than ``sqrt``
-    and ``I`` (the imaginary unit) is a variable. Raises :class:`ExpressionError`."""
+    and ``I`` (the imaginary unit) is a variable. Raises :class:`ExpressionError`.
+
+    Cached: the window, the scene and every export read the same numbers of one analysis (the
+    axis, the frame, the parameterizations), and a sympy expression is immutable."""
     return read(text, SYMPY)
 
 
@@ -48,6 +53,7 @@ def read_number(text: str) -> sympy.Expr:
     return read_expression(text)
 
 
+@lru_cache(maxsize=4096)
 def to_float(text: str) -> float:
     """An exact engine number as the nearest ``float``."""
     return float(read_number(text).evalf(20))

@@ -307,6 +307,6 @@ def test_a_singular_that_prints_garbage_or_floods_is_one_line(tmp_path, monkeypa
     fake.write_text("#!/bin/sh\n" + body)
     fake.chmod(0o755)
     monkeypatch.setenv("SORGUI_SINGULAR", str(fake))
-    result = analyze("x^2 + y^2 - z", timeout=60)
+    result = analyze("x^2 + y^2 - z^3", timeout=60)  # a cuspidal profile: Singular is asked
     status = result.rationality.status
     assert status.startswith("undecided: Singular") and said in status and "\n" not in status
