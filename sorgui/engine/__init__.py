@@ -3,9 +3,11 @@
 Entry point: :func:`analyze` turns pasted text into an immutable :class:`Analysis`. Laid out as
 sympy's ``polys``: a core of one module per idea, and subpackages, one idea each.
 
-The core: ``parsing`` (the safe parser of pasted text), ``expressions`` (reading the engine's
-own strings), ``results`` (the result objects and their JSON), ``errors`` (the one exception
-hierarchy), ``timelimit`` and ``lifetime`` (ending an analysis when asked), ``analysis`` (the
+The core: ``parsing`` (the safe parser of pasted text), ``expressions`` (reading Singular's
+answers and the engine's own strings), ``values`` (the engine's strings decoded once, as sympy
+objects, floats and float terms), ``results`` (the result objects and their JSON),
+``vocabulary`` (the words for kinds of surface), ``errors`` (the one exception hierarchy),
+``stages``, ``timelimit`` and ``lifetime`` (ending an analysis when asked), ``analysis`` (the
 staged pipeline) and ``rational_path`` (the recognition-only pipeline over ``QQ`` without
 sympy).
 

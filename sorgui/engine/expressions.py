@@ -6,7 +6,8 @@ strings in sympy's output syntax (``"3/5"``, ``"-sqrt(2)/2"``, ``"(t**2 - 1)/(t*
 that the exporters and the window read back. Both are read here by one recursive-descent
 reader that builds sympy objects with their constructors; nothing is ever evaluated
 (``eval``, ``sympify``), since the text derives from pasted input. The user's own input goes
-through :mod:`.parsing` instead, which also bounds degrees and sizes before expanding.
+through :mod:`.parsing` instead, which also bounds degrees and sizes before expanding. Both
+read an expanded polynomial over ``QQ`` with :func:`.algebra.rationals.expanded_terms` first.
 
 Grammar (``-x^2`` is ``-(x^2)`` and powers are right-associative, as in sympy)::
 

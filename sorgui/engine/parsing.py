@@ -60,7 +60,7 @@ if 0 < sys.get_int_max_str_digits() < MAX_PRINTED_DIGITS:
     sys.set_int_max_str_digits(MAX_PRINTED_DIGITS)
 
 Rational: TypeAlias = int | Fraction  # exact; integer literals stay ints (faster)
-_VARIABLES = "xyz"
+_VARIABLES = ("x", "y", "z")
 _VARIABLE_INDEX = {name: i for i, name in enumerate(_VARIABLES)}
 _OPERATORS = {
     "**": "^",
@@ -142,51 +142,17 @@ def parse_rational(text: str) -> fmpq_mpoly | None:
     return _evaluate(text, evaluator, tree, _FlintRationals(), saw_variable)
 
 
-_PLAIN_TERM = re.compile(
-    r"\s*(?P<sign>[-+])?\s*(?:(?P<num>[0-9]+)(?:\s*/\s*(?P<den>[0-9]+))?)?"
-    r"(?P<vars>(?:\s*\*?\s*[xyz](?:\s*(?:\*\*|\^)\s*[0-9]{1,6})?)*)\s*"
-)
-_PLAIN_FACTOR = re.compile(r"([xyz])(?:\s*(?:\*\*|\^)\s*([0-9]+))?")
-
-
 def expanded_polynomial(text: str) -> fmpq_mpoly | None:
     """The fast path for an expanded polynomial with rational coefficients, as CAS and sorgui
     itself print them (``3*x**2*y - 5/2*z + 1``, ``2x^2y - z``): one regular-expression pass
-    straight into flint, no syntax tree. ``None`` for anything else (parentheses, decimals,
-    roots, ``=``, a limit exceeded, a constant), which the general parser then reads and
-    reports on exactly."""
+    straight into flint (:func:`.algebra.rationals.expanded_terms`), no syntax tree. ``None`` for
+    anything else (parentheses, decimals, roots, ``=``, a limit exceeded, a constant), which the
+    general parser then reads and reports on exactly."""
     if len(text) > MAX_LENGTH or not text.strip():
         return None
-    terms: dict[tuple[int, int, int], fmpq | int] = {}
-    position, end = 0, len(text)
-    match_term, factors = _PLAIN_TERM.match, _PLAIN_FACTOR.findall
-    while position < end:
-        match = match_term(text, position)
-        if match is None or match.end() == position:
-            return None
-        sign, num, den, variables = match.groups()
-        if (num is None and (not variables.strip() or variables.lstrip().startswith("*"))) or (
-            position > 0 and sign is None
-        ):
-            return None  # an empty term, a '*' with nothing before it, two terms without a sign between them
-        if (num is not None and len(num) > MAX_DIGITS) or (
-            den is not None and (len(den) > MAX_DIGITS or int(den) == 0)
-        ):
-            return None
-        monomial = [0, 0, 0]
-        for name, exponent in factors(variables) if variables else ():
-            monomial[_VARIABLE_INDEX[name]] += int(exponent) if exponent else 1
-        if sum(monomial) > MAX_DEGREE:
-            return None
-        value: fmpq | int = (int(num) if num is not None else 1) if den is None else fmpq(int(num or 1), int(den))
-        key = (monomial[0], monomial[1], monomial[2])
-        previous = terms.get(key)
-        value = -value if sign == "-" else value
-        terms[key] = value if previous is None else previous + value
-        position = match.end()
-    kept = {m: c for m, c in terms.items() if c}
-    if not any(sum(m) for m in kept):
-        return None  # constant or empty: the general parser says which
+    kept = rationals.expanded_terms(text, _VARIABLES, max_digits=MAX_DIGITS, max_degree=MAX_DEGREE)
+    if kept is None or not any(sum(m) for m in kept):
+        return None  # not expanded, or constant or empty: the general parser says which
     return rationals.context(("x", "y", "z")).from_dict(kept)
 
 

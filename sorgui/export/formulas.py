@@ -1,7 +1,7 @@
 """The results of an analysis as named exact sympy objects, with the domain of each map.
 
 Every formula file (LaTeX, Maple, Mathematica, Python) prints the same list, built here from
-the engine's exact strings (read with :mod:`sorgui.export.exact`, never evaluated): the
+the engine's exact strings (read with :mod:`sorgui.engine.values`, never evaluated): the
 equation ``f``, the axis, the profile ``p`` and ``P²``, the parameterization of ``P²``, the
 tubular surface ``T``, the map ``τ`` and every parameterization of ``X``.
 
@@ -30,7 +30,7 @@ from typing import Any
 import sympy
 
 from sorgui.engine.results import Analysis, Canal
-from sorgui.export.exact import read_expression
+from sorgui.engine.values import read_expression
 
 Value = sympy.Expr | tuple[sympy.Expr, ...]
 

@@ -1,7 +1,7 @@
 """The formulas of an analysis as mathematics: LaTeX, wrapped lines and mathtext images.
 
 The results pane shows every polynomial, vector and parameterization typeset, not as Python
-text. Each engine string is read exactly (:mod:`sorgui.export.exact`) and printed with
+text. Each engine string is read exactly (:mod:`sorgui.engine.values`) and printed with
 ``sympy.latex``, one piece per top-level term. :func:`render_formulas` then rasterises it with
 matplotlib's mathtext (Computer Modern) into 8-bit alpha masks: whole when it fits the pane's
 width, else piece by piece, the pieces set side by side on one baseline and wrapped between
@@ -33,7 +33,7 @@ from sympy.printing.mathematica import mathematica_code
 from sympy.printing.pycode import pycode
 
 from sorgui.engine.results import Analysis, Recognition
-from sorgui.export.exact import ExpressionError, float_vector, read_expression
+from sorgui.engine.values import ExpressionError, float_vector, read_expression
 from sorgui.export.text import float_text
 
 MAX_CHARACTERS = 6000
@@ -174,7 +174,7 @@ def decimal_line_formula(point: Sequence[float], direction: Sequence[float], tol
 
 
 def decimals(values: Sequence[str], evaluate: bool = True) -> tuple[float, ...] | None:
-    """Exact engine numbers as floats (:func:`~sorgui.export.exact.float_vector`; without
+    """Exact engine numbers as floats (:func:`~sorgui.engine.values.float_vector`; without
     ``evaluate`` only rationals, read without sympy); ``None`` if one is not such a number."""
     try:
         if evaluate:

@@ -23,7 +23,7 @@ import numpy as np
 from sorgui.engine.results import Analysis, Approximation, Parametrization, Recognition
 from sorgui.engine.rounded import dense
 from sorgui.engine.rounded.deviation import view_ball
-from sorgui.export.exact import (
+from sorgui.engine.values import (
     ExpressionError,
     Terms,
     float_vector,

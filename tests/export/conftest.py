@@ -7,8 +7,8 @@ import pytest
 
 from sorgui.engine import analyze
 from sorgui.engine.results import Analysis
+from sorgui.engine.values import polynomial_terms
 from sorgui.examples import example_text
-from sorgui.export.exact import polynomial_terms
 
 EXAMPLES = ("paper-example-1", "torus", "cone", "paper-cubic")
 """Example 1 of the paper (row 4 of Table 1), a torus (two real parameterizations, circles

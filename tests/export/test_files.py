@@ -10,7 +10,7 @@ import sympy
 from sorgui.cli import main
 from sorgui.engine import analyze
 from sorgui.engine.results import Analysis
-from sorgui.export.exact import read_expression
+from sorgui.engine.values import read_expression
 from sorgui.export.files import FORMATS, export_analysis
 from sorgui.export.formulas import analysis_formulas
 

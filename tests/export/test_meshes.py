@@ -10,7 +10,7 @@ import pyvista
 import sympy
 
 from sorgui.engine.results import Analysis
-from sorgui.export.exact import polynomial_terms
+from sorgui.engine.values import polynomial_terms
 from sorgui.export.files import export_analysis
 from sorgui.export.formulas import analysis_formulas
 from sorgui.export.meshes import MESH_SUFFIXES, mesh_polydata

@@ -12,7 +12,7 @@ import pytest
 import sympy
 
 from sorgui.engine.results import Analysis
-from sorgui.export.exact import read_expression
+from sorgui.engine.values import read_expression
 from sorgui.export.files import export_analysis
 from tests.export.conftest import relative_residual
 

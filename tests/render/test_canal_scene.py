@@ -68,7 +68,7 @@ def test_touching_sphere_of_a_spine_of_genus_1() -> None:
     (y² + z² = 16, x² + z² = 9), its radius 1, and its characteristic circle on the surface."""
     from sorgui.engine.canal.verdict import analyze_canal
     from sorgui.engine.rounded import dense
-    from sorgui.export.exact import polynomial_terms
+    from sorgui.engine.values import polynomial_terms
     from sorgui.render.canal_scene import SmatFamily
     from sorgui.render.canal_touch import touching_spheres
     from sorgui.render.picking import pick_info
@@ -99,7 +99,7 @@ def test_a_spine_of_genus_1_is_traced_with_its_circles() -> None:
     from points of the surface, and its characteristic circles lie on the surface."""
     from sorgui.engine.canal.verdict import analyze_canal
     from sorgui.engine.rounded import dense
-    from sorgui.export.exact import polynomial_terms
+    from sorgui.engine.values import polynomial_terms
     from sorgui.render.canal_trace import smat_scene
     from sorgui.render.sampling import value_and_gradient
 

@@ -13,14 +13,14 @@ import pytest
 import sympy
 
 from sorgui.engine.rounded import dense
-from sorgui.examples import example_text
-from sorgui.export.exact import (
+from sorgui.engine.values import (
     ExpressionError,
     float_vector,
     polynomial_terms,
     rational_function_terms,
     read_expression,
 )
+from sorgui.examples import example_text
 from sorgui.session.formulas import (
     Style,
     expression_formula,
@@ -167,7 +167,7 @@ def test_a_rounded_surface_is_drawn_in_the_ball_about_its_approximate_axis() -> 
     assert axis is not None and abs(abs(float(np.dot(axis, direction))) - 1) < 1e-8
     exact_center = point - float(np.dot(point, direction)) * direction  # the foot of the origin on the axis
     assert np.linalg.norm(center - exact_center) < 1e-6
-    terms = polynomial_terms(printed(array, 10))
+    terms = polynomial_terms(rounded.squarefree)  # the exact rationals the engine read off the decimals
     ball = view_region(terms, center, axis)
     exact = view_region(terms, exact_center, direction)
     assert math.isclose(ball.radius, exact.radius, rel_tol=1e-6)

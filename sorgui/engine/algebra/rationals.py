@@ -5,11 +5,13 @@ more than the whole analysis, docs/benchmarks.md): its polynomials are flint ``f
 numbers ``fmpq``, and its linear algebra ``fmpq_mat``. This module holds the pieces of that path
 that the sympy-based modules share with it, so that both print and normalise alike:
 :data:`RATIONALS`, a stand-in for sympy's domain ``QQ`` (whose elements are ``fmpq`` too), the
-flint contexts, the printer of polynomials, primitive parts and factorization over ``QQ``.
+flint contexts, the printer of polynomials and the reader of expanded ones (for the user's
+text and the engine's own alike), primitive parts and factorization over ``QQ``.
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable, Sequence
 from functools import lru_cache
 from typing import Any
@@ -134,3 +136,60 @@ def rational_surd(q: fmpq) -> tuple[fmpq, int]:
         square *= p ** (e // 2)
         free *= p ** (e % 2)
     return fmpq(square, q.q), int(free)
+
+
+@lru_cache(maxsize=16)
+def _expanded_patterns(names: tuple[str, ...]) -> tuple[re.Pattern[str], re.Pattern[str]]:
+    """The term and the factor patterns of :func:`expanded_terms` for the variables ``names``."""
+    variable = "(?:" + "|".join(re.escape(n) for n in sorted(names, key=len, reverse=True)) + ")"
+    term = re.compile(
+        r"\s*([-+])?\s*(?:([0-9]+)(?:\s*/\s*([0-9]+))?)?"
+        r"((?:\s*\*?\s*" + variable + r"(?:\s*(?:\*\*|\^)\s*[0-9]{1,6})?)*)\s*"
+    )
+    factor = re.compile("(" + variable + r")(?:\s*(?:\*\*|\^)\s*([0-9]+))?")
+    return term, factor
+
+
+def expanded_terms(
+    text: str,
+    names: Sequence[str] = ("x", "y", "z"),
+    *,
+    max_digits: int | None = None,
+    max_degree: int | None = None,
+) -> dict[Monomial, fmpq | int] | None:
+    """The terms of an expanded polynomial with rational coefficients in ``names``
+    (``3*x**2*y - 5/2*z + 1``, ``2x^2y - z``): one regular-expression pass, no syntax tree.
+    ``None`` for anything else (parentheses, decimals, roots, ``=``, a number of more than
+    ``max_digits`` digits, a term of degree above ``max_degree``). Zero terms are dropped."""
+    term_pattern, factor_pattern = _expanded_patterns(tuple(names))
+    index = {name: i for i, name in enumerate(names)}
+    terms: dict[Monomial, fmpq | int] = {}
+    position, end = 0, len(text)
+    match_term, factors = term_pattern.match, factor_pattern.findall
+    while position < end:
+        match = match_term(text, position)
+        if match is None or match.end() == position:
+            return None
+        sign, num, den, variables = match.groups()
+        if (num is None and (not variables.strip() or variables.lstrip().startswith("*"))) or (
+            position > 0 and sign is None
+        ):
+            return None  # an empty term, a '*' with nothing before it, two terms without a sign between them
+        if max_digits is not None and (
+            (num is not None and len(num) > max_digits) or (den is not None and len(den) > max_digits)
+        ):
+            return None
+        if den is not None and int(den) == 0:
+            return None
+        monomial = [0] * len(names)
+        for name, exponent in factors(variables) if variables else ():
+            monomial[index[name]] += int(exponent) if exponent else 1
+        if max_degree is not None and sum(monomial) > max_degree:
+            return None
+        value: fmpq | int = (int(num) if num is not None else 1) if den is None else fmpq(int(num or 1), int(den))
+        key = tuple(monomial)
+        previous = terms.get(key)
+        value = -value if sign == "-" else value
+        terms[key] = value if previous is None else previous + value
+        position = match.end()
+    return {m: c for m, c in terms.items() if c}

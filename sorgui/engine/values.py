@@ -1,27 +1,27 @@
-"""The engine's exact strings as sympy expressions, floats and plain terms, without ``eval``.
+"""The engine's exact strings decoded: numbers, vectors, polynomials and rational functions,
+as sympy objects, floats and plain terms, each read once per process and never evaluated.
 
 The engine reports every number and polynomial as a string in sympy's own output syntax
-(``"3/5"``, ``"sqrt(2)/2"``, ``"(t**2 - 1)/(t**2 + 1)"``). They are read back here:
-polynomials through the project's parser :func:`~sorgui.engine.parsing.parse_polynomial` (which
-also gives the exact field ``K``), and numbers and rational functions of the parameterizations
-through the engine's reader of machine-written formulas (:mod:`sorgui.engine.expressions`, which
-also reads Singular's answers); it builds sympy objects with their constructors (never
-``sympify``: pasted text is untrusted, and so is everything derived from it). It has no Qt:
-the exporters, the GUI and its analysis worker process all read through it.
+(``"3/5"``, ``"sqrt(2)/2"``, ``"(t**2 - 1)/(t**2 + 1)"``). This module owns reading them back:
+an expanded polynomial over ``QQ`` with flint's reader :func:`.algebra.rationals.expanded_terms`,
+everything else with the reader of machine-written formulas (:mod:`.expressions`, which also
+reads Singular's answers). Nothing here goes through the parser of the user's text, and nothing
+is ever ``eval``-ed or ``sympify``-ed (pasted text is untrusted, and so is everything derived
+from it). It has no Qt: the exporters, the window, its worker process and the scene read here.
 """
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
 from functools import lru_cache
 
 import numpy as np
 import sympy
+from flint import fmpq
 
-from sorgui.engine.errors import ExpressionError
-from sorgui.engine.expressions import SYMPY, read
-from sorgui.engine.parsing import parse_polynomial
+from .algebra.rationals import expanded_terms
+from .errors import ExpressionError
+from .expressions import SYMPY, read
 
 Terms = list[tuple[tuple[int, ...], float]]
 """A polynomial as plain data for :mod:`sorgui.render`: ``[(exponents, coefficient), ...]``."""
@@ -64,24 +64,21 @@ def float_vector(triple: Sequence[str]) -> np.ndarray:
     return np.array([to_float(c) for c in triple], dtype=np.float64)
 
 
-def _renamed(text: str, names: Sequence[str]) -> str:
-    """``text`` with the variables ``names`` renamed to ``x, y, z`` (at once) for the parser."""
-    mapping = dict(zip(names, ("x", "y", "z")))
-    pattern = re.compile(r"\b(" + "|".join(re.escape(n) for n in mapping) + r")\b")
-    return pattern.sub(lambda match: mapping[match.group(1)], text)
-
-
 def polynomial_terms(text: str, names: Sequence[str] = ("x", "y", "z")) -> Terms:
-    """The engine polynomial ``text`` in ``names`` as float terms (exponents in that order).
+    """The engine polynomial ``text`` in ``names`` as float terms (exponents in that order);
+    each exact coefficient is rounded once. An expanded polynomial over ``QQ`` (a degree-40
+    surface prints 240 kB) is read by flint's reader in a fraction of a second, where sympy's
+    expressions take seconds; one with algebraic coefficients is read as an expression."""
+    terms = expanded_terms(text, names)
+    if terms is not None:
+        return [(monomial, _rounded(c)) for monomial, c in terms.items()]
+    symbols = [sympy.Symbol(n) for n in names]
+    return _float_terms(read_expression(text), symbols)
 
-    Read with the project's parser; each exact coefficient in ``K`` is rounded once.
-    """
-    parsed = parse_polynomial(_renamed(text, names))
-    K = parsed.field
-    nvars = len(names)
-    return [
-        (tuple(int(e) for e in monom[:nvars]), float(K.to_sympy(c).evalf(20))) for monom, c in parsed.polynomial.items()
-    ]
+
+def _rounded(c: fmpq | int) -> float:
+    """The nearest ``float`` (Python's division of integers rounds correctly)."""
+    return float(c) if isinstance(c, int) else int(c.p) / int(c.q)
 
 
 def rational_function_terms(text: str, names: Sequence[str]) -> tuple[Terms, Terms]:
