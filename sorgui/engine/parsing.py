@@ -161,14 +161,26 @@ def _checked(text: str) -> tuple[Node, _Evaluator, bool]:
     its evaluator, and whether a variable was written."""
     if len(text) > MAX_LENGTH:
         raise ParseError(f"the input is too long (more than {MAX_LENGTH:,} characters)", 0, len(text))
+    tree, saw_variable = _tree(text)
+    evaluator = _Evaluator()
     try:
-        parser = _Parser(text)
-        tree = parser.equation()
-        evaluator = _Evaluator()
         evaluator.check(tree)
     except RecursionError:
         raise ParseError("the expression is nested too deeply", 0, len(text)) from None
-    return tree, evaluator, parser.saw_variable
+    return tree, evaluator, saw_variable
+
+
+@lru_cache(maxsize=1)
+def _tree(text: str) -> tuple[Node, bool]:
+    """The syntax tree of ``text`` and whether a variable was written, tokenised once for the
+    last text read: one analysis reads its text up to three times (the recognition-only path,
+    the general one, the digits of rounded input, docs/math.md §8). The tree is immutable; an
+    error is raised again each time."""
+    try:
+        parser = _Parser(text)
+        return parser.equation(), parser.saw_variable
+    except RecursionError:
+        raise ParseError("the expression is nested too deeply", 0, len(text)) from None
 
 
 def _evaluate(text: str, evaluator: _Evaluator, tree: Node, ring: _Ring, saw_variable: bool) -> Any:
@@ -189,11 +201,8 @@ def _evaluate(text: str, evaluator: _Evaluator, tree: Node, ring: _Ring, saw_var
 
 def syntax_tree(text: str) -> Node:
     """The syntax tree of ``text``, unchecked and unevaluated: what :mod:`.rounded.precision` reads to
-    learn how many digits each number was printed with (docs/math.md §8)."""
-    try:
-        return _Parser(text).equation()
-    except RecursionError:
-        raise ParseError("the expression is nested too deeply", 0, len(text)) from None
+    learn how many digits each number was printed with (docs/math.md §8), the tree the parse built."""
+    return _tree(text)[0]
 
 
 # --- tokens ------------------------------------------------------------------------------
