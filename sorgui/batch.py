@@ -7,7 +7,8 @@ others. The output keeps the order of the input. The input is read as it is anal
 at a time: the length limit of one equation applies to each line, not to the file.
 
 Each line is analysed in a worker process (:class:`~sorgui.session.supervised.Supervised`,
-``--jobs`` of them, forked after the engine is imported so that each starts at once) under the
+``--jobs`` of them, forked after the engine is imported and warmed up so that each starts at
+once, :func:`warm_up`) under the
 time limit of one analysis: a worker that does not answer in time is killed with its Singular,
 its line answered with the stages it finished, and the worker replaced; so is a worker that
 dies (killed, out of memory), its line answered with an error object. Every worker dies with
@@ -107,13 +108,35 @@ class _Progress:
         sys.stderr.flush()
 
 
+WARM_UP = (
+    "x**4 + 2*x**2*y**2 + 2*x**2*z**2 + y**4 + 2*y**2*z**2 + z**4 - 74/9*x**2 + 64/9*x*y"
+    " + 64/9*x*z - 26/9*y**2 + 128/9*y*z - 26/9*z**2 + 9"
+)
+"""A torus about the line through 0 along ``(1, 2, 2)``, expanded as the engine prints it: small,
+over ``QQ``, on a tilted axis, like the equations of a parts library."""
+
+WARM_UP_RUNS = 8
+"""How often :data:`WARM_UP` is analysed before the workers are forked."""
+
+
+def warm_up() -> None:
+    """Analyse :data:`WARM_UP` a few times (recognition only, without sympy, about 12 ms): the
+    modules an analysis loads when it first needs them are then loaded, and Python has
+    specialised the bytecode of the recognition (the first analyses of a process otherwise run
+    about 1.5 times slower), once for every worker forked after it instead of in each."""
+    from sorgui.engine import analyze
+
+    for _ in range(WARM_UP_RUNS):
+        analyze(WARM_UP, recognition_only=True)
+
+
 class _Pool:
     """Analysis processes, each given one line at a time (the caller bounds how many are busy)."""
 
     def __init__(self, request: Callable[[str], AnalysisRequest]) -> None:
         import multiprocessing
 
-        import sorgui.engine  # noqa: F401 - loaded once, before the forks, for every worker
+        warm_up()  # once, before the forks, for every worker
 
         self.context = multiprocessing.get_context("fork")
         self.request = request

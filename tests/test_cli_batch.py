@@ -88,3 +88,18 @@ def test_each_line_needs_a_file_or_standard_input() -> None:
         timeout=120,
     )
     assert piped.returncode == 0 and json.loads(piped.stdout)["symmetry"] == "revolution"
+
+
+def test_the_warm_up_is_a_surface_of_revolution_and_loads_no_sympy() -> None:
+    """The pool's warm-up equation is what it says (a torus about the axis along (1, 2, 2)), and
+    warming up keeps a recognition-only batch free of sympy."""
+    code = (
+        "import sys\n"
+        "from sorgui.batch import WARM_UP, warm_up\n"
+        "from sorgui.engine import analyze\n"
+        "warm_up()\n"
+        "a = analyze(WARM_UP, recognition_only=True)\n"
+        "print(a.recognition.symmetry, a.recognition.axis.direction, 'sympy' in sys.modules)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True)
+    assert done.stdout.split() == ["revolution", "('1',", "'2',", "'2')", "False"]
