@@ -7,6 +7,7 @@ on a first start with the paper's Example 1, and analyses it at once.
 
 from __future__ import annotations
 
+import faulthandler
 import os
 import signal
 import socket
@@ -158,7 +159,11 @@ class SignalEnding:
 
 
 def run_gui(path: str | None = None) -> int:
-    """Open the main window (with ``path``, if given) and run the event loop; the exit status."""
+    """Open the main window (with ``path``, if given) and run the event loop; the exit status.
+
+    A crash in C++ (Qt, VTK, OpenGL) prints the Python stack of every thread to stderr
+    (:mod:`faulthandler`), so that a report of it says where it happened."""
+    faulthandler.enable()
     app = create_application()
     ending = SignalEnding(app)
     try:

@@ -25,7 +25,9 @@ are drawn (the "Canal" box shows or hides them).
 
 from __future__ import annotations
 
+import contextlib
 import gc
+import importlib
 import threading
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -107,8 +109,15 @@ RADIUS_DELAY_MS = 500
 """Debounce of the radius box: the ball is re-meshed this long after the last change."""
 
 
+QT_MODULES_OF_THE_RENDER_WINDOW = ("PySide6.QtOpenGL", "PySide6.QtOpenGLWidgets", "PySide6.QtDataVisualization")
+"""The Qt modules that pyvistaqt and VTK's Qt widget load (through qtpy). They are imported on
+the GUI thread (a few milliseconds) before :func:`_import_rendering` runs on its thread: a Qt
+module's C++ side is initialised on the GUI thread, never beside the widgets being built."""
+
+
 def _import_rendering() -> None:
-    """Import what the render window needs (run on a thread by :meth:`Viewport.start_rendering_soon`)."""
+    """Import what the render window needs (run on a thread by :meth:`Viewport.start_rendering_soon`,
+    after the Qt modules of :data:`QT_MODULES_OF_THE_RENDER_WINDOW`)."""
     import pyvistaqt  # noqa: F401
     import vtkmodules.vtkCommonDataModel  # noqa: F401
 
@@ -241,6 +250,9 @@ class Viewport(QWidget):
         render window on the GUI thread. The window calls this once it is drawn."""
         if self._plotter is not None or self._loading is not None:
             return
+        for name in QT_MODULES_OF_THE_RENDER_WINDOW:
+            with contextlib.suppress(ImportError):  # an add-on module may be missing; qtpy skips it too
+                importlib.import_module(name)
         self._loading = threading.Thread(target=_import_rendering, name="sorgui-import-vtk", daemon=True)
         self._loading.start()
         self._loading_timer.start()
