@@ -31,7 +31,6 @@ from __future__ import annotations
 import threading
 from collections.abc import Sequence
 from dataclasses import dataclass
-from math import gcd, lcm
 
 import sympy
 from flint import fmpq, fmpq_mat, fmpq_mpoly, fmpq_poly
@@ -49,6 +48,8 @@ from ..algebra.polys import (
     to_flint,
     total_degree,
 )
+from ..algebra.rationals import primitive as rational_primitive
+from ..algebra.rationals import terms as rational_terms
 from ..errors import AnalysisError, SingularError
 from .process import (
     emit,
@@ -214,46 +215,37 @@ def _conic_profile_pair(P: Poly, P2: Poly) -> tuple[CurveAnalysis, CurveAnalysis
         return None
     analyses = []
     for F, factors in ((P, p_factors), (P2, p2_factors)):
-        classes = tuple(AbsoluteFactor(_singular_normal_form(G, _variables(F)), 1, 1) for G in factors)
+        classes = tuple(AbsoluteFactor(expr, 1, 1) for expr in _singular_normal_forms(factors, _variables(F)))
         analyses.append(CurveAnalysis(AbsoluteFactorization(_variables(F), classes), 0 if len(classes) == 1 else None))
     return analyses[0], analyses[1]
 
 
 def _rational_factors(F: Poly) -> list[fmpq_mpoly] | None:
-    """The irreducible factors of ``F`` over ``QQ`` (flint), sorted; ``None`` unless square-free."""
+    """The irreducible factors of ``F`` over ``QQ`` (flint); ``None`` unless square-free."""
     _, factors = to_flint(F).factor()
     if any(e > 1 for _, e in factors):
         return None
-    return sorted((G for G, _ in factors), key=_dp_key)
+    return [G for G, _ in factors]
 
 
-def _dp_key(G: fmpq_mpoly) -> tuple[int, tuple[tuple[int, ...], ...], tuple[fmpq, ...]]:
-    """Factors in increasing degree, then by their monomials and coefficients in Singular's
-    ``dp`` order: the order in which ``absFactorize`` lists the factors of a torus's profile."""
-    terms = _dp_terms(G)
-    return G.total_degree(), tuple(_dp_monomial(m) for m, _ in terms), tuple(c for _, c in terms)
+def _singular_normal_forms(
+    factors: Sequence[fmpq_mpoly], variables: tuple[sympy.Symbol, sympy.Symbol]
+) -> list[sympy.Expr]:
+    """The factors as ``absFactorize`` writes them: primitive over ``ZZ`` with a positive
+    leading coefficient in Singular's ``dp`` order (degree, then lexicographic), and listed by
+    their ``dp`` monomials, then coefficients (the order it gives for a torus's profile)."""
+    normal = []
+    for G in factors:
+        terms = sorted(rational_terms(rational_primitive(G)), key=lambda t: _dp_monomial(t[0]), reverse=True)
+        sign = -1 if terms[0][1] < 0 else 1
+        normal.append([(_dp_monomial(m), m, sign * c) for m, c in terms])
+    normal.sort(key=lambda t: ([d for d, _, _ in t], [c for _, _, c in t]))
+    x, y = variables
+    return [sympy.Add(*(sympy.Integer(int(c.p)) * x ** m[0] * y ** m[1] for _, m, c in t)) for t in normal]
 
 
 def _dp_monomial(m: tuple[int, ...]) -> tuple[int, ...]:
     return (sum(m), *m)
-
-
-def _dp_terms(G: fmpq_mpoly) -> list[tuple[tuple[int, ...], fmpq]]:
-    """The terms of ``G``, primitive over ``ZZ`` with a positive leading coefficient in ``dp``
-    (degree, then lexicographic): the normal form of Singular's factors, highest term first."""
-    terms = sorted(
-        ((tuple(map(int, m)), c) for m, c in G.to_dict().items()), key=lambda t: _dp_monomial(t[0]), reverse=True
-    )
-    scale = fmpq(lcm(*(int(c.q) for _, c in terms)), gcd(*(int(c.p) for _, c in terms)))
-    if terms[0][1] < 0:
-        scale = -scale
-    return [(m, c * scale) for m, c in terms]
-
-
-def _singular_normal_form(G: fmpq_mpoly, variables: tuple[sympy.Symbol, sympy.Symbol]) -> sympy.Expr:
-    """``G`` as a sympy expression in ``variables``, in the normal form of :func:`_dp_terms`."""
-    x, y = variables
-    return sympy.Add(*(sympy.Integer(int(c.p)) * x ** m[0] * y ** m[1] for m, c in _dp_terms(G)))
 
 
 def _is_line_or_smooth_conic(F: fmpq_mpoly) -> bool:
