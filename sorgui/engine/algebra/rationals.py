@@ -91,9 +91,10 @@ def terms(g: fmpq_mpoly) -> list[tuple[Monomial, fmpq]]:
 def flint_str(g: fmpq_mpoly, names: Sequence[str] | None = None) -> str:
     """:func:`terms_str` of a flint polynomial (named ``names``, else its context's names),
     printed by flint itself: in the ``deglex`` order its terms come as :func:`terms_str` sorts
-    them, and its rationals read as ours once ``^`` is written ``**`` (a test compares both)."""
+    them, and its rationals read as ours once ``^`` is written ``**`` (a test compares both).
+    The polynomial is moved into that ring by composing with its generators (no Python terms)."""
     printer = fmpq_mpoly_ctx.get(tuple(names or g.context().names()), "deglex")
-    return str(printer.from_dict(dict(zip(g.monoms(), g.coeffs())))).replace("^", "**")
+    return str(g.compose(*printer.gens(), ctx=printer)).replace("^", "**")
 
 
 def times_text(q: fmpq, atom: str) -> str:
