@@ -25,17 +25,17 @@ from dataclasses import dataclass
 from functools import lru_cache
 from itertools import product
 from math import isqrt
-from typing import Any
+from typing import Any, TypeAlias
 
 import sympy
-from flint import fmpq, fmpq_mat, fmpq_mpoly, fmpq_mpoly_ctx, fmpz, nmod, nmod_mpoly_ctx
+from flint import fmpq, fmpq_mat, fmpq_mpoly, fmpq_mpoly_ctx, fmpz, nmod, nmod_mpoly, nmod_mpoly_ctx
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.rings import PolyElement, PolyRing
 
 from ..errors import AnalysisError
 
-Poly = PolyElement
+Poly: TypeAlias = PolyElement
 
 
 # --- the radical basis of K ---------------------------------------------------------------
@@ -497,7 +497,7 @@ def _modular_gcd(A: fmpq_mpoly, B: fmpq_mpoly, nv: int, radicands: Sequence[int]
     for _ in range(400):
         p = _next_prime(p, radicands)
         roots = [int(nmod(d, p).sqrt()) for d in radicands]
-        images = []
+        images: list[tuple[tuple[int, ...], nmod_mpoly]] = []
         for signs in product((1, -1), repeat=k):
             values = [r * s % p for r, s in zip(roots, signs)]
             ga = _image(A, nv, values, p, names)
@@ -564,7 +564,7 @@ def _next_prime(p: int, radicands: Sequence[int]) -> int:
             return p
 
 
-def _image(P: fmpq_mpoly, nv: int, values: Sequence[int], p: int, names: Sequence[str]) -> Any | None:
+def _image(P: fmpq_mpoly, nv: int, values: Sequence[int], p: int, names: Sequence[str]) -> nmod_mpoly | None:
     """``P`` with ``ρᵢ = valuesᵢ`` in ``GF(p)[variables]``; ``None`` when a denominator vanishes."""
     out: dict[tuple[int, ...], int] = {}
     for monom, c in P.to_dict().items():
@@ -589,9 +589,9 @@ def _crt(r1: fmpz, m1: fmpz, r2: int, m2: int) -> fmpz:
 
 def _rational_reconstruction(r: fmpz, m: fmpz) -> fmpq | None:
     """``a/b ≡ r (mod m)`` with ``|a|, b ≤ √(m/2)``, or ``None``."""
-    r, m = int(r) % int(m), int(m)
-    bound = isqrt(m // 2)
-    r0, r1, s0, s1 = m, r, 0, 1
+    residue, modulus = int(r) % int(m), int(m)
+    bound = isqrt(modulus // 2)
+    r0, r1, s0, s1 = modulus, residue, 0, 1
     while r1 > bound:
         q = r0 // r1
         r0, r1, s0, s1 = r1, r0 - q * r1, s1, s0 - q * s1

@@ -10,10 +10,10 @@ Trager's norm method).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from fractions import Fraction
 from functools import lru_cache
-from typing import Any
+from typing import Any, TypeAlias
 
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
@@ -22,14 +22,14 @@ from sympy.polys.domains.domain import Domain
 from sympy.polys.rings import PolyElement, PolyRing, ring
 
 from . import numberfields
-from .rationals import terms_str
+from .rationals import Monomial, terms_str
 
 if QQ.dtype is not fmpq:  # sympy was imported before sorgui, with other ground types
     raise ImportError(
         "sorgui needs sympy's flint ground types: import sorgui before sympy, or set SYMPY_GROUND_TYPES=flint"
     )
 
-Poly = PolyElement
+Poly: TypeAlias = PolyElement
 """A polynomial of the engine: sympy's sparse ``PolyElement`` over ``K``."""
 
 XYZ = ("x", "y", "z")
@@ -52,7 +52,7 @@ def number_field(radicands: tuple[int, ...] = ()) -> Domain:
 
 def is_rational_field(K: Domain) -> bool:
     """True when ``K`` is ``QQ`` (the flint fast path applies)."""
-    return K == QQ
+    return bool(K == QQ)
 
 
 def field_name(K: Domain) -> str:
@@ -268,4 +268,5 @@ def total_degree(f: Poly) -> int:
     """The total degree of ``f`` (``-1`` for the zero polynomial)."""
     if not f:
         return -1
-    return max(sum(m) for m in f.itermonoms())
+    monomials: Iterator[Monomial] = f.itermonoms()
+    return max(sum(m) for m in monomials)

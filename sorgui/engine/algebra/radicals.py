@@ -119,5 +119,5 @@ class RadicalRing:
 
 
 def _rational(q: object) -> fmpq:
-    q = sympy.Rational(q)
-    return fmpq(int(q.p), int(q.q))
+    value = sympy.Rational(q)
+    return fmpq(int(value.p), int(value.q))

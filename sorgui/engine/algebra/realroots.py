@@ -9,6 +9,7 @@ refined until they exclude 0 (rigorous, never plain floats).
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import flint
 import sympy
@@ -54,7 +55,7 @@ def sign_changes(signs: Sequence[int]) -> int:
     return sum(1 for u, v in zip(nonzero, nonzero[1:]) if u != v)
 
 
-def sign(K: Domain, c: object) -> int:
+def sign(K: Domain, c: Any) -> int:
     """The sign of ``c ∈ K``: exact over ``QQ``; over ``QQ(θ)``, ``c(θ)`` in ball arithmetic
     with rising precision until the ball excludes 0 (it does, as ``c ≠ 0``)."""
     if not c:

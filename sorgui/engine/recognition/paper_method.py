@@ -84,6 +84,7 @@ def recognize_paper(f: Poly, seed: int = 0) -> Symmetry:
         if dot(m.a, m.b):
             return Symmetry(NONE, ())
         candidate = classify(basis, K)
+        assert candidate.axis_point is not None and candidate.axis_direction is not None  # a rotation: an axis
         profile = profile_curve(f, candidate.axis_point, candidate.axis_direction)
         return candidate if profile.verified else Symmetry(NONE, ())
     if all(satisfies_identity(f, m) for m in basis):

@@ -110,7 +110,7 @@ def verify_profile(f: Poly, frame: AxisFrame, square: Poly) -> bool:
     c, a, u, w = frame.point, frame.direction, frame.normal, frame.binormal
     lhs = compose(f, [c[i] + s * a[i] + r1 * u[i] + r2 * w[i] for i in range(3)])
     rhs = compose(square, [s, r1**2 + dot(a, a) * r2**2])
-    return lhs == rhs
+    return bool(lhs == rhs)
 
 
 def orthonormal_profile(p: Poly, frame: AxisFrame) -> Poly:
@@ -123,6 +123,7 @@ def orthonormal_profile(p: Poly, frame: AxisFrame) -> Poly:
     K = p.ring.domain
     n = dot(frame.direction, frame.direction)
     root = sqrt_in_field(K, n)
+    convert: Callable[[Any], Any]
     L, convert = K, (lambda c: c)
     if root is None:
         L, root, convert = _adjoin_root(K, n)

@@ -8,13 +8,14 @@ return a :class:`~sorgui.engine.recognition.symmetry.Symmetry`; everything after
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import overload
 
 from sympy.polys.domains.domain import Domain
 
 from ..algebra.linalg import Vector, cross, is_zero, primitive_vector, sub
 from ..algebra.polys import Poly, factor, poly_str, to_str, total_degree
 from ..errors import AnalysisError
-from ..results import Axis, Factor, Profile, Recognition
+from ..results import Axis, Factor, Profile, Recognition, Triple
 from .paper_method import recognize_paper
 from .profile import ProfileCurve, profile_curve
 from .symmetry import CYLINDER, REVOLUTION, SPHERE, Symmetry, recognize_symmetry
@@ -33,17 +34,28 @@ def find_symmetry(f: Poly, method: str = "symmetry") -> Symmetry:
         raise AnalysisError(f"unknown method {method!r}; choose one of {', '.join(METHODS)}") from None
 
 
-def _triple(K: Domain, v: Vector | None) -> tuple[str, str, str] | None:
-    return None if v is None else tuple(to_str(K, c) for c in v)  # type: ignore[return-value]
+@overload
+def _triple(K: Domain, v: Vector) -> Triple: ...
+
+
+@overload
+def _triple(K: Domain, v: Vector | None) -> Triple | None: ...
+
+
+def _triple(K: Domain, v: Vector | None) -> Triple | None:
+    if v is None:
+        return None
+    x, y, z = v
+    return to_str(K, x), to_str(K, y), to_str(K, z)
 
 
 def axis_report(point: Vector, direction: Vector, K: Domain) -> Axis:
     """The axis as point, direction and Plücker coordinates ``(v : p × v)`` (docs/math.md §1 erratum)."""
     plucker = primitive_vector(tuple(direction) + cross(point, direction), K)
     return Axis(
-        point=_triple(K, point),  # type: ignore[arg-type]
-        direction=_triple(K, direction),  # type: ignore[arg-type]
-        plucker=tuple(to_str(K, c) for c in plucker),  # type: ignore[arg-type]
+        point=_triple(K, point),
+        direction=_triple(K, direction),
+        plucker=_triple(K, plucker[:3]) + _triple(K, plucker[3:]),
     )
 
 
@@ -56,9 +68,9 @@ def profile_report(profile: ProfileCurve, K: Domain) -> Profile:
         square=poly_str(square),
         rational=poly_str(profile.rational),
         rational_square=poly_str(profile.square),
-        frame_point=_triple(K, profile.frame.point),  # type: ignore[arg-type]
-        frame_direction=_triple(K, profile.frame.direction),  # type: ignore[arg-type]
-        frame_normal=_triple(K, profile.frame.normal),  # type: ignore[arg-type]
+        frame_point=_triple(K, profile.frame.point),
+        frame_direction=_triple(K, profile.frame.direction),
+        frame_normal=_triple(K, profile.frame.normal),
         even=profile.even,
         verified=profile.verified,
     )
@@ -78,10 +90,12 @@ def recognize(
     sym = find_symmetry(f, method)
     profile = None
     if sym.kind in (REVOLUTION, CYLINDER):
-        point, direction, normal = sym.axis_point, sym.axis_direction, None
-        if frame is not None and _same_line(frame[:2], (point, direction)):  # type: ignore[arg-type]
+        assert sym.axis_point is not None and sym.axis_direction is not None  # a unique axis (classify)
+        point, direction = sym.axis_point, sym.axis_direction
+        normal: Vector | None = None
+        if frame is not None and _same_line(frame[:2], (point, direction)):
             point, direction, normal = frame
-        profile = profile_curve(f, point, direction, normal)  # type: ignore[arg-type]
+        profile = profile_curve(f, point, direction, normal)
         if not profile.verified:
             raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
     report = Recognition(
@@ -91,13 +105,15 @@ def recognize(
         symmetry=sym.kind,
         symmetry_dimension=sym.dimension,
         symmetry_basis=tuple(tuple(to_str(K, c) for c in m.a + m.b) for m in sym.basis),
-        axis=axis_report(sym.axis_point, sym.axis_direction, K) if sym.axis_point is not None else None,  # type: ignore[arg-type]
+        axis=axis_report(sym.axis_point, sym.axis_direction, K)
+        if sym.axis_point is not None and sym.axis_direction is not None
+        else None,
         center=_triple(K, sym.center),
         normal=_triple(K, sym.normal),
         direction=_triple(K, sym.direction),
         profile=profile_report(profile, K) if profile is not None else None,
         radius_squared=None
-        if sym.kind != SPHERE or total_degree(f) != 2
+        if sym.kind != SPHERE or sym.center is None or total_degree(f) != 2
         else to_str(K, _radius_squared(f, sym.center)),
     )
     return report, sym, profile

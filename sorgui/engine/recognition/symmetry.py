@@ -162,7 +162,7 @@ def _values(polys: list[fmpq_mpoly], point: tuple[fmpq, fmpq, fmpq]) -> list[fmp
     return [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
 
 
-def _vanishes(polys: list[Any], weights: Sequence[Any]) -> bool:
+def _vanishes(polys: list[fmpq_mpoly], weights: Sequence[Any]) -> bool:
     """Whether ``Σ w_i·polys_i`` is the zero polynomial (exactly, in flint)."""
     total = polys[0] * 0
     for p, w in zip(polys, weights):

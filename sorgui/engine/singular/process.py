@@ -44,8 +44,10 @@ from collections.abc import Callable, Mapping, Sequence
 from functools import lru_cache, reduce
 from math import ceil, lcm
 from pathlib import Path
+from typing import Any
 
 import sympy
+from flint import fmpq
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
@@ -111,9 +113,9 @@ def _locate(override: str | None) -> Path:
             f"${ENV_VARIABLE} is set to {override!r}, which is not an executable file; "
             f"unset it or point it to a Singular binary"
         )
-    for path in (_wheel_singular(), shutil.which("Singular")):
-        if path is not None and _is_executable(Path(path)):
-            return Path(path)
+    for candidate in (_wheel_singular(), shutil.which("Singular")):
+        if candidate is not None and _is_executable(Path(candidate)):
+            return Path(candidate)
     raise SingularNotFound(
         "Singular was not found: install it with `pip install passagemath-singular` "
         f"(which ships the executable), install a system Singular, or set ${ENV_VARIABLE}"
@@ -343,14 +345,14 @@ def minpoly_to_singular(K: Domain, parameter: str = "a") -> str:
     return _integer_poly([q * denominator for q in coeffs], parameter)
 
 
-def _coefficient_list(K: Domain, c: object) -> list:
+def _coefficient_list(K: Domain, c: Any) -> list[fmpq]:
     """The rational coordinates of ``c ∈ K`` in powers of θ, highest first."""
     if is_rational_field(K):
         return [QQ.convert(c)]
     return [QQ.convert(q) for q in c.to_list()] or [QQ.zero]
 
 
-def _integer_poly(coeffs: Sequence, parameter: str) -> str:
+def _integer_poly(coeffs: Sequence[fmpq], parameter: str) -> str:
     """A univariate polynomial (integer coefficients, highest degree first) as Singular text."""
     n = len(coeffs) - 1
     parts = []
