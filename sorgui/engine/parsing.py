@@ -29,7 +29,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
-from typing import TYPE_CHECKING, Any, NamedTuple, Protocol, TypeAlias
+from typing import TYPE_CHECKING, Any, NamedTuple, Protocol, TypeAlias, cast
 
 from flint import fmpq, fmpq_mpoly, fmpz
 
@@ -139,7 +139,8 @@ def parse_rational(text: str) -> fmpq_mpoly | None:
     tree, evaluator, saw_variable = _checked(text)
     if evaluator.radicands:
         return None
-    return _evaluate(text, evaluator, tree, _FlintRationals(), saw_variable)
+    g: fmpq_mpoly = _evaluate(text, evaluator, tree, _FlintRationals(), saw_variable)
+    return g
 
 
 def expanded_polynomial(text: str) -> fmpq_mpoly | None:
@@ -265,7 +266,9 @@ def _name(word: str, start: int) -> Iterator[Token]:
 
 def _number(text: str, start: int, end: int) -> Rational:
     """The exact value of a decimal literal such as ``12``, ``0.25``, ``.5`` or ``2.5E+2``."""
-    whole, fraction, exponent = _NUMBER.fullmatch(text, start, end).groups()
+    match = _NUMBER.fullmatch(text, start, end)
+    assert match is not None  # every number token is a literal that _NUMBER matches
+    whole, fraction, exponent = match.groups()
     digits = whole + (fraction or "")
     if len(digits) > MAX_DIGITS:
         raise ParseError(f"the number has more than {MAX_DIGITS:,} digits", start, end)
@@ -292,46 +295,43 @@ class _Span:
     end: int
 
 
-_node = dataclass(frozen=True, slots=True, eq=False)
-
-
-@_node
+@dataclass(frozen=True, slots=True, eq=False)
 class Num(_Span):
     value: Rational
 
 
-@_node
+@dataclass(frozen=True, slots=True, eq=False)
 class Var(_Span):
     index: int  # 0, 1, 2 for x, y, z
 
 
-@_node
+@dataclass(frozen=True, slots=True, eq=False)
 class Neg(_Span):
     arg: Node
 
 
-@_node
+@dataclass(frozen=True, slots=True, eq=False)
 class Sum(_Span):
     terms: tuple[Node, ...]  # n-ary, so long pasted sums evaluate in linear time
 
 
-@_node
+@dataclass(frozen=True, slots=True, eq=False)
 class Product(_Span):
     factors: tuple[Node, ...]  # the first factor is never a Reciprocal
 
 
-@_node
+@dataclass(frozen=True, slots=True, eq=False)
 class Reciprocal(_Span):
     arg: Node  # '/ arg' inside a Product; the span starts at the '/'
 
 
-@_node
+@dataclass(frozen=True, slots=True, eq=False)
 class Power(_Span):
     base: Node
     exponent: Node
 
 
-@_node
+@dataclass(frozen=True, slots=True, eq=False)
 class Sqrt(_Span):
     arg: Node
 
@@ -583,7 +583,7 @@ class _Evaluator:
 
     @staticmethod
     def _check_exponent(node: Power, n: Rational) -> None:
-        if abs(n) > MAX_EXPONENT:
+        if not -MAX_EXPONENT <= n <= MAX_EXPONENT:
             raise ParseError(
                 f"the exponent is too large (the limit is {MAX_EXPONENT})", node.exponent.start, node.exponent.end
             )
@@ -723,9 +723,9 @@ class _Evaluator:
         """Accumulate all terms into one dict: linear, where repeated ``p + q`` is quadratic."""
         total: dict[tuple[int, ...], Any] = {}
         for term in node.terms:
-            negative = isinstance(term, Neg)
-            if negative:
-                term = term.arg
+            negative = False
+            if isinstance(term, Neg):
+                negative, term = True, term.arg
             monomial = self._monomial(term)
             items = (monomial,) if monomial is not None else self._ring.terms(self._value(term))
             for monom, coeff in items:
@@ -866,7 +866,7 @@ class _FlintRationals:
     def rational(self, q: Rational) -> fmpq:
         return fmpq(q.numerator, q.denominator)
 
-    def quo(self, a: Any, b: Any) -> fmpq:
+    def quo(self, a: fmpq, b: fmpq) -> fmpq:
         return a / b
 
     def ground(self, c: Any) -> fmpq_mpoly:
@@ -884,7 +884,7 @@ class _FlintRationals:
     def from_terms(self, terms: dict[tuple[int, ...], Any]) -> fmpq_mpoly:
         return self._context.from_dict(terms)
 
-    def scale(self, p: fmpq_mpoly, c: Any) -> fmpq_mpoly:
+    def scale(self, p: fmpq_mpoly, c: fmpq) -> fmpq_mpoly:
         return p * c
 
 
@@ -915,7 +915,7 @@ class _SympyField:
         return self._ring.ground_new(c)
 
     def is_constant(self, p: PolyElement) -> bool:
-        return p.is_ground
+        return cast(bool, p.is_ground)
 
     def constant_term(self, p: PolyElement) -> Any:
         return p.get(self._ring.zero_monom, self._field.zero)

@@ -19,7 +19,7 @@ large ``|a|²`` (:data:`MAX_NORM`).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, overload
 
 from flint import fmpq, fmpq_mpoly
 
@@ -46,7 +46,7 @@ from .recognition.symmetry import (
     rational_symmetry,
     revolution_canal,
 )
-from .results import Analysis, Axis, Factor, Profile, Recognition
+from .results import Analysis, Axis, Factor, Profile, Recognition, Triple
 from .rounded.precision import has_decimals
 
 if TYPE_CHECKING:
@@ -113,9 +113,11 @@ def recognize_rational(g: fmpq_mpoly) -> tuple[Recognition, fmpq_mpoly | None] |
     symmetry = rational_symmetry(g)
     profile = square = None
     if symmetry.kind in (REVOLUTION, CYLINDER):
-        if dot(symmetry.axis_direction, symmetry.axis_direction) >= MAX_NORM:  # type: ignore[arg-type]
+        point, direction = symmetry.axis_point, symmetry.axis_direction
+        assert point is not None and direction is not None  # a unique axis: both are set
+        if dot(direction, direction) >= MAX_NORM:
             return None
-        profile, square = _profile(g, symmetry.axis_point, symmetry.axis_direction)  # type: ignore[arg-type]
+        profile, square = _profile(g, point, direction)
     return Recognition(
         polynomial=flint_str(g, XYZ),
         degree=int(g.total_degree()),
@@ -173,8 +175,19 @@ def _irreducible(p: fmpq_mpoly) -> bool:
     return len(factors) == 1 and factors[0][1] == 1
 
 
-def _triple(v: Vector | None) -> tuple[str, str, str] | None:
-    return None if v is None else tuple(str(c) for c in v)  # type: ignore[return-value]
+@overload
+def _triple(v: Vector) -> Triple: ...
+
+
+@overload
+def _triple(v: Vector | None) -> Triple | None: ...
+
+
+def _triple(v: Vector | None) -> Triple | None:
+    if v is None:
+        return None
+    x, y, z = v
+    return str(x), str(y), str(z)
 
 
 def _axis(symmetry: Symmetry) -> Axis | None:
@@ -182,12 +195,13 @@ def _axis(symmetry: Symmetry) -> Axis | None:
     if symmetry.axis_point is None:
         return None
     point, direction = symmetry.axis_point, symmetry.axis_direction
-    plucker = primitive_vector(tuple(direction) + cross(point, direction), RATIONALS)  # type: ignore[arg-type]
+    assert direction is not None  # set with the point
+    plucker = primitive_vector(tuple(direction) + cross(point, direction), RATIONALS)
     return Axis(
         point=_triple(point),
-        direction=_triple(direction),  # type: ignore[arg-type]
-        plucker=tuple(str(c) for c in plucker),
-    )  # type: ignore[arg-type]
+        direction=_triple(direction),
+        plucker=_triple(plucker[:3]) + _triple(plucker[3:]),
+    )
 
 
 def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> tuple[Profile, fmpq_mpoly]:
@@ -213,7 +227,7 @@ def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> tuple[Profile, 
         rational_square=flint_str(square, ("s", "w")),
         frame_point=_triple(c),
         frame_direction=_triple(a),
-        frame_normal=_triple(u),  # type: ignore[arg-type]
+        frame_normal=_triple(u),
         even=True,
         verified=True,
     ), square
@@ -244,7 +258,7 @@ def _orthonormal(p: fmpq_mpoly, norm_a: fmpq, norm_u: fmpq) -> dict[Monomial, Su
         rational = primitive(context(("x", "y")).from_dict({m: q for m, (q, _) in scaled.items()}))
         if rational[top_monomial] < 0:
             rational = -rational
-        return {m: (q, 1) for m, q in terms(rational)}
+        return {(i, j): (q, 1) for (i, j), q in terms(rational)}
     return scaled
 
 

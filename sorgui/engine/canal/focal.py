@@ -113,7 +113,9 @@ def line_test(D: Derivatives, point: Sequence[int], direction: Sequence[int]) ->
         raise UnluckyLine("f is constant on the line")
     F = fl.gcd(fl.derivative())
     F = _monic(fl / F if F.degree() > 0 else fl)
-    key = (tuple(point), tuple(direction))
+    x, y, z = point
+    dx, dy, dz = direction
+    key = ((x, y, z), (dx, dy, dz))
     restricted = (
         [D.restrict(h, line) for h in D.g],
         {k: D.restrict(h, line) for k, h in D.h.items()},
@@ -133,7 +135,7 @@ def line_test(D: Derivatives, point: Sequence[int], direction: Sequence[int]) ->
             raise UnluckyLine("both focal parameters are infinite on the line")
         # Developable: the finite root ν = −a₀/a₁ must satisfy C.
         value = _evaluate_at_ratio(C, -a0, a1, ring)
-        canal = value == 0
+        canal = value.is_zero()
         smat = None
         if canal:
             smat = _smat(p, g, norm_g, Pair(-a0, fmpq_poly(0)), a1, ring)
@@ -202,7 +204,7 @@ def _fails_modulo_prime(
     if C0 == 0 and C1 == 0:
         return False
     R = _canal_polynomial(C0, C1, a0, a1, a2, ring)
-    return R != 0
+    return bool(R != 0)
 
 
 def _modular(h: fmpq_poly) -> nmod_poly | None:
@@ -281,7 +283,8 @@ def _bordered_derivative(
     dB: list[list[NuPoly]] = [[[zero]] * 4 for _ in range(4)]
     for i in range(3):
         for j in range(3):
-            dB[i][j] = [zero, -T[tuple(sorted((i, j, k)))]]  # type: ignore[index]
+            first, second, third = sorted((i, j, k))
+            dB[i][j] = [zero, -T[(first, second, third)]]
         dB[i][3] = [H[(min(i, k), max(i, k))]]
         dB[3][i] = dB[i][3]
     return dB
@@ -342,7 +345,8 @@ def _evaluate_at_ratio(C: NuPoly, num: fmpq_poly, den: fmpq_poly, ring: _Ring) -
     total = fmpq_poly(0)
     for i, c in enumerate(C):
         total += ring.reduce(c * ring.reduce(num**i) * ring.reduce(den ** (n - i)))
-    return ring.reduce(total)
+    reduced: fmpq_poly = ring.reduce(total)
+    return reduced
 
 
 def _smat(
@@ -362,11 +366,11 @@ def _smat(
     arith = PairRing(ring.F, disc if disc is not None else fmpq_poly(0))
     zero = fmpq_poly(0)
     d = Pair(ring.reduce(den), zero)
-    m = tuple(
+    m1, m2, m3 = (
         arith.mul(d, arith.sub(arith.mul(d, Pair(p[i], zero)), arith.mul(nu, Pair(g[i], zero)))) for i in range(3)
     )
     rho = arith.mul(arith.mul(nu, nu), Pair(norm_g, zero))
-    return (*m, rho, arith.mul(d, d))  # type: ignore[return-value]
+    return m1, m2, m3, rho, arith.mul(d, d)
 
 
 class PairRing:
@@ -378,7 +382,7 @@ class PairRing:
 
     def mul(self, a: Pair, b: Pair) -> Pair:
         F = self.F
-        if a.v == 0 and b.v == 0:
+        if a.v.is_zero() and b.v.is_zero():
             return Pair((a.u * b.u) % F, fmpq_poly(0))
         return Pair((a.u * b.u + ((a.v * b.v) % F) * self.D) % F, (a.u * b.v + a.v * b.u) % F)
 
@@ -402,7 +406,11 @@ class SmatSample:
 
     @cached_property
     def rings(self) -> tuple[PairRing, ...]:
-        return tuple(PairRing(t.F, t.discriminant) for t in self.tests)
+        rings = []
+        for t in self.tests:
+            assert t.discriminant is not None  # a sample's lines are canal lines, decided over QQ
+            rings.append(PairRing(t.F, t.discriminant))
+        return tuple(rings)
 
     @property
     def point_count(self) -> int:

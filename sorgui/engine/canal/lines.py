@@ -20,7 +20,7 @@ from dataclasses import dataclass, field, replace
 from flint import fmpq_mpoly, fmpq_poly
 
 from ..algebra.rationals import signed_sum, times_text
-from ..errors import AnalysisError, Cancelled
+from ..errors import AnalysisError, Cancelled, SorguiError
 from ..recognition.symmetry import PLANE_CANAL, SOR_EVIDENCE
 from ..results import Canal, CanalEvidence
 from .focal import (
@@ -147,7 +147,7 @@ SOR_NOTE = (
 )
 
 
-def undecided(lines: Lines, error: AnalysisError) -> Canal:
+def undecided(lines: Lines, error: SorguiError) -> Canal:
     """No verdict: the canal condition held on the lines tested, and the next step failed."""
     return Canal(
         None,
@@ -160,6 +160,8 @@ def undecided(lines: Lines, error: AnalysisError) -> Canal:
 def not_canal(test: LineTest, tried: int) -> Canal:
     """The verdict "not canal" with its witness line."""
     F = test.F
+    x, y, z = test.point
+    dx, dy, dz = test.direction
     witness = CanalEvidence(
         method="line",
         statement=(
@@ -172,8 +174,8 @@ def not_canal(test: LineTest, tried: int) -> Canal:
             + f" (F of degree {F.degree()}, the square-free part of f on the line)"
         ),
         verified=True,
-        point=tuple(str(c) for c in test.point),  # type: ignore[arg-type]
-        direction=tuple(str(c) for c in test.direction),  # type: ignore[arg-type]
+        point=(str(x), str(y), str(z)),
+        direction=(str(dx), str(dy), str(dz)),
         restriction=univariate_str(F, "tau"),
     )
     return Canal(False, "not canal", witness=witness, lines_tested=tried)

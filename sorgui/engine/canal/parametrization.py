@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TypeVar
+from typing import Any, TypeVar
 
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpq_poly
@@ -152,10 +152,10 @@ def characteristic_circles(
     dm = tuple(sympy.diff(c, T) for c in m)
     drho = sympy.diff(rho, T)
     n2 = sum(d * d for d in dm)
-    center = tuple(sympy.factor(sympy.cancel(c - drho / (2 * n2) * d)) for c, d in zip(m, dm))
+    center = _three([sympy.factor(sympy.cancel(c - drho / (2 * n2) * d)) for c, d in zip(m, dm)])
     radius_squared = sympy.factor(sympy.cancel(rho - drho**2 / (4 * n2)))
-    normal = tuple(sympy.factor(sympy.cancel(d)) for d in dm)
-    return center, radius_squared, normal  # type: ignore[return-value]
+    normal = _three([sympy.factor(sympy.cancel(d)) for d in dm])
+    return center, radius_squared, normal
 
 
 def frame(normal: tuple[sympy.Expr, ...]) -> tuple[tuple[sympy.Expr, ...], tuple[sympy.Expr, ...]]:
@@ -168,7 +168,8 @@ def frame(normal: tuple[sympy.Expr, ...]) -> tuple[tuple[sympy.Expr, ...], tuple
     raise AnalysisError("the spine has a vanishing tangent")
 
 
-def _cross(u: tuple, v: tuple) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
+def _cross(u: tuple[Any, ...], v: tuple[Any, ...]) -> tuple[Any, Any, Any]:
+    """``u × v`` for vectors of sympy expressions or of :class:`RationalFunction` (``v`` may hold integers)."""
     return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
 
 
@@ -182,11 +183,13 @@ def radical_parametrization(family: RationalFamily) -> tuple[sympy.Expr, sympy.E
     n1 = square_root(sum(c * c for c in e1))
     n2 = square_root(sum(c * c for c in e2))
     R = square_root(family.radius_squared)
-    return tuple(  # type: ignore[return-value]
-        c
-        + sympy.factor(sympy.cancel(R * a / n1)) * sympy.cos(THETA)
-        + sympy.factor(sympy.cancel(R * b / n2)) * sympy.sin(THETA)
-        for c, a, b in zip(family.center, e1, e2)
+    return _three(
+        [
+            c
+            + sympy.factor(sympy.cancel(R * a / n1)) * sympy.cos(THETA)
+            + sympy.factor(sympy.cancel(R * b / n2)) * sympy.sin(THETA)
+            for c, a, b in zip(family.center, e1, e2)
+        ]
     )
 
 
@@ -320,7 +323,7 @@ def _univariate(expr: sympy.Expr) -> fmpq_poly:
     p = sympy.Poly(expr, T)
     if p.is_zero:
         return fmpq_poly(0)
-    coeffs = [0] * (p.degree() + 1)
+    coeffs: list[fmpq | int] = [0] * (p.degree() + 1)
     for (e,), c in p.terms():
         coeffs[e] = fmpq(int(sympy.Rational(c).p), int(sympy.Rational(c).q))
     return fmpq_poly(coeffs)
@@ -341,7 +344,8 @@ def _lift(p: fmpq_poly, ctx: fmpq_mpoly_ctx) -> fmpq_mpoly:
 
 def family_strings(family: RationalFamily) -> tuple[tuple[str, str, str], str]:
     """``m(t)`` and ``ρ(t)`` as strings sympy reads back."""
-    return tuple(str(sympy.factor(c)) for c in family.m), str(sympy.factor(family.rho))  # type: ignore[return-value]
+    x, y, z = (str(sympy.factor(c)) for c in family.m)
+    return (x, y, z), str(sympy.factor(family.rho))
 
 
 def rational_parametrization(f: Poly, family: RationalFamily) -> tuple[tuple[sympy.Expr, ...], bool] | None:

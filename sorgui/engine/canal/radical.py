@@ -166,7 +166,7 @@ def radical_surface(f: Poly, family: RadicalFamily) -> tuple[tuple[sympy.Expr, s
     verified = _on_circles(f, family, center, radius_squared, e1, e2, norm1, norm2)
     shown = family.radicals
     radius, length1, length2 = (square_root(shown(family.reduced(q))) for q in (radius_squared, norm1, norm2))
-    coordinates = tuple(
+    x, y, z = (
         shown(family.reduced(c))
         + radius
         * (
@@ -175,7 +175,7 @@ def radical_surface(f: Poly, family: RadicalFamily) -> tuple[tuple[sympy.Expr, s
         )
         for c, u, w in zip(center, e1, e2)
     )
-    return coordinates, verified  # type: ignore[return-value]
+    return (x, y, z), verified
 
 
 def _on_circles(

@@ -20,6 +20,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from itertools import combinations
 from math import lcm
+from typing import cast
 
 import sympy
 from flint import fmpq, fmpq_poly, fmpz_mat
@@ -151,10 +152,11 @@ def to_poly(vec: Sequence[int], exps: Sequence[tuple[int, ...]], names: Sequence
 
 def vanishes_on_sample(P: Poly, sample: SmatSample) -> bool:
     """Whether ``P(m, ρ) ≡ 0`` at every sampled point (all lines, both roots on the Dupin branch)."""
-    return all(
-        _value(P, test.smat, arith) == Pair(fmpq_poly(0), fmpq_poly(0))  # type: ignore[arg-type]
-        for test, arith in zip(sample.tests, sample.rings)
-    )
+    for test, arith in zip(sample.tests, sample.rings):
+        assert test.smat is not None
+        if _value(P, test.smat, arith) != Pair(fmpq_poly(0), fmpq_poly(0)):
+            return False
+    return True
 
 
 def _value(P: Poly, point: Sequence[Pair], arith: PairRing) -> Pair:
@@ -435,4 +437,4 @@ def _linear_rank(polys: list[Poly]) -> int:
         return 0
     R = polys[0].ring
     rows = [[g.coeff(x) for x in R.gens] for g in polys]
-    return sympy.Matrix(rows).rank()
+    return cast(int, sympy.Matrix(rows).rank())

@@ -23,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from fractions import Fraction
 from math import gcd, isqrt, lcm
+from typing import Any
 
 from flint import fmpq, fmpq_poly
 from sympy.polys.domains import QQ
@@ -85,8 +86,8 @@ def torus_of(profile: ProfileCurve) -> Torus | None:
     if core <= 0 or tube <= 0:
         return None
     c = _fractions(frame.point)
-    center = tuple(c[i] + s0 * a[i] for i in range(3))
-    return Torus(center, a, u, core, tube)  # type: ignore[arg-type]
+    x, y, z = (c[i] + s0 * a[i] for i in range(3))
+    return Torus((x, y, z), a, u, core, tube)
 
 
 def torus_canal(torus: Torus, certificate: CanalEvidence) -> Canal:
@@ -244,7 +245,7 @@ def _report(
 ) -> CanalFamily:
     """The report of a family: ``m(t)``, ``ρ(t)`` and the circles only when the family is over
     ``QQ`` and passes the substitution into every SMAT equation; a pipe's ``radius`` always."""
-    rows = tuple(tuple(int(i == k) for i in range(4)) for k in projection)
+    first, second = (tuple(int(i == k) for i in range(4)) for k in projection)
     if family is not None and not all(_vanishes(g, (*family.m, family.rho)) for g in equations):
         family = None
     return CanalFamily(
@@ -257,14 +258,14 @@ def _report(
         equations=tuple(poly_str(g) for g in equations),
         spine_equations=tuple(poly_str(g) for g in spine),
         plane_model=poly_str(model),
-        projection=rows,  # type: ignore[arg-type]
-        parametrization=None if family is None else tuple(_text(c) for c in family.m),  # type: ignore[arg-type]
+        projection=(first, second),
+        parametrization=None if family is None else _texts(family.m),
         radius_squared=radius if family is None else _text(family.rho),
         field=None if family is None else "QQ",
         verified=family is not None,
-        circle_center=None if family is None else tuple(_text(c) for c in family.centre),  # type: ignore[arg-type]
+        circle_center=None if family is None else _texts(family.centre),
         circle_radius_squared=None if family is None else _text(family.radius2),
-        circle_normal=None if family is None else tuple(_text(c) for c in family.normal),  # type: ignore[arg-type]
+        circle_normal=None if family is None else _texts(family.normal),
     )
 
 
@@ -343,6 +344,12 @@ def _text(p: Rat) -> str:
     return f"{sign}{numerator}/" + (below[0] if len(below) == 1 else "(" + "*".join(below) + ")")
 
 
+def _texts(v: tuple[Rat, ...]) -> tuple[str, str, str]:
+    """The three coordinates of a point as :func:`_text` prints them."""
+    x, y, z = (_text(c) for c in v)
+    return x, y, z
+
+
 def _factors(p: fmpq_poly) -> tuple[fmpq, list[str]]:
     """The content of ``p`` and its primitive integer factors as text (``(t**2 + 1)**2``)."""
     content, factors = p.factor()
@@ -382,9 +389,11 @@ def _fraction_str(x: Fraction) -> str:
 
 
 def _fractions(v: Vector) -> tuple[Fraction, Fraction, Fraction]:
-    return tuple(Fraction(int(QQ.numer(c)), int(QQ.denom(c))) for c in v)  # type: ignore[return-value]
+    x, y, z = (Fraction(int(QQ.numer(c)), int(QQ.denom(c))) for c in v)
+    return x, y, z
 
 
-def _q(x: Fraction | int) -> object:
+def _q(x: Fraction | int) -> Any:
+    """``x`` in sympy's ``QQ`` (whose elements have no type information)."""
     x = Fraction(x)
     return QQ(x.numerator, x.denominator)

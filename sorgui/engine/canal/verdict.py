@@ -18,7 +18,9 @@ component does not change when other components are multiplied in.
 from __future__ import annotations
 
 import threading
+from collections.abc import Iterable
 from math import lcm
+from typing import cast
 
 import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
@@ -40,7 +42,7 @@ from ..algebra.polys import (
 from ..errors import AnalysisError, Cancelled, SingularError
 from ..recognition.profile import ProfileCurve
 from ..recognition.symmetry import SOR_EVIDENCE, Motion, satisfies_identity
-from ..results import Canal, CanalEvidence, CanalFamily, Parametrization
+from ..results import Canal, CanalEvidence, CanalFamily, Parametrization, Triple
 from ..singular import curves
 from ..singular.process import emit, parse_int, poly_to_singular, run_script
 from .focal import DEVELOPABLE, DUPIN, UMBILIC
@@ -183,6 +185,7 @@ def _analyze_factor(
     verdict, lines = factor_verdict(h, clock, is_sor)
     if verdict is not None:
         return verdict
+    assert lines is not None  # factor_verdict returns its lines whenever it leaves the verdict open
     poly = from_flint(h, poly_ring(("x", "y", "z"), QQ))
     try:
         branch = lines.canal[0].branch
@@ -348,7 +351,7 @@ def _irreducible_conic(G: Poly) -> bool:
     u, v = G.ring.gens
     a, b, c = G.coeff(u**2), G.coeff(u * v), G.coeff(v**2)
     d, e, k = G.coeff(u), G.coeff(v), G.coeff(1)
-    return sympy.Matrix([[2 * a, b, d], [b, 2 * c, e], [d, e, 2 * k]]).det() != 0
+    return cast(bool, sympy.Matrix([[2 * a, b, d], [b, 2 * c, e], [d, e, 2 * k]]).det() != 0)
 
 
 def _family_report(
@@ -362,8 +365,8 @@ def _family_report(
     verified = False
     if family is not None:
         par, radius = family_strings(family)
-        center = tuple(str(c) for c in family.center)
-        normal = tuple(str(c) for c in family.normal)
+        center = _triple(family.center)
+        normal = _triple(family.normal)
         radius2 = str(family.radius_squared)
         field_name = "QQ" if family.over_qq else "QQ(" + ", ".join(str(g) for g in family.generators) + ")"
         verified = family.verified
@@ -378,17 +381,23 @@ def _family_report(
         spine_equations=tuple(poly_str(g) for g in curve.spine_equations),
         plane_model=poly_str(curve.plane_model),
         projection=curve.projection,
-        parametrization=par,  # type: ignore[arg-type]
+        parametrization=par,
         radius_squared=radius,
         field=field_name,
         verified=verified,
-        circle_center=center,  # type: ignore[arg-type]
+        circle_center=center,
         circle_radius_squared=radius2,
-        circle_normal=normal,  # type: ignore[arg-type]
-        radical_spine=None if radical is None else tuple(str(radical.radicals(c)) for c in radical.m),  # type: ignore[arg-type]
+        circle_normal=normal,
+        radical_spine=None if radical is None else _triple(radical.radicals(c) for c in radical.m),
         radical_radius_squared=None if radical is None else str(radical.radicals(radical.rho)),
         radical_parameter=None if radical is None else radical.parameter,
     )
+
+
+def _triple(values: Iterable[object]) -> Triple:
+    """The three coordinates of a point as the strings sympy reads back."""
+    x, y, z = (str(v) for v in values)
+    return x, y, z
 
 
 def _certificate(
@@ -568,7 +577,7 @@ def _radical(poly: Poly, family: RationalFamily) -> Parametrization:
     coords = radical_parametrization(family)
     verified = verify_radical(poly, family)
     return Parametrization(
-        coordinates=tuple(str(c) for c in coords),  # type: ignore[arg-type]
+        coordinates=_triple(coords),
         parameters=("t", "theta"),
         field="QQ" if family.over_qq else "QQ(" + ", ".join(str(g) for g in family.generators) + ")",
         real=all(g.is_real for g in family.generators),
@@ -582,7 +591,7 @@ def _radical(poly: Poly, family: RationalFamily) -> Parametrization:
 def _radical_surface(poly: Poly, family: RadicalFamily) -> Parametrization:
     coords, verified = radical_surface(poly, family)
     return Parametrization(
-        coordinates=tuple(str(c) for c in coords),  # type: ignore[arg-type]
+        coordinates=_triple(coords),
         parameters=("t", "theta"),
         field="QQ",
         real=True,
@@ -598,7 +607,7 @@ def _radical_surface(poly: Poly, family: RadicalFamily) -> Parametrization:
 def _rational(found: tuple[tuple[sympy.Expr, ...], bool]) -> Parametrization:
     coords, verified = found
     return Parametrization(
-        coordinates=tuple(str(c) for c in coords),  # type: ignore[arg-type]
+        coordinates=_triple(coords),
         parameters=("t", "s"),
         field="QQ",
         real=True,

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TypeAlias, cast
 
 import mpmath
 import sympy
@@ -69,7 +70,8 @@ class SurfaceMap:
         for num in self.numerators:
             g = num.gcd(self.denominator) if num else self.denominator
             out.append(self.ring.to_expr(num / g) / self.ring.to_expr(self.denominator / g))
-        return tuple(out)  # type: ignore[return-value]
+        x, y, z = out
+        return x, y, z
 
 
 def sweep(section: Section, frame: AxisFrame, K: Domain) -> SurfaceMap:
@@ -122,8 +124,8 @@ def _assemble(
 ) -> SurfaceMap:
     """``(c·D + a·along_a + u·along_u + w·along_w) / D`` in the original coordinates."""
     c, a, u, w = basis
-    nums = tuple(ring.reduce(c[i] * den + a[i] * along_a + u[i] * along_u + w[i] * along_w) for i in range(3))
-    return SurfaceMap(ring, nums, den, along_a, (along_u, along_w))  # type: ignore[arg-type]
+    x, y, z = (ring.reduce(c[i] * den + a[i] * along_a + u[i] * along_u + w[i] * along_w) for i in range(3))
+    return SurfaceMap(ring, (x, y, z), den, along_a, (along_u, along_w))
 
 
 @dataclass(frozen=True)
@@ -286,7 +288,7 @@ def vanishes_on(f: Poly, surface: SurfaceMap) -> bool:
     total = ring.reduce(H.compose(*images, ctx=ring.context))
     if total.is_zero() or len(ring.radicals) < 2:
         return total.is_zero()
-    return sympy.Poly(ring.to_expr(total), *ring.symbols, extension=True).is_zero
+    return cast(bool, sympy.Poly(ring.to_expr(total), *ring.symbols, extension=True).is_zero)
 
 
 def section_vanishes(profile: ProfileCurve, section: Section) -> bool:
@@ -355,8 +357,11 @@ def _square_vanishes(
     total = ring.reduce(total)
     if total.is_zero() or len(ring.radicals) < 2:
         return total.is_zero()
-    return sympy.Poly(ring.to_expr(total), *ring.symbols, extension=True).is_zero
+    return cast(bool, sympy.Poly(ring.to_expr(total), *ring.symbols, extension=True).is_zero)
 
+
+MpNumber: TypeAlias = mpmath.mpf | mpmath.mpc
+"""A real or complex mpmath number (mpmath has no type information)."""
 
 SCREEN_POINTS = ((0.3718, -1.2261), (1.9093, 0.5477), (-0.6632, 2.3149))
 """Parameter values ``(s, t)`` of the numerical screen (:func:`numerically_vanishes`)."""
@@ -387,17 +392,17 @@ def numerically_vanishes(f: Poly, surface: SurfaceMap) -> bool:
     return True
 
 
-def _evaluate(p: fmpq_mpoly, point: tuple[object, ...]) -> object:
+def _evaluate(p: fmpq_mpoly, point: tuple[MpNumber, ...]) -> MpNumber:
     """``p`` at ``point`` (its variables, then its radicals), in mpmath's current precision."""
     return mpmath.fsum(_terms(p, point))
 
 
-def _size(p: fmpq_mpoly, point: tuple[object, ...]) -> object:
+def _size(p: fmpq_mpoly, point: tuple[MpNumber, ...]) -> mpmath.mpf:
     """The sum of the absolute values of the terms of ``p`` at ``point``."""
     return mpmath.fsum(abs(term) for term in _terms(p, point))
 
 
-def _terms(p: fmpq_mpoly, point: tuple[object, ...]) -> list[object]:
+def _terms(p: fmpq_mpoly, point: tuple[MpNumber, ...]) -> list[MpNumber]:
     out = []
     for monom, c in p.to_dict().items():
         term = mpmath.mpf(int(c.p)) / int(c.q)
@@ -429,8 +434,9 @@ def make_parametrization(
     in_frame = profile.verified
     if not (identity() if in_frame else vanishes_on(f, surface)):
         return None
+    x, y, z = surface.coordinates()
     return Parametrization(
-        coordinates=tuple(str(c) for c in surface.coordinates()),  # type: ignore[arg-type]
+        coordinates=(str(x), str(y), str(z)),
         parameters=PARAMETERS,
         field=surface.ring.field,
         real=surface.ring.is_real,

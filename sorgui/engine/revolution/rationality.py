@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import threading
 from dataclasses import dataclass
+from typing import TypedDict
 
 import sympy
 from sympy.polys.domains import QQ
@@ -76,6 +77,18 @@ class TubularSurface:
     d: sympy.Expr
     q: sympy.Expr
     field: tuple[sympy.Expr, ...]
+
+
+class _TableFacts(TypedDict):
+    """The facts of Table 1 that every :class:`Rationality` past the genus computation carries
+    (keyword arguments of :class:`Rationality`)."""
+
+    profile_reducible: bool
+    absolute_factors: tuple[str, ...]
+    genus_profile: int | None
+    genus_profile_square: int
+    table_row: int
+    complex_rational: bool
 
 
 def table_row(reducible: bool, genus_p: int | None, genus_p2: int) -> int:
@@ -152,7 +165,7 @@ def analyze_rationality(
             absolute_factors=absolute,
         ), None
     row = table_row(reducible, p.genus, p2.genus)
-    base = dict(
+    base = _TableFacts(
         profile_reducible=reducible,
         absolute_factors=absolute,
         genus_profile=None if reducible else p.genus,
@@ -392,4 +405,4 @@ def _numerically_real(root: sympy.Expr) -> bool:
     """Whether a root in radicals whose realness sympy cannot decide is real to 60 digits (the
     parameterizations built from it are checked exactly anyway)."""
     value = sympy.N(root, 60)
-    return abs(sympy.im(value)) <= 10**-50 * max(1, abs(sympy.re(value)))
+    return bool(abs(sympy.im(value)) <= 10**-50 * max(1, abs(sympy.re(value))))  # the comparison gives a sympy Boolean

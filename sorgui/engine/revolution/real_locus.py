@@ -21,7 +21,8 @@ Every sign is exact (rationals, or ball arithmetic in ``K`` that refines until i
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any, cast
 
 import flint
 import sympy
@@ -65,16 +66,20 @@ def real_locus(f: Poly, symmetry: Symmetry, profile: ProfileCurve | None) -> Rea
     """The real points of ``X = {f = 0}``; ``None`` when ``X`` has no unique axis and is neither
     a sphere nor a plane (then it is not a surface of revolution)."""
     if symmetry.kind == SPHERE:
-        return sphere_locus(f, symmetry.center)  # type: ignore[arg-type]
+        assert symmetry.center is not None  # a sphere's symmetry gives its centre
+        return sphere_locus(f, symmetry.center)
     if symmetry.kind == PLANE:
-        return plane_locus(f, symmetry.normal)  # type: ignore[arg-type]
+        assert symmetry.normal is not None  # a plane's symmetry gives its normal
+        return plane_locus(f, symmetry.normal)
     if profile is None:
         return None
     return profile_locus(profile.square)
 
 
-def _locus(kind: str, **counts: int | bool | None) -> RealLocus:
-    return RealLocus(kind=kind, dimension=DIMENSION[kind], **counts)  # type: ignore[arg-type]
+def _locus(
+    kind: str, *, points: int | None = None, circles: int | None = None, axis_line: bool | None = None
+) -> RealLocus:
+    return RealLocus(kind=kind, dimension=DIMENSION[kind], points=points, circles=circles, axis_line=axis_line)
 
 
 def sphere_locus(f: Poly, center: Vector) -> RealLocus:
@@ -157,13 +162,15 @@ def _simple_real_root(p: flint.fmpq_poly, positive: bool) -> bool:
     arb root isolation (real roots come back with imaginary part exactly 0)."""
     if p.degree() <= 0 or p.gcd(p.derivative()).degree() > 0:
         return False
-    for root, _m in p.numer().complex_roots():
+    # flint's stub says list[acb]: the roots come with their multiplicities
+    roots = cast(list[tuple[flint.acb, int]], p.numer().complex_roots())
+    for root, _m in roots:
         if root.imag == 0 and (not positive or root.real > 0):
             return True
     return False
 
 
-def _native(terms: dict, gens: tuple[sympy.Symbol, ...], K: Domain) -> sympy.Poly:
+def _native(terms: Mapping[tuple[int, ...], Any], gens: tuple[sympy.Symbol, ...], K: Domain) -> sympy.Poly:
     """A ``sympy.Poly`` over ``K`` from exponents and coefficients already in ``K``: going
     through an expression would make sympy search a field isomorphism (seconds per call)."""
     return sympy.Poly.from_dict({tuple(m): c for m, c in terms.items()}, *gens, domain=K)
@@ -193,7 +200,7 @@ def _real_roots(p: sympy.Poly) -> int:
     return count_real_roots(R.from_dict({(m[0],): c for m, c in p.as_dict(native=True).items()}))
 
 
-def _has_surface(H: sympy.Poly, samples: Sequence) -> bool:
+def _has_surface(H: sympy.Poly, samples: Sequence[Any]) -> bool:
     """Whether some ``s₀`` has ``H(s₀, w)`` square-free with a positive root ``w``: by the
     implicit function theorem a real branch of ``H = 0`` with ``w > 0`` passes through it."""
     K = H.domain
@@ -207,7 +214,7 @@ def _has_surface(H: sympy.Poly, samples: Sequence) -> bool:
     return False
 
 
-def _cell_samples(H: sympy.Poly) -> list:
+def _cell_samples(H: sympy.Poly) -> list[Any]:
     """One rational ``s`` in each open interval cut out by the real roots of
     ``lc_w(H)·disc_w(H)·H(s, 0)`` (over ``K``, by way of its norm over ``QQ``)."""
     K = H.domain
@@ -273,7 +280,7 @@ def _radical(system: list[sympy.Expr], K: Domain) -> list[sympy.Expr] | None:
         if e.free_symbols != {x}:
             raise AnalysisError("the singular points of the profile are not finitely many (internal error)")
     radical = basis.exprs + [sympy.Poly(e, x, domain=K).sqf_part().as_expr() for e, x in zip(eliminants, (S, W))]
-    return _lex_basis(radical, W, S, K).exprs
+    return cast(list[sympy.Expr], _lex_basis(radical, W, S, K).exprs)
 
 
 def _shape(radical: list[sympy.Expr], K: Domain) -> tuple[sympy.Poly, sympy.Poly]:
