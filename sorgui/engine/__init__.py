@@ -14,9 +14,10 @@ sympy).
 Subpackages: ``algebra`` (polynomials, ``QQ`` on flint, number fields, radicals, linear algebra,
 real roots), ``singular`` (the Singular process, plane curves, sorgui's Singular library),
 ``recognition`` (the symmetry algebra, the paper's method, the profile, the recognizer),
-``revolution`` (real points, Table 1, parameterizations), ``canal`` (canal surfaces) and
-``rounded`` (decimal input). A subpackage's ``__init__`` imports nothing, and the sympy-based
-modules are loaded only when an analysis needs them.
+``revolution`` (real points, Table 1, parameterizations), ``conical`` (cones and cylinders over
+any curve), ``canal`` (canal surfaces) and ``rounded`` (decimal input). A subpackage's
+``__init__`` imports nothing, and the sympy-based modules are loaded only when an analysis
+needs them.
 """
 
 from .analysis import analyze, analyze_polynomial

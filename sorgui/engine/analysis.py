@@ -5,7 +5,8 @@ profile) → factors → real locus (what the real
 surface of a surface of revolution is, docs/math.md §3.4) → approximate (rounded input
 or a given tolerance: the nearest surface of revolution, docs/math.md §8) → rationality and
 parameterizations (docs/math.md §5–§6; only for a surface of revolution with a unique axis) →
-nearest (the whole analysis of the snapped exact surface).
+conical (a cone or a cylinder over any curve, docs/math.md §10) → canal → nearest (the whole
+analysis of the snapped exact surface).
 Between stages the ``cancel`` event is checked, and ``progress`` is told the stage's name, so a
 GUI worker can show it; Singular subprocesses are killed on cancel by :mod:`.singular.process`.
 ``timeout`` bounds the whole analysis (:mod:`.timelimit`): the stages not finished by then are
@@ -31,6 +32,7 @@ from .results import (
     Analysis,
     Approximation,
     Canal,
+    Conical,
     Parametrization,
     Rationality,
 )
@@ -173,10 +175,12 @@ def analyze_polynomial(
 
         with clock.stage("approximate"):
             rounding, rounding_notes = rounding_of(f, text, tolerance)
+            assert rounding is not None  # a tolerance is given, or ``text`` prints decimals
             near = approximate_symmetry(f, rounding, notes=rounding_notes, snap_exact=not recognition.is_sor)
         approximation = near.approximation
 
     canal_result: Canal | None = None
+    conical_result: Conical | None = None
 
     def result(rationality: Rationality | None, found: tuple[Parametrization, ...]) -> Analysis:
         return Analysis(
@@ -192,6 +196,7 @@ def analyze_polynomial(
             real_locus=real,
             approximate=approximation,
             canal=canal_result,
+            conical=conical_result,
         )
 
     rationality = None
@@ -215,6 +220,12 @@ def analyze_polynomial(
             with clock.stage("parametrizations"):
                 found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)
             rationality = replace(rationality, notes=rationality.notes + notes)
+    if canal and not recognition_only:
+        from .conical.base_curve import analyze_conical  # Singular's layer: only here
+
+        clock.publish(result(rationality, found))
+        with clock.stage("conical"):
+            conical_result = analyze_conical(f, timeout=singular_timeout, cancel=cancel)
     if canal and recognition_only and recognition.is_sor:
         with clock.stage("canal"):
             canal_result = revolution_canal(recognition.degree)
@@ -231,7 +242,12 @@ def analyze_polynomial(
                 cancel=cancel,
                 profile=profile,
             )
-    if near is not None and near.nearest is not None and approximation.nearest is not None and not recognition_only:
+    if (
+        near is not None
+        and near.nearest is not None
+        and near.approximation.nearest is not None
+        and not recognition_only
+    ):
         clock.publish(result(rationality, found))
         with clock.stage("nearest"):
             of_nearest = analyze_polynomial(
@@ -244,7 +260,7 @@ def analyze_polynomial(
             )
         if of_nearest.is_sor:  # canal by its symmetry: said without a line test or Singular
             of_nearest = replace(of_nearest, canal=revolution_canal(of_nearest.recognition.degree, NEAREST_CANAL_NOTE))
-        approximation = replace(approximation, nearest=replace(approximation.nearest, analysis=of_nearest))
+        approximation = replace(near.approximation, nearest=replace(near.approximation.nearest, analysis=of_nearest))
     clock.check()
     return result(rationality, found)
 

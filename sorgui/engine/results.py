@@ -8,7 +8,7 @@ named beside it). The GUI and the exporters only read these objects; ``to_json``
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, fields
 from typing import Any
 
 Triple = tuple[str, str, str]
@@ -194,7 +194,9 @@ class Approximation:
 
     def to_json(self) -> dict[str, Any]:
         """The ``approximate`` object of ``sorgui analyze --json``."""
-        data = _lists({k: getattr(self, k) for k in _field_names(Approximation) if k not in ("axis", "nearest")})
+        data: dict[str, Any] = _lists(
+            {k: getattr(self, k) for k in _field_names(Approximation) if k not in ("axis", "nearest")}
+        )
         data["axis"] = _plain(self.axis)
         nearest = self.nearest
         if nearest is not None:
@@ -339,6 +341,71 @@ class Canal:
 
 
 @dataclass(frozen=True)
+class BaseCurve:
+    """The base curve of a cone or a cylinder (docs/math.md §10), a plane curve in ``variables``.
+
+    For a cone with apex ``c`` it is the top-degree form ``f_d`` (a projective plane curve) in
+    the affine chart ``chart = 1``: ``X = c + t·(point in the chart)``. For a cylinder along ``a``
+    it is the section by the plane through ``frame_point`` spanned by ``frame_u`` and
+    ``frame_w`` (both ``⟂ a``): ``X = frame_point + u·frame_u + v·frame_w + t·a``.
+    ``genus`` is that of the curve when it is absolutely irreducible (else ``None``).
+    """
+
+    polynomial: str
+    variables: tuple[str, str]
+    degree: int
+    chart: str | None = None
+    frame_point: Triple | None = None
+    frame_u: Triple | None = None
+    frame_w: Triple | None = None
+    reducible: bool | None = None
+    absolutely_irreducible: bool | None = None
+    genus: int | None = None
+
+
+@dataclass(frozen=True)
+class Conical:
+    """Whether ``X`` is a cone (all lines through one apex) or a cylinder (all lines along one
+    direction) over some curve, docs/math.md §10. ``kind`` is ``cone``, ``cylinder`` or ``none``;
+    ``rational`` says whether ``X`` is rational (exactly when its base curve is), ``None`` when
+    undecided. ``apex`` of a cylinder is set when ``f(c + X)`` is also homogeneous (planes
+    through a line)."""
+
+    kind: str
+    apex: Triple | None = None
+    direction: Triple | None = None
+    base_curve: BaseCurve | None = None
+    rational: bool | None = None
+    parametrizations: tuple[Parametrization, ...] = ()
+    notes: tuple[str, ...] = ()
+
+    def to_json(self) -> dict[str, Any]:
+        """The ``conical`` object of ``sorgui analyze --json``."""
+        return {
+            "kind": self.kind,
+            "apex": None if self.apex is None else list(self.apex),
+            "direction": None if self.direction is None else list(self.direction),
+            "base_curve": _plain(self.base_curve),
+            "rational": self.rational,
+            "parametrizations": [_plain(p) for p in self.parametrizations],
+            "notes": list(self.notes),
+        }
+
+    @classmethod
+    def from_json(cls, data: dict[str, Any]) -> Conical:
+        """The inverse of :meth:`to_json`."""
+        return cls(
+            kind=data["kind"],
+            apex=_tuples(data.get("apex")),
+            direction=_tuples(data.get("direction")),
+            base_curve=_build(BaseCurve, data.get("base_curve")),
+            rational=data.get("rational"),
+            parametrizations=tuple(_build(Parametrization, p) for p in data.get("parametrizations", [])),
+            notes=tuple(data.get("notes", ())),
+        )
+
+
+@dataclass(frozen=True)
 class Analysis:
     """The whole answer for one input: recognition, factors, rationality and parameterizations."""
 
@@ -350,12 +417,13 @@ class Analysis:
     squarefree: str
     rationality: Rationality | None = None
     parametrizations: tuple[Parametrization, ...] = ()
-    timings: tuple[tuple[str, float], ...] = field(default=())
+    timings: tuple[tuple[str, float], ...] = ()
     approximate: Approximation | None = None
     unfinished: tuple[str, ...] = ()
     """Stages cut short by the time limit of the whole analysis (their results are undecided)."""
     real_locus: RealLocus | None = None
     canal: Canal | None = None
+    conical: Conical | None = None
 
     @property
     def is_sor(self) -> bool:
@@ -389,6 +457,7 @@ class Analysis:
             "approximate": None if self.approximate is None else self.approximate.to_json(),
             "real_locus": _plain(self.real_locus),
             "canal": None if self.canal is None else self.canal.to_json(),
+            "conical": None if self.conical is None else self.conical.to_json(),
             "unfinished": list(self.unfinished),
         }
 
@@ -411,6 +480,7 @@ class Analysis:
             approximate=None if data.get("approximate") is None else Approximation.from_json(data["approximate"]),
             real_locus=_build(RealLocus, data.get("real_locus")),
             canal=None if data.get("canal") is None else Canal.from_json(data["canal"]),
+            conical=None if data.get("conical") is None else Conical.from_json(data["conical"]),
             unfinished=tuple(data.get("unfinished", ())),
         )
 

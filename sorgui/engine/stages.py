@@ -29,6 +29,7 @@ STAGES = (
     "approximate",
     "rationality",
     "parametrizations",
+    "conical",
     "canal",
     "nearest",
 )

@@ -1,0 +1,60 @@
+"""Whether ``X = {f = 0}`` is a cone or a cylinder over some curve (docs/math.md §10).
+
+Both questions are linear over ``K`` and share one matrix ``M``, whose columns are the
+coefficient vectors of ``∂f/∂x, ∂f/∂y, ∂f/∂z``:
+
+- a *cylinder* along ``a`` is invariant under the translations ``X ↦ X + s·a``, i.e.
+  ``a·∇f = 0`` identically: the directions are the null space of ``M``;
+- a *cone* with apex ``c`` is a union of lines through ``c``: ``f(c + X)`` is homogeneous of
+  degree ``d``, i.e. by Euler's identity ``∇f(X)·(X − c) = d·f(X)``, that is
+  ``M c = (X·∇f − d·f)``: the apexes are the solutions of one linear system.
+
+Both are exact identities in ``K[x, y, z]``, so a solution is a proof (Alcázar and Goldman,
+IEEE TVCG 2016, decide the same from ``f``). A cone whose apex is not unique (the set of apexes
+is ``c + null space``) is also a cylinder: planes through a line, reported as a cylinder.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..algebra.linalg import Vector, nullspace, primitive_vector, rref
+from ..algebra.polys import Poly, derivative, total_degree
+
+
+@dataclass(frozen=True)
+class Conicity:
+    """The exact answer of :func:`detect`: the translation directions of ``X`` (a basis of the
+    null space of ``M``) and, when ``f(c + X)`` is homogeneous for some ``c``, one such apex."""
+
+    directions: tuple[Vector, ...]
+    apex: Vector | None
+
+    @property
+    def kind(self) -> str:
+        """``cylinder`` (some translation leaves ``f`` invariant), ``cone`` (one apex), or ``none``."""
+        if self.directions:
+            return "cylinder"
+        return "cone" if self.apex is not None else "none"
+
+
+def detect(f: Poly) -> Conicity:
+    """The translations of ``f`` and an apex, from the one linear system above over ``K``."""
+    K = f.ring.domain
+    d = total_degree(f)
+    gradient = [derivative(f, i) for i in range(3)]
+    x, y, z = f.ring.gens
+    euler: Poly = x * gradient[0] + y * gradient[1] + z * gradient[2] - d * f
+    columns = [dict(g.items()) for g in gradient]
+    rhs = dict(euler.items())
+    monomials = sorted(set(rhs).union(*columns))
+    rows = [[column.get(m, K.zero) for column in columns] for m in monomials]
+    directions = tuple(primitive_vector(v, K) for v in nullspace(rows, 3, K))
+    augmented = [[*row, rhs.get(m, K.zero)] for row, m in zip(rows, monomials)]
+    reduced, pivots = rref(augmented, 4, K)
+    if 3 in pivots:
+        return Conicity(directions, None)
+    apex = [K.zero] * 3
+    for row, p in zip(reduced, pivots):
+        apex[p] = row[3]  # the free coordinates (a direction of translation) are set to 0
+    return Conicity(directions, tuple(apex))

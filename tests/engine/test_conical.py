@@ -1,0 +1,168 @@
+"""Cones and cylinders over any curve (docs/math.md §10): apex or direction, base curve,
+genus, and the verified parameterizations, in general position over QQ and QQ(√2)."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import pytest
+import sympy
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from sympy.polys.domains import QQ
+
+from sorgui.engine.algebra.polys import compose, number_field, poly_ring, total_degree
+from sorgui.engine.conical.base_curve import analyze_conical
+from sorgui.engine.conical.detect import detect
+from sorgui.engine.parsing import parse_polynomial
+from sorgui.samples import apply, move, quaternion_rotation, rational_vector
+
+QUATERNION = (1, 2, -1, 3)
+SHIFT = (Fraction(1, 2), -2, Fraction(3, 4))
+
+BASE_CURVES = {
+    # name: (homogeneous f_d(x, y, z), genus of the curve)
+    "conic": ("x^2 + 2*y^2 - 3*z^2", 0),
+    "nodal cubic": ("y^2*z - x^3 - x^2*z", 0),
+    "cuspidal cubic": ("y^2*z - x^3", 0),
+    "smooth cubic": ("x^3 + y^3 + z^3 + x*y*z", 1),
+    "smooth quartic": ("x^4 + y^4 - z^4 + x*y*z^2", 3),
+}
+
+
+def _moved(text: str):  # noqa: ANN202
+    """``text = 0`` moved by the rigid motion ``p ↦ R p + SHIFT``."""
+    return move(parse_polynomial(text).polynomial, quaternion_rotation(QUATERNION), rational_vector(SHIFT))
+
+
+@pytest.mark.parametrize("name", sorted(BASE_CURVES))
+def test_a_moved_cone_is_found_with_its_apex_genus_and_parameterization(name: str) -> None:
+    text, genus = BASE_CURVES[name]
+    f = _moved(text)
+    result = analyze_conical(f)
+    assert result.kind == "cone"
+    assert result.apex == tuple(str(c) for c in rational_vector(SHIFT))
+    curve = result.base_curve
+    assert curve is not None and curve.degree == total_degree(f) and curve.reducible is False
+    assert curve.genus == genus and result.rational is (genus == 0)
+    if genus == 0:
+        (param,) = result.parametrizations
+        assert param.verified and param.proper and param.real and param.parameters == ("s", "t")
+        _vanishes_at_random_points(f, param.coordinates)
+    else:
+        assert result.parametrizations == ()
+
+
+@pytest.mark.parametrize("name", sorted(BASE_CURVES))
+def test_a_moved_cylinder_is_found_with_its_direction_and_base_curve(name: str) -> None:
+    text, genus = BASE_CURVES[name]
+    planar = parse_polynomial(text.replace("z", "1")).polynomial  # the curve in the plane z = 0
+    f = move(planar, quaternion_rotation(QUATERNION), rational_vector(SHIFT))
+    result = analyze_conical(f)
+    assert result.kind == "cylinder" and result.apex is None
+    direction = apply(quaternion_rotation(QUATERNION), rational_vector((0, 0, 1)))
+    got = rational_vector(result.direction)
+    assert all(got[i] * direction[j] == got[j] * direction[i] for i in range(3) for j in range(3))
+    assert result.base_curve is not None and result.base_curve.genus == genus
+    assert len(result.parametrizations) == (genus == 0)
+    for param in result.parametrizations:
+        _vanishes_at_random_points(f, param.coordinates)
+
+
+@pytest.mark.parametrize(
+    "name, change",
+    [
+        ("conic", " + 1"),
+        ("nodal cubic", " + 1"),
+        ("nodal cubic", " + x*y"),
+        ("smooth cubic", " + x*y"),
+        ("smooth cubic", " - 2"),
+    ],
+)
+def test_near_misses_are_neither(name: str, change: str) -> None:
+    """One coefficient of the moved cone changed (a term of lower degree added before the motion)."""
+    assert analyze_conical(_moved(BASE_CURVES[name][0] + change)).kind == "none"
+
+
+def test_the_cone_of_the_issue_has_apex_1_2_3() -> None:
+    f = parse_polynomial("(x-1)^3+2*(y-2)^3-(z-3)^2*(x-1)+(x-1)*(y-2)*(z-3)").polynomial
+    result = analyze_conical(f)
+    assert result.kind == "cone" and result.apex == ("1", "2", "3")
+    assert result.base_curve is not None and result.base_curve.genus == 1 and result.rational is False
+
+
+def test_over_qq_sqrt_2_the_apex_is_exact() -> None:
+    K = number_field((2,))
+    R = poly_ring(("x", "y", "z"), K)
+    x, y, z = R.gens
+    root = K.from_sympy(sympy.sqrt(2))
+    h = x**2 + root * y**2 - 3 * z**2 + x * y
+    f = compose(h, [x - root, y - 1, z])
+    assert detect(f).apex == (root, K.one, K.zero)
+    result = analyze_conical(f)
+    assert result.kind == "cone" and result.apex == ("sqrt(2)", "1", "0")
+    assert result.base_curve is not None and "sqrt(2)" in result.base_curve.polynomial
+    assert result.base_curve.genus == 0 and result.rational is True
+
+
+def test_a_circular_cone_is_a_cone_and_a_sphere_is_neither() -> None:
+    assert analyze_conical(parse_polynomial("x^2 + y^2 - (z - 1)^2").polynomial).apex == ("0", "0", "1")
+    assert analyze_conical(parse_polynomial("x^2 + y^2 + z^2 - 1").polynomial).kind == "none"
+    assert analyze_conical(parse_polynomial("x^2 + y^2 - 1").polynomial).kind == "cylinder"
+
+
+def test_planes_through_a_line_are_a_cylinder_with_an_apex() -> None:
+    result = analyze_conical(parse_polynomial("(x - 1)*(y - 2)").polynomial)
+    assert result.kind == "cylinder" and result.direction == ("0", "0", "1") and result.apex == ("1", "2", "0")
+    assert result.base_curve is not None and result.base_curve.reducible is True
+
+
+def _vanishes_at_random_points(f, coordinates) -> None:  # noqa: ANN001
+    s, t = sympy.symbols("s t")
+    x, y, z = sympy.symbols("x y z")
+    expr = f.as_expr()
+    images = [sympy.sympify(c, locals={"s": s, "t": t}) for c in coordinates]
+    for sv, tv in ((sympy.Rational(2, 7), 3), (-5, sympy.Rational(1, 3)), (sympy.Rational(11, 5), -2)):
+        point = {
+            x: images[0].subs({s: sv, t: tv}),
+            y: images[1].subs({s: sv, t: tv}),
+            z: images[2].subs({s: sv, t: tv}),
+        }
+        assert sympy.simplify(expr.subs(point)) == 0
+
+
+small = st.integers(min_value=-4, max_value=4)
+fractions = st.fractions(min_value=-3, max_value=3, max_denominator=5)
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    st.integers(min_value=2, max_value=5),
+    st.dictionaries(st.tuples(st.integers(0, 5), st.integers(0, 5)), small.filter(bool), min_size=2, max_size=6),
+    st.tuples(fractions, fractions, fractions),
+)
+def test_a_random_homogeneous_polynomial_translated_to_a_random_apex_is_a_cone_with_that_apex(
+    d: int, terms: dict[tuple[int, int], int], apex: tuple[Fraction, Fraction, Fraction]
+) -> None:
+    R = poly_ring(("x", "y", "z"), QQ)
+    x, y, z = R.gens
+    h = sum((c * x**i * y**j * z ** (d - i - j) for (i, j), c in terms.items() if i + j <= d), start=R.zero)
+    h += x ** (d - 1) * y + z**d  # so that h is not a polynomial in fewer directions
+    c = rational_vector(apex)
+    f = compose(h, [x - c[0], y - c[1], z - c[2]])
+    found = detect(f)
+    if found.directions:  # h depends on two linear forms only: planes through a line
+        return
+    assert found.kind == "cone" and found.apex == c
+
+
+def test_over_qq_sqrt_2_a_cylinder_has_its_direction() -> None:
+    K = number_field((2,))
+    R = poly_ring(("x", "y", "z"), K)
+    x, y, z = R.gens
+    root = K.from_sympy(sympy.sqrt(2))
+    g = x**3 + root * y**2 - x  # a nodal-free cubic in the plane, over QQ(√2)
+    f = compose(g, [x - z, y - 2 * z, z])
+    result = analyze_conical(f)
+    assert result.kind == "cylinder" and result.direction == ("1", "2", "1")
+    assert result.base_curve is not None and result.base_curve.degree == 3
