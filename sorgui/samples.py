@@ -96,7 +96,7 @@ def same_line(point: Vector, direction: Vector, other_point: Vector, other_direc
     return is_zero(cross(direction, other_direction)) and is_zero(cross(diff, direction))
 
 
-def general_position(degree: int, seed: int, drop: tuple[tuple[int, int], ...] = ()):
+def general_position(degree: int, seed: int, drop: tuple[tuple[int, int], ...] = ()) -> Poly:
     """``F(a·(p - c), |p - c|²) = 0`` with a random dense ``F`` (``i + 2j ≤ degree``), moved."""
     rng = random.Random(seed)
     profile = {
@@ -143,7 +143,10 @@ def cylinder(direction: np.ndarray, point: np.ndarray, radius: float) -> np.ndar
     """``|p - c|² - (n·(p - c))² - r²`` for a unit ``n``."""
     rho = dense.from_terms(dict(dense.squared_distance(point)), 2)
     h = dense.from_terms(dict(dense.linear_form(direction, point)), 2)
-    return rho - dense.times(h, dense.linear_form(direction, point)) - radius**2 * dense.from_terms({(0, 0, 0): 1.0}, 2)
+    f: np.ndarray = (
+        rho - dense.times(h, dense.linear_form(direction, point)) - radius**2 * dense.from_terms({(0, 0, 0): 1.0}, 2)
+    )
+    return f
 
 
 def printed(array: np.ndarray, digits: int) -> str:
@@ -184,7 +187,7 @@ def rational_sor(
     total = ctx.from_dict({})
     for (i, j), q in profile.items():
         total += fmpq(q.numerator, q.denominator) * h**i * rho**j
-    return {tuple(int(e) for e in m): Fraction(int(c.p), int(c.q)) for m, c in total.to_dict().items()}
+    return {(int(i), int(j), int(k)): Fraction(int(c.p), int(c.q)) for (i, j, k), c in total.to_dict().items()}
 
 
 def printed_exact(coefficients: dict[tuple[int, int, int], Fraction], digits: int) -> str:

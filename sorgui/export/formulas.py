@@ -25,14 +25,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, TypeAlias
 
 import sympy
 
 from sorgui.engine.results import Analysis, Canal
 from sorgui.engine.values import read_expression
 
-Value = sympy.Expr | tuple[sympy.Expr, ...]
+Value: TypeAlias = sympy.Expr | tuple[sympy.Expr, ...]
 
 
 @dataclass(frozen=True)

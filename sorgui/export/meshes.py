@@ -26,6 +26,7 @@ from sorgui.export.atomic import atomic_path
 
 if TYPE_CHECKING:
     import pyvista
+    from vtkmodules.vtkIOCore import vtkWriter
 
     from sorgui.render import MeshData, PatchData
 
@@ -79,7 +80,8 @@ def mesh_polydata(scene: Scene, patch: bool) -> pyvista.PolyData:
     if patch:
         if scene.patch is None or scene.patch.is_empty:
             raise ValueError("there is no parametric patch to export (no real parameterization)")
-        return scene.patch.to_polydata().triangulate()
+        triangles: pyvista.PolyData = scene.patch.to_polydata().triangulate()
+        return triangles
     if scene.surface.is_empty:
         raise ValueError("the surface has no real points in the drawn ball: there is no mesh to export")
     poly = mesh_to_polydata(scene.surface)
@@ -105,7 +107,8 @@ def write_mesh(
         if patch
         else "triangulated surface f = 0 inside the drawn ball"
     )
-    info = MeshInfo(equation, kind, tuple(float(v) for v in poly.bounds))  # type: ignore[arg-type]
+    xmin, xmax, ymin, ymax, zmin, zmax = (float(v) for v in poly.bounds)
+    info = MeshInfo(equation, kind, (xmin, xmax, ymin, ymax, zmin, zmax))
     writer = {".stl": _write_stl, ".obj": _write_obj, ".ply": _write_ply, ".vtp": _write_vtp}[suffix]
     with atomic_path(path) as temporary:
         writer(poly, info, temporary)
@@ -158,8 +161,8 @@ def _write_vtp(poly: pyvista.PolyData, info: MeshInfo, path: Path) -> None:
     out.save(str(path))
 
 
-def _run(writer: object, path: Path) -> None:
+def _run(writer: vtkWriter, path: Path) -> None:
     """Run a VTK writer; VTK reports failures through an error code, not an exception."""
-    ok = writer.Write()  # type: ignore[attr-defined]
-    if not ok or writer.GetErrorCode():  # type: ignore[attr-defined]
+    ok = writer.Write()
+    if not ok or writer.GetErrorCode():
         raise OSError(f"VTK could not write {path}")

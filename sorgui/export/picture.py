@@ -42,13 +42,14 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
     from vtkmodules.vtkCommonCore import vtkObject
 
     from sorgui.render import mesh_to_polydata
+    from sorgui.render.plotting import forwarders
 
     warnings = vtkObject.GetGlobalWarningDisplay()
     vtkObject.GlobalWarningDisplayOff()  # VTK's note that X is missing before it falls back to EGL
     try:
         plotter = pyvista.Plotter(off_screen=True, window_size=list(size))
         try:
-            plotter.set_background("white")
+            forwarders(plotter).set_background("white")
             if not scene.surface.is_empty:
                 actor = plotter.add_mesh(
                     mesh_to_polydata(scene.surface),
@@ -63,11 +64,13 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
                     plotter.add_mesh(data.to_polydata(), color=color, line_width=4)
             if scene.center_marker is not None:
                 plotter.add_mesh(scene.center_marker.to_polydata(), color=CENTER_COLOR)
-            plotter.view_isometric()
+            forwarders(plotter).view_isometric()
             c, r = np.asarray(scene.region.center), scene.region.radius
-            plotter.reset_camera(bounds=[v for i in range(3) for v in (c[i] - r, c[i] + r)])
-            plotter.camera.zoom(1.4)  # the ball's corners are empty: frame the ball, not its box
+            forwarders(plotter).reset_camera(bounds=[v for i in range(3) for v in (c[i] - r, c[i] + r)])
+            # The ball's corners are empty: frame the ball, not its box (pyvista leaves zoom unannotated).
+            plotter.camera.zoom(1.4)  # type: ignore[no-untyped-call]
             image = plotter.screenshot(None, transparent_background=transparent, return_img=True)
+            assert image is not None  # return_img=True
         finally:
             plotter.close()
             plotter.deep_clean()
@@ -82,9 +85,10 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
 
 def png_bytes(image: np.ndarray) -> bytes:
     """An ``(h, w, 3|4)`` ``uint8`` image as PNG bytes (VTK's PNG writer, in memory)."""
-    from vtkmodules.util.numpy_support import numpy_to_vtk
     from vtkmodules.vtkCommonDataModel import vtkImageData
     from vtkmodules.vtkIOImage import vtkPNGWriter
+
+    from sorgui.render.vtk_arrays import numpy_to_vtk
 
     height, width, channels = image.shape
     data = vtkImageData()

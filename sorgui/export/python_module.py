@@ -35,11 +35,13 @@ def exact_code(value: sympy.Expr | tuple[sympy.Expr, ...]) -> str:
     """Python source for ``value`` that rebuilds it exactly with ``from sympy import *`` names."""
     if isinstance(value, tuple):
         return "(" + ", ".join(exact_code(v) for v in value) + ("," if len(value) == 1 else "") + ")"
-    return sympy.sstr(value, sympy_integers=True)
+    code: str = sympy.sstr(value, sympy_integers=True)
+    return code
 
 
 def _numpy_code(expr: sympy.Expr) -> str:
-    return _NUMPY.doprint(expr)
+    code: str = _NUMPY.doprint(expr)
+    return code
 
 
 def _function(formula: Formula) -> list[str]:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from sorgui.engine.results import Analysis, Canal, Rationality, RealLocus, Recognition
+from sorgui.engine.results import Analysis, Canal, NearestSurface, Rationality, RealLocus, Recognition
 from sorgui.engine.vocabulary import canal_kind, kind_phrase
 
 TABLE_1 = (
@@ -213,7 +213,7 @@ def approximation_lines(analysis: Analysis) -> list[str]:
     return lines
 
 
-def recognition_lines_of_nearest(near) -> list[str]:  # noqa: ANN001 - a NearestSurface
+def recognition_lines_of_nearest(near: NearestSurface) -> list[str]:
     """The exact axis of the nearest surface when its whole analysis was not run."""
     if near.axis is None:
         return [f"kind: {NEAR_KINDS.get(near.kind, near.kind)}"]

@@ -124,7 +124,7 @@ def validate(analysis: results.Analysis) -> None:
 
 
 def _check_object(obj: Any, path: str) -> None:
-    if not is_dataclass(obj):
+    if not is_dataclass(obj) or isinstance(obj, type):
         raise ReportInvalid(f"{path} is not an object sorgui writes")
     cls = type(obj)
     hints = typing.get_type_hints(cls, vars(results))

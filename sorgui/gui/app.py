@@ -13,7 +13,7 @@ import signal
 import socket
 import sys
 from importlib import resources
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 from PySide6.QtCore import QSocketNotifier, QTimer
 from PySide6.QtGui import QIcon
@@ -36,8 +36,10 @@ def application_icon() -> QIcon:
 
 def create_application(argv: list[str] | None = None) -> QApplication:
     """The ``QApplication`` (the existing one, if any) with sorgui's names and icon."""
-    app = QApplication.instance()
-    if app is None:
+    existing = QApplication.instance()  # typed QCoreApplication; sorgui's is a QApplication
+    if existing is not None:
+        app = cast(QApplication, existing)
+    else:
         if sys.platform.startswith("linux") and "QT_QPA_PLATFORM" not in os.environ:
             os.environ["QT_QPA_PLATFORM"] = "xcb"  # VTK renders through GLX, also under Wayland
         app = QApplication(list(argv if argv is not None else sys.argv))
@@ -49,7 +51,7 @@ def create_application(argv: list[str] | None = None) -> QApplication:
     app.setWindowIcon(application_icon())
     if app.style().name().lower() not in ("fusion", "breeze"):
         app.setStyle("Fusion")
-    return app  # type: ignore[return-value]
+    return app
 
 
 def open_main_window(path: str | None = None) -> MainWindow:

@@ -57,7 +57,7 @@ class CameraState:
 
 
 def _triple(value: object) -> tuple[float, float, float]:
-    x, y, z = (float(v) for v in value)  # type: ignore[union-attr]
+    x, y, z = (float(v) for v in value)  # type: ignore[attr-defined]
     if not all(np.isfinite((x, y, z))):
         raise ValueError("not a finite vector")
     return (x, y, z)

@@ -184,7 +184,7 @@ class EquationEditor(QWidget):
     def _show_result(self, valid: bool | None, error: ParseError | None, message: str) -> None:
         self._error = error
         self.text_edit.setExtraSelections(self._underline(error) if error is not None else [])
-        color = {True: OK_COLOR, False: ERROR_COLOR}.get(valid)  # type: ignore[arg-type]
+        color = None if valid is None else OK_COLOR if valid else ERROR_COLOR
         self.status_label.setStyleSheet(f"color: {color.name()};" if color is not None else "")
         self.status_label.setText(message)
         self.text_edit.setToolTip(message if error is not None else "")

@@ -29,8 +29,11 @@ from PySide6.QtWidgets import (
 )
 
 from sorgui.export.files import FORMATS
+from sorgui.render.plotting import forwarders
 
 if TYPE_CHECKING:
+    import pyvista
+
     from sorgui.gui.viewport import Viewport
 
 EXPORT_FILTERS = {suffix: form.name for suffix, form in FORMATS.items()}
@@ -81,7 +84,7 @@ def viewport_image(viewport: Viewport, width: int | None = None, transparent: bo
     scale = max(1, math.ceil((width or own_width) / own_width))
     renderer = plotter.renderer
     background = (renderer.GetBackground(), renderer.GetBackground2(), renderer.GetGradientBackground())
-    plotter.hide_axes()
+    forwarders(plotter).hide_axes()
     try:
         if transparent:
             renderer.GradientBackgroundOff()
@@ -92,12 +95,12 @@ def viewport_image(viewport: Viewport, width: int | None = None, transparent: bo
                 color = np.where(alpha[..., None] > 0, on_black * 255.0 / alpha[..., None], 0.0)
             pixels = np.dstack([np.clip(color, 0, 255), alpha]).round().astype(np.uint8)
         else:
-            pixels = plotter.screenshot(None, return_img=True, scale=scale)[..., :3]
+            pixels = _screenshot(plotter, scale)
     finally:
         renderer.SetBackground(*background[0])
         renderer.SetBackground2(*background[1])
         renderer.SetGradientBackground(background[2])
-        plotter.show_axes()
+        forwarders(plotter).show_axes()
         viewport.request_render()
     pixels = np.ascontiguousarray(pixels)
     height, full_width, channels = pixels.shape
@@ -108,17 +111,25 @@ def viewport_image(viewport: Viewport, width: int | None = None, transparent: bo
     return image
 
 
-def _render(plotter: object, scale: int, color: tuple[float, float, float]) -> np.ndarray:
+def _render(plotter: pyvista.BasePlotter, scale: int, color: tuple[float, float, float]) -> np.ndarray:
     """One render of the view on a plain background ``color``, as ``(h, w, 3)`` pixels."""
-    plotter.renderer.SetBackground(*color)  # type: ignore[attr-defined]
-    return plotter.screenshot(None, return_img=True, scale=scale)[..., :3]  # type: ignore[attr-defined]
+    plotter.renderer.SetBackground(*color)
+    return _screenshot(plotter, scale)
+
+
+def _screenshot(plotter: pyvista.BasePlotter, scale: int) -> np.ndarray:
+    """The view rendered ``scale`` times larger, as ``(h, w, 3)`` pixels."""
+    image = plotter.screenshot(None, return_img=True, scale=scale)
+    assert image is not None  # return_img=True
+    pixels: np.ndarray = image[..., :3]
+    return pixels
 
 
 def png_bytes(image: QImage) -> bytes:
     """``image`` encoded as PNG."""
     buffer = QBuffer()
     buffer.open(QIODevice.OpenModeFlag.WriteOnly)
-    image.save(buffer, "PNG")
+    image.save(buffer, "PNG")  # type: ignore[call-overload]  # PySide6 takes str; its stub says bytes
     return bytes(buffer.data().data())
 
 

@@ -103,7 +103,8 @@ class FormulaView(QFrame):
 
         self.content = QLabel()
         self.content.setContextMenuPolicy(Qt.ContextMenuPolicy.NoContextMenu)
-        self.scroll: QScrollArea | None = None
+        # An attribute over the method QWidget.scroll(dx, dy), which nothing here calls.
+        self.scroll: QScrollArea | None = None  # type: ignore[assignment]
         self.show_all_button = QToolButton(self)
         self.show_all_button.setObjectName("showAll")
         self.show_all_button.setAutoRaise(True)
@@ -170,8 +171,10 @@ class FormulaView(QFrame):
         formula = self.formula
         while self._body.count():
             item = self._body.takeAt(0)
-            if item.widget() is not None and item.widget() is not self.show_all_button:
-                item.widget().setParent(None)
+            assert item is not None  # count() > 0
+            widget = item.widget()
+            if widget is not None and widget is not self.show_all_button:
+                widget.setParent(None)
         self.content = QLabel()
         self.content.setContextMenuPolicy(Qt.ContextMenuPolicy.NoContextMenu)
         hidden = 0
@@ -218,7 +221,11 @@ class FormulaView(QFrame):
         if self._copy_menu is None:
             self._copy_menu = QMenu(self)
             for language in LANGUAGES:
-                self._copy_menu.addAction(f"Copy as {language}", lambda lang=language: self.copy(lang))
+
+                def copy_as(lang: str = language) -> None:
+                    self.copy(lang)
+
+                self._copy_menu.addAction(f"Copy as {language}", copy_as)
         return self._copy_menu
 
     def _on_languages_change(self) -> None:

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import html
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 
 from PySide6.QtCore import QEvent, QObject, Qt, QTimer, Signal
@@ -26,6 +27,7 @@ from PySide6.QtGui import (
     QPainter,
     QPaintEvent,
     QPen,
+    QWheelEvent,
 )
 from PySide6.QtWidgets import (
     QApplication,
@@ -217,7 +219,9 @@ class MainWindow(QMainWindow):
         self.viewport.picked.connect(self._show_pick)
         self.results.viewport().installEventFilter(self)
         self.setAcceptDrops(True)
-        QApplication.instance().installEventFilter(self)  # drops on any of the window's widgets
+        app = QApplication.instance()
+        assert app is not None  # a window needs its application
+        app.installEventFilter(self)  # drops on any of the window's widgets
         self._restore_layout()
         self._update_title()
 
@@ -307,7 +311,7 @@ class MainWindow(QMainWindow):
 
         help_menu = menu.addMenu("&Help")
         self.help_actions = {
-            topic: self._action(help_menu, title, lambda t=topic: self.show_help(t))
+            topic: self._action(help_menu, title, partial(self.show_help, topic))
             for topic, (title, _page) in TOPICS.items()
         }
         self.help_actions["syntax"].setShortcut(QKeySequence.StandardKey.HelpContents)
@@ -723,14 +727,19 @@ class MainWindow(QMainWindow):
         """Ctrl+wheel over the results zooms the formulas; a file dropped anywhere on the window
         (the editor, the 3D view) is opened, never pasted as ``file://`` text or handed to the
         3D view."""
-        if event.type() in _DROP_EVENTS and isinstance(watched, QWidget) and watched.window() is self:
-            return self._open_dropped(event)  # type: ignore[arg-type]
         if (
-            event.type() == QEvent.Type.Wheel
+            event.type() in _DROP_EVENTS
+            and isinstance(event, QDropEvent)
+            and isinstance(watched, QWidget)
+            and watched.window() is self
+        ):
+            return self._open_dropped(event)
+        if (
+            isinstance(event, QWheelEvent)
             and watched is self.results.viewport()
             and event.modifiers() & Qt.KeyboardModifier.ControlModifier
         ):
-            delta = event.angleDelta().y()  # type: ignore[union-attr]
+            delta = event.angleDelta().y()
             if delta:
                 self.zoom_formulas(1 if delta > 0 else -1)
             return True

@@ -27,7 +27,10 @@ from sorgui.gui.results import ResultsPane
 from sorgui.gui.stages import RunPanel, seconds_text
 from sorgui.gui.viewport import Viewport
 from sorgui.gui.wording import invalid_heading
+from sorgui.session.formulas import Formula
+from sorgui.session.job import JobResult
 from sorgui.session.model import WORKER_STAGES, Run, Session, StageState
+from sorgui.session.scene_data import SceneData
 
 PANE_DELAY_MS = 120
 """Results arriving within this time rebuild the results pane once (each rebuild costs the GUI
@@ -76,7 +79,7 @@ class SessionView(QObject):
         super().__init__(results)
         self.session = session
         self.editor, self.panel, self.results, self.viewport, self.status = editor, panel, results, viewport, status
-        self.restore_camera: tuple[str, CameraState] | None = None
+        self.restore_camera: tuple[str, CameraState | None] | None = None
         """The last session's camera and the equation it looked at: restored when the first
         scene shown is of that same equation."""
         self._fresh_scene = True
@@ -131,9 +134,10 @@ class SessionView(QObject):
             else:
                 self.results.show_message("The analysis failed", run.message or "", "error")
         else:
-            nearest = self.session.view == "nearest" and self.session.nearest_analysis is not None
-            if nearest:
-                analysis = self.session.nearest_analysis
+            nearest_analysis = self.session.nearest_analysis if self.session.view == "nearest" else None
+            nearest = nearest_analysis is not None
+            if nearest_analysis is not None:
+                analysis = nearest_analysis
                 formulas = {k[len("nearest.") :]: f for k, f in run.formulas.items() if k.startswith("nearest.")}
             else:
                 analysis = run.analysis
@@ -231,7 +235,7 @@ class SessionView(QObject):
         else:
             self._schedule_pane()
 
-    def _on_formulas_change(self, formulas: dict) -> None:
+    def _on_formulas_change(self, formulas: dict[str, Formula]) -> None:
         """Typeset formulas of the shown analysis go into the page in place; else a rebuild."""
         run = self.session.run
         nearest = self.session.view == "nearest"
@@ -248,18 +252,18 @@ class SessionView(QObject):
             }
         )
 
-    def _on_scene_change(self, scene: object) -> None:
+    def _on_scene_change(self, scene: SceneData) -> None:
         run = self.session.run
         if run is None or self.session.view != "typed":
             return
         self._show_scene(scene, self._caption(run))
 
-    def _on_nearest_scene_change(self, scene: object) -> None:
+    def _on_nearest_scene_change(self, scene: SceneData) -> None:
         run = self.session.run
         if run is not None and self.session.view == "nearest":
             self._show_scene(scene, self._caption(run, nearest=True))
 
-    def _show_scene(self, scene: object, caption: str) -> None:
+    def _show_scene(self, scene: SceneData, caption: str) -> None:
         if self._dirty and not self.viewport.rendering:
             self.refresh_pane()  # the results first: drawing must first create the render window
         fresh, camera = self._fresh_scene, None
@@ -284,6 +288,7 @@ class SessionView(QObject):
         self._update_notice()
         if run.outcome == "finished":
             analysis = run.analysis
+            assert analysis is not None  # a finished run has its whole analysis
             verdict = "surface of revolution" if analysis.is_sor else "not a surface of revolution"
             if analysis.approximate is not None and analysis.approximate.near_sor and not analysis.is_sor:
                 verdict = "nearly a surface of revolution"
@@ -293,7 +298,9 @@ class SessionView(QObject):
             if run.result is not None:
                 self.shown.emit(run.result)
         elif run.outcome == "invalid":
+            assert run.error is not None  # an invalid text's error, set with the outcome
             message, position, end = run.error
+            assert position is not None  # every invalid text's error comes from a ParseError
             self.editor.show_error(ParseError(message, position, end))
             self.status.setText("Fix the equation to analyse it")
             self.viewport.clear(caption="No surface: the equation is not a polynomial")
@@ -329,11 +336,12 @@ class SessionView(QObject):
             if self.session.stale:
                 self.viewport.set_stale(True)
 
-    def _on_refresh_change(self, what: str, result: object) -> None:
+    def _on_refresh_change(self, what: str, result: JobResult | None) -> None:
         if result is None:
             self.status.setText("Could not redo the " + ("mesh" if what == "scene" else "formulas"))
             return
         if what == "scene":
+            assert result.scene is not None  # a redrawing sends its scene before it finishes
             self.status.setText(f"Re-meshed: {result.scene.summary()}")
             self.shown.emit(result)
         else:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import math
 from pathlib import Path
+from typing import cast
 
 from PySide6.QtCore import QByteArray, QObject, QSettings, Signal
 from PySide6.QtGui import QAction
@@ -95,7 +96,7 @@ class Settings(QObject):
     @property
     def recent_files(self) -> list[str]:
         """Recently opened or saved files, newest first."""
-        value = self._store.value("files/recent", [])
+        value = cast("list[str] | str | None", self._store.value("files/recent", []))  # what add_recent_file stored
         if isinstance(value, str):  # QSettings returns a lone string for a one-element list
             value = [value]
         return [str(v) for v in value or []]

@@ -30,7 +30,7 @@ import gc
 import importlib
 import threading
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from PySide6.QtCore import Qt, QTimer, Signal
@@ -56,12 +56,14 @@ from sorgui.gui.wording import floats
 from sorgui.render import mesh_to_polydata, pick_info, to_polydata
 from sorgui.render.canal_touch import Touch, touching_spheres
 from sorgui.render.picking import PickInfo
+from sorgui.render.plotting import forwarders
 from sorgui.render.scene import LineData
 from sorgui.session.scene_data import SceneData
 
 if TYPE_CHECKING:
     import pyvista
     from pyvistaqt import QtInteractor
+    from vtkmodules.vtkCommonDataModel import vtkPlane
 
 FRONT_COLOR = "#7fa7d6"
 """The side ``f > 0`` of the surface."""
@@ -148,7 +150,7 @@ class Viewport(QWidget):
         """What :meth:`software_rendering` answers before the render window exists (the
         window's first analysis starts before it): the last session's finding, else the worst."""
         self._stale = False
-        self._clip_plane = None
+        self._clip_plane: vtkPlane | None = None
         """The meridian plane of the section view (a ``vtkPlane``, made with the render window)."""
 
         self.caption = ElidedLabel("No surface yet", self)  # cut with "…" in a narrow window, whole as tooltip
@@ -237,7 +239,8 @@ class Viewport(QWidget):
         """The pyvistaqt render window (created now if :meth:`start_rendering` has not run)."""
         if self._plotter is None:
             self.start_rendering()
-        return self._plotter  # type: ignore[return-value]
+        assert self._plotter is not None  # start_rendering made it
+        return self._plotter
 
     @property
     def rendering(self) -> bool:
@@ -274,9 +277,9 @@ class Viewport(QWidget):
 
         plotter = QtInteractor(self, auto_update=False, multi_samples=0)
         self._plotter = plotter
-        plotter.set_background("#fbfcfe", top="#d9e2ee")
-        plotter.add_axes(line_width=3, labels_off=False)
-        plotter.enable_surface_point_picking(
+        forwarders(plotter).set_background("#fbfcfe", top="#d9e2ee")
+        forwarders(plotter).add_axes(line_width=3, labels_off=False)
+        forwarders(plotter).enable_surface_point_picking(
             callback=self._pick,
             show_message=False,
             show_point=False,
@@ -285,7 +288,9 @@ class Viewport(QWidget):
         )
         self._remove_default_key_bindings()
         self._clip_plane = vtkPlane()
-        self.layout().replaceWidget(self._placeholder, plotter)
+        layout = self.layout()
+        assert layout is not None  # the QVBoxLayout made in __init__
+        layout.replaceWidget(self._placeholder, plotter)
         self._placeholder.deleteLater()
         plotter.show()
         self.software_rendering()  # found once the render window shows, for the next meshes
@@ -367,7 +372,7 @@ class Viewport(QWidget):
             return
         self._remove_scalar_bar()
         for name in SCENE_ACTORS + PICK_ACTORS:
-            self._plotter.remove_actor(name, render=False)
+            forwarders(self._plotter).remove_actor(name, render=False)
         self.request_render()
 
     def set_stale(self, stale: bool, caption: str | None = None) -> None:
@@ -387,7 +392,7 @@ class Viewport(QWidget):
 
     def reset_camera(self, render: bool = True) -> None:
         """Look at the drawn ball from an isometric direction."""
-        self.plotter.view_isometric(render=False)
+        forwarders(self.plotter).view_isometric(render=False)
         if self._scene is not None:
             c, r = np.asarray(self._scene.region.center), self._scene.region.radius
             bounds = tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
@@ -569,11 +574,11 @@ class Viewport(QWidget):
         mesh: pyvista.PolyData,
         visible: bool = True,
         interpolation: str | None = None,
-        **kwargs: object,
+        **kwargs: Any,
     ) -> None:
         """Add or replace the actor ``name``; an empty mesh removes it."""
         if mesh.n_points == 0:
-            self.plotter.remove_actor(name, render=False)
+            forwarders(self.plotter).remove_actor(name, render=False)
             return
         kwargs.setdefault("pickable", False)
         actor = self.plotter.add_mesh(mesh, name=name, reset_camera=False, render=False, **kwargs)
@@ -589,8 +594,10 @@ class Viewport(QWidget):
         if self._software is None:
             if self._plotter is None or not self._plotter.isVisible():
                 return self.software_guess  # no OpenGL context yet
-            self.plotter.ren_win.Render()  # creates the OpenGL context if needed (a cheap frame)
-            report = self.plotter.ren_win.ReportCapabilities() or ""
+            ren_win = self.plotter.ren_win
+            assert ren_win is not None  # the render window is shown
+            ren_win.Render()  # creates the OpenGL context if needed (a cheap frame)
+            report = ren_win.ReportCapabilities() or ""
             self._software = any(name in report for name in SOFTWARE_RENDERERS)
             if not self._software:
                 self.plotter.enable_anti_aliasing("fxaa")
@@ -639,13 +646,13 @@ class Viewport(QWidget):
             ("wireframe", "&Wireframe", "Ctrl+Alt+W", "Wireframe", self.set_wireframe),
             ("clip", "&Meridian Section", "Ctrl+Alt+M", "Section", self.set_clip),
         )
-        for name, text, key, short, slot in toggles:
+        for name, text, key, short, setter in toggles:
             action = QAction(text, self)
             action.setCheckable(True)
             action.setIconText(short)
             action.setShortcut(QKeySequence(key))
             action.setToolTip(f"{text.replace('&', '')} ({key})")
-            action.triggered.connect(lambda checked=False, f=slot: f(checked))
+            action.triggered.connect(lambda checked=False, f=setter: f(checked))
             actions[name] = action
         actions["clip"].setToolTip(
             "Cut the surface along the plane through the axis and the profile: "
@@ -718,20 +725,22 @@ class Viewport(QWidget):
     def _apply_clip(self) -> None:
         """Clip the surface (and the patch) by the meridian plane, if asked and there is an axis."""
         scene = self._scene
-        clip = self.view_actions["clip"].isChecked() and scene is not None and scene.axis is not None
-        if clip:
+        plane = None
+        if self.view_actions["clip"].isChecked() and scene is not None and scene.axis is not None:
+            plane = self._clip_plane
+            assert plane is not None  # made with the render window, which drew the scene
             point, direction = scene.axis
             normal = meridian_normal(point, direction, scene.profile_curve.points)
-            self._clip_plane.SetOrigin(*point)
-            self._clip_plane.SetNormal(*normal)
+            plane.SetOrigin(*point)
+            plane.SetNormal(*normal)
         for name in ("surface", "patch"):
             actor = self.plotter.renderer.actors.get(name)
             if actor is None:
                 continue
             mapper = actor.GetMapper()
             mapper.RemoveAllClippingPlanes()
-            if clip:
-                mapper.AddClippingPlane(self._clip_plane)
+            if plane is not None:
+                mapper.AddClippingPlane(plane)
 
     def _on_deviation_change(self, _checked: bool) -> None:
         self._show_surface()
@@ -739,7 +748,7 @@ class Viewport(QWidget):
 
     def _clear_pick(self) -> None:
         for name in PICK_ACTORS:
-            self.plotter.remove_actor(name, render=False)
+            forwarders(self.plotter).remove_actor(name, render=False)
         self.pick_label.setText("Right-click the surface (or press P) to inspect a point.")
 
 

@@ -93,7 +93,8 @@ def evaluate_angle(fn: Function, phi: np.ndarray) -> np.ndarray:
         )
 
     with np.errstate(all="ignore"):
-        return homogeneous(num) / homogeneous(den)
+        values: np.ndarray = homogeneous(num) / homogeneous(den)
+        return values
 
 
 def _parameters(samples: int) -> np.ndarray:
@@ -151,4 +152,5 @@ def circle(center: np.ndarray, normal: np.ndarray, radius_squared: float, points
     e1 /= np.linalg.norm(e1)
     e2 = np.cross(n, e1)
     theta = np.linspace(0.0, 2 * np.pi, points + 1)
-    return center + np.sqrt(radius_squared) * (np.outer(np.cos(theta), e1) + np.outer(np.sin(theta), e2))
+    ring: np.ndarray = center + np.sqrt(radius_squared) * (np.outer(np.cos(theta), e1) + np.outer(np.sin(theta), e2))
+    return ring

@@ -154,7 +154,8 @@ def smat_tangent(equations: Sequence[Terms4], point: np.ndarray) -> np.ndarray |
     _u, sigma, vt = np.linalg.svd(np.array([gradient4(g, point) for g in equations]))
     if len(sigma) < 3 or sigma[2] <= 1e-9 * max(sigma[0], 1.0):
         return None
-    return vt[-1]
+    tangent: np.ndarray = vt[-1]
+    return tangent
 
 
 def characteristic_circle(
@@ -214,8 +215,9 @@ def _smat_touches(
             continue
         ring, ring_center, radius_squared = found
         tangent = smat_tangent(family.equations, np.append(center, s * s))
+        assert tangent is not None  # characteristic_circle found it at the same point
         offset = point - ring_center
-        height = float(offset @ tangent[:3]) / float(np.linalg.norm(tangent[:3]))  # type: ignore[index]
+        height = float(offset @ tangent[:3]) / float(np.linalg.norm(tangent[:3]))
         radial = float(np.sqrt(max(offset @ offset - height * height, 0.0)))
         distance = float(np.hypot(height, radial - np.sqrt(radius_squared)))
         out.append(Touch(index, float(s), center, abs(float(s)), ring, distance))

@@ -17,10 +17,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from sorgui.render.canal_scene import CanalScene
+from sorgui.render.canal_scene import CanalScene, SmatFamily, Terms4
 from sorgui.render.canal_touch import (
-    SmatFamily,
-    Terms4,
     characteristic_circle,
     gradient4,
     smat_tangent,
@@ -51,7 +49,9 @@ def smat_scene(
     unit ``normals``); ``step`` is the continuation step (length units)."""
     spines: list[np.ndarray] = []
     rings: list[np.ndarray] = []
-    picked = np.linspace(0, len(points) - 1, min(starts, len(points))).astype(int) if len(points) else []
+    picked: np.ndarray | list[int] = (
+        np.linspace(0, len(points) - 1, min(starts, len(points))).astype(int) if len(points) else []
+    )
     for family in families:
         traced: list[np.ndarray] = []
         for i in picked:

@@ -60,12 +60,13 @@ def as_vector(v: Vector, name: str = "vector") -> np.ndarray:
     return out
 
 
-def as_bounds(bounds: Sequence[float]) -> Bounds:
+def as_bounds(bounds: Vector) -> Bounds:
     """Validate ``(xmin, xmax, ymin, ymax, zmin, zmax)``: finite, ``min < max`` on each axis."""
     b = np.asarray(bounds, dtype=np.float64).reshape(-1)
     if b.shape != (6,) or not np.all(np.isfinite(b)) or np.any(b[1::2] <= b[0::2]):
         raise ValueError(f"bounds must be (xmin, xmax, ymin, ymax, zmin, zmax), got {bounds!r}")
-    return tuple(float(v) for v in b)  # type: ignore[return-value]
+    xmin, xmax, ymin, ymax, zmin, zmax = (float(v) for v in b)
+    return (xmin, xmax, ymin, ymax, zmin, zmax)
 
 
 def as_region(region: Region | Sequence[float]) -> Region:
@@ -100,9 +101,11 @@ def inside_region(points: np.ndarray, region: Region | Sequence[float]) -> np.nd
     with np.errstate(invalid="ignore"):
         if isinstance(region, ClipSphere):
             d = pts - np.asarray(region.center)
-            return np.einsum("ij,ij->i", d, d) <= region.radius**2
+            in_ball: np.ndarray = np.einsum("ij,ij->i", d, d) <= region.radius**2
+            return in_ball
         b = np.asarray(region.bounds).reshape(3, 2)
-        return np.all((pts >= b[:, 0]) & (pts <= b[:, 1]), axis=1)
+        in_box: np.ndarray = np.all((pts >= b[:, 0]) & (pts <= b[:, 1]), axis=1)
+        return in_box
 
 
 def unit(v: Vector) -> np.ndarray:
@@ -175,7 +178,8 @@ def line_skews(points: np.ndarray, directions: np.ndarray, line_point: Vector, l
         d = np.where(norms > 0.0, d / norms, 0.0)
     a = unit(as_vector(line_direction, "line direction"))
     c = as_vector(line_point, "line point")
-    return np.abs(np.einsum("ij,ij->i", c - pts, np.cross(d, a)))
+    skews: np.ndarray = np.abs(np.einsum("ij,ij->i", c - pts, np.cross(d, a)))
+    return skews
 
 
 def line_distance(p1: Vector, d1: Vector, p2: Vector, d2: Vector, parallel_tol: float = 1e-12) -> float:
@@ -195,7 +199,8 @@ def foot_on_line(point: Vector, line_point: Vector, line_direction: Vector) -> n
     c, a = as_vector(line_point, "axis point"), unit(as_vector(line_direction, "axis direction"))
     if not np.any(a):
         raise ValueError("axis direction must be nonzero")
-    return c + ((as_vector(point, "point") - c) @ a) * a
+    foot: np.ndarray = c + ((as_vector(point, "point") - c) @ a) * a
+    return foot
 
 
 # --- VTK flat cell arrays -------------------------------------------------------------------

@@ -34,7 +34,6 @@ from functools import lru_cache
 from typing import TYPE_CHECKING
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints, vtkSMPTools
 from vtkmodules.vtkCommonDataModel import vtkBox, vtkImageData, vtkPolyData, vtkSphere
 from vtkmodules.vtkFiltersCore import (
@@ -52,6 +51,7 @@ from sorgui.render.geometry import (
     readonly,
 )
 from sorgui.render.sampling import Terms, newton_step, sample_grid, value_and_gradient
+from sorgui.render.vtk_arrays import numpy_to_vtk, vtk_to_numpy
 
 if TYPE_CHECKING:
     import pyvista
@@ -126,9 +126,8 @@ class SamplingGrid:
 
     def axes(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The node coordinates along ``x``, ``y`` and ``z``."""
-        return tuple(  # type: ignore[return-value]
-            o + self.spacing * np.arange(n) for o, n in zip(self.origin, self.dims)
-        )
+        (ox, oy, oz), (nx, ny, nz) = self.origin, self.dims
+        return ox + self.spacing * np.arange(nx), oy + self.spacing * np.arange(ny), oz + self.spacing * np.arange(nz)
 
 
 def sampling_grid(bounds: tuple[float, ...], resolution: int = 150) -> SamplingGrid:
@@ -146,7 +145,8 @@ def sampling_grid(bounds: tuple[float, ...], resolution: int = 150) -> SamplingG
     dims = np.maximum(np.floor((extent - offset) / spacing).astype(int) + 1, 2)
     if int(np.prod(dims, dtype=np.int64)) > MAX_GRID_NODES:
         raise ValueError(f"a {dims[0]}×{dims[1]}×{dims[2]} grid exceeds {MAX_GRID_NODES} nodes")
-    return SamplingGrid(tuple(b[:, 0] + offset), spacing, tuple(int(n) for n in dims))
+    nx, ny, nz = (int(n) for n in dims)
+    return SamplingGrid(tuple(b[:, 0] + offset), spacing, (nx, ny, nz))
 
 
 def sample_surface(terms: Terms, grid: SamplingGrid) -> np.ndarray:

@@ -208,4 +208,5 @@ def pick_many(
     norms = np.linalg.norm(grads, axis=1)
     singular = ~(np.isfinite(norms) & (norms > 0.0))
     skew, tolerance = _skew_and_tolerance(pts, grads, c, a, rel_tol)
-    return singular | (skew <= tolerance)
+    meets: np.ndarray = singular | (skew <= tolerance)
+    return meets

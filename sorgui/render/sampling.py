@@ -140,7 +140,8 @@ def _finish(values: np.ndarray, value_exponent: int, normalise: bool) -> np.ndar
     """
     if not normalise:
         with np.errstate(over="ignore"):
-            return np.ldexp(values, value_exponent, out=values)
+            unscaled: np.ndarray = np.ldexp(values, value_exponent, out=values)
+            return unscaled
     peak = max(float(values.max(initial=0.0)), -float(values.min(initial=0.0)))
     if peak > 0.0:
         values *= 1.0 / peak

@@ -11,10 +11,9 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkFlyingEdges2D, vtkStripper
 
@@ -39,6 +38,7 @@ from sorgui.render.mesh import (
     set_points,
 )
 from sorgui.render.sampling import Terms, newton_step, sample_grid_2d
+from sorgui.render.vtk_arrays import numpy_to_vtk, vtk_to_numpy
 
 if TYPE_CHECKING:
     import pyvista
@@ -113,7 +113,8 @@ class PatchData:
     def quad_mask(self) -> np.ndarray:
         """``(ns-1, nt-1)``: the grid cells whose four corners are all valid."""
         m = self.mask
-        return m[:-1, :-1] & m[1:, :-1] & m[1:, 1:] & m[:-1, 1:]
+        quads: np.ndarray = m[:-1, :-1] & m[1:, :-1] & m[1:, 1:] & m[:-1, 1:]
+        return quads
 
     def to_polydata(self) -> pyvista.PolyData:
         """The valid quads only, with the unused points dropped (they would skew the bounds)."""
@@ -178,15 +179,15 @@ def latitude_circle(point_on_surface: Vector, axis_point: Vector, axis_direction
 
 def sphere_center_marker(center: Vector, bounds: Region | Sequence[float], relative_size: float = 0.015) -> MarkerData:
     """A marker ball at a sphere's centre, its radius a fraction of the region's size."""
-    c = as_vector(center, "center")
+    x, y, z = (float(v) for v in as_vector(center, "center"))
     _, radius = enclosing_sphere(bounds)
-    return MarkerData(tuple(float(v) for v in c), relative_size * radius)
+    return MarkerData((x, y, z), relative_size * radius)
 
 
 # --- the profile curve ----------------------------------------------------------------------
 
 
-def _contour_2d(values: np.ndarray, origin: Sequence[float], spacing: Sequence[float]) -> vtkPolyData:
+def _contour_2d(values: np.ndarray, origin: Vector, spacing: Vector) -> vtkPolyData:
     """Zero level of ``values (nr, ns)`` (s fastest) as joined polylines in ``(s, r, 0)``.
 
     Contoured in index space and mapped in ``float64`` (see ``mesh.contour_zero``).
@@ -290,8 +291,12 @@ def profile_curve(
 
 # --- parametric overlays --------------------------------------------------------------------
 
+PatchCoordinate = Callable[[Any, Any], Any] | float
+"""A coordinate of a patch: ``fn(s, t)``, called on the grid's arrays (or, where that fails, on
+each pair of numbers), or a constant."""
 
-def _evaluate(fn: Callable | float, s: np.ndarray, t: np.ndarray) -> np.ndarray:
+
+def _evaluate(fn: PatchCoordinate, s: np.ndarray, t: np.ndarray) -> np.ndarray:
     """``fn(s, t)`` on the grid; falls back to point-by-point calls, a failing point gives nan."""
     if not callable(fn):
         return np.full(s.shape, float(fn))
@@ -308,13 +313,14 @@ def _evaluate(fn: Callable | float, s: np.ndarray, t: np.ndarray) -> np.ndarray:
             except (TypeError, ValueError, ZeroDivisionError, OverflowError, ArithmeticError):
                 return np.nan
 
-        return np.vectorize(one, otypes=[np.float64])(s, t)
+        pointwise: np.ndarray = np.vectorize(one, otypes=[np.float64])(s, t)
+        return pointwise
 
 
 def parametric_patch(
-    fx: Callable | float,
-    fy: Callable | float,
-    fz: Callable | float,
+    fx: PatchCoordinate,
+    fy: PatchCoordinate,
+    fz: PatchCoordinate,
     s_range: tuple[float, float],
     t_range: tuple[float, float],
     n: int | tuple[int, int] = 64,
