@@ -28,7 +28,7 @@ from sorgui.engine.vocabulary import canal_kind
 from sorgui.export.cas import LATEX_STYLE, approximate_line, latex_name, verdict
 from sorgui.export.formulas import Formula, canal_formulas, surface_formulas
 from sorgui.export.quoting import code_fence, markup_text
-from sorgui.export.text import TABLE_1, plain_text, symmetry_name
+from sorgui.export.text import TABLE_1, conical_lines, plain_text, symmetry_name
 
 KNOWN_KEYS = frozenset(
     {
@@ -55,6 +55,7 @@ KNOWN_KEYS = frozenset(
         "real_locus",
         "unfinished",
         "canal",
+        "conical",
     }
 )
 """The JSON keys the Markdown and HTML reports present in words."""
@@ -264,6 +265,8 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
     blocks.append(Block("h2", "Formulas"))
     for formula in surface_formulas(analysis):
         blocks += _formula_blocks(formula)
+    if analysis.conical is not None and analysis.conical.kind != "none":
+        blocks += [Block("h2", "Cone or cylinder"), Block("list", tuple(conical_lines(analysis.conical)))]
     if analysis.canal is not None:
         blocks += canal_blocks(analysis.canal)
     extra = {k: v for k, v in analysis.to_json().items() if k not in KNOWN_KEYS and v not in (None, [], {})}

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from sorgui.engine.results import Analysis, Canal, NearestSurface, Rationality, RealLocus, Recognition
+from sorgui.engine.results import Analysis, Canal, Conical, NearestSurface, Rationality, RealLocus, Recognition
 from sorgui.engine.vocabulary import canal_kind, kind_phrase
 
 TABLE_1 = (
@@ -245,6 +245,8 @@ def analysis_lines(analysis: Analysis) -> list[str]:
         lines.append(f"parametrization {i} ({par.method}; {kind}, {proper}, over {par.field}; {check}):")
         for name, coord in zip("xyz", par.coordinates):
             lines.append(f"  {name}({', '.join(par.parameters)}) = {coord}")
+    if analysis.conical is not None:
+        lines += conical_lines(analysis.conical)
     if analysis.canal is not None:
         lines += canal_lines(analysis.canal)
         nearly = nearly_canal(analysis)
@@ -270,6 +272,45 @@ def nearly_canal(analysis: Analysis) -> str:
         "not exactly canal, but nearly: its nearest exact surface (" + where + ") is a surface of "
         "revolution, canal by its symmetry"
     )
+
+
+def conical_lines(conical: Conical) -> list[str]:
+    """Whether ``X`` is a cone or a cylinder over some curve (docs/math.md §10), in words: the
+    apex or the direction, the base curve with its genus, and the parameterizations."""
+    if conical.kind == "none":
+        return ["cone or cylinder over a curve: NO (no apex, no direction of translation)"]
+    if conical.kind == "cone":
+        lines = [f"cone over a curve: YES, apex {_vec(conical.apex)} (every line through it)"]
+    else:
+        lines = [f"cylinder over a curve: YES, direction {_vec(conical.direction)} (every line along it)"]
+        if conical.apex is not None:
+            lines.append(f"  and a cone with apex {_vec(conical.apex)}: planes through the line there")
+    base = conical.base_curve
+    if base is not None:
+        u, v = base.variables
+        where = (
+            f"in the chart {base.chart}"
+            if base.chart is not None
+            else f"in the plane {_vec(base.frame_point)} + {u}·{_vec(base.frame_u)} + {v}·{_vec(base.frame_w)}"
+        )
+        lines.append(f"  base curve ({where}): {base.polynomial} = 0, degree {base.degree}")
+        rational = {True: "rational", False: "not rational", None: "undecided whether rational"}[conical.rational]
+        if base.reducible:
+            lines.append("  reducible over K: so is the surface")
+        elif base.genus is not None:
+            lines.append(f"  genus {base.genus}: the surface is {rational}")
+        elif base.absolutely_irreducible is False:
+            lines.append("  irreducible over K but not over C: so is the surface")
+        else:
+            lines.append(f"  genus undecided: the surface is {rational}")
+    for i, par in enumerate(conical.parametrizations, 1):
+        kind = "real" if par.real else "complex"
+        check = par.verification if par.verified else "NOT verified"
+        lines.append(f"  parametrization {i} ({par.method}; {kind}, proper, over {par.field}; {check}):")
+        for name, coord in zip("xyz", par.coordinates):
+            lines.append(f"    {name}({', '.join(par.parameters)}) = {coord}")
+    lines += [f"  note: {note}" for note in conical.notes]
+    return lines
 
 
 def canal_lines(canal: Canal) -> list[str]:

@@ -65,6 +65,8 @@ VOCABULARY: dict[tuple[str, str], frozenset[str]] = {
     ("Approximation", "kind"): SYMMETRIES,
     ("Approximation", "tolerance_source"): frozenset({"input", "given"}),
     ("NearestSurface", "kind"): SYMMETRIES,
+    ("Conical", "kind"): frozenset({"cone", "cylinder", "none"}),
+    ("BaseCurve", "chart"): frozenset({"x = 1", "y = 1", "z = 1"}),
 }
 """Fields whose every string comes from a fixed list."""
 
@@ -98,6 +100,8 @@ EXPRESSIONS: dict[str, frozenset[str]] = {
     ),
     "CanalEvidence": frozenset({"point", "direction", "restriction"}),
     "Analysis": frozenset({"squarefree"}),
+    "Conical": frozenset({"apex", "direction"}),
+    "BaseCurve": frozenset({"polynomial", "frame_point", "frame_u", "frame_w"}),
 }
 """Fields that hold exact numbers or polynomials (each string read by :data:`EXACT`)."""
 
@@ -105,6 +109,7 @@ PARAMETER_FIELDS = {
     ("Parametrization", "parameters"),
     ("CanalFamily", "parameter"),
     ("CanalFamily", "radical_parameter"),
+    ("BaseCurve", "variables"),
 }
 FIELD_FIELDS = {("Analysis", "field"), ("Parametrization", "field"), ("CanalFamily", "field")}
 _FIELD = re.compile(r"QQ(?:\((?P<generators>.+)\))?")

@@ -32,6 +32,7 @@ from sorgui.engine.results import (
     Analysis,
     Approximation,
     Canal,
+    Conical,
     Rationality,
     Recognition,
 )
@@ -153,6 +154,10 @@ class ResultsPane(QScrollArea):
                 [("", "being decided (Singular): the row, the genera and the parameterizations follow")],
             )
         self._parametrization_section(column, analysis)
+        if analysis.conical is not None and analysis.conical.kind != "none":
+            self._conical_section(column, analysis.conical)
+        elif "conical" in pending:
+            self._section(column, "Cone or cylinder", [("", "being decided: the apex or the direction follows")])
         if analysis.canal is not None:
             self._canal_section(column, analysis.canal, nearly_canal(analysis))
         elif "canal" in pending:
@@ -434,6 +439,41 @@ class ResultsPane(QScrollArea):
                     ("z", f"parametrization.{index}.z"),
                 ],
             )
+
+    def _conical_section(self, column: QVBoxLayout, conical: Conical) -> None:
+        """A cone or a cylinder over a curve (docs/math.md §10): apex or direction, base curve,
+        genus and the parameterizations."""
+        rows: list[tuple[str, str]] = []
+        if conical.kind == "cone":
+            rows += [("kind", "a cone over a curve: every line through the apex"), ("apex", "conical.apex")]
+        else:
+            rows += [("kind", "a cylinder over a curve: every line along the direction")]
+            rows += [("direction", "conical.direction")]
+            if conical.apex is not None:
+                rows += [("apex", "conical.apex"), ("", "planes through the line there (a cone as well)")]
+        base = conical.base_curve
+        if base is not None:
+            if base.chart is not None:
+                rows.append(("base curve", f"the top-degree form of f in the chart {base.chart}"))
+            else:
+                rows.append(("base curve", "the section by the plane u·U + v·W across the direction"))
+                rows += [("U", "conical.base.frame_u"), ("W", "conical.base.frame_w")]
+            rows.append(("", "conical.base"))
+            if base.reducible:
+                facts = "reducible over K: so is the surface"
+            elif base.genus is not None:
+                facts = f"degree {base.degree}, genus {base.genus}"
+            else:
+                facts = f"degree {base.degree}, genus undecided"
+            rows.append(("genus", facts))
+        rows.append(("rational", YES_NO[conical.rational]))
+        for index, param in enumerate(conical.parametrizations):
+            kind = "real" if param.real else "complex"
+            check = "verified by substitution" if param.verified else "NOT verified"
+            rows.append((f"map {index + 1}", f"{kind}, proper, over {param.field} · {check}"))
+            rows += [(name, f"conical.parametrization.{index}.{name}") for name in "xyz"]
+        rows += [("note", note) for note in conical.notes]
+        self._section(column, "Cone or cylinder", rows)
 
     def _canal_section(self, column: QVBoxLayout, canal: Canal, nearly: str = "") -> None:
         rows = [("canal", canal_verdict(canal))]

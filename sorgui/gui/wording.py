@@ -180,6 +180,11 @@ def verdict(analysis: Analysis) -> tuple[str, str, str]:
     approx = analysis.approximate
     kind = kind_phrase(rec.symmetry)
     detail = f"{kind} · degree {rec.degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
+    conical = analysis.conical
+    if conical is not None and conical.kind == "cone" and conical.apex is not None:
+        detail += f" · a cone with apex ({', '.join(conical.apex)})"
+    elif conical is not None and conical.kind == "cylinder" and conical.direction is not None:
+        detail += f" · a cylinder along ({', '.join(conical.direction)})"
     if rec.is_sor:
         return "Surface of revolution", detail, "sor"
     if approx is not None and approx.near_sor:

@@ -258,6 +258,23 @@ def analysis_formulas(analysis: Analysis, plain: bool = False) -> dict[str, Form
     for index, param in enumerate(analysis.parametrizations):
         for name, value in zip("xyz", param.coordinates):
             out[f"parametrization.{index}.{name}"] = make.expression(value, f"{name} =")
+    conical = analysis.conical
+    if conical is not None:
+        if conical.apex is not None:
+            out["conical.apex"] = make.vector(conical.apex, "c =")
+        if conical.direction is not None:
+            out["conical.direction"] = make.vector(conical.direction, "a =")
+        base = conical.base_curve
+        if base is not None:
+            u, v = base.variables
+            out["conical.base"] = make.expression(base.polynomial, f"g({u}, {v}) =")
+            for name in ("frame_u", "frame_w"):
+                value = getattr(base, name)
+                if value is not None:
+                    out[f"conical.base.{name}"] = make.vector(value, ("U" if name == "frame_u" else "W") + " =")
+        for index, param in enumerate(conical.parametrizations):
+            for name, value in zip("xyz", param.coordinates):
+                out[f"conical.parametrization.{index}.{name}"] = make.expression(value, f"{name} =")
     canal = analysis.canal
     if canal is not None:
         for index, family in enumerate(canal.families):

@@ -6,7 +6,7 @@ parameterizations of the surface (docs/math.md §10).
   ``y = 1``, ``x = 1``: the first coordinate that does not divide ``f_d``, so that the chart
   keeps every component) and ``X = c + t·γ(s)`` for a parameterization ``γ`` of that chart.
 - A cylinder along ``a``: the section by the plane through the origin spanned by the
-  ``K``-rational ``u ⟂ a`` and ``w = a × u``, ``g(u, v) = f(u·U + v·W)``, and
+  ``K``-rational ``U ⟂ a`` and ``W``, the primitive multiple of ``a × U``, ``g(u, v) = f(u·U + v·W)``, and
   ``X = γ₁(s)·U + γ₂(s)·W + t·a``.
 
 ``X`` is rational exactly when its base curve is (the ruling parameter ``t`` is rational), and
@@ -24,8 +24,8 @@ from typing import Any
 import sympy
 from sympy.polys.domains.domain import Domain
 
-from ..algebra.linalg import Vector, perpendicular
-from ..algebra.polys import Poly, compose, factor, poly_ring, poly_str, to_str, total_degree
+from ..algebra.linalg import Vector, perpendicular, primitive_vector
+from ..algebra.polys import Poly, compose, factor, poly_ring, poly_str, to_expr, to_str, total_degree
 from ..errors import SorguiError
 from ..recognition.profile import AxisFrame
 from ..results import BaseCurve, Conical, Parametrization
@@ -100,9 +100,10 @@ def _base_curve(f: Poly, found: Conicity) -> tuple[Poly, AxisFrame, BaseCurve]:
         a = found.directions[0]
         u = perpendicular(a, K)
         frame = AxisFrame(point=zero, direction=a, normal=u)
+        w = primitive_vector(frame.binormal, K)
         R = poly_ring(PLANE, K)
         s, t = R.gens
-        images = [s * u[i] + t * frame.binormal[i] for i in range(3)]
+        images = [s * u[i] + t * w[i] for i in range(3)]
         curve = compose(f, images)
         description = BaseCurve(
             polynomial=poly_str(curve),
@@ -110,7 +111,7 @@ def _base_curve(f: Poly, found: Conicity) -> tuple[Poly, AxisFrame, BaseCurve]:
             degree=total_degree(curve),
             frame_point=_triple(K, zero),
             frame_u=_triple(K, u),
-            frame_w=_triple(K, frame.binormal),
+            frame_w=_triple(K, w),
         )
         return curve, frame, description
     assert found.apex is not None
@@ -175,15 +176,17 @@ def _parametrizations(
 def _surface_map(x: sympy.Expr, y: sympy.Expr, frame: AxisFrame, found: Conicity, K: Domain) -> SurfaceMap:
     """``c + t·(x·e_i ± y·e_j + e_k)`` for a cone (``frame``: ``c``, ``e_k``, ``e_i``; the sign
     makes ``e_k × e_i`` the chart's second axis), ``x·U + y·W + t·a`` for a cylinder."""
-    if found.directions:
-        return frame_map(T, x, y, frame, K)
+    if found.directions:  # W = primitive(a × U) = (a × U)/k
+        k = next(c for c in frame.binormal if c) / next(c for c in primitive_vector(frame.binormal, K) if c)
+        return frame_map(T, x, y / to_expr(K, k), frame, K)
     second = next(i for i in range(3) if frame.binormal[i])
     sign = 1 if frame.binormal[second] == K.one else -1
     return frame_map(T, T * x, sign * T * y, frame, K)
 
 
 def _coordinates(exprs: tuple[sympy.Expr, sympy.Expr, sympy.Expr]) -> tuple[str, str, str]:
-    x, y, z = (str(e) for e in exprs)
+    """The coordinates as text, each fraction in lowest terms (constant factors too)."""
+    x, y, z = (str(sympy.cancel(e)) for e in exprs)
     return x, y, z
 
 

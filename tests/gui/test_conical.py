@@ -1,0 +1,42 @@
+"""Cones and cylinders over any curve in the window (docs/math.md §10): the banner names the
+apex, and the "Cone or cylinder" section gives the apex or direction, the base curve with its
+genus and the verified parameterization. Real window, worker process and Singular."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from PySide6.QtWidgets import QLabel
+
+pytestmark = pytest.mark.gui
+
+SLOW_MS = 300_000
+"""Time allowed to an analysis that runs every stage (the canal stage asks Singular too)."""
+
+
+def _pane_text(window) -> str:  # noqa: ANN001
+    return "\n".join(label.text() for label in window.results.widget().findChildren(QLabel))
+
+
+def test_a_cone_shows_its_apex_and_base_curve(window, run_analysis, artifacts: Path) -> None:
+    result = run_analysis(window, "(x-1)^3+2*(y-2)^3-(z-3)^2*(x-1)+(x-1)*(y-2)*(z-3)", timeout_ms=SLOW_MS)
+    conical = result.analysis.conical
+    assert conical.kind == "cone" and conical.apex == ("1", "2", "3")
+    assert "a cone with apex (1, 2, 3)" in window.results.banner.text()
+    text = _pane_text(window)
+    assert "Cone or cylinder" in text and "the top-degree form of f in the chart z = 1" in text
+    assert "degree 3, genus 1" in text
+    assert "conical.apex" in window.results.views and "conical.base" in window.results.views
+    assert "cone over a curve: YES, apex (1, 2, 3)" in window.results.plain_text()
+    window.save_screenshots(artifacts / "cone-window.png", artifacts / "cone-viewport.png")
+
+
+def test_a_rational_cylinder_shows_its_direction_and_a_verified_map(window, run_analysis) -> None:
+    result = run_analysis(window, "(x-z)^3-(y-2*z)^2", timeout_ms=SLOW_MS)
+    conical = result.analysis.conical
+    assert conical.kind == "cylinder" and conical.direction == ("1", "2", "1") and conical.rational
+    text = _pane_text(window)
+    assert "a cylinder along (1, 2, 1)" in window.results.banner.text()
+    assert "degree 3, genus 0" in text and "real, proper, over QQ · verified by substitution" in text
+    assert all(f"conical.parametrization.0.{name}" in window.results.views for name in "xyz")
