@@ -34,9 +34,10 @@ from ..recognition.symmetry import (
     SOR_KINDS,
     SPHERE,
 )
-from ..results import ApproximateAxis, Approximation, NearestSurface
+from ..results import ApproximateAxis, Approximation, NearestSurface, Triple
 from ..vocabulary import kind_noun
 from . import dense
+from .dense import FloatArray
 from .deviation import max_deviation
 from .near_symmetry import (
     Fit,
@@ -48,7 +49,7 @@ from .near_symmetry import (
     refine,
 )
 from .precision import Rounding, given_rounding, input_rounding
-from .snapping import ExactSurface, Quadratic, perpendicular, snap
+from .snapping import ExactSurface, Quadratic, perpendicular, snap, three
 
 MAX_SPAN = 1e100
 """Coefficients whose sizes differ by more than this are not compared in floating point."""
@@ -121,20 +122,21 @@ def approximate_symmetry(
         )
     normalised = normalise(coefficients, rounding)
     sigma, vectors = killing_system(normalised)
-    notes = list(notes)
+    collected = list(notes)
     accepted, best = _search(normalised, sigma, vectors, rounding.tolerance)
     near = accepted is not None and accepted.candidate.kind in SOR_KINDS
     shown = accepted or best
     exact: ExactSurface | None = None
     if near and snap_exact:
+        assert accepted is not None  # near: an accepted fit
         exact = snap(normalised, accepted, f, rounding)
         if exact is None:
-            notes.append(
+            collected.append(
                 "no exact surface with rational axis and coefficients was found within the "
                 "rounding; the axis above is approximate"
             )
     if accepted is None:
-        notes.append(_far_note(sigma, best, rounding))
+        collected.append(_far_note(sigma, best, rounding))
     nearest = None if exact is None else _nearest_surface(exact, normalised, f)
     approximation = Approximation(
         tolerance=rounding.tolerance,
@@ -144,25 +146,26 @@ def approximate_symmetry(
         relative_distance=None if shown is None else shown.relative_distance,
         residual=None if shown is None else shown.residual,
         singular_values=tuple(float(s) for s in sigma),
-        axis=_axis(shown, normalised) if accepted is not None else None,
-        center=_center(shown, normalised) if accepted is not None else None,
-        normal=_normal(shown) if accepted is not None else None,
+        axis=_axis(accepted, normalised) if accepted is not None else None,
+        center=_center(accepted, normalised) if accepted is not None else None,
+        normal=_normal(accepted) if accepted is not None else None,
         nearest=nearest,
-        notes=tuple(notes),
+        notes=tuple(collected),
     )
     if exact is None:
         return NearResult(approximation, None)
     frame = None
-    if exact.point is not None and exact.direction is not None:
+    snapped = exact.direction
+    if exact.point is not None and snapped is not None:
         K = exact.polynomial.ring.domain
-        point, direction = _in_field(exact.point, K), _in_field(exact.direction, K)
-        if isinstance(exact.direction[0], Quadratic):  # any u ⟂ a over QQ(√d): a × e_k
-            k = min(range(3), key=lambda i: abs(float(exact.direction[i])))  # type: ignore[arg-type]
+        point, direction = _in_field(exact.point, K), _in_field(snapped, K)
+        if isinstance(snapped[0], Quadratic):  # any u ⟂ a over QQ(√d): a × e_k
+            k = min(range(3), key=lambda i: abs(float(snapped[i])))
             normal = cross(direction, tuple(K.one if i == k else K.zero for i in range(3)))
         else:
-            normal = _in_field(perpendicular(exact.direction), K)  # type: ignore[arg-type]
+            normal = _in_field(perpendicular(snapped), K)
         frame = (point, direction, normal)
-    return NearResult(approximation, exact.polynomial, frame)  # type: ignore[arg-type]
+    return NearResult(approximation, exact.polynomial, frame)
 
 
 def _in_field(vector: Sequence[Fraction | Quadratic], K: Domain) -> Vector:
@@ -179,10 +182,10 @@ def _in_field(vector: Sequence[Fraction | Quadratic], K: Domain) -> Vector:
             )
         else:
             out.append(K.convert(QQ(v.numerator, v.denominator)))
-    return tuple(out)  # type: ignore[return-value]
+    return tuple(out)
 
 
-def _search(f: Normalised, sigma: np.ndarray, vectors: np.ndarray, tolerance: float) -> tuple[Fit | None, Fit | None]:
+def _search(f: Normalised, sigma: FloatArray, vectors: FloatArray, tolerance: float) -> tuple[Fit | None, Fit | None]:
     """The first kind (most symmetric first) whose refined fit is within the rounding, and the
     best fit seen (for saying how far a miss is)."""
     gate = min(1e-2, GATE * tolerance)
@@ -199,7 +202,7 @@ def _search(f: Normalised, sigma: np.ndarray, vectors: np.ndarray, tolerance: fl
     return None, best
 
 
-def _far_note(sigma: np.ndarray, best: Fit | None, rounding: Rounding) -> str:
+def _far_note(sigma: FloatArray, best: Fit | None, rounding: Rounding) -> str:
     smallest = f"the smallest singular value of (★) is {sigma[-1]:.2g} against a tolerance of {rounding.tolerance:.2g}"
     if best is None:
         return f"not near any continuous symmetry: {smallest}"
@@ -214,45 +217,50 @@ def _axis(result: Fit, f: Normalised) -> ApproximateAxis | None:
     c = result.candidate
     if c.kind not in (REVOLUTION, CYLINDER):
         return None
+    assert c.direction is not None and c.point is not None  # an axis: direction and point
     direction = c.direction / np.linalg.norm(c.direction)
     point = c.point * f.length
     point = point - (point @ direction) * direction
-    return ApproximateAxis(tuple(float(v) for v in point), tuple(float(v) for v in direction))  # type: ignore[arg-type]
+    return ApproximateAxis(three(float(v) for v in point), three(float(v) for v in direction))
 
 
 def _center(result: Fit, f: Normalised) -> tuple[float, float, float] | None:
     c = result.candidate
-    return tuple(float(v) * f.length for v in c.point) if c.kind == SPHERE else None  # type: ignore[return-value]
+    if c.kind != SPHERE:
+        return None
+    assert c.point is not None  # a sphere's candidate has its centre
+    return three(float(v) * f.length for v in c.point)
 
 
 def _normal(result: Fit) -> tuple[float, float, float] | None:
     c = result.candidate
     if c.kind not in (PLANE, EXTRUSION):
         return None
-    return tuple(float(v) for v in c.direction / np.linalg.norm(c.direction))  # type: ignore[return-value]
+    assert c.direction is not None  # a plane's normal, an extrusion's direction
+    return three(float(v) for v in c.direction / np.linalg.norm(c.direction))
 
 
 def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> NearestSurface:
     """The report of the snapped surface, with the deviation of its zero set from ``f``'s."""
     sym = exact.symmetry
     K = exact.polynomial.ring.domain
-    axis = None
-    if exact.point is not None and exact.direction is not None and sym.axis_point is not None:
-        axis = axis_report(_in_field(exact.point, K), primitive_vector(sym.axis_direction, K), K)
-    elif sym.axis_point is not None:
-        axis = axis_report(sym.axis_point, sym.axis_direction, K)  # type: ignore[arg-type]
 
-    def triple(v: Vector | None) -> tuple[str, ...] | None:
-        return None if v is None else tuple(to_str(K, c) for c in v)
+    def triple(v: Vector | None) -> Triple | None:
+        return None if v is None else three(to_str(K, c) for c in v)
 
-    g = dense.scaled(dense.from_terms(dense.float_coefficients(exact.polynomial), f.degree), f.length) / f.scale
-    center = np.zeros(3)
-    direction = None
-
-    def floats(v: Vector) -> np.ndarray:  # QQ or QQ(√d)
+    def floats(v: Vector) -> FloatArray:  # QQ or QQ(√d)
         return np.array([float(K.to_sympy(c)) for c in v])
 
+    g = dense.scaled(dense.from_terms(dense.float_coefficients(exact.polynomial), f.degree), f.length) / f.scale
+    axis = None
+    center = np.zeros(3)
+    direction = None
     if sym.axis_point is not None:
+        assert sym.axis_direction is not None  # a unique axis has a point and a direction
+        if exact.point is not None and exact.direction is not None:
+            axis = axis_report(_in_field(exact.point, K), primitive_vector(sym.axis_direction, K), K)
+        else:
+            axis = axis_report(sym.axis_point, sym.axis_direction, K)
         center = floats(sym.axis_point) / f.length
         direction = floats(sym.axis_direction)
     elif sym.center is not None:

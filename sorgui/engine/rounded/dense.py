@@ -11,24 +11,40 @@ microseconds each. The exact polynomial never enters here except through
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sequence
+from typing import TypeAlias, overload
 
 import numpy as np
 from flint import fmpq
+from numpy.typing import NDArray
 
 from ..algebra.polys import Poly, is_rational_field, to_flint
 
-Monomial = tuple[int, int, int]
-SparseForm = list[tuple[Monomial, float]]
+Monomial: TypeAlias = tuple[int, int, int]
+SparseForm: TypeAlias = list[tuple[Monomial, float]]
 """A small polynomial (a linear or quadratic form) as ``[(monomial, coefficient), ...]``."""
+FloatArray: TypeAlias = NDArray[np.float64]
+"""A ``float64`` array: a dense polynomial, a point or vector, a matrix of coefficient vectors."""
+ComplexArray: TypeAlias = NDArray[np.complex128]
+"""A ``complex128`` array: points off the real space (the roots of unity of a restriction)."""
+IntArray: TypeAlias = NDArray[np.int_]
+"""An integer array: the degrees of monomials."""
+BoolArray: TypeAlias = NDArray[np.bool_]
+"""A boolean array: the monomials selected by :func:`mask`."""
+
+
+def monomial(exponents: Sequence[int]) -> Monomial:
+    """The exponents ``(i, j, k)`` of a monomial ``x^i y^j z^k`` as Python integers."""
+    i, j, k = exponents
+    return int(i), int(j), int(k)
 
 
 def float_coefficients(f: Poly) -> dict[Monomial, float]:
     """The coefficients of the exact ``f`` as floats (exact rationals rounded once)."""
     if is_rational_field(f.ring.domain):
-        return {tuple(int(e) for e in m): _float(c) for m, c in to_flint(f).to_dict().items()}
+        return {monomial(m): _float(c) for m, c in to_flint(f).to_dict().items()}
     K = f.ring.domain
-    return {tuple(m): float(K.to_sympy(c).evalf(20)) for m, c in f.items()}
+    return {monomial(m): float(K.to_sympy(c).evalf(20)) for m, c in f.items()}
 
 
 def _float(c: fmpq) -> float:
@@ -39,12 +55,12 @@ def _float(c: fmpq) -> float:
         return math.inf if c > 0 else -math.inf
 
 
-def zeros(degree: int) -> np.ndarray:
+def zeros(degree: int) -> FloatArray:
     """The zero polynomial of degree ≤ ``degree``."""
     return np.zeros((degree + 1,) * 3)
 
 
-def from_terms(terms: dict[Monomial, float], degree: int) -> np.ndarray:
+def from_terms(terms: dict[Monomial, float], degree: int) -> FloatArray:
     """The dense array of a polynomial given by its terms."""
     array = zeros(degree)
     for (i, j, k), c in terms.items():
@@ -52,13 +68,14 @@ def from_terms(terms: dict[Monomial, float], degree: int) -> np.ndarray:
     return array
 
 
-def mask(degree: int) -> np.ndarray:
+def mask(degree: int) -> BoolArray:
     """Boolean array of the monomials of degree ≤ ``degree``: the coordinates of the vectors."""
     i, j, k = np.indices((degree + 1,) * 3)
-    return i + j + k <= degree
+    selected: BoolArray = i + j + k <= degree
+    return selected
 
 
-def times(array: np.ndarray, form: SparseForm) -> np.ndarray:
+def times(array: FloatArray, form: SparseForm) -> FloatArray:
     """``array · form``, truncated to the array's degree (callers keep products within it)."""
     n = array.shape[0]
     result = np.zeros_like(array)
@@ -68,12 +85,12 @@ def times(array: np.ndarray, form: SparseForm) -> np.ndarray:
     return result
 
 
-def linear_form(normal: np.ndarray, point: np.ndarray) -> SparseForm:
+def linear_form(normal: FloatArray, point: FloatArray) -> SparseForm:
     """``h(p) = normal · (p - point)``."""
     return [((0, 0, 0), -float(normal @ point)), ((1, 0, 0), normal[0]), ((0, 1, 0), normal[1]), ((0, 0, 1), normal[2])]
 
 
-def squared_distance(point: np.ndarray) -> SparseForm:
+def squared_distance(point: FloatArray) -> SparseForm:
     """``ρ(p) = |p - point|²``."""
     cx, cy, cz = point
     return [
@@ -97,7 +114,7 @@ def form_product(first: SparseForm, second: SparseForm) -> SparseForm:
     return list(total.items())
 
 
-def powers(array: np.ndarray, form: SparseForm, count: int) -> Iterator[np.ndarray]:
+def powers(array: FloatArray, form: SparseForm, count: int) -> Iterator[FloatArray]:
     """``array, array·form, array·form², ...`` (``count`` of them), lazily: only the last one is
     kept, so a basis of degree 60 never holds more than a few cubes."""
     current = array
@@ -107,7 +124,7 @@ def powers(array: np.ndarray, form: SparseForm, count: int) -> Iterator[np.ndarr
             current = times(current, form)
 
 
-def derivative(array: np.ndarray, axis: int) -> np.ndarray:
+def derivative(array: FloatArray, axis: int) -> FloatArray:
     """``∂/∂x_axis`` (the degree bound of the array is kept)."""
     n = array.shape[0]
     result = np.zeros_like(array)
@@ -122,38 +139,49 @@ def derivative(array: np.ndarray, axis: int) -> np.ndarray:
     return result
 
 
-def scaled(array: np.ndarray, length: float) -> np.ndarray:
+def scaled(array: FloatArray, length: float) -> FloatArray:
     """The coefficients of ``f(length·X)``: entry ``α`` times ``length^|α|``."""
     n = array.shape[0]
     i, j, k = np.indices((n,) * 3)
-    return array * float(length) ** (i + j + k)
+    result: FloatArray = array * float(length) ** (i + j + k)
+    return result
 
 
-def evaluate(array: np.ndarray, points: np.ndarray) -> np.ndarray:
+@overload
+def evaluate(array: FloatArray, points: FloatArray) -> FloatArray: ...
+
+
+@overload
+def evaluate(array: FloatArray, points: ComplexArray) -> ComplexArray: ...
+
+
+def evaluate(array: FloatArray, points: FloatArray | ComplexArray) -> FloatArray | ComplexArray:
     """Values at ``points`` (shape ``(m, 3)``, real or complex), one coordinate at a time."""
-    points = np.atleast_2d(points)
+    rows = np.atleast_2d(points)
     n = array.shape[0]
     exponents = np.arange(n)
-    x, y, z = (points[:, a, None] ** exponents for a in range(3))
+    x, y, z = (rows[:, a, None] ** exponents for a in range(3))
     inner = np.einsum("ijk,mk->mij", array, z)
-    return np.einsum("mi,mi->m", np.einsum("mij,mj->mi", inner, y), x)
+    values: FloatArray | ComplexArray = np.einsum("mi,mi->m", np.einsum("mij,mj->mi", inner, y), x)
+    return values
 
 
-def gradient(array: np.ndarray, points: np.ndarray) -> np.ndarray:
+def gradient(array: FloatArray, points: FloatArray) -> FloatArray:
     """The gradient at ``points``, shape ``(m, 3)``."""
     return np.column_stack([evaluate(derivative(array, a), points) for a in range(3)])
 
 
-def restriction_to_line(array: np.ndarray, point: np.ndarray, direction: np.ndarray) -> np.ndarray:
+def restriction_to_line(array: FloatArray, point: FloatArray, direction: FloatArray) -> FloatArray:
     """Coefficients (lowest degree first) of ``t ↦ f(point + t·direction)``, by a DFT of the
     values at the roots of unity (well conditioned, exact up to rounding)."""
     n = array.shape[0]
     t = np.exp(2j * np.pi * np.arange(n) / n)
     values = evaluate(array, point[None, :] + t[:, None] * direction[None, :])
-    return (np.fft.fft(values) / n).real
+    coefficients: FloatArray = (np.fft.fft(values) / n).real
+    return coefficients
 
 
-def real_roots(coefficients: np.ndarray) -> np.ndarray:
+def real_roots(coefficients: FloatArray) -> FloatArray:
     """The real roots of a univariate polynomial (lowest degree first), numerically."""
     c = np.asarray(coefficients, dtype=np.float64)
     top = float(np.abs(c).max(initial=0.0))
@@ -164,10 +192,10 @@ def real_roots(coefficients: np.ndarray) -> np.ndarray:
     if len(nonzero) == 0 or nonzero[-1] == 0:
         return np.zeros(0)
     roots = np.roots(c[: nonzero[-1] + 1][::-1])
-    real = roots[np.abs(roots.imag) <= 1e-6 * np.maximum(1.0, np.abs(roots))].real
+    real: FloatArray = roots[np.abs(roots.imag) <= 1e-6 * np.maximum(1.0, np.abs(roots))].real
     return real[np.isfinite(real)]
 
 
-def stack(arrays: Iterable[np.ndarray], selected: np.ndarray) -> np.ndarray:
+def stack(arrays: Iterable[FloatArray], selected: BoolArray) -> FloatArray:
     """The matrix whose columns are the coefficient vectors of ``arrays``."""
     return np.column_stack([a[selected] for a in arrays])

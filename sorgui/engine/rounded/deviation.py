@@ -15,6 +15,7 @@ from itertools import product
 import numpy as np
 
 from . import dense
+from .dense import FloatArray
 
 MIN_RADIUS = 1.0
 MAX_RADIUS = 1.0e4
@@ -25,7 +26,7 @@ NEWTON_STEPS = 6
 CONVERGED = 1e-9
 
 
-def probe_directions(axis: np.ndarray | None) -> list[np.ndarray]:
+def probe_directions(axis: FloatArray | None) -> list[FloatArray]:
     """The 13 directions of a cube's axes and diagonals, plus an axis frame if there is one."""
     directions = [np.array(d, dtype=float) for d in product((-1, 0, 1), repeat=3)]
     directions = [d / np.linalg.norm(d) for d in directions if next((x for x in d if x), 0) > 0]
@@ -40,7 +41,7 @@ def probe_directions(axis: np.ndarray | None) -> list[np.ndarray]:
     return directions
 
 
-def view_ball(array: np.ndarray, center: np.ndarray, axis: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = None) -> tuple[FloatArray, float]:
     """The ball that shows the interesting part of ``f = 0`` around ``center``: real points of
     ``f`` on lines through ``center``, those farther than ``SPREAD`` times the median distance
     dropped; centred on the middle of the rest (along the axis, if any), radius ``MARGIN``
@@ -66,7 +67,7 @@ def view_ball(array: np.ndarray, center: np.ndarray, axis: np.ndarray | None = N
     return middle, float(np.clip(radius, MIN_RADIUS, MAX_RADIUS))
 
 
-def sample_zero_set(array: np.ndarray, center: np.ndarray, radius: float, seed: int = 0) -> np.ndarray:
+def sample_zero_set(array: FloatArray, center: FloatArray, radius: float, seed: int = 0) -> FloatArray:
     """Real points of ``f = 0`` inside the ball, on ``LINES`` random lines through it."""
     rng = np.random.default_rng(seed)
     found = []
@@ -81,7 +82,7 @@ def sample_zero_set(array: np.ndarray, center: np.ndarray, radius: float, seed: 
     return np.array(found).reshape(-1, 3)
 
 
-def distance_to_zero_set(array: np.ndarray, points: np.ndarray) -> np.ndarray:
+def distance_to_zero_set(array: FloatArray, points: FloatArray) -> FloatArray:
     """How far Newton steps along the gradient move each point onto ``f = 0`` (points where the
     steps do not converge, next to a singular point, are left out)."""
     moved = points.copy()
@@ -94,10 +95,11 @@ def distance_to_zero_set(array: np.ndarray, points: np.ndarray) -> np.ndarray:
         step[safe] = (values[safe] / norms[safe])[:, None] * grads[safe]
         moved -= step
     converged = np.abs(dense.evaluate(array, moved)) <= CONVERGED * (1.0 + np.abs(dense.evaluate(array, points)))
-    return np.linalg.norm(moved - points, axis=1)[converged]
+    distances: FloatArray = np.linalg.norm(moved - points, axis=1)[converged]
+    return distances
 
 
-def max_deviation(first: np.ndarray, second: np.ndarray, center: np.ndarray, axis: np.ndarray | None) -> float | None:
+def max_deviation(first: FloatArray, second: FloatArray, center: FloatArray, axis: FloatArray | None) -> float | None:
     """The largest distance between the zero sets of two polynomials (dense arrays in the same
     coordinates) inside the view ball of ``second``; ``None`` when neither has real points there
     that Newton's steps move onto the other (every sample next to a singular point, say)."""

@@ -26,11 +26,13 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
 from ..recognition.symmetry import CYLINDER, EXTRUSION, PLANE, REVOLUTION, SPHERE
 from . import dense
+from .dense import BoolArray, FloatArray, IntArray
 from .precision import Rounding
 
 GN_ITERATIONS = 12
@@ -47,16 +49,16 @@ class Normalised:
     degree: int
     length: float
     scale: float
-    array: np.ndarray
-    bounds: np.ndarray
-    selected: np.ndarray
+    array: FloatArray
+    bounds: FloatArray
+    selected: BoolArray
 
     @property
-    def vector(self) -> np.ndarray:
+    def vector(self) -> FloatArray:
         return self.array[self.selected]
 
     @property
-    def weights(self) -> np.ndarray:
+    def weights(self) -> FloatArray:
         return 1.0 / self.bounds[self.selected]
 
 
@@ -66,8 +68,8 @@ class Candidate:
     (axis, plane normal or extrusion direction) and ``point`` (on the axis, or the centre)."""
 
     kind: str
-    direction: np.ndarray | None
-    point: np.ndarray | None
+    direction: FloatArray | None
+    point: FloatArray | None
 
 
 @dataclass(frozen=True)
@@ -75,7 +77,7 @@ class Fit:
     """The nearest invariant polynomial for a candidate: basis coefficients, residuals."""
 
     candidate: Candidate
-    coefficients: np.ndarray
+    coefficients: FloatArray
     exponents: tuple[tuple[int, int], ...]
     residual: float
     largest: float
@@ -90,7 +92,7 @@ def normalise(coefficients: dict[tuple[int, int, int], float], rounding: Roundin
     bounds = np.full(array.shape, rounding.default)
     for (i, j, k), e in rounding.bounds.items():
         bounds[i, j, k] = e
-    by_degree = {}
+    by_degree: dict[int, float] = {}
     for (i, j, k), c in coefficients.items():
         by_degree[i + j + k] = by_degree.get(i + j + k, 0.0) + c * c
     low, high = min(by_degree), max(by_degree)
@@ -107,7 +109,7 @@ def normalise(coefficients: dict[tuple[int, int, int], float], rounding: Roundin
 # --- 1. the singular values of (★) -------------------------------------------------------------
 
 
-def killing_system(f: Normalised) -> tuple[np.ndarray, np.ndarray]:
+def killing_system(f: Normalised) -> tuple[FloatArray, FloatArray]:
     """Singular values (largest first, relative to the largest), right singular vectors (rows,
     as ``(b, a)`` in normalised coordinates) of the column-scaled float system (★)."""
     A = f.array
@@ -132,7 +134,7 @@ def killing_system(f: Normalised) -> tuple[np.ndarray, np.ndarray]:
     return sigma / sigma[0], vectors
 
 
-def candidates(vectors: np.ndarray, count: int) -> list[Candidate]:
+def candidates(vectors: FloatArray, count: int) -> list[Candidate]:
     """The symmetries that the ``count`` smallest singular vectors span (docs/math.md §2)."""
     V = vectors[-count:]
     B, A = V[:, :3].T, V[:, 3:].T  # columns: translation parts b, rotation parts a
@@ -151,7 +153,8 @@ def candidates(vectors: np.ndarray, count: int) -> list[Candidate]:
         found = []
         if s[-1] > 1e-3 * s[0]:
             rows = np.vstack([_cross_matrix(A[:, i]) for i in range(3)])
-            center = np.linalg.lstsq(-rows, B.T.reshape(-1), rcond=None)[0]
+            # numpy's stubs type lstsq's float64 solution as a float of any size
+            center = cast(FloatArray, np.linalg.lstsq(-rows, B.T.reshape(-1), rcond=None)[0])
             found.append(Candidate(SPHERE, None, center))
         normal = np.cross(B @ wt[-1], B @ wt[-2])
         if np.linalg.norm(normal) > 1e-12:
@@ -160,19 +163,19 @@ def candidates(vectors: np.ndarray, count: int) -> list[Candidate]:
     return []
 
 
-def _rotation(a: np.ndarray, b: np.ndarray, kind: str, along: np.ndarray | None = None) -> Candidate:
+def _rotation(a: FloatArray, b: FloatArray, kind: str, along: FloatArray | None = None) -> Candidate:
     """The axis of ``b + a × p``: direction ``a`` (or ``along``), point ``(a × b)/|a|²``."""
     b = b - (a @ b) / (a @ a) * a
     direction = _unit(a if along is None else along)
     return Candidate(kind, direction, np.cross(a, b) / (a @ a))
 
 
-def _cross_matrix(a: np.ndarray) -> np.ndarray:
+def _cross_matrix(a: FloatArray) -> FloatArray:
     """The matrix of ``c ↦ a × c`` (a rotation about the centre has ``b = c × a = -(a × c)``)."""
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
-def _unit(v: np.ndarray) -> np.ndarray:
+def _unit(v: FloatArray) -> FloatArray:
     return v / np.linalg.norm(v)
 
 
@@ -182,10 +185,10 @@ def _unit(v: np.ndarray) -> np.ndarray:
 def invariant_basis(
     candidate: Candidate,
     degree: int,
-    selected: np.ndarray,
-    point: np.ndarray | None = None,
-    direction: np.ndarray | None = None,
-) -> tuple[np.ndarray, list[tuple[int, int]]]:
+    selected: BoolArray,
+    point: FloatArray | None = None,
+    direction: FloatArray | None = None,
+) -> tuple[FloatArray, list[tuple[int, int]]]:
     """A basis of the polynomials of degree ≤ ``degree`` invariant under the candidate's group,
     as the columns of a matrix over the monomials ``selected``, with the exponents ``(i, j)`` of
     each element ``h^i ρ^j`` (``(i, j)`` = powers of the two coordinates ``u·p, w·p`` for an
@@ -195,7 +198,7 @@ def invariant_basis(
     n = candidate.direction if direction is None else direction
     c = candidate.point if point is None else point
     one = dense.from_terms({(0, 0, 0): 1.0}, degree)
-    columns: list[np.ndarray] = []
+    columns: list[FloatArray] = []
     exponents: list[tuple[int, int]] = []
 
     def grid(first: dense.SparseForm, second: dense.SparseForm, first_weight: int, second_count: int) -> None:
@@ -206,16 +209,20 @@ def invariant_basis(
                 exponents.append((i, j))
 
     if kind == PLANE:
+        assert n is not None  # a plane's candidate has its normal
         grid(dense.linear_form(n, np.zeros(3)), [], 1, 1)
     elif kind == SPHERE:
+        assert c is not None  # a sphere's candidate has its centre
         for j, term in enumerate(dense.powers(one, dense.squared_distance(c), degree // 2 + 1)):
             columns.append(term[selected])
             exponents.append((0, j))
     elif kind == EXTRUSION:
+        assert n is not None  # an extrusion's candidate has its direction
         u = _unit(np.cross(n, _least_aligned(n)))
         w = np.cross(_unit(n), u)
         grid(dense.linear_form(u, np.zeros(3)), dense.linear_form(w, np.zeros(3)), 1, degree + 1)
     elif kind == CYLINDER:
+        assert n is not None and c is not None  # an axis: direction and point (_rotation)
         h, rho = dense.linear_form(n, c), dense.squared_distance(c)
         # |a|²·|p - c|² - (a·(p - c))²: the squared distance to the axis, times |a|².
         across = [(m, float(n @ n) * v) for m, v in rho] + [(m, -v) for m, v in dense.form_product(h, h)]
@@ -223,18 +230,19 @@ def invariant_basis(
             columns.append(term[selected])
             exponents.append((0, j))
     else:
+        assert n is not None and c is not None  # an axis: direction and point (_rotation)
         grid(dense.linear_form(n, c), dense.squared_distance(c), 2, degree // 2 + 1)
     return np.column_stack(columns), exponents
 
 
-def _least_aligned(n: np.ndarray) -> np.ndarray:
+def _least_aligned(n: FloatArray) -> FloatArray:
     e = np.zeros(3)
     e[int(np.argmin(np.abs(n)))] = 1.0
     return e
 
 
 def fit(
-    f: Normalised, candidate: Candidate, point: np.ndarray | None = None, direction: np.ndarray | None = None
+    f: Normalised, candidate: Candidate, point: FloatArray | None = None, direction: FloatArray | None = None
 ) -> Fit:
     """The nearest invariant polynomial in the weighted least-squares sense (step 2)."""
     basis, exponents = invariant_basis(candidate, f.degree, f.selected, point, direction)
@@ -268,9 +276,11 @@ def fit(
     )
 
 
-def _degrees(f: Normalised) -> np.ndarray:
-    i, j, k = np.indices(f.array.shape)
-    return (i + j + k)[f.selected]
+def _degrees(f: Normalised) -> IntArray:
+    shape: tuple[int, int, int] = f.array.shape
+    i, j, k = np.indices(shape)
+    degrees: IntArray = (i + j + k)[f.selected]
+    return degrees
 
 
 # --- 3. Gauss–Newton on the axis -----------------------------------------------------------------
@@ -282,20 +292,21 @@ def refine(f: Normalised, candidate: Candidate) -> Fit:
     if len(params) == 0:
         return fit(f, candidate)
 
-    def residual_vector(theta: np.ndarray) -> np.ndarray:
+    def residual_vector(theta: FloatArray) -> FloatArray:
         basis = invariant_basis(build(theta), f.degree, f.selected)[0] * f.weights[:, None]
         norms = np.linalg.norm(basis, axis=0)
         norms[norms == 0.0] = 1.0
         target = f.vector * f.weights
         solution, *_ = np.linalg.lstsq(basis / norms, target, rcond=None)
-        return target - (basis / norms) @ solution
+        remainder: FloatArray = target - (basis / norms) @ solution
+        return remainder
 
     return fit(f, build(gauss_newton(residual_vector, params)[0]))
 
 
 def refine_fixed(
-    f: Normalised, candidate: Candidate, coefficients: np.ndarray
-) -> tuple[Candidate, np.ndarray, np.ndarray]:
+    f: Normalised, candidate: Candidate, coefficients: FloatArray
+) -> tuple[Candidate, FloatArray, FloatArray]:
     """Refine the axis (or centre, or normal) with the invariant's coefficients held fixed: once
     they are snapped, the axis is determined more sharply than with them free. Returns the
     refined candidate and the standard errors of its direction's and point's coordinates (from
@@ -303,11 +314,11 @@ def refine_fixed(
     params, build = parametrisation(candidate)
     length = 1.0 if candidate.direction is None else float(np.linalg.norm(candidate.direction))
 
-    def scaled(theta: np.ndarray) -> Candidate:
+    def scaled(theta: FloatArray) -> Candidate:
         c = build(theta)
         return c if c.direction is None else Candidate(c.kind, c.direction * length, c.point)
 
-    def residual_vector(theta: np.ndarray) -> np.ndarray:
+    def residual_vector(theta: FloatArray) -> FloatArray:
         basis = invariant_basis(scaled(theta), f.degree, f.selected)[0]
         return (f.vector - basis @ coefficients) * f.weights
 
@@ -326,12 +337,12 @@ def refine_fixed(
     return refined, direction_sigma, point_sigma
 
 
-def gauss_newton(residual: Callable[[np.ndarray], np.ndarray], theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def gauss_newton(residual: Callable[[FloatArray], FloatArray], theta: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Minimise ``‖residual(θ)‖²`` by Gauss–Newton with a forward-difference Jacobian and a
     halving line search, from ``theta``; returns ``θ`` and the last Jacobian."""
     r = residual(theta)
 
-    def jacobian_at(theta: np.ndarray, r: np.ndarray) -> np.ndarray:
+    def jacobian_at(theta: FloatArray, r: FloatArray) -> FloatArray:
         return np.column_stack([(residual(theta + FD_STEP * e) - r) / FD_STEP for e in np.eye(len(theta))])
 
     for _ in range(GN_ITERATIONS):
@@ -351,18 +362,21 @@ def gauss_newton(residual: Callable[[np.ndarray], np.ndarray], theta: np.ndarray
     return theta, jacobian_at(theta, r)
 
 
-def parametrisation(candidate: Candidate) -> tuple[np.ndarray, Callable[[np.ndarray], Candidate]]:
+def parametrisation(candidate: Candidate) -> tuple[FloatArray, Callable[[FloatArray], Candidate]]:
     """Local coordinates around the candidate: offsets of the direction (in two perpendicular
     directions) and of the point (across the axis; all three for a sphere's centre)."""
     kind, n, c = candidate.kind, candidate.direction, candidate.point
     if kind == SPHERE:
+        assert c is not None  # a sphere's candidate has its centre
         return np.zeros(3), lambda t: Candidate(SPHERE, None, c + t)
+    assert n is not None  # every kind but a sphere has a direction
     e1 = _unit(np.cross(n, _least_aligned(n)))
     e2 = np.cross(n, e1)
 
-    def direction(t: np.ndarray) -> np.ndarray:
+    def direction(t: FloatArray) -> FloatArray:
         return _unit(n + t[0] * e1 + t[1] * e2)
 
     if kind in (PLANE, EXTRUSION):
         return np.zeros(2), lambda t: Candidate(kind, direction(t), None)
+    assert c is not None  # an axis: direction and point (_rotation)
     return np.zeros(4), lambda t: Candidate(kind, direction(t), c + t[2] * e1 + t[3] * e2)

@@ -26,8 +26,10 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from math import comb
+from typing import TypeAlias
 
 from ..parsing import (
     Neg,
@@ -48,9 +50,11 @@ FLOAT_FLOOR = 1e-15
 MAX_PRODUCTS = 2_000_000
 """Term products the propagation may spend; past this the bound is taken uniform (see below)."""
 
-Monomial = tuple[int, int, int]
-FloatPoly = dict[Monomial, float]
+Monomial: TypeAlias = tuple[int, int, int]
+FloatPoly: TypeAlias = dict[Monomial, float]
 _DECIMAL = re.compile(r"([0-9]*)(?:\.([0-9]*))?(?:[eE]([+-]?[0-9]+))?")
+_VARIABLES: tuple[Monomial, Monomial, Monomial] = ((1, 0, 0), (0, 1, 0), (0, 0, 1))
+"""The monomials ``x``, ``y``, ``z``, by the index of the variable."""
 
 
 @dataclass(frozen=True)
@@ -131,19 +135,19 @@ def given_rounding(tolerance: float, coefficients: FloatPoly) -> Rounding:
     return Rounding({}, default, degree, tolerance, "given", None)
 
 
-def _norm(values) -> float:  # noqa: ANN001 - an iterable of floats
+def _norm(values: Iterable[float]) -> float:
     """The Euclidean norm, scaled so that coefficients near 1e200 do not overflow."""
-    values = [abs(v) for v in values]
-    top = max(values, default=0.0)
+    sizes = [abs(v) for v in values]
+    top = max(sizes, default=0.0)
     if top == 0.0 or not math.isfinite(top):
         return top
-    return top * math.sqrt(sum((v / top) ** 2 for v in values))
+    return top * math.sqrt(sum((v / top) ** 2 for v in sizes))
 
 
 # --- reading the printed digits ---------------------------------------------------------------
 
 
-def _nodes(node: Node):
+def _nodes(node: Node) -> Iterator[Node]:
     """Every node of the tree, iteratively (pasted sums can be long)."""
     stack = [node]
     while stack:
@@ -162,9 +166,16 @@ def _is_decimal(text: str, node: Num) -> bool:
     return any(ch in ".eE" for ch in text[node.start : node.end])
 
 
+def _literal(text: str, node: Num) -> re.Match[str]:
+    """The digits of a literal: whole part, fraction (or ``None``), exponent (or ``None``)."""
+    match = _DECIMAL.fullmatch(text, node.start, node.end)
+    assert match is not None  # every number token is a literal that _DECIMAL matches
+    return match
+
+
 def _significant_digits(text: str, node: Num) -> int:
     """Significant digits of a literal: ``0.00120`` has 3, ``1.5e-3`` has 2."""
-    whole, fraction, _ = _DECIMAL.fullmatch(text, node.start, node.end).groups()
+    whole, fraction, _ = _literal(text, node).groups()
     return max(len((whole + (fraction or "")).lstrip("0")), 1)
 
 
@@ -179,12 +190,12 @@ def _fixed_point(text: str, decimals: list[Num]) -> bool:
 
 
 def _fraction(text: str, node: Num) -> str:
-    return _DECIMAL.fullmatch(text, node.start, node.end).group(2) or ""
+    return _literal(text, node).group(2) or ""
 
 
 def _literal_bound(text: str, node: Num, digits: int, fixed_point: bool) -> float:
     """Half a unit in the last printed place of a literal, read as the module docstring says."""
-    _, fraction, exponent = _DECIMAL.fullmatch(text, node.start, node.end).groups()
+    _, fraction, exponent = _literal(text, node).groups()
     value = abs(float(node.value))
     decimal = fraction is not None or exponent is not None
     if not decimal and fixed_point:
@@ -215,25 +226,25 @@ class _Propagation:
 
     def _pair(self, node: Node) -> tuple[FloatPoly, FloatPoly]:
         """``(value, bound)`` of a subtree as float polynomials."""
+        value: FloatPoly
+        error: FloatPoly
         match node:
             case Num():
                 return {(0, 0, 0): float(node.value)}, {
                     (0, 0, 0): _literal_bound(self.text, node, self.digits, self.fixed_point)
                 }
             case Var():
-                m = [0, 0, 0]
-                m[node.index] = 1
-                return {tuple(m): 1.0}, {}
+                return {_VARIABLES[node.index]: 1.0}, {}
             case Neg():
                 value, error = self._pair(node.arg)
                 return {m: -c for m, c in value.items()}, error
             case Sum():
-                value: FloatPoly = {}
-                error: FloatPoly = {}
+                value = {}
+                error = {}
                 for term in node.terms:
-                    v, e = self._pair(term)
-                    _accumulate(value, v)
-                    _accumulate(error, e)
+                    v2, e2 = self._pair(term)
+                    _accumulate(value, v2)
+                    _accumulate(error, e2)
                 return value, error
             case Product():
                 value, error = self._pair(node.factors[0])
@@ -263,7 +274,8 @@ class _Propagation:
         return value.get((0, 0, 0), 0.0), error.get((0, 0, 0), 0.0)
 
     def _power(self, value: FloatPoly, error: FloatPoly, n: int) -> tuple[FloatPoly, FloatPoly]:
-        result, bound = {(0, 0, 0): 1.0}, {}
+        result: FloatPoly = {(0, 0, 0): 1.0}
+        bound: FloatPoly = {}
         for _ in range(n):
             result, bound = self._times(result, bound, value, error)
         return result, bound

@@ -25,10 +25,11 @@ is preferred, then the simplest.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
+from typing import TypeAlias, TypeVar
 
 import numpy as np
 import sympy
@@ -44,10 +45,11 @@ from ..recognition.symmetry import (
     recognize_symmetry,
 )
 from . import dense
+from .dense import FloatArray
 from .near_symmetry import Fit, Normalised, fit, invariant_basis, refine_fixed
 from .precision import Rounding
 
-Vector = tuple[Fraction, Fraction, Fraction]
+Vector: TypeAlias = tuple[Fraction, Fraction, Fraction]
 EPSILONS = tuple(10.0**-k for k in range(2, 14))
 MAX_DENOMINATOR = 10**6
 AXIS_TRIES = 3
@@ -69,6 +71,15 @@ class ExactSurface:
     relative_distance: float
     direction: Vector | QuadraticVector | None
     point: Vector | None
+
+
+T = TypeVar("T")
+
+
+def three(values: Iterable[T]) -> tuple[T, T, T]:
+    """The three coordinates of a point or vector as a triple."""
+    first, second, third = values
+    return first, second, third
 
 
 def simplest_between(lo: Fraction, hi: Fraction) -> Fraction:
@@ -94,7 +105,7 @@ def simplest_near(value: float, radius: float) -> Fraction:
     return simplest_between(v - r, v + r)
 
 
-def integer_directions(direction: np.ndarray, epsilons: Sequence[float]) -> list[tuple[int, int, int] | None]:
+def integer_directions(direction: FloatArray, epsilons: Sequence[float]) -> list[tuple[int, int, int] | None]:
     """For each ``ε``, the primitive integer vector with the smallest common denominator ``D``
     whose ratios are within ``ε`` of the direction's (``None`` if none has ``D`` up to
     ``MAX_DENOMINATOR``): one vectorised pass over all ``D``, kept for the next ``ε`` asked of
@@ -110,12 +121,12 @@ def integer_directions(direction: np.ndarray, epsilons: Sequence[float]) -> list
             continue
         ints = [int(round((first + 1) * r)) for r in ratios]
         g = math.gcd(*ints)
-        found.append(tuple(v // g for v in ints))  # type: ignore[arg-type]
+        found.append(three(v // g for v in ints))
     return found
 
 
 @lru_cache(maxsize=2)
-def _running_error(ratios: tuple[float, ...], j: int) -> np.ndarray:
+def _running_error(ratios: tuple[float, ...], j: int) -> FloatArray:
     """``−min_{D' ≤ D} max_i |D'·rᵢ − round(D'·rᵢ)|/D'`` for ``D = 1 … MAX_DENOMINATOR``: non-decreasing,
     so the first ``D`` within ``ε`` is found by bisection."""
     D = np.arange(1, MAX_DENOMINATOR + 1, dtype=float)
@@ -132,7 +143,7 @@ def _running_error(ratios: tuple[float, ...], j: int) -> np.ndarray:
     return best
 
 
-def rational_unit_direction(direction: np.ndarray, epsilon: float | np.ndarray) -> tuple[Fraction, Fraction, Fraction]:
+def rational_unit_direction(direction: FloatArray, epsilon: float | FloatArray) -> tuple[Fraction, Fraction, Fraction]:
     """A rational unit vector near ``direction``: the inverse stereographic image of the
     simplest rationals ``(u, v)`` within ``epsilon`` (a number, or one radius per coordinate of
     the direction) of the direction's projection from the pole opposite its largest component.
@@ -147,7 +158,7 @@ def rational_unit_direction(direction: np.ndarray, epsilon: float | np.ndarray) 
     result = [Fraction(0)] * 3
     result[others[0]], result[others[1]] = 2 * u / denominator, 2 * v / denominator
     result[k] = (1 - u * u - v * v) / denominator * int(sign)
-    return tuple(result)  # type: ignore[return-value]
+    return three(result)
 
 
 @dataclass(frozen=True)
@@ -163,14 +174,16 @@ class Quadratic:
         return float(self.a) + float(self.b) * math.sqrt(self.d)
 
 
-QuadraticVector = tuple[Quadratic, Quadratic, Quadratic]
+QuadraticVector: TypeAlias = tuple[Quadratic, Quadratic, Quadratic]
+Direction: TypeAlias = Vector | QuadraticVector
+"""A snapped direction: rational, or in a real quadratic field."""
 
 MAX_SQUARE_FREE = 10**4
 """The squared coordinates of a quadratic direction have numerator times denominator at most
 this squared (CAD turns give 1/8, 3/4, …), which also bounds the trial division."""
 
 
-def quadratic_direction(direction: np.ndarray, epsilon: float) -> QuadraticVector | None:
+def quadratic_direction(direction: FloatArray, epsilon: float) -> QuadraticVector | None:
     """A direction in one real quadratic field ``QQ(√d)`` near ``direction``: the squares of the
     unit vector's coordinates snapped to the simplest rationals within ``epsilon`` (they must
     add up to 1), their roots scaled by one common ``√k`` so that a single ``√d`` remains (a
@@ -191,16 +204,17 @@ def quadratic_direction(direction: np.ndarray, epsilon: float) -> QuadraticVecto
         root, free = split
         parts.append((Fraction(root, q.denominator) * (1 if v > 0 else -1), free))
     for k in sorted({free for c, free in parts if c}):
-        splits = [_square_free(free * k) for _, free in parts]
-        if None in splits:
+        roots = [_square_free(free * k) for _, free in parts]
+        splits = [split for split in roots if split is not None]
+        if len(splits) < len(roots):
             continue
-        scaled = [(c * root, rest) for (c, _), (root, rest) in zip(parts, splits)]  # type: ignore[misc]
+        scaled = [(c * root, rest) for (c, _), (root, rest) in zip(parts, splits)]
         fields = {rest for c, rest in scaled if c and rest != 1}
         if len(fields) == 1:
             (d,) = fields
-            return tuple(
+            return three(
                 Quadratic(c if rest == 1 else Fraction(0), c if rest == d else Fraction(0), d) for c, rest in scaled
-            )  # type: ignore[return-value]
+            )
     return None
 
 
@@ -222,7 +236,7 @@ def _square_free(m: int) -> tuple[int, int] | None:
     return r, f * rest
 
 
-def _quadratic_family(direction: np.ndarray, epsilon: float | np.ndarray) -> QuadraticVector | None:
+def _quadratic_family(direction: FloatArray, epsilon: float | FloatArray) -> QuadraticVector | None:
     """:func:`quadratic_direction` as a family of :func:`snap` (one radius: the largest)."""
     return quadratic_direction(direction, float(np.max(epsilon)))
 
@@ -240,42 +254,48 @@ def perpendicular(direction: Vector) -> Vector:
     if root * root != norm2:
         e = [Fraction(0)] * 3
         e[min(range(3), key=lambda i: abs(a[i]))] = Fraction(1)
-        return tuple(norm2 * e[i] - sum(x * y for x, y in zip(a, e)) * a[i] for i in range(3))  # type: ignore[return-value]
+        return three(norm2 * e[i] - sum(x * y for x, y in zip(a, e)) * a[i] for i in range(3))
     n = [v / root for v in a]
     sign = 1 if n[k] >= 0 else -1
     v = [n[i] - (sign if i == k else 0) for i in range(3)]
     vv = sum(x * x for x in v)
     image = [Fraction(1 if i == j else 0) - (2 * v[i] * v[j] / vv if vv else 0) for i in range(3)]
-    return tuple(root * x for x in image)  # type: ignore[return-value]
+    return three(root * x for x in image)
 
 
-def _integer_vector(direction: np.ndarray, epsilon: float) -> Vector | None:
+def _integer_vector(direction: FloatArray, epsilon: float | FloatArray) -> Vector | None:
+    assert isinstance(epsilon, float)  # one radius for the integer family (_radius)
     (a,) = integer_directions(direction, [epsilon])
-    return None if a is None else tuple(Fraction(v) for v in a)  # type: ignore[return-value]
+    return None if a is None else three(Fraction(v) for v in a)
 
 
-DirectionSnap = Callable[[np.ndarray, float], "Vector | None"]
+DirectionSnap: TypeAlias = Callable[[FloatArray, float | FloatArray], Direction | None]
+"""A family of exact directions: the one near a direction, within a radius (a number, or one
+per coordinate)."""
 FAMILIES: tuple[DirectionSnap, ...] = (_integer_vector, rational_unit_direction)
 """Primitive integer directions, and rational unit directions (which keep an irrational axis's
 profile coefficients simple)."""
 
 
-def snapped_directions(direction: np.ndarray, family: DirectionSnap) -> list[Vector]:
+def snapped_directions(direction: FloatArray, family: DirectionSnap) -> list[Direction]:
     """The distinct exact directions of one family near ``direction``, simplest first."""
+    snapped: list[Direction | None]
     if family is _integer_vector:
         snapped = [
-            None if a is None else tuple(Fraction(v) for v in a) for a in integer_directions(direction, EPSILONS)
+            None if a is None else three(Fraction(v) for v in a) for a in integer_directions(direction, EPSILONS)
         ]
     else:
         snapped = [family(direction, eps) for eps in EPSILONS]
-    found: list[Vector] = []
+    found: list[Direction] = []
     for a in snapped:
         if a is not None and a not in found:
-            found.append(a)  # type: ignore[arg-type]
+            found.append(a)
     return found
 
 
-def exact_axes(f: Normalised, best: Fit, directions: list[Vector]) -> Iterator[tuple[Vector | None, Vector | None]]:
+def exact_axes(
+    f: Normalised, best: Fit, directions: list[Direction]
+) -> Iterator[tuple[Direction | None, Vector | None]]:
     """Exact (direction, point) pairs to try, simplest first: the first ``AXIS_TRIES``
     directions whose float fit passes, each with the points near the profile's centre on that
     axis whose float fit passes, coarsest first (docs/math.md §8). A coarse pair can pass with
@@ -291,6 +311,7 @@ def exact_axes(f: Normalised, best: Fit, directions: list[Vector]) -> Iterator[t
                 tried += 1
         else:
             point = best.candidate.point
+            assert point is not None  # every kind of surface of revolution but a plane has a point
             if direction is not None:
                 point = profile_centre(f, best, direction)
                 if fit(f, best.candidate, point=point, direction=direction).residual > limit:
@@ -299,28 +320,30 @@ def exact_axes(f: Normalised, best: Fit, directions: list[Vector]) -> Iterator[t
             seen: list[Vector] = []
             passing = False
             for eps in EPSILONS:
-                c = tuple(simplest_near(float(v) * f.length, eps * f.length) for v in point)
+                c = three(simplest_near(float(v) * f.length, eps * f.length) for v in point)
                 if c in seen:
                     continue
-                seen.append(c)  # type: ignore[arg-type]
+                seen.append(c)
                 float_c = np.array([float(v) for v in c]) / f.length
                 passing = passing or fit(f, best.candidate, point=float_c, direction=direction).residual <= limit
                 if passing:
-                    yield a, c  # type: ignore[misc]
+                    yield a, c
         if tried >= AXIS_TRIES:
             return
 
 
-def profile_centre(f: Normalised, best: Fit, direction: np.ndarray) -> np.ndarray:
+def profile_centre(f: Normalised, best: Fit, direction: FloatArray) -> FloatArray:
     """The point of the axis about which the profile's terms of degree ``d - 1`` are smallest
     (the centre of a torus, the vertex region of a paraboloid): least squares in the shift
     ``t`` along the axis, whose effect on those terms is linear."""
     unit = direction / np.linalg.norm(direction)
-    foot = best.candidate.point - (best.candidate.point @ unit) * unit
+    point = best.candidate.point
+    assert point is not None  # an axis has a point
+    foot = point - (point @ unit) * unit
     if best.candidate.kind != REVOLUTION:
         return foot
 
-    def below_top(t: float) -> np.ndarray:
+    def below_top(t: float) -> FloatArray:
         local = fit(f, best.candidate, point=foot + t * unit, direction=unit)
         return np.array([q for (i, j), q in zip(local.exponents, local.coefficients) if i + 2 * j == f.degree - 1])
 
@@ -332,7 +355,7 @@ def profile_centre(f: Normalised, best: Fit, direction: np.ndarray) -> np.ndarra
     return foot + t * unit
 
 
-def _radius(sigma: np.ndarray, spread: float, family: DirectionSnap) -> float | np.ndarray:
+def _radius(sigma: FloatArray, spread: float, family: DirectionSnap) -> float | FloatArray:
     """Snapping radii from standard errors (one number for the integer family)."""
     radii = np.maximum(sigma * spread, 1e-15)
     return float(radii.max()) if family is _integer_vector else radii
@@ -380,7 +403,10 @@ def _exact_surfaces(
     ``MAX_CHECKS`` exact surfaces are built, and the axis is refined with fixed coefficients
     on the first axis only (an input with irrational data has no simple exact surface, and
     that must be found out quickly)."""
-    directions = [] if family is None else snapped_directions(best.candidate.direction, family)
+    directions: list[Direction] = []
+    if family is not None:
+        assert best.candidate.direction is not None  # a family snaps the candidate's direction
+        directions = snapped_directions(best.candidate.direction, family)
     kind = best.candidate.kind
     checks = 0
     for first, (a, c) in enumerate(exact_axes(f, best, directions)):
@@ -390,7 +416,7 @@ def _exact_surfaces(
         degrees = np.array([i + 2 * j for i, j in local.exponents])
 
         def matched_scales(
-            ratios: list[Fraction], a: Vector | None = a, c: Vector | None = c, local: Fit = local
+            ratios: list[Fraction], a: Direction | None = a, c: Vector | None = c, local: Fit = local
         ) -> list[Fraction]:
             g = build(kind, a, c, local.exponents, ratios)
             return [] if g is None or exact_f is None else _matched_scales(g, exact_f, rounding)
@@ -410,19 +436,22 @@ def _exact_surfaces(
             fixed = np.array([float(q) for q in coefficients]) * f.length**degrees / f.scale
             moved, direction_sigma, point_sigma = refine_fixed(f, local.candidate, fixed)
             for spread in SPREADS:
-                a2 = None if family is None else family(moved.direction, _radius(direction_sigma, spread, family))
+                a2 = None
+                if family is not None:
+                    assert moved.direction is not None  # refined from a candidate with a direction
+                    a2 = family(moved.direction, _radius(direction_sigma, spread, family))
                 c2 = (
                     None
                     if moved.point is None
-                    else tuple(
+                    else three(
                         simplest_near(float(v) * f.length, float(max(e * spread, 1e-15)) * f.length)
                         for v, e in zip(moved.point, point_sigma)
                     )
                 )
                 if family is not None and a2 is None:
                     continue
-                g = build(kind, a2, c2, local.exponents, coefficients)  # type: ignore[arg-type]
-                surface = None if g is None else _check(g, exact_f, rounding, f, a2, c2)  # type: ignore[arg-type]
+                g = build(kind, a2, c2, local.exponents, coefficients)
+                surface = None if g is None else _check(g, exact_f, rounding, f, a2, c2)
                 if surface is not None:
                     yield coefficients, surface
                     if surface.largest <= 1.0:
@@ -461,8 +490,8 @@ def _matched_scales(g: Poly, exact_f: Poly, rounding: Rounding) -> list[Fraction
     exact ``1.000000000``)."""
     if g.ring.domain != QQ:
         return []
-    g_terms = {tuple(int(e) for e in m): c for m, c in to_flint(g).to_dict().items()}
-    f_terms = {tuple(int(e) for e in m): c for m, c in to_flint(exact_f).to_dict().items()}
+    g_terms = {dense.monomial(m): c for m, c in to_flint(g).to_dict().items()}
+    f_terms = {dense.monomial(m): c for m, c in to_flint(exact_f).to_dict().items()}
     shared = sorted((m for m in f_terms if m in g_terms), key=lambda m: -abs(float(f_terms[m])))
     scales: list[Fraction] = []
     for m in shared[:3]:
@@ -477,7 +506,7 @@ def _bits(values: list[Fraction]) -> int:
     return sum(v.numerator.bit_length() + v.denominator.bit_length() for v in values)
 
 
-def _standard_errors(f: Normalised, local: Fit) -> np.ndarray:
+def _standard_errors(f: Normalised, local: Fit) -> FloatArray:
     """Standard errors of the fitted coefficients, in units of the rounding bounds."""
     weighted = invariant_basis(local.candidate, f.degree, f.selected)[0] * f.weights[:, None]
     norms = np.linalg.norm(weighted, axis=0)
@@ -485,17 +514,22 @@ def _standard_errors(f: Normalised, local: Fit) -> np.ndarray:
     _, s, vt = np.linalg.svd(weighted / norms, full_matrices=False)
     s = np.maximum(s, s[0] * 1e-15)
     covariance = (vt.T / s**2) @ vt
-    return np.sqrt(np.abs(np.diag(covariance))) / norms
+    errors: FloatArray = np.sqrt(np.abs(np.diag(covariance))) / norms
+    return errors
 
 
 def build(
-    kind: str, a: Vector | None, c: Vector | None, exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction]
+    kind: str,
+    a: Direction | None,
+    c: Vector | None,
+    exponents: tuple[tuple[int, int], ...],
+    coefficients: list[Fraction],
 ) -> Poly | None:
     """``g = Σ q_ij h^i ρ^j`` over ``QQ`` (``h = a·(p - c)``, ``ρ = |p - c|²``; for a cylinder
     ``ρ`` is ``|a|²|p - c|² - h²``; for a plane ``h = a·p``); over ``QQ(√d)`` for a direction
     in that field (:func:`build_quadratic`)."""
     if a is not None and isinstance(a[0], Quadratic):
-        return None if c is None else build_quadratic(kind, a, c, exponents, coefficients)  # type: ignore[arg-type]
+        return None if c is None else build_quadratic(kind, a, c, exponents, coefficients)
     R = poly_ring(XYZ, QQ)
     ctx = to_flint(R.gens[0]).context()
     x, y, z = ctx.gens()
@@ -506,6 +540,7 @@ def build(
     h = sum((fmpq(a[i].numerator, a[i].denominator) * shifted[i] for i in range(3)), zero) if a is not None else zero
     rho = sum((s * s for s in shifted), zero)
     if kind == CYLINDER:
+        assert a is not None  # a cylinder has an axis direction
         norm2 = sum(v * v for v in a)
         rho = fmpq(norm2.numerator, norm2.denominator) * rho - h * h
     g = zero
@@ -556,9 +591,9 @@ def build_quadratic(
     K = QQ.algebraic_field(root)
     terms: dict[tuple[int, int, int], sympy.Expr] = {}
     for monom, coeff in zip(g.monoms(), g.coeffs()):
-        key = tuple(int(e) for e in monom[:3])
+        key = dense.monomial(monom[:3])
         value = sympy.Rational(int(coeff.p), int(coeff.q)) * (root if monom[3] else 1)
-        terms[key] = terms.get(key, sympy.Integer(0)) + value  # type: ignore[index]
+        terms[key] = terms.get(key, sympy.Integer(0)) + value
     R = poly_ring(XYZ, K)
     return R.from_dict({m: K.from_sympy(v) for m, v in terms.items() if v != 0})
 
@@ -574,19 +609,17 @@ def _reduce_root(p: fmpq_mpoly, d: int) -> fmpq_mpoly:
 
 
 def _check(
-    g: Poly, exact_f: Poly | None, rounding: Rounding, f: Normalised, a: Vector | None, c: Vector | None
+    g: Poly, exact_f: Poly | None, rounding: Rounding, f: Normalised, a: Direction | None, c: Vector | None
 ) -> ExactSurface | None:
     """``g`` with its exact residual against ``f``, if the exact recognizer agrees it is a
     surface of revolution and the residual is within twice the rounding."""
     rational = g.ring.domain == QQ
     g_terms = (
-        {tuple(int(e) for e in m): c for m, c in to_flint(g).to_dict().items()}
-        if rational
-        else dense.float_coefficients(g)
+        {dense.monomial(m): c for m, c in to_flint(g).to_dict().items()} if rational else dense.float_coefficients(g)
     )
     if exact_f is not None and rational:
         difference = to_flint(exact_f) - to_flint(g)
-        residual_terms = {tuple(int(e) for e in m): float(c) for m, c in difference.to_dict().items()}
+        residual_terms = {dense.monomial(m): float(c) for m, c in difference.to_dict().items()}
         f_terms = dense.float_coefficients(exact_f)
     elif exact_f is not None:  # g over QQ(√d): the difference in floats (far below the rounding)
         f_terms = dense.float_coefficients(exact_f)
