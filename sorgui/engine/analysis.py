@@ -225,7 +225,8 @@ def analyze_polynomial(
 
         clock.publish(result(rationality, found))
         with clock.stage("conical"):
-            conical_result = analyze_conical(f, timeout=singular_timeout, cancel=cancel)
+            tolerance_in_force = None if approximation is None else approximation.tolerance
+            conical_result = analyze_conical(f, timeout=singular_timeout, cancel=cancel, tolerance=tolerance_in_force)
     if canal and recognition_only and recognition.is_sor:
         with clock.stage("canal"):
             canal_result = revolution_canal(recognition.degree)

@@ -369,7 +369,8 @@ class Conical:
     direction) over some curve, docs/math.md §10. ``kind`` is ``cone``, ``cylinder`` or ``none``;
     ``rational`` says whether ``X`` is rational (exactly when its base curve is), ``None`` when
     undecided. ``apex`` of a cylinder is set when ``f(c + X)`` is also homogeneous (planes
-    through a line)."""
+    through a line). For rounded input that is exactly neither, ``near_apex`` is the apex of a
+    cone within the rounding, and ``near_residual`` its relative Euler residual."""
 
     kind: str
     apex: Triple | None = None
@@ -378,6 +379,8 @@ class Conical:
     rational: bool | None = None
     parametrizations: tuple[Parametrization, ...] = ()
     notes: tuple[str, ...] = ()
+    near_apex: tuple[float, float, float] | None = None
+    near_residual: float | None = None
 
     def to_json(self) -> dict[str, Any]:
         """The ``conical`` object of ``sorgui analyze --json``."""
@@ -389,6 +392,8 @@ class Conical:
             "rational": self.rational,
             "parametrizations": [_plain(p) for p in self.parametrizations],
             "notes": list(self.notes),
+            "near_apex": None if self.near_apex is None else list(self.near_apex),
+            "near_residual": self.near_residual,
         }
 
     @classmethod
@@ -402,6 +407,8 @@ class Conical:
             rational=data.get("rational"),
             parametrizations=tuple(_build(Parametrization, p) for p in data.get("parametrizations", [])),
             notes=tuple(data.get("notes", ())),
+            near_apex=_tuples(data.get("near_apex")),
+            near_residual=data.get("near_residual"),
         )
 
 

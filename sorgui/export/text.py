@@ -277,6 +277,11 @@ def nearly_canal(analysis: Analysis) -> str:
 def conical_lines(conical: Conical) -> list[str]:
     """Whether ``X`` is a cone or a cylinder over some curve (docs/math.md §10), in words: the
     apex or the direction, the base curve with its genus, and the parameterizations."""
+    if conical.kind == "none" and conical.near_apex is not None:
+        return [
+            f"cone or cylinder over a curve: NO exactly, but nearly a cone about {float_text(conical.near_apex, 6)} "
+            f"within the rounding (relative residual {conical.near_residual:.2g})"
+        ]
     if conical.kind == "none":
         return ["cone or cylinder over a curve: NO (no apex, no direction of translation)"]
     if conical.kind == "cone":

@@ -39,6 +39,7 @@ from sorgui.engine.results import (
 from sorgui.export.text import (
     TABLE_1,
     TABLE_1_WORDS,
+    float_text,
     nearly_canal,
     plain_text,
     symmetry_name,
@@ -54,7 +55,7 @@ from sorgui.gui.wording import (
     why_not,
 )
 from sorgui.session.components import Component
-from sorgui.session.formulas import Formula, analysis_formulas
+from sorgui.session.formulas import TypesetFormula, pane_formulas
 
 TABLE_HEADERS = ("row", "genus(P)", "genus(P²)", "X over ℂ", "X over ℝ")
 HIGHLIGHT = QColor("#ffe08a")
@@ -83,7 +84,7 @@ class ResultsPane(QScrollArea):
         self.setFrameShape(QFrame.Shape.NoFrame)
         self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAsNeeded)
         self._analysis: Analysis | None = None
-        self._formulas: dict[str, Formula] = {}
+        self._formulas: dict[str, TypesetFormula] = {}
         self._message = ""
         self._zoom = 1.0
         self._base_size = self.font().pointSizeF()
@@ -115,18 +116,18 @@ class ResultsPane(QScrollArea):
     def show_analysis(
         self,
         analysis: Analysis,
-        formulas: dict[str, Formula],
+        formulas: dict[str, TypesetFormula],
         worker_timings: Sequence[tuple[str, float]] = (),
         pending: Collection[str] = (),
         nearest: bool = False,
         components: Sequence[Component] = (),
     ) -> None:
-        """Show ``analysis`` with its typeset ``formulas`` (keys of :func:`analysis_formulas`;
+        """Show ``analysis`` with its typeset ``formulas`` (keys of :func:`pane_formulas`;
         missing ones are shown as text). ``pending`` names the stages still to come (shown as
         such); ``nearest`` says that ``analysis`` is that of the nearest exact surface;
         ``components`` are the typed components of a blend, to explain a *no*."""
         self._analysis = analysis
-        self._formulas = {**analysis_formulas(analysis, plain=True), **formulas}
+        self._formulas = {**pane_formulas(analysis, plain=True), **formulas}
         rec = analysis.recognition
         column = self._new_column()
         title, detail, kind = verdict(analysis)
@@ -154,8 +155,19 @@ class ResultsPane(QScrollArea):
                 [("", "being decided (Singular): the row, the genera and the parameterizations follow")],
             )
         self._parametrization_section(column, analysis)
-        if analysis.conical is not None and analysis.conical.kind != "none":
-            self._conical_section(column, analysis.conical)
+        conical = analysis.conical
+        if conical is not None and conical.kind != "none":
+            self._conical_section(column, conical)
+        elif conical is not None and conical.near_apex is not None and conical.near_residual is not None:
+            self._section(
+                column,
+                "Cone or cylinder",
+                [
+                    ("kind", "not exactly a cone, but nearly: a cone within the rounding of the input"),
+                    ("apex (about)", float_text(conical.near_apex, 10)),
+                    ("relative residual", f"{conical.near_residual:.2g}"),
+                ],
+            )
         elif "conical" in pending:
             self._section(column, "Cone or cylinder", [("", "being decided: the apex or the direction follows")])
         if analysis.canal is not None:
@@ -170,7 +182,7 @@ class ResultsPane(QScrollArea):
         column.addStretch(1)
         self.set_stale(self.stale)
 
-    def update_formulas(self, formulas: dict[str, Formula]) -> None:
+    def update_formulas(self, formulas: dict[str, TypesetFormula]) -> None:
         """Put newly typeset ``formulas`` into the shown page in place (no rebuild of the page)."""
         self._formulas.update(formulas)
         ratio = self.devicePixelRatioF()

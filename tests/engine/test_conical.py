@@ -166,3 +166,16 @@ def test_over_qq_sqrt_2_a_cylinder_has_its_direction() -> None:
     result = analyze_conical(f)
     assert result.kind == "cylinder" and result.direction == ("1", "2", "1")
     assert result.base_curve is not None and result.base_curve.degree == 3
+
+
+def test_a_cone_printed_with_ten_digits_is_nearly_a_cone_about_its_apex() -> None:
+    from sorgui.engine import analyze
+    from sorgui.samples import printed_exact
+
+    f = parse_polynomial("(x-1/3)^3+2*(y-2/7)^3-(z-5/11)^2*(x-1/3)+(x-1/3)*(y-2/7)*(z-5/11)").polynomial
+    exact = {m: Fraction(int(c.numerator), int(c.denominator)) for m, c in f.items()}
+    conical = analyze(printed_exact(exact, 10)).conical
+    assert conical is not None and conical.kind == "none" and conical.near_apex is not None
+    assert all(abs(a - b) < 1e-8 for a, b in zip(conical.near_apex, (1 / 3, 2 / 7, 5 / 11)))
+    exact[(0, 0, 0)] = exact.get((0, 0, 0), Fraction(0)) + Fraction(1, 100)  # a near miss, rounded alike
+    assert analyze(printed_exact(exact, 10)).conical.near_apex is None

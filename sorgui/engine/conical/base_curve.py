@@ -31,7 +31,7 @@ from ..recognition.profile import AxisFrame
 from ..results import BaseCurve, Conical, Parametrization
 from ..revolution.parametrization import PARAMETERS, SurfaceMap, frame_map, numerically_vanishes, vanishes_on
 from ..singular.curves import analyze_curve, parametrize
-from .detect import Conicity, detect
+from .detect import Conicity, detect, near_apex
 
 S, T = (sympy.Symbol(name) for name in PARAMETERS)
 CHARTS = (2, 1, 0)
@@ -41,16 +41,23 @@ PLANE = ("u", "v")
 """The coordinates of a cylinder's section plane, along ``U`` and ``W``."""
 
 
-def analyze_conical(f: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None) -> Conical:
+def analyze_conical(
+    f: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None, tolerance: float | None = None
+) -> Conical:
     """Cone, cylinder or neither (:func:`.detect.detect`); for a cone or a cylinder whose
-    base curve is a curve (not points), its genus and the verified parameterizations."""
+    base curve is a curve (not points), its genus and the verified parameterizations. With the
+    ``tolerance`` of rounded input, a surface that is exactly neither may be nearly a cone
+    (:func:`.detect.near_apex`)."""
     if total_degree(f) < 2:
         return Conical("none", notes=("a plane is both a cone and a cylinder: nothing more to say",))
     found = detect(f)
     K = f.ring.domain
     apex = None if found.apex is None else _triple(K, found.apex)
     if found.kind == "none":
-        return Conical("none")
+        near = None if tolerance is None else near_apex(f, tolerance)
+        if near is None:
+            return Conical("none")
+        return Conical("none", near_apex=near[0], near_residual=near[1])
     if len(found.directions) > 1:
         return Conical(
             "cylinder",

@@ -17,9 +17,15 @@ is ``c + null space``) is also a cylinder: planes through a line, reported as a 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
 
 from ..algebra.linalg import Vector, nullspace, primitive_vector, rref
-from ..algebra.polys import Poly, derivative, total_degree
+from ..algebra.polys import Poly, derivative, to_expr, total_degree
+
+NEAR_FACTOR = 10.0
+"""How many times the rounding a rounded cone's Euler residual may reach (docs/math.md §10)."""
 
 
 @dataclass(frozen=True)
@@ -38,8 +44,8 @@ class Conicity:
         return "cone" if self.apex is not None else "none"
 
 
-def detect(f: Poly) -> Conicity:
-    """The translations of ``f`` and an apex, from the one linear system above over ``K``."""
+def _system(f: Poly) -> tuple[list[list[Any]], list[Any]]:
+    """The rows of ``M`` and the right-hand side ``X·∇f − d·f``, one per monomial."""
     K = f.ring.domain
     d = total_degree(f)
     gradient = [derivative(f, i) for i in range(3)]
@@ -48,9 +54,15 @@ def detect(f: Poly) -> Conicity:
     columns = [dict(g.items()) for g in gradient]
     rhs = dict(euler.items())
     monomials = sorted(set(rhs).union(*columns))
-    rows = [[column.get(m, K.zero) for column in columns] for m in monomials]
+    return [[column.get(m, K.zero) for column in columns] for m in monomials], [rhs.get(m, K.zero) for m in monomials]
+
+
+def detect(f: Poly) -> Conicity:
+    """The translations of ``f`` and an apex, from the one linear system above over ``K``."""
+    K = f.ring.domain
+    rows, rhs = _system(f)
     directions = tuple(primitive_vector(v, K) for v in nullspace(rows, 3, K))
-    augmented = [[*row, rhs.get(m, K.zero)] for row, m in zip(rows, monomials)]
+    augmented = [[*row, b] for row, b in zip(rows, rhs)]
     reduced, pivots = rref(augmented, 4, K)
     if 3 in pivots:
         return Conicity(directions, None)
@@ -58,3 +70,24 @@ def detect(f: Poly) -> Conicity:
     for row, p in zip(reduced, pivots):
         apex[p] = row[3]  # the free coordinates (a direction of translation) are set to 0
     return Conicity(directions, tuple(apex))
+
+
+def near_apex(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], float] | None:
+    """For rounded input that is no exact cone: the least-squares apex of ``M c = X·∇f − d·f``
+    in floating point and its residual, relative to ``d·max|f|·(1 + |c|)`` (what rounding the
+    coefficients of an exact cone by ``tolerance`` leaves); ``None`` unless that residual is
+    within :data:`NEAR_FACTOR` times the rounding and ``M`` has full rank (no near translation)."""
+    K = f.ring.domain
+    rows, rhs = _system(f)
+    M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
+    b = np.array([float(to_expr(K, c)) for c in rhs])
+    size = max(abs(float(to_expr(K, c))) for c in f.values())
+    singular = np.linalg.svd(M, compute_uv=False)
+    if len(singular) < 3 or singular[-1] <= NEAR_FACTOR * tolerance * singular[0]:
+        return None
+    apex, *_ = np.linalg.lstsq(M, b, rcond=None)
+    residual = float(np.max(np.abs(M @ apex - b))) / (total_degree(f) * size * (1 + float(np.linalg.norm(apex))))
+    if residual > NEAR_FACTOR * tolerance:
+        return None
+    x, y, z = (float(v) for v in apex)
+    return (x, y, z), residual
