@@ -1,9 +1,15 @@
-"""The results of an analysis as named exact sympy objects, with the domain of each map.
+"""The one catalogue of an analysis' formulas: what the files print and the window typesets.
 
-Every formula file (LaTeX, Maple, Mathematica, Python) prints the same list, built here from
-the engine's exact strings (read with :mod:`sorgui.engine.values`, never evaluated): the
-equation ``f``, the axis, the profile ``p`` and ``P²``, the parameterization of ``P²``, the
-tubular surface ``T``, the map ``τ`` and every parameterization of ``X``.
+:func:`catalogue` lists every formula of an analysis once, in the engine's exact strings: its
+key in the results pane, its name in the files, what it is (an expression, a vector, a line),
+the label the pane puts before it and the sentence the files write about it. Building it reads
+no formula, so the window can list the formulas at once; the exact sympy value of a formula
+(read with :mod:`sorgui.engine.values`, never evaluated) and the coverage of a map are made
+when first asked for. Every formula file (LaTeX, Maple, Mathematica, Python) prints the same
+list, :func:`analysis_formulas`: the equation ``f``, the axis, the profile ``p`` and ``P²``,
+the parameterization of ``P²``, the tubular surface ``T``, the map ``τ``, every
+parameterization of ``X`` and the canal sphere families; the window typesets the formulas
+with a key (:mod:`sorgui.session.formulas`).
 
 Names are letters and digits only (``axisPoint``, not ``axis_point``), because in Mathematica
 ``_`` makes a pattern; vectors are tuples, printed as lists.
@@ -24,12 +30,13 @@ which points it misses (docs/math.md, "Parameterizations"):
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any, TypeAlias
+from dataclasses import dataclass, field, replace
+from functools import cached_property
+from typing import Any, Literal, TypeAlias
 
 import sympy
 
-from sorgui.engine.results import Analysis, Canal
+from sorgui.engine.results import Analysis, Approximation, Canal, Conical, Profile, Rationality, Recognition
 from sorgui.engine.values import read_expression
 
 Value: TypeAlias = sympy.Expr | tuple[sympy.Expr, ...]
@@ -135,23 +142,6 @@ def _zeros_text(item: Excluded, real: bool, st: CoverageStyle) -> str:
     return ("the real zeros " if real else "the zeros ") + ", ".join(st.math(st.expr(r)) for r in item.roots)
 
 
-@dataclass(frozen=True)
-class Formula:
-    """One named result: ``name`` (letters and digits), a description, the exact value (an
-    expression or a tuple of them), and the coverage of a map (``None`` for equations)."""
-
-    name: str
-    description: str
-    value: Value
-    parameters: tuple[sympy.Symbol, ...] = ()
-    coverage: Coverage | None = None
-    details: dict[str, Any] = field(default_factory=dict)
-
-    @property
-    def is_vector(self) -> bool:
-        return isinstance(self.value, tuple)
-
-
 def coverage(
     coordinates: tuple[sympy.Expr, ...], parameters: tuple[sympy.Symbol, ...], real: bool, limits: bool = True
 ) -> Coverage:
@@ -232,103 +222,241 @@ def _checked(
     return limit
 
 
-def _vector(triple: tuple[str, ...]) -> tuple[sympy.Expr, ...]:
-    return tuple(read_expression(c) for c in triple)
+Kind: TypeAlias = Literal["expression", "vector", "line", "decimal line", "approximate line"]
+"""What the source strings of a formula are: one expression, the entries of a vector, or a line
+``c + t·a`` (the entries of ``c``, then those of ``a``): exact, exact but shown in decimals, or
+known only in floats (their ``repr``)."""
+
+XYZ_ROWS = (("x", "x ="), ("y", "y ="), ("z", "z ="))
+"""The pane's rows of a map to space: one per coordinate."""
+
+
+@dataclass(frozen=True)
+class Formula:
+    """One formula of an analysis, as the engine's exact strings ``source``.
+
+    ``key`` names it in the results pane and ``name`` in the files (``""``: not there);
+    ``label`` is the LaTeX the pane writes before it, ``description`` the files' sentence.
+    ``rows`` show a vector in the pane one entry per row: ``(suffix, label)``, keyed
+    ``f"{key}.{suffix}"``. A map whose coverage the files state has a ``domain``:
+    ``"parameters"`` (the parameter domain and the missed points) or ``"space"`` (a map of
+    space such as τ: the domain only); ``real`` says whether it is real (``None``: real when no
+    entry has ``I``). ``tolerance`` is the rounding of an approximate line (smaller entries are 0).
+    """
+
+    kind: Kind
+    source: tuple[str, ...]
+    key: str = ""
+    name: str = ""
+    label: str = ""
+    description: str = ""
+    rows: tuple[tuple[str, str], ...] = ()
+    parameter_names: tuple[str, ...] = ()
+    domain: Literal["parameters", "space"] | None = None
+    real: bool | None = None
+    tolerance: float | None = None
+
+    @cached_property
+    def value(self) -> Value:
+        """The exact value, read from :attr:`source` when first asked for (a tuple for a vector)."""
+        values = tuple(read_expression(text) for text in self.source)
+        return values[0] if self.kind == "expression" else values
+
+    @property
+    def parameters(self) -> tuple[sympy.Symbol, ...]:
+        return tuple(sympy.Symbol(p) for p in self.parameter_names)
+
+    @property
+    def is_vector(self) -> bool:
+        return self.kind == "vector"
+
+    @cached_property
+    def coverage(self) -> Coverage | None:
+        """The domain and missed points of a map (``None`` for the others), made when first asked for."""
+        if self.domain is None:
+            return None
+        value = self.value
+        assert isinstance(value, tuple)
+        real = not any(c.has(sympy.I) for c in value) if self.real is None else self.real
+        return coverage(value, self.parameters, real, limits=self.domain == "parameters")
+
+
+def catalogue(analysis: Analysis) -> list[Formula]:
+    """Every formula of ``analysis`` in reading order: the surface's, the cone's or cylinder's,
+    the canal sphere families', and those of rounded input."""
+    out = _surface(analysis)
+    if analysis.conical is not None:
+        out += _conical(analysis.conical)
+    if analysis.canal is not None:
+        out += _canal(analysis.canal)
+    if analysis.approximate is not None:
+        out += _approximate(analysis.approximate)
+    return out
 
 
 def analysis_formulas(analysis: Analysis) -> list[Formula]:
-    """The results of ``analysis`` as named exact formulas, in reading order: those of the
-    surface of revolution, then those of its canal sphere families."""
-    return surface_formulas(analysis) + (canal_formulas(analysis.canal) if analysis.canal is not None else [])
+    """The formulas the files print, in reading order: those of the surface of revolution, then
+    those of its canal sphere families."""
+    return [f for f in catalogue(analysis) if f.name]
 
 
 def surface_formulas(analysis: Analysis) -> list[Formula]:
-    """The equation and the results of the surface-of-revolution analysis as named formulas."""
+    """The equation and the results of the surface-of-revolution analysis that the files print."""
+    return [f for f in _surface(analysis) if f.name]
+
+
+def _surface(analysis: Analysis) -> list[Formula]:
+    """The equation, the axis or centre, the profile, the factors, the rationality and the parameterizations."""
     rec = analysis.recognition
-    out = [Formula("f", "the equation f(x, y, z) = 0", read_expression(rec.polynomial))]
-    vectors = (
-        ("axisPoint", "a point of the axis", rec.axis.point if rec.axis else None),
-        ("axisDirection", "the direction of the axis", rec.axis.direction if rec.axis else None),
-        ("center", "the centre of the sphere", rec.center),
-        ("normal", "the normal of the plane", rec.normal),
-        ("direction", "the direction of the extrusion", rec.direction),
-    )
-    out += [Formula(name, text, _vector(value)) for name, text, value in vectors if value is not None]
-    if rec.radius_squared is not None:
-        out.append(Formula("radiusSquared", "the square of the sphere's radius", read_expression(rec.radius_squared)))
+    out = [Formula("expression", (rec.polynomial,), "polynomial", "f", "f =", "the equation f(x, y, z) = 0")]
+    out += _recognition(rec, "")
     if rec.profile is not None:
-        out.append(
-            Formula(
-                "p",
-                "the profile p(x, y) = 0 (x along the axis, y the distance to it)",
-                read_expression(rec.profile.polynomial),
-            )
-        )
-        out.append(
-            Formula(
-                "P2", "the curve P2 = 0 (the profile p with y^2 replaced by y)", read_expression(rec.profile.square)
-            )
-        )
-        frame = ", ".join(
-            f"({', '.join(v)})"
-            for v in (rec.profile.frame_point, rec.profile.frame_direction, rec.profile.frame_normal)
-        )
-        out.append(
-            Formula(
-                "P2K",
-                "the curve P2K(s, w) = 0: the K-rational profile in the points c + s*a + r*u "
-                f"with w = r^2, for (c, a, u) = {frame}",
-                read_expression(rec.profile.rational_square),
-            )
-        )
-    rat = analysis.rationality
-    t = sympy.Symbol("t")
-    x, y, z = sympy.symbols("x y z")
-    if rat is not None and rat.square_parametrization is not None:
-        value = _vector(rat.square_parametrization)
-        out.append(
-            Formula(
-                "P2param",
-                "a parameterization t -> (s(t), w(t)) of the curve P2K = 0",
-                value,
-                (t,),
-                coverage(value, (t,), _is_real(value)),
-            )
-        )
-    if rat is not None and rat.tubular_surface is not None:
-        out.append(
-            Formula(
-                "T",
-                "the tubular surface T(x, y, z) = 0 (in the axis frame of the profile)",
-                read_expression(rat.tubular_surface),
-            )
-        )
-    if rat is not None and rat.tau is not None:
-        value = _vector(rat.tau)
-        out.append(
-            Formula(
-                "tau",
-                "the map tau from T to X (in the axis frame of the profile)",
-                value,
-                (x, y, z),
-                coverage(value, (x, y, z), True, limits=False),
-            )
-        )
-    for i, par in enumerate(analysis.parametrizations, 1):
-        parameters = tuple(sympy.Symbol(p) for p in par.parameters)
-        value = _vector(par.coordinates)
+        out += _profile(rec.profile)
+    if len(analysis.factors) > 1:
+        for index, factor in enumerate(analysis.factors):
+            out.append(Formula("expression", (factor.polynomial,), f"factor.{index}"))
+            out += [replace(f, name="") for f in _recognition(factor.recognition, f"factor.{index}.")]  # pane only
+    if analysis.rationality is not None:
+        out += _rationality(analysis.rationality)
+    for index, par in enumerate(analysis.parametrizations):
         kind = "real" if par.real else "complex"
         proper = {True: "proper", False: "not proper", None: "properness not decided"}[par.proper]
         out.append(
             Formula(
-                f"X{i}",
-                f"parameterization {i} of X: {par.method} ({kind}, {proper}, over {par.field})",
-                value,
-                parameters,
-                coverage(value, parameters, par.real),
-                {"verified": par.verified, "verification": par.verification},
+                "vector",
+                par.coordinates,
+                f"parametrization.{index}",
+                f"X{index + 1}",
+                description=f"parameterization {index + 1} of X: {par.method} ({kind}, {proper}, over {par.field})",
+                rows=XYZ_ROWS,
+                parameter_names=par.parameters,
+                domain="parameters",
+                real=par.real,
             )
         )
+    return out
+
+
+def _recognition(rec: Recognition, key: str) -> list[Formula]:
+    """The axis, centre, normal, direction and radius² of ``rec``, keyed from ``key``."""
+    out = []
+    if rec.axis is not None:
+        axis = rec.axis
+        out += [
+            Formula("vector", axis.point, f"{key}axis.point", "axisPoint", description="a point of the axis"),
+            Formula(
+                "vector",
+                axis.direction,
+                f"{key}axis.direction",
+                "axisDirection",
+                description="the direction of the axis",
+            ),
+            Formula("vector", axis.plucker, f"{key}axis.plucker"),
+            Formula("line", axis.point + axis.direction, f"{key}axis.line"),
+        ]
+    vectors = (
+        ("center", rec.center, "the centre of the sphere"),
+        ("normal", rec.normal, "the normal of the plane"),
+        ("direction", rec.direction, "the direction of the extrusion"),
+    )
+    for name, value, text in vectors:
+        if value is not None:
+            out.append(Formula("vector", value, key + name, name, description=text))
+    if rec.radius_squared is not None:
+        text = "the square of the sphere's radius"
+        out.append(Formula("expression", (rec.radius_squared,), f"{key}radius_squared", "radiusSquared", "r^2 =", text))
+    return out
+
+
+def _profile(profile: Profile) -> list[Formula]:
+    """The profile ``p``, ``P²``, its K-rational forms and the axis frame they live in."""
+    frame = ", ".join(f"({', '.join(v)})" for v in (profile.frame_point, profile.frame_direction, profile.frame_normal))
+    return [
+        Formula(
+            "expression",
+            (profile.polynomial,),
+            "profile.polynomial",
+            "p",
+            "p(x, y) =",
+            "the profile p(x, y) = 0 (x along the axis, y the distance to it)",
+        ),
+        Formula(
+            "expression",
+            (profile.square,),
+            "profile.square",
+            "P2",
+            "P^2(x, y) =",
+            "the curve P2 = 0 (the profile p with y^2 replaced by y)",
+        ),
+        Formula(
+            "expression",
+            (profile.rational_square,),
+            name="P2K",
+            description="the curve P2K(s, w) = 0: the K-rational profile in the points c + s*a + r*u "
+            f"with w = r^2, for (c, a, u) = {frame}",
+        ),
+        Formula("expression", (profile.rational,), "profile.rational", label=r"\tilde{p}(s, r) ="),
+        Formula("vector", profile.frame_point, "profile.frame_point", label="c ="),
+        Formula("vector", profile.frame_direction, "profile.frame_direction", label="a ="),
+        Formula("vector", profile.frame_normal, "profile.frame_normal", label="u ="),
+    ]
+
+
+def _rationality(rat: Rationality) -> list[Formula]:
+    """The parameterization of ``P²``, the tubular surface ``T``, ``h`` and the map ``τ``."""
+    out = []
+    if rat.square_parametrization:
+        out.append(
+            Formula(
+                "vector",
+                rat.square_parametrization,
+                "rationality.square_parametrization",
+                "P2param",
+                description="a parameterization t -> (s(t), w(t)) of the curve P2K = 0",
+                rows=(("0", r"\varphi ="), ("1", r"\rho =")),
+                parameter_names=("t",),
+                domain="parameters",
+            )
+        )
+    if rat.tubular_surface:
+        text = "the tubular surface T(x, y, z) = 0 (in the axis frame of the profile)"
+        out.append(Formula("expression", (rat.tubular_surface,), "rationality.tubular_surface", "T", "T:", text))
+    if rat.h:
+        out.append(Formula("expression", (rat.h,), "rationality.h", label="h ="))
+    if rat.tau:
+        out.append(
+            Formula(
+                "vector",
+                rat.tau,
+                "rationality.tau",
+                "tau",
+                description="the map tau from T to X (in the axis frame of the profile)",
+                rows=tuple((c, rf"\tau_{c} =") for c in "xyz"),
+                parameter_names=("x", "y", "z"),
+                domain="space",
+                real=True,
+            )
+        )
+    return out
+
+
+def _conical(conical: Conical) -> list[Formula]:
+    """The apex or direction of a cone or cylinder, its base curve and its parameterizations."""
+    out = []
+    if conical.apex is not None:
+        out.append(Formula("vector", conical.apex, "conical.apex", label="c ="))
+    if conical.direction is not None:
+        out.append(Formula("vector", conical.direction, "conical.direction", label="a ="))
+    base = conical.base_curve
+    if base is not None:
+        u, v = base.variables
+        out.append(Formula("expression", (base.polynomial,), "conical.base", label=f"g({u}, {v}) ="))
+        for name, label in (("frame_u", "U ="), ("frame_w", "W =")):
+            value = getattr(base, name)
+            if value is not None:
+                out.append(Formula("vector", value, f"conical.base.{name}", label=label))
+    for index, par in enumerate(conical.parametrizations):
+        out.append(Formula("vector", par.coordinates, f"conical.parametrization.{index}", rows=XYZ_ROWS))
     return out
 
 
@@ -337,97 +465,96 @@ CANAL_PREFIX = "canal"
 
 
 def canal_formulas(canal: Canal) -> list[Formula]:
-    """The sphere families of a canal surface (docs/math.md §9) as named formulas, for each
+    """The sphere families of a canal surface (docs/math.md §9) that the files print, for each
     family ``i`` with data: ``canal{i}Spine`` (the spine's equations in ``m1, m2, m3``),
     ``canal{i}SMAT`` (the SMAT curve's in ``m1, m2, m3, r``, ``r`` = ρ), ``canal{i}M`` (the spine
     ``m(t)``), ``canal{i}Rho`` (the squared radius ``ρ(t)``), ``canal{i}C`` and ``canal{i}R2``
     (the characteristic circles' centre ``c(t)`` and squared radius ``R²(t)``)."""
-    t = sympy.Symbol("t")
+    return [f for f in _canal(canal) if f.name]
+
+
+def _canal(canal: Canal) -> list[Formula]:
+    """Each sphere family's equations, spine ``m(t)``, radius ``ρ(t)`` and characteristic circles."""
     out: list[Formula] = []
-    for i, fam in enumerate(canal.families, 1):
+    for index, fam in enumerate(canal.families):
+        i = index + 1
         name = f"{CANAL_PREFIX}{i}"
         radius = "constant" if fam.pipe else "varying"
-        out.append(
+        shape = "on a line" if fam.on_line else "planar" if fam.planar else "not planar"
+        genus = "undecided" if fam.genus is None else fam.genus
+        out += [
             Formula(
-                f"{name}Spine",
-                f"the spine of sphere family {i} (centres m1, m2, m3; degree {fam.degree}, "
-                f"{'on a line' if fam.on_line else 'planar' if fam.planar else 'not planar'}): "
+                "vector",
+                fam.spine_equations,
+                name=f"{name}Spine",
+                description=f"the spine of sphere family {i} (centres m1, m2, m3; degree {fam.degree}, {shape}): "
                 "these equations are zero",
-                tuple(read_expression(e) for e in fam.spine_equations),
-            )
-        )
-        out.append(
+            ),
             Formula(
-                f"{name}SMAT",
-                f"the SMAT curve of sphere family {i} (centre m1, m2, m3, squared radius r; "
-                f"genus {'undecided' if fam.genus is None else fam.genus}, radius {radius}): "
-                "these equations are zero",
-                tuple(read_expression(e) for e in fam.equations),
-            )
-        )
+                "vector",
+                fam.equations,
+                name=f"{name}SMAT",
+                description=f"the SMAT curve of sphere family {i} (centre m1, m2, m3, squared radius r; "
+                f"genus {genus}, radius {radius}): these equations are zero",
+            ),
+        ]
+        spine = f"canal.{index}.spine"
         if fam.parametrization is not None:
-            value = _vector(fam.parametrization)
             check = "verified" if fam.verified else "not verified"
+            text = f"the spine t -> m(t) of sphere family {i} (over {fam.field}, {check})"
             out.append(
                 Formula(
+                    "vector",
+                    fam.parametrization,
+                    spine,
                     f"{name}M",
-                    f"the spine t -> m(t) of sphere family {i} (over {fam.field}, {check})",
-                    value,
-                    (t,),
-                    coverage(value, (t,), _is_real(value)),
-                    {"verified": fam.verified},
+                    "m(t) =",
+                    text,
+                    parameter_names=("t",),
+                    domain="parameters",
                 )
             )
         elif fam.radical_spine is not None:
-            out.append(
-                Formula(
-                    f"{name}M",
-                    f"the spine t -> m(t) of sphere family {i} in square roots "
-                    f"(t = {fam.radical_parameter}; verified on the SMAT equations)",
-                    _vector(fam.radical_spine),
-                    (t,),
-                    None,
-                    {"verified": True},
-                )
+            text = (
+                f"the spine t -> m(t) of sphere family {i} in square roots "
+                f"(t = {fam.radical_parameter}; verified on the SMAT equations)"
             )
+            out.append(Formula("vector", fam.radical_spine, spine, f"{name}M", "m(t) =", text, parameter_names=("t",)))
         rho = fam.radius_squared or fam.radical_radius_squared
         if rho is not None:
-            out.append(
-                Formula(
-                    f"{name}Rho",
-                    f"the squared radius rho(t) of the spheres of family {i} ({radius})",
-                    read_expression(rho),
-                )
-            )
+            text = f"the squared radius rho(t) of the spheres of family {i} ({radius})"
+            out.append(Formula("expression", (rho,), f"canal.{index}.radius", f"{name}Rho", r"\rho(t) =", text))
         if fam.circle_center is not None:
-            value = _vector(fam.circle_center)
             out.append(
                 Formula(
-                    f"{name}C",
-                    f"the centre t -> c(t) of the characteristic circles of family {i}",
-                    value,
-                    (t,),
-                    coverage(value, (t,), _is_real(value)),
+                    "vector",
+                    fam.circle_center,
+                    name=f"{name}C",
+                    description=f"the centre t -> c(t) of the characteristic circles of family {i}",
+                    parameter_names=("t",),
+                    domain="parameters",
                 )
             )
         if fam.circle_radius_squared is not None:
-            out.append(
-                Formula(
-                    f"{name}R2",
-                    f"the squared radius R2(t) of the characteristic circles of family {i}",
-                    read_expression(fam.circle_radius_squared),
-                )
-            )
+            text = f"the squared radius R2(t) of the characteristic circles of family {i}"
+            out.append(Formula("expression", (fam.circle_radius_squared,), name=f"{name}R2", description=text))
         if fam.circle_normal is not None:
-            out.append(
-                Formula(
-                    f"{name}N",
-                    f"the normal n(t) of the planes of the characteristic circles of family {i}",
-                    _vector(fam.circle_normal),
-                )
-            )
+            text = f"the normal n(t) of the planes of the characteristic circles of family {i}"
+            out.append(Formula("vector", fam.circle_normal, name=f"{name}N", description=text))
     return out
 
 
-def _is_real(value: tuple[sympy.Expr, ...]) -> bool:
-    return not any(c.has(sympy.I) for c in value)
+def _approximate(approx: Approximation) -> list[Formula]:
+    """The approximate axis of rounded input, the nearest exact surface and its axis."""
+    out = []
+    if approx.axis is not None:
+        floats = tuple(repr(float(c)) for c in (*approx.axis.point, *approx.axis.direction))
+        out.append(Formula("approximate line", floats, "approximate.axis", tolerance=approx.tolerance))
+    nearest = approx.nearest
+    if nearest is not None:
+        out.append(Formula("expression", (nearest.polynomial,), "approximate.nearest", label="g ="))
+        if nearest.axis is not None:
+            line = nearest.axis.point + nearest.axis.direction
+            out.append(Formula("line", line, "approximate.nearest.axis"))
+            out.append(Formula("decimal line", line, "approximate.nearest.axis.decimal"))
+    return out

@@ -27,7 +27,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from sorgui.session.formulas import CODE_PRINTERS, Formula
+from sorgui.session.formulas import CODE_PRINTERS, TypesetFormula
 
 FOLDED_LINES = 6
 """Lines of a long typeset formula shown before "show all"."""
@@ -89,7 +89,7 @@ class FormulaView(QFrame):
     """
 
     def __init__(
-        self, formula: Formula, parent: QWidget | None = None, ratio: float = 1.0, max_width: int = 10_000
+        self, formula: TypesetFormula, parent: QWidget | None = None, ratio: float = 1.0, max_width: int = 10_000
     ) -> None:
         super().__init__(parent)
         self.formula = formula
@@ -143,7 +143,7 @@ class FormulaView(QFrame):
         """Whether part of the formula is hidden behind "show all"."""
         return self._folded
 
-    def set_formula(self, formula: Formula) -> None:
+    def set_formula(self, formula: TypesetFormula) -> None:
         """Show ``formula`` instead (the typeset version of the text shown so far)."""
         self.formula = formula
         self._fill()

@@ -27,7 +27,7 @@ from sorgui.gui.results import ResultsPane
 from sorgui.gui.stages import RunPanel, seconds_text
 from sorgui.gui.viewport import Viewport
 from sorgui.gui.wording import invalid_heading
-from sorgui.session.formulas import Formula
+from sorgui.session.formulas import TypesetFormula
 from sorgui.session.job import JobResult
 from sorgui.session.model import WORKER_STAGES, Run, Session, StageState
 from sorgui.session.scene_data import SceneData
@@ -235,7 +235,7 @@ class SessionView(QObject):
         else:
             self._schedule_pane()
 
-    def _on_formulas_change(self, formulas: dict[str, Formula]) -> None:
+    def _on_formulas_change(self, formulas: dict[str, TypesetFormula]) -> None:
         """Typeset formulas of the shown analysis go into the page in place; else a rebuild."""
         run = self.session.run
         nearest = self.session.view == "nearest"

@@ -1,16 +1,18 @@
 """The formulas of an analysis as mathematics: LaTeX, wrapped lines and mathtext images.
 
-The results pane shows every polynomial, vector and parameterization typeset, not as Python
-text. Each engine string is read exactly (:mod:`sorgui.engine.values`) and printed with
-``sympy.latex``, one piece per top-level term. :func:`render_formulas` then rasterises it with
-matplotlib's mathtext (Computer Modern) into 8-bit alpha masks: whole when it fits the pane's
-width, else piece by piece, the pieces set side by side on one baseline and wrapped between
-them (mathtext's cost is mostly per parse, so each piece is typeset once; the worker process
-shares the parsing with a forked helper, see :func:`start_helper`). This runs in the analysis
-worker process (it has no Qt), so the GUI thread only colours ready-made masks; a formula
-mathtext cannot typeset is shown as plain text instead. :meth:`Formula.code` prints a formula
-for Maple, Mathematica or Python (sympy's printers, as the exported files) when the copy menu
-asks.
+Which formulas an analysis has is the export layer's one catalogue
+(:func:`sorgui.export.formulas.catalogue`); :func:`pane_formulas` makes those the results pane
+shows ready to typeset, and nothing here adds or drops one. The pane shows every polynomial,
+vector and parameterization typeset, not as Python text. Each engine string is read exactly
+(:mod:`sorgui.engine.values`) and printed with ``sympy.latex``, one piece per top-level term.
+:func:`render_formulas` then rasterises it with matplotlib's mathtext (Computer Modern) into
+8-bit alpha masks: whole when it fits the pane's width, else piece by piece, the pieces set side
+by side on one baseline and wrapped between them (mathtext's cost is mostly per parse, so each
+piece is typeset once; the worker process shares the parsing with a forked helper, see
+:func:`start_helper`). This runs in the analysis worker process (it has no Qt), so the GUI
+thread only colours ready-made masks; a formula mathtext cannot typeset is shown as plain text
+instead. :meth:`TypesetFormula.code` prints a formula for Maple, Mathematica or Python (sympy's
+printers, as the exported files) when the copy menu asks.
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ from __future__ import annotations
 import contextlib
 import gc
 import os
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from functools import lru_cache
@@ -32,8 +34,9 @@ from sympy.printing.maple import maple_code
 from sympy.printing.mathematica import mathematica_code
 from sympy.printing.pycode import pycode
 
-from sorgui.engine.results import Analysis, Recognition
+from sorgui.engine.results import Analysis
 from sorgui.engine.values import ExpressionError, float_vector, read_expression
+from sorgui.export.formulas import Formula, catalogue
 from sorgui.export.text import float_text
 
 MAX_CHARACTERS = 6000
@@ -46,11 +49,11 @@ CONTINUATION = r"\qquad"
 
 
 @dataclass(frozen=True)
-class Formula:
-    """One displayed formula.
+class TypesetFormula:
+    """One formula as the results pane shows it: untypeset, or typeset by :func:`render_formulas`.
 
     ``plain`` and ``latex`` are what the copy actions put on the clipboard. ``pieces`` are the
-    LaTeX of its top-level terms with their signs (the first with its ``prefix``), the places
+    LaTeX of its top-level terms with their signs (the first with its label), the places
     where it may be wrapped; ``lines`` and ``masks`` are the wrapped lines and their renderings
     as ``(height, width) uint8`` alpha masks, both empty until :func:`render_formulas`.
     """
@@ -102,25 +105,25 @@ CODE_PRINTERS = (("Maple", maple_code), ("Mathematica", mathematica_code), ("Pyt
 _BRACKETS = {"Maple": ("[", "]"), "Mathematica": ("{", "}"), "Python": ("(", ")")}
 
 
-def plain_formula(text: str) -> Formula:
+def plain_formula(text: str) -> TypesetFormula:
     """``text`` as an untypeset formula (shown as text until the typeset one arrives)."""
-    return Formula(text, text, ())
+    return TypesetFormula(text, text, ())
 
 
 @lru_cache(maxsize=4096)
-def expression_formula(text: str, prefix: str = "") -> Formula:
+def expression_formula(text: str, prefix: str = "") -> TypesetFormula:
     """The engine string ``text`` (a number, polynomial or rational function) as a formula.
 
     Cached: a job presents its analysis after every stage, and most formulas are the same."""
     if len(text) > MAX_CHARACTERS:
-        return Formula(text, text, ())
+        return TypesetFormula(text, text, ())
     try:
         expr = read_expression(text)
     except ExpressionError:
-        return Formula(text, text, ())
+        return TypesetFormula(text, text, ())
     terms = expr.as_ordered_terms() if isinstance(expr, sympy.Add) else [expr]
     if len(terms) > MAX_TERMS:
-        return Formula(text, _latex(expr), (), source=(text,))
+        return TypesetFormula(text, _latex(expr), (), source=(text,))
     pieces = []
     for index, term in enumerate(terms):
         negative = term.could_extract_minus_sign()
@@ -130,22 +133,22 @@ def expression_formula(text: str, prefix: str = "") -> Formula:
     latex = "".join(pieces) if len(pieces) > 1 else _latex(expr)  # what sympy.latex prints for a sum
     if prefix:
         pieces[0] = f"{prefix} {pieces[0]}"
-    return Formula(text, latex, tuple(pieces), source=(text,))
+    return TypesetFormula(text, latex, tuple(pieces), source=(text,))
 
 
-def vector_formula(values: Sequence[str], prefix: str = "") -> Formula:
+def vector_formula(values: Sequence[str], prefix: str = "") -> TypesetFormula:
     """A tuple of exact numbers ``(a, b, c)`` (or Plücker coordinates ``(a : … : f)``)."""
     return _vector_formula(tuple(values), prefix)
 
 
 @lru_cache(maxsize=1024)
-def _vector_formula(values: tuple[str, ...], prefix: str) -> Formula:
+def _vector_formula(values: tuple[str, ...], prefix: str) -> TypesetFormula:
     separator = " : " if len(values) == 6 else ", "
     plain = "(" + separator.join(values) + ")"
     try:
         exprs = [read_expression(v) for v in values]
     except ExpressionError:
-        return Formula(plain, plain, ())
+        return TypesetFormula(plain, plain, ())
     entries = [_latex(e) for e in exprs]
     body = separator.join(entries)
     latex = r"\left(" + body + r"\right)"
@@ -153,24 +156,26 @@ def _vector_formula(values: tuple[str, ...], prefix: str) -> Formula:
     # smaller than the text's, so plain ones are typeset unless an entry is tall
     tall = any(mark in entry for entry in entries for mark in ("\\frac", "\\sqrt", "^"))
     shown = latex if tall else "(" + body + ")"
-    return Formula(plain, latex, ((prefix + " " if prefix else "") + shown,), source=values, vector=True)
+    return TypesetFormula(plain, latex, ((prefix + " " if prefix else "") + shown,), source=values, vector=True)
 
 
-def line_formula(point: Sequence[str], direction: Sequence[str]) -> Formula:
+def line_formula(point: Sequence[str], direction: Sequence[str]) -> TypesetFormula:
     """The parametric line ``c + t·a``."""
     c, a = vector_formula(point), vector_formula(direction)
     latex = f"{c.latex} + t\\,{a.latex}"
     shown = f"{c.pieces[0]} + t\\,{a.pieces[0]}" if c.pieces and a.pieces else latex
-    return Formula(f"{c.plain} + t*{a.plain}", latex, (shown,))
+    return TypesetFormula(f"{c.plain} + t*{a.plain}", latex, (shown,))
 
 
-def decimal_line_formula(point: Sequence[float], direction: Sequence[float], tolerance: float | None = None) -> Formula:
+def decimal_line_formula(
+    point: Sequence[float], direction: Sequence[float], tolerance: float | None = None
+) -> TypesetFormula:
     """The line ``c + t·a`` in decimals: shown with 6 significant digits, copied with 16 (a
     double's precision); entries below the rounding ``tolerance`` (or 1e-12) of the largest are 0."""
 
     plain = f"{float_text(point, 16, tolerance)} + t*{float_text(direction, 16, tolerance)}"
     shown = f"{float_text(point, 6, tolerance)} + t\\,{float_text(direction, 6, tolerance)}"
-    return Formula(plain, shown, (shown,))
+    return TypesetFormula(plain, shown, (shown,))
 
 
 def decimals(values: Sequence[str], evaluate: bool = True) -> tuple[float, ...] | None:
@@ -184,120 +189,47 @@ def decimals(values: Sequence[str], evaluate: bool = True) -> tuple[float, ...] 
         return None
 
 
-# --- all formulas of an analysis ------------------------------------------------------------
+# --- the pane's formulas of an analysis -----------------------------------------------------
 
 
-@dataclass(frozen=True)
-class _Builders:
-    expression: Callable[..., Formula]
-    vector: Callable[..., Formula]
-    line: Callable[..., Formula]
-
-
-def _plain_vector(values: Sequence[str], prefix: str = "") -> Formula:
-    return plain_formula("(" + (" : " if len(values) == 6 else ", ").join(values) + ")")
-
-
-def _plain_line(point: Sequence[str], direction: Sequence[str]) -> Formula:
-    return plain_formula(f"{_plain_vector(point).plain} + t*{_plain_vector(direction).plain}")
-
-
-_EXACT = _Builders(expression_formula, vector_formula, line_formula)
-_PLAIN = _Builders(lambda text, prefix="": plain_formula(text), _plain_vector, _plain_line)
-
-
-def _recognition_formulas(rec: Recognition, key: str, make: _Builders) -> Iterable[tuple[str, Formula]]:
-    if rec.axis is not None:
-        yield f"{key}axis.point", make.vector(rec.axis.point)
-        yield f"{key}axis.direction", make.vector(rec.axis.direction)
-        yield f"{key}axis.plucker", make.vector(rec.axis.plucker)
-        yield f"{key}axis.line", make.line(rec.axis.point, rec.axis.direction)
-    for name in ("center", "normal", "direction"):
-        value = getattr(rec, name)
-        if value is not None:
-            yield f"{key}{name}", make.vector(value)
-    if rec.radius_squared is not None:
-        yield f"{key}radius_squared", make.expression(rec.radius_squared, "r^2 =")
-
-
-def analysis_formulas(analysis: Analysis, plain: bool = False) -> dict[str, Formula]:
-    """Every formula the results pane shows, by key (``"axis.point"``, ``"factor.0"``, …).
+def pane_formulas(analysis: Analysis, plain: bool = False) -> dict[str, TypesetFormula]:
+    """Every formula the results pane shows, by key (``"axis.point"``, ``"factor.0"``, …): those of
+    the catalogue (:func:`sorgui.export.formulas.catalogue`) with a key, ready to typeset.
 
     ``plain`` gives them as untypeset text at once (no sympy), for the GUI thread to show until
     the typeset ones arrive.
     """
-    make = _PLAIN if plain else _EXACT
-    rec = analysis.recognition
-    out: dict[str, Formula] = {"polynomial": make.expression(rec.polynomial, "f =")}
-    out.update(_recognition_formulas(rec, "", make))
-    if rec.profile is not None:
-        profile = rec.profile
-        out["profile.polynomial"] = make.expression(profile.polynomial, "p(x, y) =")
-        out["profile.square"] = make.expression(profile.square, "P^2(x, y) =")
-        out["profile.rational"] = make.expression(profile.rational, r"\tilde{p}(s, r) =")
-        out["profile.frame_point"] = make.vector(profile.frame_point, "c =")
-        out["profile.frame_direction"] = make.vector(profile.frame_direction, "a =")
-        out["profile.frame_normal"] = make.vector(profile.frame_normal, "u =")
-    if len(analysis.factors) > 1:
-        for index, factor in enumerate(analysis.factors):
-            out[f"factor.{index}"] = make.expression(factor.polynomial)
-            out.update(_recognition_formulas(factor.recognition, f"factor.{index}.", make))
-    rationality = analysis.rationality
-    if rationality is not None:
-        if rationality.tubular_surface:
-            out["rationality.tubular_surface"] = make.expression(rationality.tubular_surface, "T:")
-        if rationality.h:
-            out["rationality.h"] = make.expression(rationality.h, "h =")
-        if rationality.square_parametrization:
-            phi, rho = rationality.square_parametrization
-            out["rationality.square_parametrization.0"] = make.expression(phi, r"\varphi =")
-            out["rationality.square_parametrization.1"] = make.expression(rho, r"\rho =")
-        if rationality.tau:
-            for name, value in zip("xyz", rationality.tau):
-                out[f"rationality.tau.{name}"] = make.expression(value, rf"\tau_{name} =")
-    for index, param in enumerate(analysis.parametrizations):
-        for name, value in zip("xyz", param.coordinates):
-            out[f"parametrization.{index}.{name}"] = make.expression(value, f"{name} =")
-    conical = analysis.conical
-    if conical is not None:
-        if conical.apex is not None:
-            out["conical.apex"] = make.vector(conical.apex, "c =")
-        if conical.direction is not None:
-            out["conical.direction"] = make.vector(conical.direction, "a =")
-        base = conical.base_curve
-        if base is not None:
-            u, v = base.variables
-            out["conical.base"] = make.expression(base.polynomial, f"g({u}, {v}) =")
-            for name in ("frame_u", "frame_w"):
-                value = getattr(base, name)
-                if value is not None:
-                    out[f"conical.base.{name}"] = make.vector(value, ("U" if name == "frame_u" else "W") + " =")
-        for index, param in enumerate(conical.parametrizations):
-            for name, value in zip("xyz", param.coordinates):
-                out[f"conical.parametrization.{index}.{name}"] = make.expression(value, f"{name} =")
-    canal = analysis.canal
-    if canal is not None:
-        for index, family in enumerate(canal.families):
-            spine = family.parametrization or family.radical_spine
-            if spine is not None:
-                out[f"canal.{index}.spine"] = make.vector(spine, "m(t) =")
-            radius = family.radius_squared or family.radical_radius_squared
-            if radius is not None:
-                out[f"canal.{index}.radius"] = make.expression(radius, r"\rho(t) =")
-    approx = analysis.approximate
-    if approx is not None and approx.axis is not None:
-        out["approximate.axis"] = decimal_line_formula(approx.axis.point, approx.axis.direction, approx.tolerance)
-    nearest = approx.nearest if approx is not None else None
-    if nearest is not None:
-        out["approximate.nearest"] = make.expression(nearest.polynomial, "g =")
-        if nearest.axis is not None:
-            out["approximate.nearest.axis"] = make.line(nearest.axis.point, nearest.axis.direction)
-            evaluate = make is _EXACT
-            point = decimals(nearest.axis.point, evaluate)
-            direction = decimals(nearest.axis.direction, evaluate)
-            if point is not None and direction is not None:
-                out["approximate.nearest.axis.decimal"] = decimal_line_formula(point, direction)
-    return out
+    return {key: shown for formula in catalogue(analysis) if formula.key for key, shown in _shown(formula, plain)}
+
+
+def _shown(formula: Formula, plain: bool) -> Iterator[tuple[str, TypesetFormula]]:
+    """The pane's formulas of one catalogue ``formula``: one per row for a vector shown in rows;
+    none for a line in decimals whose decimals are unknown (``plain`` reads only rationals)."""
+    source, label = formula.source, formula.label
+    if formula.rows:
+        for (suffix, row_label), text in zip(formula.rows, source):
+            yield f"{formula.key}.{suffix}", plain_formula(text) if plain else expression_formula(text, row_label)
+        return
+    match formula.kind:
+        case "expression":
+            yield formula.key, plain_formula(source[0]) if plain else expression_formula(source[0], label)
+        case "vector":
+            yield formula.key, plain_formula(_vector_text(source)) if plain else vector_formula(source, label)
+        case "line":
+            point, direction = source[:3], source[3:]
+            text = f"{_vector_text(point)} + t*{_vector_text(direction)}"
+            yield formula.key, plain_formula(text) if plain else line_formula(point, direction)
+        case "approximate line":
+            floats = tuple(float(text) for text in source)
+            yield formula.key, decimal_line_formula(floats[:3], floats[3:], formula.tolerance)
+        case "decimal line":
+            point_floats, direction_floats = decimals(source[:3], not plain), decimals(source[3:], not plain)
+            if point_floats is not None and direction_floats is not None:
+                yield formula.key, decimal_line_formula(point_floats, direction_floats)
+
+
+def _vector_text(values: Sequence[str]) -> str:
+    return "(" + (" : " if len(values) == 6 else ", ").join(values) + ")"
 
 
 # --- mathtext images ------------------------------------------------------------------------
@@ -520,14 +452,14 @@ LATEX_PIXELS_PER_CHARACTER = 5.0
 are narrower): a formula estimated wider than the line is typeset piece by piece at once."""
 
 
-def _likely_fits(formula: Formula, style: Style) -> bool:
+def _likely_fits(formula: TypesetFormula, style: Style) -> bool:
     """Whether to typeset ``formula`` whole first (one parse; mathtext's cost is mostly per
     parse) rather than piece by piece (what a wrapped formula needs)."""
     pixels = LATEX_PIXELS_PER_CHARACTER * style.size / 11.0 * style.dpi / 96.0
     return len(formula.pieces) == 1 or sum(map(len, formula.pieces)) * pixels <= style.width
 
 
-def _wanted(formula: Formula, style: Style) -> list[str]:
+def _wanted(formula: TypesetFormula, style: Style) -> list[str]:
     """The LaTeX strings :func:`render_formula` will most likely typeset for ``formula``."""
     if not formula.pieces:
         return []
@@ -539,7 +471,7 @@ def _wanted(formula: Formula, style: Style) -> list[str]:
     ]
 
 
-def render_formula(formula: Formula, style: Style) -> Formula:
+def render_formula(formula: TypesetFormula, style: Style) -> TypesetFormula:
     """``formula`` rasterised: whole on one line if it fits, else its pieces typeset once each
     and set side by side, wrapped between pieces; ``ValueError`` if mathtext cannot typeset it."""
     if not formula.pieces:
@@ -559,7 +491,7 @@ def render_formula(formula: Formula, style: Style) -> Formula:
     return replace(formula, lines=tuple(lines), masks=tuple(masks))
 
 
-def render_formulas(formulas: dict[str, Formula], style: Style, processes: int = 1) -> dict[str, Formula]:
+def render_formulas(formulas: dict[str, TypesetFormula], style: Style, processes: int = 1) -> dict[str, TypesetFormula]:
     """``formulas`` wrapped and rasterised (their pieces typeset by ``processes`` processes, see
     :func:`prepare`); a formula mathtext rejects keeps no masks."""
     prepare([latex for formula in formulas.values() for latex in _wanted(formula, style)], style, processes)

@@ -42,10 +42,10 @@ from sorgui.session.child import become_child
 from sorgui.session.formulas import (
     WARM_UP,
     WARM_UP_EXPRESSION,
-    Formula,
     Style,
-    analysis_formulas,
+    TypesetFormula,
     expression_formula,
+    pane_formulas,
     render_formulas,
     render_line,
     start_helper,
@@ -103,7 +103,7 @@ class JobResult:
 
     analysis: Analysis
     scene: Any
-    formulas: dict[str, Formula] | None
+    formulas: dict[str, TypesetFormula] | None
     timings: tuple[tuple[str, float], ...]
     nearest_scene: Any = None
 
@@ -121,8 +121,8 @@ class _Presenter:
     timings: list[tuple[str, float]] = field(default_factory=list)
     scene: Any = None
     nearest_scene: Any = None
-    formulas: dict[str, Formula] = field(default_factory=dict)
-    _cache: dict[tuple[str, str], Formula] = field(default_factory=dict)
+    formulas: dict[str, TypesetFormula] = field(default_factory=dict)
+    _cache: dict[tuple[str, str], TypesetFormula] = field(default_factory=dict)
     _patched: bool = False
     _approximated: bool = False
     _canal: tuple[Any, ...] = ()
@@ -164,11 +164,11 @@ class _Presenter:
                 self.send(NearestSceneKnown(self.nearest_scene))
         if request.style is not None:
             style = request.style
-            self.formulas = self.stage("formulas", lambda: self._typeset(analysis_formulas(analysis), style))
+            self.formulas = self.stage("formulas", lambda: self._typeset(pane_formulas(analysis), style))
             self.send(FormulasKnown(self.formulas))
             nearest = _nearest(analysis)
             if nearest is not None:  # the typed equation's first: it is what the pane shows first
-                wanted = {f"nearest.{k}": f for k, f in analysis_formulas(nearest).items()}
+                wanted = {f"nearest.{k}": f for k, f in pane_formulas(nearest).items()}
                 self.formulas = {**self.formulas, **self.stage("formulas", lambda: self._typeset(wanted, style))}
                 self.send(FormulasKnown(self.formulas))
 
@@ -216,7 +216,7 @@ class _Presenter:
 
         return apply
 
-    def _typeset(self, wanted: dict[str, Formula], style: Style) -> dict[str, Formula]:
+    def _typeset(self, wanted: dict[str, TypesetFormula], style: Style) -> dict[str, TypesetFormula]:
         """``wanted`` typeset, each formula once per job (later analyses reuse them)."""
         fresh = {k: f for k, f in wanted.items() if (k, f.plain) not in self._cache}
         for key, formula in render_formulas(fresh, style, self.processes).items():

@@ -69,7 +69,7 @@ class NearestSceneKnown:
 
 @dataclass(frozen=True)
 class FormulasKnown:
-    """Every formula of the analysis known so far, typeset (``{key: Formula}``)."""
+    """Every formula of the analysis known so far, typeset (``{key: TypesetFormula}``)."""
 
     formulas: dict[str, Any]
 

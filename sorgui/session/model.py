@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 from sorgui.engine.results import Analysis
 from sorgui.session.components import Component
 from sorgui.session.events import SessionEvents
-from sorgui.session.formulas import Formula
+from sorgui.session.formulas import TypesetFormula
 from sorgui.session.job import JobRequest, JobResult, run_job
 from sorgui.session.messages import (
     SUPERVISION,
@@ -150,7 +150,7 @@ class Run:
     analysis: Analysis | None = None
     scene: SceneData | None = None
     nearest_scene: SceneData | None = None
-    formulas: dict[str, Formula] = field(default_factory=dict)
+    formulas: dict[str, TypesetFormula] = field(default_factory=dict)
     components: tuple[Component, ...] = ()
     outcome: str | None = None
     message: str | None = None

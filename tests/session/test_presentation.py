@@ -21,9 +21,11 @@ from sorgui.engine.values import (
     read_expression,
 )
 from sorgui.examples import example_text
+from sorgui.export.formulas import catalogue
 from sorgui.session.formulas import (
     Style,
     expression_formula,
+    pane_formulas,
     render_formulas,
     vector_formula,
 )
@@ -105,6 +107,30 @@ def test_a_forked_helper_typesets_the_same_pixels() -> None:
     assert len(alone["f0"].lines) > 1  # wrapped: pieces set side by side on one baseline
     assert alone["v"].code("Maple") == "[3/5, -sqrt(2), (t^2 - 1)/(t^2 + 1)]"
     assert "x**2*y" in alone["f0"].code("Python") and "x^2*y" in alone["f0"].code("Maple")
+
+
+def test_the_pane_shows_the_catalogues_formulas_and_plain_text_reads_none(monkeypatch) -> None:
+    """The pane's formulas are those of the export catalogue with a key (a vector with rows one
+    per entry), the same keys untypeset as ready to typeset; the untypeset ones read no string."""
+    from sorgui.engine import analyze
+
+    analysis = analyze(example_text("torus"))
+    keys = []
+    for formula in catalogue(analysis):
+        if formula.key:
+            keys += [f"{formula.key}.{suffix}" for suffix, _label in formula.rows] or [formula.key]
+    exact = pane_formulas(analysis)
+    assert exact["polynomial"].pieces[0].startswith("f = ") and exact["canal.0.spine"].vector
+    assert exact["parametrization.0.x"].source == analysis.parametrizations[0].coordinates[:1]
+
+    def unread(text: str) -> None:
+        raise AssertionError(f"read {text!r}")
+
+    monkeypatch.setattr("sorgui.export.formulas.read_expression", unread)
+    monkeypatch.setattr("sorgui.session.formulas.read_expression", unread)
+    plain = pane_formulas(analysis, plain=True)
+    assert list(plain) == list(exact) == keys
+    assert all(formula.plain == exact[key].plain for key, formula in plain.items())
 
 
 def test_view_region_frames_the_bounded_part() -> None:
