@@ -126,6 +126,7 @@ class _Presenter:
     _patched: bool = False
     _approximated: bool = False
     _canal: tuple[Any, ...] = ()
+    _apex: bool = False
 
     def stage(self, name: str, work: Callable[[], Any]) -> Any:
         self.check()
@@ -188,7 +189,7 @@ class _Presenter:
 
     def _extras(self, analysis: Analysis) -> Callable[[Any], Any] | None:
         """What the scene still lacks of ``analysis``: the patch, the rounded-input extras, the
-        canal surface's spines and circles."""
+        canal surface's spines and circles, the apex of a cone."""
         from sorgui.session import scene_data
 
         steps: list[Callable[[Any], Any]] = []
@@ -198,6 +199,10 @@ class _Presenter:
         if not self._approximated and analysis.approximate is not None:
             self._approximated = True
             steps.append(lambda scene: scene_data.with_approximation(scene, analysis))
+        conical = analysis.conical
+        if not self._apex and conical is not None and conical.kind == "cone" and conical.apex is not None:
+            self._apex = True
+            steps.append(lambda scene: scene_data.with_apex(scene, analysis))
         canal = analysis.canal
         if canal is not None and canal.is_canal and canal.families:
             drawn = tuple((f.parametrization, f.circle_center) for f in canal.families)
@@ -279,13 +284,15 @@ def run_job(
             )
             deliver(Analysed())  # the engine is done: its time limit is over
             canal = analysis.canal is not None and bool(analysis.canal.is_canal)
+            cone = analysis.conical is not None and analysis.conical.kind == "cone"
             if (
                 analysis.parametrizations
                 or analysis.approximate is not None
                 or analysis.rationality is not None
                 or canal
+                or cone
             ):
-                presenter.present(analysis)  # the complete analysis: patch, rounded-input extras, canal
+                presenter.present(analysis)  # the complete analysis: patch, rounded-input extras, canal, apex
             else:
                 deliver(AnalysisKnown(analysis))
         check()

@@ -272,6 +272,15 @@ def with_canal(scene: SceneData, analysis: Analysis) -> SceneData:
     )
 
 
+def with_apex(scene: SceneData, analysis: Analysis) -> SceneData:
+    """``scene`` with the apex of a cone over a curve (docs/math.md §10), marked as a sphere's
+    centre is (a surface has one or the other)."""
+    conical = analysis.conical
+    if conical is None or conical.kind != "cone" or conical.apex is None or scene.center_marker is not None:
+        return scene
+    return replace(scene, center_marker=sphere_center_marker(float_vector(conical.apex), scene.region))
+
+
 def surface_deviation(terms: Terms, points: np.ndarray) -> np.ndarray:
     """``|g(p)| / |∇g(p)|`` at ``points``: the first-order distance from ``p`` to ``g = 0``."""
     values, grads = value_and_gradient(terms, points)

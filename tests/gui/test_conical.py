@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 from PySide6.QtWidgets import QLabel
 
@@ -19,7 +20,11 @@ def _pane_text(window) -> str:  # noqa: ANN001
     return "\n".join(label.text() for label in window.results.widget().findChildren(QLabel))
 
 
-def test_a_cone_shows_its_apex_and_base_curve(window, run_analysis, artifacts: Path) -> None:
+def _marker(window):  # noqa: ANN001, ANN202
+    return window.viewport.plotter.renderer.actors["center"].GetMapper().GetInput()
+
+
+def test_a_cone_shows_its_apex_and_base_curve(window, run_analysis, qtbot, artifacts: Path) -> None:
     result = run_analysis(window, "(x-1)^3+2*(y-2)^3-(z-3)^2*(x-1)+(x-1)*(y-2)*(z-3)", timeout_ms=SLOW_MS)
     conical = result.analysis.conical
     assert conical.kind == "cone" and conical.apex == ("1", "2", "3")
@@ -29,6 +34,9 @@ def test_a_cone_shows_its_apex_and_base_curve(window, run_analysis, artifacts: P
     assert "degree 3, genus 1" in text
     assert "conical.apex" in window.results.views and "conical.base" in window.results.views
     assert "cone over a curve: YES, apex (1, 2, 3)" in window.results.plain_text()
+    qtbot.waitUntil(lambda: _marker(window).GetNumberOfPoints() > 0, timeout=30_000)  # the apex, drawn
+    center = np.asarray(_marker(window).GetCenter())
+    assert np.allclose(center, (1, 2, 3), atol=0.05)
     window.save_screenshots(artifacts / "cone-window.png", artifacts / "cone-viewport.png")
 
 
