@@ -444,19 +444,38 @@ def _conical(conical: Conical) -> list[Formula]:
     """The apex or direction of a cone or cylinder, its base curve and its parameterizations."""
     out = []
     if conical.apex is not None:
-        out.append(Formula("vector", conical.apex, "conical.apex", label="c ="))
+        text = "the apex of the cone (every line through it lies on X)"
+        out.append(Formula("vector", conical.apex, "conical.apex", "coneApex", "c =", text))
     if conical.direction is not None:
-        out.append(Formula("vector", conical.direction, "conical.direction", label="a ="))
+        text = "the direction of the cylinder (every line along it through a point of X lies on X)"
+        out.append(Formula("vector", conical.direction, "conical.direction", "cylinderDirection", "a =", text))
     base = conical.base_curve
     if base is not None:
         u, v = base.variables
-        out.append(Formula("expression", (base.polynomial,), "conical.base", label=f"g({u}, {v}) ="))
-        for name, label in (("frame_u", "U ="), ("frame_w", "W =")):
+        where = f"in the chart {base.chart}" if base.chart is not None else f"{u}·U + {v}·W across the direction"
+        text = f"the base curve g({u}, {v}) = 0, {where}"
+        out.append(Formula("expression", (base.polynomial,), "conical.base", "baseCurve", f"g({u}, {v}) =", text))
+        for name, label in (("frame_u", "U"), ("frame_w", "W")):
             value = getattr(base, name)
             if value is not None:
-                out.append(Formula("vector", value, f"conical.base.{name}", label=label))
+                text = f"the vector {label} of the base curve's plane"
+                out.append(Formula("vector", value, f"conical.base.{name}", f"baseCurve{label}", f"{label} =", text))
     for index, par in enumerate(conical.parametrizations):
-        out.append(Formula("vector", par.coordinates, f"conical.parametrization.{index}", rows=XYZ_ROWS))
+        kind = "real" if par.real else "complex"
+        out.append(
+            Formula(
+                "vector",
+                par.coordinates,
+                f"conical.parametrization.{index}",
+                f"C{index + 1}",
+                description=f"parameterization {index + 1} of X by its lines: {par.method} ({kind}, proper, "
+                f"over {par.field})",
+                rows=XYZ_ROWS,
+                parameter_names=par.parameters,
+                domain="parameters",
+                real=par.real,
+            )
+        )
     return out
 
 

@@ -50,7 +50,7 @@ def _function(formula: Formula) -> list[str]:
     args = ", ".join(str(p) for p in formula.parameters)
     outputs = {"P2param": "s, w"}.get(
         formula.name,
-        "x, y, z" if formula.name.startswith(("X", CANAL_PREFIX)) else f"its {len(formula.value)} coordinates",
+        "x, y, z" if formula.name.startswith(("X", "C", CANAL_PREFIX)) else f"its {len(formula.value)} coordinates",
     )
     assert formula.coverage is not None
     text = [
@@ -138,7 +138,7 @@ def python_module(analysis: Analysis) -> str:
         "import numpy",
         "from sympy import I, Poly, S, Symbol, sqrt, together  # noqa: F401 (I, sqrt: in the formulas)",
         "",
-        'x, y, z, s, t, w = (Symbol(name) for name in ("x", "y", "z", "s", "t", "w"))',
+        'x, y, z, s, t, w, u, v = (Symbol(name) for name in ("x", "y", "z", "s", "t", "w", "u", "v"))',
         'm1, m2, m3, r = (Symbol(name) for name in ("m1", "m2", "m3", "r"))',
         "",
     ]
@@ -159,7 +159,7 @@ def python_module(analysis: Analysis) -> str:
     targets = {
         f.name: ("P2K" if f.name == "P2param" else "F")
         for f in maps
-        if f.name == "P2param" or (f.name.startswith("X") and len(f.value) == 3)
+        if f.name == "P2param" or (f.name.startswith(("X", "C")) and f.name[1:].isdigit() and len(f.value) == 3)
     }
     lines += [
         *_VANISHES.splitlines(),

@@ -266,7 +266,10 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
     for formula in surface_formulas(analysis):
         blocks += _formula_blocks(formula)
     if analysis.conical is not None and analysis.conical.kind != "none":
-        blocks += [Block("h2", "Cone or cylinder"), Block("list", tuple(conical_lines(analysis.conical)))]
+        blocks += [
+            Block("h2", "Cone or cylinder"),
+            Block("list", tuple(s.strip() for s in conical_lines(analysis.conical))),
+        ]
     if analysis.canal is not None:
         blocks += canal_blocks(analysis.canal)
     extra = {k: v for k, v in analysis.to_json().items() if k not in KNOWN_KEYS and v not in (None, [], {})}

@@ -46,8 +46,9 @@ def test_module_checks_and_evaluates_on_the_surface(analyses, tmp_path, name: st
     assert checked == [
         "P2param",
         *[f"X{i}" for i in range(1, len(analysis.parametrizations) + 1)],
+        *[f"C{i}" for i in range(1, len(analysis.conical.parametrizations if analysis.conical else ()) + 1)],
         *canal_checks(analysis),
-    ]
+    ]  # a circular cone is checked as a surface of revolution (X) and by its lines (C)
     assert sympy.expand(module.F - read_expression(analysis.recognition.polynomial)) == 0
     assert "parameter domain" in module.X1.__doc__ and "parameter domain" in module.P2param.__doc__
     s = np.linspace(-3.0, 3.0, 13)[:, None]
@@ -79,4 +80,4 @@ def test_module_runs_as_a_script(analyses, tmp_path) -> None:
     path = export_analysis(analyses["cone"], tmp_path / "cone.py")
     run = subprocess.run([sys.executable, str(path)], capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
-    assert run.stdout.strip() == "verified: P2param, X1, X2, canal1M, canal1Rho"
+    assert run.stdout.strip() == "verified: P2param, X1, X2, C1, canal1M, canal1Rho"
