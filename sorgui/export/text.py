@@ -4,7 +4,16 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from sorgui.engine.results import Analysis, Canal, Conical, NearestSurface, Rationality, RealLocus, Recognition
+from sorgui.engine.results import (
+    Analysis,
+    Canal,
+    Conical,
+    NearestSurface,
+    Parametrization,
+    Rationality,
+    RealLocus,
+    Recognition,
+)
 from sorgui.engine.vocabulary import canal_kind, kind_phrase
 
 TABLE_1 = (
@@ -239,12 +248,7 @@ def analysis_lines(analysis: Analysis) -> list[str]:
     if analysis.rationality is not None:
         lines += rationality_lines(analysis.rationality)
     for i, par in enumerate(analysis.parametrizations, 1):
-        kind = "real" if par.real else "complex"
-        proper = {True: "proper", False: "not proper", None: "properness unknown"}[par.proper]
-        check = par.verification if par.verified else "NOT verified"
-        lines.append(f"parametrization {i} ({par.method}; {kind}, {proper}, over {par.field}; {check}):")
-        for name, coord in zip("xyz", par.coordinates):
-            lines.append(f"  {name}({', '.join(par.parameters)}) = {coord}")
+        lines += map_lines(f"parametrization {i}", par)
     if analysis.conical is not None:
         lines += conical_lines(analysis.conical)
     if analysis.canal is not None:
@@ -272,6 +276,19 @@ def nearly_canal(analysis: Analysis) -> str:
         "not exactly canal, but nearly: its nearest exact surface (" + where + ") is a surface of "
         "revolution, canal by its symmetry"
     )
+
+
+def map_lines(title: str, par: Parametrization, indent: str = "", qualities: bool = True) -> list[str]:
+    """A verified map to space: its heading (method, real or complex and properness when
+    ``qualities``, field, check) and its three coordinates."""
+    check = par.verification if par.verified else "NOT verified"
+    facts = f"{par.method}; over {par.field}; {check}"
+    if qualities:
+        kind = "real" if par.real else "complex"
+        proper = {True: "proper", False: "not proper", None: "properness unknown"}[par.proper]
+        facts = f"{par.method}; {kind}, {proper}, over {par.field}; {check}"
+    names = ", ".join(par.parameters)
+    return [f"{indent}{title} ({facts}):", *(f"{indent}  {n}({names}) = {c}" for n, c in zip("xyz", par.coordinates))]
 
 
 def conical_lines(conical: Conical) -> list[str]:
@@ -309,11 +326,7 @@ def conical_lines(conical: Conical) -> list[str]:
         else:
             lines.append(f"  genus undecided: the surface is {rational}")
     for i, par in enumerate(conical.parametrizations, 1):
-        kind = "real" if par.real else "complex"
-        check = par.verification if par.verified else "NOT verified"
-        lines.append(f"  parametrization {i} ({par.method}; {kind}, proper, over {par.field}; {check}):")
-        for name, coord in zip("xyz", par.coordinates):
-            lines.append(f"    {name}({', '.join(par.parameters)}) = {coord}")
+        lines += map_lines(f"parametrization {i}", par, "  ")
     lines += [f"  note: {note}" for note in conical.notes]
     return lines
 
@@ -357,9 +370,6 @@ def canal_lines(canal: Canal) -> list[str]:
         w = canal.witness
         lines.append(f"  witness line ({', '.join(w.point or ())}) + τ·({', '.join(w.direction or ())}): {w.statement}")
     for i, par in enumerate(canal.parametrizations, 1):
-        check = par.verification if par.verified else "NOT verified"
-        lines.append(f"  canal parametrization {i} ({par.method}; over {par.field}; {check}):")
-        for name, coord in zip("xyz", par.coordinates):
-            lines.append(f"    {name}({', '.join(par.parameters)}) = {coord}")
+        lines += map_lines(f"canal parametrization {i}", par, "  ", qualities=False)
     lines += [f"  note: {n}" for n in canal.notes]
     return lines
