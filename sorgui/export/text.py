@@ -299,6 +299,8 @@ def conical_lines(conical: Conical) -> list[str]:
             f"cone or cylinder over a curve: NO exactly, but nearly a cone about {float_text(conical.near_apex, 6)} "
             f"within the rounding (relative residual {conical.near_residual:.2g})"
         ]
+    if conical.kind == "none" and conical.notes:
+        return [f"cone or cylinder over a curve: {note}" for note in conical.notes]
     if conical.kind == "none":
         return ["cone or cylinder over a curve: NO (no apex, no direction of translation)"]
     if conical.kind == "cone":

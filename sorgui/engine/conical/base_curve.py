@@ -37,6 +37,7 @@ S, T = (sympy.Symbol(name) for name in PARAMETERS)
 CHARTS = (2, 1, 0)
 """The affine charts of a cone's base curve, in the order tried: ``z = 1``, ``y = 1``, ``x = 1``."""
 NAMES = ("x", "y", "z")
+PLANE_NOTE = "a plane: a cone about each of its points and a cylinder along each of its directions"
 PLANE = ("u", "v")
 """The coordinates of a cylinder's section plane, along ``U`` and ``W``."""
 
@@ -49,7 +50,7 @@ def analyze_conical(
     ``tolerance`` of rounded input, a surface that is exactly neither may be nearly a cone
     (:func:`.detect.near_apex`)."""
     if total_degree(f) < 2:
-        return Conical("none", notes=("a plane is both a cone and a cylinder: nothing more to say",))
+        return Conical("none", notes=(PLANE_NOTE,))
     found = detect(f)
     K = f.ring.domain
     apex = None if found.apex is None else _triple(K, found.apex)
@@ -72,10 +73,7 @@ def analyze_conical(
     base = replace(base, reducible=reducible)
     parametrizations: tuple[Parametrization, ...] = ()
     rational: bool | None = None
-    if reducible:
-        over = "cones" if found.kind == "cone" else "cylinders"
-        notes.append(f"the base curve is reducible over K: so is X, whose components are the {over} over its factors")
-    else:
+    if not reducible:
         try:
             analysis = analyze_curve(curve, timeout=timeout, cancel=cancel)
         except SorguiError as exc:
