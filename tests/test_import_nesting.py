@@ -48,3 +48,12 @@ def test_recognition_only_over_the_rationals_loads_no_sympy() -> None:
         "assert analyze('(x^2+y^2+z^2+3)^2-16(x^2+y^2)', recognition_only=True).recognition.is_sor"
     )
     assert "sympy" not in modules and "numpy" not in modules
+
+
+def test_the_render_layer_loads_no_sympy() -> None:
+    """The render layer, the touching spheres of a canal family included (their real roots come
+    from ``engine.rounded.dense``, numpy only), loads no sympy: the window's process needs none."""
+    modules = loaded_modules(
+        "import sorgui.render, sorgui.render.canal_touch, sorgui.render.canal_scene, sorgui.engine.rounded.dense"
+    )
+    assert "sympy" not in modules

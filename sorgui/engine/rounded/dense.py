@@ -12,13 +12,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Iterator, Sequence
-from typing import TypeAlias, overload
+from typing import TYPE_CHECKING, TypeAlias, overload
 
 import numpy as np
 from flint import fmpq
 from numpy.typing import NDArray
 
-from ..algebra.polys import Poly, is_rational_field, to_flint
+if TYPE_CHECKING:
+    from ..algebra.polys import Poly
 
 Monomial: TypeAlias = tuple[int, int, int]
 SparseForm: TypeAlias = list[tuple[Monomial, float]]
@@ -40,7 +41,10 @@ def monomial(exponents: Sequence[int]) -> Monomial:
 
 
 def float_coefficients(f: Poly) -> dict[Monomial, float]:
-    """The coefficients of the exact ``f`` as floats (exact rationals rounded once)."""
+    """The coefficients of the exact ``f`` as floats (exact rationals rounded once). The exact
+    layer (sympy) is imported here only: the rest of this module is numpy, for the 3D view too."""
+    from ..algebra.polys import is_rational_field, to_flint
+
     if is_rational_field(f.ring.domain):
         return {monomial(m): _float(c) for m, c in to_flint(f).to_dict().items()}
     K = f.ring.domain
