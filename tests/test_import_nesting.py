@@ -52,8 +52,6 @@ def test_recognition_only_over_the_rationals_loads_no_sympy() -> None:
 
 def test_the_render_layer_loads_no_sympy() -> None:
     """The render layer, the touching spheres of a canal family included (their real roots come
-    from ``engine.rounded.dense``, numpy only), loads no sympy: the window's process needs none."""
-    modules = loaded_modules(
-        "import sorgui.render, sorgui.render.canal_touch, sorgui.render.canal_scene, sorgui.engine.rounded.dense"
-    )
-    assert "sympy" not in modules
+    from ``sorgui.numerics``, numpy only), loads neither sympy nor the engine."""
+    modules = loaded_modules("import sorgui.render, sorgui.render.canal_touch, sorgui.render.canal_scene")
+    assert "sympy" not in modules and "sorgui.engine" not in modules

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from sorgui.numerics import real_roots
 from sorgui.render.canal_scene import FamilyCurves, Function, SmatFamily, Terms4, circle, evaluate_angle
 
 SCAN = 2000
@@ -191,8 +192,6 @@ def _smat_touches(
 ) -> list[Touch]:
     """The spheres of ``family`` touching the surface at ``point``: the real ``s ≠ 0`` where every
     SMAT equation vanishes on ``(point + s·normal, s²)``."""
-    from sorgui.engine.rounded.dense import real_roots
-
     normal = normal / np.linalg.norm(normal)
     lines = [_on_normal_line(g, point, normal) for g in family.equations]
     lines = [c for c in lines if np.abs(c).max(initial=0.0) > 0]

@@ -10,6 +10,7 @@ import pytest
 from sorgui.engine.algebra.polys import to_flint
 from sorgui.engine.canal.verdict import analyze_canal
 from sorgui.engine.parsing import parse_polynomial
+from sorgui.numerics import real_roots
 from sorgui.render.canal_scene import canal_scene
 from sorgui.session.canal_data import family_curves
 
@@ -83,7 +84,7 @@ def test_touching_sphere_of_a_spine_of_genus_1() -> None:
     touched = 0
     for _ in range(12):
         start, direction = rng.normal(size=3) * 2, rng.normal(size=3)
-        for t in dense.real_roots(dense.restriction_to_line(array, start, direction)):
+        for t in real_roots(dense.restriction_to_line(array, start, direction)):
             info = pick_info(terms, start + t * direction, axis=None, normal_length=1.0, snap_distance=0.1)
             for touch in touching_spheres(families, info.point, 1e-6, normal=info.normal_direction):
                 x, y, z = touch.center
@@ -111,7 +112,7 @@ def test_a_spine_of_genus_1_is_traced_with_its_circles() -> None:
     points = []
     for _ in range(30):
         start, direction = rng.normal(size=3) * 2, rng.normal(size=3)
-        points += [start + t * direction for t in dense.real_roots(dense.restriction_to_line(array, start, direction))]
+        points += [start + t * direction for t in real_roots(dense.restriction_to_line(array, start, direction))]
     points = np.array(points)
     _, gradients = value_and_gradient(terms, points)
     scene = smat_scene(

@@ -185,21 +185,6 @@ def restriction_to_line(array: FloatArray, point: FloatArray, direction: FloatAr
     return coefficients
 
 
-def real_roots(coefficients: FloatArray) -> FloatArray:
-    """The real roots of a univariate polynomial (lowest degree first), numerically."""
-    c = np.asarray(coefficients, dtype=np.float64)
-    top = float(np.abs(c).max(initial=0.0))
-    if top == 0.0 or not np.isfinite(top):
-        return np.zeros(0)
-    c = c / top
-    nonzero = np.nonzero(np.abs(c) > 1e-12)[0]
-    if len(nonzero) == 0 or nonzero[-1] == 0:
-        return np.zeros(0)
-    roots = np.roots(c[: nonzero[-1] + 1][::-1])
-    real: FloatArray = roots[np.abs(roots.imag) <= 1e-6 * np.maximum(1.0, np.abs(roots))].real
-    return real[np.isfinite(real)]
-
-
 def stack(arrays: Iterable[FloatArray], selected: BoolArray) -> FloatArray:
     """The matrix whose columns are the coefficient vectors of ``arrays``."""
     return np.column_stack([a[selected] for a in arrays])

@@ -14,6 +14,8 @@ from itertools import product
 
 import numpy as np
 
+from sorgui.numerics import real_roots
+
 from . import dense
 from .dense import FloatArray
 
@@ -47,9 +49,7 @@ def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = N
     dropped; centred on the middle of the rest (along the axis, if any), radius ``MARGIN``
     times the farthest, clamped to ``[MIN_RADIUS, MAX_RADIUS]``."""
     points = [
-        center + t * d
-        for d in probe_directions(axis)
-        for t in dense.real_roots(dense.restriction_to_line(array, center, d))
+        center + t * d for d in probe_directions(axis) for t in real_roots(dense.restriction_to_line(array, center, d))
     ]
     pts = np.array(points).reshape(-1, 3)
     distances = np.linalg.norm(pts - center, axis=1)
@@ -75,7 +75,7 @@ def sample_zero_set(array: FloatArray, center: FloatArray, radius: float, seed: 
         start = center + radius * rng.uniform(-0.5, 0.5, 3)
         direction = rng.normal(size=3)
         direction /= np.linalg.norm(direction)
-        for t in dense.real_roots(dense.restriction_to_line(array, start, direction)):
+        for t in real_roots(dense.restriction_to_line(array, start, direction)):
             p = start + t * direction
             if np.linalg.norm(p - center) <= radius:
                 found.append(p)

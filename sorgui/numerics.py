@@ -1,0 +1,26 @@
+"""Floating-point helpers shared by the rounded-input stage of the engine and the render layer.
+
+Numpy only: the render layer may import this without the engine (no sympy, no flint), and the
+engine's rounded-input stage (:mod:`sorgui.engine.rounded`) uses the same numerics, so a root
+found for the deviation of rounded input and for a touching sphere in the 3D view agree.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+
+def real_roots(coefficients: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The real roots of a univariate polynomial (lowest degree first), numerically."""
+    c = np.asarray(coefficients, dtype=np.float64)
+    top = float(np.abs(c).max(initial=0.0))
+    if top == 0.0 or not np.isfinite(top):
+        return np.zeros(0)
+    c = c / top
+    nonzero = np.nonzero(np.abs(c) > 1e-12)[0]
+    if len(nonzero) == 0 or nonzero[-1] == 0:
+        return np.zeros(0)
+    roots = np.roots(c[: nonzero[-1] + 1][::-1])
+    real: NDArray[np.float64] = roots[np.abs(roots.imag) <= 1e-6 * np.maximum(1.0, np.abs(roots))].real
+    return real[np.isfinite(real)]
