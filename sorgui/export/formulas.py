@@ -225,7 +225,7 @@ def _checked(
 Kind: TypeAlias = Literal["expression", "vector", "line", "decimal line", "approximate line"]
 """What the source strings of a formula are: one expression, the entries of a vector, or a line
 ``c + t·a`` (the entries of ``c``, then those of ``a``): exact, exact but shown in decimals, or
-known only in floats (their ``repr``)."""
+known only in floats (:attr:`Formula.numbers`, no source strings)."""
 
 XYZ_ROWS = (("x", "x ="), ("y", "y ="), ("z", "z ="))
 """The pane's rows of a map to space: one per coordinate."""
@@ -241,7 +241,8 @@ class Formula:
     ``f"{key}.{suffix}"``. A map whose coverage the files state has a ``domain``:
     ``"parameters"`` (the parameter domain and the missed points) or ``"space"`` (a map of
     space such as τ: the domain only); ``real`` says whether it is real (``None``: real when no
-    entry has ``I``). ``tolerance`` is the rounding of an approximate line (smaller entries are 0).
+    entry has ``I``). An approximate line is known only in floats: ``numbers`` (the point, then
+    the direction), with ``tolerance`` the rounding of the input (smaller entries are 0).
     """
 
     kind: Kind
@@ -254,6 +255,7 @@ class Formula:
     parameter_names: tuple[str, ...] = ()
     domain: Literal["parameters", "space"] | None = None
     real: bool | None = None
+    numbers: tuple[float, ...] = ()
     tolerance: float | None = None
 
     @cached_property
@@ -567,8 +569,8 @@ def _approximate(approx: Approximation) -> list[Formula]:
     """The approximate axis of rounded input, the nearest exact surface and its axis."""
     out = []
     if approx.axis is not None:
-        floats = tuple(repr(float(c)) for c in (*approx.axis.point, *approx.axis.direction))
-        out.append(Formula("approximate line", floats, "approximate.axis", tolerance=approx.tolerance))
+        numbers = (*approx.axis.point, *approx.axis.direction)
+        out.append(Formula("approximate line", (), "approximate.axis", numbers=numbers, tolerance=approx.tolerance))
     nearest = approx.nearest
     if nearest is not None:
         out.append(Formula("expression", (nearest.polynomial,), "approximate.nearest", label="g ="))

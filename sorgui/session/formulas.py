@@ -220,8 +220,8 @@ def _shown(formula: Formula, plain: bool) -> Iterator[tuple[str, TypesetFormula]
             text = f"{_vector_text(point)} + t*{_vector_text(direction)}"
             yield formula.key, plain_formula(text) if plain else line_formula(point, direction)
         case "approximate line":
-            floats = tuple(float(text) for text in source)
-            yield formula.key, decimal_line_formula(floats[:3], floats[3:], formula.tolerance)
+            numbers = formula.numbers
+            yield formula.key, decimal_line_formula(numbers[:3], numbers[3:], formula.tolerance)
         case "decimal line":
             point_floats, direction_floats = decimals(source[:3], not plain), decimals(source[3:], not plain)
             if point_floats is not None and direction_floats is not None:
