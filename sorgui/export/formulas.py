@@ -36,7 +36,16 @@ from typing import Any, Literal, TypeAlias
 
 import sympy
 
-from sorgui.engine.results import Analysis, Approximation, Canal, Conical, Profile, Rationality, Recognition
+from sorgui.engine.results import (
+    Analysis,
+    Approximation,
+    Canal,
+    Conical,
+    Parametrization,
+    Profile,
+    Rationality,
+    Recognition,
+)
 from sorgui.engine.values import read_expression
 
 Value: TypeAlias = sympy.Expr | tuple[sympy.Expr, ...]
@@ -297,8 +306,8 @@ def catalogue(analysis: Analysis) -> list[Formula]:
 
 
 def analysis_formulas(analysis: Analysis) -> list[Formula]:
-    """The formulas the files print, in reading order: those of the surface of revolution, then
-    those of its canal sphere families."""
+    """The formulas the files print, in reading order: those of the surface of revolution, of a
+    cone or cylinder, then those of its canal sphere families."""
     return [f for f in catalogue(analysis) if f.name]
 
 
@@ -320,23 +329,28 @@ def _surface(analysis: Analysis) -> list[Formula]:
             out += [replace(f, name="") for f in _recognition(factor.recognition, f"factor.{index}.")]  # pane only
     if analysis.rationality is not None:
         out += _rationality(analysis.rationality)
-    for index, par in enumerate(analysis.parametrizations):
-        kind = "real" if par.real else "complex"
-        proper = {True: "proper", False: "not proper", None: "properness not decided"}[par.proper]
-        out.append(
-            Formula(
-                "vector",
-                par.coordinates,
-                f"parametrization.{index}",
-                f"X{index + 1}",
-                description=f"parameterization {index + 1} of X: {par.method} ({kind}, {proper}, over {par.field})",
-                rows=XYZ_ROWS,
-                parameter_names=par.parameters,
-                domain="parameters",
-                real=par.real,
-            )
-        )
+    out += [
+        _map(par, f"parametrization.{index}", f"X{index + 1}", "")
+        for index, par in enumerate(analysis.parametrizations)
+    ]
     return out
+
+
+def _map(par: Parametrization, key: str, name: str, how: str) -> Formula:
+    """A verified parameterization of ``X`` (of the surface, or ``how`` = " by its lines")."""
+    kind = "real" if par.real else "complex"
+    proper = {True: "proper", False: "not proper", None: "properness not decided"}[par.proper]
+    return Formula(
+        "vector",
+        par.coordinates,
+        key,
+        name,
+        description=f"parameterization {name[1:]} of X{how}: {par.method} ({kind}, {proper}, over {par.field})",
+        rows=XYZ_ROWS,
+        parameter_names=par.parameters,
+        domain="parameters",
+        real=par.real,
+    )
 
 
 def _recognition(rec: Recognition, key: str) -> list[Formula]:
@@ -463,21 +477,7 @@ def _conical(conical: Conical) -> list[Formula]:
                 text = f"the vector {label} of the base curve's plane"
                 out.append(Formula("vector", value, f"conical.base.{name}", f"baseCurve{label}", f"{label} =", text))
     for index, par in enumerate(conical.parametrizations):
-        kind = "real" if par.real else "complex"
-        out.append(
-            Formula(
-                "vector",
-                par.coordinates,
-                f"conical.parametrization.{index}",
-                f"C{index + 1}",
-                description=f"parameterization {index + 1} of X by its lines: {par.method} ({kind}, proper, "
-                f"over {par.field})",
-                rows=XYZ_ROWS,
-                parameter_names=par.parameters,
-                domain="parameters",
-                real=par.real,
-            )
-        )
+        out.append(_map(par, f"conical.parametrization.{index}", f"C{index + 1}", " by its lines"))
     return out
 
 
