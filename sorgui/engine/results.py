@@ -383,18 +383,9 @@ class Conical:
     near_residual: float | None = None
 
     def to_json(self) -> dict[str, Any]:
-        """The ``conical`` object of ``sorgui analyze --json``."""
-        return {
-            "kind": self.kind,
-            "apex": None if self.apex is None else list(self.apex),
-            "direction": None if self.direction is None else list(self.direction),
-            "base_curve": _plain(self.base_curve),
-            "rational": self.rational,
-            "parametrizations": [_plain(p) for p in self.parametrizations],
-            "notes": list(self.notes),
-            "near_apex": None if self.near_apex is None else list(self.near_apex),
-            "near_residual": self.near_residual,
-        }
+        """The ``conical`` object of ``sorgui analyze --json``: its fields, as they are."""
+        data: dict[str, Any] = _plain(self)
+        return data
 
     @classmethod
     def from_json(cls, data: dict[str, Any]) -> Conical:
