@@ -9,6 +9,7 @@ from sorgui.render.geometry import ClipBox, ClipSphere
 from sorgui.render.mesh import MeshData, mesh_to_polydata, surface_mesh
 from sorgui.render.picking import AxisTest, PickInfo, normal_meets_axis, pick_info
 from sorgui.render.scene import (
+    PATCH_RANGE,
     LineData,
     MarkerData,
     PatchData,
@@ -22,6 +23,7 @@ from sorgui.render.scene import (
 )
 
 __all__ = [
+    "PATCH_RANGE",
     "AxisTest",
     "ClipBox",
     "ClipSphere",

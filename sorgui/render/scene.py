@@ -291,6 +291,11 @@ def profile_curve(
 
 # --- parametric overlays --------------------------------------------------------------------
 
+PATCH_RANGE = (-3.0, 3.0)
+"""Range of both parameters of the drawn parametric patch (the rotation parameter ``s`` is the
+tangent of half the angle, so ``±3`` covers about 287° and leaves the seam open); a CAD patch
+export covers the same box."""
+
 PatchCoordinate = Callable[[Any, Any], Any] | float
 """A coordinate of a patch: ``fn(s, t)``, called on the grid's arrays (or, where that fails, on
 each pair of numbers), or a constant."""

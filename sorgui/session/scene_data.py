@@ -31,6 +31,7 @@ from sorgui.engine.values import (
     rational_function_terms,
 )
 from sorgui.render import (
+    PATCH_RANGE,
     ClipSphere,
     LineData,
     MarkerData,
@@ -46,10 +47,6 @@ from sorgui.render.canal_scene import FamilyCurves, SmatFamily
 from sorgui.render.geometry import foot_on_line
 from sorgui.render.mesh import DEFAULT_RESOLUTION
 from sorgui.render.sampling import evaluate_points, term_arrays, value_and_gradient
-
-PATCH_RANGE = (-3.0, 3.0)
-"""Range of both parameters of the drawn parametric patch (the rotation parameter ``s`` is the
-tangent of half the angle, so ``±3`` covers about 287° and leaves the seam open)."""
 
 PATCH_GRID = 41
 """Samples per parameter of the patch, drawn as a wireframe: a readable net of curves."""
