@@ -1,0 +1,634 @@
+"""What a CAD file holds for an analysis, worked out without Open CASCADE (docs/math.md §11).
+
+A surface of revolution ``X`` becomes, in order of preference:
+
+* an **analytic** surface (:class:`Analytic`: plane, sphere, cylinder, cone, ring torus) when its
+  exact profile has that form (the squared profile ``P²(x, w)``, ``w = y²``, in the orthonormal
+  axis frame, compared coefficient by coefficient);
+* the **exact** rational profile (:func:`exact_profile`): the meridian section ``σ = 0`` of a
+  verified real parameterization, ``c + φ(t)·a + ρ(t)·u``, cut on the projective ``t``-line at its
+  poles, where it crosses the axis and where it leaves the drawn ball, each arc written in the
+  Bernstein basis of its homogeneous segment (:func:`bernstein`) — a rational Bézier arc whose
+  weights are the denominator's Bernstein coefficients, subdivided until they share one sign;
+* otherwise a **fitted** profile: the traced real profile of the 3D view in the half-plane
+  ``y ≥ 0`` (:func:`traced_profile`), each point moved onto ``p(x, y) = 0`` by Newton's method,
+  for :mod:`.shapes` to fit with a B-spline within a stated tolerance.
+
+Everything here is ``float64`` geometry from the engine's exact strings (read with the one safe
+reader, :mod:`sorgui.engine.values`); the Bernstein coefficients are computed with 40 digits
+and rounded once.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import mpmath
+import numpy as np
+import sympy
+
+from sorgui.engine.results import Analysis, Parametrization, Profile
+from sorgui.engine.values import ExpressionError, Terms, float_vector, polynomial_terms, read_expression
+from sorgui.numerics import real_roots
+from sorgui.render import ClipSphere
+from sorgui.render.sampling import value_and_gradient
+
+DIGITS = 40
+"""Working precision (decimal digits) of the Bernstein conversion; the result is rounded once."""
+
+MAX_DEGREE = 25
+"""The largest B-spline degree Open CASCADE builds (``Geom_BSplineCurve::MaxDegree``)."""
+
+
+class CadGeometryError(ValueError):
+    """What the analysis gives cannot be written as CAD geometry (said in one sentence)."""
+
+
+@dataclass(frozen=True)
+class Frame:
+    """The orthonormal axis frame: ``point`` on the axis, unit ``direction`` along it and a unit
+    ``normal`` spanning the meridian half-plane ``y ≥ 0`` with it."""
+
+    point: np.ndarray
+    direction: np.ndarray
+    normal: np.ndarray
+
+    def to_plane(self, xyz: np.ndarray) -> np.ndarray:
+        """``(x, y)`` coordinates in the meridian plane of 3D points ``(n, 3)``."""
+        d = np.asarray(xyz) - self.point
+        return np.column_stack([d @ self.direction, d @ self.normal])
+
+    def to_space(self, xy: np.ndarray) -> np.ndarray:
+        """3D points of meridian coordinates ``(n, 2)``."""
+        xy = np.asarray(xy)
+        points: np.ndarray = self.point + xy[:, :1] * self.direction + xy[:, 1:] * self.normal
+        return points
+
+
+@dataclass(frozen=True)
+class Analytic:
+    """An analytic surface of Open CASCADE's kinds, placed at ``origin`` with axis ``direction``.
+
+    ``kind`` is ``"plane"`` (``origin`` its point nearest the ball's centre, ``direction`` its
+    normal, ``extent`` the radius of the disk inside the ball), ``"sphere"`` (``radius``),
+    ``"cylinder"`` (``radius``, ``extent`` the axial range about ``origin``), ``"cone"`` (apex
+    ``origin``, ``semi_angle``, ``extent`` the range of the signed distance from the apex along
+    a generatrix) or ``"torus"`` (``radius`` the major and ``minor_radius`` the minor one).
+    """
+
+    kind: str
+    origin: np.ndarray
+    direction: np.ndarray
+    radius: float = 0.0
+    minor_radius: float = 0.0
+    semi_angle: float = 0.0
+    extent: tuple[float, float] = (0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class RationalCurve:
+    """A rational B-spline made of Bézier arcs of one ``degree`` joined end to end: ``poles``
+    ``(k·degree + 1, 3)`` and positive ``weights``; knots ``0, 1, …, k``, inner ones of
+    multiplicity ``degree``."""
+
+    degree: int
+    poles: np.ndarray
+    weights: np.ndarray
+
+    @property
+    def arcs(self) -> int:
+        return (len(self.poles) - 1) // self.degree
+
+    def points(self, per_arc: int = 16) -> np.ndarray:
+        """Points along the curve (de Casteljau on each arc), for checks and coverage."""
+        out = []
+        for k in range(self.arcs):
+            P = self.poles[k * self.degree : (k + 1) * self.degree + 1]
+            W = self.weights[k * self.degree : (k + 1) * self.degree + 1]
+            for lam in np.linspace(0.0, 1.0, per_arc, endpoint=k == self.arcs - 1):
+                basis = np.array(
+                    [
+                        math.comb(self.degree, i) * (1 - lam) ** (self.degree - i) * lam**i
+                        for i in range(self.degree + 1)
+                    ]
+                )
+                h = basis * W
+                out.append(h @ P / h.sum())
+        return np.array(out)
+
+
+# --- the frame and the analytic kinds ---------------------------------------------------------
+
+
+def axis_frame(profile: Profile) -> Frame:
+    """The orthonormal frame of the profile's ``K``-rational frame ``(c, a, u)`` (rounded once)."""
+    a, u = float_vector(profile.frame_direction), float_vector(profile.frame_normal)
+    return Frame(float_vector(profile.frame_point), a / np.linalg.norm(a), u / np.linalg.norm(u))
+
+
+def analytic_surface(analysis: Analysis, ball: ClipSphere) -> Analytic | None:
+    """The analytic kind of ``X``, if it has one (``None`` otherwise): planes and spheres from the
+    recognition, cylinders, cones and ring tori from the exact squared profile ``P²(x, w)``."""
+    rec = analysis.recognition
+    centre = np.asarray(ball.center)
+    if rec.symmetry == "plane" and rec.normal is not None:
+        return _plane(analysis.recognition.polynomial, centre, ball.radius)
+    if rec.symmetry == "sphere" and rec.center is not None and rec.radius_squared is not None:
+        r2 = float(read_expression(rec.radius_squared).evalf(30))
+        if r2 <= 0:
+            raise CadGeometryError("the sphere has no real points")
+        return Analytic("sphere", float_vector(rec.center), np.array([0.0, 0.0, 1.0]), radius=math.sqrt(r2))
+    if rec.profile is None or rec.axis is None:
+        return None
+    frame = axis_frame(rec.profile)
+    x, w = sympy.symbols("x y")
+    try:
+        square = sympy.Poly(read_expression(rec.profile.square), x, w)
+    except (ExpressionError, sympy.PolynomialError):
+        return None
+    if square.total_degree() <= 2 and square.degree(w) == 1:
+        return _quadric(square, frame, centre, ball.radius)
+    if square.total_degree() == 4:
+        return _torus(square, frame)
+    return None
+
+
+def _plane(polynomial: str, centre: np.ndarray, radius: float) -> Analytic:
+    """The plane ``n·p + d = 0`` as its point nearest the ball's centre and the disk inside the ball."""
+    terms = dict(polynomial_terms(polynomial))
+    n = np.array([terms.get((1, 0, 0), 0.0), terms.get((0, 1, 0), 0.0), terms.get((0, 0, 1), 0.0)])
+    d = terms.get((0, 0, 0), 0.0)
+    length = float(np.linalg.norm(n))
+    distance = (n @ centre + d) / length
+    if abs(distance) >= radius:
+        raise CadGeometryError("the plane does not meet the drawn ball")
+    foot = centre - distance * n / length
+    return Analytic("plane", foot, n / length, extent=(0.0, math.sqrt(radius**2 - distance**2)))
+
+
+def _number(value: sympy.Expr) -> float:
+    return float(sympy.re(value.evalf(30)))
+
+
+def _quadric(square: sympy.Poly, frame: Frame, centre: np.ndarray, radius: float) -> Analytic | None:
+    """``P² = α·x² + β·x + γ + δ·w``: a cylinder (``α = β = 0``) or a cone (``α·δ < 0`` and a
+    double root in ``x``); other quadrics of revolution are left to the exact profile."""
+    x, w = square.gens
+    alpha, beta, gamma = (square.coeff_monomial(m) for m in (x**2, x, 1))
+    delta = square.coeff_monomial(w)
+    height = float((centre - frame.point) @ frame.direction)
+    if alpha == 0 and beta == 0:
+        r2 = _number(-gamma / delta)
+        if r2 <= 0:
+            return None
+        if r2 >= radius**2:
+            raise CadGeometryError("the cylinder does not meet the drawn ball")
+        half = math.sqrt(radius**2 - r2)
+        return Analytic(
+            "cylinder",
+            frame.point + height * frame.direction,
+            frame.direction,
+            radius=math.sqrt(r2),
+            extent=(-half, half),
+        )
+    if sympy.simplify(beta**2 - 4 * alpha * gamma) != 0 or _number(alpha / delta) >= 0:
+        return None
+    apex_x = _number(-beta / (2 * alpha))
+    angle = math.atan(math.sqrt(_number(-alpha / delta)))
+    offset = apex_x - height
+    b, c = offset * math.cos(angle), offset**2 - radius**2
+    if b * b - c <= 0:
+        raise CadGeometryError("the cone does not meet the drawn ball")
+    root = math.sqrt(b * b - c)
+    return Analytic(
+        "cone", frame.point + apex_x * frame.direction, frame.direction, semi_angle=angle, extent=(-b - root, -b + root)
+    )
+
+
+def _torus(square: sympy.Poly, frame: Frame) -> Analytic | None:
+    """``P² = (x'² + w + R² - r²)² - 4R²·w`` with ``x' = x - x₀`` and ``R > r > 0`` (a ring torus)."""
+    x, w = square.gens
+    lead = square.coeff_monomial(w**2)
+    if lead == 0:
+        return None
+    p = sympy.Poly(sympy.expand(square.as_expr() / lead), x, w)
+    x0 = -p.coeff_monomial(x**3) / 4
+    shifted = sympy.Poly(sympy.expand(p.as_expr().subs(x, x + x0)), x, w)
+    A, B = shifted.coeff_monomial(x**2), shifted.coeff_monomial(w)
+    R2, r2 = (A - B) / 4, (A - B) / 4 - A / 2
+    model = sympy.expand((x**2 + w + R2 - r2) ** 2 - 4 * R2 * w)
+    if sympy.expand(shifted.as_expr() - model) != 0:
+        return None
+    big, small = _number(R2), _number(r2)
+    if not (big > small > 0):
+        return None
+    return Analytic(
+        "torus",
+        frame.point + _number(x0) * frame.direction,
+        frame.direction,
+        radius=math.sqrt(big),
+        minor_radius=math.sqrt(small),
+    )
+
+
+# --- the exact profile ------------------------------------------------------------------------
+
+Form = list[mpmath.mpf]
+"""A binary form of degree ``n`` in ``(T, W)``: ``c[i]`` is the coefficient of ``T^i·W^(n-i)``."""
+
+
+@dataclass(frozen=True)
+class Section:
+    """A rational curve ``(N₁, N₂, N₃)/D`` of ``t`` as binary forms of one degree."""
+
+    numerators: tuple[Form, Form, Form]
+    denominator: Form
+
+    @property
+    def degree(self) -> int:
+        return len(self.denominator) - 1
+
+    def at(self, t: np.ndarray) -> np.ndarray:
+        """Points at parameters ``t`` (floats; ``inf`` not allowed)."""
+        den = _values(self.denominator, t)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.column_stack([_values(n, t) / den for n in self.numerators])
+
+
+def _values(form: Form, t: np.ndarray) -> np.ndarray:
+    return np.polyval(np.array([float(c) for c in reversed(form)]), t)
+
+
+def meridian_section(param: Parametrization) -> Section:
+    """The curve ``σ = 0`` of a parameterization swept about the axis (docs/math.md §6), as forms."""
+    s, t = (sympy.Symbol(name) for name in param.parameters)
+    exprs = [sympy.together(read_expression(c).subs(s, 0)) for c in param.coordinates]
+    pairs = [sympy.fraction(e) for e in exprs]
+    den = sympy.Integer(1)
+    for _, d in pairs:
+        den = sympy.lcm(den, d)
+    numerators = [sympy.cancel(n * den / d) for n, d in pairs]
+    polys = [sympy.Poly(e, t) for e in (*numerators, den)]
+    n = max(p.degree() for p in polys)
+    forms = [_form(p, n) for p in polys]
+    return Section((forms[0], forms[1], forms[2]), forms[3])
+
+
+def _form(poly: sympy.Poly, n: int) -> Form:
+    coefficients = [mpmath.mpf(0)] * (n + 1)
+    for (k,), c in poly.terms():
+        value = complex(sympy.N(c, DIGITS))
+        if abs(value.imag) > 1e-30 * max(1.0, abs(value.real)):
+            raise CadGeometryError("the parameterization is not real")
+        with mpmath.workdps(DIGITS):
+            coefficients[k] = mpmath.mpf(sympy.re(sympy.N(c, DIGITS)))
+    return coefficients
+
+
+def bernstein(form: Form, start: tuple[float, float], end: tuple[float, float]) -> Form:
+    """The Bernstein coefficients of ``form`` on the segment ``μ·start + λ·end`` of the projective
+    line (homogeneous points): ``form(μA + λB) = Σ b_k·C(n, k)·μ^(n-k)·λ^k``."""
+    n = len(form) - 1
+    with mpmath.workdps(DIGITS):
+        powers_t = _powers(mpmath.mpf(start[0]), mpmath.mpf(end[0]), n)
+        powers_w = _powers(mpmath.mpf(start[1]), mpmath.mpf(end[1]), n)
+        total = [mpmath.mpf(0)] * (n + 1)
+        for i, c in enumerate(form):
+            if c == 0:
+                continue
+            for j, a in enumerate(powers_t[i]):
+                for k, b in enumerate(powers_w[n - i]):
+                    total[j + k] += c * a * b
+        return [total[k] / math.comb(n, k) for k in range(n + 1)]
+
+
+def _powers(p: mpmath.mpf, q: mpmath.mpf, n: int) -> list[Form]:
+    """``(p·μ + q·λ)^i`` for ``i = 0 … n``, each as coefficients of ``μ^(i-k)·λ^k``."""
+    out: list[Form] = [[mpmath.mpf(1)]]
+    for _ in range(n):
+        last = out[-1]
+        out.append(
+            [(last[k] * p if k < len(last) else 0) + (last[k - 1] * q if k > 0 else 0) for k in range(len(last) + 1)]
+        )
+    return out
+
+
+def exact_profile(analysis: Analysis, frame: Frame, ball: ClipSphere, size: float) -> list[RationalCurve] | None:
+    """The real profile in the half-plane ``y ≥ 0`` inside ``ball``, as exact rational arcs of the
+    first verified real parameterization whose meridian section lies on ``X`` in a plane through
+    the axis; ``None`` when there is none (the profile is then fitted)."""
+    terms = polynomial_terms(analysis.recognition.polynomial)
+    for param in analysis.parametrizations:
+        if not (param.real and param.verified):
+            continue
+        try:
+            section = meridian_section(param)
+        except (ExpressionError, CadGeometryError, sympy.PolynomialError):
+            continue
+        if not 0 < section.degree <= MAX_DEGREE:
+            continue
+        normal = _meridian_normal(section, terms, frame, size)
+        if normal is not None:
+            arcs = _arcs(section, Frame(frame.point, frame.direction, normal), ball, size)
+            return [_turned(arc, frame, normal) for arc in arcs]
+    return None
+
+
+def _turned(curve: RationalCurve, frame: Frame, normal: np.ndarray) -> RationalCurve:
+    """The curve turned about the axis from the half-plane of ``normal`` into the frame's own
+    (the same surface of revolution; the traced profile it is compared with lies there)."""
+    a = frame.direction
+    cos, sin = float(normal @ frame.normal), float(np.cross(normal, frame.normal) @ a)
+    rotation = (
+        cos * np.eye(3)
+        + sin * np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+        + (1 - cos) * np.outer(a, a)
+    )
+    return RationalCurve(curve.degree, frame.point + (curve.poles - frame.point) @ rotation.T, curve.weights)
+
+
+def _meridian_normal(section: Section, terms: Terms, frame: Frame, size: float) -> np.ndarray | None:
+    """The unit normal of the plane through the axis that holds the section, if it lies in one and
+    on ``f = 0`` (checked at points: a report read from a file is not trusted to hold what the
+    engine verified)."""
+    points = section.at(np.tan(np.linspace(-1.5, 1.5, 41)))
+    points = points[np.all(np.isfinite(points), axis=1)]
+    if len(points) < 10:
+        return None
+    relative = points - frame.point
+    radial = relative - np.outer(relative @ frame.direction, frame.direction)
+    lengths = np.linalg.norm(radial, axis=1)
+    if lengths.max() == 0:
+        return None
+    normal: np.ndarray = radial[np.argmax(lengths)] / lengths.max()
+    side = np.cross(frame.direction, normal)
+    if np.max(np.abs(radial @ side)) > 1e-9 * max(size, float(lengths.max())):
+        return None
+    if not np.all(surface_distance(terms, points) <= 1e-9 * size):
+        return None
+    return normal
+
+
+def surface_distance(terms: Terms, points: np.ndarray) -> np.ndarray:
+    """The first-order distance ``|f|/|∇f|`` of each point to ``f = 0``."""
+    values, gradients = value_and_gradient(terms, points)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out: np.ndarray = np.abs(values) / np.linalg.norm(gradients, axis=1)
+    return np.where(values == 0, 0.0, out)
+
+
+def _product(p: Form, q: Form) -> Form:
+    out = [mpmath.mpf(0)] * (len(p) + len(q) - 1)
+    for i, a in enumerate(p):
+        for j, b in enumerate(q):
+            out[i + j] += a * b
+    return out
+
+
+def _point(theta: float) -> tuple[float, float]:
+    """The homogeneous point ``(sin θ/2, cos θ/2)`` of ``t = tan(θ/2)``: continuous in ``θ``."""
+    return (math.sin(theta / 2), math.cos(theta / 2))
+
+
+def _value(form: Form, theta: float) -> float:
+    T, W = _point(theta)
+    n = len(form) - 1
+    return float(sum(c * T**i * W ** (n - i) for i, c in enumerate(form)))
+
+
+def _angles(form: Form) -> list[float]:
+    """The angles ``θ = 2·atan(t)`` of the real roots of ``form`` (``π`` for ``t = ∞``)."""
+    top = max(abs(float(c)) for c in form)
+    if top == 0:
+        return []
+    out = [2 * math.atan(float(t)) for t in real_roots(np.array([float(c) for c in form]))]
+    if abs(float(form[-1])) <= 1e-14 * top:
+        out.append(math.pi)
+    return out
+
+
+@dataclass(frozen=True)
+class _Span:
+    start: float
+    end: float
+    cut_start: bool
+    cut_end: bool
+
+
+def _arcs(section: Section, frame: Frame, ball: ClipSphere, size: float) -> list[RationalCurve]:
+    """The arcs of ``section`` inside ``ball`` on the side ``y > 0``, and those on ``y < 0``
+    mirrored across the axis unless they repeat an arc already kept (a profile symmetric about
+    the axis, as an irreducible ``P`` is, is covered once)."""
+    c, a = frame.point, frame.direction
+    centre = c + float((np.asarray(ball.center) - c) @ a) * a
+    N, D = section.numerators, section.denominator
+    with mpmath.workdps(DIGITS):
+        rho = [
+            sum(((N[i][k] - mpmath.mpf(c[i]) * D[k]) * frame.normal[i] for i in range(3)), mpmath.mpf(0))
+            for k in range(len(D))
+        ]
+        offsets = [[N[i][k] - mpmath.mpf(centre[i]) * D[k] for k in range(len(D))] for i in range(3)]
+        inside = [sum(q) for q in zip(*(_product(o, o) for o in offsets))]
+        radius2 = _product(D, D)
+        ball_form = [q - mpmath.mpf(ball.radius) ** 2 * r for q, r in zip(inside, radius2)]
+    cuts = sorted({round(t, 12) for form in (D, rho, ball_form) for t in _angles(form)})
+    spans = _spans(cuts)
+    inside_ball = [k for k, s in enumerate(spans) if _value(ball_form, (s.start + s.end) / 2) < 0]
+    pieces = _pieces(spans, inside_ball)
+    positive: list[RationalCurve] = []
+    negative: list[RationalCurve] = []
+    for piece in pieces:
+        middle = (piece[0].start + piece[0].end) / 2
+        curve = _curve(section, piece)
+        (positive if _value(rho, middle) * _value(D, middle) > 0 else negative).append(curve)
+    kept = list(positive)
+    for curve in negative:
+        mirrored = _mirrored(curve, frame)
+        probe = mirrored.points(4)[1:-1]
+        if not any(np.all(polyline_distance(probe, p.points(200)) < 1e-4 * size) for p in positive):
+            kept.append(mirrored)
+    return kept
+
+
+def polyline_distance(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:
+    """The distance of each point to the polyline through ``polyline``'s vertices."""
+    a, b = polyline[:-1], polyline[1:]
+    edge = b - a
+    length2 = np.maximum(np.einsum("ij,ij->i", edge, edge), 1e-300)
+    out = np.empty(len(points))
+    for k, q in enumerate(points):
+        along = np.clip(np.einsum("ij,ij->i", q - a, edge) / length2, 0.0, 1.0)
+        out[k] = np.min(np.linalg.norm(a + along[:, None] * edge - q, axis=1))
+    return out
+
+
+def _spans(cuts: list[float]) -> list[_Span]:
+    """The projective line cut at ``cuts`` (angles in ``(-π, π]``), each span at most ``π/4`` long
+    (extra cuts marked as such), in order, the last one wrapping round to the first cut."""
+    ends = [(t, True) for t in cuts] or [(-math.pi, False)]
+    spans: list[_Span] = []
+    for k, (start, real_start) in enumerate(ends):
+        end, real_end = ends[(k + 1) % len(ends)]
+        if end <= start:
+            end += 2 * math.pi
+        pieces = max(1, math.ceil((end - start) / (math.pi / 4)))
+        step = (end - start) / pieces
+        for j in range(pieces):
+            spans.append(
+                _Span(
+                    start + j * step,
+                    start + (j + 1) * step,
+                    real_start if j == 0 else False,
+                    real_end if j == pieces - 1 else False,
+                )
+            )
+    return spans
+
+
+def _pieces(spans: list[_Span], kept: list[int]) -> list[list[_Span]]:
+    """The kept spans (indices into ``spans``) joined where no real cut separates them; a piece
+    running through the last span into the first continues at angles lifted by ``2π``, so that
+    its homogeneous points stay continuous."""
+    pieces: list[list[int]] = []
+    for k in kept:
+        if pieces and pieces[-1][-1] == k - 1 and not spans[k].cut_start:
+            pieces[-1].append(k)
+        else:
+            pieces.append([k])
+    out = [[spans[k] for k in piece] for piece in pieces]
+    wraps = len(pieces) > 1 and pieces[0][0] == 0 and pieces[-1][-1] == len(spans) - 1 and not spans[0].cut_start
+    if wraps:
+        lifted = [_Span(s.start + 2 * math.pi, s.end + 2 * math.pi, s.cut_start, s.cut_end) for s in out.pop(0)]
+        out[-1] += lifted
+    return out
+
+
+def _curve(section: Section, spans: list[_Span]) -> RationalCurve:
+    """One rational B-spline through ``spans``: the Bernstein form of each, halved until the
+    weights share one sign."""
+    arcs: list[tuple[np.ndarray, np.ndarray]] = []
+    for span in spans:
+        arcs += _bezier(section, span.start, span.end, depth=0)
+    sign = 1.0 if np.sum([w.sum() for _, w in arcs]) > 0 else -1.0
+    poles = np.concatenate([arcs[0][0][:1]] + [p[1:] for p, _ in arcs])
+    weights = sign * np.concatenate([arcs[0][1][:1]] + [w[1:] for _, w in arcs])
+    return RationalCurve(section.degree, poles, weights / weights.max())
+
+
+def _bezier(section: Section, start: float, end: float, depth: int) -> list[tuple[np.ndarray, np.ndarray]]:
+    A, B = _point(start), _point(end)
+    weights = bernstein(section.denominator, A, B)
+    values = np.array([float(w) for w in weights])
+    if not (np.all(values > 0) or np.all(values < 0)):
+        if depth >= 12:
+            raise CadGeometryError("the profile's denominator vanishes on a drawn arc")
+        middle = (start + end) / 2
+        return _bezier(section, start, middle, depth + 1) + _bezier(section, middle, end, depth + 1)
+    with mpmath.workdps(DIGITS):
+        coordinates = [bernstein(n, A, B) for n in section.numerators]
+        poles = np.array([[float(coordinates[i][k] / weights[k]) for i in range(3)] for k in range(len(weights))])
+    return [(poles, values)]
+
+
+def _mirrored(curve: RationalCurve, frame: Frame) -> RationalCurve:
+    """The curve reflected across the axis in its meridian plane (the same surface when turned)."""
+    offsets = (curve.poles - frame.point) @ frame.normal
+    return RationalCurve(curve.degree, curve.poles - 2 * np.outer(offsets, frame.normal), curve.weights)
+
+
+# --- the traced profile -----------------------------------------------------------------------
+
+
+def traced_profile(polylines: Sequence[np.ndarray], profile: Profile, frame: Frame) -> list[np.ndarray]:
+    """The 3D view's profile polylines (both halves, clipped to the ball) cut to the half-plane
+    ``y ≥ 0`` (a crossing of the axis moved onto it), each point moved onto ``p(x, y) = 0``
+    by Newton steps in the orthonormal frame: ordered 3D points of each branch, for fitting."""
+    terms = polynomial_terms(profile.polynomial, ("x", "y"))
+    branches = []
+    for line in polylines:
+        xy = frame.to_plane(line)
+        for run in _runs_above_axis(xy):
+            for smooth in _smooth_parts(onto_profile(terms, run)):
+                if len(smooth) >= 4:
+                    branches.append(frame.to_space(smooth))
+    return branches
+
+
+CORNER = math.radians(25)
+"""A turn of the traced polyline sharper than this is a singular point of the profile (a node or
+a cusp, where the tracing turns into another branch): the branch is cut there."""
+
+
+def _smooth_parts(xy: np.ndarray) -> list[np.ndarray]:
+    """The polyline without repeated points (Newton's method gathers them at a singular point),
+    cut at its corners."""
+    steps = np.linalg.norm(np.diff(xy, axis=0), axis=1)
+    keep = np.concatenate([[True], steps > 1e-9 * max(1.0, float(np.abs(xy).max()))])
+    xy = xy[keep]
+    if len(xy) < 3:
+        return [xy]
+    seg = np.diff(xy, axis=0)
+    cos = np.einsum("ij,ij->i", seg[:-1], seg[1:]) / (
+        np.linalg.norm(seg[:-1], axis=1) * np.linalg.norm(seg[1:], axis=1)
+    )
+    corners = np.nonzero(cos < math.cos(CORNER))[0] + 1
+    return [xy[a : b + 1] for a, b in zip([0, *corners], [*corners, len(xy) - 1])]
+
+
+def _runs_above_axis(xy: np.ndarray) -> list[np.ndarray]:
+    """The runs of a polyline with ``y ≥ 0``, each crossing of ``y = 0`` interpolated onto it."""
+    runs: list[np.ndarray] = []
+    current: list[np.ndarray] = []
+    for k, point in enumerate(xy):
+        if point[1] >= 0:
+            if not current and k > 0 and xy[k - 1][1] < 0:
+                current.append(_crossing(xy[k - 1], point))
+            current.append(point)
+        elif current:
+            current.append(_crossing(current[-1], point))
+            runs.append(np.array(current))
+            current = []
+    if current:
+        runs.append(np.array(current))
+    return runs
+
+
+def _crossing(p: np.ndarray, q: np.ndarray) -> np.ndarray:
+    lam = p[1] / (p[1] - q[1])
+    return np.array([p[0] + lam * (q[0] - p[0]), 0.0])
+
+
+def onto_profile(terms: Terms, xy: np.ndarray, steps: int = 8) -> np.ndarray:
+    """Points moved onto ``p(x, y) = 0`` by Newton steps ``-p·∇p/|∇p|²`` (points on the axis
+    stay on it: ``p`` is even in ``y``, so its gradient there is along the axis)."""
+    out = np.array(xy, dtype=np.float64)
+    for _ in range(steps):
+        values, gradients = value_and_gradient(terms, out, normalise=True)
+        norm2 = np.einsum("ij,ij->i", gradients, gradients)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(norm2[:, None] > 0, -(values / norm2)[:, None] * gradients, 0.0)
+        out = out + np.nan_to_num(step)
+    return out
+
+
+Distance = Callable[[np.ndarray], np.ndarray]
+"""A distance of 3D points ``(n, 3)`` to the surface (or its profile), length units."""
+
+
+def profile_distance(profile: Profile, frame: Frame) -> Distance:
+    """The distance of 3D points in the meridian plane to the profile: the first-order ``|p|/|∇p|``,
+    or where smaller the way Newton's method moves the point onto ``p = 0`` (near a singular point
+    of the profile, where ``∇p`` vanishes, the first-order distance is far too large)."""
+    terms = polynomial_terms(profile.polynomial, ("x", "y"))
+
+    def distance(xyz: np.ndarray) -> np.ndarray:
+        xy = frame.to_plane(xyz)
+        xy[:, 1] = np.abs(xy[:, 1])
+        first_order = surface_distance(terms, xy)
+        moved = np.linalg.norm(onto_profile(terms, xy, steps=30) - xy, axis=1)
+        out: np.ndarray = np.minimum(first_order, moved)
+        return out
+
+    return distance

@@ -1,0 +1,178 @@
+"""The B-rep of one analysis: which faces a CAD file gets, and what is said about them.
+
+:func:`surface_model` turns a surface of revolution into faces, preferring, in this order, an
+analytic surface, the exact rational profile, and a fitted profile (:mod:`.geometry`);
+:func:`patch_model` turns the first verified real parameterization into rational Bézier
+patches (:mod:`.patch`). Both return a :class:`CadModel`: the shape, the route taken, the
+tolerance and the deviation measured afterwards, and lines for the file's header.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+import numpy as np
+import sympy
+
+from sorgui.engine.results import Analysis, Profile
+from sorgui.engine.values import ExpressionError, polynomial_terms
+from sorgui.export.text import without_noise
+from sorgui.render import PATCH_RANGE, ClipSphere, LineData
+
+from . import shapes
+from .geometry import (
+    Analytic,
+    CadGeometryError,
+    Distance,
+    Frame,
+    RationalCurve,
+    analytic_surface,
+    axis_frame,
+    exact_profile,
+    onto_profile,
+    polyline_distance,
+    profile_distance,
+    traced_profile,
+)
+from .patch import bezier_patches
+
+FIT_TOLERANCE = 1e-7
+"""The default tolerance of a fitted profile, relative to the drawn ball's radius."""
+
+REFINEMENTS = 3
+"""How many times the points of a fitted branch are doubled when the fit misses its tolerance."""
+
+
+class Scene(Protocol):
+    """What a CAD export needs of a scene (``sorgui.session.scene_data.SceneData`` has it)."""
+
+    region: ClipSphere
+    profile_curve: LineData
+
+
+@dataclass(frozen=True)
+class CadModel:
+    """Faces for a CAD file. ``route`` is ``"analytic"``, ``"exact"``, ``"fitted"`` or ``"patch"``;
+    ``deviation`` the largest distance measured from the written surface to ``X`` (``None``
+    where it is exact by construction) and ``tolerance`` the one the fit aimed at."""
+
+    shape: Any
+    route: str
+    faces: int
+    description: tuple[str, ...]
+    deviation: float | None = None
+    tolerance: float | None = None
+
+
+def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = None) -> CadModel:
+    """The faces of a surface of revolution (or a plane or sphere) inside the scene's ball."""
+    rec = analysis.recognition
+    if not rec.is_sor:
+        raise CadGeometryError(
+            "the surface is not a surface of revolution; write NAME.patch.step for a rational parameterization"
+        )
+    ball = scene.region
+    spec = analytic_surface(analysis, ball)
+    if spec is not None:
+        faces = shapes.analytic_faces(spec)
+        return CadModel(shapes.compound(faces), "analytic", len(faces), _analytic_lines(spec))
+    if rec.profile is None or rec.axis is None:
+        raise CadGeometryError(f"a {rec.symmetry} surface has no single axis to turn a profile about")
+    frame = axis_frame(rec.profile)
+    branches = traced_profile(scene.profile_curve.polylines(), rec.profile, frame)
+    if not branches:
+        raise CadGeometryError("the surface has no real points inside the drawn ball")
+    axis = _axis_line(frame.point, frame.direction)
+    exact = exact_profile(analysis, frame, ball, ball.radius)
+    if exact is not None and _covers(exact, branches, ball.radius):
+        faces = shapes.revolution_faces(frame, [shapes.bspline_curve(c) for c in exact])
+        lines = (axis, f"profile: exact rational B-spline, {len(exact)} arcs, degree {exact[0].degree}")
+        return CadModel(shapes.compound(faces), "exact", len(faces), lines)
+    goal = (tolerance if tolerance is not None else FIT_TOLERANCE) * ball.radius
+    distance = profile_distance(rec.profile, frame)
+    fits = [_fit(branch, goal, distance, rec.profile, frame) for branch in branches]
+    deviation = max(f.deviation for f in fits)
+    faces = shapes.revolution_faces(frame, [f.curve for f in fits])
+    verdict = "within" if deviation <= goal else "ABOVE"
+    lines = (
+        axis,
+        f"profile: B-spline fitted to tolerance {goal:.3g}; measured deviation {deviation:.3g} ({verdict} it)",
+    )
+    return CadModel(shapes.compound(faces), "fitted", len(faces), lines, deviation, goal)
+
+
+def _fit(branch: np.ndarray, goal: float, distance: Distance, profile: Profile, frame: Frame) -> shapes.Fit:
+    """A fitted branch within ``goal``, its points doubled (midpoints moved onto the profile)
+    while the measured deviation is larger."""
+    terms = polynomial_terms(profile.polynomial, ("x", "y"))
+    points, aim = branch, goal / 2
+    fit = shapes.fitted_curve(points, aim, distance)
+    for _ in range(REFINEMENTS):
+        if fit.deviation <= goal:
+            break
+        aim /= 4
+        middles = frame.to_plane((points[:-1] + points[1:]) / 2)
+        moved = frame.to_space(onto_profile(terms, middles))
+        doubled = np.empty((2 * len(points) - 1, 3))
+        doubled[0::2], doubled[1::2] = points, moved
+        points = doubled
+        fit = shapes.fitted_curve(points, aim, distance)
+    return fit
+
+
+def _covers(curves: Sequence[RationalCurve], branches: Sequence[np.ndarray], size: float) -> bool:
+    """Whether every traced point of the real profile lies on one of the exact arcs (a
+    parameterization of one component of a reducible profile does not cover the others)."""
+    polylines = [c.points(200) for c in curves]
+    for branch in branches:
+        probe = branch[:: max(1, len(branch) // 40)]
+        near = np.min([polyline_distance(probe, p) for p in polylines], axis=0)
+        if np.any(near > 1e-3 * size):
+            return False
+    return True
+
+
+def _axis_line(point: np.ndarray, direction: np.ndarray) -> str:
+    return f"axis: point {_vector(point)}, direction {_vector(direction)}"
+
+
+def _vector(v: np.ndarray) -> str:
+    return "(" + ", ".join(f"{c:.17g}" for c in without_noise([float(c) for c in v])) + ")"
+
+
+def _analytic_lines(spec: Analytic) -> tuple[str, ...]:
+    words = {
+        "plane": f"plane through {_vector(spec.origin)} with normal {_vector(spec.direction)}",
+        "sphere": f"sphere about {_vector(spec.origin)}, radius {spec.radius:.17g}",
+        "cylinder": f"cylinder of radius {spec.radius:.17g}",
+        "cone": f"cone with apex {_vector(spec.origin)}, half-angle {spec.semi_angle:.17g} rad",
+        "torus": f"torus about {_vector(spec.origin)}, radii {spec.radius:.17g} and {spec.minor_radius:.17g}",
+    }
+    lines = [words[spec.kind]]
+    if spec.kind in ("cylinder", "cone", "torus"):
+        lines.insert(0, _axis_line(spec.origin, spec.direction))
+    return tuple(lines)
+
+
+def patch_model(analysis: Analysis) -> CadModel:
+    """The first verified real rational parameterization (of ``X``, of a canal surface by its
+    circles, of a cone or cylinder by its lines) over the window's parameter box."""
+    candidates = [
+        *analysis.parametrizations,
+        *(analysis.canal.parametrizations if analysis.canal is not None else ()),
+        *(analysis.conical.parametrizations if analysis.conical is not None else ()),
+    ]
+    for param in candidates:
+        if not (param.real and param.verified):
+            continue
+        try:
+            patches = bezier_patches(param)
+        except (CadGeometryError, ExpressionError, sympy.PolynomialError):
+            continue
+        faces = [shapes.patch_face(p) for p in patches]
+        low, high = PATCH_RANGE
+        lines = (f"rational B-spline patch of the parameterization ({param.method}) over s, t in [{low:g}, {high:g}]",)
+        return CadModel(shapes.compound(faces), "patch", len(faces), lines)
+    raise CadGeometryError("the analysis has no verified real rational parameterization to write as a patch")

@@ -1,0 +1,177 @@
+"""Open CASCADE faces of what :mod:`.geometry` worked out (docs/math.md §11).
+
+A surface of revolution is ``Geom_SurfaceOfRevolution`` about the exact axis (``gp_Ax1``) of a
+profile B-spline in a meridian half-plane, one face per profile arc; the analytic kinds are
+Open CASCADE's own surfaces (``Geom_Plane``, ``Geom_SphericalSurface``, ``Geom_CylindricalSurface``,
+``Geom_ConicalSurface``, ``Geom_ToroidalSurface``); a profile with no exact rational form is
+fitted (``GeomAPI_PointsToBSpline``) and its deviation measured on the fitted curve afterwards.
+A parameterization becomes a rational B-spline patch (``Geom_BSplineSurface``). OCP is imported
+with this module, which is loaded only when a CAD file is written.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from OCP.BRep import BRep_Builder
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
+from OCP.GC import GC_MakeCircle
+from OCP.Geom import (
+    Geom_BSplineCurve,
+    Geom_BSplineSurface,
+    Geom_ConicalSurface,
+    Geom_CylindricalSurface,
+    Geom_Plane,
+    Geom_SphericalSurface,
+    Geom_SurfaceOfRevolution,
+    Geom_ToroidalSurface,
+)
+from OCP.GeomAbs import GeomAbs_C2
+from OCP.GeomAPI import GeomAPI_PointsToBSpline
+from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt
+from OCP.OCP.collections import Array1_double, Array1_gp_Pnt, Array1_int, Array2_double, Array2_gp_Pnt
+from OCP.TopoDS import TopoDS_Compound, TopoDS_Face, TopoDS_Shape
+
+from .geometry import Analytic, CadGeometryError, Frame, RationalCurve
+from .patch import BezierPatch
+
+TOLERANCE = 1e-7
+"""The tolerance (length units) Open CASCADE builds edges and faces with."""
+
+
+Vector = Sequence[float] | np.ndarray
+
+
+def _point(p: Vector) -> gp_Pnt:
+    return gp_Pnt(float(p[0]), float(p[1]), float(p[2]))
+
+
+def _dir(d: Vector) -> gp_Dir:
+    return gp_Dir(float(d[0]), float(d[1]), float(d[2]))
+
+
+def _reals(values: Sequence[float] | np.ndarray) -> Array1_double:
+    out = Array1_double(1, len(values))
+    for k, v in enumerate(values, start=1):
+        out.SetValue(k, float(v))
+    return out
+
+
+def _integers(values: Sequence[int]) -> Array1_int:
+    out = Array1_int(1, len(values))
+    for k, v in enumerate(values, start=1):
+        out.SetValue(k, int(v))
+    return out
+
+
+def _bezier_knots(arcs: int, degree: int) -> tuple[Array1_double, Array1_int]:
+    """Knots ``0 … arcs`` with end multiplicity ``degree + 1`` and inner ones ``degree``."""
+    return _reals(range(arcs + 1)), _integers([degree + 1] + [degree] * (arcs - 1) + [degree + 1])
+
+
+def bspline_curve(curve: RationalCurve) -> Geom_BSplineCurve:
+    """The rational B-spline of ``curve`` (its Bézier arcs joined with ``C⁰`` knots)."""
+    poles = Array1_gp_Pnt(1, len(curve.poles))
+    for k, p in enumerate(curve.poles, start=1):
+        poles.SetValue(k, _point(p))
+    knots, mults = _bezier_knots(curve.arcs, curve.degree)
+    return Geom_BSplineCurve(poles, _reals(curve.weights), knots, mults, curve.degree)
+
+
+def revolution_faces(frame: Frame, curves: Sequence[Geom_BSplineCurve]) -> list[TopoDS_Face]:
+    """One face per profile curve, turned a full turn about the axis."""
+    axis = gp_Ax1(_point(frame.point), _dir(frame.direction))
+    faces = []
+    for curve in curves:
+        surface = Geom_SurfaceOfRevolution(curve, axis)
+        maker = BRepBuilderAPI_MakeFace(
+            surface, 0.0, 2 * math.pi, curve.FirstParameter(), curve.LastParameter(), TOLERANCE
+        )
+        faces.append(_face(maker))
+    return faces
+
+
+def _face(maker: BRepBuilderAPI_MakeFace) -> TopoDS_Face:
+    if not maker.IsDone():
+        raise CadGeometryError(f"Open CASCADE could not build a face ({maker.Error()})")
+    return maker.Face()
+
+
+def analytic_faces(spec: Analytic) -> list[TopoDS_Face]:
+    """The faces of an analytic surface: whole spheres and tori, a cylinder between two circles,
+    a cone's two nappes as two faces meeting at the apex, a plane as its disk in the ball."""
+    frame = gp_Ax3(_point(spec.origin), _dir(spec.direction))
+    low, high = spec.extent
+    if spec.kind == "sphere":
+        return [_face(BRepBuilderAPI_MakeFace(Geom_SphericalSurface(frame, spec.radius), TOLERANCE))]
+    if spec.kind == "torus":
+        torus = Geom_ToroidalSurface(frame, spec.radius, spec.minor_radius)
+        return [_face(BRepBuilderAPI_MakeFace(torus, TOLERANCE))]
+    if spec.kind == "cylinder":
+        cylinder = Geom_CylindricalSurface(frame, spec.radius)
+        return [_face(BRepBuilderAPI_MakeFace(cylinder, 0.0, 2 * math.pi, low, high, TOLERANCE))]
+    if spec.kind == "cone":
+        cone = Geom_ConicalSurface(frame, spec.semi_angle, 0.0)
+        ranges = [(a, b) for a, b in ((low, min(high, 0.0)), (max(low, 0.0), high)) if b - a > TOLERANCE]
+        return [_face(BRepBuilderAPI_MakeFace(cone, 0.0, 2 * math.pi, a, b, TOLERANCE)) for a, b in ranges]
+    if spec.kind == "plane":
+        circle = GC_MakeCircle(gp_Ax2(_point(spec.origin), _dir(spec.direction)), high).Value()
+        wire = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(circle).Edge()).Wire()
+        return [_face(BRepBuilderAPI_MakeFace(Geom_Plane(frame), wire, True))]
+    raise CadGeometryError(f"no analytic surface of kind {spec.kind}")
+
+
+@dataclass(frozen=True)
+class Fit:
+    """A fitted profile curve and the largest distance measured from it to the profile."""
+
+    curve: Geom_BSplineCurve
+    deviation: float
+
+
+def fitted_curve(points: np.ndarray, tolerance: float, distance: Callable[[np.ndarray], np.ndarray]) -> Fit:
+    """A B-spline through ``points`` (3D, ordered along one profile branch) within ``tolerance``,
+    with its deviation measured afterwards by ``distance`` at 20 points per knot span."""
+    array = Array1_gp_Pnt(1, len(points))
+    for k, p in enumerate(points, start=1):
+        array.SetValue(k, _point(p))
+    fit = GeomAPI_PointsToBSpline(array, 3, 8, GeomAbs_C2, tolerance)
+    if not fit.IsDone():
+        raise CadGeometryError("Open CASCADE could not fit a B-spline to the profile")
+    curve = fit.Curve()
+    knots = [curve.Knot(k) for k in range(1, curve.NbKnots() + 1)]
+    samples = np.concatenate([np.linspace(a, b, 20, endpoint=False) for a, b in zip(knots, knots[1:])] + [knots[-1:]])
+    xyz = np.array([_xyz(curve.Value(float(u))) for u in samples])
+    return Fit(curve, float(np.max(distance(xyz))))
+
+
+def _xyz(p: gp_Pnt) -> tuple[float, float, float]:
+    return (p.X(), p.Y(), p.Z())
+
+
+def patch_face(patch: BezierPatch) -> TopoDS_Face:
+    """The face of one rational Bézier patch (a ``Geom_BSplineSurface`` without inner knots)."""
+    m, n = patch.weights.shape[0] - 1, patch.weights.shape[1] - 1
+    poles = Array2_gp_Pnt(1, m + 1, 1, n + 1)
+    weights = Array2_double(1, m + 1, 1, n + 1)
+    for i in range(m + 1):
+        for j in range(n + 1):
+            poles.SetValue(i + 1, j + 1, _point(patch.poles[i, j]))
+            weights.SetValue(i + 1, j + 1, float(patch.weights[i, j]))
+    uknots, umults = _bezier_knots(1, m)
+    vknots, vmults = _bezier_knots(1, n)
+    surface = Geom_BSplineSurface(poles, weights, uknots, vknots, umults, vmults, m, n)
+    return _face(BRepBuilderAPI_MakeFace(surface, TOLERANCE))
+
+
+def compound(faces: Sequence[TopoDS_Face]) -> TopoDS_Shape:
+    """The faces in one shape (a compound of faces: disjoint profile arcs share no edge)."""
+    builder = BRep_Builder()
+    shape = TopoDS_Compound()
+    builder.MakeCompound(shape)
+    for face in faces:
+        builder.Add(shape, face)
+    return shape

@@ -1,0 +1,128 @@
+"""The geometry of CAD export without Open CASCADE: Bernstein forms, exact profiles, analytic kinds."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from sorgui import cli
+from sorgui.engine import analyze
+from sorgui.engine.values import polynomial_terms
+from sorgui.export.cad.geometry import (
+    analytic_surface,
+    axis_frame,
+    bernstein,
+    exact_profile,
+    surface_distance,
+)
+from sorgui.session.scene_data import build_scene
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(st.integers(-20, 20), min_size=1, max_size=9),
+    st.floats(-3, 3),
+    st.floats(0.1, 3),
+    st.floats(0, 1),
+)
+def test_the_bernstein_form_is_the_same_polynomial(
+    coefficients: list[int], start: float, length: float, lam: float
+) -> None:
+    """``Σ b_k C(n,k) μ^(n-k) λ^k = F(μA + λB)`` on a segment of the projective line."""
+    form = [mpmath.mpf(c) for c in coefficients]
+    n = len(form) - 1
+    A, B = (math.sin(start / 2), math.cos(start / 2)), (math.sin((start + length) / 2), math.cos((start + length) / 2))
+    b = bernstein(form, A, B)
+    mu = 1 - lam
+    T, W = mu * A[0] + lam * B[0], mu * A[1] + lam * B[1]
+    direct = sum(float(c) * T**i * W ** (n - i) for i, c in enumerate(form))
+    via = sum(float(b[k]) * math.comb(n, k) * mu ** (n - k) * lam**k for k in range(n + 1))
+    assert via == pytest.approx(direct, abs=1e-9 * max(1.0, sum(abs(c) for c in coefficients)))
+
+
+@pytest.mark.parametrize(
+    ("text", "arcs"),
+    [("x^2+y^2-z", 1), ("x^2+y^2-z^2+1", 2), ("4*x^2+4*y^2+z^2-4", 1), ("9*x^2+9*y^2-(z-1)^2*(z+2)-4", None)],
+)
+def test_the_exact_profile_lies_on_the_surface_in_one_half_plane(text: str, arcs: int | None) -> None:
+    analysis = analyze(text)
+    scene = build_scene(analysis)
+    assert analysis.recognition.profile is not None
+    frame = axis_frame(analysis.recognition.profile)
+    curves = exact_profile(analysis, frame, scene.region, scene.region.radius)
+    if arcs is None:
+        assert curves is None or all(len(c.poles) for c in curves)
+        return
+    assert curves is not None and len(curves) == arcs
+    terms = polynomial_terms(analysis.recognition.polynomial)
+    for curve in curves:
+        assert np.all(curve.weights > 0)
+        points = curve.points(50)
+        assert surface_distance(terms, points).max() <= 1e-12 * scene.region.radius
+        assert frame.to_plane(points)[:, 1].min() >= -1e-12, "the half-plane y >= 0"
+        assert np.linalg.norm(points - scene.region.center, axis=1).max() <= scene.region.radius * (1 + 1e-9)
+
+
+def test_the_analytic_kinds_are_read_from_the_exact_profile() -> None:
+    cases = {
+        "(x^2+y^2+z^2+21)^2-100*(x^2+y^2)": ("torus", 5.0, 2.0),
+        "x^2+y^2-2": ("cylinder", math.sqrt(2), 0.0),
+        "x^2+y^2-3*(z-1)^2": ("cone", 0.0, 0.0),
+        "x^2+y^2+(z-1)^2-4": ("sphere", 2.0, 0.0),
+        "x+2*y-3": ("plane", 0.0, 0.0),
+        "x^2+y^2-z": (None, 0.0, 0.0),
+        "(x^2+y^2+z^2-1)^2-4*(x^2+y^2)": (None, 0.0, 0.0),  # a spindle torus: R < r
+    }
+    for text, (kind, radius, minor) in cases.items():
+        analysis = analyze(text)
+        spec = analytic_surface(analysis, build_scene(analysis).region)
+        assert (spec.kind if spec else None) == kind, text
+        if spec is not None and kind in ("torus", "cylinder", "sphere"):
+            assert spec.radius == pytest.approx(radius, rel=1e-15) and spec.minor_radius == pytest.approx(
+                minor, rel=1e-15
+            )
+        if spec is not None and kind == "cone":
+            assert spec.semi_angle == pytest.approx(math.atan(math.sqrt(3)), rel=1e-15)
+            assert np.allclose(spec.origin, [0, 0, 1])
+
+
+def test_without_open_cascade_the_command_line_says_how_to_install_it(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    real = cli.importlib.util.find_spec
+    monkeypatch.setattr(cli.importlib.util, "find_spec", lambda name, *a: None if name == "OCP" else real(name, *a))
+    with pytest.raises(cli.UsageError, match=r"pip install 'sorgui\[cad\]'"):
+        cli.check_outputs([tmp_path / "part.step"], None)
+
+
+def test_without_open_cascade_an_export_fails_in_one_line(tmp_path: Path) -> None:
+    script = (
+        "import sys; sys.modules['OCP'] = None\n"
+        "from sorgui.engine import analyze\n"
+        "from sorgui.session.scene_data import build_scene\n"
+        "from sorgui.export.files import export_analysis\n"
+        "a = analyze('x^2+y^2-z')\n"
+        "try:\n"
+        f"    export_analysis(a, {str(tmp_path / 'p.step')!r}, scene=build_scene(a))\n"
+        "except ValueError as exc:\n"
+        "    print(exc)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert out.stdout.strip() == "STEP, IGES and BRep files need Open CASCADE: pip install 'sorgui[cad]'", out.stderr
+    assert not (tmp_path / "p.step").exists()
+
+
+def test_the_command_line_lists_the_cad_formats_and_units() -> None:
+    from sorgui.export.cad import CAD_SUFFIXES, UNITS
+    from sorgui.export.files import FORMATS
+
+    assert cli.CAD_SUFFIXES == CAD_SUFFIXES == tuple(s for s, f in FORMATS.items() if f.kind == "cad")
+    assert cli.CAD_UNITS == UNITS
