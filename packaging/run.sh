@@ -11,7 +11,7 @@ if command -v apt-get >/dev/null; then
 fi
 python3 -m venv .venv
 .venv/bin/python -m pip install -q --upgrade pip
-.venv/bin/python -m pip install -q -e .
+.venv/bin/python -m pip install -q -e ".[cad]"
 # matplotlib (the typesetting of formulas) builds its font cache once, which takes seconds on a
 # fresh home folder: done here, at install time, rather than during the first analysis.
 .venv/bin/python -c "import matplotlib.font_manager" 2>/dev/null || true

@@ -19,6 +19,7 @@ that ``--help`` and bad command lines answer at once.
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import math
 import os
@@ -46,7 +47,30 @@ DEFAULT_TIMEOUT = 120.0
 MAX_INPUT = 1_000_000
 """Characters of input read at most (plus one, to tell that there is more); the parser's
 ``MAX_LENGTH``, repeated here so that reading needs no engine import (a test checks they agree)."""
-EXPORT_SUFFIXES = (".json", ".txt", ".md", ".html", ".tex", ".mpl", ".m", ".py", ".stl", ".obj", ".ply", ".vtp", ".png")
+EXPORT_SUFFIXES = (
+    ".json",
+    ".txt",
+    ".md",
+    ".html",
+    ".tex",
+    ".mpl",
+    ".m",
+    ".py",
+    ".stl",
+    ".obj",
+    ".ply",
+    ".vtp",
+    ".step",
+    ".stp",
+    ".iges",
+    ".igs",
+    ".brep",
+    ".png",
+)
+CAD_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
+"""The CAD formats of ``-o`` (``sorgui.export.cad.CAD_SUFFIXES``; a test checks it)."""
+CAD_UNITS = ("mm", "cm", "m", "um", "in", "ft")
+"""The units ``--units`` accepts (``sorgui.export.cad.UNITS``; a test checks it)."""
 """Suffixes ``-o`` accepts (the keys of ``sorgui.export.files.FORMATS``; a test checks it)."""
 
 
@@ -78,6 +102,17 @@ def positive_seconds(text: str) -> float:
         raise argparse.ArgumentTypeError(f"not a number of seconds: {text!r}") from None
     if not math.isfinite(value) or value <= 0:
         raise argparse.ArgumentTypeError(f"the time limit must be a positive number of seconds, not {text!r}")
+    return value
+
+
+def fit_tolerance(text: str) -> float:
+    """A relative fitting tolerance: a finite number in (0, 1)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not (math.isfinite(value) and 0 < value < 1):
+        raise argparse.ArgumentTypeError(f"the fitting tolerance must lie between 0 and 1, not {text!r}")
     return value
 
 
@@ -151,7 +186,23 @@ def analyze_parser() -> argparse.ArgumentParser:
         help="also write the results to a file, in the format its suffix names: reports "
         ".json .txt .md .html; formulas .tex (LaTeX) .mpl (Maple) .m (Mathematica) "
         ".py (NumPy/SymPy); meshes .stl .obj .ply .vtp (NAME.patch.stl: the "
-        "parametric patch); .png (a picture); may be given several times",
+        "parametric patch); CAD files .step .stp .iges .igs .brep (the native surface; "
+        "NAME.patch.step: the parameterization's patch; needs sorgui[cad]); .png (a picture); "
+        "may be given several times",
+    )
+    parser.add_argument(
+        "--units",
+        choices=CAD_UNITS,
+        default="mm",
+        help="the length unit a STEP or IGES file declares for x, y, z (default mm; numbers are not scaled)",
+    )
+    parser.add_argument(
+        "--fit-tolerance",
+        type=fit_tolerance,
+        default=None,
+        metavar="T",
+        help="a CAD file's fitted profile (when it has no exact rational form) stays within T times "
+        "the drawn ball's radius (default 1e-7)",
     )
     parser.add_argument(
         "--format",
@@ -248,6 +299,10 @@ def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None 
         suffix = "." + fmt.lower().lstrip(".").removeprefix("patch.") if fmt else path.suffix.lower()
         if suffix not in EXPORT_SUFFIXES:
             raise UsageError(f"unknown export format of {path}; use {', '.join(EXPORT_SUFFIXES)}")
+        if suffix in CAD_SUFFIXES and importlib.util.find_spec("OCP") is None:
+            raise UsageError(
+                f"cannot write {path}: STEP, IGES and BRep files need Open CASCADE: pip install 'sorgui[cad]'"
+            )
         side = [path.with_suffix(SIDE_FILES[suffix])] if suffix in SIDE_FILES else []
         for target in (path, *side):
             _check_target(target, inputs, beside=path if target is not path else None)
@@ -287,7 +342,13 @@ def _check_target(path: Path, inputs: list[os.stat_result], beside: Path | None)
         raise UsageError(f"cannot write {what}: permission denied")
 
 
-def write_outputs(result: Analysis, outputs: Sequence[Path], fmt: str | None = None) -> None:
+def write_outputs(
+    result: Analysis,
+    outputs: Sequence[Path],
+    fmt: str | None = None,
+    units: str = "mm",
+    fit_tolerance: float | None = None,
+) -> None:
     """Write ``result`` to every ``-o`` file (atomically); an error names the file.
 
     Meshes, pictures and the pictures of Markdown/HTML reports need the 3D scene, built once
@@ -297,16 +358,13 @@ def write_outputs(result: Analysis, outputs: Sequence[Path], fmt: str | None = N
     from sorgui.export.files import export_analysis, format_of
 
     scene = None
-    if any(
-        format_of(path, fmt).kind in ("mesh", "picture") or format_of(path, fmt).suffix in (".md", ".html")
-        for path in outputs
-    ):
+    if any(format_of(path, fmt).needs_scene or format_of(path, fmt).suffix in (".md", ".html") for path in outputs):
         from sorgui.session.scene_data import build_scene
 
         scene = build_scene(result)
     for path in outputs:
         try:
-            export_analysis(result, path, fmt, scene=scene)
+            export_analysis(result, path, fmt, scene=scene, units=units, tolerance=fit_tolerance)
         except OSError as exc:
             raise _OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
         except ValueError as exc:
@@ -398,7 +456,7 @@ def analyze_main(argv: Sequence[str]) -> int:
         case _:
             return fail("the analysis was cancelled", None, args.json, 1)
     try:
-        write_outputs(result, args.output, args.export_format)
+        write_outputs(result, args.output, args.export_format, args.units, args.fit_tolerance)
         if args.json:
             emit(json.dumps(result.to_json(), indent=1))
         else:

@@ -2,11 +2,14 @@
 
 :data:`FORMATS` lists every format: reports (JSON, text, Markdown, HTML), formula files (LaTeX,
 Maple, Mathematica, Python), meshes (STL, OBJ, PLY, VTP; ``NAME.patch.stl`` is the parametric
-patch instead of the surface) and a PNG picture. The format follows the file's suffix, or the
-``fmt`` argument (``"stl"``, ``".stl"`` or ``"patch.stl"``). Meshes and pictures need the scene
-(``sorgui.session.scene_data.SceneData``) the caller built; Markdown and HTML add a picture when
-a scene is given and an off-screen renderer is available. Every file is written atomically
-(:mod:`sorgui.export.atomic`): a failure raises ``OSError`` and leaves any old file unchanged.
+patch instead of the surface), CAD files (STEP, IGES, OCCT's BRep: the native surface, or with
+``NAME.patch.step`` the parameterization's patch, :mod:`sorgui.export.cad`) and a PNG picture.
+The format follows the file's suffix, or the ``fmt`` argument (``"stl"``, ``".stl"`` or
+``"patch.stl"``). Meshes, CAD files and pictures need the scene
+(``sorgui.session.scene_data.SceneData``) the caller built; Markdown and HTML add a picture
+when a scene is given and an off-screen renderer is available. Every file is written
+atomically (:mod:`sorgui.export.atomic`): a failure raises ``OSError`` and leaves any old file
+unchanged.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from typing import Any
 from sorgui.engine.results import Analysis
 from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
 from sorgui.export.cas import latex_document, maple_file, mathematica_file
+from sorgui.export.meshes import is_patch_path
 from sorgui.export.python_module import python_module
 from sorgui.export.reports import html_report, json_report, markdown_report, text_report
 
@@ -29,7 +33,7 @@ PNG_SIZE = (1600, 1200)
 @dataclass(frozen=True)
 class Format:
     """One export format: its suffix, its name in file dialogs, and its kind (``report``,
-    ``formula``, ``mesh`` or ``picture``)."""
+    ``formula``, ``mesh``, ``cad`` or ``picture``)."""
 
     suffix: str
     name: str
@@ -37,7 +41,12 @@ class Format:
 
     @property
     def needs_scene(self) -> bool:
-        return self.kind in ("mesh", "picture")
+        return self.kind in ("mesh", "cad", "picture")
+
+    @property
+    def has_patch(self) -> bool:
+        """Whether ``NAME.patch.SUFFIX`` writes the parameterization's patch in this format."""
+        return self.kind in ("mesh", "cad")
 
 
 FORMATS: dict[str, Format] = {
@@ -55,6 +64,11 @@ FORMATS: dict[str, Format] = {
         Format(".obj", "OBJ mesh", "mesh"),
         Format(".ply", "PLY mesh (binary)", "mesh"),
         Format(".vtp", "VTK PolyData (VTP)", "mesh"),
+        Format(".step", "STEP AP242 (B-rep)", "cad"),
+        Format(".stp", "STEP AP242 (B-rep, .stp)", "cad"),
+        Format(".iges", "IGES 5.3 (trimmed surfaces)", "cad"),
+        Format(".igs", "IGES 5.3 (trimmed surfaces, .igs)", "cad"),
+        Format(".brep", "Open CASCADE BRep", "cad"),
         Format(".png", "PNG picture", "picture"),
     )
 }
@@ -89,12 +103,15 @@ def export_analysis(
     fmt: str | None = None,
     scene: Any = None,
     picture: bytes | None = None,
+    units: str = "mm",
+    tolerance: float | None = None,
 ) -> Path:
     """Write ``analysis`` to ``path`` in the format of its suffix (or ``fmt``); return ``path``.
 
     ``scene`` is needed for meshes and pictures (``ValueError`` without it) and gives Markdown
     and HTML their picture; ``picture`` (PNG bytes) is used instead of rendering one. A Markdown
-    report's picture is written beside it as ``NAME.png``.
+    report's picture is written beside it as ``NAME.png``. A CAD file declares ``units`` and fits
+    a profile with no exact form within ``tolerance`` (relative to the drawn ball's radius).
     """
     path = Path(path)
     form = format_of(path, fmt)
@@ -102,11 +119,15 @@ def export_analysis(
         raise ValueError(f"{form.name} needs the drawn scene of the analysis")
     if form.suffix in TEXT_WRITERS:
         return atomic_write_text(path, TEXT_WRITERS[form.suffix](analysis))
+    patch = is_patch_path(path) or (fmt is not None and fmt.lower().lstrip(".").startswith("patch."))
     if form.kind == "mesh":
-        from sorgui.export.meshes import is_patch_path, write_mesh
+        from sorgui.export.meshes import write_mesh
 
-        patch = is_patch_path(path) or (fmt is not None and fmt.lower().lstrip(".").startswith("patch."))
         return write_mesh(scene, analysis.recognition.polynomial, path, form.suffix, patch)
+    if form.kind == "cad":
+        from sorgui.export.cad import write_cad
+
+        return write_cad(analysis, scene, path, form.suffix, patch, units, tolerance)
     if form.kind == "picture":
         from sorgui.export.picture import render_png
 

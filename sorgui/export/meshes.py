@@ -66,7 +66,7 @@ class MeshInfo:
 
 
 def is_patch_path(path: str | Path) -> bool:
-    """Whether ``path`` names the patch (``….patch.stl``) rather than the surface."""
+    """Whether ``path`` names the patch (``….patch.stl``, ``….patch.step``) rather than the surface."""
     return Path(path).stem.lower().endswith(".patch")
 
 

@@ -47,9 +47,10 @@ MAX_PICTURE_WIDTH = 8000
 
 
 PATCH_FILTERS = {
-    f".patch{suffix}": f"{form.name}, parametric patch" for suffix, form in FORMATS.items() if form.kind == "mesh"
+    f".patch{suffix}": f"{form.name}, parametric patch" for suffix, form in FORMATS.items() if form.has_patch
 }
-"""The meshes once more as the patch of the first real parameterization (``NAME.patch.stl``)."""
+"""The meshes and CAD files once more as the patch of the first real parameterization
+(``NAME.patch.stl``, ``NAME.patch.step``)."""
 
 
 def export_filters() -> str:

@@ -50,6 +50,7 @@ from sorgui.examples import EXAMPLES, example_text
 from sorgui.export.atomic import atomic_write_bytes
 from sorgui.export.files import export_analysis, format_of
 from sorgui.export.reports import ReportError, read_report
+from sorgui.gui.background_export import BackgroundExport
 from sorgui.gui.camera import CameraState
 from sorgui.gui.editor import EquationEditor
 from sorgui.gui.examples import ExamplesMenu
@@ -180,6 +181,9 @@ class MainWindow(QMainWindow):
         """The relative tolerance of rounded input; ``None``: from the printed digits (``--tolerance``)."""
         """Seconds for each whole analysis (the stages not finished by then are shown as such)."""
         self.worker.message.connect(self.session.handle)
+        self.cad_export = BackgroundExport(self)
+        self.cad_export.written.connect(self._cad_written)
+        self.cad_export.failed.connect(self._cad_failed)
         self.editor = EquationEditor(self)
         self.results = ResultsPane(self)
         self.run_panel = RunPanel(self)
@@ -657,12 +661,31 @@ class MainWindow(QMainWindow):
         picture = Path(path).with_suffix(".png")
         if Path(path).suffix.lower() == ".md" and picture.exists() and not self.confirm_replace(picture):
             return
+        if format_of(path).kind == "cad":
+            self.export_in_background(path)
+            return
         try:
             written = self.export_results(path)
         except (OSError, ValueError) as exc:
             self._show_error("Export failed", str(exc))
             return
         self.statusBar().showMessage(f"Exported {written}", 4000)
+
+    def export_in_background(self, path: str | Path) -> None:
+        """Write a CAD file of the shown analysis in a process of its own (it takes seconds)."""
+        analysis = self._finished_analysis()
+        if analysis is None or self.cad_export.busy:
+            self.statusBar().showMessage("A CAD file is still being written" if analysis else "Nothing to export", 4000)
+            return
+        self.cad_export.start(analysis, path, self.viewport.scene)
+        self.statusBar().showMessage(f"Writing {path} (Open CASCADE)…")
+
+    def _cad_written(self, path: Path) -> None:
+        self.statusBar().showMessage(f"Exported {path}", 4000)
+
+    def _cad_failed(self, reason: str) -> None:
+        self.statusBar().clearMessage()
+        self._show_error("Export failed", reason)
 
     def _save_screenshot(self) -> None:
         dialog = PictureDialog(int(self.viewport.plotter.window_size[0]), self)
@@ -800,5 +823,6 @@ class MainWindow(QMainWindow):
         self.settings.sync()
         self.view.close()
         self.worker.shutdown()
+        self.cad_export.shutdown()
         self.viewport.close_plotter()
         super().closeEvent(event)

@@ -1,0 +1,66 @@
+"""CAD files of an analysis: STEP (AP242), IGES and OCCT's BRep, written with Open CASCADE.
+
+A surface of revolution is written as the native surface a CAD kernel uses (docs/math.md §11):
+an analytic plane, sphere, cylinder, cone or torus where it is one, otherwise a
+``SURFACE_OF_REVOLUTION`` about the exact axis whose profile is the exact rational B-spline of a
+verified parameterization, or a B-spline fitted within a stated tolerance. ``NAME.patch.step``
+(and ``.iges``, ``.brep``) writes the first verified real parameterization as rational Bézier
+patches instead. Open CASCADE (the ``sorgui[cad]`` extra, ``cadquery-ocp-novtk``) is imported
+only here, when such a file is written; without it :class:`CadUnavailable` says how to get it.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from sorgui.engine.results import Analysis
+
+from .geometry import CadGeometryError
+
+if TYPE_CHECKING:
+    from .model import CadModel, Scene
+
+CAD_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
+"""The CAD formats; ``NAME.patch.step`` (and so on) writes the parameterization's patch."""
+
+UNITS = ("mm", "cm", "m", "um", "in", "ft")
+"""The length units a CAD file can declare (the numbers are written as they are, unscaled)."""
+
+INSTALL_HINT = "STEP, IGES and BRep files need Open CASCADE: pip install 'sorgui[cad]'"
+
+
+class CadUnavailable(ValueError):
+    """Open CASCADE's Python bindings are not installed (a ValueError: the export cannot be done)."""
+
+
+__all__ = ["CAD_SUFFIXES", "INSTALL_HINT", "UNITS", "CadGeometryError", "CadUnavailable", "cad_model", "write_cad"]
+
+
+def cad_model(analysis: Analysis, scene: Scene, patch: bool = False, tolerance: float | None = None) -> CadModel:
+    """The faces a CAD file of ``analysis`` holds (``patch``: the parameterization's patch)."""
+    try:
+        from .model import patch_model, surface_model
+    except ImportError as exc:
+        raise CadUnavailable(INSTALL_HINT) from exc
+    return patch_model(analysis) if patch else surface_model(analysis, scene, tolerance)
+
+
+def write_cad(
+    analysis: Analysis,
+    scene: Scene,
+    path: Path,
+    suffix: str,
+    patch: bool = False,
+    units: str = "mm",
+    tolerance: float | None = None,
+) -> Path:
+    """Write ``analysis`` to the CAD file ``path`` (format ``suffix``); return ``path``."""
+    from sorgui import __version__
+
+    model = cad_model(analysis, scene, patch, tolerance)
+    from .writers import WRITERS, CadHeader
+
+    header = CadHeader(analysis.recognition.polynomial, model.description, __version__, units)
+    written: Path = WRITERS[suffix](model.shape, path, header)
+    return written
