@@ -95,7 +95,8 @@ def test_export_dialog_offers_every_format_and_the_patches() -> None:
     from sorgui.gui.exporting import export_filters, suffix_of_filter
 
     filters = export_filters().split(";;")
-    assert len(filters) == len(FORMATS) + 4
+    assert len(filters) == len(FORMATS) + sum(form.has_patch for form in FORMATS.values())
+    assert suffix_of_filter("STEP AP242 (B-rep), parametric patch (*.patch.step)") == ".patch.step"
     assert suffix_of_filter("STL mesh (binary), parametric patch (*.patch.stl)") == ".patch.stl"
     assert suffix_of_filter("STL mesh (binary) (*.stl)") == ".stl"
     assert suffix_of_filter("Python module (NumPy and SymPy) (*.py)") == ".py"
