@@ -264,26 +264,35 @@ def _values(form: Form, t: np.ndarray) -> np.ndarray:
 def meridian_section(param: Parametrization) -> Section:
     """The curve ``σ = 0`` of a parameterization swept about the axis (docs/math.md §6), as forms."""
     s, t = (sympy.Symbol(name) for name in param.parameters)
-    exprs = [sympy.together(read_expression(c).subs(s, 0)) for c in param.coordinates]
-    pairs = [sympy.fraction(e) for e in exprs]
-    den = sympy.Integer(1)
-    for _, d in pairs:
-        den = sympy.lcm(den, d)
-    numerators = [sympy.cancel(n * den / d) for n, d in pairs]
-    polys = [sympy.Poly(e, t) for e in (*numerators, den)]
+    polys = [sympy.Poly(e, t) for e in over_one_denominator([read_expression(c).subs(s, 0) for c in param.coordinates])]
     n = max(p.degree() for p in polys)
     forms = [_form(p, n) for p in polys]
     return Section((forms[0], forms[1], forms[2]), forms[3])
 
 
+def over_one_denominator(exprs: Sequence[sympy.Expr]) -> list[sympy.Expr]:
+    """The numerators of rational functions over their least common denominator, and that
+    denominator last: ``[N₁, …, Nₖ, D]`` with ``exprs[i] = Nᵢ/D``."""
+    pairs = [sympy.fraction(sympy.together(e)) for e in exprs]
+    den = sympy.Integer(1)
+    for _, d in pairs:
+        den = sympy.lcm(den, d)
+    return [*(sympy.cancel(n * den / d) for n, d in pairs), den]
+
+
+def real_number(value: sympy.Expr) -> mpmath.mpf:
+    """An exact real coefficient with :data:`DIGITS` digits; a non-real one is refused."""
+    number = sympy.N(value, DIGITS)
+    if sympy.im(number) != 0:
+        raise CadGeometryError("the parameterization is not real")
+    with mpmath.workdps(DIGITS):
+        return mpmath.mpf(sympy.re(number))
+
+
 def _form(poly: sympy.Poly, n: int) -> Form:
     coefficients = [mpmath.mpf(0)] * (n + 1)
     for (k,), c in poly.terms():
-        value = complex(sympy.N(c, DIGITS))
-        if abs(value.imag) > 1e-30 * max(1.0, abs(value.real)):
-            raise CadGeometryError("the parameterization is not real")
-        with mpmath.workdps(DIGITS):
-            coefficients[k] = mpmath.mpf(sympy.re(sympy.N(c, DIGITS)))
+        coefficients[k] = real_number(c)
     return coefficients
 
 

@@ -20,7 +20,7 @@ from sorgui.engine.results import Parametrization
 from sorgui.engine.values import read_expression
 from sorgui.render import PATCH_RANGE
 
-from .geometry import DIGITS, MAX_DEGREE, CadGeometryError, Form, bernstein
+from .geometry import DIGITS, MAX_DEGREE, CadGeometryError, Form, bernstein, over_one_denominator, real_number
 
 Grid = list[list[mpmath.mpf]]
 """``c[i][j]``: the coefficient of ``s^i·t^j``."""
@@ -49,11 +49,7 @@ class BezierPatch:
 def patch_map(param: Parametrization) -> PatchMap:
     """The coordinates of ``param`` over one denominator, as grids of 40-digit numbers."""
     s, t = (sympy.Symbol(name) for name in param.parameters)
-    pairs = [sympy.fraction(sympy.together(read_expression(c))) for c in param.coordinates]
-    den = sympy.Integer(1)
-    for _, d in pairs:
-        den = sympy.lcm(den, d)
-    polys = [sympy.Poly(sympy.cancel(n * den / d), s, t) for n, d in pairs] + [sympy.Poly(den, s, t)]
+    polys = [sympy.Poly(e, s, t) for e in over_one_denominator([read_expression(c) for c in param.coordinates])]
     m = max(p.degree(s) for p in polys)
     n = max(p.degree(t) for p in polys)
     if max(m, n) > MAX_DEGREE:
@@ -64,12 +60,8 @@ def patch_map(param: Parametrization) -> PatchMap:
 
 def _grid(poly: sympy.Poly, m: int, n: int) -> Grid:
     grid = [[mpmath.mpf(0)] * (n + 1) for _ in range(m + 1)]
-    with mpmath.workdps(DIGITS):
-        for (i, j), c in poly.terms():
-            value = sympy.N(c, DIGITS)
-            if sympy.im(value) != 0:
-                raise CadGeometryError("the parameterization is not real")
-            grid[i][j] = mpmath.mpf(sympy.re(value))
+    for (i, j), c in poly.terms():
+        grid[i][j] = real_number(c)
     return grid
 
 
