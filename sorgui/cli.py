@@ -67,11 +67,11 @@ EXPORT_SUFFIXES = (
     ".brep",
     ".png",
 )
+"""Suffixes ``-o`` accepts (the keys of ``sorgui.export.files.FORMATS``; a test checks it)."""
 CAD_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
 """The CAD formats of ``-o`` (``sorgui.export.cad.CAD_SUFFIXES``; a test checks it)."""
 CAD_UNITS = ("mm", "cm", "m", "um", "in", "ft")
 """The units ``--units`` accepts (``sorgui.export.cad.UNITS``; a test checks it)."""
-"""Suffixes ``-o`` accepts (the keys of ``sorgui.export.files.FORMATS``; a test checks it)."""
 
 
 class UsageError(Exception):
@@ -300,9 +300,9 @@ def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None 
         if suffix not in EXPORT_SUFFIXES:
             raise UsageError(f"unknown export format of {path}; use {', '.join(EXPORT_SUFFIXES)}")
         if suffix in CAD_SUFFIXES and importlib.util.find_spec("OCP") is None:
-            raise UsageError(
-                f"cannot write {path}: STEP, IGES and BRep files need Open CASCADE: pip install 'sorgui[cad]'"
-            )
+            from sorgui.export.cad import INSTALL_HINT
+
+            raise UsageError(f"cannot write {path}: {INSTALL_HINT}")
         side = [path.with_suffix(SIDE_FILES[suffix])] if suffix in SIDE_FILES else []
         for target in (path, *side):
             _check_target(target, inputs, beside=path if target is not path else None)
