@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -118,3 +120,31 @@ def test_exporting_markdown_asks_before_replacing_its_picture(window, run_analys
     window._export_results()
     assert asked and "part.png" in asked[0]
     assert picture.read_bytes() == b"the user's own picture" and not (tmp_path / "part.md").exists()
+
+
+def _without_time_stamp(step: str) -> str:
+    """A STEP file without its FILE_NAME entry (the time of writing)."""
+    start = step.index("FILE_NAME(")
+    return step[:start] + step[step.index(";", start) :]
+
+
+def test_a_cad_file_is_written_in_the_background_as_the_command_line_writes_it(
+    window, run_analysis, qtbot, tmp_path
+) -> None:
+    """File → Export to STEP runs in a process of its own (the window stays responsive) and writes
+    the same file as ``sorgui analyze -o``, but for the time stamp."""
+    pytest.importorskip("OCP")
+    run_analysis(window, TORUS)
+    ours = tmp_path / "window.step"
+    with qtbot.waitSignal(window.cad_export.written, timeout=120_000):
+        window.export_in_background(ours)
+        assert window.cad_export.busy
+    theirs = tmp_path / "cli.step"
+    done = subprocess.run(
+        [sys.executable, "-m", "sorgui.cli", "analyze", TORUS, "-o", str(theirs)], capture_output=True, timeout=300
+    )
+    assert done.returncode == 0, done.stderr
+    assert _without_time_stamp(ours.read_text(encoding="ascii")) == _without_time_stamp(
+        theirs.read_text(encoding="ascii")
+    )
+    assert "TOROIDAL_SURFACE" in ours.read_text(encoding="ascii")
