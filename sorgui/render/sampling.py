@@ -293,6 +293,15 @@ def newton_step(terms: Terms, points: np.ndarray, max_step: float | np.ndarray) 
     return points + np.where(ok[:, None], step * factor[:, None], 0.0)
 
 
+def first_order_distance(terms: Terms, points: np.ndarray | Sequence[Sequence[float]]) -> np.ndarray:
+    """``|f(p)| / |∇f(p)|`` at ``points``: the first-order distance from ``p`` to ``f = 0``
+    (``nan`` where both vanish, ``inf`` where only the gradient does)."""
+    values, grads = value_and_gradient(terms, points)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        distance: np.ndarray = np.abs(values) / np.linalg.norm(grads, axis=1)
+    return distance
+
+
 def evaluate_points(terms: Terms, points: np.ndarray | Sequence[Sequence[float]]) -> np.ndarray:
     """The true values of ``f`` at ``points (n, nvars)`` (see :func:`value_and_gradient`)."""
     return value_and_gradient(terms, points)[0]

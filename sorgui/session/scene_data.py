@@ -46,7 +46,7 @@ from sorgui.render import (
 from sorgui.render.canal_scene import FamilyCurves, SmatFamily
 from sorgui.render.geometry import foot_on_line
 from sorgui.render.mesh import DEFAULT_RESOLUTION
-from sorgui.render.sampling import evaluate_points, term_arrays, value_and_gradient
+from sorgui.render.sampling import evaluate_points, first_order_distance, term_arrays
 
 PATCH_GRID = 41
 """Samples per parameter of the patch, drawn as a wireframe: a readable net of curves."""
@@ -280,9 +280,7 @@ def with_apex(scene: SceneData, analysis: Analysis) -> SceneData:
 
 def surface_deviation(terms: Terms, points: np.ndarray) -> np.ndarray:
     """``|g(p)| / |∇g(p)|`` at ``points``: the first-order distance from ``p`` to ``g = 0``."""
-    values, grads = value_and_gradient(terms, points)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        distance = np.abs(values) / np.linalg.norm(grads, axis=1)
+    distance = first_order_distance(terms, points)
     return np.where(np.isfinite(distance), distance, np.nan)
 
 

@@ -33,7 +33,7 @@ from sorgui.engine.results import Analysis, Parametrization, Profile
 from sorgui.engine.values import ExpressionError, Terms, float_vector, polynomial_terms, read_expression
 from sorgui.numerics import real_roots
 from sorgui.render import ClipSphere
-from sorgui.render.sampling import value_and_gradient
+from sorgui.render.sampling import first_order_distance, value_and_gradient
 
 DIGITS = 40
 """Working precision (decimal digits) of the Bernstein conversion; the result is rounded once."""
@@ -381,11 +381,10 @@ def _meridian_normal(section: Section, terms: Terms, frame: Frame, size: float) 
 
 
 def surface_distance(terms: Terms, points: np.ndarray) -> np.ndarray:
-    """The first-order distance ``|f|/|∇f|`` of each point to ``f = 0``."""
-    values, gradients = value_and_gradient(terms, points)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        out: np.ndarray = np.abs(values) / np.linalg.norm(gradients, axis=1)
-    return np.where(values == 0, 0.0, out)
+    """The first-order distance ``|f|/|∇f|`` of each point to ``f = 0`` (0 at a singular point on it)."""
+    distance = first_order_distance(terms, points)
+    out: np.ndarray = np.where(np.isnan(distance), 0.0, distance)
+    return out
 
 
 def _product(p: Form, q: Form) -> Form:
@@ -423,7 +422,6 @@ class _Span:
     start: float
     end: float
     cut_start: bool
-    cut_end: bool
 
 
 def _arcs(section: Section, frame: Frame, ball: ClipSphere, size: float) -> list[RationalCurve]:
@@ -479,20 +477,12 @@ def _spans(cuts: list[float]) -> list[_Span]:
     ends = [(t, True) for t in cuts] or [(-math.pi, False)]
     spans: list[_Span] = []
     for k, (start, real_start) in enumerate(ends):
-        end, real_end = ends[(k + 1) % len(ends)]
+        end = ends[(k + 1) % len(ends)][0]
         if end <= start:
             end += 2 * math.pi
         pieces = max(1, math.ceil((end - start) / (math.pi / 4)))
         step = (end - start) / pieces
-        for j in range(pieces):
-            spans.append(
-                _Span(
-                    start + j * step,
-                    start + (j + 1) * step,
-                    real_start if j == 0 else False,
-                    real_end if j == pieces - 1 else False,
-                )
-            )
+        spans += [_Span(start + j * step, start + (j + 1) * step, real_start and j == 0) for j in range(pieces)]
     return spans
 
 
@@ -509,7 +499,7 @@ def _pieces(spans: list[_Span], kept: list[int]) -> list[list[_Span]]:
     out = [[spans[k] for k in piece] for piece in pieces]
     wraps = len(pieces) > 1 and pieces[0][0] == 0 and pieces[-1][-1] == len(spans) - 1 and not spans[0].cut_start
     if wraps:
-        lifted = [_Span(s.start + 2 * math.pi, s.end + 2 * math.pi, s.cut_start, s.cut_end) for s in out.pop(0)]
+        lifted = [_Span(s.start + 2 * math.pi, s.end + 2 * math.pi, s.cut_start) for s in out.pop(0)]
         out[-1] += lifted
     return out
 
