@@ -68,17 +68,32 @@ def polynomial_terms(text: str, names: Sequence[str] = ("x", "y", "z")) -> Terms
     """The engine polynomial ``text`` in ``names`` as float terms (exponents in that order);
     each exact coefficient is rounded once. An expanded polynomial over ``QQ`` (a degree-40
     surface prints 240 kB) is read by flint's reader in a fraction of a second, where sympy's
-    expressions take seconds; one with algebraic coefficients is read as an expression."""
+    expressions take seconds; one with algebraic coefficients is read as an expression.
+
+    Coefficients beyond the range of ``float`` (a product of polynomials with 300-digit
+    coefficients) are all divided by one power of two first: the zero set, which is what the
+    floats are for, stays the same."""
     terms = expanded_terms(text, names)
     if terms is not None:
-        return [(monomial, _rounded(c)) for monomial, c in terms.items()]
+        shift = max(0, max((_bits(c) for c in terms.values()), default=0) - MAX_FLOAT_BITS)
+        return [(monomial, _rounded(c, shift)) for monomial, c in terms.items()]
     symbols = [sympy.Symbol(n) for n in names]
     return _float_terms(read_expression(text), symbols)
 
 
-def _rounded(c: fmpq | int) -> float:
-    """The nearest ``float`` (Python's division of integers rounds correctly)."""
-    return float(c) if isinstance(c, int) else int(c.p) / int(c.q)
+MAX_FLOAT_BITS = 1000
+"""The largest coefficient is brought below ``2^1000`` (floats reach ``2^1024``)."""
+
+
+def _bits(c: fmpq | int) -> int:
+    """About ``log₂ |c|``."""
+    return int(c).bit_length() if isinstance(c, int) else int(c.p).bit_length() - int(c.q).bit_length()
+
+
+def _rounded(c: fmpq | int, shift: int = 0) -> float:
+    """The nearest ``float`` to ``c / 2^shift`` (Python's division of integers rounds correctly)."""
+    p, q = (c, 1) if isinstance(c, int) else (int(c.p), int(c.q))
+    return p / (q << shift)
 
 
 def rational_function_terms(text: str, names: Sequence[str]) -> tuple[Terms, Terms]:
