@@ -126,3 +126,29 @@ def test_the_command_line_lists_the_cad_formats_and_units() -> None:
 
     assert cli.CAD_SUFFIXES == CAD_SUFFIXES == tuple(s for s, f in FORMATS.items() if f.kind == "cad")
     assert cli.CAD_UNITS == UNITS
+
+
+def test_coefficients_beyond_the_range_of_floats_keep_their_zero_set() -> None:
+    """A product with 300-digit coefficients: all floats scaled by one power of two, none infinite."""
+    from sorgui.engine.values import polynomial_terms
+
+    big = 10**400
+    terms = dict(polynomial_terms(f"{big}*x^2 + {big}*y^2 - {3 * big}*z + 1"))
+    assert all(math.isfinite(c) for c in terms.values())
+    assert terms[(2, 0, 0)] == terms[(0, 2, 0)] and terms[(0, 0, 1)] == pytest.approx(-3 * terms[(2, 0, 0)], rel=1e-15)
+    assert dict(polynomial_terms("2*x^2 - 1/3")) == {(2, 0, 0): 2.0, (0, 0, 0): -1 / 3}
+
+
+def test_an_unfinished_analysis_is_not_called_a_surface_that_is_not_of_revolution() -> None:
+    import dataclasses
+
+    pytest.importorskip("OCP")
+    from sorgui.export.cad.geometry import CadGeometryError
+    from sorgui.export.cad.model import surface_model
+
+    analysis = analyze("x^2+y^2-z")
+    undecided = dataclasses.replace(
+        analysis, recognition=dataclasses.replace(analysis.recognition, symmetry="undecided", is_sor=False)
+    )
+    with pytest.raises(CadGeometryError, match="did not finish"):
+        surface_model(undecided, build_scene(analysis))

@@ -69,6 +69,10 @@ class CadModel:
 def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = None) -> CadModel:
     """The faces of a surface of revolution (or a plane or sphere) inside the scene's ball."""
     rec = analysis.recognition
+    if rec.symmetry == "undecided":
+        raise CadGeometryError(
+            "the analysis did not finish, so it is not known whether the surface is one of revolution"
+        )
     if not rec.is_sor:
         raise CadGeometryError(
             "the surface is not a surface of revolution; write NAME.patch.step for a rational parameterization"
