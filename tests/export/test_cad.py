@@ -170,3 +170,31 @@ def test_a_surface_that_is_not_of_revolution_is_refused_in_one_sentence(tmp_path
     with pytest.raises(ValueError, match="not a surface of revolution.*patch"):
         export_analysis(analysis, tmp_path / "dupin.step", scene=scene)
     assert not (tmp_path / "dupin.step").exists()
+
+
+def test_sorgui_analyze_json_with_a_cad_file_prints_only_the_json(tmp_path: Path) -> None:
+    """Open CASCADE's transfer statistics must not reach standard output, which carries the JSON."""
+    import json
+    import subprocess
+    import sys
+
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "sorgui.cli",
+            "analyze",
+            "--json",
+            "x^2+y^2-z",
+            "-o",
+            str(tmp_path / "p.step"),
+            "-o",
+            str(tmp_path / "p.igs"),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert out.returncode == 0, out.stderr
+    assert json.loads(out.stdout)["is_sor"]
+    assert read_shape(tmp_path / "p.step") is not None and read_shape(tmp_path / "p.igs") is not None

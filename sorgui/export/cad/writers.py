@@ -3,7 +3,7 @@
 Open CASCADE's writers keep 12 significant digits (STEP) and 9 decimals (IGES); here every real
 is written with ``%.16E`` (17 significant digits, read back to the same double) through the
 writers' own ``FloatWriter`` (zero suppression off: it truncates long numbers). Files are
-written atomically (:mod:`sorgui.export.atomic`).
+written atomically (:mod:`sorgui.export.atomic`), and nothing is printed on standard output.
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ from OCP.IFSelect import IFSelect_ReturnStatus
 from OCP.IGESControl import IGESControl_Reader, IGESControl_Writer
 from OCP.IGESData import IGESData_IGESWriter
 from OCP.Interface import Interface_Static
+from OCP.Message import Message, Message_Gravity
 from OCP.STEPControl import STEPControl_AsIs, STEPControl_Reader, STEPControl_Writer
 from OCP.StepData import StepData_StepWriter
 from OCP.TopoDS import TopoDS_Shape
@@ -29,6 +30,16 @@ REAL_FORMAT = "%.16E"
 
 UNIT_NAMES = {"mm": "MM", "cm": "CM", "m": "M", "um": "UM", "in": "IN", "ft": "FT"}
 """sorgui's unit names → Open CASCADE's."""
+
+
+def _quiet() -> None:
+    """Keep Open CASCADE's transfer statistics off standard output, which carries
+    ``sorgui analyze --json``: its printers report failures only."""
+    for printer in Message.DefaultMessenger_s().Printers():
+        printer.SetTraceLevel(Message_Gravity.Message_Fail)
+
+
+_quiet()
 
 
 @dataclass(frozen=True)
