@@ -109,3 +109,11 @@ def test_a_torus_whose_families_need_a_square_root_gives_them_by_their_equations
     pipe, axis = canal.families
     assert pipe.parametrization is not None and satisfies_smat(pipe) and pipe.radius_squared == "12"
     assert axis.parametrization is None and not axis.verified and len(axis.equations) == 3
+
+
+def test_a_torus_with_huge_radii_finishes() -> None:
+    """Core radius 2·10⁷⁵: the search for a rational point of a family's conic stays short (it once
+    built a range of 10⁷⁵ candidates and raised OverflowError)."""
+    f = torus((0, 0, 0), (0, 0, 1), Fraction(4 * 10**150), Fraction(10**150))
+    canal = analyze_canal(f, is_sor=True, profile=profile_of(f))
+    assert canal.is_canal and all(satisfies_smat(family) for family in canal.families if family.verified)

@@ -39,6 +39,9 @@ HEIGHT = 12
 SPAN = 24
 """``|Y| ≤ SPAN`` on a hyperbola (the axis family's conic), where ``|Y|`` is not bounded."""
 
+REACH = 1000
+"""``|Y| ≤ REACH`` on an ellipse too: one whose ``|Y|`` reaches ``10⁷⁵`` is not searched to its end."""
+
 CERTIFICATE = (
     "the profile in the axis frame is (|X − m₀|² + R² − r²)² − 4R²·d² up to a constant (d the "
     "distance to the axis), exactly: the circle (d − R)² + ζ² = r² of the meridian half-plane swept "
@@ -206,11 +209,11 @@ def _conic(a1: Fraction, a2: Fraction, c: Fraction) -> tuple[Rat, Rat] | None:
 
 def _rational_point(a1: Fraction, a2: Fraction, c: Fraction) -> tuple[Fraction, Fraction] | None:
     """A point ``(X, Y)`` of ``a₁X² + a₂Y² = c`` with ``Y = p/q``, ``q ≤ HEIGHT`` and ``|p| ≤ q·b``
-    (``b`` bounds ``|Y|`` on an ellipse, :data:`SPAN` otherwise), tried in order of height so the
+    (``b`` bounds ``|Y|`` on an ellipse, up to :data:`REACH`; :data:`SPAN` otherwise), tried in order of height so the
     parameterization stays small: ``X = √(N·A₁)/(A₁q)`` with ``N = Cq² − A₂p²`` in integers."""
     scale = lcm(a1.denominator, a2.denominator, c.denominator)
     A1, A2, C = (int(x * scale) for x in (a1, a2, c))
-    bound = isqrt(abs(C // A2)) + 2 if A2 * A1 > 0 else SPAN
+    bound = min(isqrt(abs(C // A2)) + 2, REACH) if A2 * A1 > 0 else SPAN
     for q in range(1, HEIGHT + 1):
         for p in sorted(range(-bound * q, bound * q + 1), key=abs):
             N = (C * q * q - A2 * p * p) * A1
