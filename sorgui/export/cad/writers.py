@@ -2,8 +2,10 @@
 
 Open CASCADE's writers keep 12 significant digits (STEP) and 9 decimals (IGES); here every real
 is written with ``%.16E`` (17 significant digits, read back to the same double) through the
-writers' own ``FloatWriter`` (zero suppression off: it truncates long numbers). Files are
-written atomically (:mod:`sorgui.export.atomic`), and nothing is printed on standard output.
+writers' own ``FloatWriter`` (zero suppression off: it truncates long numbers). The equation,
+the route and sorgui's version go where each format keeps such text: STEP's
+``FILE_DESCRIPTION`` and ``FILE_NAME``, IGES's start and global sections. Files are written
+atomically (:mod:`sorgui.export.atomic`), and nothing is printed on standard output.
 """
 
 from __future__ import annotations
@@ -13,14 +15,17 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
 from OCP.BRepTools import BRepTools
 from OCP.IFSelect import IFSelect_ReturnStatus
 from OCP.IGESControl import IGESControl_Reader, IGESControl_Writer
 from OCP.IGESData import IGESData_IGESWriter
 from OCP.Interface import Interface_Static
 from OCP.Message import Message, Message_Gravity
+from OCP.OCP.collections import HArray1_TCollection_HAsciiString
 from OCP.STEPControl import STEPControl_AsIs, STEPControl_Reader, STEPControl_Writer
 from OCP.StepData import StepData_StepWriter
+from OCP.TCollection import TCollection_HAsciiString
 from OCP.TopoDS import TopoDS_Shape
 
 from sorgui.export.atomic import atomic_write_bytes
@@ -28,8 +33,20 @@ from sorgui.export.atomic import atomic_write_bytes
 REAL_FORMAT = "%.16E"
 """17 significant digits: every double reads back to itself."""
 
-UNIT_NAMES = {"mm": "MM", "cm": "CM", "m": "M", "um": "UM", "in": "IN", "ft": "FT"}
-"""sorgui's unit names → Open CASCADE's."""
+STEP_STRING = 256
+"""The longest string of a STEP header's description list (ISO 10303-21's ``STRING(256)``)."""
+
+UNITS = {
+    "mm": ("MM", 1.0),
+    "cm": ("CM", 10.0),
+    "m": ("M", 1000.0),
+    "um": ("UM", 0.001),
+    "in": ("INCH", 25.4),
+    "ft": ("FT", 304.8),
+}
+"""sorgui's unit names → Open CASCADE's, and millimetres per unit. A file declares the unit and
+keeps the numbers as they are: Open CASCADE is told that the shape is in that unit too, or it
+would convert the numbers from millimetres."""
 
 
 def _quiet() -> None:
@@ -59,29 +76,51 @@ def _full_precision(writer: Any) -> None:
 
 
 def write_step(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
-    """An AP242 STEP file of ``shape``."""
-    Interface_Static.SetCVal_s("write.step.schema", "AP242DIS")
-    Interface_Static.SetCVal_s("write.step.unit", UNIT_NAMES[header.units])
+    """An AP242 STEP file of ``shape``; :func:`header_lines` are its ``FILE_DESCRIPTION``."""
     writer = STEPControl_Writer()
+    name = UNITS[header.units][0]
+    for key, value in (("write.step.schema", "AP242DIS"), ("write.step.unit", name), ("xstep.cascade.unit", name)):
+        if not Interface_Static.SetCVal_s(key, value):
+            raise RuntimeError(f"Open CASCADE refused {key} = {value}")
     writer.Transfer(shape, STEPControl_AsIs)
+    made = APIHeaderSection_MakeHeader(writer.Model())
+    lines = _step_strings(header)
+    description = HArray1_TCollection_HAsciiString(1, len(lines))
+    for number, line in enumerate(lines, 1):
+        description.SetValue(number, TCollection_HAsciiString(line))
+    made.SetDescription(description)
+    made.SetName(TCollection_HAsciiString(_ascii(Path(path).name)))
+    made.SetOriginatingSystem(TCollection_HAsciiString(f"sorgui {header.version}"))
+    made.SetAuthorValue(1, TCollection_HAsciiString(""))
+    made.SetOrganizationValue(1, TCollection_HAsciiString(""))
     step = StepData_StepWriter(writer.Model())
     _full_precision(step)
     step.SendModel(writer.WS().Protocol())
     out = io.BytesIO()
     step.Print(out)
-    comments = "".join(f"/* {_ascii(line)} */\n" for line in header_lines(header))
-    text = out.getvalue().decode("ascii", "replace").replace("HEADER;", comments + "HEADER;", 1)
-    return atomic_write_bytes(path, text.encode("ascii"))
+    return atomic_write_bytes(path, out.getvalue())
 
 
 def write_iges(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
-    """An IGES 5.3 file of ``shape`` (trimmed surfaces)."""
-    writer = IGESControl_Writer(UNIT_NAMES[header.units], 0)
+    """An IGES 5.3 file of ``shape`` (trimmed surfaces); :func:`header_lines` are its start section."""
+    name, millimetres = UNITS[header.units]
+    writer = IGESControl_Writer(name, 0)
+    model = writer.Model()
+    section = model.GlobalSection()
+    section.SetCascadeUnit(millimetres)
+    model.SetGlobalSection(section)
     writer.AddShape(shape)
     writer.ComputeModel()
-    iges = IGESData_IGESWriter(writer.Model())
+    for line in header_lines(header):
+        model.AddStartLine(_ascii(line))
+    section = model.GlobalSection()
+    section.SetSendName(TCollection_HAsciiString(_ascii(Path(path).stem)))
+    section.SetFileName(TCollection_HAsciiString(_ascii(Path(path).name)))
+    section.SetSystemId(TCollection_HAsciiString(f"sorgui {header.version}"))
+    model.SetGlobalSection(section)
+    iges = IGESData_IGESWriter(model)
     _full_precision(iges)
-    iges.SendModel(writer.Model().Protocol())
+    iges.SendModel(model.Protocol())
     out = io.BytesIO()
     iges.Print(out)
     return atomic_write_bytes(path, out.getvalue())
@@ -95,17 +134,27 @@ def write_brep(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
 
 
 def header_lines(header: CadHeader) -> list[str]:
+    """The equation, what the faces are, sorgui's version and the declared unit."""
     return [f"{header.equation} = 0", *header.description, f"sorgui {header.version}", f"units: {header.units}"]
 
 
+def _step_strings(header: CadHeader) -> list[str]:
+    """:func:`header_lines` cut into strings a STEP description list takes (long equations span several)."""
+    lines = [_ascii(line) for line in header_lines(header)]
+    return [line[i : i + STEP_STRING] for line in lines for i in range(0, len(line), STEP_STRING)]
+
+
 def _ascii(text: str) -> str:
-    return text.replace("*/", "* /").encode("ascii", "replace").decode("ascii")
+    """``text`` in the printable ASCII both formats' strings take (others become ``?``)."""
+    return "".join(c if " " <= c <= "~" else "?" for c in text)
 
 
-def read_shape(path: Path) -> TopoDS_Shape:
-    """Read a STEP, IGES or BRep file back with Open CASCADE's own readers."""
+def read_shape(path: Path, units: str = "mm") -> TopoDS_Shape:
+    """Read a STEP, IGES or BRep file back with Open CASCADE's own readers, its numbers
+    converted to ``units`` (the unit the file declares is taken into account)."""
     suffix = Path(path).suffix.lower()
     if suffix in (".step", ".stp", ".iges", ".igs"):
+        Interface_Static.SetCVal_s("xstep.cascade.unit", UNITS[units][0])
         reader = STEPControl_Reader() if suffix in (".step", ".stp") else IGESControl_Reader()
         if reader.ReadFile(str(path)) != IFSelect_ReturnStatus.IFSelect_RetDone:
             raise ValueError(f"Open CASCADE cannot read {path}")
