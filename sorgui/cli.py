@@ -30,6 +30,7 @@ import time
 import unicodedata
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
 
@@ -114,6 +115,43 @@ def fit_tolerance(text: str) -> float:
     if not (math.isfinite(value) and 0 < value < 1):
         raise argparse.ArgumentTypeError(f"the fitting tolerance must lie between 0 and 1, not {text!r}")
     return value
+
+
+@dataclass(frozen=True)
+class UserRegion:
+    """``--region``: where meshes, pictures and CAD files look. One of ``radius`` (the drawn
+    ball's, about its automatic centre), ``center`` with ``radius`` (a ball), or ``bounds``
+    (a box, ``(xmin, xmax, ymin, ymax, zmin, zmax)``)."""
+
+    radius: float | None = None
+    center: tuple[float, float, float] | None = None
+    bounds: tuple[float, float, float, float, float, float] | None = None
+
+
+def region_value(text: str) -> UserRegion:
+    """``R``, ``X,Y,Z,R`` or ``XMIN:XMAX,YMIN:YMAX,ZMIN:ZMAX``, every number finite and each
+    radius and side positive."""
+    usage = "give R, X,Y,Z,R or XMIN:XMAX,YMIN:YMAX,ZMIN:ZMAX"
+    parts = [p.split(":") for p in text.replace(" ", "").split(",")]
+    try:
+        numbers = [float(v) for part in parts for v in part]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a region: {text!r} ({usage})") from None
+    if not all(map(math.isfinite, numbers)):
+        raise argparse.ArgumentTypeError(f"the region's numbers must be finite, not {text!r}")
+    shape = [len(part) for part in parts]
+    if shape in ([1], [1, 1, 1, 1]):
+        if numbers[-1] <= 0:
+            raise argparse.ArgumentTypeError(f"the ball's radius must be positive, not {text!r}")
+        if len(numbers) == 1:
+            return UserRegion(radius=numbers[0])
+        return UserRegion(radius=numbers[3], center=(numbers[0], numbers[1], numbers[2]))
+    if shape == [2, 2, 2]:
+        if any(high <= low for low, high in zip(numbers[0::2], numbers[1::2])):
+            raise argparse.ArgumentTypeError(f"each side of the box must go from low to high, not {text!r}")
+        x0, x1, y0, y1, z0, z1 = numbers
+        return UserRegion(bounds=(x0, x1, y0, y1, z0, z1))
+    raise argparse.ArgumentTypeError(f"not a region: {text!r} ({usage})")
 
 
 def tolerance_value(text: str) -> float | None:
@@ -205,6 +243,15 @@ def analyze_parser() -> argparse.ArgumentParser:
         "the drawn ball's radius (default 1e-7)",
     )
     parser.add_argument(
+        "--region",
+        type=region_value,
+        default=UserRegion(),
+        metavar="R|X,Y,Z,R|X0:X1,Y0:Y1,Z0:Z1",
+        help="where -o meshes, pictures and CAD files look: the drawn ball's radius about its automatic "
+        "centre, a ball, or an axis-aligned box (the mesh and the CAD faces are cut to it); default: "
+        "a ball chosen from the surface",
+    )
+    parser.add_argument(
         "--format",
         dest="export_format",
         metavar="FORMAT",
@@ -235,10 +282,12 @@ def parse_arguments(parser: argparse.ArgumentParser, argv: Sequence[str]) -> arg
         elif len(arg) > 1 and arg.startswith("-") and not _is_option(arg, options):
             expressions.append(arg)
         else:
-            kept.append(arg)
             action = options.get(arg)
-            if action is not None and action.nargs != 0:  # its value follows, even "-5"
-                kept += [value for value in [next(rest, None)] if value is not None]
+            value = next(rest, None) if action is not None and action.nargs != 0 else None
+            if value is None or not value.startswith("-"):
+                kept += [arg] if value is None else [arg, value]
+            else:  # its value follows, even "-5" or "-1:1,-1:1,0:2", which argparse takes for an option
+                kept.append(f"{arg}={value}" if arg.startswith("--") else arg + value)
     return parser.parse_args([*kept, "--", *expressions] if expressions else kept)
 
 
@@ -348,6 +397,7 @@ def write_outputs(
     fmt: str | None = None,
     units: str = "mm",
     fit_tolerance: float | None = None,
+    region: UserRegion = UserRegion(),
 ) -> None:
     """Write ``result`` to every ``-o`` file (atomically); an error names the file.
 
@@ -359,9 +409,12 @@ def write_outputs(
 
     scene = None
     if any(format_of(path, fmt).needs_scene or format_of(path, fmt).suffix in (".md", ".html") for path in outputs):
+        from sorgui.render import ClipBox, ClipSphere
         from sorgui.session.scene_data import build_scene
 
-        scene = build_scene(result)
+        ball = ClipSphere(region.center, region.radius) if region.center and region.radius else None
+        box = ClipBox(region.bounds) if region.bounds else None
+        scene = build_scene(result, radius=region.radius if ball is None else None, region=ball, box=box)
     for path in outputs:
         try:
             export_analysis(result, path, fmt, scene=scene, units=units, tolerance=fit_tolerance)
@@ -456,7 +509,7 @@ def analyze_main(argv: Sequence[str]) -> int:
         case _:
             return fail("the analysis was cancelled", None, args.json, 1)
     try:
-        write_outputs(result, args.output, args.export_format, args.units, args.fit_tolerance)
+        write_outputs(result, args.output, args.export_format, args.units, args.fit_tolerance, args.region)
         if args.json:
             emit(json.dumps(result.to_json(), indent=1))
         else:

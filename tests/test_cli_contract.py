@@ -54,6 +54,10 @@ def test_an_equation_may_start_with_a_minus_sign() -> None:
         (["x^2+y^2-z", "x^2"], "unrecognized arguments"),
         (["-f", "missing-file.txt"], "cannot read missing-file.txt"),
         (["--jobs", "0", "-"], "must be at least 1"),
+        (["--region", "1:0,0:1,0:1", "x^2+y^2-z"], "from low to high"),
+        (["--region", "0,0,0,-1", "x^2+y^2-z"], "radius must be positive"),
+        (["--region", "1,2", "x^2+y^2-z"], "not a region"),
+        (["--region", "inf", "x^2+y^2-z"], "must be finite"),
     ],
 )
 def test_every_argument_error_is_one_line_and_an_error_object(args: list[str], words: str) -> None:
@@ -219,3 +223,24 @@ def test_a_users_sympy_ground_types_do_not_break_the_engine(ground_types: str) -
     out = sorgui("analyze", "--json", "x^2 + y^2 - sqrt(2) z", env=env)
     assert out.returncode == 0, out.stderr
     assert json.loads(out.stdout)["is_sor"]
+
+
+def test_a_region_is_a_radius_a_ball_or_a_box_and_may_start_with_a_minus_sign() -> None:
+    assert cli.region_value("2.5") == cli.UserRegion(radius=2.5)
+    assert cli.region_value("1, 2, 3, 1.5e-3") == cli.UserRegion(radius=1.5e-3, center=(1.0, 2.0, 3.0))
+    box = cli.UserRegion(bounds=(-1.0, 1.0, -2.0, 2.0, 0.0, 3.0))
+    assert cli.region_value("-1:1,-2:2,0:3") == box
+    args = cli.parse_arguments(cli.analyze_parser(), ["--region", "-1:1,-2:2,0:3", "-x^2-y^2+z"])
+    assert args.region == box and args.expression == "-x^2-y^2+z"
+
+
+def test_a_box_cuts_the_mesh_it_writes(tmp_path: Path) -> None:
+    import numpy as np
+    import pyvista
+
+    out = sorgui("analyze", "x^2+y^2-z", "--region", "-1:0.5,-1:1,0:0.8", "-o", str(tmp_path / "p.stl"))
+    assert out.returncode == 0, out.stderr
+    low, high = np.array([-1, -1, 0]), np.array([0.5, 1, 0.8])
+    points = pyvista.read(tmp_path / "p.stl").points
+    assert len(points) > 100 and np.all(points >= low - 1e-9) and np.all(points <= high + 1e-9)
+    assert points[:, 0].max() > 0.45 and points[:, 2].max() > 0.75, "the mesh reaches the box's sides"

@@ -15,6 +15,7 @@ centre, or the origin), so that bounded parts of the surface are shown whole.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
@@ -32,6 +33,7 @@ from sorgui.engine.values import (
 )
 from sorgui.render import (
     PATCH_RANGE,
+    ClipBox,
     ClipSphere,
     LineData,
     MarkerData,
@@ -65,7 +67,8 @@ class SceneData:
     ``canal_spine``/``canal_circles``: the spines and a few characteristic circles of a canal
     surface's sphere families (docs/math.md §9; a spine of positive genus traced numerically);
     ``canal_families``: those families as float curves or SMAT equations, to find the sphere
-    touching the surface at a picked point.
+    touching the surface at a picked point. ``box``: the user's box, if one was given: the mesh
+    and CAD faces are cut to it, and ``region`` is the ball about it.
     """
 
     terms: Terms
@@ -84,6 +87,7 @@ class SceneData:
     canal_spine: LineData = LineData.empty()
     canal_circles: LineData = LineData.empty()
     canal_families: tuple[FamilyCurves | SmatFamily, ...] = ()
+    box: ClipBox | None = None
 
     @property
     def axis(self) -> tuple[np.ndarray, np.ndarray] | None:
@@ -109,6 +113,18 @@ def view_region(terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
     degree = int(exps.sum(axis=1).max(initial=0))
     array = dense.from_terms({(int(e[0]), int(e[1]), int(e[2])): float(c) for e, c in zip(exps, coefs)}, degree)
     middle, radius = view_ball(array, np.asarray(center, dtype=np.float64), axis)
+    return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
+
+
+def ball_about(box: ClipBox, point: np.ndarray, axis: np.ndarray | None) -> ClipSphere:
+    """The ball holding ``box`` about its centre, or about the centre's foot on the axis through
+    ``point`` (a ball centred on the axis meets every meridian half-plane in the same disk)."""
+    low, high = np.array(box.bounds[0::2]), np.array(box.bounds[1::2])
+    middle = (low + high) / 2
+    if axis is not None:
+        middle = foot_on_line(middle, point, axis)
+    corners = np.array(list(itertools.product(*zip(low, high))))
+    radius = float(np.max(np.linalg.norm(corners - middle, axis=1)))
     return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
 
 
@@ -159,24 +175,29 @@ def build_scene(
     resolution: int | None = None,
     region: ClipSphere | None = None,
     patch: bool = True,
+    box: ClipBox | None = None,
 ) -> SceneData:
     """The scene of ``analysis``; ``radius`` overrides the automatic size of the drawn ball,
-    ``region`` the whole ball (the nearest exact surface is drawn in the typed one's ball);
+    ``region`` the whole ball (the nearest exact surface is drawn in the typed one's ball),
+    ``box`` both: the mesh is cut to the box, in the ball about it;
     ``patch=False`` leaves the parameterization patch for :func:`with_patch`; ``resolution`` is
     the mesh's grid (:data:`~sorgui.render.mesh.DEFAULT_RESOLUTION` when not given)."""
     rec = analysis.recognition
     terms = polynomial_terms(analysis.squarefree)
     center, axis_direction = natural_center(rec, analysis.approximate)
+    if box is not None:
+        region = ball_about(box, center, axis_direction)
     if region is None:
         region = view_region(terms, center, axis_direction)
     if radius is not None:
         region = ClipSphere(region.center, radius)
     c, r = np.asarray(region.center), region.radius
-    bounds = tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
-    surface = surface_mesh(terms, bounds, resolution=resolution or DEFAULT_RESOLUTION, clip=region)
+    bounds = box.bounds if box is not None else tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
+    clip: ClipSphere | ClipBox = box if box is not None else region
+    surface = surface_mesh(terms, bounds, resolution=resolution or DEFAULT_RESOLUTION, clip=clip)
     notes = []
     if surface.is_empty:
-        notes.append("The surface has no real points that can be drawn inside the ball.")
+        notes.append(f"The surface has no real points that can be drawn inside the {'box' if box else 'ball'}.")
     segment, profile = LineData.empty(), LineData.empty()
     axis_point = None
     if rec.axis is not None:
@@ -210,6 +231,7 @@ def build_scene(
         axis_direction=tuple(axis_direction) if axis_direction is not None else None,
         notes=tuple(notes),
         factor_axes=LineData.from_polylines([line.points for line in factor_lines if not line.is_empty]),
+        box=box,
     )
 
 

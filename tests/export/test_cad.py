@@ -198,6 +198,9 @@ def test_sorgui_analyze_json_with_a_cad_file_prints_only_the_json(tmp_path: Path
     assert out.returncode == 0, out.stderr
     assert json.loads(out.stdout)["is_sor"]
     assert read_shape(tmp_path / "p.step") is not None and read_shape(tmp_path / "p.igs") is not None
+    step = (tmp_path / "p.step").read_text(encoding="ascii")
+    assert "AP242_MANAGED_MODEL_BASED_3D_ENGINEERING" in step, "the schema is set in a new process too"
+    assert "PRODUCT('p " in step and step.count("OPEN_SHELL(") == 1
 
 
 def parameters(shape: TopoDS_Shape) -> list[tuple[object, ...]]:
@@ -319,3 +322,71 @@ def test_a_declared_unit_keeps_the_numbers(tmp_path: Path, cases, suffix: str) -
     assert [face[2:] for face in inches] == [face[2:] for face in written]
     millimetres = parameters(read_shape(path))
     assert np.allclose(np.array(millimetres[0][2]), 25.4 * np.array(written[0][2]), rtol=1e-15, atol=0)
+
+
+def bounding_box(shape: TopoDS_Shape) -> tuple[np.ndarray, np.ndarray]:
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+
+    box = Bnd_Box()
+    BRepBndLib.AddOptimal_s(shape, box, False, False)
+    return np.array(box.CornerMin().Coord()), np.array(box.CornerMax().Coord())
+
+
+@pytest.mark.parametrize("suffix", FORMATS)
+@pytest.mark.parametrize(
+    ("name", "bounds", "kind"),
+    [
+        ("paraboloid", (-1.0, 0.5, -1.0, 1.0, 0.0, 0.8), GeomAbs_SurfaceType.GeomAbs_SurfaceOfRevolution),
+        ("torus", (0.0, 4.0, -4.0, 4.0, -0.5, 2.0), GeomAbs_SurfaceType.GeomAbs_Torus),
+        ("example-1", (-6.0, 8.0, -7.0, 7.0, -8.0, 0.0), GeomAbs_SurfaceType.GeomAbs_SurfaceOfRevolution),
+    ],
+)
+def test_a_box_cuts_the_faces_and_keeps_their_surfaces(
+    tmp_path: Path, cases, suffix: str, name: str, bounds: tuple[float, ...], kind: GeomAbs_SurfaceType
+) -> None:
+    from sorgui.render import ClipBox
+
+    analysis = cases[name][0]
+    scene = build_scene(analysis, box=ClipBox(bounds))
+    path = export_analysis(analysis, tmp_path / f"{name}{suffix}", scene=scene)
+    shape = read_shape(path)
+    assert faces(shape) and all(BRepCheck_Analyzer(f).IsValid() for f in faces(shape))
+    if name == "example-1":  # Open CASCADE's cut of these revolved fitted profiles leaves the box
+        kind = GeomAbs_SurfaceType.GeomAbs_BSplineSurface
+        assert suffix != ".step" or "converted to B-spline surfaces" in path.read_text(encoding="ascii")
+    if not (suffix == ".iges" and kind == GeomAbs_SurfaceType.GeomAbs_Torus):
+        assert kinds(shape) == {kind.name}
+    low, high = bounding_box(shape)
+    side = np.array(bounds[1::2]) - np.array(bounds[0::2])
+    assert np.all(low >= np.array(bounds[0::2]) - 1e-6 * side) and np.all(high <= np.array(bounds[1::2]) + 1e-6 * side)
+    assert sampled_distance(shape, analysis.recognition.polynomial) <= 1e-7 * scene.region.radius
+
+
+def test_a_torus_larger_than_the_ball_is_cut_to_it_and_stays_a_torus(tmp_path: Path, cases) -> None:
+    analysis, scene = cases["torus"]
+    small = build_scene(analysis, radius=2.0)
+    shape = exported(tmp_path, (analysis, small), "torus.step")
+    assert kinds(shape) == {GeomAbs_SurfaceType.GeomAbs_Torus.name}
+    assert all(BRepCheck_Analyzer(f).IsValid() for f in faces(shape))
+    low, high = bounding_box(shape)
+    centre = np.asarray(small.region.center)
+    assert np.all(low >= centre - 2.0 - 1e-6) and np.all(high <= centre + 2.0 + 1e-6)
+    assert area(shape) < 4 * math.pi**2 * 2 * 1
+
+
+@pytest.mark.parametrize("suffix", [".step", ".brep"])
+@pytest.mark.parametrize(
+    ("text", "spindle"), [("(x^2+y^2+z^2)^2-4*(x^2+y^2)", False), ("(x^2+y^2+z^2-3)^2-4*(x^2+y^2)", True)]
+)
+def test_horn_and_spindle_tori_are_analytic_tori(tmp_path: Path, text: str, spindle: bool, suffix: str) -> None:
+    """R = r and R < r. STEP's toroidal surface needs R > r, so Open CASCADE writes a spindle
+    torus as the surface of revolution of its tube circle."""
+    analysis = analyze(text)
+    scene = build_scene(analysis)
+    shape = read_shape(export_analysis(analysis, tmp_path / f"t{suffix}", scene=scene))
+    revolution = spindle and suffix == ".step"
+    kind = GeomAbs_SurfaceType.GeomAbs_SurfaceOfRevolution if revolution else GeomAbs_SurfaceType.GeomAbs_Torus
+    assert kinds(shape) == {kind.name}
+    assert all(BRepCheck_Analyzer(f).IsValid() for f in faces(shape))
+    assert sampled_distance(shape, analysis.recognition.polynomial) <= 1e-9 * scene.region.radius

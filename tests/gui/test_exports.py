@@ -135,11 +135,13 @@ def test_a_cad_file_is_written_in_the_background_as_the_command_line_writes_it(
     the same file as ``sorgui analyze -o``, but for the time stamp."""
     pytest.importorskip("OCP")
     run_analysis(window, TORUS)
-    ours = tmp_path / "window.step"
+    (tmp_path / "window").mkdir()
+    (tmp_path / "cli").mkdir()
+    ours = tmp_path / "window" / "part.step"  # one name: the file's name is its product's
     with qtbot.waitSignal(window.cad_export.written, timeout=120_000):
         window.export_in_background(ours)
         assert window.cad_export.busy
-    theirs = tmp_path / "cli.step"
+    theirs = tmp_path / "cli" / "part.step"
     done = subprocess.run(
         [sys.executable, "-m", "sorgui.cli", "analyze", TORUS, "-o", str(theirs)], capture_output=True, timeout=300
     )

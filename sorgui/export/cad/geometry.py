@@ -2,7 +2,7 @@
 
 A surface of revolution ``X`` becomes, in order of preference:
 
-* an **analytic** surface (:class:`Analytic`: plane, sphere, cylinder, cone, ring torus) when its
+* an **analytic** surface (:class:`Analytic`: plane, sphere, cylinder, cone, torus) when its
   exact profile has that form (the squared profile ``P²(x, w)``, ``w = y²``, in the orthonormal
   axis frame, compared coefficient by coefficient);
 * the **exact** rational profile (:func:`exact_profile`): the meridian section ``σ = 0`` of a
@@ -130,7 +130,7 @@ def axis_frame(profile: Profile) -> Frame:
 
 def analytic_surface(analysis: Analysis, ball: ClipSphere) -> Analytic | None:
     """The analytic kind of ``X``, if it has one (``None`` otherwise): planes and spheres from the
-    recognition, cylinders, cones and ring tori from the exact squared profile ``P²(x, w)``."""
+    recognition, cylinders, cones and tori from the exact squared profile ``P²(x, w)``."""
     rec = analysis.recognition
     centre = np.asarray(ball.center)
     if rec.symmetry == "plane" and rec.normal is not None:
@@ -208,7 +208,9 @@ def _quadric(square: sympy.Poly, frame: Frame, centre: np.ndarray, radius: float
 
 
 def _torus(square: sympy.Poly, frame: Frame) -> Analytic | None:
-    """``P² = (x'² + w + R² - r²)² - 4R²·w`` with ``x' = x - x₀`` and ``R > r > 0`` (a ring torus)."""
+    """``P² = (x'² + w + R² - r²)² - 4R²·w`` with ``x' = x - x₀`` and ``R, r > 0``: a ring torus
+    (``R > r``), a horn torus (``R = r``) or a spindle torus (``R < r``, its tube circle crossing
+    the axis: one turn of that circle is the outer and the inner part, each once)."""
     x, w = square.gens
     lead = square.coeff_monomial(w**2)
     if lead == 0:
@@ -222,7 +224,7 @@ def _torus(square: sympy.Poly, frame: Frame) -> Analytic | None:
     if sympy.expand(shifted.as_expr() - model) != 0:
         return None
     big, small = _number(R2), _number(r2)
-    if not (big > small > 0):
+    if not (big > 0 and small > 0):
         return None
     return Analytic(
         "torus",

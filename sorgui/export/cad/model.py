@@ -9,6 +9,7 @@ tolerance and the deviation measured afterwards, and lines for the file's header
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
@@ -19,7 +20,7 @@ import sympy
 from sorgui.engine.results import Analysis, Profile
 from sorgui.engine.values import ExpressionError, polynomial_terms
 from sorgui.export.text import without_noise
-from sorgui.render import PATCH_RANGE, ClipSphere, LineData
+from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData
 
 from . import shapes
 from .geometry import (
@@ -46,10 +47,12 @@ REFINEMENTS = 3
 
 
 class Scene(Protocol):
-    """What a CAD export needs of a scene (``sorgui.session.scene_data.SceneData`` has it)."""
+    """What a CAD export needs of a scene (``sorgui.session.scene_data.SceneData`` has it):
+    the drawn ball, the traced profile in it, and the user's box, if one was given."""
 
     region: ClipSphere
     profile_curve: LineData
+    box: ClipBox | None
 
 
 @dataclass(frozen=True)
@@ -67,7 +70,12 @@ class CadModel:
 
 
 def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = None) -> CadModel:
-    """The faces of a surface of revolution (or a plane or sphere) inside the scene's ball."""
+    """The faces of a surface of revolution (or a plane or sphere) inside the scene's ball,
+    cut to the user's box if there is one."""
+    return _cut(_surface_model(analysis, scene, tolerance), scene.box)
+
+
+def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) -> CadModel:
     rec = analysis.recognition
     if rec.symmetry == "undecided":
         raise CadGeometryError(
@@ -80,8 +88,10 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
     ball = scene.region
     spec = analytic_surface(analysis, ball)
     if spec is not None:
-        faces = shapes.analytic_faces(spec)
-        return CadModel(shapes.compound(faces), "analytic", len(faces), _analytic_lines(spec))
+        shape = shapes.shell(shapes.analytic_faces(spec))
+        if not _inside(spec, ball):
+            shape = shapes.cut_to(shape, ball)
+        return CadModel(shape, "analytic", len(shapes.faces_of(shape)), _analytic_lines(spec))
     if rec.profile is None or rec.axis is None:
         raise CadGeometryError(f"a {rec.symmetry} surface has no single axis to turn a profile about")
     frame = axis_frame(rec.profile)
@@ -93,7 +103,7 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
     if exact is not None and _covers(exact, branches, ball.radius):
         faces = shapes.revolution_faces(frame, [shapes.bspline_curve(c) for c in exact])
         lines = (axis, f"profile: exact rational B-spline, {len(exact)} arcs, degree {exact[0].degree}")
-        return CadModel(shapes.compound(faces), "exact", len(faces), lines)
+        return CadModel(shapes.shell(faces), "exact", len(faces), lines)
     goal = (tolerance if tolerance is not None else FIT_TOLERANCE) * ball.radius
     distance = profile_distance(rec.profile, frame)
     fits = [_fit(branch, goal, distance, rec.profile, frame) for branch in branches]
@@ -104,7 +114,35 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
         axis,
         f"profile: B-spline fitted to tolerance {goal:.3g}; measured deviation {deviation:.3g} ({verdict} it)",
     )
-    return CadModel(shapes.compound(faces), "fitted", len(faces), lines, deviation, goal)
+    return CadModel(shapes.shell(faces), "fitted", len(faces), lines, deviation, goal)
+
+
+def _inside(spec: Analytic, ball: ClipSphere) -> bool:
+    """Whether a whole sphere or torus lies in ``ball`` (the other kinds are built inside it)."""
+    if spec.kind not in ("sphere", "torus"):
+        return True
+    reach = spec.radius + spec.minor_radius
+    return float(np.linalg.norm(spec.origin - np.asarray(ball.center))) + reach <= ball.radius
+
+
+def _cut(model: CadModel, box: ClipBox | None) -> CadModel:
+    """``model`` cut to the user's ``box``; an error if nothing of it is left. A cut that leaves
+    the box (Open CASCADE misses some intersections of revolved B-spline profiles) is done again
+    on the faces converted to B-spline surfaces, and the file says so."""
+    if box is None:
+        return model
+    low, high = box.bounds[0::2], box.bounds[1::2]
+    lines = [*model.description, f"cut to the box {_vector(np.array(low))} - {_vector(np.array(high))}"]
+    shape = shapes.cut_to(model.shape, box)
+    if not shapes.within(shape, box):
+        shape = shapes.cut_to(shapes.as_nurbs(model.shape), box)
+        lines.append("faces converted to B-spline surfaces to be cut to the box")
+        if not shapes.within(shape, box):
+            raise CadGeometryError("Open CASCADE could not cut the faces to the box")
+    count = len(shapes.faces_of(shape))
+    if count == 0:
+        raise CadGeometryError("the surface has no real points inside the box")
+    return dataclasses.replace(model, shape=shape, faces=count, description=tuple(lines))
 
 
 def _fit(branch: np.ndarray, goal: float, distance: Distance, profile: Profile, frame: Frame) -> shapes.Fit:
@@ -160,9 +198,10 @@ def _analytic_lines(spec: Analytic) -> tuple[str, ...]:
     return tuple(lines)
 
 
-def patch_model(analysis: Analysis) -> CadModel:
+def patch_model(analysis: Analysis, box: ClipBox | None = None) -> CadModel:
     """The first verified real rational parameterization (of ``X``, of a canal surface by its
-    circles, of a cone or cylinder by its lines) over the window's parameter box."""
+    circles, of a cone or cylinder by its lines) over the window's parameter box, cut to the
+    user's ``box`` if there is one."""
     candidates = [
         *analysis.parametrizations,
         *(analysis.canal.parametrizations if analysis.canal is not None else ()),
@@ -178,5 +217,5 @@ def patch_model(analysis: Analysis) -> CadModel:
         faces = [shapes.patch_face(p) for p in patches]
         low, high = PATCH_RANGE
         lines = (f"rational B-spline patch of the parameterization ({param.method}) over s, t in [{low:g}, {high:g}]",)
-        return CadModel(shapes.compound(faces), "patch", len(faces), lines)
+        return _cut(CadModel(shapes.shell(faces), "patch", len(faces), lines), box)
     raise CadGeometryError("the analysis has no verified real rational parameterization to write as a patch")

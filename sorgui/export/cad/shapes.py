@@ -16,8 +16,17 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Builder
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepBuilderAPI import (
+    BRepBuilderAPI_MakeEdge,
+    BRepBuilderAPI_MakeFace,
+    BRepBuilderAPI_MakeWire,
+    BRepBuilderAPI_NurbsConvert,
+)
+from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
 from OCP.GC import GC_MakeCircle
 from OCP.Geom import (
     Geom_BSplineCurve,
@@ -33,10 +42,18 @@ from OCP.GeomAbs import GeomAbs_C2
 from OCP.GeomAPI import GeomAPI_PointsToBSpline
 from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt
 from OCP.OCP.collections import Array1_double, Array1_gp_Pnt, Array1_int, Array2_double, Array2_gp_Pnt
-from OCP.TopoDS import TopoDS_Compound, TopoDS_Face, TopoDS_Shape
+from OCP.ShapeUpgrade import ShapeUpgrade_ShapeDivideClosed
+from OCP.TopAbs import TopAbs_FACE
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Shell
+
+from sorgui.render import ClipBox, ClipSphere
 
 from .geometry import Analytic, CadGeometryError, Frame, RationalCurve
 from .patch import BezierPatch
+
+FIT_DEGREES = (3, 8)
+"""The lowest and highest degree of a fitted profile B-spline."""
 
 TOLERANCE = 1e-7
 """The tolerance (length units) Open CASCADE builds edges and faces with."""
@@ -138,7 +155,7 @@ def fitted_curve(points: np.ndarray, tolerance: float, distance: Callable[[np.nd
     array = Array1_gp_Pnt(1, len(points))
     for k, p in enumerate(points, start=1):
         array.SetValue(k, _point(p))
-    fit = GeomAPI_PointsToBSpline(array, 3, 8, GeomAbs_C2, tolerance)
+    fit = GeomAPI_PointsToBSpline(array, FIT_DEGREES[0], FIT_DEGREES[1], GeomAbs_C2, tolerance)
     if not fit.IsDone():
         raise CadGeometryError("Open CASCADE could not fit a B-spline to the profile")
     curve = fit.Curve()
@@ -167,11 +184,61 @@ def patch_face(patch: BezierPatch) -> TopoDS_Face:
     return _face(BRepBuilderAPI_MakeFace(surface, TOLERANCE))
 
 
-def compound(faces: Sequence[TopoDS_Face]) -> TopoDS_Shape:
-    """The faces in one shape (a compound of faces: disjoint profile arcs share no edge)."""
+def shell(faces: Sequence[TopoDS_Face]) -> TopoDS_Shape:
+    """The faces in one open shell, one product of a STEP file (a compound would make an
+    assembly of one product per face)."""
     builder = BRep_Builder()
-    shape = TopoDS_Compound()
-    builder.MakeCompound(shape)
+    shape = TopoDS_Shell()
+    builder.MakeShell(shape)
     for face in faces:
         builder.Add(shape, face)
     return shape
+
+
+def cut_to(shape: TopoDS_Shape, region: ClipSphere | ClipBox) -> TopoDS_Shape:
+    """The part of ``shape`` inside ``region``: Open CASCADE's Boolean common with the ball or
+    box as a solid. Each face keeps its surface (a torus stays a torus), trimmed by the curves
+    where it meets the region's boundary. A cut face still closed along its seam is split in
+    two: read back from STEP, such a face's boundary is not closed in its (u, v) plane."""
+    if isinstance(region, ClipSphere):
+        solid = BRepPrimAPI_MakeSphere(_point(region.center), region.radius).Shape()
+    else:
+        low, high = region.bounds[0::2], region.bounds[1::2]
+        solid = BRepPrimAPI_MakeBox(_point(low), _point(high)).Shape()
+    common = BRepAlgoAPI_Common(shape, solid)
+    if not common.IsDone():
+        raise CadGeometryError("Open CASCADE could not cut the faces to the region")
+    halves = ShapeUpgrade_ShapeDivideClosed(common.Shape())
+    halves.SetNbSplitPoints(1)
+    halves.Perform()
+    return shell(faces_of(halves.Result()))
+
+
+def as_nurbs(shape: TopoDS_Shape) -> TopoDS_Shape:
+    """``shape`` with every surface converted to a rational B-spline surface (the same faces)."""
+    return BRepBuilderAPI_NurbsConvert(shape, True).Shape()
+
+
+def within(shape: TopoDS_Shape, box: ClipBox) -> bool:
+    """Whether every face of ``shape`` lies in ``box`` (to a millionth of its size): the check
+    of a Boolean cut, which Open CASCADE gets wrong for some revolved B-spline profiles."""
+    low, high = np.array(box.bounds[0::2]), np.array(box.bounds[1::2])
+    slack = 1e-6 * float(np.max(high - low)) + TOLERANCE
+    for face in faces_of(shape):
+        bounds = Bnd_Box()
+        BRepBndLib.AddOptimal_s(face, bounds, False, False)
+        if np.any(np.array(bounds.CornerMin().Coord()) < low - slack):
+            return False
+        if np.any(np.array(bounds.CornerMax().Coord()) > high + slack):
+            return False
+    return True
+
+
+def faces_of(shape: TopoDS_Shape) -> list[TopoDS_Face]:
+    """The faces of ``shape``, in the order Open CASCADE explores them."""
+    found = []
+    explorer = TopExp_Explorer(shape, TopAbs_FACE)
+    while explorer.More():
+        found.append(TopoDS.Face(explorer.Current()))
+        explorer.Next()
+    return found

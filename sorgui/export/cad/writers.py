@@ -79,7 +79,13 @@ def write_step(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
     """An AP242 STEP file of ``shape``; :func:`header_lines` are its ``FILE_DESCRIPTION``."""
     writer = STEPControl_Writer()
     name = UNITS[header.units][0]
-    for key, value in (("write.step.schema", "AP242DIS"), ("write.step.unit", name), ("xstep.cascade.unit", name)):
+    settings = {
+        "write.step.schema": "AP242DIS",
+        "write.step.unit": name,
+        "xstep.cascade.unit": name,
+        "write.step.product.name": _ascii(Path(path).stem),
+    }
+    for key, value in settings.items():
         if not Interface_Static.SetCVal_s(key, value):
             raise RuntimeError(f"Open CASCADE refused {key} = {value}")
     writer.Transfer(shape, STEPControl_AsIs)
