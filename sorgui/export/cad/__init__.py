@@ -27,7 +27,7 @@ CAD_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
 UNITS = ("mm", "cm", "m", "um", "in", "ft")
 """The length units a CAD file can declare (the numbers are written as they are, unscaled)."""
 
-INSTALL_HINT = "STEP, IGES and BRep files need Open CASCADE: pip install 'sorgui[cad]'"
+INSTALL_HINT = "STEP, IGES and BRep files need Open CASCADE: pip install cadquery-ocp-novtk (the sorgui[cad] extra)"
 
 
 class CadUnavailable(ValueError):
@@ -43,7 +43,7 @@ def cad_model(analysis: Analysis, scene: Scene, patch: bool = False, tolerance: 
         from .model import patch_model, surface_model
     except ImportError as exc:
         raise CadUnavailable(INSTALL_HINT) from exc
-    return patch_model(analysis) if patch else surface_model(analysis, scene, tolerance)
+    return patch_model(analysis, scene.box) if patch else surface_model(analysis, scene, tolerance)
 
 
 def write_cad(
