@@ -5,7 +5,8 @@ Run as ``python -m benchmarks.cad [--repeats N] [--write]``. The analyses and sc
 computed beforehand (not timed). The first export in a fresh process also imports Open CASCADE;
 that import is timed on its own, in a new interpreter, and the table gives the median of
 ``N`` exports after it. Each row says which route the file took (analytic, exact rational
-profile, fitted profile) and its number of faces. ``--write`` puts the table into
+profile, fitted profile), its number of faces and, for a fitted profile, the deviation measured
+against the tolerance aimed at. ``--write`` puts the table into
 ``docs/benchmarks.md``.
 """
 
@@ -50,8 +51,9 @@ def import_seconds() -> float:
 
 
 def table(repeats: int) -> str:
-    rows = ["| surface | route (faces) | " + " | ".join(f"`{s}` median s (size)" for s in SUFFIXES) + " |"]
-    rows.append("| --- | --- |" + " --- |" * len(SUFFIXES))
+    head = "| surface | route (faces) | deviation / tolerance | "
+    rows = [head + " | ".join(f"`{s}` median s (size)" for s in SUFFIXES) + " |"]
+    rows.append("| --- | --- | --- |" + " --- |" * len(SUFFIXES))
     with tempfile.TemporaryDirectory() as folder:
         for name, text in surfaces().items():
             start = time.perf_counter()
@@ -66,8 +68,9 @@ def table(repeats: int) -> str:
                     lambda a=analysis, path=path, s=scene: export_analysis(a, path, scene=s), repeats
                 )
                 cells.append(f"{seconds:.3f} ({path.stat().st_size / 1024:,.0f} KiB)")
+            fit = "exact" if model.deviation is None else f"{model.deviation:.2e} / {model.tolerance:.2e}"
             rows.append(
-                f"| {name} (analysis + scene {prepared:.2f} s) | {model.route} ({model.faces}) | "
+                f"| {name} (analysis + scene {prepared:.2f} s) | {model.route} ({model.faces}) | {fit} | "
                 + " | ".join(cells)
                 + " |"
             )

@@ -390,3 +390,29 @@ def test_horn_and_spindle_tori_are_analytic_tori(tmp_path: Path, text: str, spin
     assert kinds(shape) == {kind.name}
     assert all(BRepCheck_Analyzer(f).IsValid() for f in faces(shape))
     assert sampled_distance(shape, analysis.recognition.polynomial) <= 1e-9 * scene.region.radius
+
+
+def test_a_degree_12_profile_in_general_position_is_fitted_within_the_tolerance(tmp_path: Path) -> None:
+    """A random degree-12 profile over QQ(√38) (the benchmark's surface): its float coefficients
+    about a far origin move it by 1e-3, so it is fitted about the drawn ball's centre."""
+    import random
+
+    from sympy import QQ
+
+    from sorgui.engine.algebra.polys import poly_str
+    from sorgui.samples import move, quaternion_rotation, rational_vector, revolve
+
+    rng = random.Random(1)
+    profile = {
+        (i, j): rng.randint(-9, 9) or 1 for i in range(13) for j in range(7) if i + 2 * j <= 12 and rng.random() < 0.7
+    }
+    profile[(12, 0)] = profile[(0, 6)] = 1
+    f = revolve(profile, rational_vector((QQ(1, 2), QQ(-1, 3), 2)), rational_vector((3, -2, 5)))
+    f = move(f, quaternion_rotation((1, 2, -1, 3)), rational_vector((QQ(1, 5), 1, QQ(-2, 7))))
+    analysis = analyze(poly_str(f))
+    scene = build_scene(analysis)
+    path = export_analysis(analysis, tmp_path / "d12.step", scene=scene)
+    assert "(within it)" in path.read_text(encoding="ascii")
+    shape = read_shape(path)
+    assert kinds(shape) == {GeomAbs_SurfaceType.GeomAbs_SurfaceOfRevolution.name}
+    assert all(BRepCheck_Analyzer(face).IsValid() for face in faces(shape))

@@ -67,6 +67,35 @@ class Frame:
         return points
 
 
+SHIFT_BITS = 8
+"""The shift of a meridian curve's origin is a multiple of ``2⁻⁸``: exact, and small to write."""
+
+
+@dataclass(frozen=True)
+class MeridianCurve:
+    """The profile ``p(x, y) = 0`` as float terms in an orthonormal ``frame`` whose point is moved
+    along the axis next to the ball's centre. The shift is exact (done on the exact ``p``):
+    rounding the coefficients of ``p`` about a far origin moves a degree-12 profile by 1e-3 and
+    leaves Newton's method stuck in that noise; about the drawn region it moves it by 1e-13."""
+
+    terms: Terms
+    frame: Frame
+
+
+def meridian_curve(profile: Profile, frame: Frame, ball: ClipSphere) -> MeridianCurve:
+    """The profile about the foot of the ball's centre on the axis (see :class:`MeridianCurve`)."""
+    x, y = sympy.symbols("x y")
+    foot = float(frame.to_plane(np.array([ball.center]))[0, 0])
+    shift = sympy.Rational(round(foot * 2**SHIFT_BITS), 2**SHIFT_BITS)
+    try:
+        moved = sympy.Poly(read_expression(profile.polynomial), x, y).to_field().shift_list([shift, 0])
+    except (ExpressionError, sympy.PolynomialError, AttributeError):
+        return MeridianCurve(polynomial_terms(profile.polynomial, ("x", "y")), frame)
+    terms = [(m, float(sympy.N(c, 20))) for m, c in moved.terms()]
+    point = frame.point + float(shift) * frame.direction
+    return MeridianCurve(terms, Frame(point, frame.direction, frame.normal))
+
+
 @dataclass(frozen=True)
 class Analytic:
     """An analytic surface of Open CASCADE's kinds, placed at ``origin`` with axis ``direction``.
@@ -542,18 +571,17 @@ def _mirrored(curve: RationalCurve, frame: Frame) -> RationalCurve:
 # --- the traced profile -----------------------------------------------------------------------
 
 
-def traced_profile(polylines: Sequence[np.ndarray], profile: Profile, frame: Frame) -> list[np.ndarray]:
+def traced_profile(polylines: Sequence[np.ndarray], curve: MeridianCurve) -> list[np.ndarray]:
     """The 3D view's profile polylines (both halves, clipped to the ball) cut to the half-plane
     ``y ≥ 0`` (a crossing of the axis moved onto it), each point moved onto ``p(x, y) = 0``
     by Newton steps in the orthonormal frame: ordered 3D points of each branch, for fitting."""
-    terms = polynomial_terms(profile.polynomial, ("x", "y"))
     branches = []
     for line in polylines:
-        xy = frame.to_plane(line)
+        xy = curve.frame.to_plane(line)
         for run in _runs_above_axis(xy):
-            for smooth in _smooth_parts(onto_profile(terms, run)):
+            for smooth in _smooth_parts(onto_profile(curve.terms, run)):
                 if len(smooth) >= 4:
-                    branches.append(frame.to_space(smooth))
+                    branches.append(curve.frame.to_space(smooth))
     return branches
 
 
@@ -618,18 +646,19 @@ Distance = Callable[[np.ndarray], np.ndarray]
 """A distance of 3D points ``(n, 3)`` to the surface (or its profile), length units."""
 
 
-def profile_distance(profile: Profile, frame: Frame) -> Distance:
+def profile_distance(curve: MeridianCurve, floor: float = 0.0) -> Distance:
     """The distance of 3D points in the meridian plane to the profile: the first-order ``|p|/|∇p|``,
     or where smaller the way Newton's method moves the point onto ``p = 0`` (near a singular point
-    of the profile, where ``∇p`` vanishes, the first-order distance is far too large)."""
-    terms = polynomial_terms(profile.polynomial, ("x", "y"))
+    of the profile, where ``∇p`` vanishes, the first-order distance is far too large). Newton's
+    method is run only from points whose first-order distance is above ``floor``."""
 
     def distance(xyz: np.ndarray) -> np.ndarray:
-        xy = frame.to_plane(xyz)
+        xy = curve.frame.to_plane(xyz)
         xy[:, 1] = np.abs(xy[:, 1])
-        first_order = surface_distance(terms, xy)
-        moved = np.linalg.norm(onto_profile(terms, xy, steps=30) - xy, axis=1)
-        out: np.ndarray = np.minimum(first_order, moved)
+        out: np.ndarray = surface_distance(curve.terms, xy)
+        far = np.flatnonzero(~(out <= floor))
+        moved = np.linalg.norm(onto_profile(curve.terms, xy[far], steps=30) - xy[far], axis=1)
+        out[far] = np.minimum(out[far], moved)
         return out
 
     return distance

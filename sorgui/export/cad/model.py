@@ -17,8 +17,8 @@ from typing import Any, Protocol
 import numpy as np
 import sympy
 
-from sorgui.engine.results import Analysis, Profile
-from sorgui.engine.values import ExpressionError, polynomial_terms
+from sorgui.engine.results import Analysis
+from sorgui.engine.values import ExpressionError
 from sorgui.export.text import without_noise
 from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData
 
@@ -27,11 +27,12 @@ from .geometry import (
     Analytic,
     CadGeometryError,
     Distance,
-    Frame,
+    MeridianCurve,
     RationalCurve,
     analytic_surface,
     axis_frame,
     exact_profile,
+    meridian_curve,
     onto_profile,
     polyline_distance,
     profile_distance,
@@ -42,8 +43,12 @@ from .patch import bezier_patches
 FIT_TOLERANCE = 1e-7
 """The default tolerance of a fitted profile, relative to the drawn ball's radius."""
 
-REFINEMENTS = 3
-"""How many times the points of a fitted branch are doubled when the fit misses its tolerance."""
+REFINEMENTS = 6
+"""How many times the spans of a fitted branch that miss the tolerance are halved, at most
+(a span shorter than the tolerance is not halved: its curve cannot stray further)."""
+
+MAX_POINTS = 5_000
+"""The most points a fitted branch interpolates."""
 
 
 class Scene(Protocol):
@@ -95,7 +100,8 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
     if rec.profile is None or rec.axis is None:
         raise CadGeometryError(f"a {rec.symmetry} surface has no single axis to turn a profile about")
     frame = axis_frame(rec.profile)
-    branches = traced_profile(scene.profile_curve.polylines(), rec.profile, frame)
+    curve = meridian_curve(rec.profile, frame, ball)
+    branches = traced_profile(scene.profile_curve.polylines(), curve)
     if not branches:
         raise CadGeometryError("the surface has no real points inside the drawn ball")
     axis = _axis_line(frame.point, frame.direction)
@@ -105,8 +111,8 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
         lines = (axis, f"profile: exact rational B-spline, {len(exact)} arcs, degree {exact[0].degree}")
         return CadModel(shapes.shell(faces), "exact", len(faces), lines)
     goal = (tolerance if tolerance is not None else FIT_TOLERANCE) * ball.radius
-    distance = profile_distance(rec.profile, frame)
-    fits = [_fit(branch, goal, distance, rec.profile, frame) for branch in branches]
+    distance = profile_distance(curve, floor=goal / 10)
+    fits = [_fit(branch, goal, distance, curve) for branch in branches]
     deviation = max(f.deviation for f in fits)
     faces = shapes.revolution_faces(frame, [f.curve for f in fits])
     verdict = "within" if deviation <= goal else "ABOVE"
@@ -145,23 +151,31 @@ def _cut(model: CadModel, box: ClipBox | None) -> CadModel:
     return dataclasses.replace(model, shape=shape, faces=count, description=tuple(lines))
 
 
-def _fit(branch: np.ndarray, goal: float, distance: Distance, profile: Profile, frame: Frame) -> shapes.Fit:
-    """A fitted branch within ``goal``, its points doubled (midpoints moved onto the profile)
-    while the measured deviation is larger."""
-    terms = polynomial_terms(profile.polynomial, ("x", "y"))
-    points, aim = branch, goal / 2
-    fit = shapes.fitted_curve(points, aim, distance)
+def _fit(branch: np.ndarray, goal: float, distance: Distance, curve: MeridianCurve) -> shapes.Fit:
+    """A curve through the branch's points within ``goal``: every span whose measured distance to
+    the profile is larger is halved (its midpoint moved onto the profile), and the curve drawn
+    again, at most :data:`REFINEMENTS` times and up to :data:`MAX_POINTS` points."""
+    points = _distinct(branch, goal)
+    fit = shapes.fitted_curve(points, distance)
     for _ in range(REFINEMENTS):
-        if fit.deviation <= goal:
+        length = np.linalg.norm(np.diff(points, axis=0), axis=1)
+        wide = np.flatnonzero((fit.spans > goal) & (length > goal))
+        if len(wide) == 0 or len(points) + len(wide) > MAX_POINTS:
             break
-        aim /= 4
-        middles = frame.to_plane((points[:-1] + points[1:]) / 2)
-        moved = frame.to_space(onto_profile(terms, middles))
-        doubled = np.empty((2 * len(points) - 1, 3))
-        doubled[0::2], doubled[1::2] = points, moved
-        points = doubled
-        fit = shapes.fitted_curve(points, aim, distance)
+        halves = curve.frame.to_plane((points[wide] + points[wide + 1]) / 2)
+        middles = curve.frame.to_space(onto_profile(curve.terms, halves))
+        points = _distinct(np.insert(points, wide + 1, middles, axis=0), goal)
+        fit = shapes.fitted_curve(points, distance)
     return fit
+
+
+def _distinct(points: np.ndarray, gap: float) -> np.ndarray:
+    """``points`` without those closer than ``gap / 100`` to the one before (interpolation needs
+    distinct points)."""
+    step = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    keep = np.concatenate([[True], step > gap / 100])
+    kept: np.ndarray = points[keep]
+    return kept
 
 
 def _covers(curves: Sequence[RationalCurve], branches: Sequence[np.ndarray], size: float) -> bool:

@@ -4,7 +4,8 @@ A surface of revolution is ``Geom_SurfaceOfRevolution`` about the exact axis (``
 profile B-spline in a meridian half-plane, one face per profile arc; the analytic kinds are
 Open CASCADE's own surfaces (``Geom_Plane``, ``Geom_SphericalSurface``, ``Geom_CylindricalSurface``,
 ``Geom_ConicalSurface``, ``Geom_ToroidalSurface``); a profile with no exact rational form is
-fitted (``GeomAPI_PointsToBSpline``) and its deviation measured on the fitted curve afterwards.
+interpolated (``GeomAPI_Interpolate``) at points on it, refined where the distance measured on
+the curve afterwards is too large.
 A parameterization becomes a rational B-spline patch (``Geom_BSplineSurface``). OCP is imported
 with this module, which is loaded only when a CAD file is written.
 """
@@ -38,10 +39,16 @@ from OCP.Geom import (
     Geom_SurfaceOfRevolution,
     Geom_ToroidalSurface,
 )
-from OCP.GeomAbs import GeomAbs_C2
-from OCP.GeomAPI import GeomAPI_PointsToBSpline
+from OCP.GeomAPI import GeomAPI_Interpolate
 from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt
-from OCP.OCP.collections import Array1_double, Array1_gp_Pnt, Array1_int, Array2_double, Array2_gp_Pnt
+from OCP.OCP.collections import (
+    Array1_double,
+    Array1_gp_Pnt,
+    Array1_int,
+    Array2_double,
+    Array2_gp_Pnt,
+    HArray1_gp_Pnt,
+)
 from OCP.ShapeUpgrade import ShapeUpgrade_ShapeDivideClosed
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
@@ -51,9 +58,6 @@ from sorgui.render import ClipBox, ClipSphere
 
 from .geometry import Analytic, CadGeometryError, Frame, RationalCurve
 from .patch import BezierPatch
-
-FIT_DEGREES = (3, 8)
-"""The lowest and highest degree of a fitted profile B-spline."""
 
 TOLERANCE = 1e-7
 """The tolerance (length units) Open CASCADE builds edges and faces with."""
@@ -143,26 +147,36 @@ def analytic_faces(spec: Analytic) -> list[TopoDS_Face]:
 
 @dataclass(frozen=True)
 class Fit:
-    """A fitted profile curve and the largest distance measured from it to the profile."""
+    """A fitted profile curve, the largest distance measured from it to the profile, and that
+    distance on each span between two consecutive points it interpolates."""
 
     curve: Geom_BSplineCurve
     deviation: float
+    spans: np.ndarray
 
 
-def fitted_curve(points: np.ndarray, tolerance: float, distance: Callable[[np.ndarray], np.ndarray]) -> Fit:
-    """A B-spline through ``points`` (3D, ordered along one profile branch) within ``tolerance``,
-    with its deviation measured afterwards by ``distance`` at 20 points per knot span."""
-    array = Array1_gp_Pnt(1, len(points))
+SAMPLES = 10
+"""Points per span at which a fitted curve's distance to the profile is measured."""
+
+
+def fitted_curve(points: np.ndarray, distance: Callable[[np.ndarray], np.ndarray]) -> Fit:
+    """The cubic ``C²`` B-spline through ``points`` (3D, distinct, ordered along one profile
+    branch; ``GeomAPI_Interpolate``, chord-length parameters), with its distance to the profile
+    measured afterwards by ``distance`` at :data:`SAMPLES` points of every span."""
+    array = HArray1_gp_Pnt(1, len(points))
     for k, p in enumerate(points, start=1):
         array.SetValue(k, _point(p))
-    fit = GeomAPI_PointsToBSpline(array, FIT_DEGREES[0], FIT_DEGREES[1], GeomAbs_C2, tolerance)
-    if not fit.IsDone():
+    interpolation = GeomAPI_Interpolate(array, False, 0.0)
+    interpolation.Perform()
+    if not interpolation.IsDone():
         raise CadGeometryError("Open CASCADE could not fit a B-spline to the profile")
-    curve = fit.Curve()
-    knots = [curve.Knot(k) for k in range(1, curve.NbKnots() + 1)]
-    samples = np.concatenate([np.linspace(a, b, 20, endpoint=False) for a, b in zip(knots, knots[1:])] + [knots[-1:]])
+    curve = interpolation.Curve()
+    knots = np.array([curve.Knot(k) for k in range(1, curve.NbKnots() + 1)])
+    steps = np.arange(1, SAMPLES + 1) / (SAMPLES + 1)
+    samples = (knots[:-1, None] + np.diff(knots)[:, None] * steps).ravel()
     xyz = np.array([_xyz(curve.Value(float(u))) for u in samples])
-    return Fit(curve, float(np.max(distance(xyz))))
+    spans = np.max(distance(xyz).reshape(len(knots) - 1, SAMPLES), axis=1)
+    return Fit(curve, float(spans.max(initial=0.0)), spans)
 
 
 def _xyz(p: gp_Pnt) -> tuple[float, float, float]:
