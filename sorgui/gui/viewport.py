@@ -72,6 +72,7 @@ BACK_COLOR = "#e8a95b"
 AXIS_COLOR = "#1f2a44"
 PROFILE_COLOR = "#c2185b"
 CENTER_COLOR = "#d32f2f"
+BASE_CURVE_COLOR = "#5d4037"
 PATCH_COLOR = "#2e7d32"
 NORMAL_COLOR = "#ff6f00"
 LATITUDE_COLOR = "#6a1b9a"
@@ -93,6 +94,7 @@ SCENE_ACTORS = (
     "factor_axes",
     "canal_spine",
     "canal_circles",
+    "base_curve",
 )
 CANAL_ACTORS = ("canal_spine", "canal_circles")
 PICK_ACTORS = ("pick_normal", "pick_circle", "pick_point", "pick_sphere", "pick_canal_circle")
@@ -336,6 +338,7 @@ class Viewport(QWidget):
             "canal_circles", to_polydata(scene.canal_circles), color=CANAL_CIRCLE_COLOR, line_width=2, visible=canal
         )
         self.canal_box.setEnabled(not (scene.canal_spine.is_empty and scene.canal_circles.is_empty))
+        self._set_actor("base_curve", to_polydata(scene.base_curve), color=BASE_CURVE_COLOR, line_width=4)
         import pyvista
 
         center = to_polydata(scene.center_marker) if scene.center_marker else pyvista.PolyData()

@@ -126,7 +126,7 @@ class _Presenter:
     _patched: bool = False
     _approximated: bool = False
     _canal: tuple[Any, ...] = ()
-    _apex: bool = False
+    _conical: bool = False
 
     def stage(self, name: str, work: Callable[[], Any]) -> Any:
         self.check()
@@ -189,7 +189,7 @@ class _Presenter:
 
     def _extras(self, analysis: Analysis) -> Callable[[Any], Any] | None:
         """What the scene still lacks of ``analysis``: the patch, the rounded-input extras, the
-        canal surface's spines and circles, the apex of a cone."""
+        canal surface's spines and circles, the apex and base curve of a cone or a cylinder."""
         from sorgui.session import scene_data
 
         steps: list[Callable[[Any], Any]] = []
@@ -200,9 +200,9 @@ class _Presenter:
             self._approximated = True
             steps.append(lambda scene: scene_data.with_approximation(scene, analysis))
         conical = analysis.conical
-        if not self._apex and conical is not None and conical.kind == "cone" and conical.apex is not None:
-            self._apex = True
-            steps.append(lambda scene: scene_data.with_apex(scene, analysis))
+        if not self._conical and conical is not None and conical.kind in ("cone", "cylinder"):
+            self._conical = True
+            steps.append(lambda scene: scene_data.with_conical(scene, analysis))
         canal = analysis.canal
         if canal is not None and canal.is_canal and canal.families:
             drawn = tuple((f.parametrization, f.circle_center) for f in canal.families)

@@ -21,7 +21,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from sorgui.engine.results import Analysis, Approximation, Parametrization, Recognition
+from sorgui.engine.results import Analysis, Approximation, BaseCurve, Conical, Parametrization, Recognition
 from sorgui.engine.rounded import dense
 from sorgui.engine.rounded.deviation import view_ball
 from sorgui.engine.values import (
@@ -67,8 +67,10 @@ class SceneData:
     ``canal_spine``/``canal_circles``: the spines and a few characteristic circles of a canal
     surface's sphere families (docs/math.md §9; a spine of positive genus traced numerically);
     ``canal_families``: those families as float curves or SMAT equations, to find the sphere
-    touching the surface at a picked point. ``box``: the user's box, if one was given: the mesh
-    and CAD faces are cut to it, and ``region`` is the ball about it.
+    touching the surface at a picked point. ``base_curve``: the base curve of a cone or a
+    cylinder over a curve, drawn where it lies on the surface (docs/math.md §10). ``box``: the
+    user's box, if one was given: the mesh and CAD faces are cut to it, and ``region`` is the
+    ball about it.
     """
 
     terms: Terms
@@ -88,6 +90,7 @@ class SceneData:
     canal_circles: LineData = LineData.empty()
     canal_families: tuple[FamilyCurves | SmatFamily, ...] = ()
     box: ClipBox | None = None
+    base_curve: LineData = LineData.empty()
 
     @property
     def axis(self) -> tuple[np.ndarray, np.ndarray] | None:
@@ -291,13 +294,53 @@ def with_canal(scene: SceneData, analysis: Analysis) -> SceneData:
     )
 
 
-def with_apex(scene: SceneData, analysis: Analysis) -> SceneData:
-    """``scene`` with the apex of a cone over a curve (docs/math.md §10), marked as a sphere's
-    centre is (a surface has one or the other)."""
+def with_conical(scene: SceneData, analysis: Analysis) -> SceneData:
+    """``scene`` with what a cone or a cylinder over a curve shows (docs/math.md §10): the apex
+    of a cone, marked as a sphere's centre is (a surface has one or the other), and the base
+    curve where it lies on the surface, in its plane."""
     conical = analysis.conical
-    if conical is None or conical.kind != "cone" or conical.apex is None or scene.center_marker is not None:
+    if conical is None or conical.kind not in ("cone", "cylinder"):
         return scene
-    return replace(scene, center_marker=sphere_center_marker(float_vector(conical.apex), scene.region))
+    if conical.kind == "cone" and conical.apex is not None and scene.center_marker is None:
+        scene = replace(scene, center_marker=sphere_center_marker(float_vector(conical.apex), scene.region))
+    base = conical.base_curve
+    if base is None:
+        return scene
+    try:
+        terms = polynomial_terms(base.polynomial, base.variables)
+    except (ExpressionError, ValueError, TypeError):
+        return scene
+    plane = _base_plane(conical, base, terms, scene.region)
+    if plane is None:
+        return scene
+    curve_terms, point, first, second = plane
+    return replace(scene, base_curve=profile_curve(curve_terms, point, first, second, scene.region))
+
+
+def _base_plane(
+    conical: Conical, base: BaseCurve, terms: Terms, region: ClipSphere
+) -> tuple[Terms, np.ndarray, np.ndarray, np.ndarray] | None:
+    """The base curve as terms in ``(s, r)`` of the plane ``point + s·first + r·second``, a plane
+    through the drawn ball where the curve lies on the surface. A cone's chart ``z = 1`` becomes
+    the parallel plane at the distance ``d`` from the apex where the ball is (``f_d`` is
+    homogeneous: its terms are scaled by powers of ``d``); a cylinder's section plane is moved
+    along the direction to the ball's centre (the surface does not change along it)."""
+    centre = np.asarray(region.center)
+    if conical.kind == "cylinder" and None not in (base.frame_point, base.frame_u, base.frame_w, conical.direction):
+        assert base.frame_point and base.frame_u and base.frame_w and conical.direction
+        origin, a = float_vector(base.frame_point), float_vector(conical.direction)
+        point = origin + ((centre - origin) @ a) / (a @ a) * a
+        return terms, point, float_vector(base.frame_u), float_vector(base.frame_w)
+    if conical.kind == "cone" and conical.apex is not None and base.chart is not None:
+        names = ("x", "y", "z")
+        chart, first, second = (names.index(n) for n in (base.chart.split("=")[0].strip(), *base.variables))
+        apex, unit = float_vector(conical.apex), np.eye(3)
+        d = float((centre - apex) @ unit[chart])
+        if abs(d) < region.radius / 4:
+            d = region.radius / 2
+        scaled = [(m, c * d ** (base.degree - sum(m))) for m, c in terms]
+        return scaled, apex + d * unit[chart], unit[first], unit[second]
+    return None
 
 
 def surface_deviation(terms: Terms, points: np.ndarray) -> np.ndarray:

@@ -24,6 +24,27 @@ def _marker(window):  # noqa: ANN001, ANN202
     return window.viewport.plotter.renderer.actors["center"].GetMapper().GetInput()
 
 
+def _base_curve_points(window, qtbot) -> np.ndarray:  # noqa: ANN001
+    """The points of the drawn base curve, once it is drawn."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    def drawn():  # noqa: ANN202
+        return window.viewport.plotter.renderer.actors["base_curve"].GetMapper().GetInput()
+
+    qtbot.waitUntil(
+        lambda: "base_curve" in window.viewport.actor_names() and drawn().GetNumberOfPoints() > 50, timeout=30_000
+    )
+    return vtk_to_numpy(drawn().GetPoints().GetData())
+
+
+def _on_surface(window, points: np.ndarray) -> float:  # noqa: ANN001
+    """The largest first-order distance ``|f|/|∇f|`` of ``points`` to the drawn surface."""
+    from sorgui.render.sampling import first_order_distance
+
+    distance = first_order_distance(window.viewport.scene.terms, points)
+    return float(np.nanmax(distance))
+
+
 def test_a_cone_shows_its_apex_and_base_curve(window, run_analysis, qtbot, artifacts: Path) -> None:
     result = run_analysis(window, "(x-1)^3+2*(y-2)^3-(z-3)^2*(x-1)+(x-1)*(y-2)*(z-3)", timeout_ms=SLOW_MS)
     conical = result.analysis.conical
@@ -37,10 +58,13 @@ def test_a_cone_shows_its_apex_and_base_curve(window, run_analysis, qtbot, artif
     qtbot.waitUntil(lambda: _marker(window).GetNumberOfPoints() > 0, timeout=30_000)  # the apex, drawn
     center = np.asarray(_marker(window).GetCenter())
     assert np.allclose(center, (1, 2, 3), atol=0.05)
+    base = _base_curve_points(window, qtbot)  # f₃ in a plane z = const, where it lies on the cone
+    assert np.ptp(base[:, 2]) < 1e-9 and abs(base[0, 2] - 3) > 0.5
+    assert _on_surface(window, base) < 1e-3 * window.viewport.scene.region.radius
     window.save_screenshots(artifacts / "cone-window.png", artifacts / "cone-viewport.png")
 
 
-def test_a_rational_cylinder_shows_its_direction_and_a_verified_map(window, run_analysis) -> None:
+def test_a_rational_cylinder_shows_its_direction_and_a_verified_map(window, run_analysis, qtbot) -> None:
     result = run_analysis(window, "(x-z)^3-(y-2*z)^2", timeout_ms=SLOW_MS)
     conical = result.analysis.conical
     assert conical.kind == "cylinder" and conical.direction == ("1", "2", "1") and conical.rational
@@ -48,3 +72,7 @@ def test_a_rational_cylinder_shows_its_direction_and_a_verified_map(window, run_
     assert "a cylinder along (1, 2, 1)" in window.results.banner.text()
     assert "degree 3, genus 0" in text and "real, proper, over QQ · verified by substitution" in text
     assert all(f"conical.parametrization.0.{name}" in window.results.views for name in "xyz")
+    base = _base_curve_points(window, qtbot)  # the section by a plane across (1, 2, 1)
+    assert np.ptp(base @ np.array([1.0, 2.0, 1.0])) < 1e-9
+    smooth = np.linalg.norm(base, axis=1) > 0.05  # away from the cusp, at the origin
+    assert _on_surface(window, base[smooth]) < 1e-3 * window.viewport.scene.region.radius
