@@ -31,6 +31,7 @@ from sorgui.engine.values import (
     polynomial_terms,
     rational_function_terms,
 )
+from sorgui.export.text import float_text
 from sorgui.render import (
     PATCH_RANGE,
     ClipBox,
@@ -100,9 +101,10 @@ class SceneData:
         return np.asarray(self.axis_point), np.asarray(self.axis_direction)
 
     def summary(self) -> str:
-        """Short facts for the status bar: triangles and the drawn ball."""
-        center = ", ".join(f"{v:.3g}" for v in self.region.center)
-        return f"{self.surface.n_faces:,} triangles in a ball of radius {self.region.radius:.3g} about ({center})"
+        """Short facts for the status bar: triangles and the drawn ball (its centre without
+        rounding noise: ``(0, 0, 0)``, not ``(1.11e-16, 1.67e-16, 5.55e-17)``)."""
+        center = float_text(self.region.center, 3)
+        return f"{self.surface.n_faces:,} triangles in a ball of radius {self.region.radius:.3g} about {center}"
 
 
 # --- where to look --------------------------------------------------------------------------

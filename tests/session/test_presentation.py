@@ -198,3 +198,16 @@ def test_a_rounded_surface_is_drawn_in_the_ball_about_its_approximate_axis() -> 
     ball = view_region(terms, center, axis)
     exact = view_region(terms, exact_center, direction)
     assert math.isclose(ball.radius, exact.radius, rel_tol=1e-6)
+
+
+def test_the_status_summary_shows_no_rounding_noise() -> None:
+    """The drawn ball's centre of a torus about the origin, computed in floats, is ``(0, 0, 0)``."""
+    from dataclasses import replace
+
+    from sorgui.engine import analyze
+    from sorgui.render import ClipSphere
+    from sorgui.session.scene_data import build_scene
+
+    scene = build_scene(analyze(example_text("torus")), resolution=20)
+    noisy = replace(scene, region=ClipSphere((1.11e-16, 1.67e-16, -5.55e-17), 3.75))
+    assert noisy.summary().endswith("in a ball of radius 3.75 about (0, 0, 0)")
