@@ -370,7 +370,8 @@ class Conical:
     ``rational`` says whether ``X`` is rational (exactly when its base curve is), ``None`` when
     undecided. ``apex`` of a cylinder is set when ``f(c + X)`` is also homogeneous (planes
     through a line). For rounded input that is exactly neither, ``near_apex`` is the apex of a
-    cone within the rounding, and ``near_residual`` its relative Euler residual."""
+    cone within the rounding, or ``near_direction`` the unit direction of a cylinder within it,
+    and ``near_residual`` the relative residual (of Euler's identity, or ``|M a| / |M|``)."""
 
     kind: str
     apex: Triple | None = None
@@ -381,6 +382,7 @@ class Conical:
     notes: tuple[str, ...] = ()
     near_apex: tuple[float, float, float] | None = None
     near_residual: float | None = None
+    near_direction: tuple[float, float, float] | None = None
 
     def to_json(self) -> dict[str, Any]:
         """The ``conical`` object of ``sorgui analyze --json``: its fields, as they are."""
@@ -400,6 +402,7 @@ class Conical:
             notes=tuple(data.get("notes", ())),
             near_apex=_tuples(data.get("near_apex")),
             near_residual=data.get("near_residual"),
+            near_direction=_tuples(data.get("near_direction")),
         )
 
 

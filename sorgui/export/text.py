@@ -299,6 +299,12 @@ def conical_lines(conical: Conical) -> list[str]:
             f"cone or cylinder over a curve: NO exactly, but nearly a cone about {float_text(conical.near_apex, 6)} "
             f"within the rounding (relative residual {conical.near_residual:.2g})"
         ]
+    if conical.kind == "none" and conical.near_direction is not None:
+        along = float_text(conical.near_direction, 6)
+        return [
+            f"cone or cylinder over a curve: NO exactly, but nearly a cylinder along {along} "
+            f"within the rounding (relative residual {conical.near_residual:.2g})"
+        ]
     if conical.kind == "none" and conical.notes:
         return [f"cone or cylinder over a curve: {note}" for note in conical.notes]
     if conical.kind == "none":

@@ -168,6 +168,16 @@ class ResultsPane(QScrollArea):
                     ("relative residual", f"{conical.near_residual:.2g}"),
                 ],
             )
+        elif conical is not None and conical.near_direction is not None and conical.near_residual is not None:
+            self._section(
+                column,
+                "Cone or cylinder",
+                [
+                    ("kind", "not exactly a cylinder, but nearly: a cylinder within the rounding of the input"),
+                    ("direction (about)", float_text(conical.near_direction, 10)),
+                    ("relative residual", f"{conical.near_residual:.2g}"),
+                ],
+            )
         elif "conical" in pending:
             self._section(column, "Cone or cylinder", [("", "being decided: the apex or the direction follows")])
         if analysis.canal is not None:

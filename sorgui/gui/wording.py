@@ -187,6 +187,8 @@ def verdict(analysis: Analysis) -> tuple[str, str, str]:
         detail += f" · a cylinder along ({', '.join(conical.direction)})"
     elif conical is not None and conical.near_apex is not None:
         detail += f" · nearly a cone about {float_text(conical.near_apex, 4)}"
+    elif conical is not None and conical.near_direction is not None:
+        detail += f" · nearly a cylinder along {float_text(conical.near_direction, 4)}"
     if rec.is_sor:
         return "Surface of revolution", detail, "sor"
     if approx is not None and approx.near_sor:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+import numpy as np
 import pytest
 import sympy
 from hypothesis import HealthCheck, given, settings
@@ -179,3 +180,22 @@ def test_a_cone_printed_with_ten_digits_is_nearly_a_cone_about_its_apex() -> Non
     assert all(abs(a - b) < 1e-8 for a, b in zip(conical.near_apex, (1 / 3, 2 / 7, 5 / 11)))
     exact[(0, 0, 0)] = exact.get((0, 0, 0), Fraction(0)) + Fraction(1, 100)  # a near miss, rounded alike
     assert analyze(printed_exact(exact, 10)).conical.near_apex is None
+
+
+def test_a_cylinder_printed_with_ten_digits_is_nearly_a_cylinder_along_its_direction() -> None:
+    """Along (3, -1/7, 2): ``M a = 0`` holds to the rounding; moving the ``x³`` coefficient by
+    1/100 (a near miss, rounded alike) makes no translation nearly leave it invariant."""
+    from sorgui.engine import analyze
+    from sorgui.samples import printed_exact
+
+    u, v = "(2*x-3*z)", "(14*y+z)"  # both vanish along (3, -1/7, 2)
+    f = parse_polynomial(f"{u}^3-{u}*{v}+{v}^2/9-7/5").polynomial
+    exact = {m: Fraction(int(c.numerator), int(c.denominator)) for m, c in f.items()}
+    conical = analyze(printed_exact(exact, 10)).conical
+    assert conical is not None and conical.kind == "none" and conical.near_apex is None
+    assert conical.near_direction is not None and conical.near_residual < 1e-8
+    a = np.array([3, -1 / 7, 2]) / np.linalg.norm([3, -1 / 7, 2])
+    assert np.allclose(conical.near_direction, a, atol=1e-8)
+    assert conical.to_json()["near_direction"] == list(conical.near_direction)
+    exact[(3, 0, 0)] += Fraction(1, 100)
+    assert analyze(printed_exact(exact, 10)).conical.near_direction is None

@@ -31,7 +31,7 @@ from ..recognition.profile import AxisFrame
 from ..results import BaseCurve, Conical, Parametrization
 from ..revolution.parametrization import PARAMETERS, SurfaceMap, frame_map, numerically_vanishes, vanishes_on
 from ..singular.curves import analyze_curve, parametrize
-from .detect import Conicity, detect, near_apex
+from .detect import Conicity, detect, near_apex, near_direction
 
 S, T = (sympy.Symbol(name) for name in PARAMETERS)
 CHARTS = (2, 1, 0)
@@ -48,17 +48,22 @@ def analyze_conical(
     """Cone, cylinder or neither (:func:`.detect.detect`); for a cone or a cylinder whose
     base curve is a curve (not points), its genus and the verified parameterizations. With the
     ``tolerance`` of rounded input, a surface that is exactly neither may be nearly a cone
-    (:func:`.detect.near_apex`)."""
+    (:func:`.detect.near_apex`) or nearly a cylinder (:func:`.detect.near_direction`)."""
     if total_degree(f) < 2:
         return Conical("none", notes=(PLANE_NOTE,))
     found = detect(f)
     K = f.ring.domain
     apex = None if found.apex is None else _triple(K, found.apex)
     if found.kind == "none":
-        near = None if tolerance is None else near_apex(f, tolerance)
-        if near is None:
+        if tolerance is None:
             return Conical("none")
-        return Conical("none", near_apex=near[0], near_residual=near[1])
+        near = near_apex(f, tolerance)
+        if near is not None:
+            return Conical("none", near_apex=near[0], near_residual=near[1])
+        along = near_direction(f, tolerance)
+        if along is not None:
+            return Conical("none", near_direction=along[0], near_residual=along[1])
+        return Conical("none")
     if len(found.directions) > 1:
         return Conical(
             "cylinder",

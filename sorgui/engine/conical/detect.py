@@ -91,3 +91,23 @@ def near_apex(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], fl
         return None
     x, y, z = (float(v) for v in apex)
     return (x, y, z), residual
+
+
+def near_direction(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], float] | None:
+    """For rounded input that is no exact cylinder: the direction ``a`` of a cylinder within the
+    rounding, the right singular vector of ``M`` (``M a = 0`` for an exact one) whose singular
+    value is within :data:`NEAR_FACTOR` times the rounding of the largest, and that ratio (the
+    relative residual ``|M a| / |M|``); ``None`` unless exactly one such direction exists."""
+    K = f.ring.domain
+    rows, _rhs = _system(f)
+    M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
+    _u, singular, vt = np.linalg.svd(M)
+    if len(singular) < 3 or singular[0] == 0:
+        return None
+    small = singular <= NEAR_FACTOR * tolerance * singular[0]
+    if int(small.sum()) != 1 or not small[-1]:
+        return None
+    a = vt[-1] / np.linalg.norm(vt[-1])
+    a = a if a[int(np.argmax(np.abs(a)))] > 0 else -a
+    x, y, z = (float(v) for v in a)
+    return (x, y, z), float(singular[-1] / singular[0])
