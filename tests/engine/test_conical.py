@@ -199,3 +199,31 @@ def test_a_cylinder_printed_with_ten_digits_is_nearly_a_cylinder_along_its_direc
     assert conical.to_json()["near_direction"] == list(conical.near_direction)
     exact[(3, 0, 0)] += Fraction(1, 100)
     assert analyze(printed_exact(exact, 10)).conical.near_direction is None
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "(x-z)^2+sqrt(2)*(y-2*z)^2-1",  # a cylinder along (1, 2, 1) over an ellipse
+        "(x-1)^2+sqrt(2)*(y+2)^2-(z-1)^2+sqrt(2)*(x-1)*(y+2)",  # a cone with apex (1, -2, 1)
+    ],
+)
+def test_a_cone_or_cylinder_over_a_conic_over_qq_sqrt_2_is_parameterized_through_a_point(text: str) -> None:
+    """Singular's paraPlaneCurve takes only QQ; the conic gets the lines through a point over
+    QQ(√2), and the parameterization is verified by substitution into f."""
+    from sorgui.engine import analyze
+
+    conical = analyze(text).conical
+    assert conical is not None and conical.kind in ("cone", "cylinder") and conical.rational
+    assert conical.parametrizations, conical.notes
+    param = conical.parametrizations[0]
+    assert param.verified and param.proper and "conic over K" in param.method and "sqrt(2)" in param.field
+
+
+def test_a_conic_without_a_point_over_its_field_says_so() -> None:
+    """x² + y² + √2 = 0 has no real point, so none over QQ(√2) ⊂ R: rational over C, no map."""
+    from sorgui.engine import analyze
+
+    conical = analyze("(x-z)^2+(y-2*z)^2+sqrt(2)").conical
+    assert conical is not None and conical.kind == "cylinder" and not conical.parametrizations
+    assert any("no point over it" in note or "none was found" in note for note in conical.notes)

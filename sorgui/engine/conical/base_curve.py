@@ -195,9 +195,14 @@ def _surface_map(x: sympy.Expr, y: sympy.Expr, frame: AxisFrame, found: Conicity
 
 
 def _coordinates(exprs: tuple[sympy.Expr, sympy.Expr, sympy.Expr]) -> tuple[str, str, str]:
-    """The coordinates as text, each fraction in lowest terms (constant factors too)."""
-    x, y, z = (str(sympy.cancel(e)) for e in exprs)
+    """The coordinates as text, each fraction in lowest terms (constant factors too; over the
+    field of the square roots it holds, which plain ``cancel`` does not see)."""
+    x, y, z = (str(sympy.cancel(e, extension=True) if _has_roots(e) else sympy.cancel(e)) for e in exprs)
     return x, y, z
+
+
+def _has_roots(e: sympy.Expr) -> bool:
+    return any(not power.exp.is_Integer for power in e.atoms(sympy.Pow))
 
 
 def _triple(K: Domain, v: Vector) -> tuple[str, str, str]:

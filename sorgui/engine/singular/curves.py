@@ -51,6 +51,7 @@ from ..algebra.polys import (
 from ..algebra.rationals import primitive as rational_primitive
 from ..algebra.rationals import terms as rational_terms
 from ..errors import AnalysisError, SingularError
+from .field_conics import conic_over_field
 from .process import (
     emit,
     minpoly_to_singular,
@@ -516,7 +517,8 @@ def parametrize(
     same with the roles swapped), without Singular; else ``paraPlaneCurve`` over ``QQ``, whose
     field is made real when the curve has real points (see the module docstring), and the conic
     route (:func:`_conic`) when Singular fails or is missing, or first for large coefficients
-    (:data:`LARGE_COEFFICIENT_BITS`). Raises
+    (:data:`LARGE_COEFFICIENT_BITS`); a conic with coefficients outside ``QQ`` through a point
+    over its field (:mod:`.field_conics`). Raises
     :class:`AnalysisError` with the reason when there is none: the curve is reducible or of
     positive genus, or ``F`` has irrational coefficients and is linear in neither variable
     (``paraPlaneCurve`` accepts only ``QQ``). With ``known_genus_zero`` the caller vouches that
@@ -531,14 +533,21 @@ def parametrize(
     variables = _variables(F)
     found = _direct(F)
     curve, method = F, "direct"
-    if found is None:
-        rational = _over_qq(F)
-        if rational is None:
+    if found is None and _over_qq(F) is None:
+        conic = conic_over_field(F)
+        if conic is None:
             raise AnalysisError(
                 "no parameterization: the curve has coefficients outside QQ and is linear in "
                 "neither variable, and Singular's paraPlaneCurve accepts only rational "
-                "coefficients (ground field is not Q)"
+                "coefficients (ground field is not Q); a conic over the field gets one only "
+                "from a point over it, and none was found"
             )
+        found, method = (_reduced(*conic[0]), _reduced(*conic[1])), "conic over K"
+        if not _vanishes(curve, *found[0], *found[1]):
+            found = None
+    elif found is None:
+        rational = _over_qq(F)
+        assert rational is not None
         curve, method = rational, "paraPlaneCurve"
         conic = _conic(rational) if prefer_conic or _large(rational) else None
         if conic is not None:
