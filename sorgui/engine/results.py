@@ -348,7 +348,8 @@ class BaseCurve:
     the affine chart ``chart = 1``: ``X = c + t·(point in the chart)``. For a cylinder along ``a``
     it is the section by the plane through ``frame_point`` spanned by ``frame_u`` and
     ``frame_w`` (both ``⟂ a``): ``X = frame_point + u·frame_u + v·frame_w + t·a``.
-    ``genus`` is that of the curve when it is absolutely irreducible (else ``None``).
+    ``genus`` is that of the curve when it is absolutely irreducible (else ``None``);
+    ``multiplicity`` is that of a component (a factor over ``K``) of a reducible base curve.
     """
 
     polynomial: str
@@ -361,6 +362,7 @@ class BaseCurve:
     reducible: bool | None = None
     absolutely_irreducible: bool | None = None
     genus: int | None = None
+    multiplicity: int = 1
 
 
 @dataclass(frozen=True)
@@ -371,7 +373,8 @@ class Conical:
     undecided. ``apex`` of a cylinder is set when ``f(c + X)`` is also homogeneous (planes
     through a line). For rounded input that is exactly neither, ``near_apex`` is the apex of a
     cone within the rounding, or ``near_direction`` the unit direction of a cylinder within it,
-    and ``near_residual`` the relative residual (of Euler's identity, or ``|M a| / |M|``)."""
+    and ``near_residual`` the relative residual (of Euler's identity, or ``|M a| / |M|``).
+    ``components`` are the irreducible factors of a reducible base curve, each analysed."""
 
     kind: str
     apex: Triple | None = None
@@ -383,6 +386,7 @@ class Conical:
     near_apex: tuple[float, float, float] | None = None
     near_residual: float | None = None
     near_direction: tuple[float, float, float] | None = None
+    components: tuple[BaseCurve, ...] = ()
 
     def to_json(self) -> dict[str, Any]:
         """The ``conical`` object of ``sorgui analyze --json``: its fields, as they are."""
@@ -403,6 +407,7 @@ class Conical:
             near_apex=_tuples(data.get("near_apex")),
             near_residual=data.get("near_residual"),
             near_direction=_tuples(data.get("near_direction")),
+            components=tuple(_build(BaseCurve, c) for c in data.get("components", [])),
         )
 
 

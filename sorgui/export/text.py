@@ -6,6 +6,7 @@ from collections.abc import Sequence
 
 from sorgui.engine.results import (
     Analysis,
+    BaseCurve,
     Canal,
     Conical,
     NearestSurface,
@@ -291,6 +292,20 @@ def map_lines(title: str, par: Parametrization, indent: str = "", qualities: boo
     return [f"{indent}{title} ({facts}):", *(f"{indent}  {n}({names}) = {c}" for n, c in zip("xyz", par.coordinates))]
 
 
+def component_words(curve: BaseCurve) -> str:
+    """A component of a reducible base curve: its equation, degree, genus and what that makes
+    of the component of the surface over it."""
+    power = f" (multiplicity {curve.multiplicity})" if curve.multiplicity > 1 else ""
+    if curve.genus is not None:
+        kind = "rational" if curve.genus == 0 else "not rational"
+        facts = f"genus {curve.genus}: its {kind} component"
+    elif curve.absolutely_irreducible is False:
+        facts = "irreducible over K but not over C"
+    else:
+        facts = "genus undecided"
+    return f"{curve.polynomial} = 0{power}, degree {curve.degree}, {facts}"
+
+
 def conical_lines(conical: Conical) -> list[str]:
     """Whether ``X`` is a cone or a cylinder over some curve (docs/math.md §10), in words: the
     apex or the direction, the base curve with its genus, and the parameterizations."""
@@ -326,7 +341,8 @@ def conical_lines(conical: Conical) -> list[str]:
         lines.append(f"  base curve ({where}): {base.polynomial} = 0, degree {base.degree}")
         rational = {True: "rational", False: "not rational", None: "undecided whether rational"}[conical.rational]
         if base.reducible:
-            lines.append("  reducible over K: so is the surface")
+            lines.append("  reducible over K: so is the surface, one component over each factor")
+            lines += [f"    component {i}: {component_words(c)}" for i, c in enumerate(conical.components, 1)]
         elif base.genus is not None:
             lines.append(f"  genus {base.genus}: the surface is {rational}")
         elif base.absolutely_irreducible is False:

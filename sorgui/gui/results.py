@@ -39,6 +39,7 @@ from sorgui.engine.results import (
 from sorgui.export.text import (
     TABLE_1,
     TABLE_1_WORDS,
+    component_words,
     float_text,
     nearly_canal,
     plain_text,
@@ -482,12 +483,13 @@ class ResultsPane(QScrollArea):
                 rows += [("U", "conical.base.frame_u"), ("W", "conical.base.frame_w")]
             rows.append(("", "conical.base"))
             if base.reducible:
-                facts = "reducible over K: so is the surface"
+                facts = "reducible over K: so is the surface, one component over each factor"
             elif base.genus is not None:
                 facts = f"degree {base.degree}, genus {base.genus}"
             else:
                 facts = f"degree {base.degree}, genus undecided"
             rows.append(("genus", facts))
+            rows += [(f"component {i}", component_words(c)) for i, c in enumerate(conical.components, 1)]
         rows.append(("rational", YES_NO[conical.rational]))
         for index, param in enumerate(conical.parametrizations):
             kind = "real" if param.real else "complex"

@@ -227,3 +227,16 @@ def test_a_conic_without_a_point_over_its_field_says_so() -> None:
     conical = analyze("(x-z)^2+(y-2*z)^2+sqrt(2)").conical
     assert conical is not None and conical.kind == "cylinder" and not conical.parametrizations
     assert any("no point over it" in note or "none was found" in note for note in conical.notes)
+
+
+def test_a_reducible_base_curve_has_each_component_analysed() -> None:
+    """A cone over a smooth cubic and a line: two components, of genus 1 and 0 (Singular)."""
+    from sorgui.engine import analyze
+    from sorgui.engine.results import Conical
+
+    conical = analyze("((x-1)^3+2*(y-2)^3-(z-3)^2*(x-1)+(x-1)*(y-2)*(z-3))*((x-1)+2*(y-2)-(z-3))").conical
+    assert conical is not None and conical.kind == "cone" and conical.apex == ("1", "2", "3")
+    assert conical.base_curve is not None and conical.base_curve.reducible
+    found = sorted((c.degree, c.genus) for c in conical.components)
+    assert found == [(1, 0), (3, 1)]
+    assert Conical.from_json(conical.to_json()) == conical

@@ -78,7 +78,10 @@ def analyze_conical(
     base = replace(base, reducible=reducible)
     parametrizations: tuple[Parametrization, ...] = ()
     rational: bool | None = None
-    if not reducible:
+    components: tuple[BaseCurve, ...] = ()
+    if reducible:
+        components = tuple(_component(g, e, base, timeout=timeout, cancel=cancel) for g, e in factors)
+    else:
         try:
             analysis = analyze_curve(curve, timeout=timeout, cancel=cancel)
         except SorguiError as exc:
@@ -98,7 +101,29 @@ def analyze_conical(
         rational=rational,
         parametrizations=parametrizations,
         notes=tuple(notes),
+        components=components,
     )
+
+
+def _component(
+    g: Poly, multiplicity: int, base: BaseCurve, *, timeout: float, cancel: threading.Event | None
+) -> BaseCurve:
+    """One irreducible factor (over ``K``) of a reducible base curve: a cone or a cylinder over
+    it is one component of ``X``, rational exactly when the factor is of genus 0."""
+    part = replace(
+        base,
+        polynomial=poly_str(g),
+        degree=total_degree(g),
+        reducible=False,
+        multiplicity=multiplicity,
+    )
+    if total_degree(g) == 1:
+        return replace(part, absolutely_irreducible=True, genus=0)
+    try:
+        analysis = analyze_curve(g, timeout=timeout, cancel=cancel)
+    except SorguiError:
+        return part
+    return replace(part, absolutely_irreducible=analysis.is_absolutely_irreducible, genus=analysis.genus)
 
 
 def _base_curve(f: Poly, found: Conicity) -> tuple[Poly, AxisFrame, BaseCurve]:
