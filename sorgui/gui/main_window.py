@@ -31,6 +31,7 @@ from PySide6.QtGui import (
 )
 from PySide6.QtWidgets import (
     QApplication,
+    QDialog,
     QFileDialog,
     QHBoxLayout,
     QInputDialog,
@@ -65,6 +66,7 @@ from sorgui.gui.exporting import (
     viewport_image,
 )
 from sorgui.gui.help import TOPICS, HelpDialog
+from sorgui.gui.region_dialog import BoxDialog
 from sorgui.gui.results import FORMULA_MARGIN, ResultsPane
 from sorgui.gui.session_view import SessionView
 from sorgui.gui.settings import (
@@ -304,6 +306,9 @@ class MainWindow(QMainWindow):
             else:
                 view_menu.addAction(self.viewport.view_actions[name])
         view_menu.addSeparator()
+        self.box_action = self._action(view_menu, "Cut to a &Box…", self.choose_box)
+        self.ball_action = self._action(view_menu, "&Whole Ball", self.whole_ball)
+        view_menu.addSeparator()
         self.zoom_in_action = self._action(
             view_menu, "Zoom &In Formulas", lambda: self.zoom_formulas(+1), QKeySequence.StandardKey.ZoomIn
         )
@@ -533,6 +538,26 @@ class MainWindow(QMainWindow):
         self.run_panel.set_notice("error", f"<b>{html.escape(heading)}:</b> {html.escape(message)}")
         self.viewport.clear(caption="No surface: the equation is not a polynomial")
         self.stage_label.setText("Fix the equation to analyse it")
+
+    def choose_box(self) -> None:
+        """Ask for the box the view, the meshes and the CAD files are cut to (View → Cut to a Box)."""
+        scene = self.viewport.scene
+        if scene is None or self.worker.is_busy:
+            self.statusBar().showMessage("A box can be chosen once the surface is drawn", 4000)
+            return
+        c, r = scene.region.center, scene.region.radius
+        start = scene.box.bounds if scene.box is not None else tuple(v for k in range(3) for v in (c[k] - r, c[k] + r))
+        dialog = BoxDialog(start, self)
+        if dialog.exec() == QDialog.DialogCode.Accepted:
+            self.cut_to_box(dialog.bounds())
+
+    def cut_to_box(self, bounds: tuple[float, float, float, float, float, float]) -> bool:
+        """Rebuild the scene cut to ``bounds`` (no new analysis); ``False`` if it cannot be now."""
+        return self.session.remesh(resolution=self.viewport.mesh_resolution(), box=bounds)
+
+    def whole_ball(self) -> bool:
+        """Draw the whole automatic ball again (View → Whole Ball)."""
+        return self.session.remesh(resolution=self.viewport.mesh_resolution())
 
     def _on_radius_change(self, radius: float) -> None:
         if not self.worker.is_busy:

@@ -81,6 +81,8 @@ class JobRequest:
     With ``analysis`` (an earlier result) the engine is skipped: only the scene is rebuilt (e.g.
     for a new ``radius`` of the drawn ball) and/or the formulas typeset again (a new ``style``,
     e.g. after zooming). ``style`` ``None`` skips the formulas, ``scene=False`` the scene.
+    ``box`` (``(xmin, xmax, ymin, ymax, zmin, zmax)``) cuts the scene's mesh, and the CAD faces
+    written of it, to that box, drawn in the ball about it.
     """
 
     text: str
@@ -93,6 +95,7 @@ class JobRequest:
     resolution: int | None = None
     style: Style | None = Style()
     scene: bool = True
+    box: tuple[float, float, float, float, float, float] | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -145,9 +148,7 @@ class _Presenter:
         request = self.request
         if request.scene:
             if self.scene is None:
-                self.scene = self.stage(
-                    "scene", lambda: scene_data.build_scene(analysis, request.radius, request.resolution, patch=False)
-                )
+                self.scene = self.stage("scene", lambda: scene_data.build_scene_of(analysis, request))
                 self.send(SceneKnown(self.scene))
                 self._explain(analysis)
             extras = self._extras(analysis)
@@ -159,7 +160,9 @@ class _Presenter:
                 target: Analysis = nearest
 
                 def draw_nearest() -> Any:
-                    return scene_data.build_scene(target, region=self.scene.region, resolution=request.resolution)
+                    return scene_data.build_scene(
+                        target, region=self.scene.region, resolution=request.resolution, box=self.scene.box
+                    )
 
                 self.nearest_scene = self.stage("scene", draw_nearest)
                 self.send(NearestSceneKnown(self.nearest_scene))

@@ -278,9 +278,15 @@ class Session:
         self.runner.start(request)
         return self.run
 
-    def remesh(self, radius: float | None = None, resolution: int | None = None) -> bool:
-        """Rebuild the current run's scene in a ball of ``radius`` (no new analysis)."""
-        changes: dict[str, Any] = {"radius": radius, "style": None, "scene": True}
+    def remesh(
+        self,
+        radius: float | None = None,
+        resolution: int | None = None,
+        box: tuple[float, float, float, float, float, float] | None = None,
+    ) -> bool:
+        """Rebuild the current run's scene in a ball of ``radius``, or cut to ``box`` in the ball
+        about it (no new analysis)."""
+        changes: dict[str, Any] = {"radius": radius, "style": None, "scene": True, "box": box}
         if resolution is not None:
             changes["resolution"] = resolution
         return self._redo("scene", changes)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -102,7 +103,10 @@ class SceneData:
 
     def summary(self) -> str:
         """Short facts for the status bar: triangles and the drawn ball (its centre without
-        rounding noise: ``(0, 0, 0)``, not ``(1.11e-16, 1.67e-16, 5.55e-17)``)."""
+        rounding noise: ``(0, 0, 0)``, not ``(1.11e-16, 1.67e-16, 5.55e-17)``) or box."""
+        if self.box is not None:
+            low, high = self.box.bounds[0::2], self.box.bounds[1::2]
+            return f"{self.surface.n_faces:,} triangles in the box {float_text(low, 3)} to {float_text(high, 3)}"
         center = float_text(self.region.center, 3)
         return f"{self.surface.n_faces:,} triangles in a ball of radius {self.region.radius:.3g} about {center}"
 
@@ -238,6 +242,13 @@ def build_scene(
         factor_axes=LineData.from_polylines([line.points for line in factor_lines if not line.is_empty]),
         box=box,
     )
+
+
+def build_scene_of(analysis: Analysis, request: Any) -> SceneData:
+    """The scene a worker's job asks for (``request``: a ``JobRequest``): its ball radius, its
+    mesh resolution and its box; the patch comes later (:func:`with_patch`)."""
+    box = ClipBox(request.box) if request.box is not None else None
+    return build_scene(analysis, request.radius, request.resolution, patch=False, box=box)
 
 
 def with_patch(scene: SceneData, analysis: Analysis) -> SceneData:
