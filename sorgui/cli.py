@@ -405,7 +405,7 @@ def write_outputs(
     (with pyvista) only when one of them is asked for."""
     if not outputs:
         return  # nothing to write: the export modules (and numpy) stay unloaded
-    from sorgui.export.files import export_analysis, format_of
+    from sorgui.export.files import export_analysis, format_of, wants_patch
 
     scene = None
     if any(format_of(path, fmt).needs_scene or format_of(path, fmt).suffix in (".md", ".html") for path in outputs):
@@ -417,7 +417,18 @@ def write_outputs(
         scene = build_scene(result, radius=region.radius if ball is None else None, region=ball, box=box)
     for path in outputs:
         try:
-            export_analysis(result, path, fmt, scene=scene, units=units, tolerance=fit_tolerance)
+            form = format_of(path, fmt)
+            if form.kind == "cad":
+                from sorgui.export.cad import cad_file, summary
+
+                assert scene is not None  # a CAD format needs the scene, built above
+
+                written, model = cad_file(
+                    result, scene, Path(path), form.suffix, wants_patch(Path(path), fmt), units, fit_tolerance
+                )
+                print(f"sorgui: wrote {written}: {summary(model)}", file=sys.stderr)
+            else:
+                export_analysis(result, path, fmt, scene=scene, units=units, tolerance=fit_tolerance)
         except OSError as exc:
             raise _OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
         except ValueError as exc:

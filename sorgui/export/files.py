@@ -97,6 +97,12 @@ def format_of(path: str | Path, fmt: str | None = None) -> Format:
     return FORMATS[suffix]
 
 
+def wants_patch(path: Path, fmt: str | None = None) -> bool:
+    """Whether ``path`` (``NAME.patch.stl``) or ``fmt`` (``patch.step``) asks for the patch of
+    the parameterization instead of the surface."""
+    return is_patch_path(path) or (fmt is not None and fmt.lower().lstrip(".").startswith("patch."))
+
+
 def export_analysis(
     analysis: Analysis,
     path: str | Path,
@@ -119,7 +125,7 @@ def export_analysis(
         raise ValueError(f"{form.name} needs the drawn scene of the analysis")
     if form.suffix in TEXT_WRITERS:
         return atomic_write_text(path, TEXT_WRITERS[form.suffix](analysis))
-    patch = is_patch_path(path) or (fmt is not None and fmt.lower().lstrip(".").startswith("patch."))
+    patch = wants_patch(path, fmt)
     if form.kind == "mesh":
         from sorgui.export.meshes import write_mesh
 

@@ -16,27 +16,35 @@ from typing import Any
 from PySide6.QtCore import QObject, QTimer, Signal
 
 from sorgui.engine.results import Analysis
-from sorgui.export.files import export_analysis
+from sorgui.export.files import export_analysis, format_of, wants_patch
 
 POLL_MS = 100
 """How often the window looks whether the file is written."""
 
 
-def _write(analysis: Analysis, path: str, scene: Any) -> Path:
-    return export_analysis(analysis, path, scene=scene)
+def _write(analysis: Analysis, path: str, scene: Any) -> tuple[Path, str]:
+    """The file written and what it holds (the CAD route and faces, or ``""``)."""
+    form = format_of(Path(path))
+    if form.kind != "cad":
+        return export_analysis(analysis, path, scene=scene), ""
+    from sorgui.export.cad import cad_file, summary
+
+    written, model = cad_file(analysis, scene, Path(path), form.suffix, wants_patch(Path(path)))
+    return written, summary(model)
 
 
 class BackgroundExport(QObject):
-    """One export at a time in a child process: :attr:`written` with the path, or :attr:`failed`
-    with the reason (the error's message, as the synchronous exports show it)."""
+    """One export at a time in a child process: :attr:`written` with the path and what the file
+    holds, or :attr:`failed` with the reason (the error's message, as the synchronous exports
+    show it)."""
 
-    written = Signal(object)
+    written = Signal(object, str)
     failed = Signal(str)
 
     def __init__(self, parent: QObject | None = None) -> None:
         super().__init__(parent)
         self._pool: ProcessPoolExecutor | None = None
-        self._future: Future[Path] | None = None
+        self._future: Future[tuple[Path, str]] | None = None
         self._timer = QTimer(self)
         self._timer.setInterval(POLL_MS)
         self._timer.timeout.connect(self._poll)
@@ -58,7 +66,7 @@ class BackgroundExport(QObject):
         self._timer.stop()
         self._future = None
         try:
-            self.written.emit(future.result())
+            self.written.emit(*future.result())
         except (OSError, ValueError) as exc:
             self.failed.emit(str(exc))
         except Exception as exc:  # the process died, or an error Open CASCADE raised

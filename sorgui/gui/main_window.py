@@ -705,8 +705,8 @@ class MainWindow(QMainWindow):
         self.cad_export.start(analysis, path, self.viewport.scene)
         self.statusBar().showMessage(f"Writing {path} (Open CASCADE)…")
 
-    def _cad_written(self, path: Path) -> None:
-        self.statusBar().showMessage(f"Exported {path}", 4000)
+    def _cad_written(self, path: Path, holds: str) -> None:
+        self.statusBar().showMessage(f"Exported {path}: {holds}" if holds else f"Exported {path}", 8000)
 
     def _cad_failed(self, reason: str) -> None:
         self.statusBar().clearMessage()

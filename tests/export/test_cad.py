@@ -198,6 +198,8 @@ def test_sorgui_analyze_json_with_a_cad_file_prints_only_the_json(tmp_path: Path
     assert out.returncode == 0, out.stderr
     assert json.loads(out.stdout)["is_sor"]
     assert read_shape(tmp_path / "p.step") is not None and read_shape(tmp_path / "p.igs") is not None
+    said = [line for line in out.stderr.splitlines() if line.startswith("sorgui: wrote")]
+    assert len(said) == 2 and all("exact rational profile, 1 face" in line for line in said), out.stderr
     step = (tmp_path / "p.step").read_text(encoding="ascii")
     assert "AP242_MANAGED_MODEL_BASED_3D_ENGINEERING" in step, "the schema is set in a new process too"
     assert "PRODUCT('p " in step and step.count("OPEN_SHELL(") == 1

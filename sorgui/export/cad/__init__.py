@@ -34,7 +34,17 @@ class CadUnavailable(ValueError):
     """Open CASCADE's Python bindings are not installed (a ValueError: the export cannot be done)."""
 
 
-__all__ = ["CAD_SUFFIXES", "INSTALL_HINT", "UNITS", "CadGeometryError", "CadUnavailable", "cad_model", "write_cad"]
+__all__ = [
+    "CAD_SUFFIXES",
+    "INSTALL_HINT",
+    "UNITS",
+    "CadGeometryError",
+    "CadUnavailable",
+    "cad_file",
+    "cad_model",
+    "summary",
+    "write_cad",
+]
 
 
 def cad_model(analysis: Analysis, scene: Scene, patch: bool = False, tolerance: float | None = None) -> CadModel:
@@ -56,6 +66,20 @@ def write_cad(
     tolerance: float | None = None,
 ) -> Path:
     """Write ``analysis`` to the CAD file ``path`` (format ``suffix``); return ``path``."""
+    written, _model = cad_file(analysis, scene, path, suffix, patch, units, tolerance)
+    return written
+
+
+def cad_file(
+    analysis: Analysis,
+    scene: Scene,
+    path: Path,
+    suffix: str,
+    patch: bool = False,
+    units: str = "mm",
+    tolerance: float | None = None,
+) -> tuple[Path, CadModel]:
+    """:func:`write_cad`, and the faces written (for :func:`summary`)."""
     from sorgui import __version__
 
     model = cad_model(analysis, scene, patch, tolerance)
@@ -63,4 +87,23 @@ def write_cad(
 
     header = CadHeader(analysis.recognition.polynomial, model.description, __version__, units)
     written: Path = WRITERS[suffix](model.shape, path, header)
-    return written
+    return written, model
+
+
+ROUTES = {
+    "analytic": "an analytic surface",
+    "exact": "a surface of revolution of the exact rational profile",
+    "fitted": "a surface of revolution of a fitted profile",
+    "patch": "rational B-spline patches of the parameterization",
+}
+"""What each route of :class:`~.model.CadModel` writes, in words."""
+
+
+def summary(model: CadModel) -> str:
+    """What a CAD file holds, in one line: the route, the faces and a fit's measured deviation."""
+    faces = f"{model.faces} face{'s' if model.faces != 1 else ''}"
+    words = f"{ROUTES[model.route]}, {faces}"
+    if model.deviation is not None and model.tolerance is not None:
+        verdict = "within" if model.deviation <= model.tolerance else "ABOVE"
+        words += f"; measured deviation {model.deviation:.2g} ({verdict} the tolerance {model.tolerance:.2g})"
+    return words

@@ -55,9 +55,14 @@ class Scene(Protocol):
     """What a CAD export needs of a scene (``sorgui.session.scene_data.SceneData`` has it):
     the drawn ball, the traced profile in it, and the user's box, if one was given."""
 
-    region: ClipSphere
-    profile_curve: LineData
-    box: ClipBox | None
+    @property
+    def region(self) -> ClipSphere: ...
+
+    @property
+    def profile_curve(self) -> LineData: ...
+
+    @property
+    def box(self) -> ClipBox | None: ...
 
 
 @dataclass(frozen=True)
