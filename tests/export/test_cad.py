@@ -30,11 +30,10 @@ from OCP.BRepTools import BRepTools  # noqa: E402
 from OCP.GeomAbs import GeomAbs_SurfaceType  # noqa: E402
 from OCP.GeomAdaptor import GeomAdaptor_Surface  # noqa: E402
 from OCP.GProp import GProp_GProps  # noqa: E402
-from OCP.TopAbs import TopAbs_FACE  # noqa: E402
-from OCP.TopExp import TopExp_Explorer  # noqa: E402
-from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape  # noqa: E402
+from OCP.TopoDS import TopoDS_Shape  # noqa: E402
 
 from sorgui.export.cad.geometry import surface_distance  # noqa: E402
+from sorgui.export.cad.shapes import faces_of as faces  # noqa: E402
 from sorgui.export.cad.writers import read_shape  # noqa: E402
 
 FORMATS = (".step", ".iges", ".brep")
@@ -58,15 +57,6 @@ def cases() -> dict[str, tuple[Analysis, SceneData]]:
         analysis = analyze(text)
         out[name] = (analysis, build_scene(analysis))
     return out
-
-
-def faces(shape: TopoDS_Shape) -> list[TopoDS_Face]:
-    found = []
-    explorer = TopExp_Explorer(shape, TopAbs_FACE)
-    while explorer.More():
-        found.append(TopoDS.Face(explorer.Current()))
-        explorer.Next()
-    return found
 
 
 def kinds(shape: TopoDS_Shape) -> set[str]:

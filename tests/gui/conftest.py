@@ -152,3 +152,12 @@ def run_analysis(qtbot):  # noqa: ANN001, ANN201
         return payload
 
     return run
+
+
+@pytest.fixture
+def hanging_singular(tmp_path: Path) -> Path:
+    """A ``Singular`` that never finishes (for worker processes started after it is set)."""
+    script = tmp_path / "Singular"
+    script.write_text("#!/bin/sh\nexec sleep 600\n")
+    script.chmod(0o755)
+    return script

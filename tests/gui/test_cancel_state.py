@@ -5,8 +5,6 @@ keeps the analysis running until it is cancelled."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 from PySide6.QtWidgets import QLabel
 
@@ -14,15 +12,6 @@ from sorgui.examples import example_text
 from sorgui.session import StageState
 
 pytestmark = pytest.mark.gui
-
-
-@pytest.fixture
-def hanging_singular(tmp_path: Path) -> Path:
-    """A ``Singular`` that never finishes (for worker processes started after it is set)."""
-    script = tmp_path / "Singular"
-    script.write_text("#!/bin/sh\nexec sleep 600\n")
-    script.chmod(0o755)
-    return script
 
 
 def _pane_text(window) -> str:  # noqa: ANN001

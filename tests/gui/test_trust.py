@@ -26,15 +26,6 @@ SLOW_MS = 300_000
 """Time allowed to an analysis that runs every stage (the canal stage asks Singular too)."""
 
 
-@pytest.fixture
-def hanging_singular(tmp_path: Path) -> Path:
-    """A ``Singular`` that never finishes (for worker processes started after it is set)."""
-    script = tmp_path / "Singular"
-    script.write_text("#!/bin/sh\nexec sleep 600\n")
-    script.chmod(0o755)
-    return script
-
-
 def stage_state(window, name: str) -> StageState:  # noqa: ANN001
     return window.session.run.stages[name].state
 
