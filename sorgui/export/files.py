@@ -131,9 +131,9 @@ def export_analysis(
 
         return write_mesh(scene, analysis.recognition.polynomial, path, form.suffix, patch)
     if form.kind == "cad":
-        from sorgui.export.cad import write_cad
+        from sorgui.export.cad import cad_file
 
-        return write_cad(analysis, scene, path, form.suffix, patch, units, tolerance)
+        return cad_file(analysis, scene, path, form.suffix, patch, units, tolerance)[0]
     if form.kind == "picture":
         from sorgui.export.picture import render_png
 

@@ -43,7 +43,6 @@ __all__ = [
     "cad_file",
     "cad_model",
     "summary",
-    "write_cad",
 ]
 
 
@@ -56,20 +55,6 @@ def cad_model(analysis: Analysis, scene: Scene, patch: bool = False, tolerance: 
     return patch_model(analysis, scene.box) if patch else surface_model(analysis, scene, tolerance)
 
 
-def write_cad(
-    analysis: Analysis,
-    scene: Scene,
-    path: Path,
-    suffix: str,
-    patch: bool = False,
-    units: str = "mm",
-    tolerance: float | None = None,
-) -> Path:
-    """Write ``analysis`` to the CAD file ``path`` (format ``suffix``); return ``path``."""
-    written, _model = cad_file(analysis, scene, path, suffix, patch, units, tolerance)
-    return written
-
-
 def cad_file(
     analysis: Analysis,
     scene: Scene,
@@ -79,7 +64,8 @@ def cad_file(
     units: str = "mm",
     tolerance: float | None = None,
 ) -> tuple[Path, CadModel]:
-    """:func:`write_cad`, and the faces written (for :func:`summary`)."""
+    """Write ``analysis`` to the CAD file ``path`` (format ``suffix``; ``patch``: the
+    parameterization's patch); return ``path`` and the faces written (for :func:`summary`)."""
     from sorgui import __version__
 
     model = cad_model(analysis, scene, patch, tolerance)
