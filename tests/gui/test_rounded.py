@@ -22,6 +22,11 @@ def test_a_rounded_torus_is_shown_near_with_its_axis_and_its_nearest_surface(
     assert "Nearly a surface of revolution" in banner and "not exactly, but within" in banner
     assert "approx_axis" in window.viewport.actor_names()
     assert not window.viewport.scene.approximate_axis.is_empty
+    # the canal verdict on the typed rationals is said with that of the nearest exact surface
+    from tests.gui.test_canal import pane_text
+
+    qtbot.waitUntil(lambda: "Canal surface" in pane_text(window), timeout=60_000)
+    assert "not exactly canal, but nearly" in pane_text(window)
 
     qtbot.waitUntil(window.viewport.deviation_box.isEnabled, timeout=60_000)
     window.viewport.deviation_box.setChecked(True)
