@@ -15,6 +15,7 @@ from sorgui.engine.results import (
     Approximation,
     Canal,
     CanalFamily,
+    Conical,
     Recognition,
 )
 from sorgui.engine.vocabulary import canal_kind, kind_noun, kind_phrase
@@ -174,6 +175,15 @@ def far_words(approx: Approximation) -> str:
     )
 
 
+def _over(conical: Conical) -> str:
+    """`` over a curve of degree d, genus g (rational)``: the cone's or cylinder's class in brief."""
+    base = conical.base_curve
+    if base is None or base.reducible or base.genus is None:
+        return ""
+    rational = {True: "rational", False: "not rational", None: "rationality undecided"}[conical.rational]
+    return f" over a curve of degree {base.degree}, genus {base.genus} ({rational})"
+
+
 def verdict(analysis: Analysis) -> tuple[str, str, str]:
     """``(title, detail, kind)`` of the verdict banner; ``kind`` is ``sor``, ``near`` or ``not``."""
     rec = analysis.recognition
@@ -182,9 +192,9 @@ def verdict(analysis: Analysis) -> tuple[str, str, str]:
     detail = f"{kind} · degree {rec.degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
     conical = analysis.conical
     if conical is not None and conical.kind == "cone" and conical.apex is not None:
-        detail += f" · a cone with apex ({', '.join(conical.apex)})"
+        detail += f" · a cone with apex ({', '.join(conical.apex)}){_over(conical)}"
     elif conical is not None and conical.kind == "cylinder" and conical.direction is not None:
-        detail += f" · a cylinder along ({', '.join(conical.direction)})"
+        detail += f" · a cylinder along ({', '.join(conical.direction)}){_over(conical)}"
     elif conical is not None and conical.near_apex is not None:
         detail += f" · nearly a cone about {float_text(conical.near_apex, 4)}"
     elif conical is not None and conical.near_direction is not None:

@@ -49,7 +49,7 @@ def test_a_cone_shows_its_apex_and_base_curve(window, run_analysis, qtbot, artif
     result = run_analysis(window, "(x-1)^3+2*(y-2)^3-(z-3)^2*(x-1)+(x-1)*(y-2)*(z-3)", timeout_ms=SLOW_MS)
     conical = result.analysis.conical
     assert conical.kind == "cone" and conical.apex == ("1", "2", "3")
-    assert "a cone with apex (1, 2, 3)" in window.results.banner.text()
+    assert "a cone with apex (1, 2, 3) over a curve of degree 3, genus 1 (not rational)" in window.results.banner.text()
     text = _pane_text(window)
     assert "Cone or cylinder" in text and "the top-degree form of f in the chart z = 1" in text
     assert "degree 3, genus 1" in text
@@ -69,7 +69,7 @@ def test_a_rational_cylinder_shows_its_direction_and_a_verified_map(window, run_
     conical = result.analysis.conical
     assert conical.kind == "cylinder" and conical.direction == ("1", "2", "1") and conical.rational
     text = _pane_text(window)
-    assert "a cylinder along (1, 2, 1)" in window.results.banner.text()
+    assert "a cylinder along (1, 2, 1) over a curve of degree 3, genus 0 (rational)" in window.results.banner.text()
     assert "degree 3, genus 0" in text and "real, proper, over QQ · verified by substitution" in text
     assert all(f"conical.parametrization.0.{name}" in window.results.views for name in "xyz")
     base = _base_curve_points(window, qtbot)  # the section by a plane across (1, 2, 1)
