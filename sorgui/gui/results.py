@@ -89,6 +89,7 @@ class ResultsPane(QScrollArea):
         self._message = ""
         self._zoom = 1.0
         self._base_size = self.font().pointSizeF()
+        self._building = QWidget()
         self.banner = QLabel()
         self.table: QTableWidget | None = None
         self.views: dict[str, FormulaView] = {}
@@ -113,6 +114,7 @@ class ResultsPane(QScrollArea):
         column = self._new_column()
         self._banner(column, title, message, kind)
         column.addStretch(1)
+        self._show_page()
 
     def show_analysis(
         self,
@@ -191,6 +193,7 @@ class ResultsPane(QScrollArea):
             self._section(column, "Parameterizations", [("", "being computed and verified…")])
         self._timings_section(column, tuple(analysis.timings) + tuple(worker_timings))
         column.addStretch(1)
+        self._show_page()
         self.set_stale(self.stale)
 
     def update_formulas(self, formulas: dict[str, TypesetFormula]) -> None:
@@ -274,8 +277,14 @@ class ResultsPane(QScrollArea):
         column = QVBoxLayout(page)
         column.setContentsMargins(10, 10, 10, 10)
         column.setSpacing(6)
-        self.setWidget(page)
+        self._building = page
         return column
+
+    def _show_page(self) -> None:
+        """Put the page just built on screen. Built before it is shown, its rows are laid out
+        at once; built on screen, each row would appear only at the next turn of the event loop,
+        over the others until the layout catches up."""
+        self.setWidget(self._building)
 
     def _banner(self, column: QVBoxLayout, title: str, detail: str, kind: str) -> None:
         self.banner = QLabel(f"<div style='font-size: 15pt; font-weight: 600'>{title}</div><div>{detail}</div>")

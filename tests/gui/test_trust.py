@@ -454,3 +454,20 @@ def test_at_1024_by_700_every_view_control_is_on_screen_and_the_header_is_elided
     assert caption.text().startswith("f = ") and caption.toolTip() == caption.text()
     assert caption.fontMetrics().horizontalAdvance(caption.text()) > caption.width(), "long enough to be elided"
     assert caption.width() <= viewport.width()
+
+
+def test_a_rebuilt_pane_is_laid_out_before_it_is_shown(window, run_analysis) -> None:
+    """The page is built off screen and then shown: right after a rebuild, before the event loop
+    turns, its rows already stand one below the other (built on screen, every row sat at the top
+    over the others until the next turn)."""
+    from PySide6.QtWidgets import QLabel
+
+    run_analysis(window, example_text("cone"))
+    window.view.refresh_pane()
+    rows = sorted(
+        label.geometry().getCoords()[1::2]
+        for label in window.results.widget().findChildren(QLabel)
+        if label.objectName() == "caption" and label.text()
+    )
+    assert len(rows) > 5
+    assert all(below[0] > above[1] for above, below in zip(rows, rows[1:])), rows
