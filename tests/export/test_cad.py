@@ -408,3 +408,15 @@ def test_a_degree_12_profile_in_general_position_is_fitted_within_the_tolerance(
     shape = read_shape(path)
     assert kinds(shape) == {GeomAbs_SurfaceType.GeomAbs_SurfaceOfRevolution.name}
     assert all(BRepCheck_Analyzer(face).IsValid() for face in faces(shape))
+
+
+def test_a_ball_off_the_axis_is_refused_in_one_sentence(tmp_path: Path, cases) -> None:
+    """Its disk would differ from one meridian half-plane to the next: a radius or a box instead."""
+    from sorgui.render import ClipSphere
+
+    analysis = cases["paraboloid"][0]
+    scene = build_scene(analysis, region=ClipSphere((1.0, 0.0, 0.0), 2.0))
+    with pytest.raises(ValueError, match="ball centred on its axis or to a box"):
+        export_analysis(analysis, tmp_path / "p.step", scene=scene)
+    on_axis = build_scene(analysis, region=ClipSphere((0.0, 0.0, 1.0), 2.0))
+    assert faces(read_shape(export_analysis(analysis, tmp_path / "p.step", scene=on_axis)))

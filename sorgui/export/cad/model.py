@@ -27,6 +27,7 @@ from .geometry import (
     Analytic,
     CadGeometryError,
     Distance,
+    Frame,
     MeridianCurve,
     RationalCurve,
     analytic_surface,
@@ -96,6 +97,11 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
             "the surface is not a surface of revolution; write NAME.patch.step for a rational parameterization"
         )
     ball = scene.region
+    if rec.profile is not None and _off_axis(ball, axis_frame(rec.profile)):
+        raise CadGeometryError(
+            "a CAD file of a surface of revolution is cut to a ball centred on its axis or to a box; "
+            "give the ball's radius alone (--region R) or a box (--region X0:X1,Y0:Y1,Z0:Z1)"
+        )
     spec = analytic_surface(analysis, ball)
     if spec is not None:
         shape = shapes.shell(shapes.analytic_faces(spec))
@@ -126,6 +132,14 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
         f"profile: B-spline fitted to tolerance {goal:.3g}; measured deviation {deviation:.3g} ({verdict} it)",
     )
     return CadModel(shapes.shell(faces), "fitted", len(faces), lines, deviation, goal)
+
+
+def _off_axis(ball: ClipSphere, frame: Frame) -> bool:
+    """Whether the ball's centre is off the axis: its disk would then differ from one meridian
+    half-plane to the next, and a revolved profile cut to one of them would not be the part in
+    the ball."""
+    d = np.asarray(ball.center) - frame.point
+    return float(np.linalg.norm(d - (d @ frame.direction) * frame.direction)) > 1e-9 * ball.radius
 
 
 def _inside(spec: Analytic, ball: ClipSphere) -> bool:
