@@ -199,6 +199,10 @@ def verdict(analysis: Analysis) -> tuple[str, str, str]:
         detail += f" · nearly a cone about {float_text(conical.near_apex, 4)}"
     elif conical is not None and conical.near_direction is not None:
         detail += f" · nearly a cylinder along {float_text(conical.near_direction, 4)}"
+    canal = analysis.canal
+    if not rec.is_sor and canal is not None and canal.is_canal:
+        kinds = ", ".join(canal_kind(k) for k in canal.kinds if k != "revolution")
+        detail += " · a canal surface" + (f": {kinds}" if kinds else "")
     if rec.is_sor:
         return "Surface of revolution", detail, "sor"
     if approx is not None and approx.near_sor:

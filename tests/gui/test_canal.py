@@ -35,6 +35,7 @@ def test_dupin_cyclide_canal_section_and_viewport(window, qtbot, run_analysis, a
     assert "Canal surface" in text
     assert "a canal surface, the envelope of a one-parameter family of spheres" in text
     assert "a Dupin cyclide (canal in two ways)" in text
+    assert "a canal surface: a Dupin cyclide (canal in two ways)" in window.results.banner.text()
     assert "f divides every generator" in text or "f divides Res" in text
     assert "family 1" in text and "family 2" in text
     assert "a plane curve of degree 2, genus 0 (rational)" in text
