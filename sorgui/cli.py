@@ -405,30 +405,21 @@ def write_outputs(
     (with pyvista) only when one of them is asked for."""
     if not outputs:
         return  # nothing to write: the export modules (and numpy) stay unloaded
-    from sorgui.export.files import export_analysis, format_of, wants_patch
+    from sorgui.export.files import export_file, format_of
 
     scene = None
     if any(format_of(path, fmt).needs_scene or format_of(path, fmt).suffix in (".md", ".html") for path in outputs):
         from sorgui.render import ClipBox, ClipSphere
         from sorgui.session.scene_data import build_scene
 
-        ball = ClipSphere(region.center, region.radius) if region.center and region.radius else None
+        ball = ClipSphere(region.center, region.radius) if region.center is not None and region.radius else None
         box = ClipBox(region.bounds) if region.bounds else None
         scene = build_scene(result, radius=region.radius if ball is None else None, region=ball, box=box)
     for path in outputs:
         try:
-            form = format_of(path, fmt)
-            if form.kind == "cad":
-                from sorgui.export.cad import cad_file, summary
-
-                assert scene is not None  # a CAD format needs the scene, built above
-
-                written, model = cad_file(
-                    result, scene, Path(path), form.suffix, wants_patch(Path(path), fmt), units, fit_tolerance
-                )
-                print(f"sorgui: wrote {written}: {summary(model)}", file=sys.stderr)
-            else:
-                export_analysis(result, path, fmt, scene=scene, units=units, tolerance=fit_tolerance)
+            written, holds = export_file(result, path, fmt, scene=scene, units=units, tolerance=fit_tolerance)
+            if holds:
+                print(f"sorgui: wrote {written}: {holds}", file=sys.stderr)
         except OSError as exc:
             raise _OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
         except ValueError as exc:

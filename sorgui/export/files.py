@@ -97,6 +97,26 @@ def format_of(path: str | Path, fmt: str | None = None) -> Format:
     return FORMATS[suffix]
 
 
+def export_file(
+    analysis: Analysis,
+    path: str | Path,
+    fmt: str | None = None,
+    scene: Any = None,
+    units: str = "mm",
+    tolerance: float | None = None,
+) -> tuple[Path, str]:
+    """:func:`export_analysis`, and what a CAD file holds in words (``""`` for the other formats):
+    its route, its faces and a fitted profile's measured deviation."""
+    path = Path(path)
+    form = format_of(path, fmt)
+    if form.kind != "cad":
+        return export_analysis(analysis, path, fmt, scene=scene, units=units, tolerance=tolerance), ""
+    from sorgui.export.cad import cad_file, summary
+
+    written, model = cad_file(analysis, scene, path, form.suffix, wants_patch(path, fmt), units, tolerance)
+    return written, summary(model)
+
+
 def wants_patch(path: Path, fmt: str | None = None) -> bool:
     """Whether ``path`` (``NAME.patch.stl``) or ``fmt`` (``patch.step``) asks for the patch of
     the parameterization instead of the surface."""

@@ -16,7 +16,7 @@ from typing import Any
 from PySide6.QtCore import QObject, QTimer, Signal
 
 from sorgui.engine.results import Analysis
-from sorgui.export.files import export_analysis, format_of, wants_patch
+from sorgui.export.files import export_file
 
 POLL_MS = 100
 """How often the window looks whether the file is written."""
@@ -24,13 +24,7 @@ POLL_MS = 100
 
 def _write(analysis: Analysis, path: str, scene: Any) -> tuple[Path, str]:
     """The file written and what it holds (the CAD route and faces, or ``""``)."""
-    form = format_of(Path(path))
-    if form.kind != "cad":
-        return export_analysis(analysis, path, scene=scene), ""
-    from sorgui.export.cad import cad_file, summary
-
-    written, model = cad_file(analysis, scene, Path(path), form.suffix, wants_patch(Path(path)))
-    return written, summary(model)
+    return export_file(analysis, path, scene=scene)
 
 
 class BackgroundExport(QObject):

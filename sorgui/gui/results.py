@@ -161,26 +161,8 @@ class ResultsPane(QScrollArea):
         conical = analysis.conical
         if conical is not None and conical.kind != "none":
             self._conical_section(column, conical)
-        elif conical is not None and conical.near_apex is not None and conical.near_residual is not None:
-            self._section(
-                column,
-                "Cone or cylinder",
-                [
-                    ("kind", "not exactly a cone, but nearly: a cone within the rounding of the input"),
-                    ("apex (about)", float_text(conical.near_apex, 10)),
-                    ("relative residual", f"{conical.near_residual:.2g}"),
-                ],
-            )
-        elif conical is not None and conical.near_direction is not None and conical.near_residual is not None:
-            self._section(
-                column,
-                "Cone or cylinder",
-                [
-                    ("kind", "not exactly a cylinder, but nearly: a cylinder within the rounding of the input"),
-                    ("direction (about)", float_text(conical.near_direction, 10)),
-                    ("relative residual", f"{conical.near_residual:.2g}"),
-                ],
-            )
+        elif conical is not None and conical.near_residual is not None:  # nearly a cone or a cylinder
+            self._near_conical_section(column, conical)
         elif "conical" in pending:
             self._section(column, "Cone or cylinder", [("", "being decided: the apex or the direction follows")])
         if analysis.canal is not None:
@@ -506,6 +488,21 @@ class ResultsPane(QScrollArea):
             rows.append((f"map {index + 1}", f"{kind}, proper, over {param.field} · {check}"))
             rows += [(name, f"conical.parametrization.{index}.{name}") for name in "xyz"]
         rows += [("note", note) for note in conical.notes]
+        self._section(column, "Cone or cylinder", rows)
+
+    def _near_conical_section(self, column: QVBoxLayout, conical: Conical) -> None:
+        """Rounded input that is exactly neither, but nearly a cone or nearly a cylinder."""
+        kind, caption, vector = (
+            ("cone", "apex (about)", conical.near_apex)
+            if conical.near_apex is not None
+            else ("cylinder", "direction (about)", conical.near_direction)
+        )
+        assert vector is not None and conical.near_residual is not None  # the caller checked
+        rows = [
+            ("kind", f"not exactly a {kind}, but nearly: a {kind} within the rounding of the input"),
+            (caption, float_text(vector, 10)),
+            ("relative residual", f"{conical.near_residual:.2g}"),
+        ]
         self._section(column, "Cone or cylinder", rows)
 
     def _canal_section(self, column: QVBoxLayout, canal: Canal, nearly: str = "") -> None:

@@ -21,6 +21,7 @@ from sorgui.engine.results import Analysis
 from sorgui.engine.values import ExpressionError
 from sorgui.export.text import without_noise
 from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData
+from sorgui.render.geometry import foot_on_line
 
 from . import shapes
 from .geometry import (
@@ -74,10 +75,14 @@ class CadModel:
 
     shape: Any
     route: str
-    faces: int
     description: tuple[str, ...]
     deviation: float | None = None
     tolerance: float | None = None
+
+    @property
+    def faces(self) -> int:
+        """How many faces the shape holds."""
+        return len(shapes.faces_of(self.shape))
 
 
 def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = None) -> CadModel:
@@ -97,7 +102,8 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
             "the surface is not a surface of revolution; write NAME.patch.step for a rational parameterization"
         )
     ball = scene.region
-    if rec.profile is not None and _off_axis(ball, axis_frame(rec.profile)):
+    frame = axis_frame(rec.profile) if rec.profile is not None else None
+    if frame is not None and _off_axis(ball, frame):
         raise CadGeometryError(
             "a CAD file of a surface of revolution is cut to a ball centred on its axis or to a box; "
             "give the ball's radius alone (--region R) or a box (--region X0:X1,Y0:Y1,Z0:Z1)"
@@ -107,10 +113,9 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
         shape = shapes.shell(shapes.analytic_faces(spec))
         if not _inside(spec, ball):
             shape = shapes.cut_to(shape, ball)
-        return CadModel(shape, "analytic", len(shapes.faces_of(shape)), _analytic_lines(spec))
-    if rec.profile is None or rec.axis is None:
+        return CadModel(shape, "analytic", _analytic_lines(spec))
+    if rec.profile is None or rec.axis is None or frame is None:
         raise CadGeometryError(f"a {rec.symmetry} surface has no single axis to turn a profile about")
-    frame = axis_frame(rec.profile)
     curve = meridian_curve(rec.profile, frame, ball)
     branches = traced_profile(scene.profile_curve.polylines(), curve)
     if not branches:
@@ -120,7 +125,7 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
     if exact is not None and _covers(exact, branches, ball.radius):
         faces = shapes.revolution_faces(frame, [shapes.bspline_curve(c) for c in exact])
         lines = (axis, f"profile: exact rational B-spline, {len(exact)} arcs, degree {exact[0].degree}")
-        return CadModel(shapes.shell(faces), "exact", len(faces), lines)
+        return CadModel(shapes.shell(faces), "exact", lines)
     goal = (tolerance if tolerance is not None else FIT_TOLERANCE) * ball.radius
     distance = profile_distance(curve, floor=goal / 10)
     fits = [_fit(branch, goal, distance, curve) for branch in branches]
@@ -131,15 +136,15 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
         axis,
         f"profile: B-spline fitted to tolerance {goal:.3g}; measured deviation {deviation:.3g} ({verdict} it)",
     )
-    return CadModel(shapes.shell(faces), "fitted", len(faces), lines, deviation, goal)
+    return CadModel(shapes.shell(faces), "fitted", lines, deviation, goal)
 
 
 def _off_axis(ball: ClipSphere, frame: Frame) -> bool:
     """Whether the ball's centre is off the axis: its disk would then differ from one meridian
     half-plane to the next, and a revolved profile cut to one of them would not be the part in
     the ball."""
-    d = np.asarray(ball.center) - frame.point
-    return float(np.linalg.norm(d - (d @ frame.direction) * frame.direction)) > 1e-9 * ball.radius
+    centre = np.asarray(ball.center)
+    return float(np.linalg.norm(centre - foot_on_line(centre, frame.point, frame.direction))) > 1e-9 * ball.radius
 
 
 def _inside(spec: Analytic, ball: ClipSphere) -> bool:
@@ -164,10 +169,9 @@ def _cut(model: CadModel, box: ClipBox | None) -> CadModel:
         lines.append("faces converted to B-spline surfaces to be cut to the box")
         if not shapes.within(shape, box):
             raise CadGeometryError("Open CASCADE could not cut the faces to the box")
-    count = len(shapes.faces_of(shape))
-    if count == 0:
+    if not shapes.faces_of(shape):
         raise CadGeometryError("the surface has no real points inside the box")
-    return dataclasses.replace(model, shape=shape, faces=count, description=tuple(lines))
+    return dataclasses.replace(model, shape=shape, description=tuple(lines))
 
 
 def _fit(branch: np.ndarray, goal: float, distance: Distance, curve: MeridianCurve) -> shapes.Fit:
@@ -250,5 +254,5 @@ def patch_model(analysis: Analysis, box: ClipBox | None = None) -> CadModel:
         faces = [shapes.patch_face(p) for p in patches]
         low, high = PATCH_RANGE
         lines = (f"rational B-spline patch of the parameterization ({param.method}) over s, t in [{low:g}, {high:g}]",)
-        return _cut(CadModel(shapes.shell(faces), "patch", len(faces), lines), box)
+        return _cut(CadModel(shapes.shell(faces), "patch", lines), box)
     raise CadGeometryError("the analysis has no verified real rational parameterization to write as a patch")
