@@ -476,6 +476,12 @@ def _conical(conical: Conical) -> list[Formula]:
             if value is not None:
                 text = f"the vector {label} of the base curve's plane"
                 out.append(Formula("vector", value, f"conical.base.{name}", f"baseCurve{label}", f"{label} =", text))
+    for index, part in enumerate(conical.components, 1):
+        u, v = part.variables
+        genus = f"genus {part.genus}" if part.genus is not None else "genus undecided"
+        text = f"component {index} of the reducible base curve (degree {part.degree}, {genus})"
+        key, name = f"conical.component.{index}", f"baseCurveComponent{index}"
+        out.append(Formula("expression", (part.polynomial,), key, name, f"g_{index}({u}, {v}) =", text))
     for index, par in enumerate(conical.parametrizations):
         out.append(_map(par, f"conical.parametrization.{index}", f"C{index + 1}", " by its lines"))
     return out

@@ -234,9 +234,14 @@ def test_a_reducible_base_curve_has_each_component_analysed() -> None:
     from sorgui.engine import analyze
     from sorgui.engine.results import Conical
 
-    conical = analyze("((x-1)^3+2*(y-2)^3-(z-3)^2*(x-1)+(x-1)*(y-2)*(z-3))*((x-1)+2*(y-2)-(z-3))").conical
+    analysis = analyze("((x-1)^3+2*(y-2)^3-(z-3)^2*(x-1)+(x-1)*(y-2)*(z-3))*((x-1)+2*(y-2)-(z-3))")
+    conical = analysis.conical
     assert conical is not None and conical.kind == "cone" and conical.apex == ("1", "2", "3")
     assert conical.base_curve is not None and conical.base_curve.reducible
     found = sorted((c.degree, c.genus) for c in conical.components)
     assert found == [(1, 0), (3, 1)]
     assert Conical.from_json(conical.to_json()) == conical
+    from sorgui.export.cas import maple_file
+
+    maple = maple_file(analysis)  # and the formula files carry each component
+    assert "baseCurveComponent1 := x + 2*y - 1;" in maple and "baseCurveComponent2 := x^3 + x*y - x + 2*y^3;" in maple
