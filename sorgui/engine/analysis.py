@@ -61,12 +61,15 @@ def analyze(
     partial: PartialCallback | None = None,
     tolerance: float | None = None,
     timeout: float | None = None,
+    stated_timeout: float | None = None,
     stage_done: DoneCallback | None = None,
     parsed: PartialCallback | None = None,
 ) -> Analysis:
     """Analyse the equation ``text`` exactly and return the immutable :class:`Analysis`.
 
     ``timeout`` (seconds) bounds the whole analysis; each Singular call is bounded by it too.
+    The words of a limit that is reached name ``stated_timeout`` when given (the user's limit, of
+    which ``timeout`` is what is left after starting the program).
     Inside one long C call (flint, sympy's compiled parts) that bound waits for the call to
     return: a caller that must stop at once runs the analysis in a process it can kill
     (:mod:`sorgui.session.supervised`), which ``stage_done`` (each stage's name and seconds as
@@ -86,7 +89,7 @@ def analyze(
         from .rational_path import recognition_only_analysis
 
         try:  # milliseconds: its stages are not announced to ``progress``
-            with time_limit(timeout):
+            with time_limit(timeout, stated_timeout):
                 quick = recognition_only_analysis(text, StageClock(None, cancel))
         except TimeLimitReached:
             quick = None  # the general pipeline below reports what was done in the time left
@@ -101,7 +104,7 @@ def analyze(
         parsed(skeleton(f, text=text, method=method))
     remaining = None if timeout is None else max(timeout - (time.monotonic() - start), 0.001)
     try:
-        with time_limit(remaining, timeout):
+        with time_limit(remaining, stated_timeout or timeout):
             return analyze_polynomial(
                 f,
                 text=text,

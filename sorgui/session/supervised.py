@@ -11,10 +11,14 @@ known as it is known:
 * one final message: :class:`~.messages.Finished` with the ``Analysis``,
   :class:`~.messages.Invalid` for text that is not a polynomial, or :class:`~.messages.Failed`.
 
-The parent folds the messages into a :class:`StageLog`. The engine bounds itself by the time
-limit wherever Python runs; when it does not answer :data:`GRACE` seconds after the limit
-(stuck in one C call), the parent kills the child and reports the stages it finished as done
-and the rest as unfinished (:meth:`StageLog.outcome`) — the same answer the engine gives.
+The parent folds the messages into a :class:`StageLog`. The time limit is the user's: it counts
+from when the command started (for ``sorgui analyze``, the start of the process), and the answer
+must be out by then, so the engine is asked to stop :data:`ANSWER_MARGIN` seconds before the
+limit (:attr:`AnalysisRequest.deadline`) and bounds itself wherever Python runs; when it has not
+answered :data:`GRACE` seconds later (stuck in one C call), the parent kills the child and
+reports the stages it finished as done and the rest as unfinished (:meth:`StageLog.outcome`) —
+the same answer the engine gives. What is left of the limit after that is for the teardown:
+writing the answer and ending the process, a second or more on a busy machine.
 """
 
 from __future__ import annotations
@@ -23,7 +27,7 @@ import sys
 import time
 import traceback
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 from sorgui.session.child import ChildProcess, become_child
@@ -46,8 +50,11 @@ if TYPE_CHECKING:
 
     from sorgui.engine import Analysis
 
+ANSWER_MARGIN = 0.7
+"""Seconds before the user's time limit at which the engine is asked to have answered."""
 GRACE = 0.4
-"""Seconds after its time limit that an analysis process is given to answer before it is killed."""
+"""Seconds after the engine's deadline that an analysis process is given to answer before it is
+killed: the kill comes ``ANSWER_MARGIN - GRACE`` seconds before the user's limit."""
 
 
 @dataclass(frozen=True)
@@ -59,15 +66,24 @@ class AnalysisRequest:
     recognition_only: bool = False
     tolerance: float | None = None
     timeout: float | None = None
+    deadline: float | None = None
+    """The ``time.monotonic()`` by which the engine is to have answered (the clock is the
+    machine's, the same in the child), set by :meth:`Supervised.give`; ``None``: ``timeout``
+    seconds from when the child starts on the request."""
 
     def options(self) -> dict[str, Any]:
-        singular = 60.0 if self.timeout is None else self.timeout
+        """The keywords of :func:`sorgui.engine.analyze`, the time limit being what is left of
+        ``timeout`` until the ``deadline`` (asked in the child, when the analysis starts)."""
+        left = self.timeout
+        if self.deadline is not None:
+            left = max(self.deadline - time.monotonic(), 0.001)
         return {
             "method": self.method,
             "recognition_only": self.recognition_only,
             "tolerance": self.tolerance,
-            "timeout": self.timeout,
-            "singular_timeout": singular,
+            "timeout": left,
+            "stated_timeout": self.timeout,
+            "singular_timeout": 60.0 if left is None else left,
         }
 
 
@@ -180,12 +196,15 @@ class Supervised:
     def give(self, request: AnalysisRequest, started: float | None = None) -> None:
         """Send ``request``; its time limit counts from ``started`` (``time.monotonic()``, by
         default now): a command line counts from its own start, so that starting Python and
-        importing the engine are inside the limit too."""
+        importing the engine are inside the limit too. The engine is to answer
+        :data:`ANSWER_MARGIN` seconds before the limit, and is killed :data:`GRACE` seconds after that."""
+        limit = request.timeout
+        if limit is not None:
+            begun = time.monotonic() if started is None else started
+            request = replace(request, deadline=begun + limit - ANSWER_MARGIN)
         self.request = request
         self.log = StageLog(request.recognition_only)
-        limit = request.timeout
-        begun = time.monotonic() if started is None else started
-        self.deadline = float("inf") if limit is None else begun + limit + GRACE
+        self.deadline = float("inf") if request.deadline is None else request.deadline + GRACE
         self.child.send(request)
 
     def collect(self, timeout: float = 0.0) -> FinalMessage | None:
@@ -218,8 +237,9 @@ class Supervised:
             if answer is not None:
                 return answer
 
-    def close(self) -> None:
-        self.child.close()
+    def close(self, wait: float = 1.0) -> None:
+        """Kill the child, waiting at most ``wait`` seconds for the kernel to release it."""
+        self.child.close(wait)
 
 
 def analyze_supervised(request: AnalysisRequest, started: float | None = None) -> FinalMessage:
@@ -239,4 +259,4 @@ def analyze_supervised(request: AnalysisRequest, started: float | None = None) -
     try:
         return worker.run(request, started)
     finally:
-        worker.close()
+        worker.close(wait=0.0)  # killed: the answer need not wait for the kernel to free its memory

@@ -157,7 +157,7 @@ def test_cancel_kills_singular_quickly() -> None:
     start = time.monotonic()
     with pytest.raises(Cancelled):
         run_singular(LOOP, timeout=30, cancel=cancel)
-    assert time.monotonic() - start < 0.3 + 0.5
+    assert time.monotonic() - start < 0.3 + 1.0  # Cancel stops Singular within a second, on a busy machine too
     assert children() <= before
     timer.join()
 
