@@ -22,10 +22,10 @@ from pathlib import Path
 
 from benchmarks.recognition import surface
 from benchmarks.report import median_time, run
+from sorgui.cad import cad_model
 from sorgui.engine import analyze
 from sorgui.engine.algebra.polys import poly_str
 from sorgui.examples import example_text
-from sorgui.export.cad import cad_model
 from sorgui.export.files import export_analysis
 from sorgui.session.scene_data import build_scene
 
@@ -43,7 +43,7 @@ def surfaces() -> dict[str, str]:
 def import_seconds() -> float:
     """``import OCP`` plus the modules a CAD export loads, in a new interpreter."""
     code = (
-        "import time; t = time.perf_counter(); import sorgui.export.cad.model, sorgui.export.cad.writers; "
+        "import time; t = time.perf_counter(); import sorgui.cad.model, sorgui.cad.writers; "
         "print(time.perf_counter() - t)"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

@@ -70,9 +70,9 @@ EXPORT_SUFFIXES = (
 )
 """Suffixes ``-o`` accepts (the keys of ``sorgui.export.files.FORMATS``; a test checks it)."""
 CAD_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
-"""The CAD formats of ``-o`` (``sorgui.export.cad.CAD_SUFFIXES``; a test checks it)."""
+"""The CAD formats of ``-o`` (``sorgui.cad.CAD_SUFFIXES``; a test checks it)."""
 CAD_UNITS = ("mm", "cm", "m", "um", "in", "ft")
-"""The units ``--units`` accepts (``sorgui.export.cad.UNITS``; a test checks it)."""
+"""The units ``--units`` accepts (``sorgui.cad.UNITS``; a test checks it)."""
 
 
 class UsageError(Exception):
@@ -349,7 +349,7 @@ def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None 
         if suffix not in EXPORT_SUFFIXES:
             raise UsageError(f"unknown export format of {path}; use {', '.join(EXPORT_SUFFIXES)}")
         if suffix in CAD_SUFFIXES and importlib.util.find_spec("OCP") is None:
-            from sorgui.export.cad import INSTALL_HINT
+            from sorgui.cad import INSTALL_HINT
 
             raise UsageError(f"cannot write {path}: {INSTALL_HINT}")
         side = [path.with_suffix(SIDE_FILES[suffix])] if suffix in SIDE_FILES else []

@@ -7,6 +7,8 @@ found for the deviation of rounded input and for a touching sphere in the 3D vie
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -24,3 +26,10 @@ def real_roots(coefficients: NDArray[np.float64]) -> NDArray[np.float64]:
     roots = np.roots(c[: nonzero[-1] + 1][::-1])
     real: NDArray[np.float64] = roots[np.abs(roots.imag) <= 1e-6 * np.maximum(1.0, np.abs(roots))].real
     return real[np.isfinite(real)]
+
+
+def without_noise(values: Sequence[float], tolerance: float | None = None) -> list[float]:
+    """A float vector with its rounding noise taken out: entries below the rounding
+    (``tolerance``, or 1e-12, relative to the largest entry or to 1) are 0."""
+    noise = max(1e-12, tolerance or 0.0) * max(1.0, *(abs(c) for c in values))
+    return [0.0 if abs(c) < noise else float(c) for c in values]

@@ -3,7 +3,7 @@
 :data:`FORMATS` lists every format: reports (JSON, text, Markdown, HTML), formula files (LaTeX,
 Maple, Mathematica, Python), meshes (STL, OBJ, PLY, VTP; ``NAME.patch.stl`` is the parametric
 patch instead of the surface), CAD files (STEP, IGES, OCCT's BRep: the native surface, or with
-``NAME.patch.step`` the parameterization's patch, :mod:`sorgui.export.cad`) and a PNG picture.
+``NAME.patch.step`` the parameterization's patch, :mod:`sorgui.cad`) and a PNG picture.
 The format follows the file's suffix, or the ``fmt`` argument (``"stl"``, ``".stl"`` or
 ``"patch.stl"``). Meshes, CAD files and pictures need the scene
 (``sorgui.session.scene_data.SceneData``) the caller built; Markdown and HTML add a picture
@@ -111,10 +111,10 @@ def export_file(
     form = format_of(path, fmt)
     if form.kind != "cad":
         return export_analysis(analysis, path, fmt, scene=scene, units=units, tolerance=tolerance), ""
-    from sorgui.export.cad import cad_file, summary
+    from sorgui.cad import cad_file, summary
 
-    written, model = cad_file(analysis, scene, path, form.suffix, wants_patch(path, fmt), units, tolerance)
-    return written, summary(model)
+    data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance)
+    return atomic_write_bytes(path, data), summary(model)
 
 
 def wants_patch(path: Path, fmt: str | None = None) -> bool:
@@ -151,9 +151,9 @@ def export_analysis(
 
         return write_mesh(scene, analysis.recognition.polynomial, path, form.suffix, patch)
     if form.kind == "cad":
-        from sorgui.export.cad import cad_file
+        from sorgui.cad import cad_file
 
-        return cad_file(analysis, scene, path, form.suffix, patch, units, tolerance)[0]
+        return atomic_write_bytes(path, cad_file(analysis, scene, path.name, form.suffix, patch, units, tolerance)[0])
     if form.kind == "picture":
         from sorgui.export.picture import render_png
 

@@ -16,6 +16,7 @@ from sorgui.engine.results import (
     Recognition,
 )
 from sorgui.engine.vocabulary import canal_kind, kind_phrase
+from sorgui.numerics import without_noise
 
 TABLE_1 = (
     ("reducible", "0", "rational", "rational"),
@@ -145,13 +146,6 @@ NEAR_KINDS = {
     "plane": "a plane",
     "extrusion": "an extrusion",
 }
-
-
-def without_noise(values: Sequence[float], tolerance: float | None = None) -> list[float]:
-    """A float vector with its rounding noise taken out: entries below the rounding
-    (``tolerance``, or 1e-12, relative to the largest entry or to 1) are 0."""
-    noise = max(1e-12, tolerance or 0.0) * max(1.0, *(abs(c) for c in values))
-    return [0.0 if abs(c) < noise else float(c) for c in values]
 
 
 def float_text(values: Sequence[float], digits: int, tolerance: float | None = None) -> str:

@@ -32,7 +32,7 @@ def test_a_box_cuts_the_drawn_mesh_and_the_exported_step_file(window, run_analys
     from OCP.Bnd import Bnd_Box
     from OCP.BRepBndLib import BRepBndLib
 
-    from sorgui.export.cad.writers import read_shape
+    from sorgui.cad.writers import read_shape
 
     bounds = Bnd_Box()
     BRepBndLib.AddOptimal_s(read_shape(path), bounds, False, False)

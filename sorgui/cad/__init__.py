@@ -1,4 +1,7 @@
-"""CAD files of an analysis: STEP (AP242), IGES and OCCT's BRep, written with Open CASCADE.
+"""CAD files of an analysis: STEP (AP242), IGES and OCCT's BRep, made with Open CASCADE.
+
+Every use of Open CASCADE is in this package (its modules import ``OCP``; the rest of sorgui
+speaks its own types): the export layer (:mod:`sorgui.export.files`) writes the bytes made here.
 
 A surface of revolution is written as the native surface a CAD kernel uses (docs/math.md §11):
 an analytic plane, sphere, cylinder, cone or torus where it is one, otherwise a
@@ -11,7 +14,6 @@ only here, when such a file is written; without it :class:`CadUnavailable` says 
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from sorgui.engine.results import Analysis
@@ -58,22 +60,21 @@ def cad_model(analysis: Analysis, scene: Scene, patch: bool = False, tolerance: 
 def cad_file(
     analysis: Analysis,
     scene: Scene,
-    path: Path,
+    name: str,
     suffix: str,
     patch: bool = False,
     units: str = "mm",
     tolerance: float | None = None,
-) -> tuple[Path, CadModel]:
-    """Write ``analysis`` to the CAD file ``path`` (format ``suffix``; ``patch``: the
-    parameterization's patch); return ``path`` and the faces written (for :func:`summary`)."""
+) -> tuple[bytes, CadModel]:
+    """The bytes of the CAD file ``name`` of ``analysis`` (format ``suffix``; ``patch``: the
+    parameterization's patch), and the faces it holds (for :func:`summary`)."""
     from sorgui import __version__
 
     model = cad_model(analysis, scene, patch, tolerance)
     from .writers import WRITERS, CadHeader
 
-    header = CadHeader(analysis.recognition.polynomial, model.description, __version__, units)
-    written: Path = WRITERS[suffix](model.shape, path, header)
-    return written, model
+    header = CadHeader(analysis.recognition.polynomial, model.description, __version__, name, units)
+    return WRITERS[suffix](model.shape, header), model
 
 
 ROUTES = {

@@ -15,16 +15,16 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from sorgui import cli
-from sorgui.engine import analyze
-from sorgui.engine.values import polynomial_terms
-from sorgui.export.cad import INSTALL_HINT
-from sorgui.export.cad.geometry import (
+from sorgui.cad import INSTALL_HINT
+from sorgui.cad.geometry import (
     analytic_surface,
     axis_frame,
     bernstein,
     exact_profile,
     surface_distance,
 )
+from sorgui.engine import analyze
+from sorgui.engine.values import polynomial_terms
 from sorgui.session.scene_data import build_scene
 
 
@@ -123,7 +123,7 @@ def test_without_open_cascade_an_export_fails_in_one_line(tmp_path: Path) -> Non
 
 
 def test_the_command_line_lists_the_cad_formats_and_units() -> None:
-    from sorgui.export.cad import CAD_SUFFIXES, UNITS
+    from sorgui.cad import CAD_SUFFIXES, UNITS
     from sorgui.export.files import FORMATS
 
     assert cli.CAD_SUFFIXES == CAD_SUFFIXES == tuple(s for s, f in FORMATS.items() if f.kind == "cad")
@@ -145,8 +145,8 @@ def test_an_unfinished_analysis_is_not_called_a_surface_that_is_not_of_revolutio
     import dataclasses
 
     pytest.importorskip("OCP")
-    from sorgui.export.cad.geometry import CadGeometryError
-    from sorgui.export.cad.model import surface_model
+    from sorgui.cad.geometry import CadGeometryError
+    from sorgui.cad.model import surface_model
 
     analysis = analyze("x^2+y^2-z")
     undecided = dataclasses.replace(

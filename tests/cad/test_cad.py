@@ -32,9 +32,9 @@ from OCP.GeomAdaptor import GeomAdaptor_Surface  # noqa: E402
 from OCP.GProp import GProp_GProps  # noqa: E402
 from OCP.TopoDS import TopoDS_Shape  # noqa: E402
 
-from sorgui.export.cad.geometry import surface_distance  # noqa: E402
-from sorgui.export.cad.shapes import faces_of as faces  # noqa: E402
-from sorgui.export.cad.writers import read_shape  # noqa: E402
+from sorgui.cad.geometry import surface_distance  # noqa: E402
+from sorgui.cad.shapes import faces_of as faces  # noqa: E402
+from sorgui.cad.writers import read_shape  # noqa: E402
 
 FORMATS = (".step", ".iges", ".brep")
 
@@ -236,7 +236,7 @@ def test_every_real_reads_back_to_the_same_double(tmp_path: Path, cases, suffix:
     """Poles, weights, knots, axes and radii come back bit for bit (17 significant digits). IGES
     keeps an axis as a segment between two points, so a revolved face's axis direction is their
     difference, normalized again: it is compared to a few units in the last place."""
-    from sorgui.export.cad import cad_model
+    from sorgui.cad import cad_model
 
     analysis, scene = cases[name]
     model = cad_model(analysis, scene, patch=written.endswith(".patch"))
@@ -307,7 +307,7 @@ def test_a_declared_unit_keeps_the_numbers(tmp_path: Path, cases, suffix: str) -
     same doubles, read in millimetres 25.4 times larger."""
     analysis, scene = cases["paraboloid"]
     path = export_analysis(analysis, tmp_path / f"p{suffix}", scene=scene, units="in")
-    from sorgui.export.cad import cad_model
+    from sorgui.cad import cad_model
 
     written = parameters(cad_model(analysis, scene).shape)
     inches = parameters(read_shape(path, units="in"))

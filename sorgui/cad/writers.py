@@ -4,8 +4,9 @@ Open CASCADE's writers keep 12 significant digits (STEP) and 9 decimals (IGES); 
 is written with ``%.16E`` (17 significant digits, read back to the same double) through the
 writers' own ``FloatWriter`` (zero suppression off: it truncates long numbers). The equation,
 the route and sorgui's version go where each format keeps such text: STEP's
-``FILE_DESCRIPTION`` and ``FILE_NAME``, IGES's start and global sections. Files are written
-atomically (:mod:`sorgui.export.atomic`), and nothing is printed on standard output.
+``FILE_DESCRIPTION`` and ``FILE_NAME``, IGES's start and global sections. The writers return
+the file's bytes (the export layer writes them atomically), and nothing is printed on standard
+output.
 """
 
 from __future__ import annotations
@@ -27,8 +28,6 @@ from OCP.STEPControl import STEPControl_AsIs, STEPControl_Reader, STEPControl_Wr
 from OCP.StepData import StepData_StepWriter
 from OCP.TCollection import TCollection_HAsciiString
 from OCP.TopoDS import TopoDS_Shape
-
-from sorgui.export.atomic import atomic_write_bytes
 
 REAL_FORMAT = "%.16E"
 """17 significant digits: every double reads back to itself."""
@@ -66,6 +65,8 @@ class CadHeader:
     equation: str
     description: tuple[str, ...]
     version: str
+    name: str
+    """The file's name (STEP's ``FILE_NAME``, IGES's global section); its stem names the product."""
     units: str = "mm"
 
 
@@ -75,7 +76,7 @@ def _full_precision(writer: Any) -> None:
     floats.SetZeroSuppress(False)
 
 
-def write_step(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
+def step_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
     """An AP242 STEP file of ``shape``; :func:`header_lines` are its ``FILE_DESCRIPTION``."""
     writer = STEPControl_Writer()
     name = UNITS[header.units][0]
@@ -83,7 +84,7 @@ def write_step(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
         "write.step.schema": "AP242DIS",
         "write.step.unit": name,
         "xstep.cascade.unit": name,
-        "write.step.product.name": _ascii(Path(path).stem),
+        "write.step.product.name": _ascii(Path(header.name).stem),
     }
     for key, value in settings.items():
         if not Interface_Static.SetCVal_s(key, value):
@@ -95,7 +96,7 @@ def write_step(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
     for number, line in enumerate(lines, 1):
         description.SetValue(number, TCollection_HAsciiString(line))
     made.SetDescription(description)
-    made.SetName(TCollection_HAsciiString(_ascii(Path(path).name)))
+    made.SetName(TCollection_HAsciiString(_ascii(header.name)))
     made.SetOriginatingSystem(TCollection_HAsciiString(f"sorgui {header.version}"))
     made.SetAuthorValue(1, TCollection_HAsciiString(""))
     made.SetOrganizationValue(1, TCollection_HAsciiString(""))
@@ -104,10 +105,10 @@ def write_step(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
     step.SendModel(writer.WS().Protocol())
     out = io.BytesIO()
     step.Print(out)
-    return atomic_write_bytes(path, out.getvalue())
+    return out.getvalue()
 
 
-def write_iges(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
+def iges_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
     """An IGES 5.3 file of ``shape`` (trimmed surfaces); :func:`header_lines` are its start section."""
     name, millimetres = UNITS[header.units]
     writer = IGESControl_Writer(name, 0)
@@ -120,8 +121,8 @@ def write_iges(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
     for line in header_lines(header):
         model.AddStartLine(_ascii(line))
     section = model.GlobalSection()
-    section.SetSendName(TCollection_HAsciiString(_ascii(Path(path).stem)))
-    section.SetFileName(TCollection_HAsciiString(_ascii(Path(path).name)))
+    section.SetSendName(TCollection_HAsciiString(_ascii(Path(header.name).stem)))
+    section.SetFileName(TCollection_HAsciiString(_ascii(header.name)))
     section.SetSystemId(TCollection_HAsciiString(f"sorgui {header.version}"))
     model.SetGlobalSection(section)
     iges = IGESData_IGESWriter(model)
@@ -129,14 +130,14 @@ def write_iges(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
     iges.SendModel(model.Protocol())
     out = io.BytesIO()
     iges.Print(out)
-    return atomic_write_bytes(path, out.getvalue())
+    return out.getvalue()
 
 
-def write_brep(shape: TopoDS_Shape, path: Path, header: CadHeader) -> Path:
+def brep_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
     """Open CASCADE's own BRep text (it keeps 17 digits; the format has no header)."""
     out = io.BytesIO()
     BRepTools.Write_s(shape, out)
-    return atomic_write_bytes(path, out.getvalue())
+    return out.getvalue()
 
 
 def header_lines(header: CadHeader) -> list[str]:
@@ -174,4 +175,5 @@ def read_shape(path: Path, units: str = "mm") -> TopoDS_Shape:
     return shape
 
 
-WRITERS = {".step": write_step, ".stp": write_step, ".iges": write_iges, ".igs": write_iges, ".brep": write_brep}
+WRITERS = {".step": step_bytes, ".stp": step_bytes, ".iges": iges_bytes, ".igs": iges_bytes, ".brep": brep_bytes}
+"""The bytes of each CAD format, by suffix."""

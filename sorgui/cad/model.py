@@ -19,7 +19,7 @@ import sympy
 
 from sorgui.engine.results import Analysis
 from sorgui.engine.values import ExpressionError
-from sorgui.export.text import without_noise
+from sorgui.numerics import without_noise
 from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData
 from sorgui.render.geometry import foot_on_line
 
