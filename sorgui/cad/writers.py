@@ -141,8 +141,10 @@ def brep_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
 
 
 def header_lines(header: CadHeader) -> list[str]:
-    """The equation, what the faces are, sorgui's version and the declared unit."""
-    return [f"{header.equation} = 0", *header.description, f"sorgui {header.version}", f"units: {header.units}"]
+    """The equation (none for a part sorgui rewrote), what the faces are, sorgui's version and the
+    declared unit."""
+    equation = [f"{header.equation} = 0"] if header.equation else []
+    return [*equation, *header.description, f"sorgui {header.version}", f"units: {header.units}"]
 
 
 def _step_strings(header: CadHeader) -> list[str]:
