@@ -184,6 +184,11 @@ def analyze_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="sorgui analyze",
         description="Decide exactly whether f(x, y, z) = 0 is a surface of revolution.",
+        epilog="A CAD part in place of the equation (sorgui analyze PART.step; also .stp, .iges, .igs, "
+        ".brep): every face recognised (plane, sphere, cylinder, cone, torus, surface of revolution, "
+        "extrusion, cone over a curve) and the faces about one axis grouped; --tolerance T is then a "
+        "length (default: each face's own tolerance, at least 1e-7); -o CANONICAL.step writes the part "
+        "with its recognised faces on native surfaces, -o REPORT.json or .txt the report.",
         allow_abbrev=False,
     )
     parser.add_argument(
@@ -480,6 +485,9 @@ def analyze_main(argv: Sequence[str]) -> int:
     as_json = "--json" in argv
     try:
         args = parse_arguments(analyze_parser(), argv)
+        part = part_source(args)
+        if part is not None:
+            return part_main(args, part)
         if args.each_line:
             return each_line(args)
         text, source = read_input(args)
@@ -518,6 +526,73 @@ def analyze_main(argv: Sequence[str]) -> int:
             from sorgui.export.text import plain_text
 
             emit(plain_text(result))
+    except _OutputError as exc:
+        return fail(str(exc), None, False, 1)
+    return 0
+
+
+def part_source(args: argparse.Namespace) -> Path | None:
+    """The CAD part to analyse, when the input (``-f FILE`` or the expression) names one by its
+    suffix (``PART.step``, ``.stp``, ``.iges``, ``.igs``, ``.brep``, any case)."""
+    if args.file is not None:
+        return args.file if args.file.suffix.lower() in CAD_SUFFIXES else None
+    if args.expression is None or args.expression == "-" or "\n" in args.expression:
+        return None
+    path = Path(args.expression)
+    return path if path.suffix.lower() in CAD_SUFFIXES else None
+
+
+PART_OUTPUTS = (*CAD_SUFFIXES, ".json", ".txt")
+"""What ``-o`` writes for a part: the canonical part (CAD), the report (JSON, text)."""
+
+
+def part_main(args: argparse.Namespace, source: Path) -> int:
+    """``sorgui analyze PART.step``: the faces of a CAD part (:mod:`sorgui.session.part_job`),
+    the report on standard output and every ``-o`` file."""
+    try:
+        for option, given in (
+            ("--each-line", args.each_line),
+            ("--format", args.export_format),
+            ("--region", args.region != UserRegion()),
+            ("--recognition-only", args.recognition_only),
+            ("--fit-tolerance", args.fit_tolerance),
+        ):
+            if given:
+                raise UsageError(f"{option} does not apply to a CAD part")
+        if args.file is not None and args.expression is not None:
+            raise UsageError("give either an expression or -f FILE, not both")
+        inputs = [os.stat(source)] if source.exists() else []
+        for path in args.output:
+            if path.suffix.lower() not in PART_OUTPUTS:
+                raise UsageError(f"cannot write {path} for a part; use {', '.join(PART_OUTPUTS)}")
+            _check_target(path, inputs, beside=None)
+    except UsageError as exc:
+        return fail(str(exc), None, args.json, 2)
+    from sorgui.session.part_job import PartRequest, analyse_part_supervised
+
+    canonical = tuple(str(p) for p in args.output if p.suffix.lower() in CAD_SUFFIXES)
+    request = PartRequest(str(source), args.tolerance, canonical)
+    answer = analyse_part_supervised(request, args.timeout, started=_started[-1] if _started else None)
+    if answer.report is None:
+        return fail(answer.error or "the part could not be analysed", None, args.json, 2 if answer.bad_input else 1)
+    from sorgui.cad.part_report import text_report
+    from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
+
+    data = json.dumps(answer.report.to_json(), indent=1)
+    try:
+        for path in args.output:
+            try:
+                if path.suffix.lower() in CAD_SUFFIXES:
+                    written = next(f for f in answer.files if f.path == str(path))
+                    atomic_write_bytes(path, written.data)
+                    print(f"sorgui: wrote {path}: {written.holds}", file=sys.stderr)
+                else:
+                    atomic_write_text(
+                        path, data + "\n" if path.suffix.lower() == ".json" else text_report(answer.report) + "\n"
+                    )
+            except OSError as exc:
+                raise _OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
+        emit(data if args.json else text_report(answer.report))
     except _OutputError as exc:
         return fail(str(exc), None, False, 1)
     return 0

@@ -177,7 +177,7 @@ def _reason(messages: str, kind: str) -> str:
         return ""
     line, words = found.group(1), found.group(2).removeprefix("Incorrect syntax: ")
     if "end of file" in words:
-        return f": it ends at line {line} (a truncated {kind} file?)"
+        return f": it ends in the middle (a truncated {kind} file?)"
     return f": {words} at line {line}"
 
 

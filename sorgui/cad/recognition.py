@@ -139,7 +139,11 @@ def _as_in_file(
     report = FaceReport(number, name, lc.NONE, 0.0, tol, "file")
     if kind == T.GeomAbs_Plane:
         plane = adaptor.Plane()
-        return replace(report, kind=lc.PLANE, axis=_axis(plane.Axis()))
+        location, n = plane.Location(), plane.Axis().Direction()
+        normal = np.array([n.X(), n.Y(), n.Z()])
+        foot = (np.array([location.X(), location.Y(), location.Z()]) @ normal) * normal  # the origin, onto the plane
+        on_plane = lc.axis_of(foot, normal, foot)
+        return replace(report, kind=lc.PLANE, axis=on_plane)
     if kind == T.GeomAbs_Cylinder:
         cylinder = adaptor.Cylinder()
         return replace(report, kind=lc.CYLINDER, axis=_axis(cylinder.Axis()), radius=cylinder.Radius())
