@@ -19,7 +19,7 @@ from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
 
 DEFLECTION = 2e-3
 """How far a triangle may be from its face, relative to the part's size."""
-ANGLE = 0.3
+ANGLE = 0.15
 """The largest angle (radians) between the normals of a triangle's corners."""
 
 

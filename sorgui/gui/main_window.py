@@ -84,6 +84,7 @@ from sorgui.gui.worker import AnalysisWorker
 from sorgui.render.picking import PickInfo
 from sorgui.session.formulas import Style
 from sorgui.session.model import Session
+from sorgui.session.part_job import PART_SUFFIXES
 
 ZOOM_STEPS = (0.8, 0.9, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0, 2.5)
 """The zoom factors of the formulas (Ctrl++ and Ctrl+− step through them)."""
@@ -133,11 +134,11 @@ class BusyIndicator(QWidget):
         painter.drawArc(self.rect().adjusted(2, 2, -2, -2), self._angle * 16, 270 * 16)
 
 
-DROPPED_SUFFIXES = (".sor", ".poly", ".txt", ".json")
-"""The files a drop on the window opens: equation files and reports."""
+DROPPED_SUFFIXES = (".sor", ".poly", ".txt", ".json", *PART_SUFFIXES)
+"""The files a drop on the window opens: equation files, reports and CAD parts."""
 
-OPENABLE_FILTER = "Equations and reports (*.txt *.sor *.poly *.json)"
-"""The Open dialog's first filter: everything sorgui opens, reports included."""
+OPENABLE_FILTER = "Equations, reports and CAD parts (*.txt *.sor *.poly *.json *.step *.stp *.iges *.igs *.brep)"
+"""The Open dialog's first filter: everything sorgui opens, reports and parts included."""
 
 _DROP_EVENTS = (QEvent.Type.DragEnter, QEvent.Type.DragMove, QEvent.Type.Drop)
 
@@ -439,7 +440,13 @@ class MainWindow(QMainWindow):
 
     def open_file(self, path: str) -> bool:
         """Read an equation file into the editor and analyse it (a ``.json`` report is shown as
-        saved, see :meth:`open_report`)."""
+        saved, see :meth:`open_report`; a CAD part in a window of its own, :mod:`sorgui.gui.part_view`)."""
+        if Path(path).suffix.lower() in PART_SUFFIXES:
+            from sorgui.gui.part_view import open_part
+
+            open_part(self, path)
+            self.settings.add_recent_file(path)
+            return True
         if is_report_path(path):
             return self.open_report(path)
         try:
@@ -808,7 +815,9 @@ class MainWindow(QMainWindow):
                 event.ignore()
             return True
         if not openable:
-            self.statusBar().showMessage("sorgui opens equation files (.sor, .poly, .txt) and reports (.json)", 6000)
+            self.statusBar().showMessage(
+                "sorgui opens equation files (.sor, .poly, .txt), reports (.json) and CAD parts", 6000
+            )
             event.ignore()
             return True
         event.acceptProposedAction()

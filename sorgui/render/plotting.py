@@ -44,6 +44,15 @@ class Forwarders(Protocol):
 
     def hide_axes(self) -> None: ...
 
+    def add_legend(
+        self,
+        labels: Sequence[tuple[str, pyvista.ColorLike]],
+        *,
+        bcolor: pyvista.ColorLike | None = None,
+        face: str | None = None,
+        size: tuple[float, float] = (0.2, 0.2),
+    ) -> object: ...
+
     def show_axes(self) -> None: ...
 
 

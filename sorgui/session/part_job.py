@@ -26,8 +26,8 @@ if TYPE_CHECKING:
     from sorgui.cad.part_report import PartReport
     from sorgui.cad.tessellation import PartMesh
 
-CANONICAL_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
-"""The formats of a canonical part (``-o CANONICAL.step``)."""
+PART_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
+"""The formats a part is read from and a canonical part written to (``sorgui.cad.CAD_SUFFIXES``)."""
 REPORT_SUFFIXES = (".json", ".txt")
 """The formats of a part's report."""
 
@@ -180,6 +180,8 @@ def analyse_part_supervised(request: PartRequest, timeout: float, started: float
         return PartAnswer(error=f"the analysis process could not be started: {exc.strerror or exc}")
     try:
         worker.give(request)
+        import sorgui.cad.part_report  # noqa: F401 - the answer's module, loaded while the child works
+
         while True:
             answer = worker.collect(timeout=max(0.0, min(0.5, deadline - time.monotonic())))
             if answer is not None:
