@@ -187,8 +187,9 @@ def analyze_parser() -> argparse.ArgumentParser:
         epilog="A CAD part in place of the equation (sorgui analyze PART.step; also .stp, .iges, .igs, "
         ".brep): every face recognised (plane, sphere, cylinder, cone, torus, surface of revolution, "
         "extrusion, cone over a curve) and the faces about one axis grouped; --tolerance T is then a "
-        "length (default: each face's own tolerance, at least 1e-7); -o CANONICAL.step writes the part "
-        "with its recognised faces on native surfaces, -o REPORT.json or .txt the report.",
+        "length (default: each face's own tolerance, at least 1e-7 and 1e-9 of the largest coordinate); "
+        "-o CANONICAL.step writes the part with its recognised faces on native surfaces, -o REPORT.json "
+        "or .txt the report.",
         allow_abbrev=False,
     )
     parser.add_argument(

@@ -162,12 +162,32 @@ def swept_surface(fit: SurfaceFit, face: TopoDS_Face, samples: FaceSamples) -> G
         return None
     if fit.kind == lc.REVOLUTION:
         assert fit.axis is not None
-        return Geom_SurfaceOfRevolution(curve, gp_Ax1(_pnt(fit.axis.point), _dir(fit.axis.direction)))
+        axis = gp_Ax1(_pnt(fit.axis.point), _dir(fit.axis.direction))
+        return Geom_SurfaceOfRevolution(_seam_away(curve, axis, fit, samples), axis)
     if fit.kind == lc.EXTRUSION:
         assert fit.direction is not None
         return Geom_SurfaceOfLinearExtrusion(curve, _dir(fit.direction))
     assert fit.kind == lc.CONE_OVER_CURVE and fit.center is not None
     return _ruled_from(np.array(fit.center), curve)
+
+
+def _seam_away(curve: Geom_Curve, axis: gp_Ax1, fit: SurfaceFit, samples: FaceSamples) -> Geom_Curve:
+    """``curve`` turned about the axis to the side opposite the face, when the face does not go
+    all the way round: the surface's seam (angle 0) then stays off the face, whose curves in
+    ``(u, v)`` do not cross it. A face all the way round keeps its own seam."""
+    assert fit.axis is not None
+    point, d = np.array(fit.axis.point), np.array(fit.axis.direction)
+    e1, e2 = lc.across(d)
+    angles = np.sort(np.mod(np.arctan2((samples.points - point) @ e2, (samples.points - point) @ e1), 2 * math.pi))
+    gaps = np.diff(np.concatenate([angles, [angles[0] + 2 * math.pi]]))
+    k = int(np.argmax(gaps))
+    if gaps[k] < math.pi / 8:
+        return curve
+    middle = angles[k] + gaps[k] / 2
+    at = _xyz(curve.Value(0.5 * (curve.FirstParameter() + curve.LastParameter()))) - point
+    now = math.atan2(at @ e2, at @ e1)
+    turned: Geom_Curve = curve.Rotated(axis, middle - now)
+    return turned
 
 
 def profile_curve(fit: SurfaceFit, face: TopoDS_Face, samples: FaceSamples) -> Geom_Curve | None:

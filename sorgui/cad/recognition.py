@@ -6,8 +6,9 @@ A face whose surface the file gives as an analytic one (``PLANE``, ``CYLINDRICAL
 surface) is sampled over its trimmed domain (:mod:`.sampling`) and fitted by the line complex of
 its normals (:mod:`sorgui.engine.rounded.line_complex`): the most special kind whose surface is
 within the tolerance of the face both ways (:mod:`.native`) is its kind. The tolerance is the
-user's, else the larger of ``1e-7`` and the face's own tolerance in the file (how closely its
-edges are known to lie on it).
+user's, else the largest of ``1e-7``, the face's own tolerance in the file (how closely its
+edges are known to lie on it) and ``1e-9`` of the part's largest coordinate (the precision of
+numbers printed with nine digits).
 
 Faces about one axis are grouped: those with one axis (a cylinder, cone, torus or surface of
 revolution) when their axes agree (:data:`ANGLE` and :data:`OFFSET`), then the planes across a
@@ -40,6 +41,9 @@ from .sampling import FaceError, FaceSamples, sample_face
 
 DEFAULT_TOLERANCE = 1e-7
 """The least tolerance of a face (length units of the file, millimetres)."""
+DIGITS = 1e-9
+"""The least tolerance relative to the part's largest coordinate: the precision of numbers
+printed with nine significant digits, as IGES files often are."""
 ANGLE = 1e-6
 """Two axes are one when their directions differ by less than this (radians) …"""
 OFFSET = 1e-5
@@ -80,9 +84,10 @@ def analyse_part(
 ) -> tuple[PartReport, list[Recognised]]:
     """Every face of ``part`` recognised (``progress(done, total)`` after each), and the groups."""
     started = time.monotonic()
+    floor = DIGITS * _reach(part)
     found = []
     for number, face in enumerate(part.faces, start=1):
-        found.append(recognise_face(face, number, tolerance))
+        found.append(recognise_face(face, number, tolerance, floor))
         if progress is not None:
             progress(number, len(part.faces))
     reports = [r.report for r in found]
@@ -98,17 +103,18 @@ def analyse_part(
     return report, found
 
 
-def face_tolerance(face: TopoDS_Face, tolerance: float | None) -> float:
-    """The user's tolerance, else the larger of :data:`DEFAULT_TOLERANCE` and the face's own."""
+def face_tolerance(face: TopoDS_Face, tolerance: float | None, floor: float = 0.0) -> float:
+    """The user's tolerance, else the largest of :data:`DEFAULT_TOLERANCE`, the face's own and
+    ``floor`` (the numbers' precision, :data:`DIGITS` of the part's largest coordinate)."""
     if tolerance is not None:
         return tolerance
-    return max(DEFAULT_TOLERANCE, float(BRep_Tool.Tolerance_s(face)))
+    return max(DEFAULT_TOLERANCE, float(BRep_Tool.Tolerance_s(face)), floor)
 
 
-def recognise_face(face: TopoDS_Face, number: int, tolerance: float | None = None) -> Recognised:
+def recognise_face(face: TopoDS_Face, number: int, tolerance: float | None = None, floor: float = 0.0) -> Recognised:
     """What face ``number`` is (an evaluation fault of Open CASCADE makes it ``none`` with the
-    reason)."""
-    tol = face_tolerance(face, tolerance)
+    reason); ``floor`` as for :func:`face_tolerance`."""
+    tol = face_tolerance(face, tolerance, floor)
     try:
         if BRep_Tool.Surface_s(face) is None:
             raise FaceError("the face has no surface")
@@ -259,6 +265,18 @@ def _report(number: int, name: str, tol: float, fit: SurfaceFit, found: nat.Nati
         to_surface=found.to_surface,
         to_face=found.to_face,
     )
+
+
+def _reach(part: Part) -> float:
+    """The largest absolute coordinate of the part's bounding box."""
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+
+    box = Bnd_Box()
+    BRepBndLib.Add_s(part.shape, box, False)
+    if box.IsVoid():
+        return 0.0
+    return float(np.abs([*box.CornerMin().Coord(), *box.CornerMax().Coord()]).max())
 
 
 def _size(part: Part) -> float:

@@ -114,3 +114,25 @@ def test_sorgui_exports_read_back(tmp_path: Path) -> None:
         assert np.linalg.norm(np.cross(face.axis.direction, [0, 0, 1])) < 1e-7
         assert math.hypot(face.axis.point[0], face.axis.point[1]) < 1e-6
     assert len(report.groups) == 1 and len(report.groups[0].faces) == len(report.faces)
+
+
+def test_nine_digits_far_from_the_origin(tmp_path: Path) -> None:
+    """Open CASCADE's own IGES writer keeps nine significant digits: 3000 mm from the origin a
+    revolved B-spline is 3e-7 from a surface of revolution, within the default tolerance there
+    (1e-9 of the largest coordinate)."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
+    from OCP.gp import gp_Trsf, gp_Vec
+    from OCP.IGESControl import IGESControl_Writer
+
+    move = gp_Trsf()
+    move.SetTranslation(gp_Vec(1000, 2000, 3000))
+    writer = IGESControl_Writer()
+    writer.AddShape(BRepBuilderAPI_Transform(parts.revolved_spline(), move, True).Shape())
+    writer.ComputeModel()
+    path = tmp_path / "far.igs"
+    assert writer.Write(str(path))
+    (face,) = analyse_part(read_part(path))[0].faces
+    assert face.kind == "revolution" and 3e-6 < face.tolerance < 3.1e-6
+    assert 1e-8 < face.deviation < face.tolerance
+    (strict,) = analyse_part(read_part(path), 1e-7)[0].faces
+    assert strict.kind == "none" and strict.nearest == "revolution"
