@@ -34,11 +34,12 @@ from OCP.OCP.collections import Array1_double, Array1_gp_Pnt2d, Array1_int
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
 from OCP.ShapeFix import ShapeFix_Shape
 from OCP.Standard import Standard_Failure
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_Orientation, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_Orientation, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
+from .native import edges_of
 from .reading import Part
 from .recognition import Recognised
 from .shapes import faces_of
@@ -112,7 +113,7 @@ def rebuilt(face: TopoDS_Face, surface: Geom_Surface, within: float) -> TopoDS_F
             return None
         _store(uses, new, builder, tolerance)
         builder.Add(new, wire)
-    edges = _edges(forward)
+    edges = edges_of(forward)
     before = [BRep_Tool.Tolerance_s(e) for e in edges]
     BRepLib.SameParameter_s(new, tolerance, True)
     if any(BRep_Tool.Tolerance_s(e) > max(within, tolerance, old) for e, old in zip(edges, before)):
@@ -124,15 +125,6 @@ def rebuilt(face: TopoDS_Face, surface: Geom_Surface, within: float) -> TopoDS_F
 
 TOLERANCE = 1e-7
 """The least tolerance of a rebuilt face and its edges (Open CASCADE's ``Precision::Confusion``)."""
-
-
-def _edges(face: TopoDS_Face) -> list[TopoDS_Edge]:
-    found = []
-    explorer = TopExp_Explorer(face, TopAbs_EDGE)
-    while explorer.More():
-        found.append(TopoDS.Edge(explorer.Current()))
-        explorer.Next()
-    return found
 
 
 def _wires(face: TopoDS_Face) -> list[TopoDS_Wire]:

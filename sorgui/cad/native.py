@@ -130,7 +130,7 @@ def _frame(origin: np.ndarray, direction: np.ndarray, face: TopoDS_Face) -> gp_A
 
 def _seam_point(face: TopoDS_Face) -> np.ndarray | None:
     """The middle of an edge the face meets on both sides (its seam), if it has one."""
-    for edge in _edges(face):
+    for edge in edges_of(face):
         if BRep_Tool.IsClosed_s(edge, face) and not BRep_Tool.Degenerated_s(edge):
             curve = BRepAdaptor_Curve(edge)
             return _xyz(curve.Value(0.5 * (curve.FirstParameter() + curve.LastParameter())))
@@ -139,13 +139,14 @@ def _seam_point(face: TopoDS_Face) -> np.ndarray | None:
 
 def _degenerate_point(face: TopoDS_Face) -> np.ndarray | None:
     """The point of a degenerate edge of the face (a sphere's pole), if it has one."""
-    for edge in _edges(face):
+    for edge in edges_of(face):
         if BRep_Tool.Degenerated_s(edge):
             return _xyz(BRep_Tool.Pnt_s(TopExp.FirstVertex_s(edge)))
     return None
 
 
-def _edges(face: TopoDS_Face) -> list[TopoDS_Edge]:
+def edges_of(face: TopoDS_Face) -> list[TopoDS_Edge]:
+    """The edges of ``face``, as Open CASCADE explores them."""
     found = []
     explorer = TopExp_Explorer(face, TopAbs_EDGE)
     while explorer.More():

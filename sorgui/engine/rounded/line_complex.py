@@ -32,7 +32,7 @@ import numpy as np
 
 from ..results import ApproximateAxis
 from .dense import FloatArray
-from .near_symmetry import Candidate, candidates, gauss_newton, parametrisation
+from .near_symmetry import Candidate, candidates, column_scaled_svd, gauss_newton, parametrisation
 
 PLANE = "plane"
 SPHERE = "sphere"
@@ -114,12 +114,7 @@ def normal_lines(samples: Samples) -> tuple[FloatArray, FloatArray]:
     M = np.hstack([n, np.cross(p, n)])
     if len(M) < 6:  # fewer samples than unknowns; zero rows keep all six vectors
         M = np.vstack([M, np.zeros((6 - len(M), 6))])
-    norms = np.linalg.norm(M, axis=0)
-    norms[norms == 0.0] = 1.0
-    _, sigma, vt = np.linalg.svd(M / norms, full_matrices=False)
-    vectors = vt / norms[None, :]
-    vectors /= np.linalg.norm(vectors, axis=1)[:, None]
-    return sigma / (sigma[0] if sigma[0] > 0 else 1.0), vectors
+    return column_scaled_svd(M)
 
 
 def motions(samples: Samples, count: int) -> list[Candidate]:

@@ -126,12 +126,19 @@ def killing_system(f: Normalised) -> tuple[FloatArray, FloatArray]:
     M = dense.stack(columns, f.selected)
     if len(M) < 6:  # degree 1: fewer monomials than unknowns; zero rows keep all six vectors
         M = np.vstack([M, np.zeros((6 - len(M), 6))])
+    return column_scaled_svd(M)
+
+
+def column_scaled_svd(M: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Singular values (relative to the largest, largest first) and unit right singular vectors
+    (rows) of ``M`` with each column scaled to unit length first, so that no unknown of (★)
+    weighs more for its units."""
     norms = np.linalg.norm(M, axis=0)
     norms[norms == 0.0] = 1.0
     _, sigma, vt = np.linalg.svd(M / norms, full_matrices=False)
     vectors = vt / norms[None, :]
     vectors /= np.linalg.norm(vectors, axis=1)[:, None]
-    return sigma / sigma[0], vectors
+    return sigma / (sigma[0] if sigma[0] > 0 else 1.0), vectors
 
 
 def candidates(vectors: FloatArray, count: int) -> list[Candidate]:
