@@ -26,6 +26,7 @@ from OCP.BRepPrimAPI import (
     BRepPrimAPI_MakeTorus,
 )
 from OCP.Geom import Geom_BSplineSurface
+from OCP.GeomAbs import GeomAbs_Shape
 from OCP.GeomAPI import GeomAPI_PointsToBSpline, GeomAPI_PointsToBSplineSurface
 from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
 from OCP.OCP.collections import Array1_gp_Pnt, Array2_gp_Pnt
@@ -174,3 +175,25 @@ def turned_part(steps: int = 12) -> TopoDS_Shape:
         shape = piece if shape is None else BRepAlgoAPI_Fuse(shape, piece).Shape()
     assert shape is not None
     return converted(placed(shape))
+
+
+def exchanged() -> TopoDS_Shape:
+    """Part of a turn of the revolved B-spline with its parameters exchanged (``v`` the angle)."""
+    surface = BRep_Tool.Surface_s(faces_of(revolved_spline(angle=2.5))[0]).Copy()
+    surface.ExchangeUV()
+    u0, u1, v0, v1 = surface.Bounds()
+    return BRepBuilderAPI_MakeFace(surface, u0, u1, v0, v1, 1e-7).Face()
+
+
+def skewed(count: int = 25) -> TopoDS_Shape:
+    """A B-spline through points of ``r = 2 + 0.3 sin 2h`` about the z axis laid out along
+    helices (angle ``a + 0.4 h``): a surface of revolution none of whose parameter lines is a
+    circle, interpolated within 1e-9."""
+    grid = Array2_gp_Pnt(1, count, 1, count)
+    for i in range(count):
+        for j in range(count):
+            a, h = 2.0 * i / (count - 1), 3.0 * j / (count - 1)
+            r, theta = 2 + 0.3 * math.sin(2 * h), a + 0.4 * h
+            grid.SetValue(i + 1, j + 1, gp_Pnt(r * math.cos(theta), r * math.sin(theta), h))
+    surface = GeomAPI_PointsToBSplineSurface(grid, 3, 8, GeomAbs_Shape.GeomAbs_C2, 1e-9).Surface()
+    return BRepBuilderAPI_MakeFace(surface, 1e-7).Face()

@@ -48,6 +48,8 @@ CASES = {
     "cylinder": parts.cylinder,
     "extrusion": parts.extruded,
     "boolean": parts.boolean_part,
+    "exchanged": parts.exchanged,
+    "skewed": parts.skewed,
 }
 
 

@@ -58,6 +58,19 @@ def test_part_of_a_turn_and_a_pole() -> None:
         assert_on_axis(face, 1e-9)
 
 
+def test_any_parameter_layout() -> None:
+    """The angle along ``v`` instead of ``u``, and no parameter line a circle at all (the profile
+    is then fitted to the samples): a surface of revolution about the z axis either way."""
+    (face,) = report_of(parts.exchanged()).faces
+    assert face.kind == "revolution" and face.deviation < 1e-12
+    assert_on_axis(face, 1e-9)
+    (face,) = report_of(parts.skewed()).faces
+    assert face.kind == "revolution"
+    assert_within(face)
+    assert np.linalg.norm(np.cross(face.axis.direction, [0, 0, 1])) < 1e-8
+    assert np.hypot(*face.axis.point[:2]) < 1e-8
+
+
 def test_noise_on_the_poles_stays_within_the_tolerance() -> None:
     """Poles moved by 1e-9: still a surface of revolution about the axis, the deviation of the
     order of the noise, both ways."""
