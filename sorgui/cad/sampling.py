@@ -74,7 +74,9 @@ def sample_face(face: TopoDS_Face) -> FaceSamples:
             break
         n = min(2 * n - 1, FINEST)
     if len(found.points) < TOO_FEW:
-        raise FaceError(f"only {len(found.points)} points of the face have a normal")
+        raise FaceError(
+            f"the face is too narrow to sample ({len(found.points)} points of an {FINEST} × {FINEST} grid on it)"
+        )
     return found
 
 

@@ -136,3 +136,12 @@ def test_nine_digits_far_from_the_origin(tmp_path: Path) -> None:
     assert 1e-8 < face.deviation < face.tolerance
     (strict,) = analyse_part(read_part(path), 1e-7)[0].faces
     assert strict.kind == "none" and strict.nearest == "revolution"
+
+
+def test_the_part_formats_agree() -> None:
+    """The window and the part process name the formats without importing Open CASCADE."""
+    from sorgui.cad import CAD_SUFFIXES
+    from sorgui.cad.reading import FORMATS
+    from sorgui.session.part_job import PART_SUFFIXES
+
+    assert PART_SUFFIXES == CAD_SUFFIXES and set(FORMATS) == set(CAD_SUFFIXES)
