@@ -218,15 +218,21 @@ class Token(NamedTuple):
     value: Any = None  # int or Fraction (num), variable index (var), int exponent (sup)
 
 
-def _tokens(text: str) -> Iterator[Token]:
+def _tokens(text: str, span: tuple[int, int] | None = None, variables: tuple[str, ...] = _VARIABLES) -> Iterator[Token]:
     """The tokens of ``text``, lazily, so that the first error in reading order is reported.
 
     A leading ``f(x, y, z) =`` (any name, ``=`` or ``:=``) is skipped: ``f(x,y,z) = g`` is the
     equation ``g = 0``. LaTeX's ``{ }`` are parentheses, ``\\cdot`` and ``\\times`` are ``*``,
     ``\\sqrt`` is ``sqrt``, and ``\\left``, ``\\right`` and LaTeX spacing are ignored.
+    ``span`` (characters ``start:end``, no prefix skipped) and ``variables`` (the names of the
+    variables, by index) read one component of a parametrization in its parameters
+    (:mod:`.parametric_parsing`).
     """
-    prefix = _FUNCTION_NAME.match(text)
-    for match in _TOKEN.finditer(text, prefix.end() if prefix else 0):
+    if span is None:
+        prefix = _FUNCTION_NAME.match(text)
+        span = (prefix.end() if prefix else 0), len(text)
+    index = _VARIABLE_INDEX if variables == _VARIABLES else {name: i for i, name in enumerate(variables)}
+    for match in _TOKEN.finditer(text, *span):
         kind, word = match.lastgroup, match.group()
         start, end = match.span()
         if kind == "op":
@@ -235,10 +241,10 @@ def _tokens(text: str) -> Iterator[Token]:
             value = int(word) if len(word) < 500 and word.isdigit() else _number(text, start, end)
             yield Token("num", start, end, value)
         elif kind == "name":
-            if word in _VARIABLE_INDEX:  # fast path for a single variable
-                yield Token("var", start, end, _VARIABLE_INDEX[word])
+            if word in index:  # fast path for a single variable
+                yield Token("var", start, end, index[word])
             else:
-                yield from _name(word, start)
+                yield from _name(word, start, variables)
         elif kind == "latex":
             yield Token(word[1:], start, end)  # sqrt or frac
         elif kind == "sup":
@@ -248,19 +254,21 @@ def _tokens(text: str) -> Iterator[Token]:
             yield Token("sup", start, end, int(digits))
         elif kind == "bad":
             raise ParseError(f"unexpected character {word!r}", start)
-    yield Token("end", len(text), len(text))
+    yield Token("end", span[1], span[1])
 
 
-def _name(word: str, start: int) -> Iterator[Token]:
-    """``sqrt``, or a run of x, y, z (``xyz`` is ``x*y*z``); any other name is an error."""
+def _name(word: str, start: int, variables: tuple[str, ...] = _VARIABLES) -> Iterator[Token]:
+    """``sqrt``, or a run of x, y, z (``xyz`` is ``x*y*z``; of one-letter ``variables``); any
+    other name is an error."""
     if word == "sqrt":
         yield Token("sqrt", start, start + 4)
-    elif set(word) <= set(_VARIABLES):
+    elif set(word) <= set(variables):
         for i, letter in enumerate(word):
-            yield Token("var", start + i, start + i + 1, _VARIABLES.index(letter))
+            yield Token("var", start + i, start + i + 1, variables.index(letter))
     else:
+        names = ", ".join(variables)
         raise ParseError(
-            f"unknown name '{word}' (the variables are x, y, z; the only function is sqrt)", start, start + len(word)
+            f"unknown name '{word}' (the variables are {names}; the only function is sqrt)", start, start + len(word)
         )
 
 
@@ -345,9 +353,9 @@ Node: TypeAlias = Num | Var | Neg | Sum | Product | Reciprocal | Power | Sqrt
 class _Parser:
     """Recursive descent over the grammar of the module docstring (two frames per nesting)."""
 
-    def __init__(self, text: str) -> None:
+    def __init__(self, text: str, tokens: Iterator[Token] | None = None) -> None:
         self._text = text
-        self._tokens = _tokens(text)
+        self._tokens = _tokens(text) if tokens is None else tokens
         self._tok = next(self._tokens)
         self._prev = self._tok
         self._open = 0  # parentheses currently open

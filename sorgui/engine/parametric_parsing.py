@@ -1,0 +1,473 @@
+"""Safe reader of a rational parametrization: ``x = X(s, t), y = Y(s, t), z = Z(s, t)`` or ``(X, Y, Z)``.
+
+The forms (docs/math.md §12)::
+
+    x = X, y = Y, z = Z     in any order, separated by ',' or ';' or line breaks; a label may
+                            name the parameters: x(u, v) = X
+    (X, Y, Z)               a triple, also after 'P(u, v) =' or '(x, y, z) =', or without its
+                            parentheses: X, Y, Z
+
+The parameters are the two names other than ``x, y, z`` that the components use (one-letter names
+run together are products, as ``x, y, z`` are in equations: ``st`` is ``s·t``), in the order a
+label or a prefix gives, else in alphabetical order. Each component is read by the equation
+parser's own tokenizer and recursive descent (:mod:`.parsing`) with the parameters as its
+variables, checked by its first pass (sizes, exponents, square roots: the field ``K`` is the
+same as for an equation), then evaluated as a fraction ``N/D`` of polynomials in ``K[s, t]``
+(python-flint over ``QQ``). Nothing typed is evaluated as code.
+
+Refused, each in one line with its position: a component count other than three, a label given
+twice, an empty or a constant component, ``x``, ``y`` or ``z`` inside a component, a function
+other than ``sqrt`` of a number (the components are rational functions), one, three or more
+parameters, a denominator that is identically zero, a map whose image is a curve or a point
+(``P_s × P_t ≡ 0``), and the limits of the equation parser (degree 60 over a common
+denominator, number sizes, nesting).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from . import parsing
+from .errors import ParseError
+from .parsing import MAX_DEGREE, MAX_LENGTH, MAX_WORK, Neg, Node, Num, Power, Product, Reciprocal, Sqrt, Sum, Var
+
+if TYPE_CHECKING:
+    from sympy.polys.domains.domain import Domain
+
+    from .parametric.maps import ParameterRing, RationalMap
+
+COORDINATES = ("x", "y", "z")
+TRANSCENDENTAL = frozenset(
+    {"sin", "cos", "tan", "cot", "sec", "csc", "exp", "log", "ln", "sinh", "cosh", "tanh", "atan", "asin", "acos"}
+    | {"arctan", "arcsin", "arccos", "pi", "abs"}
+)
+"""Names a user may write that have no place in a rational function."""
+
+_RIGHT = re.compile(r"\\right\s*$")
+"""LaTeX's ``\\right`` of the closing parenthesis of a triple, left at the end of its last component."""
+_SEPARATOR = re.compile(r"(?<!\\)[,;]")
+_LABEL = re.compile(r"\s*([xyz])\s*(?:\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\))?\s*:?=(?!=)")
+_LABEL_LINE = re.compile(r"(?m)^\s*[xyz]\s*(?:\([^()\n]*\))?\s*:?=")
+_PREFIX = re.compile(
+    r"\s*(?:(?![xyz]\s*\()[A-Za-z]\w*\s*\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\)|\(\s*x\s*,\s*y\s*,\s*z\s*\))\s*:?=(?!=)",
+    re.ASCII,
+)
+
+
+@dataclass(frozen=True)
+class ParsedParametrization:
+    """The parsed map: ``components`` are the texts of ``x(s, t), y(s, t), z(s, t)`` as typed,
+    ``parameters`` the typed names of ``s`` and ``t``; ``map`` holds them over ``field``."""
+
+    text: str
+    components: tuple[str, str, str]
+    parameters: tuple[str, str]
+    map: RationalMap
+    field: Domain
+    radicands: tuple[int, ...]
+
+
+def is_parametrization(text: str) -> bool:
+    """Whether ``text`` has the form of a parametrization (not whether it is a valid one): a
+    ``,`` or ``;`` outside a leading ``f(x, y, z) =`` (an equation has none), or two lines that
+    start with ``x =``, ``y =`` or ``z =``. Cheap: no tokenizing, no sympy."""
+    if len(text) > MAX_LENGTH:
+        return False
+    prefix = parsing._FUNCTION_NAME.match(text)
+    body = text[prefix.end() :] if prefix else text
+    if _SEPARATOR.search(body):
+        return True
+    return "\n" in text and len(_LABEL_LINE.findall(text, 0, 10_000)) >= 2
+
+
+def parse_input(text: str) -> parsing.ParsedPolynomial | ParsedParametrization:
+    """An equation or a parametrization, whichever ``text`` is (:func:`is_parametrization`)."""
+    return parse_parametrization(text) if is_parametrization(text) else parsing.parse_polynomial(text)
+
+
+def parse_parametrization(text: str) -> ParsedParametrization:
+    """Read ``text`` as a rational parametrization; raises :class:`ParseError` (and nothing
+    else) when it is not one of a surface."""
+    from .algebra.polys import number_field
+    from .parametric.maps import ParameterRing, RationalMap
+
+    if len(text) > MAX_LENGTH:
+        raise ParseError(f"the input is too long (more than {MAX_LENGTH:,} characters)", 0, len(text))
+    spans, named = _layout(text)
+    parameters = named or _discover(text, spans)
+    _check_names(text, spans, parameters)
+    checker = parsing._Evaluator()
+    trees = [_tree(text, span, parameters, checker) for span in spans]
+    radicands = tuple(sorted(checker.radicands))
+    field = number_field(radicands)
+    ring = ParameterRing(field)
+    reader = _Fractions(ring, checker, parsing._square_roots(field, radicands) if radicands else {})
+    fractions = []
+    for name, span, tree in zip(COORDINATES, spans, trees):
+        try:
+            numerator, denominator = reader.value(tree)
+        except RecursionError:
+            raise ParseError("the expression is nested too deeply", *span) from None
+        if ring.is_constant(numerator) and ring.is_constant(denominator):
+            raise ParseError(
+                f"the component {name} is constant: a parametrization's components depend on {' and '.join(parameters)}"
+                f" (type a plane as an equation, e.g. {name} = {text[span[0] : span[1]].strip()[:20]})",
+                *span,
+            )
+        fractions.append((numerator, denominator))
+    surface = RationalMap.from_fractions(ring, fractions)
+    if surface.degree > MAX_DEGREE:
+        raise ParseError(
+            f"the degree is too high: over a common denominator the map has degree {surface.degree},"
+            f" the limit is {MAX_DEGREE}",
+            0,
+            len(text),
+        )
+    if _is_degenerate(surface):
+        raise ParseError("the image is a curve or a point, not a surface: P_s × P_t is identically zero", 0, len(text))
+    components = tuple(_RIGHT.sub("", text[a:b]).strip() for a, b in spans)
+    return ParsedParametrization(
+        text, (components[0], components[1], components[2]), parameters, surface, field, radicands
+    )
+
+
+# --- the layout: which characters hold x(s, t), y(s, t), z(s, t) ----------------------------
+
+
+def _layout(text: str) -> tuple[list[tuple[int, int]], tuple[str, str] | None]:
+    """The spans of the three components in the order x, y, z, and the parameters a prefix or
+    the labels name (``None`` when none does)."""
+    start, named = 0, None
+    prefix = _PREFIX.match(text)
+    if prefix is not None:
+        start = prefix.end()
+        if prefix.group(1) is not None:
+            named = (prefix.group(1), prefix.group(2))
+    cuts, outer = _structure(text, start)
+    if outer is not None:  # '(X, Y, Z)': the commas inside the parentheses
+        segments = _between(outer[0] + 1, cuts[1], outer[1])
+    elif prefix is not None and named is None:
+        raise ParseError("after '(x, y, z) =' write the triple '(X, Y, Z)'", start, len(text))
+    else:
+        segments = _between(start, cuts[0], len(text))
+    labelled = [(_LABEL.match(text, a, b), a, b) for a, b in segments]
+    if prefix is not None and any(m is not None for m, _, _ in labelled):
+        m = next(m for m, _, _ in labelled if m is not None)
+        raise ParseError("the components of a triple have no labels 'x =', 'y =', 'z ='", m.start(1), m.end())
+    if len(segments) != 3:
+        raise ParseError(
+            f"a parametrization has three components (x = …, y = …, z = …), not {len(segments)};"
+            " an equation has no ',' or ';'",
+            0,
+            len(text),
+        )
+    if all(m is None for m, _, _ in labelled):
+        spans = [_nonempty(text, a, b, name) for (a, b), name in zip(segments, COORDINATES)]
+        return spans, named
+    by_name: dict[str, tuple[int, int]] = {}
+    for label, a, b in labelled:
+        if label is None:
+            raise ParseError("this component has no label: write all three as 'x = …', 'y = …', 'z = …'", a, b)
+        name = label.group(1)
+        if name in by_name:
+            raise ParseError(f"'{name}' is given twice", label.start(1), label.end(1))
+        if label.group(2) is not None:
+            given = (label.group(2), label.group(3))
+            if named is not None and given != named:
+                raise ParseError(
+                    f"the parameters are named ({', '.join(named)}) before and ({', '.join(given)}) here",
+                    label.start(2),
+                    label.end(3),
+                )
+            named = given
+        by_name[name] = _nonempty(text, label.end(), b, name)
+    return [by_name[name] for name in COORDINATES], named
+
+
+def _structure(text: str, start: int) -> tuple[tuple[list[int], list[int]], tuple[int, int] | None]:
+    """Where components end: the ``,`` and ``;`` at depth 0 (and the line breaks there that a
+    label follows), and those at depth 1; and the span of one pair of parentheses around all of
+    the rest, if there is one (the triple ``(X, Y, Z)``)."""
+    depth = 0
+    cuts: tuple[list[int], list[int]] = ([], [])
+    pairs: list[tuple[int, int]] = []
+    opened: list[int] = []
+    first = last = -1
+    after_separator = False
+    for match in parsing._TOKEN.finditer(text, start):
+        kind, word, position = match.lastgroup, match.group(), match.start()
+        if kind == "space":
+            if "\n" in word and depth == 0 and not after_separator and _LABEL.match(text, match.end()):
+                cuts[0].append(position + word.index("\n"))
+            continue
+        first = position if first < 0 else first
+        last = position
+        after_separator = kind == "bad" and word in ",;"
+        if kind == "op" and word in "({":
+            if depth == 0:
+                opened.append(position)
+            depth += 1
+        elif kind == "op" and word in ")}":
+            depth -= 1
+            if depth < 0:
+                raise ParseError("unmatched ')'", position, position + 1)
+            if depth == 0 and opened:
+                pairs.append((opened.pop(), position))
+        elif after_separator and depth in (0, 1):
+            cuts[depth].append(position)
+    if depth > 0 and opened:
+        raise ParseError("unmatched '('", opened[-1], opened[-1] + 1)
+    whole = len(pairs) == 1 and not cuts[0] and cuts[1] and pairs[0] == (first, last)
+    return cuts, pairs[0] if whole else None
+
+
+def _between(start: int, cuts: Sequence[int], end: int) -> list[tuple[int, int]]:
+    bounds = [start, *[c for c in cuts if start <= c < end], end]
+    return [(bounds[i] + (i > 0), bounds[i + 1]) for i in range(len(bounds) - 1)]
+
+
+def _nonempty(text: str, start: int, end: int, name: str) -> tuple[int, int]:
+    if not text[start:end].strip():
+        raise ParseError(f"the component {name} is empty", start, max(end, start + 1))
+    return start, end
+
+
+# --- the parameters ---------------------------------------------------------------------------
+
+
+def _names(text: str, span: tuple[int, int]) -> list[tuple[str, int]]:
+    """The names written in a component (``sqrt`` and LaTeX commands aside), with positions."""
+    out = []
+    for match in parsing._TOKEN.finditer(text, *span):
+        if match.lastgroup == "name" and match.group() != "sqrt":
+            out.append((match.group(), match.start()))
+    return out
+
+
+def _discover(text: str, spans: Sequence[tuple[int, int]]) -> tuple[str, str]:
+    """The two parameters the components use, alphabetically (see the module docstring)."""
+    words = [(w, p) for span in spans for w, p in _names(text, span)]
+    _refuse_names(text, words)
+    singles = {w for w, _ in words if len(w) == 1}
+    runs = {w for w, _ in words if len(w) > 1}
+    letters = singles.union(*map(set, runs))
+    if len(letters) <= 2:
+        found = letters
+    else:
+        found = singles | {w for w in runs if not set(w) <= singles}
+    for word, position in words:
+        called = text[position + len(word) : position + len(word) + 1] == "("
+        if word in found and called and (len(word) > 1 or len(found) > 2):
+            raise ParseError(
+                f"'{word}(…)' is not allowed: the components must be rational functions of the parameters"
+                " (the only function is sqrt, of a number)",
+                position,
+                position + len(word),
+            )
+    names = sorted(found)
+    if len(names) == 2:
+        return names[0], names[1]
+    if not names:
+        raise ParseError("the components use no parameter: the map is constant, its image a point", 0, len(text))
+    if len(names) == 1:
+        raise ParseError(
+            f"the components use one parameter ({names[0]}): the image is a curve, not a surface", 0, len(text)
+        )
+    raise ParseError(
+        f"the components use {len(names)} parameters ({', '.join(names)}): a surface is given by two",
+        next(p for w, p in words if w == names[2]),
+        len(text),
+    )
+
+
+def _refuse_names(text: str, words: Sequence[tuple[str, int]]) -> None:
+    for word, position in words:
+        end = position + len(word)
+        if set(word) & set(COORDINATES) and set(word) <= set(COORDINATES):
+            raise ParseError(
+                f"a component cannot use '{word}': x, y, z are the coordinates; name the parameters"
+                " otherwise (s, t; u, v; …)",
+                position,
+                end,
+            )
+        if word in TRANSCENDENTAL:
+            raise ParseError(
+                f"'{word}' is not allowed: the components must be rational functions of the parameters"
+                " (the only function is sqrt, of a number)",
+                position,
+                end,
+            )
+
+
+def _check_names(text: str, spans: Sequence[tuple[int, int]], parameters: tuple[str, str]) -> None:
+    """Every name is a parameter or a run of one-letter parameters (``st`` is ``s·t``)."""
+    words = [(w, p) for span in spans for w, p in _names(text, span)]
+    _refuse_names(text, words)
+    if parameters[0] == parameters[1] or set(parameters) & set(COORDINATES):
+        raise ParseError(
+            f"the parameters must be two names other than x, y, z, not ({', '.join(parameters)})", 0, len(text)
+        )
+    for word, position in words:
+        if word not in parameters and not set(word) <= set(parameters):
+            raise ParseError(
+                f"unknown name '{word}' (the parameters are {parameters[0]} and {parameters[1]};"
+                " the only function is sqrt)",
+                position,
+                position + len(word),
+            )
+
+
+# --- reading and evaluating one component --------------------------------------------------------
+
+
+def _tree(text: str, span: tuple[int, int], parameters: tuple[str, str], checker: parsing._Evaluator) -> Node:
+    """The syntax tree of one component, checked by the equation parser's first pass."""
+    for match in parsing._TOKEN.finditer(text, *span):
+        if match.lastgroup == "op" and match.group() == "=":
+            raise ParseError("a component cannot hold '='", match.start(), match.end())
+    tokens = parsing._tokens(text, span, parameters)
+    try:
+        tree = parsing._Parser(text, tokens).equation()
+    except RecursionError:
+        raise ParseError("the expression is nested too deeply", *span) from None
+    try:
+        checker.check(tree)
+    except RecursionError:
+        raise ParseError("the expression is nested too deeply", *span) from None
+    return tree
+
+
+class _Fractions:
+    """Pass 2 over a checked tree: its value ``N/D`` in ``K[s, t]``, reduced, ``D`` with leading
+    coefficient 1; the degrees of ``N`` and ``D`` stay within :data:`MAX_DEGREE` and the work
+    within :data:`MAX_WORK` coefficient products."""
+
+    def __init__(self, ring: ParameterRing, checked: parsing._Evaluator, roots: dict[int, Any]) -> None:
+        self.ring = ring
+        self.checked = checked
+        self.roots = roots
+        self.work = 0
+
+    def value(self, node: Node) -> tuple[Any, Any]:
+        ring = self.ring
+        match node:
+            case Num():
+                return ring.constant(node.value), ring.one
+            case Var():
+                return ring.gens[node.index], ring.one
+            case Neg():
+                n, d = self.value(node.arg)
+                return -n, d
+            case Sqrt():
+                return self._surd(node), ring.one
+            case Sum():
+                return self._sum(node)
+            case Product():
+                n, d = self.value(node.factors[0])
+                for factor in node.factors[1:]:
+                    if isinstance(factor, Reciprocal):
+                        q, r = self.value(factor.arg)
+                        if not q:
+                            written = _has_parameter(factor.arg)
+                            message = "the denominator is identically zero" if written else "division by zero"
+                            raise ParseError(message, factor.start, factor.end)
+                        n, d = self._reduced(node, n * r, d * q)
+                    else:
+                        q, r = self.value(factor)
+                        self._charge(node, len(n) * len(q) + len(d) * len(r))
+                        n, d = self._reduced(node, n * q, d * r)
+                return n, d
+            case Power():
+                if node in self.checked._surds:
+                    return self._surd(node), ring.one
+                exponent = int(self.checked._exponents[node])
+                n, d = self.value(node.base)
+                if exponent < 0:  # a constant base: the first pass refuses other negative powers
+                    n, d, exponent = d, n, -exponent
+                    if not n:
+                        raise ParseError("division by zero", node.start, node.end)
+                result = ring.one, ring.one
+                for _ in range(exponent):
+                    self._charge(node, len(result[0]) * len(n) + len(result[1]) * len(d))
+                    result = self._reduced(node, result[0] * n, result[1] * d)
+                return result
+        raise TypeError(node)
+
+    def _surd(self, node: Node) -> Any:
+        c, m = self.checked._surds[node]
+        value = self.ring.constant(c)
+        return value * self.ring.constant(self.roots[m]) if m > 1 else value
+
+    def _sum(self, node: Sum) -> tuple[Any, Any]:
+        """Terms over the same denominator are added first (a pasted polynomial has only ``1``)."""
+        groups: list[tuple[Any, Any]] = []
+        for term in node.terms:
+            n, d = self.value(term)
+            for i, (total, denominator) in enumerate(groups):
+                if denominator == d:
+                    groups[i] = (total + n, denominator)
+                    break
+            else:
+                groups.append((n, d))
+        n, d = groups[0]
+        for m, e in groups[1:]:
+            self._charge(node, len(n) * len(e) + len(m) * len(d))
+            n, d = self._reduced(node, n * e + m * d, d * e)
+        return self._reduced(node, n, d)
+
+    def _reduced(self, node: Node, n: Any, d: Any) -> tuple[Any, Any]:
+        ring = self.ring
+        if not ring.is_constant(d):
+            g = ring.gcd(n, d)
+            if not ring.is_constant(g):
+                n, d = ring.exquo(n, g), ring.exquo(d, g)
+        lead = ring.leading_coefficient(d)
+        if lead != ring.K.one:
+            inverse = ring.constant(ring.K.quo(ring.K.one, lead))
+            n, d = n * inverse, d * inverse
+        for part in (n, d):
+            if ring.degree(part) > MAX_DEGREE:
+                raise ParseError(
+                    f"the degree is too high: this part has degree {ring.degree(part)} in the parameters,"
+                    f" the limit is {MAX_DEGREE}",
+                    node.start,
+                    node.end,
+                )
+        return n, d
+
+    def _charge(self, node: Node, products: int) -> None:
+        self.work += products * (1 if self.ring.is_flint else 8)
+        if self.work > MAX_WORK:
+            raise ParseError(
+                f"the expression is too large to expand (it needs more than {MAX_WORK:,} coefficient multiplications)",
+                node.start,
+                node.end,
+            )
+
+
+def _has_parameter(node: Node) -> bool:
+    """Whether a parameter is written in the subtree ``node``."""
+    stack = [node]
+    while stack:
+        match stack.pop():
+            case Var():
+                return True
+            case Neg(arg=arg) | Reciprocal(arg=arg) | Sqrt(arg=arg):
+                stack.append(arg)
+            case Sum(terms=children) | Product(factors=children):
+                stack.extend(children)
+            case Power(base=base, exponent=exponent):
+                stack += [base, exponent]
+    return False
+
+
+def _is_degenerate(surface: RationalMap) -> bool:
+    """``P_s × P_t ≡ 0``: decided at a few points first (a nonzero value settles it), then as a
+    polynomial identity."""
+    for point in surface.sample_points(4):
+        if any(surface.values(point)[2]):
+            return False
+    return not any(surface.normal)

@@ -1,0 +1,145 @@
+"""The reader of rational parametrizations: every form, the parameters found from the text, and
+one clear error for each way a text is not the map of a surface (docs/math.md §12)."""
+
+from __future__ import annotations
+
+import pytest
+from flint import fmpq
+
+from sorgui.engine.errors import ParseError
+from sorgui.engine.parametric_parsing import is_parametrization, parse_input, parse_parametrization
+from sorgui.engine.parsing import ParsedPolynomial, parse_polynomial
+
+CONE = "x = (1-t^2)/(1+t^2)*(2+s), y = 2*t/(1+t^2)*(2+s), z = s^2"
+"""The issue's example (a surface of revolution about the z-axis)."""
+
+
+def _values(text: str, point: tuple[int, int]) -> tuple[fmpq, fmpq, fmpq]:
+    """The map at a parameter point, in the typed parameters' order."""
+    surface = parse_parametrization(text).map
+    X, W, _normal = surface.values(tuple(fmpq(c) for c in point))
+    return X[0] / W, X[1] / W, X[2] / W
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        CONE,
+        "x = (1-t^2)/(1+t^2)*(2+s); y = 2*t/(1+t^2)*(2+s); z = s^2",
+        "x = (1-t^2)/(1+t^2)*(2+s)\ny = 2*t/(1+t^2)*(2+s)\nz = s^2",
+        "z = s^2, x = (1-t^2)/(1+t^2)*(2+s), y = 2t/(1+t²)·(2+s)",
+        "((1-t^2)/(1+t^2)*(2+s), 2t/(1+t^2)*(2+s), s^2)",
+        "(1-t^2)/(1+t^2)*(2+s), 2t/(1+t^2)*(2+s), s^2",
+        "P(s, t) = ((1-t^2)/(1+t^2)*(2+s), 2t/(1+t^2)*(2+s), s^2)",
+        "(x, y, z) = ((1-t^2)/(1+t^2)*(2+s), 2t/(1+t^2)*(2+s), s^2)",
+        "x(s,t) = (1-t^2)/(1+t^2)*(2+s), y(s,t) = 2t/(1+t^2)*(2+s), z(s,t) = s^2",
+        r"\left( \frac{1-t^{2}}{1+t^{2}} (2+s), \frac{2t}{1+t^{2}} (2+s), s^{2} \right)",
+        "x = (1 - t**2)/(1 + t**2)*(2 + s),\ny = 2*t/(1 + t**2)*(2 + s),\nz = s**2",
+    ],
+)
+def test_every_form_reads_the_same_map(text: str) -> None:
+    parsed = parse_parametrization(text)
+    assert parsed.parameters == ("s", "t")
+    for point in ((0, 0), (1, 2), (-3, 1)):
+        assert _values(text, point) == _values(CONE, point)
+
+
+def test_components_are_kept_as_typed() -> None:
+    parsed = parse_parametrization("z = s^2;  x = s*t ;y = 1.5e-3*t")
+    assert parsed.components == ("s*t", "1.5e-3*t", "s^2")
+    assert parse_parametrization(r"\left( s, t, s^{2} \right)").components == ("s", "t", "s^{2}")
+
+
+@pytest.mark.parametrize(
+    "text, parameters",
+    [
+        ("x = u, y = v, z = u*v", ("u", "v")),
+        ("x = v, y = u, z = uv", ("u", "v")),  # alphabetical when nothing names the order
+        ("P(v, u) = (v, u, uv)", ("v", "u")),  # a prefix names the order
+        ("x(b, a) = a + b, y(b, a) = a - b, z(b, a) = a*b", ("b", "a")),
+        ("x = theta, y = phi, z = theta*phi", ("phi", "theta")),
+        ("x = st, y = s, z = t^2", ("s", "t")),  # a run of one-letter parameters is a product
+    ],
+)
+def test_the_parameters_are_found_from_the_text(text: str, parameters: tuple[str, str]) -> None:
+    assert parse_parametrization(text).parameters == parameters
+
+
+def test_a_run_of_letters_is_a_product() -> None:
+    assert _values("x = st, y = s, z = t", (2, 3))[0] == 6
+
+
+def test_coefficients_as_for_equations() -> None:
+    parsed = parse_parametrization("x = 0.25*s, y = sqrt(8)*t, z = 1.5e-3*s*t")
+    assert parsed.radicands == (2,)
+    exact = parse_parametrization("x = s/4, y = t, z = 3/2000*s*t")
+    assert exact.field.is_QQ and _values("x = 0.25*s, y = t, z = 1.5e-3*s*t", (2, 3)) == _values(
+        "x = s/4, y = t, z = 3/2000*s*t", (2, 3)
+    )
+
+
+@pytest.mark.parametrize(
+    "text, words",
+    [
+        ("x = s, y = s^2, z = s^3", "one parameter (s): the image is a curve"),
+        ("x = s + t, y = (s + t)^2, z = 1/(s + t)", "the image is a curve or a point"),
+        ("x = 1, y = 2, z = 3", "no parameter"),
+        ("x = s, y = t, z = 1", "the component z is constant"),
+        ("x = s, y = t, z = s + t - s - t + 2", "the component z is constant"),
+        ("x = s, y = t, z = sin(s)", "'sin' is not allowed"),
+        ("x = s, y = t, z = exp(s*t)", "'exp' is not allowed"),
+        ("x = s, y = t, z = f(s)", "'f(…)' is not allowed"),
+        ("x = s, y = t, z = abc(s)", "'abc(…)' is not allowed"),
+        ("x = s, y = t, z = s*t*u", "3 parameters (s, t, u)"),
+        ("x = s/(t - t), y = t, z = s", "the denominator is identically zero"),
+        ("x = s/0, y = t, z = s", "division by zero"),
+        ("x = s, y = t", "three components"),
+        ("x = s, y = t, z = s, w = t", "three components"),
+        ("x = s, x = t, z = s*t", "'x' is given twice"),
+        ("x = x + s, y = t, z = s", "cannot use 'x'"),
+        ("x = s, y = t, z = ", "the component z is empty"),
+        ("x = s, t, z = s*t", "has no label"),
+        ("(s, t, s*t", "unmatched '('"),
+        ("(s, t, s*t))", "unmatched ')'"),
+        ("x = s, y = t = 2, z = s", "cannot hold '='"),
+        ("x = s, y = t, z = s^(1/2)", "non-negative integer power"),
+        ("x = s, y = t, z = s^70", "degree is too high"),
+        ("x = 1/(1+s)^40, y = 1/(1+t)^40, z = s", "degree is too high"),
+    ],
+)
+def test_bad_maps_are_one_line_errors(text: str, words: str) -> None:
+    with pytest.raises(ParseError) as info:
+        parse_parametrization(text)
+    assert words in info.value.message, info.value.message
+    assert "\n" not in info.value.message
+    assert 0 <= info.value.position <= len(text)
+
+
+def test_the_error_points_at_the_component() -> None:
+    text = "x = s, y = t, z = 1"
+    with pytest.raises(ParseError) as info:
+        parse_parametrization(text)
+    assert text[info.value.position : info.value.end].strip() == "1"
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "x^2 + y^2 - z",
+        "f(x, y, z) = x^2 + y^2 - 1",
+        "x = y^2 + z^2",  # one label only: the implicit equation x - y² - z²
+        "x^2 + y^2\n - z",
+        r"x^2 \, + y^2 \; - z",
+    ],
+)
+def test_equations_stay_equations(text: str) -> None:
+    assert not is_parametrization(text)
+    parsed = parse_input(text)
+    assert isinstance(parsed, ParsedPolynomial)
+    assert parsed.polynomial == parse_polynomial(text).polynomial
+
+
+def test_an_equation_with_a_stray_comma_says_what_a_parametrization_needs() -> None:
+    with pytest.raises(ParseError) as info:
+        parse_input("x^2 + y^2, z")
+    assert "three components" in info.value.message
