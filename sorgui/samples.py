@@ -198,3 +198,53 @@ def printed_exact(coefficients: dict[tuple[int, int, int], Fraction], digits: in
         monomial = "".join(f"*{v}^{e}" for v, e in zip("xyz", (i, j, k)) if e)
         terms.append(f"{float(c / top):+.{digits - 1}e}{monomial}")
     return " ".join(terms)
+
+
+# --- parametrizations (docs/math.md §12) ------------------------------------------------------
+
+
+def map_text(components: Sequence[str]) -> str:
+    """Three components as a user types a parametrization: ``x = …, y = …, z = …``."""
+    return ", ".join(f"{name} = {c}" for name, c in zip("xyz", components))
+
+
+def revolved_patch(
+    radius: dict[int, Fraction | int],
+    height: dict[int, Fraction | int],
+    rotation: Sequence[Sequence[float | Fraction]] | None = None,
+    shift: Sequence[float | Fraction] = (0, 0, 0),
+    digits: int | None = None,
+    extra: str = "",
+) -> list[str]:
+    """The surface of revolution ``R·(r(s)·(1 − t², 2t)/(1 + t²), z(s)) + shift`` of bidegree
+    ``(max deg, 2)`` (``r``, ``z`` as coefficient dictionaries in ``s``), with ``extra`` added to
+    the first component before the motion; each component is written over the denominator
+    ``1 + t²``, every coefficient exact, or to ``digits`` significant digits (a CAD system's
+    output, ``%.{digits-1}e``)."""
+    motion = rotation or [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+
+    def coefficient(c: float | Fraction) -> str:
+        if digits is not None:
+            return f"({float(c):.{digits - 1}e})"
+        q = Fraction(c)
+        return f"({q.numerator}/{q.denominator})" if q.denominator != 1 else f"({q.numerator})"
+
+    r = " + ".join(f"{coefficient(Fraction(c))}*s^{e}" for e, c in sorted(radius.items()))
+    z = " + ".join(f"{coefficient(Fraction(c))}*s^{e}" for e, c in sorted(height.items()))
+    base = [f"(1 - t^2)*({r})" + (f" + (1 + t^2)*({extra})" if extra else ""), f"2*t*({r})", f"(1 + t^2)*({z})"]
+    components = []
+    for i in range(3):
+        terms = [f"{coefficient(motion[i][j])}*({base[j]})" for j in range(3) if motion[i][j]]
+        terms.append(f"{coefficient(shift[i])}*(1 + t^2)")
+        components.append(f"({' + '.join(terms)})/(1 + t^2)")
+    return components
+
+
+def bicubic_patch(seed: int, size: int = 9) -> list[str]:
+    """A random polynomial patch of bidegree ``(3, 3)`` (integer coefficients in ``±size``)."""
+    rng = random.Random(seed)
+    components = []
+    for _ in range(3):
+        terms = [f"({rng.randint(-size, size)})*s^{i}*t^{j}" for i in range(4) for j in range(4)]
+        components.append(" + ".join(terms))
+    return components

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 
 from .algebra.linalg import Vector
 from .errors import TimeLimitReached
+from .parametric_parsing import is_parametrization, parse_parametrization
 from .parsing import parse_polynomial
 from .recognition.symmetry import NEAREST_CANAL_NOTE, revolution_canal
 from .results import (
@@ -65,7 +66,8 @@ def analyze(
     stage_done: DoneCallback | None = None,
     parsed: PartialCallback | None = None,
 ) -> Analysis:
-    """Analyse the equation ``text`` exactly and return the immutable :class:`Analysis`.
+    """Analyse the equation ``text`` exactly and return the immutable :class:`Analysis`; a
+    rational parametrization ``x = X(s, t), y = …, z = …`` is analysed as its surface.
 
     ``timeout`` (seconds) bounds the whole analysis; each Singular call is bounded by it too.
     The words of a limit that is reached name ``stated_timeout`` when given (the user's limit, of
@@ -85,6 +87,33 @@ def analyze(
     """
     clock = StageClock(progress, cancel, partial, stage_done)
     start = time.monotonic()
+    if is_parametrization(text):  # x = X(s, t), y = …, z = …: docs/math.md §12
+        from .parametric.pipeline import analyze_parametrization
+
+        with clock.stage("engine"):
+            load_engine()
+        with clock.stage("parse"):
+            source = parse_parametrization(text)
+        limit = singular_timeout
+
+        def implicit(f: Poly) -> Analysis:
+            return analyze_polynomial(
+                f, method=method, recognition_only=recognition_only, singular_timeout=limit, clock=clock
+            )
+
+        return analyze_parametrization(
+            source,
+            implicit,
+            method=method,
+            recognition_only=recognition_only,
+            singular_timeout=singular_timeout,
+            clock=clock,
+            tolerance=tolerance,
+            timeout=timeout,
+            stated_timeout=stated_timeout,
+            parsed=parsed,
+            start=start,
+        )
     if recognition_only and method == "symmetry" and tolerance is None:
         from .rational_path import recognition_only_analysis
 

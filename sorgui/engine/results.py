@@ -412,6 +412,46 @@ class Conical:
 
 
 @dataclass(frozen=True)
+class ParametricInput:
+    """A surface typed as a rational parametrization ``P(s, t)`` and what the map itself says
+    (docs/math.md §12), decided before and besides its implicit equation.
+
+    ``components`` and ``parameters`` are as typed; ``map`` is ``P`` exactly (reduced fractions,
+    in ``map_parameters``, the typed names when they are among sorgui's parameter names, else
+    ``s, t`` in the typed order) over ``field``, of ``degree`` over a common denominator.
+    ``symmetry``, ``symmetry_dimension`` and ``symmetry_basis`` are the symmetry algebra of its
+    normal lines (the kinds of an equation's); ``conical`` is ``cone``, ``cylinder`` or ``none``
+    with the ``apex`` and the cylinder ``directions``. ``profile_check`` is the cross-check
+    ``∂(h, ρ)/∂(s, t) ≡ 0`` about the axis (``None`` without one axis); ``profile_curve`` is
+    ``F(h, rho)``, the equation of the profile curve ``(h, ρ)``. ``implicit_method`` says how
+    the implicit equation was found (``None``: it was not, ``implicit_status`` says why).
+    ``fibre`` is the number of parameter points over a generic point of ``X`` (``proper``: it is
+    1), decided by ``proper_method``.
+    """
+
+    components: Triple
+    parameters: tuple[str, str]
+    map: Triple
+    map_parameters: tuple[str, str]
+    field: str
+    degree: int
+    symmetry: str
+    symmetry_dimension: int
+    symmetry_basis: tuple[tuple[str, ...], ...]
+    conical: str
+    apex: Triple | None = None
+    directions: tuple[Triple, ...] = ()
+    profile_check: bool | None = None
+    profile_curve: str | None = None
+    implicit_method: str | None = None
+    implicit_status: str = ""
+    fibre: int | None = None
+    proper: bool | None = None
+    proper_method: str | None = None
+    notes: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
 class Analysis:
     """The whole answer for one input: recognition, factors, rationality and parameterizations."""
 
@@ -430,6 +470,9 @@ class Analysis:
     real_locus: RealLocus | None = None
     canal: Canal | None = None
     conical: Conical | None = None
+    input_kind: str = "equation"
+    """``equation`` (``f(x, y, z) = 0`` typed) or ``parametrization`` (``parametric`` says more)."""
+    parametric: ParametricInput | None = None
 
     @property
     def is_sor(self) -> bool:
@@ -441,6 +484,7 @@ class Analysis:
         rec = _plain(self.recognition)
         return {
             "input": self.input,
+            "input_kind": self.input_kind,
             "polynomial": rec["polynomial"],
             "field": self.field,
             "method": self.method,
@@ -465,6 +509,7 @@ class Analysis:
             "canal": None if self.canal is None else self.canal.to_json(),
             "conical": None if self.conical is None else self.conical.to_json(),
             "unfinished": list(self.unfinished),
+            "parametric": _plain(self.parametric),
         }
 
     @classmethod
@@ -488,6 +533,8 @@ class Analysis:
             canal=None if data.get("canal") is None else Canal.from_json(data["canal"]),
             conical=None if data.get("conical") is None else Conical.from_json(data["conical"]),
             unfinished=tuple(data.get("unfinished", ())),
+            input_kind=data.get("input_kind", "equation"),
+            parametric=_build(ParametricInput, data.get("parametric")),
         )
 
 

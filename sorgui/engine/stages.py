@@ -23,6 +23,9 @@ DoneCallback = Callable[[str, float], None]
 STAGES = (
     "engine",
     "parse",
+    "parametric",
+    "implicit equation",
+    "properness",
     "recognition",
     "factors",
     "real locus",
@@ -58,9 +61,13 @@ class StageClock:
         self.current: str | None = None
         self.recognition: Recognition | None = None  # kept for a time limit met before publish
         self.latest: Analysis | None = None
+        self.decorate: Callable[[Analysis], Analysis] | None = None
+        """What every published analysis is completed with (a parametrization's own results)."""
 
     def publish(self, analysis: Analysis) -> None:
         """Hand the analysis known so far to ``partial`` (if any), and keep it."""
+        if self.decorate is not None:
+            analysis = self.decorate(analysis)
         self.latest = analysis
         if self.partial is not None:
             self.partial(analysis)

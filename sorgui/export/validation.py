@@ -35,10 +35,10 @@ from sorgui.engine import results
 from sorgui.engine.errors import ExpressionError, ParseError, SorguiError
 from sorgui.engine.expressions import Syntax, read
 
-NAMES = ("x", "y", "z", "s", "t", "w", "r", "u", "v", "m1", "m2", "m3", "theta", "tau", "a")
+NAMES = ("x", "y", "z", "s", "t", "w", "r", "u", "v", "m1", "m2", "m3", "theta", "tau", "a", "h", "rho")
 """The variables of sorgui's results: space, the parameters of maps and profiles, the SMAT
-coordinates of canal surfaces, the parameter of a witness line, and the ring parameter of
-Singular's fields."""
+coordinates of canal surfaces, the parameter of a witness line, the ring parameter of
+Singular's fields, and the height and squared distance of a parametrization's profile curve."""
 
 EXACT = Syntax(
     powers=("**", "^"),
@@ -67,6 +67,12 @@ VOCABULARY: dict[tuple[str, str], frozenset[str]] = {
     ("NearestSurface", "kind"): SYMMETRIES,
     ("Conical", "kind"): frozenset({"cone", "cylinder", "none"}),
     ("BaseCurve", "chart"): frozenset({"x = 1", "y = 1", "z = 1"}),
+    ("Analysis", "input_kind"): frozenset({"equation", "parametrization"}),
+    ("ParametricInput", "symmetry"): SYMMETRIES,
+    ("ParametricInput", "conical"): frozenset({"cone", "cylinder", "none"}),
+    ("ParametricInput", "implicit_method"): frozenset(
+        {"profile curve", "sphere", "plane", "cylinder base curve", "cone base curve", "elimination"}
+    ),
 }
 """Fields whose every string comes from a fixed list."""
 
@@ -102,6 +108,7 @@ EXPRESSIONS: dict[str, frozenset[str]] = {
     "Analysis": frozenset({"squarefree"}),
     "Conical": frozenset({"apex", "direction"}),
     "BaseCurve": frozenset({"polynomial", "frame_point", "frame_u", "frame_w"}),
+    "ParametricInput": frozenset({"map", "symmetry_basis", "apex", "directions", "profile_curve"}),
 }
 """Fields that hold exact numbers or polynomials (each string read by :data:`EXACT`)."""
 
@@ -110,8 +117,16 @@ PARAMETER_FIELDS = {
     ("CanalFamily", "parameter"),
     ("CanalFamily", "radical_parameter"),
     ("BaseCurve", "variables"),
+    ("ParametricInput", "map_parameters"),
 }
-FIELD_FIELDS = {("Analysis", "field"), ("Parametrization", "field"), ("CanalFamily", "field")}
+FIELD_FIELDS = {
+    ("Analysis", "field"),
+    ("Parametrization", "field"),
+    ("CanalFamily", "field"),
+    ("ParametricInput", "field"),
+}
+UNKNOWN_EQUATION = {("Recognition", "polynomial"), ("Factor", "polynomial"), ("Analysis", "squarefree")}
+"""Fields that are empty when the implicit equation of a parametrization was not found."""
 _FIELD = re.compile(r"QQ(?:\((?P<generators>.+)\))?")
 _STAGE = re.compile(r"[a-z][a-z ]{0,39}")
 
@@ -139,7 +154,7 @@ def _check_object(obj: Any, path: str) -> None:
         _check_type(value, hints[item.name], where)
         _check_strings(cls.__name__, item.name, value, where)
     if isinstance(obj, results.Analysis):
-        _check_input(obj.input, f"{path}.input")
+        _check_input(obj, path)
         for stage in obj.unfinished:
             _check_stage(stage, f"{path}.unfinished")
         for stage, _seconds in obj.timings:
@@ -218,7 +233,8 @@ def _check_strings(cls: str, name: str, value: Any, where: str) -> None:
                 check_expression(field.removesuffix(" = 0"), where)
     elif name in EXPRESSIONS.get(cls, ()):
         for text in strings:
-            check_expression(text, where)
+            if text or (cls, name) not in UNKNOWN_EQUATION:
+                check_expression(text, where)
     elif (cls, name) in VOCABULARY:
         allowed = VOCABULARY[(cls, name)]
         for text in strings:
@@ -231,7 +247,9 @@ def _check_strings(cls: str, name: str, value: Any, where: str) -> None:
     elif (cls, name) in FIELD_FIELDS:
         for text in strings:
             _check_field(text, where)
-    elif not (cls == "Analysis" and name in ("input", "unfinished", "timings")):
+    elif not (cls == "Analysis" and name in ("input", "unfinished", "timings")) and not (
+        cls == "ParametricInput" and name in ("components", "parameters")
+    ):
         for text in strings:
             check_text(text, where)
 
@@ -271,14 +289,29 @@ def _check_stage(stage: str, where: str) -> None:
         raise ReportInvalid(f"{where} names a stage sorgui does not have: {_shown(str(stage))}")
 
 
-def _check_input(text: str, where: str) -> None:
-    """The equation must be one the project's parser reads (as if typed)."""
+def _check_input(analysis: results.Analysis, path: str) -> None:
+    """The equation must be one the project's parser reads (as if typed); a parametrization's
+    text must be read by the parametrization reader into the very components and parameters the
+    report names, and only its implicit equation may be missing."""
+    from sorgui.engine.parametric_parsing import parse_parametrization
     from sorgui.engine.parsing import parse_polynomial
 
+    where = f"{path}.input"
+    record = analysis.parametric
+    if analysis.input_kind == "equation":
+        if record is not None or not analysis.recognition.polynomial:
+            raise ReportInvalid(f"{path} is an equation's report with a parametrization's fields")
+        reader: Any = parse_polynomial
+    else:
+        if record is None:
+            raise ReportInvalid(f"{path}.parametric is missing for a parametrization")
+        reader = parse_parametrization
     try:
-        parse_polynomial(text)
+        parsed = reader(analysis.input)
     except ParseError as exc:
         raise ReportInvalid(f"{where} is not an equation sorgui reads: {exc.message}") from None
+    if record is not None and (parsed.components, parsed.parameters) != (record.components, record.parameters):
+        raise ReportInvalid(f"{path}.parametric does not hold the components of its input")
 
 
 def _shown(text: str) -> str:

@@ -1,0 +1,106 @@
+"""The analysis of a parametrization (docs/math.md §12): the same answers as for its equation,
+with the map's own results; a bicubic patch and a perturbed surface of revolution are none, a
+surface of revolution printed with 10 digits is nearly one."""
+
+from __future__ import annotations
+
+import json
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+from sorgui.engine import analyze
+from sorgui.engine.results import Analysis
+from sorgui.samples import bicubic_patch, map_text, quaternion_rotation, revolved_patch, rotation
+
+ISSUE = "x = (1-t^2)/(1+t^2)*(2+s), y = 2*t/(1+t^2)*(2+s), z = s^2"
+RADIUS = {0: 2, 1: 1, 2: Fraction(1, 3), 3: -1, 4: Fraction(1, 5)}
+HEIGHT = {0: 1, 1: -1, 2: 1, 3: Fraction(1, 2), 4: Fraction(-1, 7)}
+"""A profile of degree 4: with the rotation in ``t`` the map has bidegree (4, 2)."""
+
+
+def test_the_issue_example_is_a_surface_of_revolution_with_the_keys_of_an_equation() -> None:
+    analysis = analyze(ISSUE, timeout=120)
+    data = analysis.to_json()
+    equation = analyze(data["polynomial"], timeout=120).to_json()
+    assert data["input_kind"] == "parametrization" and equation["input_kind"] == "equation"
+    assert set(equation) <= set(data)
+    assert data["is_sor"] and data["symmetry"] == "revolution"
+    assert data["axis"]["direction"] == ["0", "0", "1"] and data["axis"]["point"] == ["0", "0", "0"]
+    assert data["polynomial"] == equation["polynomial"]
+    assert data["rationality"]["table_row"] == equation["rationality"]["table_row"]
+    assert data["canal"]["is_canal"] is True
+    record = data["parametric"]
+    assert record["components"] == ["(1-t^2)/(1+t^2)*(2+s)", "2*t/(1+t^2)*(2+s)", "s^2"]
+    assert record["parameters"] == ["s", "t"]
+    assert record["profile_check"] is True and record["implicit_method"] == "profile curve"
+    assert record["profile_curve"] is not None
+    assert record["proper"] is True and record["fibre"] == 1
+    given = data["parametrizations"][0]
+    assert given["method"] == "the given parametrization" and given["proper"] is True
+    assert len(data["parametrizations"]) == 1 + len(equation["parametrizations"])
+    assert Analysis.from_json(json.loads(json.dumps(data))) == analysis
+
+
+def test_a_bidegree_4_2_surface_of_revolution_on_a_rational_axis() -> None:
+    R = quaternion_rotation((1, 2, -2, 4))
+    text = map_text(revolved_patch(RADIUS, HEIGHT, R, (1, Fraction(-1, 2), 3)))
+    analysis = analyze(text, timeout=120)
+    assert analysis.is_sor and analysis.recognition.symmetry == "revolution"
+    direction = [str(Fraction(R[i][2])) for i in range(3)]
+    axis = analysis.recognition.axis
+    assert axis is not None
+    k = next(i for i in range(3) if direction[i] != "0")
+    scale = Fraction(axis.direction[k]) / Fraction(direction[k])
+    assert [Fraction(c) for c in axis.direction] == [scale * Fraction(c) for c in direction]
+    assert analysis.rationality is not None and analysis.rationality.table_row in (1, 3, 4)  # X_C is rational
+
+
+def test_a_random_bicubic_patch_is_not_a_surface_of_revolution() -> None:
+    analysis = analyze(map_text(bicubic_patch(seed=3)), timeout=8)
+    assert not analysis.is_sor and analysis.recognition.symmetry == "none"
+    assert analysis.recognition.symmetry_dimension == 0
+    assert analysis.conical is not None and analysis.conical.kind == "none"
+    assert analysis.input_kind == "parametrization"
+    assert analysis.parametric is not None and analysis.parametric.symmetry == "none"
+    assert analysis.parametrizations[0].method == "the given parametrization"
+
+
+def test_a_surface_of_revolution_plus_a_small_term_is_not_one() -> None:
+    text = map_text(revolved_patch(RADIUS, HEIGHT, extra="1/1000*s*t"))
+    analysis = analyze(text, timeout=60, recognition_only=True)
+    assert not analysis.is_sor and analysis.recognition.symmetry == "none"
+    assert analysis.approximate is None  # exact input: the exact answer only
+
+
+def _printed(digits: int, extra: str = "") -> str:
+    R = rotation(np.array([0.9, 0.3, -0.2, 0.4]))
+    return map_text(revolved_patch(RADIUS, HEIGHT, R.tolist(), (0.3, -1.2, 0.5), digits=digits, extra=extra))
+
+
+def test_a_surface_of_revolution_printed_with_10_digits_is_nearly_one() -> None:
+    analysis = analyze(_printed(10), timeout=60, recognition_only=True)
+    assert not analysis.is_sor
+    approx = analysis.approximate
+    assert approx is not None and approx.near_sor and approx.kind == "revolution"
+    assert approx.tolerance == pytest.approx(5e-10)
+    assert approx.residual is not None and approx.residual <= 30
+    axis = rotation(np.array([0.9, 0.3, -0.2, 0.4]))[:, 2]
+    assert approx.axis is not None
+    assert abs(abs(np.dot(approx.axis.direction, axis)) - 1) < 1e-8
+    offset = np.array(approx.axis.point) - np.array([0.3, -1.2, 0.5])
+    assert np.linalg.norm(np.cross(offset, axis)) < 1e-7
+
+
+def test_a_perturbed_surface_of_revolution_printed_with_10_digits_is_not_nearly_one() -> None:
+    analysis = analyze(_printed(10, extra="1/1000*s*t"), timeout=60, recognition_only=True)
+    approx = analysis.approximate
+    assert approx is not None and not approx.near_sor
+    assert approx.relative_distance is not None and approx.relative_distance > 1e-5
+
+
+def test_a_time_limit_keeps_the_parametrization() -> None:
+    analysis = analyze(map_text(bicubic_patch(seed=5)), timeout=1.5)
+    assert analysis.input_kind == "parametrization" and analysis.parametric is not None
+    assert analysis.recognition.symmetry == "none"  # the decision takes milliseconds
