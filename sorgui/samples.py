@@ -245,6 +245,11 @@ def bicubic_patch(seed: int, size: int = 9) -> list[str]:
     rng = random.Random(seed)
     components = []
     for _ in range(3):
-        terms = [f"({rng.randint(-size, size)})*s^{i}*t^{j}" for i in range(4) for j in range(4)]
-        components.append(" + ".join(terms))
+        terms = []
+        for i in range(4):
+            for j in range(4):
+                c = rng.randint(-size, size)
+                monomial = "".join(f"*{v}^{e}" if e > 1 else f"*{v}" for v, e in (("s", i), ("t", j)) if e)
+                terms.append(f"{'-' if c < 0 else '+'} {abs(c)}{monomial}")
+        components.append(" ".join(terms).lstrip("+ "))
     return components

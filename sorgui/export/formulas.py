@@ -319,7 +319,9 @@ def surface_formulas(analysis: Analysis) -> list[Formula]:
 def _surface(analysis: Analysis) -> list[Formula]:
     """The equation, the axis or centre, the profile, the factors, the rationality and the parameterizations."""
     rec = analysis.recognition
-    out = [Formula("expression", (rec.polynomial,), "polynomial", "f", "f =", "the equation f(x, y, z) = 0")]
+    out = []
+    if rec.polynomial:  # a parametrization's implicit equation may not be known
+        out.append(Formula("expression", (rec.polynomial,), "polynomial", "f", "f =", "the equation f(x, y, z) = 0"))
     out += _recognition(rec, "")
     if rec.profile is not None:
         out += _profile(rec.profile)

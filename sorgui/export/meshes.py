@@ -101,6 +101,11 @@ def write_mesh(
     if suffix not in MESH_SUFFIXES:
         raise ValueError(f"unknown mesh format {suffix!r}; use one of {', '.join(MESH_SUFFIXES)}")
     patch = is_patch_path(path) if patch is None else patch
+    if not patch and not equation:
+        raise ValueError(
+            f"the implicit equation of this parametrization is not known, so there is no mesh of f = 0;"
+            f" {path.stem}.patch{suffix} holds the given map's patch"
+        )
     poly = mesh_polydata(scene, patch)
     kind = (
         "parametric patch of the first real parameterization"

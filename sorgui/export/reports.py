@@ -28,7 +28,7 @@ from sorgui.engine.vocabulary import canal_kind
 from sorgui.export.cas import LATEX_STYLE, approximate_line, latex_name, verdict
 from sorgui.export.formulas import Formula, canal_formulas, surface_formulas
 from sorgui.export.quoting import code_fence, markup_text
-from sorgui.export.text import TABLE_1, conical_lines, plain_text, symmetry_name
+from sorgui.export.text import TABLE_1, conical_lines, parametric_lines, plain_text, symmetry_name
 
 KNOWN_KEYS = frozenset(
     {
@@ -56,6 +56,8 @@ KNOWN_KEYS = frozenset(
         "unfinished",
         "canal",
         "conical",
+        "input_kind",
+        "parametric",
     }
 )
 """The JSON keys the Markdown and HTML reports present in words."""
@@ -204,13 +206,16 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
     """The report as blocks; ``picture`` is the image's address (file name or ``data:`` URI)."""
     rec = analysis.recognition
     blocks = [Block("h1", f"sorgui: {verdict(analysis)}")]
-    blocks.append(
-        Block(
-            "p",
-            f"Equation: $f(x, y, z) = 0$ of degree {rec.degree} over the field $K$ = "
-            f"{analysis.field} (the polynomial is under Formulas).",
-        )
+    if analysis.parametric is not None:
+        blocks.append(Block("h2", "The given parametrization"))
+        blocks.append(Block("list", tuple(line.strip() for line in parametric_lines(analysis))))
+    equation = (
+        f"Equation: $f(x, y, z) = 0$ of degree {rec.degree} over the field $K$ = "
+        f"{analysis.field} (the polynomial is under Formulas)."
+        if rec.polynomial
+        else f"Equation: the implicit equation is not known (the field $K$ = {analysis.field})."
     )
+    blocks.append(Block("p", equation))
     blocks.append(
         Block(
             "p",

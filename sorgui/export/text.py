@@ -130,10 +130,43 @@ def real_locus_line(real: RealLocus) -> str:
     return f"real points: only a curve (no real surface): {pieces}"
 
 
+def parametric_lines(analysis: Analysis) -> list[str]:
+    """What a typed parametrization says of itself (docs/math.md §12), before the implicit
+    analysis: the map, the decision from its normal lines, the implicit equation's route, properness."""
+    record = analysis.parametric
+    if record is None:
+        return []
+    names = ", ".join(record.parameters)
+    lines = [f"parametrization in {names} (over {record.field}, degree {record.degree}):"]
+    lines += [f"  {c} = {value}" for c, value in zip("xyz", record.components)]
+    decided = "undecided" if record.symmetry == "undecided" else symmetry_name(record.symmetry)
+    lines.append(f"from the map's normal lines: {decided} (dim L = {record.symmetry_dimension})")
+    if record.conical == "cone" and record.apex is not None:
+        lines.append(f"  a cone: every tangent plane passes through the apex {_vec(record.apex)}")
+    elif record.conical == "cylinder" and record.directions:
+        lines.append(f"  a cylinder: every tangent plane contains the direction {_vec(record.directions[0])}")
+    if record.profile_check is not None:
+        lines.append(f"  cross-check ∂(h, ρ)/∂(s, t) ≡ 0 about the axis: {'yes' if record.profile_check else 'NO'}")
+    if record.profile_curve is not None:
+        lines.append(f"  profile curve (h, ρ): {record.profile_curve} = 0")
+    if record.implicit_status:
+        lines.append(f"implicit equation: {record.implicit_status}")
+    if record.proper is not None:
+        lines.append(
+            f"the given map is {'proper' if record.proper else 'not proper'}: {record.fibre} parameter point(s)"
+            f" over a point of X ({record.proper_method})"
+        )
+    elif record.proper_method:
+        lines.append(f"properness of the given map: {record.proper_method}")
+    lines += [f"note: {note}" for note in record.notes]
+    return lines
+
+
 def plain_text(analysis: Analysis) -> str:
     """The whole report as text (ending with a newline)."""
     rec = analysis.recognition
-    lines = [f"f = {rec.polynomial}", *analysis_lines(analysis)]
+    equation = rec.polynomial or "(the implicit equation is not known)"
+    lines = [*parametric_lines(analysis), f"f = {equation}", *analysis_lines(analysis)]
     timing = ", ".join(f"{name} {seconds:.3f} s" for name, seconds in analysis.timings)
     lines.append(f"timings: {timing}")
     return "\n".join(lines) + "\n"
@@ -229,7 +262,7 @@ def analysis_lines(analysis: Analysis) -> list[str]:
     rec = analysis.recognition
     verdict = "undecided" if rec.symmetry == "undecided" else ("YES" if rec.is_sor else "NO")
     lines = [
-        f"field K = {analysis.field}, degree {rec.degree}, method {analysis.method}",
+        f"field K = {analysis.field}, degree {rec.degree if rec.polynomial else 'unknown'}, method {analysis.method}",
         f"surface of revolution: {verdict}",
         *recognition_lines(rec),
     ]

@@ -157,7 +157,7 @@ def natural_center(rec: Recognition, approximate: Approximation | None = None) -
 # --- the scene ------------------------------------------------------------------------------
 
 
-def _patch(param: Parametrization, region: ClipSphere) -> PatchData | None:
+def _patch(param: Parametrization, region: ClipSphere | None) -> PatchData | None:
     """A grid patch of a real parameterization (``None`` if its coordinates cannot be read)."""
     try:
         coordinates = [rational_function_terms(c, param.parameters) for c in param.coordinates]
@@ -178,6 +178,22 @@ def _patch(param: Parametrization, region: ClipSphere) -> PatchData | None:
     return parametric_patch(fx, fy, fz, PATCH_RANGE, PATCH_RANGE, n=PATCH_GRID, region=region)
 
 
+def patch_region(param: Parametrization) -> ClipSphere | None:
+    """The ball that holds most of a map's patch over :data:`~sorgui.render.PATCH_RANGE`, for a
+    parametrization whose implicit equation is not known (``None`` if no point is finite): about
+    the median point, through the 90th percentile of the distances (poles are left out)."""
+    patch = _patch(param, None)
+    if patch is None:
+        return None
+    points = np.asarray(patch.points).reshape(-1, 3)
+    points = points[np.all(np.isfinite(points), axis=1)]
+    if not len(points):
+        return None
+    middle = np.median(points, axis=0)
+    radius = 1.1 * float(np.percentile(np.linalg.norm(points - middle, axis=1), 90)) or 1.0
+    return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
+
+
 def build_scene(
     analysis: Analysis,
     radius: float | None = None,
@@ -196,6 +212,9 @@ def build_scene(
     center, axis_direction = natural_center(rec, analysis.approximate)
     if box is not None:
         region = ball_about(box, center, axis_direction)
+    real = [p for p in analysis.parametrizations if p.real and p.verified]
+    if region is None and not analysis.squarefree and real:  # a parametrization without its equation
+        region = patch_region(real[0])
     if region is None:
         region = view_region(terms, center, axis_direction)
     if radius is not None:
@@ -222,7 +241,9 @@ def build_scene(
             region,
         )
     marker = sphere_center_marker(float_vector(rec.center), region) if rec.center else None
-    real = [p for p in analysis.parametrizations if p.real and p.verified] if patch else []
+    if not analysis.squarefree:
+        notes.append("The implicit equation is not known: the given map's patch is drawn instead of the surface.")
+    real = real if patch else []
     factor_lines = [
         axis_line(float_vector(f.recognition.axis.point), float_vector(f.recognition.axis.direction), region)
         for f in analysis.factors

@@ -85,7 +85,7 @@ def test_a_surface_of_revolution_printed_with_10_digits_is_nearly_one() -> None:
     approx = analysis.approximate
     assert approx is not None and approx.near_sor and approx.kind == "revolution"
     assert approx.tolerance == pytest.approx(5e-10)
-    assert approx.residual is not None and approx.residual <= 30
+    assert approx.residual is not None and approx.residual <= 1
     axis = rotation(np.array([0.9, 0.3, -0.2, 0.4]))[:, 2]
     assert approx.axis is not None
     assert abs(abs(np.dot(approx.axis.direction, axis)) - 1) < 1e-8

@@ -18,7 +18,8 @@ floating point by least squares over sample points of the map instead of exactly
 
 The tolerance is the input's: half a unit in the last place of its most precise decimal,
 relative (``0.5·10^(1−k)`` for ``k`` significant digits), or ``--tolerance``. A kind is *near*
-when its deviation is within :data:`NEAR_FACTOR` times the tolerance (CAD printing rounds
+when its deviation is within :data:`NEAR_FACTOR` times the tolerance (the ``residual`` of the
+:class:`~sorgui.engine.results.Approximation` is the deviation in that unit: at most 1 is near) (CAD printing rounds
 every coefficient, and the normals amplify that by the conditioning of the map; a coefficient
 moved by ``10⁻³`` or ``10⁻⁶`` stays far outside).
 """
@@ -155,7 +156,7 @@ def nearly(surface: RationalMap, tolerance: float, source: str) -> tuple[Approxi
             False,
             None,
             deviation,
-            None if deviation is None else deviation / tolerance,
+            None if deviation is None else deviation / (NEAR_FACTOR * tolerance),
             relative,
             notes=notes,
         )
@@ -168,7 +169,7 @@ def nearly(surface: RationalMap, tolerance: float, source: str) -> tuple[Approxi
         near,
         kind,
         deviation,
-        deviation / tolerance,
+        deviation / (NEAR_FACTOR * tolerance),
         relative,
         axis=axis,
         center=center,

@@ -3,7 +3,7 @@
 Stages, after the engine and the parse (:func:`~sorgui.engine.analyze`): parametric (the exact
 decision from the map: the symmetry algebra of its normal lines, the apex, the cylinder
 directions, the cross-check of the profile) → approximate (rounded coefficients: the same
-systems by least squares) → implicit equation → properness → the stages of the implicit
+systems by least squares) → properness → implicit equation → the stages of the implicit
 equation's own analysis (:func:`~sorgui.engine.analysis.analyze_polynomial`: recognition,
 factors, real locus, rationality and parameterizations, conical, canal), so that the answer has
 the keys of an equation's. Every analysis published on the way carries the parametrization's
@@ -51,8 +51,10 @@ if TYPE_CHECKING:
 
 IMPLICIT_TIMEOUT = 30.0
 """Seconds Singular's elimination may take at most (or the analysis' time left, if shorter)."""
-PROPER_TIMEOUT = 5.0
+PROPER_TIMEOUT = 1.0
 """Seconds for the generic fibre over ``QQ(s₀, t₀)`` before one fibre over a point is counted."""
+BEING_COMPUTED = "being computed"
+"""The implicit equation's status while its stage runs."""
 MAP_PARAMETERS = frozenset({"s", "t", "u", "v", "w", "r", "theta", "tau"})
 """Typed parameter names the exported map keeps (the names sorgui's reports use)."""
 
@@ -113,7 +115,7 @@ def analyze_parametrization(
                 method=method,
             )
     except TimeLimitReached as exc:
-        return unfinished_analysis(
+        ended = unfinished_analysis(
             opening,
             recognition=None,
             latest=clock.latest,
@@ -122,6 +124,10 @@ def analyze_parametrization(
             message=exc.message,
             recognition_only=recognition_only,
         )
+        kept = ended.parametric
+        if kept is not None and kept.implicit_status == BEING_COMPUTED:
+            ended = replace(ended, parametric=replace(kept, implicit_status=f"not found: {exc.message}"))
+        return ended
 
 
 @dataclass
@@ -162,6 +168,10 @@ def _analyze(
     decided = _decided(source, symmetry, cones, method)
     clock.decorate = lambda analysis: _decorated(analysis, text, known.record, known.approximate, known.near)
     clock.publish(decided)
+    if not recognition_only:
+        with clock.stage("properness"):
+            known.record = replace(known.record, **_properness(surface, singular_timeout, clock.cancel))
+        clock.publish(decided)
     with clock.stage("implicit equation"):
         found, status = None, "not computed (recognition only)"
         if not recognition_only or symmetry.kind != "none" or cones.kind != "none":
@@ -181,9 +191,6 @@ def _analyze(
             implicit_method=None if found is None else found.method,
             profile_curve=None if found is None or found.profile is None else poly_str(found.profile),
         )
-    if not recognition_only:
-        with clock.stage("properness"):
-            known.record = replace(known.record, **_properness(surface, singular_timeout, clock.cancel))
     if found is None:
         reason = status.removeprefix("not found: ")
         final = replace(decided, canal=Canal(None, f"undecided: the implicit equation was not found ({reason})"))
@@ -288,7 +295,7 @@ def _record(
         apex=None if cones is None else _triple(K, cones.apex),
         directions=() if cones is None else tuple(t for d in cones.directions if (t := _triple(K, d)) is not None),
         profile_check=profile_check,
-        implicit_status="being computed" if symmetry is not None else "",
+        implicit_status=BEING_COMPUTED if symmetry is not None else "",
     )
 
 
