@@ -1,7 +1,8 @@
 """The polynomial editor: syntax highlighting and live validation of the pasted equation.
 
-While the user types, the text is checked with the engine's own parser
-(:func:`~sorgui.engine.parsing.parse_polynomial`) after a pause of :data:`VALIDATION_DELAY_MS`.
+While the user types, the text is checked with the engine's own reader
+(:func:`~sorgui.engine.parametric_parsing.parse_input`: an equation, or a parametrization
+``x = X(s, t), y = …, z = …``) after a pause of :data:`VALIDATION_DELAY_MS`.
 The parser is cheap (it refuses huge degrees in milliseconds), so it runs on the GUI thread;
 texts longer than :data:`LIVE_VALIDATION_LIMIT` characters are parsed by the analysis worker
 instead, which reports errors back here. A parse error is underlined with a red wave from its position to its end and
@@ -26,7 +27,7 @@ from PySide6.QtWidgets import QLabel, QPlainTextEdit, QTextEdit, QVBoxLayout, QW
 
 from sorgui.engine.algebra.polys import field_name, total_degree
 from sorgui.engine.errors import ParseError
-from sorgui.engine.parsing import parse_polynomial
+from sorgui.engine.parametric_parsing import ParsedParametrization, parse_input
 
 VALIDATION_DELAY_MS = 250
 """Debounce of the live validation: the parser runs this long after the last keystroke."""
@@ -83,7 +84,10 @@ class EquationEditor(QWidget):
         super().__init__(parent)
         self.text_edit = QPlainTextEdit(self)
         self.text_edit.setObjectName("equationEdit")
-        self.text_edit.setPlaceholderText("Paste f(x, y, z), e.g. (x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)")
+        self.text_edit.setPlaceholderText(
+            "Paste f(x, y, z), e.g. (x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2),"
+            " or a parametrization x = (1-t^2)/(1+t^2)*(2+s), y = 2t/(1+t^2)*(2+s), z = s^2"
+        )
         font = QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont)
         font.setPointSizeF(max(font.pointSizeF(), 10.5))
         self.text_edit.setFont(font)
@@ -140,18 +144,24 @@ class EquationEditor(QWidget):
         self._timer.stop()
         text = self.text()
         if not text.strip():
-            self._show_result(None, None, "Type or paste a polynomial f(x, y, z).")
+            self._show_result(
+                None, None, "Type or paste a polynomial f(x, y, z), or x = …, y = …, z = … in two parameters."
+            )
             return False
         if not self._is_short():
             self._show_result(None, None, _LONG_TEXT_MESSAGE)
             return None
         try:
-            parsed = parse_polynomial(text)
+            parsed = parse_input(text)
         except ParseError as exc:
             self.show_error(exc)
             return False
-        degree = total_degree(parsed.polynomial)
-        self._show_result(True, None, f"✓ degree {degree} over {field_name(parsed.field)}")
+        if isinstance(parsed, ParsedParametrization):
+            names = " and ".join(parsed.parameters)
+            message = f"✓ a parametrization in {names} of degree {parsed.map.degree} over {field_name(parsed.field)}"
+        else:
+            message = f"✓ degree {total_degree(parsed.polynomial)} over {field_name(parsed.field)}"
+        self._show_result(True, None, message)
         return True
 
     def show_error(self, error: ParseError) -> None:

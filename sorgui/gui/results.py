@@ -33,6 +33,7 @@ from sorgui.engine.results import (
     Approximation,
     Canal,
     Conical,
+    ParametricInput,
     Rationality,
     Recognition,
 )
@@ -140,7 +141,12 @@ class ResultsPane(QScrollArea):
                 "the exact analysis of the surface of revolution that the rounded input was meant to be · " + detail
             )
         self._banner(column, title, detail, kind)
-        self._section(column, "Equation", [("f(x, y, z)", "polynomial")])
+        if analysis.parametric is not None:
+            self._parametric_section(column, analysis.parametric)
+        equation = "polynomial" if rec.polynomial else "not known"
+        if not rec.polynomial and analysis.parametric is not None:
+            equation = f"not known: {analysis.parametric.implicit_status}"
+        self._section(column, "Equation", [("f(x, y, z)", equation)])
         if analysis.approximate is not None:
             self._approximation_section(column, analysis.approximate)
         reasons = why_not(analysis, components)
@@ -201,6 +207,31 @@ class ResultsPane(QScrollArea):
         font = self.font()
         font.setPointSizeF(self._base_size * zoom)
         self.setFont(font)
+
+    def _parametric_section(self, column: QVBoxLayout, record: ParametricInput) -> None:
+        """The parametrization as typed, what its normal lines decide, and whether it is proper."""
+        names = ", ".join(record.parameters)
+        rows = [(f"{c}({names})", value) for c, value in zip("xyz", record.components)]
+        rows.append(("degree", f"{record.degree} over {record.field} (over a common denominator)"))
+        decided = "being decided" if record.symmetry == "undecided" else symmetry_name(record.symmetry)
+        rows.append(("normal lines", f"{decided} (dim L = {record.symmetry_dimension})"))
+        if record.profile_check is not None:
+            rows.append(
+                ("cross-check", "∂(h, ρ)/∂(s, t) ≡ 0 about the axis: " + ("yes" if record.profile_check else "NO"))
+            )
+        if record.implicit_status:
+            rows.append(("implicit equation", record.implicit_status))
+        if record.proper is not None:
+            fibre = "one parameter point" if record.fibre == 1 else f"{record.fibre} parameter points"
+            rows.append(
+                ("proper", f"{'yes' if record.proper else 'no'}: {fibre} over a point of X ({record.proper_method})")
+            )
+        elif record.proper_method:
+            rows.append(("proper", record.proper_method))
+        else:
+            rows.append(("proper", "being decided (Singular)"))
+        rows += [("note", note) for note in record.notes]
+        self._section(column, "Parametrization (as typed)", rows)
 
     def _approximation_section(self, column: QVBoxLayout, approx: Approximation) -> None:
         source = "from the digits of the input" if approx.tolerance_source == "input" else "given"

@@ -169,6 +169,9 @@ class SessionView(QObject):
     def _caption(self, run: Run, nearest: bool = False) -> str:
         if nearest:
             return "The nearest exact surface of revolution of: " + short(run.text)
+        analysis = run.analysis
+        if analysis is not None and analysis.input_kind == "parametrization":
+            return "P: " + short(run.text)
         return "f = " + short(run.text)
 
     def _update_notice(self) -> None:

@@ -130,6 +130,8 @@ class _Presenter:
     _approximated: bool = False
     _canal: tuple[Any, ...] = ()
     _conical: bool = False
+    _without_equation: bool = False
+    """The scene was drawn before a parametrization's implicit equation was known (its patch)."""
 
     def stage(self, name: str, work: Callable[[], Any]) -> Any:
         self.check()
@@ -147,7 +149,17 @@ class _Presenter:
         self.send(AnalysisKnown(analysis))
         request = self.request
         if request.scene:
+            if self.scene is not None and self._without_equation and analysis.squarefree:
+                # a parametrization's implicit equation has come: the surface replaces the patch
+                self.scene, self._patched, self._approximated, self._conical, self._canal = (
+                    None,
+                    False,
+                    False,
+                    False,
+                    (),
+                )
             if self.scene is None:
+                self._without_equation = not analysis.squarefree
                 self.scene = self.stage("scene", lambda: scene_data.build_scene_of(analysis, request))
                 self.send(SceneKnown(self.scene))
                 self._explain(analysis)
@@ -181,7 +193,12 @@ class _Presenter:
         from sorgui.session import scene_data
         from sorgui.session.components import typed_components
 
-        if analysis.is_sor or len(analysis.factors) > 1 or self.request.analysis is not None:
+        if (
+            analysis.is_sor
+            or len(analysis.factors) > 1
+            or self.request.analysis is not None
+            or analysis.input_kind == "parametrization"  # a map has no typed components
+        ):
             return
         components = self.stage("components", lambda: typed_components(self.request.text))
         if components:

@@ -49,6 +49,9 @@ if TYPE_CHECKING:
 STAGES = (
     "engine",
     "parse",
+    "parametric",
+    "properness",
+    "implicit equation",
     "recognition",
     "factors",
     "approximate",
@@ -75,12 +78,18 @@ NOT_REVOLUTION_ONLY = ("components",)
 ROUNDED_ONLY = ("approximate", "nearest")
 """Stages that run only for rounded (decimal) input or a given tolerance."""
 
+PARAMETRIC_ONLY = ("parametric", "properness", "implicit equation")
+"""Stages that run only for a parametrization (docs/math.md §12)."""
+
 WORKER_STAGES = ("scene", "formulas", "components")
 """Stages of the worker itself, which may run more than once (their times add up)."""
 
 STAGE_TITLES = {
     "engine": "Loading the exact engine (sympy)",
     "parse": "Reading the equation",
+    "parametric": "Normal lines, apex and directions of the map",
+    "properness": "Whether the map is proper (Singular)",
+    "implicit equation": "Implicit equation of the map",
     "recognition": "Symmetry algebra, axis and profile",
     "factors": "Factors over K",
     "approximate": "Nearest surface of revolution (rounded input)",
@@ -186,10 +195,14 @@ class Run:
 def planned_stages(request: JobRequest) -> tuple[str, ...]:
     """The stages a run of ``request`` may need: the rounded-input ones only for decimals or a
     given tolerance, the analysis' stages only when it is computed (not for a saved report)."""
+    from sorgui.engine.parametric_parsing import is_parametrization
     from sorgui.engine.rounded.precision import has_decimals
 
     rounded = request.tolerance is not None or has_decimals(request.text)
-    names = [n for n in STAGES if rounded or n not in ROUNDED_ONLY]
+    parametric = is_parametrization(request.text)
+    names = [n for n in STAGES if (rounded or n not in ROUNDED_ONLY) and (parametric or n not in PARAMETRIC_ONLY)]
+    if parametric and "nearest" in names:
+        names.remove("nearest")  # no nearest exact surface for a map (docs/math.md §12)
     if request.analysis is not None:  # a saved report: only the worker's own stages run
         names = [n for n in names if n in WORKER_STAGES]
     return tuple(names)

@@ -1,0 +1,59 @@
+"""Parametrizations in the window (docs/math.md §12): the editor accepts and checks the form, the
+pane shows the components as typed and whether the map is proper; a map whose implicit equation
+is not known is drawn as its patch. Real window, worker process and Singular."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from PySide6.QtWidgets import QLabel
+
+from sorgui.samples import bicubic_patch, map_text
+
+pytestmark = pytest.mark.gui
+
+ISSUE = "x = (1-t^2)/(1+t^2)*(2+s), y = 2*t/(1+t^2)*(2+s), z = s^2"
+
+
+def _pane_text(window) -> str:  # noqa: ANN001
+    return "\n".join(label.text() for label in window.results.widget().findChildren(QLabel))
+
+
+def test_the_editor_checks_a_parametrization(window) -> None:  # noqa: ANN001
+    window.editor.set_text("x = u, y = v,\nz = u^2 + v^2")
+    assert window.editor.is_valid is True
+    assert "a parametrization in u and v of degree 2 over QQ" in window.editor.status_label.text()
+    window.editor.set_text("x = s, y = t, z = sin(s)")
+    assert window.editor.is_valid is False
+    assert "'sin' is not allowed" in window.editor.status_label.text()
+    (selection,) = window.editor.error_selections()
+    assert selection.cursor.selectedText() == "sin"
+
+
+def test_the_pane_shows_the_map_as_typed_and_that_it_is_proper(
+    window,
+    run_analysis,
+    artifacts: Path,  # noqa: ANN001
+) -> None:
+    result = run_analysis(window, ISSUE, timeout_ms=300_000)
+    assert result.analysis.input_kind == "parametrization" and result.analysis.is_sor
+    text = _pane_text(window)
+    assert "Parametrization (as typed)" in text
+    assert "(1-t^2)/(1+t^2)*(2+s)" in text and "s^2" in text
+    assert "yes: one parameter point over a point of X" in text
+    assert "∂(h, ρ)/∂(s, t) ≡ 0 about the axis: yes" in text
+    assert "polynomial" in window.results.views  # the implicit equation, typeset
+    assert "parametrization.0.x" in window.results.views  # the given map among the others
+    window.save_screenshots(artifacts / "parametric-window.png", artifacts / "parametric-viewport.png")
+
+
+def test_a_map_without_its_equation_is_drawn_as_its_patch(window, run_analysis) -> None:  # noqa: ANN001
+    result = run_analysis(window, map_text(bicubic_patch(seed=3)), timeout_ms=120_000)
+    assert not result.analysis.is_sor and result.analysis.recognition.polynomial in ("", result.analysis.squarefree)
+    text = _pane_text(window)
+    assert "Parametrization (as typed)" in text
+    if not result.analysis.recognition.polynomial:
+        assert "not known" in text
+        assert window.viewport.scene is not None and window.viewport.scene.patch is not None
+        assert not window.viewport.scene.patch.is_empty
