@@ -22,7 +22,7 @@ from __future__ import annotations
 import threading
 import time
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .algebra.linalg import Vector
 from .errors import TimeLimitReached
@@ -96,9 +96,14 @@ def analyze(
             source = parse_parametrization(text)
         limit = singular_timeout
 
-        def implicit(f: Poly) -> Analysis:
+        def implicit(f: Poly, section: tuple[Any, Any, Any] | None) -> Analysis:
             return analyze_polynomial(
-                f, method=method, recognition_only=recognition_only, singular_timeout=limit, clock=clock
+                f,
+                method=method,
+                recognition_only=recognition_only,
+                singular_timeout=limit,
+                clock=clock,
+                section=section,
             )
 
         return analyze_parametrization(
@@ -173,13 +178,15 @@ def analyze_polynomial(
     tolerance: float | None = None,
     frame: tuple[Vector, Vector, Vector] | None = None,
     canal: bool = True,
+    section: tuple[Any, Any, Any] | None = None,
 ) -> Analysis:
     """The analysis of a polynomial over ``K`` that is already parsed (``text`` defaults to it).
 
     The tolerance is read off ``text``'s digits unless ``tolerance`` is given (docs/math.md §8);
     ``frame`` is a preferred axis frame for the profile (see :func:`.recognition.recognize.recognize`).
     ``canal=False`` skips the canal stage (the nearest exact surface is a surface of revolution,
-    hence canal; the typed equation's canal analysis is the one shown).
+    hence canal; the typed equation's canal analysis is the one shown). ``section`` is a rational
+    curve on ``X`` that may parameterize ``P²`` (a typed parametrization's, docs/math.md §12).
     """
     from .algebra.polys import field_name, poly_str
     from .recognition.profile import profile_curve
@@ -247,7 +254,9 @@ def analyze_polynomial(
             if g != f:
                 profile = profile_curve(g, profile.frame.point, profile.frame.direction, profile.frame.normal)
             with clock.stage("rationality"):
-                rationality, tube = analyze_rationality(profile, timeout=singular_timeout, cancel=cancel)
+                rationality, tube = analyze_rationality(
+                    profile, timeout=singular_timeout, cancel=cancel, section=section
+                )
             clock.publish(result(rationality, found))
             with clock.stage("parametrizations"):
                 found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)

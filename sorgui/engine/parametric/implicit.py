@@ -30,6 +30,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
+import sympy
+
 from ..algebra import rationals
 from ..algebra.linalg import Vector, cross, perpendicular
 from ..algebra.polys import XYZ, Poly, compose, factor, from_flint, from_rational, poly_ring, primitive
@@ -53,11 +55,14 @@ Fraction2 = tuple[Any, Any]
 @dataclass(frozen=True)
 class ImplicitEquation:
     """``polynomial`` (primitive, in ``K[x, y, z]``) found by ``method``; ``profile`` is
-    ``F(h, ρ)`` for a surface of revolution."""
+    ``F(h, ρ)`` for a surface of revolution, and ``section`` the curve of the map on the
+    parameter line that implicitized it (``t`` its parameter; it meets the circles of latitude
+    along the whole profile, so it parameterizes ``P²``, properly when the line is)."""
 
     polynomial: Poly
     method: str
     profile: Poly | None = None
+    section: tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None = None
 
 
 def implicit_equation(
@@ -100,12 +105,26 @@ def revolution_equation(surface: RationalMap, point: Vector, direction: Vector) 
     """``f = F(a·(p − c), |p − c|²)`` from the profile curve ``F(h, ρ) = 0``."""
     ring = surface.ring
     pf = profile_functions(surface, point, direction)
-    F = plane_curve(ring, (pf.A, pf.W), (pf.B, pf.W * pf.W), PROFILE_VARIABLES)
+    F, line = plane_curve(ring, (pf.A, pf.W), (pf.B, pf.W * pf.W), PROFILE_VARIABLES)
     R = poly_ring(XYZ, ring.K)
     offset = [g - R.ground_new(c) for g, c in zip(R.gens, point)]
     h = sum((d * R.ground_new(a) for d, a in zip(offset, direction)), start=R.zero)
     rho = sum((d * d for d in offset), start=R.zero)
-    return ImplicitEquation(primitive(compose(F, [h, rho])), "profile curve", F)
+    return ImplicitEquation(primitive(compose(F, [h, rho])), "profile curve", F, _section(surface, *line))
+
+
+def _section(surface: RationalMap, index: int, value: Fraction) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr]:
+    """The map on the parameter line where parameter ``index`` is ``value``, in ``t``."""
+    ring, K = surface.ring, surface.K
+    t = sympy.Symbol("t")
+    v = from_rational(K, value)
+
+    def restricted(p: Any) -> sympy.Expr:
+        return sum((K.to_sympy(c) * t**e for e, c in ring.restrict(p, index, v).items()), start=sympy.Integer(0))
+
+    W = restricted(surface.W)
+    x, y, z = (sympy.cancel(restricted(c) / W) for c in surface.X)
+    return x, y, z
 
 
 def sphere_equation(surface: RationalMap, center: Vector) -> ImplicitEquation:
@@ -140,7 +159,7 @@ def cylinder_equation(surface: RationalMap, direction: Vector) -> ImplicitEquati
     U = perpendicular(direction, ring.K)
     V = cross(direction, U)
     first, second = (_linear(surface, vector) for vector in (U, V))
-    F = plane_curve(ring, (first, surface.W), (second, surface.W), ("u", "v"))
+    F, _line = plane_curve(ring, (first, surface.W), (second, surface.W), ("u", "v"))
     R = poly_ring(XYZ, ring.K)
     images = [sum((g * R.ground_new(c) for g, c in zip(R.gens, vector)), start=R.zero) for vector in (U, V)]
     return ImplicitEquation(primitive(compose(F, images)), "cylinder base curve")
@@ -152,7 +171,7 @@ def cone_equation(surface: RationalMap, apex: Vector) -> ImplicitEquation:
     q = [x - surface.W * ring.constant(c) for x, c in zip(surface.X, apex)]
     k = next(i for i in (2, 1, 0) if q[i])
     i, j = (m for m in range(3) if m != k)
-    F = plane_curve(ring, (q[i], q[k]), (q[j], q[k]), ("u", "v"))
+    F, _line = plane_curve(ring, (q[i], q[k]), (q[j], q[k]), ("u", "v"))
     degree = max(sum(m) for m in F.itermonoms())
     H = poly_ring(("u", "v", "w"), ring.K)
     G = H.from_dict({(a, b, degree - a - b): c for (a, b), c in F.items()})
@@ -169,22 +188,25 @@ def _linear(surface: RationalMap, vector: Vector) -> Any:
 # --- the plane curve of two functionally dependent fractions -------------------------------------
 
 
-def plane_curve(ring: ParameterRing, first: Fraction2, second: Fraction2, names: Sequence[str]) -> Poly:
+def plane_curve(
+    ring: ParameterRing, first: Fraction2, second: Fraction2, names: Sequence[str]
+) -> tuple[Poly, tuple[int, Fraction]]:
     """The irreducible ``F(u, v)`` with ``F(first, second) ≡ 0`` (module docstring), in
-    sympy's ring ``K[names]``; ``first`` and ``second`` must be functionally dependent."""
+    sympy's ring ``K[names]``, and the parameter line it was found on (the index of the fixed
+    parameter and its value); ``first`` and ``second`` must be functionally dependent."""
     candidates = []
     for index in (1, 0):
         for value in LINE_VALUES:
             line = _on_line(ring, first, second, index, value)
             if line is not None:
-                candidates.append(line)
+                candidates.append((line, (index, value)))
                 break
     if not candidates:
         raise AnalysisError("the plane curve of the map is a point (internal error)")
-    curve = min(candidates, key=lambda c: max(len(part) for part in c))
+    curve, where = min(candidates, key=lambda c: max(len(part) for part in c[0]))
     if ring.is_flint:
-        return _flint_curve(curve, ring, names)
-    return _sympy_curve(curve, ring, names)
+        return _flint_curve(curve, ring, names), where
+    return _sympy_curve(curve, ring, names), where
 
 
 def _on_line(

@@ -78,8 +78,9 @@ class TypedMap(Protocol):
     def field(self) -> Domain: ...
 
 
-ImplicitAnalysis = Callable[[Poly], Analysis]
-"""The analysis of the implicit equation on the same clock (:func:`~sorgui.engine.analysis.analyze_polynomial`)."""
+ImplicitAnalysis = Callable[[Poly, tuple[Any, Any, Any] | None], Analysis]
+"""The analysis of the implicit equation on the same clock, given a rational curve on ``X`` that
+may parameterize its ``P²`` (:func:`~sorgui.engine.analysis.analyze_polynomial`)."""
 
 
 def analyze_parametrization(
@@ -198,7 +199,7 @@ def _analyze(
         return _decorated(
             replace(final, timings=tuple(clock.timings)), text, known.record, known.approximate, known.near
         )
-    analysis = implicit(found.polynomial)
+    analysis = implicit(found.polynomial, found.section)
     clock.decorate = None
     _agree(analysis, decided)
     return _decorated(analysis, text, known.record, known.approximate, known.near)

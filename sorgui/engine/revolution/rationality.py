@@ -29,6 +29,7 @@ from ..algebra import numberfields
 from ..algebra.linalg import dot
 from ..algebra.polys import (
     Poly,
+    field_generators,
     from_flint,
     is_rational_field,
     number_field,
@@ -143,8 +144,12 @@ def analyze_rationality(
     *,
     timeout: float = 60.0,
     cancel: threading.Event | None = None,
+    section: tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None = None,
 ) -> tuple[Rationality, TubularSurface | None]:
-    """The rationality facts of a surface of revolution with the given profile."""
+    """The rationality facts of a surface of revolution with the given profile; ``section`` is
+    a rational curve ``Q(t)`` on ``X`` (from a typed parametrization, docs/math.md §12) whose
+    image in the axis frame parameterizes ``P²`` when it is proper (then no Singular is asked
+    for a parameterization of ``P²``)."""
     if all(m == (0, 1) for m in profile.square.itermonoms()):
         # P² = c·w: X is y² + z² = 0 in the axis frame, two complex planes (docs/math.md §4).
         return Rationality(
@@ -176,9 +181,11 @@ def analyze_rationality(
     if p2.genus > 0:
         return Rationality(status="decided", unirational=False, real_rational=False, **base), None
     try:
-        par = curves.parametrize(
-            profile.square, timeout=timeout, cancel=cancel, known_genus_zero=True, prefer_conic=True
-        )
+        par = None if section is None else _from_section(profile, section)
+        if par is None:
+            par = curves.parametrize(
+                profile.square, timeout=timeout, cancel=cancel, known_genus_zero=True, prefer_conic=True
+            )
     except SingularTimeout as exc:
         return Rationality(
             status=f"partly undecided: {exc.message}",
@@ -217,6 +224,30 @@ def analyze_rationality(
         notes=tuple(notes),
         **base,
     ), tube
+
+
+def _from_section(
+    profile: ProfileCurve, section: tuple[sympy.Expr, sympy.Expr, sympy.Expr]
+) -> CurveParametrization | None:
+    """``(s, w)(t)`` of a curve ``Q(t)`` on ``X`` in the profile's frame ``(c, a, u)``:
+    ``s = a·(Q − c)/|a|²``, ``w = |Q − c − s·a|²/|u|²``; ``None`` unless it is a proper
+    parameterization of ``P²`` (checked exactly, :func:`~.curves.is_on_curve`, :func:`~.curves.is_proper`)."""
+    K = profile.square.ring.domain
+    t = curves.PARAMETER
+    c, a, u = (
+        [to_expr(K, v) for v in vector]
+        for vector in (profile.frame.point, profile.frame.direction, profile.frame.normal)
+    )
+    q = [sympy.sympify(e).subs(sympy.Symbol("t"), t) - ci for e, ci in zip(section, c)]
+    s = sympy.cancel(sum(ai * qi for ai, qi in zip(a, q)) / sum(ai * ai for ai in a))
+    w = sympy.cancel(sum((qi - s * ai) ** 2 for qi, ai in zip(q, a)) / sum(ui * ui for ui in u))
+    generators = tuple(field_generators(K))
+    if not curves.is_on_curve(profile.square, s, w, t, generators) or not curves.is_proper(
+        profile.square, s, w, t, generators
+    ):
+        return None
+    variables = tuple(sympy.Symbol(str(v)) for v in profile.square.ring.symbols)
+    return CurveParametrization((variables[0], variables[1]), s, w, t, generators, "a curve of the given map")
 
 
 def _absolute_factors(analysis: CurveAnalysis) -> tuple[str, ...]:
