@@ -202,6 +202,8 @@ def _analyze(
     analysis = implicit(found.polynomial, found.section)
     clock.decorate = None
     _agree(analysis, decided)
+    if analysis.conical is None:  # recognition only: the map's own apex or directions
+        analysis = replace(analysis, conical=decided.conical)
     return _decorated(analysis, text, known.record, known.approximate, known.near)
 
 

@@ -1,0 +1,58 @@
+"""A parametrization's report (docs/math.md §12): read back as it was written, also without an
+implicit equation; a crafted one is refused in one line naming the field."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from sorgui.engine import analyze
+from sorgui.export.files import export_file
+from sorgui.export.reports import ReportError, read_report
+from sorgui.samples import bicubic_patch, map_text
+
+CONE = "x = s*(1-t^2)/(1+t^2) + 1, y = 3*s*2*t/(1+t^2) + 2, z = 3 + 2*s"
+
+
+@pytest.fixture(scope="module")
+def reports(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    folder = tmp_path_factory.mktemp("reports")
+    out = {}
+    for name, text, seconds in (("cone", CONE, 60.0), ("patch", map_text(bicubic_patch(seed=3)), 3.0)):
+        path = folder / f"{name}.json"
+        export_file(analyze(text, timeout=seconds, recognition_only=True), path)
+        out[name] = path
+    return out
+
+
+def test_reports_read_back(reports: dict[str, Path]) -> None:
+    cone = read_report(reports["cone"])
+    assert cone.input_kind == "parametrization" and cone.conical is not None and cone.conical.apex == ("1", "2", "3")
+    patch = read_report(reports["patch"])
+    assert patch.parametric is not None and patch.recognition.polynomial == ""  # not known: no elimination
+
+
+@pytest.mark.parametrize(
+    "change, words",
+    [
+        (lambda d: d["parametric"].__setitem__("components", ["s", "t", "s*t"]), "does not hold the components"),
+        (lambda d: d.__setitem__("input_kind", "equation"), "an equation's report with a parametrization's fields"),
+        (lambda d: d.__setitem__("input_kind", "script"), "input_kind is not one of sorgui's values"),
+        (lambda d: d["parametric"].__setitem__("symmetry", "<b>"), "parametric.symmetry is not one of"),
+        (lambda d: d["parametric"].__setitem__("map", ["__import__('os')", "t", "s"]), "parametric.map is not"),
+        (lambda d: d["parametric"].__setitem__("map_parameters", ["os", "t"]), "not a parameter name"),
+        (lambda d: d.__setitem__("input", "x = s, y = t"), "not an equation sorgui reads"),
+        (lambda d: d.__setitem__("parametric", None), "parametric is missing"),
+    ],
+)
+def test_a_crafted_report_is_refused(reports: dict[str, Path], tmp_path: Path, change: Any, words: str) -> None:
+    data = json.loads(reports["patch"].read_text(encoding="utf-8"))
+    change(data)
+    path = tmp_path / "crafted.json"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    with pytest.raises(ReportError) as info:
+        read_report(path)
+    assert words in info.value.message and "\n" not in info.value.message
