@@ -1,4 +1,4 @@
-"""Benchmark: deciding a parametrization (docs/math.md §12), inside one process.
+"""Benchmark: deciding a parametrization (docs/math.md §13), inside one process.
 
 The maps: a surface of revolution of bidegree (4, 2) (a quartic profile turned by
 ``((1 − t²), 2t)/(1 + t²)``) moved by a rational rotation and a translation, exact and printed

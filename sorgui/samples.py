@@ -200,7 +200,7 @@ def printed_exact(coefficients: dict[tuple[int, int, int], Fraction], digits: in
     return " ".join(terms)
 
 
-# --- parametrizations (docs/math.md §12) ------------------------------------------------------
+# --- parametrizations (docs/math.md §13) ------------------------------------------------------
 
 
 def map_text(components: Sequence[str]) -> str:

@@ -1,4 +1,4 @@
-"""Parametrizations on the command line, as a user types them (docs/math.md §12): an expression,
+"""Parametrizations on the command line, as a user types them (docs/math.md §13): an expression,
 a file of three lines, ``--each-line``, the exports and the saved report read back; bad maps are
 one line and exit 2."""
 

@@ -87,7 +87,7 @@ def analyze(
     """
     clock = StageClock(progress, cancel, partial, stage_done)
     start = time.monotonic()
-    if is_parametrization(text):  # x = X(s, t), y = …, z = …: docs/math.md §12
+    if is_parametrization(text):  # x = X(s, t), y = …, z = …: docs/math.md §13
         from .parametric.pipeline import analyze_parametrization
 
         with clock.stage("engine"):
@@ -186,7 +186,7 @@ def analyze_polynomial(
     ``frame`` is a preferred axis frame for the profile (see :func:`.recognition.recognize.recognize`).
     ``canal=False`` skips the canal stage (the nearest exact surface is a surface of revolution,
     hence canal; the typed equation's canal analysis is the one shown). ``section`` is a rational
-    curve on ``X`` that may parameterize ``P²`` (a typed parametrization's, docs/math.md §12).
+    curve on ``X`` that may parameterize ``P²`` (a typed parametrization's, docs/math.md §13).
     """
     from .algebra.polys import field_name, poly_str
     from .recognition.profile import profile_curve

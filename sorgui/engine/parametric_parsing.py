@@ -1,6 +1,6 @@
 """Safe reader of a rational parametrization: ``x = X(s, t), y = Y(s, t), z = Z(s, t)`` or ``(X, Y, Z)``.
 
-The forms (docs/math.md §12)::
+The forms (docs/math.md §13)::
 
     x = X, y = Y, z = Z     in any order, separated by ',' or ';' or line breaks; a label may
                             name the parameters: x(u, v) = X
@@ -371,7 +371,7 @@ class _Fractions:
                     if isinstance(factor, Reciprocal):
                         q, r = self.value(factor.arg)
                         if not q:
-                            written = _has_parameter(factor.arg)
+                            written = self.checked.check(factor.arg)[0] > 0  # a parameter is written in it
                             message = "the denominator is identically zero" if written else "division by zero"
                             raise ParseError(message, factor.start, factor.end)
                         n, d = self._reduced(node, n * r, d * q)
@@ -446,22 +446,6 @@ class _Fractions:
                 node.start,
                 node.end,
             )
-
-
-def _has_parameter(node: Node) -> bool:
-    """Whether a parameter is written in the subtree ``node``."""
-    stack = [node]
-    while stack:
-        match stack.pop():
-            case Var():
-                return True
-            case Neg(arg=arg) | Reciprocal(arg=arg) | Sqrt(arg=arg):
-                stack.append(arg)
-            case Sum(terms=children) | Product(factors=children):
-                stack.extend(children)
-            case Power(base=base, exponent=exponent):
-                stack += [base, exponent]
-    return False
 
 
 def _is_degenerate(surface: RationalMap) -> bool:

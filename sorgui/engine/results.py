@@ -414,7 +414,7 @@ class Conical:
 @dataclass(frozen=True)
 class ParametricInput:
     """A surface typed as a rational parametrization ``P(s, t)`` and what the map itself says
-    (docs/math.md §12), decided before and besides its implicit equation.
+    (docs/math.md §13), decided before and besides its implicit equation.
 
     ``components`` and ``parameters`` are as typed; ``map`` is ``P`` exactly (reduced fractions,
     in ``map_parameters``, the typed names when they are among sorgui's parameter names, else

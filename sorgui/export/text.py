@@ -131,7 +131,7 @@ def real_locus_line(real: RealLocus) -> str:
 
 
 def parametric_lines(analysis: Analysis) -> list[str]:
-    """What a typed parametrization says of itself (docs/math.md §12), before the implicit
+    """What a typed parametrization says of itself (docs/math.md §13), before the implicit
     analysis: the map, the decision from its normal lines, the implicit equation's route, properness."""
     record = analysis.parametric
     if record is None:

@@ -79,7 +79,7 @@ ROUNDED_ONLY = ("approximate", "nearest")
 """Stages that run only for rounded (decimal) input or a given tolerance."""
 
 PARAMETRIC_ONLY = ("parametric", "properness", "implicit equation")
-"""Stages that run only for a parametrization (docs/math.md §12)."""
+"""Stages that run only for a parametrization (docs/math.md §13)."""
 
 WORKER_STAGES = ("scene", "formulas", "components")
 """Stages of the worker itself, which may run more than once (their times add up)."""
@@ -202,7 +202,7 @@ def planned_stages(request: JobRequest) -> tuple[str, ...]:
     parametric = is_parametrization(request.text)
     names = [n for n in STAGES if (rounded or n not in ROUNDED_ONLY) and (parametric or n not in PARAMETRIC_ONLY)]
     if parametric and "nearest" in names:
-        names.remove("nearest")  # no nearest exact surface for a map (docs/math.md §12)
+        names.remove("nearest")  # no nearest exact surface for a map (docs/math.md §13)
     if request.analysis is not None:  # a saved report: only the worker's own stages run
         names = [n for n in names if n in WORKER_STAGES]
     return tuple(names)

@@ -1,4 +1,4 @@
-"""The analysis of a parametrization (docs/math.md §12): the same answers as for its equation,
+"""The analysis of a parametrization (docs/math.md §13): the same answers as for its equation,
 with the map's own results; a bicubic patch and a perturbed surface of revolution are none, a
 surface of revolution printed with 10 digits is nearly one."""
 

@@ -1,5 +1,5 @@
 """The reader of rational parametrizations: every form, the parameters found from the text, and
-one clear error for each way a text is not the map of a surface (docs/math.md §12)."""
+one clear error for each way a text is not the map of a surface (docs/math.md §13)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Round trips (docs/math.md §12): every surface of revolution, cone and cylinder of the test
+"""Round trips (docs/math.md §13): every surface of revolution, cone and cylinder of the test
 corpus that sorgui parameterizes is analysed as an equation, a verified real parameterization of
 it is moved by a rational rotation and a translation and reparameterized by a Möbius map of each
 parameter, and that map, typed as input, gives the same axis, apex or direction (moved), and its

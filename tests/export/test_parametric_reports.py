@@ -1,4 +1,4 @@
-"""A parametrization's report (docs/math.md §12): read back as it was written, also without an
+"""A parametrization's report (docs/math.md §13): read back as it was written, also without an
 implicit equation; a crafted one is refused in one line naming the field."""
 
 from __future__ import annotations

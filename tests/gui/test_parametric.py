@@ -1,4 +1,4 @@
-"""Parametrizations in the window (docs/math.md §12): the editor accepts and checks the form, the
+"""Parametrizations in the window (docs/math.md §13): the editor accepts and checks the form, the
 pane shows the components as typed and whether the map is proper; a map whose implicit equation
 is not known is drawn as its patch. Real window, worker process and Singular."""
 

@@ -1,4 +1,4 @@
-"""Rational parametrizations ``(s, t) ↦ P(s, t)`` as input (docs/math.md §12).
+"""Rational parametrizations ``(s, t) ↦ P(s, t)`` as input (docs/math.md §13).
 
 ``maps`` (the map ``P = X/W`` over ``K``, its derivatives and its normal), ``detect`` (the exact
 decision: the symmetry algebra from the normal lines, the apex of a cone, the direction of a

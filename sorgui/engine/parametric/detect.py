@@ -1,4 +1,4 @@
-"""The exact decision on a rational map, without its implicit equation (docs/math.md §12).
+"""The exact decision on a rational map, without its implicit equation (docs/math.md §13).
 
 Alcázar and Goldman (IEEE TVCG 2016) decide from the parametrization itself. With
 ``P = X/W`` and the normal ``P_s × P_t = Ñ/W³`` (:mod:`.maps`):

@@ -1,4 +1,4 @@
-"""The implicit equation of the image of a rational map (docs/math.md §12).
+"""The implicit equation of the image of a rational map (docs/math.md §13).
 
 When the exact decision (:mod:`.detect`) finds a symmetry, the image is described by a plane
 curve, which one resultant implicitizes:

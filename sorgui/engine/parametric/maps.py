@@ -1,4 +1,4 @@
-"""The rational map ``P(s, t) = X(s, t)/W(s, t)`` over ``K`` and its normal (docs/math.md §12).
+"""The rational map ``P(s, t) = X(s, t)/W(s, t)`` over ``K`` and its normal (docs/math.md §13).
 
 A parametrization is kept over one common denominator: ``X = (X₁, X₂, X₃)`` and ``W`` in
 ``K[s, t]``. Over ``QQ`` these are python-flint's ``fmpq_mpoly`` (the ring

@@ -1,9 +1,10 @@
 """Rounded coefficients: is a parametrization, within its rounding, one of a surface of
-revolution, a cone or a cylinder? (docs/math.md §12)
+revolution, a cone or a cylinder? (docs/math.md §13)
 
 A CAD system prints the map with decimals; a surface of revolution about an axis that is not
 along a rational direction is then exactly none. The systems of :mod:`.detect` are solved in
-floating point by least squares over sample points of the map instead of exactly:
+floating point by least squares over sample points of the map instead of exactly, by the line
+complex of sampled normals that CAD faces are read with (:mod:`sorgui.engine.rounded.line_complex`):
 
 * the normal lines ``(n̂ : P × n̂)`` of the samples (unit normals, the points centred and scaled to
   the size ``L`` of the sampled patch) give the rows of the 6-column system of the symmetry
@@ -33,13 +34,24 @@ from typing import Any
 
 import numpy as np
 
+from ..recognition.symmetry import CYLINDER, PLANE, REVOLUTION, SPHERE
 from ..results import ApproximateAxis, Approximation
+from ..rounded.line_complex import (
+    Samples,
+    axis_of,
+    cone_apex,
+    motions,
+    normal_lines,
+    normal_miss,
+    rotation_axis,
+    translation_direction,
+)
 from .maps import RationalMap
 
 NEAR_FACTOR = 30.0
 """How many times the tolerance the relative deviation of a near kind may reach: the rounding of
-a surface of revolution's map printed with 6, 10 or 15 digits leaves 0.5 to 1.5 times it, a
-coefficient moved by ``10⁻⁶`` thousands of times."""
+a surface of revolution's map printed with 6, 10 or 15 digits leaves 0.5 to 0.8 times it, a
+coefficient moved by ``10⁻⁶`` (at 10 digits) or ``10⁻³`` (at 6) hundreds and thousands of times."""
 COARSEST = 0.1
 """A rounding coarser than this (``0.5``, ``3.0``: a gallery's exact numbers) says nothing: the
 input is taken as exact."""
@@ -74,46 +86,28 @@ def printed_tolerance(text: str) -> float | None:
     return None if digits == 0 else 0.5 * 10.0 ** (1 - digits)
 
 
-@dataclass(frozen=True)
-class _Samples:
-    """Points of the map (centred at ``middle``, scaled by ``size``) and their unit normals."""
-
-    points: np.ndarray
-    normals: np.ndarray
-    middle: np.ndarray
-    size: float
-
-
-def _samples(surface: RationalMap) -> _Samples | None:
+def _samples(surface: RationalMap) -> Samples | None:
+    """The map's points and unit normals on the :data:`GRID` × :data:`GRID` parameter grid
+    (poles and points far beyond the rest left out); ``None`` when too few are finite."""
     grid = np.linspace(-SPAN, SPAN, GRID)
     s, t = (a.ravel() for a in np.meshgrid(grid, grid))
     ring = surface.ring
     Xs, Xt, Ws, Wt = surface.derivatives
-    value = {}
-    for key, p in (("W", surface.W), ("Ws", Ws), ("Wt", Wt)):
-        value[key] = _evaluate(ring, p, s, t)
-    X = np.array([_evaluate(ring, p, s, t) for p in surface.X])
-    XS = np.array([_evaluate(ring, p, s, t) for p in Xs])
-    XT = np.array([_evaluate(ring, p, s, t) for p in Xt])
-    W, WS, WT = value["W"], value["Ws"], value["Wt"]
+    X, XS, XT = (np.array([_evaluate(ring, p, s, t) for p in vector]) for vector in (surface.X, Xs, Xt))
+    W, WS, WT = (_evaluate(ring, p, s, t) for p in (surface.W, Ws, Wt))
     with np.errstate(all="ignore"):
-        P = X / W
-        Ps = (XS * W - X * WS) / W**2
-        Pt = (XT * W - X * WT) / W**2
-        N = np.cross(Ps.T, Pt.T)
-        length = np.linalg.norm(N, axis=1)
-        points = P.T
-    scale = np.median(np.linalg.norm(points, axis=1)[np.isfinite(length)]) if np.any(np.isfinite(length)) else 0.0
-    keep = np.isfinite(length) & (length > 1e-12 * max(np.nanmax(length, initial=0.0), 1e-300))
-    keep &= np.all(np.isfinite(points), axis=1) & (np.linalg.norm(points, axis=1) < 1e3 * (scale + 1.0))
+        points = (X / W).T
+        normals = np.cross(((XS * W - X * WS) / W**2).T, ((XT * W - X * WT) / W**2).T)
+        length = np.linalg.norm(normals, axis=1)
+        distance = np.linalg.norm(points, axis=1)
+    finite = np.isfinite(length) & np.all(np.isfinite(points), axis=1)
+    if finite.sum() < 12:
+        return None
+    keep = finite & (length > 1e-12 * float(np.max(length[finite])))
+    keep &= distance < 1e3 * (float(np.median(distance[finite])) + 1.0)
     if keep.sum() < 12:
         return None
-    points, normals = points[keep], N[keep] / length[keep, None]
-    middle = points.mean(axis=0)
-    size = float(np.sqrt(np.mean(np.sum((points - middle) ** 2, axis=1))))
-    if not size > 0:
-        return None
-    return _Samples((points - middle) / size, normals, middle, size)
+    return Samples(points[keep], normals[keep] / length[keep, None])
 
 
 def _evaluate(ring: Any, p: Any, s: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -127,6 +121,13 @@ def _float(ring: Any, c: Any) -> float:
     return float(c) if ring.is_flint else float(ring.K.to_sympy(c).evalf(20))
 
 
+NOTES = (
+    "the deviation is the largest distance of the normal lines to the axis (to the centre), "
+    f"relative to the size of the sampled patch, over the parameters in [{-SPAN:g}, {SPAN:g}]²",
+    "no nearest exact surface is computed for a parametrization",
+)
+
+
 def nearly(surface: RationalMap, tolerance: float, source: str) -> tuple[Approximation, NearCone | None]:
     """The approximation of the symmetry (an :class:`Approximation` as rounded equations get,
     ``source`` ``input`` or ``given``) and, when the surface is near no surface of revolution,
@@ -134,32 +135,16 @@ def nearly(surface: RationalMap, tolerance: float, source: str) -> tuple[Approxi
     samples = _samples(surface)
     if samples is None:
         return Approximation(tolerance, source, False, None, None, None, (), notes=(_FEW,)), None
-    Q, n = samples.points, samples.normals
-    rows = np.hstack([n, np.cross(Q, n)])
-    _u, singular, vt = np.linalg.svd(rows, full_matrices=False)
-    relative = tuple(float(v / singular[0]) for v in singular)
+    relative, _vectors = normal_lines(samples)
     gate = min(1e-2, 1e4 * tolerance)
     small = int(sum(v <= gate for v in relative))
-    found = _classify(samples, vt, small)
-    notes = (
-        "the deviation is the largest distance of the normal lines to the axis (to the centre), "
-        "relative to the size of the sampled patch, over the parameters in "
-        f"[{-SPAN:g}, {SPAN:g}]²",
-        "no nearest exact surface is computed for a parametrization",
-    )
+    singular = tuple(float(v) for v in relative)
+    found = _nearest_kind(samples, small)
     if found is None:
-        best = _rotation(samples, vt[-1])
-        deviation = None if best is None else _axis_deviation(samples, *best)
-        approximation = Approximation(
-            tolerance,
-            source,
-            False,
-            None,
-            deviation,
-            None if deviation is None else deviation / (NEAR_FACTOR * tolerance),
-            relative,
-            notes=notes,
-        )
+        axis = rotation_axis(samples)
+        deviation = None if axis is None else _axis_deviation(samples, axis)
+        residual = None if deviation is None else deviation / (NEAR_FACTOR * tolerance)
+        approximation = Approximation(tolerance, source, False, None, deviation, residual, singular, notes=NOTES)
         return approximation, _near_cone(samples, tolerance)
     kind, deviation, axis, center, normal = found
     near = deviation <= NEAR_FACTOR * tolerance
@@ -170,104 +155,72 @@ def nearly(surface: RationalMap, tolerance: float, source: str) -> tuple[Approxi
         kind,
         deviation,
         deviation / (NEAR_FACTOR * tolerance),
-        relative,
+        singular,
         axis=axis,
         center=center,
         normal=normal,
-        notes=notes,
+        notes=NOTES,
     )
     return approximation, None if near else _near_cone(samples, tolerance)
 
 
 _FEW = "too few sample points of the map are finite to solve the systems in floating point"
+Found = tuple[str, float, ApproximateAxis | None, tuple[float, float, float] | None, tuple[float, float, float] | None]
 
 
-def _classify(
-    samples: _Samples, vt: np.ndarray, small: int
-) -> (
-    tuple[str, float, ApproximateAxis | None, tuple[float, float, float] | None, tuple[float, float, float] | None]
-    | None
-):
-    """The most symmetric kind the small singular values allow, with its deviation."""
-    if small >= 3:
-        motions = vt[-3:]
-        rotations = motions[:, 3:]
-        if np.linalg.matrix_rank(rotations, tol=0.1) == 3:  # so(3): b = c × a for each
-            rows = np.vstack([_cross_matrix(a) for a in rotations])  # c × a = -[a]× c
-            rhs = np.concatenate([-b for b in motions[:, :3]])
-            c, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
-            deviation = float(np.max(np.linalg.norm(np.cross(samples.points - c, samples.normals), axis=1)))
-            return "sphere", deviation, None, _vector(samples.middle + samples.size * c), None
-        mean = samples.normals * np.sign(samples.normals @ samples.normals[0])[:, None]
-        normal = mean.mean(axis=0)
-        normal /= np.linalg.norm(normal)
-        deviation = float(np.max(np.linalg.norm(np.cross(samples.normals, normal), axis=1)))
-        return "plane", deviation, None, None, _vector(normal)
-    if small >= 1:
-        candidates = vt[-2:] if small >= 2 else vt[-1:]
-        best = None
-        for v in candidates:
-            rotation = _rotation(samples, v)
-            if rotation is not None:
-                deviation = _axis_deviation(samples, *rotation)
-                if best is None or deviation < best[0]:
-                    best = (deviation, rotation)
-        if best is None:
-            return None
-        deviation, (point, direction) = best
-        kind = "cylinder_of_revolution" if small >= 2 else "revolution"
-        direction = direction if direction[int(np.argmax(np.abs(direction)))] > 0 else -direction
-        foot = samples.middle + samples.size * point
-        foot = foot - (foot @ direction) * direction  # the point of the axis nearest the origin
-        axis = ApproximateAxis(_vector(foot), _vector(direction))
-        return kind, deviation, axis, None, None
+def _nearest_kind(samples: Samples, small: int) -> Found | None:
+    """The most symmetric kind the ``small`` singular values allow (the candidates of
+    :func:`~sorgui.engine.rounded.line_complex.motions`), with its relative deviation."""
+    p, n, size = samples.points, samples.normals, samples.size
+    for count in (3, 2, 1):
+        if small < count:
+            continue
+        best: Found | None = None
+        for candidate in motions(samples, count):
+            if candidate.kind == SPHERE and candidate.point is not None:
+                c = candidate.point
+                deviation = float(np.max(np.linalg.norm(np.cross(p - c, n), axis=1))) / size
+                found: Found = (SPHERE, deviation, None, _vector(c), None)
+            elif candidate.kind == PLANE and candidate.direction is not None:
+                d = candidate.direction / np.linalg.norm(candidate.direction)
+                found = (PLANE, float(np.max(np.linalg.norm(np.cross(n, d), axis=1))), None, None, _vector(d))
+            elif candidate.kind in (REVOLUTION, CYLINDER) and candidate.point is not None:
+                assert candidate.direction is not None
+                axis = axis_of(candidate.point, candidate.direction, np.zeros(3))
+                found = (candidate.kind, _axis_deviation(samples, axis), axis, None, None)
+            else:
+                continue
+            if best is None or found[1] < best[1]:
+                best = found
+        if best is not None:
+            return best
     return None
 
 
-def _rotation(samples: _Samples, v: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """The axis (point, unit direction) of the motion ``(b, a) = v``, its screw part removed;
-    ``None`` for a translation."""
-    b, a = v[:3], v[3:]
-    if np.linalg.norm(a) < 0.1 * np.linalg.norm(v):
-        return None
-    b = b - (a @ b) / (a @ a) * a
-    point = np.cross(a, b) / (a @ a)
-    return point, a / np.linalg.norm(a)
-
-
-def _axis_deviation(samples: _Samples, point: np.ndarray, direction: np.ndarray) -> float:
-    """The largest distance of the normal lines to the axis (normals not along it), relative."""
-    across = np.cross(samples.normals, direction)
-    sine = np.linalg.norm(across, axis=1)
+def _axis_deviation(samples: Samples, axis: ApproximateAxis) -> float:
+    """The largest distance of the normal lines to the axis (:func:`normal_miss`), relative to
+    the samples' size, over the normals at least :data:`SINE_FLOOR` away from its direction
+    (a normal nearly along the axis meets it anywhere within the rounding)."""
+    sine = np.linalg.norm(np.cross(samples.normals, np.array(axis.direction)), axis=1)
     keep = sine >= SINE_FLOOR
     if not np.any(keep):
         return math.inf
-    distance = np.abs(np.sum((samples.points[keep] - point) * across[keep], axis=1)) / sine[keep]
-    return float(np.max(distance))
+    return float(np.max(normal_miss(samples, axis)[keep])) / samples.size
 
 
-def _near_cone(samples: _Samples, tolerance: float) -> NearCone | None:
+def _near_cone(samples: Samples, tolerance: float) -> NearCone | None:
     """A cone whose tangent planes pass within the rounding of one apex, else a cylinder whose
     normals are within it of perpendicular to one direction, else ``None``."""
-    n, Q = samples.normals, samples.points
-    _u, singular, vt = np.linalg.svd(n, full_matrices=False)
+    n, p, size = samples.normals, samples.points, samples.size
+    singular = np.linalg.svd(n, compute_uv=False)
     if singular[-1] <= NEAR_FACTOR * tolerance * singular[0]:
-        a = vt[-1] / np.linalg.norm(vt[-1])
+        a = translation_direction(samples)
         a = a if a[int(np.argmax(np.abs(a)))] > 0 else -a
         deviation = float(np.max(np.abs(n @ a)))
-        if deviation <= NEAR_FACTOR * tolerance:
-            return NearCone(None, _vector(a), deviation)
-        return None
-    c, *_ = np.linalg.lstsq(n, np.sum(n * Q, axis=1), rcond=None)
-    deviation = float(np.max(np.abs(np.sum((Q - c) * n, axis=1))))
-    if deviation <= NEAR_FACTOR * tolerance:
-        return NearCone(_vector(samples.middle + samples.size * c), None, deviation)
-    return None
-
-
-def _cross_matrix(a: np.ndarray) -> np.ndarray:
-    """``[a]×`` with ``[a]× c = a × c``."""
-    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+        return NearCone(None, _vector(a), deviation) if deviation <= NEAR_FACTOR * tolerance else None
+    apex = cone_apex(samples)
+    deviation = float(np.max(np.abs(np.sum((p - apex) * n, axis=1)))) / size
+    return NearCone(_vector(apex), None, deviation) if deviation <= NEAR_FACTOR * tolerance else None
 
 
 def _vector(v: np.ndarray) -> tuple[float, float, float]:

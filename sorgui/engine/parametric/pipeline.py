@@ -1,4 +1,4 @@
-"""The analysis of a surface typed as a rational parametrization (docs/math.md §12).
+"""The analysis of a surface typed as a rational parametrization (docs/math.md §13).
 
 Stages, after the engine and the parse (:func:`~sorgui.engine.analyze`): parametric (the exact
 decision from the map: the symmetry algebra of its normal lines, the apex, the cylinder

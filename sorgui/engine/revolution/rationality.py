@@ -147,7 +147,7 @@ def analyze_rationality(
     section: tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None = None,
 ) -> tuple[Rationality, TubularSurface | None]:
     """The rationality facts of a surface of revolution with the given profile; ``section`` is
-    a rational curve ``Q(t)`` on ``X`` (from a typed parametrization, docs/math.md §12) whose
+    a rational curve ``Q(t)`` on ``X`` (from a typed parametrization, docs/math.md §13) whose
     image in the axis frame parameterizes ``P²`` when it is proper (then no Singular is asked
     for a parameterization of ``P²``)."""
     if all(m == (0, 1) for m in profile.square.itermonoms()):

@@ -1,4 +1,4 @@
-"""Singular on rational maps ``P = X/W`` of the plane into space (docs/math.md §12).
+"""Singular on rational maps ``P = X/W`` of the plane into space (docs/math.md §13).
 
 * :func:`eliminated_equation`: the implicit equation of the image, the generator of
   ``(W·x − X₁, W·y − X₂, W·z − X₃, 1 − w·W) ∩ QQ[x, y, z]`` (``eliminate``; the last generator
