@@ -14,7 +14,7 @@ from typing import Protocol
 
 import numpy as np
 
-from sorgui.render import ClipSphere, LineData, MarkerData, MeshData, PatchData
+from sorgui.render import ClipSphere, LineData, MarkerData, MeshData
 
 PICTURE_SIZE = (900, 700)
 """Width and height of the report picture, in pixels."""
@@ -34,7 +34,6 @@ class PictureScene(Protocol):
     profile_curve: LineData
     center_marker: MarkerData | None
     region: ClipSphere
-    patch: PatchData | None
 
 
 def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transparent: bool = False) -> bytes:
@@ -60,13 +59,6 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
                     smooth_shading=True,
                 )
                 actor.prop.interpolation = "gouraud"
-            elif scene.patch is not None and not scene.patch.is_empty:  # a parametrization without its equation
-                plotter.add_mesh(
-                    scene.patch.to_polydata().triangulate(),
-                    color=SURFACE_COLOR,
-                    specular=0.35,
-                    backface_params={"color": BACK_COLOR},
-                )
             for data, color in ((scene.axis_segment, AXIS_COLOR), (scene.profile_curve, PROFILE_COLOR)):
                 if not data.is_empty:
                     plotter.add_mesh(data.to_polydata(), color=color, line_width=4)

@@ -145,7 +145,7 @@ class ResultsPane(QScrollArea):
             self._parametric_section(column, analysis.parametric)
         equation = "polynomial" if rec.polynomial else "not known"
         if not rec.polynomial and analysis.parametric is not None:
-            equation = f"not known: {analysis.parametric.implicit_status}"
+            equation = "not known: " + analysis.parametric.implicit_status.removeprefix("not found: ")
         self._section(column, "Equation", [("f(x, y, z)", equation)])
         if analysis.approximate is not None:
             self._approximation_section(column, analysis.approximate)

@@ -189,7 +189,8 @@ def verdict(analysis: Analysis) -> tuple[str, str, str]:
     rec = analysis.recognition
     approx = analysis.approximate
     kind = kind_phrase(rec.symmetry)
-    detail = f"{kind} · degree {rec.degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
+    degree = f"degree {rec.degree}" if rec.polynomial else "degree unknown"  # a map's equation may not be found
+    detail = f"{kind} · {degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
     conical = analysis.conical
     if conical is not None and conical.kind == "cone" and conical.apex is not None:
         detail += f" · a cone with apex ({', '.join(conical.apex)}){_over(conical)}"
@@ -206,7 +207,7 @@ def verdict(analysis: Analysis) -> tuple[str, str, str]:
     if rec.is_sor:
         return "Surface of revolution", detail, "sor"
     if approx is not None and approx.near_sor:
-        return "Nearly a surface of revolution", near_words(approx) + f" · degree {rec.degree}", "near"
+        return "Nearly a surface of revolution", near_words(approx) + f" · {degree}", "near"
     if approx is not None:
         return "Not a surface of revolution", far_words(approx), "not"
     return "Not a surface of revolution", detail, "not"

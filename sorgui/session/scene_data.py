@@ -48,12 +48,14 @@ from sorgui.render import (
     surface_mesh,
 )
 from sorgui.render.canal_scene import FamilyCurves, SmatFamily
-from sorgui.render.geometry import foot_on_line
+from sorgui.render.geometry import foot_on_line, readonly
 from sorgui.render.mesh import DEFAULT_RESOLUTION
 from sorgui.render.sampling import evaluate_points, first_order_distance, term_arrays
 
 PATCH_GRID = 41
 """Samples per parameter of the patch, drawn as a wireframe: a readable net of curves."""
+SURFACE_GRID = 161
+"""Samples per parameter of a map's patch drawn as the surface (no implicit equation known)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -157,7 +159,7 @@ def natural_center(rec: Recognition, approximate: Approximation | None = None) -
 # --- the scene ------------------------------------------------------------------------------
 
 
-def _patch(param: Parametrization, region: ClipSphere | None) -> PatchData | None:
+def _patch(param: Parametrization, region: ClipSphere | ClipBox | None, n: int = PATCH_GRID) -> PatchData | None:
     """A grid patch of a real parameterization (``None`` if its coordinates cannot be read)."""
     try:
         coordinates = [rational_function_terms(c, param.parameters) for c in param.coordinates]
@@ -175,7 +177,7 @@ def _patch(param: Parametrization, region: ClipSphere | None) -> PatchData | Non
         return evaluate
 
     fx, fy, fz = (coordinate(n, d) for n, d in coordinates)
-    return parametric_patch(fx, fy, fz, PATCH_RANGE, PATCH_RANGE, n=PATCH_GRID, region=region)
+    return parametric_patch(fx, fy, fz, PATCH_RANGE, PATCH_RANGE, n=n, region=region)
 
 
 def patch_region(param: Parametrization) -> ClipSphere | None:
@@ -192,6 +194,36 @@ def patch_region(param: Parametrization) -> ClipSphere | None:
     middle = np.median(points, axis=0)
     radius = 1.1 * float(np.percentile(np.linalg.norm(points - middle, axis=1), 90)) or 1.0
     return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
+
+
+def patch_surface(param: Parametrization, clip: ClipSphere | ClipBox, bounds: tuple[float, ...]) -> MeshData:
+    """The map's patch over :data:`~sorgui.render.PATCH_RANGE` as a triangle mesh (the valid
+    quads of a :data:`SURFACE_GRID` grid halved), its normals from the grid's tangents: what is
+    drawn and exported as the surface when the implicit equation is not known."""
+    patch = _patch(param, clip, SURFACE_GRID)
+    if patch is None or patch.is_empty:
+        return MeshData.empty(0.0, bounds)
+    points = np.asarray(patch.points)
+    ds, dt = np.gradient(np.nan_to_num(points), axis=(0, 1))
+    normals = np.cross(ds, dt)
+    length = np.linalg.norm(normals, axis=-1, keepdims=True)
+    normals = np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
+    ids = np.arange(points.shape[0] * points.shape[1]).reshape(points.shape[:2])
+    i, j = np.nonzero(patch.quad_mask())
+    a, b, c, d = ids[i, j], ids[i + 1, j], ids[i + 1, j + 1], ids[i, j + 1]
+    triangles = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    used, inverse = np.unique(triangles, return_inverse=True)
+    faces = np.column_stack([np.full(len(triangles), 3), inverse.reshape(-1, 3)]).ravel().astype(np.int64)
+    flat = points.reshape(-1, 3)[used]
+    spacing = float(np.max(np.ptp(flat, axis=0))) / SURFACE_GRID
+    return MeshData(
+        readonly(flat),
+        readonly(faces),
+        readonly(normals.reshape(-1, 3)[used].astype(np.float32)),
+        readonly(np.ones(len(used), dtype=np.float32)),
+        spacing,
+        bounds,
+    )
 
 
 def build_scene(
@@ -223,6 +255,8 @@ def build_scene(
     bounds = box.bounds if box is not None else tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
     clip: ClipSphere | ClipBox = box if box is not None else region
     surface = surface_mesh(terms, bounds, resolution=resolution or DEFAULT_RESOLUTION, clip=clip)
+    if not analysis.squarefree and real:  # a parametrization without its equation: its patch is the surface
+        surface = patch_surface(real[0], clip, bounds)
     notes = []
     if surface.is_empty:
         notes.append(f"The surface has no real points that can be drawn inside the {'box' if box else 'ball'}.")
@@ -242,7 +276,7 @@ def build_scene(
         )
     marker = sphere_center_marker(float_vector(rec.center), region) if rec.center else None
     if not analysis.squarefree:
-        notes.append("The implicit equation is not known: the given map's patch is drawn instead of the surface.")
+        notes.append("The implicit equation is not known: the surface drawn is the given map's patch.")
     real = real if patch else []
     factor_lines = [
         axis_line(float_vector(f.recognition.axis.point), float_vector(f.recognition.axis.direction), region)

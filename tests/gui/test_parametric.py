@@ -48,7 +48,7 @@ def test_the_pane_shows_the_map_as_typed_and_that_it_is_proper(
     window.save_screenshots(artifacts / "parametric-window.png", artifacts / "parametric-viewport.png")
 
 
-def test_a_map_without_its_equation_is_drawn_as_its_patch(window, run_analysis) -> None:  # noqa: ANN001
+def test_a_map_without_its_equation_is_drawn_as_its_patch(window, run_analysis, artifacts: Path) -> None:  # noqa: ANN001
     result = run_analysis(window, map_text(bicubic_patch(seed=3)), timeout_ms=120_000)
     assert not result.analysis.is_sor and result.analysis.recognition.polynomial in ("", result.analysis.squarefree)
     text = _pane_text(window)
@@ -57,3 +57,4 @@ def test_a_map_without_its_equation_is_drawn_as_its_patch(window, run_analysis) 
         assert "not known" in text
         assert window.viewport.scene is not None and window.viewport.scene.patch is not None
         assert not window.viewport.scene.patch.is_empty
+    window.save_screenshots(artifacts / "parametric-patch-window.png", artifacts / "parametric-patch-viewport.png")
