@@ -1,0 +1,124 @@
+"""The ``-o`` files are written in a child process under the one time limit, and every fault of
+writing them is one line (real ``sorgui analyze`` processes, real Open CASCADE)."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+SORGUI = [sys.executable, "-m", "sorgui.cli"]
+SLOW_EXPORT = "(x^2+y^2)^30+z^60-1"
+"""A degree-60 surface of revolution whose STEP file fits its profile for most of a minute."""
+
+
+def sorgui(*args: str, timeout: float = 300, **kwargs) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([*SORGUI, *args], capture_output=True, text=True, timeout=timeout, **kwargs)
+
+
+def lines(stderr: str) -> list[str]:
+    """The lines of ``stderr``, each a sorgui message (no traceback)."""
+    assert "Traceback" not in stderr, stderr
+    found = stderr.splitlines()
+    assert all(line.startswith("sorgui: ") for line in found), stderr
+    return found
+
+
+def leftovers(folder: Path) -> list[Path]:
+    """Temporary files of an atomic write left behind."""
+    return [p for p in folder.iterdir() if ".tmp" in p.name]
+
+
+def test_the_time_limit_bounds_the_files_too(tmp_path: Path) -> None:
+    """``--timeout 3`` with a CAD file that takes most of a minute: the answer comes within the
+    limit and a second (with room for a busy machine), the file not written is named, the old
+    one is kept, and the analysis is still printed."""
+    step = tmp_path / "out.step"
+    step.write_text("the old file\n", encoding="ascii")
+    start = time.monotonic()
+    done = sorgui("analyze", "--json", SLOW_EXPORT, "--timeout", "3", "-o", str(tmp_path / "out.stl"), "-o", str(step))
+    elapsed = time.monotonic() - start
+    assert done.returncode == 1
+    assert f"cannot write {step}: not written within the time limit of 3 s" in lines(done.stderr)[-1]
+    assert elapsed < 3 + 6, elapsed
+    assert json.loads(done.stdout)["degree"] == 60
+    assert step.read_text(encoding="ascii") == "the old file\n"
+    assert leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("delay", [0.5, 1.0, 1.5, 2.0, 2.5, 2.9])
+def test_sigterm_while_a_cad_file_is_written_ends_sorgui_with_143(tmp_path: Path, delay: float) -> None:
+    """Whenever the signal comes (the engine loading, Open CASCADE being imported, the file being
+    written), sorgui ends with 128 + 15 and says nothing; no half-written file is left."""
+    pytest.importorskip("OCP")
+    proc = subprocess.Popen(
+        [*SORGUI, "analyze", "x^2+y^2-z", "-o", str(tmp_path / "out.step")],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    time.sleep(delay)
+    proc.send_signal(signal.SIGTERM)
+    _out, err = proc.communicate(timeout=60)
+    if proc.returncode == 0:
+        pytest.skip("the file was written before the signal came")
+    assert proc.returncode == 128 + signal.SIGTERM and err == "", err
+    time.sleep(0.5)  # the killed export process is gone by then
+    assert leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize(
+    "region",
+    ["1e308", "1e-300", "-1e308:1e308,-1:1,-1:1", "0:1e-300,0:1,0:1", "-1e200:1e200,-1:1,-1:1"],
+)
+def test_a_region_beyond_what_can_be_drawn_is_refused_in_one_line(tmp_path: Path, region: str) -> None:
+    done = sorgui("analyze", "x^2+y^2-z", f"--region={region}", "-o", str(tmp_path / "out.stl"), timeout=60)
+    assert done.returncode == 2 and "region" in lines(done.stderr)[0] and len(lines(done.stderr)) == 1
+    assert not (tmp_path / "out.stl").exists()
+
+
+def test_a_file_name_with_a_newline_keeps_the_wrote_line_one_line(tmp_path: Path) -> None:
+    pytest.importorskip("OCP")
+    target = tmp_path / "a\nb.step"
+    done = sorgui("analyze", "x^2+y^2+z^2-1", "-o", str(target))
+    assert done.returncode == 0, done.stderr
+    (line,) = lines(done.stderr)
+    assert line.startswith(f"sorgui: wrote {tmp_path}/a\\nb.step: ") and target.exists()
+
+
+def test_a_file_name_of_255_characters_is_written(tmp_path: Path) -> None:
+    """The longest name a folder takes: the temporary file beside it gets a shorter one."""
+    target = tmp_path / ("n" * (255 - len(".json")) + ".json")
+    done = sorgui("analyze", "--recognition-only", "x^2+y^2-z", "-o", str(target), timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(target.read_text(encoding="utf-8"))["is_sor"] is True
+    assert leftovers(tmp_path) == []
+
+
+def test_no_export_process_outlives_sorgui(tmp_path: Path) -> None:
+    """A file not written by the limit: its process is killed, nothing of sorgui is left running."""
+    proc = subprocess.Popen(
+        [*SORGUI, "analyze", SLOW_EXPORT, "--timeout", "3", "-o", str(tmp_path / "out.step")],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    _out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 1 and "not written within the time limit" in err
+    time.sleep(0.5)
+    survivors = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                cmdline = (entry / "cmdline").read_bytes()
+            except OSError:
+                continue
+            if str(tmp_path / "out.step").encode() in cmdline and int(entry.name) != os.getpid():
+                survivors.append(entry.name)
+    assert survivors == []
