@@ -597,7 +597,9 @@ def analyze_main(argv: Sequence[str]) -> int:
         unwritten = str(exc)  # the answer is still printed: nothing of the analysis is lost
     try:
         if args.json:
-            emit(json.dumps(result.to_json(), indent=1))
+            from sorgui.engine.results import report_json
+
+            emit(json.dumps(report_json(result), indent=1))
         else:
             from sorgui.export.text import plain_text
 

@@ -91,3 +91,18 @@ def test_open_refuses_what_it_cannot_do_in_one_line(torus_report: Path, tmp_path
     missing = sorgui("open", str(tmp_path / "missing.json"), "-o", str(tmp_path / "x.txt"), timeout=60)
     assert missing.returncode == 2 and "cannot read" in one_line(missing.stderr)
     assert not (tmp_path / "x.txt").exists()
+
+
+def test_a_lying_report_is_refused_before_anything_is_written(torus_report: Path, tmp_path: Path) -> None:
+    """The torus's report with another equation: refused in one line naming the field, status 2,
+    no file written (it used to export a STEP torus headed x**3 + y**3 + z**3 - 1 = 0)."""
+    data = json.loads(torus_report.read_text(encoding="utf-8"))
+    data["input"], data["polynomial"] = "x^3+y^3+z^3-1", "x**3 + y**3 + z**3 - 1"
+    lying = tmp_path / "lying.json"
+    lying.write_text(json.dumps(data), encoding="utf-8")
+    step = tmp_path / "out.step"
+    done = sorgui("open", str(lying), "-o", str(step), "-o", str(tmp_path / "out.stl"), timeout=120)
+    assert done.returncode == 2 and "refused: its degree is 4" in one_line(done.stderr)
+    assert not step.exists() and not (tmp_path / "out.stl").exists()
+    window = sorgui("open", str(lying), timeout=120)
+    assert window.returncode == 2 and "refused" in one_line(window.stderr)
