@@ -539,3 +539,14 @@ def test_a_reports_export_runs_in_a_process_the_window_kills_at_its_time_limit(
     with qtbot.waitSignal(window.cad_export.written, timeout=120_000):
         window._export_results()
     assert again.exists() and not window.cad_export.busy
+
+
+def test_an_endless_device_opened_as_an_equation_is_refused_in_one_line(window, monkeypatch) -> None:
+    """File → Open of ``/dev/zero``: its size says 0 and it never ends; read only up to the limit
+    (it was read whole: a MemoryError)."""
+    if not Path("/dev/zero").exists():
+        pytest.skip("no /dev/zero")
+    shown: list[str] = []
+    monkeypatch.setattr(window, "_show_error", lambda title, message: shown.append(f"{title}: {message}"))
+    assert not window.open_file("/dev/zero")
+    assert len(shown) == 1 and "too large" in shown[0] and "\n" not in shown[0]
