@@ -122,3 +122,67 @@ def test_no_export_process_outlives_sorgui(tmp_path: Path) -> None:
             if str(tmp_path / "out.step").encode() in cmdline and int(entry.name) != os.getpid():
                 survivors.append(entry.name)
     assert survivors == []
+
+
+def step_strings(text: str, entity: str) -> list[str]:
+    """The strings of the first ``entity(…)`` of a STEP file, decoded as ISO 10303-21 says."""
+    import re
+
+    start = text.index(entity + "(")
+    body = text[start : text.index(";", start)].replace("\n", "")
+    return [_decoded(raw) for raw in re.findall(r"'((?:[^']|'')*)'", body)]
+
+
+def _decoded(raw: str) -> str:
+    out, i = [], 0
+    raw = raw.replace("''", "'")
+    while i < len(raw):
+        if raw.startswith("\\\\", i):
+            out.append("\\")
+            i += 2
+        elif raw.startswith("\\X2\\", i):
+            end = raw.index("\\X0\\", i)
+            digits = raw[i + 4 : end]
+            out += [chr(int(digits[k : k + 4], 16)) for k in range(0, len(digits), 4)]
+            i = end + 4
+        elif raw.startswith("\\X\\", i):
+            out.append(chr(int(raw[i + 3 : i + 5], 16)))
+            i += 5
+        elif raw.startswith("\\S\\", i):
+            out.append(chr(ord(raw[i + 3]) + 128))
+            i += 4
+        else:
+            assert raw[i] != "\\", f"a lone backslash in {raw!r}"
+            out.append(raw[i])
+            i += 1
+    return "".join(out)
+
+
+def test_a_backslash_in_a_step_header_reads_back_as_a_backslash(tmp_path: Path) -> None:
+    """STEP's escapes in a file name (``\\X2\\000D\\X0\\`` is a carriage return, ``\\S\\`` shifts
+    a character) are written as the characters they are: the header decodes to the name itself."""
+    pytest.importorskip("OCP")
+    name = "n\\X\\0A\\X2\\000D\\X0\\\\S\\a'b.step"
+    target = tmp_path / name
+    done = sorgui("analyze", "x^2+y^2+z^2-1", "-o", str(target))
+    assert done.returncode == 0, done.stderr
+    text = target.read_text(encoding="ascii")
+    assert step_strings(text, "FILE_NAME")[0] == name
+    assert step_strings(text, "PRODUCT")[0].startswith(name.removesuffix(".step"))  # Open CASCADE adds " 1"
+
+
+def test_a_reports_method_in_a_patch_header_reads_back_literally(tmp_path: Path) -> None:
+    """The same escapes through a report's parameterization ``method``, written in the patch's header."""
+    pytest.importorskip("OCP")
+    report = tmp_path / "paraboloid.json"
+    assert sorgui("analyze", "x^2+y^2-z", "-o", str(report)).returncode == 0
+    data = json.loads(report.read_text(encoding="utf-8"))
+    method = "rotated \\X2\\000D\\X0\\ profile \\S\\a"
+    for param in data["parametrizations"]:
+        param["method"] = method
+    report.write_text(json.dumps(data), encoding="utf-8")
+    patch = tmp_path / "part.patch.step"
+    done = sorgui("open", str(report), "-o", str(patch))
+    assert done.returncode == 0, done.stderr
+    description = " ".join(step_strings(patch.read_text(encoding="ascii"), "FILE_DESCRIPTION"))
+    assert method in description and "\r" not in description
