@@ -836,7 +836,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     _started[:] = [time.monotonic() - (_process_age() if own_process else 0.0)]
     if own_process:
         _usable_streams()
-        _writable_matplotlib_cache()
+        _writable_caches()
     argv = list(sys.argv[1:] if argv is None else argv)
     command = COMMANDS.get(argv[0]) if argv else None
     try:
@@ -863,21 +863,46 @@ def _process_age() -> float:
         return 0.0
 
 
-def _writable_matplotlib_cache() -> None:
-    """Point matplotlib (the typesetting of formulas, the pictures) at a folder it can write when
-    the usual one (``~/.config/matplotlib``) cannot be made: a read-only home would otherwise
-    print matplotlib's warning and rebuild its font cache in a new temporary folder every time.
-    The folder is this user's own (``sorgui-matplotlib-UID`` in the temporary folder, checked to be
-    a folder owned by the user and closed to others), else a new private one."""
-    if "MPLCONFIGDIR" in os.environ:
-        return
+def _writable_caches() -> None:
+    """Point matplotlib (the typesetting of formulas, the pictures) and Mesa (OpenGL's shader
+    cache, the window and the pictures) at a folder they can write when the usual ones
+    (``~/.config/matplotlib``, ``~/.cache``) cannot be made: a read-only home would otherwise
+    print matplotlib's warning and rebuild its font cache in a new temporary folder every time,
+    and Mesa's ``Failed to create …/mesa_shader_cache`` line. The folder is this user's own
+    (``sorgui-matplotlib-UID`` in the temporary folder, checked to be a folder owned by the user
+    and closed to others), else a new private one."""
     try:
-        usual = Path(os.environ.get("XDG_CONFIG_HOME") or Path.home() / ".config") / "matplotlib"
-        usual.mkdir(parents=True, exist_ok=True)
-        if os.access(usual, os.W_OK | os.X_OK):
-            return
+        config = Path(os.environ.get("XDG_CONFIG_HOME") or Path.home() / ".config")
+        cache = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    except RuntimeError:  # no home at all
+        config = cache = Path("/nonexistent")
+    needs = {
+        name: folder
+        for name, folder in (("MPLCONFIGDIR", config / "matplotlib"), ("MESA_SHADER_CACHE_DIR", cache))
+        if name not in os.environ and not _writable_folder(folder)
+    }
+    if not needs:
+        return
+    private = _private_folder()
+    if private is None:
+        return
+    if "MPLCONFIGDIR" in needs:
+        os.environ["MPLCONFIGDIR"] = str(private)
+    if "MESA_SHADER_CACHE_DIR" in needs:
+        os.environ["MESA_SHADER_CACHE_DIR"] = str(private / "mesa_shader_cache")
+
+
+def _writable_folder(folder: Path) -> bool:
+    """Whether ``folder`` exists (made if need be) and can be written."""
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        return os.access(folder, os.W_OK | os.X_OK)
     except (OSError, RuntimeError):
-        pass
+        return False
+
+
+def _private_folder() -> Path | None:
+    """This user's own folder in the temporary folder, else a new private one."""
     import tempfile
 
     shared = Path(tempfile.gettempdir()) / f"sorgui-matplotlib-{os.getuid()}"
@@ -885,14 +910,13 @@ def _writable_matplotlib_cache() -> None:
         shared.mkdir(mode=0o700, exist_ok=True)
         status = os.lstat(shared)
         if stat.S_ISDIR(status.st_mode) and status.st_uid == os.getuid() and not status.st_mode & 0o077:
-            os.environ["MPLCONFIGDIR"] = str(shared)
-            return
+            return shared
     except OSError:
         pass
     try:
-        os.environ["MPLCONFIGDIR"] = tempfile.mkdtemp(prefix="sorgui-matplotlib-")
+        return Path(tempfile.mkdtemp(prefix="sorgui-matplotlib-"))
     except OSError:
-        pass
+        return None
 
 
 def _usable_streams() -> None:

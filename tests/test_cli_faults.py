@@ -101,3 +101,29 @@ def test_a_home_that_cannot_be_written_gets_no_matplotlib_warning(tmp_path: Path
     errors = [line for line in done.stderr.splitlines() if "building the font cache" not in line]
     assert done.returncode == 0 and errors == [], done.stderr
     assert (tmp_path / "surface.png").stat().st_size > 1000
+
+
+def test_a_home_that_cannot_be_written_gets_private_caches_for_mesa_too() -> None:
+    """Mesa's shader cache (the window, the pictures) would print 'Failed to create
+    …/mesa_shader_cache' once per process; it gets the same private folder as matplotlib."""
+    env = {k: v for k, v in os.environ.items() if k not in ("MPLCONFIGDIR", "XDG_CONFIG_HOME", "XDG_CACHE_HOME")}
+    env.pop("MESA_SHADER_CACHE_DIR", None)
+    env["HOME"] = "/proc/self/fdinfo"
+    code = (
+        "import os; from sorgui import cli; cli._writable_caches(); "
+        "print(os.environ['MESA_SHADER_CACHE_DIR']); print(os.environ['MPLCONFIGDIR'])"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60, env=env)
+    assert done.returncode == 0, done.stderr
+    mesa, matplotlib = (Path(line) for line in done.stdout.split())
+    assert mesa.parent == matplotlib and matplotlib.is_dir()
+    assert matplotlib.stat().st_uid == os.getuid() and not matplotlib.stat().st_mode & 0o077
+    only_mesa = "import os; from sorgui import cli; cli._writable_caches(); print(os.environ['MESA_SHADER_CACHE_DIR'])"
+    kept = subprocess.run(
+        [sys.executable, "-c", only_mesa],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env={**env, "HOME": str(matplotlib), "MESA_SHADER_CACHE_DIR": "/mine"},
+    )
+    assert kept.returncode == 0 and kept.stdout == "/mine\n"  # a user's own setting wins
