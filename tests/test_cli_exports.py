@@ -186,3 +186,25 @@ def test_a_reports_method_in_a_patch_header_reads_back_literally(tmp_path: Path)
     assert done.returncode == 0, done.stderr
     description = " ".join(step_strings(patch.read_text(encoding="ascii"), "FILE_DESCRIPTION"))
     assert method in description and "\r" not in description
+
+
+@pytest.mark.parametrize(
+    ("equation", "suffix", "words"),
+    [
+        ("x^2+y^2+z^2", ".step", "real points are an isolated real point, not a surface"),
+        ("x^2+y^2+z^2", ".stl", "real points are an isolated real point, not a surface"),
+        ("x^2+y^2", ".step", "real points are a curve (the axis), not a surface"),
+        ("x^2+y^2", ".obj", "real points are a curve (the axis), not a surface"),
+        ("(x^2+y^2+z^2-1)^2+z^2", ".stl", "a curve (a circle about the axis)"),
+        ("x^2+y^2+z^2+1", ".iges", "the surface has no real points"),
+        ("(x^2+y^2+z^2+1)^30-2", ".step", "has a sphere's symmetry but is not a sphere of degree 2"),
+    ],
+)
+def test_a_surface_without_a_surface_to_write_says_what_its_real_points_are(
+    tmp_path: Path, equation: str, suffix: str, words: str
+) -> None:
+    if suffix in (".step", ".iges"):
+        pytest.importorskip("OCP")
+    target = tmp_path / f"out{suffix}"
+    done = sorgui("analyze", equation, "-o", str(target))
+    assert done.returncode == 1 and words in lines(done.stderr)[-1] and not target.exists(), done.stderr

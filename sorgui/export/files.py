@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from sorgui.engine.results import Analysis
+from sorgui.engine.vocabulary import no_surface
 from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
 from sorgui.export.cas import latex_document, maple_file, mathematica_file
 from sorgui.export.meshes import is_patch_path
@@ -110,12 +111,23 @@ def export_file(
     its route, its faces and a fitted profile's measured deviation."""
     path = Path(path)
     form = format_of(path, fmt)
+    _has_a_surface(analysis, form, wants_patch(path, fmt))
     if form.kind != "cad":
         return export_analysis(analysis, path, fmt, scene=scene, picture=picture, units=units, tolerance=tolerance), ""
     from sorgui.cad import cad_file, summary
 
     data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance)
     return atomic_write_bytes(path, data), summary(model)
+
+
+def _has_a_surface(analysis: Analysis, form: Format, patch: bool) -> None:
+    """A mesh or a CAD file of the surface needs a real surface: ``ValueError`` saying what the
+    real points are otherwise (a point, the axis), rather than that none were found in the ball."""
+    locus = analysis.real_locus
+    if form.kind in ("mesh", "cad") and not patch and locus is not None:
+        reason = no_surface(locus.kind, locus.points, locus.circles, locus.axis_line)
+        if reason is not None:
+            raise ValueError(f"{reason}: there is no surface to write")
 
 
 def wants_patch(path: Path, fmt: str | None = None) -> bool:
@@ -142,6 +154,7 @@ def export_analysis(
     """
     path = Path(path)
     form = format_of(path, fmt)
+    _has_a_surface(analysis, form, wants_patch(path, fmt))
     if form.needs_scene and scene is None:
         raise ValueError(f"{form.name} needs the drawn scene of the analysis")
     if form.suffix in TEXT_WRITERS:
