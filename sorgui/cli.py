@@ -697,12 +697,41 @@ def each_line(args: argparse.Namespace) -> int:
         if args.file is not None and sys.stderr.isatty() and args.file.is_file():
             total = sum(1 for _ in equations(read_lines(stream, MAX_INPUT)))  # for the progress bar
             stream.seek(0)
-        return run_batch(read_lines(stream, MAX_INPUT), args, emit, total)
+        errors = _ErrorLines()
+        status = run_batch(read_lines(stream, MAX_INPUT), args, errors.emit, total)
+        if status == 1 and errors.count:  # an analysis failed (a line that is no polynomial says so itself)
+            print(f"sorgui: {one_line(errors.summary())}", file=sys.stderr, flush=True)
+        return status
     except UnicodeDecodeError as exc:
         raise UsageError(f"cannot read {source}: {exc}") from None
     finally:
         if stream is not sys.stdin:
             stream.close()
+
+
+class _ErrorLines:
+    """:func:`emit` for ``--each-line``, counting the lines that are error objects, so that a
+    batch that ends with status 1 (an analysis failed) says why on stderr: a limit on processes
+    fails every line alike, and the error objects alone were easy to miss."""
+
+    def __init__(self) -> None:
+        self.count = 0
+        self.lines = 0
+        self.first: tuple[int, str] | None = None
+
+    def emit(self, text: str) -> None:
+        emit(text)
+        self.lines += 1
+        if '"error": {"message": ' in text and '"is_sor":' not in text:  # an error object, not an analysis
+            self.count += 1
+            if self.first is None:
+                data = json.loads(text)
+                self.first = (data["line"], data["error"]["message"])
+
+    def summary(self) -> str:
+        assert self.first is not None
+        line, message = self.first
+        return f"{self.count} of {self.lines} lines gave an error object; the first, line {line}: {message}"
 
 
 def gui_main(argv: Sequence[str]) -> int:

@@ -127,3 +127,26 @@ def test_a_home_that_cannot_be_written_gets_private_caches_for_mesa_too() -> Non
         env={**env, "HOME": str(matplotlib), "MESA_SHADER_CACHE_DIR": "/mine"},
     )
     assert kept.returncode == 0 and kept.stdout == "/mine\n"  # a user's own setting wins
+
+
+def test_a_process_limit_in_a_batch_is_said_in_one_line(tmp_path: Path) -> None:
+    """``ulimit -u 3`` with ``--jobs 3``: every line's error object, and one line on stderr (the
+    status 1 came with nothing said)."""
+    if os.geteuid() == 0:
+        pytest.skip("root is not bound by RLIMIT_NPROC")
+    lines = tmp_path / "lines.txt"
+    lines.write_text("x^2+y^2-z\nx^2+2y^2-z\nx^2+y^2+z^2-1\n", encoding="utf-8")
+    done = shell(f"ulimit -u 3; SORGUI --each-line --jobs 3 -f {lines}")
+    assert done.returncode == 1 and "could not be started" in one_line(done.stderr)
+    assert len(done.stdout.splitlines()) == 3
+
+
+def test_a_batch_that_failed_says_how_many_lines_and_the_first_reason(capsys: pytest.CaptureFixture[str]) -> None:
+    from sorgui import cli
+
+    errors = cli._ErrorLines()
+    errors.emit('{"line": 1, "input": "x", "is_sor": false, "symmetry": "none"}')
+    errors.emit('{"line": 2, "input": "y", "error": {"message": "the analysis process died", "position": null}}')
+    errors.emit('{"line": 5, "input": "z", "error": {"message": "out of memory", "position": null}}')
+    assert errors.summary() == "2 of 3 lines gave an error object; the first, line 2: the analysis process died"
+    assert len(capsys.readouterr().out.splitlines()) == 3
