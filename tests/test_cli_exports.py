@@ -208,3 +208,13 @@ def test_a_surface_without_a_surface_to_write_says_what_its_real_points_are(
     target = tmp_path / f"out{suffix}"
     done = sorgui("analyze", equation, "-o", str(target))
     assert done.returncode == 1 and words in lines(done.stderr)[-1] and not target.exists(), done.stderr
+
+
+def test_a_cad_file_of_a_surface_outside_the_drawn_ball_is_refused_before_open_cascade(tmp_path: Path) -> None:
+    """A sphere of radius 10^200 about a ball of radius 2 kept Open CASCADE's cut busy for
+    minutes (and one of radius 10^20 gave a STEP file of no face): said at once."""
+    pytest.importorskip("OCP")
+    for radius_squared in ("10^400", "10^40"):
+        done = sorgui("analyze", f"x^2+y^2+z^2-{radius_squared}", "--timeout", "60", "-o", str(tmp_path / "s.step"))
+        assert done.returncode == 1 and "no real points inside the drawn ball" in lines(done.stderr)[-1]
+        assert not (tmp_path / "s.step").exists()

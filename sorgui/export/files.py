@@ -114,6 +114,12 @@ def export_file(
     _has_a_surface(analysis, form, wants_patch(path, fmt))
     if form.kind != "cad":
         return export_analysis(analysis, path, fmt, scene=scene, picture=picture, units=units, tolerance=tolerance), ""
+    if scene is not None and not wants_patch(path, fmt) and scene.surface.is_empty:
+        # nothing for Open CASCADE to cut: a sphere of radius 10^200 about a ball of radius 2 kept
+        # its Boolean busy for minutes, one of radius 10^20 gave a file of no face
+        raise ValueError(
+            f"the surface has no real points inside the {'box' if scene.box else 'drawn ball'} (give --region)"
+        )
     from sorgui.cad import cad_file, summary
 
     data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance)
