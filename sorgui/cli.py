@@ -663,7 +663,7 @@ def part_main(args: argparse.Namespace, source: Path) -> int:
                 if path.suffix.lower() in CAD_SUFFIXES:
                     written = next(f for f in answer.files if f.path == str(path))
                     atomic_write_bytes(path, written.data)
-                    print(f"sorgui: wrote {path}: {written.holds}", file=sys.stderr)
+                    print(f"sorgui: wrote {one_line(str(path))}: {written.holds}", file=sys.stderr)
                 else:
                     atomic_write_text(
                         path, data + "\n" if path.suffix.lower() == ".json" else text_report(answer.report) + "\n"
