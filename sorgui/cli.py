@@ -477,6 +477,21 @@ def write_outputs(
         raise _OutputError(failures[-1])
 
 
+def write_files(args: argparse.Namespace, result: Analysis | None = None, report: Path | None = None) -> None:
+    """:func:`write_outputs` with the ``-o`` options of a command line, within its ``--timeout``."""
+    write_outputs(
+        result,
+        args.output,
+        args.export_format,
+        args.units,
+        args.fit_tolerance,
+        args.region,
+        deadline=export_deadline(args.timeout),
+        report=report,
+        limit=args.timeout,
+    )
+
+
 def export_deadline(timeout: float) -> float | None:
     """When the ``-o`` files must be written by: ``timeout`` seconds from the command's start,
     less :data:`EXPORT_MARGIN` (the time to end the export process and answer)."""
@@ -583,16 +598,7 @@ def analyze_main(argv: Sequence[str]) -> int:
             return fail("the analysis was cancelled", None, args.json, 1)
     unwritten = None
     try:
-        write_outputs(
-            result,
-            args.output,
-            args.export_format,
-            args.units,
-            args.fit_tolerance,
-            args.region,
-            deadline=export_deadline(args.timeout),
-            limit=args.timeout,
-        )
+        write_files(args, result)
     except _OutputError as exc:
         unwritten = str(exc)  # the answer is still printed: nothing of the analysis is lost
     try:
@@ -812,17 +818,7 @@ def open_main(argv: Sequence[str]) -> int:
         return fail(str(exc), None, False, 2)
     if args.output:
         try:
-            write_outputs(
-                None,
-                args.output,
-                args.export_format,
-                args.units,
-                args.fit_tolerance,
-                args.region,
-                deadline=export_deadline(args.timeout),
-                report=args.report,
-                limit=args.timeout,
-            )
+            write_files(args, report=args.report)
         except _ReportRefused as exc:
             return fail(str(exc), None, False, 2)
         except _OutputError as exc:

@@ -17,7 +17,7 @@ from ..algebra.modular import Point, Redraw
 from ..errors import ClaimError
 from ..results import Canal, CanalEvidence, CanalFamily
 from .formulas import Surface, formula, values
-from .identities import Identities, proportional
+from .identities import Identities
 from .maps import check_parametrization
 
 SMAT = ("m1", "m2", "m3", "r")
@@ -162,14 +162,8 @@ def check_witness(witness: CanalEvidence, surface: Surface, where: str, ids: Ide
         c, a = values(point, point_texts), values(point, direction_texts)
         return surface.at(point, [(ci + tau * ai) % p for ci, ai in zip(c, a)])
 
-    def claimed(point: Point) -> int:
-        return values(point, [restriction])[0]
-
-    ids.add(
-        f"{where}.restriction",
-        "is not f on the witness line",
-        lambda P: proportional(claimed, line, P),
-        [*point_texts, *direction_texts, restriction],
+    ids.proportional_to(
+        f"{where}.restriction", "is not f on the witness line", restriction, line, [*point_texts, *direction_texts]
     )
 
 

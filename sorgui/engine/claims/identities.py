@@ -18,7 +18,7 @@ import sympy
 
 from ..algebra.modular import ATTEMPTS, ROUNDS, Embedding, Point, Redraw, embedding, radicands_of
 from ..errors import AnalysisError, ClaimError
-from .formulas import formula
+from .formulas import formula, values
 
 
 @dataclass(frozen=True)
@@ -45,6 +45,17 @@ class Identities:
         self.radicands |= found.rationals
         self.complex_unit = self.complex_unit or found.complex_unit
         self.items.append(Identity(where, fails, test, ATTEMPTS << min(found.polynomial_factors, MAX_FACTORS)))
+
+    def proportional_to(
+        self, where: str, fails: str, claimed: str, truth: Callable[[Point], int], texts: Iterable[str] = ()
+    ) -> None:
+        """Add the identity that the report's formula ``claimed`` is ``truth`` up to a constant
+        factor (the same curve or surface), reading ``claimed`` and ``texts``."""
+
+        def value(point: Point) -> int:
+            return values(point, [claimed])[0]
+
+        self.add(where, fails, lambda P: proportional(value, truth, P), [claimed, *texts])
 
     def need(self, *radicands: sympy.Rational | int) -> None:
         """Square roots the tests take besides those of their formulas (the field ``K``'s)."""

@@ -109,9 +109,6 @@ def check_rationality(
         y, z = point.of("y"), point.of("z")
         return (y * y + z * z - values(point, [h], t=point.of("x"))[0]) % point.prime
 
-    def tube_claimed(point: Point) -> int:
-        return values(point, [rat.tubular_surface or ""])[0]
-
     def tau_maps_t_to_x(point: Point) -> bool:
         p = point.prime
         x, y, z = point.of("x"), point.of("y"), point.of("z")
@@ -127,12 +124,7 @@ def check_rationality(
             and (ratio * ratio * h_x - psi_x) % p == 0
         )
 
-    ids.add(
-        f"{where}.tubular_surface",
-        "is not y² + z² − h(x)",
-        lambda P: proportional(tube_claimed, tube, P),
-        [rat.tubular_surface, h],
-    )
+    ids.proportional_to(f"{where}.tubular_surface", "is not y² + z² − h(x)", rat.tubular_surface, tube, [h])
     ids.add(
         f"{where}.tau",
         "does not map T onto X (τ = (φ, d·y/q, d·z/q) with d²h/q² = ψ)",
@@ -258,15 +250,7 @@ def _check_base_curve(conical: Conical, surface: Surface, where: str, ids: Ident
                 xyz[i] = point.of("xyz"[i])
             return top.at(point, xyz)
 
-        def claimed(point: Point) -> int:
-            return values(point, [base.polynomial])[0]
-
-        ids.add(
-            where,
-            "is not the top-degree form of f in its chart",
-            lambda P: proportional(claimed, chart_value, P),
-            [base.polynomial],
-        )
+        ids.proportional_to(where, "is not the top-degree form of f in its chart", base.polynomial, chart_value)
         return
     if conical.kind == "cylinder" and None not in (base.frame_point, base.frame_u, base.frame_w):
         assert base.frame_point and base.frame_u and base.frame_w and conical.direction
@@ -287,12 +271,4 @@ def _check_base_curve(conical: Conical, surface: Surface, where: str, ids: Ident
             ]
             return surface.at(point, xyz)
 
-        def claimed_section(point: Point) -> int:
-            return values(point, [base.polynomial])[0]
-
-        ids.add(
-            where,
-            "is not the section of f by its plane",
-            lambda P: proportional(claimed_section, section, P),
-            [base.polynomial],
-        )
+        ids.proportional_to(where, "is not the section of f by its plane", base.polynomial, section)
