@@ -28,11 +28,13 @@ import stat
 import sys
 import time
 import unicodedata
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
+
+from sorgui import __version__
 
 if TYPE_CHECKING:
     from sorgui.engine import Analysis
@@ -139,19 +141,40 @@ def region_value(text: str) -> UserRegion:
         raise argparse.ArgumentTypeError(f"not a region: {text!r} ({usage})") from None
     if not all(map(math.isfinite, numbers)):
         raise argparse.ArgumentTypeError(f"the region's numbers must be finite, not {text!r}")
+    if any(abs(v) > REGION_REACH for v in numbers):
+        raise argparse.ArgumentTypeError(f"the region's numbers must lie within ±{REGION_REACH:g}, not {text!r}")
     shape = [len(part) for part in parts]
     if shape in ([1], [1, 1, 1, 1]):
         if numbers[-1] <= 0:
             raise argparse.ArgumentTypeError(f"the ball's radius must be positive, not {text!r}")
+        _drawable(numbers, [numbers[-1]], text)
         if len(numbers) == 1:
             return UserRegion(radius=numbers[0])
         return UserRegion(radius=numbers[3], center=(numbers[0], numbers[1], numbers[2]))
     if shape == [2, 2, 2]:
         if any(high <= low for low, high in zip(numbers[0::2], numbers[1::2])):
             raise argparse.ArgumentTypeError(f"each side of the box must go from low to high, not {text!r}")
+        _drawable(numbers, [high - low for low, high in zip(numbers[0::2], numbers[1::2])], text)
         x0, x1, y0, y1, z0, z1 = numbers
         return UserRegion(bounds=(x0, x1, y0, y1, z0, z1))
     raise argparse.ArgumentTypeError(f"not a region: {text!r} ({usage})")
+
+
+REGION_REACH = 1e12
+"""The largest coordinate or radius ``--region`` takes: beyond it a degree-60 surface's values
+leave the range of doubles, and CAD kernels work to a fixed absolute precision."""
+REGION_FINENESS = 1e-9
+"""A ball's radius or a box's side is at least this fraction of ``max(1, largest |number|)``:
+a smaller one cannot be sampled in doubles (``0:1e-300,0:1,0:1``)."""
+
+
+def _drawable(numbers: list[float], sizes: list[float], text: str) -> None:
+    """Refuse a region too small to be drawn beside its own coordinates."""
+    least = REGION_FINENESS * max(1.0, *map(abs, numbers))
+    if min(sizes) < least:
+        raise argparse.ArgumentTypeError(
+            f"the region is too small to draw: its radius or sides must be at least {least:.3g}, not {text!r}"
+        )
 
 
 def tolerance_value(text: str) -> float | None:
@@ -221,6 +244,20 @@ def analyze_parser() -> argparse.ArgumentParser:
         "'auto' (the default) does so whenever the input prints decimals, with the "
         "tolerance their digits give",
     )
+    add_export_options(parser)
+    parser.add_argument(
+        "--each-line",
+        action="store_true",
+        help="analyse every line of the input (-f FILE or '-') on its own and print JSON Lines; '#' starts a comment",
+    )
+    parser.add_argument(
+        "--jobs", type=positive_int, default=1, help="with --each-line: the number of worker processes (default 1)"
+    )
+    return parser
+
+
+def add_export_options(parser: argparse.ArgumentParser) -> None:
+    """The options of the ``-o`` files, the same for ``sorgui analyze`` and ``sorgui open``."""
     parser.add_argument(
         "-o",
         "--output",
@@ -263,15 +300,6 @@ def analyze_parser() -> argparse.ArgumentParser:
         metavar="FORMAT",
         help="the format of every -o file whatever its suffix (json, md, tex, stl, patch.stl, ...)",
     )
-    parser.add_argument(
-        "--each-line",
-        action="store_true",
-        help="analyse every line of the input (-f FILE or '-') on its own and print JSON Lines; '#' starts a comment",
-    )
-    parser.add_argument(
-        "--jobs", type=positive_int, default=1, help="with --each-line: the number of worker processes (default 1)"
-    )
-    return parser
 
 
 def parse_arguments(parser: argparse.ArgumentParser, argv: Sequence[str]) -> argparse.Namespace:
@@ -398,38 +426,87 @@ def _check_target(path: Path, inputs: list[os.stat_result], beside: Path | None)
 
 
 def write_outputs(
-    result: Analysis,
+    result: Analysis | None,
     outputs: Sequence[Path],
     fmt: str | None = None,
     units: str = "mm",
     fit_tolerance: float | None = None,
     region: UserRegion = UserRegion(),
+    deadline: float | None = None,
+    report: Path | None = None,
+    limit: float | None = None,
 ) -> None:
-    """Write ``result`` to every ``-o`` file (atomically); an error names the file.
-
-    Meshes, pictures and the pictures of Markdown/HTML reports need the 3D scene, built once
-    (with pyvista) only when one of them is asked for."""
+    """Write ``result`` (or the saved report ``report``, read and checked there) to every ``-o``
+    file, atomically, in a child process that is killed at ``deadline`` (``time.monotonic()``)
+    or on a signal (:mod:`sorgui.session.export_process`). Each CAD file's content is said on
+    stderr; every file is tried, and a file not written raises :class:`_OutputError` naming it
+    (the others before it are said on stderr), a refused report :class:`_ReportRefused`."""
     if not outputs:
         return  # nothing to write: the export modules (and numpy) stay unloaded
-    from sorgui.export.files import export_file, format_of
+    from sorgui.session.export_process import (
+        ExportRequest,
+        ExportTarget,
+        FileFailed,
+        FileWritten,
+        ReportRefused,
+        export_supervised,
+    )
 
-    scene = None
-    if any(format_of(path, fmt).needs_scene or format_of(path, fmt).suffix in (".md", ".html") for path in outputs):
-        from sorgui.render import ClipBox, ClipSphere
-        from sorgui.session.scene_data import build_scene
+    request = ExportRequest(
+        targets=tuple(ExportTarget(str(path), fmt) for path in outputs),
+        analysis=result,
+        report=None if report is None else str(report),
+        units=units,
+        tolerance=fit_tolerance,
+        radius=region.radius,
+        center=region.center,
+        bounds=region.bounds,
+    )
+    failures: list[str] = []
+    for message in export_supervised(request, deadline, limit):
+        match message:
+            case FileWritten(path, holds) if holds:
+                print(f"sorgui: wrote {one_line(path)}: {holds}", file=sys.stderr, flush=True)
+            case FileFailed(_, reason):
+                failures.append(reason)
+            case ReportRefused(reason):
+                raise _ReportRefused(reason)
+    for reason in failures[:-1]:
+        print(f"sorgui: {one_line(reason)}", file=sys.stderr, flush=True)
+    if failures:
+        raise _OutputError(failures[-1])
 
-        ball = ClipSphere(region.center, region.radius) if region.center is not None and region.radius else None
-        box = ClipBox(region.bounds) if region.bounds else None
-        scene = build_scene(result, radius=region.radius if ball is None else None, region=ball, box=box)
-    for path in outputs:
-        try:
-            written, holds = export_file(result, path, fmt, scene=scene, units=units, tolerance=fit_tolerance)
-            if holds:
-                print(f"sorgui: wrote {written}: {holds}", file=sys.stderr)
-        except OSError as exc:
-            raise _OutputError(f"cannot write {path}: {exc.strerror or exc}") from None
-        except ValueError as exc:
-            raise _OutputError(f"cannot write {path}: {exc}") from None
+
+def write_files(args: argparse.Namespace, result: Analysis | None = None, report: Path | None = None) -> None:
+    """:func:`write_outputs` with the ``-o`` options of a command line, within its ``--timeout``."""
+    write_outputs(
+        result,
+        args.output,
+        args.export_format,
+        args.units,
+        args.fit_tolerance,
+        args.region,
+        deadline=export_deadline(args.timeout),
+        report=report,
+        limit=args.timeout,
+    )
+
+
+def export_deadline(timeout: float) -> float | None:
+    """When the ``-o`` files must be written by: ``timeout`` seconds from the command's start,
+    less :data:`EXPORT_MARGIN` (the time to end the export process and answer)."""
+    if not _started:
+        return None
+    return _started[-1] + timeout - EXPORT_MARGIN
+
+
+EXPORT_MARGIN = 0.8
+"""Seconds before the user's time limit at which the export process is killed: it is waited for
+half a second (its half-written files are then removed), and the answer needs the rest."""
+
+
+class _ReportRefused(Exception):
+    """The report of ``sorgui open REPORT -o FILE`` was refused (unreadable, or its claims fail)."""
 
 
 class _OutputError(Exception):
@@ -519,17 +596,23 @@ def analyze_main(argv: Sequence[str]) -> int:
             pass
         case _:
             return fail("the analysis was cancelled", None, args.json, 1)
+    unwritten = None
     try:
-        write_outputs(result, args.output, args.export_format, args.units, args.fit_tolerance, args.region)
+        write_files(args, result)
+    except _OutputError as exc:
+        unwritten = str(exc)  # the answer is still printed: nothing of the analysis is lost
+    try:
         if args.json:
-            emit(json.dumps(result.to_json(), indent=1))
+            from sorgui.engine.results import report_json
+
+            emit(json.dumps(report_json(result), indent=1))
         else:
             from sorgui.export.text import plain_text
 
             emit(plain_text(result))
     except _OutputError as exc:
         return fail(str(exc), None, False, 1)
-    return 0
+    return 0 if unwritten is None else fail(unwritten, None, False, 1)
 
 
 def part_source(args: argparse.Namespace) -> Path | None:
@@ -586,7 +669,7 @@ def part_main(args: argparse.Namespace, source: Path) -> int:
                 if path.suffix.lower() in CAD_SUFFIXES:
                     written = next(f for f in answer.files if f.path == str(path))
                     atomic_write_bytes(path, written.data)
-                    print(f"sorgui: wrote {path}: {written.holds}", file=sys.stderr)
+                    print(f"sorgui: wrote {one_line(str(path))}: {written.holds}", file=sys.stderr)
                 else:
                     atomic_write_text(
                         path, data + "\n" if path.suffix.lower() == ".json" else text_report(answer.report) + "\n"
@@ -620,12 +703,41 @@ def each_line(args: argparse.Namespace) -> int:
         if args.file is not None and sys.stderr.isatty() and args.file.is_file():
             total = sum(1 for _ in equations(read_lines(stream, MAX_INPUT)))  # for the progress bar
             stream.seek(0)
-        return run_batch(read_lines(stream, MAX_INPUT), args, emit, total)
+        errors = _ErrorLines()
+        status = run_batch(read_lines(stream, MAX_INPUT), args, errors.emit, total)
+        if status == 1 and errors.count:  # an analysis failed (a line that is no polynomial says so itself)
+            print(f"sorgui: {one_line(errors.summary())}", file=sys.stderr, flush=True)
+        return status
     except UnicodeDecodeError as exc:
         raise UsageError(f"cannot read {source}: {exc}") from None
     finally:
         if stream is not sys.stdin:
             stream.close()
+
+
+class _ErrorLines:
+    """:func:`emit` for ``--each-line``, counting the lines that are error objects, so that a
+    batch that ends with status 1 (an analysis failed) says why on stderr: a limit on processes
+    fails every line alike, and the error objects alone were easy to miss."""
+
+    def __init__(self) -> None:
+        self.count = 0
+        self.lines = 0
+        self.first: tuple[int, str] | None = None
+
+    def emit(self, text: str) -> None:
+        emit(text)
+        self.lines += 1
+        if '"error": {"message": ' in text and '"is_sor":' not in text:  # an error object, not an analysis
+            self.count += 1
+            if self.first is None:
+                data = json.loads(text)
+                self.first = (data["line"], data["error"]["message"])
+
+    def summary(self) -> str:
+        assert self.first is not None
+        line, message = self.first
+        return f"{self.count} of {self.lines} lines gave an error object; the first, line {line}: {message}"
 
 
 def gui_main(argv: Sequence[str]) -> int:
@@ -636,35 +748,89 @@ def gui_main(argv: Sequence[str]) -> int:
         epilog="Use 'sorgui analyze --help' for the command line.",
     )
     parser.add_argument("file", nargs="?", help="an equation file to open")
+    parser.add_argument("--version", action="version", version=f"sorgui {__version__}")
     try:
         args = parser.parse_args(argv)
     except UsageError as exc:
         return fail(str(exc), None, False, 2)
+    return _window(args.file)
+
+
+def _window(path: str | None) -> int:
+    """The window with ``path``, or one line and status 1 when there is no display to show it on."""
+    problem = display_problem(os.environ, sys.platform)
+    if problem is not None:
+        return fail(f"the window needs a display: {problem}", None, False, 1)
     from sorgui.gui.app import run_gui
 
-    return run_gui(args.file)
+    return run_gui(path)
+
+
+WINDOWLESS_PLATFORMS = ("offscreen", "minimal", "minimalegl", "vnc")
+"""Qt platforms that give no OpenGL window: the 3D view (a ``QOpenGLWidget``) would crash there."""
+
+
+def display_problem(environ: Mapping[str, str], platform: str) -> str | None:
+    """Why the window cannot be shown here (in words), or ``None``: Qt set to a platform without
+    OpenGL windows (``QT_QPA_PLATFORM=offscreen``), or on Linux no X display (sorgui's window
+    renders through X, also under Wayland), where Qt would abort with a core dump."""
+    chosen = environ.get("QT_QPA_PLATFORM", "")
+    name = chosen.split(":", 1)[0].strip().lower()
+    advice = "use 'sorgui analyze' or 'sorgui open REPORT.json -o FILE' on the terminal"
+    if name in WINDOWLESS_PLATFORMS:
+        return f"QT_QPA_PLATFORM={chosen} has none for its 3D view; unset it, or {advice}"
+    if platform.startswith("linux") and name in ("", "xcb") and not environ.get("DISPLAY"):
+        return f"DISPLAY is not set; run it in a desktop session, or {advice}"
+    return None
+
+
+def open_parser() -> argparse.ArgumentParser:
+    """The options of ``sorgui open``."""
+    parser = _Parser(
+        prog="sorgui open",
+        description="Show a report saved as JSON (sorgui analyze --json or -o FILE.json, File > Export) "
+        "in the window, or with -o write its files, without analysing again; the report's claims "
+        "are checked against its polynomial first.",
+        allow_abbrev=False,
+    )
+    parser.add_argument("report", type=Path, help="the JSON report")
+    parser.add_argument(
+        "--timeout",
+        type=positive_seconds,
+        default=DEFAULT_TIMEOUT,
+        help=f"with -o: time limit for reading the report and writing every file, in seconds "
+        f"(default {DEFAULT_TIMEOUT:g}); a file not written by then is named and its old one kept",
+    )
+    add_export_options(parser)
+    return parser
 
 
 def open_main(argv: Sequence[str]) -> int:
-    """``sorgui open REPORT.json``: the window with a saved report, shown without recomputing."""
-    parser = _Parser(
-        prog="sorgui open",
-        description="Show a report saved as JSON (sorgui analyze --json "
-        "or -o FILE.json, File > Export) in the window, without analysing again.",
-    )
-    parser.add_argument("report", type=Path, help="the JSON report")
+    """``sorgui open REPORT.json``: the window with a saved report, shown without recomputing;
+    with ``-o FILE`` its files, written without the window (the same checks, the same writers)."""
     try:
-        args = parser.parse_args(argv)
-        from sorgui.export.reports import ReportError, read_report
-
-        read_report(args.report)
+        args = open_parser().parse_args(argv)
+        if args.output:
+            check_outputs(args.output, args.report, args.export_format)
+        elif args.export_format is not None or args.fit_tolerance is not None or args.region != UserRegion():
+            raise UsageError("--format, --fit-tolerance and --region apply to -o files: give -o FILE")
     except UsageError as exc:
         return fail(str(exc), None, False, 2)
+    if args.output:
+        try:
+            write_files(args, report=args.report)
+        except _ReportRefused as exc:
+            return fail(str(exc), None, False, 2)
+        except _OutputError as exc:
+            return fail(str(exc), None, False, 1)
+        return 0
+    from sorgui.export.reports import ReportError, read_report
+
+    try:
+        read_report(args.report)
     except ReportError as exc:
         return fail(exc.message, None, False, 2)
-    from sorgui.gui.app import run_gui
-
-    return run_gui(str(args.report))
+    return _window(str(args.report))
 
 
 COMMANDS: dict[str, Callable[[Sequence[str]], int]] = {"analyze": analyze_main, "open": open_main}
@@ -695,7 +861,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     _started[:] = [time.monotonic() - (_process_age() if own_process else 0.0)]
     if own_process:
         _usable_streams()
-        _writable_matplotlib_cache()
+        _writable_caches()
     argv = list(sys.argv[1:] if argv is None else argv)
     command = COMMANDS.get(argv[0]) if argv else None
     try:
@@ -722,21 +888,46 @@ def _process_age() -> float:
         return 0.0
 
 
-def _writable_matplotlib_cache() -> None:
-    """Point matplotlib (the typesetting of formulas, the pictures) at a folder it can write when
-    the usual one (``~/.config/matplotlib``) cannot be made: a read-only home would otherwise
-    print matplotlib's warning and rebuild its font cache in a new temporary folder every time.
-    The folder is this user's own (``sorgui-matplotlib-UID`` in the temporary folder, checked to be
-    a folder owned by the user and closed to others), else a new private one."""
-    if "MPLCONFIGDIR" in os.environ:
-        return
+def _writable_caches() -> None:
+    """Point matplotlib (the typesetting of formulas, the pictures) and Mesa (OpenGL's shader
+    cache, the window and the pictures) at a folder they can write when the usual ones
+    (``~/.config/matplotlib``, ``~/.cache``) cannot be made: a read-only home would otherwise
+    print matplotlib's warning and rebuild its font cache in a new temporary folder every time,
+    and Mesa's ``Failed to create …/mesa_shader_cache`` line. The folder is this user's own
+    (``sorgui-matplotlib-UID`` in the temporary folder, checked to be a folder owned by the user
+    and closed to others), else a new private one."""
     try:
-        usual = Path(os.environ.get("XDG_CONFIG_HOME") or Path.home() / ".config") / "matplotlib"
-        usual.mkdir(parents=True, exist_ok=True)
-        if os.access(usual, os.W_OK | os.X_OK):
-            return
+        config = Path(os.environ.get("XDG_CONFIG_HOME") or Path.home() / ".config")
+        cache = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    except RuntimeError:  # no home at all
+        config = cache = Path("/nonexistent")
+    needs = {
+        name: folder
+        for name, folder in (("MPLCONFIGDIR", config / "matplotlib"), ("MESA_SHADER_CACHE_DIR", cache))
+        if name not in os.environ and not _writable_folder(folder)
+    }
+    if not needs:
+        return
+    private = _private_folder()
+    if private is None:
+        return
+    if "MPLCONFIGDIR" in needs:
+        os.environ["MPLCONFIGDIR"] = str(private)
+    if "MESA_SHADER_CACHE_DIR" in needs:
+        os.environ["MESA_SHADER_CACHE_DIR"] = str(private / "mesa_shader_cache")
+
+
+def _writable_folder(folder: Path) -> bool:
+    """Whether ``folder`` exists (made if need be) and can be written."""
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        return os.access(folder, os.W_OK | os.X_OK)
     except (OSError, RuntimeError):
-        pass
+        return False
+
+
+def _private_folder() -> Path | None:
+    """This user's own folder in the temporary folder, else a new private one."""
     import tempfile
 
     shared = Path(tempfile.gettempdir()) / f"sorgui-matplotlib-{os.getuid()}"
@@ -744,14 +935,13 @@ def _writable_matplotlib_cache() -> None:
         shared.mkdir(mode=0o700, exist_ok=True)
         status = os.lstat(shared)
         if stat.S_ISDIR(status.st_mode) and status.st_uid == os.getuid() and not status.st_mode & 0o077:
-            os.environ["MPLCONFIGDIR"] = str(shared)
-            return
+            return shared
     except OSError:
         pass
     try:
-        os.environ["MPLCONFIGDIR"] = tempfile.mkdtemp(prefix="sorgui-matplotlib-")
+        return Path(tempfile.mkdtemp(prefix="sorgui-matplotlib-"))
     except OSError:
-        pass
+        return None
 
 
 def _usable_streams() -> None:

@@ -101,3 +101,52 @@ def test_a_home_that_cannot_be_written_gets_no_matplotlib_warning(tmp_path: Path
     errors = [line for line in done.stderr.splitlines() if "building the font cache" not in line]
     assert done.returncode == 0 and errors == [], done.stderr
     assert (tmp_path / "surface.png").stat().st_size > 1000
+
+
+def test_a_home_that_cannot_be_written_gets_private_caches_for_mesa_too() -> None:
+    """Mesa's shader cache (the window, the pictures) would print 'Failed to create
+    …/mesa_shader_cache' once per process; it gets the same private folder as matplotlib."""
+    env = {k: v for k, v in os.environ.items() if k not in ("MPLCONFIGDIR", "XDG_CONFIG_HOME", "XDG_CACHE_HOME")}
+    env.pop("MESA_SHADER_CACHE_DIR", None)
+    env["HOME"] = "/proc/self/fdinfo"
+    code = (
+        "import os; from sorgui import cli; cli._writable_caches(); "
+        "print(os.environ['MESA_SHADER_CACHE_DIR']); print(os.environ['MPLCONFIGDIR'])"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60, env=env)
+    assert done.returncode == 0, done.stderr
+    mesa, matplotlib = (Path(line) for line in done.stdout.split())
+    assert mesa.parent == matplotlib and matplotlib.is_dir()
+    assert matplotlib.stat().st_uid == os.getuid() and not matplotlib.stat().st_mode & 0o077
+    only_mesa = "import os; from sorgui import cli; cli._writable_caches(); print(os.environ['MESA_SHADER_CACHE_DIR'])"
+    kept = subprocess.run(
+        [sys.executable, "-c", only_mesa],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env={**env, "HOME": str(matplotlib), "MESA_SHADER_CACHE_DIR": "/mine"},
+    )
+    assert kept.returncode == 0 and kept.stdout == "/mine\n"  # a user's own setting wins
+
+
+def test_a_process_limit_in_a_batch_is_said_in_one_line(tmp_path: Path) -> None:
+    """``ulimit -u 3`` with ``--jobs 3``: every line's error object, and one line on stderr (the
+    status 1 came with nothing said)."""
+    if os.geteuid() == 0:
+        pytest.skip("root is not bound by RLIMIT_NPROC")
+    lines = tmp_path / "lines.txt"
+    lines.write_text("x^2+y^2-z\nx^2+2y^2-z\nx^2+y^2+z^2-1\n", encoding="utf-8")
+    done = shell(f"ulimit -u 3; SORGUI --each-line --jobs 3 -f {lines}")
+    assert done.returncode == 1 and "could not be started" in one_line(done.stderr)
+    assert len(done.stdout.splitlines()) == 3
+
+
+def test_a_batch_that_failed_says_how_many_lines_and_the_first_reason(capsys: pytest.CaptureFixture[str]) -> None:
+    from sorgui import cli
+
+    errors = cli._ErrorLines()
+    errors.emit('{"line": 1, "input": "x", "is_sor": false, "symmetry": "none"}')
+    errors.emit('{"line": 2, "input": "y", "error": {"message": "the analysis process died", "position": null}}')
+    errors.emit('{"line": 5, "input": "z", "error": {"message": "out of memory", "position": null}}')
+    assert errors.summary() == "2 of 3 lines gave an error object; the first, line 2: the analysis process died"
+    assert len(capsys.readouterr().out.splitlines()) == 3

@@ -167,7 +167,7 @@ def analytic_surface(analysis: Analysis, ball: ClipSphere) -> Analytic | None:
     if rec.symmetry == "sphere" and rec.center is not None and rec.radius_squared is not None:
         r2 = float(read_expression(rec.radius_squared).evalf(30))
         if r2 <= 0:
-            raise CadGeometryError("the sphere has no real points")
+            raise CadGeometryError("the sphere has no real points" if r2 < 0 else "the sphere is a single real point")
         return Analytic("sphere", float_vector(rec.center), np.array([0.0, 0.0, 1.0]), radius=math.sqrt(r2))
     if rec.profile is None or rec.axis is None:
         return None

@@ -115,6 +115,11 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
             shape = shapes.cut_to(shape, ball)
         return CadModel(shape, "analytic", _analytic_lines(spec))
     if rec.profile is None or rec.axis is None or frame is None:
+        if rec.symmetry == "sphere":  # (x² + y² + z² + 1)³⁰ − 2: spheres about one centre
+            raise CadGeometryError(
+                f"the surface of degree {rec.degree} has a sphere's symmetry but is not a sphere of degree 2 "
+                "(spheres about one centre, of radii outside its field): a CAD file is written of a sphere of degree 2"
+            )
         raise CadGeometryError(f"a {rec.symmetry} surface has no single axis to turn a profile about")
     curve = meridian_curve(rec.profile, frame, ball)
     branches = traced_profile(scene.profile_curve.polylines(), curve)

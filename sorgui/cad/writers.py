@@ -84,7 +84,7 @@ def step_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
         "write.step.schema": "AP242DIS",
         "write.step.unit": name,
         "xstep.cascade.unit": name,
-        "write.step.product.name": _ascii(Path(header.name).stem),
+        "write.step.product.name": _step_text(Path(header.name).stem),
     }
     for key, value in settings.items():
         if not Interface_Static.SetCVal_s(key, value):
@@ -96,7 +96,7 @@ def step_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
     for number, line in enumerate(lines, 1):
         description.SetValue(number, TCollection_HAsciiString(line))
     made.SetDescription(description)
-    made.SetName(TCollection_HAsciiString(_ascii(header.name)))
+    made.SetName(TCollection_HAsciiString(_step_text(header.name)))
     made.SetOriginatingSystem(TCollection_HAsciiString(f"sorgui {header.version}"))
     made.SetAuthorValue(1, TCollection_HAsciiString(""))
     made.SetOrganizationValue(1, TCollection_HAsciiString(""))
@@ -148,9 +148,32 @@ def header_lines(header: CadHeader) -> list[str]:
 
 
 def _step_strings(header: CadHeader) -> list[str]:
-    """:func:`header_lines` cut into strings a STEP description list takes (long equations span several)."""
-    lines = [_ascii(line) for line in header_lines(header)]
-    return [line[i : i + STEP_STRING] for line in lines for i in range(0, len(line), STEP_STRING)]
+    """:func:`header_lines` cut into strings a STEP description list takes (long equations span
+    several), each escaped (:func:`_step_text`) and at most :data:`STEP_STRING` long."""
+    pieces = []
+    for line in header_lines(header):
+        piece = ""
+        for char in _ascii(line):
+            escaped = _step_text(char)
+            if len(piece) + len(escaped) > STEP_STRING:
+                pieces.append(piece)
+                piece = ""
+            piece += escaped
+        pieces.append(piece)
+    return pieces
+
+
+def _step_text(text: str) -> str:
+    """``text`` for a STEP string: printable ASCII, each backslash written ``\\X2\\005C\\X0\\``
+    (U+005C in STEP's own escape). The backslash starts STEP's escapes (``\\X2\\…\\X0\\``,
+    ``\\S\\``), and Open CASCADE doubles a backslash only where it does not start one, so a file
+    name such as ``n\\X2\\000D\\X0\\.step`` was written to decode to a carriage return; in its
+    own escape it reads back as it is."""
+    return _ascii(text).replace("\\", BACKSLASH)
+
+
+BACKSLASH = "\\X2\\005C\\X0\\"
+"""A backslash in a STEP string, as the escape that Open CASCADE passes through unchanged."""
 
 
 def _ascii(text: str) -> str:

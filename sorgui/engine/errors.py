@@ -49,3 +49,12 @@ class TimeLimitReached(SorguiError):
 
 class Cancelled(SorguiError):
     """The computation was cancelled by the caller."""
+
+
+class ClaimError(SorguiError):
+    """A claim of a saved report does not hold for its polynomial (:mod:`.claims`); ``field``
+    names the claim (``axis.point``, ``parametrizations[1]``)."""
+
+    def __init__(self, field: str, message: str) -> None:
+        super().__init__(f"{field} {message}")
+        self.field = field

@@ -538,6 +538,18 @@ class Analysis:
         )
 
 
+VERSION_KEY = "sorgui_version"
+"""The key of a report's JSON that names the version of sorgui that wrote it."""
+
+
+def report_json(analysis: Analysis) -> dict[str, Any]:
+    """The JSON document of a report (``sorgui analyze --json``, ``-o FILE.json``): the version of
+    sorgui that wrote it, then :meth:`Analysis.to_json` (a reader refuses a newer version's)."""
+    from sorgui import __version__
+
+    return {VERSION_KEY: __version__, **analysis.to_json()}
+
+
 def _field_names(cls: type) -> list[str]:
     return [f.name for f in fields(cls)]
 

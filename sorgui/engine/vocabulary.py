@@ -48,3 +48,22 @@ def kind_phrase(kind: str | None) -> str:
 def canal_kind(kind: str) -> str:
     """A canal kind in words; the kind itself if unknown."""
     return CANAL_KINDS.get(kind, kind)
+
+
+def no_surface(
+    kind: str, points: int | None = None, circles: int | None = None, axis_line: bool | None = None
+) -> str | None:
+    """Why a surface whose real points are of ``kind`` (docs/math.md §3.4: ``empty``, ``points``,
+    ``curve``) has no surface to write as a mesh or a CAD file, in words; ``None`` for a real
+    surface (or one undecided)."""
+    if kind == "empty":
+        return "the surface has no real points"
+    if kind == "points":
+        many = "an isolated real point" if points == 1 else "isolated real points"
+        return f"the surface's real points are {many}, not a surface"
+    if kind == "curve":
+        pieces = ["the axis"] if axis_line else []
+        if circles:
+            pieces.append("a circle about the axis" if circles == 1 else f"{circles} circles about the axis")
+        return f"the surface's real points are a curve ({' and '.join(pieces) or 'a line'}), not a surface"
+    return None

@@ -51,7 +51,8 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     # behind: the ending signals wait until the clean-up is in place.
     blocked = signal.pthread_sigmask(signal.SIG_BLOCK, _ENDING) if _MASKABLE else None
     try:
-        fd, name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=f".tmp{target.suffix}", dir=folder)
+        prefix, suffix = temporary_affixes(target, folder)
+        fd, name = tempfile.mkstemp(prefix=prefix, suffix=suffix, dir=folder)
         os.close(fd)
         temporary = Path(name)
         try:
@@ -79,6 +80,46 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
 
 
 _ENDING = {signal.SIGTERM, signal.SIGHUP, signal.SIGINT}
+
+RANDOM_PART = 8
+"""Characters ``tempfile.mkstemp`` puts between the prefix and the suffix."""
+
+
+def temporary_affixes(target: Path, folder: Path) -> tuple[str, str]:
+    """The prefix and suffix of the temporary file of ``target``: ``.NAME.`` and
+    ``.PID.tmpSUFFIX``, the process's id naming whose it is (:func:`remove_leftovers`) and the
+    suffix kept for writers that choose the format by it. ``NAME`` is shortened so that the whole
+    name fits the folder's limit (255 bytes on most file systems) when the target's own does."""
+    suffix = f".{os.getpid()}.tmp{target.suffix}"
+    room = _name_max(folder) - len(suffix.encode()) - RANDOM_PART - 2
+    name = target.name.encode()[: max(room, 1)].decode(errors="ignore") or "x"
+    return f".{name}.", suffix
+
+
+def _name_max(folder: Path) -> int:
+    """The longest file name ``folder`` takes, in bytes (255 where the system does not say)."""
+    try:
+        return int(os.pathconf(folder, "PC_NAME_MAX"))
+    except (OSError, ValueError, AttributeError):
+        return 255
+
+
+def remove_leftovers(folder: str | Path, pid: int | None) -> None:
+    """Remove the temporary files that the process ``pid`` left in ``folder`` (and in the
+    temporary folder, where a device's content is prepared) when it was killed while writing:
+    the targets themselves are untouched (the old files stay as they were)."""
+    if pid is None:
+        return
+    for place in {Path(folder), Path(tempfile.gettempdir())}:
+        try:
+            leftovers = list(place.glob(f".*.{pid}.tmp*"))
+        except OSError:
+            continue
+        for leftover in leftovers:
+            with contextlib.suppress(OSError):
+                leftover.unlink()
+
+
 _MASKABLE = hasattr(signal, "pthread_sigmask")
 
 

@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from sorgui.engine.results import Analysis
+from sorgui.engine.vocabulary import no_surface
 from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
 from sorgui.export.cas import latex_document, maple_file, mathematica_file
 from sorgui.export.meshes import is_patch_path
@@ -104,17 +105,35 @@ def export_file(
     scene: Any = None,
     units: str = "mm",
     tolerance: float | None = None,
+    picture: bytes | None = None,
 ) -> tuple[Path, str]:
     """:func:`export_analysis`, and what a CAD file holds in words (``""`` for the other formats):
     its route, its faces and a fitted profile's measured deviation."""
     path = Path(path)
     form = format_of(path, fmt)
+    _has_a_surface(analysis, form, wants_patch(path, fmt))
     if form.kind != "cad":
-        return export_analysis(analysis, path, fmt, scene=scene, units=units, tolerance=tolerance), ""
+        return export_analysis(analysis, path, fmt, scene=scene, picture=picture, units=units, tolerance=tolerance), ""
+    if scene is not None and not wants_patch(path, fmt) and scene.surface.is_empty:
+        # nothing for Open CASCADE to cut: a sphere of radius 10^200 about a ball of radius 2 kept
+        # its Boolean busy for minutes, one of radius 10^20 gave a file of no face
+        raise ValueError(
+            f"the surface has no real points inside the {'box' if scene.box else 'drawn ball'} (give --region)"
+        )
     from sorgui.cad import cad_file, summary
 
     data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance)
     return atomic_write_bytes(path, data), summary(model)
+
+
+def _has_a_surface(analysis: Analysis, form: Format, patch: bool) -> None:
+    """A mesh or a CAD file of the surface needs a real surface: ``ValueError`` saying what the
+    real points are otherwise (a point, the axis), rather than that none were found in the ball."""
+    locus = analysis.real_locus
+    if form.kind in ("mesh", "cad") and not patch and locus is not None:
+        reason = no_surface(locus.kind, locus.points, locus.circles, locus.axis_line)
+        if reason is not None:
+            raise ValueError(f"{reason}: there is no surface to write")
 
 
 def wants_patch(path: Path, fmt: str | None = None) -> bool:
@@ -141,6 +160,7 @@ def export_analysis(
     """
     path = Path(path)
     form = format_of(path, fmt)
+    _has_a_surface(analysis, form, wants_patch(path, fmt))
     if form.needs_scene and scene is None:
         raise ValueError(f"{form.name} needs the drawn scene of the analysis")
     if form.suffix in TEXT_WRITERS:

@@ -17,13 +17,16 @@ from __future__ import annotations
 import base64
 import html
 import json
+import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import sympy
 
+from sorgui import __version__
 from sorgui.engine.errors import SorguiError
-from sorgui.engine.results import Analysis, Canal
+from sorgui.engine.results import VERSION_KEY, Analysis, Canal, report_json
 from sorgui.engine.vocabulary import canal_kind
 from sorgui.export.cas import LATEX_STYLE, approximate_line, latex_name, verdict
 from sorgui.export.formulas import Formula, canal_formulas, surface_formulas
@@ -68,7 +71,7 @@ DISPLAY_LENGTH = 60
 
 def json_report(analysis: Analysis) -> str:
     """The JSON document of ``sorgui analyze --json``."""
-    return json.dumps(analysis.to_json(), indent=1) + "\n"
+    return json.dumps(report_json(analysis), indent=1) + "\n"
 
 
 class ReportError(SorguiError):
@@ -84,6 +87,8 @@ def read_report(path: str | Path) -> Analysis:
     validated (:func:`sorgui.export.validation.validate`): a report is a file from elsewhere.
 
     At most :data:`MAX_REPORT_BYTES` are read (``/dev/zero`` is refused, not read whole)."""
+    from sorgui.engine.claims.report import check_report
+    from sorgui.engine.errors import ClaimError
     from sorgui.export.validation import ReportInvalid, validate
 
     try:
@@ -94,7 +99,9 @@ def read_report(path: str | Path) -> Analysis:
     if len(raw) > MAX_REPORT_BYTES:
         raise ReportError(f"{path} is too large to be a report (more than {MAX_REPORT_BYTES // 2**20} MB)")
     try:
-        data = json.loads(raw.decode("utf-8"))
+        data = json.loads(raw.decode("utf-8"), object_pairs_hook=_unique_keys, parse_constant=_no_constant)
+    except _Duplicate as exc:
+        raise ReportError(f"{path} is not a sorgui report: the key {exc.key!r} occurs twice in one object") from None
     except (UnicodeDecodeError, ValueError) as exc:  # JSONDecodeError, and integers too long to read
         raise ReportError(f"{path} is not a JSON report: {_one_line(str(exc))}") from None
     except RecursionError:
@@ -103,6 +110,7 @@ def read_report(path: str | Path) -> Analysis:
         raise ReportError(f"{path} is not a sorgui report: it is not a JSON object")
     if "error" in data and "input" not in data:
         raise ReportError(f"{path} holds an error, not an analysis")
+    _check_version(data.pop(VERSION_KEY, None), path)
     try:
         analysis = Analysis.from_json(data)
     except (KeyError, TypeError, AttributeError, ValueError) as exc:
@@ -113,7 +121,83 @@ def read_report(path: str | Path) -> Analysis:
         validate(analysis)
     except ReportInvalid as exc:
         raise ReportError(f"{path} is not a valid sorgui report: {exc.message}") from None
+    stray = _not_written(data, analysis.to_json(), "")
+    if stray is not None:
+        raise ReportError(f"{path} is not a valid sorgui report: {stray}")
+    try:
+        check_report(analysis)
+    except ClaimError as exc:
+        raise ReportError(f"{path} is refused: its {exc.message}") from None
     return analysis
+
+
+class _Duplicate(ValueError):
+    def __init__(self, key: str) -> None:
+        super().__init__(key)
+        self.key = key
+
+
+def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """A JSON object whose keys are all different (else the last would silently win)."""
+    data: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in data:
+            raise _Duplicate(key)
+        data[key] = value
+    return data
+
+
+def _no_constant(name: str) -> None:
+    """JSON's ``NaN``, ``Infinity`` and ``-Infinity`` are no numbers sorgui writes."""
+    raise ValueError(f"{name} is not a number")
+
+
+def _check_version(version: Any, path: str | Path) -> None:  # noqa: ANN401 - from the file
+    """A report written by a newer sorgui may hold results this one cannot check: refused. A
+    report without a version was written before reports carried one."""
+    if version is None:
+        return
+    if not isinstance(version, str) or _VERSION.fullmatch(version) is None:
+        raise ReportError(f"{path} is not a sorgui report: its {VERSION_KEY} is not a version")
+    if _release(version) > _release(__version__):
+        raise ReportError(
+            f"{path} was written by sorgui {version}, newer than this one ({__version__}): update sorgui to open it"
+        )
+
+
+_VERSION = re.compile(r"\d{1,6}(\.\d{1,6}){0,3}([.+-]?[A-Za-z0-9.]{0,20})?")
+
+
+def _release(version: str) -> tuple[int, ...]:
+    """The numbers of ``version`` (``0.1.0`` → ``(0, 1, 0)``; a suffix such as ``.dev1`` aside)."""
+    numbers = re.match(r"\d+(\.\d+)*", version)
+    assert numbers is not None
+    return tuple(int(n) for n in numbers.group().split("."))
+
+
+def _not_written(data: Any, written: Any, where: str) -> str | None:  # noqa: ANN401 - JSON data
+    """Where ``data`` (read from a file) holds what sorgui would not write for the analysis it
+    decodes to (``written``): a key sorgui does not write (a newer version's, or crafted), or a
+    value that disagrees with the rest (a ``spine`` that is not the first family). Keys a report
+    of an older version lacks are no fault."""
+    if isinstance(data, dict) and isinstance(written, dict):
+        for key, value in data.items():
+            inner = f"{where}.{key}".lstrip(".")
+            if key not in written:
+                return f"{inner} is not a field sorgui writes"
+            found = _not_written(value, written[key], inner)
+            if found is not None:
+                return found
+        return None
+    if isinstance(data, list) and isinstance(written, list):
+        if len(data) != len(written):
+            return f"{where} does not agree with the rest of the report"
+        for i, (a, b) in enumerate(zip(data, written)):
+            found = _not_written(a, b, f"{where}[{i}]")
+            if found is not None:
+                return found
+        return None
+    return None if data == written else f"{where} does not agree with the rest of the report"
 
 
 def _one_line(text: str) -> str:

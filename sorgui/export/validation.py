@@ -1,16 +1,22 @@
 """What a report file may hold: every value checked against what sorgui itself writes.
 
 A report (``*.sorgui.json``) is a file people send each other, so :func:`validate` checks the
-:class:`~sorgui.engine.results.Analysis` decoded from one before anything shows or exports it:
+:class:`~sorgui.engine.results.Analysis` decoded from one before anything shows or exports it;
+its claims are then checked against its polynomial by the engine
+(:func:`sorgui.engine.claims.report.check_report`):
 
 * every field has the type sorgui writes (a bool where a bool goes, a tuple of three strings
-  for a point, …);
-* every exact number and polynomial is read by the engine's reader of machine-written formulas
-  (:mod:`sorgui.engine.expressions`), with only the variables, functions and constants sorgui's
-  results use (:data:`NAMES`), and without a number too large to hold;
-* the parameters of a map are among :data:`NAMES`, a field is ``QQ`` or ``QQ(…)`` of exact
-  numbers, the kinds (symmetry, real locus, canal kinds and certificates, stages) come from
-  fixed lists;
+  for a point, a finite number where a number goes: JSON's ``NaN`` is no number);
+* every exact string is read by the engine's reader of machine-written formulas
+  (:mod:`sorgui.engine.expressions`) and must be of its field's :class:`Form`: a number (no
+  variable, no ``I``), a polynomial or a rational function in the field's own variables (a
+  map's parameters, a family's parameter), ``I`` only in complex maps, ``cos``/``sin`` of the
+  angle and square roots of polynomials only in the circles of a canal surface; bounded as
+  typed input is bounded: the polynomials of the surface and its profile of degree at most
+  :data:`~sorgui.engine.parsing.MAX_DEGREE`, every other formula at most :data:`MAP_DEGREE`,
+  and the numbers their expansion makes at most :data:`MAX_HEIGHT_BITS` bits;
+* a field is ``QQ`` or ``QQ(…)`` of square roots of rationals (real ones for ``K``), the kinds
+  (symmetry, real locus, canal kinds and certificates, stages) come from fixed lists;
 * the equation is read by the project's parser, as if it had been typed;
 * every other string (notes, statements, methods) is one line of printable text of bounded
   length: no control character, so no newline that could end a comment in an exported file.
@@ -21,40 +27,38 @@ A report that does not validate is refused with one line naming the field
 
 from __future__ import annotations
 
+import math
 import re
-import sys
 import typing
 import unicodedata
-from dataclasses import fields, is_dataclass
+from dataclasses import dataclass, fields, is_dataclass
 from types import NoneType, UnionType
 from typing import Any
 
 import sympy
 
 from sorgui.engine import results
+from sorgui.engine.claims.formulas import NAMES, REPORT_SYNTAX, formula
 from sorgui.engine.errors import ExpressionError, ParseError, SorguiError
-from sorgui.engine.expressions import Syntax, read
+from sorgui.engine.parsing import MAX_DEGREE
 
-NAMES = ("x", "y", "z", "s", "t", "w", "r", "u", "v", "m1", "m2", "m3", "theta", "tau", "a", "h", "rho")
-"""The variables of sorgui's results: space, the parameters of maps and profiles, the SMAT
-coordinates of canal surfaces, the parameter of a witness line, the ring parameter of
-Singular's fields, and the height and squared distance of a parametrization's profile curve."""
-
-EXACT = Syntax(
-    powers=("**", "^"),
-    decimals=False,
-    rational_exponents=True,
-    functions={"sqrt": sympy.sqrt, "sin": sympy.sin, "cos": sympy.cos},
-    constants={"I": sympy.I},
-    names={name: sympy.Symbol(name) for name in NAMES},
-)
+EXACT = REPORT_SYNTAX
 """The syntax of every exact string sorgui writes into a report."""
 
 MAX_TEXT = 20_000
 """Characters of one line of text (a note, a statement) at most."""
 
-MAX_EXPRESSION = 2_000_000
-"""Characters of one exact expression at most (sorgui's largest are a few hundred thousand)."""
+MAX_EXPRESSION = 16_000_000
+"""Characters of one exact expression at most (sorgui's largest are a few million: the
+parameterization of the envelope of a family of spheres of degree 6 prints 3 MB)."""
+
+MAP_DEGREE = 4 * MAX_DEGREE
+"""The largest degree (numerator and denominator together) of a map, a family's formula or an
+equation of a report other than the surface's and its profile's."""
+
+MAX_HEIGHT_BITS = 2_000_000
+"""The largest size, in bits, of the numbers a formula's expansion can hold (a bound computed
+from its tree: ``(10^300·x + 1)^240`` would expand to numbers of 72,000 digits)."""
 
 SYMMETRIES = frozenset({"revolution", "cylinder_of_revolution", "sphere", "plane", "extrusion", "none", "undecided"})
 VOCABULARY: dict[tuple[str, str], frozenset[str]] = {
@@ -80,37 +84,80 @@ CERTIFICATE_METHODS = frozenset(
     {"profile", "resultant", "incidence", "elimination", "rotation", "symmetry", "line", "components"}
 )
 
-EXPRESSIONS: dict[str, frozenset[str]] = {
-    "Axis": frozenset({"point", "direction", "plucker"}),
-    "Profile": frozenset(
-        {"polynomial", "square", "rational", "rational_square", "frame_point", "frame_direction", "frame_normal"}
-    ),
-    "Recognition": frozenset({"polynomial", "symmetry_basis", "center", "normal", "direction", "radius_squared"}),
-    "Factor": frozenset({"polynomial"}),
-    "Rationality": frozenset({"absolute_factors", "square_parametrization", "tubular_surface", "h", "tau"}),
-    "Parametrization": frozenset({"coordinates"}),
-    "NearestSurface": frozenset({"polynomial", "center", "normal"}),
-    "CanalFamily": frozenset(
-        {
-            "equations",
-            "spine_equations",
-            "plane_model",
-            "parametrization",
-            "radius_squared",
-            "circle_center",
-            "circle_radius_squared",
-            "circle_normal",
-            "radical_spine",
-            "radical_radius_squared",
-        }
-    ),
-    "CanalEvidence": frozenset({"point", "direction", "restriction"}),
-    "Analysis": frozenset({"squarefree"}),
-    "Conical": frozenset({"apex", "direction"}),
-    "BaseCurve": frozenset({"polynomial", "frame_point", "frame_u", "frame_w"}),
-    "ParametricInput": frozenset({"map", "symmetry_basis", "apex", "directions", "profile_curve"}),
+
+@dataclass(frozen=True)
+class Form:
+    """What the exact strings of one field are: ``kind`` ``number`` (of a field), ``polynomial``,
+    ``rational`` (a rational function) or ``circles`` (a rational function of a parameter and of
+    ``cos θ``, ``sin θ``, with square roots of polynomials of the parameter); ``variables`` are
+    the names it may use, or the sibling field that gives them (``"parameters"``); ``degree``
+    bounds it; ``complex`` allows ``I``."""
+
+    kind: str
+    variables: tuple[str, ...] | str = ()
+    degree: int = MAP_DEGREE
+    complex: bool = False
+
+
+NUMBER = Form("number", degree=0)
+XYZ = ("x", "y", "z")
+SURFACE = Form("polynomial", XYZ, MAX_DEGREE)
+FORMS: dict[tuple[str, str], Form] = {
+    ("Axis", "point"): NUMBER,
+    ("Axis", "direction"): NUMBER,
+    ("Axis", "plucker"): NUMBER,
+    ("Profile", "polynomial"): Form("polynomial", ("x", "y"), MAX_DEGREE),
+    ("Profile", "square"): Form("polynomial", ("x", "y"), MAX_DEGREE),
+    ("Profile", "rational"): Form("polynomial", ("s", "r"), MAX_DEGREE),
+    ("Profile", "rational_square"): Form("polynomial", ("s", "w"), MAX_DEGREE),
+    ("Profile", "frame_point"): NUMBER,
+    ("Profile", "frame_direction"): NUMBER,
+    ("Profile", "frame_normal"): NUMBER,
+    ("Recognition", "polynomial"): SURFACE,
+    ("Recognition", "symmetry_basis"): NUMBER,
+    ("Recognition", "center"): NUMBER,
+    ("Recognition", "normal"): NUMBER,
+    ("Recognition", "direction"): NUMBER,
+    ("Recognition", "radius_squared"): NUMBER,
+    ("Factor", "polynomial"): SURFACE,
+    ("Analysis", "squarefree"): SURFACE,
+    ("Rationality", "square_parametrization"): Form("rational", ("t",), complex=True),
+    ("Rationality", "tubular_surface"): Form("rational", XYZ, complex=True),
+    ("Rationality", "h"): Form("polynomial", ("t",), complex=True),
+    ("Rationality", "tau"): Form("rational", XYZ, complex=True),
+    ("Parametrization", "coordinates"): Form("rational", "parameters", complex=True),
+    ("NearestSurface", "polynomial"): SURFACE,
+    ("NearestSurface", "center"): NUMBER,
+    ("NearestSurface", "normal"): NUMBER,
+    ("CanalFamily", "equations"): Form("polynomial", ("m1", "m2", "m3", "r"), 2 * MAX_DEGREE),
+    ("CanalFamily", "spine_equations"): Form("polynomial", ("m1", "m2", "m3"), 2 * MAX_DEGREE),
+    ("CanalFamily", "plane_model"): Form("polynomial", ("u", "v"), 2 * MAX_DEGREE),
+    ("CanalFamily", "parametrization"): Form("rational", "parameter"),
+    ("CanalFamily", "radius_squared"): Form("rational", "parameter"),
+    ("CanalFamily", "circle_center"): Form("rational", "parameter"),
+    ("CanalFamily", "circle_radius_squared"): Form("rational", "parameter"),
+    ("CanalFamily", "circle_normal"): Form("rational", "parameter"),
+    ("CanalFamily", "radical_spine"): Form("circles", ("t",)),
+    ("CanalFamily", "radical_radius_squared"): Form("circles", ("t",)),
+    ("CanalEvidence", "point"): NUMBER,
+    ("CanalEvidence", "direction"): NUMBER,
+    ("CanalEvidence", "restriction"): Form("polynomial", ("tau",), MAX_DEGREE),
+    ("Conical", "apex"): NUMBER,
+    ("Conical", "direction"): NUMBER,
+    ("BaseCurve", "polynomial"): Form("polynomial", "variables", MAX_DEGREE),
+    ("BaseCurve", "frame_point"): NUMBER,
+    ("BaseCurve", "frame_u"): NUMBER,
+    ("BaseCurve", "frame_w"): NUMBER,
+    ("ParametricInput", "map"): Form("rational", "map_parameters"),
+    ("ParametricInput", "symmetry_basis"): NUMBER,
+    ("ParametricInput", "apex"): NUMBER,
+    ("ParametricInput", "directions"): NUMBER,
+    ("ParametricInput", "profile_curve"): Form("polynomial", ("h", "rho"), MAX_DEGREE),
 }
-"""Fields that hold exact numbers or polynomials (each string read by :data:`EXACT`)."""
+"""The form of every field that holds exact numbers or formulas."""
+
+CIRCLES = Form("circles", "parameters", complex=True)
+"""The coordinates of a canal surface's parameterizations by its characteristic circles."""
 
 PARAMETER_FIELDS = {
     ("Parametrization", "parameters"),
@@ -138,32 +185,35 @@ class ReportInvalid(SorguiError):
 def validate(analysis: results.Analysis) -> None:
     """Raise :class:`ReportInvalid` unless every value of ``analysis`` is one sorgui writes."""
     try:
-        _check_object(analysis, "report")
+        _check_object(analysis, "", circles=False)
     except RecursionError:
-        raise ReportInvalid("the report is nested too deeply") from None
+        raise ReportInvalid("it is nested too deeply") from None
 
 
-def _check_object(obj: Any, path: str) -> None:
+def _check_object(obj: Any, path: str, circles: bool) -> None:  # noqa: ANN401
     if not is_dataclass(obj) or isinstance(obj, type):
         raise ReportInvalid(f"{path} is not an object sorgui writes")
     cls = type(obj)
     hints = typing.get_type_hints(cls, vars(results))
+    inside = circles or isinstance(obj, results.Canal)
     for item in fields(cls):
         value = getattr(obj, item.name)
-        where = f"{path}.{item.name}"
-        _check_type(value, hints[item.name], where)
-        _check_strings(cls.__name__, item.name, value, where)
+        flat = isinstance(obj, results.Analysis) and item.name == "recognition"  # its keys are the report's own
+        where = path if flat else f"{path}.{item.name}".lstrip(".")
+        _check_type(value, hints[item.name], where, inside)
+        _check_strings(obj, item.name, value, where, inside)
+    prefix = f"{path}." if path else ""
     if isinstance(obj, results.Analysis):
-        _check_input(obj, path)
+        _check_input(obj, prefix)
         for stage in obj.unfinished:
-            _check_stage(stage, f"{path}.unfinished")
+            _check_stage(stage, f"{prefix}unfinished")
         for stage, _seconds in obj.timings:
-            _check_stage(stage, f"{path}.timings")
+            _check_stage(stage, f"{prefix}timings")
     if isinstance(obj, results.CanalEvidence) and not set(obj.method.split("+")) <= CERTIFICATE_METHODS:
-        raise ReportInvalid(f"{path}.method is not a method sorgui uses: {_shown(obj.method)}")
+        raise ReportInvalid(f"{prefix}method is not a method sorgui uses: {_shown(obj.method)}")
 
 
-def _check_type(value: Any, hint: Any, where: str) -> None:
+def _check_type(value: Any, hint: Any, where: str, circles: bool) -> None:  # noqa: ANN401
     """``value`` against the annotation ``hint`` (dataclasses, unions, tuples, scalars)."""
     origin = typing.get_origin(hint)
     if origin in (UnionType, typing.Union):
@@ -172,7 +222,7 @@ def _check_type(value: Any, hint: Any, where: str) -> None:
             return
         if len(options) != 1:
             raise ReportInvalid(f"{where} has a type sorgui does not write")
-        _check_type(value, options[0], where)
+        _check_type(value, options[0], where, circles)
         return
     if hint is NoneType:
         if value is not None:
@@ -184,17 +234,17 @@ def _check_type(value: Any, hint: Any, where: str) -> None:
             raise ReportInvalid(f"{where} must be a list")
         if len(args) == 2 and args[1] is Ellipsis:
             for i, item in enumerate(value):
-                _check_type(item, args[0], f"{where}[{i}]")
+                _check_type(item, args[0], f"{where}[{i}]", circles)
         elif len(args) != len(value):
             raise ReportInvalid(f"{where} must have {len(args)} entries, not {len(value)}")
         else:
             for i, (item, arg) in enumerate(zip(value, args)):
-                _check_type(item, arg, f"{where}[{i}]")
+                _check_type(item, arg, f"{where}[{i}]", circles)
         return
     if isinstance(hint, type) and is_dataclass(hint):
         if not isinstance(value, hint):
             raise ReportInvalid(f"{where} must be an object")
-        _check_object(value, where)
+        _check_object(value, where, circles)
         return
     if hint is bool:
         if not isinstance(value, bool):
@@ -203,8 +253,8 @@ def _check_type(value: Any, hint: Any, where: str) -> None:
         if isinstance(value, bool) or not isinstance(value, int) or abs(value) > 10**9:
             raise ReportInvalid(f"{where} must be a whole number")
     elif hint is float:
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or abs(value) > sys.float_info.max:
-            raise ReportInvalid(f"{where} must be a number")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise ReportInvalid(f"{where} must be a finite number")
     elif hint is str:
         if not isinstance(value, str):
             raise ReportInvalid(f"{where} must be a string")
@@ -212,7 +262,7 @@ def _check_type(value: Any, hint: Any, where: str) -> None:
         raise ReportInvalid(f"{where} has a type sorgui does not write")
 
 
-def _strings(value: Any) -> list[str]:
+def _strings(value: Any) -> list[str]:  # noqa: ANN401
     if isinstance(value, str):
         return [value]
     if isinstance(value, tuple):
@@ -220,21 +270,30 @@ def _strings(value: Any) -> list[str]:
     return []
 
 
-def _check_strings(cls: str, name: str, value: Any, where: str) -> None:
+def _check_strings(obj: Any, name: str, value: Any, where: str, circles: bool) -> None:  # noqa: ANN401
     """The strings of one field, by what the field holds."""
     if is_dataclass(value) or (isinstance(value, tuple) and any(is_dataclass(v) for v in value)):
         return  # checked as objects
+    cls = type(obj).__name__
     strings = _strings(value)
+    form = FORMS.get((cls, name))
+    if (cls, name) == ("Parametrization", "coordinates") and circles:
+        form = CIRCLES
     if (cls, name) == ("Rationality", "absolute_factors"):
         for text in strings:  # "a*s - r  where a**2 - 2 = 0": a factor over QQ(a)
             factor, _, field = text.partition("  where ")
-            check_expression(factor, where)
+            check_expression(factor, where, Form("polynomial", ("s", "r", "a"), MAX_DEGREE))
             if field:
-                check_expression(field.removesuffix(" = 0"), where)
-    elif name in EXPRESSIONS.get(cls, ()):
+                check_expression(field.removesuffix(" = 0"), where, Form("polynomial", ("a",), MAX_DEGREE))
+    elif form is not None:
+        if isinstance(form.variables, tuple):
+            variables = form.variables
+        else:
+            sibling = f"{where.rpartition('.')[0]}.{form.variables}"
+            variables = _names(getattr(obj, form.variables), sibling)
         for text in strings:
             if text or (cls, name) not in UNKNOWN_EQUATION:
-                check_expression(text, where)
+                check_expression(text, where, Form(form.kind, variables, form.degree, form.complex))
     elif (cls, name) in VOCABULARY:
         allowed = VOCABULARY[(cls, name)]
         for text in strings:
@@ -246,7 +305,7 @@ def _check_strings(cls: str, name: str, value: Any, where: str) -> None:
                 raise ReportInvalid(f"{where} is not a parameter name sorgui uses: {_shown(text)}")
     elif (cls, name) in FIELD_FIELDS:
         for text in strings:
-            _check_field(text, where)
+            _check_field(text, where, real=cls in ("Analysis", "ParametricInput"))
     elif not (cls == "Analysis" and name in ("input", "unfinished", "timings")) and not (
         cls == "ParametricInput" and name in ("components", "parameters")
     ):
@@ -254,16 +313,90 @@ def _check_strings(cls: str, name: str, value: Any, where: str) -> None:
             check_text(text, where)
 
 
-def check_expression(text: str, where: str) -> None:
-    """``text`` must be an exact expression in :data:`EXACT`."""
+def _names(value: Any, where: str) -> tuple[str, ...]:  # noqa: ANN401
+    """The variables a sibling field names (a map's parameters), each one sorgui uses."""
+    names = (value,) if isinstance(value, str) else tuple(value or ())
+    for name in names:
+        if not isinstance(name, str) or name not in NAMES:
+            raise ReportInvalid(f"{where} is not a parameter name sorgui uses: {_shown(str(name))}")
+    return names
+
+
+def check_expression(text: str, where: str, form: Form = Form("rational", NAMES, complex=True)) -> sympy.Expr:
+    """``text`` must be an exact expression of ``form`` (:data:`EXACT`, its variables, its kind,
+    its degree, numbers of bounded size); the expression read."""
     if len(text) > MAX_EXPRESSION:
         raise ReportInvalid(f"{where} is too long ({len(text):,} characters)")
     try:
-        read(text, EXACT)
+        expr = formula(text)  # the checks of the claims read it again: cached
+        degree, _bits = _bounds(expr, form, where)
     except ExpressionError as exc:
         raise ReportInvalid(f"{where} is not an exact expression sorgui writes: {exc.message}") from None
     except RecursionError:
         raise ReportInvalid(f"{where} is nested too deeply") from None
+    if degree > form.degree:
+        kind = "a number" if form.kind == "number" else f"of degree at most {form.degree}"
+        raise ReportInvalid(f"{where} must be {kind}, not of degree {degree}")
+    return expr
+
+
+def _bounds(expr: sympy.Basic, form: Form, where: str) -> tuple[int, int]:
+    """Upper bounds of the degree and of the size in bits of the numbers of ``expr`` expanded,
+    read off its tree; refuses what ``form`` does not allow (:class:`ReportInvalid`)."""
+    memo: dict[sympy.Basic, tuple[int, int]] = {}
+
+    def visit(e: sympy.Basic) -> tuple[int, int]:
+        if e in memo:
+            return memo[e]
+        if e.is_Rational:
+            value = sympy.Rational(e)
+            found = (0, int(value.p).bit_length() + int(value.q).bit_length())
+        elif e is sympy.I:
+            if not form.complex:
+                raise ReportInvalid(f"{where} holds I, but its values are real")
+            found = (0, 1)
+        elif e.is_Symbol:
+            if str(e) not in form.variables or form.kind == "number":
+                allowed = ", ".join(form.variables) if form.variables else "none: it is a number"
+                raise ReportInvalid(f"{where} holds the name {str(e)!r}, which is not one of its variables ({allowed})")
+            found = (1, 0)
+        elif e.is_Add:
+            parts = [visit(a) for a in e.args]
+            found = (max(d for d, _ in parts), max(b for _, b in parts) + len(parts).bit_length())
+        elif e.is_Mul:
+            parts = [visit(a) for a in e.args]
+            found = (sum(d for d, _ in parts), sum(b for _, b in parts))
+        elif e.is_Pow:
+            found = _power(e, visit)
+        elif isinstance(e, (sympy.sin, sympy.cos)):
+            if form.kind != "circles" or e.args != (sympy.Symbol("theta"),):
+                raise ReportInvalid(f"{where} holds {type(e).__name__}, which only a canal surface's circles have")
+            found = (1, 1)
+        else:
+            raise ReportInvalid(f"{where} holds {type(e).__name__}, which sorgui does not write")
+        if found[1] > MAX_HEIGHT_BITS:
+            raise ReportInvalid(f"{where} holds numbers too large (more than {MAX_HEIGHT_BITS:,} bits)")
+        memo[e] = found
+        return found
+
+    def _power(e: sympy.Basic, visit: typing.Callable[[sympy.Basic], tuple[int, int]]) -> tuple[int, int]:
+        base, exponent = e.args
+        degree, bits = visit(base)
+        if exponent.is_Integer:
+            if exponent < 0 and base.free_symbols and form.kind not in ("rational", "circles"):
+                raise ReportInvalid(f"{where} divides by a polynomial, but it must be a polynomial")
+            n = abs(int(exponent))
+            return degree * n, (bits + 1) * n
+        if exponent.is_Rational and exponent.q == 2:
+            if base.free_symbols and (form.kind != "circles" or len(base.free_symbols) > 1):
+                raise ReportInvalid(
+                    f"{where} takes the square root of a polynomial, which only a canal surface's circles do"
+                )
+            n = abs(int(exponent.p))
+            return degree * n, (bits + 1) * n
+        raise ReportInvalid(f"{where} holds a power sorgui does not write (exponent {exponent})")
+
+    return visit(expr)
 
 
 def check_text(text: str, where: str) -> None:
@@ -275,13 +408,16 @@ def check_text(text: str, where: str) -> None:
             raise ReportInvalid(f"{where} holds the control character U+{ord(char):04X}")
 
 
-def _check_field(text: str, where: str) -> None:
+def _check_field(text: str, where: str, real: bool) -> None:
+    """``QQ`` or ``QQ(sqrt(n), …)``, square roots of rationals (of positive ones for ``K``)."""
     match = _FIELD.fullmatch(text)
     if match is None:
         raise ReportInvalid(f"{where} is not a field sorgui writes: {_shown(text)}")
     generators = match.group("generators")
     for generator in [] if generators is None else generators.split(","):
-        check_expression(generator.strip(), where)
+        expr = check_expression(generator.strip(), where, Form("number", (), 0, complex=not real))
+        if expr.is_Rational or not sympy.expand(expr**2).is_Rational:
+            raise ReportInvalid(f"{where} is not a field of square roots: {_shown(text)}")
 
 
 def _check_stage(stage: str, where: str) -> None:

@@ -1,75 +1,93 @@
-"""File → Export of the formats that take seconds (STEP, IGES, BRep), off the GUI thread.
+"""File → Export off the GUI thread: the formats that take seconds (STEP, IGES, BRep) and every
+export of a report opened from a file.
 
 Writing a CAD file imports Open CASCADE (1–4 s) and may fit a profile; Open CASCADE's calls
-hold the interpreter's lock, so a thread would still freeze the window. The file is written
-in a process of its own (spawned, like the analysis worker), from the shown analysis and the
-drawn scene, both plain data; the window polls it and says when it is done or why it failed.
+hold the interpreter's lock, so a thread would still freeze the window, and one call can run for
+minutes. The file is written by the export process of :mod:`sorgui.session.export_process`
+(spawned, like the analysis worker), from the shown analysis, the drawn scene and the view's
+picture, all plain data; the window polls it and says when it is done or why it failed. The
+process is killed when the export passes its time limit (the window's, Analysis → Time Limit)
+and when the window quits, so nothing it does can hang the window, and what it had half written
+is removed (the old file is kept).
 """
 
 from __future__ import annotations
 
 import multiprocessing
-from concurrent.futures import Future, ProcessPoolExecutor
+import time
 from pathlib import Path
 from typing import Any
 
 from PySide6.QtCore import QObject, QTimer, Signal
 
 from sorgui.engine.results import Analysis
-from sorgui.export.files import export_file
+from sorgui.session.export_process import (
+    ExportProcess,
+    ExportRequest,
+    ExportsDone,
+    ExportTarget,
+    FileFailed,
+    FileWritten,
+    ReportRefused,
+)
 
 POLL_MS = 100
 """How often the window looks whether the file is written."""
 
 
-def _write(analysis: Analysis, path: str, scene: Any) -> tuple[Path, str]:
-    """The file written and what it holds (the CAD route and faces, or ``""``)."""
-    return export_file(analysis, path, scene=scene)
-
-
 class BackgroundExport(QObject):
     """One export at a time in a child process: :attr:`written` with the path and what the file
-    holds, or :attr:`failed` with the reason (the error's message, as the synchronous exports
-    show it)."""
+    holds, or :attr:`failed` with the reason in one line (``cannot write FILE: …``)."""
 
     written = Signal(object, str)
     failed = Signal(str)
 
     def __init__(self, parent: QObject | None = None) -> None:
         super().__init__(parent)
-        self._pool: ProcessPoolExecutor | None = None
-        self._future: Future[tuple[Path, str]] | None = None
+        self._process = ExportProcess(multiprocessing.get_context("spawn"))
         self._timer = QTimer(self)
         self._timer.setInterval(POLL_MS)
         self._timer.timeout.connect(self._poll)
 
     @property
     def busy(self) -> bool:
-        return self._future is not None
+        return self._process.busy
 
-    def start(self, analysis: Analysis, path: str | Path, scene: Any) -> None:
-        if self._pool is None:
-            self._pool = ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("spawn"))
-        self._future = self._pool.submit(_write, analysis, str(path), scene)
+    @property
+    def pid(self) -> int | None:
+        """The export process's id, while there is one."""
+        child = self._process.child
+        return child.pid if child is not None else None
+
+    def start(
+        self,
+        analysis: Analysis,
+        path: str | Path,
+        scene: Any,  # noqa: ANN401 - a SceneData
+        picture: bytes | None = None,
+        timeout: float | None = None,
+    ) -> None:
+        """Write ``analysis`` to ``path`` (with the drawn ``scene`` and the view's ``picture``),
+        killed after ``timeout`` seconds."""
+        self._process.limit = timeout
+        request = ExportRequest(targets=(ExportTarget(str(path)),), analysis=analysis, scene=scene, picture=picture)
+        self._process.give(request, None if timeout is None else time.monotonic() + timeout)
         self._timer.start()
 
     def _poll(self) -> None:
-        future = self._future
-        if future is None or not future.done():
+        if not self._process.busy:
+            self._timer.stop()
             return
-        self._timer.stop()
-        self._future = None
-        try:
-            self.written.emit(*future.result())
-        except (OSError, ValueError) as exc:
-            self.failed.emit(str(exc))
-        except Exception as exc:  # the process died, or an error Open CASCADE raised
-            self.failed.emit(f"{type(exc).__name__}: {exc}")
+        for message in self._process.collect():
+            match message:
+                case FileWritten(path, holds):
+                    self.written.emit(Path(path), holds)
+                case FileFailed(_, reason) | ReportRefused(reason):
+                    self.failed.emit(reason)
+                case ExportsDone():
+                    self._timer.stop()
 
     def shutdown(self) -> None:
         """End the export process (on quit): a file half written is never renamed into place."""
         self._timer.stop()
-        if self._pool is not None:
-            self._pool.shutdown(wait=False, cancel_futures=True)
-            self._pool = None
-        self._future = None
+        self._process.close()

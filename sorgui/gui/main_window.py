@@ -693,7 +693,7 @@ class MainWindow(QMainWindow):
         picture = Path(path).with_suffix(".png")
         if Path(path).suffix.lower() == ".md" and picture.exists() and not self.confirm_replace(picture):
             return
-        if format_of(path).kind == "cad":
+        if format_of(path).kind == "cad" or self._report is not None:  # a report's, whatever it holds
             self.export_in_background(path)
             return
         try:
@@ -704,13 +704,17 @@ class MainWindow(QMainWindow):
         self.statusBar().showMessage(f"Exported {written}", 4000)
 
     def export_in_background(self, path: str | Path) -> None:
-        """Write a CAD file of the shown analysis in a process of its own (it takes seconds)."""
+        """Write the shown analysis to ``path`` in a process of its own, killed at the time limit:
+        a CAD file (it takes seconds), or any file of a report opened from elsewhere."""
         analysis = self._finished_analysis()
         if analysis is None or self.cad_export.busy:
-            self.statusBar().showMessage("A CAD file is still being written" if analysis else "Nothing to export", 4000)
+            self.statusBar().showMessage("A file is still being written" if analysis else "Nothing to export", 4000)
             return
-        self.cad_export.start(analysis, path, self.viewport.scene)
-        self.statusBar().showMessage(f"Writing {path} (Open CASCADE)…")
+        picture = None
+        if format_of(path).suffix in (".md", ".html", ".png"):
+            picture = png_bytes(viewport_image(self.viewport, REPORT_PICTURE_WIDTH))
+        self.cad_export.start(analysis, path, self.viewport.scene, picture, timeout=self.time_limit)
+        self.statusBar().showMessage(f"Writing {path}…")
 
     def _cad_written(self, path: Path, holds: str) -> None:
         self.statusBar().showMessage(f"Exported {path}: {holds}" if holds else f"Exported {path}", 8000)

@@ -31,13 +31,17 @@ class EquationFileError(OSError):
 
 
 def read_equation(path: str | Path) -> str:
-    """The text of an equation file (UTF-8, at most :data:`MAX_FILE_BYTES`)."""
+    """The text of an equation file (UTF-8, at most :data:`MAX_FILE_BYTES`; no more is read, so
+    a device such as ``/dev/zero``, whose size says nothing, is refused, not read whole)."""
     path = Path(path)
     try:
-        size = path.stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise EquationFileError(f"{path.name} is too large ({size // 1024} KiB) to be an equation")
-        return path.read_text(encoding="utf-8").strip()
+        with open(path, "rb") as stream:
+            data = stream.read(MAX_FILE_BYTES + 1)
+        if len(data) > MAX_FILE_BYTES:
+            raise EquationFileError(
+                f"{path.name} is too large (more than {MAX_FILE_BYTES // 1024} KiB) to be an equation"
+            )
+        return data.decode("utf-8").strip()
     except UnicodeDecodeError:
         raise EquationFileError(f"{path.name} is not a UTF-8 text file") from None
     except OSError as exc:

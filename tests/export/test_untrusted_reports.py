@@ -20,6 +20,7 @@ from typing import Any
 
 import pytest
 
+from sorgui import __version__
 from sorgui.engine.results import Analysis
 from sorgui.export.files import export_analysis
 from sorgui.export.reports import ReportError, json_report, read_report
@@ -199,3 +200,71 @@ def test_a_device_is_not_read_whole(device: str) -> None:
     with pytest.raises(ReportError) as caught:
         read_report(device)
     assert "\n" not in caught.value.message
+
+
+def _text(data: Any) -> str:
+    return json.dumps(data)
+
+
+@pytest.mark.parametrize(
+    ("change", "words"),
+    [
+        (lambda text: text.replace('"field": "QQ",', '"field": "QQ", "field": "QQ(sqrt(2))",', 1), "occurs twice"),
+        (lambda text: text.replace('"degree": 4,', '"degree": NaN,', 1), "NaN is not a number"),
+        (
+            lambda text: text.replace(f'"sorgui_version": "{__version__}"', '"sorgui_version": "99.0"'),
+            "newer than this one",
+        ),
+        (lambda text: text.replace(f'"sorgui_version": "{__version__}"', '"sorgui_version": 7'), "is not a version"),
+        (lambda text: text.replace("{", '{"frobnicate": 1, ', 1), "frobnicate is not a field sorgui writes"),
+    ],
+    ids=["duplicate key", "NaN", "future version", "bad version", "unknown key"],
+)
+def test_a_file_sorgui_did_not_write_is_refused_in_one_line(tmp_path: Path, torus_report, change, words: str) -> None:
+    path = tmp_path / "crafted.json"
+    path.write_text(change(_text(torus_report)), encoding="utf-8")
+    with pytest.raises(ReportError) as caught:
+        read_report(path)
+    assert words in caught.value.message and "\n" not in caught.value.message, caught.value.message
+
+
+def test_a_report_carries_the_version_that_wrote_it(torus_report) -> None:
+    assert torus_report["sorgui_version"] == __version__
+
+
+@pytest.mark.parametrize(
+    ("where", "value", "named"),
+    [
+        (("center",), ["10**300", "0", "0"], "center"),
+        (("radius_squared",), "10**400", "radius_squared"),
+        (("radius_squared",), "I", "radius_squared"),
+        (("normal",), ["10**400*x", "0", "1"], "normal"),
+        (("profile", "frame_direction"), ["0", "0", "0"], "profile.frame_direction"),
+        (("profile", "frame_normal"), ["0", "0", "1"], "profile.frame_normal"),
+        (("axis", "direction"), ["0", "I", "1"], "axis.direction"),
+        (("profile", "square"), "sin(x) + cos(y)", "profile.square"),
+        (("parametrizations", 0, "coordinates", 0), "1/(s**2+1)**5000", "parametrizations[0].coordinates"),
+        (("profile", "square"), "(x+y+1)**10000", "profile.square"),
+        (("canal", "spine", "radius_squared"), "7", "canal.spine.radius_squared"),
+        (("input",), "x^3+y^3+z^3-1", "polynomial"),
+    ],
+)
+def test_a_crafted_value_that_reads_as_formulas_is_refused_before_any_export(
+    tmp_path: Path, torus_report, where, value, named: str
+) -> None:
+    """The probes that used to pass the checks and then fail in CAD, hang in Open CASCADE, or run
+    out of memory: each refused at once, in one line naming its field."""
+    data = torus_report
+    if where == ("center",) or where == ("radius_squared",):
+        from sorgui.engine import analyze
+
+        data = json.loads(json_report(analyze("x^2 + y^2 + z^2 - 4")))
+    if where == ("normal",):
+        from sorgui.engine import analyze
+
+        data = json.loads(json_report(analyze("3x - 4y + z - 7")))
+    crafted = write(tmp_path, replaced(data, where, value))
+    with pytest.raises(ReportError) as caught:
+        read_report(crafted)
+    message = caught.value.message
+    assert named in message and "\n" not in message, message

@@ -471,3 +471,84 @@ def test_a_rebuilt_pane_is_laid_out_before_it_is_shown(window, run_analysis) -> 
     )
     assert len(rows) > 5
     assert all(below[0] > above[1] for above, below in zip(rows, rows[1:])), rows
+
+
+def _report(tmp_path: Path, text: str, *options: str) -> Path:
+    """A report written by ``sorgui analyze`` (another process, as a colleague's would be)."""
+    import subprocess
+    import sys
+
+    path = tmp_path / "colleague.sorgui.json"
+    done = subprocess.run(
+        [sys.executable, "-m", "sorgui.cli", "analyze", *options, text, "-o", str(path)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr
+    return path
+
+
+def test_a_lying_report_is_refused_by_the_window_naming_the_field(window, tmp_path, monkeypatch) -> None:
+    """A torus's report whose equation was changed: the window refuses it in one line (it used
+    to draw the torus and export it headed with the other equation)."""
+    import json
+
+    shown: list[str] = []
+    monkeypatch.setattr(window, "_show_error", lambda title, message: shown.append(f"{title}: {message}"))
+    path = _report(tmp_path, example_text("torus"))
+    data = json.loads(path.read_text(encoding="utf-8"))
+    data["input"], data["polynomial"] = "x^3+y^3+z^3-1", "x**3 + y**3 + z**3 - 1"
+    path.write_text(json.dumps(data), encoding="utf-8")
+    assert not window.open_file(str(path))
+    assert len(shown) == 1 and "refused: its degree is 4" in shown[0] and "\n" not in shown[0]
+
+
+def test_a_reports_export_runs_in_a_process_the_window_kills_at_its_time_limit(
+    window, qtbot, tmp_path, monkeypatch
+) -> None:
+    """File → Export of an opened report, as the window runs it: in the export process; a STEP
+    file of a degree-60 profile (a fit of seconds) is stopped at the window's time limit, here
+    half a second (the process is not even started and Open CASCADE not imported by then), its
+    process killed, the old file kept, and the window stays responsive; a JSON export of the same
+    report then goes through a new process and is written."""
+    from PySide6.QtWidgets import QFileDialog
+
+    pytest.importorskip("OCP")
+    report = _report(tmp_path, "(x^2+y^2)^30+z^60-1", "--recognition-only")
+    with qtbot.waitSignal(window.result_shown, timeout=120_000):
+        assert window.open_file(str(report))
+    failures: list[str] = []
+    monkeypatch.setattr(window, "_show_error", lambda title, message: failures.append(f"{title}: {message}"))
+    step = tmp_path / "part.step"
+    step.write_text("the old file\n", encoding="ascii")
+    monkeypatch.setattr(QFileDialog, "getSaveFileName", lambda *_args: (str(step), ""))
+    window.time_limit = 0.5
+    with qtbot.waitSignal(window.cad_export.failed, timeout=60_000):
+        window._export_results()
+        assert window.cad_export.busy
+        pid = window.cad_export.pid
+        assert pid is not None and pid != __import__("os").getpid()
+        qtbot.wait(200)
+        assert window.isEnabled()  # the window answers while the file is written
+    assert failures and "not written within the time limit of 0.5 s" in failures[0]
+    assert not Path(f"/proc/{pid}").exists() or "Z" in Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1][:3]
+    assert step.read_text(encoding="ascii") == "the old file\n"
+    assert [p for p in tmp_path.iterdir() if ".tmp" in p.name] == []
+    again = tmp_path / "again.json"
+    window.time_limit = 120.0
+    monkeypatch.setattr(QFileDialog, "getSaveFileName", lambda *_args: (str(again), ""))
+    with qtbot.waitSignal(window.cad_export.written, timeout=120_000):
+        window._export_results()
+    assert again.exists() and not window.cad_export.busy
+
+
+def test_an_endless_device_opened_as_an_equation_is_refused_in_one_line(window, monkeypatch) -> None:
+    """File → Open of ``/dev/zero``: its size says 0 and it never ends; read only up to the limit
+    (it was read whole: a MemoryError)."""
+    if not Path("/dev/zero").exists():
+        pytest.skip("no /dev/zero")
+    shown: list[str] = []
+    monkeypatch.setattr(window, "_show_error", lambda title, message: shown.append(f"{title}: {message}"))
+    assert not window.open_file("/dev/zero")
+    assert len(shown) == 1 and "too large" in shown[0] and "\n" not in shown[0]

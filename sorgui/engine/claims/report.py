@@ -1,0 +1,160 @@
+"""The whole report checked against its own polynomial: :func:`check_report` (docs/math.md §14).
+
+The equation is read again by the parser, as if it had been typed; the report's polynomial and
+field must be its. The factors multiply to ``f`` (up to a constant) and the square-free part is
+their product; each factor's recognition is checked against the factor. Then the recognition
+(:mod:`.recognition`), the rationality and the parameterizations (:mod:`.maps`), the cone or
+cylinder (:mod:`.maps`), the canal surface (:mod:`.canal`) and, for rounded input, the nearest
+exact surface, whose own analysis is checked as a report of its own. What is claimed about the
+real points must at least agree with itself (a kind and its dimension).
+"""
+
+from __future__ import annotations
+
+from ..algebra.linalg import cross, is_zero, sub
+from ..algebra.modular import Point
+from ..algebra.polys import Poly, field_name
+from ..errors import AnalysisError, ClaimError, ParseError
+from ..parsing import parse_polynomial
+from ..recognition.symmetry import recognize_symmetry
+from ..results import Analysis, Approximation, Factor
+from .canal import check_canal
+from .formulas import Surface, vector
+from .identities import Identities, proportional
+from .maps import check_conical, check_parametrization, check_rationality
+from .recognition import check_recognition
+
+DIMENSIONS = {"empty": -1, "points": 0, "curve": 1, "surface": 2, "undecided": None}
+"""The dimension of each kind of real locus."""
+
+
+def check_report(analysis: Analysis) -> None:
+    """Raise :class:`ClaimError` for the first claim of ``analysis`` that its polynomial does not
+    bear out (the field named as in the JSON, e.g. ``axis.point``)."""
+    ids = Identities()
+    _check_analysis(analysis, "", ids)
+    ids.run()
+
+
+def read_polynomial(text: str, where: str) -> Poly:
+    """A polynomial of the report read by the parser of typed input (bounded as typed input is)."""
+    try:
+        return parse_polynomial(text).polynomial
+    except ParseError as exc:
+        raise ClaimError(where, f"is not a polynomial sorgui reads: {exc.message}") from None
+
+
+def _check_analysis(analysis: Analysis, where: str, ids: Identities) -> None:
+    f = read_polynomial(analysis.input, f"{where}input")
+    K = f.ring.domain
+    if analysis.field != field_name(K):
+        raise ClaimError(
+            f"{where}field", f"is {analysis.field}, but the equation's coefficients lie in {field_name(K)}"
+        )
+    if read_polynomial(analysis.recognition.polynomial, f"{where}polynomial") != f:
+        raise ClaimError(f"{where}polynomial", "is not the polynomial of the report's equation")
+    surface = Surface.of(f)
+    ids.need(*surface.radicands)
+    rec = analysis.recognition
+    check_recognition(rec, surface, where, ids)
+    _check_factors(analysis, surface, where, ids)
+    if analysis.rationality is not None:
+        if rec.profile is None and analysis.rationality.table_row is not None:
+            raise ClaimError(f"{where}rationality", "is given for a surface without a profile")
+        multiplicity = analysis.factors[0].multiplicity if len(analysis.factors) == 1 else 1
+        check_rationality(analysis.rationality, rec.profile, multiplicity, f"{where}rationality", ids)
+    for i, param in enumerate(analysis.parametrizations):
+        check_parametrization(param, surface, f"{where}parametrizations[{i}]", ids)
+    locus = analysis.real_locus
+    if locus is not None and DIMENSIONS[locus.kind] != locus.dimension:
+        raise ClaimError(f"{where}real_locus.dimension", f"is {locus.dimension}, but {locus.kind!r} has another")
+    if analysis.canal is not None:
+        check_canal(analysis.canal, surface, rec.is_sor, f"{where}canal", ids)
+    if analysis.conical is not None:
+        check_conical(analysis.conical, surface, f"{where}conical", ids)
+    if analysis.approximate is not None:
+        _check_nearest(analysis.approximate, f"{where}approximate", ids)
+
+
+def _check_factors(analysis: Analysis, surface: Surface, where: str, ids: Identities) -> None:
+    """The factors multiply to ``f`` and their product is the square-free part."""
+    factors: list[tuple[Surface, int]] = []
+    for i, factor in enumerate(analysis.factors):
+        factors.append((_check_factor(factor, f"{where}factors[{i}]", ids), factor.multiplicity))
+    squarefree = Surface.of(read_polynomial(analysis.squarefree, f"{where}squarefree"))
+    ids.need(*squarefree.radicands)
+    if not factors:
+        if analysis.recognition.symmetry != "undecided" and "factors" not in analysis.unfinished:
+            raise ClaimError(f"{where}factors", "are missing")
+        if squarefree.polynomial != surface.polynomial:
+            raise ClaimError(f"{where}squarefree", "is not the polynomial (its factors are not known)")
+        return
+    if any(e < 1 for _, e in factors):
+        raise ClaimError(f"{where}factors", "hold a multiplicity below 1")
+
+    def product(point: Point, xyz: list[int], square_free: bool) -> int:
+        total = 1
+        for g, e in factors:
+            total = total * pow(g.at(point, xyz), 1 if square_free else e, point.prime) % point.prime
+        return total
+
+    def xyz(point: Point) -> list[int]:
+        return [point.of(n) for n in ("x", "y", "z")]
+
+    ids.add(
+        f"{where}factors",
+        "do not multiply to the polynomial",
+        lambda P: proportional(lambda Q: product(Q, xyz(Q), False), lambda Q: surface.at(Q, xyz(Q)), P),
+    )
+    ids.add(
+        f"{where}squarefree",
+        "is not the product of the distinct factors",
+        lambda P: proportional(lambda Q: squarefree.at(Q, xyz(Q)), lambda Q: product(Q, xyz(Q), True), P),
+    )
+
+
+def _check_factor(factor: Factor, where: str, ids: Identities) -> Surface:
+    """The factor, and its recognition checked against the polynomial it names (the factor,
+    or ``f`` itself up to a constant when ``f`` is irreducible)."""
+    g = read_polynomial(factor.polynomial, f"{where}.polynomial")
+    recognised = read_polynomial(factor.recognition.polynomial, f"{where}.recognition.polynomial")
+    if recognised.ring != g.ring or g * recognised.LC != recognised * g.LC:
+        raise ClaimError(f"{where}.recognition.polynomial", "is not the factor's polynomial")
+    surface = Surface.of(g)
+    ids.need(*surface.radicands)
+    check_recognition(factor.recognition, Surface.of(recognised), f"{where}.recognition.", ids)
+    return surface
+
+
+def _check_nearest(approx: Approximation, where: str, ids: Identities) -> None:
+    """The nearest exact surface: its own analysis as a report, or else its symmetry and axis."""
+    nearest = approx.nearest
+    if nearest is None:
+        return
+    g = read_polynomial(nearest.polynomial, f"{where}.nearest.polynomial")
+    K = g.ring.domain
+    if nearest.analysis is not None:
+        if read_polynomial(nearest.analysis.input, f"{where}.nearest.analysis.input") != g:
+            raise ClaimError(f"{where}.nearest.analysis.input", "is not the nearest surface's polynomial")
+        _check_analysis(nearest.analysis, f"{where}.nearest.analysis.", ids)
+    try:
+        sym = recognize_symmetry(g)
+    except AnalysisError as exc:
+        raise ClaimError(f"{where}.nearest.kind", f"cannot be: {exc.message}") from None
+    if nearest.kind != sym.kind:
+        raise ClaimError(f"{where}.nearest.kind", f"is {nearest.kind!r}, but the nearest surface is {sym.kind!r}")
+    if nearest.axis is not None:
+        if sym.axis_point is None or sym.axis_direction is None:
+            raise ClaimError(f"{where}.nearest.axis", "is given, but the nearest surface has no single axis")
+        point = vector(K, nearest.axis.point, f"{where}.nearest.axis.point")
+        direction = vector(K, nearest.axis.direction, f"{where}.nearest.axis.direction")
+        if is_zero(direction) or not is_zero(cross(direction, sym.axis_direction)):
+            raise ClaimError(f"{where}.nearest.axis.direction", "is not the direction of the nearest surface's axis")
+        if not is_zero(cross(sub(point, sym.axis_point), sym.axis_direction)):
+            raise ClaimError(f"{where}.nearest.axis.point", "is not a point of the nearest surface's axis")
+    if nearest.center is not None and (sym.center is None or vector(K, nearest.center, "") != tuple(sym.center)):
+        raise ClaimError(f"{where}.nearest.center", "is not the centre of the nearest surface")
+    if nearest.normal is not None and (
+        sym.normal is None or not is_zero(cross(vector(K, nearest.normal, f"{where}.nearest.normal"), sym.normal))
+    ):
+        raise ClaimError(f"{where}.nearest.normal", "is not the normal of the nearest surface")
