@@ -1,4 +1,4 @@
-"""A parametrization's report (docs/math.md §13): read back as it was written, also without an
+"""A parametrization's report (docs/math.md §13, §14): read back as it was written, also without an
 implicit equation; a crafted one is refused in one line naming the field."""
 
 from __future__ import annotations
@@ -46,13 +46,37 @@ def test_reports_read_back(reports: dict[str, Path]) -> None:
         (lambda d: d["parametric"].__setitem__("map_parameters", ["os", "t"]), "not a parameter name"),
         (lambda d: d.__setitem__("input", "x = s, y = t"), "not an equation sorgui reads"),
         (lambda d: d.__setitem__("parametric", None), "parametric is missing"),
+        (lambda d: d["parametric"].__setitem__("map", ["s", "t", "s*t"]), "its parametric.map is not the map"),
+        (lambda d: d.__setitem__("symmetry", "revolution"), "its symmetry is 'revolution'"),
     ],
 )
 def test_a_crafted_report_is_refused(reports: dict[str, Path], tmp_path: Path, change: Any, words: str) -> None:
-    data = json.loads(reports["patch"].read_text(encoding="utf-8"))
+    message = refusal(reports["patch"], tmp_path, change)
+    assert words in message and "\n" not in message
+
+
+def refusal(report: Path, tmp_path: Path, change: Any) -> str:  # noqa: ANN401
+    """The one-line message with which ``report``, changed by ``change``, is refused."""
+    data = json.loads(report.read_text(encoding="utf-8"))
     change(data)
     path = tmp_path / "crafted.json"
     path.write_text(json.dumps(data), encoding="utf-8")
     with pytest.raises(ReportError) as info:
         read_report(path)
-    assert words in info.value.message and "\n" not in info.value.message
+    return info.value.message
+
+
+@pytest.mark.parametrize(
+    "change, words",
+    [
+        (lambda d: d["parametric"].__setitem__("apex", ["1", "2", "4"]), "its parametric.apex is not the apex"),
+        (lambda d: d["conical"].__setitem__("apex", ["1", "2", "4"]), "its conical.apex is not the apex"),
+        (lambda d: d.__setitem__("polynomial", "x**2 + y**2 - z**2"), "its polynomial does not vanish on the map"),
+    ],
+)
+def test_a_report_that_lies_about_its_map_is_refused(
+    reports: dict[str, Path], tmp_path: Path, change: Any, words: str
+) -> None:
+    """Claims that validate but that the map does not bear out (sorgui.engine.claims.parametric)."""
+    message = refusal(reports["cone"], tmp_path, change)
+    assert "is refused" in message and words in message and "\n" not in message, message

@@ -9,6 +9,7 @@ that fails raises :class:`~sorgui.engine.errors.ClaimError` naming its field.
 Modules: ``formulas`` (the report's strings read, numbers of ``K``, polynomials evaluated
 modulo a prime), ``identities`` (identities tested at random points, :mod:`..algebra.modular`),
 ``recognition`` (symmetry, axis, centre, normal, direction, radius, profile), ``maps``
-(rationality, parameterizations, cones and cylinders), ``canal`` (sphere families) and
-``report`` (the whole report: :func:`.report.check_report`).
+(rationality, parameterizations, cones and cylinders), ``canal`` (sphere families),
+``parametric`` (a parametrization's report against its map, docs/math.md §13) and ``report``
+(the whole report: :func:`.report.check_report`).
 """

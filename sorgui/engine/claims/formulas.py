@@ -20,8 +20,9 @@ from sympy.polys.domains.domain import Domain
 from ..algebra.linalg import Vector
 from ..algebra.modular import Point
 from ..algebra.polys import Poly, is_rational_field, to_flint
-from ..errors import ClaimError, ExpressionError
+from ..errors import ClaimError, ExpressionError, ParseError
 from ..expressions import Syntax, read
+from ..parsing import parse_polynomial
 
 NAMES = ("x", "y", "z", "s", "t", "w", "r", "u", "v", "m1", "m2", "m3", "theta", "tau", "a", "h", "rho")
 """The variables of sorgui's results: space, the parameters of maps and profiles, the SMAT
@@ -103,6 +104,14 @@ class Surface:
         g = self.polynomial
         top = g.ring.from_dict({m: c for m, c in g.items() if sum(m) == d})
         return Surface.of(top)
+
+
+def read_polynomial(text: str, where: str) -> Poly:
+    """A polynomial of the report read by the parser of typed input (bounded as typed input is)."""
+    try:
+        return parse_polynomial(text).polynomial
+    except ParseError as exc:
+        raise ClaimError(where, f"is not a polynomial sorgui reads: {exc.message}") from None
 
 
 def values(point: Point, texts: Sequence[str], **names: int) -> list[int]:

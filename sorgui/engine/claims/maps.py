@@ -30,10 +30,7 @@ from .identities import Identities, proportional
 def check_parametrization(param: Parametrization, surface: Surface, where: str, ids: Identities) -> None:
     """A verified map lies on ``f`` and has rank 2; a real one has no ``I`` (an unverified one
     is shown as such and not checked)."""
-    if param.real and any(_complex(formula(c)) for c in param.coordinates):
-        raise ClaimError(f"{where}.real", "is claimed, but the coordinates hold I")
-    if len(set(param.parameters)) != 2:
-        raise ClaimError(f"{where}.parameters", "must be two different names")
+    check_parametrization_form(param, where)
     if not param.verified:
         return
     ids.need(*surface.radicands)
@@ -49,6 +46,14 @@ def check_parametrization(param: Parametrization, surface: Surface, where: str, 
 
     ids.add(where, "does not lie on the surface (f(X(s, t)) is not 0)", on_surface, param.coordinates)
     ids.add(where, "is not a map onto a surface (its Jacobian has rank below 2)", rank_two, param.coordinates)
+
+
+def check_parametrization_form(param: Parametrization, where: str) -> None:
+    """A real map has no ``I``; its two parameters are different names."""
+    if param.real and any(_complex(formula(c)) for c in param.coordinates):
+        raise ClaimError(f"{where}.real", "is claimed, but the coordinates hold I")
+    if len(set(param.parameters)) != 2:
+        raise ClaimError(f"{where}.parameters", "must be two different names")
 
 
 def _complex(expr: sympy.Expr) -> bool:

@@ -33,26 +33,13 @@ def check_recognition(rec: Recognition, surface: Surface, where: str, ids: Ident
     K = g.ring.domain
     if rec.degree != total_degree(g):
         raise ClaimError(f"{where}degree", f"is {rec.degree}, but the polynomial has degree {total_degree(g)}")
-    if rec.symmetry == UNDECIDED:
-        claimed = (rec.is_sor, rec.symmetry_basis, rec.axis, rec.center, rec.normal, rec.direction, rec.profile)
-        if claimed != (False, (), None, None, None, None, None) or rec.radius_squared is not None:
-            raise ClaimError(f"{where}symmetry", "is undecided, but the report gives what it decides")
+    if undecided(rec, where):
         return None
     try:
         sym = recognize_symmetry(g)
     except AnalysisError as exc:
         raise ClaimError(f"{where}symmetry", f"cannot be: {exc.message}") from None
-    if rec.symmetry != sym.kind or rec.symmetry_dimension != sym.dimension or rec.is_sor != sym.is_sor:
-        raise ClaimError(
-            f"{where}symmetry",
-            f"is {rec.symmetry!r} of dimension {rec.symmetry_dimension}, but the polynomial's symmetry "
-            f"algebra is {sym.kind!r} of dimension {sym.dimension}",
-        )
-    _check_basis(rec, sym, K, f"{where}symmetry_basis")
-    _check_axis(rec.axis, sym, K, f"{where}axis")
-    _check_point(rec.center, sym.center, K, f"{where}center")
-    _check_parallel(rec.normal, sym.normal, K, f"{where}normal")
-    _check_parallel(rec.direction, sym.direction, K, f"{where}direction")
+    check_symmetry(rec, sym, K, where, "the polynomial's")
     _check_radius(rec, sym, surface, f"{where}radius_squared")
     has_axis = sym.kind in (REVOLUTION, CYLINDER)
     if (rec.profile is not None) != has_axis:
@@ -62,8 +49,36 @@ def check_recognition(rec: Recognition, surface: Surface, where: str, ids: Ident
     return sym
 
 
-def _check_basis(rec: Recognition, sym: Symmetry, K: Any, where: str) -> None:  # noqa: ANN401
-    claimed = [tuple(number(K, c, f"{where}[{i}]") for c in motion) for i, motion in enumerate(rec.symmetry_basis)]
+def undecided(rec: Recognition, where: str) -> bool:
+    """Whether ``rec`` leaves the symmetry undecided (a time limit); then it may claim nothing
+    the symmetry decides."""
+    if rec.symmetry != UNDECIDED:
+        return False
+    claimed = (rec.is_sor, rec.symmetry_basis, rec.axis, rec.center, rec.normal, rec.direction, rec.profile)
+    if claimed != (False, (), None, None, None, None, None) or rec.radius_squared is not None:
+        raise ClaimError(f"{where}symmetry", "is undecided, but the report gives what it decides")
+    return True
+
+
+def check_symmetry(rec: Recognition, sym: Symmetry, K: Any, where: str, whose: str) -> None:  # noqa: ANN401
+    """The kind, dimension, basis, axis, centre, normal and direction ``rec`` claims against the
+    symmetry algebra ``sym`` (``whose``: the polynomial's, or the map's normal lines')."""
+    if rec.symmetry != sym.kind or rec.symmetry_dimension != sym.dimension or rec.is_sor != sym.is_sor:
+        raise ClaimError(
+            f"{where}symmetry",
+            f"is {rec.symmetry!r} of dimension {rec.symmetry_dimension}, but {whose} symmetry "
+            f"algebra is {sym.kind!r} of dimension {sym.dimension}",
+        )
+    check_basis(rec.symmetry_basis, sym, K, f"{where}symmetry_basis")
+    _check_axis(rec.axis, sym, K, f"{where}axis")
+    _check_point(rec.center, sym.center, K, f"{where}center")
+    _check_parallel(rec.normal, sym.normal, K, f"{where}normal")
+    _check_parallel(rec.direction, sym.direction, K, f"{where}direction")
+
+
+def check_basis(basis: tuple[tuple[str, ...], ...], sym: Symmetry, K: Any, where: str) -> None:  # noqa: ANN401
+    """The claimed motions (``a`` then ``b``) lie in ``L`` and span it."""
+    claimed = [tuple(number(K, c, f"{where}[{i}]") for c in motion) for i, motion in enumerate(basis)]
     if any(len(m) != 6 for m in claimed):
         raise ClaimError(where, "must hold motions of six numbers")
     true = [tuple(m.a) + tuple(m.b) for m in sym.basis]

@@ -6,22 +6,24 @@ their product; each factor's recognition is checked against the factor. Then the
 (:mod:`.recognition`), the rationality and the parameterizations (:mod:`.maps`), the cone or
 cylinder (:mod:`.maps`), the canal surface (:mod:`.canal`) and, for rounded input, the nearest
 exact surface, whose own analysis is checked as a report of its own. What is claimed about the
-real points must at least agree with itself (a kind and its dimension).
+real points must at least agree with itself (a kind and its dimension). A parametrization's
+report is checked against its map first (:mod:`.parametric`), then, when it knows its implicit
+equation, against that equation as an equation's report.
 """
 
 from __future__ import annotations
 
 from ..algebra.linalg import cross, is_zero, sub
 from ..algebra.modular import Point
-from ..algebra.polys import Poly, field_name
-from ..errors import AnalysisError, ClaimError, ParseError
-from ..parsing import parse_polynomial
+from ..algebra.polys import field_name
+from ..errors import AnalysisError, ClaimError
 from ..recognition.symmetry import recognize_symmetry
 from ..results import Analysis, Approximation, Factor
 from .canal import check_canal
-from .formulas import Surface, vector
+from .formulas import Surface, read_polynomial, vector
 from .identities import Identities, proportional
 from .maps import check_conical, check_parametrization, check_rationality
+from .parametric import check_parametric
 from .recognition import check_recognition
 
 DIMENSIONS = {"empty": -1, "points": 0, "curve": 1, "surface": 2, "undecided": None}
@@ -36,15 +38,19 @@ def check_report(analysis: Analysis) -> None:
     ids.run()
 
 
-def read_polynomial(text: str, where: str) -> Poly:
-    """A polynomial of the report read by the parser of typed input (bounded as typed input is)."""
-    try:
-        return parse_polynomial(text).polynomial
-    except ParseError as exc:
-        raise ClaimError(where, f"is not a polynomial sorgui reads: {exc.message}") from None
-
-
 def _check_analysis(analysis: Analysis, where: str, ids: Identities) -> None:
+    locus = analysis.real_locus
+    if locus is not None and DIMENSIONS[locus.kind] != locus.dimension:
+        raise ClaimError(f"{where}real_locus.dimension", f"is {locus.dimension}, but {locus.kind!r} has another")
+    if analysis.approximate is not None:
+        _check_nearest(analysis.approximate, f"{where}approximate", ids)
+    if analysis.input_kind == "parametrization":
+        found = check_parametric(analysis, where, ids)
+        if found is not None:
+            _check_surface(analysis, found, where, ids)
+        return
+    if analysis.parametric is not None:
+        raise ClaimError(f"{where}parametric", "is given for an equation")
     f = read_polynomial(analysis.input, f"{where}input")
     K = f.ring.domain
     if analysis.field != field_name(K):
@@ -55,6 +61,11 @@ def _check_analysis(analysis: Analysis, where: str, ids: Identities) -> None:
         raise ClaimError(f"{where}polynomial", "is not the polynomial of the report's equation")
     surface = Surface.of(f)
     ids.need(*surface.radicands)
+    _check_surface(analysis, surface, where, ids)
+
+
+def _check_surface(analysis: Analysis, surface: Surface, where: str, ids: Identities) -> None:
+    """Every claim of ``analysis`` that its polynomial ``surface`` decides."""
     rec = analysis.recognition
     check_recognition(rec, surface, where, ids)
     _check_factors(analysis, surface, where, ids)
@@ -65,15 +76,10 @@ def _check_analysis(analysis: Analysis, where: str, ids: Identities) -> None:
         check_rationality(analysis.rationality, rec.profile, multiplicity, f"{where}rationality", ids)
     for i, param in enumerate(analysis.parametrizations):
         check_parametrization(param, surface, f"{where}parametrizations[{i}]", ids)
-    locus = analysis.real_locus
-    if locus is not None and DIMENSIONS[locus.kind] != locus.dimension:
-        raise ClaimError(f"{where}real_locus.dimension", f"is {locus.dimension}, but {locus.kind!r} has another")
     if analysis.canal is not None:
         check_canal(analysis.canal, surface, rec.is_sor, f"{where}canal", ids)
     if analysis.conical is not None:
         check_conical(analysis.conical, surface, f"{where}conical", ids)
-    if analysis.approximate is not None:
-        _check_nearest(analysis.approximate, f"{where}approximate", ids)
 
 
 def _check_factors(analysis: Analysis, surface: Surface, where: str, ids: Identities) -> None:

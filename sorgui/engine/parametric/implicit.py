@@ -75,19 +75,20 @@ def implicit_equation(
 ) -> ImplicitEquation | None:
     """The implicit equation by the route the symmetry allows (module docstring); ``None`` when
     Singular's elimination is needed and the field is not ``QQ``."""
-    if symmetry.kind in (REVOLUTION, CYLINDER):
+    route = implicit_route(symmetry, conicity)
+    if route == "profile curve":
         assert symmetry.axis_point is not None and symmetry.axis_direction is not None
         return revolution_equation(surface, symmetry.axis_point, symmetry.axis_direction)
-    if symmetry.kind == SPHERE:
+    if route == "sphere":
         assert symmetry.center is not None
         return sphere_equation(surface, symmetry.center)
-    if symmetry.kind == PLANE:
+    if route == "plane":
         assert symmetry.normal is not None
         return plane_equation(surface, symmetry.normal)
-    if symmetry.kind == EXTRUSION:
+    if route == "cylinder base curve":
         assert symmetry.direction is not None
         return cylinder_equation(surface, symmetry.direction)
-    if conicity.kind == "cone":
+    if route == "cone base curve":
         assert conicity.apex is not None
         return cone_equation(surface, conicity.apex)
     if not surface.ring.is_flint:
@@ -99,6 +100,17 @@ def implicit_equation(
         [ring.to_sympy(c) for c in surface.X], ring.to_sympy(surface.W), timeout=timeout, cancel=cancel
     )
     return None if f is None else ImplicitEquation(f, "elimination")
+
+
+def implicit_route(symmetry: Symmetry, conicity: Conicity) -> str:
+    """The ``method`` by which :func:`implicit_equation` finds the equation of a map with this
+    symmetry and apex (module docstring): the plane curve the symmetry allows, else elimination."""
+    routes = {REVOLUTION: "profile curve", CYLINDER: "profile curve", SPHERE: "sphere", PLANE: "plane"}
+    if symmetry.kind in routes:
+        return routes[symmetry.kind]
+    if symmetry.kind == EXTRUSION:
+        return "cylinder base curve"
+    return "cone base curve" if conicity.kind == "cone" else "elimination"
 
 
 def revolution_equation(surface: RationalMap, point: Vector, direction: Vector) -> ImplicitEquation:
