@@ -1,14 +1,18 @@
 """Parametrizations in the window (docs/math.md §13): the editor accepts and checks the form, the
 pane shows the components as typed and whether the map is proper; a map whose implicit equation
-is not known is drawn as its patch. Real window, worker process and Singular."""
+is not known is drawn as its patch; a parametrization's saved report opens as saved, and one that
+lies about its map is refused in one line. Real window, worker process and Singular."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
 from PySide6.QtWidgets import QLabel
 
+from sorgui.engine import analyze
+from sorgui.export.files import export_file
 from sorgui.samples import bicubic_patch, map_text
 
 pytestmark = pytest.mark.gui
@@ -58,3 +62,35 @@ def test_a_map_without_its_equation_is_drawn_as_its_patch(window, run_analysis, 
         assert window.viewport.scene is not None and window.viewport.scene.patch is not None
         assert not window.viewport.scene.patch.is_empty
     window.save_screenshots(artifacts / "parametric-patch-window.png", artifacts / "parametric-patch-viewport.png")
+
+
+@pytest.mark.parametrize(
+    ("text", "options"),
+    [(ISSUE, {}), (map_text(bicubic_patch(seed=3)), {"recognition_only": True, "timeout": 3})],
+    ids=["with its equation", "without"],
+)
+def test_a_saved_parametrization_opens_and_a_lying_one_is_refused(
+    window,  # noqa: ANN001
+    qtbot,  # noqa: ANN001
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    artifacts: Path,
+    text: str,
+    options: dict,
+) -> None:
+    """File → Open of a parametrization's report (its claims checked against the map): shown as
+    saved; the same report with another map is refused naming the field, in one line."""
+    report = tmp_path / "map.sorgui.json"
+    export_file(analyze(text, **{"timeout": 120, **options}), report)
+    with qtbot.waitSignal(window.result_shown, timeout=120_000):
+        assert window.open_file(str(report))
+    assert "Parametrization (as typed)" in _pane_text(window)
+    if not options:
+        window.save_screenshots(artifacts / "parametric-report-window.png", artifacts / "parametric-report-3d.png")
+    shown: list[str] = []
+    monkeypatch.setattr(window, "_show_error", lambda title, message: shown.append(f"{title}: {message}"))
+    data = json.loads(report.read_text(encoding="utf-8"))
+    data["parametric"]["map"][2] = "s**3 + t"
+    report.write_text(json.dumps(data), encoding="utf-8")
+    assert not window.open_file(str(report))
+    assert len(shown) == 1 and "refused: its parametric.map is not the map" in shown[0] and "\n" not in shown[0]
