@@ -690,7 +690,8 @@ def ending_signals() -> Iterator[None]:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``sorgui`` console script (``argv`` ``None``: this process's own
-    arguments; a finished subcommand then ends the process at once, see :func:`_exit_now`)."""
+    arguments; a finished subcommand, or the closed window, then ends the process at once, see
+    :func:`_exit_now`)."""
     own_process = argv is None
     _started[:] = [time.monotonic() - (_process_age() if own_process else 0.0)]
     if own_process:
@@ -706,7 +707,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         status = 130
     except _Terminated as exc:
         status = 128 + exc.signum
-    if own_process and command is not None:
+    if own_process:
         _exit_now(status)
     return status
 
@@ -770,8 +771,10 @@ def _usable_streams() -> None:
 
 def _exit_now(status: int) -> None:
     """End the process without the interpreter's teardown, which spends a quarter of a second
-    of CPU freeing sympy's objects. Everything is written by then: every output line was
-    flushed by :func:`emit`, exported files are closed, worker processes are joined."""
+    of CPU freeing sympy's objects (half a second after the window, with Qt's and VTK's: several
+    seconds on a loaded machine, after a ``SIGTERM`` too). Everything is written by then: every
+    output line was flushed by :func:`emit`, exported files are closed, worker processes are
+    joined or killed, the window's settings are synced when it closes."""
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

@@ -21,7 +21,6 @@ from PySide6.QtGui import (
     QAction,
     QCloseEvent,
     QDropEvent,
-    QFontInfo,
     QGuiApplication,
     QKeySequence,
     QPainter,
@@ -67,7 +66,7 @@ from sorgui.gui.exporting import (
 )
 from sorgui.gui.help import TOPICS, HelpDialog
 from sorgui.gui.region_dialog import BoxDialog
-from sorgui.gui.results import FORMULA_MARGIN, ResultsPane
+from sorgui.gui.results import ResultsPane
 from sorgui.gui.session_view import SessionView
 from sorgui.gui.settings import (
     EQUATION_FILTER,
@@ -78,11 +77,11 @@ from sorgui.gui.settings import (
     write_equation,
 )
 from sorgui.gui.stages import RunPanel
+from sorgui.gui.typesetter import Typesetter
 from sorgui.gui.viewport import Viewport
 from sorgui.gui.wording import invalid_heading
 from sorgui.gui.worker import AnalysisWorker
 from sorgui.render.picking import PickInfo
-from sorgui.session.formulas import Style
 from sorgui.session.model import Session
 from sorgui.session.part_job import PART_SUFFIXES
 
@@ -188,7 +187,8 @@ class MainWindow(QMainWindow):
         self.cad_export.written.connect(self._cad_written)
         self.cad_export.failed.connect(self._cad_failed)
         self.editor = EquationEditor(self)
-        self.results = ResultsPane(self)
+        self.typesetter = Typesetter(self)
+        self.results = ResultsPane(self, self.typesetter)
         self.run_panel = RunPanel(self)
         self.viewport = Viewport(self)
         self.help_dialog: HelpDialog | None = None
@@ -412,7 +412,6 @@ class MainWindow(QMainWindow):
         self._zoom = zoom
         self.results.set_zoom(zoom)
         self.view.refresh_pane()
-        self.session.retypeset(self._formula_style())
         self.statusBar().showMessage(f"Formulas at {zoom:.0%}", 2000)
 
     @property
@@ -473,9 +472,7 @@ class MainWindow(QMainWindow):
         self._report = path
         self._update_title()
         self.settings.add_recent_file(path)
-        self.session.analyze(
-            analysis.input, analysis=analysis, resolution=self.viewport.mesh_resolution(), style=self._formula_style()
-        )
+        self.session.analyze(analysis.input, analysis=analysis, resolution=self.viewport.mesh_resolution())
         self.statusBar().showMessage(f"Report {Path(path).name}: shown as saved, not analysed again", 6000)
         return True
 
@@ -504,7 +501,6 @@ class MainWindow(QMainWindow):
         self.session.analyze(
             self.editor.text(),
             resolution=self.viewport.mesh_resolution(),
-            style=self._formula_style(),
             singular_timeout=self.time_limit,
             tolerance=self.tolerance,
         )
@@ -745,14 +741,6 @@ class MainWindow(QMainWindow):
 
     # --- helpers ---
 
-    def _formula_style(self) -> Style:
-        """Formulas typeset at the text's size on this screen (times the zoom), wrapped to the
-        width the results pane has now."""
-        ratio = self.devicePixelRatioF()
-        width = 0.85 * (self.results.viewport().width() - FORMULA_MARGIN)  # pieces join a bit wider
-        points = QFontInfo(self.font()).pixelSize() * 72.0 / 96.0 + 1.5  # mathtext at 96 dpi: same pixels
-        return Style(dpi=96.0 * ratio, size=points * self._zoom, width=max(width, 200) * ratio)
-
     def _show_error(self, title: str, message: str) -> None:
         self.statusBar().showMessage(message, 8000)
         QMessageBox.warning(self, title, message)
@@ -844,6 +832,29 @@ class MainWindow(QMainWindow):
         if not self.confirm_discard():
             event.ignore()
             return
+        self._remember()
+        self.view.close()
+        self.worker.shutdown()
+        self.typesetter.shutdown()
+        self.cad_export.shutdown()
+        self.viewport.close_plotter()
+        super().closeEvent(event)
+
+    def end_at_once(self) -> None:
+        """A signal ends sorgui (``SIGTERM``, a logout): the window goes at once, the typed text,
+        the layout and the camera are kept as on Quit, the worker processes are killed without
+        waiting for them. Nothing else is released: the process exits right after, without the
+        interpreter's teardown (:func:`sorgui.cli.main`), so no VTK object outlives its window."""
+        self.hide()
+        self._discarded = False
+        self._remember()
+        self.view.close()
+        self.worker.shutdown(wait=0.0)
+        self.typesetter.shutdown(wait=0.0)
+        self.cad_export.shutdown()
+
+    def _remember(self) -> None:
+        """Keep what the next start restores: the text, the file, the layout, the camera."""
         self.settings.equation = self._kept_text()
         self.settings.current_file = self._file
         if self.viewport.detected_software is not None:
@@ -855,8 +866,3 @@ class MainWindow(QMainWindow):
             self.settings.forget_camera()
         self._save_layout()
         self.settings.sync()
-        self.view.close()
-        self.worker.shutdown()
-        self.cad_export.shutdown()
-        self.viewport.close_plotter()
-        super().closeEvent(event)

@@ -27,9 +27,8 @@ from sorgui.gui.results import ResultsPane
 from sorgui.gui.stages import RunPanel, seconds_text
 from sorgui.gui.viewport import Viewport
 from sorgui.gui.wording import invalid_heading
-from sorgui.session.formulas import TypesetFormula
 from sorgui.session.job import JobResult
-from sorgui.session.model import WORKER_STAGES, Run, Session, StageState
+from sorgui.session.model import Run, Session, StageState
 from sorgui.session.scene_data import SceneData
 
 PANE_DELAY_MS = 120
@@ -96,7 +95,6 @@ class SessionView(QObject):
         events.run_started.connect(self._on_run_start_change)
         events.state_changed.connect(self._on_stage_change)
         events.analysis_changed.connect(self._on_results_change)
-        events.formulas_changed.connect(self._on_formulas_change)
         events.components_changed.connect(self._on_results_change)
         events.scene_changed.connect(self._on_scene_change)
         events.nearest_scene_changed.connect(self._on_nearest_scene_change)
@@ -136,25 +134,16 @@ class SessionView(QObject):
         else:
             nearest_analysis = self.session.nearest_analysis if self.session.view == "nearest" else None
             nearest = nearest_analysis is not None
-            if nearest_analysis is not None:
-                analysis = nearest_analysis
-                formulas = {k[len("nearest.") :]: f for k, f in run.formulas.items() if k.startswith("nearest.")}
-            else:
-                analysis = run.analysis
-                formulas = {k: f for k, f in run.formulas.items() if not k.startswith("nearest.")}
+            analysis = nearest_analysis if nearest_analysis is not None else run.analysis
             pending = {s.name for s in run.stage_list() if s.state in (StageState.PENDING, StageState.RUNNING)}
-            worker = tuple(
-                (name, run.stages[name].seconds)
-                for name in WORKER_STAGES
-                if name in run.stages and run.stages[name].state is StageState.DONE
-            )
+            done = tuple((s.name, s.seconds) for s in run.stage_list() if s.state is StageState.DONE)
             self.results.show_analysis(
                 analysis,
-                formulas,
-                worker,
+                done,
                 pending=pending,
                 nearest=nearest,
                 components=() if nearest else run.components,
+                wall=None if run.running else run.elapsed(),
             )
             self._shown = (analysis, nearest)
             self._shown_pending = bool(pending)
@@ -237,23 +226,6 @@ class SessionView(QObject):
             self.refresh_pane()  # the run's first verdict: shown at once, never coalesced
         else:
             self._schedule_pane()
-
-    def _on_formulas_change(self, formulas: dict[str, TypesetFormula]) -> None:
-        """Typeset formulas of the shown analysis go into the page in place; else a rebuild."""
-        run = self.session.run
-        nearest = self.session.view == "nearest"
-        shown = (self.session.nearest_analysis if nearest else run.analysis) if run is not None else None
-        if self._dirty or run is None or self._shown != (shown, nearest):
-            self._schedule_pane()
-            return
-        prefix = "nearest." if nearest else ""
-        self.results.update_formulas(
-            {
-                k[len(prefix) :]: f
-                for k, f in formulas.items()
-                if k.startswith(prefix) and (nearest or not k.startswith("nearest."))
-            }
-        )
 
     def _on_scene_change(self, scene: SceneData) -> None:
         run = self.session.run
@@ -341,11 +313,8 @@ class SessionView(QObject):
 
     def _on_refresh_change(self, what: str, result: JobResult | None) -> None:
         if result is None:
-            self.status.setText("Could not redo the " + ("mesh" if what == "scene" else "formulas"))
+            self.status.setText("Could not redo the mesh")
             return
-        if what == "scene":
-            assert result.scene is not None  # a redrawing sends its scene before it finishes
-            self.status.setText(f"Re-meshed: {result.scene.summary()}")
-            self.shown.emit(result)
-        else:
-            self.refresh_pane()
+        assert result.scene is not None  # a redrawing sends its scene before it finishes
+        self.status.setText(f"Re-meshed: {result.scene.summary()}")
+        self.shown.emit(result)

@@ -64,6 +64,7 @@ CAPTION_TIPS = {
         "The stages' times added up; the wall time under the 3D view (“Done in …”) also counts "
         "starting the worker and showing the results"
     ),
+    "wall time": "From pressing Analyze to the last result, as the status line says “Done in …”",
     "note": "A remark of the engine on this result",
     "canal": "Whether X is the envelope of a one-parameter family of spheres (docs/math.md §9)",
     "certificate": "The exact proof that X is the envelope of the sphere family",

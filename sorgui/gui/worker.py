@@ -7,7 +7,7 @@ which makes it a process-group leader. A timer polls the pipe and turns messages
 signals :attr:`~AnalysisWorker.progress`, :attr:`~AnalysisWorker.finished`,
 :attr:`~AnalysisWorker.failed` and :attr:`~AnalysisWorker.cancelled`.
 
-Cancelling sets the job's ``multiprocessing.Event`` (the engine checks it between stages and
+Cancelling sets the job's :class:`~sorgui.session.process.CancelFlag` (the engine checks it between stages and
 kills Singular at once); a process still alive :data:`CANCEL_GRACE_S` later is killed with its
 whole tree, Singular included (:meth:`sorgui.session.child.ChildProcess.kill`, the mechanism
 ``sorgui analyze`` and ``--each-line`` use too). Starting a job supersedes the
@@ -43,7 +43,7 @@ from sorgui.session.messages import (
     StageDone,
     StageStarted,
 )
-from sorgui.session.process import worker_main
+from sorgui.session.process import CancelFlag, worker_main
 from sorgui.session.supervised import GRACE, StageLog
 
 if TYPE_CHECKING:
@@ -64,7 +64,7 @@ class _Job(ChildProcess):
     deadline of its analysis."""
 
     def __init__(self, context: multiprocessing.context.SpawnContext) -> None:
-        self.cancel_event = context.Event()
+        self.cancel_event = CancelFlag(context)
         super().__init__(context, worker_main, (self.cancel_event,))
         self.kill_at: float | None = None
         self.pending: deque[Message] = deque()
@@ -153,16 +153,19 @@ class AnalysisWorker(QObject):
         if self._current is not None:
             self._current.request_cancel()
 
-    def shutdown(self) -> None:
-        """Kill every process at once (the window is closing) and stop polling."""
+    def shutdown(self, wait: float = 1.0) -> None:
+        """Kill every process at once (the window is closing) and stop polling; wait at most
+        ``wait`` seconds in all for the kernel to release them (none when sorgui is ending)."""
         self._timer.stop()
         self._spare_timer.stop()
         jobs = [j for j in (self._current, self._spare, *self._retiring) if j is not None]
         self._current, self._spare, self._retiring = None, None, []
         for job in jobs:
             job.kill()
+        deadline = time.monotonic() + wait
         for job in jobs:
-            job.process.join(1.0)
+            if wait > 0:
+                job.process.join(max(0.0, deadline - time.monotonic()))
             job.conn.close()
 
     # --- polling ---
@@ -230,7 +233,7 @@ class AnalysisWorker(QObject):
             if isinstance(outcome, Finished):
                 from sorgui.session.job import JobResult
 
-                outcome = Finished(JobResult(outcome.result, None, None, ()))
+                outcome = Finished(JobResult(outcome.result, None, ()))
                 self.message.emit(AnalysisKnown(outcome.result.analysis))
             self._end_current(job, outcome)
 
