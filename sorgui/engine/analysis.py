@@ -206,18 +206,6 @@ def analyze_polynomial(
             real = real_locus(f, symmetry, profile)
     approximation: Approximation | None = None
     near = None
-    if tolerance is not None or (text is not None and has_decimals(text)):
-        from .rounded.approximate import (  # numpy: only for rounded input
-            approximate_symmetry,
-            rounding_of,
-        )
-
-        with clock.stage("approximate"):
-            rounding, rounding_notes = rounding_of(f, text, tolerance)
-            assert rounding is not None  # a tolerance is given, or ``text`` prints decimals
-            near = approximate_symmetry(f, rounding, notes=rounding_notes, snap_exact=not recognition.is_sor)
-        approximation = near.approximation
-
     canal_result: Canal | None = None
     conical_result: Conical | None = None
 
@@ -237,6 +225,19 @@ def analyze_polynomial(
             canal=canal_result,
             conical=conical_result,
         )
+
+    if tolerance is not None or (text is not None and has_decimals(text)):
+        clock.publish(result(None, ()))  # the exact verdict at once: the rounding takes seconds at high degree
+        from .rounded.approximate import (  # numpy: only for rounded input
+            approximate_symmetry,
+            rounding_of,
+        )
+
+        with clock.stage("approximate"):
+            rounding, rounding_notes = rounding_of(f, text, tolerance)
+            assert rounding is not None  # a tolerance is given, or ``text`` prints decimals
+            near = approximate_symmetry(f, rounding, notes=rounding_notes, snap_exact=not recognition.is_sor)
+        approximation = near.approximation
 
     rationality = None
     found: tuple[Parametrization, ...] = ()

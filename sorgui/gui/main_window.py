@@ -55,14 +55,17 @@ from sorgui.gui.camera import CameraState
 from sorgui.gui.editor import EquationEditor
 from sorgui.gui.examples import ExamplesMenu
 from sorgui.gui.exporting import (
-    EXPORT_FILTERS,
+    CAD_CHOICES,
     REPORT_FILTER,
     PictureDialog,
     export_filters,
+    filter_of_suffix,
     is_report_path,
     png_bytes,
     suffix_of_filter,
     viewport_image,
+    with_suffix_of,
+    without_export_suffix,
 )
 from sorgui.gui.help import TOPICS, HelpDialog
 from sorgui.gui.region_dialog import BoxDialog
@@ -79,7 +82,7 @@ from sorgui.gui.settings import (
 from sorgui.gui.stages import RunPanel
 from sorgui.gui.typesetter import Typesetter
 from sorgui.gui.viewport import Viewport
-from sorgui.gui.wording import invalid_heading
+from sorgui.gui.wording import invalid_heading, no_surface_caption
 from sorgui.gui.worker import AnalysisWorker
 from sorgui.render.picking import PickInfo
 from sorgui.session.model import Session
@@ -283,6 +286,11 @@ class MainWindow(QMainWindow):
         file_menu.addSeparator()
         self.copy_report_action = self._action(file_menu, "&Copy Report", self._copy_report, "Ctrl+Shift+C")
         self.export_action = self._action(file_menu, "&Export Results…", self._export_results, "Ctrl+E")
+        self.cad_menu = file_menu.addMenu("Export &CAD File")
+        self.cad_actions = {
+            suffix: self._action(self.cad_menu, f"{name} ({suffix})…", partial(self._export_results, suffix))
+            for suffix, name in CAD_CHOICES
+        }
         self.screenshot_action = self._action(file_menu, "Save Screens&hot…", self._save_screenshot, "Ctrl+Shift+P")
         file_menu.addSeparator()
         self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
@@ -538,8 +546,9 @@ class MainWindow(QMainWindow):
         heading = invalid_heading(message)
         self.results.show_message(heading, message, "error")
         self.run_panel.show_run(None)  # the previous equation's stages are not this one's
+        self.run_panel.set_nearest_available(False)  # nor its nearest exact surface
         self.run_panel.set_notice("error", f"<b>{html.escape(heading)}:</b> {html.escape(message)}")
-        self.viewport.clear(caption="No surface: the equation is not a polynomial")
+        self.viewport.clear(caption=no_surface_caption(message))
         self.stage_label.setText("Fix the equation to analyse it")
 
     def choose_box(self) -> None:
@@ -677,15 +686,32 @@ class MainWindow(QMainWindow):
         with a transparent background (written atomically)."""
         return atomic_write_bytes(path, png_bytes(viewport_image(self.viewport, width, transparent)))
 
-    def _export_results(self) -> None:
+    def ask_export_path(self, suffix: str) -> str | None:
+        """The Export dialog, on the format of ``suffix``: choosing another file type there
+        changes the name's suffix with it (typing a suffix of one's own also chooses the format)."""
+        dialog = QFileDialog(self, "Export results")
+        dialog.setAcceptMode(QFileDialog.AcceptMode.AcceptSave)
+        dialog.setNameFilters(export_filters().split(";;"))
+        dialog.selectNameFilter(filter_of_suffix(suffix))
+        stem = Path(self._file).stem if self._file else "sorgui-results"
+        dialog.selectFile(stem + suffix)
+
+        def retype(chosen: str) -> None:
+            name = Path(next(iter(dialog.selectedFiles()), "") or stem).name
+            dialog.selectFile(without_export_suffix(name) + suffix_of_filter(chosen))
+
+        dialog.filterSelected.connect(retype)
+        if dialog.exec() != QDialog.DialogCode.Accepted or not dialog.selectedFiles():
+            return None
+        return with_suffix_of(dialog.selectedFiles()[0], dialog.selectedNameFilter())
+
+    def _export_results(self, suffix: str = ".json") -> None:
         if self._finished_analysis() is None:
             self.statusBar().showMessage("Analyse an equation first", 4000)
             return
-        path, chosen = QFileDialog.getSaveFileName(self, "Export results", "sorgui-results.json", export_filters())
+        path = self.ask_export_path(suffix)
         if not path:
             return
-        if Path(path).suffix.lower() not in EXPORT_FILTERS:
-            path += suffix_of_filter(chosen)
         picture = Path(path).with_suffix(".png")
         if Path(path).suffix.lower() == ".md" and picture.exists() and not self.confirm_replace(picture):
             return

@@ -60,6 +60,7 @@ from sorgui.gui.wording import (
     verdict,
     why_not,
 )
+from sorgui.session.base_curves import base_curve_rows
 from sorgui.session.components import Component
 from sorgui.session.formulas import TypesetFormula, pane_formulas
 from sorgui.session.typesetting import Style, Typeset
@@ -155,18 +156,21 @@ class ResultsPane(QScrollArea):
         nearest: bool = False,
         components: Sequence[Component] = (),
         wall: float | None = None,
+        unfinished: Collection[str] = (),
+        limit: float | None = None,
     ) -> None:
         """Show ``analysis``, every formula as text at once and typeset when the typesetting
         process has it. ``stages`` are the run's finished stages with their times and ``wall``
         its wall time so far (the Timings section: the same figures as the stage line);
-        ``pending`` names the stages still to come (shown as such); ``nearest`` says that
+        ``pending`` names the stages still to come (shown as such), ``unfinished`` those the time
+        limit of ``limit`` seconds cut short (shown as undecided); ``nearest`` says that
         ``analysis`` is that of the nearest exact surface (its numbers in decimals, as rounded
         input's); ``components`` are the typed components of a blend, to explain a *no*."""
         self._analysis = analysis
         self._formulas = pane_formulas(analysis, "decimal" if nearest else None)
         rec = analysis.recognition
         self._begin(analysis.input)
-        title, detail, kind = verdict(analysis)
+        title, detail, kind = verdict(analysis, rounding_pending="approximate" in pending)
         if nearest:
             title = "The nearest exact surface: " + title.lower()
             detail = (
@@ -202,10 +206,15 @@ class ResultsPane(QScrollArea):
             self._near_conical_section(conical)
         elif "conical" in pending:
             self._section("Cone or cylinder", [("", "being decided: the apex or the direction follows")])
+        elif "conical" in unfinished:
+            self._section("Cone or cylinder", [("", _undecided(limit))])
         if analysis.canal is not None:
-            self._canal_section(analysis.canal, nearly_canal(analysis))
+            near = analysis.approximate is not None and analysis.approximate.near_sor and not rec.is_sor
+            self._canal_section(analysis.canal, nearly_canal(analysis), near and "nearest" in pending)
         elif "canal" in pending:
             self._section("Canal surface", [("", "being decided: the sphere family and its certificate follow")])
+        elif "canal" in unfinished:
+            self._section("Canal surface", [("canal", _undecided(limit))])
         if analysis.rationality is not None and "parametrizations" in pending:
             self._section("Parameterizations", [("", "being computed and verified…")])
         self._timings_section(stages or tuple(analysis.timings), wall)
@@ -535,11 +544,12 @@ class ResultsPane(QScrollArea):
         base = conical.base_curve
         if base is not None:
             if base.chart is not None:
-                rows.append(("base curve", f"the top-degree form of f in the chart {base.chart}"))
+                rows.append(("base curve", f"the top-degree form of f in the chart {base.chart}, relative to the apex"))
             else:
                 rows.append(("base curve", "the section by the plane u·U + v·W across the direction"))
                 rows += [("U", "conical.base.frame_u"), ("W", "conical.base.frame_w")]
             rows.append(("", "conical.base"))
+            rows += base_curve_rows(conical)
             if base.reducible:
                 facts = "reducible over K: so is the surface, one component over each factor"
             elif base.genus is not None:
@@ -572,10 +582,18 @@ class ResultsPane(QScrollArea):
         ]
         self._section("Cone or cylinder", rows)
 
-    def _canal_section(self, canal: Canal, nearly: str = "") -> None:
-        rows = [("canal", canal_verdict(canal))]
+    def _canal_section(self, canal: Canal, nearly: str = "", nearest_pending: bool = False) -> None:
+        """The canal verdict; for rounded input near a surface of revolution, the nearest exact
+        surface's verdict first (what was meant), then that of the typed rationals."""
         if nearly:
-            rows.append(("rounded input", nearly))
+            rows = [("canal", nearly), ("exactly", canal_verdict(canal) + " (the typed rationals)")]
+        elif nearest_pending and canal.is_canal is False:
+            rows = [
+                ("canal", "not exactly canal; the answer of the nearest exact surface is being decided"),
+                ("exactly", canal_verdict(canal) + " (the typed rationals)"),
+            ]
+        else:
+            rows = [("canal", canal_verdict(canal))]
         evidence = canal_evidence(canal)
         if evidence is not None:
             rows.append(evidence)
@@ -588,7 +606,7 @@ class ResultsPane(QScrollArea):
             if f"canal.{index}.spine" in self._formulas:
                 rows.append(("m(t)", f"canal.{index}.spine"))
             if f"canal.{index}.radius" in self._formulas and not family.pipe:
-                rows.append(("ρ(t)", f"canal.{index}.radius"))
+                rows.append(("r²(t)", f"canal.{index}.radius"))
         rows += [("note", note) for note in canal.notes]
         self._section("Canal surface", rows)
 
@@ -632,6 +650,11 @@ def _table_1(row: int | None) -> QTableWidget:
     table.setFixedHeight(height + 2 * table.frameWidth())
     table.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
     return table
+
+
+def _undecided(limit: float | None) -> str:
+    within = f" within the time limit of {limit:g} s" if limit is not None else " within the time limit"
+    return f"not finished{within}: undecided (Analysis → Time Limit… allows more)"
 
 
 def _value(value: object) -> str:

@@ -26,7 +26,7 @@ from sorgui.gui.editor import EquationEditor
 from sorgui.gui.results import ResultsPane
 from sorgui.gui.stages import RunPanel, seconds_text
 from sorgui.gui.viewport import Viewport
-from sorgui.gui.wording import invalid_heading
+from sorgui.gui.wording import invalid_heading, no_surface_caption
 from sorgui.session.job import JobResult
 from sorgui.session.model import Run, Session, StageState
 from sorgui.session.scene_data import SceneData
@@ -136,14 +136,18 @@ class SessionView(QObject):
             nearest = nearest_analysis is not None
             analysis = nearest_analysis if nearest_analysis is not None else run.analysis
             pending = {s.name for s in run.stage_list() if s.state in (StageState.PENDING, StageState.RUNNING)}
-            done = tuple((s.name, s.seconds) for s in run.stage_list() if s.state is StageState.DONE)
+            done = (
+                () if run.report else tuple((s.name, s.seconds) for s in run.stage_list() if s.state is StageState.DONE)
+            )
             self.results.show_analysis(
                 analysis,
                 done,
                 pending=pending,
+                unfinished={s.name for s in run.unfinished()} if not nearest else set(),
+                limit=run.limit,
                 nearest=nearest,
                 components=() if nearest else run.components,
-                wall=None if run.running else run.elapsed(),
+                wall=None if run.running or run.report else run.elapsed(),
             )
             self._shown = (analysis, nearest)
             self._shown_pending = bool(pending)
@@ -167,6 +171,19 @@ class SessionView(QObject):
         run = self.session.run
         if self.session.stale:
             self.panel.set_notice("stale", STALE_NOTICE)
+        elif run is not None and run.report and run.outcome in (None, "finished"):
+            self.panel.set_notice(
+                "report",
+                "<b>Shown as saved in the report, not analysed again.</b> "
+                "Press Analyze (Ctrl+Return) to analyse the equation anew.",
+            )
+        elif run is not None and run.limited:
+            names = ", ".join(stage.title for stage in run.unfinished())
+            self.panel.set_notice(
+                "limit",
+                f"<b>Stopped at the time limit of {run.limit:g} s.</b> Not finished: {html.escape(names)}; "
+                "their results are undecided, what was finished is shown (Analysis → Time Limit… allows more).",
+            )
         elif run is None or run.running or run.outcome == "finished":
             self.panel.set_notice(None)
         elif run.outcome == "invalid":
@@ -207,7 +224,7 @@ class SessionView(QObject):
         else:
             self.refresh_pane()
             self.viewport.clear(caption="Analysing: " + short(run.text))
-        self.status.setText("Starting…")
+        self.status.setText("Drawing the saved report…" if run.report else "Starting…")
 
     def _shown_nearest(self) -> bool:
         return self._shown is not None and self._shown[1]
@@ -248,7 +265,10 @@ class SessionView(QObject):
             camera = state if run is not None and run.text == equation else None
             self.restore_camera = None
         self._fresh_scene = False
-        self.viewport.show_scene(scene, reset_camera=fresh and camera is None, caption=caption)
+        shown = self.viewport.scene
+        # a new ball or box (View → Cut to a Box, the ball radius) is framed afresh, as a new surface
+        moved = shown is not None and (shown.region != scene.region or shown.box != scene.box)
+        self.viewport.show_scene(scene, reset_camera=(fresh or moved) and camera is None, caption=caption)
         if camera is not None:
             self.viewport.restore_camera(camera)
         if self.session.stale:
@@ -269,7 +289,15 @@ class SessionView(QObject):
                 verdict = "nearly a surface of revolution"
             summary = run.scene.summary() if run.scene is not None else ""
             notes = " ".join(run.scene.notes) if run.scene is not None else ""
-            self.status.setText(f"Done in {run.elapsed():.2f} s: {verdict}; {summary}. {notes}".strip())
+            if run.report:
+                self.status.setText(f"Report shown as saved, not analysed again: {verdict}; {summary}".strip())
+            elif run.limited:
+                self.status.setText(
+                    f"Stopped at the time limit of {run.limit:g} s after {run.elapsed():.2f} s: "
+                    f"{verdict} so far, some stages undecided; {summary}".strip()
+                )
+            else:
+                self.status.setText(f"Done in {run.elapsed():.2f} s: {verdict}; {summary}. {notes}".strip())
             if run.result is not None:
                 self.shown.emit(run.result)
         elif run.outcome == "invalid":
@@ -278,7 +306,7 @@ class SessionView(QObject):
             assert position is not None  # every invalid text's error comes from a ParseError
             self.editor.show_error(ParseError(message, position, end))
             self.status.setText("Fix the equation to analyse it")
-            self.viewport.clear(caption="No surface: the equation is not a polynomial")
+            self.viewport.clear(caption=no_surface_caption(message))
         elif run.outcome == "failed":
             self.status.setText("Failed: " + (run.message or ""))
             if run.scene is None:

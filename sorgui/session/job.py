@@ -134,6 +134,8 @@ class _Presenter:
         if self.scene is not None and self._without_equation and analysis.squarefree:
             # a parametrization's implicit equation has come: the surface replaces the patch
             self.scene, self._patched, self._approximated, self._conical, self._canal = (None, False, False, False, ())
+        if self.scene is None and self._awaits_rounding(analysis):
+            return  # rounded input is drawn about its approximate axis, once that is known
         if self.scene is None:
             self._without_equation = not analysis.squarefree
             self.scene = self.stage("scene", lambda: scene_data.build_scene_of(analysis, request))
@@ -154,6 +156,15 @@ class _Presenter:
 
             self.nearest_scene = self.stage("nearest scene", draw_nearest)
             self.send(NearestSceneKnown(self.nearest_scene))
+
+    def _awaits_rounding(self, analysis: Analysis) -> bool:
+        """Whether ``analysis`` is rounded input's exact verdict, its rounding still to come."""
+        from sorgui.engine.rounded.precision import has_decimals
+
+        request = self.request
+        rounded = request.tolerance is not None or has_decimals(request.text)
+        typed = analysis.input_kind != "parametrization"  # a map's scene does not wait for a rounding
+        return rounded and typed and request.analysis is None and analysis.approximate is None
 
     def _explain(self, analysis: Analysis) -> None:
         """For a *no* on irreducible input: the typed components of a blend and their axes."""

@@ -125,6 +125,8 @@ class StageState(str, Enum):
     CANCELLED = "cancelled"
     SKIPPED = "skipped"
     """Not needed for this input (e.g. no rationality for a surface that is not one of revolution)."""
+    UNFINISHED = "unfinished"
+    """Cut short, or never reached, by the time limit (its result is undecided)."""
 
 
 @dataclass
@@ -182,7 +184,7 @@ class Run:
     @property
     def progress(self) -> tuple[int, int]:
         """``(finished stages, all stages)``, skipped ones counted as finished."""
-        over = (StageState.DONE, StageState.SKIPPED, StageState.FAILED, StageState.CANCELLED)
+        over = (StageState.DONE, StageState.SKIPPED, StageState.FAILED, StageState.CANCELLED, StageState.UNFINISHED)
         return sum(s.state in over for s in self.stages.values()), len(self.stages)
 
     def stage_list(self) -> list[Stage]:
@@ -193,6 +195,29 @@ class Run:
 
     def elapsed(self) -> float:
         return (self.ended if self.ended is not None else time.monotonic()) - self.started
+
+    @property
+    def report(self) -> bool:
+        """Whether the run shows a saved report (its analysis given, only the scene made)."""
+        return self.request.analysis is not None
+
+    @property
+    def limit(self) -> float:
+        """The run's time limit in seconds (the window's Analysis → Time Limit…)."""
+        return self.request.singular_timeout
+
+    @property
+    def limited(self) -> bool:
+        """Whether the run ended at its time limit with stages not finished."""
+        return self.outcome == "finished" and self.analysis is not None and bool(self.analysis.unfinished)
+
+    def unfinished(self) -> list[Stage]:
+        return [s for s in self.stages.values() if s.state is StageState.UNFINISHED]
+
+
+def result_unfinished(message: Finished) -> bool:
+    """Whether a finished job's analysis was cut short by its time limit."""
+    return bool(getattr(message.result.analysis, "unfinished", ()))
 
 
 def planned_stages(request: JobRequest) -> tuple[str, ...]:
@@ -368,7 +393,7 @@ class Session:
                 self._finish_stage(run, stage, seconds, add=True)
             case AnalysisKnown(analysis):
                 run.analysis = analysis
-                for name, seconds in analysis.timings:
+                for name, seconds in () if run.report else analysis.timings:  # a report's stages ran elsewhere
                     self._finish_stage(run, name, seconds, add=False)
                 self._skip_unneeded(run, analysis)
                 self.events.analysis_changed.emit(analysis)
@@ -467,6 +492,8 @@ class Session:
             "failed": StageState.FAILED,
             "cancelled": StageState.CANCELLED,
         }[run.outcome]
+        if isinstance(message, Finished) and result_unfinished(message):
+            running = rest = StageState.UNFINISHED  # the time limit cut them short
         match message:
             case Finished(result):
                 run.analysis = result.analysis
@@ -490,5 +517,6 @@ class Session:
                 stage.started = None
                 self._set_state(run, stage, running)
             elif stage.state is StageState.PENDING:
-                self._set_state(run, stage, StageState.DONE if stage.seconds > 0 else rest)
+                waited = StageState.SKIPPED if stage.name in WORKER_STAGES else rest
+                self._set_state(run, stage, StageState.DONE if stage.seconds > 0 else waited)
         self.events.run_finished.emit(run)
