@@ -203,7 +203,8 @@ def measure(window: Any, text: str, timeout_s: float = 300.0) -> dict[str, float
         if "shown" in marks and time.perf_counter() > marks["shown"] + 60:
             break
     shown = marks.get("shown", time.perf_counter())
-    while time.perf_counter() < max(shown + AFTER_MS / 1000, time.perf_counter()):
+    until = shown + AFTER_MS / 1000
+    while time.perf_counter() < until:
         QCoreApplication.processEvents()
         time.sleep(0.001)
     heartbeat.stop()
@@ -211,7 +212,6 @@ def measure(window: Any, text: str, timeout_s: float = 300.0) -> dict[str, float
     window.worker.failed.disconnect()
     if done[:1] != ["shown"]:
         raise RuntimeError(f"the analysis did not finish: {done or 'timeout'}")
-    until = shown + AFTER_MS / 1000
     gaps = [1000 * (b - a) for a, b in zip(beats, beats[1:]) if a <= until]
     return {
         **{name: value - start for name, value in marks.items()},

@@ -65,8 +65,9 @@ def open_main_window(path: str | None = None) -> MainWindow:
     started first of all, so that it loads the engine while the window loads Qt's widgets.
     """
     from sorgui.gui.worker import AnalysisWorker
+    from sorgui.session.process import STARTUP_NICENESS
 
-    worker = AnalysisWorker()
+    worker = AnalysisWorker(first_niceness=STARTUP_NICENESS)
     from sorgui.gui.main_window import MainWindow
 
     window = MainWindow(worker=worker)

@@ -190,7 +190,7 @@ class MainWindow(QMainWindow):
         self.cad_export.written.connect(self._cad_written)
         self.cad_export.failed.connect(self._cad_failed)
         self.editor = EquationEditor(self)
-        self.typesetter = Typesetter(self)
+        self.typesetter = Typesetter(self, start=False)
         self.results = ResultsPane(self, self.typesetter)
         self.run_panel = RunPanel(self)
         self.viewport = Viewport(self)

@@ -63,9 +63,9 @@ class _Job(ChildProcess):
     """One worker process with its cancel event, the messages not yet handed on, and the
     deadline of its analysis."""
 
-    def __init__(self, context: multiprocessing.context.SpawnContext) -> None:
+    def __init__(self, context: multiprocessing.context.SpawnContext, niceness: int | None = None) -> None:
         self.cancel_event = CancelFlag(context)
-        super().__init__(context, worker_main, (self.cancel_event,))
+        super().__init__(context, worker_main, (self.cancel_event, niceness))
         self.kill_at: float | None = None
         self.pending: deque[Message] = deque()
         self.deadline = float("inf")
@@ -90,8 +90,9 @@ class _Job(ChildProcess):
 class AnalysisWorker(QObject):
     """Starts, supersedes and cancels analysis processes; reports through Qt signals.
 
-    ``finished`` carries a :class:`~sorgui.session.job.JobResult`; ``invalid`` a parse error
-    ``(message, position, end)``; ``failed`` a one-line message; ``busy_changed`` whether a
+    ``first_niceness`` is the priority of the first spare worker (the window's start-up job),
+    by default the worker's own. ``finished`` carries a :class:`~sorgui.session.job.JobResult`;
+    ``invalid`` a parse error ``(message, position, end)``; ``failed`` a one-line message; ``busy_changed`` whether a
     job is running (for the Analyze and Cancel buttons). ``message`` carries every message of
     the current job (:mod:`sorgui.session.messages`), intermediate results and the final one
     alike: it feeds :meth:`sorgui.session.Session.handle` (the worker is the session's runner).
@@ -105,7 +106,7 @@ class AnalysisWorker(QObject):
     cancelled = Signal()
     busy_changed = Signal(bool)
 
-    def __init__(self, parent: QObject | None = None, prestart: bool = True) -> None:
+    def __init__(self, parent: QObject | None = None, prestart: bool = True, first_niceness: int | None = None) -> None:
         super().__init__(parent)
         self._context = multiprocessing.get_context("spawn")
         self._current: _Job | None = None
@@ -120,7 +121,7 @@ class AnalysisWorker(QObject):
         self._spare_timer.setInterval(SPARE_DELAY_MS)
         self._spare_timer.timeout.connect(self._start_spare)
         if prestart:
-            self._spare = _Job(self._context)
+            self._spare = _Job(self._context, first_niceness)
 
     # --- public API ---
 

@@ -321,7 +321,7 @@ def warm_up(waited_for: Callable[[], bool] = lambda: False) -> None:
         step()
 
 
-def serve(conn: Connection, cancel: Any) -> None:
+def serve(conn: Connection, cancel: Any, niceness: int = WORKER_NICENESS) -> None:
     """The worker process: lead a process group at a lower priority, wait for one request,
     answer it, exit.
 
@@ -329,7 +329,7 @@ def serve(conn: Connection, cancel: Any) -> None:
     process starts before it is needed (a warm spare), so waiting here is the normal case;
     the pipe closing without a request means it is not needed any more.
     """
-    become_child(niceness=WORKER_NICENESS)  # the window killed (even by kill -9): the worker goes too
+    become_child(niceness=niceness)  # the window killed (even by kill -9): the worker goes too
     warm_up(waited_for=conn.poll)
 
     try:

@@ -12,6 +12,11 @@ from __future__ import annotations
 import multiprocessing.context
 from typing import Any
 
+STARTUP_NICENESS = 0
+"""The window's first worker, which analyses the startup equation while the window loads its
+modules, runs at the window's own priority: at 10 it got the processor only when the loading
+window left it, and the first verdict came a second later."""
+
 
 class CancelFlag:
     """The window's "stop" for one job: a byte of shared memory that the window sets and the
@@ -29,11 +34,12 @@ class CancelFlag:
         return bool(self._value.value)
 
 
-def worker_main(conn: Any, cancel: CancelFlag) -> None:  # noqa: ANN401 (a Connection)
-    """Run :func:`sorgui.session.job.serve` in this (new) process."""
-    from sorgui.session.job import serve
+def worker_main(conn: Any, cancel: CancelFlag, niceness: int | None = None) -> None:  # noqa: ANN401 (a Connection)
+    """Run :func:`sorgui.session.job.serve` in this (new) process (at ``niceness``, else the
+    worker's own)."""
+    from sorgui.session.job import WORKER_NICENESS, serve
 
-    serve(conn, cancel)
+    serve(conn, cancel, WORKER_NICENESS if niceness is None else niceness)
 
 
 TYPESETTER_NICENESS = 15
