@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import faulthandler
+import multiprocessing
 import os
 import signal
 import socket
@@ -91,7 +92,15 @@ promise: window and process gone within a second)."""
 
 
 def _exit_late(status: int) -> None:
-    """The watchdog's end of sorgui: flush what was printed, exit without any teardown."""
+    """The watchdog's end of sorgui: the worker processes killed first (they would die with it,
+    but might first find their pipe closed and say so), what was printed flushed, then exit
+    without any teardown."""
+    from sorgui.session.child import kill_process_tree
+
+    for child in multiprocessing.active_children():
+        if child.pid is not None:
+            with contextlib.suppress(OSError):
+                kill_process_tree(child.pid)
     for stream in (sys.stdout, sys.stderr):
         with contextlib.suppress(OSError, ValueError, AttributeError):
             stream.flush()

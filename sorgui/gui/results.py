@@ -302,7 +302,6 @@ class ResultsPane(QScrollArea):
             if answer is not None:
                 view.set_typeset(answer)
 
-
     def _parametric_section(self, record: ParametricInput) -> None:
         """The parametrization as typed, what its normal lines decide, and whether it is proper."""
         names = ", ".join(record.parameters)

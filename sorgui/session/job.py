@@ -242,7 +242,10 @@ def run_job(
 
     def deliver(message: Message) -> None:
         if send is not None:
-            send(message)
+            try:
+                send(message)
+            except OSError:  # the window has gone (closed, or ended by a signal): stop, quietly
+                raise Cancelled("the window has gone") from None
         if isinstance(message, StageStarted) and progress is not None:
             progress(message.stage)
 
