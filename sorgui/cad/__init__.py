@@ -54,7 +54,7 @@ def cad_model(analysis: Analysis, scene: Scene, patch: bool = False, tolerance: 
         from .model import patch_model, surface_model
     except ImportError as exc:
         raise CadUnavailable(INSTALL_HINT) from exc
-    return patch_model(analysis, scene.box) if patch else surface_model(analysis, scene, tolerance)
+    return patch_model(analysis, scene) if patch else surface_model(analysis, scene, tolerance)
 
 
 def cad_file(
@@ -73,7 +73,7 @@ def cad_file(
     model = cad_model(analysis, scene, patch, tolerance)
     from .writers import WRITERS, CadHeader
 
-    header = CadHeader(analysis.recognition.polynomial, model.description, __version__, name, units)
+    header = CadHeader(analysis.recognition.polynomial, model.description, __version__, name, units, model.precision)
     return WRITERS[suffix](model.shape, header), model
 
 
@@ -87,8 +87,11 @@ ROUTES = {
 
 
 def summary(model: CadModel) -> str:
-    """What a CAD file holds, in one line: the route, the faces and a fit's measured deviation."""
+    """What a CAD file holds, in one line: the route, the faces (and solids) and a fit's measured
+    deviation."""
     faces = f"{model.faces} face{'s' if model.faces != 1 else ''}"
+    if model.solids:
+        faces += f" in {model.solids} solid{'s' if model.solids != 1 else ''}"
     words = f"{ROUTES[model.route]}, {faces}"
     if model.deviation is not None and model.tolerance is not None:
         verdict = "within" if model.deviation <= model.tolerance else "ABOVE"

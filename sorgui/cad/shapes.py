@@ -13,8 +13,7 @@ with this module, which is loaded only when a CAD file is written.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from collections.abc import Sequence
 
 import numpy as np
 from OCP.Bnd import Bnd_Box
@@ -39,7 +38,6 @@ from OCP.Geom import (
     Geom_SurfaceOfRevolution,
     Geom_ToroidalSurface,
 )
-from OCP.GeomAPI import GeomAPI_Interpolate
 from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt
 from OCP.OCP.collections import (
     Array1_double,
@@ -47,21 +45,16 @@ from OCP.OCP.collections import (
     Array1_int,
     Array2_double,
     Array2_gp_Pnt,
-    HArray1_gp_Pnt,
 )
 from OCP.ShapeUpgrade import ShapeUpgrade_ShapeDivideClosed
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Shell
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 
 from sorgui.render import ClipBox, ClipSphere
 
 from .geometry import Analytic, CadGeometryError, Frame, RationalCurve
 from .patch import BezierPatch
-
-TOLERANCE = 1e-7
-"""The tolerance (length units) Open CASCADE builds edges and faces with."""
-
 
 Vector = Sequence[float] | np.ndarray
 
@@ -102,14 +95,14 @@ def bspline_curve(curve: RationalCurve) -> Geom_BSplineCurve:
     return Geom_BSplineCurve(poles, _reals(curve.weights), knots, mults, curve.degree)
 
 
-def revolution_faces(frame: Frame, curves: Sequence[Geom_BSplineCurve]) -> list[TopoDS_Face]:
-    """One face per profile curve, turned a full turn about the axis."""
+def revolution_faces(frame: Frame, curves: Sequence[Geom_BSplineCurve], tolerance: float) -> list[TopoDS_Face]:
+    """One face per profile curve, turned a full turn about the axis (edges of ``tolerance``)."""
     axis = gp_Ax1(_point(frame.point), _dir(frame.direction))
     faces = []
     for curve in curves:
         surface = Geom_SurfaceOfRevolution(curve, axis)
         maker = BRepBuilderAPI_MakeFace(
-            surface, 0.0, 2 * math.pi, curve.FirstParameter(), curve.LastParameter(), TOLERANCE
+            surface, 0.0, 2 * math.pi, curve.FirstParameter(), curve.LastParameter(), tolerance
         )
         faces.append(_face(maker))
     return faces
@@ -121,23 +114,23 @@ def _face(maker: BRepBuilderAPI_MakeFace) -> TopoDS_Face:
     return maker.Face()
 
 
-def analytic_faces(spec: Analytic) -> list[TopoDS_Face]:
+def analytic_faces(spec: Analytic, tolerance: float) -> list[TopoDS_Face]:
     """The faces of an analytic surface: whole spheres and tori, a cylinder between two circles,
     a cone's two nappes as two faces meeting at the apex, a plane as its disk in the ball."""
     frame = gp_Ax3(_point(spec.origin), _dir(spec.direction))
     low, high = spec.extent
     if spec.kind == "sphere":
-        return [_face(BRepBuilderAPI_MakeFace(Geom_SphericalSurface(frame, spec.radius), TOLERANCE))]
+        return [_face(BRepBuilderAPI_MakeFace(Geom_SphericalSurface(frame, spec.radius), tolerance))]
     if spec.kind == "torus":
         torus = Geom_ToroidalSurface(frame, spec.radius, spec.minor_radius)
-        return [_face(BRepBuilderAPI_MakeFace(torus, TOLERANCE))]
+        return [_face(BRepBuilderAPI_MakeFace(torus, tolerance))]
     if spec.kind == "cylinder":
         cylinder = Geom_CylindricalSurface(frame, spec.radius)
-        return [_face(BRepBuilderAPI_MakeFace(cylinder, 0.0, 2 * math.pi, low, high, TOLERANCE))]
+        return [_face(BRepBuilderAPI_MakeFace(cylinder, 0.0, 2 * math.pi, low, high, tolerance))]
     if spec.kind == "cone":
         cone = Geom_ConicalSurface(frame, spec.semi_angle, 0.0)
-        ranges = [(a, b) for a, b in ((low, min(high, 0.0)), (max(low, 0.0), high)) if b - a > TOLERANCE]
-        return [_face(BRepBuilderAPI_MakeFace(cone, 0.0, 2 * math.pi, a, b, TOLERANCE)) for a, b in ranges]
+        ranges = [(a, b) for a, b in ((low, min(high, 0.0)), (max(low, 0.0), high)) if b - a > tolerance]
+        return [_face(BRepBuilderAPI_MakeFace(cone, 0.0, 2 * math.pi, a, b, tolerance)) for a, b in ranges]
     if spec.kind == "plane":
         circle = GC_MakeCircle(gp_Ax2(_point(spec.origin), _dir(spec.direction)), high).Value()
         wire = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(circle).Edge()).Wire()
@@ -145,45 +138,7 @@ def analytic_faces(spec: Analytic) -> list[TopoDS_Face]:
     raise CadGeometryError(f"no analytic surface of kind {spec.kind}")
 
 
-@dataclass(frozen=True)
-class Fit:
-    """A fitted profile curve, the largest distance measured from it to the profile, and that
-    distance on each span between two consecutive points it interpolates."""
-
-    curve: Geom_BSplineCurve
-    deviation: float
-    spans: np.ndarray
-
-
-SAMPLES = 10
-"""Points per span at which a fitted curve's distance to the profile is measured."""
-
-
-def fitted_curve(points: np.ndarray, distance: Callable[[np.ndarray], np.ndarray]) -> Fit:
-    """The cubic ``C²`` B-spline through ``points`` (3D, distinct, ordered along one profile
-    branch; ``GeomAPI_Interpolate``, chord-length parameters), with its distance to the profile
-    measured afterwards by ``distance`` at :data:`SAMPLES` points of every span."""
-    array = HArray1_gp_Pnt(1, len(points))
-    for k, p in enumerate(points, start=1):
-        array.SetValue(k, _point(p))
-    interpolation = GeomAPI_Interpolate(array, False, 0.0)
-    interpolation.Perform()
-    if not interpolation.IsDone():
-        raise CadGeometryError("Open CASCADE could not fit a B-spline to the profile")
-    curve = interpolation.Curve()
-    knots = np.array([curve.Knot(k) for k in range(1, curve.NbKnots() + 1)])
-    steps = np.arange(1, SAMPLES + 1) / (SAMPLES + 1)
-    samples = (knots[:-1, None] + np.diff(knots)[:, None] * steps).ravel()
-    xyz = np.array([_xyz(curve.Value(float(u))) for u in samples])
-    spans = np.max(distance(xyz).reshape(len(knots) - 1, SAMPLES), axis=1)
-    return Fit(curve, float(spans.max(initial=0.0)), spans)
-
-
-def _xyz(p: gp_Pnt) -> tuple[float, float, float]:
-    return (p.X(), p.Y(), p.Z())
-
-
-def patch_face(patch: BezierPatch) -> TopoDS_Face:
+def patch_face(patch: BezierPatch, tolerance: float) -> TopoDS_Face:
     """The face of one rational Bézier patch (a ``Geom_BSplineSurface`` without inner knots)."""
     m, n = patch.weights.shape[0] - 1, patch.weights.shape[1] - 1
     poles = Array2_gp_Pnt(1, m + 1, 1, n + 1)
@@ -195,22 +150,11 @@ def patch_face(patch: BezierPatch) -> TopoDS_Face:
     uknots, umults = _bezier_knots(1, m)
     vknots, vmults = _bezier_knots(1, n)
     surface = Geom_BSplineSurface(poles, weights, uknots, vknots, umults, vmults, m, n)
-    return _face(BRepBuilderAPI_MakeFace(surface, TOLERANCE))
+    return _face(BRepBuilderAPI_MakeFace(surface, tolerance))
 
 
-def shell(faces: Sequence[TopoDS_Face]) -> TopoDS_Shape:
-    """The faces in one open shell, one product of a STEP file (a compound would make an
-    assembly of one product per face)."""
-    builder = BRep_Builder()
-    shape = TopoDS_Shell()
-    builder.MakeShell(shape)
-    for face in faces:
-        builder.Add(shape, face)
-    return shape
-
-
-def cut_to(shape: TopoDS_Shape, region: ClipSphere | ClipBox) -> TopoDS_Shape:
-    """The part of ``shape`` inside ``region``: Open CASCADE's Boolean common with the ball or
+def cut_to(faces: Sequence[TopoDS_Face], region: ClipSphere | ClipBox) -> list[TopoDS_Face]:
+    """The parts of ``faces`` inside ``region``: Open CASCADE's Boolean common with the ball or
     box as a solid. Each face keeps its surface (a torus stays a torus), trimmed by the curves
     where it meets the region's boundary. A cut face still closed along its seam is split in
     two: read back from STEP, such a face's boundary is not closed in its (u, v) plane."""
@@ -219,26 +163,35 @@ def cut_to(shape: TopoDS_Shape, region: ClipSphere | ClipBox) -> TopoDS_Shape:
     else:
         low, high = region.bounds[0::2], region.bounds[1::2]
         solid = BRepPrimAPI_MakeBox(_point(low), _point(high)).Shape()
-    common = BRepAlgoAPI_Common(shape, solid)
+    common = BRepAlgoAPI_Common(_compound(faces), solid)
     if not common.IsDone():
         raise CadGeometryError("Open CASCADE could not cut the faces to the region")
     halves = ShapeUpgrade_ShapeDivideClosed(common.Shape())
     halves.SetNbSplitPoints(1)
     halves.Perform()
-    return shell(faces_of(halves.Result()))
+    return faces_of(halves.Result())
 
 
-def as_nurbs(shape: TopoDS_Shape) -> TopoDS_Shape:
-    """``shape`` with every surface converted to a rational B-spline surface (the same faces)."""
-    return BRepBuilderAPI_NurbsConvert(shape, True).Shape()
+def _compound(faces: Sequence[TopoDS_Face]) -> TopoDS_Compound:
+    builder = BRep_Builder()
+    out = TopoDS_Compound()
+    builder.MakeCompound(out)
+    for face in faces:
+        builder.Add(out, face)
+    return out
 
 
-def within(shape: TopoDS_Shape, box: ClipBox) -> bool:
-    """Whether every face of ``shape`` lies in ``box`` (to a millionth of its size): the check
+def as_nurbs(faces: Sequence[TopoDS_Face]) -> list[TopoDS_Face]:
+    """``faces`` with every surface converted to a rational B-spline surface (the same faces)."""
+    return faces_of(BRepBuilderAPI_NurbsConvert(_compound(faces), True).Shape())
+
+
+def within(faces: Sequence[TopoDS_Face], box: ClipBox, tolerance: float) -> bool:
+    """Whether every face lies in ``box`` (to a millionth of its size): the check
     of a Boolean cut, which Open CASCADE gets wrong for some revolved B-spline profiles."""
     low, high = np.array(box.bounds[0::2]), np.array(box.bounds[1::2])
-    slack = 1e-6 * float(np.max(high - low)) + TOLERANCE
-    for face in faces_of(shape):
+    slack = 1e-6 * float(np.max(high - low)) + tolerance
+    for face in faces:
         bounds = Bnd_Box()
         BRepBndLib.AddOptimal_s(face, bounds, False, False)
         if np.any(np.array(bounds.CornerMin().Coord()) < low - slack):
