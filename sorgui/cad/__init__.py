@@ -14,7 +14,8 @@ only here, when such a file is written; without it :class:`CadUnavailable` says 
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import weakref
+from typing import TYPE_CHECKING, Any
 
 from sorgui.engine.results import Analysis
 
@@ -48,13 +49,33 @@ __all__ = [
 ]
 
 
+_BUILT: weakref.WeakKeyDictionary[Any, dict[tuple[int, bool, float | None], tuple[Analysis, Any]]] = (
+    weakref.WeakKeyDictionary()
+)
+"""The models built for each scene (while it lives), by analysis and options: a STEP, an IGES
+and a BRep file of one analysis share one model (building a degree-12 part takes seconds)."""
+
+
 def cad_model(analysis: Analysis, scene: Scene, patch: bool = False, tolerance: float | None = None) -> CadModel:
-    """The faces a CAD file of ``analysis`` holds (``patch``: the parameterization's patch)."""
+    """The part a CAD file of ``analysis`` holds (``patch``: the parameterization's patch),
+    built once per scene, analysis and options (a failure too: it is said again)."""
     try:
         from .model import patch_model, surface_model
     except ImportError as exc:
         raise CadUnavailable(INSTALL_HINT) from exc
-    return patch_model(analysis, scene) if patch else surface_model(analysis, scene, tolerance)
+    built = _BUILT.setdefault(scene, {})
+    key = (id(analysis), patch, tolerance)
+    if key not in built or built[key][0] is not analysis:
+        try:
+            made: Any = patch_model(analysis, scene) if patch else surface_model(analysis, scene, tolerance)
+        except CadGeometryError as exc:
+            made = exc
+        built[key] = (analysis, made)
+    result = built[key][1]
+    if isinstance(result, CadGeometryError):
+        raise CadGeometryError(str(result))
+    model: CadModel = result
+    return model
 
 
 def cad_file(

@@ -22,6 +22,7 @@ from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData
 from sorgui.render.geometry import foot_on_line
 
 from . import shapes
+from .coverage import missing
 from .fitted import FIT_TOLERANCE, fitted_arc, uncovered
 from .geometry import (
     Analytic,
@@ -108,7 +109,7 @@ def finished(part: Faces, scene: Scene, polynomial: str) -> CadModel:
     """The faces cut to the user's box, sewn into shells and solids, checked
     (:func:`.sewing.assemble`); an error if nothing is left."""
     size = scene.region.radius
-    faces, lines = _cut(part, scene.box, precision(size))
+    faces, lines = _cut(part, scene, precision(size))
     shape = assemble(faces, size, polynomial_terms(polynomial))
     return CadModel(shape, part.route, lines, part.deviation, part.tolerance, precision(size))
 
@@ -185,23 +186,37 @@ def _inside(spec: Analytic, ball: ClipSphere) -> bool:
     return float(np.linalg.norm(spec.origin - np.asarray(ball.center))) + reach <= ball.radius
 
 
-def _cut(part: Faces, box: ClipBox | None, edge: float) -> tuple[list[Any], tuple[str, ...]]:
-    """The faces cut to the user's ``box`` and the header's lines; an error if nothing of them is
-    left. A cut that leaves the box (Open CASCADE misses some intersections of revolved B-spline
-    profiles) is done again on the faces converted to B-spline surfaces, and the file says so."""
+SECTORS = (2, 3, 5, 8)
+"""Into how many sectors the faces of revolution are cut before they are cut to a box, in the
+order tried (:func:`.shapes.sectors`): Open CASCADE's intersection of a revolved B-spline
+profile with the box's planes misses curves on the whole face, and on some sectors."""
+
+
+def _cut(part: Faces, scene: Scene, edge: float) -> tuple[list[Any], tuple[str, ...]]:
+    """The faces cut to the user's box and the header's lines; an error if nothing of them is
+    left. A cut is accepted when its faces lie in the box and cover the mesh there
+    (:func:`.coverage.missing`); Open CASCADE's Boolean misses some intersections of revolved
+    B-spline profiles, so the faces are cut in sectors first (:data:`SECTORS`, tried in turn),
+    then converted to B-spline surfaces, and the file says so."""
+    box = scene.box
     if box is None:
         return part.faces, part.description
     low, high = box.bounds[0::2], box.bounds[1::2]
     lines = [*part.description, f"cut to the box {_vector(np.array(low))} - {_vector(np.array(high))}"]
-    faces = shapes.cut_to(part.faces, box)
-    if not shapes.within(faces, box, edge):
-        faces = shapes.cut_to(shapes.as_nurbs(part.faces), box)
-        lines.append("faces converted to B-spline surfaces to be cut to the box")
-        if not shapes.within(faces, box, edge):
-            raise CadGeometryError("Open CASCADE could not cut the faces to the box")
-    if not faces:
-        raise CadGeometryError("the surface has no real points inside the box")
-    return faces, tuple(lines)
+    size = scene.region.radius
+    nurbs = ("faces converted to B-spline surfaces to be cut to the box",)
+    attempts = [(count, ()) for count in SECTORS] + [(SECTORS[0], nurbs)]
+    for count, note in attempts:
+        faces = shapes.sectors(part.faces, count, edge)
+        cut = shapes.cut_to(shapes.as_nurbs(faces) if note else faces, box)
+        if not cut:
+            raise CadGeometryError("the surface has no real points inside the box")
+        if shapes.within(cut, box, edge) and missing(cut, scene.surface.points, scene.surface.spacing, size) is None:
+            return cut, (*lines, *note)
+    raise CadGeometryError(
+        "Open CASCADE's cut of the faces to the box leaves part of them outside it or loses part of the surface "
+        "(however its faces are divided); a ball (--region R) or another box may do"
+    )
 
 
 def _axis_line(point: np.ndarray, direction: np.ndarray) -> str:

@@ -17,7 +17,7 @@ from collections.abc import Sequence
 
 import numpy as np
 from OCP.Bnd import Bnd_Box
-from OCP.BRep import BRep_Builder
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import (
@@ -27,6 +27,7 @@ from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_NurbsConvert,
 )
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
+from OCP.BRepTools import BRepTools
 from OCP.GC import GC_MakeCircle
 from OCP.Geom import (
     Geom_BSplineCurve,
@@ -154,22 +155,79 @@ def patch_face(patch: BezierPatch, tolerance: float) -> TopoDS_Face:
 
 
 def cut_to(faces: Sequence[TopoDS_Face], region: ClipSphere | ClipBox) -> list[TopoDS_Face]:
-    """The parts of ``faces`` inside ``region``: Open CASCADE's Boolean common with the ball or
-    box as a solid. Each face keeps its surface (a torus stays a torus), trimmed by the curves
-    where it meets the region's boundary. A cut face still closed along its seam is split in
-    two: read back from STEP, such a face's boundary is not closed in its (u, v) plane."""
+    """The parts of ``faces`` inside ``region``: Open CASCADE's Boolean common with the ball as
+    a solid, or with the box's six half-spaces one after the other (each a slab beyond the
+    faces; the box's edges and corners in one Boolean miss intersections of revolved B-spline
+    profiles). Each face keeps its surface (a torus stays a torus), trimmed by the curves where
+    it meets the region's boundary. After a ball's cut no face is left closed along a seam
+    (read back from STEP, such a face's boundary is not closed in its (u, v) plane); faces cut
+    to a box are cut into sectors before (:func:`sectors`; splitting a trimmed face can lose
+    its trimming)."""
     if isinstance(region, ClipSphere):
-        solid = BRepPrimAPI_MakeSphere(_point(region.center), region.radius).Shape()
-    else:
-        low, high = region.bounds[0::2], region.bounds[1::2]
-        solid = BRepPrimAPI_MakeBox(_point(low), _point(high)).Shape()
-    common = BRepAlgoAPI_Common(_compound(faces), solid)
-    if not common.IsDone():
-        raise CadGeometryError("Open CASCADE could not cut the faces to the region")
-    halves = ShapeUpgrade_ShapeDivideClosed(common.Shape())
+        return _halves(_common(faces, BRepPrimAPI_MakeSphere(_point(region.center), region.radius).Shape()))
+    low, high = np.array(region.bounds[0::2]), np.array(region.bounds[1::2])
+    around = _bounds(faces)
+    if around is None:
+        return []
+    cut = list(faces)
+    margin = 0.5 * float(np.max(around[1] - around[0])) + 1e-3 * float(np.max(high - low))
+    for axis in range(3):
+        for side, plane in ((0, low[axis]), (1, high[axis])):
+            corner, far = around[0] - margin, around[1] + margin
+            if (side == 0 and plane >= far[axis]) or (side == 1 and plane <= corner[axis]):
+                return []  # every face lies outside this plane
+            if not corner[axis] < plane < far[axis]:
+                continue  # every face lies inside it
+            (corner if side == 0 else far)[axis] = plane
+            cut = _common(cut, BRepPrimAPI_MakeBox(_point(corner), _point(far)).Shape())
+    return cut
+
+
+def sectors(faces: Sequence[TopoDS_Face], count: int, tolerance: float) -> list[TopoDS_Face]:
+    """The faces with each one over a whole period of its ``u``-periodic surface (a surface of
+    revolution, a cylinder, a cone, a torus) made again as ``count`` faces over equal parts of
+    that period (sewing joins them again); the others are kept. Open CASCADE cuts such parts of
+    a revolved B-spline profile by a box's planes where it misses intersections with the whole."""
+    out = []
+    for face in faces:
+        surface = BRep_Tool.Surface_s(face)
+        u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+        if count > 1 and surface.IsUPeriodic() and abs(u1 - u0 - surface.UPeriod()) <= 1e-12 * surface.UPeriod():
+            cuts = np.linspace(u0, u1, count + 1)
+            for a, b in zip(cuts[:-1], cuts[1:]):
+                made = _face(BRepBuilderAPI_MakeFace(surface, float(a), float(b), v0, v1, tolerance))
+                out.append(made.Reversed() if face.Orientation() != made.Orientation() else made)
+        else:
+            out.append(face)
+    return out
+
+
+def _halves(faces: Sequence[TopoDS_Face]) -> list[TopoDS_Face]:
+    """The faces, each closed one split in two along its closed direction."""
+    if not faces:
+        return []
+    halves = ShapeUpgrade_ShapeDivideClosed(_compound(faces))
     halves.SetNbSplitPoints(1)
     halves.Perform()
     return faces_of(halves.Result())
+
+
+def _common(faces: Sequence[TopoDS_Face], solid: TopoDS_Shape) -> list[TopoDS_Face]:
+    if not faces:
+        return []
+    common = BRepAlgoAPI_Common(_compound(faces), solid)
+    if not common.IsDone():
+        raise CadGeometryError("Open CASCADE could not cut the faces to the region")
+    return faces_of(common.Shape())
+
+
+def _bounds(faces: Sequence[TopoDS_Face]) -> tuple[np.ndarray, np.ndarray] | None:
+    box = Bnd_Box()
+    for face in faces:
+        BRepBndLib.AddOptimal_s(face, box, False, False)
+    if box.IsVoid():
+        return None
+    return np.array(box.CornerMin().Coord()), np.array(box.CornerMax().Coord())
 
 
 def _compound(faces: Sequence[TopoDS_Face]) -> TopoDS_Compound:

@@ -188,3 +188,42 @@ def test_an_empty_or_unresolvable_part_is_refused_in_one_sentence(tmp_path: Path
     with pytest.raises(ValueError) as error:
         export_file(analysis, tmp_path / "part.step", scene=scene)
     assert "\n" not in str(error.value) and not (tmp_path / "part.step").exists()
+
+
+@pytest.mark.parametrize("bounds", [(-2, 4, -4, 2, -3, 3), (-6, 8, -8, 7, -7, 7)])
+def test_a_fitted_part_cut_to_a_box_is_sewn_and_covers_the_box(tmp_path: Path, bounds: tuple[float, ...]) -> None:
+    """Example 1 cut to the issue's two boxes (Open CASCADE's Boolean leaves the whole revolved
+    face partly outside them): the faces are cut in sectors, then sewn again."""
+    from sorgui.render import ClipBox
+
+    analysis = analyze(example_text("paper-example-1"))
+    scene = build_scene(analysis, box=ClipBox(tuple(float(b) for b in bounds)))
+    path, holds = export_file(analysis, tmp_path / "box.step", scene=scene)
+    assert "fitted" in holds
+    check_part(path, analysis, scene, 1, 0, 1e-7 * scene.region.radius)
+
+
+def test_the_rotated_shifted_tube_is_written(tmp_path: Path) -> None:
+    """``y² + z² = x⁴(1 − x²)`` turned by the quaternion (1, 2, −1, 3) and moved by (1/3, 0, 1):
+    no exact arc lies in the drawn ball (it crashed), so the profile is fitted; its lobe inside
+    the ball is a solid, the other is cut by the ball."""
+    from sympy import QQ
+
+    from sorgui.engine.algebra.polys import poly_ring, poly_str
+    from sorgui.samples import move, quaternion_rotation, rational_vector
+
+    R = poly_ring(("x", "y", "z"), QQ)
+    x, y, z = R.gens
+    f = move(y**2 + z**2 - x**4 * (1 - x**2), quaternion_rotation((1, 2, -1, 3)), rational_vector((QQ(1, 3), 0, 1)))
+    analysis = analyze(poly_str(f))
+    scene = build_scene(analysis)
+    path, _ = export_file(analysis, tmp_path / "tube.step", scene=scene)
+    check_part(path, analysis, scene, 2, 1, 1e-7 * scene.region.radius)
+
+
+def test_several_cad_files_of_one_analysis_share_one_model(analyses) -> None:
+    from sorgui.cad import cad_model
+
+    analysis, scene = analyses["example 1"]
+    assert cad_model(analysis, scene) is cad_model(analysis, scene)
+    assert cad_model(analysis, scene, tolerance=1e-6) is not cad_model(analysis, scene)
