@@ -9,14 +9,15 @@ tolerance and the deviation measured afterwards, and lines for the file's header
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Any, Protocol
 
 import numpy as np
 import sympy
 
-from sorgui.engine.results import Analysis
-from sorgui.engine.values import ExpressionError, polynomial_terms
+from sorgui.engine.results import Analysis, Parametrization, Recognition
+from sorgui.engine.values import ExpressionError, polynomial_terms, read_expression
 from sorgui.numerics import without_noise
 from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData
 from sorgui.render.geometry import foot_on_line
@@ -34,7 +35,7 @@ from .geometry import (
 )
 from .meridian import meridian_curve, profile_arcs, profile_distance
 from .patch import bezier_patches
-from .sewing import CONFUSION, assemble, check_size, precision, solids_of
+from .sewing import CONFUSION, assemble, check_size, compound, precision, solids_of
 
 EXACT_COVERAGE = 1e-6
 """Exact arcs must pass this close (relative to the ball's radius) to every point of the real
@@ -94,6 +95,9 @@ class Faces:
     description: tuple[str, ...]
     deviation: float | None = None
     tolerance: float | None = None
+    groups: tuple[int, ...] = ()
+    """A label for each face, if they fall into groups sewn apart (patches on either side of a
+    fold of their map, which meet only where it folds)."""
 
 
 def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = None) -> CadModel:
@@ -106,11 +110,20 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
 
 
 def finished(part: Faces, scene: Scene, polynomial: str) -> CadModel:
-    """The faces cut to the user's box, sewn into shells and solids, checked
+    """The faces cut to the user's box, sewn into shells and solids (each group apart), checked
     (:func:`.sewing.assemble`); an error if nothing is left."""
     size = scene.region.radius
-    faces, lines = _cut(part, scene, precision(size))
-    shape = assemble(faces, size, polynomial_terms(polynomial))
+    terms = polynomial_terms(polynomial)
+    labels = part.groups or (0,) * len(part.faces)
+    pieces, lines = [], part.description
+    for label in sorted(set(labels)):
+        group = dataclasses.replace(part, faces=[f for f, g in zip(part.faces, labels) if g == label], groups=())
+        faces, lines = _cut(group, scene, precision(size))
+        if faces:
+            pieces.append(assemble(faces, size, terms))
+    if not pieces:
+        raise CadGeometryError("the surface has no real points inside the box")
+    shape = pieces[0] if len(pieces) == 1 else compound(pieces)
     return CadModel(shape, part.route, lines, part.deviation, part.tolerance, precision(size))
 
 
@@ -210,7 +223,7 @@ def _cut(part: Faces, scene: Scene, edge: float) -> tuple[list[Any], tuple[str, 
         faces = shapes.sectors(part.faces, count, edge)
         cut = shapes.cut_to(shapes.as_nurbs(faces) if note else faces, box)
         if not cut:
-            raise CadGeometryError("the surface has no real points inside the box")
+            return [], tuple(lines)
         if shapes.within(cut, box, edge) and missing(cut, scene.surface.points, scene.surface.spacing, size) is None:
             return cut, (*lines, *note)
     raise CadGeometryError(
@@ -243,24 +256,49 @@ def _analytic_lines(spec: Analytic) -> tuple[str, ...]:
 
 def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
     """The first verified real rational parameterization (of ``X``, of a canal surface by its
-    circles, of a cone or cylinder by its lines) over the window's parameter box, cut to the
-    user's box if there is one."""
+    circles, of a cone or cylinder by its lines, of a sphere by stereographic projection) over
+    the window's parameter box, covered once and oriented along ``∇f`` (:mod:`.patch`), cut to
+    the drawn ball and to the user's box if there is one."""
     size = scene.region.radius
     check_size(size)
     candidates = [
         *analysis.parametrizations,
         *(analysis.canal.parametrizations if analysis.canal is not None else ()),
         *(analysis.conical.parametrizations if analysis.conical is not None else ()),
+        *sphere_parametrization(analysis.recognition),
     ]
+    terms = polynomial_terms(analysis.squarefree)
     for param in candidates:
         if not (param.real and param.verified):
             continue
         try:
-            patches = bezier_patches(param)
+            patches = bezier_patches(param, terms)
         except (CadGeometryError, ExpressionError, sympy.PolynomialError):
             continue
-        faces = [shapes.patch_face(p, precision(size)) for p in patches]
+        faces, groups = [], []
+        for patch in patches:
+            face = shapes.patch_face(patch, precision(size))
+            cut = shapes.cut_to([face.Reversed() if patch.turned else face], scene.region)
+            faces += cut
+            groups += [int(patch.turned)] * len(cut)
+        if not faces:
+            raise CadGeometryError("the parameterization's patch has no point inside the drawn ball")
         low, high = PATCH_RANGE
         lines = (f"rational B-spline patch of the parameterization ({param.method}) over s, t in [{low:g}, {high:g}]",)
-        return finished(Faces(faces, "patch", lines), scene, analysis.squarefree)
+        return finished(Faces(faces, "patch", lines, groups=tuple(groups)), scene, analysis.squarefree)
     raise CadGeometryError("the analysis has no verified real rational parameterization to write as a patch")
+
+
+def sphere_parametrization(rec: Recognition) -> list[Parametrization]:
+    """A sphere's inverse stereographic projection ``c + r·(2s, 2t, s² + t² − 1)/(s² + t² + 1)``
+    (exact: ``r = √(r²)`` of the recognition), none for another surface."""
+    if rec.symmetry != "sphere" or rec.center is None or rec.radius_squared is None:
+        return []
+    if not float(read_expression(rec.radius_squared).evalf(30)) > 0:
+        return []
+    r = f"sqrt({rec.radius_squared})"
+    c = rec.center
+    d = "(s**2 + t**2 + 1)"
+    coordinates = (f"({c[0]}) + ({r})*2*s/{d}", f"({c[1]}) + ({r})*2*t/{d}", f"({c[2]}) + ({r})*(s**2 + t**2 - 1)/{d}")
+    method = "stereographic projection of the sphere"
+    return [Parametrization(coordinates, ("s", "t"), "QQ", True, True, method, True, "an identity of the sphere")]

@@ -213,12 +213,15 @@ def _halves(faces: Sequence[TopoDS_Face]) -> list[TopoDS_Face]:
 
 
 def _common(faces: Sequence[TopoDS_Face], solid: TopoDS_Shape) -> list[TopoDS_Face]:
-    if not faces:
-        return []
-    common = BRepAlgoAPI_Common(_compound(faces), solid)
-    if not common.IsDone():
-        raise CadGeometryError("Open CASCADE could not cut the faces to the region")
-    return faces_of(common.Shape())
+    """The parts of the faces inside ``solid``, one Boolean per face (one over many patches,
+    some of them degenerate next to a pole of the map, can lose them all)."""
+    out = []
+    for face in faces:
+        common = BRepAlgoAPI_Common(face, solid)
+        if not common.IsDone():
+            raise CadGeometryError("Open CASCADE could not cut the faces to the region")
+        out += faces_of(common.Shape())
+    return out
 
 
 def _bounds(faces: Sequence[TopoDS_Face]) -> tuple[np.ndarray, np.ndarray] | None:

@@ -227,3 +227,22 @@ def test_several_cad_files_of_one_analysis_share_one_model(analyses) -> None:
     analysis, scene = analyses["example 1"]
     assert cad_model(analysis, scene) is cad_model(analysis, scene)
     assert cad_model(analysis, scene, tolerance=1e-6) is not cad_model(analysis, scene)
+
+
+@pytest.mark.parametrize("text", ["x^2+y^2-z", "x^2+y^2-z^2+1", "x^2+y^2+z^2-2x-3", "y^2-2xz", "x^3+y^3-x*y*z"])
+def test_a_patch_covers_its_part_once_inside_the_ball_along_grad_f(tmp_path: Path, text: str) -> None:
+    """``NAME.patch.step``: a turned profile is kept where its distance to the axis is positive
+    (the paraboloid's four patches overlapped pairwise by 73-88 %), cut to the drawn ball, each
+    patch along ``∇f`` (folds cut apart); the sphere gets its stereographic parameterization."""
+    analysis = analyze(text)
+    scene = build_scene(analysis)
+    path, _ = export_file(analysis, tmp_path / "p.patch.step", scene=scene)
+    shape = read_shape(path)
+    assert readback.topology(shape).valid
+    size = scene.region.radius
+    surface = readback.Surface(analysis.squarefree, scene.region.center)
+    assert readback.part_to_surface(shape, surface, size, 500) <= 1e-9 * size
+    assert np.all(readback.normal_agreement(shape, surface, size, 300) > 0)
+    assert readback.area(shape) <= mesh_area(scene) * 1.01, "no point of the surface covered twice"
+    points, _ = readback.part_points(shape, size, 500)
+    assert np.all(np.linalg.norm(points - np.asarray(scene.region.center), axis=1) <= size * (1 + 1e-6))
