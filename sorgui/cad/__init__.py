@@ -117,4 +117,6 @@ def summary(model: CadModel) -> str:
     if model.deviation is not None and model.tolerance is not None:
         verdict = "within" if model.deviation <= model.tolerance else "ABOVE"
         words += f"; measured deviation {model.deviation:.2g} ({verdict} the tolerance {model.tolerance:.2g})"
+    if model.typed_deviation is not None:
+        words += f"; the nearest exact surface's part, {model.typed_deviation:.2g} from the typed surface"
     return words

@@ -34,6 +34,7 @@ from .geometry import (
     exact_profile,
 )
 from .meridian import meridian_curve, profile_arcs, profile_distance
+from .nearest import nearest_lines, nearest_scene, nearest_surface, typed_deviation
 from .patch import bezier_patches
 from .sewing import CONFUSION, assemble, check_size, compound, precision, solids_of
 
@@ -74,6 +75,9 @@ class CadModel:
     deviation: float | None = None
     tolerance: float | None = None
     precision: float = CONFUSION
+    typed_deviation: float | None = None
+    """For rounded input written as its nearest exact surface: the part's measured distance from
+    the typed surface."""
 
     @property
     def faces(self) -> int:
@@ -102,7 +106,15 @@ class Faces:
 
 def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = None) -> CadModel:
     """The part of a surface of revolution (or of planes or spheres) inside the scene's ball, cut
-    to the user's box if there is one, sewn and checked."""
+    to the user's box if there is one, sewn and checked; for rounded input, the part of the
+    nearest exact surface (:mod:`.nearest`)."""
+    nearest = nearest_surface(analysis)
+    if nearest is not None and nearest.analysis is not None:
+        exact = nearest.analysis
+        model = surface_model(exact, nearest_scene(scene, exact), tolerance)
+        deviation = typed_deviation(model.shape, analysis.squarefree, scene)
+        lines = (*nearest_lines(nearest, deviation), *model.description)
+        return dataclasses.replace(model, description=lines, typed_deviation=deviation)
     size = scene.region.radius
     check_size(size)
     faces = _surface_faces(analysis, scene, tolerance, precision(size))
@@ -258,7 +270,14 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
     """The first verified real rational parameterization (of ``X``, of a canal surface by its
     circles, of a cone or cylinder by its lines, of a sphere by stereographic projection) over
     the window's parameter box, covered once and oriented along ``∇f`` (:mod:`.patch`), cut to
-    the drawn ball and to the user's box if there is one."""
+    the drawn ball and to the user's box if there is one; for rounded input, the nearest exact
+    surface's (:mod:`.nearest`)."""
+    nearest = nearest_surface(analysis)
+    if nearest is not None and nearest.analysis is not None:
+        model = patch_model(nearest.analysis, nearest_scene(scene, nearest.analysis))
+        deviation = typed_deviation(model.shape, analysis.squarefree, scene)
+        lines = (*nearest_lines(nearest, deviation), *model.description)
+        return dataclasses.replace(model, description=lines, typed_deviation=deviation)
     size = scene.region.radius
     check_size(size)
     candidates = [

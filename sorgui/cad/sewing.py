@@ -161,13 +161,13 @@ def gradient_agreement(shape: TopoDS_Shape, terms: Terms) -> float:
     return float(np.mean(np.sign(np.einsum("ij,ij->i", normal[usable], gradient[usable]))))
 
 
-def face_normals(face: TopoDS_Face) -> tuple[np.ndarray, np.ndarray]:
+def face_normals(face: TopoDS_Face, samples: int = SAMPLES) -> tuple[np.ndarray, np.ndarray]:
     """Points on the surface of ``face`` over its ``(u, v)`` box and the unit normals there, as
     the face's orientation has them (where the surface is degenerate no normal is given)."""
     surface = BRepAdaptor_Surface(face)
     u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
     sign = -1.0 if face.Orientation() == TopAbs_REVERSED else 1.0
-    steps = (np.arange(SAMPLES) + 0.5) / SAMPLES
+    steps = (np.arange(samples) + 0.5) / samples
     points, normals = [], []
     for u in u0 + (u1 - u0) * steps:
         for v in v0 + (v1 - v0) * steps:

@@ -246,3 +246,43 @@ def test_a_patch_covers_its_part_once_inside_the_ball_along_grad_f(tmp_path: Pat
     assert readback.area(shape) <= mesh_area(scene) * 1.01, "no point of the surface covered twice"
     points, _ = readback.part_points(shape, size, 500)
     assert np.all(np.linalg.norm(points - np.asarray(scene.region.center), axis=1) <= size * (1 + 1e-6))
+
+
+def rounded_sor(profile: dict[tuple[int, int], int]) -> str:
+    """A surface of revolution ``Σ q_ij h^i ρ^j`` on a rational axis in general position,
+    printed as a CAD system prints it: 10 significant digits."""
+    from fractions import Fraction
+
+    from sorgui.samples import printed_exact, rational_sor
+
+    exact = {m: Fraction(q, 3) for m, q in profile.items()}
+    return printed_exact(rational_sor((1, 2, -1, 3), (Fraction(1, 3), Fraction(0), Fraction(1)), exact), 10)
+
+
+QUARTIC = {(0, 0): -6, (2, 0): 3, (0, 1): 3, (4, 0): -1}
+HYPERBOLOID = {(0, 0): -3, (2, 0): -3, (0, 1): 3}
+
+
+@pytest.mark.parametrize(("name", "profile"), [("part.step", QUARTIC), ("part.patch.step", HYPERBOLOID)])
+def test_rounded_input_gets_the_nearest_exact_surfaces_part(tmp_path: Path, name: str, profile) -> None:
+    """Exactly no surface of revolution, within its rounding of one: that one's part is written,
+    and the header and the summary give it and the part's distance from the typed surface."""
+    analysis = analyze(rounded_sor(profile))
+    assert not analysis.recognition.is_sor and analysis.approximate and analysis.approximate.nearest
+    exact = analysis.approximate.nearest.analysis
+    scene = build_scene(analysis)
+    path, holds = export_file(analysis, tmp_path / name, scene=scene)
+    assert "the nearest exact surface's part" in holds
+    text = path.read_text(encoding="ascii")
+    assert "rounded input: the part of the nearest exact surface of revolution" in text
+    assert "measured deviation of the part from the typed surface" in text
+    shape = read_shape(path)
+    assert readback.topology(shape).valid
+    size = scene.region.radius
+    typed = readback.Surface(analysis.squarefree, scene.region.center)
+    meant = readback.Surface(exact.squarefree, scene.region.center)
+    assert readback.part_to_surface(shape, meant, size, 500) <= 1e-7 * size
+    assert readback.part_to_surface(shape, typed, size, 500) <= 1e-6 * size
+    if name == "part.step":
+        points = readback.surface_points(typed, scene.surface.points, scene.region, 600)
+        assert readback.surface_to_part(shape, points).max() <= 1e-6 * size
