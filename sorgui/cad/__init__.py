@@ -103,6 +103,8 @@ ROUTES = {
     "exact": "a surface of revolution of the exact rational profile",
     "fitted": "a surface of revolution of a fitted profile",
     "patch": "rational B-spline patches of the parameterization",
+    "extrusion": "a cylinder over a curve: the linear extrusion of its exact base curve",
+    "ruled": "a cone over a curve: ruled through its apex over its exact base curve",
 }
 """What each route of :class:`~.model.CadModel` writes, in words."""
 

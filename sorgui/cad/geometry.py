@@ -100,6 +100,19 @@ class RationalCurve:
     def arcs(self) -> int:
         return (len(self.poles) - 1) // self.degree
 
+    def bezier_arcs(self) -> list[RationalCurve]:
+        """Each arc on its own, its weights balanced: ``w_i·c^i`` with ``c = (w₀/w_n)^(1/n)`` is
+        the same curve reparameterized, with equal end weights (the arcs of one B-spline share
+        one weight scale, which can leave some a thousand times lighter than others)."""
+        n = self.degree
+        out = []
+        for k in range(self.arcs):
+            weights = self.weights[k * n : (k + 1) * n + 1]
+            c = (weights[0] / weights[-1]) ** (1.0 / n)
+            balanced = weights * c ** np.arange(n + 1)
+            out.append(RationalCurve(n, self.poles[k * n : (k + 1) * n + 1], balanced / balanced.max()))
+        return out
+
     def points(self, per_arc: int = 16) -> np.ndarray:
         """Points along the curve (de Casteljau on each arc), for checks and coverage."""
         out = []
@@ -299,7 +312,7 @@ def meridian_section(param: Parametrization) -> Section:
     s, t = (sympy.Symbol(name) for name in param.parameters)
     polys = [sympy.Poly(e, t) for e in over_one_denominator([read_expression(c).subs(s, 0) for c in param.coordinates])]
     n = max(p.degree() for p in polys)
-    forms = [_form(p, n) for p in polys]
+    forms = [binary_form(p, n) for p in polys]
     return Section((forms[0], forms[1], forms[2]), forms[3])
 
 
@@ -322,7 +335,8 @@ def real_number(value: sympy.Expr) -> mpmath.mpf:
         return mpmath.mpf(sympy.re(number))
 
 
-def _form(poly: sympy.Poly, n: int) -> Form:
+def binary_form(poly: sympy.Poly, n: int) -> Form:
+    """The univariate ``poly`` as a binary form of degree ``n`` (coefficients of ``T^i·W^(n-i)``)."""
     coefficients = [mpmath.mpf(0)] * (n + 1)
     for (k,), c in poly.terms():
         coefficients[k] = real_number(c)
@@ -492,6 +506,34 @@ def _arcs(section: Section, frame: Frame, ball: ClipSphere, size: float) -> list
     return kept
 
 
+def ball_arcs(section: Section, centre: np.ndarray, radius: float) -> list[RationalCurve]:
+    """The arcs of ``section`` inside the ball about ``centre``: the projective ``t``-line cut at
+    the poles (roots of ``D``) and where the curve crosses the sphere (``|N − m·D|² − R²·D²``),
+    the spans inside kept and joined where no real cut parts them, each a rational B-spline."""
+    N, D = section.numerators, section.denominator
+    with mpmath.workdps(DIGITS):
+        offsets = [[N[i][k] - mpmath.mpf(centre[i]) * D[k] for k in range(len(D))] for i in range(3)]
+        inside = [sum(q) for q in zip(*(_product(o, o) for o in offsets))]
+        ball_form = [q - mpmath.mpf(radius) ** 2 * r for q, r in zip(inside, _product(D, D))]
+    cuts = sorted({round(t, 12) for form in (D, ball_form) for t in _angles(form)})
+    spans = _spans(cuts)
+    kept = [k for k, span in enumerate(spans) if _value(ball_form, (span.start + span.end) / 2) < 0]
+    return [_curve(section, piece) for piece in _pieces(spans, kept)]
+
+
+def polynomial_spans(numerators: tuple[Form, Form, Form]) -> list[np.ndarray]:
+    """A polynomial map of the projective line (binary forms of one degree ``n``) over spans of at
+    most ``π/4`` covering it: on each, the control points ``(n + 1, 3)`` of the Bézier curve it is
+    (its Bernstein coefficients)."""
+    out = []
+    for span in _spans([]):
+        A, B = _point(span.start), _point(span.end)
+        with mpmath.workdps(DIGITS):
+            coordinates = [bernstein(n, A, B) for n in numerators]
+        out.append(np.array([[float(coordinates[i][k]) for i in range(3)] for k in range(len(coordinates[0]))]))
+    return out
+
+
 def polyline_distance(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:
     """The distance of each point to the polyline through ``polyline``'s vertices."""
     if len(polyline) == 1:
@@ -524,7 +566,8 @@ def _spans(cuts: list[float]) -> list[_Span]:
 def _pieces(spans: list[_Span], kept: list[int]) -> list[list[_Span]]:
     """The kept spans (indices into ``spans``) joined where no real cut separates them; a piece
     running through the last span into the first continues at angles lifted by ``2π``, so that
-    its homogeneous points stay continuous."""
+    its homogeneous points stay continuous. A piece all round the line (a closed curve, an
+    ellipse) is cut in two: a closed curve's face would have two boundary edges in one place."""
     pieces: list[list[int]] = []
     for k in kept:
         if pieces and pieces[-1][-1] == k - 1 and not spans[k].cut_start:
@@ -536,7 +579,13 @@ def _pieces(spans: list[_Span], kept: list[int]) -> list[list[_Span]]:
     if wraps:
         lifted = [_Span(s.start + 2 * math.pi, s.end + 2 * math.pi, s.cut_start) for s in out.pop(0)]
         out[-1] += lifted
-    return out
+    halves = []
+    for piece in out:
+        if len(piece) > 1 and piece[-1].end - piece[0].start >= 2 * math.pi - 1e-9:
+            halves += [piece[: len(piece) // 2], piece[len(piece) // 2 :]]
+        else:
+            halves.append(piece)
+    return halves
 
 
 def _curve(section: Section, spans: list[_Span]) -> RationalCurve:

@@ -23,6 +23,7 @@ from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData
 from sorgui.render.geometry import foot_on_line
 
 from . import shapes
+from .conical import Extrusion, Ruled, lined_part
 from .coverage import missing
 from .fitted import FIT_TOLERANCE, fitted_arc, uncovered
 from .geometry import (
@@ -146,8 +147,12 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
             "the analysis did not finish, so it is not known whether the surface is one of revolution"
         )
     if not rec.is_sor:
+        lined = lined_part(analysis, scene.region)
+        if lined is not None:
+            return _lined_faces(lined, scene.region, edge)
         raise CadGeometryError(
-            "the surface is not a surface of revolution; write NAME.patch.step for a rational parameterization"
+            "the surface is not a surface of revolution, nor a cylinder or cone over a rational curve; "
+            "write NAME.patch.step for a rational parameterization"
         )
     ball = scene.region
     frame = axis_frame(rec.profile) if rec.profile is not None else None
@@ -193,6 +198,28 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
         )
     lines = (axis, f"profile: B-spline fitted to tolerance {goal:.3g}; measured deviation {deviation:.3g} (within it)")
     return Faces(shapes.revolution_faces(frame, splines, edge), "fitted", lines, deviation, goal)
+
+
+def _lined_faces(lined: Extrusion | Ruled, ball: ClipSphere, edge: float) -> Faces:
+    """A cylinder or cone over a curve, cut to the ball (:mod:`.conical`)."""
+    if isinstance(lined, Extrusion):
+        faces = shapes.cut_to(shapes.extrusion_faces(lined, edge), ball)
+        degree = lined.curves[0].degree
+        lines = (
+            f"cylinder along {_vector(lined.direction)} over its base curve ({lined.method})",
+            f"linear extrusion of the exact rational B-spline base curve, {len(lined.curves)} arcs, degree {degree}",
+        )
+        route = "extrusion"
+    else:
+        faces = shapes.cut_to(shapes.ruled_faces(lined, edge), ball)
+        lines = (
+            f"cone with apex {_vector(lined.apex)} over its base curve ({lined.method})",
+            f"ruled through the apex: rational Bezier surfaces of degree ({len(lined.spans[0]) - 1}, 1)",
+        )
+        route = "ruled"
+    if not faces:
+        raise CadGeometryError("the surface has no real points inside the drawn ball")
+    return Faces(faces, route, lines)
 
 
 def _off_axis(ball: ClipSphere, frame: Frame) -> bool:
@@ -297,7 +324,7 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
         faces, groups = [], []
         for patch in patches:
             face = shapes.patch_face(patch, precision(size))
-            cut = shapes.cut_to([face.Reversed() if patch.turned else face], scene.region)
+            cut = shapes.cut_to([shapes.reversed_face(face) if patch.turned else face], scene.region)
             faces += cut
             groups += [int(patch.turned)] * len(cut)
         if not faces:

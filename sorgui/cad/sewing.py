@@ -6,7 +6,7 @@ that neighbouring faces share their edges; each connected piece becomes one shel
 (``ShapeFix_Solid::SolidFromShell``: ``BRepBuilderAPI_MakeSolid`` with its faces turned outward);
 ``BRepCheck_Analyzer`` must accept the result, or nothing is written. An open shell's faces point
 along ``∇f``, toward ``f > 0`` (the convention the 3D view's mesh follows), decided by the sign
-of ``n·∇f`` at points of each face. Lengths are relative to the part's ``size`` (the drawn
+of ``n·∇f`` at points of each shell. Lengths are relative to the part's ``size`` (the drawn
 ball's radius): :func:`precision` is the tolerance every edge, vertex and the STEP file's
 uncertainty gets.
 """
@@ -125,20 +125,15 @@ def _shells(sewn: TopoDS_Shape) -> list[TopoDS_Shell]:
 
 
 def _finished(shell: TopoDS_Shell, terms: Terms | None) -> TopoDS_Shape:
-    """A closed shell as a solid whose faces point out of it; an open one with each face along
-    ``∇f`` (faces that meet only at a point, as a cone's nappes at the apex, need not agree
-    with a neighbour's orientation: ``∇f`` of an odd-degree cone turns over there)."""
+    """A closed shell as a solid whose faces point out of it; an open one along ``∇f`` (by the
+    sign of ``n·∇f`` over all its faces: where ``f`` has a singular curve, a node of a profile,
+    ``∇f`` turns over across it while the sheet's orientation goes on)."""
     if BRep_Tool.IsClosed_s(shell):
         solid = ShapeFix_Solid().SolidFromShell(shell)
         return next(iter(_explore(solid, TopAbs_SOLID)), solid)
-    if terms is None:
-        return shell
-    builder = BRep_Builder()
-    oriented = TopoDS_Shell()
-    builder.MakeShell(oriented)
-    for face in _explore(shell, TopAbs_FACE):
-        builder.Add(oriented, face.Reversed() if gradient_agreement(face, terms) < 0 else face)
-    return oriented
+    if terms is not None and gradient_agreement(shell, terms) < 0:
+        return shell.Reversed()
+    return shell
 
 
 def gradient_agreement(shape: TopoDS_Shape, terms: Terms) -> float:

@@ -25,7 +25,9 @@ from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_MakeFace,
     BRepBuilderAPI_MakeWire,
     BRepBuilderAPI_NurbsConvert,
+    BRepBuilderAPI_Sewing,
 )
+from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
 from OCP.BRepTools import BRepTools
 from OCP.GC import GC_MakeCircle
@@ -36,10 +38,12 @@ from OCP.Geom import (
     Geom_CylindricalSurface,
     Geom_Plane,
     Geom_SphericalSurface,
+    Geom_SurfaceOfLinearExtrusion,
     Geom_SurfaceOfRevolution,
     Geom_ToroidalSurface,
 )
 from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt
+from OCP.GProp import GProp_GProps
 from OCP.OCP.collections import (
     Array1_double,
     Array1_gp_Pnt,
@@ -54,6 +58,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 
 from sorgui.render import ClipBox, ClipSphere
 
+from .conical import Extrusion, Ruled
 from .geometry import Analytic, CadGeometryError, Frame, RationalCurve
 from .patch import BezierPatch
 
@@ -107,6 +112,36 @@ def revolution_faces(frame: Frame, curves: Sequence[Geom_BSplineCurve], toleranc
         )
         faces.append(_face(maker))
     return faces
+
+
+def extrusion_faces(extrusion: Extrusion, tolerance: float) -> list[TopoDS_Face]:
+    """A cylinder over a curve: each Bézier arc of its base curve (weights balanced) extruded
+    along the direction (``Geom_SurfaceOfLinearExtrusion``) by ``± length``."""
+    direction = _dir(extrusion.direction)
+    faces = []
+    for arc in (a for curve in extrusion.curves for a in curve.bezier_arcs()):
+        curve = bspline_curve(arc)
+        surface = Geom_SurfaceOfLinearExtrusion(curve, direction)
+        low, high = curve.FirstParameter(), curve.LastParameter()
+        faces.append(_face(BRepBuilderAPI_MakeFace(surface, low, high, -extrusion.length, extrusion.length, tolerance)))
+    return faces
+
+
+def ruled_faces(ruled: Ruled, tolerance: float) -> list[TopoDS_Face]:
+    """A cone over a curve: on each span of its direction curve, the two nappes as Bézier
+    surfaces of degree ``(n, 1)`` from the apex (a degenerate edge) to ``apex ± M·b_k``."""
+    faces = []
+    for points, reach in zip(ruled.spans, ruled.reach):
+        for sign in (1.0, -1.0):
+            far = ruled.apex + sign * reach * points
+            rows = np.stack([np.broadcast_to(ruled.apex, far.shape), far], axis=1)
+            faces.append(patch_face(BezierPatch(rows, np.ones(rows.shape[:2])), tolerance))
+    return faces
+
+
+def reversed_face(face: TopoDS_Face) -> TopoDS_Face:
+    """The face with its orientation turned (its normal the other way)."""
+    return TopoDS.Face(face.Reversed())
 
 
 def _face(maker: BRepBuilderAPI_MakeFace) -> TopoDS_Face:
@@ -164,7 +199,7 @@ def cut_to(faces: Sequence[TopoDS_Face], region: ClipSphere | ClipBox) -> list[T
     to a box are cut into sectors before (:func:`sectors`; splitting a trimmed face can lose
     its trimming)."""
     if isinstance(region, ClipSphere):
-        return _halves(_common(faces, BRepPrimAPI_MakeSphere(_point(region.center), region.radius).Shape()))
+        return _halves(_common(faces, BRepPrimAPI_MakeSphere(_point(region.center), region.radius).Shape(), region))
     low, high = np.array(region.bounds[0::2]), np.array(region.bounds[1::2])
     around = _bounds(faces)
     if around is None:
@@ -196,7 +231,7 @@ def sectors(faces: Sequence[TopoDS_Face], count: int, tolerance: float) -> list[
             cuts = np.linspace(u0, u1, count + 1)
             for a, b in zip(cuts[:-1], cuts[1:]):
                 made = _face(BRepBuilderAPI_MakeFace(surface, float(a), float(b), v0, v1, tolerance))
-                out.append(made.Reversed() if face.Orientation() != made.Orientation() else made)
+                out.append(reversed_face(made) if face.Orientation() != made.Orientation() else made)
         else:
             out.append(face)
     return out
@@ -212,16 +247,73 @@ def _halves(faces: Sequence[TopoDS_Face]) -> list[TopoDS_Face]:
     return faces_of(halves.Result())
 
 
-def _common(faces: Sequence[TopoDS_Face], solid: TopoDS_Shape) -> list[TopoDS_Face]:
-    """The parts of the faces inside ``solid``, one Boolean per face (one over many patches,
-    some of them degenerate next to a pole of the map, can lose them all)."""
-    out = []
+def _common(faces: Sequence[TopoDS_Face], solid: TopoDS_Shape, ball: ClipSphere | None = None) -> list[TopoDS_Face]:
+    """The parts of the faces inside ``solid``. The faces are sewn first and cut together, so
+    that the parts keep the edges they share; a Boolean over many patches, some degenerate next
+    to a pole of their map, can lose some, so the faces are also cut one by one, and the
+    joint result is taken only where it has the same area. Cut to a ``ball``, a face that
+    comes out empty though points of it lie inside is cut in halves (Open CASCADE loses some
+    faces of a cylinder through a node of its base curve)."""
+    if not faces:
+        return []
+    apart = []
     for face in faces:
-        common = BRepAlgoAPI_Common(face, solid)
-        if not common.IsDone():
-            raise CadGeometryError("Open CASCADE could not cut the faces to the region")
-        out += faces_of(common.Shape())
-    return out
+        apart += _face_common(face, solid, ball, 0)
+    if len(faces) == 1:
+        return apart
+    around = _bounds(faces)
+    size = float(np.linalg.norm(around[1] - around[0])) if around is not None else 1.0
+    sewing = BRepBuilderAPI_Sewing(10 * max(1e-7, 1e-9 * size))
+    for face in faces:
+        sewing.Add(face)
+    sewing.Perform()
+    joint = _boolean(sewing.SewedShape(), solid)
+    if abs(_area(joint) - _area(apart)) <= 1e-7 * max(_area(apart), 1e-300):
+        return joint
+    return apart
+
+
+def _face_common(face: TopoDS_Face, solid: TopoDS_Shape, ball: ClipSphere | None, depth: int) -> list[TopoDS_Face]:
+    out = _boolean(face, solid)
+    if out or ball is None or depth >= 3 or not _reaches(face, ball):
+        return out
+    surface = BRep_Tool.Surface_s(face)
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    halves = []
+    for a, b in ((u0, (u0 + u1) / 2), ((u0 + u1) / 2, u1)):
+        half = _face(BRepBuilderAPI_MakeFace(surface, a, b, v0, v1, BRep_Tool.Tolerance_s(face)))
+        halves += _face_common(
+            reversed_face(half) if face.Orientation() != half.Orientation() else half, solid, ball, depth + 1
+        )
+    return halves
+
+
+def _reaches(face: TopoDS_Face, ball: ClipSphere) -> bool:
+    """Whether points of the face's surface over its ``(u, v)`` box lie inside ``ball``."""
+    surface = BRep_Tool.Surface_s(face)
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    centre = np.asarray(ball.center)
+    for u in np.linspace(u0, u1, 9):
+        for v in np.linspace(v0, v1, 9):
+            if np.linalg.norm(np.array(surface.Value(float(u), float(v)).Coord()) - centre) < ball.radius:
+                return True
+    return False
+
+
+def _boolean(shape: TopoDS_Shape, solid: TopoDS_Shape) -> list[TopoDS_Face]:
+    common = BRepAlgoAPI_Common(shape, solid)
+    if not common.IsDone():
+        raise CadGeometryError("Open CASCADE could not cut the faces to the region")
+    return faces_of(common.Shape())
+
+
+def _area(faces: Sequence[TopoDS_Face]) -> float:
+    total = 0.0
+    for face in faces:
+        props = GProp_GProps()
+        BRepGProp.SurfaceProperties_s(face, props, 1e-6)
+        total += props.Mass()
+    return total
 
 
 def _bounds(faces: Sequence[TopoDS_Face]) -> tuple[np.ndarray, np.ndarray] | None:

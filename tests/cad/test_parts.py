@@ -286,3 +286,29 @@ def test_rounded_input_gets_the_nearest_exact_surfaces_part(tmp_path: Path, name
     if name == "part.step":
         points = readback.surface_points(typed, scene.surface.points, scene.region, 600)
         assert readback.surface_to_part(shape, points).max() <= 1e-6 * size
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "shells"),
+    [
+        ("9*(2*x-y)^2+4*(2*x+4*y-5*z-3)^2-180", "SurfaceOfExtrusion", 1),
+        ("x^2-y^2-z^2+x*y", "BSplineSurface", 2),
+    ],
+)
+def test_cylinders_and_cones_over_a_curve_are_their_native_surfaces(tmp_path: Path, text: str, kind: str, shells: int):
+    """An elliptic cylinder in general position (it was refused) is the linear extrusion of its
+    exact base curve (STEP's SURFACE_OF_LINEAR_EXTRUSION); a quadric cone that is no cone of
+    revolution is ruled through its apex (rational Bézier surfaces of degree (2, 1))."""
+    from OCP.BRep import BRep_Tool
+    from OCP.GeomAdaptor import GeomAdaptor_Surface
+
+    analysis = analyze(text)
+    scene = build_scene(analysis)
+    path, holds = export_file(analysis, tmp_path / "part.step", scene=scene)
+    assert "over a curve" in holds
+    shape = read_shape(path)
+    types = {GeomAdaptor_Surface(BRep_Tool.Surface_s(f)).GetType().name for f in readback.faces_of(shape)}
+    assert types == {f"GeomAbs_{kind}"}
+    if kind == "SurfaceOfExtrusion":
+        assert "SURFACE_OF_LINEAR_EXTRUSION(" in path.read_text(encoding="ascii")
+    check_part(path, analysis, scene, shells, 0, 1e-9 * scene.region.radius)
