@@ -249,6 +249,11 @@ def analyze_parser() -> argparse.ArgumentParser:
         "the drawn ball's radius (default 1e-7)",
     )
     parser.add_argument(
+        "--cap",
+        action="store_true",
+        help="a CAD file holds the solid f <= 0 inside --region: the part capped by the ball or the box",
+    )
+    parser.add_argument(
         "--region",
         type=region_value,
         default=UserRegion(),
@@ -404,6 +409,7 @@ def write_outputs(
     units: str = "mm",
     fit_tolerance: float | None = None,
     region: UserRegion = UserRegion(),
+    cap: bool = False,
 ) -> None:
     """Write ``result`` to every ``-o`` file (atomically); an error names the file.
 
@@ -423,7 +429,7 @@ def write_outputs(
         scene = build_scene(result, radius=region.radius if ball is None else None, region=ball, box=box)
     for path in outputs:
         try:
-            written, holds = export_file(result, path, fmt, scene=scene, units=units, tolerance=fit_tolerance)
+            written, holds = export_file(result, path, fmt, scene=scene, units=units, tolerance=fit_tolerance, cap=cap)
             if holds:
                 print(f"sorgui: wrote {written}: {holds}", file=sys.stderr)
         except OSError as exc:
@@ -520,7 +526,7 @@ def analyze_main(argv: Sequence[str]) -> int:
         case _:
             return fail("the analysis was cancelled", None, args.json, 1)
     try:
-        write_outputs(result, args.output, args.export_format, args.units, args.fit_tolerance, args.region)
+        write_outputs(result, args.output, args.export_format, args.units, args.fit_tolerance, args.region, args.cap)
         if args.json:
             emit(json.dumps(result.to_json(), indent=1))
         else:

@@ -49,25 +49,28 @@ __all__ = [
 ]
 
 
-_BUILT: weakref.WeakKeyDictionary[Any, dict[tuple[int, bool, float | None], tuple[Analysis, Any]]] = (
+_BUILT: weakref.WeakKeyDictionary[Any, dict[tuple[int, bool, float | None, bool], tuple[Analysis, Any]]] = (
     weakref.WeakKeyDictionary()
 )
 """The models built for each scene (while it lives), by analysis and options: a STEP, an IGES
 and a BRep file of one analysis share one model (building a degree-12 part takes seconds)."""
 
 
-def cad_model(analysis: Analysis, scene: Scene, patch: bool = False, tolerance: float | None = None) -> CadModel:
-    """The part a CAD file of ``analysis`` holds (``patch``: the parameterization's patch),
-    built once per scene, analysis and options (a failure too: it is said again)."""
+def cad_model(
+    analysis: Analysis, scene: Scene, patch: bool = False, tolerance: float | None = None, cap: bool = False
+) -> CadModel:
+    """The part a CAD file of ``analysis`` holds (``patch``: the parameterization's patch;
+    ``cap``: the part capped by the region into a solid), built once per scene, analysis and
+    options (a failure too: it is said again)."""
     try:
         from .model import patch_model, surface_model
     except ImportError as exc:
         raise CadUnavailable(INSTALL_HINT) from exc
     built = _BUILT.setdefault(scene, {})
-    key = (id(analysis), patch, tolerance)
+    key = (id(analysis), patch, tolerance, cap)
     if key not in built or built[key][0] is not analysis:
         try:
-            made: Any = patch_model(analysis, scene) if patch else surface_model(analysis, scene, tolerance)
+            made: Any = patch_model(analysis, scene) if patch else surface_model(analysis, scene, tolerance, cap)
         except CadGeometryError as exc:
             made = exc
         built[key] = (analysis, made)
@@ -86,12 +89,13 @@ def cad_file(
     patch: bool = False,
     units: str = "mm",
     tolerance: float | None = None,
+    cap: bool = False,
 ) -> tuple[bytes, CadModel]:
     """The bytes of the CAD file ``name`` of ``analysis`` (format ``suffix``; ``patch``: the
     parameterization's patch), and the faces it holds (for :func:`summary`)."""
     from sorgui import __version__
 
-    model = cad_model(analysis, scene, patch, tolerance)
+    model = cad_model(analysis, scene, patch, tolerance, cap)
     from .writers import WRITERS, CadHeader
 
     header = CadHeader(analysis.recognition.polynomial, model.description, __version__, name, units, model.precision)

@@ -15,6 +15,7 @@ from typing import Any, Protocol
 
 import numpy as np
 import sympy
+from OCP.BRepCheck import BRepCheck_Analyzer
 
 from sorgui.engine.results import Analysis, Parametrization, Recognition
 from sorgui.engine.values import ExpressionError, polynomial_terms, read_expression
@@ -23,6 +24,7 @@ from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData
 from sorgui.render.geometry import foot_on_line
 
 from . import shapes
+from .caps import capped
 from .conical import Extrusion, Ruled, lined_part
 from .coverage import missing
 from .fitted import FIT_TOLERANCE, fitted_arc, uncovered
@@ -105,26 +107,26 @@ class Faces:
     fold of their map, which meet only where it folds)."""
 
 
-def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = None) -> CadModel:
+def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = None, cap: bool = False) -> CadModel:
     """The part of a surface of revolution (or of planes or spheres) inside the scene's ball, cut
     to the user's box if there is one, sewn and checked; for rounded input, the part of the
     nearest exact surface (:mod:`.nearest`)."""
     nearest = nearest_surface(analysis)
     if nearest is not None and nearest.analysis is not None:
         exact = nearest.analysis
-        model = surface_model(exact, nearest_scene(scene, exact), tolerance)
+        model = surface_model(exact, nearest_scene(scene, exact), tolerance, cap)
         deviation = typed_deviation(model.shape, analysis.squarefree, scene)
         lines = (*nearest_lines(nearest, deviation), *model.description)
         return dataclasses.replace(model, description=lines, typed_deviation=deviation)
     size = scene.region.radius
     check_size(size)
     faces = _surface_faces(analysis, scene, tolerance, precision(size))
-    return finished(faces, scene, analysis.squarefree)
+    return finished(faces, scene, analysis.squarefree, cap)
 
 
-def finished(part: Faces, scene: Scene, polynomial: str) -> CadModel:
+def finished(part: Faces, scene: Scene, polynomial: str, cap: bool = False) -> CadModel:
     """The faces cut to the user's box, sewn into shells and solids (each group apart), checked
-    (:func:`.sewing.assemble`); an error if nothing is left."""
+    (:func:`.sewing.assemble`), capped by the region if asked; an error if nothing is left."""
     size = scene.region.radius
     terms = polynomial_terms(polynomial)
     labels = part.groups or (0,) * len(part.faces)
@@ -137,6 +139,12 @@ def finished(part: Faces, scene: Scene, polynomial: str) -> CadModel:
     if not pieces:
         raise CadGeometryError("the surface has no real points inside the box")
     shape = pieces[0] if len(pieces) == 1 else compound(pieces)
+    if cap:
+        region = scene.box if scene.box is not None else scene.region
+        shape = capped(shape, region, terms, precision(size))
+        if not BRepCheck_Analyzer(shape).IsValid():
+            raise CadGeometryError("Open CASCADE finds the capped solid invalid (BRepCheck)")
+        lines = (*lines, f"capped by the {'box' if scene.box is not None else 'ball'}: the solid f <= 0 inside it")
     return CadModel(shape, part.route, lines, part.deviation, part.tolerance, precision(size))
 
 

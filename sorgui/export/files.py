@@ -104,16 +104,18 @@ def export_file(
     scene: Any = None,
     units: str = "mm",
     tolerance: float | None = None,
+    cap: bool = False,
 ) -> tuple[Path, str]:
     """:func:`export_analysis`, and what a CAD file holds in words (``""`` for the other formats):
-    its route, its faces and a fitted profile's measured deviation."""
+    its route, its faces and a fitted profile's measured deviation. ``cap``: a CAD file's part
+    closed by the region into the solid ``f ≤ 0``."""
     path = Path(path)
     form = format_of(path, fmt)
     if form.kind != "cad":
         return export_analysis(analysis, path, fmt, scene=scene, units=units, tolerance=tolerance), ""
     from sorgui.cad import cad_file, summary
 
-    data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance)
+    data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance, cap)
     return atomic_write_bytes(path, data), summary(model)
 
 

@@ -312,3 +312,38 @@ def test_cylinders_and_cones_over_a_curve_are_their_native_surfaces(tmp_path: Pa
     if kind == "SurfaceOfExtrusion":
         assert "SURFACE_OF_LINEAR_EXTRUSION(" in path.read_text(encoding="ascii")
     check_part(path, analysis, scene, shells, 0, 1e-9 * scene.region.radius)
+
+
+@pytest.mark.parametrize(("text", "box"), [("x^2+y^2-z", None), ("x^2+y^2-z", (-1, 1, -1, 1, 0, 2)), (TUBE, None)])
+def test_a_capped_part_is_the_solid_where_f_is_negative(tmp_path: Path, text: str, box) -> None:
+    """``--cap``: the part and the region's boundary bound the solid ``f ≤ 0`` inside the ball
+    or box; its volume is that of the region's points where ``f < 0`` (Monte Carlo)."""
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    from sorgui.engine.values import polynomial_terms
+    from sorgui.render import ClipBox
+    from sorgui.render.sampling import evaluate_points
+
+    analysis = analyze(text)
+    scene = build_scene(analysis, box=ClipBox(box) if box else None)
+    path, holds = export_file(analysis, tmp_path / "solid.step", scene=scene, cap=True)
+    assert "solid" in holds
+    shape = read_shape(path)
+    topology = readback.topology(shape)
+    assert topology.valid and topology.solids >= 1 and not len(topology.free_points)
+    assert readback.gmsh_part(path).volumes == topology.solids
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, props)
+    rng = np.random.default_rng(2)
+    if box:
+        low, high = np.array(box[0::2], float), np.array(box[1::2], float)
+        points = low + (high - low) * rng.random((400_000, 3))
+        volume = float(np.prod(high - low))
+    else:
+        c, r = np.asarray(scene.region.center), scene.region.radius
+        points = c + r * (2 * rng.random((600_000, 3)) - 1)
+        points = points[np.linalg.norm(points - c, axis=1) <= r]
+        volume = 4 / 3 * np.pi * r**3
+    negative = evaluate_points(polynomial_terms(analysis.squarefree), points) < 0
+    assert props.Mass() == pytest.approx(volume * negative.mean(), rel=0.03)
