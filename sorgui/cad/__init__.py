@@ -109,6 +109,7 @@ ROUTES = {
     "patch": "rational B-spline patches of the parameterization",
     "extrusion": "a cylinder over a curve: the linear extrusion of its exact base curve",
     "ruled": "a cone over a curve: ruled through its apex over its exact base curve",
+    "canal": "a canal surface swept through its characteristic circles",
 }
 """What each route of :class:`~.model.CadModel` writes, in words."""
 

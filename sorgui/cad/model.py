@@ -24,6 +24,7 @@ from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData
 from sorgui.render.geometry import foot_on_line
 
 from . import shapes
+from .canal import Sweep, canal_sweep
 from .caps import capped
 from .conical import Extrusion, Ruled, lined_part
 from .coverage import missing
@@ -158,9 +159,13 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
         lined = lined_part(analysis, scene.region)
         if lined is not None:
             return _lined_faces(lined, scene.region, edge)
+        goal = (tolerance if tolerance is not None else FIT_TOLERANCE) * scene.region.radius
+        sweep = canal_sweep(analysis, scene.region, goal, edge)
+        if sweep is not None:
+            return _swept_faces(sweep, scene.region, goal)
         raise CadGeometryError(
-            "the surface is not a surface of revolution, nor a cylinder or cone over a rational curve; "
-            "write NAME.patch.step for a rational parameterization"
+            "the surface is not a surface of revolution, nor a cylinder or cone over a rational curve, "
+            "nor a canal surface with known circles; write NAME.patch.step for a rational parameterization"
         )
     ball = scene.region
     frame = axis_frame(rec.profile) if rec.profile is not None else None
@@ -206,6 +211,23 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
         )
     lines = (axis, f"profile: B-spline fitted to tolerance {goal:.3g}; measured deviation {deviation:.3g} (within it)")
     return Faces(shapes.revolution_faces(frame, splines, edge), "fitted", lines, deviation, goal)
+
+
+def _swept_faces(sweep: Sweep, ball: ClipSphere, goal: float) -> Faces:
+    """A canal surface swept through its characteristic circles (:mod:`.canal`), cut to the ball."""
+    if sweep.deviation > goal:
+        raise CadGeometryError(
+            f"the sweep of the canal surface's circles strays {sweep.deviation:.2g} from the surface, more than "
+            f"the tolerance {goal:.2g} ({goal / ball.radius:.2g} of the ball's radius): give a larger --fit-tolerance"
+        )
+    faces = shapes.cut_to(sweep.faces, ball)
+    if not faces:
+        raise CadGeometryError("the surface has no real points inside the drawn ball")
+    lines = (
+        f"canal surface: B-spline surface through {sweep.circles} of its characteristic circles",
+        f"fitted to tolerance {goal:.3g}; measured deviation {sweep.deviation:.3g} (within it)",
+    )
+    return Faces(faces, "canal", lines, sweep.deviation, goal)
 
 
 def _lined_faces(lined: Extrusion | Ruled, ball: ClipSphere, edge: float) -> Faces:

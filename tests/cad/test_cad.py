@@ -155,9 +155,19 @@ def test_a_dupin_cyclide_is_written_as_its_rational_patch(tmp_path: Path, cases)
     assert sampled_distance(shape, analysis.recognition.polynomial) <= 1e-9 * scene.region.radius
 
 
-def test_a_surface_that_is_not_of_revolution_is_refused_in_one_sentence(tmp_path: Path, cases) -> None:
-    analysis, scene = cases["dupin"]
+def test_a_surface_of_no_kind_written_natively_is_refused_in_one_sentence(tmp_path: Path) -> None:
+    """Not of revolution, no cylinder or cone over a curve, no canal surface: the patch is offered."""
+    analysis = analyze("x^2+2*y^2+3*z^2-1")
+    scene = build_scene(analysis)
     with pytest.raises(ValueError, match="not a surface of revolution.*patch"):
+        export_analysis(analysis, tmp_path / "e.step", scene=scene)
+    assert not (tmp_path / "e.step").exists()
+
+
+def test_a_tolerance_a_sweep_misses_writes_no_file(tmp_path: Path, cases) -> None:
+    """The Dupin cyclide swept through its circles strays above 1e-7 of the ball's radius."""
+    analysis, scene = cases["dupin"]
+    with pytest.raises(ValueError, match="more than the tolerance"):
         export_analysis(analysis, tmp_path / "dupin.step", scene=scene)
     assert not (tmp_path / "dupin.step").exists()
 

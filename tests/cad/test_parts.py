@@ -347,3 +347,30 @@ def test_a_capped_part_is_the_solid_where_f_is_negative(tmp_path: Path, text: st
         volume = 4 / 3 * np.pi * r**3
     negative = evaluate_points(polynomial_terms(analysis.squarefree), points) < 0
     assert props.Mass() == pytest.approx(volume * negative.mean(), rel=0.03)
+
+
+@pytest.mark.parametrize(
+    ("example", "tolerance", "solids"), [("pipe-twisted-cubic", None, 0), ("dupin-cyclide", 1e-5, 1)]
+)
+def test_a_canal_surface_is_swept_through_its_circles_within_the_stated_tolerance(
+    tmp_path: Path, example: str, tolerance: float | None, solids: int
+) -> None:
+    """The pipe about the twisted cubic and the Dupin cyclide (no surfaces of revolution: they
+    were refused): a B-spline surface through their characteristic circles, the measured
+    deviation stated and held; the closed cyclide is a solid."""
+    analysis = analyze(example_text(example))
+    scene = build_scene(analysis)
+    path, holds = export_file(analysis, tmp_path / "canal.step", scene=scene, tolerance=tolerance)
+    assert "canal surface swept" in holds and "within the tolerance" in holds
+    size = scene.region.radius
+    shape = read_shape(path)
+    topology = readback.topology(shape, 1e-7 * max(1.0, size))
+    assert topology.valid and topology.solids == solids
+    if len(topology.free_points):
+        assert np.all(readback.on_boundary(topology.free_points, scene.region, 1e-6 * size))
+    surface = readback.Surface(analysis.squarefree, scene.region.center)
+    stated = (tolerance or 1e-7) * size
+    assert readback.part_to_surface(shape, surface, size, 800) <= stated
+    points = readback.surface_points(surface, scene.surface.points, scene.region, 800)
+    assert readback.surface_to_part(shape, points).max() <= stated
+    assert readback.gmsh_part(path).surfaces == topology.faces
