@@ -3,13 +3,17 @@
 Every use of Open CASCADE is in this package (its modules import ``OCP``; the rest of sorgui
 speaks its own types): the export layer (:mod:`sorgui.export.files`) writes the bytes made here.
 
-A surface of revolution is written as the native surface a CAD kernel uses (docs/math.md §11):
-an analytic plane, sphere, cylinder, cone or torus where it is one, otherwise a
-``SURFACE_OF_REVOLUTION`` about the exact axis whose profile is the exact rational B-spline of a
-verified parameterization, or a B-spline fitted within a stated tolerance. ``NAME.patch.step``
-(and ``.iges``, ``.brep``) writes the first verified real parameterization as rational Bézier
-patches instead. Open CASCADE (the ``sorgui[cad]`` extra, ``cadquery-ocp-novtk``) is imported
-only here, when such a file is written; without it :class:`CadUnavailable` says how to get it.
+Each kind sorgui recognises is written as the native surface a CAD kernel uses (docs/math.md
+§11): an analytic plane, sphere, cylinder, cone or torus where it is one, otherwise a
+``SURFACE_OF_REVOLUTION`` about the exact axis whose profile is the exact rational B-spline of
+a verified parameterization, or a B-spline fitted within a stated tolerance, measured both
+ways; a cylinder over a curve as the linear extrusion of its exact base curve, a cone over a
+curve ruled through its apex, a canal surface swept through its characteristic circles; rounded
+input as the nearest exact surface's part. The faces are sewn, closed shells made solids,
+checked (:mod:`.sewing`). ``NAME.patch.step`` (and ``.iges``, ``.brep``) writes the first
+verified real parameterization as rational Bézier patches instead. Open CASCADE (the
+``sorgui[cad]`` extra, ``cadquery-ocp-novtk``) is imported only here, when such a file is
+written; without it :class:`CadUnavailable` says how to get it.
 """
 
 from __future__ import annotations

@@ -114,7 +114,7 @@ def profile_arcs(polylines: Sequence[np.ndarray], curve: MeridianCurve, ball: Cl
     graph.join()
     arcs = _chains(graph.pieces, graph.links)
     axis = _axis_points(curve.curve, centre, ball.radius)
-    return _at_axis(arcs, axis, REACH * step, step / 4)
+    return _at_axis(arcs, axis, step, step / 4)
 
 
 def _at_axis(arcs: list[Arc], axis: list[np.ndarray], reach: float, near: float) -> list[Arc]:
