@@ -274,7 +274,18 @@ def analyze_parser() -> argparse.ArgumentParser:
         help="analyse every line of the input (-f FILE or '-') on its own and print JSON Lines; '#' starts a comment",
     )
     parser.add_argument(
-        "--jobs", type=positive_int, default=1, help="with --each-line: the number of worker processes (default 1)"
+        "--jobs", type=positive_int, default=None, help="with --each-line: the number of worker processes (default 1)"
+    )
+    parser.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="with --each-line: analyse the lines on the Dask cluster whose scheduler is at ADDRESS "
+        "(tcp://host:8786; default: $DASK_SCHEDULER_ADDRESS unless --jobs is given); needs sorgui[cluster]",
+    )
+    parser.add_argument(
+        "--resume",
+        action="store_true",
+        help="with --each-line -o RESULTS.jsonl: keep the lines RESULTS.jsonl already holds and analyse the rest",
     )
     return parser
 
@@ -606,32 +617,17 @@ def part_main(args: argparse.Namespace, source: Path) -> int:
 
 
 def each_line(args: argparse.Namespace) -> int:
-    """``--each-line``: the lines of ``-f FILE`` or standard input, read as they are analysed
-    (:mod:`sorgui.batch`); each line may be as long as one equation (:data:`MAX_INPUT`)."""
-    if args.output:
-        raise UsageError("-o cannot be combined with --each-line")
-    if args.file is not None and args.expression is not None:
-        raise UsageError("give either an expression or -f FILE, not both")
-    if args.file is None and args.expression != "-":
-        raise UsageError("--each-line reads -f FILE or '-' (standard input)")
-    from sorgui.batch import equations, read_lines, run_batch
+    """``--each-line``: the lines of ``-f FILE`` or standard input, read as they are analysed,
+    to standard output or ``-o RESULTS.jsonl`` (:mod:`sorgui.batch`); each line may be as long
+    as one equation (:data:`MAX_INPUT`)."""
+    from sorgui.batch import BatchError, run_each_line
 
-    source = str(args.file) if args.file is not None else "standard input"
     try:
-        stream = open(args.file, encoding="utf-8") if args.file is not None else sys.stdin
-    except OSError as exc:
-        raise UsageError(f"cannot read {args.file}: {exc.strerror or exc}") from None
-    try:
-        total = None
-        if args.file is not None and sys.stderr.isatty() and args.file.is_file():
-            total = sum(1 for _ in equations(read_lines(stream, MAX_INPUT)))  # for the progress bar
-            stream.seek(0)
-        return run_batch(read_lines(stream, MAX_INPUT), args, emit, total)
-    except UnicodeDecodeError as exc:
-        raise UsageError(f"cannot read {source}: {exc}") from None
-    finally:
-        if stream is not sys.stdin:
-            stream.close()
+        return run_each_line(args, emit, MAX_INPUT)
+    except BatchError as exc:
+        if exc.status == 2:
+            raise UsageError(str(exc)) from None
+        return fail(str(exc), None, False, exc.status)
 
 
 def gui_main(argv: Sequence[str]) -> int:
