@@ -240,6 +240,7 @@ def analyze_polynomial(
         approximation = near.approximation
 
     rationality = None
+    tube = None
     found: tuple[Parametrization, ...] = ()
     clock.publish(result(rationality, found))
     if not recognition_only and profile is not None:
@@ -284,6 +285,7 @@ def analyze_polynomial(
                 timeout=singular_timeout,
                 cancel=cancel,
                 profile=profile,
+                square=None if tube is None or tube.field else (tube.phi, tube.d**2 * tube.h / tube.q**2),
             )
     if (
         near is not None

@@ -41,7 +41,7 @@ from ..algebra.realroots import count_real_roots
 from ..errors import AnalysisError, SingularError, SingularTimeout
 from ..recognition.profile import ProfileCurve
 from ..results import Parametrization, Rationality
-from ..singular import curves
+from ..singular import curves, profile_pair
 from ..singular.curves import CurveAnalysis, CurveParametrization
 from .parametrization import (
     Section,
@@ -53,6 +53,7 @@ from .parametrization import (
     quadric_vanishes,
     section_vanishes,
     sweep,
+    tube_section_vanishes,
     tubular_section,
 )
 
@@ -112,7 +113,10 @@ def tubular_surface(par: CurveParametrization) -> TubularSurface:
     for g, e in factors:
         h *= g.as_expr() ** (e % 2)
         d *= g.as_expr() ** (e // 2)
-    return TubularSurface(phi=phi, h=sympy.expand(h), d=sympy.expand(d), q=sympy.expand(q), field=par.generators)
+    tube = TubularSurface(phi=phi, h=sympy.expand(h), d=sympy.expand(d), q=sympy.expand(q), field=par.generators)
+    if _univariate(tube.h * tube.d**2, par.generators) != product:
+        raise AnalysisError("the tubular surface's h·d² is not r̃·q̃ (internal error)")
+    return tube
 
 
 def count_real_roots_of(h: sympy.Expr, generators: tuple[sympy.Expr, ...]) -> int:
@@ -155,8 +159,13 @@ def analyze_rationality(
         return Rationality(
             status="not applicable: X is a pair of complex planes through the axis (not absolutely irreducible)"
         ), None
+    frame = profile.frame
+    shear = profile.square.ring.domain.quo(dot(frame.direction, frame.direction), dot(frame.normal, frame.normal))
+    known = None if section is None else _from_section(profile, section)
     try:
-        p, p2 = curves.analyze_profile_pair(profile.rational, profile.square, timeout=timeout, cancel=cancel)
+        p, p2 = profile_pair.analyze_profile_pair(
+            profile.rational, profile.square, shear=shear, known=known, timeout=timeout, cancel=cancel
+        )
     except SingularTimeout as exc:
         return Rationality(status=f"undecided within the time limit: {exc.message}"), None
     except SingularError as exc:
@@ -181,11 +190,11 @@ def analyze_rationality(
     if p2.genus > 0:
         return Rationality(status="decided", unirational=False, real_rational=False, **base), None
     try:
-        par = None if section is None else _from_section(profile, section)
-        if par is None:
-            par = curves.parametrize(
-                profile.square, timeout=timeout, cancel=cancel, known_genus_zero=True, prefer_conic=True
-            )
+        par = (
+            p2.parametrization
+            or known
+            or profile_pair.parametrize_square(profile.square, shear, timeout=timeout, cancel=cancel)
+        )
     except SingularTimeout as exc:
         return Rationality(
             status=f"partly undecided: {exc.message}",
@@ -322,25 +331,25 @@ def _tubular_parametrization(
     complex one otherwise. Returns it and a note on what could not be done."""
     frame = profile.frame
     real = norm_decomposition(tube.h, n)
+    radius = tube.d**2 * tube.h / tube.q**2
     if real is not None:
         section = tubular_section(tube.phi, tube.d, tube.q, *real)
-        return _swept(f, profile, section, method="via tubular surface (real)", proper=True), ""
+        return _swept(f, profile, section, method="via tubular surface (real)", proper=True, radius=radius), ""
     quadric = quadric_section(tube.h, n)
     if quadric is not None:
         x, Y, Z = quadric
         scale = (tube.d / tube.q).subs(T, x)
         surface = frame_map(tube.phi.subs(T, x), scale * Y, scale * Z, frame, K)
-        radius = tube.d**2 * tube.h / tube.q**2
 
         def on_tube() -> bool:
-            return quadric_vanishes(profile, tube.phi, radius, quadric, tube.h)
+            return quadric_vanishes(quadric, tube.h, n)
 
         return make_parametrization(
             f, profile, surface, on_tube, method="via tubular surface (real, stereographic)", proper=True
         ), ""
     A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * ALPHA)
     section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
-    complex_par = _swept(f, profile, section, method="via tubular surface (complex)", proper=True)
+    complex_par = _swept(f, profile, section, method="via tubular surface (complex)", proper=True, radius=radius)
     if not rationality.unirational:
         note = ""
     elif (rationality.real_roots_of_h or 0) > 2:
@@ -357,13 +366,24 @@ def _tubular_parametrization(
 
 
 def _swept(
-    f: Poly, profile: ProfileCurve, section: Section, *, method: str, proper: bool | None
+    f: Poly,
+    profile: ProfileCurve,
+    section: Section,
+    *,
+    method: str,
+    proper: bool | None,
+    radius: sympy.Expr | None = None,
 ) -> Parametrization | None:
-    """The verified parameterization sweeping ``section`` about the axis (docs/math.md §6)."""
+    """The verified parameterization sweeping ``section`` about the axis (docs/math.md §6); a
+    section through ``T`` (``radius`` the tube's ``d²h/q̃²``) is checked against it."""
     surface = sweep(section, profile.frame, f.ring.domain)
-    return make_parametrization(
-        f, profile, surface, lambda: section_vanishes(profile, section), method=method, proper=proper
-    )
+
+    def identity() -> bool:
+        if radius is None:
+            return section_vanishes(profile, section)
+        return tube_section_vanishes(profile, section, radius)
+
+    return make_parametrization(f, profile, surface, identity, method=method, proper=proper)
 
 
 def _profile_section(
