@@ -21,11 +21,12 @@ from dataclasses import dataclass
 from typing import TypedDict
 
 import sympy
+from flint import fmpq_poly
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.polyerrors import BasePolynomialError
 
-from ..algebra import numberfields
+from ..algebra import numberfields, quadratic
 from ..algebra.linalg import dot
 from ..algebra.polys import (
     Poly,
@@ -104,7 +105,11 @@ def table_row(reducible: bool, genus_p: int | None, genus_p2: int) -> int:
 
 def tubular_surface(par: CurveParametrization) -> TubularSurface:
     """The tubular surface of a proper parameterization ``(φ(t), r(t)/q(t))`` of ``P²``:
-    cancel ``gcd(r, q)``, write ``r̃·q̃ = h·d²`` with ``h`` square-free (odd multiplicities)."""
+    cancel ``gcd(r, q)``, write ``r̃·q̃ = h·d²`` with ``h`` square-free (odd multiplicities).
+    Over a quadratic field the decomposition is flint's (:mod:`..algebra.quadratic`)."""
+    quick = _quadratic_tube(par)
+    if quick is not None:
+        return quick
     phi = sympy.cancel(par.x.subs(par.parameter, T))
     r, q = sympy.fraction(sympy.cancel(par.y.subs(par.parameter, T)))
     product = _univariate(r * q, par.generators)
@@ -117,6 +122,35 @@ def tubular_surface(par: CurveParametrization) -> TubularSurface:
     if _univariate(tube.h * tube.d**2, par.generators) != product:
         raise AnalysisError("the tubular surface's h·d² is not r̃·q̃ (internal error)")
     return tube
+
+
+def _quadratic_tube(par: CurveParametrization) -> TubularSurface | None:
+    """:func:`tubular_surface` of a parameterization over a quadratic field, from its fractions
+    over ``D = QQ(α)`` in flint; ``None`` over ``QQ`` (sympy is fast there) and other fields."""
+    if par.fractions is None:
+        return None
+    (p1, q1), (r, q) = par.fractions
+    D = r.ring.domain
+    K = quadratic.field_of(D)
+    if K is None or K.rational:
+        return None
+    product = K.mul(quadratic.pair_of(r), quadratic.pair_of(q))
+    top = quadratic.degree(product)
+    lead = (fmpq_poly([product[0][top]]), fmpq_poly([product[1][top]]))
+    h, d = lead, (fmpq_poly([1]), fmpq_poly([]))
+    for g, e in quadratic.squarefree_decomposition(K, product):
+        for _ in range(e % 2):
+            h = K.mul(h, g)
+        for _ in range(e // 2):
+            d = K.mul(d, g)
+    if K.mul(h, K.mul(d, d)) != product:
+        raise AnalysisError("the tubular surface's h·d² is not r̃·q̃ (internal error)")
+
+    def expr(x: quadratic.Pair) -> sympy.Expr:
+        return quadratic.pair_expr(x, D, T)
+
+    phi = expr(quadratic.pair_of(p1)) / expr(quadratic.pair_of(q1))
+    return TubularSurface(phi=phi, h=expr(h), d=expr(d), q=expr(quadratic.pair_of(q)), field=par.generators)
 
 
 def count_real_roots_of(h: sympy.Expr, generators: tuple[sympy.Expr, ...]) -> int:

@@ -37,6 +37,7 @@ from flint import fmpq, fmpq_poly
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
+from ..algebra import quadratic as quadratic_fields
 from ..algebra.polys import (
     Poly,
     compose,
@@ -652,7 +653,7 @@ def _vanishes(F: Poly, p1: Poly, q1: Poly, p2: Poly, q2: Poly) -> bool:
     (:func:`_vanishes_quadratic`), in sympy's ring otherwise."""
     D, K = p1.ring.domain, F.ring.domain
     nx, ny = F.degree(0), F.degree(1)
-    if is_rational_field(K) and _quadratic_relation(D) is not None:
+    if is_rational_field(K) and quadratic_fields.field_of(D) is not None:
         return _vanishes_quadratic(F, (p1, q1, p2, q2), nx, ny)
     total = p1.ring.zero
     for (i, j), c in F.items():
@@ -662,64 +663,27 @@ def _vanishes(F: Poly, p1: Poly, q1: Poly, p2: Poly, q2: Poly) -> bool:
     return not total
 
 
-_Pair = tuple[fmpq_poly, fmpq_poly]
-"""``A + α·B`` in ``D[t]`` for ``D = QQ(α)`` of degree at most 2 (``B = 0`` over ``QQ``)."""
-
-
-def _quadratic_relation(D: Domain) -> tuple[fmpq, fmpq] | None:
-    """``(p, q)`` with ``α² = −p·α − q`` for the generator ``α`` of ``D`` (``(0, 0)`` for ``QQ``);
-    ``None`` for a field of higher degree."""
-    if is_rational_field(D):
-        return fmpq(0), fmpq(0)
-    modulus = [QQ.convert(c) for c in D.mod.to_list()]
-    if len(modulus) != 3 or modulus[0] != 1:
-        return None
-    return fmpq(int(QQ.numer(modulus[1])), int(QQ.denom(modulus[1]))), fmpq(
-        int(QQ.numer(modulus[2])), int(QQ.denom(modulus[2]))
-    )
-
-
 def _vanishes_quadratic(F: Poly, fractions: tuple[Poly, Poly, Poly, Poly], nx: int, ny: int) -> bool:
     """:func:`_vanishes` for ``F`` over ``QQ`` and a map over ``QQ`` or a quadratic field, with
-    each polynomial of ``D[t]`` as two flint polynomials over ``QQ`` (sympy's arithmetic over an
-    algebraic field took seconds on a curve of degree 12)."""
-    D = fractions[0].ring.domain
-    relation = _quadratic_relation(D)
-    assert relation is not None
-    p, q = relation
+    each polynomial of ``D[t]`` as two flint polynomials over ``QQ`` (:mod:`..algebra.quadratic`;
+    sympy's arithmetic over an algebraic field took seconds on a curve of degree 12)."""
+    K = quadratic_fields.field_of(fractions[0].ring.domain)
+    assert K is not None
 
-    def times(x: _Pair, y: _Pair) -> _Pair:
-        (a1, b1), (a2, b2) = x, y
-        bb = b1 * b2
-        return a1 * a2 - bb * q, a1 * b2 + a2 * b1 - bb * p
-
-    def powers(x: _Pair, top: int) -> list[_Pair]:
+    def powers(x: quadratic_fields.Pair, top: int) -> list[quadratic_fields.Pair]:
         out = [(fmpq_poly([1]), fmpq_poly([]))]
         for _ in range(top):
-            out.append(times(out[-1], x))
+            out.append(K.mul(out[-1], x))
         return out
 
-    p1, q1, p2, q2 = (powers(_pair(g, D), n) for g, n in zip(fractions, (nx, nx, ny, ny)))
+    p1, q1, p2, q2 = (powers(quadratic_fields.pair_of(g), n) for g, n in zip(fractions, (nx, nx, ny, ny)))
     total_a, total_b = fmpq_poly([]), fmpq_poly([])
     for (i, j), c in F.items():
-        a, b = times(times(p1[i], q1[nx - i]), times(p2[j], q2[ny - j]))
+        a, b = K.mul(K.mul(p1[i], q1[nx - i]), K.mul(p2[j], q2[ny - j]))
         value = fmpq(int(QQ.numer(c)), int(QQ.denom(c)))
         total_a += a * value
         total_b += b * value
     return total_a.is_zero() and total_b.is_zero()
-
-
-def _pair(g: Poly, D: Domain) -> _Pair:
-    """A polynomial of ``D[t]`` as ``(A, B)`` with ``g = A + α·B``."""
-    top = max((m[0] for m in g.itermonoms()), default=0)
-    a, b = [fmpq(0)] * (top + 1), [fmpq(0)] * (top + 1)
-    for (k,), c in g.items():
-        parts = [QQ.convert(x) for x in (c.to_list() if not is_rational_field(D) else [c])]
-        low = parts[-1] if parts else QQ.zero
-        high = parts[-2] if len(parts) > 1 else QQ.zero
-        a[k] = fmpq(int(QQ.numer(low)), int(QQ.denom(low)))
-        b[k] = fmpq(int(QQ.numer(high)), int(QQ.denom(high)))
-    return fmpq_poly(a), fmpq_poly(b)
 
 
 def _proper_degree(F: Poly, p1: Poly, q1: Poly, p2: Poly, q2: Poly) -> bool:

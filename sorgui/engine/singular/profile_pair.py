@@ -21,6 +21,7 @@ import sympy
 from flint import fmpq, fmpq_mat, fmpq_mpoly, fmpq_poly
 from sympy.polys.domains import QQ
 
+from ..algebra import quadratic
 from ..algebra.polys import Poly, compose, is_rational_field, poly_ring, primitive, to_expr, to_flint, total_degree
 from ..algebra.rationals import primitive as rational_primitive
 from ..algebra.rationals import terms as rational_terms
@@ -109,13 +110,30 @@ def parametrize_square(
     assert par.fractions is not None  # parametrize keeps its fractions
     (p1, q1), (p2, q2) = par.fractions
     value = p1.ring.domain.convert(used, P2.ring.domain)
-    mapped = _reduced(p2 * q1**2 - p1**2 * q2 * value, q2 * q1**2)
+    mapped = _reduced_fraction(p2 * q1**2 - p1**2 * q2 * value, q2 * q1**2)
     y = mapped[0].as_expr().subs(p1.ring.symbols[0], par.parameter) / mapped[1].as_expr().subs(
         p1.ring.symbols[0], par.parameter
     )
     return CurveParametrization(
         variables_of(P2), par.x, y, par.parameter, par.generators, par.method, (par.fractions[0], mapped)
     )
+
+
+def _reduced_fraction(p: Poly, q: Poly) -> tuple[Poly, Poly]:
+    """``p/q`` in lowest terms with a monic denominator, in flint over ``QQ`` and quadratic
+    fields (:mod:`..algebra.quadratic`), in sympy over others."""
+    K = quadratic.field_of(p.ring.domain)
+    if K is None:
+        return _reduced(p, q)
+    x, y = quadratic.pair_of(p), quadratic.pair_of(q)
+    g = quadratic.gcd(K, y, x)
+    top, bottom = K.divide(x, g), K.divide(y, g)
+    assert top is not None and bottom is not None  # g divides both
+    degree = quadratic.degree(bottom)
+    lead = (fmpq_poly([bottom[0][degree]]), fmpq_poly([bottom[1][degree]]))
+    top, bottom = K.divide(top, lead), K.divide(bottom, lead)
+    assert top is not None and bottom is not None  # a nonzero constant divides everything
+    return quadratic.pair_poly(top, p.ring), quadratic.pair_poly(bottom, p.ring)
 
 
 def _through_the_square(
@@ -142,16 +160,27 @@ def _through_the_square(
     par = known or parametrize_square(P2, shear, timeout=timeout, cancel=cancel)
     fractions = par.fractions or reduced_fractions(par.x, par.y, par.parameter, par.generators)
     _, (numerator, denominator) = fractions
-    _, odd = square_part(numerator * denominator)
-    if odd.degree() >= 1:
+    odd = _odd_degree(numerator, denominator)
+    if odd >= 1:
         (normal,) = _singular_normal_forms([to_flint(P)], variables_of(P))
         factorization = AbsoluteFactorization(variables_of(P), (AbsoluteFactor(normal, 1, 1),))
-        profile = CurveAnalysis(factorization, (odd.degree() + 1) // 2 - 1)
+        profile = CurveAnalysis(factorization, (odd + 1) // 2 - 1)
     else:
         profile = CurveAnalysis(
             analyze_curves([P], with_genus=False, timeout=timeout, cancel=cancel)[0].factorization, None
         )
     return profile, replace(square, parametrization=par)
+
+
+def _odd_degree(numerator: Poly, denominator: Poly) -> int:
+    """The degree of the product of the factors of odd multiplicity of ``numerator·denominator``
+    in ``D[t]``: in flint over ``QQ`` and quadratic fields (:mod:`..algebra.quadratic`), in sympy
+    over others."""
+    K = quadratic.field_of(numerator.ring.domain)
+    if K is None:
+        return int(square_part(numerator * denominator)[1].degree())
+    product = K.mul(quadratic.pair_of(numerator), quadratic.pair_of(denominator))
+    return sum(quadratic.degree(g) for g, e in quadratic.squarefree_decomposition(K, product) if e % 2)
 
 
 def _mapped_back(analysis: CurveAnalysis, shear: object | None, P2: Poly) -> CurveAnalysis:
