@@ -11,8 +11,9 @@ rational point along a random integer direction). sorgui analyses each file as o
 equation in turn, in one process, on one core. Both are whole processes (starting Python and
 importing the engine included), run alternately in the same run; both answers are checked
 (every line a surface of revolution). Each figure is the median wall time over ``--repeats``
-runs. Run ``python -m benchmarks.batch_singular [--repeats N] [--write]`` from the repository
-root.
+runs, and the median CPU time (user + system of the process and of the children it waited for:
+sorgui's worker, or Singular alone), the better guide on a busy machine. Run ``python -m
+benchmarks.batch_singular [--repeats N] [--write]`` from the repository root.
 """
 
 from __future__ import annotations
@@ -77,8 +78,9 @@ def singular_loop(polynomials: list[str]) -> str:
 
 def table(repeats: int) -> str:
     rows = [
-        "| batch | terms per line | sorgui --each-line (s) | Singular loop (s) | Singular ÷ sorgui |",
-        "|---|---:|---:|---:|---:|",
+        "| batch | terms per line | sorgui --each-line (s) | Singular loop (s) | Singular ÷ sorgui "
+        "| sorgui CPU (s) | Singular CPU (s) | Singular ÷ sorgui, CPU |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|",
     ]
     singular = str(find_singular())
     with tempfile.TemporaryDirectory() as folder:
@@ -96,7 +98,10 @@ def table(repeats: int) -> str:
             theirs = process_times([singular, "-q", "-t", "--no-rc", "--random=4711", str(script)], repeats)
             assert theirs[2].count("SOR yes") == count, theirs[2][-500:]
             terms = round(sum(len(f) for f in surfaces) / count)
-            rows.append(f"| {name} | {terms} | {ours[0]:.2f} | {theirs[0]:.2f} | {theirs[0] / ours[0]:.2f} |")
+            rows.append(
+                f"| {name} | {terms} | {ours[0]:.2f} | {theirs[0]:.2f} | {theirs[0] / ours[0]:.2f} "
+                f"| {ours[1]:.2f} | {theirs[1]:.2f} | {theirs[1] / ours[1]:.2f} |"
+            )
             print(rows[-1], flush=True)
     return "\n".join(rows)
 

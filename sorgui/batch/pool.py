@@ -16,7 +16,9 @@ from collections.abc import Callable
 from multiprocessing.connection import wait
 from typing import TYPE_CHECKING
 
-from .answers import FAILED, Answer, answer_of, error_answer
+from sorgui.session.messages import FinalMessage
+
+from .answers import FAILED, Answer, error_answer
 from .lines import Line
 
 if TYPE_CHECKING:
@@ -74,7 +76,7 @@ class Pool:
         self.context = multiprocessing.get_context("fork")
         self.request = request
         self.idle: list[Supervised] = []
-        self.running: dict[int, tuple[Supervised, Line]] = {}  # by the index of the line
+        self.running: dict[int, Supervised] = {}  # by the index of the line
 
     def busy(self) -> int:
         return len(self.running)
@@ -89,21 +91,22 @@ class Pool:
         except OSError as exc:
             return error_answer(line, f"the analysis process could not be started: {exc.strerror or exc}", FAILED)
         worker.give(self.request(line.equation))
-        self.running[index] = (worker, line)
+        self.running[index] = worker
         return None
 
-    def answers(self) -> list[tuple[int, Answer]]:
-        """The answers that came (waiting for one, or for the nearest deadline, at most 1 s)."""
+    def answers(self) -> list[tuple[int, FinalMessage]]:
+        """The final messages that came (waiting for one, or for the nearest deadline, at most
+        1 s); :mod:`.run` makes them the lines' answers."""
         now = time.monotonic()
-        nearest = min(worker.deadline for worker, _line in self.running.values())
-        wait([worker.child.conn for worker, _line in self.running.values()], timeout=min(max(nearest - now, 0.0), 1.0))
+        nearest = min(worker.deadline for worker in self.running.values())
+        wait([worker.child.conn for worker in self.running.values()], timeout=min(max(nearest - now, 0.0), 1.0))
         found = []
-        for index, (worker, line) in list(self.running.items()):
+        for index, worker in list(self.running.items()):
             message = worker.collect()
             if message is None:
                 continue
             del self.running[index]
-            found.append((index, answer_of(line, message)))
+            found.append((index, message))
             if worker.child.ended or not worker.child.is_alive():
                 worker.close()  # killed at its deadline, or died: a new one takes the next line
             else:
@@ -111,6 +114,6 @@ class Pool:
         return found
 
     def close(self) -> None:
-        for worker in [*self.idle, *(w for w, _line in self.running.values())]:
+        for worker in [*self.idle, *self.running.values()]:
             worker.close()
         self.idle, self.running = [], {}

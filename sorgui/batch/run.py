@@ -15,11 +15,13 @@ import argparse
 import os
 import stat
 import sys
-from collections.abc import Callable, Generator, Iterable, Iterator
+from collections.abc import Callable, Generator, Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import BinaryIO, Protocol
 
-from .answers import FAILED, NOT_A_POLYNOMIAL, Answer, refused
+from sorgui.session.messages import FinalMessage
+
+from .answers import FAILED, NOT_A_POLYNOMIAL, Answer, answer_of, refused
 from .errors import BatchError
 from .lines import Line, LineReader, count_lines
 from .progress import Progress
@@ -45,8 +47,8 @@ class Runner(Protocol):
         """Start analysing ``line``; its answer at once when it cannot be started."""
         ...
 
-    def answers(self) -> list[tuple[int, Answer]]:
-        """The answers that came, waiting a little (at most a second) for one."""
+    def answers(self) -> Sequence[tuple[int, Reply]]:
+        """The replies that came, waiting a little (at most a second) for one."""
         ...
 
     def close(self) -> None:
@@ -54,37 +56,49 @@ class Runner(Protocol):
         ...
 
 
+Reply = Answer | FinalMessage
+"""What a runner gives back for a line: its answer, or the final message of its analysis, made
+into the answer only after the next lines are started (the worker computes meanwhile)."""
+
+
 def in_order(lines: Iterable[Line], runner: Runner, window: int = WINDOW) -> Generator[tuple[Line, Answer], None, None]:
-    """Each line with its answer, in input order; a refused line is answered at once."""
-    waiting: dict[int, tuple[Line, Answer]] = {}
+    """Each line with its answer, in input order; a refused line is answered at once. The runner
+    is kept full: after each wait the next lines are started before the answers are made and
+    written, so that this process's part of a line overlaps the workers' analyses."""
+    waiting: dict[int, tuple[Line, Reply]] = {}
     started: dict[int, Line] = {}
+    pending = iter(lines)
     first = index = 0
+    more = True
 
-    def ready() -> Iterator[tuple[Line, Answer]]:
-        nonlocal first
+    def refill() -> None:
+        nonlocal index, more
+        while more and runner.busy() < runner.capacity and index - first < window:
+            line = next(pending, None)
+            if line is None:
+                more = False
+                return
+            answer = refused(line) if line.refusal is not None else runner.start(index, line)
+            if answer is None:
+                started[index] = line
+            else:
+                waiting[index] = (line, answer)
+            index += 1
+
+    while True:
+        refill()
         while first in waiting:
-            yield waiting.pop(first)
+            line, reply = waiting.pop(first)
             first += 1
-
-    def collect() -> None:
-        for i, answer in runner.answers():
-            waiting[i] = (started.pop(i), answer)
-
-    for line in lines:
-        answer = refused(line) if line.refusal is not None else runner.start(index, line)
-        if answer is None:
-            started[index] = line
-        else:
-            waiting[index] = (line, answer)
-        index += 1
-        yield from ready()
-        while runner.busy() and (runner.busy() >= runner.capacity or index - first >= window):
-            collect()
-            yield from ready()
-    while runner.busy():
-        collect()
-        yield from ready()
-    yield from ready()
+            yield line, reply if isinstance(reply, Answer) else answer_of(line, reply)
+            refill()
+        if not runner.busy():
+            if not more:
+                return
+            continue
+        for i, reply in runner.answers():
+            waiting[i] = (started.pop(i), reply)
+        refill()
 
 
 def run_each_line(args: argparse.Namespace, emit: Callable[[str], None], limit: int) -> int:
