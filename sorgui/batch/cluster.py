@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 from .answers import FAILED, Answer, answer_of, error_answer
 from .errors import BatchError
 from .lines import Line
+from .pool import LINES_PER_WORKER
 
 if TYPE_CHECKING:
     from sorgui.session.supervised import AnalysisRequest, Supervised
@@ -158,9 +159,10 @@ def analyse_on_worker(line: Line, request: AnalysisRequest) -> Answer:
             return error_answer(line, f"the analysis process could not be started: {exc.strerror or exc}", FAILED)
         _local.worker = worker
     message = worker.run(request)
-    if worker.child.ended or not worker.child.is_alive():
+    _local.served = getattr(_local, "served", 0) + 1
+    if worker.child.ended or not worker.child.is_alive() or _local.served >= LINES_PER_WORKER:
         worker.close()
-        _local.worker = None
+        _local.worker, _local.served = None, 0
     return answer_of(line, message)
 
 

@@ -10,8 +10,8 @@ import sympy
 
 from sorgui.engine import analyze
 from sorgui.engine.values import read_expression
+from sorgui.samples import PARAPLANECURVE_SEXTIC as SEXTIC
 from sorgui.samples import rational_vector, revolve
-from tests.engine.test_genus_choice import SEXTIC
 
 DATA = Path(__file__).parents[1] / "data"
 

@@ -9,7 +9,7 @@ from sympy.polys.domains import QQ
 
 from sorgui.engine.recognition.recognize import recognize
 from sorgui.engine.singular import curves, profile_pair
-from sorgui.samples import general_position
+from sorgui.samples import PARAPLANECURVE_SEXTIC, general_position
 
 
 @pytest.mark.parametrize(("degree", "seed", "drop"), [(4, 1, ()), (6, 2, ()), (6, 3, ((6, 0),)), (8, 4, ())])
@@ -89,21 +89,7 @@ def test_other_profiles_go_to_singular(profile) -> None:
 
 # --- P² on its model of lowest degree, P from the parameterization of P² -----------------------
 
-SEXTIC = {
-    (6, 0): 1,
-    (4, 2): 3,
-    (2, 4): 3,
-    (0, 6): 1,
-    (4, 0): -4,
-    (3, 1): -34,
-    (2, 2): -7,
-    (1, 3): 12,
-    (0, 4): 6,
-    (2, 0): 36,
-    (1, 1): 36,
-    (0, 2): 9,
-}
-"""The rational sextic of the example of Singular's ``paraPlaneCurve`` (paraplanecurves.lib)."""
+SEXTIC = PARAPLANECURVE_SEXTIC
 
 
 def test_the_square_is_analysed_on_its_model_of_half_the_degree() -> None:
