@@ -25,7 +25,7 @@ import tempfile
 from pathlib import Path
 
 from benchmarks.algorithm2_singular import ALGORITHM_II, process_times
-from benchmarks.recognition import surface
+from benchmarks.recognition import random_profile, surface
 from benchmarks.report import run
 from sorgui.engine.algebra.polys import Poly, poly_str
 from sorgui.engine.singular.process import find_singular, poly_to_singular
@@ -45,14 +45,7 @@ def random_axis_surface(degree: int, seed: int) -> Poly:
     rational point along a random integer direction, moved by the rational rotation of a random
     integer quaternion and a random rational shift (like a part placed in an assembly)."""
     rng = random.Random(1000 + seed)
-    profile = {
-        (i, j): rng.randint(-9, 9) or 1
-        for i in range(degree + 1)
-        for j in range(degree // 2 + 1)
-        if i + 2 * j <= degree and rng.random() < 0.7
-    }
-    profile[(degree, 0)] = 1
-    profile[(degree % 2, degree // 2)] = 1
+    profile = random_profile(degree, rng)
 
     def rational() -> str:
         return f"{rng.randint(-9, 9)}/{rng.randint(1, 9)}"
