@@ -13,8 +13,9 @@ GUI worker can show it; Singular subprocesses are killed on cancel by :mod:`.sin
 reported as undecided, those done are kept.
 
 A recognition-only analysis of an equation over ``QQ`` is first tried on python-flint alone
-(:mod:`.rational_path`), which gives the same result without loading sympy; the sympy-based
-stages are imported only when the equation needs them.
+(:mod:`.rational_path`), which gives the same result without loading sympy, and so is the full
+analysis of a surface that is neither of revolution, a cone, a cylinder nor canal on its lines;
+the sympy-based stages are imported only when the equation needs them.
 """
 
 from __future__ import annotations
@@ -119,12 +120,13 @@ def analyze(
             parsed=parsed,
             start=start,
         )
-    if recognition_only and method == "symmetry" and tolerance is None:
-        from .rational_path import recognition_only_analysis
+    if method == "symmetry" and tolerance is None:
+        from .rational_path import full_analysis, recognition_only_analysis
 
+        flint_only = recognition_only_analysis if recognition_only else full_analysis
         try:  # milliseconds: its stages are not announced to ``progress``
             with time_limit(timeout, stated_timeout):
-                quick = recognition_only_analysis(text, StageClock(None, cancel))
+                quick = flint_only(text, StageClock(None, cancel))
         except TimeLimitReached:
             quick = None  # the general pipeline below reports what was done in the time left
         if quick is not None:
