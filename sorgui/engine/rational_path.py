@@ -62,6 +62,11 @@ MAX_NORM = 2**30
 """The rational path writes ``|a| = k·√d`` with ``d`` square-free, as sympy does when it finds the
 square factors of ``|a|²``; sympy looks for them by trial division up to ``2¹⁵`` only, so larger
 ``|a|²`` (which might have a square factor beyond it) are left to the general pipeline."""
+FULL_DEGREE = 12
+"""The full analysis on flint alone is for surfaces up to this degree: its stages are not
+reported one by one to a supervising parent (they take milliseconds there), whereas factoring a
+surface of much higher degree can be one long C call, which the general pipeline's reported
+stages let a parent end with what was done."""
 Surd = tuple[fmpq, int]
 """``(q, d)``: the number ``q·√d`` (``d`` square-free; ``d = 1`` for a rational)."""
 
@@ -91,7 +96,7 @@ def _analysis(text: str, clock: StageClock, *, full: bool) -> Analysis | None:
         return None
     with clock.stage("recognition"):
         found = recognize_rational(g)
-    if found is None or (full and found[0].is_sor):
+    if found is None or (full and (found[0].is_sor or found[0].degree > FULL_DEGREE)):
         return None
     recognized, square = found
     with clock.stage("factors"):
