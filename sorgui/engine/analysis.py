@@ -26,7 +26,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from .algebra.linalg import Vector
-from .errors import TimeLimitReached
+from .errors import ParseError, TimeLimitReached
 from .parametric_parsing import is_parametrization, parse_parametrization
 from .parsing import parse_polynomial
 from .recognition.symmetry import NEAREST_CANAL_NOTE, revolution_canal
@@ -129,6 +129,9 @@ def analyze(
                 quick = flint_only(text, StageClock(None, cancel))
         except TimeLimitReached:
             quick = None  # the general pipeline below reports what was done in the time left
+        except ParseError:
+            with clock.stage("parse"):  # the error is the parse stage's, as in the general pipeline
+                raise
         if quick is not None:
             clock.publish(quick)
             return quick
