@@ -19,9 +19,9 @@ from sorgui.samples import move, quaternion_rotation, rational_vector, revolve
 DEGREES = (4, 6, 8, 10, 12, 16, 20, 25, 30)
 
 
-def surface(degree: int, seed: int = 1):
-    """A SOR of the given total degree in general position (deterministic for a seed)."""
-    rng = random.Random(seed)
+def random_profile(degree: int, rng: random.Random) -> dict[tuple[int, int], int]:
+    """A random ``F(s, w)`` of weighted degree ``degree`` (``s`` weight 1, ``w`` weight 2), with
+    the leading terms that make the surface of that total degree."""
     profile = {
         (i, j): rng.randint(-9, 9) or 1
         for i in range(degree + 1)
@@ -30,6 +30,12 @@ def surface(degree: int, seed: int = 1):
     }
     profile[(degree, 0)] = 1
     profile[(degree % 2, degree // 2)] = 1
+    return profile
+
+
+def surface(degree: int, seed: int = 1):
+    """A SOR of the given total degree in general position (deterministic for a seed)."""
+    profile = random_profile(degree, random.Random(seed))
     f = revolve(profile, rational_vector((QQ(1, 2), QQ(-1, 3), 2)), rational_vector((3, -2, 5)))
     return move(f, quaternion_rotation((1, 2, -1, 3)), rational_vector((QQ(1, 5), 1, QQ(-2, 7))))
 

@@ -251,7 +251,18 @@ def analyze_parser() -> argparse.ArgumentParser:
         help="analyse every line of the input (-f FILE or '-') on its own and print JSON Lines; '#' starts a comment",
     )
     parser.add_argument(
-        "--jobs", type=positive_int, default=1, help="with --each-line: the number of worker processes (default 1)"
+        "--jobs", type=positive_int, default=None, help="with --each-line: the number of worker processes (default 1)"
+    )
+    parser.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="with --each-line: analyse the lines on the Dask cluster whose scheduler is at ADDRESS "
+        "(tcp://host:8786; default: $DASK_SCHEDULER_ADDRESS unless --jobs is given); needs sorgui[cluster]",
+    )
+    parser.add_argument(
+        "--resume",
+        action="store_true",
+        help="with --each-line -o RESULTS.jsonl: keep the lines RESULTS.jsonl already holds and analyse the rest",
     )
     return parser
 
@@ -284,6 +295,11 @@ def add_export_options(parser: argparse.ArgumentParser) -> None:
         metavar="T",
         help="a CAD file's fitted profile (when it has no exact rational form) stays within T times "
         "the drawn ball's radius (default 1e-7)",
+    )
+    parser.add_argument(
+        "--cap",
+        action="store_true",
+        help="a CAD file holds the solid f <= 0 inside --region: the part capped by the ball or the box",
     )
     parser.add_argument(
         "--region",
@@ -435,6 +451,7 @@ def write_outputs(
     deadline: float | None = None,
     report: Path | None = None,
     limit: float | None = None,
+    cap: bool = False,
 ) -> None:
     """Write ``result`` (or the saved report ``report``, read and checked there) to every ``-o``
     file, atomically, in a child process that is killed at ``deadline`` (``time.monotonic()``)
@@ -461,6 +478,7 @@ def write_outputs(
         radius=region.radius,
         center=region.center,
         bounds=region.bounds,
+        cap=cap,
     )
     failures: list[str] = []
     for message in export_supervised(request, deadline, limit):
@@ -489,6 +507,7 @@ def write_files(args: argparse.Namespace, result: Analysis | None = None, report
         deadline=export_deadline(args.timeout),
         report=report,
         limit=args.timeout,
+        cap=args.cap,
     )
 
 
@@ -683,61 +702,17 @@ def part_main(args: argparse.Namespace, source: Path) -> int:
 
 
 def each_line(args: argparse.Namespace) -> int:
-    """``--each-line``: the lines of ``-f FILE`` or standard input, read as they are analysed
-    (:mod:`sorgui.batch`); each line may be as long as one equation (:data:`MAX_INPUT`)."""
-    if args.output:
-        raise UsageError("-o cannot be combined with --each-line")
-    if args.file is not None and args.expression is not None:
-        raise UsageError("give either an expression or -f FILE, not both")
-    if args.file is None and args.expression != "-":
-        raise UsageError("--each-line reads -f FILE or '-' (standard input)")
-    from sorgui.batch import equations, read_lines, run_batch
+    """``--each-line``: the lines of ``-f FILE`` or standard input, read as they are analysed,
+    to standard output or ``-o RESULTS.jsonl`` (:mod:`sorgui.batch`); each line may be as long
+    as one equation (:data:`MAX_INPUT`)."""
+    from sorgui.batch import BatchError, run_each_line
 
-    source = str(args.file) if args.file is not None else "standard input"
     try:
-        stream = open(args.file, encoding="utf-8") if args.file is not None else sys.stdin
-    except OSError as exc:
-        raise UsageError(f"cannot read {args.file}: {exc.strerror or exc}") from None
-    try:
-        total = None
-        if args.file is not None and sys.stderr.isatty() and args.file.is_file():
-            total = sum(1 for _ in equations(read_lines(stream, MAX_INPUT)))  # for the progress bar
-            stream.seek(0)
-        errors = _ErrorLines()
-        status = run_batch(read_lines(stream, MAX_INPUT), args, errors.emit, total)
-        if status == 1 and errors.count:  # an analysis failed (a line that is no polynomial says so itself)
-            print(f"sorgui: {one_line(errors.summary())}", file=sys.stderr, flush=True)
-        return status
-    except UnicodeDecodeError as exc:
-        raise UsageError(f"cannot read {source}: {exc}") from None
-    finally:
-        if stream is not sys.stdin:
-            stream.close()
-
-
-class _ErrorLines:
-    """:func:`emit` for ``--each-line``, counting the lines that are error objects, so that a
-    batch that ends with status 1 (an analysis failed) says why on stderr: a limit on processes
-    fails every line alike, and the error objects alone were easy to miss."""
-
-    def __init__(self) -> None:
-        self.count = 0
-        self.lines = 0
-        self.first: tuple[int, str] | None = None
-
-    def emit(self, text: str) -> None:
-        emit(text)
-        self.lines += 1
-        if '"error": {"message": ' in text and '"is_sor":' not in text:  # an error object, not an analysis
-            self.count += 1
-            if self.first is None:
-                data = json.loads(text)
-                self.first = (data["line"], data["error"]["message"])
-
-    def summary(self) -> str:
-        assert self.first is not None
-        line, message = self.first
-        return f"{self.count} of {self.lines} lines gave an error object; the first, line {line}: {message}"
+        return run_each_line(args, emit, MAX_INPUT)
+    except BatchError as exc:
+        if exc.status == 2:
+            raise UsageError(str(exc)) from None
+        return fail(str(exc), None, False, exc.status)
 
 
 def gui_main(argv: Sequence[str]) -> int:
@@ -856,7 +831,8 @@ def ending_signals() -> Iterator[None]:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``sorgui`` console script (``argv`` ``None``: this process's own
-    arguments; a finished subcommand then ends the process at once, see :func:`_exit_now`)."""
+    arguments; a finished subcommand, or the closed window, then ends the process at once, see
+    :func:`_exit_now`)."""
     own_process = argv is None
     _started[:] = [time.monotonic() - (_process_age() if own_process else 0.0)]
     if own_process:
@@ -872,7 +848,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         status = 130
     except _Terminated as exc:
         status = 128 + exc.signum
-    if own_process and command is not None:
+    if own_process:
         _exit_now(status)
     return status
 
@@ -960,8 +936,10 @@ def _usable_streams() -> None:
 
 def _exit_now(status: int) -> None:
     """End the process without the interpreter's teardown, which spends a quarter of a second
-    of CPU freeing sympy's objects. Everything is written by then: every output line was
-    flushed by :func:`emit`, exported files are closed, worker processes are joined."""
+    of CPU freeing sympy's objects (half a second after the window, with Qt's and VTK's: several
+    seconds on a loaded machine, after a ``SIGTERM`` too). Everything is written by then: every
+    output line was flushed by :func:`emit`, exported files are closed, worker processes are
+    joined or killed, the window's settings are synced when it closes."""
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

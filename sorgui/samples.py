@@ -22,6 +22,25 @@ from sorgui.engine.algebra.linalg import Vector, cross, dot, is_zero
 from sorgui.engine.algebra.polys import XYZ, Poly, compose, poly_ring
 from sorgui.engine.rounded import dense
 
+PARAPLANECURVE_SEXTIC = {
+    (6, 0): 1,
+    (4, 2): 3,
+    (2, 4): 3,
+    (0, 6): 1,
+    (4, 0): -4,
+    (3, 1): -34,
+    (2, 2): -7,
+    (1, 3): 12,
+    (0, 4): 6,
+    (2, 0): 36,
+    (1, 1): 36,
+    (0, 2): 9,
+}
+"""The rational sextic ``x⁶ + 3x⁴y² + 3x²y⁴ + y⁶ − 4x⁴ − 34x³y − 7x²y² + 12xy³ + 6y⁴ + 36x² + 36xy
++ 9y²`` of the example of Singular's ``paraPlaneCurve`` (paraplanecurves.lib, ``f2`` at ``z = 1``),
+as the coefficients of ``F(s, w)`` for :func:`revolve`: the slow tail of the full analysis at
+degree 12 (docs/math.md §5)."""
+
 
 def rational_vector(values: Sequence[object], K: Domain = QQ) -> Vector:
     """Integers, fractions, strings like ``"3/5"`` or ``QQ`` elements as a vector over ``K``."""

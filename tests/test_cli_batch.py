@@ -1,15 +1,20 @@
-"""``sorgui analyze --each-line``: JSON Lines, worker processes, bad lines, a progress bar."""
+"""``sorgui analyze --each-line``: JSON Lines in input order, one object per line whatever the
+line holds, worker processes, a results file that survives ``kill -9``, progress and summary."""
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import pty
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
+from typing import Any
 
-from sorgui.batch import equations
+from sorgui.batch import LineReader, equations, line_hash
 
 SORGUI = [sys.executable, "-m", "sorgui.cli", "analyze"]
 LINES = """# a small batch
@@ -30,13 +35,41 @@ def test_lines_comments_and_blank_lines() -> None:
     ]
 
 
-def run_batch(tmp_path: Path, *args: str) -> subprocess.CompletedProcess[str]:
+def test_a_line_is_refused_whole_when_it_is_too_long_or_not_text() -> None:
+    """Each line gives one object; a line over the limit is refused however it ends, a line that
+    is not UTF-8 too, and a NUL byte stops the reading."""
+    data = b"x^2+y^2-1" + b" " * 30 + b"+x^3\n" + b" " * 100 + b"x\n\xff\xfe z\r\nx + y\r\nz^2\x00x\nx\n"
+    reader = LineReader(io.BytesIO(data), 40)
+    lines = list(reader)
+    assert [line.number for line in lines] == [1, 2, 3, 4, 5]
+    assert "too long (more than 40 characters)" in str(lines[0].refusal)
+    assert "too long" in str(lines[1].refusal) and lines[1].equation.endswith("…")
+    assert "not UTF-8" in str(lines[2].refusal)
+    assert lines[3].refusal is None and lines[3].equation == "x + y" and lines[3].digest == line_hash(b"x + y")
+    assert "NUL" in str(lines[4].refusal) and reader.stopped == "line 5 holds a NUL byte: this is not a text file"
+
+
+def without_timings(data: Any) -> Any:
+    """An output object without the seconds it took (which differ from run to run)."""
+    if isinstance(data, dict):
+        return {k: without_timings(v) for k, v in data.items() if k != "timings"}
+    if isinstance(data, list):
+        return [without_timings(v) for v in data]
+    return data
+
+
+def rows_of(text: str) -> list[Any]:
+    return [without_timings(json.loads(line)) for line in text.splitlines()]
+
+
+def run_batch(tmp_path: Path, *args: str, lines: str = LINES) -> subprocess.CompletedProcess[str]:
     path = tmp_path / "lines.txt"
-    path.write_text(LINES, encoding="utf-8")
+    path.write_text(lines, encoding="utf-8")
     return subprocess.run([*SORGUI, "--each-line", *args, "-f", str(path)], capture_output=True, text=True, timeout=300)
 
 
 def test_json_lines_in_input_order_with_an_error_object_for_the_bad_line(tmp_path: Path) -> None:
+    outputs = []
     for jobs in ("1", "2"):
         out = run_batch(tmp_path, "--jobs", jobs)
         assert out.returncode == 2, out.stderr  # one line was not a polynomial
@@ -45,13 +78,57 @@ def test_json_lines_in_input_order_with_an_error_object_for_the_bad_line(tmp_pat
         assert [row.get("is_sor") for row in rows] == [True, None, True, False]
         error = rows[1]["error"]
         assert "sin" in error["message"] and error["position"] == 6 and rows[1]["input"] == "x^2 + sin(y)"
+        assert rows[1]["line_hash"] == line_hash(LINES.splitlines()[3].encode())
         assert rows[0]["rationality"] is not None  # the whole analysis, Singular included
-        assert out.stderr == ""  # stderr is not a terminal: no progress bar
+        assert out.stderr == ""  # stderr is not a terminal: no progress, no summary
+        outputs.append(rows_of(out.stdout))
+    assert outputs[0] == outputs[1]
 
 
-def test_a_progress_bar_on_a_terminal(tmp_path: Path) -> None:
+def test_a_long_line_is_refused_whole_and_the_batch_goes_on(tmp_path: Path) -> None:
+    """Issue 32: an equation padded with a million spaces is not read as its first megabyte, a line
+    of 3 MB of spaces and then an equation gets its object, and memory stays bounded."""
+    path = tmp_path / "long.txt"
+    path.write_text(
+        "x^2+y^2+z^2-1"
+        + " " * 1_000_000
+        + "+x^3*y\n"
+        + " " * 3_000_000
+        + "x^2+y^2-z\n"
+        + " " * 60_000_000
+        + "\nx^2+y^2-z\n",
+        encoding="utf-8",
+    )
+    measured = (  # the largest memory of sorgui and its worker, in a process of its own
+        "import resource, subprocess, sys\n"
+        "done = subprocess.run(sys.argv[1:], capture_output=True, text=True)\n"
+        "sys.stdout.write(done.stdout)\n"
+        "sys.exit(0 if resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss < 150_000 else 99)\n"
+    )
+    command = [sys.executable, "-c", measured, *SORGUI, "--each-line", "--recognition-only", "-f", str(path)]
+    out = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, "sorgui held more than 150 MB"  # the 60 MB line was never held whole
+    rows = [json.loads(line) for line in out.stdout.splitlines()]
+    assert [row["line"] for row in rows] == [1, 2, 3, 4]
+    for row in rows[:3]:
+        assert row["error"]["message"] == "the line is too long (more than 1,000,000 characters)"
+        assert len(row["input"]) <= 61
+    assert rows[3]["is_sor"] is True
+
+
+def test_dev_zero_ends_with_a_clear_error() -> None:
+    out = subprocess.run(
+        [*SORGUI, "--each-line", "--recognition-only", "-f", "/dev/zero"], capture_output=True, text=True, timeout=120
+    )
+    assert out.returncode == 2
+    (row,) = [json.loads(line) for line in out.stdout.splitlines()]
+    assert row["line"] == 1 and "NUL byte" in row["error"]["message"]
+    assert "sorgui: stopped reading /dev/zero: line 1 holds a NUL byte: this is not a text file" in out.stderr
+
+
+def test_a_progress_line_and_a_summary_on_a_terminal(tmp_path: Path) -> None:
     path = tmp_path / "lines.txt"
-    path.write_text("x^2+y^2-z\nx^2+y^2+z^2-1\n", encoding="utf-8")
+    path.write_text("x^2+y^2-z\n# comment\nx^2+y^2+z^2-1\n", encoding="utf-8")
     master, slave = pty.openpty()
     try:
         proc = subprocess.Popen(
@@ -74,7 +151,8 @@ def test_a_progress_bar_on_a_terminal(tmp_path: Path) -> None:
     finally:
         os.close(master)
     assert proc.returncode == 0 and len(out.splitlines()) == 2
-    assert b"] 1/2" in shown and b"] 2/2" in shown and b"#" in shown
+    assert b"1/3 lines" in shown and b"lines/s" in shown
+    assert b"sorgui: 2 lines: 2 surfaces of revolution, 0 not, 0 errors, 0 unfinished" in shown
 
 
 def test_each_line_needs_a_file_or_standard_input() -> None:
@@ -103,3 +181,83 @@ def test_the_warm_up_is_a_surface_of_revolution_and_loads_no_sympy() -> None:
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True)
     assert done.stdout.split() == ["revolution", "('1',", "'2',", "'2')", "False"]
+
+
+# --- a results file that survives a crash ----------------------------------------------------
+
+
+def many_lines(count: int) -> str:
+    """Small equations, surfaces of revolution and not, a bad line now and then."""
+    out = []
+    for i in range(1, count + 1):
+        if i % 17 == 0:
+            out.append(f"x^2 + cos(y) + {i}")
+        elif i % 3 == 0:
+            out.append(f"x^2 + {i}*y^2 + z^2 - {i}")
+        else:
+            out.append(f"(x - {i})^2 + (y + 1)^2 - {i}*z")
+        if i % 50 == 0:
+            out.append("# a comment")
+    return "\n".join(out) + "\n"
+
+
+def test_a_batch_killed_and_resumed_writes_the_file_of_one_uninterrupted_run(tmp_path: Path) -> None:
+    lines = tmp_path / "lines.txt"
+    lines.write_text(many_lines(400), encoding="utf-8")
+    batch = [*SORGUI, "--each-line", "--recognition-only", "--jobs", "2", "-f", str(lines)]
+    whole = subprocess.run(batch, capture_output=True, text=True, timeout=300)
+    assert whole.returncode == 2 and len(whole.stdout.splitlines()) == 400
+
+    results = tmp_path / "results.jsonl"
+    proc = subprocess.Popen([*batch, "-o", str(results)], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    while (not results.exists() or results.read_bytes().count(b"\n") < 40) and time.monotonic() < deadline:
+        time.sleep(0.005)
+    proc.send_signal(signal.SIGKILL)
+    proc.communicate(timeout=60)
+    data = results.read_bytes()
+    done = data.count(b"\n")
+    assert 40 <= done < 400
+    results.write_bytes(data[: len(data) - 25])  # the last line cut short, as a power cut leaves it
+
+    refused = subprocess.run([*batch, "-o", str(results)], capture_output=True, text=True, timeout=60)
+    assert refused.returncode == 2 and "already holds results: add --resume" in refused.stderr
+    assert results.read_bytes() == data[: len(data) - 25]  # untouched
+
+    resumed = subprocess.run([*batch, "-o", str(results), "--resume"], capture_output=True, text=True, timeout=300)
+    assert resumed.stdout == "" and f"({done - 1:,} kept from before)" in resumed.stderr
+    assert rows_of(results.read_text(encoding="utf-8")) == rows_of(whole.stdout)
+    assert resumed.stderr.startswith("sorgui: 400 lines (") and "23 errors" in resumed.stderr
+
+    again = subprocess.run([*batch, "-o", str(results), "--resume"], capture_output=True, text=True, timeout=120)
+    assert again.returncode == 0 and "(400 kept from before)" in again.stderr
+    assert rows_of(results.read_text(encoding="utf-8")) == rows_of(whole.stdout)
+
+
+def test_resume_refuses_a_file_that_is_not_this_inputs(tmp_path: Path) -> None:
+    lines = tmp_path / "lines.txt"
+    lines.write_text(many_lines(5), encoding="utf-8")
+    results = tmp_path / "results.jsonl"
+    batch = [*SORGUI, "--each-line", "--recognition-only", "-f", str(lines), "-o", str(results)]
+    first = subprocess.run(batch, capture_output=True, text=True, timeout=120)
+    assert first.returncode == 0 and first.stdout == "" and results.read_text().count("\n") == 5
+    before = results.read_bytes()
+    lines.write_text(many_lines(5).replace("- 3", "- 4"), encoding="utf-8")  # line 3 edited
+    edited = subprocess.run([*batch, "--resume"], capture_output=True, text=True, timeout=120)
+    assert edited.returncode == 2 and "its line 3 is not the input's line 3 as it is now" in edited.stderr
+    lines.write_text("x^2+y^2-z\n", encoding="utf-8")  # shorter than the file
+    shorter = subprocess.run([*batch, "--resume"], capture_output=True, text=True, timeout=120)
+    assert shorter.returncode == 2 and "cannot resume" in shorter.stderr
+    assert results.read_bytes() == before
+    assert edited.stderr.count("\n") == shorter.stderr.count("\n") == 1
+
+    unusable = [
+        ([*SORGUI, "--each-line", "-f", str(lines), "--resume"], "--resume continues a results file"),
+        ([*batch, "-o", str(tmp_path / "two.jsonl")], "give -o once"),
+        ([*SORGUI, "--each-line", "-f", str(lines), "-o", str(lines)], "refusing to overwrite the input file"),
+        ([*SORGUI, "--each-line", "-f", str(lines), "-o", str(tmp_path)], "it is a folder"),
+        ([*SORGUI, "--each-line", "-f", str(lines), "--jobs", "2", "--scheduler", "tcp://x:1"], "exclude each other"),
+    ]
+    for command, words in unusable:
+        out = subprocess.run(command, capture_output=True, text=True, timeout=60)
+        assert out.returncode == 2 and words in out.stderr and out.stderr.count("\n") == 1, (command, out.stderr)

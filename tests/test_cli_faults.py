@@ -141,12 +141,14 @@ def test_a_process_limit_in_a_batch_is_said_in_one_line(tmp_path: Path) -> None:
     assert len(done.stdout.splitlines()) == 3
 
 
-def test_a_batch_that_failed_says_how_many_lines_and_the_first_reason(capsys: pytest.CaptureFixture[str]) -> None:
-    from sorgui import cli
+def test_a_batch_that_failed_says_how_many_lines_and_the_first_reason() -> None:
+    from sorgui.batch.answers import ERROR, NOT_SURFACE_OF_REVOLUTION
+    from sorgui.batch.progress import Progress
 
-    errors = cli._ErrorLines()
-    errors.emit('{"line": 1, "input": "x", "is_sor": false, "symmetry": "none"}')
-    errors.emit('{"line": 2, "input": "y", "error": {"message": "the analysis process died", "position": null}}')
-    errors.emit('{"line": 5, "input": "z", "error": {"message": "out of memory", "position": null}}')
-    assert errors.summary() == "2 of 3 lines gave an error object; the first, line 2: the analysis process died"
-    assert len(capsys.readouterr().out.splitlines()) == 3
+    progress = Progress(None, None)
+    progress.done(1, NOT_SURFACE_OF_REVOLUTION)
+    progress.done(2, ERROR, "the analysis process died")
+    progress.done(5, ERROR, "out of memory")
+    summary = progress.summary()
+    assert summary.startswith("3 lines: 0 surfaces of revolution, 1 not, 2 errors, 0 unfinished; ")
+    assert summary.endswith("; the first failure, line 2: the analysis process died")

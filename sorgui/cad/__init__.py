@@ -3,18 +3,23 @@
 Every use of Open CASCADE is in this package (its modules import ``OCP``; the rest of sorgui
 speaks its own types): the export layer (:mod:`sorgui.export.files`) writes the bytes made here.
 
-A surface of revolution is written as the native surface a CAD kernel uses (docs/math.md §11):
-an analytic plane, sphere, cylinder, cone or torus where it is one, otherwise a
-``SURFACE_OF_REVOLUTION`` about the exact axis whose profile is the exact rational B-spline of a
-verified parameterization, or a B-spline fitted within a stated tolerance. ``NAME.patch.step``
-(and ``.iges``, ``.brep``) writes the first verified real parameterization as rational Bézier
-patches instead. Open CASCADE (the ``sorgui[cad]`` extra, ``cadquery-ocp-novtk``) is imported
-only here, when such a file is written; without it :class:`CadUnavailable` says how to get it.
+Each kind sorgui recognises is written as the native surface a CAD kernel uses (docs/math.md
+§11): an analytic plane, sphere, cylinder, cone or torus where it is one, otherwise a
+``SURFACE_OF_REVOLUTION`` about the exact axis whose profile is the exact rational B-spline of
+a verified parameterization, or a B-spline fitted within a stated tolerance, measured both
+ways; a cylinder over a curve as the linear extrusion of its exact base curve, a cone over a
+curve ruled through its apex, a canal surface swept through its characteristic circles; rounded
+input as the nearest exact surface's part. The faces are sewn, closed shells made solids,
+checked (:mod:`.sewing`). ``NAME.patch.step`` (and ``.iges``, ``.brep``) writes the first
+verified real parameterization as rational Bézier patches instead. Open CASCADE (the
+``sorgui[cad]`` extra, ``cadquery-ocp-novtk``) is imported only here, when such a file is
+written; without it :class:`CadUnavailable` says how to get it.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+import weakref
+from typing import TYPE_CHECKING, Any
 
 from sorgui.engine.results import Analysis
 
@@ -48,13 +53,36 @@ __all__ = [
 ]
 
 
-def cad_model(analysis: Analysis, scene: Scene, patch: bool = False, tolerance: float | None = None) -> CadModel:
-    """The faces a CAD file of ``analysis`` holds (``patch``: the parameterization's patch)."""
+_BUILT: weakref.WeakKeyDictionary[Any, dict[tuple[int, bool, float | None, bool], tuple[Analysis, Any]]] = (
+    weakref.WeakKeyDictionary()
+)
+"""The models built for each scene (while it lives), by analysis and options: a STEP, an IGES
+and a BRep file of one analysis share one model (building a degree-12 part takes seconds)."""
+
+
+def cad_model(
+    analysis: Analysis, scene: Scene, patch: bool = False, tolerance: float | None = None, cap: bool = False
+) -> CadModel:
+    """The part a CAD file of ``analysis`` holds (``patch``: the parameterization's patch;
+    ``cap``: the part capped by the region into a solid), built once per scene, analysis and
+    options (a failure too: it is said again)."""
     try:
         from .model import patch_model, surface_model
     except ImportError as exc:
         raise CadUnavailable(INSTALL_HINT) from exc
-    return patch_model(analysis, scene.box) if patch else surface_model(analysis, scene, tolerance)
+    built = _BUILT.setdefault(scene, {})
+    key = (id(analysis), patch, tolerance, cap)
+    if key not in built or built[key][0] is not analysis:
+        try:
+            made: Any = patch_model(analysis, scene) if patch else surface_model(analysis, scene, tolerance, cap)
+        except CadGeometryError as exc:
+            made = exc
+        built[key] = (analysis, made)
+    result = built[key][1]
+    if isinstance(result, CadGeometryError):
+        raise CadGeometryError(str(result))
+    model: CadModel = result
+    return model
 
 
 def cad_file(
@@ -65,15 +93,16 @@ def cad_file(
     patch: bool = False,
     units: str = "mm",
     tolerance: float | None = None,
+    cap: bool = False,
 ) -> tuple[bytes, CadModel]:
     """The bytes of the CAD file ``name`` of ``analysis`` (format ``suffix``; ``patch``: the
     parameterization's patch), and the faces it holds (for :func:`summary`)."""
     from sorgui import __version__
 
-    model = cad_model(analysis, scene, patch, tolerance)
+    model = cad_model(analysis, scene, patch, tolerance, cap)
     from .writers import WRITERS, CadHeader
 
-    header = CadHeader(analysis.recognition.polynomial, model.description, __version__, name, units)
+    header = CadHeader(analysis.recognition.polynomial, model.description, __version__, name, units, model.precision)
     return WRITERS[suffix](model.shape, header), model
 
 
@@ -82,15 +111,23 @@ ROUTES = {
     "exact": "a surface of revolution of the exact rational profile",
     "fitted": "a surface of revolution of a fitted profile",
     "patch": "rational B-spline patches of the parameterization",
+    "extrusion": "a cylinder over a curve: the linear extrusion of its exact base curve",
+    "ruled": "a cone over a curve: ruled through its apex over its exact base curve",
+    "canal": "a canal surface swept through its characteristic circles",
 }
 """What each route of :class:`~.model.CadModel` writes, in words."""
 
 
 def summary(model: CadModel) -> str:
-    """What a CAD file holds, in one line: the route, the faces and a fit's measured deviation."""
+    """What a CAD file holds, in one line: the route, the faces (and solids) and a fit's measured
+    deviation."""
     faces = f"{model.faces} face{'s' if model.faces != 1 else ''}"
+    if model.solids:
+        faces += f" in {model.solids} solid{'s' if model.solids != 1 else ''}"
     words = f"{ROUTES[model.route]}, {faces}"
     if model.deviation is not None and model.tolerance is not None:
         verdict = "within" if model.deviation <= model.tolerance else "ABOVE"
         words += f"; measured deviation {model.deviation:.2g} ({verdict} the tolerance {model.tolerance:.2g})"
+    if model.typed_deviation is not None:
+        words += f"; the nearest exact surface's part, {model.typed_deviation:.2g} from the typed surface"
     return words

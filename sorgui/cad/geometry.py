@@ -10,9 +10,8 @@ A surface of revolution ``X`` becomes, in order of preference:
   poles, where it crosses the axis and where it leaves the drawn ball, each arc written in the
   Bernstein basis of its homogeneous segment (:func:`bernstein`) — a rational Bézier arc whose
   weights are the denominator's Bernstein coefficients, subdivided until they share one sign;
-* otherwise a **fitted** profile: the traced real profile of the 3D view in the half-plane
-  ``y ≥ 0`` (:func:`traced_profile`), each point moved onto ``p(x, y) = 0`` by Newton's method,
-  for :mod:`.shapes` to fit with a B-spline within a stated tolerance.
+* otherwise a **fitted** profile: the arcs of the real profile in the half-plane ``y ≥ 0``
+  (:mod:`.meridian`), fitted with B-splines within a stated tolerance (:mod:`.fitted`).
 
 Everything here is ``float64`` geometry from the engine's exact strings (read with the one safe
 reader, :mod:`sorgui.engine.values`); the Bernstein coefficients are computed with 40 digits
@@ -22,7 +21,7 @@ and rounded once.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import mpmath
@@ -33,7 +32,7 @@ from sorgui.engine.results import Analysis, Parametrization, Profile
 from sorgui.engine.values import ExpressionError, Terms, float_vector, polynomial_terms, read_expression
 from sorgui.numerics import real_roots
 from sorgui.render import ClipSphere
-from sorgui.render.sampling import first_order_distance, value_and_gradient
+from sorgui.render.sampling import first_order_distance
 
 DIGITS = 40
 """Working precision (decimal digits) of the Bernstein conversion; the result is rounded once."""
@@ -65,35 +64,6 @@ class Frame:
         xy = np.asarray(xy)
         points: np.ndarray = self.point + xy[:, :1] * self.direction + xy[:, 1:] * self.normal
         return points
-
-
-SHIFT_BITS = 8
-"""The shift of a meridian curve's origin is a multiple of ``2⁻⁸``: exact, and small to write."""
-
-
-@dataclass(frozen=True)
-class MeridianCurve:
-    """The profile ``p(x, y) = 0`` as float terms in an orthonormal ``frame`` whose point is moved
-    along the axis next to the ball's centre. The shift is exact (done on the exact ``p``):
-    rounding the coefficients of ``p`` about a far origin moves a degree-12 profile by 1e-3 and
-    leaves Newton's method stuck in that noise; about the drawn region it moves it by 1e-13."""
-
-    terms: Terms
-    frame: Frame
-
-
-def meridian_curve(profile: Profile, frame: Frame, ball: ClipSphere) -> MeridianCurve:
-    """The profile about the foot of the ball's centre on the axis (see :class:`MeridianCurve`)."""
-    x, y = sympy.symbols("x y")
-    foot = float(frame.to_plane(np.array([ball.center]))[0, 0])
-    shift = sympy.Rational(round(foot * 2**SHIFT_BITS), 2**SHIFT_BITS)
-    try:
-        moved = sympy.Poly(read_expression(profile.polynomial), x, y).to_field().shift_list([shift, 0])
-    except (ExpressionError, sympy.PolynomialError, AttributeError):
-        return MeridianCurve(polynomial_terms(profile.polynomial, ("x", "y")), frame)
-    terms = [(m, float(sympy.N(c, 20))) for m, c in moved.terms()]
-    point = frame.point + float(shift) * frame.direction
-    return MeridianCurve(terms, Frame(point, frame.direction, frame.normal))
 
 
 @dataclass(frozen=True)
@@ -130,6 +100,19 @@ class RationalCurve:
     def arcs(self) -> int:
         return (len(self.poles) - 1) // self.degree
 
+    def bezier_arcs(self) -> list[RationalCurve]:
+        """Each arc on its own, its weights balanced: ``w_i·c^i`` with ``c = (w₀/w_n)^(1/n)`` is
+        the same curve reparameterized, with equal end weights (the arcs of one B-spline share
+        one weight scale, which can leave some a thousand times lighter than others)."""
+        n = self.degree
+        out = []
+        for k in range(self.arcs):
+            weights = self.weights[k * n : (k + 1) * n + 1]
+            c = (weights[0] / weights[-1]) ** (1.0 / n)
+            balanced = weights * c ** np.arange(n + 1)
+            out.append(RationalCurve(n, self.poles[k * n : (k + 1) * n + 1], balanced / balanced.max()))
+        return out
+
     def points(self, per_arc: int = 16) -> np.ndarray:
         """Points along the curve (de Casteljau on each arc), for checks and coverage."""
         out = []
@@ -157,18 +140,16 @@ def axis_frame(profile: Profile) -> Frame:
     return Frame(float_vector(profile.frame_point), a / np.linalg.norm(a), u / np.linalg.norm(u))
 
 
-def analytic_surface(analysis: Analysis, ball: ClipSphere) -> Analytic | None:
-    """The analytic kind of ``X``, if it has one (``None`` otherwise): planes and spheres from the
-    recognition, cylinders, cones and tori from the exact squared profile ``P²(x, w)``."""
+def analytic_surfaces(analysis: Analysis, ball: ClipSphere) -> list[Analytic] | None:
+    """The analytic surfaces ``X`` is made of, if it is (``None`` otherwise): parallel planes and
+    concentric spheres from the recognition, a cylinder, cone or torus from the exact squared
+    profile ``P²(x, w)``; those that miss the ball are left out."""
     rec = analysis.recognition
     centre = np.asarray(ball.center)
     if rec.symmetry == "plane" and rec.normal is not None:
-        return _plane(analysis.recognition.polynomial, centre, ball.radius)
-    if rec.symmetry == "sphere" and rec.center is not None and rec.radius_squared is not None:
-        r2 = float(read_expression(rec.radius_squared).evalf(30))
-        if r2 <= 0:
-            raise CadGeometryError("the sphere has no real points" if r2 < 0 else "the sphere is a single real point")
-        return Analytic("sphere", float_vector(rec.center), np.array([0.0, 0.0, 1.0]), radius=math.sqrt(r2))
+        return _planes(analysis.squarefree, rec.normal, centre, ball.radius)
+    if rec.symmetry == "sphere" and rec.center is not None:
+        return _spheres(analysis.squarefree, rec.center, centre, ball.radius)
     if rec.profile is None or rec.axis is None:
         return None
     frame = axis_frame(rec.profile)
@@ -177,24 +158,58 @@ def analytic_surface(analysis: Analysis, ball: ClipSphere) -> Analytic | None:
         square = sympy.Poly(read_expression(rec.profile.square), x, w)
     except (ExpressionError, sympy.PolynomialError):
         return None
+    spec = None
     if square.total_degree() <= 2 and square.degree(w) == 1:
-        return _quadric(square, frame, centre, ball.radius)
-    if square.total_degree() == 4:
-        return _torus(square, frame)
-    return None
+        spec = _quadric(square, frame, centre, ball.radius)
+    elif square.total_degree() == 4:
+        spec = _torus(square, frame)
+    return None if spec is None else [spec]
 
 
-def _plane(polynomial: str, centre: np.ndarray, radius: float) -> Analytic:
-    """The plane ``n·p + d = 0`` as its point nearest the ball's centre and the disk inside the ball."""
-    terms = dict(polynomial_terms(polynomial))
-    n = np.array([terms.get((1, 0, 0), 0.0), terms.get((0, 1, 0), 0.0), terms.get((0, 0, 1), 0.0)])
-    d = terms.get((0, 0, 0), 0.0)
-    length = float(np.linalg.norm(n))
-    distance = (n @ centre + d) / length
-    if abs(distance) >= radius:
-        raise CadGeometryError("the plane does not meet the drawn ball")
-    foot = centre - distance * n / length
-    return Analytic("plane", foot, n / length, extent=(0.0, math.sqrt(radius**2 - distance**2)))
+def _line_roots(polynomial: str, point: Sequence[str], direction: Sequence[str]) -> list[float]:
+    """The real roots ``t`` of ``g(point + t·direction)``, exactly substituted (the square-free
+    ``g`` of a union of parallel planes or of concentric spheres is a polynomial in one
+    variable along such a line)."""
+    t = sympy.Symbol("t")
+    x, y, z = sympy.symbols("x y z")
+    p = [read_expression(c) for c in point]
+    d = [read_expression(c) for c in direction]
+    line = {x: p[0] + t * d[0], y: p[1] + t * d[1], z: p[2] + t * d[2]}
+    h = sympy.Poly(sympy.expand(read_expression(polynomial).subs(line, simultaneous=True)), t)
+    if h.degree() < 1:
+        return []
+    return sorted(float(r.evalf(30)) for r in h.real_roots(multiple=True))
+
+
+def _planes(polynomial: str, normal: Sequence[str], centre: np.ndarray, radius: float) -> list[Analytic]:
+    """The planes ``n·p = t·|n|²`` at the real roots ``t`` of ``g(t·n)``, as their points nearest
+    the ball's centre and their disks inside the ball (``z²`` is the plane ``z = 0``, from its
+    square-free part)."""
+    n = float_vector(normal)
+    unit = n / np.linalg.norm(n)
+    planes = []
+    for t in _line_roots(polynomial, ("0", "0", "0"), normal):
+        distance = float(unit @ centre) - t * float(np.linalg.norm(n))
+        if abs(distance) < radius:
+            foot = centre - distance * unit
+            planes.append(Analytic("plane", foot, unit, extent=(0.0, math.sqrt(radius**2 - distance**2))))
+    if not planes:
+        raise CadGeometryError("the planes do not meet the drawn region")
+    return planes
+
+
+def _spheres(polynomial: str, center: Sequence[str], centre: np.ndarray, radius: float) -> list[Analytic]:
+    """The spheres about ``center`` whose radii are the positive real roots of ``g(center + t·e₁)``
+    (even in ``t``) and that meet the ball."""
+    middle = float_vector(center)
+    reach = float(np.linalg.norm(middle - centre))
+    radii = sorted({r for r in _line_roots(polynomial, center, ("1", "0", "0")) if r > 0})
+    spheres = [
+        Analytic("sphere", middle, np.array([0.0, 0.0, 1.0]), radius=r) for r in radii if abs(reach - r) < radius
+    ]
+    if not spheres:
+        raise CadGeometryError("the sphere has no real points in the drawn region")
+    return spheres
 
 
 def _number(value: sympy.Expr) -> float:
@@ -297,7 +312,7 @@ def meridian_section(param: Parametrization) -> Section:
     s, t = (sympy.Symbol(name) for name in param.parameters)
     polys = [sympy.Poly(e, t) for e in over_one_denominator([read_expression(c).subs(s, 0) for c in param.coordinates])]
     n = max(p.degree() for p in polys)
-    forms = [_form(p, n) for p in polys]
+    forms = [binary_form(p, n) for p in polys]
     return Section((forms[0], forms[1], forms[2]), forms[3])
 
 
@@ -320,7 +335,8 @@ def real_number(value: sympy.Expr) -> mpmath.mpf:
         return mpmath.mpf(sympy.re(number))
 
 
-def _form(poly: sympy.Poly, n: int) -> Form:
+def binary_form(poly: sympy.Poly, n: int) -> Form:
+    """The univariate ``poly`` as a binary form of degree ``n`` (coefficients of ``T^i·W^(n-i)``)."""
     coefficients = [mpmath.mpf(0)] * (n + 1)
     for (k,), c in poly.terms():
         coefficients[k] = real_number(c)
@@ -490,8 +506,38 @@ def _arcs(section: Section, frame: Frame, ball: ClipSphere, size: float) -> list
     return kept
 
 
+def ball_arcs(section: Section, centre: np.ndarray, radius: float) -> list[RationalCurve]:
+    """The arcs of ``section`` inside the ball about ``centre``: the projective ``t``-line cut at
+    the poles (roots of ``D``) and where the curve crosses the sphere (``|N − m·D|² − R²·D²``),
+    the spans inside kept and joined where no real cut parts them, each a rational B-spline."""
+    N, D = section.numerators, section.denominator
+    with mpmath.workdps(DIGITS):
+        offsets = [[N[i][k] - mpmath.mpf(centre[i]) * D[k] for k in range(len(D))] for i in range(3)]
+        inside = [sum(q) for q in zip(*(_product(o, o) for o in offsets))]
+        ball_form = [q - mpmath.mpf(radius) ** 2 * r for q, r in zip(inside, _product(D, D))]
+    cuts = sorted({round(t, 12) for form in (D, ball_form) for t in _angles(form)})
+    spans = _spans(cuts)
+    kept = [k for k, span in enumerate(spans) if _value(ball_form, (span.start + span.end) / 2) < 0]
+    return [_curve(section, piece) for piece in _pieces(spans, kept)]
+
+
+def polynomial_spans(numerators: tuple[Form, Form, Form]) -> list[np.ndarray]:
+    """A polynomial map of the projective line (binary forms of one degree ``n``) over spans of at
+    most ``π/4`` covering it: on each, the control points ``(n + 1, 3)`` of the Bézier curve it is
+    (its Bernstein coefficients)."""
+    out = []
+    for span in _spans([]):
+        A, B = _point(span.start), _point(span.end)
+        with mpmath.workdps(DIGITS):
+            coordinates = [bernstein(n, A, B) for n in numerators]
+        out.append(np.array([[float(coordinates[i][k]) for i in range(3)] for k in range(len(coordinates[0]))]))
+    return out
+
+
 def polyline_distance(points: np.ndarray, polyline: np.ndarray) -> np.ndarray:
     """The distance of each point to the polyline through ``polyline``'s vertices."""
+    if len(polyline) == 1:
+        return np.asarray(np.linalg.norm(points - polyline[0], axis=1))
     a, b = polyline[:-1], polyline[1:]
     edge = b - a
     length2 = np.maximum(np.einsum("ij,ij->i", edge, edge), 1e-300)
@@ -520,7 +566,8 @@ def _spans(cuts: list[float]) -> list[_Span]:
 def _pieces(spans: list[_Span], kept: list[int]) -> list[list[_Span]]:
     """The kept spans (indices into ``spans``) joined where no real cut separates them; a piece
     running through the last span into the first continues at angles lifted by ``2π``, so that
-    its homogeneous points stay continuous."""
+    its homogeneous points stay continuous. A piece all round the line (a closed curve, an
+    ellipse) is cut in two: a closed curve's face would have two boundary edges in one place."""
     pieces: list[list[int]] = []
     for k in kept:
         if pieces and pieces[-1][-1] == k - 1 and not spans[k].cut_start:
@@ -532,7 +579,13 @@ def _pieces(spans: list[_Span], kept: list[int]) -> list[list[_Span]]:
     if wraps:
         lifted = [_Span(s.start + 2 * math.pi, s.end + 2 * math.pi, s.cut_start) for s in out.pop(0)]
         out[-1] += lifted
-    return out
+    halves = []
+    for piece in out:
+        if len(piece) > 1 and piece[-1].end - piece[0].start >= 2 * math.pi - 1e-9:
+            halves += [piece[: len(piece) // 2], piece[len(piece) // 2 :]]
+        else:
+            halves.append(piece)
+    return halves
 
 
 def _curve(section: Section, spans: list[_Span]) -> RationalCurve:
@@ -566,99 +619,3 @@ def _mirrored(curve: RationalCurve, frame: Frame) -> RationalCurve:
     """The curve reflected across the axis in its meridian plane (the same surface when turned)."""
     offsets = (curve.poles - frame.point) @ frame.normal
     return RationalCurve(curve.degree, curve.poles - 2 * np.outer(offsets, frame.normal), curve.weights)
-
-
-# --- the traced profile -----------------------------------------------------------------------
-
-
-def traced_profile(polylines: Sequence[np.ndarray], curve: MeridianCurve) -> list[np.ndarray]:
-    """The 3D view's profile polylines (both halves, clipped to the ball) cut to the half-plane
-    ``y ≥ 0`` (a crossing of the axis moved onto it), each point moved onto ``p(x, y) = 0``
-    by Newton steps in the orthonormal frame: ordered 3D points of each branch, for fitting."""
-    branches = []
-    for line in polylines:
-        xy = curve.frame.to_plane(line)
-        for run in _runs_above_axis(xy):
-            for smooth in _smooth_parts(onto_profile(curve.terms, run)):
-                if len(smooth) >= 4:
-                    branches.append(curve.frame.to_space(smooth))
-    return branches
-
-
-CORNER = math.radians(25)
-"""A turn of the traced polyline sharper than this is a singular point of the profile (a node or
-a cusp, where the tracing turns into another branch): the branch is cut there."""
-
-
-def _smooth_parts(xy: np.ndarray) -> list[np.ndarray]:
-    """The polyline without repeated points (Newton's method gathers them at a singular point),
-    cut at its corners."""
-    steps = np.linalg.norm(np.diff(xy, axis=0), axis=1)
-    keep = np.concatenate([[True], steps > 1e-9 * max(1.0, float(np.abs(xy).max()))])
-    xy = xy[keep]
-    if len(xy) < 3:
-        return [xy]
-    seg = np.diff(xy, axis=0)
-    cos = np.einsum("ij,ij->i", seg[:-1], seg[1:]) / (
-        np.linalg.norm(seg[:-1], axis=1) * np.linalg.norm(seg[1:], axis=1)
-    )
-    corners = np.nonzero(cos < math.cos(CORNER))[0] + 1
-    return [xy[a : b + 1] for a, b in zip([0, *corners], [*corners, len(xy) - 1])]
-
-
-def _runs_above_axis(xy: np.ndarray) -> list[np.ndarray]:
-    """The runs of a polyline with ``y ≥ 0``, each crossing of ``y = 0`` interpolated onto it."""
-    runs: list[np.ndarray] = []
-    current: list[np.ndarray] = []
-    for k, point in enumerate(xy):
-        if point[1] >= 0:
-            if not current and k > 0 and xy[k - 1][1] < 0:
-                current.append(_crossing(xy[k - 1], point))
-            current.append(point)
-        elif current:
-            current.append(_crossing(current[-1], point))
-            runs.append(np.array(current))
-            current = []
-    if current:
-        runs.append(np.array(current))
-    return runs
-
-
-def _crossing(p: np.ndarray, q: np.ndarray) -> np.ndarray:
-    lam = p[1] / (p[1] - q[1])
-    return np.array([p[0] + lam * (q[0] - p[0]), 0.0])
-
-
-def onto_profile(terms: Terms, xy: np.ndarray, steps: int = 8) -> np.ndarray:
-    """Points moved onto ``p(x, y) = 0`` by Newton steps ``-p·∇p/|∇p|²`` (points on the axis
-    stay on it: ``p`` is even in ``y``, so its gradient there is along the axis)."""
-    out = np.array(xy, dtype=np.float64)
-    for _ in range(steps):
-        values, gradients = value_and_gradient(terms, out, normalise=True)
-        norm2 = np.einsum("ij,ij->i", gradients, gradients)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = np.where(norm2[:, None] > 0, -(values / norm2)[:, None] * gradients, 0.0)
-        out = out + np.nan_to_num(step)
-    return out
-
-
-Distance = Callable[[np.ndarray], np.ndarray]
-"""A distance of 3D points ``(n, 3)`` to the surface (or its profile), length units."""
-
-
-def profile_distance(curve: MeridianCurve, floor: float = 0.0) -> Distance:
-    """The distance of 3D points in the meridian plane to the profile: the first-order ``|p|/|∇p|``,
-    or where smaller the way Newton's method moves the point onto ``p = 0`` (near a singular point
-    of the profile, where ``∇p`` vanishes, the first-order distance is far too large). Newton's
-    method is run only from points whose first-order distance is above ``floor``."""
-
-    def distance(xyz: np.ndarray) -> np.ndarray:
-        xy = curve.frame.to_plane(xyz)
-        xy[:, 1] = np.abs(xy[:, 1])
-        out: np.ndarray = surface_distance(curve.terms, xy)
-        far = np.flatnonzero(~(out <= floor))
-        moved = np.linalg.norm(onto_profile(curve.terms, xy[far], steps=30) - xy[far], axis=1)
-        out[far] = np.minimum(out[far], moved)
-        return out
-
-    return distance

@@ -10,52 +10,47 @@ tolerance and the deviation measured afterwards, and lines for the file's header
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol
 
 import numpy as np
 import sympy
+from OCP.BRepCheck import BRepCheck_Analyzer
 
-from sorgui.engine.results import Analysis
-from sorgui.engine.values import ExpressionError
+from sorgui.engine.results import Analysis, Parametrization, Recognition
+from sorgui.engine.values import ExpressionError, polynomial_terms, read_expression
 from sorgui.numerics import without_noise
-from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData
+from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData
 from sorgui.render.geometry import foot_on_line
 
 from . import shapes
+from .canal import Sweep, canal_sweep
+from .caps import capped
+from .conical import Extrusion, Ruled, lined_part
+from .coverage import missing
+from .fitted import FIT_TOLERANCE, fitted_arc, uncovered
 from .geometry import (
     Analytic,
     CadGeometryError,
-    Distance,
     Frame,
-    MeridianCurve,
-    RationalCurve,
-    analytic_surface,
+    analytic_surfaces,
     axis_frame,
     exact_profile,
-    meridian_curve,
-    onto_profile,
-    polyline_distance,
-    profile_distance,
-    traced_profile,
 )
+from .meridian import meridian_curve, profile_arcs, profile_distance
+from .nearest import nearest_lines, nearest_scene, nearest_surface, typed_deviation
 from .patch import bezier_patches
+from .sewing import CONFUSION, assemble, check_size, compound, precision, solids_of
 
-FIT_TOLERANCE = 1e-7
-"""The default tolerance of a fitted profile, relative to the drawn ball's radius."""
-
-REFINEMENTS = 6
-"""How many times the spans of a fitted branch that miss the tolerance are halved, at most
-(a span shorter than the tolerance is not halved: its curve cannot stray further)."""
-
-MAX_POINTS = 5_000
-"""The most points a fitted branch interpolates."""
+EXACT_COVERAGE = 1e-6
+"""Exact arcs must pass this close (relative to the ball's radius) to every point of the real
+profile (a parameterization of one component of a reducible profile does not)."""
 
 
 class Scene(Protocol):
     """What a CAD export needs of a scene (``sorgui.session.scene_data.SceneData`` has it):
-    the drawn ball, the traced profile in it, and the user's box, if one was given."""
+    the drawn ball, the traced profile in it, the user's box, if one was given, and the mesh of
+    the surface in the region (its vertices check that the part covers the surface)."""
 
     @property
     def region(self) -> ClipSphere: ...
@@ -66,40 +61,111 @@ class Scene(Protocol):
     @property
     def box(self) -> ClipBox | None: ...
 
+    @property
+    def surface(self) -> MeshData: ...
+
 
 @dataclass(frozen=True)
 class CadModel:
-    """Faces for a CAD file. ``route`` is ``"analytic"``, ``"exact"``, ``"fitted"`` or ``"patch"``;
-    ``deviation`` the largest distance measured from the written surface to ``X`` (``None``
-    where it is exact by construction) and ``tolerance`` the one the fit aimed at."""
+    """A part for a CAD file: its ``shape`` (sewn: one shell or solid, or a compound of them),
+    the ``route`` taken (``"analytic"``, ``"exact"``, ``"fitted"`` or ``"patch"``), lines for the
+    file's header, the largest distance measured between the part and ``X`` (``None`` where it
+    is exact by construction), the ``tolerance`` a fit aimed at, and the ``precision`` of its
+    edges and vertices (the STEP file's uncertainty)."""
 
     shape: Any
     route: str
     description: tuple[str, ...]
     deviation: float | None = None
     tolerance: float | None = None
+    precision: float = CONFUSION
+    typed_deviation: float | None = None
+    """For rounded input written as its nearest exact surface: the part's measured distance from
+    the typed surface."""
 
     @property
     def faces(self) -> int:
         """How many faces the shape holds."""
         return len(shapes.faces_of(self.shape))
 
+    @property
+    def solids(self) -> int:
+        """How many solids the shape holds (closed parts)."""
+        return solids_of(self.shape)
 
-def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = None) -> CadModel:
-    """The faces of a surface of revolution (or a plane or sphere) inside the scene's ball,
-    cut to the user's box if there is one."""
-    return _cut(_surface_model(analysis, scene, tolerance), scene.box)
+
+@dataclass(frozen=True)
+class Faces:
+    """The faces of a part before they are cut to the user's box and sewn."""
+
+    faces: list[Any]
+    route: str
+    description: tuple[str, ...]
+    deviation: float | None = None
+    tolerance: float | None = None
+    groups: tuple[int, ...] = ()
+    """A label for each face, if they fall into groups sewn apart (patches on either side of a
+    fold of their map, which meet only where it folds)."""
 
 
-def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) -> CadModel:
+def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = None, cap: bool = False) -> CadModel:
+    """The part of a surface of revolution (or of planes or spheres) inside the scene's ball, cut
+    to the user's box if there is one, sewn and checked; for rounded input, the part of the
+    nearest exact surface (:mod:`.nearest`)."""
+    nearest = nearest_surface(analysis)
+    if nearest is not None and nearest.analysis is not None:
+        exact = nearest.analysis
+        model = surface_model(exact, nearest_scene(scene, exact), tolerance, cap)
+        deviation = typed_deviation(model.shape, analysis.squarefree, scene)
+        lines = (*nearest_lines(nearest, deviation), *model.description)
+        return dataclasses.replace(model, description=lines, typed_deviation=deviation)
+    size = scene.region.radius
+    check_size(size)
+    faces = _surface_faces(analysis, scene, tolerance, precision(size))
+    return finished(faces, scene, analysis.squarefree, cap)
+
+
+def finished(part: Faces, scene: Scene, polynomial: str, cap: bool = False) -> CadModel:
+    """The faces cut to the user's box, sewn into shells and solids (each group apart), checked
+    (:func:`.sewing.assemble`), capped by the region if asked; an error if nothing is left."""
+    size = scene.region.radius
+    terms = polynomial_terms(polynomial)
+    labels = part.groups or (0,) * len(part.faces)
+    pieces, lines = [], part.description
+    for label in sorted(set(labels)):
+        group = dataclasses.replace(part, faces=[f for f, g in zip(part.faces, labels) if g == label], groups=())
+        faces, lines = _cut(group, scene, precision(size))
+        if faces:
+            pieces.append(assemble(faces, size, terms))
+    if not pieces:
+        raise CadGeometryError("the surface has no real points inside the box")
+    shape = pieces[0] if len(pieces) == 1 else compound(pieces)
+    if cap:
+        region = scene.box if scene.box is not None else scene.region
+        shape = capped(shape, region, terms, precision(size))
+        if not BRepCheck_Analyzer(shape).IsValid():
+            raise CadGeometryError("Open CASCADE finds the capped solid invalid (BRepCheck)")
+        lines = (*lines, f"capped by the {'box' if scene.box is not None else 'ball'}: the solid f <= 0 inside it")
+    return CadModel(shape, part.route, lines, part.deviation, part.tolerance, precision(size))
+
+
+def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, edge: float) -> Faces:
     rec = analysis.recognition
     if rec.symmetry == "undecided":
         raise CadGeometryError(
             "the analysis did not finish, so it is not known whether the surface is one of revolution"
         )
     if not rec.is_sor:
+        lined = lined_part(analysis, scene.region)
+        if lined is not None:
+            return _lined_faces(lined, scene.region, edge)
+        goal = (tolerance if tolerance is not None else FIT_TOLERANCE) * scene.region.radius
+        sweep = canal_sweep(analysis, scene.region, goal, edge)
+        if sweep is not None:
+            return _swept_faces(sweep, scene.region, goal)
         raise CadGeometryError(
-            "the surface is not a surface of revolution; write NAME.patch.step for a rational parameterization"
+            "the surface is not a surface of revolution, nor a cylinder or cone over a rational curve, "
+            "nor a canal surface with known circles; write NAME.patch.step for a rational parameterization"
         )
     ball = scene.region
     frame = axis_frame(rec.profile) if rec.profile is not None else None
@@ -108,12 +174,15 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
             "a CAD file of a surface of revolution is cut to a ball centred on its axis or to a box; "
             "give the ball's radius alone (--region R) or a box (--region X0:X1,Y0:Y1,Z0:Z1)"
         )
-    spec = analytic_surface(analysis, ball)
-    if spec is not None:
-        shape = shapes.shell(shapes.analytic_faces(spec))
-        if not _inside(spec, ball):
-            shape = shapes.cut_to(shape, ball)
-        return CadModel(shape, "analytic", _analytic_lines(spec))
+    specs = analytic_surfaces(analysis, ball)
+    if specs is not None:
+        faces = []
+        for spec in specs:
+            made = shapes.analytic_faces(spec, edge)
+            faces += made if _inside(spec, ball) else shapes.cut_to(made, ball)
+        if not faces:
+            raise CadGeometryError("the surface has no real points inside the drawn ball")
+        return Faces(faces, "analytic", tuple(line for spec in specs for line in _analytic_lines(spec)))
     if rec.profile is None or rec.axis is None or frame is None:
         if rec.symmetry == "sphere":  # (x² + y² + z² + 1)³⁰ − 2: spheres about one centre
             raise CadGeometryError(
@@ -122,26 +191,70 @@ def _surface_model(analysis: Analysis, scene: Scene, tolerance: float | None) ->
             )
         raise CadGeometryError(f"a {rec.symmetry} surface has no single axis to turn a profile about")
     curve = meridian_curve(rec.profile, frame, ball)
-    branches = traced_profile(scene.profile_curve.polylines(), curve)
-    if not branches:
+    arcs = profile_arcs(scene.profile_curve.polylines(), curve, ball)
+    if not arcs:
         raise CadGeometryError("the surface has no real points inside the drawn ball")
     axis = _axis_line(frame.point, frame.direction)
-    exact = exact_profile(analysis, frame, ball, ball.radius)
-    if exact is not None and _covers(exact, branches, ball.radius):
-        faces = shapes.revolution_faces(frame, [shapes.bspline_curve(c) for c in exact])
-        lines = (axis, f"profile: exact rational B-spline, {len(exact)} arcs, degree {exact[0].degree}")
-        return CadModel(shapes.shell(faces), "exact", lines)
     goal = (tolerance if tolerance is not None else FIT_TOLERANCE) * ball.radius
+    surface = scene.surface.points
+    exact = exact_profile(analysis, frame, ball, ball.radius)
+    if exact:
+        splines = [shapes.bspline_curve(c) for c in exact]
+        if uncovered(splines, curve, surface, ball, EXACT_COVERAGE * ball.radius)[1] is None:
+            lines = (axis, f"profile: exact rational B-spline, {len(exact)} arcs, degree {exact[0].degree}")
+            return Faces(shapes.revolution_faces(frame, splines, edge), "exact", lines)
     distance = profile_distance(curve, floor=goal / 10)
-    fits = [_fit(branch, goal, distance, curve) for branch in branches]
-    deviation = max(f.deviation for f in fits)
-    faces = shapes.revolution_faces(frame, [f.curve for f in fits])
-    verdict = "within" if deviation <= goal else "ABOVE"
+    fits = [fitted_arc(arc, goal, distance, curve) for arc in arcs]
+    splines = [f.curve for f in fits]
+    missed, where = uncovered(splines, curve, surface, ball, goal)
+    deviation = max(missed, *(f.deviation for f in fits))
+    if deviation > goal:
+        near = f" (near {_vector(where)})" if where is not None else ""
+        raise CadGeometryError(
+            f"the fitted profile strays {deviation:.2g} from the surface{near}, more than the tolerance "
+            f"{goal:.2g} ({goal / ball.radius:.2g} of the ball's radius): give a larger --fit-tolerance"
+        )
+    lines = (axis, f"profile: B-spline fitted to tolerance {goal:.3g}; measured deviation {deviation:.3g} (within it)")
+    return Faces(shapes.revolution_faces(frame, splines, edge), "fitted", lines, deviation, goal)
+
+
+def _swept_faces(sweep: Sweep, ball: ClipSphere, goal: float) -> Faces:
+    """A canal surface swept through its characteristic circles (:mod:`.canal`), cut to the ball."""
+    if sweep.deviation > goal:
+        raise CadGeometryError(
+            f"the sweep of the canal surface's circles strays {sweep.deviation:.2g} from the surface, more than "
+            f"the tolerance {goal:.2g} ({goal / ball.radius:.2g} of the ball's radius): give a larger --fit-tolerance"
+        )
+    faces = shapes.cut_to(sweep.faces, ball)
+    if not faces:
+        raise CadGeometryError("the surface has no real points inside the drawn ball")
     lines = (
-        axis,
-        f"profile: B-spline fitted to tolerance {goal:.3g}; measured deviation {deviation:.3g} ({verdict} it)",
+        f"canal surface: B-spline surface through {sweep.circles} of its characteristic circles",
+        f"fitted to tolerance {goal:.3g}; measured deviation {sweep.deviation:.3g} (within it)",
     )
-    return CadModel(shapes.shell(faces), "fitted", lines, deviation, goal)
+    return Faces(faces, "canal", lines, sweep.deviation, goal)
+
+
+def _lined_faces(lined: Extrusion | Ruled, ball: ClipSphere, edge: float) -> Faces:
+    """A cylinder or cone over a curve, cut to the ball (:mod:`.conical`)."""
+    if isinstance(lined, Extrusion):
+        faces = shapes.cut_to(shapes.extrusion_faces(lined, edge), ball)
+        degree = lined.curves[0].degree
+        lines = (
+            f"cylinder along {_vector(lined.direction)} over its base curve ({lined.method})",
+            f"linear extrusion of the exact rational B-spline base curve, {len(lined.curves)} arcs, degree {degree}",
+        )
+        route = "extrusion"
+    else:
+        faces = shapes.cut_to(shapes.ruled_faces(lined, edge), ball)
+        lines = (
+            f"cone with apex {_vector(lined.apex)} over its base curve ({lined.method})",
+            f"ruled through the apex: rational Bezier surfaces of degree ({len(lined.spans[0]) - 1}, 1)",
+        )
+        route = "ruled"
+    if not faces:
+        raise CadGeometryError("the surface has no real points inside the drawn ball")
+    return Faces(faces, route, lines)
 
 
 def _off_axis(ball: ClipSphere, frame: Frame) -> bool:
@@ -160,62 +273,37 @@ def _inside(spec: Analytic, ball: ClipSphere) -> bool:
     return float(np.linalg.norm(spec.origin - np.asarray(ball.center))) + reach <= ball.radius
 
 
-def _cut(model: CadModel, box: ClipBox | None) -> CadModel:
-    """``model`` cut to the user's ``box``; an error if nothing of it is left. A cut that leaves
-    the box (Open CASCADE misses some intersections of revolved B-spline profiles) is done again
-    on the faces converted to B-spline surfaces, and the file says so."""
+SECTORS = (2, 3, 5, 8)
+"""Into how many sectors the faces of revolution are cut before they are cut to a box, in the
+order tried (:func:`.shapes.sectors`): Open CASCADE's intersection of a revolved B-spline
+profile with the box's planes misses curves on the whole face, and on some sectors."""
+
+
+def _cut(part: Faces, scene: Scene, edge: float) -> tuple[list[Any], tuple[str, ...]]:
+    """The faces cut to the user's box and the header's lines; an error if nothing of them is
+    left. A cut is accepted when its faces lie in the box and cover the mesh there
+    (:func:`.coverage.missing`); Open CASCADE's Boolean misses some intersections of revolved
+    B-spline profiles, so the faces are cut in sectors first (:data:`SECTORS`, tried in turn),
+    then converted to B-spline surfaces, and the file says so."""
+    box = scene.box
     if box is None:
-        return model
+        return part.faces, part.description
     low, high = box.bounds[0::2], box.bounds[1::2]
-    lines = [*model.description, f"cut to the box {_vector(np.array(low))} - {_vector(np.array(high))}"]
-    shape = shapes.cut_to(model.shape, box)
-    if not shapes.within(shape, box):
-        shape = shapes.cut_to(shapes.as_nurbs(model.shape), box)
-        lines.append("faces converted to B-spline surfaces to be cut to the box")
-        if not shapes.within(shape, box):
-            raise CadGeometryError("Open CASCADE could not cut the faces to the box")
-    if not shapes.faces_of(shape):
-        raise CadGeometryError("the surface has no real points inside the box")
-    return dataclasses.replace(model, shape=shape, description=tuple(lines))
-
-
-def _fit(branch: np.ndarray, goal: float, distance: Distance, curve: MeridianCurve) -> shapes.Fit:
-    """A curve through the branch's points within ``goal``: every span whose measured distance to
-    the profile is larger is halved (its midpoint moved onto the profile), and the curve drawn
-    again, at most :data:`REFINEMENTS` times and up to :data:`MAX_POINTS` points."""
-    points = _distinct(branch, goal)
-    fit = shapes.fitted_curve(points, distance)
-    for _ in range(REFINEMENTS):
-        length = np.linalg.norm(np.diff(points, axis=0), axis=1)
-        wide = np.flatnonzero((fit.spans > goal) & (length > goal))
-        if len(wide) == 0 or len(points) + len(wide) > MAX_POINTS:
-            break
-        halves = curve.frame.to_plane((points[wide] + points[wide + 1]) / 2)
-        middles = curve.frame.to_space(onto_profile(curve.terms, halves))
-        points = _distinct(np.insert(points, wide + 1, middles, axis=0), goal)
-        fit = shapes.fitted_curve(points, distance)
-    return fit
-
-
-def _distinct(points: np.ndarray, gap: float) -> np.ndarray:
-    """``points`` without those closer than ``gap / 100`` to the one before (interpolation needs
-    distinct points)."""
-    step = np.linalg.norm(np.diff(points, axis=0), axis=1)
-    keep = np.concatenate([[True], step > gap / 100])
-    kept: np.ndarray = points[keep]
-    return kept
-
-
-def _covers(curves: Sequence[RationalCurve], branches: Sequence[np.ndarray], size: float) -> bool:
-    """Whether every traced point of the real profile lies on one of the exact arcs (a
-    parameterization of one component of a reducible profile does not cover the others)."""
-    polylines = [c.points(200) for c in curves]
-    for branch in branches:
-        probe = branch[:: max(1, len(branch) // 40)]
-        near = np.min([polyline_distance(probe, p) for p in polylines], axis=0)
-        if np.any(near > 1e-3 * size):
-            return False
-    return True
+    lines = [*part.description, f"cut to the box {_vector(np.array(low))} - {_vector(np.array(high))}"]
+    size = scene.region.radius
+    nurbs = ("faces converted to B-spline surfaces to be cut to the box",)
+    attempts = [(count, ()) for count in SECTORS] + [(SECTORS[0], nurbs)]
+    for count, note in attempts:
+        faces = shapes.sectors(part.faces, count, edge)
+        cut = shapes.cut_to(shapes.as_nurbs(faces) if note else faces, box)
+        if not cut:
+            return [], tuple(lines)
+        if shapes.within(cut, box, edge) and missing(cut, scene.surface.points, scene.surface.spacing, size) is None:
+            return cut, (*lines, *note)
+    raise CadGeometryError(
+        "Open CASCADE's cut of the faces to the box leaves part of them outside it or loses part of the surface "
+        "(however its faces are divided); a ball (--region R) or another box may do"
+    )
 
 
 def _axis_line(point: np.ndarray, direction: np.ndarray) -> str:
@@ -240,24 +328,58 @@ def _analytic_lines(spec: Analytic) -> tuple[str, ...]:
     return tuple(lines)
 
 
-def patch_model(analysis: Analysis, box: ClipBox | None = None) -> CadModel:
+def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
     """The first verified real rational parameterization (of ``X``, of a canal surface by its
-    circles, of a cone or cylinder by its lines) over the window's parameter box, cut to the
-    user's ``box`` if there is one."""
+    circles, of a cone or cylinder by its lines, of a sphere by stereographic projection) over
+    the window's parameter box, covered once and oriented along ``∇f`` (:mod:`.patch`), cut to
+    the drawn ball and to the user's box if there is one; for rounded input, the nearest exact
+    surface's (:mod:`.nearest`)."""
+    nearest = nearest_surface(analysis)
+    if nearest is not None and nearest.analysis is not None:
+        model = patch_model(nearest.analysis, nearest_scene(scene, nearest.analysis))
+        deviation = typed_deviation(model.shape, analysis.squarefree, scene)
+        lines = (*nearest_lines(nearest, deviation), *model.description)
+        return dataclasses.replace(model, description=lines, typed_deviation=deviation)
+    size = scene.region.radius
+    check_size(size)
     candidates = [
         *analysis.parametrizations,
         *(analysis.canal.parametrizations if analysis.canal is not None else ()),
         *(analysis.conical.parametrizations if analysis.conical is not None else ()),
+        *sphere_parametrization(analysis.recognition),
     ]
+    terms = polynomial_terms(analysis.squarefree)
     for param in candidates:
         if not (param.real and param.verified):
             continue
         try:
-            patches = bezier_patches(param)
+            patches = bezier_patches(param, terms)
         except (CadGeometryError, ExpressionError, sympy.PolynomialError):
             continue
-        faces = [shapes.patch_face(p) for p in patches]
+        faces, groups = [], []
+        for patch in patches:
+            face = shapes.patch_face(patch, precision(size))
+            cut = shapes.cut_to([shapes.reversed_face(face) if patch.turned else face], scene.region)
+            faces += cut
+            groups += [int(patch.turned)] * len(cut)
+        if not faces:
+            raise CadGeometryError("the parameterization's patch has no point inside the drawn ball")
         low, high = PATCH_RANGE
         lines = (f"rational B-spline patch of the parameterization ({param.method}) over s, t in [{low:g}, {high:g}]",)
-        return _cut(CadModel(shapes.shell(faces), "patch", lines), box)
+        return finished(Faces(faces, "patch", lines, groups=tuple(groups)), scene, analysis.squarefree)
     raise CadGeometryError("the analysis has no verified real rational parameterization to write as a patch")
+
+
+def sphere_parametrization(rec: Recognition) -> list[Parametrization]:
+    """A sphere's inverse stereographic projection ``c + r·(2s, 2t, s² + t² − 1)/(s² + t² + 1)``
+    (exact: ``r = √(r²)`` of the recognition), none for another surface."""
+    if rec.symmetry != "sphere" or rec.center is None or rec.radius_squared is None:
+        return []
+    if not float(read_expression(rec.radius_squared).evalf(30)) > 0:
+        return []
+    r = f"sqrt({rec.radius_squared})"
+    c = rec.center
+    d = "(s**2 + t**2 + 1)"
+    coordinates = (f"({c[0]}) + ({r})*2*s/{d}", f"({c[1]}) + ({r})*2*t/{d}", f"({c[2]}) + ({r})*(s**2 + t**2 - 1)/{d}")
+    method = "stereographic projection of the sphere"
+    return [Parametrization(coordinates, ("s", "t"), "QQ", True, True, method, True, "an identity of the sphere")]

@@ -13,12 +13,11 @@ with this module, which is loaded only when a CAD file is written.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from collections.abc import Sequence
 
 import numpy as np
 from OCP.Bnd import Bnd_Box
-from OCP.BRep import BRep_Builder
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import (
@@ -26,8 +25,11 @@ from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_MakeFace,
     BRepBuilderAPI_MakeWire,
     BRepBuilderAPI_NurbsConvert,
+    BRepBuilderAPI_Sewing,
 )
+from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
+from OCP.BRepTools import BRepTools
 from OCP.GC import GC_MakeCircle
 from OCP.Geom import (
     Geom_BSplineCurve,
@@ -36,32 +38,29 @@ from OCP.Geom import (
     Geom_CylindricalSurface,
     Geom_Plane,
     Geom_SphericalSurface,
+    Geom_SurfaceOfLinearExtrusion,
     Geom_SurfaceOfRevolution,
     Geom_ToroidalSurface,
 )
-from OCP.GeomAPI import GeomAPI_Interpolate
 from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt
+from OCP.GProp import GProp_GProps
 from OCP.OCP.collections import (
     Array1_double,
     Array1_gp_Pnt,
     Array1_int,
     Array2_double,
     Array2_gp_Pnt,
-    HArray1_gp_Pnt,
 )
 from OCP.ShapeUpgrade import ShapeUpgrade_ShapeDivideClosed
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Shell
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 
 from sorgui.render import ClipBox, ClipSphere
 
+from .conical import Extrusion, Ruled
 from .geometry import Analytic, CadGeometryError, Frame, RationalCurve
 from .patch import BezierPatch
-
-TOLERANCE = 1e-7
-"""The tolerance (length units) Open CASCADE builds edges and faces with."""
-
 
 Vector = Sequence[float] | np.ndarray
 
@@ -102,17 +101,47 @@ def bspline_curve(curve: RationalCurve) -> Geom_BSplineCurve:
     return Geom_BSplineCurve(poles, _reals(curve.weights), knots, mults, curve.degree)
 
 
-def revolution_faces(frame: Frame, curves: Sequence[Geom_BSplineCurve]) -> list[TopoDS_Face]:
-    """One face per profile curve, turned a full turn about the axis."""
+def revolution_faces(frame: Frame, curves: Sequence[Geom_BSplineCurve], tolerance: float) -> list[TopoDS_Face]:
+    """One face per profile curve, turned a full turn about the axis (edges of ``tolerance``)."""
     axis = gp_Ax1(_point(frame.point), _dir(frame.direction))
     faces = []
     for curve in curves:
         surface = Geom_SurfaceOfRevolution(curve, axis)
         maker = BRepBuilderAPI_MakeFace(
-            surface, 0.0, 2 * math.pi, curve.FirstParameter(), curve.LastParameter(), TOLERANCE
+            surface, 0.0, 2 * math.pi, curve.FirstParameter(), curve.LastParameter(), tolerance
         )
         faces.append(_face(maker))
     return faces
+
+
+def extrusion_faces(extrusion: Extrusion, tolerance: float) -> list[TopoDS_Face]:
+    """A cylinder over a curve: each Bézier arc of its base curve (weights balanced) extruded
+    along the direction (``Geom_SurfaceOfLinearExtrusion``) by ``± length``."""
+    direction = _dir(extrusion.direction)
+    faces = []
+    for arc in (a for curve in extrusion.curves for a in curve.bezier_arcs()):
+        curve = bspline_curve(arc)
+        surface = Geom_SurfaceOfLinearExtrusion(curve, direction)
+        low, high = curve.FirstParameter(), curve.LastParameter()
+        faces.append(_face(BRepBuilderAPI_MakeFace(surface, low, high, -extrusion.length, extrusion.length, tolerance)))
+    return faces
+
+
+def ruled_faces(ruled: Ruled, tolerance: float) -> list[TopoDS_Face]:
+    """A cone over a curve: on each span of its direction curve, the two nappes as Bézier
+    surfaces of degree ``(n, 1)`` from the apex (a degenerate edge) to ``apex ± M·b_k``."""
+    faces = []
+    for points, reach in zip(ruled.spans, ruled.reach):
+        for sign in (1.0, -1.0):
+            far = ruled.apex + sign * reach * points
+            rows = np.stack([np.broadcast_to(ruled.apex, far.shape), far], axis=1)
+            faces.append(patch_face(BezierPatch(rows, np.ones(rows.shape[:2])), tolerance))
+    return faces
+
+
+def reversed_face(face: TopoDS_Face) -> TopoDS_Face:
+    """The face with its orientation turned (its normal the other way)."""
+    return TopoDS.Face(face.Reversed())
 
 
 def _face(maker: BRepBuilderAPI_MakeFace) -> TopoDS_Face:
@@ -121,23 +150,23 @@ def _face(maker: BRepBuilderAPI_MakeFace) -> TopoDS_Face:
     return maker.Face()
 
 
-def analytic_faces(spec: Analytic) -> list[TopoDS_Face]:
+def analytic_faces(spec: Analytic, tolerance: float) -> list[TopoDS_Face]:
     """The faces of an analytic surface: whole spheres and tori, a cylinder between two circles,
     a cone's two nappes as two faces meeting at the apex, a plane as its disk in the ball."""
     frame = gp_Ax3(_point(spec.origin), _dir(spec.direction))
     low, high = spec.extent
     if spec.kind == "sphere":
-        return [_face(BRepBuilderAPI_MakeFace(Geom_SphericalSurface(frame, spec.radius), TOLERANCE))]
+        return [_face(BRepBuilderAPI_MakeFace(Geom_SphericalSurface(frame, spec.radius), tolerance))]
     if spec.kind == "torus":
         torus = Geom_ToroidalSurface(frame, spec.radius, spec.minor_radius)
-        return [_face(BRepBuilderAPI_MakeFace(torus, TOLERANCE))]
+        return [_face(BRepBuilderAPI_MakeFace(torus, tolerance))]
     if spec.kind == "cylinder":
         cylinder = Geom_CylindricalSurface(frame, spec.radius)
-        return [_face(BRepBuilderAPI_MakeFace(cylinder, 0.0, 2 * math.pi, low, high, TOLERANCE))]
+        return [_face(BRepBuilderAPI_MakeFace(cylinder, 0.0, 2 * math.pi, low, high, tolerance))]
     if spec.kind == "cone":
         cone = Geom_ConicalSurface(frame, spec.semi_angle, 0.0)
-        ranges = [(a, b) for a, b in ((low, min(high, 0.0)), (max(low, 0.0), high)) if b - a > TOLERANCE]
-        return [_face(BRepBuilderAPI_MakeFace(cone, 0.0, 2 * math.pi, a, b, TOLERANCE)) for a, b in ranges]
+        ranges = [(a, b) for a, b in ((low, min(high, 0.0)), (max(low, 0.0), high)) if b - a > tolerance]
+        return [_face(BRepBuilderAPI_MakeFace(cone, 0.0, 2 * math.pi, a, b, tolerance)) for a, b in ranges]
     if spec.kind == "plane":
         circle = GC_MakeCircle(gp_Ax2(_point(spec.origin), _dir(spec.direction)), high).Value()
         wire = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(circle).Edge()).Wire()
@@ -145,45 +174,7 @@ def analytic_faces(spec: Analytic) -> list[TopoDS_Face]:
     raise CadGeometryError(f"no analytic surface of kind {spec.kind}")
 
 
-@dataclass(frozen=True)
-class Fit:
-    """A fitted profile curve, the largest distance measured from it to the profile, and that
-    distance on each span between two consecutive points it interpolates."""
-
-    curve: Geom_BSplineCurve
-    deviation: float
-    spans: np.ndarray
-
-
-SAMPLES = 10
-"""Points per span at which a fitted curve's distance to the profile is measured."""
-
-
-def fitted_curve(points: np.ndarray, distance: Callable[[np.ndarray], np.ndarray]) -> Fit:
-    """The cubic ``C²`` B-spline through ``points`` (3D, distinct, ordered along one profile
-    branch; ``GeomAPI_Interpolate``, chord-length parameters), with its distance to the profile
-    measured afterwards by ``distance`` at :data:`SAMPLES` points of every span."""
-    array = HArray1_gp_Pnt(1, len(points))
-    for k, p in enumerate(points, start=1):
-        array.SetValue(k, _point(p))
-    interpolation = GeomAPI_Interpolate(array, False, 0.0)
-    interpolation.Perform()
-    if not interpolation.IsDone():
-        raise CadGeometryError("Open CASCADE could not fit a B-spline to the profile")
-    curve = interpolation.Curve()
-    knots = np.array([curve.Knot(k) for k in range(1, curve.NbKnots() + 1)])
-    steps = np.arange(1, SAMPLES + 1) / (SAMPLES + 1)
-    samples = (knots[:-1, None] + np.diff(knots)[:, None] * steps).ravel()
-    xyz = np.array([_xyz(curve.Value(float(u))) for u in samples])
-    spans = np.max(distance(xyz).reshape(len(knots) - 1, SAMPLES), axis=1)
-    return Fit(curve, float(spans.max(initial=0.0)), spans)
-
-
-def _xyz(p: gp_Pnt) -> tuple[float, float, float]:
-    return (p.X(), p.Y(), p.Z())
-
-
-def patch_face(patch: BezierPatch) -> TopoDS_Face:
+def patch_face(patch: BezierPatch, tolerance: float) -> TopoDS_Face:
     """The face of one rational Bézier patch (a ``Geom_BSplineSurface`` without inner knots)."""
     m, n = patch.weights.shape[0] - 1, patch.weights.shape[1] - 1
     poles = Array2_gp_Pnt(1, m + 1, 1, n + 1)
@@ -195,50 +186,165 @@ def patch_face(patch: BezierPatch) -> TopoDS_Face:
     uknots, umults = _bezier_knots(1, m)
     vknots, vmults = _bezier_knots(1, n)
     surface = Geom_BSplineSurface(poles, weights, uknots, vknots, umults, vmults, m, n)
-    return _face(BRepBuilderAPI_MakeFace(surface, TOLERANCE))
+    return _face(BRepBuilderAPI_MakeFace(surface, tolerance))
 
 
-def shell(faces: Sequence[TopoDS_Face]) -> TopoDS_Shape:
-    """The faces in one open shell, one product of a STEP file (a compound would make an
-    assembly of one product per face)."""
-    builder = BRep_Builder()
-    shape = TopoDS_Shell()
-    builder.MakeShell(shape)
-    for face in faces:
-        builder.Add(shape, face)
-    return shape
-
-
-def cut_to(shape: TopoDS_Shape, region: ClipSphere | ClipBox) -> TopoDS_Shape:
-    """The part of ``shape`` inside ``region``: Open CASCADE's Boolean common with the ball or
-    box as a solid. Each face keeps its surface (a torus stays a torus), trimmed by the curves
-    where it meets the region's boundary. A cut face still closed along its seam is split in
-    two: read back from STEP, such a face's boundary is not closed in its (u, v) plane."""
+def cut_to(faces: Sequence[TopoDS_Face], region: ClipSphere | ClipBox) -> list[TopoDS_Face]:
+    """The parts of ``faces`` inside ``region``: Open CASCADE's Boolean common with the ball as
+    a solid, or with the box's six half-spaces one after the other (each a slab beyond the
+    faces; the box's edges and corners in one Boolean miss intersections of revolved B-spline
+    profiles). Each face keeps its surface (a torus stays a torus), trimmed by the curves where
+    it meets the region's boundary. After a ball's cut no face is left closed along a seam
+    (read back from STEP, such a face's boundary is not closed in its (u, v) plane); faces cut
+    to a box are cut into sectors before (:func:`sectors`; splitting a trimmed face can lose
+    its trimming)."""
     if isinstance(region, ClipSphere):
-        solid = BRepPrimAPI_MakeSphere(_point(region.center), region.radius).Shape()
-    else:
-        low, high = region.bounds[0::2], region.bounds[1::2]
-        solid = BRepPrimAPI_MakeBox(_point(low), _point(high)).Shape()
+        return _halves(_common(faces, BRepPrimAPI_MakeSphere(_point(region.center), region.radius).Shape(), region))
+    low, high = np.array(region.bounds[0::2]), np.array(region.bounds[1::2])
+    around = _bounds(faces)
+    if around is None:
+        return []
+    cut = list(faces)
+    margin = 0.5 * float(np.max(around[1] - around[0])) + 1e-3 * float(np.max(high - low))
+    for axis in range(3):
+        for side, plane in ((0, low[axis]), (1, high[axis])):
+            corner, far = around[0] - margin, around[1] + margin
+            if (side == 0 and plane >= far[axis]) or (side == 1 and plane <= corner[axis]):
+                return []  # every face lies outside this plane
+            if not corner[axis] < plane < far[axis]:
+                continue  # every face lies inside it
+            (corner if side == 0 else far)[axis] = plane
+            cut = _common(cut, BRepPrimAPI_MakeBox(_point(corner), _point(far)).Shape())
+    return cut
+
+
+def sectors(faces: Sequence[TopoDS_Face], count: int, tolerance: float) -> list[TopoDS_Face]:
+    """The faces with each one over a whole period of its ``u``-periodic surface (a surface of
+    revolution, a cylinder, a cone, a torus) made again as ``count`` faces over equal parts of
+    that period (sewing joins them again); the others are kept. Open CASCADE cuts such parts of
+    a revolved B-spline profile by a box's planes where it misses intersections with the whole."""
+    out = []
+    for face in faces:
+        surface = BRep_Tool.Surface_s(face)
+        u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+        if count > 1 and surface.IsUPeriodic() and abs(u1 - u0 - surface.UPeriod()) <= 1e-12 * surface.UPeriod():
+            cuts = np.linspace(u0, u1, count + 1)
+            for a, b in zip(cuts[:-1], cuts[1:]):
+                made = _face(BRepBuilderAPI_MakeFace(surface, float(a), float(b), v0, v1, tolerance))
+                out.append(reversed_face(made) if face.Orientation() != made.Orientation() else made)
+        else:
+            out.append(face)
+    return out
+
+
+def _halves(faces: Sequence[TopoDS_Face]) -> list[TopoDS_Face]:
+    """The faces, each closed one split in two along its closed direction."""
+    if not faces:
+        return []
+    halves = ShapeUpgrade_ShapeDivideClosed(_compound(faces))
+    halves.SetNbSplitPoints(1)
+    halves.Perform()
+    return faces_of(halves.Result())
+
+
+def _common(faces: Sequence[TopoDS_Face], solid: TopoDS_Shape, ball: ClipSphere | None = None) -> list[TopoDS_Face]:
+    """The parts of the faces inside ``solid``. The faces are sewn first and cut together, so
+    that the parts keep the edges they share; a Boolean over many patches, some degenerate next
+    to a pole of their map, can lose some, so the faces are also cut one by one, and the
+    joint result is taken only where it has the same area. Cut to a ``ball``, a face that
+    comes out empty though points of it lie inside is cut in halves (Open CASCADE loses some
+    faces of a cylinder through a node of its base curve)."""
+    if not faces:
+        return []
+    apart = []
+    for face in faces:
+        apart += _face_common(face, solid, ball, 0)
+    if len(faces) == 1:
+        return apart
+    around = _bounds(faces)
+    size = float(np.linalg.norm(around[1] - around[0])) if around is not None else 1.0
+    sewing = BRepBuilderAPI_Sewing(10 * max(1e-7, 1e-9 * size))
+    for face in faces:
+        sewing.Add(face)
+    sewing.Perform()
+    joint = _boolean(sewing.SewedShape(), solid)
+    if abs(_area(joint) - _area(apart)) <= 1e-7 * max(_area(apart), 1e-300):
+        return joint
+    return apart
+
+
+def _face_common(face: TopoDS_Face, solid: TopoDS_Shape, ball: ClipSphere | None, depth: int) -> list[TopoDS_Face]:
+    out = _boolean(face, solid)
+    if out or ball is None or depth >= 3 or not _reaches(face, ball):
+        return out
+    surface = BRep_Tool.Surface_s(face)
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    halves = []
+    for a, b in ((u0, (u0 + u1) / 2), ((u0 + u1) / 2, u1)):
+        half = _face(BRepBuilderAPI_MakeFace(surface, a, b, v0, v1, BRep_Tool.Tolerance_s(face)))
+        halves += _face_common(
+            reversed_face(half) if face.Orientation() != half.Orientation() else half, solid, ball, depth + 1
+        )
+    return halves
+
+
+def _reaches(face: TopoDS_Face, ball: ClipSphere) -> bool:
+    """Whether points of the face's surface over its ``(u, v)`` box lie inside ``ball``."""
+    surface = BRep_Tool.Surface_s(face)
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    centre = np.asarray(ball.center)
+    for u in np.linspace(u0, u1, 9):
+        for v in np.linspace(v0, v1, 9):
+            if np.linalg.norm(np.array(surface.Value(float(u), float(v)).Coord()) - centre) < ball.radius:
+                return True
+    return False
+
+
+def _boolean(shape: TopoDS_Shape, solid: TopoDS_Shape) -> list[TopoDS_Face]:
     common = BRepAlgoAPI_Common(shape, solid)
     if not common.IsDone():
         raise CadGeometryError("Open CASCADE could not cut the faces to the region")
-    halves = ShapeUpgrade_ShapeDivideClosed(common.Shape())
-    halves.SetNbSplitPoints(1)
-    halves.Perform()
-    return shell(faces_of(halves.Result()))
+    return faces_of(common.Shape())
 
 
-def as_nurbs(shape: TopoDS_Shape) -> TopoDS_Shape:
-    """``shape`` with every surface converted to a rational B-spline surface (the same faces)."""
-    return BRepBuilderAPI_NurbsConvert(shape, True).Shape()
+def _area(faces: Sequence[TopoDS_Face]) -> float:
+    total = 0.0
+    for face in faces:
+        props = GProp_GProps()
+        BRepGProp.SurfaceProperties_s(face, props, 1e-6)
+        total += props.Mass()
+    return total
 
 
-def within(shape: TopoDS_Shape, box: ClipBox) -> bool:
-    """Whether every face of ``shape`` lies in ``box`` (to a millionth of its size): the check
+def _bounds(faces: Sequence[TopoDS_Face]) -> tuple[np.ndarray, np.ndarray] | None:
+    box = Bnd_Box()
+    for face in faces:
+        BRepBndLib.AddOptimal_s(face, box, False, False)
+    if box.IsVoid():
+        return None
+    return np.array(box.CornerMin().Coord()), np.array(box.CornerMax().Coord())
+
+
+def _compound(faces: Sequence[TopoDS_Face]) -> TopoDS_Compound:
+    builder = BRep_Builder()
+    out = TopoDS_Compound()
+    builder.MakeCompound(out)
+    for face in faces:
+        builder.Add(out, face)
+    return out
+
+
+def as_nurbs(faces: Sequence[TopoDS_Face]) -> list[TopoDS_Face]:
+    """``faces`` with every surface converted to a rational B-spline surface (the same faces)."""
+    return faces_of(BRepBuilderAPI_NurbsConvert(_compound(faces), True).Shape())
+
+
+def within(faces: Sequence[TopoDS_Face], box: ClipBox, tolerance: float) -> bool:
+    """Whether every face lies in ``box`` (to a millionth of its size): the check
     of a Boolean cut, which Open CASCADE gets wrong for some revolved B-spline profiles."""
     low, high = np.array(box.bounds[0::2]), np.array(box.bounds[1::2])
-    slack = 1e-6 * float(np.max(high - low)) + TOLERANCE
-    for face in faces_of(shape):
+    slack = 1e-6 * float(np.max(high - low)) + tolerance
+    for face in faces:
         bounds = Bnd_Box()
         BRepBndLib.AddOptimal_s(face, bounds, False, False)
         if np.any(np.array(bounds.CornerMin().Coord()) < low - slack):

@@ -68,6 +68,8 @@ class CadHeader:
     name: str
     """The file's name (STEP's ``FILE_NAME``, IGES's global section); its stem names the product."""
     units: str = "mm"
+    uncertainty: float = 1e-7
+    """The precision of the part's edges and vertices: STEP's ``UNCERTAINTY_MEASURE_WITH_UNIT``."""
 
 
 def _full_precision(writer: Any) -> None:
@@ -77,11 +79,15 @@ def _full_precision(writer: Any) -> None:
 
 
 def step_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
-    """An AP242 STEP file of ``shape``; :func:`header_lines` are its ``FILE_DESCRIPTION``."""
+    """An AP242 STEP file of ``shape``, one product (a compound of shells or solids is not made
+    an assembly), its uncertainty the part's precision; :func:`header_lines` are its
+    ``FILE_DESCRIPTION``."""
     writer = STEPControl_Writer()
     name = UNITS[header.units][0]
     settings = {
         "write.step.schema": "AP242DIS",
+        "write.step.assembly": "Off",
+        "write.precision.mode": "User",
         "write.step.unit": name,
         "xstep.cascade.unit": name,
         "write.step.product.name": _step_text(Path(header.name).stem),
@@ -89,6 +95,7 @@ def step_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
     for key, value in settings.items():
         if not Interface_Static.SetCVal_s(key, value):
             raise RuntimeError(f"Open CASCADE refused {key} = {value}")
+    Interface_Static.SetRVal_s("write.precision.val", header.uncertainty)
     writer.Transfer(shape, STEPControl_AsIs)
     made = APIHeaderSection_MakeHeader(writer.Model())
     lines = _step_strings(header)

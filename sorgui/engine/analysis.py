@@ -13,8 +13,9 @@ GUI worker can show it; Singular subprocesses are killed on cancel by :mod:`.sin
 reported as undecided, those done are kept.
 
 A recognition-only analysis of an equation over ``QQ`` is first tried on python-flint alone
-(:mod:`.rational_path`), which gives the same result without loading sympy; the sympy-based
-stages are imported only when the equation needs them.
+(:mod:`.rational_path`), which gives the same result without loading sympy, and so is the full
+analysis of a surface that is neither of revolution, a cone, a cylinder nor canal on its lines;
+the sympy-based stages are imported only when the equation needs them.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from .algebra.linalg import Vector
-from .errors import TimeLimitReached
+from .errors import ParseError, TimeLimitReached
 from .parametric_parsing import is_parametrization, parse_parametrization
 from .parsing import parse_polynomial
 from .recognition.symmetry import NEAREST_CANAL_NOTE, revolution_canal
@@ -119,14 +120,18 @@ def analyze(
             parsed=parsed,
             start=start,
         )
-    if recognition_only and method == "symmetry" and tolerance is None:
-        from .rational_path import recognition_only_analysis
+    if method == "symmetry" and tolerance is None:
+        from .rational_path import full_analysis, recognition_only_analysis
 
+        flint_only = recognition_only_analysis if recognition_only else full_analysis
         try:  # milliseconds: its stages are not announced to ``progress``
             with time_limit(timeout, stated_timeout):
-                quick = recognition_only_analysis(text, StageClock(None, cancel))
+                quick = flint_only(text, StageClock(None, cancel))
         except TimeLimitReached:
             quick = None  # the general pipeline below reports what was done in the time left
+        except ParseError:
+            with clock.stage("parse"):  # the error is the parse stage's, as in the general pipeline
+                raise
         if quick is not None:
             clock.publish(quick)
             return quick
@@ -206,18 +211,6 @@ def analyze_polynomial(
             real = real_locus(f, symmetry, profile)
     approximation: Approximation | None = None
     near = None
-    if tolerance is not None or (text is not None and has_decimals(text)):
-        from .rounded.approximate import (  # numpy: only for rounded input
-            approximate_symmetry,
-            rounding_of,
-        )
-
-        with clock.stage("approximate"):
-            rounding, rounding_notes = rounding_of(f, text, tolerance)
-            assert rounding is not None  # a tolerance is given, or ``text`` prints decimals
-            near = approximate_symmetry(f, rounding, notes=rounding_notes, snap_exact=not recognition.is_sor)
-        approximation = near.approximation
-
     canal_result: Canal | None = None
     conical_result: Conical | None = None
 
@@ -238,7 +231,21 @@ def analyze_polynomial(
             conical=conical_result,
         )
 
+    if tolerance is not None or (text is not None and has_decimals(text)):
+        clock.publish(result(None, ()))  # the exact verdict at once: the rounding takes seconds at high degree
+        from .rounded.approximate import (  # numpy: only for rounded input
+            approximate_symmetry,
+            rounding_of,
+        )
+
+        with clock.stage("approximate"):
+            rounding, rounding_notes = rounding_of(f, text, tolerance)
+            assert rounding is not None  # a tolerance is given, or ``text`` prints decimals
+            near = approximate_symmetry(f, rounding, notes=rounding_notes, snap_exact=not recognition.is_sor)
+        approximation = near.approximation
+
     rationality = None
+    tube = None
     found: tuple[Parametrization, ...] = ()
     clock.publish(result(rationality, found))
     if not recognition_only and profile is not None:
@@ -283,6 +290,7 @@ def analyze_polynomial(
                 timeout=singular_timeout,
                 cancel=cancel,
                 profile=profile,
+                square=None if tube is None or tube.field else (tube.phi, tube.d**2 * tube.h / tube.q**2),
             )
     if (
         near is not None

@@ -35,6 +35,7 @@ from flint import fmpq, fmpq_mpoly, fmpz
 
 from .algebra import rationals
 from .errors import ParseError
+from .expanded import Limits, read_expanded
 
 if TYPE_CHECKING:
     from sympy.polys.domains.domain import Domain
@@ -55,6 +56,8 @@ this bound, which its own limits keep: an accepted input is analysed, never refu
 MAX_RADICAND_DIGITS = 50  # sqrt(n) needs the square part of n: factoring must stay fast
 MAX_RADICANDS = 4  # [K : QQ] <= 16
 MAX_WORK = 5_000_000  # coefficient multiplications while expanding (a few seconds)
+
+_LIMITS = Limits(degree=MAX_DEGREE, digits=MAX_DIGITS, bits=MAX_BITS, decimal_exponent=MAX_DECIMAL_EXPONENT)
 
 if 0 < sys.get_int_max_str_digits() < MAX_PRINTED_DIGITS:
     sys.set_int_max_str_digits(MAX_PRINTED_DIGITS)
@@ -144,17 +147,15 @@ def parse_rational(text: str) -> fmpq_mpoly | None:
 
 
 def expanded_polynomial(text: str) -> fmpq_mpoly | None:
-    """The fast path for an expanded polynomial with rational coefficients, as CAS and sorgui
-    itself print them (``3*x**2*y - 5/2*z + 1``, ``2x^2y - z``): one regular-expression pass
-    straight into flint (:func:`.algebra.rationals.expanded_terms`), no syntax tree. ``None`` for
-    anything else (parentheses, decimals, roots, ``=``, a limit exceeded, a constant), which the
-    general parser then reads and reports on exactly."""
-    if len(text) > MAX_LENGTH or not text.strip():
+    """The fast path in front of the general parser: an expanded polynomial with rational or
+    decimal coefficients, as CAS, CAD systems and sorgui itself print them (``3*x**2*y - 5/2*z
+    + 1``, ``43*x**10/59``, ``2x^2y - 1.5e-3 z``, ``z = x^3 - 3xy^2``), read in one
+    regular-expression pass straight into flint (:mod:`.expanded`), no syntax tree. ``None``
+    for anything else (parentheses, roots, a limit reached, a constant), which the general
+    parser then reads and reports on exactly."""
+    if len(text) > MAX_LENGTH:
         return None
-    kept = rationals.expanded_terms(text, _VARIABLES, max_digits=MAX_DIGITS, max_degree=MAX_DEGREE)
-    if kept is None or not any(sum(m) for m in kept):
-        return None  # not expanded, or constant or empty: the general parser says which
-    return rationals.context(("x", "y", "z")).from_dict(kept)
+    return read_expanded(text, _LIMITS)
 
 
 def _checked(text: str) -> tuple[Node, _Evaluator, bool]:

@@ -1,4 +1,5 @@
-"""The recognition-only analysis of an equation over ``QQ``, on python-flint alone.
+"""The recognition-only analysis of an equation over ``QQ``, and the full analysis of a surface
+that is neither of revolution, a cone, a cylinder nor canal on its lines, on python-flint alone.
 
 A whole ``sorgui analyze --recognition-only`` process on a small equation is mostly imports:
 sympy's alone takes longer than the whole analysis (docs/benchmarks.md). Over ``QQ`` the
@@ -13,7 +14,10 @@ that of another surface is "not canal" when a line refutes it (:mod:`.canal.line
 pipeline (a test compares the two), and declines (``None``) what needs sympy: square roots in
 the input, decimals (the rounded-input stage, docs/math.md §8), a surface that passes the canal
 test on its lines (its spine is computed with Singular and sympy), and an axis direction with a
-large ``|a|²`` (:data:`MAX_NORM`).
+large ``|a|²`` (:data:`MAX_NORM`). :func:`full_analysis` does the same for the full analysis of a
+surface whose full answer is the recognition's with "not a cone or a cylinder" (one exact linear
+system, :func:`conical_kind`) and "not canal" (a witness line): the published cubics and quartics
+that are not surfaces of revolution, in a fifth of a second as a whole process instead of half.
 """
 
 from __future__ import annotations
@@ -21,7 +25,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, overload
 
-from flint import fmpq, fmpq_mpoly
+from flint import fmpq, fmpq_mat, fmpq_mpoly
 
 from .algebra.linalg import Vector, cross, dot, perpendicular, primitive_vector
 from .algebra.rationals import (
@@ -46,7 +50,7 @@ from .recognition.symmetry import (
     rational_symmetry,
     revolution_canal,
 )
-from .results import Analysis, Axis, Factor, Profile, Recognition, Triple
+from .results import Analysis, Axis, Conical, Factor, Profile, Recognition, Triple
 from .rounded.precision import has_decimals
 
 if TYPE_CHECKING:
@@ -58,6 +62,11 @@ MAX_NORM = 2**30
 """The rational path writes ``|a| = k·√d`` with ``d`` square-free, as sympy does when it finds the
 square factors of ``|a|²``; sympy looks for them by trial division up to ``2¹⁵`` only, so larger
 ``|a|²`` (which might have a square factor beyond it) are left to the general pipeline."""
+FULL_DEGREE = 12
+"""The full analysis on flint alone is for surfaces up to this degree: its stages are not
+reported one by one to a supervising parent (they take milliseconds there), whereas factoring a
+surface of much higher degree can be one long C call, which the general pipeline's reported
+stages let a parent end with what was done."""
 Surd = tuple[fmpq, int]
 """``(q, d)``: the number ``q·√d`` (``d`` square-free; ``d = 1`` for a rational)."""
 
@@ -66,6 +75,19 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
     """The recognition-only analysis of ``text`` over ``QQ`` (stages parse, recognition, factors,
     canal, timed by ``clock``), or ``None`` when it needs sympy. Raises :class:`ParseError` for
     bad input, as the general pipeline does."""
+    return _analysis(text, clock, full=False)
+
+
+def full_analysis(text: str, clock: StageClock) -> Analysis | None:
+    """The full analysis of ``text`` over ``QQ`` when it needs neither sympy nor Singular: a
+    surface that is not of revolution (no real locus, rationality or parameterizations), not a
+    cone or a cylinder (one exact linear system in flint, :func:`conical_kind`) and not canal by
+    a line of the canal test (:mod:`.canal.lines`). ``None`` otherwise: the general pipeline
+    answers. Stages parse, recognition, factors, conical, canal."""
+    return _analysis(text, clock, full=True)
+
+
+def _analysis(text: str, clock: StageClock, *, full: bool) -> Analysis | None:
     if has_decimals(text):
         return None
     with clock.stage("parse"):
@@ -74,7 +96,7 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
         return None
     with clock.stage("recognition"):
         found = recognize_rational(g)
-    if found is None:
+    if found is None or (full and (found[0].is_sor or found[0].degree > FULL_DEGREE)):
         return None
     recognized, square = found
     with clock.stage("factors"):
@@ -87,6 +109,12 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
         squarefree *= h
     # An irreducible g's square-free part is its one factor, already printed.
     squarefree_text = reports[0].polynomial if len(distinct) == 1 else flint_str(squarefree, XYZ)
+    conical = None
+    if full:
+        with clock.stage("conical"):
+            if conical_kind(g) != "none":
+                return None
+            conical = Conical("none")
     with clock.stage("canal"):
         canal = revolution_canal(recognized.degree) if recognized.is_sor else verdict_without_smat(g, clock.cancel)
     if canal is None:
@@ -103,7 +131,28 @@ def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
         parametrizations=(),
         timings=tuple(clock.timings),
         canal=canal,
+        conical=conical,
     )
+
+
+def conical_kind(g: fmpq_mpoly) -> str:
+    """``cylinder``, ``cone`` or ``none`` for ``g`` of degree at least 2, as
+    :func:`.conical.detect.detect` decides it (docs/math.md §10), in flint: the columns of ``M``
+    are the coefficient vectors of ``∇g``; a cylinder when ``M`` has rank below 3, a cone when
+    ``M c = X·∇g − d·g`` has a solution."""
+    gradient = [g.derivative(i) for i in range(3)]
+    x, y, z = g.context().gens()
+    euler = x * gradient[0] + y * gradient[1] + z * gradient[2] - g * int(g.total_degree())
+    columns = [dict(zip(map(tuple, d.monoms()), d.coeffs())) for d in gradient]
+    rhs = dict(zip(map(tuple, euler.monoms()), euler.coeffs()))
+    monomials = sorted(set(rhs).union(*columns))
+    zero = fmpq(0)
+    rows = [[column.get(m, zero) for column in columns] + [rhs.get(m, zero)] for m in monomials]
+    augmented = fmpq_mat(len(rows), 4, [c for row in rows for c in row])
+    M = fmpq_mat(len(rows), 3, [c for row in rows for c in row[:3]])
+    if M.rank() < 3:
+        return "cylinder"
+    return "none" if augmented.rank() == 4 else "cone"
 
 
 def recognize_rational(g: fmpq_mpoly) -> tuple[Recognition, fmpq_mpoly | None] | None:

@@ -115,7 +115,7 @@ CANAL_LATEX = {
     "Spine": r"\mathrm{spine}_{%s}",
     "SMAT": r"\mathrm{SMAT}_{%s}",
     "M": "m_{%s}",
-    "Rho": r"\rho_{%s}(t)",
+    "Rho": "r^{2}_{%s}(t)",
     "C": "c_{%s}",
     "R2": "R^{2}_{%s}(t)",
     "N": "n_{%s}(t)",

@@ -106,9 +106,11 @@ def export_file(
     units: str = "mm",
     tolerance: float | None = None,
     picture: bytes | None = None,
+    cap: bool = False,
 ) -> tuple[Path, str]:
     """:func:`export_analysis`, and what a CAD file holds in words (``""`` for the other formats):
-    its route, its faces and a fitted profile's measured deviation."""
+    its route, its faces and a fitted profile's measured deviation. ``cap``: a CAD file's part
+    closed by the region into the solid ``f ≤ 0``."""
     path = Path(path)
     form = format_of(path, fmt)
     _has_a_surface(analysis, form, wants_patch(path, fmt))
@@ -122,7 +124,7 @@ def export_file(
         )
     from sorgui.cad import cad_file, summary
 
-    data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance)
+    data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance, cap)
     return atomic_write_bytes(path, data), summary(model)
 
 

@@ -497,13 +497,13 @@ def canal_formulas(canal: Canal) -> list[Formula]:
     """The sphere families of a canal surface (docs/math.md §9) that the files print, for each
     family ``i`` with data: ``canal{i}Spine`` (the spine's equations in ``m1, m2, m3``),
     ``canal{i}SMAT`` (the SMAT curve's in ``m1, m2, m3, r``, ``r`` = ρ), ``canal{i}M`` (the spine
-    ``m(t)``), ``canal{i}Rho`` (the squared radius ``ρ(t)``), ``canal{i}C`` and ``canal{i}R2``
+    ``m(t)``), ``canal{i}Rho`` (the squared radius ``r²(t)``), ``canal{i}C`` and ``canal{i}R2``
     (the characteristic circles' centre ``c(t)`` and squared radius ``R²(t)``)."""
     return [f for f in _canal(canal) if f.name]
 
 
 def _canal(canal: Canal) -> list[Formula]:
-    """Each sphere family's equations, spine ``m(t)``, radius ``ρ(t)`` and characteristic circles."""
+    """Each sphere family's equations, spine ``m(t)``, squared radius ``r²(t)`` and characteristic circles."""
     out: list[Formula] = []
     for index, fam in enumerate(canal.families):
         i = index + 1
@@ -551,8 +551,8 @@ def _canal(canal: Canal) -> list[Formula]:
             out.append(Formula("vector", fam.radical_spine, spine, f"{name}M", "m(t) =", text, parameter_names=("t",)))
         rho = fam.radius_squared or fam.radical_radius_squared
         if rho is not None:
-            text = f"the squared radius rho(t) of the spheres of family {i} ({radius})"
-            out.append(Formula("expression", (rho,), f"canal.{index}.radius", f"{name}Rho", r"\rho(t) =", text))
+            text = f"the squared radius r^2(t) of the spheres of family {i} ({radius})"
+            out.append(Formula("expression", (rho,), f"canal.{index}.radius", f"{name}Rho", r"r^2(t) =", text))
         if fam.circle_center is not None:
             out.append(
                 Formula(

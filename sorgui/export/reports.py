@@ -253,7 +253,7 @@ def canal_blocks(canal: Canal) -> list[Block]:
             "p",
             f"The surface is {answer} ({canal.status}). A canal surface is the "
             "envelope of a one-parameter family of spheres: each family below "
-            "gives their centres $m$ (the spine) and squared radii $\\rho$.",
+            "gives their centres $m$ (the spine) and squared radii $r^2$.",
         ),
     ]
     if canal.kinds:
@@ -268,7 +268,7 @@ def canal_blocks(canal: Canal) -> list[Block]:
         ]
         if fam.parametrization is not None:
             facts.append(
-                f"rational parameterization $m(t)$, $\\rho(t)$ over {fam.field}: "
+                f"rational parameterization $m(t)$, $r^2(t)$ over {fam.field}: "
                 + ("verified by substitution" if fam.verified else "NOT verified")
             )
         else:

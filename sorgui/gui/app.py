@@ -7,11 +7,14 @@ on a first start with the paper's Example 1, and analyses it at once.
 
 from __future__ import annotations
 
+import contextlib
 import faulthandler
+import multiprocessing
 import os
 import signal
 import socket
 import sys
+import threading
 from importlib import resources
 from typing import TYPE_CHECKING, cast
 
@@ -63,8 +66,9 @@ def open_main_window(path: str | None = None) -> MainWindow:
     started first of all, so that it loads the engine while the window loads Qt's widgets.
     """
     from sorgui.gui.worker import AnalysisWorker
+    from sorgui.session.process import STARTUP_NICENESS
 
-    worker = AnalysisWorker()
+    worker = AnalysisWorker(first_niceness=STARTUP_NICENESS)
     from sorgui.gui.main_window import MainWindow
 
     window = MainWindow(worker=worker)
@@ -82,6 +86,27 @@ def open_main_window(path: str | None = None) -> MainWindow:
     return window
 
 
+ENDING_DEADLINE_S = 0.6
+"""After an ending signal, the process exits this soon even if the event loop is busy (the
+promise: window and process gone within a second)."""
+
+
+def _exit_late(status: int) -> None:
+    """The watchdog's end of sorgui: the worker processes killed first (they would die with it,
+    but might first find their pipe closed and say so), what was printed flushed, then exit
+    without any teardown."""
+    from sorgui.session.child import kill_process_tree
+
+    for child in multiprocessing.active_children():
+        if child.pid is not None:
+            with contextlib.suppress(OSError):
+                kill_process_tree(child.pid)
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError, AttributeError):
+            stream.flush()
+    os._exit(status)
+
+
 ENDING_SIGNALS = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP", "SIGINT") if hasattr(signal, name))
 
 
@@ -95,7 +120,11 @@ class SignalEnding:
     leave the worker behind. Qt's event loop runs in C++, where Python's signal handlers wait:
     the handler only writes the signal to a socket (``signal.set_wakeup_fd``) that a
     ``QSocketNotifier`` watches, and the window is closed from the event loop, never from inside
-    another slot; a signal met before the loop runs is answered by :meth:`pending`."""
+    another slot; a signal met before the loop runs is answered by :meth:`pending`. When the
+    event loop cannot answer within :data:`ENDING_DEADLINE_S` (the window still loading its
+    modules, or a long call on the GUI thread), the process exits from a watchdog thread:
+    the worker processes die with it (they die with their parent), and nothing typed is lost
+    that was not already lost to the busy window."""
 
     def __init__(self, app: QApplication) -> None:
         self.app = app
@@ -118,6 +147,9 @@ class SignalEnding:
     def _remember(self, signum: int, _frame: object) -> None:
         if self.received is None:
             self.received = signum
+            watchdog = threading.Timer(ENDING_DEADLINE_S, _exit_late, (128 + signum,))
+            watchdog.daemon = True
+            watchdog.start()
 
     def pending(self) -> int | None:
         """The exit status of a signal received while the window was being built (then closed)."""
@@ -156,8 +188,7 @@ class SignalEnding:
         if self.notifier is not None:
             self.notifier.setEnabled(False)
         if self.window is not None:
-            self.window.setWindowModified(False)  # the text is kept in the settings: nothing to ask
-            self.window.close()
+            self.window.end_at_once()  # the text is kept in the settings: nothing to ask
 
 
 def run_gui(path: str | None = None) -> int:

@@ -59,6 +59,35 @@ def export_filters() -> str:
     return ";;".join(f"{name} (*{suffix})" for suffix, name in choices.items())
 
 
+CAD_CHOICES = ((".step", "STEP"), (".iges", "IGES"), (".brep", "BRep"))
+"""File → Export CAD File's entries: each opens the Export dialog on that format."""
+
+
+def filter_of_suffix(suffix: str) -> str:
+    """The Export dialog's filter of ``suffix`` (``".step"`` → ``"STEP AP242 (B-rep) (*.step)"``)."""
+    choices = {**EXPORT_FILTERS, **PATCH_FILTERS}
+    return f"{choices[suffix]} (*{suffix})"
+
+
+def with_suffix_of(path: str, chosen: str) -> str:
+    """``path`` with the suffix of the filter ``chosen``, unless it ends in that one already or in
+    another of the export suffixes that the user typed on purpose (the typed suffix wins, as in
+    every file dialog; a name without one gets the filter's)."""
+    wanted = suffix_of_filter(chosen)
+    name = Path(path).name.lower()
+    if name.endswith(wanted) or any(name.endswith(s) for s in {**EXPORT_FILTERS, **PATCH_FILTERS}):
+        return path
+    return path + wanted
+
+
+def without_export_suffix(name: str) -> str:
+    """``name`` without its export suffix, if it has one (``part.patch.stl`` → ``part``)."""
+    for suffix in sorted({**EXPORT_FILTERS, **PATCH_FILTERS}, key=len, reverse=True):
+        if name.lower().endswith(suffix):
+            return name[: -len(suffix)]
+    return name
+
+
 def suffix_of_filter(chosen: str) -> str:
     """The suffix of the filter ``chosen`` in the Export dialog (for a name typed without one)."""
     for suffix, name in {**PATCH_FILTERS, **EXPORT_FILTERS}.items():  # the longer names first

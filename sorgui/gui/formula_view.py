@@ -1,21 +1,22 @@
-"""One typeset formula in the results pane, with a visible copy menu.
+"""One formula in the results pane, with a visible copy menu.
 
-The worker process rasterised each wrapped line of the formula into an alpha mask
-(:mod:`sorgui.session.formulas`); here the lines are stacked into one image, tinted with the
-palette's text colour and shown as one pixmap (one widget per formula keeps the pane quick to
-lay out). A long formula is folded to its first :data:`FOLDED_LINES` lines with a "show all"
-button; a formula wider than the pane scrolls sideways. A formula without masks (not typeset
-yet, or too long to typeset) is shown as selectable plain text written as people write it (``x^12``,
-``3·x``: :func:`readable_text`), elided with "show all" too.
-The Copy button puts the exact text on the clipboard; the ▾ button beside it (and the context
-menu) copies as text, LaTeX, Maple, Mathematica or Python.
+A formula is shown as Unicode math the moment its row is built (``x⁴ + 2x²y² − 6x³/5``, long
+numbers shortened: ``7.914…×10³⁸``), selectable, folded after :data:`TEXT_PREVIEW`
+characters with a "show all" button. When the typesetting process has typeset it
+(:mod:`sorgui.session.typesetting`), its wrapped lines, rasterised into alpha masks, are
+stacked into one image, tinted with the palette's text colour and shown as one pixmap instead
+(one widget per formula keeps the pane quick to lay out), folded to its first
+:data:`FOLDED_LINES` lines; a formula wider than the pane scrolls sideways. A formula whose
+numbers are shown short has an "exact digits" button that shows every digit. The Copy button
+puts the exact text on the clipboard; the ▾ button beside it (and the context menu) copies as
+text, LaTeX, Maple, Mathematica or Python.
 """
 
 from __future__ import annotations
 
 import numpy as np
 from PySide6.QtCore import QPoint, Qt
-from PySide6.QtGui import QFontDatabase, QGuiApplication, QImage, QPixmap, QWheelEvent
+from PySide6.QtGui import QGuiApplication, QImage, QPixmap, QWheelEvent
 from PySide6.QtWidgets import (
     QFrame,
     QHBoxLayout,
@@ -27,7 +28,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from sorgui.session.formulas import CODE_PRINTERS, TypesetFormula
+from sorgui.session.formulas import CODE_LANGUAGES, TypesetFormula
+from sorgui.session.typesetting import Style, Typeset
 
 FOLDED_LINES = 6
 """Lines of a long typeset formula shown before "show all"."""
@@ -35,14 +37,14 @@ FOLDED_LINES = 6
 LINE_SPACING = 3
 """Device pixels between the typeset lines of a formula."""
 
-PLAIN_PREVIEW = 1500
-"""Characters of an untypeset formula shown before "show all"."""
+TEXT_PREVIEW = 320
+"""Characters of a formula shown as text before "show all" (about as much as six typeset lines)."""
 
 PLAIN_LIMIT = 60_000
 """Characters shown at most even after "show all" (laying out 200 000 would freeze the
 window); the copy menu always gives the whole formula."""
 
-LANGUAGES = ("text", "LaTeX", *(name for name, _printer in CODE_PRINTERS))
+LANGUAGES = ("text", "LaTeX", *CODE_LANGUAGES)
 """The entries of the copy menu."""
 
 
@@ -63,12 +65,6 @@ def formula_pixmap(masks: tuple[np.ndarray, ...], color: tuple[int, int, int], r
     return pixmap
 
 
-def readable_text(text: str) -> str:
-    """An engine string as people write it: ``x**12`` as ``x^12`` and ``3*x`` as ``3·x`` (what
-    a formula too long to typeset shows; the copy buttons still give the exact string)."""
-    return text.replace("**", "^").replace("*", "·")
-
-
 class RowScroll(QScrollArea):
     """The horizontal scroll area of one long formula: a vertical turn of the wheel scrolls the
     results pane (it goes on to the parent), only a horizontal one (or Shift+wheel) this row."""
@@ -83,16 +79,25 @@ class RowScroll(QScrollArea):
 
 
 class FormulaView(QFrame):
-    """A formula, its "show all" button when folded, and a Copy button with a language menu.
+    """A formula, its "show all" (or "exact digits") button, and a Copy button with a language
+    menu. ``typeset`` is its picture, when the typesetting process has made it already.
 
     ``max_width`` is the width available to the formula (logical pixels); wider ones scroll.
     """
 
     def __init__(
-        self, formula: TypesetFormula, parent: QWidget | None = None, ratio: float = 1.0, max_width: int = 10_000
+        self,
+        formula: TypesetFormula,
+        parent: QWidget | None = None,
+        ratio: float = 1.0,
+        max_width: int = 10_000,
+        typeset: Typeset | None = None,
     ) -> None:
         super().__init__(parent)
         self.formula = formula
+        self.typeset: Typeset | None = typeset if typeset is not None and typeset.masks else None
+        self.typeset_style: Style | None = typeset.style if typeset is not None else None
+        """The style of the typesetting process' answer, when it came (without masks: rejected)."""
         self._ratio = ratio
         self._max_width = max_width
         self.expanded = False
@@ -115,7 +120,7 @@ class FormulaView(QFrame):
         self.copy_button.setObjectName("copyButton")
         self.copy_button.setText("Copy")
         self.copy_button.setAutoRaise(True)
-        self.copy_button.setToolTip("Copy as plain text (▾: as LaTeX, Maple, Mathematica or Python)")
+        self.copy_button.setToolTip("Copy the exact formula as plain text (▾: as LaTeX, Maple, Mathematica or Python)")
         self.copy_button.clicked.connect(self.copy_plain)
         self.languages_button = QToolButton(self)
         self.languages_button.setObjectName("copyAsButton")
@@ -143,13 +148,22 @@ class FormulaView(QFrame):
         """Whether part of the formula is hidden behind "show all"."""
         return self._folded
 
-    def set_formula(self, formula: TypesetFormula) -> None:
-        """Show ``formula`` instead (the typeset version of the text shown so far)."""
-        self.formula = formula
+    @property
+    def shows_typeset(self) -> bool:
+        """Whether the typeset picture is shown (not the text)."""
+        return self.typeset is not None and not (self.expanded and self.formula.shortened)
+
+    def set_typeset(self, typeset: Typeset) -> None:
+        """Show ``typeset``, the typesetting process' picture of the formula, instead of its text
+        (an answer without masks, which mathtext could not typeset, leaves the text)."""
+        self.typeset_style = typeset.style
+        if not typeset.masks or typeset is self.typeset:
+            return
+        self.typeset = typeset
         self._fill()
 
     def show_all(self) -> None:
-        """Show the whole formula (up to :data:`PLAIN_LIMIT` characters of plain text)."""
+        """Show the whole formula, every digit (up to :data:`PLAIN_LIMIT` characters of text)."""
         self.expanded = True
         self._fill()
 
@@ -178,27 +192,29 @@ class FormulaView(QFrame):
         self.content = QLabel()
         self.content.setContextMenuPolicy(Qt.ContextMenuPolicy.NoContextMenu)
         hidden = 0
-        if formula.masks:
-            masks = formula.masks if self.expanded else formula.masks[:FOLDED_LINES]
-            hidden = len(formula.masks) - len(masks)
+        typeset = self.typeset if self.shows_typeset else None
+        if typeset is not None:
+            masks = typeset.masks if self.expanded else typeset.masks[:FOLDED_LINES]
+            hidden = len(typeset.masks) - len(masks)
             text = self.palette().windowText().color()
             self.content.setPixmap(formula_pixmap(masks, (text.red(), text.green(), text.blue()), self._ratio))
-            self.content.setToolTip(formula.plain if len(formula.plain) <= PLAIN_PREVIEW else "")
-            self.show_all_button.setText(f"show all ({hidden} more lines)")
+            self.content.setToolTip(formula.text if len(formula.text) <= TEXT_PREVIEW else "")
+            self.show_all_button.setText(f"show all ({hidden} more lines)" if hidden else "exact digits")
         else:
-            limit = PLAIN_LIMIT if self.expanded else PLAIN_PREVIEW
-            readable = readable_text(formula.plain)
-            shown = readable[:limit]
-            hidden = len(readable) - len(shown)
+            shown_text = formula.exact_text() if self.expanded else formula.text
+            limit = PLAIN_LIMIT if self.expanded else TEXT_PREVIEW
+            shown = shown_text[:limit]
+            hidden = len(shown_text) - len(shown)
             if hidden:
                 shown += f" … ({hidden:,} more characters: copy to get them all)"
             self.content.setText(shown)
-            self.content.setFont(QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont))
-            self.content.setWordWrap(True)
+            self.content.setTextFormat(Qt.TextFormat.PlainText)
+            # wrapped only when it does not fit: a wrapped label is given a width of Qt's choosing
+            self.content.setWordWrap(self.content.fontMetrics().horizontalAdvance(shown) > self._max_width)
             self.content.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
-            self.show_all_button.setText(f"show all ({hidden:,} more characters)")
+            self.show_all_button.setText(f"show all ({hidden:,} more characters)" if hidden else "exact digits")
         hint = self.content.sizeHint()
-        if formula.masks and hint.width() > self._max_width:
+        if typeset is not None and hint.width() > self._max_width:
             scroll = RowScroll()
             scroll.setWidget(self.content)
             scroll.setFrameShape(QFrame.Shape.NoFrame)
@@ -207,13 +223,20 @@ class FormulaView(QFrame):
             scroll.setFixedHeight(hint.height() + scroll.horizontalScrollBar().sizeHint().height() + 2)
             self._body.addWidget(scroll)
             self.scroll = scroll
+        elif self.content.wordWrap():  # the whole width, so that its height follows it
+            self._body.addWidget(self.content)
+            self.scroll = None
         else:
             self._body.addWidget(self.content, 0, Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignTop)
             self.scroll = None
         self._folded = hidden > 0 and not self.expanded
-        self.show_all_button.setVisible(self._folded)
-        if self._folded:
+        exact_digits = formula.shortened and not self.expanded
+        self.show_all_button.setVisible(self._folded or exact_digits)
+        if self._folded or exact_digits:
+            if not self._folded:
+                self.show_all_button.setToolTip("Show the exact numbers, every digit (Copy gives them too)")
             self._body.addWidget(self.show_all_button, 0, Qt.AlignmentFlag.AlignLeft)
+        self.updateGeometry()
 
     @property
     def copy_menu(self) -> QMenu:

@@ -21,7 +21,6 @@ from PySide6.QtGui import (
     QAction,
     QCloseEvent,
     QDropEvent,
-    QFontInfo,
     QGuiApplication,
     QKeySequence,
     QPainter,
@@ -56,18 +55,21 @@ from sorgui.gui.camera import CameraState
 from sorgui.gui.editor import EquationEditor
 from sorgui.gui.examples import ExamplesMenu
 from sorgui.gui.exporting import (
-    EXPORT_FILTERS,
+    CAD_CHOICES,
     REPORT_FILTER,
     PictureDialog,
     export_filters,
+    filter_of_suffix,
     is_report_path,
     png_bytes,
     suffix_of_filter,
     viewport_image,
+    with_suffix_of,
+    without_export_suffix,
 )
 from sorgui.gui.help import TOPICS, HelpDialog
 from sorgui.gui.region_dialog import BoxDialog
-from sorgui.gui.results import FORMULA_MARGIN, ResultsPane
+from sorgui.gui.results import ResultsPane
 from sorgui.gui.session_view import SessionView
 from sorgui.gui.settings import (
     EQUATION_FILTER,
@@ -78,11 +80,11 @@ from sorgui.gui.settings import (
     write_equation,
 )
 from sorgui.gui.stages import RunPanel
+from sorgui.gui.typesetter import Typesetter
 from sorgui.gui.viewport import Viewport
-from sorgui.gui.wording import invalid_heading
+from sorgui.gui.wording import invalid_heading, no_surface_caption
 from sorgui.gui.worker import AnalysisWorker
 from sorgui.render.picking import PickInfo
-from sorgui.session.formulas import Style
 from sorgui.session.model import Session
 from sorgui.session.part_job import PART_SUFFIXES
 
@@ -188,7 +190,8 @@ class MainWindow(QMainWindow):
         self.cad_export.written.connect(self._cad_written)
         self.cad_export.failed.connect(self._cad_failed)
         self.editor = EquationEditor(self)
-        self.results = ResultsPane(self)
+        self.typesetter = Typesetter(self, start=False)
+        self.results = ResultsPane(self, self.typesetter)
         self.run_panel = RunPanel(self)
         self.viewport = Viewport(self)
         self.help_dialog: HelpDialog | None = None
@@ -283,6 +286,11 @@ class MainWindow(QMainWindow):
         file_menu.addSeparator()
         self.copy_report_action = self._action(file_menu, "&Copy Report", self._copy_report, "Ctrl+Shift+C")
         self.export_action = self._action(file_menu, "&Export Results…", self._export_results, "Ctrl+E")
+        self.cad_menu = file_menu.addMenu("Export &CAD File")
+        self.cad_actions = {
+            suffix: self._action(self.cad_menu, f"{name} ({suffix})…", partial(self._export_results, suffix))
+            for suffix, name in CAD_CHOICES
+        }
         self.screenshot_action = self._action(file_menu, "Save Screens&hot…", self._save_screenshot, "Ctrl+Shift+P")
         file_menu.addSeparator()
         self._action(file_menu, "&Quit", self.close, QKeySequence.StandardKey.Quit)
@@ -412,7 +420,6 @@ class MainWindow(QMainWindow):
         self._zoom = zoom
         self.results.set_zoom(zoom)
         self.view.refresh_pane()
-        self.session.retypeset(self._formula_style())
         self.statusBar().showMessage(f"Formulas at {zoom:.0%}", 2000)
 
     @property
@@ -473,9 +480,7 @@ class MainWindow(QMainWindow):
         self._report = path
         self._update_title()
         self.settings.add_recent_file(path)
-        self.session.analyze(
-            analysis.input, analysis=analysis, resolution=self.viewport.mesh_resolution(), style=self._formula_style()
-        )
+        self.session.analyze(analysis.input, analysis=analysis, resolution=self.viewport.mesh_resolution())
         self.statusBar().showMessage(f"Report {Path(path).name}: shown as saved, not analysed again", 6000)
         return True
 
@@ -504,7 +509,6 @@ class MainWindow(QMainWindow):
         self.session.analyze(
             self.editor.text(),
             resolution=self.viewport.mesh_resolution(),
-            style=self._formula_style(),
             singular_timeout=self.time_limit,
             tolerance=self.tolerance,
         )
@@ -542,8 +546,9 @@ class MainWindow(QMainWindow):
         heading = invalid_heading(message)
         self.results.show_message(heading, message, "error")
         self.run_panel.show_run(None)  # the previous equation's stages are not this one's
+        self.run_panel.set_nearest_available(False)  # nor its nearest exact surface
         self.run_panel.set_notice("error", f"<b>{html.escape(heading)}:</b> {html.escape(message)}")
-        self.viewport.clear(caption="No surface: the equation is not a polynomial")
+        self.viewport.clear(caption=no_surface_caption(message))
         self.stage_label.setText("Fix the equation to analyse it")
 
     def choose_box(self) -> None:
@@ -681,15 +686,32 @@ class MainWindow(QMainWindow):
         with a transparent background (written atomically)."""
         return atomic_write_bytes(path, png_bytes(viewport_image(self.viewport, width, transparent)))
 
-    def _export_results(self) -> None:
+    def ask_export_path(self, suffix: str) -> str | None:
+        """The Export dialog, on the format of ``suffix``: choosing another file type there
+        changes the name's suffix with it (typing a suffix of one's own also chooses the format)."""
+        dialog = QFileDialog(self, "Export results")
+        dialog.setAcceptMode(QFileDialog.AcceptMode.AcceptSave)
+        dialog.setNameFilters(export_filters().split(";;"))
+        dialog.selectNameFilter(filter_of_suffix(suffix))
+        stem = Path(self._file).stem if self._file else "sorgui-results"
+        dialog.selectFile(stem + suffix)
+
+        def retype(chosen: str) -> None:
+            name = Path(next(iter(dialog.selectedFiles()), "") or stem).name
+            dialog.selectFile(without_export_suffix(name) + suffix_of_filter(chosen))
+
+        dialog.filterSelected.connect(retype)
+        if dialog.exec() != QDialog.DialogCode.Accepted or not dialog.selectedFiles():
+            return None
+        return with_suffix_of(dialog.selectedFiles()[0], dialog.selectedNameFilter())
+
+    def _export_results(self, suffix: str = ".json") -> None:
         if self._finished_analysis() is None:
             self.statusBar().showMessage("Analyse an equation first", 4000)
             return
-        path, chosen = QFileDialog.getSaveFileName(self, "Export results", "sorgui-results.json", export_filters())
+        path = self.ask_export_path(suffix)
         if not path:
             return
-        if Path(path).suffix.lower() not in EXPORT_FILTERS:
-            path += suffix_of_filter(chosen)
         picture = Path(path).with_suffix(".png")
         if Path(path).suffix.lower() == ".md" and picture.exists() and not self.confirm_replace(picture):
             return
@@ -748,14 +770,6 @@ class MainWindow(QMainWindow):
         )
 
     # --- helpers ---
-
-    def _formula_style(self) -> Style:
-        """Formulas typeset at the text's size on this screen (times the zoom), wrapped to the
-        width the results pane has now."""
-        ratio = self.devicePixelRatioF()
-        width = 0.85 * (self.results.viewport().width() - FORMULA_MARGIN)  # pieces join a bit wider
-        points = QFontInfo(self.font()).pixelSize() * 72.0 / 96.0 + 1.5  # mathtext at 96 dpi: same pixels
-        return Style(dpi=96.0 * ratio, size=points * self._zoom, width=max(width, 200) * ratio)
 
     def _show_error(self, title: str, message: str) -> None:
         self.statusBar().showMessage(message, 8000)
@@ -848,6 +862,29 @@ class MainWindow(QMainWindow):
         if not self.confirm_discard():
             event.ignore()
             return
+        self._remember()
+        self.view.close()
+        self.worker.shutdown()
+        self.typesetter.shutdown()
+        self.cad_export.shutdown()
+        self.viewport.close_plotter()
+        super().closeEvent(event)
+
+    def end_at_once(self) -> None:
+        """A signal ends sorgui (``SIGTERM``, a logout): the window goes at once, the typed text,
+        the layout and the camera are kept as on Quit, the worker processes are killed without
+        waiting for them. Nothing else is released: the process exits right after, without the
+        interpreter's teardown (:func:`sorgui.cli.main`), so no VTK object outlives its window."""
+        self.hide()
+        self._discarded = False
+        self._remember()
+        self.view.close()
+        self.worker.shutdown(wait=0.0)
+        self.typesetter.shutdown(wait=0.0)
+        self.cad_export.shutdown()
+
+    def _remember(self) -> None:
+        """Keep what the next start restores: the text, the file, the layout, the camera."""
         self.settings.equation = self._kept_text()
         self.settings.current_file = self._file
         if self.viewport.detected_software is not None:
@@ -859,8 +896,3 @@ class MainWindow(QMainWindow):
             self.settings.forget_camera()
         self._save_layout()
         self.settings.sync()
-        self.view.close()
-        self.worker.shutdown()
-        self.cad_export.shutdown()
-        self.viewport.close_plotter()
-        super().closeEvent(event)

@@ -1,8 +1,11 @@
 """The results pane: the verdict, the axis, the profile, Table 1 and the parameterizations.
 
 It only reads an :class:`~sorgui.engine.results.Analysis` (possibly partial: the results known
-so far) and the typeset formulas the worker made for it (:mod:`sorgui.session.formulas`);
-formulas not typeset yet are shown as their exact text. Nothing here computes mathematics.
+so far). Every formula is readable the moment its row is built, as Unicode math
+(:mod:`sorgui.session.formulas`); the pane then asks the window's typesetting process
+(:class:`~sorgui.gui.typesetter.Typesetter`) for the typeset pictures, the rows on screen first
+(as Qt's item views paint only the rows on screen), and each picture replaces its text when it
+comes; scrolling asks for the newly visible rows first. Nothing here computes mathematics.
 Table 1 of the paper is shown whole, with the surface's row highlighted, so the user sees where
 the answer comes from; stages still running are named as such. A *no* is explained in words
 (:mod:`sorgui.gui.wording`), the near case of rounded input too. ``plain_text()`` is the CLI's
@@ -13,18 +16,16 @@ from __future__ import annotations
 
 from collections.abc import Collection, Sequence
 
-from PySide6.QtCore import Qt
-from PySide6.QtGui import QColor, QFont
+from PySide6.QtCore import QEvent, QRect, Qt, QTimer
+from PySide6.QtGui import QColor, QFont, QFontInfo, QResizeEvent
 from PySide6.QtWidgets import (
     QAbstractItemView,
     QFrame,
-    QGridLayout,
     QHeaderView,
     QLabel,
     QScrollArea,
     QTableWidget,
     QTableWidgetItem,
-    QVBoxLayout,
     QWidget,
 )
 
@@ -47,6 +48,9 @@ from sorgui.export.text import (
     symmetry_name,
 )
 from sorgui.gui.formula_view import FormulaView
+from sorgui.gui.page import CAPTION_WIDTH, Page, Row
+from sorgui.gui.stages import seconds_text
+from sorgui.gui.typesetter import Typesetter
 from sorgui.gui.wording import (
     canal_evidence,
     canal_verdict,
@@ -56,16 +60,19 @@ from sorgui.gui.wording import (
     verdict,
     why_not,
 )
+from sorgui.session.base_curves import base_curve_rows
 from sorgui.session.components import Component
 from sorgui.session.formulas import TypesetFormula, pane_formulas
+from sorgui.session.typesetting import Style, Typeset
 
 TABLE_HEADERS = ("row", "genus(P)", "genus(P²)", "X over ℂ", "X over ℝ")
 HIGHLIGHT = QColor("#ffe08a")
 YES_NO = {True: "yes", False: "no", None: "undecided"}
-CAPTION_WIDTH = 130
-"""Width of the caption column, the same in every section so that formulas line up."""
 FORMULA_MARGIN = CAPTION_WIDTH + 120
 """Pixels of the pane's width that are not the formula column (caption, copy button, margins)."""
+
+ASK_DELAY_MS = 40
+"""Scrolling or resizing asks for the newly visible formulas this long after it stops."""
 
 _BANNER_STYLE = {
     "sor": "background: #e3f2e5; color: #1b5e20; border: 1px solid #a5d6a7;",
@@ -77,25 +84,33 @@ _BANNER_STYLE = {
 
 
 class ResultsPane(QScrollArea):
-    """A scrolling column of sections, rebuilt for every analysis."""
+    """A scrolling column of sections, rebuilt for every analysis; its formulas are typeset by
+    ``typesetter`` (none: they stay text)."""
 
-    def __init__(self, parent: QWidget | None = None) -> None:
+    def __init__(self, parent: QWidget | None = None, typesetter: Typesetter | None = None) -> None:
         super().__init__(parent)
         self.setObjectName("resultsPane")
         self.setWidgetResizable(True)
         self.setFrameShape(QFrame.Shape.NoFrame)
         self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAsNeeded)
+        self.typesetter = typesetter
         self._analysis: Analysis | None = None
         self._formulas: dict[str, TypesetFormula] = {}
         self._message = ""
         self._zoom = 1.0
         self._base_size = self.font().pointSizeF()
-        self._building = QWidget()
-        self.banner = QLabel()
-        self.table: QTableWidget | None = None
-        self.views: dict[str, FormulaView] = {}
-        """The formula views of the shown page, by formula key."""
+        self._base_pixels = QFontInfo(self.font()).pixelSize()
+        self.page = Page()
+        self.setWidget(self.page)
+        self._shown_input: str | None = None
         self.stale = False
+        self._ask_timer = QTimer(self)
+        self._ask_timer.setSingleShot(True)
+        self._ask_timer.setInterval(ASK_DELAY_MS)
+        self._ask_timer.timeout.connect(self.ask_typesetter)
+        self.verticalScrollBar().valueChanged.connect(self._on_scroll_change)
+        if typesetter is not None:
+            typesetter.typeset.connect(self._on_typeset_change)
         self.show_message("No analysis yet", "Type an equation and press Analyze (Ctrl+Return).", "info")
 
     # --- public API ---
@@ -103,6 +118,23 @@ class ResultsPane(QScrollArea):
     @property
     def analysis(self) -> Analysis | None:
         return self._analysis
+
+    @property
+    def views(self) -> dict[str, FormulaView]:
+        """The formula views of the shown page, by formula key."""
+        return self.page.views
+
+    @property
+    def banner(self) -> QLabel:
+        """The verdict banner (or the message) at the top of the page."""
+        widget = self.page.widget_named("verdictBanner")
+        assert isinstance(widget, QLabel)  # every page starts with its banner
+        return widget
+
+    @property
+    def table(self) -> QTableWidget | None:
+        """Table 1 of the paper, when shown."""
+        return self.page.table
 
     def plain_text(self) -> str:
         """The shown result as plain text: the CLI's report, or the shown message."""
@@ -112,103 +144,165 @@ class ResultsPane(QScrollArea):
         """Replace the results by a message (``kind``: ``info`` or ``error``)."""
         self._analysis, self._formulas = None, {}
         self._message = f"{title}\n{message}"
-        column = self._new_column()
-        self._banner(column, title, message, kind)
-        column.addStretch(1)
-        self._show_page()
+        self._begin(None)
+        self._banner(title, message, kind)
+        self._end()
 
     def show_analysis(
         self,
         analysis: Analysis,
-        formulas: dict[str, TypesetFormula],
-        worker_timings: Sequence[tuple[str, float]] = (),
+        stages: Sequence[tuple[str, float]] = (),
         pending: Collection[str] = (),
         nearest: bool = False,
         components: Sequence[Component] = (),
+        wall: float | None = None,
+        unfinished: Collection[str] = (),
+        limit: float | None = None,
     ) -> None:
-        """Show ``analysis`` with its typeset ``formulas`` (keys of :func:`pane_formulas`;
-        missing ones are shown as text). ``pending`` names the stages still to come (shown as
-        such); ``nearest`` says that ``analysis`` is that of the nearest exact surface;
-        ``components`` are the typed components of a blend, to explain a *no*."""
+        """Show ``analysis``, every formula as text at once and typeset when the typesetting
+        process has it. ``stages`` are the run's finished stages with their times and ``wall``
+        its wall time so far (the Timings section: the same figures as the stage line);
+        ``pending`` names the stages still to come (shown as such), ``unfinished`` those the time
+        limit of ``limit`` seconds cut short (shown as undecided); ``nearest`` says that
+        ``analysis`` is that of the nearest exact surface (its numbers in decimals, as rounded
+        input's); ``components`` are the typed components of a blend, to explain a *no*."""
         self._analysis = analysis
-        self._formulas = {**pane_formulas(analysis, plain=True), **formulas}
+        self._formulas = pane_formulas(analysis, "decimal" if nearest else None)
         rec = analysis.recognition
-        column = self._new_column()
-        title, detail, kind = verdict(analysis)
+        self._begin(analysis.input)
+        title, detail, kind = verdict(analysis, rounding_pending="approximate" in pending)
         if nearest:
             title = "The nearest exact surface: " + title.lower()
             detail = (
                 "the exact analysis of the surface of revolution that the rounded input was meant to be · " + detail
             )
-        self._banner(column, title, detail, kind)
+        self._banner(title, detail, kind)
         if analysis.parametric is not None:
-            self._parametric_section(column, analysis.parametric)
+            self._parametric_section(analysis.parametric)
         equation = "polynomial" if rec.polynomial else "not known"
         if not rec.polynomial and analysis.parametric is not None:
             equation = "not known: " + analysis.parametric.implicit_status.removeprefix("not found: ")
-        self._section(column, "Equation", [("f(x, y, z)", equation)])
+        self._section("Equation", [("f(x, y, z)", equation)])
         if analysis.approximate is not None:
-            self._approximation_section(column, analysis.approximate)
+            self._approximation_section(analysis.approximate, pending)
         reasons = why_not(analysis, components)
         if reasons:
-            self._section(column, "Why it is not a surface of revolution", [("", line) for line in reasons])
-        self._recognition_sections(column, rec, "")
+            self._section("Why it is not a surface of revolution", [("", line) for line in reasons])
+        self._recognition_sections(rec, "")
         if len(analysis.factors) > 1 or analysis.factors[0].multiplicity > 1:
-            self._factor_section(column, analysis)
+            self._factor_section(analysis)
         if analysis.rationality is not None:
-            self._rationality_section(column, analysis.rationality)
+            self._rationality_section(analysis.rationality)
         elif "rationality" in pending and rec.is_sor and analysis.rationality is None:
             self._section(
-                column,
                 "Rationality (Table 1 of the paper)",
                 [("", "being decided (Singular): the row, the genera and the parameterizations follow")],
             )
-        self._parametrization_section(column, analysis)
+        self._parametrization_section(analysis)
         conical = analysis.conical
         if conical is not None and conical.kind != "none":
-            self._conical_section(column, conical)
+            self._conical_section(conical)
         elif conical is not None and conical.near_residual is not None:  # nearly a cone or a cylinder
-            self._near_conical_section(column, conical)
+            self._near_conical_section(conical)
         elif "conical" in pending:
-            self._section(column, "Cone or cylinder", [("", "being decided: the apex or the direction follows")])
+            self._section("Cone or cylinder", [("", "being decided: the apex or the direction follows")])
+        elif "conical" in unfinished:
+            self._section("Cone or cylinder", [("", _undecided(limit))])
         if analysis.canal is not None:
-            self._canal_section(column, analysis.canal, nearly_canal(analysis))
+            near = analysis.approximate is not None and analysis.approximate.near_sor and not rec.is_sor
+            self._canal_section(analysis.canal, nearly_canal(analysis), near and "nearest" in pending)
         elif "canal" in pending:
-            self._section(
-                column, "Canal surface", [("", "being decided: the sphere family and its certificate follow")]
-            )
+            self._section("Canal surface", [("", "being decided: the sphere family and its certificate follow")])
+        elif "canal" in unfinished:
+            self._section("Canal surface", [("canal", _undecided(limit))])
         if analysis.rationality is not None and "parametrizations" in pending:
-            self._section(column, "Parameterizations", [("", "being computed and verified…")])
-        self._timings_section(column, tuple(analysis.timings) + tuple(worker_timings))
-        column.addStretch(1)
-        self._show_page()
+            self._section("Parameterizations", [("", "being computed and verified…")])
+        self._timings_section(stages or tuple(analysis.timings), wall)
+        self._end()
         self.set_stale(self.stale)
-
-    def update_formulas(self, formulas: dict[str, TypesetFormula]) -> None:
-        """Put newly typeset ``formulas`` into the shown page in place (no rebuild of the page)."""
-        self._formulas.update(formulas)
-        ratio = self.devicePixelRatioF()
-        for key, view in self.views.items():
-            formula = formulas.get(key)
-            if formula is not None and formula is not view.formula:
-                view._ratio = ratio
-                view.set_formula(formula)
+        self._ask_soon(0)
 
     def set_stale(self, stale: bool) -> None:
         """Grey the results out (they belong to the previous equation) or show them normally."""
         self.stale = stale
-        page = self.widget()
-        if page is not None:
-            page.setEnabled(not stale)
+        self.page.setEnabled(not stale)
 
     def set_zoom(self, zoom: float) -> None:
-        """Scale the pane's text by ``zoom`` (the caller has the formulas typeset again)."""
+        """Scale the pane's text and formulas by ``zoom`` (they are typeset again)."""
         self._zoom = zoom
         font = self.font()
         font.setPointSizeF(self._base_size * zoom)
         self.setFont(font)
 
-    def _parametric_section(self, column: QVBoxLayout, record: ParametricInput) -> None:
+    @property
+    def zoom(self) -> float:
+        return self._zoom
+
+    def formula_style(self) -> Style:
+        """Formulas typeset at the text's size on this screen (times the zoom), wrapped to the
+        width the pane has now."""
+        ratio = self.devicePixelRatioF()
+        width = 0.85 * (self.viewport().width() - FORMULA_MARGIN)  # pieces join a bit wider
+        points = self._base_pixels * 72.0 / 96.0 + 1.5  # mathtext at 96 dpi: same pixels
+        return Style(dpi=96.0 * ratio, size=round(points * self._zoom, 2), width=round(max(width, 200) * ratio))
+
+    def ask_typesetter(self) -> None:
+        """Ask the typesetting process for every formula still shown as text: those on screen
+        first, then those below them, then those above (the order Qt's views paint in)."""
+        self._ask_timer.stop()
+        page = self.page
+        if self.typesetter is None or not self.views:
+            return
+        style = self.formula_style()
+        seen = self.viewport().rect().translated(0, self.verticalScrollBar().value())
+        visible: list[tuple[str, ...]] = []
+        below: list[tuple[str, ...]] = []
+        above: list[tuple[str, ...]] = []
+        for view in self.views.values():
+            pieces = view.formula.pieces
+            if not pieces:
+                continue
+            known = self.typesetter.known(pieces, style)
+            if known is not None:
+                view.set_typeset(known)
+                continue
+            if view.typeset_style == style:
+                continue  # typeset already (mathtext rejected it: it stays text)
+            where = QRect(view.mapTo(page, view.rect().topLeft()), view.size())
+            (visible if where.intersects(seen) else below if where.top() >= seen.top() else above).append(pieces)
+        self.typesetter.request([*visible, *below, *reversed(above)], style)
+
+    # --- handlers ---
+
+    def _ask_soon(self, delay: int = ASK_DELAY_MS) -> None:
+        self._ask_timer.start(delay)
+
+    def _on_scroll_change(self, _value: int) -> None:
+        if self.typesetter is not None and self.typesetter.busy:
+            self._ask_soon()
+
+    def resizeEvent(self, event: QResizeEvent) -> None:  # noqa: N802 (Qt override)
+        super().resizeEvent(event)
+        if self.views:
+            self._ask_soon(4 * ASK_DELAY_MS)
+
+    def changeEvent(self, event: QEvent) -> None:  # noqa: N802 (Qt override)
+        super().changeEvent(event)
+        if event.type() == QEvent.Type.FontChange and self.views:
+            self._ask_soon(0)  # a new font (the zoom): typeset again
+
+    def _on_typeset_change(self, answers: list[Typeset]) -> None:
+        """Typeset formulas of the shown page replace their text, in place (no rebuild)."""
+        style = self.formula_style()
+        fresh = {answer.pieces: answer for answer in answers if answer.style == style}
+        if not fresh:
+            return
+        for view in self.views.values():
+            answer = fresh.get(view.formula.pieces)
+            if answer is not None:
+                view.set_typeset(answer)
+
+    def _parametric_section(self, record: ParametricInput) -> None:
         """The parametrization as typed, what its normal lines decide, and whether it is proper."""
         names = ", ".join(record.parameters)
         rows = [(f"{c}({names})", value) for c, value in zip("xyz", record.components)]
@@ -231,9 +325,9 @@ class ResultsPane(QScrollArea):
         else:
             rows.append(("proper", "being decided (Singular)"))
         rows += [("note", note) for note in record.notes]
-        self._section(column, "Parametrization (as typed)", rows)
+        self._section("Parametrization (as typed)", rows)
 
-    def _approximation_section(self, column: QVBoxLayout, approx: Approximation) -> None:
+    def _approximation_section(self, approx: Approximation, pending: Collection[str] = ()) -> None:
         source = "from the digits of the input" if approx.tolerance_source == "input" else "given"
         smallest = ", ".join(f"{v:.2g}" for v in approx.singular_values[-3:])
         rows = [
@@ -275,85 +369,67 @@ class ResultsPane(QScrollArea):
                 )
             )
         rows += [("note", note) for note in approx.notes]
-        self._section(column, "Rounded input", rows)
+        self._section("Rounded input", rows)
 
     # --- building blocks ---
 
-    def _new_column(self) -> QVBoxLayout:
-        old = self.takeWidget()
-        if old is not None:
-            old.deleteLater()
-        self.table = None
-        self.views = {}
-        page = QWidget()
-        page.setObjectName("resultsPage")
-        column = QVBoxLayout(page)
-        column.setContentsMargins(10, 10, 10, 10)
-        column.setSpacing(6)
-        self._building = page
-        return column
+    def _begin(self, shown: str | None) -> None:
+        """Start describing the page of the equation ``shown`` (``None``: a message); another
+        equation's page starts at the top."""
+        if shown != self._shown_input:
+            self.verticalScrollBar().setValue(0)
+        self._shown_input = shown
+        self.page.begin()
 
-    def _show_page(self) -> None:
-        """Put the page just built on screen. Built before it is shown, its rows are laid out
-        at once; built on screen, each row would appear only at the next turn of the event loop,
-        over the others until the layout catches up."""
-        self.setWidget(self._building)
+    def _end(self) -> None:
+        self.page.end()
 
-    def _banner(self, column: QVBoxLayout, title: str, detail: str, kind: str) -> None:
-        self.banner = QLabel(f"<div style='font-size: 15pt; font-weight: 600'>{title}</div><div>{detail}</div>")
-        self.banner.setObjectName("verdictBanner")
-        self.banner.setWordWrap(True)
-        self.banner.setTextFormat(Qt.TextFormat.RichText)
-        self.banner.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
-        self.banner.setStyleSheet(f"QLabel {{ {_BANNER_STYLE[kind]} border-radius: 6px; padding: 8px; }}")
-        column.addWidget(self.banner)
+    def _banner(self, title: str, detail: str, kind: str) -> None:
+        def build() -> QLabel:
+            banner = QLabel(f"<div style='font-size: 15pt; font-weight: 600'>{title}</div><div>{detail}</div>")
+            banner.setObjectName("verdictBanner")
+            banner.setWordWrap(True)
+            banner.setTextFormat(Qt.TextFormat.RichText)
+            banner.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+            banner.setStyleSheet(f"QLabel {{ {_BANNER_STYLE[kind]} border-radius: 6px; padding: 8px; }}")
+            return banner
 
-    def _heading(self, column: QVBoxLayout, text: str) -> None:
-        label = QLabel(text)
-        font = label.font()
-        font.setBold(True)
-        font.setPointSizeF(font.pointSizeF() * 1.1)
-        label.setFont(font)
-        label.setContentsMargins(0, 8, 0, 0)
-        column.addWidget(label)
+        self.page.block(("banner", title, detail, kind), build)
 
-    def _section(self, column: QVBoxLayout, heading: str, rows: Sequence[tuple[str, str]]) -> None:
+    def _heading(self, text: str) -> None:
+        def build() -> QLabel:
+            label = QLabel(text)
+            label.setObjectName("sectionHeading")
+            font = label.font()
+            font.setBold(True)
+            font.setPointSizeF(font.pointSizeF() * 1.1)
+            label.setFont(font)
+            label.setContentsMargins(0, 8, 0, 0)
+            return label
+
+        self.page.block(("heading", text), build)
+
+    def _section(self, heading: str, rows: Sequence[tuple[str, str]]) -> None:
         """A heading and a grid of ``(caption, formula key or text)`` rows.
 
-        A value that is a key of the formulas is typeset; any other value is shown as text.
+        A value that is a key of the formulas is shown as that formula; any other as text.
         """
-        self._heading(column, heading)
-        grid = QGridLayout()
-        grid.setHorizontalSpacing(10)
-        grid.setVerticalSpacing(4)
-        grid.setColumnStretch(1, 1)
-        grid.setColumnMinimumWidth(0, CAPTION_WIDTH)
-        ratio = self.devicePixelRatioF()
-        width = self.viewport().width() - FORMULA_MARGIN
-        for index, (caption, value) in enumerate(rows):
-            label = QLabel(caption)
-            label.setObjectName("caption")
-            label.setToolTip(caption_tip(caption))
-            label.setStyleSheet("color: #546e7a;")
-            label.setWordWrap(True)
-            label.setFixedWidth(CAPTION_WIDTH)
-            grid.addWidget(label, index, 0, Qt.AlignmentFlag.AlignTop)
-            if value in self._formulas:
-                view = FormulaView(self._formulas[value], ratio=ratio, max_width=width)
-                view.setToolTip(caption_tip(caption))
-                self.views[value] = view
-                grid.addWidget(view, index, 1)
-            else:
-                text = QLabel(value)
-                text.setWordWrap(True)
-                text.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
-                grid.addWidget(text, index, 1)
-        column.addLayout(grid)
+        shown: list[Row] = [
+            (caption, (value, self._formulas[value]) if value in self._formulas else value) for caption, value in rows
+        ]
+        self.page.section(heading, shown, self._formula_view, caption_tip)
 
-    def _recognition_sections(self, column: QVBoxLayout, rec: Recognition, key: str) -> None:
+    def _formula_view(self, formula: TypesetFormula, caption: str) -> FormulaView:
+        style = self.formula_style()
+        known = self.typesetter.known(formula.pieces, style) if self.typesetter is not None else None
+        width = self.viewport().width() - FORMULA_MARGIN
+        view = FormulaView(formula, ratio=self.devicePixelRatioF(), max_width=width, typeset=known)
+        view.setToolTip(caption_tip(caption))
+        return view
+
+    def _recognition_sections(self, rec: Recognition, key: str) -> None:
         if rec.axis is not None:
             self._section(
-                column,
                 "Axis",
                 [
                     ("point c", f"{key}axis.point"),
@@ -366,15 +442,14 @@ class ResultsPane(QScrollArea):
             rows = [("centre", f"{key}center")]
             if rec.radius_squared is not None:
                 rows.append(("radius²", f"{key}radius_squared"))
-            self._section(column, "Centre (every line through it is an axis)", rows)
+            self._section("Centre (every line through it is an axis)", rows)
         if rec.normal is not None:
-            self._section(column, "Normal (every line along it is an axis)", [("normal", f"{key}normal")])
+            self._section("Normal (every line along it is an axis)", [("normal", f"{key}normal")])
         if rec.direction is not None:
-            self._section(column, "Direction of translation", [("direction", f"{key}direction")])
+            self._section("Direction of translation", [("direction", f"{key}direction")])
         if rec.profile is not None and not key:
             profile = rec.profile
             self._section(
-                column,
                 "Profile curve",
                 [
                     ("p(x, y) = 0", "profile.polynomial"),
@@ -392,7 +467,7 @@ class ResultsPane(QScrollArea):
                 ],
             )
 
-    def _factor_section(self, column: QVBoxLayout, analysis: Analysis) -> None:
+    def _factor_section(self, analysis: Analysis) -> None:
         rows = []
         for index, factor in enumerate(analysis.factors):
             rec = factor.recognition
@@ -407,9 +482,9 @@ class ResultsPane(QScrollArea):
                 rows.append(("axis", f"factor.{index}.axis.line"))
             if rec.center is not None:
                 rows.append(("centre", f"factor.{index}.center"))
-        self._section(column, f"Factors over {analysis.field}", rows)
+        self._section(f"Factors over {analysis.field}", rows)
 
-    def _rationality_section(self, column: QVBoxLayout, rat: Rationality) -> None:
+    def _rationality_section(self, rat: Rationality) -> None:
         genus_p = "reducible" if rat.profile_reducible else _value(rat.genus_profile)
         rows = [
             ("status", rat.status),
@@ -433,49 +508,18 @@ class ResultsPane(QScrollArea):
         if rat.tau:
             rows += [("τ: X ⇢ T", "rationality.tau.x"), ("", "rationality.tau.y"), ("", "rationality.tau.z")]
         rows += [("note", note) for note in rat.notes]
-        self._heading(column, "Rationality (Table 1 of the paper)")
-        column.addWidget(self._table_1(rat.table_row))
-        self._section(column, "Genera and rationality", rows)
+        self._heading("Rationality (Table 1 of the paper)")
+        row = rat.table_row
+        self.page.block(("table1", row), lambda: _table_1(row))
+        self._section("Genera and rationality", rows)
 
-    def _table_1(self, row: int | None) -> QTableWidget:
-        table = QTableWidget(len(TABLE_1), len(TABLE_HEADERS))
-        table.setObjectName("table1")
-        table.setHorizontalHeaderLabels(TABLE_HEADERS)
-        table.verticalHeader().setVisible(False)
-        table.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
-        table.setSelectionMode(QAbstractItemView.SelectionMode.NoSelection)
-        table.setFocusPolicy(Qt.FocusPolicy.NoFocus)
-        bold = QFont(table.font())
-        bold.setBold(True)
-        for r, cells in enumerate(TABLE_1):
-            for c, text in enumerate((str(r + 1), *cells)):
-                item = QTableWidgetItem(text)
-                item.setTextAlignment(Qt.AlignmentFlag.AlignCenter)
-                words = f"Row {r + 1}. {TABLE_1_WORDS[r]}"
-                if row == r + 1:
-                    item.setBackground(HIGHLIGHT)
-                    item.setFont(bold)
-                    words += "\nThis is the row of this surface."
-                item.setToolTip(words)
-                table.setItem(r, c, item)
-        header = table.horizontalHeader()
-        header.setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
-        header.setSectionResizeMode(0, QHeaderView.ResizeMode.ResizeToContents)
-        table.resizeRowsToContents()
-        height = header.sizeHint().height() + sum(table.rowHeight(r) for r in range(table.rowCount()))
-        table.setFixedHeight(height + 2 * table.frameWidth())
-        table.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
-        self.table = table
-        return table
-
-    def _parametrization_section(self, column: QVBoxLayout, analysis: Analysis) -> None:
+    def _parametrization_section(self, analysis: Analysis) -> None:
         for index, param in enumerate(analysis.parametrizations):
             kind = "real" if param.real else "complex"
             proper = {True: "proper", False: "not proper", None: "properness unknown"}[param.proper]
             check = "verified by substitution" if param.verified else "NOT verified"
             names = ", ".join(param.parameters)
             self._section(
-                column,
                 f"Parameterization {index + 1} ({names})",
                 [
                     ("", f"{param.method} · {kind}, {proper}, over {param.field} · {check}"),
@@ -485,7 +529,7 @@ class ResultsPane(QScrollArea):
                 ],
             )
 
-    def _conical_section(self, column: QVBoxLayout, conical: Conical) -> None:
+    def _conical_section(self, conical: Conical) -> None:
         """A cone or a cylinder over a curve (docs/math.md §10): apex or direction, base curve,
         genus and the parameterizations."""
         rows: list[tuple[str, str]] = []
@@ -499,11 +543,12 @@ class ResultsPane(QScrollArea):
         base = conical.base_curve
         if base is not None:
             if base.chart is not None:
-                rows.append(("base curve", f"the top-degree form of f in the chart {base.chart}"))
+                rows.append(("base curve", f"the top-degree form of f in the chart {base.chart}, relative to the apex"))
             else:
                 rows.append(("base curve", "the section by the plane u·U + v·W across the direction"))
                 rows += [("U", "conical.base.frame_u"), ("W", "conical.base.frame_w")]
             rows.append(("", "conical.base"))
+            rows += base_curve_rows(conical)
             if base.reducible:
                 facts = "reducible over K: so is the surface, one component over each factor"
             elif base.genus is not None:
@@ -519,9 +564,9 @@ class ResultsPane(QScrollArea):
             rows.append((f"map {index + 1}", f"{kind}, proper, over {param.field} · {check}"))
             rows += [(name, f"conical.parametrization.{index}.{name}") for name in "xyz"]
         rows += [("note", note) for note in conical.notes]
-        self._section(column, "Cone or cylinder", rows)
+        self._section("Cone or cylinder", rows)
 
-    def _near_conical_section(self, column: QVBoxLayout, conical: Conical) -> None:
+    def _near_conical_section(self, conical: Conical) -> None:
         """Rounded input that is exactly neither, but nearly a cone or nearly a cylinder."""
         kind, caption, vector = (
             ("cone", "apex (about)", conical.near_apex)
@@ -534,12 +579,20 @@ class ResultsPane(QScrollArea):
             (caption, float_text(vector, 10)),
             ("relative residual", f"{conical.near_residual:.2g}"),
         ]
-        self._section(column, "Cone or cylinder", rows)
+        self._section("Cone or cylinder", rows)
 
-    def _canal_section(self, column: QVBoxLayout, canal: Canal, nearly: str = "") -> None:
-        rows = [("canal", canal_verdict(canal))]
+    def _canal_section(self, canal: Canal, nearly: str = "", nearest_pending: bool = False) -> None:
+        """The canal verdict; for rounded input near a surface of revolution, the nearest exact
+        surface's verdict first (what was meant), then that of the typed rationals."""
         if nearly:
-            rows.append(("rounded input", nearly))
+            rows = [("canal", nearly), ("exactly", canal_verdict(canal) + " (the typed rationals)")]
+        elif nearest_pending and canal.is_canal is False:
+            rows = [
+                ("canal", "not exactly canal; the answer of the nearest exact surface is being decided"),
+                ("exactly", canal_verdict(canal) + " (the typed rationals)"),
+            ]
+        else:
+            rows = [("canal", canal_verdict(canal))]
         evidence = canal_evidence(canal)
         if evidence is not None:
             rows.append(evidence)
@@ -552,15 +605,55 @@ class ResultsPane(QScrollArea):
             if f"canal.{index}.spine" in self._formulas:
                 rows.append(("m(t)", f"canal.{index}.spine"))
             if f"canal.{index}.radius" in self._formulas and not family.pipe:
-                rows.append(("ρ(t)", f"canal.{index}.radius"))
+                rows.append(("r²(t)", f"canal.{index}.radius"))
         rows += [("note", note) for note in canal.notes]
-        self._section(column, "Canal surface", rows)
+        self._section("Canal surface", rows)
 
-    def _timings_section(self, column: QVBoxLayout, timings: Sequence[tuple[str, float]]) -> None:
-        total = sum(seconds for _name, seconds in timings)
-        rows = [(name, f"{seconds * 1000:.0f} ms") for name, seconds in timings]
-        rows.append(("sum of the stages", f"{total * 1000:.0f} ms"))
-        self._section(column, "Timings", rows)
+    def _timings_section(self, timings: Sequence[tuple[str, float]], wall: float | None) -> None:
+        """Each finished stage's time, as the stage line shows it, and the run's wall time, as
+        the status line says it (the stages add up to less: starting, showing)."""
+        rows = [(name, seconds_text(seconds)) for name, seconds in timings]
+        rows.append(("sum of the stages", seconds_text(sum(seconds for _name, seconds in timings))))
+        if wall is not None:
+            rows.append(("wall time", seconds_text(wall)))
+        self._section("Timings", rows)
+
+
+def _table_1(row: int | None) -> QTableWidget:
+    """Table 1 of the paper, the surface's row highlighted."""
+    table = QTableWidget(len(TABLE_1), len(TABLE_HEADERS))
+    table.setObjectName("table1")
+    table.setHorizontalHeaderLabels(TABLE_HEADERS)
+    table.verticalHeader().setVisible(False)
+    table.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+    table.setSelectionMode(QAbstractItemView.SelectionMode.NoSelection)
+    table.setFocusPolicy(Qt.FocusPolicy.NoFocus)
+    bold = QFont(table.font())
+    bold.setBold(True)
+    for r, cells in enumerate(TABLE_1):
+        for c, text in enumerate((str(r + 1), *cells)):
+            item = QTableWidgetItem(text)
+            item.setTextAlignment(Qt.AlignmentFlag.AlignCenter)
+            words = f"Row {r + 1}. {TABLE_1_WORDS[r]}"
+            if row == r + 1:
+                item.setBackground(HIGHLIGHT)
+                item.setFont(bold)
+                words += "\nThis is the row of this surface."
+            item.setToolTip(words)
+            table.setItem(r, c, item)
+    header = table.horizontalHeader()
+    header.setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
+    header.setSectionResizeMode(0, QHeaderView.ResizeMode.ResizeToContents)
+    table.resizeRowsToContents()
+    height = header.sizeHint().height() + sum(table.rowHeight(r) for r in range(table.rowCount()))
+    table.setFixedHeight(height + 2 * table.frameWidth())
+    table.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+    return table
+
+
+def _undecided(limit: float | None) -> str:
+    within = f" within the time limit of {limit:g} s" if limit is not None else " within the time limit"
+    return f"not finished{within}: undecided (Analysis → Time Limit… allows more)"
 
 
 def _value(value: object) -> str:

@@ -26,10 +26,9 @@ from sorgui.gui.editor import EquationEditor
 from sorgui.gui.results import ResultsPane
 from sorgui.gui.stages import RunPanel, seconds_text
 from sorgui.gui.viewport import Viewport
-from sorgui.gui.wording import invalid_heading
-from sorgui.session.formulas import TypesetFormula
+from sorgui.gui.wording import invalid_heading, no_surface_caption
 from sorgui.session.job import JobResult
-from sorgui.session.model import WORKER_STAGES, Run, Session, StageState
+from sorgui.session.model import Run, Session, StageState
 from sorgui.session.scene_data import SceneData
 
 PANE_DELAY_MS = 120
@@ -96,7 +95,6 @@ class SessionView(QObject):
         events.run_started.connect(self._on_run_start_change)
         events.state_changed.connect(self._on_stage_change)
         events.analysis_changed.connect(self._on_results_change)
-        events.formulas_changed.connect(self._on_formulas_change)
         events.components_changed.connect(self._on_results_change)
         events.scene_changed.connect(self._on_scene_change)
         events.nearest_scene_changed.connect(self._on_nearest_scene_change)
@@ -136,25 +134,20 @@ class SessionView(QObject):
         else:
             nearest_analysis = self.session.nearest_analysis if self.session.view == "nearest" else None
             nearest = nearest_analysis is not None
-            if nearest_analysis is not None:
-                analysis = nearest_analysis
-                formulas = {k[len("nearest.") :]: f for k, f in run.formulas.items() if k.startswith("nearest.")}
-            else:
-                analysis = run.analysis
-                formulas = {k: f for k, f in run.formulas.items() if not k.startswith("nearest.")}
+            analysis = nearest_analysis if nearest_analysis is not None else run.analysis
             pending = {s.name for s in run.stage_list() if s.state in (StageState.PENDING, StageState.RUNNING)}
-            worker = tuple(
-                (name, run.stages[name].seconds)
-                for name in WORKER_STAGES
-                if name in run.stages and run.stages[name].state is StageState.DONE
+            done = (
+                () if run.report else tuple((s.name, s.seconds) for s in run.stage_list() if s.state is StageState.DONE)
             )
             self.results.show_analysis(
                 analysis,
-                formulas,
-                worker,
+                done,
                 pending=pending,
+                unfinished={s.name for s in run.unfinished()} if not nearest else set(),
+                limit=run.limit,
                 nearest=nearest,
                 components=() if nearest else run.components,
+                wall=None if run.running or run.report else run.elapsed(),
             )
             self._shown = (analysis, nearest)
             self._shown_pending = bool(pending)
@@ -178,6 +171,19 @@ class SessionView(QObject):
         run = self.session.run
         if self.session.stale:
             self.panel.set_notice("stale", STALE_NOTICE)
+        elif run is not None and run.report and run.outcome in (None, "finished"):
+            self.panel.set_notice(
+                "report",
+                "<b>Shown as saved in the report, not analysed again.</b> "
+                "Press Analyze (Ctrl+Return) to analyse the equation anew.",
+            )
+        elif run is not None and run.limited:
+            names = ", ".join(stage.title for stage in run.unfinished())
+            self.panel.set_notice(
+                "limit",
+                f"<b>Stopped at the time limit of {run.limit:g} s.</b> Not finished: {html.escape(names)}; "
+                "their results are undecided, what was finished is shown (Analysis → Time Limit… allows more).",
+            )
         elif run is None or run.running or run.outcome == "finished":
             self.panel.set_notice(None)
         elif run.outcome == "invalid":
@@ -218,7 +224,7 @@ class SessionView(QObject):
         else:
             self.refresh_pane()
             self.viewport.clear(caption="Analysing: " + short(run.text))
-        self.status.setText("Starting…")
+        self.status.setText("Drawing the saved report…" if run.report else "Starting…")
 
     def _shown_nearest(self) -> bool:
         return self._shown is not None and self._shown[1]
@@ -237,23 +243,6 @@ class SessionView(QObject):
             self.refresh_pane()  # the run's first verdict: shown at once, never coalesced
         else:
             self._schedule_pane()
-
-    def _on_formulas_change(self, formulas: dict[str, TypesetFormula]) -> None:
-        """Typeset formulas of the shown analysis go into the page in place; else a rebuild."""
-        run = self.session.run
-        nearest = self.session.view == "nearest"
-        shown = (self.session.nearest_analysis if nearest else run.analysis) if run is not None else None
-        if self._dirty or run is None or self._shown != (shown, nearest):
-            self._schedule_pane()
-            return
-        prefix = "nearest." if nearest else ""
-        self.results.update_formulas(
-            {
-                k[len(prefix) :]: f
-                for k, f in formulas.items()
-                if k.startswith(prefix) and (nearest or not k.startswith("nearest."))
-            }
-        )
 
     def _on_scene_change(self, scene: SceneData) -> None:
         run = self.session.run
@@ -276,7 +265,10 @@ class SessionView(QObject):
             camera = state if run is not None and run.text == equation else None
             self.restore_camera = None
         self._fresh_scene = False
-        self.viewport.show_scene(scene, reset_camera=fresh and camera is None, caption=caption)
+        shown = self.viewport.scene
+        # a new ball or box (View → Cut to a Box, the ball radius) is framed afresh, as a new surface
+        moved = shown is not None and (shown.region != scene.region or shown.box != scene.box)
+        self.viewport.show_scene(scene, reset_camera=(fresh or moved) and camera is None, caption=caption)
         if camera is not None:
             self.viewport.restore_camera(camera)
         if self.session.stale:
@@ -297,7 +289,15 @@ class SessionView(QObject):
                 verdict = "nearly a surface of revolution"
             summary = run.scene.summary() if run.scene is not None else ""
             notes = " ".join(run.scene.notes) if run.scene is not None else ""
-            self.status.setText(f"Done in {run.elapsed():.2f} s: {verdict}; {summary}. {notes}".strip())
+            if run.report:
+                self.status.setText(f"Report shown as saved, not analysed again: {verdict}; {summary}".strip())
+            elif run.limited:
+                self.status.setText(
+                    f"Stopped at the time limit of {run.limit:g} s after {run.elapsed():.2f} s: "
+                    f"{verdict} so far, some stages undecided; {summary}".strip()
+                )
+            else:
+                self.status.setText(f"Done in {run.elapsed():.2f} s: {verdict}; {summary}. {notes}".strip())
             if run.result is not None:
                 self.shown.emit(run.result)
         elif run.outcome == "invalid":
@@ -306,7 +306,7 @@ class SessionView(QObject):
             assert position is not None  # every invalid text's error comes from a ParseError
             self.editor.show_error(ParseError(message, position, end))
             self.status.setText("Fix the equation to analyse it")
-            self.viewport.clear(caption="No surface: the equation is not a polynomial")
+            self.viewport.clear(caption=no_surface_caption(message))
         elif run.outcome == "failed":
             self.status.setText("Failed: " + (run.message or ""))
             if run.scene is None:
@@ -341,11 +341,8 @@ class SessionView(QObject):
 
     def _on_refresh_change(self, what: str, result: JobResult | None) -> None:
         if result is None:
-            self.status.setText("Could not redo the " + ("mesh" if what == "scene" else "formulas"))
+            self.status.setText("Could not redo the mesh")
             return
-        if what == "scene":
-            assert result.scene is not None  # a redrawing sends its scene before it finishes
-            self.status.setText(f"Re-meshed: {result.scene.summary()}")
-            self.shown.emit(result)
-        else:
-            self.refresh_pane()
+        assert result.scene is not None  # a redrawing sends its scene before it finishes
+        self.status.setText(f"Re-meshed: {result.scene.summary()}")
+        self.shown.emit(result)

@@ -36,12 +36,15 @@ SYMBOLS = {
     StageState.FAILED: ("✗", "#c62828"),
     StageState.CANCELLED: ("⊘", "#8d6e63"),
     StageState.SKIPPED: ("–", "#b0bec5"),
+    StageState.UNFINISHED: ("◌", "#e65100"),
 }
 
 NOTICE_STYLE = {
     "stale": "background: #fff8e1; color: #6d4c00; border: 1px solid #ffe082;",
     "error": "background: #fdecea; color: #b71c1c; border: 1px solid #ef9a9a;",
     "cancelled": "background: #efebe9; color: #4e342e; border: 1px solid #d7ccc8;",
+    "limit": "background: #fff3e0; color: #8a3b00; border: 1px solid #ffcc80;",
+    "report": "background: #eef2f7; color: #263238; border: 1px solid #cfd8dc;",
 }
 
 
@@ -119,7 +122,7 @@ class RunPanel(QWidget):
         self.stage_line.setTextFormat(Qt.TextFormat.RichText)
         self.stage_line.setToolTip(
             "The stages of the analysis as they finish: ✓ done, ◔ running, ○ pending, "
-            "– not needed for this surface, ⊘ cancelled, ✗ failed"
+            "– not needed for this surface, ◌ not finished within the time limit, ⊘ cancelled, ✗ failed"
         )
         self.typed_button = QRadioButton("the equation as typed", self)
         self.typed_button.setObjectName("viewTyped")
@@ -166,6 +169,11 @@ class RunPanel(QWidget):
             self.stage_line.setText("")
             self._timer.stop()
             return
+        if run.report:  # nothing was analysed: no stages to show, the notice says so
+            self.progress_bar.setVisible(False)
+            self.stage_line.setText("")
+            self._timer.stop()
+            return
         self.progress_bar.setVisible(True)
         done, total = run.progress
         self.progress_bar.setRange(0, total)
@@ -178,7 +186,7 @@ class RunPanel(QWidget):
             self.progress_bar.setVisible(False)
 
     def set_notice(self, kind: str | None, text: str = "") -> None:
-        """Show a notice (``"stale"``, ``"error"``, ``"cancelled"``) or hide it (``None``)."""
+        """Show a notice (``"stale"``, ``"error"``, ``"cancelled"``, ``"limit"``) or hide it (``None``)."""
         if kind is None:
             self.notice.setVisible(False)
             self.notice.setText("")
@@ -214,6 +222,10 @@ class RunPanel(QWidget):
                 text = f"<b>{label}</b> {seconds_text(stage.elapsed(now))}…"
             elif stage.state is StageState.DONE:
                 text = f"{label} {seconds_text(stage.seconds)}"
+            elif stage.state is StageState.UNFINISHED:
+                text = f"{label} <i>not finished within {run.limit:g} s</i>"
+            elif stage.state is StageState.PENDING and stage.seconds > 0:
+                text = f"{label} {seconds_text(stage.seconds)} so far"
             else:
                 text = f"{label} <i>{stage.state.value}</i>" if stage.state is not StageState.PENDING else label
             parts.append(f"<span style='color:{color}'>{symbol}</span>&nbsp;{text}")

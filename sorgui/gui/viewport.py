@@ -177,7 +177,9 @@ class Viewport(QWidget):
         self.radius_box = QDoubleSpinBox(self)
         self.radius_box.setObjectName("radiusBox")
         self.radius_box.setDecimals(3)
-        self.radius_box.setRange(1e-3, 1e4)
+        self.radius_box.setRange(0.0, 1e4)  # 0: no ball yet (a surface being analysed), said in words
+        self.radius_box.setSpecialValueText("ball radius: automatic")
+        self.radius_box.setValue(0.0)
         self.radius_box.setSingleStep(0.25)
         self.radius_box.setPrefix("ball radius ")
         self.radius_box.setToolTip("Radius of the ball the surface is drawn in (re-meshed)")
@@ -367,6 +369,9 @@ class Viewport(QWidget):
         self._scene = None
         self._stale = False
         self.caption.setText(caption)
+        self.radius_box.blockSignals(True)
+        self.radius_box.setValue(0.0)
+        self.radius_box.blockSignals(False)
         self.radius_box.setEnabled(False)
         self.patch_box.setEnabled(False)
         self.canal_box.setEnabled(False)
@@ -550,7 +555,8 @@ class Viewport(QWidget):
         self._radius_timer.start()
 
     def _apply_radius(self) -> None:
-        if self._scene is not None and abs(self.radius_box.value() - self._scene.region.radius) > 1e-9:
+        radius = self.radius_box.value()
+        if self._scene is not None and radius > 0 and abs(radius - self._scene.region.radius) > 1e-9:
             self.radius_requested.emit(self.radius_box.value())
 
     def _on_patch_visibility_change(self, visible: bool) -> None:

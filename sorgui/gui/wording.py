@@ -64,6 +64,12 @@ CAPTION_TIPS = {
         "The stages' times added up; the wall time under the 3D view (“Done in …”) also counts "
         "starting the worker and showing the results"
     ),
+    "wall time": "From pressing Analyze to the last result, as the status line says “Done in …”",
+    "in unit axes": "The base curve in lengths: the frame's U and W are exact but not of length 1",
+    "section": "What the section across the direction is: its kind, centre and semi-axes (decimals)",
+    "relative to the apex": "How the chart's curve makes the cone: the lines through the apex and its points",
+    "opening": "The half-angle of a circular cone at its apex",
+    "exactly": "The exact answer for the equation as typed: its decimals read as exact rationals",
     "note": "A remark of the engine on this result",
     "canal": "Whether X is the envelope of a one-parameter family of spheres (docs/math.md §9)",
     "certificate": "The exact proof that X is the envelope of the sphere family",
@@ -71,7 +77,7 @@ CAPTION_TIPS = {
     "spine": "The curve m(t) of the spheres' centres: its degree, whether it is planar, its genus",
     "radius": "Whether the spheres all have the same radius (a pipe)",
     "m(t)": "A rational parameterization of the spine (the spheres' centres)",
-    "ρ(t)": "The squared radius of the sphere centred at m(t)",
+    "r²(t)": "The squared radius of the sphere centred at m(t)",
 }
 
 
@@ -132,6 +138,18 @@ def invalid_heading(message: str) -> str:
     return "Not a polynomial in x, y, z"
 
 
+def no_surface_caption(message: str) -> str:
+    """What the 3D view's header says of a refused equation: its real reason, in a few words."""
+    heading = invalid_heading(message)
+    if heading == "Not a polynomial in x, y, z":
+        return "No surface: the equation is not a polynomial in x, y, z"
+    if heading == "No equation":
+        return "No surface: there is no equation"
+    if heading.startswith("No surface"):
+        return heading
+    return "No surface: " + heading[0].lower() + heading[1:]
+
+
 def caption_tip(caption: str) -> str:
     """The tooltip of a caption of the results pane (a stage name in the timings gets its title)."""
     if caption in CAPTION_TIPS:
@@ -184,10 +202,19 @@ def _over(conical: Conical) -> str:
     return f" over a curve of degree {base.degree}, genus {base.genus} ({rational})"
 
 
-def verdict(analysis: Analysis) -> tuple[str, str, str]:
-    """``(title, detail, kind)`` of the verdict banner; ``kind`` is ``sor``, ``near`` or ``not``."""
+def verdict(analysis: Analysis, rounding_pending: bool = False) -> tuple[str, str, str]:
+    """``(title, detail, kind)`` of the verdict banner; ``kind`` is ``sor``, ``near``, ``not``
+    or ``info`` (rounded input's exact *no*, while whether it is one within its rounding is
+    ``rounding_pending``)."""
     rec = analysis.recognition
     approx = analysis.approximate
+    if rounding_pending and not rec.is_sor and approx is None:
+        return (
+            "Not exactly a surface of revolution",
+            "the equation's decimals are exact rationals of which it is not one; whether it is one "
+            f"within the rounding of its digits is being decided · degree {rec.degree}",
+            "info",
+        )
     kind = kind_phrase(rec.symmetry)
     degree = f"degree {rec.degree}" if rec.polynomial else "degree unknown"  # a map's equation may not be found
     detail = f"{kind} · {degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"

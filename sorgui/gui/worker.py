@@ -7,7 +7,7 @@ which makes it a process-group leader. A timer polls the pipe and turns messages
 signals :attr:`~AnalysisWorker.progress`, :attr:`~AnalysisWorker.finished`,
 :attr:`~AnalysisWorker.failed` and :attr:`~AnalysisWorker.cancelled`.
 
-Cancelling sets the job's ``multiprocessing.Event`` (the engine checks it between stages and
+Cancelling sets the job's :class:`~sorgui.session.process.CancelFlag` (the engine checks it between stages and
 kills Singular at once); a process still alive :data:`CANCEL_GRACE_S` later is killed with its
 whole tree, Singular included (:meth:`sorgui.session.child.ChildProcess.kill`, the mechanism
 ``sorgui analyze`` and ``--each-line`` use too). Starting a job supersedes the
@@ -43,7 +43,7 @@ from sorgui.session.messages import (
     StageDone,
     StageStarted,
 )
-from sorgui.session.process import worker_main
+from sorgui.session.process import CancelFlag, worker_main
 from sorgui.session.supervised import GRACE, StageLog
 
 if TYPE_CHECKING:
@@ -63,9 +63,9 @@ class _Job(ChildProcess):
     """One worker process with its cancel event, the messages not yet handed on, and the
     deadline of its analysis."""
 
-    def __init__(self, context: multiprocessing.context.SpawnContext) -> None:
-        self.cancel_event = context.Event()
-        super().__init__(context, worker_main, (self.cancel_event,))
+    def __init__(self, context: multiprocessing.context.SpawnContext, niceness: int | None = None) -> None:
+        self.cancel_event = CancelFlag(context)
+        super().__init__(context, worker_main, (self.cancel_event, niceness))
         self.kill_at: float | None = None
         self.pending: deque[Message] = deque()
         self.deadline = float("inf")
@@ -90,8 +90,9 @@ class _Job(ChildProcess):
 class AnalysisWorker(QObject):
     """Starts, supersedes and cancels analysis processes; reports through Qt signals.
 
-    ``finished`` carries a :class:`~sorgui.session.job.JobResult`; ``invalid`` a parse error
-    ``(message, position, end)``; ``failed`` a one-line message; ``busy_changed`` whether a
+    ``first_niceness`` is the priority of the first spare worker (the window's start-up job),
+    by default the worker's own. ``finished`` carries a :class:`~sorgui.session.job.JobResult`;
+    ``invalid`` a parse error ``(message, position, end)``; ``failed`` a one-line message; ``busy_changed`` whether a
     job is running (for the Analyze and Cancel buttons). ``message`` carries every message of
     the current job (:mod:`sorgui.session.messages`), intermediate results and the final one
     alike: it feeds :meth:`sorgui.session.Session.handle` (the worker is the session's runner).
@@ -105,7 +106,7 @@ class AnalysisWorker(QObject):
     cancelled = Signal()
     busy_changed = Signal(bool)
 
-    def __init__(self, parent: QObject | None = None, prestart: bool = True) -> None:
+    def __init__(self, parent: QObject | None = None, prestart: bool = True, first_niceness: int | None = None) -> None:
         super().__init__(parent)
         self._context = multiprocessing.get_context("spawn")
         self._current: _Job | None = None
@@ -120,7 +121,7 @@ class AnalysisWorker(QObject):
         self._spare_timer.setInterval(SPARE_DELAY_MS)
         self._spare_timer.timeout.connect(self._start_spare)
         if prestart:
-            self._spare = _Job(self._context)
+            self._spare = _Job(self._context, first_niceness)
 
     # --- public API ---
 
@@ -153,16 +154,19 @@ class AnalysisWorker(QObject):
         if self._current is not None:
             self._current.request_cancel()
 
-    def shutdown(self) -> None:
-        """Kill every process at once (the window is closing) and stop polling."""
+    def shutdown(self, wait: float = 1.0) -> None:
+        """Kill every process at once (the window is closing) and stop polling; wait at most
+        ``wait`` seconds in all for the kernel to release them (none when sorgui is ending)."""
         self._timer.stop()
         self._spare_timer.stop()
         jobs = [j for j in (self._current, self._spare, *self._retiring) if j is not None]
         self._current, self._spare, self._retiring = None, None, []
         for job in jobs:
             job.kill()
+        deadline = time.monotonic() + wait
         for job in jobs:
-            job.process.join(1.0)
+            if wait > 0:
+                job.process.join(max(0.0, deadline - time.monotonic()))
             job.conn.close()
 
     # --- polling ---
@@ -230,7 +234,7 @@ class AnalysisWorker(QObject):
             if isinstance(outcome, Finished):
                 from sorgui.session.job import JobResult
 
-                outcome = Finished(JobResult(outcome.result, None, None, ()))
+                outcome = Finished(JobResult(outcome.result, None, ()))
                 self.message.emit(AnalysisKnown(outcome.result.analysis))
             self._end_current(job, outcome)
 

@@ -51,11 +51,10 @@ class SessionEvents:
     * ``stage_done(stage, seconds)``: a stage finished, with its time;
     * ``analysis_changed(analysis)``: more results are known (typed engine objects);
     * ``scene_changed(scene)`` and ``nearest_scene_changed(scene)``: a new 3D scene;
-    * ``formulas_changed(formulas)``: newly typeset formulas;
     * ``components_changed(components)``: the typed components of a blend, recognised;
     * ``run_finished(run)``: the run ended (``run.outcome`` says how);
     * ``view_changed(view)``: the user switched between the typed and the nearest surface;
-    * ``refreshed(what, result)``: the scene or the formulas of the finished run were redone
+    * ``refreshed(what, result)``: the scene (``what`` is ``"scene"``) of the finished run was redone
       (``result`` the updated :class:`~sorgui.session.job.JobResult`, ``None`` if that failed).
     """
 
@@ -68,7 +67,6 @@ class SessionEvents:
         "analysis_changed",
         "scene_changed",
         "nearest_scene_changed",
-        "formulas_changed",
         "components_changed",
         "run_finished",
         "view_changed",

@@ -49,7 +49,8 @@ class ExportTarget:
 class ExportRequest:
     """The files to write from ``analysis``, or from the saved report ``report`` (read in the
     child), with the options of ``-o``: the units and fitting tolerance of CAD files and the
-    region (``radius`` of the drawn ball, a ball ``center`` with it, or a box ``bounds``).
+    region (``radius`` of the drawn ball, a ball ``center`` with it, or a box ``bounds``), and
+    ``cap``: CAD files hold the solid ``f ≤ 0`` inside the region.
     ``scene`` (a ``SceneData``) and ``picture`` (PNG bytes) are the window's own, used instead
     of building them."""
 
@@ -63,6 +64,7 @@ class ExportRequest:
     bounds: tuple[float, float, float, float, float, float] | None = None
     scene: Any = None
     picture: bytes | None = None
+    cap: bool = False
 
 
 @dataclass(frozen=True)
@@ -175,6 +177,7 @@ def _write(analysis: Analysis, target: ExportTarget, request: ExportRequest, sce
             units=request.units,
             tolerance=request.tolerance,
             picture=request.picture,
+            cap=request.cap,
         )
         return FileWritten(str(written), holds)
     except OSError as exc:

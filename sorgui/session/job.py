@@ -1,26 +1,29 @@
-"""What the analysis worker process does: analyse, build the scene, typeset the formulas, and
-send every result the moment it is known.
+"""What the analysis worker process does: analyse, build the scene, and send every result the
+moment it is known.
 
 This module is the target of the worker process (started with the ``spawn`` method by
 :mod:`sorgui.gui.worker`) and imports no Qt. :func:`serve` makes the process a process-group
 leader, waits for one :class:`JobRequest`, and sends the messages of :mod:`sorgui.session.messages`:
 
 * :class:`StageStarted` and :class:`StageDone` as each stage starts and ends (the engine's
-  stages, ``"scene"``, ``"formulas"``, ``"components"``);
+  stages, and the worker's own: ``"scene"``, the first mesh; ``"curves"``, what the view draws
+  besides it as the analysis learns it, which may run several times; ``"nearest scene"``;
+  ``"components"``);
 * :class:`Parsed` once the equation is read and :class:`Analysed` once the engine is done (the
   window's time limit then no longer applies; both are for the worker's supervision,
   :mod:`sorgui.gui.worker`, which kills a job stuck past its limit);
 * :class:`AnalysisKnown`: the results known so far, first after the factors (verdict, axis,
-  profile), then after the rationality (Table 1 row, genera), then complete;
+  profile), then after each later stage, then complete;
 * :class:`SceneKnown` (first without the parameterization patch) and, for rounded input,
-  :class:`NearestSceneKnown`; :class:`FormulasKnown`, every formula known so far, typeset;
-  :class:`ComponentsKnown`: for a *no*, the typed components of a blend, each recognised
-  (:mod:`sorgui.session.components`);
-* exactly one final message: :class:`Finished` with a :class:`JobResult` (without the scenes
-  and formulas, already sent), :class:`Invalid` for text that is not a polynomial,
-  :class:`Failed` or :class:`JobCancelled`.
+  :class:`NearestSceneKnown`; :class:`ComponentsKnown`: for a *no*, the typed components of a
+  blend, each recognised (:mod:`sorgui.session.components`);
+* exactly one final message: :class:`Finished` with a :class:`JobResult` (without the scenes,
+  already sent), :class:`Invalid` for text that is not a polynomial, :class:`Failed` or
+  :class:`JobCancelled`.
 
-Engine errors come back as one-line messages, never as tracebacks.
+The formulas are not typeset here: the window shows them as text at once and has them typeset
+by a process of its own (:mod:`sorgui.session.typesetting`), so typesetting never delays the
+engine. Engine errors come back as one-line messages, never as tracebacks.
 """
 
 from __future__ import annotations
@@ -39,17 +42,6 @@ from typing import Any
 
 from sorgui.engine import Analysis, Cancelled, ParseError, SorguiError, analyze
 from sorgui.session.child import become_child
-from sorgui.session.formulas import (
-    WARM_UP,
-    WARM_UP_EXPRESSION,
-    Style,
-    TypesetFormula,
-    expression_formula,
-    pane_formulas,
-    render_formulas,
-    render_line,
-    start_helper,
-)
 from sorgui.session.messages import (
     Analysed,
     AnalysisKnown,
@@ -57,7 +49,6 @@ from sorgui.session.messages import (
     Failed,
     FinalMessage,
     Finished,
-    FormulasKnown,
     Invalid,
     JobCancelled,
     Message,
@@ -78,11 +69,10 @@ WORKER_NICENESS = 10
 class JobRequest:
     """One job for the worker process.
 
-    With ``analysis`` (an earlier result) the engine is skipped: only the scene is rebuilt (e.g.
-    for a new ``radius`` of the drawn ball) and/or the formulas typeset again (a new ``style``,
-    e.g. after zooming). ``style`` ``None`` skips the formulas, ``scene=False`` the scene.
-    ``box`` (``(xmin, xmax, ymin, ymax, zmin, zmax)``) cuts the scene's mesh, and the CAD faces
-    written of it, to that box, drawn in the ball about it.
+    With ``analysis`` (an earlier result) the engine is skipped: only the scene is built (e.g.
+    for a new ``radius`` of the drawn ball, or a saved report). ``box`` (``(xmin, xmax, ymin,
+    ymax, zmin, zmax)``) cuts the scene's mesh, and the CAD faces written of it, to that box,
+    drawn in the ball about it.
     """
 
     text: str
@@ -93,20 +83,16 @@ class JobRequest:
     analysis: Analysis | None = None
     radius: float | None = None
     resolution: int | None = None
-    style: Style | None = Style()
-    scene: bool = True
     box: tuple[float, float, float, float, float, float] | None = None
 
 
 @dataclass(frozen=True, eq=False)
 class JobResult:
-    """The worker's complete answer: the analysis, its scene (``None`` if not asked for), its
-    formulas (``None`` if not asked for), the nearest exact surface's scene (rounded input) and
-    the worker's own stage timings (scene, formulas)."""
+    """The worker's complete answer: the analysis, its scene, the nearest exact surface's scene
+    (rounded input) and the worker's own stage timings (scene, curves)."""
 
     analysis: Analysis
     scene: Any
-    formulas: dict[str, TypesetFormula] | None
     timings: tuple[tuple[str, float], ...]
     nearest_scene: Any = None
 
@@ -114,18 +100,15 @@ class JobResult:
 @dataclass
 class _Presenter:
     """Turns each analysis the engine publishes into messages: the scene once the recognition
-    is known, the patch and the rounded-input extras once they are, the formulas every time
-    (each formula typeset once, then reused)."""
+    is known, then what it lacks of each later analysis (the patch, the rounded-input extras,
+    the canal surface's curves, the cone's apex), and the nearest exact surface's scene."""
 
     request: JobRequest
     send: Send
     check: Callable[[], None]
-    processes: int = 1
     timings: list[tuple[str, float]] = field(default_factory=list)
     scene: Any = None
     nearest_scene: Any = None
-    formulas: dict[str, TypesetFormula] = field(default_factory=dict)
-    _cache: dict[tuple[str, str], TypesetFormula] = field(default_factory=dict)
     _patched: bool = False
     _approximated: bool = False
     _canal: tuple[Any, ...] = ()
@@ -148,45 +131,40 @@ class _Presenter:
 
         self.send(AnalysisKnown(analysis))
         request = self.request
-        if request.scene:
-            if self.scene is not None and self._without_equation and analysis.squarefree:
-                # a parametrization's implicit equation has come: the surface replaces the patch
-                self.scene, self._patched, self._approximated, self._conical, self._canal = (
-                    None,
-                    False,
-                    False,
-                    False,
-                    (),
+        if self.scene is not None and self._without_equation and analysis.squarefree:
+            # a parametrization's implicit equation has come: the surface replaces the patch
+            self.scene, self._patched, self._approximated, self._conical, self._canal = (None, False, False, False, ())
+        if self.scene is None and self._awaits_rounding(analysis):
+            return  # rounded input is drawn about its approximate axis, once that is known
+        if self.scene is None:
+            self._without_equation = not analysis.squarefree
+            self.scene = self.stage("scene", lambda: scene_data.build_scene_of(analysis, request))
+            self.send(SceneKnown(self.scene))
+            self._explain(analysis)
+        extras = self._extras(analysis)
+        if extras is not None:
+            self.scene = self.stage("curves", lambda: extras(self.scene))
+            self.send(SceneKnown(self.scene))
+        nearest = _nearest(analysis) if self._approximated and self.nearest_scene is None else None
+        if nearest is not None:
+            target: Analysis = nearest
+
+            def draw_nearest() -> Any:
+                return scene_data.build_scene(
+                    target, region=self.scene.region, resolution=request.resolution, box=self.scene.box
                 )
-            if self.scene is None:
-                self._without_equation = not analysis.squarefree
-                self.scene = self.stage("scene", lambda: scene_data.build_scene_of(analysis, request))
-                self.send(SceneKnown(self.scene))
-                self._explain(analysis)
-            extras = self._extras(analysis)
-            if extras is not None:
-                self.scene = self.stage("scene", lambda: extras(self.scene))
-                self.send(SceneKnown(self.scene))
-            nearest = _nearest(analysis) if self._approximated and self.nearest_scene is None else None
-            if nearest is not None:
-                target: Analysis = nearest
 
-                def draw_nearest() -> Any:
-                    return scene_data.build_scene(
-                        target, region=self.scene.region, resolution=request.resolution, box=self.scene.box
-                    )
+            self.nearest_scene = self.stage("nearest scene", draw_nearest)
+            self.send(NearestSceneKnown(self.nearest_scene))
 
-                self.nearest_scene = self.stage("scene", draw_nearest)
-                self.send(NearestSceneKnown(self.nearest_scene))
-        if request.style is not None:
-            style = request.style
-            self.formulas = self.stage("formulas", lambda: self._typeset(pane_formulas(analysis), style))
-            self.send(FormulasKnown(self.formulas))
-            nearest = _nearest(analysis)
-            if nearest is not None:  # the typed equation's first: it is what the pane shows first
-                wanted = {f"nearest.{k}": f for k, f in pane_formulas(nearest).items()}
-                self.formulas = {**self.formulas, **self.stage("formulas", lambda: self._typeset(wanted, style))}
-                self.send(FormulasKnown(self.formulas))
+    def _awaits_rounding(self, analysis: Analysis) -> bool:
+        """Whether ``analysis`` is rounded input's exact verdict, its rounding still to come."""
+        from sorgui.engine.rounded.precision import has_decimals
+
+        request = self.request
+        rounded = request.tolerance is not None or has_decimals(request.text)
+        typed = analysis.input_kind != "parametrization"  # a map's scene does not wait for a rounding
+        return rounded and typed and request.analysis is None and analysis.approximate is None
 
     def _explain(self, analysis: Analysis) -> None:
         """For a *no* on irreducible input: the typed components of a blend and their axes."""
@@ -241,13 +219,6 @@ class _Presenter:
 
         return apply
 
-    def _typeset(self, wanted: dict[str, TypesetFormula], style: Style) -> dict[str, TypesetFormula]:
-        """``wanted`` typeset, each formula once per job (later analyses reuse them)."""
-        fresh = {k: f for k, f in wanted.items() if (k, f.plain) not in self._cache}
-        for key, formula in render_formulas(fresh, style, self.processes).items():
-            self._cache[(key, formula.plain)] = formula
-        return {k: self._cache[(k, f.plain)] for k, f in wanted.items()}
-
 
 def _nearest(analysis: Analysis) -> Analysis | None:
     """The exact analysis of the nearest exact surface of rounded input, if there is one."""
@@ -262,18 +233,19 @@ def run_job(
     cancel: threading.Event | Any | None = None,
     progress: Callable[[str], None] | None = None,
     send: Send | None = None,
-    processes: int = 1,
 ) -> FinalMessage:
     """Do ``request`` and return the final message (also usable without a process).
 
     ``send`` receives every intermediate message; ``progress`` (an older, simpler hook) only
-    the names of the stages as they start. ``processes`` typeset the formulas (the worker
-    process shares them with a helper; see :func:`sorgui.session.formulas.start_helper`).
+    the names of the stages as they start.
     """
 
     def deliver(message: Message) -> None:
         if send is not None:
-            send(message)
+            try:
+                send(message)
+            except OSError:  # the window has gone (closed, or ended by a signal): stop, quietly
+                raise Cancelled("the window has gone") from None
         if isinstance(message, StageStarted) and progress is not None:
             progress(message.stage)
 
@@ -281,7 +253,7 @@ def run_job(
         if cancel is not None and cancel.is_set():
             raise Cancelled("the analysis was cancelled")
 
-    presenter = _Presenter(request, deliver, check, processes)
+    presenter = _Presenter(request, deliver, check)
     try:
         if request.analysis is not None:
             analysis = request.analysis
@@ -316,12 +288,9 @@ def run_job(
             else:
                 deliver(AnalysisKnown(analysis))
         check()
-        if send is not None:  # the scenes and formulas went out as messages: not pickled twice
-            return Finished(JobResult(analysis, None, None, tuple(presenter.timings)))
-        formulas = presenter.formulas if request.style is not None else None
-        return Finished(
-            JobResult(analysis, presenter.scene, formulas, tuple(presenter.timings), presenter.nearest_scene)
-        )
+        if send is not None:  # the scenes went out as messages: not pickled twice
+            return Finished(JobResult(analysis, None, tuple(presenter.timings)))
+        return Finished(JobResult(analysis, presenter.scene, tuple(presenter.timings), presenter.nearest_scene))
     except Cancelled:
         return JobCancelled()
     except ParseError as exc:
@@ -336,23 +305,18 @@ def run_job(
 
 
 def warm_up(waited_for: Callable[[], bool] = lambda: False) -> None:
-    """What a spare worker process does while nobody waits: load what sympy's LaTeX printing
-    imports on first use, mathtext's fonts and glyphs, VTK and pyvista, then freeze the garbage
-    collector's view of everything loaded so far (the collections during a job then walk only
-    the job's own objects, not sympy's and VTK's), and fork the typesetting helper on a machine
-    with two cores or more.
+    """What a spare worker process does while nobody waits: load the scene's modules (VTK and
+    pyvista), then freeze the garbage collector's view of everything loaded so far (the
+    collections during a job then walk only the job's own objects, not sympy's and VTK's).
 
     It stops as soon as ``waited_for()`` says a request has arrived (as at the window's start,
     when the first analysis is asked for at once): its verdict needs none of this, and the
     stages that do load what they need themselves.
     """
     steps: tuple[Callable[[], object], ...] = (
-        lambda: expression_formula(WARM_UP_EXPRESSION),
-        lambda: render_line(WARM_UP, Style()),
         lambda: importlib.import_module("sorgui.session.scene_data"),
         gc.collect,
         gc.freeze,
-        lambda: (os.cpu_count() or 1) > 1 and start_helper(),
     )
     for step in steps:
         if waited_for():
@@ -360,7 +324,7 @@ def warm_up(waited_for: Callable[[], bool] = lambda: False) -> None:
         step()
 
 
-def serve(conn: Connection, cancel: Any) -> None:
+def serve(conn: Connection, cancel: Any, niceness: int = WORKER_NICENESS) -> None:
     """The worker process: lead a process group at a lower priority, wait for one request,
     answer it, exit.
 
@@ -368,7 +332,7 @@ def serve(conn: Connection, cancel: Any) -> None:
     process starts before it is needed (a warm spare), so waiting here is the normal case;
     the pipe closing without a request means it is not needed any more.
     """
-    become_child(niceness=WORKER_NICENESS)  # the window killed (even by kill -9): the worker goes too
+    become_child(niceness=niceness)  # the window killed (even by kill -9): the worker goes too
     warm_up(waited_for=conn.poll)
 
     try:
@@ -376,14 +340,7 @@ def serve(conn: Connection, cancel: Any) -> None:
     except (EOFError, OSError):
         return
     try:
-        conn.send(
-            run_job(
-                request,
-                cancel,
-                send=conn.send,
-                processes=min(2, os.cpu_count() or 1),
-            )
-        )
+        conn.send(run_job(request, cancel, send=conn.send))
     except (BrokenPipeError, OSError):
         pass  # the GUI has gone away or superseded this job
     conn.close()

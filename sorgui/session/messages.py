@@ -20,7 +20,8 @@ from typing import Any
 
 @dataclass(frozen=True)
 class StageStarted:
-    """A stage has started (the engine's stages, and the window's ``scene`` and ``formulas``)."""
+    """A stage has started (the engine's stages, and the window worker's ``scene``, ``curves``,
+    ``nearest scene`` and ``components``)."""
 
     stage: str
 
@@ -65,13 +66,6 @@ class NearestSceneKnown:
     """The nearest exact surface's scene, for rounded input."""
 
     scene: Any
-
-
-@dataclass(frozen=True)
-class FormulasKnown:
-    """Every formula of the analysis known so far, typeset (``{key: TypesetFormula}``)."""
-
-    formulas: dict[str, Any]
 
 
 @dataclass(frozen=True)
@@ -125,7 +119,6 @@ Message = (
     | AnalysisKnown
     | SceneKnown
     | NearestSceneKnown
-    | FormulasKnown
     | ComponentsKnown
     | Finished
     | Invalid
@@ -138,5 +131,5 @@ FinalMessage = Finished | Invalid | Failed | JobCancelled
 FINAL = (Finished, Invalid, Failed, JobCancelled)
 SUPERVISION = (Parsed, Analysed)
 """For the supervising parent alone; views never see them."""
-INTERMEDIATE = (StageDone, AnalysisKnown, SceneKnown, NearestSceneKnown, FormulasKnown, ComponentsKnown)
+INTERMEDIATE = (StageDone, AnalysisKnown, SceneKnown, NearestSceneKnown, ComponentsKnown)
 """Results a window's job sends before its final message (stage starts aside)."""

@@ -23,7 +23,6 @@ from typing import TYPE_CHECKING, Any, Protocol
 from sorgui.engine.results import Analysis
 from sorgui.session.components import Component
 from sorgui.session.events import SessionEvents
-from sorgui.session.formulas import TypesetFormula
 from sorgui.session.job import JobRequest, JobResult, run_job
 from sorgui.session.messages import (
     SUPERVISION,
@@ -32,7 +31,6 @@ from sorgui.session.messages import (
     Failed,
     FinalMessage,
     Finished,
-    FormulasKnown,
     Hangup,
     Invalid,
     JobCancelled,
@@ -62,7 +60,8 @@ STAGES = (
     "conical",
     "canal",
     "nearest",
-    "formulas",
+    "curves",
+    "nearest scene",
     "components",
 )
 """Every stage a run may have, in the order they usually start. A run plans the ones its input
@@ -75,14 +74,18 @@ REVOLUTION_ONLY = ("real locus", "rationality", "parametrizations")
 NOT_REVOLUTION_ONLY = ("components",)
 """Stages that run only when the answer is no (the typed components of a blend)."""
 
-ROUNDED_ONLY = ("approximate", "nearest")
+ROUNDED_ONLY = ("approximate", "nearest", "nearest scene")
 """Stages that run only for rounded (decimal) input or a given tolerance."""
 
 PARAMETRIC_ONLY = ("parametric", "properness", "implicit equation")
 """Stages that run only for a parametrization (docs/math.md §13)."""
 
-WORKER_STAGES = ("scene", "formulas", "components")
-"""Stages of the worker itself, which may run more than once (their times add up)."""
+WORKER_STAGES = ("scene", "curves", "nearest scene", "components")
+"""Stages of the worker itself (they run beside the engine's)."""
+
+REPEATED = ("curves",)
+"""Worker stages that run again as the analysis learns more (their times add up): between two
+runs such a stage waits (pending, with its time so far), and it is done when the run is."""
 
 STAGE_TITLES = {
     "engine": "Loading the exact engine (sympy)",
@@ -104,9 +107,10 @@ STAGE_TITLES = {
     "canal certificate": "Canal certificate",
     "canal parametrization": "Canal parameterization",
     "scene": "Mesh of the surface",
+    "curves": "Curves and patch in the 3D view",
+    "nearest scene": "Mesh of the nearest surface",
     "rationality": "Table 1 row and genera (Singular)",
     "parametrizations": "Parameterizations",
-    "formulas": "Typesetting",
     "components": "Typed components (explaining the no)",
 }
 
@@ -121,6 +125,8 @@ class StageState(str, Enum):
     CANCELLED = "cancelled"
     SKIPPED = "skipped"
     """Not needed for this input (e.g. no rationality for a surface that is not one of revolution)."""
+    UNFINISHED = "unfinished"
+    """Cut short, or never reached, by the time limit (its result is undecided)."""
 
 
 @dataclass
@@ -159,7 +165,6 @@ class Run:
     analysis: Analysis | None = None
     scene: SceneData | None = None
     nearest_scene: SceneData | None = None
-    formulas: dict[str, TypesetFormula] = field(default_factory=dict)
     components: tuple[Component, ...] = ()
     outcome: str | None = None
     message: str | None = None
@@ -179,7 +184,7 @@ class Run:
     @property
     def progress(self) -> tuple[int, int]:
         """``(finished stages, all stages)``, skipped ones counted as finished."""
-        over = (StageState.DONE, StageState.SKIPPED, StageState.FAILED, StageState.CANCELLED)
+        over = (StageState.DONE, StageState.SKIPPED, StageState.FAILED, StageState.CANCELLED, StageState.UNFINISHED)
         return sum(s.state in over for s in self.stages.values()), len(self.stages)
 
     def stage_list(self) -> list[Stage]:
@@ -191,6 +196,29 @@ class Run:
     def elapsed(self) -> float:
         return (self.ended if self.ended is not None else time.monotonic()) - self.started
 
+    @property
+    def report(self) -> bool:
+        """Whether the run shows a saved report (its analysis given, only the scene made)."""
+        return self.request.analysis is not None
+
+    @property
+    def limit(self) -> float:
+        """The run's time limit in seconds (the window's Analysis → Time Limit…)."""
+        return self.request.singular_timeout
+
+    @property
+    def limited(self) -> bool:
+        """Whether the run ended at its time limit with stages not finished."""
+        return self.outcome == "finished" and self.analysis is not None and bool(self.analysis.unfinished)
+
+    def unfinished(self) -> list[Stage]:
+        return [s for s in self.stages.values() if s.state is StageState.UNFINISHED]
+
+
+def result_unfinished(message: Finished) -> bool:
+    """Whether a finished job's analysis was cut short by its time limit."""
+    return bool(getattr(message.result.analysis, "unfinished", ()))
+
 
 def planned_stages(request: JobRequest) -> tuple[str, ...]:
     """The stages a run of ``request`` may need: the rounded-input ones only for decimals or a
@@ -201,8 +229,8 @@ def planned_stages(request: JobRequest) -> tuple[str, ...]:
     rounded = request.tolerance is not None or has_decimals(request.text)
     parametric = is_parametrization(request.text)
     names = [n for n in STAGES if (rounded or n not in ROUNDED_ONLY) and (parametric or n not in PARAMETRIC_ONLY)]
-    if parametric and "nearest" in names:
-        names.remove("nearest")  # no nearest exact surface for a map (docs/math.md §13)
+    if parametric:  # no nearest exact surface for a map (docs/math.md §13)
+        names = [n for n in names if n not in ("nearest", "nearest scene")]
     if request.analysis is not None:  # a saved report: only the worker's own stages run
         names = [n for n in names if n in WORKER_STAGES]
     return tuple(names)
@@ -251,7 +279,7 @@ class Session:
         self.view = "typed"
         self._stale = False
         self._refresh: str | None = None
-        """``"scene"`` or ``"formulas"`` while a job only redoes those for the current run."""
+        """``"scene"`` while a job only redoes the scene of the current run."""
 
     # --- the equation ---
 
@@ -278,7 +306,7 @@ class Session:
 
     def analyze(self, text: str | None = None, **options: Any) -> Run:
         """Start the analysis of ``text`` (default: the edited equation); ``options`` are fields
-        of :class:`JobRequest` (``resolution``, ``style``, ``method``, …). Any previous run is
+        of :class:`JobRequest` (``resolution``, ``method``, …). Any previous run is
         superseded and everything it showed is dropped at once."""
         if text is not None:
             self.set_equation(text)
@@ -299,18 +327,14 @@ class Session:
     ) -> bool:
         """Rebuild the current run's scene in a ball of ``radius``, or cut to ``box`` in the ball
         about it (no new analysis)."""
-        changes: dict[str, Any] = {"radius": radius, "style": None, "scene": True, "box": box}
+        changes: dict[str, Any] = {"radius": radius, "box": box}
         if resolution is not None:
             changes["resolution"] = resolution
         return self._redo("scene", changes)
 
-    def retypeset(self, style: Any) -> bool:
-        """Typeset the current run's formulas again in ``style`` (e.g. after a zoom)."""
-        return self._redo("formulas", {"style": style, "scene": False})
-
     @property
     def can_redo(self) -> bool:
-        """Whether the current run's scene or formulas can be made again: it has ended (finished,
+        """Whether the current run's scene can be made again: it has ended (finished,
         or cancelled or stopped after its mesh was drawn) and nothing is being redone."""
         run = self.run
         if run is None or run.running or run.analysis is None or self._refresh is not None:
@@ -318,7 +342,7 @@ class Session:
         return run.outcome == "finished" or run.scene is not None
 
     def _redo(self, what: str, changes: dict[str, Any]) -> bool:
-        """Redo the scene or the formulas of the current run (``False`` when :attr:`can_redo` is not)."""
+        """Redo the scene of the current run (``False`` when :attr:`can_redo` is not)."""
         run = self.run
         if run is None or not self.can_redo:
             return False
@@ -369,12 +393,13 @@ class Session:
                 self._finish_stage(run, stage, seconds, add=True)
             case AnalysisKnown(analysis):
                 run.analysis = analysis
-                for name, seconds in analysis.timings:
+                for name, seconds in () if run.report else analysis.timings:  # a report's stages ran elsewhere
                     self._finish_stage(run, name, seconds, add=False)
                 self._skip_unneeded(run, analysis)
                 self.events.analysis_changed.emit(analysis)
-            case SceneKnown() | FormulasKnown():
-                self._take_drawing(run, message)
+            case SceneKnown(scene):
+                run.scene = scene
+                self.events.scene_changed.emit(scene)
             case NearestSceneKnown(scene):
                 run.nearest_scene = scene
                 self.events.nearest_scene_changed.emit(scene)
@@ -384,27 +409,19 @@ class Session:
             case Finished() | Invalid() | Failed() | JobCancelled() | Hangup():
                 self._end(run, message)
 
-    def _take_drawing(self, run: Run, message: SceneKnown | FormulasKnown) -> None:
-        """The typed surface's scene or the typeset formulas, of a run or of its redrawing."""
-        if isinstance(message, SceneKnown):
-            run.scene = message.scene
-            self.events.scene_changed.emit(message.scene)
-        else:
-            run.formulas = message.formulas
-            self.events.formulas_changed.emit(message.formulas)
-
     def _handle_refresh(self, run: Run, message: Message) -> None:
         match message:
-            case SceneKnown() | FormulasKnown():
-                self._take_drawing(run, message)
+            case SceneKnown(scene):
+                run.scene = scene
+                self.events.scene_changed.emit(scene)
             case Finished() | Invalid() | Failed() | JobCancelled():
                 what, self._refresh = self._refresh, None
                 redone = None
                 if isinstance(message, Finished):  # a cancelled run redrawn keeps what it had, with the new mesh
                     if run.result is not None:
-                        run.result = replace(run.result, scene=run.scene, formulas=run.formulas)
+                        run.result = replace(run.result, scene=run.scene)
                     if run.result is None and run.analysis is not None:
-                        redone = JobResult(run.analysis, run.scene, run.formulas, (), run.nearest_scene)
+                        redone = JobResult(run.analysis, run.scene, (), run.nearest_scene)
                     else:
                         redone = run.result
                 self.events.refreshed.emit(what, redone)
@@ -436,27 +453,34 @@ class Session:
                 self._set_state(run, stage, StageState.SKIPPED)
 
     def _start_stage(self, run: Run, name: str) -> None:
+        """``name`` runs. The engine runs one stage at a time: one of its stages starting ends the
+        one before (whose end the engine does not always announce)."""
         now = time.monotonic()
-        for other in run.stages.values():
-            if other.state is StageState.RUNNING and other.name not in WORKER_STAGES and other.name != name:
-                other.seconds = now - (other.started or now)
-                other.started = None
-                self._set_state(run, other, StageState.DONE)
-                self.events.stage_done.emit(other.name, other.seconds)
+        if name not in WORKER_STAGES:
+            for other in run.stages.values():
+                if other.state is StageState.RUNNING and other.name not in WORKER_STAGES and other.name != name:
+                    other.seconds = now - (other.started or now)
+                    other.started = None
+                    self._set_state(run, other, StageState.DONE)
+                    self.events.stage_done.emit(other.name, other.seconds)
         stage = self._stage(run, name)
-        if name in WORKER_STAGES and stage.state is StageState.DONE:
-            return  # drawn again with more of the analysis: it stays done, its time adds up
+        if stage.state is StageState.DONE:
+            return  # announced again after it ended (its end came first): it stays done
         stage.started = now
         self._set_state(run, stage, StageState.RUNNING)
 
     def _finish_stage(self, run: Run, name: str, seconds: float, add: bool) -> None:
+        """``name`` ended after ``seconds`` (``add``: one more run of it). A stage that may run
+        again waits (pending) until the run ends; any other is done, and its time final."""
         stage = self._stage(run, name)
+        if stage.state is StageState.DONE and name not in REPEATED:
+            if not add and seconds != stage.seconds:  # the engine's own figure for it
+                stage.seconds = seconds
+            return
         stage.seconds = stage.seconds + seconds if add else seconds
         stage.started = None
-        was_done = stage.state is StageState.DONE
-        self._set_state(run, stage, StageState.DONE)
-        if add or not was_done:
-            self.events.stage_done.emit(name, stage.seconds)
+        self._set_state(run, stage, StageState.PENDING if name in REPEATED else StageState.DONE)
+        self.events.stage_done.emit(name, stage.seconds)
 
     def _end(self, run: Run, message: FinalMessage | Hangup) -> None:
         run.outcome = {Finished: "finished", Invalid: "invalid", JobCancelled: "cancelled"}.get(type(message), "failed")
@@ -468,15 +492,14 @@ class Session:
             "failed": StageState.FAILED,
             "cancelled": StageState.CANCELLED,
         }[run.outcome]
+        if isinstance(message, Finished) and result_unfinished(message):
+            running = rest = StageState.UNFINISHED  # the time limit cut them short
         match message:
             case Finished(result):
                 run.analysis = result.analysis
                 run.scene = run.scene if run.scene is not None else result.scene
-                run.formulas = run.formulas or (result.formulas or {})
                 run.nearest_scene = run.nearest_scene if run.nearest_scene is not None else result.nearest_scene
-                run.result = replace(
-                    result, scene=run.scene, formulas=run.formulas or result.formulas, nearest_scene=run.nearest_scene
-                )
+                run.result = replace(result, scene=run.scene, nearest_scene=run.nearest_scene)
             case Invalid(text, position, end):
                 run.error = (text, position, end)
                 run.message = text
@@ -494,5 +517,6 @@ class Session:
                 stage.started = None
                 self._set_state(run, stage, running)
             elif stage.state is StageState.PENDING:
-                self._set_state(run, stage, rest)
+                waited = StageState.SKIPPED if stage.name in WORKER_STAGES else rest
+                self._set_state(run, stage, StageState.DONE if stage.seconds > 0 else waited)
         self.events.run_finished.emit(run)

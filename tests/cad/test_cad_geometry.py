@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from sorgui import cli
 from sorgui.cad import INSTALL_HINT
 from sorgui.cad.geometry import (
-    analytic_surface,
+    analytic_surfaces,
     axis_frame,
     bernstein,
     exact_profile,
@@ -85,7 +85,8 @@ def test_the_analytic_kinds_are_read_from_the_exact_profile() -> None:
     }
     for text, (kind, radius, minor) in cases.items():
         analysis = analyze(text)
-        spec = analytic_surface(analysis, build_scene(analysis).region)
+        specs = analytic_surfaces(analysis, build_scene(analysis).region)
+        spec = specs[0] if specs else None
         assert (spec.kind if spec else None) == kind, text
         if spec is not None and kind in ("torus", "cylinder", "sphere"):
             assert spec.radius == pytest.approx(radius, rel=1e-15) and spec.minor_radius == pytest.approx(

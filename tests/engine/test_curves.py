@@ -398,22 +398,9 @@ def test_profile_square_of_the_paraplanecurve_sextic_on_a_rational_axis(point, d
     (paraplanecurves.lib: x⁶+3x⁴y²+3x²y⁴+y⁶-4x⁴z²-34x³yz²-7x²y²z²+12xy³z²+6y⁴z²+36x²z⁴+36xyz⁴+9y²z⁴,
     a rational sextic) about a rational axis: P² is parameterized properly and exactly."""
     from sorgui.engine.recognition.recognize import recognize
-    from sorgui.samples import rational_vector, revolve
+    from sorgui.samples import PARAPLANECURVE_SEXTIC, rational_vector, revolve
 
-    coefficients = {
-        (6, 0): 1,
-        (4, 2): 3,
-        (2, 4): 3,
-        (0, 6): 1,
-        (4, 0): -4,
-        (3, 1): -34,
-        (2, 2): -7,
-        (1, 3): 12,
-        (0, 4): 6,
-        (2, 0): 36,
-        (1, 1): 36,
-        (0, 2): 9,
-    }
+    coefficients = PARAPLANECURVE_SEXTIC
     f = revolve(coefficients, rational_vector(point), rational_vector(direction), axis_distance=True)
     _, _, profile = recognize(f)
     par = parametrize(profile.square, known_genus_zero=True)

@@ -518,21 +518,50 @@ def test_the_fast_path_reads_expanded_polynomials_as_the_parser_does(terms, powe
     "text",
     [
         "x/2 + y",
+        "43*x**10/59 - 5/7*y*z**3 + 1",
+        "1.5x - 2.5e-3 y^2 + .5",
+        "z = x^3 - 3xy^2",
+        "f(x,y,z) = x^2 + y^2 - 1",
+        "g(x, y, z) := 0.25 x y z = 1",
+        "3 * x ** 2 * y - 5 / 2 * z",
+        "x y z - 1e3",
+        "x**2*x*y + x^3y",
+        "2E+3 x^60",
+    ],
+)
+def test_the_fast_path_reads_what_libraries_print_as_the_parser_does(text: str) -> None:
+    from sorgui.engine.parsing import expanded_polynomial
+
+    fast = expanded_polynomial(text)
+    assert fast is not None and fast == _general(text), text
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
         "2*3*x",
         "x**2**3",
         "3 4x",
         "x - - y",
         "(x+y)^2",
-        "1.5x",
+        "1.5.2x",
+        "2 e5 x",
         "x +",
         "2^3 x",
         "sqrt(2) x",
-        "x = y",
+        "x = y = z",
+        "x = ",
         "x^61",
+        "x^1234567",
+        "3x^2 = 3x^2",
+        "1e1001 x",
         "0*x + 1",
         "1/0 x",
-        "f(x,y,z) = x",
         "2*-x",
+        "x/0",
+        "x**y",
+        "x2",
+        "\u2212x",
         "*x + 1",
         "x + *y",
         "2* + x",
@@ -544,11 +573,65 @@ def test_the_fast_path_leaves_everything_else_to_the_parser(text: str) -> None:
     assert expanded_polynomial(text) is None
 
 
-@settings(max_examples=500, deadline=None)
-@given(st.text(alphabet="xyz0123456789+-*/^ ", min_size=1, max_size=25))
+@settings(max_examples=1500, deadline=None)
+@given(st.text(alphabet="xyz0123456789+-*/^ .eE=", min_size=1, max_size=25))
 def test_whatever_the_fast_path_reads_the_parser_reads_the_same(text: str) -> None:
+    from sorgui.engine.errors import ParseError
     from sorgui.engine.parsing import expanded_polynomial
 
     fast = expanded_polynomial(text)
     if fast is not None:
-        assert _general(text) == fast, text
+        try:
+            general = _general(text)
+        except ParseError as exc:
+            raise AssertionError(f"the fast path read {text!r}, the parser refused it: {exc}") from None
+        assert general == fast, text
+
+
+def _decimal(c: Fraction) -> str | None:
+    """``c`` as an exact decimal literal (``-0.125``, ``3e-2``), when it has one."""
+    d = c.denominator
+    k = 0
+    while d % 10 == 0 or d % 2 == 0 or d % 5 == 0:
+        if d == 1:
+            break
+        c, k = c * 10, k + 1
+        d = c.denominator
+    if c.denominator != 1:
+        return None
+    return f"{abs(c.numerator)}e-{k}" if k % 2 else (f"{abs(c.numerator) / 10**k:.{k}f}" if k else str(abs(c)))
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.dictionaries(_MONOMIALS, _COEFFICIENTS, min_size=1, max_size=10),
+    st.sampled_from(["sympy", "maple", "decimal", "equation"]),
+)
+def test_the_fast_path_takes_what_a_library_prints(terms, style: str) -> None:
+    """Sympy's ``43*x**10/59``, Maple's ``43/59*x^10``, decimals, ``lhs = rhs``: read by the
+    fast path, as the parser reads them."""
+    from sorgui.engine.parsing import expanded_polynomial
+
+    if not any(sum(m) for m in terms):
+        return
+    parts = []
+    for (i, j, k), c in terms.items():
+        monomial = "*".join(f"{v}**{e}" if e > 1 else v for v, e in zip("xyz", (i, j, k)) if e)
+        n, d = abs(c.numerator), c.denominator
+        if style == "decimal" and _decimal(c) is not None:
+            body = f"{_decimal(c)}*{monomial}" if monomial else str(_decimal(c))
+        elif style == "sympy":
+            body = (f"{n}*{monomial}" if n != 1 else monomial) if monomial else str(n)
+            body = f"{body}/{d}" if d > 1 else body
+        else:
+            coefficient = f"{n}/{d}" if d > 1 else str(n)
+            body = f"{coefficient}*{monomial.replace('**', '^')}" if monomial else coefficient
+        parts.append(("- " if c < 0 else "+ ") + body)
+    text = " ".join(parts).removeprefix("+ ")
+    if style == "equation" and len(parts) > 1:
+        first, *rest = parts
+        flipped = [("+ " if p.startswith("- ") else "- ") + p[2:] for p in rest]
+        text = first.removeprefix("+ ") + " = " + " ".join(flipped).removeprefix("+ ").replace("- ", "-", 1)
+    fast = expanded_polynomial(text)
+    assert fast is not None, text
+    assert fast == _general(text), text

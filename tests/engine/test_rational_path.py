@@ -136,3 +136,73 @@ def test_surd_printer_is_sympys(q, d: int) -> None:  # type: ignore[no-untyped-d
     expr = sympy.Rational(q.numerator, q.denominator) * sympy.sqrt(d)
     negative, text = _surd_text((fmpq(q.numerator, q.denominator), d))
     assert (negative, text) == (bool(expr.could_extract_minus_sign()), str(abs(expr)))
+
+
+# --- the full analysis without sympy ---------------------------------------------------------
+
+NEITHER = [
+    "x^2y^2 + x^2z^2 + xyz + y^2z^2",  # Steiner's Roman surface
+    "x^2 + y^2 + z^2 + 2xyz - 1",  # a nodal cubic
+    "z = x^3 - 3xy^2",  # the monkey saddle
+    "x^2 + 2y^2 + 3z^2 - 1",  # the triaxial ellipsoid
+    "(x^3 + y^2 z - x y z + 1)(x - y + 3)",
+    "x^4 + y^4 + z^4 - (x^2 + y^2 + z^2)",  # the tooth surface
+]
+
+
+def _general_full(text: str) -> Analysis:
+    return analyze_polynomial(parse_polynomial(text).polynomial, text=text)
+
+
+@pytest.mark.parametrize("text", NEITHER)
+def test_the_full_analysis_of_a_surface_that_is_neither_is_the_general_pipelines(text: str) -> None:
+    from sorgui.engine.rational_path import full_analysis
+
+    quick = full_analysis(text, StageClock(None, None))
+    assert quick is not None
+    assert [name for name, _ in quick.timings] == ["parse", "recognition", "factors", "conical", "canal"]
+    assert _without_timings(quick) == _without_timings(_general_full(text))
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)",  # of revolution: real locus, Table 1, Singular
+        "x^2 + 2y^2 - 3z^2",  # a cone over an ellipse
+        "x^2 + 2y^2 - 1",  # a cylinder
+        "x^3 - y^2 z",  # a cone with its apex at 0
+        examples()["pipe parabola"],  # canal on the lines tested
+        "x^2 + 2y^2 + 3z^2 - 1.5",  # decimals
+    ],
+)
+def test_the_full_analysis_leaves_the_rest_to_the_general_pipeline(text: str) -> None:
+    from sorgui.engine.rational_path import full_analysis
+
+    assert full_analysis(text, StageClock(None, None)) is None
+
+
+@pytest.mark.parametrize(
+    "text", ["x^2 + 2y^2 - 3z^2", "(x-1)^2 + 2(y+2)^2 - 3(z-1)^2", "x^3 - y^2", "x^2 + 2y^2 - 1", *NEITHER]
+)
+def test_the_conical_kind_is_the_detectors(text: str) -> None:
+    from sorgui.engine.conical.detect import detect
+    from sorgui.engine.parsing import parse_rational
+    from sorgui.engine.rational_path import conical_kind
+
+    g = parse_rational(text)
+    assert g is not None
+    assert conical_kind(g) == detect(parse_polynomial(text).polynomial).kind
+
+
+def test_the_full_analysis_of_steiners_surface_loads_no_sympy() -> None:
+    import subprocess
+    import sys
+
+    code = (
+        "import sys\n"
+        "from sorgui.engine import analyze\n"
+        "a = analyze('x^2y^2 + x^2z^2 + xyz + y^2z^2')\n"
+        "print(a.canal.is_canal, a.conical.kind, 'sympy' in sys.modules)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True)
+    assert done.stdout.split() == ["False", "none", "False"]

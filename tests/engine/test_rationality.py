@@ -12,7 +12,7 @@ from sympy.polys.domains import QQ
 from sorgui.engine.analysis import analyze, analyze_polynomial
 from sorgui.engine.revolution.rationality import table_row
 from sorgui.examples import example_text
-from sorgui.samples import move, quaternion_rotation, rational_vector, revolve
+from sorgui.samples import PARAPLANECURVE_SEXTIC, move, quaternion_rotation, rational_vector, revolve
 
 t, x, y = sympy.symbols("t x y")
 
@@ -257,20 +257,7 @@ def test_the_paraplanecurve_sextic_with_its_roles_swapped_is_parameterized() -> 
     """``P²(s, w) = f2(w, s, 1)`` of paraPlaneCurve's example: Singular parameterizes it over
     ``QQ(sqrt(-5))``, whose elements sympy prints with ``I`` and ``sqrt(5)`` apart (once an internal
     error); X_C is rational and gets its complex parameterization, verified."""
-    coefficients = {
-        (6, 0): 1,
-        (4, 2): 3,
-        (2, 4): 3,
-        (0, 6): 1,
-        (4, 0): -4,
-        (3, 1): -34,
-        (2, 2): -7,
-        (1, 3): 12,
-        (0, 4): 6,
-        (2, 0): 36,
-        (1, 1): 36,
-        (0, 2): 9,
-    }
+    coefficients = PARAPLANECURVE_SEXTIC
     swapped = {(j, i): c for (i, j), c in coefficients.items()}
     result = analyze_polynomial(
         revolve(swapped, rational_vector((0, 0, 0)), rational_vector((1, 0, 0)), axis_distance=True)

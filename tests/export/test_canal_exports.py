@@ -110,18 +110,18 @@ def test_reports_have_a_canal_section_in_words_and_formulas(canal_analysis) -> N
     assert "- spine of degree 2 (planar); SMAT curve of degree 2 and genus 0" in canal
     assert "- radius varying" in canal
     assert r"$m_{1}(t) = \left(t, t^{2}, 0\right)$" in canal
-    assert r"$\rho_{1}(t) = \frac{\left(t + 1\right)^{2}}{4}$" in canal
+    assert r"$r^{2}_{1}(t) = \frac{\left(t + 1\right)^{2}}{4}$" in canal
     assert r"c_{1}(t) = " in canal and r"R^{2}_{1}(t) = " in canal
     assert "Certificate (resultant, checked): f divides Res_t" in canal
     assert "canal1" not in text and "## Further results" not in text
     page = html_report(canal_analysis)
-    assert "<h2>Canal</h2>" in page and r"\rho_{1}(t)" in page
+    assert "<h2>Canal</h2>" in page and r"r^{2}_{1}(t)" in page
 
 
 def test_latex_names_the_spine_and_radius(canal_analysis) -> None:
     text = latex_document(canal_analysis)
     assert r"m_{1}(t) = \left(t, t^{2}, 0\right)" in text
-    assert r"\rho_{1}(t) = \frac{\left(t + 1\right)^{2}}{4}" in text
+    assert r"r^{2}_{1}(t) = \frac{\left(t + 1\right)^{2}}{4}" in text
     assert r"\mathrm{spine}_{1} = \left(m_{3}, m_{1}^{2} - m_{2}\right)" in text
 
 

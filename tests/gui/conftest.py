@@ -54,7 +54,8 @@ def settings_folder(tmp_path: Path) -> Path:
 
 
 def _worker_processes() -> list[multiprocessing.Process]:
-    return [p for p in multiprocessing.active_children() if p.name == "sorgui-analysis"]
+    names = ("sorgui-analysis", "sorgui-typesetting")
+    return [p for p in multiprocessing.active_children() if p.name in names]
 
 
 @pytest.fixture(autouse=True)
@@ -152,6 +153,21 @@ def run_analysis(qtbot):  # noqa: ANN001, ANN201
         return payload
 
     return run
+
+
+def typeset_all(window, qtbot, timeout_ms: int = 60_000) -> None:  # noqa: ANN001
+    """Wait until the typesetting process has typeset every formula of the results pane that it
+    can (scrolled through, so that the rows off screen are asked for too)."""
+    results = window.results
+
+    def done() -> bool:
+        style = results.formula_style()
+        return not window.typesetter.busy and all(
+            view.typeset_style == style for view in results.views.values() if view.formula.pieces
+        )
+
+    results.ask_typesetter()
+    qtbot.waitUntil(done, timeout=timeout_ms)
 
 
 @pytest.fixture

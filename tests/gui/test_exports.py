@@ -107,12 +107,12 @@ def test_export_dialog_offers_every_format_and_the_patches() -> None:
 def test_exporting_markdown_asks_before_replacing_its_picture(window, run_analysis, tmp_path, monkeypatch) -> None:
     """File → Export of ``part.md`` beside an existing ``part.png``: the picture is replaced only
     after the window asks (the file dialog asked about the report alone)."""
-    from PySide6.QtWidgets import QFileDialog, QMessageBox
+    from PySide6.QtWidgets import QMessageBox
 
     run_analysis(window, TORUS)
     picture = tmp_path / "part.png"
     picture.write_bytes(b"the user's own picture")
-    monkeypatch.setattr(QFileDialog, "getSaveFileName", lambda *_args: (str(tmp_path / "part.md"), ""))
+    monkeypatch.setattr(window, "ask_export_path", lambda _suffix: str(tmp_path / "part.md"))
     asked: list[str] = []
     monkeypatch.setattr(
         QMessageBox, "question", lambda *args, **_kw: asked.append(args[2]) or QMessageBox.StandardButton.Cancel

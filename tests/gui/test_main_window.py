@@ -68,11 +68,13 @@ def test_table_1_highlights_the_row_of_the_surface(window, run_analysis) -> None
 
 def test_formulas_are_typeset_and_copyable(window, qtbot, run_analysis) -> None:
     from sorgui.gui.formula_view import FormulaView
+    from tests.gui.conftest import typeset_all
 
     run_analysis(window, example_text("cone"))
+    typeset_all(window, qtbot)
     views = window.results.findChildren(FormulaView)
     assert len(views) >= 8
-    assert all(view.formula.masks for view in views), "every formula is typeset by mathtext"
+    assert all(view.shows_typeset for view in views), "every formula is typeset by mathtext"
     direction = next(v for v in views if v.formula.plain == "(1, 0, 1)")
     qtbot.mouseClick(direction.copy_button, Qt.MouseButton.LeftButton)
     assert QGuiApplication.clipboard().text() == "(1, 0, 1)"

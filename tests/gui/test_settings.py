@@ -120,5 +120,5 @@ def test_the_tolerance_of_the_window_reaches_the_engine() -> None:
     from sorgui.session.messages import Finished
 
     assert [parse_tolerance(t) for t in ("auto", "", "1e-8", "2", "x")] == [None, None, 1e-8, False, False]
-    final = run_job(JobRequest("x^2 + y^2 - z", tolerance=1e-8, scene=False, style=None))
+    final = run_job(JobRequest("x^2 + y^2 - z", tolerance=1e-8, resolution=20))
     assert isinstance(final, Finished) and final.result.analysis.approximate.tolerance == 1e-8

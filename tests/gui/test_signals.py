@@ -1,7 +1,8 @@
 """The window ends cleanly on ``SIGTERM``, ``SIGHUP`` (a session's logout) and ``SIGINT``: a real
 ``sorgui`` process with its window under the test's X server, showing an analysis or a saved
-report. It exits with ``128 + signal`` within seconds, prints no traceback, and leaves no worker
-process behind."""
+report, analysing, or still starting. It exits with ``128 + signal`` within a second (the
+promise; the bound below leaves room for a loaded CI machine), prints nothing on stderr, and
+leaves no worker process behind."""
 
 from __future__ import annotations
 
@@ -19,6 +20,22 @@ from tests.test_cli_signals import dead, descendants, wait_for
 
 pytestmark = [pytest.mark.gui, pytest.mark.slow]
 
+PROMISE_S = 1.0
+"""The window and its process are gone this soon after the signal."""
+
+ROOM_S = 1.5
+"""Added to the promise on a loaded test machine."""
+
+
+def end_with(proc: subprocess.Popen[str], signum: int) -> tuple[float, str]:
+    """Send ``signum``; the seconds until the process has exited, and its standard error."""
+    sent = time.monotonic()
+    proc.send_signal(signum)
+    proc.wait(timeout=30)
+    seconds = time.monotonic() - sent
+    _out, err = proc.communicate(timeout=30)
+    return seconds, err
+
 
 def start_window(args: list[str], home: Path) -> subprocess.Popen[str]:
     env = {**os.environ, "HOME": str(home), "XDG_CONFIG_HOME": str(home / "config")}
@@ -35,11 +52,39 @@ def start_window(args: list[str], home: Path) -> subprocess.Popen[str]:
 def test_the_window_ends_on_a_signal(tmp_path: Path, signum: int) -> None:
     proc = start_window([], tmp_path)
     children = descendants(proc.pid)
-    sent = time.monotonic()
-    proc.send_signal(signum)
-    _out, err = proc.communicate(timeout=30)
-    assert time.monotonic() - sent < 5
-    assert proc.returncode == 128 + signum and "Traceback" not in err, err
+    seconds, err = end_with(proc, signum)
+    assert seconds < PROMISE_S + ROOM_S, seconds
+    assert proc.returncode == 128 + signum and not _noise(err), err
+    wait_for(lambda: all(dead(pid) for pid in children), 10)
+
+
+def _noise(err: str) -> list[str]:
+    """What sorgui printed on stderr but the warnings of the test machine's graphics stack."""
+    return [line for line in err.splitlines() if line.strip() and "QStandardPaths" not in line]
+
+
+@pytest.mark.parametrize("after", [0.3, 1.5])
+def test_sigterm_while_the_window_starts_or_analyses_ends_it_within_a_second(tmp_path: Path, after: float) -> None:
+    """While the window still imports its modules (the event loop not running yet) or analyses a
+    degree-12 rounded surface, SIGTERM ends the process within the promise: a busy GUI thread
+    is not waited for (a watchdog ends the process), and the worker processes die with it."""
+    from benchmarks.window import rounded_degree_12
+
+    equation = tmp_path / "rounded.txt"
+    equation.write_text(rounded_degree_12(), encoding="utf-8")
+    env = {**os.environ, "HOME": str(tmp_path), "XDG_CONFIG_HOME": str(tmp_path / "config")}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sorgui.cli", str(equation)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+    )
+    time.sleep(after)
+    children = descendants(proc.pid)
+    seconds, err = end_with(proc, signal.SIGTERM)
+    assert seconds < PROMISE_S + ROOM_S, seconds
+    assert proc.returncode == 128 + signal.SIGTERM and not _noise(err), err
     wait_for(lambda: all(dead(pid) for pid in children), 10)
 
 
@@ -69,8 +114,6 @@ def test_the_window_showing_a_report_ends_on_sigterm(tmp_path: Path) -> None:
     report.write_text(done.stdout, encoding="utf-8")
     assert json.loads(done.stdout)["is_sor"]
     proc = start_window(["open", str(report)], tmp_path)
-    sent = time.monotonic()
-    proc.send_signal(signal.SIGTERM)
-    _out, err = proc.communicate(timeout=30)
-    assert time.monotonic() - sent < 5
-    assert proc.returncode == 128 + signal.SIGTERM and "Traceback" not in err, err
+    seconds, err = end_with(proc, signal.SIGTERM)
+    assert seconds < PROMISE_S + ROOM_S, seconds
+    assert proc.returncode == 128 + signal.SIGTERM and not _noise(err), err

@@ -209,7 +209,10 @@ def test_camera_is_restored_on_the_next_start_for_the_same_equation(make_window,
 def test_formulas_zoom_with_keys_and_copy_in_every_language(window, run_analysis, qtbot) -> None:
     from PySide6.QtGui import QGuiApplication
 
+    from tests.gui.conftest import typeset_all
+
     run_analysis(window, example_text("cone"))
+    typeset_all(window, qtbot)
     height = _formula_height(window, "(1, 0, 1)")
     window.activateWindow()
     qtbot.waitUntil(window.isActiveWindow, timeout=5000)
@@ -259,23 +262,20 @@ def _ctrl_wheel(widget, delta: int) -> None:  # noqa: ANN001
 
 
 class _refreshed:  # noqa: N801 (a context manager used like qtbot.waitSignal)
-    """Wait until the session has typeset the formulas again."""
+    """Wait until the formulas are typeset again (in the new zoom's style)."""
 
     def __init__(self, window, qtbot) -> None:  # noqa: ANN001
-        self.window, self.qtbot, self.seen = window, qtbot, []
+        self.window, self.qtbot = window, qtbot
 
     def __enter__(self) -> None:
-        self.window.session.events.refreshed.connect(self._on)
-
-    def _on(self, what: str, _result: object) -> None:
-        self.seen.append(what)
+        pass
 
     def __exit__(self, *exc: object) -> None:
-        try:
-            self.qtbot.waitUntil(lambda: "formulas" in self.seen, timeout=60_000)
-            self.qtbot.wait(50)
-        finally:
-            self.window.session.events.refreshed.disconnect(self._on)
+        from tests.gui.conftest import typeset_all
+
+        self.qtbot.wait(100)
+        typeset_all(self.window, self.qtbot)
+        self.qtbot.wait(50)
 
 
 def _formula_height(window, plain: str) -> int:  # noqa: ANN001
@@ -395,15 +395,15 @@ def test_the_window_works_at_800_by_560(window, run_analysis, qtbot, artifacts) 
 
 def test_a_degree_12_equation_too_long_to_typeset_is_echoed_as_people_write_it(window, run_analysis) -> None:
     """A surface of revolution of degree 12 in general position has hundreds of terms: its
-    equation is shown as text, with ``^`` and ``·`` (not Python's ``**``), and copied exactly."""
+    equation is shown as Unicode text (``x¹²``, not Python's ``**``), folded, and copied exactly."""
     from benchmarks.gui_heartbeat import sor_in_general_position
 
     run_analysis(window, sor_in_general_position(12))
     polynomial = window.session.run.analysis.recognition.polynomial
     view = window.results.views["polynomial"]
-    assert not view.formula.masks and view.formula.plain == polynomial
+    assert not view.formula.pieces and view.formula.plain == polynomial
     shown = view.content.text()
-    assert "**" not in shown and "*" not in shown and "^12" in shown and "·" in shown
+    assert "**" not in shown and "*" not in shown and "¹²" in shown and view.folded
     view.copy_plain()
     from PySide6.QtGui import QGuiApplication
 
@@ -457,18 +457,22 @@ def test_at_1024_by_700_every_view_control_is_on_screen_and_the_header_is_elided
 
 
 def test_a_rebuilt_pane_is_laid_out_before_it_is_shown(window, run_analysis) -> None:
-    """The page is built off screen and then shown: right after a rebuild, before the event loop
-    turns, its rows already stand one below the other (built on screen, every row sat at the top
-    over the others until the next turn)."""
+    """A page's new blocks are laid out as they are put on it: right after a rebuild, before the
+    event loop turns, its rows already stand one below the other (built on screen, every row sat
+    at the top over the others until the next turn)."""
     from PySide6.QtWidgets import QLabel
 
     run_analysis(window, example_text("cone"))
+    window.results.show_message("Another page", "nothing kept from the last one")
     window.view.refresh_pane()
-    rows = sorted(
-        label.geometry().getCoords()[1::2]
-        for label in window.results.widget().findChildren(QLabel)
-        if label.objectName() == "caption" and label.text()
-    )
+    page = window.results.widget()
+
+    def span(label: QLabel) -> tuple[int, int]:
+        top = label.mapTo(page, label.rect().topLeft()).y()
+        return top, top + label.height() - 1
+
+    captions = [label for label in page.findChildren(QLabel) if label.objectName() == "caption" and label.text()]
+    rows = sorted(span(label) for label in captions)
     assert len(rows) > 5
     assert all(below[0] > above[1] for above, below in zip(rows, rows[1:])), rows
 

@@ -13,7 +13,7 @@ SLOW = (Path(__file__).resolve().parents[1] / "data" / "slow-singular.txt").read
 
 def test_the_worker_reports_unfinished_stages_and_keeps_the_rest() -> None:
     start = time.monotonic()
-    final = run_job(JobRequest(SLOW, singular_timeout=4, style=None, resolution=30))
+    final = run_job(JobRequest(SLOW, singular_timeout=4, resolution=30))
     assert isinstance(final, Finished)
     result = final.result
     assert time.monotonic() - start < 4 + 20  # plus the scene of the surface, on a busy machine
@@ -34,7 +34,7 @@ if __name__ == "__main__":
     cancel = context.Event()
     worker = context.Process(target=serve, args=(child, cancel), daemon=True)
     worker.start()
-    conn.send(JobRequest(open(sys.argv[1]).read(), singular_timeout=600, style=None, resolution=30))
+    conn.send(JobRequest(open(sys.argv[1]).read(), singular_timeout=600, resolution=30))
     print(worker.pid, flush=True)
     while True:  # read the worker's messages, as the window does
         conn.recv()

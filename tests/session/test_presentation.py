@@ -23,16 +23,11 @@ from sorgui.engine.values import (
 from sorgui.examples import example_text
 from sorgui.export.formulas import catalogue
 from sorgui.numerics import real_roots
-from sorgui.session.formulas import (
-    Style,
-    expression_formula,
-    pane_formulas,
-    render_formulas,
-    vector_formula,
-)
+from sorgui.session.formulas import expression_formula, pane_formulas, vector_formula
 from sorgui.session.job import JobRequest, run_job
 from sorgui.session.messages import Failed, Finished, Invalid, JobCancelled
 from sorgui.session.scene_data import view_region
+from sorgui.session.typesetting import Style, render
 
 s, t = sympy.symbols("s t")
 
@@ -57,16 +52,19 @@ def test_terms_from_engine_strings() -> None:
 
 def test_formulas_wrap_to_the_width_and_keep_exact_plain_text() -> None:
     text = " + ".join(f"{k}*x**{k}" for k in range(1, 30))
-    narrow = render_formulas({"f": expression_formula(text, "f =")}, Style(width=300))["f"]
-    assert narrow.plain == text and len(narrow.lines) > 3
-    assert narrow.lines[0].startswith("f = ") and narrow.lines[1].startswith(r"\qquad")
-    assert "".join(narrow.lines).replace(r"\qquad", "") == "".join(narrow.pieces)
-    assert all(m.dtype == np.uint8 and m.ndim == 2 for m in narrow.masks)
-    assert max(m.shape[1] for m in narrow.masks) < 300 + 200  # one piece may overhang
-    wide = render_formulas({"f": expression_formula(text)}, Style(width=5000))["f"]
-    assert len(wide.lines) == 1
+    formula = expression_formula(text, "f =")
+    assert formula.plain == text and formula.text.startswith("f = x + 2x² + 3x³")
+    lines, masks = render(formula.pieces, Style(width=300))
+    assert len(lines) > 3
+    assert lines[0].startswith("f = ") and lines[1].startswith(r"\qquad")
+    assert "".join(lines).replace(r"\qquad", "") == "".join(formula.pieces)
+    assert all(m.dtype == np.uint8 and m.ndim == 2 for m in masks)
+    assert max(m.shape[1] for m in masks) < 300 + 200  # one piece may overhang
+    wide, _masks = render(expression_formula(text).pieces, Style(width=5000))
+    assert len(wide) == 1
     vector = vector_formula(("3/5", "-sqrt(2)", "0"))
-    assert vector.latex == r"\left(3 / 5, - \sqrt{2}, 0\right)"
+    assert vector.text == "(3/5, −√2, 0)" and vector.pieces == (r"\left(3/5, -\sqrt{2}, 0\right)",)
+    assert vector.code("LaTeX") == r"\left(3 / 5, - \sqrt{2}, 0\right)"
 
 
 @pytest.mark.parametrize(
@@ -84,35 +82,49 @@ def test_formulas_wrap_to_the_width_and_keep_exact_plain_text() -> None:
         "-x**4 + 26*x**2*y**2 - 104*x**2 + 12*x*y**4 - 48*x*y**2 + y**6 - 29*y**4 + 200*y**2 - 400",
     ],
 )
-def test_a_sums_latex_is_sympys(text: str) -> None:
-    """The LaTeX copied is sympy's own, also where it is put together from the pieces."""
-    assert expression_formula(text, "f =").latex == sympy.latex(read_expression(text), fold_short_frac=True)
+def test_the_latex_copied_is_sympys_and_the_text_shown_reads_the_same(text: str) -> None:
+    """Copy as LaTeX gives sympy's LaTeX (the exported files' own); the Unicode shown and the
+    LaTeX typeset are printed without sympy, and read back to the same expression."""
+    formula = expression_formula(text, "f =")
+    assert formula.code("LaTeX") == sympy.latex(read_expression(text), fold_short_frac=True)
+    assert formula.text.startswith("f = ") and "**" not in formula.text
+    written = formula.text[4:].replace("−", "-").replace("√", "sqrt").replace("·", "*")
+    for digit, sup in zip("0123456789", "⁰¹²³⁴⁵⁶⁷⁸⁹"):
+        written = written.replace(sup, "^" + digit)
+    from sorgui.engine.parsing import parse_polynomial
+
+    if any(v in text for v in "xyz") and "t" not in text:  # the editor's parser reads polynomials in x, y, z
+        shown = parse_polynomial(written.replace("sqrt5", "sqrt(5)").replace("sqrt2", "sqrt(2)")).polynomial
+        assert shown == parse_polynomial(text).polynomial
 
 
-def test_a_forked_helper_typesets_the_same_pixels() -> None:
-    """The worker shares the parsing with a forked helper: same masks as one process alone."""
-    from sorgui.session import formulas
+def test_long_numbers_are_shown_short_and_rounded_inputs_in_decimals() -> None:
+    """``7.914…×10³⁸`` for a 39-digit integer; rounded input's coefficients in decimals, as typed;
+    the exact digits on "exact digits" and on Copy."""
+    big = "7914" + "0" * 34 + "1"
+    formula = expression_formula(f"{big}*x**2 - 3/5")
+    assert formula.text == "7.914…×10³⁸·x² − 3/5" and formula.shortened
+    assert formula.exact_text() == f"{big}x² − 3/5" and formula.plain == f"{big}*x**2 - 3/5"
+    rounded = expression_formula("1244852143/250000000*x**2 - 386/25*z + 1/3", mode="decimal")
+    assert rounded.text == "4.979408572x² − 15.44z + 0.3333333333…"
+    assert rounded.pieces[0] == r"4.979408572 x^{2}"
 
-    texts = {
-        f"f{k}": expression_formula(" + ".join(f"{k + j}*x**{j}*y" for j in range(1, 12)), "f =") for k in range(3)
-    }
-    texts["v"] = vector_formula(("3/5", "-sqrt(2)", "(t**2 - 1)/(t**2 + 1)"))
+
+def test_every_formula_typesets_or_is_kept_as_text() -> None:
+    """The typesetting process' answer: the lines and masks of a formula, none (and no error)
+    for LaTeX that mathtext rejects."""
+    from sorgui.session.typesetting import typeset
+
     style = Style(width=260, size=10.5)
-    formulas._BOXES.clear()
-    alone = render_formulas(texts, style, processes=1)
-    formulas._BOXES.clear()
-    shared = render_formulas(texts, style, processes=2)
-    for key, formula in alone.items():
-        assert formula.lines == shared[key].lines and len(formula.masks) == len(shared[key].masks) > 0
-        assert all(np.array_equal(a, b) for a, b in zip(formula.masks, shared[key].masks))
-    assert len(alone["f0"].lines) > 1  # wrapped: pieces set side by side on one baseline
-    assert alone["v"].code("Maple") == "[3/5, -sqrt(2), (t^2 - 1)/(t^2 + 1)]"
-    assert "x**2*y" in alone["f0"].code("Python") and "x^2*y" in alone["f0"].code("Maple")
+    good = typeset(expression_formula(" + ".join(f"{j}*x**{j}*y" for j in range(1, 12)), "f =").pieces, style)
+    assert len(good.lines) > 1 and len(good.masks) == len(good.lines)
+    bad = typeset((r"\frac{", "x"), style)
+    assert bad.masks == () and bad.lines == ()
 
 
-def test_the_pane_shows_the_catalogues_formulas_and_plain_text_reads_none(monkeypatch) -> None:
+def test_the_pane_shows_the_catalogues_formulas_and_reads_them_without_sympy(monkeypatch) -> None:
     """The pane's formulas are those of the export catalogue with a key (a vector with rows one
-    per entry), the same keys untypeset as ready to typeset; the untypeset ones read no string."""
+    per entry), printed without reading any string with sympy's reader."""
     from sorgui.engine import analyze
 
     analysis = analyze(example_text("torus"))
@@ -120,18 +132,17 @@ def test_the_pane_shows_the_catalogues_formulas_and_plain_text_reads_none(monkey
     for formula in catalogue(analysis):
         if formula.key:
             keys += [f"{formula.key}.{suffix}" for suffix, _label in formula.rows] or [formula.key]
-    exact = pane_formulas(analysis)
-    assert exact["polynomial"].pieces[0].startswith("f = ") and exact["canal.0.spine"].vector
-    assert exact["parametrization.0.x"].source == analysis.parametrizations[0].coordinates[:1]
 
     def unread(text: str) -> None:
         raise AssertionError(f"read {text!r}")
 
     monkeypatch.setattr("sorgui.export.formulas.read_expression", unread)
-    monkeypatch.setattr("sorgui.session.formulas.read_expression", unread)
-    plain = pane_formulas(analysis, plain=True)
-    assert list(plain) == list(exact) == keys
-    assert all(formula.plain == exact[key].plain for key, formula in plain.items())
+    monkeypatch.setattr("sorgui.engine.values.read_expression", unread)
+    shown = pane_formulas(analysis)
+    assert list(shown) == keys
+    assert shown["polynomial"].pieces[0].startswith("f = ") and shown["canal.0.spine"].vector
+    assert shown["parametrization.0.x"].source == analysis.parametrizations[0].coordinates[:1]
+    assert shown["polynomial"].text == "f = x⁴ + 2x²y² + 2x²z² + y⁴ + 2y²z² + z⁴ − 10x² − 10y² + 6z² + 9"
 
 
 def test_view_region_frames_the_bounded_part() -> None:
@@ -151,8 +162,7 @@ def test_job_returns_plain_picklable_data() -> None:
     blob = pickle.loads(pickle.dumps(result))
     assert blob.analysis.recognition.symmetry == "cylinder_of_revolution"
     assert not blob.scene.surface.is_empty and not blob.scene.axis_segment.is_empty
-    assert all(f.masks for f in blob.formulas.values())
-    assert [name for name, _ in blob.timings][:2] == ["scene", "formulas"]
+    assert [name for name, _ in blob.timings][:1] == ["scene"]
 
 
 def test_job_reports_errors_as_messages() -> None:

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Iterable
+from dataclasses import replace
 from math import lcm
 from typing import cast
 
@@ -45,6 +46,8 @@ from ..recognition.symmetry import SOR_EVIDENCE, Motion, satisfies_identity
 from ..results import Canal, CanalEvidence, CanalFamily, Parametrization, Triple
 from ..singular import curves
 from ..singular.process import emit, parse_int, poly_to_singular, run_script
+from .axis_family import NOTE as AXIS_NOTE
+from .axis_family import axis_family
 from .focal import DEVELOPABLE, DUPIN, UMBILIC
 from .lines import (
     MAX_DEGREE,
@@ -94,15 +97,35 @@ def analyze_canal(
     timeout: float = 60.0,
     cancel: threading.Event | None = None,
     profile: ProfileCurve | None = None,
+    square: tuple[sympy.Expr, sympy.Expr] | None = None,
 ) -> Canal:
     """The canal verdict of ``f = 0`` with certificate or witness, kinds, families and
     parameterizations (genus, ``m(t)``, ``ρ(t)`` and surface parameterizations only when
     ``full``). ``is_sor`` (from the symmetry algebra) decides the ``revolution`` kind of a
     reducible surface, is cross-checked otherwise, and certifies a surface of revolution.
-    A torus's answer is read off its ``profile`` (:mod:`.torus`): no line test, no SMAT."""
+    A torus's answer is read off its ``profile`` (:mod:`.torus`): no line test, no SMAT. A
+    surface of revolution whose ``P²`` has the proper parameterization ``square = (φ(t), ψ(t))``
+    over ``QQ`` gets its family centred on the axis (:mod:`.axis_family`) when no other family
+    has the axis as its spine."""
     torus = torus_of(profile) if is_sor and profile is not None else None
     if torus is not None:
         return torus_canal(torus, CanalEvidence("profile+rotation", _statement(["profile", "rotation"]), True))
+    found = _analyze_canal(f, is_sor=is_sor, full=full, timeout=timeout, cancel=cancel)
+    if not (is_sor and full and found.is_canal and profile is not None and square is not None):
+        return found
+    if any(family.on_line for family in found.families):
+        return found
+    family = axis_family(profile, *square)
+    if family is None:
+        return found
+    notes = tuple(note for note in found.notes if note != SOR_NOTE)
+    return replace(found, families=(family, *found.families), notes=(AXIS_NOTE, *notes))
+
+
+def _analyze_canal(
+    f: Poly, *, is_sor: bool | None, full: bool, timeout: float, cancel: threading.Event | None
+) -> Canal:
+    """The canal verdict of a surface that is not a torus."""
     clock = CanalClock(cancel)
     if total_degree(f) > MAX_DEGREE:
         if is_sor:

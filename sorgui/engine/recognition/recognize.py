@@ -12,7 +12,7 @@ from typing import overload
 
 from sympy.polys.domains.domain import Domain
 
-from ..algebra.linalg import Vector, cross, is_zero, primitive_vector, sub
+from ..algebra.linalg import Vector, cross, dot, is_zero, primitive_vector, sub
 from ..algebra.polys import Poly, factor, poly_str, to_str, total_degree
 from ..errors import AnalysisError
 from ..results import Axis, Factor, Profile, Recognition, Triple
@@ -84,17 +84,22 @@ def recognize(
     ``frame`` (a point, a direction and a normal ``u ⟂ a``) is used for the profile instead of
     the foot point and primitive direction of the axis when it lies on the same line: a rounded
     input's snapped surface passes the frame that keeps its profile's coefficients small
-    (docs/math.md §8).
+    (docs/math.md §8). The axis is then reported through the frame's point (one point of the
+    axis for both), and the frame's direction is turned to the axis direction's sign.
     """
     K = f.ring.domain
     sym = find_symmetry(f, method)
     profile = None
+    axis_point = sym.axis_point
     if sym.kind in (REVOLUTION, CYLINDER):
         assert sym.axis_point is not None and sym.axis_direction is not None  # a unique axis (classify)
         point, direction = sym.axis_point, sym.axis_direction
         normal: Vector | None = None
         if frame is not None and _same_line(frame[:2], (point, direction)):
             point, direction, normal = frame
+            if K.to_sympy(dot(direction, sym.axis_direction)) < 0:
+                direction = tuple(-c for c in direction)
+            axis_point = point
         profile = profile_curve(f, point, direction, normal)
         if not profile.verified:
             raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
@@ -105,8 +110,8 @@ def recognize(
         symmetry=sym.kind,
         symmetry_dimension=sym.dimension,
         symmetry_basis=tuple(tuple(to_str(K, c) for c in m.a + m.b) for m in sym.basis),
-        axis=axis_report(sym.axis_point, sym.axis_direction, K)
-        if sym.axis_point is not None and sym.axis_direction is not None
+        axis=axis_report(axis_point, sym.axis_direction, K)
+        if axis_point is not None and sym.axis_direction is not None
         else None,
         center=_triple(K, sym.center),
         normal=_triple(K, sym.normal),

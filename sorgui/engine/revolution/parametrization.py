@@ -146,7 +146,7 @@ def norm_factorization(h: sympy.Expr, n: sympy.Expr) -> NormFactorization | None
         return None
     alpha = sympy.sqrt(-n)
     lead, factors = poly.factor_list()
-    product, square, rest = sympy.Integer(1), sympy.Integer(1), sympy.Integer(lead)
+    product, square, rest = sympy.Integer(1), sympy.Integer(1), sympy.Rational(lead)
     for g, e in factors:
         square *= g.as_expr() ** (e // 2)
         if e % 2 == 0:
@@ -305,17 +305,26 @@ def section_vanishes(profile: ProfileCurve, section: Section) -> bool:
     return _square_vanishes(profile, ring, phi, radius)
 
 
-def quadric_vanishes(
-    profile: ProfileCurve, phi: sympy.Expr, radius: sympy.Expr, quadric: Quadric, h: sympy.Expr
-) -> bool:
-    """The exact check of the stereographic map through ``T``: ``P²(φ, d²h/q̃²) ≡ 0`` in ``t``
-    (``T`` maps onto ``X``), and ``Y² + n·Z² ≡ h(x)`` on the quadric's parameterization, which
-    makes the map's radius ``(d/q̃)²·(Y² + n·Z²)`` that of ``T``. Small identities instead of
-    ``f`` composed with the map."""
+def tube_section_vanishes(profile: ProfileCurve, section: Section, radius: sympy.Expr) -> bool:
+    """The exact check of a section through ``T``: ``ρ₁² + n·ρ₂² ≡ d²h/q̃²`` (``radius``) in ``t``.
+
+    The tube's identity ``d²·h = r̃·q̃`` (checked when ``T`` is made) makes ``radius`` the second
+    coordinate ``w = r̃/q̃`` of the verified parameterization ``(φ, w)`` of ``P²``, so
+    ``P²(φ, ρ₁² + n·ρ₂²) = P²(φ, w) ≡ 0``: the identity of :func:`section_vanishes`, without
+    composing ``P²`` (of degree 12, say) with the section."""
     n = _frame_norm(profile)
-    ring, (phi_fraction, radius_fraction) = _univariate(profile, (phi, radius), ())
-    if not _square_vanishes(profile, ring, phi_fraction, radius_fraction):
-        return False
+    ring, fractions = _univariate(profile, (section.rho_u, section.rho_w, radius), section.named)
+    (nu, du), (nw, dw), (nr, dr) = fractions
+    rest = ring.reduce(nu**2 * dw**2 * dr + ring.from_expr(n) * nw**2 * du**2 * dr - nr * du**2 * dw**2)
+    return _zero(ring, rest)
+
+
+def quadric_vanishes(quadric: Quadric, h: sympy.Expr, n: sympy.Expr) -> bool:
+    """The exact check of the stereographic map through ``T``: ``Y² + n·Z² ≡ h(x)`` on the
+    quadric's parameterization, which makes the map's radius ``(d/q̃)²·(Y² + n·Z²)`` that of
+    ``T``, ``d²h/q̃² = w``, the second coordinate of the verified parameterization ``(φ, w)`` of
+    ``P²`` (see :func:`tube_section_vanishes`). A small identity instead of ``f`` composed with
+    the map."""
     x, Y, Z = quadric
     flat = RadicalRing(PARAMETERS, radicals_of([x, Y, Z, h, n]))
     num, _den = flat.fraction(sympy.together(Y**2 + n * Z**2 - h.subs(T, x)))
@@ -354,7 +363,12 @@ def _square_vanishes(
     for (i, j), c in profile.square.items():
         term = ring.from_expr(to_expr(K, c)) * nphi**i * dphi ** (top_s - i) * nrad**j * drad ** (top_r - j)
         total += ring.reduce(term)
-    total = ring.reduce(total)
+    return _zero(ring, ring.reduce(total))
+
+
+def _zero(ring: RadicalRing, total: fmpq_mpoly) -> bool:
+    """Whether ``total`` (reduced in ``ring``) is zero: its normal form is unique for one radical;
+    with several, a nonzero form is checked again over sympy's algebraic field."""
     if total.is_zero() or len(ring.radicals) < 2:
         return total.is_zero()
     return cast(bool, sympy.Poly(ring.to_expr(total), *ring.symbols, extension=True).is_zero)

@@ -21,11 +21,12 @@ from dataclasses import dataclass
 from typing import TypedDict
 
 import sympy
+from flint import fmpq_poly
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.polyerrors import BasePolynomialError
 
-from ..algebra import numberfields
+from ..algebra import numberfields, quadratic
 from ..algebra.linalg import dot
 from ..algebra.polys import (
     Poly,
@@ -41,7 +42,7 @@ from ..algebra.realroots import count_real_roots
 from ..errors import AnalysisError, SingularError, SingularTimeout
 from ..recognition.profile import ProfileCurve
 from ..results import Parametrization, Rationality
-from ..singular import curves
+from ..singular import curves, profile_pair
 from ..singular.curves import CurveAnalysis, CurveParametrization
 from .parametrization import (
     Section,
@@ -53,6 +54,7 @@ from .parametrization import (
     quadric_vanishes,
     section_vanishes,
     sweep,
+    tube_section_vanishes,
     tubular_section,
 )
 
@@ -103,7 +105,11 @@ def table_row(reducible: bool, genus_p: int | None, genus_p2: int) -> int:
 
 def tubular_surface(par: CurveParametrization) -> TubularSurface:
     """The tubular surface of a proper parameterization ``(φ(t), r(t)/q(t))`` of ``P²``:
-    cancel ``gcd(r, q)``, write ``r̃·q̃ = h·d²`` with ``h`` square-free (odd multiplicities)."""
+    cancel ``gcd(r, q)``, write ``r̃·q̃ = h·d²`` with ``h`` square-free (odd multiplicities).
+    Over a quadratic field the decomposition is flint's (:mod:`..algebra.quadratic`)."""
+    quick = _quadratic_tube(par)
+    if quick is not None:
+        return quick
     phi = sympy.cancel(par.x.subs(par.parameter, T))
     r, q = sympy.fraction(sympy.cancel(par.y.subs(par.parameter, T)))
     product = _univariate(r * q, par.generators)
@@ -112,7 +118,39 @@ def tubular_surface(par: CurveParametrization) -> TubularSurface:
     for g, e in factors:
         h *= g.as_expr() ** (e % 2)
         d *= g.as_expr() ** (e // 2)
-    return TubularSurface(phi=phi, h=sympy.expand(h), d=sympy.expand(d), q=sympy.expand(q), field=par.generators)
+    tube = TubularSurface(phi=phi, h=sympy.expand(h), d=sympy.expand(d), q=sympy.expand(q), field=par.generators)
+    if _univariate(tube.h * tube.d**2, par.generators) != product:
+        raise AnalysisError("the tubular surface's h·d² is not r̃·q̃ (internal error)")
+    return tube
+
+
+def _quadratic_tube(par: CurveParametrization) -> TubularSurface | None:
+    """:func:`tubular_surface` of a parameterization over a quadratic field, from its fractions
+    over ``D = QQ(α)`` in flint; ``None`` over ``QQ`` (sympy is fast there) and other fields."""
+    if par.fractions is None:
+        return None
+    (p1, q1), (r, q) = par.fractions
+    D = r.ring.domain
+    K = quadratic.field_of(D)
+    if K is None or K.rational:
+        return None
+    product = K.mul(quadratic.pair_of(r), quadratic.pair_of(q))
+    top = quadratic.degree(product)
+    lead = (fmpq_poly([product[0][top]]), fmpq_poly([product[1][top]]))
+    h, d = lead, (fmpq_poly([1]), fmpq_poly([]))
+    for g, e in quadratic.squarefree_decomposition(K, product):
+        for _ in range(e % 2):
+            h = K.mul(h, g)
+        for _ in range(e // 2):
+            d = K.mul(d, g)
+    if K.mul(h, K.mul(d, d)) != product:
+        raise AnalysisError("the tubular surface's h·d² is not r̃·q̃ (internal error)")
+
+    def expr(x: quadratic.Pair) -> sympy.Expr:
+        return quadratic.pair_expr(x, D, T)
+
+    phi = expr(quadratic.pair_of(p1)) / expr(quadratic.pair_of(q1))
+    return TubularSurface(phi=phi, h=expr(h), d=expr(d), q=expr(quadratic.pair_of(q)), field=par.generators)
 
 
 def count_real_roots_of(h: sympy.Expr, generators: tuple[sympy.Expr, ...]) -> int:
@@ -155,8 +193,13 @@ def analyze_rationality(
         return Rationality(
             status="not applicable: X is a pair of complex planes through the axis (not absolutely irreducible)"
         ), None
+    frame = profile.frame
+    shear = profile.square.ring.domain.quo(dot(frame.direction, frame.direction), dot(frame.normal, frame.normal))
+    known = None if section is None else _from_section(profile, section)
     try:
-        p, p2 = curves.analyze_profile_pair(profile.rational, profile.square, timeout=timeout, cancel=cancel)
+        p, p2 = profile_pair.analyze_profile_pair(
+            profile.rational, profile.square, shear=shear, known=known, timeout=timeout, cancel=cancel
+        )
     except SingularTimeout as exc:
         return Rationality(status=f"undecided within the time limit: {exc.message}"), None
     except SingularError as exc:
@@ -181,11 +224,11 @@ def analyze_rationality(
     if p2.genus > 0:
         return Rationality(status="decided", unirational=False, real_rational=False, **base), None
     try:
-        par = None if section is None else _from_section(profile, section)
-        if par is None:
-            par = curves.parametrize(
-                profile.square, timeout=timeout, cancel=cancel, known_genus_zero=True, prefer_conic=True
-            )
+        par = (
+            p2.parametrization
+            or known
+            or profile_pair.parametrize_square(profile.square, shear, timeout=timeout, cancel=cancel)
+        )
     except SingularTimeout as exc:
         return Rationality(
             status=f"partly undecided: {exc.message}",
@@ -322,25 +365,25 @@ def _tubular_parametrization(
     complex one otherwise. Returns it and a note on what could not be done."""
     frame = profile.frame
     real = norm_decomposition(tube.h, n)
+    radius = tube.d**2 * tube.h / tube.q**2
     if real is not None:
         section = tubular_section(tube.phi, tube.d, tube.q, *real)
-        return _swept(f, profile, section, method="via tubular surface (real)", proper=True), ""
+        return _swept(f, profile, section, method="via tubular surface (real)", proper=True, radius=radius), ""
     quadric = quadric_section(tube.h, n)
     if quadric is not None:
         x, Y, Z = quadric
         scale = (tube.d / tube.q).subs(T, x)
         surface = frame_map(tube.phi.subs(T, x), scale * Y, scale * Z, frame, K)
-        radius = tube.d**2 * tube.h / tube.q**2
 
         def on_tube() -> bool:
-            return quadric_vanishes(profile, tube.phi, radius, quadric, tube.h)
+            return quadric_vanishes(quadric, tube.h, n)
 
         return make_parametrization(
             f, profile, surface, on_tube, method="via tubular surface (real, stereographic)", proper=True
         ), ""
     A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * ALPHA)
     section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
-    complex_par = _swept(f, profile, section, method="via tubular surface (complex)", proper=True)
+    complex_par = _swept(f, profile, section, method="via tubular surface (complex)", proper=True, radius=radius)
     if not rationality.unirational:
         note = ""
     elif (rationality.real_roots_of_h or 0) > 2:
@@ -357,13 +400,24 @@ def _tubular_parametrization(
 
 
 def _swept(
-    f: Poly, profile: ProfileCurve, section: Section, *, method: str, proper: bool | None
+    f: Poly,
+    profile: ProfileCurve,
+    section: Section,
+    *,
+    method: str,
+    proper: bool | None,
+    radius: sympy.Expr | None = None,
 ) -> Parametrization | None:
-    """The verified parameterization sweeping ``section`` about the axis (docs/math.md §6)."""
+    """The verified parameterization sweeping ``section`` about the axis (docs/math.md §6); a
+    section through ``T`` (``radius`` the tube's ``d²h/q̃²``) is checked against it."""
     surface = sweep(section, profile.frame, f.ring.domain)
-    return make_parametrization(
-        f, profile, surface, lambda: section_vanishes(profile, section), method=method, proper=proper
-    )
+
+    def identity() -> bool:
+        if radius is None:
+            return section_vanishes(profile, section)
+        return tube_section_vanishes(profile, section, radius)
+
+    return make_parametrization(f, profile, surface, identity, method=method, proper=proper)
 
 
 def _profile_section(

@@ -46,6 +46,7 @@ from .near_symmetry import (
     fit,
     killing_system,
     normalise,
+    plain_distance,
     refine,
 )
 from .precision import Rounding, given_rounding, input_rounding
@@ -135,15 +136,16 @@ def approximate_symmetry(
                 "no exact surface with rational axis and coefficients was found within the "
                 "rounding; the axis above is approximate"
             )
+    distance = None if shown is None else plain_distance(normalised, shown.candidate)
     if accepted is None:
-        collected.append(_far_note(sigma, best, rounding))
+        collected.append(_far_note(sigma, best, rounding, distance))
     nearest = None if exact is None else _nearest_surface(exact, normalised, f)
     approximation = Approximation(
         tolerance=rounding.tolerance,
         tolerance_source=rounding.source,
         near_sor=near,
         kind=None if accepted is None else accepted.candidate.kind,
-        relative_distance=None if shown is None else shown.relative_distance,
+        relative_distance=distance,
         residual=None if shown is None else shown.residual,
         singular_values=tuple(float(s) for s in sigma),
         axis=_axis(accepted, normalised) if accepted is not None else None,
@@ -202,14 +204,14 @@ def _search(f: Normalised, sigma: FloatArray, vectors: FloatArray, tolerance: fl
     return None, best
 
 
-def _far_note(sigma: FloatArray, best: Fit | None, rounding: Rounding) -> str:
+def _far_note(sigma: FloatArray, best: Fit | None, rounding: Rounding, distance: float | None) -> str:
     smallest = f"the smallest singular value of (★) is {sigma[-1]:.2g} against a tolerance of {rounding.tolerance:.2g}"
     if best is None:
         return f"not near any continuous symmetry: {smallest}"
     kind = kind_noun(best.candidate.kind)
     return (
         f"not within the rounding of {kind}: the nearest one about the best axis is "
-        f"{best.relative_distance:.2g} away (relative), {best.residual:.3g} times the rounding; {smallest}"
+        f"{distance:.2g} away (relative), {best.residual:.3g} times the rounding; {smallest}"
     )
 
 

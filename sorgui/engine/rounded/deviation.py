@@ -43,20 +43,63 @@ def probe_directions(axis: FloatArray | None) -> list[FloatArray]:
     return directions
 
 
+MERIDIAN_LINES = 48
+"""Lines through the centre in one plane through the axis (every 3.75°): a surface of revolution
+is the same in every such plane, so they see every part of it that a ball about the centre can
+hold, the small far ones too (a torus high up the axis of a product of three)."""
+
+SPHERE_LINES = 96
+"""Lines through the centre in directions spread over the sphere, for a surface without an axis."""
+
+
+def extent_directions(axis: FloatArray | None) -> list[FloatArray]:
+    """The directions the view ball probes: :func:`probe_directions`, and a meridian star about
+    the axis (or directions spread over the sphere without one)."""
+    directions = probe_directions(axis)
+    if axis is not None:
+        a = axis / np.linalg.norm(axis)
+        u = directions[-4]  # the frame's u ⟂ a (probe_directions)
+        angles = np.pi * np.arange(MERIDIAN_LINES) / MERIDIAN_LINES
+        directions += [np.cos(t) * a + np.sin(t) * u for t in angles]
+    else:
+        k = np.arange(SPHERE_LINES) + 0.5  # a Fibonacci lattice on the half sphere z > 0
+        z = k / SPHERE_LINES
+        phi = np.pi * (1 + 5**0.5) * k
+        r = np.sqrt(1 - z * z)
+        directions += list(np.column_stack([r * np.cos(phi), r * np.sin(phi), z]))
+    return directions
+
+
+def is_bounded(array: FloatArray, directions: list[FloatArray]) -> bool:
+    """Whether the top-degree form of ``f`` keeps one strict sign on ``directions``: then (as
+    far as they tell) ``f = 0`` has no real points at infinity and its real part is bounded."""
+    degree = array.shape[0] - 1
+    i, j, k = np.indices(array.shape)
+    top = np.where(i + j + k == degree, array, 0.0)
+    values = dense.evaluate(top, np.array(directions))
+    largest = float(np.abs(values).max(initial=0.0))
+    return largest > 0 and bool(np.all(values > 1e-9 * largest) or np.all(values < -1e-9 * largest))
+
+
 def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = None) -> tuple[FloatArray, float]:
-    """The ball that shows the interesting part of ``f = 0`` around ``center``: real points of
-    ``f`` on lines through ``center``, those farther than ``SPREAD`` times the median distance
-    dropped; centred on the middle of the rest (along the axis, if any), radius ``MARGIN``
-    times the farthest, clamped to ``[MIN_RADIUS, MAX_RADIUS]``."""
-    points = [
-        center + t * d for d in probe_directions(axis) for t in real_roots(dense.restriction_to_line(array, center, d))
-    ]
+    """The ball that shows the real surface ``f = 0`` around ``center``: a bounded surface
+    (:func:`is_bounded`) whole, from its real points on the lines of :func:`extent_directions`
+    through ``center``; an unbounded one from its real points on the lines of
+    :func:`probe_directions`, those farther than ``SPREAD`` times the median distance dropped
+    (far branches). Centred on the middle of the points kept (along the axis, if any), radius
+    ``MARGIN`` times the farthest, clamped to ``[MIN_RADIUS, MAX_RADIUS]``."""
+    directions = extent_directions(axis)
+    bounded = is_bounded(array, directions)
+    if not bounded:
+        directions = probe_directions(axis)
+    points = [center + t * d for d in directions for t in real_roots(dense.restriction_to_line(array, center, d))]
     pts = np.array(points).reshape(-1, 3)
     distances = np.linalg.norm(pts - center, axis=1)
     positive = distances[distances > 1e-9 * max(1.0, float(np.linalg.norm(center)))]
     if len(positive) == 0:
         return center, 2.0 * MIN_RADIUS
-    core = pts[distances <= min(distances.max(), SPREAD * float(np.median(positive)))]
+    far = distances.max() if bounded else SPREAD * float(np.median(positive))
+    core = pts[distances <= min(distances.max(), far)]
     if axis is not None:
         a = axis / np.linalg.norm(axis)
         heights = (core - center) @ a

@@ -311,6 +311,29 @@ def refine(f: Normalised, candidate: Candidate) -> Fit:
     return fit(f, build(gauss_newton(residual_vector, params)[0]))
 
 
+def plain_distance(f: Normalised, candidate: Candidate) -> float:
+    """The one figure of how far ``f`` is from the symmetry of ``candidate``'s kind:
+    ``min ‖f − f̄‖₂ / ‖f‖₂`` over the input's own coefficients, ``f̄`` invariant, the axis (or
+    centre, or normal) refined by Gauss–Newton from ``candidate``'s for this plain norm. It
+    does not depend on the tolerance, whose rounding weights only the fit that decides
+    nearness (the residual): the same input is the same distance away with every tolerance."""
+    weights = 1.0 / f.length ** _degrees(f)
+    target = f.vector * weights
+
+    def remainder(c: Candidate) -> FloatArray:
+        basis = invariant_basis(c, f.degree, f.selected)[0] * weights[:, None]
+        norms = np.linalg.norm(basis, axis=0)
+        norms[norms == 0.0] = 1.0
+        solution, *_ = np.linalg.lstsq(basis / norms, target, rcond=None)
+        rest: FloatArray = (target - (basis / norms) @ solution) / np.linalg.norm(target)
+        return rest
+
+    params, build = parametrisation(candidate)
+    if len(params):
+        params = gauss_newton(lambda theta: remainder(build(theta)), params)[0]
+    return float(np.linalg.norm(remainder(build(params) if len(params) else candidate)))
+
+
 def refine_fixed(
     f: Normalised, candidate: Candidate, coefficients: FloatArray
 ) -> tuple[Candidate, FloatArray, FloatArray]:

@@ -33,10 +33,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import sympy
-from flint import fmpq, fmpq_mat, fmpq_mpoly, fmpq_poly
+from flint import fmpq, fmpq_poly
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
+from ..algebra import quadratic as quadratic_fields
 from ..algebra.polys import (
     Poly,
     compose,
@@ -45,15 +46,11 @@ from ..algebra.polys import (
     poly_ring,
     primitive,
     to_expr,
-    to_flint,
     total_degree,
 )
-from ..algebra.rationals import primitive as rational_primitive
-from ..algebra.rationals import terms as rational_terms
 from ..errors import AnalysisError, SingularError
 from .field_conics import conic_over_field
 from .process import (
-    emit,
     minpoly_to_singular,
     parse_int,
     parse_intvec,
@@ -68,6 +65,10 @@ ALGEBRAIC = sympy.Symbol("a")
 
 PARAMETER = sympy.Symbol("t")
 """The default parameter of rational parameterizations."""
+
+
+Fraction = tuple[Poly, Poly]
+"""A rational function ``p/q`` in ``D[t]``: ``q`` monic, ``gcd(p, q) = 1``."""
 
 
 # --- results ------------------------------------------------------------------------------
@@ -115,6 +116,9 @@ class CurveAnalysis:
 
     factorization: AbsoluteFactorization
     genus: int | None
+    parametrization: CurveParametrization | None = None
+    """A proper parameterization of a genus-0 curve, when one was computed on the way
+    (:func:`.profile_pair.analyze_profile_pair`)."""
 
     @property
     def is_absolutely_irreducible(self) -> bool:
@@ -135,6 +139,10 @@ class CurveParametrization:
     parameter: sympy.Symbol
     generators: tuple[sympy.Expr, ...]
     method: str
+    fractions: tuple[Fraction, Fraction] | None = None
+    """``x`` and ``y`` as reduced fractions of the ring ``D[t]`` they were computed in (``D`` the
+    field of the generators): what exact arithmetic on them starts from, without reading the
+    expressions back."""
 
     @property
     def coordinates(self) -> tuple[sympy.Expr, sympy.Expr]:
@@ -171,156 +179,6 @@ def analyze_curves(
     return tuple(known[i] or plans[i].read(found) for i in range(len(curves)))
 
 
-SMOOTHNESS_PRIME = 32003
-"""The characteristic in which the smoothness of ``P`` is tested: a smooth reduction of the
-same degree proves the curve smooth over ``C`` (the singular locus is closed)."""
-
-
-def analyze_profile_pair(
-    P: Poly, P2: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None
-) -> tuple[CurveAnalysis, CurveAnalysis]:
-    """:func:`analyze_curves` of the profile ``P`` and its square ``P²``, with the algorithm
-    chosen per curve: when ``P`` (over ``QQ``) is a smooth projective curve — the general
-    position — its genus is ``(d-1)(d-2)/2`` and Riemann–Hurwitz for the double cover
-    ``P → P²``, ``(s, r) ↦ (s, r²)`` gives ``genus(P²)`` (docs/math.md §5): Singular only tests the
-    smoothness modulo a prime, instead of computing the genus of the singular curve ``P²``
-    (seconds to minutes at degree 12). When every factor of ``P`` over ``QQ`` is a line or a
-    smooth conic (spheres, quadrics and tori of revolution), Singular is not needed at all
-    (:func:`_conic_profile_pair`). Otherwise both go to Singular."""
-    found = _conic_profile_pair(P, P2)
-    if found is not None:
-        return found
-    found = _smooth_double_cover(P, P2, timeout, cancel)
-    if found is not None:
-        return found
-    first, second = analyze_curves([P, P2], timeout=timeout, cancel=cancel)
-    return first, second
-
-
-def _conic_profile_pair(P: Poly, P2: Poly) -> tuple[CurveAnalysis, CurveAnalysis] | None:
-    """Both analyses without Singular when ``P`` over ``QQ`` is a product of distinct lines and
-    smooth conics, each absolutely irreducible of genus 0; else ``None``.
-
-    Then every factor ``G`` of ``P²`` over ``QQ`` is absolutely irreducible of genus 0 too
-    (docs/math.md §5): ``G(s, r²)`` is one factor ``F`` of ``P`` (even in ``r``) or a mirror pair
-    ``F(s, r)·F(s, −r)``; a splitting of ``G`` over ``C`` would split ``F`` or give an even
-    polynomial divisible by ``F`` alone, and ``G`` is the image of the rational curve ``F``
-    (Lüroth)."""
-    if not (is_rational_field(P.ring.domain) and is_rational_field(P2.ring.domain)):
-        return None
-    p_factors = _rational_factors(P)
-    if p_factors is None or not all(_is_line_or_smooth_conic(F) for F in p_factors):
-        return None
-    p2_factors = _rational_factors(P2)
-    if p2_factors is None:
-        return None
-    analyses = []
-    for F, factors in ((P, p_factors), (P2, p2_factors)):
-        classes = tuple(AbsoluteFactor(expr, 1, 1) for expr in _singular_normal_forms(factors, _variables(F)))
-        analyses.append(CurveAnalysis(AbsoluteFactorization(_variables(F), classes), 0 if len(classes) == 1 else None))
-    return analyses[0], analyses[1]
-
-
-def _rational_factors(F: Poly) -> list[fmpq_mpoly] | None:
-    """The irreducible factors of ``F`` over ``QQ`` (flint); ``None`` unless square-free."""
-    _, factors = to_flint(F).factor()
-    if any(e > 1 for _, e in factors):
-        return None
-    return [G for G, _ in factors]
-
-
-def _singular_normal_forms(
-    factors: Sequence[fmpq_mpoly], variables: tuple[sympy.Symbol, sympy.Symbol]
-) -> list[sympy.Expr]:
-    """The factors as ``absFactorize`` writes them: primitive over ``ZZ`` with a positive
-    leading coefficient in Singular's ``dp`` order (degree, then lexicographic), and listed by
-    their ``dp`` monomials, then coefficients (the order it gives for a torus's profile)."""
-    normal = []
-    for G in factors:
-        terms = sorted(rational_terms(rational_primitive(G)), key=lambda t: _dp_monomial(t[0]), reverse=True)
-        sign = -1 if terms[0][1] < 0 else 1
-        normal.append([(_dp_monomial(m), m, sign * c) for m, c in terms])
-    normal.sort(key=lambda t: ([d for d, _, _ in t], [c for _, _, c in t]))
-    x, y = variables
-    return [sympy.Add(*(sympy.Integer(int(c.p)) * x ** m[0] * y ** m[1] for _, m, c in t)) for t in normal]
-
-
-def _dp_monomial(m: tuple[int, ...]) -> tuple[int, ...]:
-    return (sum(m), *m)
-
-
-def _is_line_or_smooth_conic(F: fmpq_mpoly) -> bool:
-    """Degree 1, or degree 2 with the nonsingular symmetric matrix of its homogenisation: then
-    ``F`` is absolutely irreducible of genus 0."""
-    degree = F.total_degree()
-    if degree == 1:
-        return True
-    if degree != 2:
-        return False
-    c = {tuple(map(int, m)): v for m, v in F.to_dict().items()}
-    a, b, cc = c.get((2, 0), 0), c.get((1, 1), 0), c.get((0, 2), 0)
-    d, e, f = c.get((1, 0), 0), c.get((0, 1), 0), c.get((0, 0), 0)
-    matrix = fmpq_mat([[2 * a, b, d], [b, 2 * cc, e], [d, e, 2 * f]])
-    return matrix.det() != 0
-
-
-def _smooth_double_cover(
-    P: Poly, P2: Poly, timeout: float, cancel: threading.Event | None
-) -> tuple[CurveAnalysis, CurveAnalysis] | None:
-    """Both analyses when the projective closure of ``P`` is smooth, else ``None``.
-
-    A smooth plane curve is absolutely irreducible, so ``P → P²`` has degree 2 and ``P²`` is
-    absolutely irreducible too. The involution ``σ: r ↦ -r`` of ``P`` fixes exactly the points
-    of ``P`` on the line ``r = 0`` and the point ``(0:1:0)`` if it lies on ``P``; on a smooth
-    curve every fixed point is a ramification point, so with ``B`` of them
-    ``2g(P) - 2 = 2(2g(P²) - 2) + B``.
-    """
-    d = total_degree(P)
-    if not is_rational_field(P.ring.domain) or d < 3 or any(m[1] % 2 for m in P.itermonoms()):
-        return None
-    factors = to_flint(P).factor()[1]
-    if len(factors) > 1 or factors[0][1] > 1:
-        return None  # reducible over QQ, so singular: no smoothness test
-    H = poly_ring(("s", "r", "z"), QQ).from_dict({(i, j, d - i - j): c for (i, j), c in primitive(P).items()})
-    if all(int(c) % SMOOTHNESS_PRIME == 0 for c in H.values()):
-        return None
-    script = (
-        f"ring sorguiS = {SMOOTHNESS_PRIME},(s,r,z),dp;\n"
-        f"poly F = {poly_to_singular(H, ['s', 'r', 'z'])};\n"
-        "ideal J = jacob(F), F;\n" + emit("cone_dimension", "string(dim(std(J)))")
-    )
-    if _one(run_script(script, timeout=timeout, cancel=cancel), "cone_dimension") != "0":
-        return None
-    on_line = fmpq_poly([_fmpq(c) for c in _dense(P)])
-    distinct = on_line.degree() - on_line.gcd(on_line.derivative()).degree()
-    coefficients = dict(P.items())
-    fixed = distinct + (on_line.degree() < d) + ((0, d) not in coefficients)
-    genus_p = (d - 1) * (d - 2) // 2
-    twice, rest = divmod(2 * genus_p - 2 - fixed, 4)
-    if rest:
-        raise SingularError("Riemann-Hurwitz gave a fractional genus (internal error)")
-    analyses = []
-    for F, g in ((P, genus_p), (P2, twice + 1)):
-        factor = AbsoluteFactor(primitive(F).as_expr(), 1, 1)
-        analyses.append(CurveAnalysis(AbsoluteFactorization(_variables(F), (factor,)), g))
-    return analyses[0], analyses[1]
-
-
-def _dense(P: Poly) -> list[object]:
-    """The coefficients of ``P(s, 0)``, lowest degree first."""
-    top = max((i for (i, j) in P.itermonoms() if j == 0), default=0)
-    out = [QQ.zero] * (top + 1)
-    for (i, j), c in P.items():
-        if j == 0:
-            out[i] = c
-    return out
-
-
-def _fmpq(c: object) -> fmpq:
-    """A rational number of sympy's ``QQ`` as flint's ``fmpq``."""
-    return fmpq(int(QQ.numer(c)), int(QQ.denom(c)))
-
-
 def _linear_curve(F: Poly) -> CurveAnalysis | None:
     """``F = A(x)·y + C(x)`` over ``K = QQ(θ)`` with ``gcd(A, C) = 1`` (or the same with ``x`` and
     ``y`` swapped): the graph of ``-C/A``, absolutely irreducible of genus 0 (docs/math.md §5), known
@@ -335,7 +193,7 @@ def _linear_curve(F: Poly) -> CurveAnalysis | None:
     if A.gcd(C).degree() > 0:
         return None
     factor = AbsoluteFactor(F.monic().as_expr(), 1, 1)
-    return CurveAnalysis(AbsoluteFactorization(_variables(F), (factor,)), 0)
+    return CurveAnalysis(AbsoluteFactorization(variables_of(F), (factor,)), 0)
 
 
 def analyze_curve(F: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None) -> CurveAnalysis:
@@ -376,7 +234,7 @@ class _Plan:
         if total_degree(F) < 1:
             raise AnalysisError("a constant polynomial does not define a curve")
         self.key = key
-        self.variables = _variables(F)
+        self.variables = variables_of(F)
         self.symbols = {"x": self.variables[0], "y": self.variables[1], "a": ALGEBRAIC}
         rational = _over_qq(F)
         self.degree = 1
@@ -416,7 +274,7 @@ class _Plan:
         factorization = AbsoluteFactorization(self.variables, tuple(factors))
         value = None
         if self.genus_wanted and factorization.is_absolutely_irreducible:
-            G = parse_int(_one(found, f"genus_{self.key}_0"))
+            G = parse_int(one_result(found, f"genus_{self.key}_0"))
             if self.parts[0][2]:
                 value = G
             elif (G - 1) % self.degree == 0:  # docs/math.md §5: G = d·(g - 1) + 1
@@ -426,9 +284,9 @@ class _Plan:
         return CurveAnalysis(factorization, value)
 
     def _read_qq(self, found: dict[str, list[str]], k: str, e: int) -> list[AbsoluteFactor]:
-        polys = parse_list(_one(found, f"factors_{k}"), self.symbols)[1:]
-        mults = parse_intvec(_one(found, f"mult_{k}"))[1:]
-        minpolys = parse_list(_one(found, f"minpolys_{k}"), self.symbols)[1:]
+        polys = parse_list(one_result(found, f"factors_{k}"), self.symbols)[1:]
+        mults = parse_intvec(one_result(found, f"mult_{k}"))[1:]
+        minpolys = parse_list(one_result(found, f"minpolys_{k}"), self.symbols)[1:]
         result = []
         for g, m, mu in zip(polys, mults, minpolys, strict=True):
             n = sympy.degree(mu, ALGEBRAIC)
@@ -436,7 +294,7 @@ class _Plan:
         return result
 
     def _read_norm(self, found: dict[str, list[str]], k: str, e: int) -> list[AbsoluteFactor]:
-        if _one(found, f"squarefree_{k}") != "1":
+        if one_result(found, f"squarefree_{k}") != "1":
             raise SingularError("no shift made the norm of the curve square-free")
         result = []
         for text in found.get(f"class_{k}", []):
@@ -451,7 +309,7 @@ class _Plan:
                 result.append(AbsoluteFactor(self._over_k(h, mu, c), e, 1))
             else:
                 result.append(AbsoluteFactor(h, e, n // self.degree, mu, c))
-        count = parse_int(_one(found, f"count_{k}"))
+        count = parse_int(one_result(found, f"count_{k}"))
         if sum(f.conjugates for f in result) * self.degree != count:
             raise SingularError("the absolute factors of the norm do not match the curve")
         return result
@@ -475,12 +333,12 @@ class _Plan:
         return G.monic().as_expr()
 
 
-def _variables(F: Poly) -> tuple[sympy.Symbol, sympy.Symbol]:
+def variables_of(F: Poly) -> tuple[sympy.Symbol, sympy.Symbol]:
     x, y = F.ring.symbols
     return x, y
 
 
-def _one(found: dict[str, list[str]], name: str) -> str:
+def one_result(found: dict[str, list[str]], name: str) -> str:
     """The single result ``name``; a missing one means the script did not get there."""
     values = found.get(name)
     if not values:
@@ -530,7 +388,7 @@ def parametrize(
     """
     if F.ring.ngens != 2 or total_degree(F) < 1:
         raise AnalysisError("parametrize needs a non-constant polynomial in two variables")
-    variables = _variables(F)
+    variables = variables_of(F)
     found = _direct(F)
     curve, method = F, "direct"
     if found is None and _over_qq(F) is None:
@@ -571,14 +429,10 @@ def parametrize(
     D = p1.ring.domain
     generators = () if is_rational_field(D) else tuple(field_generators(D))
     x, y = ((p.as_expr() / q.as_expr()).subs(p.ring.symbols[0], parameter) for p, q in found)
-    return CurveParametrization(variables, x, y, parameter, generators, method)
+    return CurveParametrization(variables, x, y, parameter, generators, method, (found[0], found[1]))
 
 
-_Fraction = tuple[Poly, Poly]
-"""A rational function ``p/q`` in ``D[t]``: ``q`` monic, ``gcd(p, q) = 1``."""
-
-
-def _direct(F: Poly) -> tuple[_Fraction, _Fraction] | None:
+def _direct(F: Poly) -> tuple[Fraction, Fraction] | None:
     """``(t, -C(t)/A(t))`` when ``F = A(x)·y + C(x)``, or the same with ``x`` and ``y``
     swapped, over ``K``; ``None`` when ``F`` is linear in neither variable."""
     split = _linear_split(F)
@@ -623,7 +477,7 @@ CONIC_POINT_SEARCH = 50
 is found."""
 
 
-def _conic(F: Poly) -> tuple[_Fraction, _Fraction] | None:
+def _conic(F: Poly) -> tuple[Fraction, Fraction] | None:
     """A proper parameterization over ``QQ`` when ``F = a(u)·v² + b(u)·v + c(u)`` and the
     discriminant is ``s(u)²·q(u)`` with ``deg q ∈ {1, 2}``: the curve is birational to the conic
     ``w² = q(u)`` by ``w = (2a·v + b)/s``, so the conic through a rational point and
@@ -645,18 +499,18 @@ def _conic(F: Poly) -> tuple[_Fraction, _Fraction] | None:
         discriminant = b**2 - 4 * a * c
         if not discriminant:
             continue  # a double curve
-        s, q = _square_part(discriminant)
+        s, q = square_part(discriminant)
         conic = _conic_points(q)
         if conic is None:
             continue
         u, w = conic
         at_u = {R.symbols[0]: u}
         v = sympy.cancel((-b.as_expr().subs(at_u) + s.as_expr().subs(at_u) * w) / (2 * a.as_expr().subs(at_u)))
-        return _fractions(u, v, PARAMETER, ()) if quadratic == 1 else _fractions(v, u, PARAMETER, ())
+        return reduced_fractions(u, v, PARAMETER, ()) if quadratic == 1 else reduced_fractions(v, u, PARAMETER, ())
     return None
 
 
-def _square_part(D: Poly) -> tuple[Poly, Poly]:
+def square_part(D: Poly) -> tuple[Poly, Poly]:
     """``(s, q)`` with ``D = s²·q`` and ``q`` free of square factors but for its constant."""
     constant, factors = D.sqf_list()
     s, q = D.ring.one, D.ring.ground_new(constant)
@@ -702,24 +556,24 @@ def _rational_sqrt(c: sympy.Rational) -> sympy.Rational | None:
 
 def _para_plane_curve(
     F: Poly, timeout: float, cancel: threading.Event | None, checked: bool = False
-) -> list[tuple[_Fraction, _Fraction]]:
+) -> list[tuple[Fraction, Fraction]]:
     """``sorguiParaCurve`` on ``F ∈ QQ[x, y]``: the checks (skipped when ``checked``: the caller
     already knows the curve is absolutely irreducible of genus 0), then paraPlaneCurve's PARA
     dehomogenised at ``s = 1``, over ``QQ`` or the quadratic field of its ``minpoly``: one
     candidate per root of ``minpoly`` with a nonzero third coordinate."""
     script = "ring sorguiP = 0,(x,y),dp;\n" + f"sorguiParaCurve({poly_to_singular(F, ['x', 'y'])}, {int(checked)});\n"
     found = run_script(script, timeout=timeout, cancel=cancel)
-    if _one(found, "irreducible") != "1":
+    if one_result(found, "irreducible") != "1":
         raise AnalysisError(f"the curve {F.as_expr()} = 0 is not absolutely irreducible")
-    g = parse_int(_one(found, "genus"))
+    g = parse_int(one_result(found, "genus"))
     if g != 0:
         raise AnalysisError(f"the curve has genus {g}, so it has no rational parameterization")
     s, t, a = sympy.symbols("s t a")
     D, roots = QQ, [QQ.zero]
     if "minpoly" in found:
-        D, roots = _quadratic_roots(parse_singular(_one(found, "minpoly"), {"a": a}), a)
+        D, roots = _quadratic_roots(parse_singular(one_result(found, "minpoly"), {"a": a}), a)
     R = poly_ring(("t",), D)
-    coordinates = parse_list(_one(found, "para"), {"s": s, "t": t, "a": a})
+    coordinates = parse_list(one_result(found, "para"), {"s": s, "t": t, "a": a})
     if len(coordinates) != 3:
         raise SingularError(f"paraPlaneCurve gave {len(coordinates)} coordinates, not 3")
     candidates = []
@@ -744,7 +598,7 @@ adjoint curves and another rational point."""
 
 def _sheared_candidates(
     F: Poly, timeout: float, cancel: threading.Event | None, checked: bool
-) -> list[tuple[_Fraction, _Fraction]]:
+) -> list[tuple[Fraction, Fraction]]:
     """Candidate parameterizations of ``F ∈ QQ[x, y]`` from paraPlaneCurve, of ``F`` itself first
     and then of its images under :data:`SHEARS`, mapped back; raises :class:`AnalysisError`
     when none of them gives one."""
@@ -762,7 +616,7 @@ def _sheared_candidates(
     )
 
 
-def _unshear(candidate: tuple[_Fraction, _Fraction], k: int, m: int) -> tuple[_Fraction, _Fraction]:
+def _unshear(candidate: tuple[Fraction, Fraction], k: int, m: int) -> tuple[Fraction, Fraction]:
     """``(X + k·Y, Y + m)`` for a parameterization ``(X, Y)`` of ``F(x + k·y, y + m)``."""
     (p1, q1), (p2, q2) = candidate
     return _reduced(p1 * q2 + p2 * q1 * k, q1 * q2), _reduced(p2 + q2 * m, q2)
@@ -784,7 +638,7 @@ def _quadratic_roots(mu: sympy.Expr, a: sympy.Symbol) -> tuple[Domain, list[obje
     return D, [(root * k - c1) / (2 * c2), (-root * k - c1) / (2 * c2)]
 
 
-def _reduced(p: Poly, q: Poly) -> _Fraction:
+def _reduced(p: Poly, q: Poly) -> Fraction:
     """``p/q`` in lowest terms with a monic denominator."""
     if not q:
         raise AnalysisError("a parameterization has a zero denominator")
@@ -795,15 +649,41 @@ def _reduced(p: Poly, q: Poly) -> _Fraction:
 
 def _vanishes(F: Poly, p1: Poly, q1: Poly, p2: Poly, q2: Poly) -> bool:
     """``F(p1/q1, p2/q2) = 0``: with denominators cleared,
-    ``Σ c·p1^i q1^(nx-i) p2^j q2^(ny-j) = 0``."""
+    ``Σ c·p1^i q1^(nx-i) p2^j q2^(ny-j) = 0``; in flint over ``QQ`` and quadratic fields
+    (:func:`_vanishes_quadratic`), in sympy's ring otherwise."""
     D, K = p1.ring.domain, F.ring.domain
     nx, ny = F.degree(0), F.degree(1)
+    if is_rational_field(K) and quadratic_fields.field_of(D) is not None:
+        return _vanishes_quadratic(F, (p1, q1, p2, q2), nx, ny)
     total = p1.ring.zero
     for (i, j), c in F.items():
         if K != D:
             c = D.convert(c, K) if is_rational_field(K) else D.from_sympy(to_expr(K, c))
         total += p1**i * q1 ** (nx - i) * p2**j * q2 ** (ny - j) * c
     return not total
+
+
+def _vanishes_quadratic(F: Poly, fractions: tuple[Poly, Poly, Poly, Poly], nx: int, ny: int) -> bool:
+    """:func:`_vanishes` for ``F`` over ``QQ`` and a map over ``QQ`` or a quadratic field, with
+    each polynomial of ``D[t]`` as two flint polynomials over ``QQ`` (:mod:`..algebra.quadratic`;
+    sympy's arithmetic over an algebraic field took seconds on a curve of degree 12)."""
+    K = quadratic_fields.field_of(fractions[0].ring.domain)
+    assert K is not None
+
+    def powers(x: quadratic_fields.Pair, top: int) -> list[quadratic_fields.Pair]:
+        out = [(fmpq_poly([1]), fmpq_poly([]))]
+        for _ in range(top):
+            out.append(K.mul(out[-1], x))
+        return out
+
+    p1, q1, p2, q2 = (powers(quadratic_fields.pair_of(g), n) for g, n in zip(fractions, (nx, nx, ny, ny)))
+    total_a, total_b = fmpq_poly([]), fmpq_poly([])
+    for (i, j), c in F.items():
+        a, b = K.mul(K.mul(p1[i], q1[nx - i]), K.mul(p2[j], q2[ny - j]))
+        value = fmpq(int(QQ.numer(c)), int(QQ.denom(c)))
+        total_a += a * value
+        total_b += b * value
+    return total_a.is_zero() and total_b.is_zero()
 
 
 def _proper_degree(F: Poly, p1: Poly, q1: Poly, p2: Poly, q2: Poly) -> bool:
@@ -814,9 +694,9 @@ def _proper_degree(F: Poly, p1: Poly, q1: Poly, p2: Poly, q2: Poly) -> bool:
     return max(total_degree(P1), total_degree(P2), total_degree(q)) == total_degree(F)
 
 
-def _fractions(
+def reduced_fractions(
     x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr]
-) -> tuple[_Fraction, _Fraction]:
+) -> tuple[Fraction, Fraction]:
     """``x`` and ``y`` as reduced fractions in ``QQ(generators)[t]``."""
     D = QQ.algebraic_field(*generators) if generators else QQ
     R = poly_ring(("t",), D)
@@ -833,12 +713,12 @@ def _fractions(
 def is_on_curve(F: Poly, x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr] = ()) -> bool:
     """True when ``F(x(t), y(t)) = 0`` exactly in ``QQ(generators)[t]`` (docs/math.md §6: every
     parameterization is checked by substitution)."""
-    (p1, q1), (p2, q2) = _fractions(x, y, t, generators)
+    (p1, q1), (p2, q2) = reduced_fractions(x, y, t, generators)
     return _vanishes(F, p1, q1, p2, q2)
 
 
 def is_proper(F: Poly, x: sympy.Expr, y: sympy.Expr, t: sympy.Symbol, generators: Sequence[sympy.Expr] = ()) -> bool:
     """True when ``(x(t), y(t))`` parameterizes the irreducible curve ``F = 0`` birationally
     (the degree criterion of :func:`_proper_degree`)."""
-    (p1, q1), (p2, q2) = _fractions(x, y, t, generators)
+    (p1, q1), (p2, q2) = reduced_fractions(x, y, t, generators)
     return _proper_degree(F, p1, q1, p2, q2)

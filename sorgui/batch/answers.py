@@ -1,0 +1,78 @@
+"""The output object of one line of ``--each-line``, and what it counts as in the summary.
+
+A line's object is the analysis JSON of ``sorgui analyze --json`` with ``"line"`` (its 1-based
+number) and ``"line_hash"`` (:func:`.lines.line_hash`) in front, or
+``{"line", "line_hash", "input", "error": {"message", "position"}}``. The object is made where
+the analysis ran (a worker process of this machine, or a Dask worker), so that every way of
+running a batch writes the same text.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import Any
+
+from sorgui.session.messages import Failed, FinalMessage, Finished, Invalid
+
+from .lines import Line
+
+SURFACE_OF_REVOLUTION = "sor"
+NOT_SURFACE_OF_REVOLUTION = "not"
+ERROR = "error"
+UNFINISHED = "unfinished"
+KINDS = (SURFACE_OF_REVOLUTION, NOT_SURFACE_OF_REVOLUTION, ERROR, UNFINISHED)
+"""What a line counts as in the summary: exactly one of these (an error first, then an
+analysis that stopped at its time limit, then its verdict)."""
+
+ANALYSED, FAILED, NOT_A_POLYNOMIAL = 0, 1, 2
+"""A line's status; the batch exits with 1 when a line failed, else 2 when a line was not a
+polynomial, else 0."""
+
+
+@dataclass(frozen=True, slots=True)
+class Answer:
+    """One output line: its JSON text (no line break), status and kind."""
+
+    text: str
+    status: int
+    kind: str
+
+
+def answer_of(line: Line, message: FinalMessage) -> Answer:
+    """The answer for the final message of a line's analysis."""
+    match message:
+        case Finished(analysis):
+            data = {"line": line.number, "line_hash": line.digest, **analysis.to_json()}
+            return Answer(json.dumps(data), ANALYSED, kind_of(data))
+        case Invalid(text_of, position):
+            return error_answer(line, text_of, NOT_A_POLYNOMIAL, position)
+        case Failed(reason):
+            return error_answer(line, reason, FAILED)
+    return error_answer(line, "the analysis was cancelled", FAILED)
+
+
+def refused(line: Line) -> Answer:
+    """The answer of a line refused whole (too long, not text): not a polynomial."""
+    assert line.refusal is not None
+    return error_answer(line, line.refusal, NOT_A_POLYNOMIAL)
+
+
+def error_answer(line: Line, message: str, status: int, position: int | None = None) -> Answer:
+    """The error object of a line."""
+    data = {
+        "line": line.number,
+        "line_hash": line.digest,
+        "input": line.equation,
+        "error": {"message": message, "position": position},
+    }
+    return Answer(json.dumps(data), status, ERROR)
+
+
+def kind_of(data: dict[str, Any]) -> str:
+    """What an output object counts as (:data:`KINDS`)."""
+    if "error" in data:
+        return ERROR
+    if data.get("unfinished"):
+        return UNFINISHED
+    return SURFACE_OF_REVOLUTION if data.get("is_sor") else NOT_SURFACE_OF_REVOLUTION

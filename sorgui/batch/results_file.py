@@ -1,0 +1,192 @@
+"""``--each-line -o RESULTS.jsonl [--resume]``: the JSON Lines written to a file that survives
+a crash.
+
+Lines are written in input order, each whole (one ``write``), and flushed to the disk at least
+every :data:`SYNC_EVERY` seconds and at the end. A batch killed by ``SIGKILL`` or a power cut
+and started again with ``--resume`` keeps every line of the file that is whole, valid JSON
+and belongs to the input as it is now: the file's lines are matched, in order, with the
+input's lines by line number and :func:`.lines.line_hash`; the lines it holds are not analysed
+again, and the rest are appended. A last line that is cut short (or the zeros a power cut
+leaves) is dropped and redone. The result is the file one uninterrupted run writes.
+
+Nothing is lost silently: without ``--resume`` a file that holds results is refused, and with
+it a file whose lines do not match the input (the input was edited, or it is another batch's
+file) is refused before anything is changed.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import stat
+import time
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any, BinaryIO
+
+from .answers import Answer, kind_of
+from .errors import BatchError
+from .lines import Line
+
+SYNC_EVERY = 1.0
+"""Seconds between two flushes of the results file to the disk (``fsync``)."""
+
+
+class ResultsFile:
+    """The ``-o`` file of a batch: its kept lines (with ``--resume``) and the lines written."""
+
+    def __init__(self, path: Path, resume: bool, inputs: list[os.stat_result]) -> None:
+        self.path = path
+        self.kept: dict[str, int] = {}
+        """How many kept lines count as each kind (:data:`.answers.KINDS`)."""
+        self._fd: int | None = None
+        self._synced = time.monotonic()
+        status = _status(path, inputs)
+        regular = status is not None and stat.S_ISREG(status.st_mode)
+        if resume and status is not None and not regular:
+            raise BatchError(f"cannot resume {path}: it is not a regular file")
+        if not resume and regular and status is not None and status.st_size > 0:
+            raise BatchError(f"{path} already holds results: add --resume to continue it, or remove it first")
+        self._entries: Iterator[tuple[int, str, str]] | None = None
+        self._next: tuple[int, str, str] | None = None
+        self._valid_end = 0
+        if resume and regular:
+            self._reader: BinaryIO | None = open(path, "rb")  # noqa: SIM115 - closed when the prefix is read
+            self._entries = self._scan(self._reader)
+            self._next = next(self._entries, None)
+        else:
+            self._reader = None
+            self._open(truncate=True)
+
+    def keeps(self, line: Line) -> bool:
+        """Whether ``line`` is already in the file (``--resume``): the file's next line must be
+        ``line``'s, with the same hash; once the file's lines are all matched, the file is
+        opened to append to. Raises :class:`BatchError` for a file that does not match."""
+        if self._fd is not None:
+            return False
+        entry = self._next
+        if entry is None:
+            self._open(truncate=False)
+            return False
+        number, digest, kind = entry
+        if number != line.number or digest != line.digest:
+            where = (
+                f"line {number}" if number == line.number else f"line {number} (the input's next is line {line.number})"
+            )
+            raise BatchError(
+                f"cannot resume {self.path}: its {where} is not the input's line {line.number} as it is now; "
+                "start a new results file"
+            )
+        self.kept[kind] = self.kept.get(kind, 0) + 1
+        assert self._entries is not None
+        self._next = next(self._entries, None)
+        return True
+
+    def finish_reading(self) -> None:
+        """The input has ended: every line of the file must have been matched."""
+        if self._fd is not None:
+            return
+        if self._next is not None:
+            raise BatchError(
+                f"cannot resume {self.path}: it holds line {self._next[0]}, which the input no longer has; "
+                "start a new results file"
+            )
+        self._open(truncate=False)
+
+    def write(self, answer: Answer) -> None:
+        """Append one line, whole; flush to the disk when :data:`SYNC_EVERY` seconds have passed."""
+        assert self._fd is not None
+        data = memoryview((answer.text + "\n").encode("utf-8"))
+        while data:
+            data = data[os.write(self._fd, data) :]
+        if time.monotonic() - self._synced >= SYNC_EVERY:
+            self._sync()
+
+    def close(self) -> None:
+        """Flush the file to the disk and close it."""
+        if self._reader is not None:
+            self._reader.close()
+            self._reader = None
+        if self._fd is not None:
+            try:
+                self._sync()
+            finally:
+                os.close(self._fd)
+                self._fd = None
+
+    def _sync(self) -> None:
+        assert self._fd is not None
+        try:
+            os.fsync(self._fd)
+        except OSError:
+            pass  # a pipe or a character device (-o /dev/stdout) has nothing to flush
+        self._synced = time.monotonic()
+
+    def _open(self, truncate: bool) -> None:
+        """Open the file for writing: a new or emptied file, or (resuming) the file cut after its
+        last whole line, for appending."""
+        if self._reader is not None:
+            self._reader.close()
+            self._reader = None
+        flags = os.O_WRONLY | os.O_CREAT | os.O_APPEND | getattr(os, "O_CLOEXEC", 0)
+        try:
+            self._fd = os.open(self.path, flags, 0o666)
+            status = os.fstat(self._fd)
+            if stat.S_ISREG(status.st_mode) and (truncate or status.st_size > self._valid_end):
+                os.ftruncate(self._fd, 0 if truncate else self._valid_end)
+        except OSError as exc:
+            raise BatchError(f"cannot write {self.path}: {exc.strerror or exc}") from None
+
+    def _scan(self, reader: BinaryIO) -> Iterator[tuple[int, str, str]]:
+        """``(line, line_hash, kind)`` of each whole line of the file, in order, recording where the
+        last one ends; a line that is cut short or not an output object may only be the last."""
+        offset = 0
+        previous = 0
+        bad: int | None = None
+        for raw in reader:
+            entry = _entry(raw) if raw.endswith(b"\n") else None
+            if entry is not None and bad is None and entry[0] > previous:
+                offset += len(raw)
+                self._valid_end = offset
+                previous = entry[0]
+                yield entry
+            elif bad is None:
+                bad = previous
+            else:
+                raise BatchError(
+                    f"cannot resume {self.path}: the lines after line {bad} are not sorgui's output; start a new file"
+                )
+
+
+def _entry(raw: bytes) -> tuple[int, str, str] | None:
+    """``(line, line_hash, kind)`` of one line of a results file, ``None`` if it is not one."""
+    try:
+        data: Any = json.loads(raw)
+    except (ValueError, UnicodeDecodeError):
+        return None
+    if not isinstance(data, dict):
+        return None
+    number, digest = data.get("line"), data.get("line_hash")
+    if not isinstance(number, int) or not isinstance(digest, str):
+        return None
+    return number, digest, kind_of(data)
+
+
+def _status(path: Path, inputs: list[os.stat_result]) -> os.stat_result | None:
+    """The file's status (``None`` if it does not exist), after the checks of a target: its folder
+    exists, it is not a folder and not the input."""
+    try:
+        status = os.stat(path)
+    except FileNotFoundError:
+        status = None
+    except OSError as exc:
+        raise BatchError(f"cannot write {path}: {exc.strerror or exc}") from None
+    if not path.parent.is_dir():
+        raise BatchError(f"cannot write {path}: the folder {path.parent} does not exist")
+    if status is None:
+        return None
+    if stat.S_ISDIR(status.st_mode):
+        raise BatchError(f"cannot write {path}: it is a folder")
+    if any((status.st_dev, status.st_ino) == (i.st_dev, i.st_ino) for i in inputs):
+        raise BatchError(f"refusing to overwrite the input file {path}")
+    return status

@@ -1,0 +1,81 @@
+"""An open part capped by the region into a solid (docs/math.md §11).
+
+The faces of the part and the boundary of the region (the ball's sphere or the box) cut the
+region into volumes (``BOPAlgo_MakerVolume``); the solid kept is ``{f ≤ 0}`` inside the region:
+the volumes where ``f < 0`` at points inside them (``BRepClass3d_SolidClassifier`` tells which
+sampled points are inside), the side the faces' normals point away from. A part that is closed
+already (a sphere, a torus inside the ball) gives its own solid.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from OCP.Bnd import Bnd_Box
+from OCP.BOPAlgo import BOPAlgo_MakerVolume
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepClass3d import BRepClass3d_SolidClassifier
+from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
+from OCP.gp import gp_Pnt
+from OCP.TopAbs import TopAbs_IN, TopAbs_SOLID
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS_Shape
+
+from sorgui.engine.values import Terms
+from sorgui.render import ClipBox, ClipSphere
+from sorgui.render.sampling import value_and_gradient
+
+from .geometry import CadGeometryError
+from .sewing import compound
+
+PROBES = 400
+"""Random points of a volume's bounding box tried to find points inside it."""
+
+
+def capped(shape: TopoDS_Shape, region: ClipSphere | ClipBox, terms: Terms, tolerance: float) -> TopoDS_Shape:
+    """The solid ``{f ≤ 0}`` inside ``region`` bounded by the part ``shape`` and the region."""
+    if isinstance(region, ClipSphere):
+        boundary = BRepPrimAPI_MakeSphere(gp_Pnt(*region.center), region.radius).Shape()
+    else:
+        low, high = region.bounds[0::2], region.bounds[1::2]
+        boundary = BRepPrimAPI_MakeBox(gp_Pnt(*low), gp_Pnt(*high)).Shape()
+    maker = BOPAlgo_MakerVolume()
+    maker.AddArgument(shape)
+    maker.AddArgument(boundary)
+    maker.SetIntersect(True)
+    maker.SetFuzzyValue(tolerance)
+    maker.Perform()
+    if maker.HasErrors():
+        raise CadGeometryError("Open CASCADE could not split the region by the part to cap it")
+    kept = [solid for solid in _solids(maker.Shape()) if _inside_sign(solid, terms, tolerance) < 0]
+    if not kept:
+        raise CadGeometryError("the region holds no point where f < 0 to make a solid of")
+    return kept[0] if len(kept) == 1 else compound(kept)
+
+
+def _solids(shape: TopoDS_Shape) -> list[TopoDS_Shape]:
+    out = []
+    explorer = TopExp_Explorer(shape, TopAbs_SOLID)
+    while explorer.More():
+        out.append(explorer.Current())
+        explorer.Next()
+    return out
+
+
+def _inside_sign(solid: TopoDS_Shape, terms: Terms, tolerance: float) -> float:
+    """The mean sign of ``f`` at sampled points inside ``solid`` (0 if none is found)."""
+    box = Bnd_Box()
+    BRepBndLib.AddOptimal_s(solid, box, False, False)
+    low, high = np.array(box.CornerMin().Coord()), np.array(box.CornerMax().Coord())
+    rng = np.random.default_rng(0)
+    classifier = BRepClass3d_SolidClassifier(solid)
+    inside = []
+    for point in low + (high - low) * rng.random((PROBES, 3)):
+        classifier.Perform(gp_Pnt(*map(float, point)), tolerance)
+        if classifier.State() == TopAbs_IN:
+            inside.append(point)
+        if len(inside) >= 25:
+            break
+    if not inside:
+        return 0.0
+    values = value_and_gradient(terms, np.array(inside), normalise=True)[0]
+    return float(np.mean(np.sign(values)))

@@ -1,0 +1,197 @@
+"""The parser's fast path: an expanded polynomial in ``x, y, z`` read in one regular-expression
+pass, straight into flint's ``QQ[x, y, z]``, without a syntax tree.
+
+A parts library, a CAS or sorgui itself prints equations as sums of terms, each a number times a
+monomial: ``3*x**2*y - 5/2*z + 1`` (sorgui, Maple, Singular), ``43*x**10/59`` (sympy),
+``2x^2y - 1.5e-3 z`` (by hand, CAD output), ``z = x^3 - 3xy^2``. One pattern (:data:`_TERM`)
+splits the whole text into terms in C; per term only the digits are handed to ``int()`` and the
+monomial's exponents are looked up (:func:`_exponents`, cached across calls: a library's
+equations share their monomials). Decimals are exact (``0.25`` is ``1/4``), as in the parser.
+
+Anything else (parentheses, roots, powers of numbers, LaTeX, two signs in a row, a limit of the
+parser's reached) is declined with ``None``, and the general parser (:mod:`.parsing`) reads it
+and reports on it exactly; whatever this path accepts, the general parser reads as the same
+polynomial (a property test compares them), so it changes the speed and nothing else.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from flint import fmpq, fmpq_mpoly
+
+from .algebra import rationals
+
+Monomial = tuple[int, ...]
+
+_NUMBER = r"(?:[0-9]++(?:\.[0-9]*+)?+|\.[0-9]++)(?:[eE][-+]?+[0-9]++)?+"
+_POWER = r"(?:\s*+(?:\*\*|\^)\s*+[0-9]{1,6}+)?+"
+_MONOMIAL = rf"[xyz]{_POWER}(?:\s*+\*?+\s*+[xyz]{_POWER})*+"
+_TERM = re.compile(
+    rf"\s*+([-+]?+)\s*+(?:({_NUMBER})(?:\s*+/\s*+([0-9]++))?+(?:\s*+\*?+\s*+({_MONOMIAL})(?:\s*+/\s*+([0-9]++))?+)?+"
+    rf"|({_MONOMIAL})(?:\s*+/\s*+([0-9]++))?+)\s*+|(.)",
+    re.DOTALL,
+)
+"""A term — ``[sign] number [/ integer] [[*] monomial [/ integer]]`` or ``[sign] monomial
+[/ integer]`` — or, in the last group, any other character (then the text is declined). Every
+character of the text belongs to exactly one match. The quantifiers are possessive (a term is
+never read in two ways, and a text is split in half the time)."""
+_FACTOR = re.compile(r"([xyz])(?:\s*(?:\*\*|\^)\s*([0-9]+))?")
+_INDEX = {"x": 0, "y": 1, "z": 2}
+_CONSTANT: Monomial = (0, 0, 0)
+_FUNCTION_NAME = re.compile(r"\s*[A-Za-z]\w*\s*\(\s*x\s*,\s*y\s*,\s*z\s*\)\s*:?=", re.ASCII)
+_MONOMIALS: dict[str, Monomial | None] = {}
+_MONOMIALS_KEPT = 20_000
+"""Monomial texts whose exponents are kept between calls."""
+_SPARE_BITS = 256
+"""Bits by which the common denominator of the terms may exceed twice the largest one before
+the terms are read one rational each (:meth:`_Terms.polynomial`)."""
+
+
+class Limits:
+    """The parser's limits that an expanded polynomial can reach (see :mod:`.parsing`)."""
+
+    __slots__ = ("bits", "decimal_exponent", "degree", "digits")
+
+    def __init__(self, degree: int, digits: int, bits: int, decimal_exponent: int) -> None:
+        self.degree = degree
+        self.digits = digits
+        self.bits = bits
+        self.decimal_exponent = decimal_exponent
+
+
+def read_expanded(text: str, limits: Limits) -> fmpq_mpoly | None:
+    """``text`` as a non-constant polynomial of ``QQ[x, y, z]``, or ``None`` when it is not an
+    expanded polynomial within ``limits`` (or is constant): the general parser decides then.
+    ``lhs = rhs`` is ``lhs - rhs``, and a leading ``f(x, y, z) =`` is skipped, as in the parser."""
+    prefix = _FUNCTION_NAME.match(text)
+    body = text[prefix.end() :] if prefix else text
+    terms = _Terms()
+    if "=" in body:
+        sides = body.split("=")
+        if len(sides) != 2 or not terms.read(sides[0], limits, 1) or not terms.read(sides[1], limits, -1):
+            return None
+    elif not terms.read(body, limits, 1):
+        return None
+    polynomial = terms.polynomial()
+    return None if polynomial.is_constant() else polynomial  # constant or zero: the parser says which
+
+
+class _Terms:
+    """The terms read so far: monomial, integer numerator and the digits of the denominator
+    (``""`` for 1) of each, in three lists."""
+
+    __slots__ = ("denominators", "monomials", "numerators")
+
+    def __init__(self) -> None:
+        self.monomials: list[Monomial] = []
+        self.numerators: list[int] = []
+        self.denominators: list[str] = []
+
+    def read(self, text: str, limits: Limits, side: int) -> bool:
+        """Add the terms of one side (times ``side``, ±1); ``False`` when it is not expanded."""
+        first = True
+        short = limits.bits // 4  # literals this long in all cannot reach the bound on a product's bits
+        cached = _MONOMIALS.get
+        monomials, numerators, denominators = self.monomials, self.numerators, self.denominators
+        for sign, number, over, monomial, under, bare, bare_under, other in _TERM.findall(text):
+            if other or not (sign or first):
+                return False  # another character, or two terms without a sign between them
+            first = False
+            if not number:
+                numerator, key = 1, bare_under
+                monomial, under = bare, bare_under
+            elif number.isdigit() and len(number) <= limits.digits and not (over and under):
+                numerator, key = int(number), over or under
+            else:
+                value = _rational(number, over, under, limits)
+                if value is None:
+                    return False
+                numerator, denominator = value
+                key = "" if denominator == 1 else str(denominator)
+            if key and (len(key) > limits.digits or not key.strip("0")):
+                return False  # division by zero, or too many digits: the parser says so
+            exponents = (cached(monomial) or _exponents(monomial, limits)) if monomial else _CONSTANT
+            if exponents is None:
+                return False
+            if len(number) + len(over) + len(under) > short and (
+                numerator.bit_length() + len(key) * 10 // 3 + sum(exponents) > limits.bits
+            ):
+                return False  # near the parser's bound on the numbers of a product: it decides
+            monomials.append(exponents)
+            numerators.append(-numerator if (sign == "-") != (side < 0) else numerator)
+            denominators.append(key)
+        return not first
+
+    def polynomial(self) -> fmpq_mpoly:
+        """The sum of the terms. Over the common denominator ``L`` of the terms, the numerators
+        are integers, read by flint in one call and divided by ``L`` once (a rational per term
+        would cost as much again as the reading); when ``L`` is much larger than the
+        denominators themselves, one rational per term instead."""
+        context = rationals.context(("x", "y", "z"))
+        values = {key: int(key) for key in set(self.denominators) if key}
+        common = math.lcm(*values.values())
+        values[""] = 1
+        largest = max(d.bit_length() for d in values.values())
+        if common.bit_length() <= 2 * largest + _SPARE_BITS:
+            factors = {key: common // d for key, d in values.items()}
+            coefficients: list[int | fmpq] = [n * factors[k] for n, k in zip(self.numerators, self.denominators)]
+            scale = fmpq(1, common)
+        else:
+            coefficients = [n if not k else fmpq(n, values[k]) for n, k in zip(self.numerators, self.denominators)]
+            scale = fmpq(1)
+        terms: dict[Monomial, int | fmpq] = dict(zip(self.monomials, coefficients))
+        if len(terms) < len(coefficients):  # a monomial written twice: its terms are added
+            terms = {}
+            for monomial, c in zip(self.monomials, coefficients):
+                terms[monomial] = terms.get(monomial, 0) + c
+        polynomial = context.from_dict(terms)
+        return polynomial if common == 1 else polynomial * scale
+
+
+def _rational(number: str, over: str, under: str, limits: Limits) -> tuple[int, int] | None:
+    """``number / over / under`` as ``(numerator, denominator)`` (not reduced); ``None`` beyond
+    the parser's limits or for a division by zero."""
+    value = _number(number, limits)
+    if value is None:
+        return None
+    numerator, denominator = value
+    for divisor in (over, under):
+        if divisor:
+            d = int(divisor) if len(divisor) <= limits.digits else 0
+            if not d:
+                return None
+            denominator *= d
+    return numerator, denominator
+
+
+def _number(text: str, limits: Limits) -> tuple[int, int] | None:
+    """A number literal as ``(numerator, denominator)``, exactly (``1.5e-3`` is ``15/10⁴``);
+    ``None`` beyond the parser's limits on digits and decimal exponents."""
+    mantissa, _, exponent = text.replace("E", "e").partition("e")
+    whole, _, fraction = mantissa.partition(".")
+    digits = whole + fraction
+    if len(digits) > limits.digits:
+        return None
+    scale = -len(fraction)
+    if exponent:
+        if len(exponent.lstrip("+-")) > 6 or abs(int(exponent)) > limits.decimal_exponent:
+            return None
+        scale += int(exponent)
+    value = int(digits) if digits else 0
+    return (value * 10**scale, 1) if scale >= 0 else (value, 10**-scale)
+
+
+def _exponents(monomial: str, limits: Limits) -> Monomial | None:
+    """The exponents of a monomial's text (``x**2*y``, ``x^2 y``, ``xy``), kept for the next
+    time; ``None`` above the degree limit."""
+    exponents = [0, 0, 0]
+    for name, power in _FACTOR.findall(monomial):
+        exponents[_INDEX[name]] += int(power) if power else 1
+    found = (exponents[0], exponents[1], exponents[2]) if sum(exponents) <= limits.degree else None
+    if len(_MONOMIALS) >= _MONOMIALS_KEPT:
+        _MONOMIALS.clear()
+    if found is not None:
+        _MONOMIALS[monomial] = found
+    return found
