@@ -8,6 +8,7 @@ the text report's final newline, and the one time limit of the whole analysis.
 from __future__ import annotations
 
 import json
+import multiprocessing
 import os
 import subprocess
 import sys
@@ -206,11 +207,14 @@ def test_a_failed_write_names_the_file(tmp_path: Path, monkeypatch: pytest.Monke
 
     import sorgui.export.files as files
     from sorgui.engine import analyze
+    from sorgui.session import export_process
 
     def full_disk(*_args, **_kwargs):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
 
     monkeypatch.setattr(files, "export_analysis", full_disk)
+    # the export child must be forked for the patch to reach it (a test process with threads spawns)
+    monkeypatch.setattr(export_process, "quick_context", lambda: multiprocessing.get_context("fork"))
     target = tmp_path / "r.json"
     with pytest.raises(cli._OutputError, match=f"cannot write {target}: No space left on device"):
         cli.write_outputs(analyze("x^2+y^2-z", recognition_only=True), [target])

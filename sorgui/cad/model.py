@@ -184,11 +184,6 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
             raise CadGeometryError("the surface has no real points inside the drawn ball")
         return Faces(faces, "analytic", tuple(line for spec in specs for line in _analytic_lines(spec)))
     if rec.profile is None or rec.axis is None or frame is None:
-        if rec.symmetry == "sphere":  # (x² + y² + z² + 1)³⁰ − 2: spheres about one centre
-            raise CadGeometryError(
-                f"the surface of degree {rec.degree} has a sphere's symmetry but is not a sphere of degree 2 "
-                "(spheres about one centre, of radii outside its field): a CAD file is written of a sphere of degree 2"
-            )
         raise CadGeometryError(f"a {rec.symmetry} surface has no single axis to turn a profile about")
     curve = meridian_curve(rec.profile, frame, ball)
     arcs = profile_arcs(scene.profile_curve.polylines(), curve, ball)

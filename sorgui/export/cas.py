@@ -133,6 +133,19 @@ def latex_name(name: str) -> str:
     return LATEX_NAMES.get(name) or sympy.latex(sympy.Symbol(name))
 
 
+_SUBSCRIPTED = re.compile(r"(.*_\{[^{}]*)\}(\([^()]*\))?")
+
+
+def component_name(name: str, i: int) -> str:
+    r"""The LaTeX name of component ``i`` of the vector ``name``: ``X_{i}``, and a name that has a
+    subscript already gets ``i`` in it (``\mathrm{SMAT}_{1}`` becomes ``\mathrm{SMAT}_{1,2}``: a
+    second subscript is an error in LaTeX)."""
+    subscripted = _SUBSCRIPTED.fullmatch(name)
+    if subscripted is None:
+        return f"{name}_{{{i}}}"
+    return f"{subscripted.group(1)},{i}}}{subscripted.group(2) or ''}"
+
+
 def tex_text(text: str) -> str:
     """``text`` escaped for LaTeX's text mode (special characters and the Unicode sorgui uses)."""
     out = []
@@ -213,7 +226,7 @@ def _latex_formula(formula: Formula) -> list[str]:
             lines += [r"\[", f"{name} = {row}", r"\]"]
         else:
             for i, value in enumerate(formula.value, 1):
-                lines += latex_display(f"{name}_{{{i}}}", value)
+                lines += latex_display(component_name(name, i), value)
     if formula.coverage is not None:
         lines.append(r"\begin{itemize}")
         lines += [r"\item " + _tex_words(line) for line in formula.coverage.lines(LATEX_STYLE)]

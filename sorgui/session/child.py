@@ -34,6 +34,28 @@ ENDING = frozenset({signal.SIGTERM, signal.SIGHUP, signal.SIGINT})
 """Blocked while a child is started, so that it never runs its parent's handlers of them."""
 
 
+def quick_context() -> multiprocessing.context.BaseContext:
+    """The context of a child started from a command line's process: ``fork`` (the child has the
+    parent's modules already, no second import of the engine) while this process has one
+    thread, else ``spawn``: a fork copies the locks other threads hold (Open CASCADE's, VTK's,
+    a BLAS pool's) but not the threads, and the child can wait on them forever; an export child
+    forked after Open CASCADE had started its threads never answered."""
+    if _threads() == 1:
+        return multiprocessing.get_context("fork")
+    return multiprocessing.get_context("spawn")
+
+
+def _threads() -> int:
+    """This process's threads, those of C libraries included (``/proc/self/task``; Python's own
+    where there is no ``/proc``)."""
+    try:
+        return len(os.listdir("/proc/self/task"))
+    except OSError:
+        import threading
+
+        return threading.active_count()
+
+
 def become_child(*, niceness: int = 0) -> None:
     """What a child process does first: lead a process group, die with its parent, take the
     default action for the ending signals (no handler of the parent's, none that a C call would

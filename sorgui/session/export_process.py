@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from sorgui.session.child import ChildProcess, become_child
+from sorgui.session.child import ChildProcess, become_child, quick_context
 from sorgui.session.messages import Hangup
 
 if TYPE_CHECKING:
@@ -282,13 +282,11 @@ class ExportProcess:
 def export_supervised(
     request: ExportRequest, deadline: float | None, limit: float | None = None
 ) -> list[ExportMessage]:
-    """Write the files of ``request`` in a forked child by ``deadline`` (the user's time limit
+    """Write the files of ``request`` in a child (forked when it can be) by ``deadline`` (the user's time limit
     being ``limit`` seconds) and return its messages (:class:`ExportsDone` last). A signal that
     reaches this process unwinds through here and kills the child at once; a process limit
     that keeps it from starting fails every file in one line each."""
-    import multiprocessing
-
-    worker = ExportProcess(multiprocessing.get_context("fork"), limit)
+    worker = ExportProcess(quick_context(), limit)
     try:
         worker.give(request, deadline)
     except OSError as exc:  # a limit on processes (ulimit -u) or on memory

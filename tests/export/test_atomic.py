@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import multiprocessing
 import os
 import stat
 from collections.abc import Iterator
@@ -98,6 +99,7 @@ def test_command_line_reports_a_failed_write_in_one_line(tmp_path, monkeypatch, 
     file system that turned read-only): exit status 1, one line naming the file, old file kept."""
     from sorgui.cli import main
     from sorgui.export import atomic
+    from sorgui.session import export_process
 
     target = tmp_path / "out.json"
     target.write_text(OLD, encoding="utf-8")
@@ -106,6 +108,8 @@ def test_command_line_reports_a_failed_write_in_one_line(tmp_path, monkeypatch, 
         raise PermissionError(13, "Read-only file system", str(destination))
 
     monkeypatch.setattr(atomic.os, "replace", refuse)
+    # the export child must be forked for the refusal to reach it (a test process with threads spawns)
+    monkeypatch.setattr(export_process, "quick_context", lambda: multiprocessing.get_context("fork"))
     assert main(["analyze", "--recognition-only", "-o", str(target), "x^2 + y^2 - z^2 - 1"]) == 1
     lines = capsys.readouterr().err.strip().splitlines()
     assert lines == [f"sorgui: cannot write {target}: Read-only file system"]

@@ -92,6 +92,7 @@ def make_window(qtbot):  # noqa: ANN001, ANN201
 
     create_application([])
     windows = []
+    stuck = _DialogWatch()
 
     def make(prestart_worker: bool = True) -> MainWindow:
         window = MainWindow(prestart_worker=prestart_worker)
@@ -102,6 +103,7 @@ def make_window(qtbot):  # noqa: ANN001, ANN201
         return window
 
     yield make
+    stuck.stop()
     app = QCoreApplication.instance()
     for window in windows:
         window.setWindowModified(False)  # no unsaved-changes question at the end of a test
@@ -111,6 +113,47 @@ def make_window(qtbot):  # noqa: ANN001, ANN201
         window.deleteLater()
     QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
     gc.collect()
+    if stuck.closed:
+        pytest.fail(f"a modal dialog was left open for {DIALOG_PATIENCE:g} s and closed: {stuck.closed}")
+
+
+DIALOG_PATIENCE = 20.0
+"""Seconds a modal dialog may stay open in a test before it is closed and the test failed."""
+
+
+class _DialogWatch:
+    """Close a modal dialog that nothing in the test answers (a dialog the test forgot to stub:
+    its event loop would block the whole run until CI's own time limit), remembering its title."""
+
+    def __init__(self) -> None:
+        from PySide6.QtCore import QTimer
+
+        self.closed: list[str] = []
+        self._seen: dict[int, float] = {}
+        self._timer = QTimer()
+        self._timer.setInterval(500)
+        self._timer.timeout.connect(self._check)
+        self._timer.start()
+
+    def _check(self) -> None:
+        import time
+
+        from PySide6.QtWidgets import QApplication, QDialog
+
+        modal = QApplication.activeModalWidget()
+        if modal is None:
+            self._seen.clear()
+            return
+        first = self._seen.setdefault(id(modal), time.monotonic())
+        if time.monotonic() - first >= DIALOG_PATIENCE:
+            self.closed.append(modal.windowTitle() or type(modal).__name__)
+            if isinstance(modal, QDialog):
+                modal.reject()
+            else:
+                modal.close()
+
+    def stop(self) -> None:
+        self._timer.stop()
 
 
 @pytest.fixture
