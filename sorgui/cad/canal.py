@@ -32,8 +32,8 @@ from sorgui.engine.values import ExpressionError, Terms, polynomial_terms, ratio
 from sorgui.render import ClipSphere
 
 from .geometry import CadGeometryError, surface_distance
+from .reading import faces_of
 from .sewing import from_occt
-from .shapes import faces_of
 
 SAMPLES = 4096
 """Parameters ``t = tan(θ/2)`` at which the circles are tried against the ball."""

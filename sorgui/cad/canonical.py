@@ -40,9 +40,8 @@ from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
 from .native import edges_of
-from .reading import Part
+from .reading import Part, faces_of
 from .recognition import Recognised
-from .shapes import faces_of
 
 
 @dataclass(frozen=True)

@@ -27,9 +27,9 @@ from OCP.Interface import Interface_Static
 from OCP.Message import Message, Message_Gravity, Message_PrinterOStream
 from OCP.Standard import Standard_Failure
 from OCP.STEPControl import STEPControl_Reader
-from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
-
-from .shapes import faces_of
+from OCP.TopAbs import TopAbs_FACE
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
 FORMATS = {".step": "STEP", ".stp": "STEP", ".iges": "IGES", ".igs": "IGES", ".brep": "BRep"}
 """The formats a part is read from, by suffix."""
@@ -53,6 +53,16 @@ class Part:
     format: str
     warnings: tuple[str, ...] = ()
     """What the reader read past (entities it could not read and left out), in sentences."""
+
+
+def faces_of(shape: TopoDS_Shape) -> list[TopoDS_Face]:
+    """The faces of ``shape``, in the order Open CASCADE explores them."""
+    found = []
+    explorer = TopExp_Explorer(shape, TopAbs_FACE)
+    while explorer.More():
+        found.append(TopoDS.Face(explorer.Current()))
+        explorer.Next()
+    return found
 
 
 def is_part_path(path: str | Path) -> bool:

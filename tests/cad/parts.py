@@ -32,8 +32,7 @@ from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
 from OCP.OCP.collections import Array1_gp_Pnt, Array2_gp_Pnt
 from OCP.TopoDS import TopoDS_Shape
 
-from sorgui.cad.reading import Part
-from sorgui.cad.shapes import faces_of
+from sorgui.cad.reading import Part, faces_of
 
 ORIGIN = np.array([1.0, 2.0, 3.0])
 """Where the parts' own origin is placed."""

@@ -117,3 +117,16 @@ def test_the_time_limit(tmp_path: Path) -> None:
     path.write_bytes(WRITERS[".step"](parts.turned_part(), CadHeader("", (), "0", "shaft.step")))
     done = run(str(path), "--timeout", "0.5")
     assert done.returncode == 1 and "did not finish within 0.5 s" in one_line(done.stderr)
+
+
+def test_the_part_route_loads_no_sympy_and_no_vtk(boolean_step: Path) -> None:
+    """Reading, recognising and rewriting a part needs neither sympy nor the render layer (VTK):
+    the command pays only for Open CASCADE (docs/benchmarks.md, the 50-face part)."""
+    code = (
+        "import sys, json; from sorgui.session.part_job import PartRequest, run_part; "
+        f"answer = run_part(PartRequest({str(boolean_step)!r}, canonical=('c.step',))); "
+        "assert answer.report is not None and answer.files[0].valid; print(json.dumps(sorted(sys.modules)))"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True)
+    modules = {m.split(".")[0] for m in json.loads(done.stdout)}
+    assert not modules & {"sympy", "mpmath", "vtkmodules", "pyvista"}, sorted(modules)

@@ -10,8 +10,8 @@ import pytest
 pytest.importorskip("OCP")
 
 from sorgui.cad.part_report import PartReport, text_report  # noqa: E402
+from sorgui.cad.reading import faces_of  # noqa: E402
 from sorgui.cad.recognition import analyse_part, recognise_face  # noqa: E402
-from sorgui.cad.shapes import faces_of  # noqa: E402
 
 from . import parts  # noqa: E402
 
