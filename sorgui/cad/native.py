@@ -45,7 +45,6 @@ from OCP.gp import gp_Ax1, gp_Ax3, gp_Dir, gp_Pnt, gp_Pnt2d
 from OCP.IntTools import IntTools_FClass2d
 from OCP.OCP.collections import Array1_double, Array1_gp_Pnt, Array2_double, Array2_gp_Pnt
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
-from OCP.Standard import Standard_Failure
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_State
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face
@@ -53,6 +52,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face
 from sorgui.engine.rounded import line_complex as lc
 from sorgui.engine.rounded.line_complex import SurfaceFit
 
+from .failures import OCCT_ERRORS
 from .sampling import FaceSamples
 
 BACK_GRID = 10
@@ -203,7 +203,7 @@ def profile_curve(fit: SurfaceFit, face: TopoDS_Face, samples: FaceSamples) -> G
             return surface.UIso(_fibre_parameter(fit, surface, samples, 0, u0, u1))
         if along_v <= FIBRE_RATIO * along_u:
             return surface.VIso(_fibre_parameter(fit, surface, samples, 1, v0, v1))
-    except Standard_Failure:
+    except OCCT_ERRORS:
         return None
     return _fitted_profile(fit, q)
 
@@ -253,7 +253,7 @@ def _fitted_profile(fit: SurfaceFit, q: np.ndarray) -> Geom_Curve | None:
         array.SetValue(k, _pnt(p))
     try:
         approximation = GeomAPI_PointsToBSpline(array, 3, 8, GeomAbs_Shape.GeomAbs_C2, 1e-9)
-    except Standard_Failure:
+    except OCCT_ERRORS:
         return None
     return approximation.Curve() if approximation.IsDone() else None
 

@@ -25,11 +25,12 @@ from OCP.IFSelect import IFSelect_ReturnStatus
 from OCP.IGESControl import IGESControl_Reader
 from OCP.Interface import Interface_Static
 from OCP.Message import Message, Message_Gravity, Message_PrinterOStream
-from OCP.Standard import Standard_Failure
 from OCP.STEPControl import STEPControl_Reader
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
+
+from .failures import OCCT_ERRORS
 
 FORMATS = {".step": "STEP", ".stp": "STEP", ".iges": "IGES", ".igs": "IGES", ".brep": "BRep"}
 """The formats a part is read from, by suffix."""
@@ -93,13 +94,14 @@ def read_part(path: str | Path) -> Part:
     try:
         with _parser_messages() as messages:
             shape, warnings = _read(path, kind)
-    except Standard_Failure as exc:
+    except OCCT_ERRORS as exc:
         raise PartError(f"Open CASCADE cannot read {path}: {_first_line(str(exc))}") from None
     if shape is None:
         raise PartError(f"{path} is not a readable {kind} file{_reason(messages(), kind)}")
     faces = tuple(faces_of(shape)) if not shape.IsNull() else ()
     if not faces:
-        raise PartError(f"{path} holds no faces (no surface to analyse)")
+        why = f": {warnings[0]}" if warnings else " (no surface to analyse)"
+        raise PartError(f"{path} holds no faces{why}")
     return Part(shape, faces, path, kind, warnings)
 
 
@@ -143,7 +145,7 @@ def _faults(reader: STEPControl_Reader | IGESControl_Reader) -> tuple[str, ...]:
     checks.Start()
     while checks.More():
         check = checks.Value()
-        if check.NbFails():
+        if check.NbFails() and check.HasEntity():  # not the model's own ("DATA NOT AVAILABLE FOR CHECK")
             count += 1
             first = first or check.CFail(1, True)
         checks.Next()
@@ -188,7 +190,20 @@ def _reason(messages: str, kind: str) -> str:
     line, words = found.group(1), found.group(2).removeprefix("Incorrect syntax: ")
     if "end of file" in words:
         return f": it ends in the middle (a truncated {kind} file?)"
+    words = re.sub(r"\b[A-Z]+\b", lambda token: TOKENS.get(token.group(), token.group()), words)
     return f": {words} at line {line}"
+
+
+TOKENS = {
+    "QUID": "value",
+    "IDENT": "reference #n",
+    "ENTITY": "entity #n =",
+    "TYPE": "entity name",
+    "TEXT": "string",
+    "STEP": "ISO-10303-21;",
+    "ENDSTEP": "END-ISO-10303-21;",
+}
+"""Open CASCADE's STEP parser names its tokens as its grammar does (``unexpected QUID``): in words."""
 
 
 def _first_line(text: str) -> str:

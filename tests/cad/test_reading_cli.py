@@ -94,9 +94,63 @@ def test_a_truncated_part_and_a_missing_one(boolean_step: Path, tmp_path: Path) 
     assert missing.returncode == 2 and "No such file" in one_line(missing.stderr)
 
 
+def test_a_part_with_no_faces(boolean_step: Path, tmp_path: Path) -> None:
+    """A STEP file of no entities, and one whose every surface entity is of an unknown type (so
+    that Open CASCADE leaves the faces out): one line each, saying why, exit status 2."""
+    empty = tmp_path / "nothing.step"
+    empty.write_bytes(b"ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n")
+    done = run(str(empty))
+    assert done.returncode == 2 and done.stdout == ""
+    assert one_line(done.stderr) == f"sorgui: {empty} holds no faces (no surface to analyse)\n"
+    unknown = tmp_path / "unknown.step"
+    unknown.write_bytes(
+        boolean_step.read_bytes().replace(b"B_SPLINE_SURFACE_WITH_KNOTS", b"B_SPLINE_SURFACE_WITH_NOTS")
+    )
+    done = run(str(unknown))
+    assert done.returncode == 2 and done.stdout == ""
+    assert f"sorgui: {unknown} holds no faces: " in one_line(done.stderr) and "faulty and left out" in done.stderr
+
+
+def test_the_parser_s_words_are_a_user_s(tmp_path: Path) -> None:
+    """Bytes after a STEP file's first line: where the parser stopped, in words, not its tokens."""
+    path = tmp_path / "noise.step"
+    path.write_bytes(b"ISO-10303-21;\n" + bytes(range(256)) * 40)
+    done = run(str(path))
+    err = one_line(done.stderr)
+    assert done.returncode == 2 and "is not a readable STEP file" in err and "QUID" not in err, err
+
+
+def test_a_face_open_cascade_cannot_evaluate(tmp_path: Path) -> None:
+    """Its own line in the report, the other faces recognised, one line on standard error, exit
+    status 0 (the report is whole); the canonical part is still written."""
+    path = tmp_path / "broken.brep"
+    path.write_bytes(WRITERS[".brep"](parts.unevaluable(), CadHeader("", (), "0", path.name)))
+    canonical = tmp_path / "canonical.brep"
+    done = run(str(path), "-o", str(canonical))
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert lines[0] == f"{path}: BRep, 2 faces (1 revolution, 1 none), lengths in mm"
+    assert "a surface of revolution about the axis" in lines[1]
+    assert (
+        lines[2].startswith("face   2  OFFSET_SURFACE ")
+        and "cannot be evaluated: Open CASCADE raises Geom_Undefined" in lines[2]
+    )
+    err = done.stderr.splitlines()
+    assert len(err) == 2 and err[0].startswith(f"sorgui: wrote {canonical}: 1 face on native surfaces")
+    assert err[1].startswith(f"sorgui: {path}: face 2 of 2 cannot be evaluated (Open CASCADE raises Geom_Undefined")
+    (_, broken) = json.loads(run(str(path), "--json").stdout)["faces"]
+    assert broken["kind"] == "none" and broken["type_in_file"] == "OFFSET_SURFACE"
+    assert broken["error"].startswith("Open CASCADE raises Geom_Undefined")
+    assert len(read_part(canonical).faces) == 2
+
+
 def test_bad_use_in_one_line(boolean_step: Path, tmp_path: Path) -> None:
     mesh = run(str(boolean_step), "-o", str(tmp_path / "part.stl"))
     assert mesh.returncode == 2 and "cannot write" in one_line(mesh.stderr)
+    unknown = run(str(boolean_step), "-o", str(tmp_path / "part.xyz"))
+    assert unknown.returncode == 2 and "cannot write" in one_line(unknown.stderr) and ".step" in unknown.stderr
+    lines = run(str(boolean_step), "--each-line")
+    assert lines.returncode == 2 and "--each-line does not apply to a CAD part" in one_line(lines.stderr)
     region = run(str(boolean_step), "--region", "3")
     assert region.returncode == 2 and "--region does not apply to a CAD part" in one_line(region.stderr)
     itself = run(str(boolean_step), "-o", str(boolean_step))

@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("OCP")
 
-from sorgui.cad.part_report import PartReport, text_report  # noqa: E402
+from sorgui.cad.part_report import PartReport, faces_words, text_report  # noqa: E402
 from sorgui.cad.reading import faces_of  # noqa: E402
 from sorgui.cad.recognition import analyse_part, recognise_face  # noqa: E402
 
@@ -189,3 +189,10 @@ def test_the_report_reads_back_from_its_json() -> None:
     report = report_of(parts.boolean_part())
     assert PartReport.from_json(report.to_json()) == report
     assert len(faces_of(parts.boolean_part())) == len(report.faces)
+
+
+def test_many_faces_are_named_in_runs() -> None:
+    """A group of the 2000 faces of a long shaft is one short line (runs of three or more)."""
+    assert faces_words([4]) == "face 4"
+    assert faces_words([3, 7, 9]) == "faces 3, 7, 9"
+    assert faces_words([*range(1, 2001), 2003, 2004]) == "faces 1–2000, 2003, 2004"
