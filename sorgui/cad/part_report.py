@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, fields
 from typing import Any
 
-from sorgui.engine.results import ApproximateAxis
+from sorgui.engine.results import VERSION_KEY, ApproximateAxis
 from sorgui.numerics import without_noise
 
 Triple = tuple[float, float, float]
@@ -120,7 +120,12 @@ class PartReport:
     seconds: float = 0.0
 
     def to_json(self) -> dict[str, Any]:
+        """The JSON of ``sorgui analyze PART.step --json``: the version of sorgui that wrote it
+        first, as in an equation's report (:func:`~sorgui.engine.results.report_json`)."""
+        from sorgui import __version__
+
         return {
+            VERSION_KEY: __version__,
             "file": self.file,
             "format": self.format,
             "units": self.units,

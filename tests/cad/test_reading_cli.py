@@ -11,6 +11,8 @@ from pathlib import Path
 
 import pytest
 
+from sorgui import __version__
+
 pytest.importorskip("OCP")
 
 from sorgui.cad.reading import read_part  # noqa: E402
@@ -41,6 +43,7 @@ def test_the_json_of_a_part(boolean_step: Path) -> None:
     done = run(str(boolean_step), "--json")
     assert done.returncode == 0 and done.stderr == ""
     data = json.loads(done.stdout)
+    assert list(data)[:2] == ["sorgui_version", "file"] and data["sorgui_version"] == __version__
     assert data["file"] == str(boolean_step) and data["format"] == "STEP" and data["units"] == "mm"
     faces = data["faces"]
     assert [f["face"] for f in faces] == list(range(1, 10))
