@@ -193,7 +193,8 @@ def _seam_away(curve: Geom_Curve, axis: gp_Ax1, fit: SurfaceFit, samples: FaceSa
 
 def profile_curve(fit: SurfaceFit, face: TopoDS_Face, samples: FaceSamples) -> Geom_Curve | None:
     """The face's parameter line across its fibres (the direction along which the reduced
-    points stay put), else a B-spline through the reduced points in order."""
+    points stay put), else (not for a cone over a curve) a B-spline through the reduced points in
+    order."""
     q = lc.reduced(fit, samples.points)
     along_u, along_v = _spread(q, samples.index, 0), _spread(q, samples.index, 1)
     surface = BRep_Tool.Surface_s(face)
@@ -205,6 +206,8 @@ def profile_curve(fit: SurfaceFit, face: TopoDS_Face, samples: FaceSamples) -> G
             return surface.VIso(_fibre_parameter(fit, surface, samples, 1, v0, v1))
     except OCCT_ERRORS:
         return None
+    if fit.kind == lc.CONE_OVER_CURVE:
+        return None  # its directrix is a parameter line of the face's, or there is none
     return _fitted_profile(fit, q)
 
 
@@ -260,18 +263,16 @@ def _fitted_profile(fit: SurfaceFit, q: np.ndarray) -> Geom_Curve | None:
 
 def _placed(fit: SurfaceFit, q: np.ndarray) -> np.ndarray:
     """Reduced points back in space: in a meridian half-plane of the axis, in the plane through
-    the origin across an extrusion's direction, on the plane at distance 1 from a cone's apex."""
+    the origin across an extrusion's direction."""
     if fit.kind == lc.REVOLUTION:
         assert fit.axis is not None
         point, d = np.array(fit.axis.point), np.array(fit.axis.direction)
         e1, _ = lc.across(d)
         meridian: np.ndarray = point + q[:, :1] * d + q[:, 1:] * e1
         return meridian
-    if fit.kind == lc.EXTRUSION:
-        assert fit.direction is not None
-        e1, e2 = lc.across(np.array(fit.direction))
-        return q[:, :1] * e1 + q[:, 1:] * e2
-    raise ValueError("a cone over a curve takes its directrix from the face")
+    assert fit.kind == lc.EXTRUSION and fit.direction is not None  # a cone's directrix is the face's
+    e1, e2 = lc.across(np.array(fit.direction))
+    return q[:, :1] * e1 + q[:, 1:] * e2
 
 
 def _ruled_from(apex: np.ndarray, curve: Geom_Curve) -> Geom_Surface:

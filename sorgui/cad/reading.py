@@ -91,6 +91,9 @@ def read_part(path: str | Path) -> Part:
         raise PartError(f"{path} is too large ({size / 2**20:.0f} MiB; at most {MAX_BYTES >> 20} MiB are read)")
     if not _looks_like(kind, head):
         raise PartError(f"{path} is not {'an' if kind == 'IGES' else 'a'} {kind} file ({SIGNS[kind]})")
+    huge = _huge_number(path, HUGE[kind])
+    if huge is not None:
+        raise PartError(f"{path} holds a number beyond 1e200 ({huge}): no part has such a length")
     try:
         with _parser_messages() as messages:
             shape, warnings = _read(path, kind)
@@ -103,6 +106,38 @@ def read_part(path: str | Path) -> Part:
         why = f": {warnings[0]}" if warnings else " (no surface to analyse)"
         raise PartError(f"{path} holds no faces{why}")
     return Part(shape, faces, path, kind, warnings)
+
+
+_EXPONENT = rb"\+?0*(?:[2-9][0-9]{2}|[1-9][0-9]{3,})(?![0-9])"
+HUGE = {
+    "STEP": re.compile(rb"\.[0-9]*[eE]" + _EXPONENT),
+    "IGES": re.compile(rb"\.[0-9]*[eEdD]" + _EXPONENT),
+    "BRep": re.compile(rb"[0-9.][eE]" + _EXPONENT),
+}
+"""A number written with an exponent of 200 or more (``1.E+400``), by format (a STEP or IGES
+real has a decimal point, which keeps IGES's sequence numbers such as ``0D0000200`` out):
+Open CASCADE's transfer of such a shape runs for minutes (it ends at the time limit), so the
+file is refused at once."""
+CHUNK = 1 << 24
+"""Bytes scanned for :data:`HUGE` at a time (a 20 MB STEP file takes about 0.3 s)."""
+
+
+def _huge_number(path: Path, pattern: re.Pattern[bytes]) -> str | None:
+    """The first number of the file beyond 1e200 and its line (``1.E+400 at line 23``), if any."""
+    lines, tail = 1, b""
+    with open(path, "rb") as stream:
+        while chunk := stream.read(CHUNK):
+            data = tail + chunk
+            found = pattern.search(data)
+            if found is not None:
+                mantissa = re.search(rb"[-+0-9.]*$", data[max(0, found.start() - 40) : found.start() + 1])
+                number = (mantissa.group() if mantissa else b"") + data[found.start() + 1 : found.end()]
+                line = lines + data.count(b"\n", 0, found.start())
+                return f"{number.decode('ascii')} at line {line}"
+            keep = min(len(data), 64)
+            lines += data.count(b"\n", 0, len(data) - keep)
+            tail = data[len(data) - keep :]
+    return None
 
 
 SIGNS = {

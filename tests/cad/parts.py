@@ -221,3 +221,16 @@ def unevaluable() -> TopoDS_Shape:
     builder.Add(compound, revolved_spline())
     builder.Add(compound, face)
     return compound
+
+
+def skewed_cone(count: int = 25) -> TopoDS_Shape:
+    """A B-spline through points of the elliptic cone ``(x/2)² + y² = z²`` laid out along helices
+    (angle ``a + 0.4 z``): a cone over a curve none of whose parameter lines is a ruling."""
+    grid = Array2_gp_Pnt(1, count, 1, count)
+    for i in range(count):
+        for j in range(count):
+            a, h = 2.0 * i / (count - 1), 1.0 + 2.0 * j / (count - 1)
+            theta = a + 0.4 * h
+            grid.SetValue(i + 1, j + 1, gp_Pnt(2 * h * math.cos(theta), h * math.sin(theta), h))
+    surface = GeomAPI_PointsToBSplineSurface(grid, 3, 8, GeomAbs_Shape.GeomAbs_C2, 1e-9).Surface()
+    return BRepBuilderAPI_MakeFace(surface, 1e-7).Face()

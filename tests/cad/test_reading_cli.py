@@ -123,6 +123,21 @@ def test_the_parser_s_words_are_a_user_s(tmp_path: Path) -> None:
     assert done.returncode == 2 and "is not a readable STEP file" in err and "QUID" not in err, err
 
 
+def test_a_number_beyond_any_length_is_refused_at_once(boolean_step: Path, tmp_path: Path) -> None:
+    """A coordinate of 1e400 (infinite as a double): Open CASCADE's transfer would run until the
+    time limit; the file is refused in one line before it, with the number and its line."""
+    data = boolean_step.read_bytes()
+    start = data.index(b"CARTESIAN_POINT('',(") + len(b"CARTESIAN_POINT('',(")
+    path = tmp_path / "infinite.step"
+    path.write_bytes(data[:start] + b"1.E+400," + data[data.index(b",", start) + 1 :])
+    line = data[:start].count(b"\n") + 1
+    done = run(str(path), "--timeout", "60")
+    assert done.returncode == 2 and done.stdout == ""
+    assert one_line(done.stderr) == (
+        f"sorgui: {path} holds a number beyond 1e200 (1.E+400 at line {line}): no part has such a length\n"
+    )
+
+
 def test_a_face_open_cascade_cannot_evaluate(tmp_path: Path) -> None:
     """Its own line in the report, the other faces recognised, one line on standard error, exit
     status 0 (the report is whole); the canonical part is still written."""

@@ -196,3 +196,10 @@ def test_many_faces_are_named_in_runs() -> None:
     assert faces_words([4]) == "face 4"
     assert faces_words([3, 7, 9]) == "faces 3, 7, 9"
     assert faces_words([*range(1, 2001), 2003, 2004]) == "faces 1–2000, 2003, 2004"
+
+
+def test_a_cone_over_a_curve_with_no_ruling_among_its_parameter_lines() -> None:
+    """The cone's directrix is taken from a parameter line of the face; with none (the samples lie
+    along helices) the face is reported, never an internal error (it was a ValueError)."""
+    (face,) = report_of(parts.skewed_cone(), 1e-6).faces
+    assert face.error is None and face.kind in ("cone-over-curve", "none")
