@@ -678,7 +678,7 @@ def part_main(args: argparse.Namespace, source: Path) -> int:
     answer = analyse_part_supervised(request, args.timeout, started=_started[-1] if _started else None)
     if answer.report is None:
         return fail(answer.error or "the part could not be analysed", None, args.json, 2 if answer.bad_input else 1)
-    from sorgui.cad.part_report import text_report
+    from sorgui.cad.part_report import text_report, unevaluated_words
     from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
 
     data = json.dumps(answer.report.to_json(), indent=1)
@@ -698,6 +698,9 @@ def part_main(args: argparse.Namespace, source: Path) -> int:
         emit(data if args.json else text_report(answer.report))
     except _OutputError as exc:
         return fail(str(exc), None, False, 1)
+    unevaluated = unevaluated_words(answer.report)
+    if unevaluated is not None:
+        print(f"sorgui: {one_line(unevaluated)}", file=sys.stderr)
     return 0
 
 

@@ -85,6 +85,34 @@ def test_json_lines_in_input_order_with_an_error_object_for_the_bad_line(tmp_pat
     assert outputs[0] == outputs[1]
 
 
+def test_a_line_s_object_is_the_report_of_json_with_its_line_in_front(tmp_path: Path) -> None:
+    """Every field of ``sorgui analyze --json`` (its ``sorgui_version`` first) after ``line`` and
+    ``line_hash``; a results file of an older sorgui, whose lines have no ``sorgui_version``, is
+    still resumed."""
+    from sorgui import __version__
+
+    out = run_batch(tmp_path, "--recognition-only")
+    rows = [json.loads(line) for line in out.stdout.splitlines()]
+    single = subprocess.run(
+        [*SORGUI, "--json", "--recognition-only", "x^2 + y^2 - z"], capture_output=True, text=True, timeout=120
+    )
+    report = json.loads(single.stdout)
+    assert list(rows[0]) == ["line", "line_hash", *report] and list(report)[0] == "sorgui_version"
+    assert without_timings({k: v for k, v in rows[0].items() if k not in ("line", "line_hash")}) == without_timings(
+        report
+    )
+    assert [row.get("sorgui_version") for row in rows] == [__version__, None, __version__, __version__]
+
+    results = tmp_path / "results.jsonl"
+    older = [json.dumps({k: v for k, v in row.items() if k != "sorgui_version"}) for row in rows[:2]]
+    results.write_text("\n".join(older) + "\n", encoding="utf-8")
+    resumed = run_batch(tmp_path, "--recognition-only", "-o", str(results), "--resume")
+    assert resumed.returncode == 0 and resumed.stdout == "" and "(2 kept from before)" in resumed.stderr
+    lines = [json.loads(line) for line in results.read_text(encoding="utf-8").splitlines()]
+    assert [row["line"] for row in lines] == [2, 4, 5, 6]
+    assert "sorgui_version" not in lines[0] and lines[2]["sorgui_version"] == __version__
+
+
 def test_a_long_line_is_refused_whole_and_the_batch_goes_on(tmp_path: Path) -> None:
     """Issue 32: an equation padded with a million spaces is not read as its first megabyte, a line
     of 3 MB of spaces and then an equation gets its object, and memory stays bounded."""

@@ -1,7 +1,8 @@
 """The output object of one line of ``--each-line``, and what it counts as in the summary.
 
-A line's object is the analysis JSON of ``sorgui analyze --json`` with ``"line"`` (its 1-based
-number) and ``"line_hash"`` (:func:`.lines.line_hash`) in front, or
+A line's object is the report JSON of ``sorgui analyze --json`` (``"sorgui_version"`` and the
+analysis: :func:`~sorgui.engine.results.report_json`) with ``"line"`` (its 1-based number) and
+``"line_hash"`` (:func:`.lines.line_hash`) in front, or
 ``{"line", "line_hash", "input", "error": {"message", "position"}}``. The object is made where
 the analysis ran (a worker process of this machine, or a Dask worker), so that every way of
 running a batch writes the same text.
@@ -13,6 +14,7 @@ import json
 from dataclasses import dataclass
 from typing import Any
 
+from sorgui.engine.results import report_json
 from sorgui.session.messages import Failed, FinalMessage, Finished, Invalid
 
 from .lines import Line
@@ -43,7 +45,7 @@ def answer_of(line: Line, message: FinalMessage) -> Answer:
     """The answer for the final message of a line's analysis."""
     match message:
         case Finished(analysis):
-            data = {"line": line.number, "line_hash": line.digest, **analysis.to_json()}
+            data = {"line": line.number, "line_hash": line.digest, **report_json(analysis)}
             return Answer(json.dumps(data), ANALYSED, kind_of(data))
         case Invalid(text_of, position):
             return error_answer(line, text_of, NOT_A_POLYNOMIAL, position)

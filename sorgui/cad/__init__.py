@@ -13,7 +13,9 @@ input as the nearest exact surface's part. The faces are sewn, closed shells mad
 checked (:mod:`.sewing`). ``NAME.patch.step`` (and ``.iges``, ``.brep``) writes the first
 verified real parameterization as rational Bézier patches instead. Open CASCADE (the
 ``sorgui[cad]`` extra, ``cadquery-ocp-novtk``) is imported only here, when such a file is
-written; without it :class:`CadUnavailable` says how to get it.
+written; without it :class:`CadUnavailable` says how to get it. Importing the package loads
+none of its modules: reading a part (:mod:`.reading`, :mod:`.recognition`) needs neither sympy
+nor the render layer, which the writers of an analysis (:mod:`.geometry`, :mod:`.model`) import.
 """
 
 from __future__ import annotations
@@ -21,11 +23,9 @@ from __future__ import annotations
 import weakref
 from typing import TYPE_CHECKING, Any
 
-from sorgui.engine.results import Analysis
-
-from .geometry import CadGeometryError
-
 if TYPE_CHECKING:
+    from sorgui.engine.results import Analysis
+
     from .model import CadModel, Scene
 
 CAD_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
@@ -45,7 +45,6 @@ __all__ = [
     "CAD_SUFFIXES",
     "INSTALL_HINT",
     "UNITS",
-    "CadGeometryError",
     "CadUnavailable",
     "cad_file",
     "cad_model",
@@ -70,6 +69,8 @@ def cad_model(
         from .model import patch_model, surface_model
     except ImportError as exc:
         raise CadUnavailable(INSTALL_HINT) from exc
+    from .geometry import CadGeometryError  # loaded with the model (sympy, the render layer)
+
     built = _BUILT.setdefault(scene, {})
     key = (id(analysis), patch, tolerance, cap)
     if key not in built or built[key][0] is not analysis:

@@ -31,9 +31,9 @@ from sorgui.engine.results import Analysis, CanalFamily
 from sorgui.engine.values import ExpressionError, Terms, polynomial_terms, rational_function_terms
 from sorgui.render import ClipSphere
 
+from .failures import from_occt
 from .geometry import CadGeometryError, surface_distance
-from .sewing import from_occt
-from .shapes import faces_of
+from .reading import faces_of
 
 SAMPLES = 4096
 """Parameters ``t = tan(θ/2)`` at which the circles are tried against the ball."""

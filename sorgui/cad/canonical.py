@@ -33,16 +33,15 @@ from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec2d
 from OCP.OCP.collections import Array1_double, Array1_gp_Pnt2d, Array1_int
 from OCP.ShapeAnalysis import ShapeAnalysis_Surface
 from OCP.ShapeFix import ShapeFix_Shape
-from OCP.Standard import Standard_Failure
 from OCP.TopAbs import TopAbs_Orientation, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
+from .failures import OCCT_ERRORS
 from .native import edges_of
-from .reading import Part
+from .reading import Part, faces_of
 from .recognition import Recognised
-from .shapes import faces_of
 
 
 @dataclass(frozen=True)
@@ -77,7 +76,7 @@ def canonical_part(part: Part, recognised: Sequence[Recognised]) -> Canonical:
         try:
             trial = TopoDS.Face(BRepBuilderAPI_Copy(face, True, False).Shape())
             new = rebuilt(trial, found.surface, tolerance) and rebuilt(face, found.surface, tolerance)
-        except Standard_Failure as exc:
+        except OCCT_ERRORS as exc:
             kept.append((number, f"Open CASCADE could not rebuild it ({str(exc).strip() or type(exc).__name__})"))
             continue
         if new is None:
@@ -88,8 +87,11 @@ def canonical_part(part: Part, recognised: Sequence[Recognised]) -> Canonical:
     shape = reshape.Apply(copy)
     if not BRepCheck_Analyzer(shape).IsValid():
         fix = ShapeFix_Shape(shape)
-        fix.Perform()
-        shape = fix.Shape()
+        try:
+            fix.Perform()
+            shape = fix.Shape()
+        except OCCT_ERRORS:
+            pass  # a face Open CASCADE cannot evaluate: the part is written unmended, said not valid
     return Canonical(shape, tuple(replaced), tuple(kept), BRepCheck_Analyzer(shape).IsValid())
 
 
@@ -302,7 +304,7 @@ def _interpolated(uv: np.ndarray, ts: np.ndarray) -> Geom2d_BSplineCurve | None:
     scale = max(1.0, float(np.abs(uv).max()))
     try:
         approximation = Geom2dAPI_PointsToBSpline(points, parameters, 3, 8, GeomAbs_Shape.GeomAbs_C2, 1e-11 * scale)
-    except Standard_Failure:
+    except OCCT_ERRORS:
         return None
     if not approximation.IsDone():
         return None

@@ -23,9 +23,9 @@ from OCP.OCP.collections import HArray1_gp_Pnt
 
 from sorgui.render import ClipSphere
 
+from .failures import from_occt
 from .geometry import CadGeometryError
 from .meridian import Arc, Distance, MeridianCurve
-from .sewing import from_occt
 
 FIT_TOLERANCE = 1e-7
 """The default tolerance of a fitted profile, relative to the drawn ball's radius."""

@@ -40,6 +40,7 @@ from .geometry import (
 from .meridian import meridian_curve, profile_arcs, profile_distance
 from .nearest import nearest_lines, nearest_scene, nearest_surface, typed_deviation
 from .patch import bezier_patches
+from .reading import faces_of
 from .sewing import CONFUSION, assemble, check_size, compound, precision, solids_of
 
 EXACT_COVERAGE = 1e-6
@@ -86,7 +87,7 @@ class CadModel:
     @property
     def faces(self) -> int:
         """How many faces the shape holds."""
-        return len(shapes.faces_of(self.shape))
+        return len(faces_of(self.shape))
 
     @property
     def solids(self) -> int:

@@ -22,8 +22,8 @@ from sorgui.render import ClipBox, ClipSphere, LineData, MeshData, profile_curve
 from sorgui.render.geometry import foot_on_line
 from sorgui.render.sampling import first_order_distance
 
+from .reading import faces_of
 from .sewing import face_normals
-from .shapes import faces_of
 
 
 class Where(Protocol):

@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, fields
 from typing import Any
 
-from sorgui.engine.results import ApproximateAxis
+from sorgui.engine.results import VERSION_KEY, ApproximateAxis
 from sorgui.numerics import without_noise
 
 Triple = tuple[float, float, float]
@@ -120,7 +120,12 @@ class PartReport:
     seconds: float = 0.0
 
     def to_json(self) -> dict[str, Any]:
+        """The JSON of ``sorgui analyze PART.step --json``: the version of sorgui that wrote it
+        first, as in an equation's report (:func:`~sorgui.engine.results.report_json`)."""
+        from sorgui import __version__
+
         return {
+            VERSION_KEY: __version__,
             "file": self.file,
             "format": self.format,
             "units": self.units,
@@ -207,11 +212,33 @@ def face_words(face: FaceReport) -> str:
     return words + f"; deviation {(face.deviation or 0.0):.2g} (tolerance {face.tolerance:.2g})"
 
 
+def faces_words(numbers: Sequence[int]) -> str:
+    """``face 3``, ``faces 3, 7, 9`` or ``faces 1–50, 52`` (a run of three or more in one)."""
+    runs: list[list[int]] = []
+    for n in sorted(numbers):
+        if runs and n == runs[-1][-1] + 1:
+            runs[-1].append(n)
+        else:
+            runs.append([n])
+    parts = [f"{run[0]}–{run[-1]}" if len(run) >= 3 else ", ".join(map(str, run)) for run in runs]
+    return f"{'face' if len(numbers) == 1 else 'faces'} {', '.join(parts)}"
+
+
 def group_words(group: AxisGroup) -> str:
     """``faces 3, 7, 9: one surface of revolution about the axis through … along …``."""
-    label = "face" if len(group.faces) == 1 else "faces"
-    numbers = ", ".join(str(f) for f in group.faces)
-    return f"{label} {numbers}: one surface of revolution about the axis {axis_words(group.axis)}"
+    return f"{faces_words(group.faces)}: one surface of revolution about the axis {axis_words(group.axis)}"
+
+
+def unevaluated_words(report: PartReport) -> str | None:
+    """The faces that could not be evaluated, in one line (``None`` when there are none): said
+    on standard error beside the report, where each has its own line."""
+    failed = [f for f in report.faces if f.error is not None]
+    if not failed:
+        return None
+    first = failed[0].error if len(failed) == 1 else f"the first: {failed[0].error}"
+    return (
+        f"{report.file}: {faces_words([f.face for f in failed])} of {len(report.faces)} cannot be evaluated ({first})"
+    )
 
 
 def text_report(report: PartReport) -> str:

@@ -25,11 +25,12 @@ from OCP.IFSelect import IFSelect_ReturnStatus
 from OCP.IGESControl import IGESControl_Reader
 from OCP.Interface import Interface_Static
 from OCP.Message import Message, Message_Gravity, Message_PrinterOStream
-from OCP.Standard import Standard_Failure
 from OCP.STEPControl import STEPControl_Reader
-from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
+from OCP.TopAbs import TopAbs_FACE
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
-from .shapes import faces_of
+from .failures import OCCT_ERRORS
 
 FORMATS = {".step": "STEP", ".stp": "STEP", ".iges": "IGES", ".igs": "IGES", ".brep": "BRep"}
 """The formats a part is read from, by suffix."""
@@ -53,6 +54,16 @@ class Part:
     format: str
     warnings: tuple[str, ...] = ()
     """What the reader read past (entities it could not read and left out), in sentences."""
+
+
+def faces_of(shape: TopoDS_Shape) -> list[TopoDS_Face]:
+    """The faces of ``shape``, in the order Open CASCADE explores them."""
+    found = []
+    explorer = TopExp_Explorer(shape, TopAbs_FACE)
+    while explorer.More():
+        found.append(TopoDS.Face(explorer.Current()))
+        explorer.Next()
+    return found
 
 
 def is_part_path(path: str | Path) -> bool:
@@ -80,17 +91,53 @@ def read_part(path: str | Path) -> Part:
         raise PartError(f"{path} is too large ({size / 2**20:.0f} MiB; at most {MAX_BYTES >> 20} MiB are read)")
     if not _looks_like(kind, head):
         raise PartError(f"{path} is not {'an' if kind == 'IGES' else 'a'} {kind} file ({SIGNS[kind]})")
+    huge = _huge_number(path, HUGE[kind])
+    if huge is not None:
+        raise PartError(f"{path} holds a number beyond 1e200 ({huge}): no part has such a length")
     try:
         with _parser_messages() as messages:
             shape, warnings = _read(path, kind)
-    except Standard_Failure as exc:
+    except OCCT_ERRORS as exc:
         raise PartError(f"Open CASCADE cannot read {path}: {_first_line(str(exc))}") from None
     if shape is None:
         raise PartError(f"{path} is not a readable {kind} file{_reason(messages(), kind)}")
     faces = tuple(faces_of(shape)) if not shape.IsNull() else ()
     if not faces:
-        raise PartError(f"{path} holds no faces (no surface to analyse)")
+        why = f": {warnings[0]}" if warnings else " (no surface to analyse)"
+        raise PartError(f"{path} holds no faces{why}")
     return Part(shape, faces, path, kind, warnings)
+
+
+_EXPONENT = rb"\+?0*(?:[2-9][0-9]{2}|[1-9][0-9]{3,})(?![0-9])"
+HUGE = {
+    "STEP": re.compile(rb"\.[0-9]*[eE]" + _EXPONENT),
+    "IGES": re.compile(rb"\.[0-9]*[eEdD]" + _EXPONENT),
+    "BRep": re.compile(rb"[0-9.][eE]" + _EXPONENT),
+}
+"""A number written with an exponent of 200 or more (``1.E+400``), by format (a STEP or IGES
+real has a decimal point, which keeps IGES's sequence numbers such as ``0D0000200`` out):
+Open CASCADE's transfer of such a shape runs for minutes (it ends at the time limit), so the
+file is refused at once."""
+CHUNK = 1 << 24
+"""Bytes scanned for :data:`HUGE` at a time (a 20 MB STEP file takes about 0.3 s)."""
+
+
+def _huge_number(path: Path, pattern: re.Pattern[bytes]) -> str | None:
+    """The first number of the file beyond 1e200 and its line (``1.E+400 at line 23``), if any."""
+    lines, tail = 1, b""
+    with open(path, "rb") as stream:
+        while chunk := stream.read(CHUNK):
+            data = tail + chunk
+            found = pattern.search(data)
+            if found is not None:
+                mantissa = re.search(rb"[-+0-9.]*$", data[max(0, found.start() - 40) : found.start() + 1])
+                number = (mantissa.group() if mantissa else b"") + data[found.start() + 1 : found.end()]
+                line = lines + data.count(b"\n", 0, found.start())
+                return f"{number.decode('ascii')} at line {line}"
+            keep = min(len(data), 64)
+            lines += data.count(b"\n", 0, len(data) - keep)
+            tail = data[len(data) - keep :]
+    return None
 
 
 SIGNS = {
@@ -133,7 +180,7 @@ def _faults(reader: STEPControl_Reader | IGESControl_Reader) -> tuple[str, ...]:
     checks.Start()
     while checks.More():
         check = checks.Value()
-        if check.NbFails():
+        if check.NbFails() and check.HasEntity():  # not the model's own ("DATA NOT AVAILABLE FOR CHECK")
             count += 1
             first = first or check.CFail(1, True)
         checks.Next()
@@ -178,7 +225,20 @@ def _reason(messages: str, kind: str) -> str:
     line, words = found.group(1), found.group(2).removeprefix("Incorrect syntax: ")
     if "end of file" in words:
         return f": it ends in the middle (a truncated {kind} file?)"
+    words = re.sub(r"\b[A-Z]+\b", lambda token: TOKENS.get(token.group(), token.group()), words)
     return f": {words} at line {line}"
+
+
+TOKENS = {
+    "QUID": "value",
+    "IDENT": "reference #n",
+    "ENTITY": "entity #n =",
+    "TYPE": "entity name",
+    "TEXT": "string",
+    "STEP": "ISO-10303-21;",
+    "ENDSTEP": "END-ISO-10303-21;",
+}
+"""Open CASCADE's STEP parser names its tokens as its grammar does (``unexpected QUID``): in words."""
 
 
 def _first_line(text: str) -> str:

@@ -27,7 +27,6 @@ from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.Geom import Geom_Surface
 from OCP.GeomAbs import GeomAbs_SurfaceType
 from OCP.gp import gp_Ax1
-from OCP.Standard import Standard_Failure
 from OCP.TopoDS import TopoDS_Face
 
 from sorgui.engine.results import ApproximateAxis
@@ -35,6 +34,7 @@ from sorgui.engine.rounded import line_complex as lc
 from sorgui.engine.rounded.line_complex import SurfaceFit
 
 from . import native as nat
+from .failures import OCCT_ERRORS, from_occt
 from .part_report import AxisGroup, FaceReport, PartReport
 from .reading import Part
 from .sampling import FaceError, FaceSamples, sample_face
@@ -111,6 +111,10 @@ def face_tolerance(face: TopoDS_Face, tolerance: float | None, floor: float = 0.
     return max(DEFAULT_TOLERANCE, float(BRep_Tool.Tolerance_s(face)), floor)
 
 
+FACE_FAULTS: tuple[type[Exception], ...] = (FaceError, *OCCT_ERRORS)
+"""What makes a face ``none`` with the reason: a face that cannot be sampled, a fault of Open CASCADE."""
+
+
 def recognise_face(face: TopoDS_Face, number: int, tolerance: float | None = None, floor: float = 0.0) -> Recognised:
     """What face ``number`` is (an evaluation fault of Open CASCADE makes it ``none`` with the
     reason); ``floor`` as for :func:`face_tolerance`."""
@@ -125,15 +129,16 @@ def recognise_face(face: TopoDS_Face, number: int, tolerance: float | None = Non
         if read is not None:
             return Recognised(read)
         return _recognised(face, number, name, tol)
-    except (FaceError, Standard_Failure) as exc:
-        reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        if isinstance(exc, Standard_Failure):
-            reason = f"Open CASCADE cannot evaluate it ({reason})"
+    except FACE_FAULTS as exc:
+        said = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+        reason = said or type(exc).__name__
+        if from_occt(exc):
+            reason = f"Open CASCADE raises {type(exc).__name__}" + (f": {said}" if said else "")
         name = "SURFACE"
         if BRep_Tool.Surface_s(face) is not None:
             try:
                 name = FILE_TYPES.get(BRepAdaptor_Surface(face, False).GetType(), "SURFACE")
-            except Standard_Failure:
+            except OCCT_ERRORS:
                 pass
         return Recognised(FaceReport(number, name, lc.NONE, None, tol, "samples", error=reason))
 

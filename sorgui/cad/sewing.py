@@ -33,6 +33,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape, TopoD
 from sorgui.engine.values import Terms
 from sorgui.render.sampling import value_and_gradient
 
+from .failures import from_occt
 from .geometry import CadGeometryError
 
 CONFUSION = 1e-7
@@ -74,12 +75,6 @@ def extent(faces: Sequence[TopoDS_Face]) -> float:
     if box.IsVoid():
         return 0.0
     return float(np.linalg.norm(np.array(box.CornerMax().Coord()) - np.array(box.CornerMin().Coord())))
-
-
-def from_occt(exc: BaseException) -> bool:
-    """Whether ``exc`` is an Open CASCADE exception (``Standard_Failure`` and its kin, which OCP
-    raises as plain ``Exception`` subclasses of its own modules)."""
-    return type(exc).__module__.startswith("OCP")
 
 
 def assemble(faces: Sequence[TopoDS_Face], size: float, terms: Terms | None) -> TopoDS_Shape:

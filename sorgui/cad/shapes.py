@@ -52,8 +52,6 @@ from OCP.OCP.collections import (
     Array2_gp_Pnt,
 )
 from OCP.ShapeUpgrade import ShapeUpgrade_ShapeDivideClosed
-from OCP.TopAbs import TopAbs_FACE
-from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 
 from sorgui.render import ClipBox, ClipSphere
@@ -61,6 +59,7 @@ from sorgui.render import ClipBox, ClipSphere
 from .conical import Extrusion, Ruled
 from .geometry import Analytic, CadGeometryError, Frame, RationalCurve
 from .patch import BezierPatch
+from .reading import faces_of
 
 Vector = Sequence[float] | np.ndarray
 
@@ -352,13 +351,3 @@ def within(faces: Sequence[TopoDS_Face], box: ClipBox, tolerance: float) -> bool
         if np.any(np.array(bounds.CornerMax().Coord()) > high + slack):
             return False
     return True
-
-
-def faces_of(shape: TopoDS_Shape) -> list[TopoDS_Face]:
-    """The faces of ``shape``, in the order Open CASCADE explores them."""
-    found = []
-    explorer = TopExp_Explorer(shape, TopAbs_FACE)
-    while explorer.More():
-        found.append(TopoDS.Face(explorer.Current()))
-        explorer.Next()
-    return found

@@ -17,10 +17,13 @@ real roots), ``singular`` (the Singular process, plane curves, sorgui's Singular
 ``revolution`` (real points, Table 1, parameterizations), ``conical`` (cones and cylinders over
 any curve), ``canal`` (canal surfaces) and ``rounded`` (decimal input). A subpackage's
 ``__init__`` imports nothing, and the sympy-based modules are loaded only when an analysis
-needs them.
+needs them. Importing the package loads ``analysis`` (the parser, flint) only when
+:func:`analyze` or :func:`analyze_polynomial` is first asked for, so that a module that needs
+only the result objects (``results``) or ``lifetime`` is light to import.
 """
 
-from .analysis import analyze, analyze_polynomial
+from typing import TYPE_CHECKING
+
 from .errors import (
     AnalysisError,
     Cancelled,
@@ -39,6 +42,20 @@ from .results import (
     Recognition,
 )
 from .stages import STAGES
+
+if TYPE_CHECKING:
+    from .analysis import analyze, analyze_polynomial
+
+
+def __getattr__(name: str) -> object:
+    """:func:`analyze` and :func:`analyze_polynomial`, from ``analysis`` when first asked for
+    (PEP 562)."""
+    if name in ("analyze", "analyze_polynomial"):
+        from . import analysis
+
+        return getattr(analysis, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
     "STAGES",

@@ -1,6 +1,7 @@
 """Parts built with Open CASCADE itself for the tests of reading and recognising faces: solids
 about an oblique axis, converted to B-spline faces (``BRepBuilderAPI_NurbsConvert``), with or
-without noise on their poles, and faces of no symmetry at all."""
+without noise on their poles, faces of no symmetry at all, and a face Open CASCADE cannot
+evaluate."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import math
 from pathlib import Path
 
 import numpy as np
-from OCP.BRep import BRep_Tool
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
 from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_MakeEdge,
@@ -25,15 +26,15 @@ from OCP.BRepPrimAPI import (
     BRepPrimAPI_MakeSphere,
     BRepPrimAPI_MakeTorus,
 )
-from OCP.Geom import Geom_BSplineSurface
+from OCP.Geom import Geom_BSplineSurface, Geom_OffsetSurface, Geom_Plane
 from OCP.GeomAbs import GeomAbs_Shape
 from OCP.GeomAPI import GeomAPI_PointsToBSpline, GeomAPI_PointsToBSplineSurface
-from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
-from OCP.OCP.collections import Array1_gp_Pnt, Array2_gp_Pnt
-from OCP.TopoDS import TopoDS_Shape
+from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pln, gp_Pnt, gp_Trsf, gp_Vec
+from OCP.OCP.collections import Array1_double, Array1_gp_Pnt, Array1_int, Array2_gp_Pnt
+from OCP.TopLoc import TopLoc_Location
+from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape
 
-from sorgui.cad.reading import Part
-from sorgui.cad.shapes import faces_of
+from sorgui.cad.reading import Part, faces_of
 
 ORIGIN = np.array([1.0, 2.0, 3.0])
 """Where the parts' own origin is placed."""
@@ -195,5 +196,41 @@ def skewed(count: int = 25) -> TopoDS_Shape:
             a, h = 2.0 * i / (count - 1), 3.0 * j / (count - 1)
             r, theta = 2 + 0.3 * math.sin(2 * h), a + 0.4 * h
             grid.SetValue(i + 1, j + 1, gp_Pnt(r * math.cos(theta), r * math.sin(theta), h))
+    surface = GeomAPI_PointsToBSplineSurface(grid, 3, 8, GeomAbs_Shape.GeomAbs_C2, 1e-9).Surface()
+    return BRepBuilderAPI_MakeFace(surface, 1e-7).Face()
+
+
+def unevaluable() -> TopoDS_Shape:
+    """A face Open CASCADE cannot evaluate, beside the revolved B-spline: a unit square whose
+    surface is then set to an offset of a B-spline collapsed to a point (no normal anywhere, so
+    ``Geom_OffsetSurface`` raises ``Geom_UndefinedValue`` and ``Geom_UndefinedDerivative``)."""
+    poles = Array2_gp_Pnt(1, 2, 1, 2)
+    for i in (1, 2):
+        for j in (1, 2):
+            poles.SetValue(i, j, gp_Pnt(1, 2, 3))
+    knots, mults = Array1_double(1, 2), Array1_int(1, 2)
+    for k in (1, 2):
+        knots.SetValue(k, float(k - 1))
+        mults.SetValue(k, 2)
+    collapsed = Geom_BSplineSurface(poles, knots, knots, mults, mults, 1, 1)
+    face = BRepBuilderAPI_MakeFace(Geom_Plane(gp_Pln()), 0.0, 1.0, 0.0, 1.0, 1e-7).Face()
+    BRep_Builder().UpdateFace(face, Geom_OffsetSurface(collapsed, 1.0), TopLoc_Location(), 1e-7)
+    compound = TopoDS_Compound()
+    builder = BRep_Builder()
+    builder.MakeCompound(compound)
+    builder.Add(compound, revolved_spline())
+    builder.Add(compound, face)
+    return compound
+
+
+def skewed_cone(count: int = 25) -> TopoDS_Shape:
+    """A B-spline through points of the elliptic cone ``(x/2)² + y² = z²`` laid out along helices
+    (angle ``a + 0.4 z``): a cone over a curve none of whose parameter lines is a ruling."""
+    grid = Array2_gp_Pnt(1, count, 1, count)
+    for i in range(count):
+        for j in range(count):
+            a, h = 2.0 * i / (count - 1), 1.0 + 2.0 * j / (count - 1)
+            theta = a + 0.4 * h
+            grid.SetValue(i + 1, j + 1, gp_Pnt(2 * h * math.cos(theta), h * math.sin(theta), h))
     surface = GeomAPI_PointsToBSplineSurface(grid, 3, 8, GeomAbs_Shape.GeomAbs_C2, 1e-9).Surface()
     return BRepBuilderAPI_MakeFace(surface, 1e-7).Face()

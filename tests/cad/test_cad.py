@@ -33,7 +33,7 @@ from OCP.GProp import GProp_GProps  # noqa: E402
 from OCP.TopoDS import TopoDS_Shape  # noqa: E402
 
 from sorgui.cad.geometry import surface_distance  # noqa: E402
-from sorgui.cad.shapes import faces_of as faces  # noqa: E402
+from sorgui.cad.reading import faces_of as faces  # noqa: E402
 from sorgui.cad.writers import read_shape  # noqa: E402
 
 FORMATS = (".step", ".iges", ".brep")

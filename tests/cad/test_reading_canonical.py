@@ -19,10 +19,12 @@ from OCP.TopExp import TopExp_Explorer  # noqa: E402
 
 from sorgui.cad.canonical import canonical_file  # noqa: E402
 from sorgui.cad.native import _pnt  # noqa: E402
-from sorgui.cad.reading import read_part  # noqa: E402
+from sorgui.cad.reading import (
+    faces_of,  # noqa: E402
+    read_part,  # noqa: E402
+)
 from sorgui.cad.recognition import analyse_part  # noqa: E402
 from sorgui.cad.sampling import sample_face  # noqa: E402
-from sorgui.cad.shapes import faces_of  # noqa: E402
 
 from . import parts  # noqa: E402
 

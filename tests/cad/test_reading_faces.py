@@ -9,9 +9,9 @@ import pytest
 
 pytest.importorskip("OCP")
 
-from sorgui.cad.part_report import PartReport, text_report  # noqa: E402
+from sorgui.cad.part_report import PartReport, faces_words, text_report  # noqa: E402
+from sorgui.cad.reading import faces_of  # noqa: E402
 from sorgui.cad.recognition import analyse_part, recognise_face  # noqa: E402
-from sorgui.cad.shapes import faces_of  # noqa: E402
 
 from . import parts  # noqa: E402
 
@@ -189,3 +189,17 @@ def test_the_report_reads_back_from_its_json() -> None:
     report = report_of(parts.boolean_part())
     assert PartReport.from_json(report.to_json()) == report
     assert len(faces_of(parts.boolean_part())) == len(report.faces)
+
+
+def test_many_faces_are_named_in_runs() -> None:
+    """A group of the 2000 faces of a long shaft is one short line (runs of three or more)."""
+    assert faces_words([4]) == "face 4"
+    assert faces_words([3, 7, 9]) == "faces 3, 7, 9"
+    assert faces_words([*range(1, 2001), 2003, 2004]) == "faces 1–2000, 2003, 2004"
+
+
+def test_a_cone_over_a_curve_with_no_ruling_among_its_parameter_lines() -> None:
+    """The cone's directrix is taken from a parameter line of the face; with none (the samples lie
+    along helices) the face is reported, never an internal error (it was a ValueError)."""
+    (face,) = report_of(parts.skewed_cone(), 1e-6).faces
+    assert face.error is None and face.kind in ("cone-over-curve", "none")

@@ -67,6 +67,21 @@ def test_a_bad_part_is_said_in_its_window(window, qtbot, tmp_path: Path) -> None
     shown.close()
 
 
+def test_a_face_open_cascade_cannot_evaluate_is_one_line_of_the_window(window, qtbot, tmp_path, artifacts) -> None:  # noqa: ANN001
+    """The part is drawn and reported; the face Open CASCADE cannot evaluate has its own line."""
+    path = tmp_path / "broken.brep"
+    path.write_bytes(WRITERS[".brep"](parts.unevaluable(), CadHeader("", (), "0", path.name)))
+    assert window.open_file(str(path))
+    (shown,) = part_windows(window)
+    with qtbot.waitSignal(shown.shown, timeout=120_000) as blocker:
+        pass
+    assert blocker.args[0] is not None and len(blocker.args[0].faces) == 2
+    text = shown.text.toPlainText()
+    assert "cannot be evaluated: Open CASCADE raises Geom_Undefined" in text and "surface of revolution" in text
+    shown.grab().save(str(artifacts / "part-window-unevaluable.png"))
+    shown.close()
+
+
 def test_closing_the_window_kills_its_process(window, qtbot, tmp_path: Path) -> None:
     path = tmp_path / "shaft.step"
     path.write_bytes(WRITERS[".step"](parts.turned_part(), CadHeader("", (), "0", path.name)))
