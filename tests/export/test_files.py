@@ -11,7 +11,8 @@ from sorgui.cli import main
 from sorgui.engine import analyze
 from sorgui.engine.results import Analysis
 from sorgui.engine.values import read_expression
-from sorgui.export.files import FORMATS, export_analysis
+from sorgui.export.files import export_analysis
+from sorgui.export.formats import FORMATS
 from sorgui.export.formulas import analysis_formulas
 
 x, y, s, t = sympy.symbols("x y s t")
