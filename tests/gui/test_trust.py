@@ -530,7 +530,6 @@ def test_a_reports_export_runs_in_a_process_the_window_kills_at_its_time_limit(
     half a second (the process is not even started and Open CASCADE not imported by then), its
     process killed, the old file kept, and the window stays responsive; a JSON export of the same
     report then goes through a new process and is written."""
-    from PySide6.QtWidgets import QFileDialog
 
     pytest.importorskip("OCP")
     report = _report(tmp_path, "(x^2+y^2)^30+z^60-1", "--recognition-only")
@@ -540,7 +539,7 @@ def test_a_reports_export_runs_in_a_process_the_window_kills_at_its_time_limit(
     monkeypatch.setattr(window, "_show_error", lambda title, message: failures.append(f"{title}: {message}"))
     step = tmp_path / "part.step"
     step.write_text("the old file\n", encoding="ascii")
-    monkeypatch.setattr(QFileDialog, "getSaveFileName", lambda *_args: (str(step), ""))
+    monkeypatch.setattr(window, "ask_export_path", lambda _suffix: str(step))
     window.time_limit = 0.5
     with qtbot.waitSignal(window.cad_export.failed, timeout=60_000):
         window._export_results()
@@ -555,7 +554,7 @@ def test_a_reports_export_runs_in_a_process_the_window_kills_at_its_time_limit(
     assert [p for p in tmp_path.iterdir() if ".tmp" in p.name] == []
     again = tmp_path / "again.json"
     window.time_limit = 120.0
-    monkeypatch.setattr(QFileDialog, "getSaveFileName", lambda *_args: (str(again), ""))
+    monkeypatch.setattr(window, "ask_export_path", lambda _suffix: str(again))
     with qtbot.waitSignal(window.cad_export.written, timeout=120_000):
         window._export_results()
     assert again.exists() and not window.cad_export.busy
