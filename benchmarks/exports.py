@@ -18,7 +18,8 @@ from pathlib import Path
 from benchmarks.report import median_time, run
 from sorgui.engine import analyze
 from sorgui.examples import example_text
-from sorgui.export.files import FORMATS, export_analysis
+from sorgui.export.files import export_analysis
+from sorgui.export.formats import FORMATS
 from sorgui.session.scene_data import build_scene
 
 SURFACES = ("paper-example-1", "torus")

@@ -70,7 +70,7 @@ EXPORT_SUFFIXES = (
     ".brep",
     ".png",
 )
-"""Suffixes ``-o`` accepts (the keys of ``sorgui.export.files.FORMATS``; a test checks it)."""
+"""Suffixes ``-o`` accepts (the keys of ``sorgui.export.formats.FORMATS``; a test checks it)."""
 CAD_SUFFIXES = (".step", ".stp", ".iges", ".igs", ".brep")
 """The CAD formats of ``-o`` (``sorgui.cad.CAD_SUFFIXES``; a test checks it)."""
 CAD_UNITS = ("mm", "cm", "m", "um", "in", "ft")
@@ -734,14 +734,15 @@ def gui_main(argv: Sequence[str]) -> int:
     return _window(args.file)
 
 
-def _window(path: str | None) -> int:
-    """The window with ``path``, or one line and status 1 when there is no display to show it on."""
+def _window(path: str | None, report: Analysis | None = None) -> int:
+    """The window with ``path`` (the ``report`` it holds, read and checked already), or one line
+    and status 1 when there is no display to show it on."""
     problem = display_problem(os.environ, sys.platform)
     if problem is not None:
         return fail(f"the window needs a display: {problem}", None, False, 1)
     from sorgui.gui.app import run_gui
 
-    return run_gui(path)
+    return run_gui(path, report)
 
 
 WINDOWLESS_PLATFORMS = ("offscreen", "minimal", "minimalegl", "vnc")
@@ -805,10 +806,10 @@ def open_main(argv: Sequence[str]) -> int:
     from sorgui.export.reports import ReportError, read_report
 
     try:
-        read_report(args.report)
+        report = read_report(args.report)
     except ReportError as exc:
         return fail(exc.message, None, False, 2)
-    return _window(str(args.report))
+    return _window(str(args.report), report)  # shown as read here, not read again
 
 
 COMMANDS: dict[str, Callable[[Sequence[str]], int]] = {"analyze": analyze_main, "open": open_main}

@@ -88,7 +88,7 @@ def test_input_is_read_only_up_to_the_limit() -> None:
 
 def test_the_input_limit_is_the_parsers() -> None:
     from sorgui.engine.parsing import MAX_LENGTH
-    from sorgui.export.files import FORMATS
+    from sorgui.export.formats import FORMATS
 
     assert cli.MAX_INPUT == MAX_LENGTH
     assert set(cli.EXPORT_SUFFIXES) == set(FORMATS)

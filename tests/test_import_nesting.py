@@ -55,3 +55,16 @@ def test_the_render_layer_loads_no_sympy() -> None:
     from ``sorgui.numerics``, numpy only), loads neither sympy nor the engine."""
     modules = loaded_modules("import sorgui.render, sorgui.render.canal_touch, sorgui.render.canal_scene")
     assert "sympy" not in modules and "sorgui.engine" not in modules
+
+
+def test_the_window_starts_without_sympy_the_exporters_and_vtk() -> None:
+    """The window's modules load neither sympy, the export writers nor VTK (docs/benchmarks.md,
+    "The window beside the command line"): the exporters are loaded at export time, sympy where
+    a result needs it (in the worker process, a copy as code), VTK with the render window, once
+    the window is drawn. Checking the startup equation over QQ needs flint alone."""
+    modules = loaded_modules(
+        "import sorgui.gui.main_window; from sorgui.gui.editor import summary; "
+        "assert summary('(x^2+y^2+z^2+21)^2-100(x^2+y^2)') == '✓ degree 4 over QQ'"
+    )
+    loaded = {"sympy", "vtkmodules", "pyvista", "sorgui.export.files", "sorgui.export.cas"} & modules
+    assert not loaded, sorted(loaded)

@@ -5,7 +5,7 @@ printers (``latex``, ``maple_code``, ``mathematica_code``), so that the files re
 exactly the expressions the engine found: the Maple lines are ``name := maple_code(value);``,
 the Mathematica lines ``name = mathematica_code(value);`` (vectors as lists ``{a, b, c}``), which
 ``sympy.parsing.mathematica.parse_mathematica`` reads back. Each map is followed by its
-parameter domain and the points it misses (:class:`~sorgui.export.formulas.Coverage`).
+parameter domain and the points it misses (:class:`~sorgui.export.coverage.Coverage`).
 The LaTeX document needs only ``amsmath`` and ``amssymb``; long sums are broken over lines.
 """
 
@@ -19,7 +19,8 @@ from sympy.printing.maple import maple_code
 from sympy.printing.mathematica import mathematica_code
 
 from sorgui.engine.results import Analysis, Approximation
-from sorgui.export.formulas import CoverageStyle, Formula, analysis_formulas
+from sorgui.export.coverage import CoverageStyle
+from sorgui.export.formulas import Formula, analysis_formulas
 from sorgui.export.quoting import hash_comment, mathematica_comment, one_line
 from sorgui.export.text import TABLE_1
 

@@ -1,6 +1,6 @@
 """Writing an :class:`~sorgui.engine.results.Analysis` to files, in the format the suffix names.
 
-:data:`FORMATS` lists every format: reports (JSON, text, Markdown, HTML), formula files (LaTeX,
+:data:`~sorgui.export.formats.FORMATS` lists every format: reports (JSON, text, Markdown, HTML), formula files (LaTeX,
 Maple, Mathematica, Python), meshes (STL, OBJ, PLY, VTP; ``NAME.patch.stl`` is the parametric
 patch instead of the surface), CAD files (STEP, IGES, OCCT's BRep: the native surface, or with
 ``NAME.patch.step`` the parameterization's patch, :mod:`sorgui.cad`) and a PNG picture.
@@ -15,7 +15,6 @@ unchanged.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -23,57 +22,13 @@ from sorgui.engine.results import Analysis
 from sorgui.engine.vocabulary import no_surface
 from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
 from sorgui.export.cas import latex_document, maple_file, mathematica_file
-from sorgui.export.meshes import is_patch_path
+from sorgui.export.formats import Format, format_of, wants_patch
 from sorgui.export.python_module import python_module
 from sorgui.export.reports import html_report, json_report, markdown_report, text_report
 
 PNG_SIZE = (1600, 1200)
 """The size of a PNG written from the command line (the window saves the viewport's own)."""
 
-
-@dataclass(frozen=True)
-class Format:
-    """One export format: its suffix, its name in file dialogs, and its kind (``report``,
-    ``formula``, ``mesh``, ``cad`` or ``picture``)."""
-
-    suffix: str
-    name: str
-    kind: str
-
-    @property
-    def needs_scene(self) -> bool:
-        return self.kind in ("mesh", "cad", "picture")
-
-    @property
-    def has_patch(self) -> bool:
-        """Whether ``NAME.patch.SUFFIX`` writes the parameterization's patch in this format."""
-        return self.kind in ("mesh", "cad")
-
-
-FORMATS: dict[str, Format] = {
-    f.suffix: f
-    for f in (
-        Format(".json", "JSON report", "report"),
-        Format(".txt", "Text report", "report"),
-        Format(".md", "Markdown report", "report"),
-        Format(".html", "HTML report", "report"),
-        Format(".tex", "LaTeX document", "formula"),
-        Format(".mpl", "Maple", "formula"),
-        Format(".m", "Mathematica", "formula"),
-        Format(".py", "Python module (NumPy and SymPy)", "formula"),
-        Format(".stl", "STL mesh (binary)", "mesh"),
-        Format(".obj", "OBJ mesh", "mesh"),
-        Format(".ply", "PLY mesh (binary)", "mesh"),
-        Format(".vtp", "VTK PolyData (VTP)", "mesh"),
-        Format(".step", "STEP AP242 (B-rep)", "cad"),
-        Format(".stp", "STEP AP242 (B-rep, .stp)", "cad"),
-        Format(".iges", "IGES 5.3 (trimmed surfaces)", "cad"),
-        Format(".igs", "IGES 5.3 (trimmed surfaces, .igs)", "cad"),
-        Format(".brep", "Open CASCADE BRep", "cad"),
-        Format(".png", "PNG picture", "picture"),
-    )
-}
-"""Suffix → format."""
 
 TEXT_WRITERS: dict[str, Callable[[Analysis], str]] = {
     ".json": json_report,
@@ -83,19 +38,6 @@ TEXT_WRITERS: dict[str, Callable[[Analysis], str]] = {
     ".m": mathematica_file,
     ".py": python_module,
 }
-
-
-def format_of(path: str | Path, fmt: str | None = None) -> Format:
-    """The format of ``path``: ``fmt`` if given (``"stl"``, ``".stl"``, ``"patch.stl"``), else its
-    suffix; ``ValueError`` naming the known formats otherwise."""
-    if fmt is not None:
-        suffix = "." + fmt.lower().lstrip(".").removeprefix("patch.")
-    else:
-        suffix = Path(path).suffix.lower()
-    if suffix not in FORMATS:
-        shown = suffix if suffix else "(no suffix)"
-        raise ValueError(f"unknown export format {shown} of {path}; use one of {', '.join(FORMATS)}")
-    return FORMATS[suffix]
 
 
 def export_file(
@@ -136,12 +78,6 @@ def _has_a_surface(analysis: Analysis, form: Format, patch: bool) -> None:
         reason = no_surface(locus.kind, locus.points, locus.circles, locus.axis_line)
         if reason is not None:
             raise ValueError(f"{reason}: there is no surface to write")
-
-
-def wants_patch(path: Path, fmt: str | None = None) -> bool:
-    """Whether ``path`` (``NAME.patch.stl``) or ``fmt`` (``patch.step``) asks for the patch of
-    the parameterization instead of the surface."""
-    return is_patch_path(path) or (fmt is not None and fmt.lower().lstrip(".").startswith("patch."))
 
 
 def export_analysis(

@@ -23,6 +23,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
 from sorgui.export.atomic import atomic_path
+from sorgui.export.formats import is_patch_path
 
 if TYPE_CHECKING:
     import pyvista
@@ -63,11 +64,6 @@ class MeshInfo:
             f"units: {UNITS}",
             f"bounding box: {self.bounds_text()}",
         ]
-
-
-def is_patch_path(path: str | Path) -> bool:
-    """Whether ``path`` names the patch (``….patch.stl``, ``….patch.step``) rather than the surface."""
-    return Path(path).stem.lower().endswith(".patch")
 
 
 def mesh_polydata(scene: Scene, patch: bool) -> pyvista.PolyData:

@@ -26,6 +26,7 @@ from sorgui import __version__
 from sorgui.gui.settings import APPLICATION, ORGANIZATION
 
 if TYPE_CHECKING:
+    from sorgui.engine.results import Analysis
     from sorgui.gui.main_window import MainWindow
 
 ICON = "sorgui.svg"
@@ -57,9 +58,10 @@ def create_application(argv: list[str] | None = None) -> QApplication:
     return app
 
 
-def open_main_window(path: str | None = None) -> MainWindow:
+def open_main_window(path: str | None = None, report: Analysis | None = None) -> MainWindow:
     """Show the main window at once; once it is drawn, start analysing the startup equation
-    (``path``, the last session's or Example 1) and then create the 3D view's render window.
+    (``path``, the last session's or Example 1), or show ``report``, the analysis of the report
+    ``path`` read already (``sorgui open``), and then create the 3D view's render window.
 
     In that order the window appears before pyvista and VTK's rendering are imported (a second,
     on a thread), and the worker process analyses while they are. The worker process itself is
@@ -79,7 +81,10 @@ def open_main_window(path: str | None = None) -> MainWindow:
         if handle is not None and not handle.isExposed() and window.isVisible():
             QTimer.singleShot(10, when_drawn)
             return
-        window.load_startup_equation(path)
+        if report is not None and path is not None:
+            window.show_report(path, report)
+        else:
+            window.load_startup_equation(path)
         window.viewport.start_rendering_soon()
 
     QTimer.singleShot(0, when_drawn)
@@ -191,8 +196,10 @@ class SignalEnding:
             self.window.end_at_once()  # the text is kept in the settings: nothing to ask
 
 
-def run_gui(path: str | None = None) -> int:
-    """Open the main window (with ``path``, if given) and run the event loop; the exit status.
+def run_gui(path: str | None = None, report: Analysis | None = None) -> int:
+    """Open the main window (with ``path``, if given: an equation file, a report or a CAD part;
+    ``report``: the analysis of the report ``path``, read already) and run the event loop; the
+    exit status.
 
     A crash in C++ (Qt, VTK, OpenGL) prints the Python stack of every thread to stderr
     (:mod:`faulthandler`), so that a report of it says where it happened."""
@@ -200,7 +207,7 @@ def run_gui(path: str | None = None) -> int:
     app = create_application()
     ending = SignalEnding(app)
     try:
-        ending.window = open_main_window(path)
+        ending.window = open_main_window(path, report)
         early = ending.pending()
         return early if early is not None else app.exec()
     finally:

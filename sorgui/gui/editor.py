@@ -2,7 +2,8 @@
 
 While the user types, the text is checked with the engine's own reader
 (:func:`~sorgui.engine.parametric_parsing.parse_input`: an equation, or a parametrization
-``x = X(s, t), y = …, z = …``) after a pause of :data:`VALIDATION_DELAY_MS`.
+``x = X(s, t), y = …, z = …``; an equation over ``QQ`` by flint alone, :func:`summary`) after a
+pause of :data:`VALIDATION_DELAY_MS`.
 The parser is cheap (it refuses huge degrees in milliseconds), so it runs on the GUI thread;
 texts longer than :data:`LIVE_VALIDATION_LIMIT` characters are parsed by the analysis worker
 instead, which reports errors back here. A parse error is underlined with a red wave from its position to its end and
@@ -25,9 +26,9 @@ from PySide6.QtGui import (
 )
 from PySide6.QtWidgets import QLabel, QPlainTextEdit, QTextEdit, QVBoxLayout, QWidget
 
-from sorgui.engine.algebra.polys import field_name, total_degree
 from sorgui.engine.errors import ParseError
-from sorgui.engine.parametric_parsing import ParsedParametrization, parse_input
+from sorgui.engine.parametric_parsing import ParsedParametrization, is_parametrization, parse_input
+from sorgui.engine.parsing import parse_rational
 
 VALIDATION_DELAY_MS = 250
 """Debounce of the live validation: the parser runs this long after the last keystroke."""
@@ -37,6 +38,25 @@ LIVE_VALIDATION_LIMIT = 20_000
 
 ERROR_COLOR = QColor("#c62828")
 OK_COLOR = QColor("#2e7d32")
+
+
+def summary(text: str) -> str:
+    """What the editor says of valid input: its degree and its field; :class:`ParseError` otherwise.
+
+    An equation over ``QQ`` is read by flint alone (:func:`~sorgui.engine.parsing.parse_rational`):
+    the window checks its first equation before the first verdict, and sympy, which the general
+    reader needs for square roots and parametrizations, is then not loaded on the GUI thread."""
+    if not is_parametrization(text):
+        rational = parse_rational(text)
+        if rational is not None:
+            return f"✓ degree {rational.total_degree()} over QQ"
+    from sorgui.engine.algebra.polys import field_name, total_degree
+
+    parsed = parse_input(text)
+    if isinstance(parsed, ParsedParametrization):
+        names = " and ".join(parsed.parameters)
+        return f"✓ a parametrization in {names} of degree {parsed.map.degree} over {field_name(parsed.field)}"
+    return f"✓ degree {total_degree(parsed.polynomial)} over {field_name(parsed.field)}"
 
 
 class PolynomialHighlighter(QSyntaxHighlighter):
@@ -152,15 +172,10 @@ class EquationEditor(QWidget):
             self._show_result(None, None, _LONG_TEXT_MESSAGE)
             return None
         try:
-            parsed = parse_input(text)
+            message = summary(text)
         except ParseError as exc:
             self.show_error(exc)
             return False
-        if isinstance(parsed, ParsedParametrization):
-            names = " and ".join(parsed.parameters)
-            message = f"✓ a parametrization in {names} of degree {parsed.map.degree} over {field_name(parsed.field)}"
-        else:
-            message = f"✓ degree {total_degree(parsed.polynomial)} over {field_name(parsed.field)}"
         self._show_result(True, None, message)
         return True
 

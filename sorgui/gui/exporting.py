@@ -28,7 +28,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from sorgui.export.files import FORMATS
+from sorgui.export.formats import FORMATS
 from sorgui.render.plotting import forwarders
 
 if TYPE_CHECKING:
@@ -37,7 +37,7 @@ if TYPE_CHECKING:
     from sorgui.gui.viewport import Viewport
 
 EXPORT_FILTERS = {suffix: form.name for suffix, form in FORMATS.items()}
-"""The file dialog's choices for File → Export (every format of :mod:`sorgui.export.files`)."""
+"""The file dialog's choices for File → Export (every format of :mod:`sorgui.export.formats`)."""
 
 REPORT_FILTER = "sorgui reports (*.json)"
 """File → Open also opens a report saved as JSON, shown without analysing again."""

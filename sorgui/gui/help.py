@@ -44,8 +44,28 @@ SYNTAX_EXAMPLES = (
     ("0.25x^2 + y^2/4 + z^2 - 1", "decimals are exact: 0.25 is 1/4"),
     ("x^2 + y^2 - 2z^2 + sqrt(2)·x·z", "square roots of rationals, the dot · as multiplication"),
     ("1.5E-3x^2 + y^2 + z^2 - 1", "E-notation (rounded input: sorgui also looks for a nearby exact surface)"),
+    (
+        "x = (1-t^2)/(1+t^2)*(2+s), y = 2t/(1+t^2)*(2+s), z = s^2",
+        "a parametrization: x = …, y = …, z = … in two parameters (here a surface of revolution)",
+    ),
+    ("(u, v, u^3 - 3u*v^2)", "a parametrization as a triple (X, Y, Z)"),
 )
-"""Equations the parser accepts, with what each shows."""
+"""Input the parser accepts (equations and parametrizations), with what each shows."""
+
+PARAMETRIZATIONS_HTML = """
+<h3>Parametrizations</h3>
+<p>A surface may also be given as a rational map (s, t) ↦ (x, y, z): <b>x = X, y = Y, z = Z</b> in
+any order, separated by commas, semicolons or line breaks (<tt>x(u, v) = …</tt> names the
+parameters), or a triple <b>(X, Y, Z)</b> (also after <tt>P(u, v) =</tt>). The parameters are the
+two names other than x, y, z that the components use; the components are rational functions with
+coefficients as for equations (decimals, square roots). sorgui decides <b>from the map itself,
+exactly</b>, whether its image is a surface of revolution (every normal line meets the axis), a
+cone or a cylinder, then finds its implicit equation and analyses that as it would a typed one;
+the given map is the first of the parameterizations shown. A map printed with decimals is also
+asked whether it is, within its rounding, a surface of revolution. A curve or a point, a constant
+component, a function such as sin, one or three parameters and a zero denominator are refused in
+one line (docs/math.md §13).</p>
+"""
 
 KEYS = (
     ("Ctrl+Return", "analyse the equation"),
@@ -197,8 +217,9 @@ def table_1_html() -> str:
 TOPICS = {
     "syntax": (
         "Input Syntax",
-        "<h3>Input syntax</h3><p>Type a polynomial in x, y, z, or an equation "
-        "(left = right). Nothing you type is ever run as code: sorgui has its own parser.</p>" + _rows(SYNTAX_EXAMPLES),
+        "<h3>Input syntax</h3><p>Type a polynomial in x, y, z, an equation (left = right), or a "
+        "parametrization x = …, y = …, z = … in two parameters. Nothing you type is ever run as code: "
+        "sorgui has its own parser.</p>" + _rows(SYNTAX_EXAMPLES) + PARAMETRIZATIONS_HTML,
     ),
     "keys": (
         "Mouse and Keys",

@@ -15,6 +15,7 @@ import html
 from collections.abc import Callable
 from functools import partial
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QEvent, QObject, Qt, QTimer, Signal
 from PySide6.QtGui import (
@@ -48,8 +49,7 @@ from sorgui import __version__
 from sorgui.engine.results import Analysis
 from sorgui.examples import EXAMPLES, example_text
 from sorgui.export.atomic import atomic_write_bytes
-from sorgui.export.files import export_analysis, format_of
-from sorgui.export.reports import ReportError, read_report
+from sorgui.export.formats import format_of
 from sorgui.gui.background_export import BackgroundExport
 from sorgui.gui.camera import CameraState
 from sorgui.gui.editor import EquationEditor
@@ -69,6 +69,7 @@ from sorgui.gui.exporting import (
 )
 from sorgui.gui.help import TOPICS, HelpDialog
 from sorgui.gui.region_dialog import BoxDialog
+from sorgui.gui.report_reader import ReportReader
 from sorgui.gui.results import ResultsPane
 from sorgui.gui.session_view import SessionView
 from sorgui.gui.settings import (
@@ -84,9 +85,11 @@ from sorgui.gui.typesetter import Typesetter
 from sorgui.gui.viewport import Viewport
 from sorgui.gui.wording import invalid_heading, no_surface_caption
 from sorgui.gui.worker import AnalysisWorker
-from sorgui.render.picking import PickInfo
 from sorgui.session.model import Session
 from sorgui.session.part_job import PART_SUFFIXES
+
+if TYPE_CHECKING:
+    from sorgui.render.picking import PickInfo
 
 ZOOM_STEPS = (0.8, 0.9, 1.0, 1.15, 1.3, 1.5, 1.75, 2.0, 2.5)
 """The zoom factors of the formulas (Ctrl++ and Ctrl+− step through them)."""
@@ -189,6 +192,9 @@ class MainWindow(QMainWindow):
         self.cad_export = BackgroundExport(self)
         self.cad_export.written.connect(self._cad_written)
         self.cad_export.failed.connect(self._cad_failed)
+        self.report_reader = ReportReader(self)
+        self.report_reader.read.connect(self.show_report)
+        self.report_reader.refused.connect(self._report_refused)
         self.editor = EquationEditor(self)
         self.typesetter = Typesetter(self, start=False)
         self.results = ResultsPane(self, self.typesetter)
@@ -469,20 +475,26 @@ class MainWindow(QMainWindow):
         return True
 
     def open_report(self, path: str) -> bool:
-        """Show the analysis saved in the JSON report ``path`` without analysing it again (only its
+        """Read the JSON report ``path`` and check its claims in a process of its own
+        (:mod:`sorgui.gui.report_reader`; the window stays responsive), then show it with
+        :meth:`show_report`, or say in one line why not. ``True``: the reading has started."""
+        self.report_reader.start(path, timeout=self.time_limit)
+        self.statusBar().showMessage(f"Reading the report {Path(path).name} and checking its claims…")
+        return True
+
+    def _report_refused(self, _path: str, message: str) -> None:
+        self.statusBar().clearMessage()
+        self._show_error("Cannot open report", message)
+
+    def show_report(self, path: str, analysis: Analysis) -> None:
+        """Show ``analysis``, read from the report ``path``, without analysing it again (only its
         scene and formulas are drawn)."""
-        try:
-            analysis = read_report(path)
-        except ReportError as exc:
-            self._show_error("Cannot open report", exc.message)
-            return False
         self.set_equation(analysis.input)
         self._report = path
         self._update_title()
         self.settings.add_recent_file(path)
         self.session.analyze(analysis.input, analysis=analysis, resolution=self.viewport.mesh_resolution())
         self.statusBar().showMessage(f"Report {Path(path).name}: shown as saved, not analysed again", 6000)
-        return True
 
     def save_file(self, path: str) -> bool:
         """Write the editor's text to ``path``."""
@@ -506,6 +518,7 @@ class MainWindow(QMainWindow):
             self._show_invalid(str(error) if error is not None else "The editor is empty.")
             return False
         superseded = self.worker.is_busy
+        self.report_reader.cancel()  # this equation replaces a report still being read
         self.session.analyze(
             self.editor.text(),
             resolution=self.viewport.mesh_resolution(),
@@ -628,6 +641,8 @@ class MainWindow(QMainWindow):
         analysis = self._finished_analysis()
         if analysis is None:
             raise ValueError("there is no analysis to export yet")
+        from sorgui.export.files import export_analysis  # its writers load sympy: not before an export
+
         picture = None
         if format_of(path, fmt).suffix in (".md", ".html", ".png"):
             picture = png_bytes(viewport_image(self.viewport, REPORT_PICTURE_WIDTH))
@@ -867,6 +882,7 @@ class MainWindow(QMainWindow):
         self.worker.shutdown()
         self.typesetter.shutdown()
         self.cad_export.shutdown()
+        self.report_reader.shutdown()
         self.viewport.close_plotter()
         super().closeEvent(event)
 
@@ -882,6 +898,7 @@ class MainWindow(QMainWindow):
         self.worker.shutdown(wait=0.0)
         self.typesetter.shutdown(wait=0.0)
         self.cad_export.shutdown()
+        self.report_reader.shutdown()
 
     def _remember(self) -> None:
         """Keep what the next start restores: the text, the file, the layout, the camera."""

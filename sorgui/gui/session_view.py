@@ -16,6 +16,7 @@ the run panel, the results pane, the 3D viewport and the status line:
 from __future__ import annotations
 
 import html
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QObject, QTimer, Signal
 from PySide6.QtWidgets import QLabel
@@ -29,7 +30,9 @@ from sorgui.gui.viewport import Viewport
 from sorgui.gui.wording import invalid_heading, no_surface_caption
 from sorgui.session.job import JobResult
 from sorgui.session.model import Run, Session, StageState
-from sorgui.session.scene_data import SceneData
+
+if TYPE_CHECKING:
+    from sorgui.session.scene import SceneData
 
 PANE_DELAY_MS = 120
 """Results arriving within this time rebuild the results pane once (each rebuild costs the GUI

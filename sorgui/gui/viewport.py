@@ -53,17 +53,16 @@ from sorgui.gui.camera import (
 )
 from sorgui.gui.flow_layout import ElidedLabel, FlowLayout
 from sorgui.gui.wording import floats
-from sorgui.render import mesh_to_polydata, pick_info, to_polydata
 from sorgui.render.canal_touch import Touch, touching_spheres
-from sorgui.render.picking import PickInfo
 from sorgui.render.plotting import forwarders
-from sorgui.render.scene import LineData
-from sorgui.session.scene_data import SceneData
 
 if TYPE_CHECKING:
     import pyvista
     from pyvistaqt import QtInteractor
     from vtkmodules.vtkCommonDataModel import vtkPlane
+
+    from sorgui.render.picking import PickInfo
+    from sorgui.session.scene import SceneData
 
 FRONT_COLOR = "#7fa7d6"
 """The side ``f > 0`` of the surface."""
@@ -318,32 +317,32 @@ class Viewport(QWidget):
             self.caption.setText(caption)
         self._clear_pick()
         self._show_surface()
-        self._set_actor("axis", to_polydata(scene.axis_segment), color=AXIS_COLOR, line_width=4)
-        self._set_actor("approx_axis", to_polydata(scene.approximate_axis), color=APPROXIMATE_AXIS_COLOR, line_width=3)
-        self._set_actor("factor_axes", to_polydata(scene.factor_axes), color=FACTOR_AXES_COLOR, line_width=3)
+        self._set_actor("axis", scene.axis_segment.to_polydata(), color=AXIS_COLOR, line_width=4)
+        self._set_actor("approx_axis", scene.approximate_axis.to_polydata(), color=APPROXIMATE_AXIS_COLOR, line_width=3)
+        self._set_actor("factor_axes", scene.factor_axes.to_polydata(), color=FACTOR_AXES_COLOR, line_width=3)
         self.deviation_box.setEnabled(scene.deviation is not None)
         self.view_actions["along"].setEnabled(self._axis() is not None)
         self.view_actions["across"].setEnabled(self._axis() is not None)
         self.view_actions["clip"].setEnabled(scene.axis is not None)
         self._set_actor(
             "profile",
-            to_polydata(scene.profile_curve),
+            scene.profile_curve.to_polydata(),
             color=PROFILE_COLOR,
             line_width=4,
             visible=self.profile_box.isChecked(),
         )
         canal = self.canal_box.isChecked()
         self._set_actor(
-            "canal_spine", to_polydata(scene.canal_spine), color=CANAL_SPINE_COLOR, line_width=4, visible=canal
+            "canal_spine", scene.canal_spine.to_polydata(), color=CANAL_SPINE_COLOR, line_width=4, visible=canal
         )
         self._set_actor(
-            "canal_circles", to_polydata(scene.canal_circles), color=CANAL_CIRCLE_COLOR, line_width=2, visible=canal
+            "canal_circles", scene.canal_circles.to_polydata(), color=CANAL_CIRCLE_COLOR, line_width=2, visible=canal
         )
         self.canal_box.setEnabled(not (scene.canal_spine.is_empty and scene.canal_circles.is_empty))
-        self._set_actor("base_curve", to_polydata(scene.base_curve), color=BASE_CURVE_COLOR, line_width=4)
+        self._set_actor("base_curve", scene.base_curve.to_polydata(), color=BASE_CURVE_COLOR, line_width=4)
         import pyvista
 
-        center = to_polydata(scene.center_marker) if scene.center_marker else pyvista.PolyData()
+        center = scene.center_marker.to_polydata() if scene.center_marker else pyvista.PolyData()
         self._set_actor("center", center, color=CENTER_COLOR, interpolation="gouraud")
         patch = scene.patch.to_polydata() if scene.patch is not None else pyvista.PolyData()
         self._set_actor(
@@ -521,6 +520,9 @@ class Viewport(QWidget):
     def _pick(self, point: np.ndarray) -> PickInfo | None:
         import pyvista
 
+        from sorgui.render.picking import pick_info
+        from sorgui.render.scene import LineData
+
         scene = self._scene
         if scene is None or point is None or not np.all(np.isfinite(point)):
             return None
@@ -531,8 +533,8 @@ class Viewport(QWidget):
             normal_length=0.6 * scene.region.radius,
             snap_distance=2.0 * scene.surface.spacing,
         )
-        self._set_actor("pick_normal", to_polydata(info.normal), color=NORMAL_COLOR, line_width=3)
-        self._set_actor("pick_circle", to_polydata(info.latitude), color=LATITUDE_COLOR, line_width=3)
+        self._set_actor("pick_normal", info.normal.to_polydata(), color=NORMAL_COLOR, line_width=3)
+        self._set_actor("pick_circle", info.latitude.to_polydata(), color=LATITUDE_COLOR, line_width=3)
         marker = pyvista.Sphere(radius=0.012 * scene.region.radius, center=info.point)
         self._set_actor("pick_point", marker, color=PICK_COLOR)
         touches = touching_spheres(
@@ -545,7 +547,7 @@ class Viewport(QWidget):
             )
         self._set_actor("pick_sphere", spheres, color=TOUCH_SPHERE_COLOR, style="wireframe", opacity=0.5, line_width=1)
         circles = LineData.from_polylines([t.circle for t in touches])
-        self._set_actor("pick_canal_circle", to_polydata(circles), color=TOUCH_CIRCLE_COLOR, line_width=4)
+        self._set_actor("pick_canal_circle", circles.to_polydata(), color=TOUCH_CIRCLE_COLOR, line_width=4)
         self.pick_label.setText(" · ".join([_pick_text(info)] + [_touch_text(t) for t in touches]))
         self.request_render()
         self.picked.emit(info)
@@ -688,7 +690,7 @@ class Viewport(QWidget):
         scene = self._scene
         if scene is None:
             return
-        mesh = mesh_to_polydata(scene.surface)
+        mesh = scene.surface.to_polydata()
         deviation = self.deviation_box.isChecked() and scene.deviation is not None and not self._stale
         self._remove_scalar_bar()
         if self._stale:

@@ -112,6 +112,21 @@ class MeshData:
         """The faces as an ``(m, 3)`` array of point ids."""
         return self.faces.reshape(-1, 4)[:, 1:]
 
+    def to_polydata(self) -> pyvista.PolyData:
+        """A ``pyvista.PolyData`` with point arrays ``Normals`` (active) and ``side``.
+
+        For the GUI thread: building VTK objects for the render window belongs there.
+        """
+        import pyvista
+
+        if self.is_empty:
+            return pyvista.PolyData()
+        poly = pyvista.PolyData(np.array(self.points), faces=np.array(self.faces))
+        poly.point_data["Normals"] = np.array(self.normals)
+        poly.point_data.active_normals_name = "Normals"
+        poly.point_data["side"] = np.array(self.side)
+        return poly
+
 
 # --- the sampling grid ----------------------------------------------------------------------
 
@@ -347,19 +362,8 @@ def surface_mesh(
 
 
 def mesh_to_polydata(mesh: MeshData) -> pyvista.PolyData:
-    """A ``pyvista.PolyData`` with point arrays ``Normals`` (active) and ``side``.
-
-    For the GUI thread: building VTK objects for the render window belongs there.
-    """
-    import pyvista
-
-    if mesh.is_empty:
-        return pyvista.PolyData()
-    poly = pyvista.PolyData(np.array(mesh.points), faces=np.array(mesh.faces))
-    poly.point_data["Normals"] = np.array(mesh.normals)
-    poly.point_data.active_normals_name = "Normals"
-    poly.point_data["side"] = np.array(mesh.side)
-    return poly
+    """:meth:`MeshData.to_polydata` as a function (GUI thread only)."""
+    return mesh.to_polydata()
 
 
 __all__ = [

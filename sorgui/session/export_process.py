@@ -143,7 +143,7 @@ def run_exports(request: ExportRequest) -> Iterator[ExportMessage]:
 
 def _needs_scene(target: ExportTarget) -> bool:
     """Meshes, pictures and CAD files need the scene; Markdown and HTML reports show its picture."""
-    from sorgui.export.files import format_of
+    from sorgui.export.formats import format_of
 
     try:
         form = format_of(target.path, target.fmt)

@@ -42,7 +42,7 @@ from sorgui.session.messages import (
 )
 
 if TYPE_CHECKING:
-    from sorgui.session.scene_data import SceneData
+    from sorgui.session.scene import SceneData
 
 STAGES = (
     "engine",

@@ -6,7 +6,8 @@ From an :class:`~sorgui.engine.results.Analysis` this computes, with the builder
 sphere, a patch of the first real parameterization, the axes of the factors of a reducible
 surface, and for rounded input the approximate axis and the deviation from the nearest exact
 surface (docs/math.md, "Rounded input"). All of it is ``numpy`` data (no Qt, no
-VTK objects), so it crosses the process boundary by pickling and the GUI thread only wraps it.
+VTK objects): a :class:`~sorgui.session.scene.SceneData`, which crosses the process boundary by
+pickling, and the GUI thread only wraps it.
 
 The drawn region is a ball. Its centre and radius come from :func:`view_region`, which looks
 for the real points of ``f`` on a few lines through a natural centre (the axis, a sphere's
@@ -17,7 +18,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -32,13 +33,11 @@ from sorgui.engine.values import (
     polynomial_terms,
     rational_function_terms,
 )
-from sorgui.export.text import float_text
 from sorgui.render import (
     PATCH_RANGE,
     ClipBox,
     ClipSphere,
     LineData,
-    MarkerData,
     MeshData,
     PatchData,
     axis_line,
@@ -47,70 +46,16 @@ from sorgui.render import (
     sphere_center_marker,
     surface_mesh,
 )
-from sorgui.render.canal_scene import FamilyCurves, SmatFamily
+from sorgui.render.canal_scene import SmatFamily
 from sorgui.render.geometry import foot_on_line, readonly
 from sorgui.render.mesh import DEFAULT_RESOLUTION
 from sorgui.render.sampling import evaluate_points, first_order_distance, term_arrays
+from sorgui.session.scene import SceneData
 
 PATCH_GRID = 41
 """Samples per parameter of the patch, drawn as a wireframe: a readable net of curves."""
 SURFACE_GRID = 161
 """Samples per parameter of a map's patch drawn as the surface (no implicit equation known)."""
-
-
-@dataclass(frozen=True, eq=False)
-class SceneData:
-    """Everything the viewport draws for one analysis, as plain data.
-
-    ``terms``: float terms of the square-free part of ``f`` (for picking); ``region``: the drawn
-    ball; ``axis_point``/``axis_direction``: the unique axis as floats, if there is one;
-    ``notes``: what the picture leaves out, in words for the user. ``factor_axes``: the axes
-    of the factors of a reducible surface (one polyline each); ``approximate_axis``: the
-    floating-point axis of rounded input; ``deviation``: per surface point, the distance to
-    the nearest exact surface (``|g|/|∇g|``, length units), when there is one.
-    ``canal_spine``/``canal_circles``: the spines and a few characteristic circles of a canal
-    surface's sphere families (docs/math.md §9; a spine of positive genus traced numerically);
-    ``canal_families``: those families as float curves or SMAT equations, to find the sphere
-    touching the surface at a picked point. ``base_curve``: the base curve of a cone or a
-    cylinder over a curve, drawn where it lies on the surface (docs/math.md §10). ``box``: the
-    user's box, if one was given: the mesh and CAD faces are cut to it, and ``region`` is the
-    ball about it.
-    """
-
-    terms: Terms
-    region: ClipSphere
-    surface: MeshData
-    axis_segment: LineData
-    profile_curve: LineData
-    center_marker: MarkerData | None
-    patch: PatchData | None
-    axis_point: tuple[float, float, float] | None
-    axis_direction: tuple[float, float, float] | None
-    notes: tuple[str, ...]
-    factor_axes: LineData = LineData.empty()
-    approximate_axis: LineData = LineData.empty()
-    deviation: np.ndarray | None = None
-    canal_spine: LineData = LineData.empty()
-    canal_circles: LineData = LineData.empty()
-    canal_families: tuple[FamilyCurves | SmatFamily, ...] = ()
-    box: ClipBox | None = None
-    base_curve: LineData = LineData.empty()
-
-    @property
-    def axis(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """``(point, direction)`` of the unique axis, for the picking test."""
-        if self.axis_point is None or self.axis_direction is None:
-            return None
-        return np.asarray(self.axis_point), np.asarray(self.axis_direction)
-
-    def summary(self) -> str:
-        """Short facts for the status bar: triangles and the drawn ball (its centre without
-        rounding noise: ``(0, 0, 0)``, not ``(1.11e-16, 1.67e-16, 5.55e-17)``) or box."""
-        if self.box is not None:
-            low, high = self.box.bounds[0::2], self.box.bounds[1::2]
-            return f"{self.surface.n_faces:,} triangles in the box {float_text(low, 3)} to {float_text(high, 3)}"
-        center = float_text(self.region.center, 3)
-        return f"{self.surface.n_faces:,} triangles in a ball of radius {self.region.radius:.3g} about {center}"
 
 
 # --- where to look --------------------------------------------------------------------------

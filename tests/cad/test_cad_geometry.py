@@ -125,7 +125,7 @@ def test_without_open_cascade_an_export_fails_in_one_line(tmp_path: Path) -> Non
 
 def test_the_command_line_lists_the_cad_formats_and_units() -> None:
     from sorgui.cad import CAD_SUFFIXES, UNITS
-    from sorgui.export.files import FORMATS
+    from sorgui.export.formats import FORMATS
 
     assert cli.CAD_SUFFIXES == CAD_SUFFIXES == tuple(s for s, f in FORMATS.items() if f.kind == "cad")
     assert cli.CAD_UNITS == UNITS

@@ -11,7 +11,8 @@ from sorgui.cli import main
 from sorgui.engine import analyze
 from sorgui.engine.results import Analysis
 from sorgui.engine.values import read_expression
-from sorgui.export.files import FORMATS, export_analysis
+from sorgui.export.files import export_analysis
+from sorgui.export.formats import FORMATS
 from sorgui.export.formulas import analysis_formulas
 
 x, y, s, t = sympy.symbols("x y s t")
@@ -99,8 +100,9 @@ def test_open_refuses_what_is_not_a_report(tmp_path, capsys: pytest.CaptureFixtu
 def test_open_hands_a_valid_report_to_the_window(analyses, tmp_path, monkeypatch) -> None:
     import sorgui.gui.app
 
-    opened: list[str] = []
-    monkeypatch.setattr(sorgui.gui.app, "run_gui", lambda path=None: opened.append(path) or 0)
+    opened: list[tuple[str, object]] = []
+    monkeypatch.setattr(sorgui.gui.app, "run_gui", lambda path=None, report=None: opened.append((path, report)) or 0)
     report = export_analysis(analyses["torus"], tmp_path / "torus.sorgui.json")
     assert main(["open", str(report)]) == 0
-    assert opened == [str(report)]
+    [(path, read)] = opened
+    assert path == str(report) and read.recognition.polynomial == analyses["torus"].recognition.polynomial  # read once

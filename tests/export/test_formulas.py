@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import sympy
 
-from sorgui.export.formulas import analysis_formulas, coverage
+from sorgui.export.coverage import coverage
+from sorgui.export.formulas import analysis_formulas
 
 s, t, x, y, z = sympy.symbols("s t x y z")
 

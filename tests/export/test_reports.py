@@ -9,7 +9,8 @@ import json
 import pytest
 
 from sorgui.engine.results import Analysis, Approximation, report_json
-from sorgui.export.files import export_analysis, format_of
+from sorgui.export.files import export_analysis
+from sorgui.export.formats import format_of
 from sorgui.export.reports import ReportError, html_report, markdown_report, read_report
 
 PNG = b"\x89PNG\r\n\x1a\n" + b"\x00" * 16

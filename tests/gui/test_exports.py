@@ -13,7 +13,7 @@ import pyvista
 from PySide6.QtGui import QImage
 
 from sorgui.engine import analyze
-from sorgui.export.files import FORMATS
+from sorgui.export.formats import FORMATS
 from sorgui.export.reports import read_report
 
 pytestmark = pytest.mark.gui
@@ -59,7 +59,8 @@ def test_a_file_that_is_not_a_report_is_refused_with_a_dialog(window, qtbot, tmp
     monkeypatch.setattr(window, "_show_error", lambda title, message: shown.append(f"{title}: {message}"))
     bad = tmp_path / "notes.json"
     bad.write_text("[1, 2", encoding="utf-8")
-    assert not window.open_file(str(bad))
+    with qtbot.waitSignal(window.report_reader.refused, timeout=120_000):
+        assert window.open_file(str(bad))  # read in a process of its own, which refuses it
     assert shown and shown[0].startswith("Cannot open report:") and "notes.json" in shown[0]
 
 

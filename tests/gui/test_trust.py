@@ -304,7 +304,9 @@ def test_help_menu_has_every_topic(window, qtbot) -> None:
     for title, _page in TOPICS.values():
         assert title in titles
     window.show_help("syntax")
-    assert window.help_dialog.isVisible() and "Input syntax" in window.help_dialog.browser.toPlainText()
+    syntax = window.help_dialog.browser.toPlainText()
+    assert window.help_dialog.isVisible() and "Input syntax" in syntax
+    assert "Parametrizations" in syntax and "x = X, y = Y, z = Z" in syntax and "(X, Y, Z)" in syntax
     window.show_help("paper")
     assert "Vršek" in window.help_dialog.browser.toPlainText()
     window.show_help("keys")
@@ -316,6 +318,16 @@ def test_help_menu_has_every_topic(window, qtbot) -> None:
     colours = window.help_dialog.browser.toPlainText()
     assert "the axis of revolution" in colours and "spine of a canal surface" in colours
     window.help_dialog.close()
+
+
+def test_every_example_of_the_input_syntax_page_is_read_as_what_it_shows() -> None:
+    """The page's examples are input the editor accepts: equations, and parametrizations where
+    the page says so (README, "Parametrizations as input")."""
+    from sorgui.engine.parametric_parsing import ParsedParametrization, parse_input
+    from sorgui.gui.help import SYNTAX_EXAMPLES
+
+    for text, shows in SYNTAX_EXAMPLES:
+        assert isinstance(parse_input(text), ParsedParametrization) == ("parametrization" in shows), text
 
 
 def test_caption_tooltips_on_results(window, run_analysis) -> None:
@@ -493,9 +505,10 @@ def _report(tmp_path: Path, text: str, *options: str) -> Path:
     return path
 
 
-def test_a_lying_report_is_refused_by_the_window_naming_the_field(window, tmp_path, monkeypatch) -> None:
+def test_a_lying_report_is_refused_by_the_window_naming_the_field(window, qtbot, tmp_path, monkeypatch) -> None:
     """A torus's report whose equation was changed: the window refuses it in one line (it used
-    to draw the torus and export it headed with the other equation)."""
+    to draw the torus and export it headed with the other equation), once the process reading
+    it has checked its claims."""
     import json
 
     shown: list[str] = []
@@ -504,7 +517,8 @@ def test_a_lying_report_is_refused_by_the_window_naming_the_field(window, tmp_pa
     data = json.loads(path.read_text(encoding="utf-8"))
     data["input"], data["polynomial"] = "x^3+y^3+z^3-1", "x**3 + y**3 + z**3 - 1"
     path.write_text(json.dumps(data), encoding="utf-8")
-    assert not window.open_file(str(path))
+    with qtbot.waitSignal(window.report_reader.refused, timeout=120_000):
+        assert window.open_file(str(path))
     assert len(shown) == 1 and "refused: its degree is 4" in shown[0] and "\n" not in shown[0]
 
 

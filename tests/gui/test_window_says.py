@@ -197,7 +197,8 @@ def test_a_time_limit_met_is_said_and_not_taken_for_a_finished_analysis(window, 
 def test_a_report_is_shown_as_saved_and_its_stages_are_not_replayed(window, run_analysis, qtbot, tmp_path) -> None:
     run_analysis(window, example_text("torus"))
     report = window.export_results(tmp_path / "torus.json")
-    assert window.open_report(str(report))
+    with qtbot.waitSignal(window.result_shown, timeout=120_000):
+        assert window.open_report(str(report))
     qtbot.waitUntil(lambda: window.session.run.outcome == "finished", timeout=60_000)
     qtbot.wait(300)
     assert window.run_panel.notice_kind == "report"

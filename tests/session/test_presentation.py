@@ -136,7 +136,6 @@ def test_the_pane_shows_the_catalogues_formulas_and_reads_them_without_sympy(mon
     def unread(text: str) -> None:
         raise AssertionError(f"read {text!r}")
 
-    monkeypatch.setattr("sorgui.export.formulas.read_expression", unread)
     monkeypatch.setattr("sorgui.engine.values.read_expression", unread)
     shown = pane_formulas(analysis)
     assert list(shown) == keys
