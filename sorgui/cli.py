@@ -608,7 +608,7 @@ def analyze_main(argv: Sequence[str]) -> int:
     )
     match answer:
         case Invalid(message, position):
-            return fail(message, position, args.json, 2)
+            return fail(message + _file_hint(args), position, args.json, 2)
         case Failed(message):
             return fail(message, None, args.json, 1)
         case Finished(result):
@@ -632,6 +632,19 @@ def analyze_main(argv: Sequence[str]) -> int:
     except _OutputError as exc:
         return fail(str(exc), None, False, 1)
     return 0 if unwritten is None else fail(unwritten, None, False, 1)
+
+
+def _file_hint(args: argparse.Namespace) -> str:
+    """When the expression that is no polynomial names a file (``sorgui analyze part.txt``),
+    how to read it: the equation is given as ``-f FILE``."""
+    text = args.expression
+    if args.file is not None or text in (None, "-") or len(text) > 4096 or "\n" in text:
+        return ""
+    try:
+        named = Path(text).is_file()
+    except (OSError, ValueError):
+        return ""
+    return f"; {text} is a file: give -f {text} to read the equation in it" if named else ""
 
 
 def part_source(args: argparse.Namespace) -> Path | None:

@@ -248,3 +248,14 @@ def test_a_box_cuts_the_mesh_it_writes(tmp_path: Path) -> None:
     points = pyvista.read(tmp_path / "p.stl").points
     assert len(points) > 100 and np.all(points >= low - 1e-9) and np.all(points <= high + 1e-9)
     assert points[:, 0].max() > 0.45 and points[:, 2].max() > 0.75, "the mesh reaches the box's sides"
+
+
+def test_a_file_given_as_the_expression_says_how_to_read_it(tmp_path: Path) -> None:
+    """``sorgui analyze part.txt`` (the file's name where the equation goes): the parse error,
+    and how to read the file, in one line."""
+    part = tmp_path / "part.txt"
+    part.write_text("x^2+y^2-z\n", encoding="utf-8")
+    done = sorgui("analyze", str(part))
+    [line] = done.stderr.strip().splitlines()
+    assert done.returncode == 2 and line.endswith(f"; {part} is a file: give -f {part} to read the equation in it")
+    assert sorgui("analyze", "-f", str(part)).returncode == 0
