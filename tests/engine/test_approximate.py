@@ -97,6 +97,23 @@ def test_rounded_sphere_and_cylinder_keep_their_kind(digits: int) -> None:
     assert angle < 1e-3 and distance < 1e-3
 
 
+@pytest.mark.parametrize(
+    "text",
+    [
+        "x^4+2x^2y^2+2x^2z^2+y^4+2y^2z^2+z^4-20.0000000001x^2-20y^2+16z^2+64",  # a torus about z
+        "x^2+1.0001y^2-z",  # a paraboloid about z
+        "1.0000000000*y^2 + 1.0000000000*z^2 - 0.9999999999*x^2 + 2.0000000000*x - 1.0000000000",  # a cone about x
+    ],
+)
+def test_rounded_surfaces_about_a_coordinate_axis_are_near(text: str) -> None:
+    """The rotation column of (★) about the axis nearly vanishes when the axis is a coordinate
+    axis; scaled alone to unit length it hid the symmetry (singular values 1, 1, 1, 1, 1, 1)."""
+    result = analyze(text, recognition_only=True).approximate
+    assert result.near_sor and result.kind == "revolution", result.notes
+    direction = np.abs(np.array(result.axis.direction))
+    assert np.max(direction) > 1 - 1e-6
+
+
 def test_the_papers_perturbed_cone_is_near_a_cone_about_the_x_axis() -> None:
     result = analyze("y^2+z^2-0.0000002xz-x^2", tolerance=1e-6, recognition_only=True).approximate
     assert result.near_sor and result.kind == "revolution"

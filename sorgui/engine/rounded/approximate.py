@@ -40,6 +40,7 @@ from . import dense
 from .dense import FloatArray
 from .deviation import max_deviation
 from .near_symmetry import (
+    Candidate,
     Fit,
     Normalised,
     candidates,
@@ -195,13 +196,26 @@ def _search(f: Normalised, sigma: FloatArray, vectors: FloatArray, tolerance: fl
     for count in (3, 2, 1):
         if sigma[6 - count] > gate and not (count == 1 and best is None):
             continue
-        for candidate in candidates(vectors, count):
+        for candidate in _starts(vectors, count, sigma, gate):
             result = refine(f, candidate) if sigma[6 - count] <= gate else fit(f, candidate)
             if best is None or result.residual < best.residual:
                 best = result
             if result.residual <= 1.0 + result.noise:
                 return result, best
     return None, best
+
+
+def _starts(vectors: FloatArray, count: int, sigma: FloatArray, gate: float) -> list[Candidate]:
+    """The candidates of ``count`` symmetries to refine. One rotation, when the two smallest
+    singular values are both small (a near-sphere: any two rotations nearly keep ``f``), is
+    started from four directions of the plane of their vectors: the singular vectors of a
+    degenerate pair are any orthonormal basis of it, and Gauss–Newton does not leave a saddle
+    between two axes (``x² + 1.000001y² + 0.999999z²`` is near a surface about y and about z)."""
+    if count != 1 or sigma[-2] > gate:
+        return candidates(vectors, count)
+    first, second = vectors[-1], vectors[-2]
+    turns = [k * math.pi / 4 for k in range(4)]
+    return [c for t in turns for c in candidates(np.array([math.cos(t) * first + math.sin(t) * second]), 1)]
 
 
 def _far_note(sigma: FloatArray, best: Fit | None, rounding: Rounding, distance: float | None) -> str:

@@ -32,7 +32,7 @@ import numpy as np
 
 from ..results import ApproximateAxis
 from .dense import FloatArray
-from .near_symmetry import Candidate, candidates, column_scaled_svd, gauss_newton, parametrisation
+from .near_symmetry import Candidate, candidates, gauss_newton, parametrisation, root_mean_square, scaled_svd
 
 PLANE = "plane"
 SPHERE = "sphere"
@@ -108,13 +108,14 @@ class SurfaceFit:
 
 def normal_lines(samples: Samples) -> tuple[FloatArray, FloatArray]:
     """Singular values (relative to the largest, largest first) and right singular vectors (rows
-    ``(b, a)``, in scaled coordinates) of the rows ``(n_i, p_i × n_i)``, each column scaled to
-    unit length as in (★)."""
+    ``(b, a)``, in scaled coordinates) of the rows ``(n_i, p_i × n_i)``, scaled as (★) is
+    (:func:`.near_symmetry.scaled_svd`)."""
     p, n = samples.scaled(), samples.normals
     M = np.hstack([n, np.cross(p, n)])
+    terms = np.column_stack([p[:, i] * n[:, j] for i, j in ((1, 2), (2, 1), (2, 0), (0, 2), (0, 1), (1, 0))])
     if len(M) < 6:  # fewer samples than unknowns; zero rows keep all six vectors
         M = np.vstack([M, np.zeros((6 - len(M), 6))])
-    return column_scaled_svd(M)
+    return scaled_svd(M, root_mean_square(M[:, :3]), root_mean_square(terms))
 
 
 def motions(samples: Samples, count: int) -> list[Candidate]:

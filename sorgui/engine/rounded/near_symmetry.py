@@ -6,7 +6,7 @@ that balances the coefficients of the lowest and the highest degree; coefficient
 the largest one):
 
 1. **Singular values of (★).** The six columns of (★) (``f_x, f_y, f_z`` and the components of
-   ``p × ∇f``), each scaled to unit length, form a matrix whose small singular values count the
+   ``p × ∇f``), the three of each kind scaled by one factor, form a matrix whose small singular values count the
    approximate infinitesimal isometries of ``f``; their right singular vectors are approximate
    Killing fields ``b + a × p``, classified as in §2 (revolution, cylinder of revolution,
    sphere, plane, extrusion) to give a first axis, centre or normal.
@@ -111,29 +111,35 @@ def normalise(coefficients: dict[tuple[int, int, int], float], rounding: Roundin
 
 def killing_system(f: Normalised) -> tuple[FloatArray, FloatArray]:
     """Singular values (largest first, relative to the largest), right singular vectors (rows,
-    as ``(b, a)`` in normalised coordinates) of the column-scaled float system (★)."""
+    as ``(b, a)`` in normalised coordinates) of the scaled float system (★)."""
     A = f.array
     fx, fy, fz = (dense.derivative(A, axis) for axis in range(3))
     x, y, z = ([((1, 0, 0), 1.0)], [((0, 1, 0), 1.0)], [((0, 0, 1), 1.0)])
-    columns = [
-        fx,
-        fy,
-        fz,
-        dense.times(fz, y) - dense.times(fy, z),
-        dense.times(fx, z) - dense.times(fz, x),
-        dense.times(fy, x) - dense.times(fx, y),
-    ]
+    terms = [dense.times(fz, y), dense.times(fy, z), dense.times(fx, z), dense.times(fz, x), dense.times(fy, x)]
+    terms.append(dense.times(fx, y))
+    columns = [fx, fy, fz, terms[0] - terms[1], terms[2] - terms[3], terms[4] - terms[5]]
     M = dense.stack(columns, f.selected)
+    rotation_scale = root_mean_square(dense.stack(terms, f.selected))
     if len(M) < 6:  # degree 1: fewer monomials than unknowns; zero rows keep all six vectors
         M = np.vstack([M, np.zeros((6 - len(M), 6))])
-    return column_scaled_svd(M)
+    return scaled_svd(M, root_mean_square(M[:, :3]), rotation_scale)
 
 
-def column_scaled_svd(M: FloatArray) -> tuple[FloatArray, FloatArray]:
+def root_mean_square(columns: FloatArray) -> float:
+    """The root mean square of the norms of the columns."""
+    return float(np.linalg.norm(columns)) / math.sqrt(columns.shape[1])
+
+
+def scaled_svd(M: FloatArray, translation_scale: float, rotation_scale: float) -> tuple[FloatArray, FloatArray]:
     """Singular values (relative to the largest, largest first) and unit right singular vectors
-    (rows) of ``M`` with each column scaled to unit length first, so that no unknown of (★)
-    weighs more for its units."""
-    norms = np.linalg.norm(M, axis=0)
+    (rows) of the six columns ``(b, a)`` of ``M``, the translation columns divided first by
+    ``translation_scale`` and the rotation columns by ``rotation_scale``, so that neither kind
+    of unknown weighs more for its units. The rotation columns' scale is the size of their two
+    terms before they cancel (``y f_z`` and ``z f_y`` for the first), so that a column that
+    nearly vanishes stays small: one factor per kind keeps the system equivariant under
+    rotations, whereas a column scaled alone to unit length blew up the rotation about a
+    coordinate axis that is the surface's axis (and the three of a near-sphere)."""
+    norms = np.repeat([translation_scale, rotation_scale], 3)
     norms[norms == 0.0] = 1.0
     _, sigma, vt = np.linalg.svd(M / norms, full_matrices=False)
     vectors = vt / norms[None, :]
@@ -154,6 +160,8 @@ def candidates(vectors: FloatArray, count: int) -> list[Candidate]:
     _, s, wt = np.linalg.svd(A)
     if count == 2:
         t = B @ wt[-1]
+        if np.linalg.norm(t) <= 1e-9:  # two rotations and no translation: no cylinder
+            return []
         a, b = A @ wt[0], B @ wt[0]
         return [_rotation(a, b, CYLINDER, along=t)]
     if count == 3:
