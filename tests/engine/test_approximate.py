@@ -250,6 +250,17 @@ def test_extreme_inputs_give_strict_json_and_a_clear_word(text: str) -> None:
         assert result.near_sor and result.kind == "plane"
 
 
+@pytest.mark.parametrize("text", ["x^2+1.5e-3*y^2", "(1*x^2+1.5e-3*y^2)", "1.5e-3*x^2+y^2-1", "x^2+1.5e-3*y^2+z"])
+def test_two_near_translations_and_no_rotation_place_no_axis(text: str) -> None:
+    """Found by the fuzz test: after scaling, ``x^2 + 1.5e-3 y^2`` has two near-translations
+    whose rotation parts vanish, and the cylinder's axis point divided by ``|a|² = 0``
+    (a RuntimeWarning, an error under the suite's warning filter)."""
+    analysis = analyze(text)
+    approx = analysis.approximate
+    assert approx is not None and not (approx.near_sor and approx.kind == "cylinder_of_revolution")
+    json.loads(json.dumps(analysis.to_json(), allow_nan=False))
+
+
 @pytest.mark.parametrize("text", ["1e400*x + y", "1e300*x^2*1e300 + y", "1e400*x - 1e400*x + y^2 + z^2 - x + 0.5"])
 def test_numbers_beyond_floating_point_leave_nearness_undecided(text: str) -> None:
     """The exact analysis stands; the rounded-input stage says why it decided nothing, and the

@@ -163,6 +163,8 @@ def candidates(vectors: FloatArray, count: int) -> list[Candidate]:
         if np.linalg.norm(t) <= 1e-9:  # two rotations and no translation: no cylinder
             return []
         a, b = A @ wt[0], B @ wt[0]
+        if np.linalg.norm(a) <= 1e-9:  # two translations and no rotation: no axis to place
+            return []
         return [_rotation(a, b, CYLINDER, along=t)]
     if count == 3:
         found = []
