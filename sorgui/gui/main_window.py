@@ -21,6 +21,8 @@ from PySide6.QtCore import QEvent, QObject, Qt, QTimer, Signal
 from PySide6.QtGui import (
     QAction,
     QCloseEvent,
+    QDragEnterEvent,
+    QDragMoveEvent,
     QDropEvent,
     QGuiApplication,
     QKeySequence,
@@ -30,7 +32,6 @@ from PySide6.QtGui import (
     QWheelEvent,
 )
 from PySide6.QtWidgets import (
-    QApplication,
     QDialog,
     QFileDialog,
     QHBoxLayout,
@@ -233,11 +234,14 @@ class MainWindow(QMainWindow):
         self.worker.busy_changed.connect(self._on_busy_change)
         self.viewport.radius_requested.connect(self._on_radius_change)
         self.viewport.picked.connect(self._show_pick)
+        # Ctrl+wheel over the results; files dropped on the widgets that take drops themselves
+        # (the editor pastes them as text, the render window reads them as meshes). Not one
+        # filter on the whole application: a Python call for every event of every widget,
+        # which also crashed PySide6 when it raised while Qt made a child widget.
         self.results.viewport().installEventFilter(self)
+        self.editor.text_edit.viewport().installEventFilter(self)
+        self.viewport.filter_drops(self)
         self.setAcceptDrops(True)
-        app = QApplication.instance()
-        assert app is not None  # a window needs its application
-        app.installEventFilter(self)  # drops on any of the window's widgets
         self._restore_layout()
         self._update_title()
 
@@ -832,6 +836,16 @@ class MainWindow(QMainWindow):
                 self.zoom_formulas(1 if delta > 0 else -1)
             return True
         return super().eventFilter(watched, event)
+
+    def dragEnterEvent(self, event: QDragEnterEvent) -> None:  # noqa: N802 (Qt override)
+        self._open_dropped(event)
+
+    def dragMoveEvent(self, event: QDragMoveEvent) -> None:  # noqa: N802 (Qt override)
+        self._open_dropped(event)
+
+    def dropEvent(self, event: QDropEvent) -> None:  # noqa: N802 (Qt override)
+        """A file dropped where no widget takes drops (the status bar, the stage list, …)."""
+        self._open_dropped(event)
 
     def _open_dropped(self, event: QDropEvent) -> bool:
         """Take a drag of files: an equation file (``.sor``, ``.poly``, ``.txt``) or a report

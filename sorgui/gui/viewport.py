@@ -33,7 +33,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from PySide6.QtCore import Qt, QTimer, Signal
+from PySide6.QtCore import QObject, Qt, QTimer, Signal
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -153,6 +153,7 @@ class Viewport(QWidget):
         self._stale = False
         self._clip_plane: vtkPlane | None = None
         """The meridian plane of the section view (a ``vtkPlane``, made with the render window)."""
+        self._drop_filter: QObject | None = None
 
         self.caption = ElidedLabel("No surface yet", self)  # cut with "…" in a narrow window, whole as tooltip
         self.caption.setObjectName("viewportCaption")
@@ -237,6 +238,14 @@ class Viewport(QWidget):
 
     # --- the render window, created after the window is drawn ---
 
+    def filter_drops(self, watcher: QObject) -> None:
+        """Let ``watcher``'s event filter see the drags and drops on the 3D view, the render
+        window included once it exists (pyvistaqt's own drop reads the file as a mesh)."""
+        self._drop_filter = watcher
+        self.installEventFilter(watcher)
+        if self._plotter is not None:
+            self._plotter.installEventFilter(watcher)
+
     @property
     def plotter(self) -> QtInteractor:
         """The pyvistaqt render window (created now if :meth:`start_rendering` has not run)."""
@@ -290,6 +299,8 @@ class Viewport(QWidget):
             clear_on_no_selection=False,
         )
         self._remove_default_key_bindings()
+        if self._drop_filter is not None:
+            plotter.installEventFilter(self._drop_filter)
         self._clip_plane = vtkPlane()
         layout = self.layout()
         assert layout is not None  # the QVBoxLayout made in __init__

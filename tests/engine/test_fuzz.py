@@ -57,6 +57,8 @@ def equations(draw: st.DrawFn) -> str:
 @given(equations())
 # found by this test in CI: a family in square roots whose circles need the root of 2i
 @example("(0.5*(x^2+y^2)^1)^2+(0.5*(x^2+y^2)^1)^2-(0.5*(x^2+y^2)^1)^2*(0.5*(x^2+y^2)^1)^2--3")
+# found by this test in CI: two near-translations and no rotation (a division by |a|² = 0)
+@example("(1*x^2+1.5e-3*y^2)")
 def test_no_analysis_ends_in_an_internal_error(text: str) -> None:
     try:
         result = analyze(text, timeout=30)

@@ -248,19 +248,26 @@ def test_undo_stays_within_the_loaded_document(make_window, qtbot) -> None:
 def test_a_dropped_equation_file_is_opened(window, qtbot, tmp_path, target: str) -> None:
     """A file dropped on the editor or on the 3D view opens (it is not pasted as ``file://``
     text, and the 3D view does not try to read it); anything else is refused."""
-    from PySide6.QtCore import QMimeData, QPointF, QUrl
+    from PySide6.QtCore import QEvent, QMimeData, QObject, QPointF, QUrl
     from PySide6.QtGui import QDropEvent
+    from PySide6.QtWidgets import QApplication
 
     part = tmp_path / "part.sor"
     part.write_text("x^2 + y^2 - 4z^2 - 1\n", encoding="utf-8")
     mime = QMimeData()
     mime.setUrls([QUrl.fromLocalFile(str(part))])
-    widget = window.editor.text_edit.viewport() if target == "editor" else window.viewport
+    widget = window.editor.text_edit.viewport() if target == "editor" else window.viewport.plotter
     drop = QDropEvent(
         QPointF(10, 10), Qt.DropAction.CopyAction, mime, Qt.MouseButton.LeftButton, Qt.KeyboardModifier.NoModifier
     )
     # Qt delivers a drop only during a real drag (none can be made under Xvfb without a drag
-    # source): the window's event filter, which sees every event of its widgets, gets it here.
+    # source): the window's event filter is shown to watch the widget, then given the drop.
+    watched: list[QObject] = []
+    window_filter = window.eventFilter
+    window.eventFilter = lambda obj, event: watched.append(obj) or window_filter(obj, event)
+    QApplication.sendEvent(widget, QEvent(QEvent.Type.User))
+    del window.eventFilter
+    assert widget in watched
     assert window.eventFilter(widget, drop) is True
     assert window.editor.text() == "x^2 + y^2 - 4z^2 - 1"
     assert "file://" not in window.editor.text()
