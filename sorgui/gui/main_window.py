@@ -235,12 +235,15 @@ class MainWindow(QMainWindow):
         self.viewport.radius_requested.connect(self._on_radius_change)
         self.viewport.picked.connect(self._show_pick)
         # Ctrl+wheel over the results; files dropped on the widgets that take drops themselves
-        # (the editor pastes them as text, the render window reads them as meshes). Not one
-        # filter on the whole application: a Python call for every event of every widget,
-        # which also crashed PySide6 when it raised while Qt made a child widget.
+        # (the editor would paste them as text, the render window read them as meshes, a spin
+        # box take their names). Not one filter on the whole application: a Python call for
+        # every event of every widget, which also crashed PySide6 when it raised while Qt made
+        # a child widget.
         self.results.viewport().installEventFilter(self)
-        self.editor.text_edit.viewport().installEventFilter(self)
-        self.viewport.filter_drops(self)
+        for widget in self.findChildren(QWidget):
+            if widget.acceptDrops():
+                widget.installEventFilter(self)
+        self.viewport.filter_drops(self)  # and its render window, made later
         self.setAcceptDrops(True)
         self._restore_layout()
         self._update_title()
