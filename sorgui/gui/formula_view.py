@@ -78,6 +78,20 @@ class RowScroll(QScrollArea):
             event.ignore()
 
 
+def retire(widget: QWidget) -> None:
+    """Take ``widget`` off the screen and out of its parent's children now, and have Qt delete
+    it on the GUI thread at the next turn of the event loop (a widget may be retired from its
+    own signal). It is moved under its window, never left without a parent: a widget without
+    one belongs to Python, to be deleted when its last reference goes (by the cycle collector,
+    on whichever thread runs it), and one also given to ``deleteLater`` crashed PySide6
+    (``releaseWrapper``, SIGSEGV) in a test run."""
+    widget.hide()
+    holder = widget.window()
+    if holder is not widget:
+        widget.setParent(holder)
+    widget.deleteLater()
+
+
 class FormulaView(QFrame):
     """A formula, its "show all" (or "exact digits") button, and a Copy button with a language
     menu. ``typeset`` is its picture, when the typesetting process has made it already.
@@ -188,7 +202,7 @@ class FormulaView(QFrame):
             assert item is not None  # count() > 0
             widget = item.widget()
             if widget is not None and widget is not self.show_all_button:
-                widget.setParent(None)
+                retire(widget)
         self.content = QLabel()
         self.content.setContextMenuPolicy(Qt.ContextMenuPolicy.NoContextMenu)
         hidden = 0

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QGridLayout, QLabel, QTableWidget, QVBoxLayout, QWidget
 
-from sorgui.gui.formula_view import FormulaView
+from sorgui.gui.formula_view import FormulaView, retire
 from sorgui.session.formulas import TypesetFormula
 
 CAPTION_WIDTH = 130
@@ -84,8 +84,7 @@ class Page(QWidget):
         for leftovers in kept.values():
             for old in leftovers:
                 self.column.removeWidget(old.widget)
-                old.widget.setParent(None)
-                old.widget.deleteLater()
+                retire(old.widget)
         for index, block in enumerate(blocks):
             item = self.column.itemAt(index)
             if item is not None and item.widget() is block.widget:

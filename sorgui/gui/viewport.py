@@ -28,6 +28,7 @@ from __future__ import annotations
 import contextlib
 import gc
 import importlib
+import sys
 import threading
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -118,11 +119,15 @@ the GUI thread (a few milliseconds) before :func:`_import_rendering` runs on its
 module's C++ side is initialised on the GUI thread, never beside the widgets being built."""
 
 
+RENDERING_MODULES = ("pyvistaqt", "vtkmodules.vtkCommonDataModel")
+"""What the render window needs, imported by :func:`_import_rendering`."""
+
+
 def _import_rendering() -> None:
-    """Import what the render window needs (run on a thread by :meth:`Viewport.start_rendering_soon`,
+    """Import :data:`RENDERING_MODULES` (run on a thread by :meth:`Viewport.start_rendering_soon`,
     after the Qt modules of :data:`QT_MODULES_OF_THE_RENDER_WINDOW`)."""
-    import pyvistaqt  # noqa: F401
-    import vtkmodules.vtkCommonDataModel  # noqa: F401
+    for name in RENDERING_MODULES:
+        importlib.import_module(name)
 
 
 class Viewport(QWidget):
@@ -139,6 +144,8 @@ class Viewport(QWidget):
         super().__init__(parent)
         self._plotter: QtInteractor | None = None
         self._loading: threading.Thread | None = None
+        self._collecting = False
+        """Whether the cycle collector is to be enabled again once the import thread ends."""
         self._loading_timer = QTimer(self)
         self._loading_timer.setInterval(LOADING_POLL_MS)
         self._loading_timer.timeout.connect(self._show_loading)
@@ -265,17 +272,33 @@ class Viewport(QWidget):
         render window on the GUI thread. The window calls this once it is drawn."""
         if self._plotter is not None or self._loading is not None:
             return
+        if all(name in sys.modules for name in RENDERING_MODULES):  # a second window
+            QTimer.singleShot(0, self, self.start_rendering)
+            return
         for name in QT_MODULES_OF_THE_RENDER_WINDOW:
             with contextlib.suppress(ImportError):  # an add-on module may be missing; qtpy skips it too
                 importlib.import_module(name)
+        # The cycle collector waits while the thread imports: run there, it could delete a
+        # widget that only Python owns, off the GUI thread.
+        self._collecting = gc.isenabled()
+        gc.disable()
         self._loading = threading.Thread(target=_import_rendering, name="sorgui-import-vtk", daemon=True)
         self._loading.start()
         self._loading_timer.start()
 
     def _show_loading(self) -> None:
         if self._loading is not None and not self._loading.is_alive():
-            self._loading_timer.stop()
             self.start_rendering()
+
+    def _end_loading(self) -> None:
+        """Wait for the import thread, if any (it imports what the caller is about to), and
+        let the cycle collector run again."""
+        self._loading_timer.stop()
+        if self._loading is not None:
+            self._loading.join()
+        if self._collecting:
+            gc.enable()
+            self._collecting = False
 
     def start_rendering(self) -> None:
         """Import pyvista and VTK's rendering (waiting for :meth:`start_rendering_soon`'s
@@ -283,7 +306,7 @@ class Viewport(QWidget):
         needs the render window before it exists creates it through :attr:`plotter`."""
         if self._plotter is not None:
             return
-        self._loading_timer.stop()
+        self._end_loading()
         from pyvistaqt import QtInteractor
         from vtkmodules.vtkCommonDataModel import vtkPlane
 
@@ -519,7 +542,7 @@ class Viewport(QWidget):
         otherwise be freed by a later garbage collection, after Qt destroyed that window."""
         self._radius_timer.stop()
         self._render_timer.stop()
-        self._loading_timer.stop()
+        self._end_loading()
         if self._plotter is None:
             return
         self._plotter.close()

@@ -78,6 +78,7 @@ def no_leaks(request: pytest.FixtureRequest) -> Iterator[None]:
         visible = [w for w in QApplication.topLevelWidgets() if w.isVisible()]
         assert not visible, f"windows left open: {visible}"
     assert not _ALL_PLOTTERS, f"render windows left open: {list(_ALL_PLOTTERS)}"
+    assert gc.isenabled(), "the cycle collector was left disabled (the window's import thread)"
     assert not _worker_processes(), f"worker processes left running: {_worker_processes()}"
 
 

@@ -327,3 +327,24 @@ def test_the_wheel_over_a_long_formula_scrolls_the_pane(qtbot) -> None:
     assert not vertical.isAccepted() and row.horizontalScrollBar().value() == 0
     row.wheelEvent(wheel(-120, 0))
     assert row.horizontalScrollBar().value() > 0
+
+
+def test_a_dropped_block_leaves_the_page_at_once_and_qt_deletes_it(window) -> None:
+    """A block the page no longer shows is hidden, out of the page, and deleted by Qt on the
+    GUI thread, never
+    handed to Python without a parent (which left it to the cycle collector, on any thread,
+    and crashed PySide6 once combined with deleteLater)."""
+    import shiboken6
+    from PySide6.QtCore import QCoreApplication, QEvent
+
+    page = window.results.page
+    page.begin()
+    page.section("First", [("caption", "a text")], lambda *_: None, str)
+    page.end()
+    old = page.blocks[-1].widget
+    page.begin()
+    page.section("Second", [("caption", "another text")], lambda *_: None, str)
+    page.end()
+    assert old.isHidden() and old not in page.findChildren(type(old))
+    QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
+    assert not shiboken6.isValid(old)
