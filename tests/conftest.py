@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import faulthandler
 import json
 import os
+import sys
 from pathlib import Path
 
 import pytest
@@ -18,6 +20,21 @@ if os.environ.get("CI"):
     settings.load_profile("ci")
 
 CORPUS = Path(__file__).resolve().parent / "data" / "cases.json"
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_runtest_teardown(item: pytest.Item) -> None:
+    """Arm :mod:`faulthandler` again after a test that started gmsh: ``gmsh.initialize()``
+    puts SIGSEGV back to the default action, so that a later crash in Qt or VTK printed no
+    traceback at all (the suite ended in a bare "Segmentation fault")."""
+    if "gmsh" not in sys.modules or not faulthandler.is_enabled():
+        return
+    from _pytest.faulthandler import fault_handler_stderr_fd_key
+
+    fd = item.config.stash.get(fault_handler_stderr_fd_key, None)
+    if fd is not None:
+        faulthandler.disable()  # enable() alone does nothing while Python thinks it is on
+        faulthandler.enable(file=fd)
 
 
 def corpus_cases() -> list[dict]:
