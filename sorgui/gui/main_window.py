@@ -17,7 +17,7 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from PySide6.QtCore import QEvent, QObject, Qt, QTimer, Signal
+from PySide6.QtCore import QEvent, QObject, Qt, Signal
 from PySide6.QtGui import (
     QAction,
     QCloseEvent,
@@ -81,7 +81,7 @@ from sorgui.gui.settings import (
     read_equation,
     write_equation,
 )
-from sorgui.gui.stages import RunPanel
+from sorgui.gui.stages import RunPanel, Ticker
 from sorgui.gui.typesetter import Typesetter
 from sorgui.gui.viewport import Viewport
 from sorgui.gui.wording import invalid_heading, no_surface_caption
@@ -106,30 +106,30 @@ REPORT_PICTURE_WIDTH = 1200
 
 
 class BusyIndicator(QWidget):
-    """A small spinning arc for the status bar, repainted eight times a second.
+    """A small spinning arc for the status bar, turned at each tick of the window's clock.
 
     Cheaper than an indeterminate ``QProgressBar``, whose animation repaints continuously and
-    costs most of a core under software rendering (Xvfb).
+    costs most of a core under software rendering (Xvfb); on the window's :class:`Ticker` its
+    repaints fall in the same turns as the running stage's time (one composition of the window).
     """
 
-    def __init__(self, parent: QWidget | None = None) -> None:
+    def __init__(self, ticker: Ticker, parent: QWidget | None = None) -> None:
         super().__init__(parent)
         self.setFixedSize(16, 16)
         self._angle = 0
-        self._timer = QTimer(self)
-        self._timer.setInterval(125)
-        self._timer.timeout.connect(self._tick)
+        self._busy = False
+        self._ticker = ticker
+        ticker.tick.connect(self._tick)
 
     def set_busy(self, busy: bool) -> None:
+        self._busy = busy
         self.setVisible(busy)
-        if busy:
-            self._timer.start()
-        else:
-            self._timer.stop()
+        self._ticker.want(self, busy)
 
     def _tick(self) -> None:
-        self._angle = (self._angle - 30) % 360
-        self.update()
+        if self._busy:
+            self._angle = (self._angle - 45) % 360
+            self.update()
 
     def paintEvent(self, event: QPaintEvent) -> None:  # noqa: N802 (Qt override)
         painter = QPainter(self)
@@ -199,7 +199,8 @@ class MainWindow(QMainWindow):
         self.editor = EquationEditor(self)
         self.typesetter = Typesetter(self, start=False)
         self.results = ResultsPane(self, self.typesetter)
-        self.run_panel = RunPanel(self)
+        self.ticker = Ticker(self)
+        self.run_panel = RunPanel(self, self.ticker)
         self.viewport = Viewport(self)
         self.help_dialog: HelpDialog | None = None
         self._file: str | None = None
@@ -368,7 +369,7 @@ class MainWindow(QMainWindow):
         self.stage_label = QLabel("Ready")
         self.stage_label.setObjectName("stageLabel")
         self.stage_label.setMinimumWidth(50)
-        self.busy_indicator = BusyIndicator()
+        self.busy_indicator = BusyIndicator(self.ticker)
         self.busy_indicator.set_busy(False)
         self.statusBar().addWidget(self.busy_indicator)
         self.statusBar().addWidget(self.stage_label, 1)

@@ -29,9 +29,8 @@ from sorgui.render.plotting import forwarders
 from sorgui.session.part_job import PART_SUFFIXES, PartAnswer, PartRequest, PartWorker
 
 if TYPE_CHECKING:
-    from pyvistaqt import QtInteractor
-
     from sorgui.cad.tessellation import PartMesh
+    from sorgui.gui.render_window import RenderWindow
 
 POLL_MS = 100
 """How often the window looks for the part process's news."""
@@ -126,10 +125,10 @@ class PartWindow(QMainWindow):
         self.text.setLineWrapMode(QPlainTextEdit.LineWrapMode.NoWrap)
         self.text.setFont(QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont))
         self.text.setPlainText(f"Reading {self.path} …")
-        from pyvistaqt import QtInteractor
+        from sorgui.gui.render_window import RenderWindow
 
         self.splitter = QSplitter(self)
-        self.plotter: QtInteractor = QtInteractor(self.splitter, auto_update=False, multi_samples=0)
+        self.plotter: RenderWindow = RenderWindow(self.splitter, auto_update=False, multi_samples=0)
         forwarders(self.plotter).set_background("#fbfcfe", top="#d9e2ee")
         forwarders(self.plotter).add_axes(line_width=3, labels_off=False)
         forwarders(self.plotter).enable_surface_point_picking(

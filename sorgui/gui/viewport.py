@@ -1,6 +1,7 @@
 """The 3D viewport: the surface, its axis and profile, and point-and-click inspection.
 
-A pyvistaqt ``QtInteractor`` is embedded in a widget with a small tool row; it is created
+A pyvistaqt ``QtInteractor`` (:class:`~sorgui.gui.render_window.RenderWindow`, which renders
+only a scene that may have changed) is embedded in a widget with a small tool row; it is created
 after the window is first drawn, pyvista and VTK's rendering imported on a thread
 (:meth:`Viewport.start_rendering_soon`), so that the window opens without waiting for them. Actors are built on
 the GUI thread from the plain arrays of a :class:`~sorgui.session.scene_data.SceneData` that the
@@ -59,9 +60,9 @@ from sorgui.render.plotting import forwarders
 
 if TYPE_CHECKING:
     import pyvista
-    from pyvistaqt import QtInteractor
     from vtkmodules.vtkCommonDataModel import vtkPlane
 
+    from sorgui.gui.render_window import RenderWindow
     from sorgui.render.picking import PickInfo
     from sorgui.session.scene import SceneData
 
@@ -142,7 +143,7 @@ class Viewport(QWidget):
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
-        self._plotter: QtInteractor | None = None
+        self._plotter: RenderWindow | None = None
         self._loading: threading.Thread | None = None
         self._collecting = False
         """Whether the cycle collector is to be enabled again once the import thread ends."""
@@ -254,7 +255,7 @@ class Viewport(QWidget):
             self._plotter.installEventFilter(watcher)
 
     @property
-    def plotter(self) -> QtInteractor:
+    def plotter(self) -> RenderWindow:
         """The pyvistaqt render window (created now if :meth:`start_rendering` has not run)."""
         if self._plotter is None:
             self.start_rendering()
@@ -307,10 +308,11 @@ class Viewport(QWidget):
         if self._plotter is not None:
             return
         self._end_loading()
-        from pyvistaqt import QtInteractor
         from vtkmodules.vtkCommonDataModel import vtkPlane
 
-        plotter = QtInteractor(self, auto_update=False, multi_samples=0)
+        from sorgui.gui.render_window import RenderWindow
+
+        plotter = RenderWindow(self, auto_update=False, multi_samples=0)
         self._plotter = plotter
         forwarders(plotter).set_background("#fbfcfe", top="#d9e2ee")
         forwarders(plotter).add_axes(line_width=3, labels_off=False)

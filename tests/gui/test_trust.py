@@ -57,7 +57,8 @@ def test_verdict_while_singular_runs_and_no_old_verdict_ever(
     assert "surface" in window.viewport.actor_names() and "axis" in window.viewport.actor_names()
     assert window.viewport.caption.text().startswith("f = ")
     assert window.run_panel.progress_bar.isVisible()
-    assert 0 < window.run_panel.progress_bar.value() < window.run_panel.progress_bar.maximum()
+    qtbot.waitUntil(lambda: window.run_panel.progress_bar.value() > 0, timeout=1000)  # at the panel's next tick
+    assert window.run_panel.progress_bar.value() < window.run_panel.progress_bar.maximum()
     qtbot.wait(300)
     window.save_screenshots(artifacts / "running-window.png", artifacts / "running-viewport.png")
 

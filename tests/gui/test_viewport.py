@@ -88,3 +88,41 @@ def test_failed_analysis_clears_the_scene(torus_window, qtbot) -> None:
     assert "surface" not in torus_window.viewport.actor_names()
     assert "The analysis failed" in torus_window.results.banner.text()
     assert torus_window.run_panel.notice_kind == "error"
+
+
+def test_the_render_window_renders_a_frame_once(torus_window, qtbot) -> None:
+    """A change of the view is rendered once, not once for VTK's frame and again for the paint
+    that shows it; a paint that Qt asks for on its own (the widget shown, moved or repainted)
+    shows VTK's last frame without rendering it (issue 30: each render of a degree-12 surface
+    holds the GUI thread for 20-60 ms in software OpenGL)."""
+    from PySide6.QtCore import QEvent, QObject
+
+    viewport = torus_window.viewport
+    plotter = viewport.plotter
+    paints: list[int] = []
+
+    class PaintCounter(QObject):
+        def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 (Qt override)
+            if event.type() == QEvent.Type.Paint:
+                paints.append(1)
+            return False
+
+    counter = PaintCounter()
+    plotter.installEventFilter(counter)
+    frames: list[int] = []
+    tag = plotter.ren_win.AddObserver("StartEvent", lambda *_: frames.append(1))
+    try:
+        qtbot.wait(300)  # the frames asked for by the analysis
+        for change in (viewport.reset_camera, plotter.update):
+            frames.clear()
+            change()
+            qtbot.waitUntil(lambda: bool(frames), timeout=5000)
+            qtbot.wait(200)
+            assert len(frames) == 1, change
+        paints.clear()
+        frames.clear()
+        plotter.repaint()
+        assert paints and frames == []
+    finally:
+        plotter.ren_win.RemoveObserver(tag)
+        plotter.removeEventFilter(counter)
