@@ -126,3 +126,34 @@ def test_the_render_window_renders_a_frame_once(torus_window, qtbot) -> None:
     finally:
         plotter.ren_win.RemoveObserver(tag)
         plotter.removeEventFilter(counter)
+
+
+def test_turning_the_view_with_the_mouse_shows_its_frames(torus_window, qtbot) -> None:
+    """The frames VTK's interactor renders while the user drags are the ones shown: what the
+    window shows after a drag is the scene rendered from the new camera."""
+    from PySide6.QtCore import QEvent, QPointF, Qt
+    from PySide6.QtGui import QMouseEvent
+    from PySide6.QtWidgets import QApplication
+
+    plotter = torus_window.viewport.plotter
+    qtbot.wait(300)
+    before = plotter.grabFramebuffer()
+    position = plotter.camera.position
+    start = QPointF(plotter.rect().center())
+
+    def send(kind: QEvent.Type, at: QPointF, button: Qt.MouseButton, buttons: Qt.MouseButton) -> None:
+        event = QMouseEvent(kind, at, plotter.mapToGlobal(at), button, buttons, Qt.KeyboardModifier.NoModifier)
+        QApplication.sendEvent(plotter, event)
+
+    left, none = Qt.MouseButton.LeftButton, Qt.MouseButton.NoButton
+    send(QEvent.Type.MouseButtonPress, start, left, left)
+    for step in range(1, 7):
+        send(QEvent.Type.MouseMove, start + QPointF(12 * step, 4 * step), none, left)
+        qtbot.wait(20)
+    send(QEvent.Type.MouseButtonRelease, start + QPointF(72, 24), left, none)
+    qtbot.wait(300)
+    shown = plotter.grabFramebuffer()
+    assert plotter.camera.position != position and shown != before
+    plotter.render()
+    qtbot.wait(300)
+    assert plotter.grabFramebuffer() == shown
