@@ -114,6 +114,16 @@ RADIUS_DELAY_MS = 500
 """Debounce of the radius box: the ball is re-meshed this long after the last change."""
 
 
+def _freeze_what_is_loaded() -> None:
+    """Put everything alive once the render window exists (the modules of Qt, VTK, pyvista and
+    numpy, the window itself) out of the cycle collector's reach, once per process: a full
+    collection walked its 250 000 objects on the GUI thread, 75-130 ms at a time, the longest
+    pause of the window at work (issue 30); later collections walk only what the work makes.
+    The analysis and typesetting processes do the same (:mod:`sorgui.session.job`)."""
+    if gc.get_freeze_count() == 0:
+        gc.freeze()
+
+
 QT_MODULES_OF_THE_RENDER_WINDOW = ("PySide6.QtOpenGL", "PySide6.QtOpenGLWidgets", "PySide6.QtDataVisualization")
 """The Qt modules that pyvistaqt and VTK's Qt widget load (through qtpy). They are imported on
 the GUI thread (a few milliseconds) before :func:`_import_rendering` runs on its thread: a Qt
@@ -333,6 +343,7 @@ class Viewport(QWidget):
         self._placeholder.deleteLater()
         plotter.show()
         self.software_rendering()  # found once the render window shows, for the next meshes
+        _freeze_what_is_loaded()
 
     # --- public API ---
 

@@ -157,3 +157,13 @@ def test_turning_the_view_with_the_mouse_shows_its_frames(torus_window, qtbot) -
     plotter.render()
     qtbot.wait(300)
     assert plotter.grabFramebuffer() == shown
+
+
+def test_what_is_loaded_with_the_render_window_is_out_of_the_collectors_reach(torus_window) -> None:
+    """Once the render window exists, the objects of Qt, VTK and pyvista are frozen: a full
+    collection of the cycle collector then walks only what the work made since (it walked
+    about 250 000 objects on the GUI thread, a pause of 75-130 ms)."""
+    import gc
+
+    assert torus_window.viewport.rendering
+    assert gc.get_freeze_count() > 100_000
