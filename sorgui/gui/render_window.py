@@ -34,6 +34,11 @@ class RenderWindow(QtInteractor):
         self.renders = 0
         """The scenes rendered in a paint (the tests count them)."""
 
+    def scene_changed(self) -> None:
+        """Say that the scene may differ from VTK's last frame: the next paint renders it, whoever
+        asks for that paint (a frame made for an export, say, is then never shown)."""
+        self._stale = True
+
     def render(self) -> None:  # type: ignore[override]  # pyvista's render, as in QtInteractor
         """Render the scene now (pyvista's ``render``); a paint renders it again if VTK skipped it."""
         self._stale = True

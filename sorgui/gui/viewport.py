@@ -534,7 +534,10 @@ class Viewport(QWidget):
         are asked for, never in the middle of a handler, and never in the same turn as the
         work that changed the actors (a new mesh's first frame in software OpenGL alone takes
         most of the 100 ms a turn may take)."""
-        if self._plotter is not None and not self._render_timer.isActive():
+        if self._plotter is None:
+            return
+        self._plotter.scene_changed()  # a paint before the timer's renders the scene too
+        if not self._render_timer.isActive():
             self._render_timer.start()
 
     def _render_pending(self) -> None:

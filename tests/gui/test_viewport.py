@@ -167,3 +167,19 @@ def test_what_is_loaded_with_the_render_window_is_out_of_the_collectors_reach(to
 
     assert torus_window.viewport.rendering
     assert gc.get_freeze_count() > 100_000
+
+
+def test_a_picture_on_a_plain_background_never_reaches_the_window(torus_window, qtbot) -> None:
+    """The frames an export renders (on black and on white, for a transparent picture) are
+    never shown: the window's next frame is the scene with its own background."""
+    from sorgui.gui.exporting import viewport_image
+
+    viewport = torus_window.viewport
+    plotter = viewport.plotter
+    qtbot.wait(300)
+    shown = plotter.grabFramebuffer()
+    image = viewport_image(viewport, width=2 * plotter.width(), transparent=True)
+    assert image.hasAlphaChannel()
+    assert plotter.grabFramebuffer() == shown
+    qtbot.wait(300)
+    assert plotter.grabFramebuffer() == shown
