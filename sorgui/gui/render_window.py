@@ -31,8 +31,6 @@ class RenderWindow(QtInteractor):
         super().__init__(*args, **kwargs)
         self._stale = True
         """Whether the scene may differ from VTK's last frame."""
-        self.renders = 0
-        """The scenes rendered in a paint (the tests count them)."""
 
     def scene_changed(self) -> None:
         """Say that the scene may differ from VTK's last frame: the next paint renders it, whoever
@@ -60,7 +58,6 @@ class RenderWindow(QtInteractor):
     def paintGL(self) -> None:  # noqa: N802 (Qt override)
         if self._stale:
             self._stale = False
-            self.renders += 1
             super().paintGL()  # type: ignore[no-untyped-call]
             return
         # pyvistaqt's paintGL renders unless it is inside a paint: say it is, so that it copies
