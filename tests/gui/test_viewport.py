@@ -183,3 +183,12 @@ def test_a_picture_on_a_plain_background_never_reaches_the_window(torus_window, 
     assert plotter.grabFramebuffer() == shown
     qtbot.wait(300)
     assert plotter.grabFramebuffer() == shown
+
+
+def test_software_opengl_lights_the_scene_from_the_camera(torus_window) -> None:
+    """Under software OpenGL (Xvfb here) one headlight replaces pyvista's kit of five lights:
+    a frame costs about a quarter less, and the surface is still lit and shaded."""
+    viewport = torus_window.viewport
+    assert viewport.software_rendering()
+    lights = list(viewport.plotter.renderer.lights)
+    assert len(lights) == 1 and lights[0].is_headlight
