@@ -281,7 +281,7 @@ def _from_section(
         [to_expr(K, v) for v in vector]
         for vector in (profile.frame.point, profile.frame.direction, profile.frame.normal)
     )
-    q = [sympy.sympify(e).subs(sympy.Symbol("t"), t) - ci for e, ci in zip(section, c)]
+    q = [e.subs(sympy.Symbol("t"), t) - ci for e, ci in zip(section, c)]  # already sympy: never text
     s = sympy.cancel(sum(ai * qi for ai, qi in zip(a, q)) / sum(ai * ai for ai in a))
     w = sympy.cancel(sum((qi - s * ai) ** 2 for qi, ai in zip(q, a)) / sum(ui * ui for ui in u))
     generators = tuple(field_generators(K))
