@@ -117,17 +117,15 @@ class BusyIndicator(QWidget):
         super().__init__(parent)
         self.setFixedSize(16, 16)
         self._angle = 0
-        self._busy = False
         self._ticker = ticker
         ticker.tick.connect(self._tick)
 
     def set_busy(self, busy: bool) -> None:
-        self._busy = busy
         self.setVisible(busy)
         self._ticker.want(self, busy)
 
     def _tick(self) -> None:
-        if self._busy:
+        if self._ticker.wanted_by(self):
             self._angle = (self._angle - 45) % 360
             self.update()
 

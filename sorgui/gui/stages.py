@@ -59,9 +59,9 @@ class Ticker(QObject):
         elif not self._timer.isActive():
             self._timer.start()
 
-    @property
-    def running(self) -> bool:
-        return self._timer.isActive()
+    def wanted_by(self, user: object) -> bool:
+        """Whether ``user`` said it needs the clock (and has not said otherwise since)."""
+        return id(user) in self._users
 
 
 SYMBOLS = {
@@ -191,7 +191,6 @@ class RunPanel(QWidget):
 
         self.ticker = ticker or Ticker(self)
         """The clock of the running stage's time (the window's, shared with its spinner)."""
-        self._ticking = False
         self.ticker.tick.connect(self._tick)
         self.show_run(None)
 
@@ -201,20 +200,15 @@ class RunPanel(QWidget):
         """Show the stages of ``run`` (``None``: nothing analysed yet); while it runs, at the
         clock's next tick (a run reports each stage: a stage's every change composed the window)."""
         self._run = run
-        if run is None:
+        if run is None or run.report:  # a report: nothing was analysed, the notice says so
             self.progress_bar.setVisible(False)
             self.stage_line.setText("")
-            self._set_ticking(False)
+            self.ticker.want(self, False)
             return
-        if run.report:  # nothing was analysed: no stages to show, the notice says so
-            self.progress_bar.setVisible(False)
-            self.stage_line.setText("")
-            self._set_ticking(False)
-            return
-        if run.running and self._ticking:
+        if run.running and self.ticker.wanted_by(self):
             return  # the next tick shows it: one composition of the window for all the changes since the last
         self._show_progress(run)
-        self._set_ticking(run.running)
+        self.ticker.want(self, run.running)
         if not run.running:
             self.progress_bar.setVisible(False)
 
@@ -265,10 +259,6 @@ class RunPanel(QWidget):
         total = f"<span style='color:#546e7a'>total {seconds_text(run.elapsed())}</span>"
         return " · ".join(parts) + " · " + total
 
-    def _set_ticking(self, on: bool) -> None:
-        self._ticking = on
-        self.ticker.want(self, on)
-
     def _show_progress(self, run: Run) -> None:
         self.progress_bar.setVisible(True)
         done, total = run.progress
@@ -277,7 +267,7 @@ class RunPanel(QWidget):
         self.stage_line.setText(self._stage_text(run))
 
     def _tick(self) -> None:
-        if self._ticking and self._run is not None:
+        if self._run is not None and self.ticker.wanted_by(self):
             self._show_progress(self._run)
 
     def _show_chosen_view(self, typed: bool) -> None:
