@@ -50,6 +50,17 @@ def test_recognition_only_over_the_rationals_loads_no_sympy() -> None:
     assert "sympy" not in modules and "numpy" not in modules
 
 
+def test_an_exact_analysis_and_its_report_load_no_numpy() -> None:
+    """Numpy (about 50 ms to import) is for rounded input and meshes: the full analysis of an
+    exact surface of revolution, a cone among its stages, and its text report do without it."""
+    modules = loaded_modules(
+        "from sorgui.engine import analyze; from sorgui.export.text import plain_text; "
+        "a = analyze('(x^2+y^2+z^2+3)^2-16(x^2+y^2)'); assert a.rationality is not None; "
+        "assert 'YES' in plain_text(a); assert 'cone' in plain_text(analyze('x^2+y^2-z^2'))"
+    )
+    assert "sympy" in modules and "numpy" not in modules
+
+
 def test_the_render_layer_loads_no_sympy() -> None:
     """The render layer, the touching spheres of a canal family included (their real roots come
     from ``sorgui.numerics``, numpy only), loads neither sympy nor the engine."""

@@ -19,8 +19,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
-
 from ..algebra.linalg import Vector, nullspace, primitive_vector, rref
 from ..algebra.polys import Poly, derivative, to_expr, total_degree
 
@@ -77,6 +75,8 @@ def near_apex(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], fl
     in floating point and its residual, relative to ``d·max|f|·(1 + |c|)`` (what rounding the
     coefficients of an exact cone by ``tolerance`` leaves); ``None`` unless that residual is
     within :data:`NEAR_FACTOR` times the rounding and ``M`` has full rank (no near translation)."""
+    import numpy as np  # rounded input only: an exact analysis need not load numpy
+
     K = f.ring.domain
     rows, rhs = _system(f)
     M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
@@ -98,6 +98,8 @@ def near_direction(f: Poly, tolerance: float) -> tuple[tuple[float, float, float
     rounding, the right singular vector of ``M`` (``M a = 0`` for an exact one) whose singular
     value is within :data:`NEAR_FACTOR` times the rounding of the largest, and that ratio (the
     relative residual ``|M a| / |M|``); ``None`` unless exactly one such direction exists."""
+    import numpy as np  # rounded input only
+
     K = f.ring.domain
     rows, _rhs = _system(f)
     M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
