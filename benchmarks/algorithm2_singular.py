@@ -9,23 +9,20 @@ theorem "SORs are onions": the points need not lie on X), their Plücker coordin
 ``(∇f(p) : p × ∇f(p))``, five linearly independent ones, the axis ``(a : ā)`` as the kernel of
 the 5×6 system ``n·ā + n̄·a = 0``, the check that it is a line, and then the exact test of the
 profile in a frame of the axis. Each figure is the median over ``--repeats`` runs of the wall
-time and of the CPU time (user + system of the child). Run
+time and of the CPU time (user + system of the process and of every process it started). Run
 ``python -m benchmarks.algorithm2_singular [--repeats N] [--write]`` from the repository root.
 """
 
 from __future__ import annotations
 
 import json
-import resource
-import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 from benchmarks.recognition import surface
-from benchmarks.report import ROOT, run
+from benchmarks.report import ROOT, process_times, run
 from sorgui.engine.algebra.polys import poly_str
 from sorgui.engine.singular.process import find_singular, poly_to_singular
 
@@ -96,21 +93,6 @@ if (line) {
 if (sor) { print("SOR yes"); print(K[1]); } else { print("SOR no"); }
 quit;
 """
-
-
-def process_times(args: list[str], repeats: int) -> tuple[float, float, str]:
-    """Median wall and CPU time (user + system of the child) of the process ``args``, and
-    the standard output of its last run."""
-    walls, cpus, out = [], [], ""
-    for _ in range(repeats):
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        start = time.perf_counter()
-        done = subprocess.run(args, capture_output=True, text=True, cwd=ROOT, check=True)
-        walls.append(time.perf_counter() - start)
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpus.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
-        out = done.stdout
-    return statistics.median(walls), statistics.median(cpus), out
 
 
 def stages(args: list[str]) -> str:

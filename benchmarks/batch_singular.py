@@ -11,8 +11,9 @@ rational point along a random integer direction). sorgui analyses each file as o
 equation in turn, in one process, on one core. Both are whole processes (starting Python and
 importing the engine included), run alternately in the same run; both answers are checked
 (every line a surface of revolution). Each figure is the median wall time over ``--repeats``
-runs, and the median CPU time (user + system of the process and of the children it waited for:
-sorgui's worker, or Singular alone), the better guide on a busy machine. Run ``python -m
+runs, and the median CPU time (user + system of the process and of every process it started:
+sorgui's worker, or Singular alone; :func:`benchmarks.report.process_times`), the better guide
+on a busy machine. Run ``python -m
 benchmarks.batch_singular [--repeats N] [--write]`` from the repository root.
 """
 
@@ -24,9 +25,9 @@ import sys
 import tempfile
 from pathlib import Path
 
-from benchmarks.algorithm2_singular import ALGORITHM_II, process_times
+from benchmarks.algorithm2_singular import ALGORITHM_II
 from benchmarks.recognition import random_profile, surface
-from benchmarks.report import run
+from benchmarks.report import process_times, run
 from sorgui.engine.algebra.polys import Poly, poly_str
 from sorgui.engine.singular.process import find_singular, poly_to_singular
 from sorgui.samples import move, quaternion_rotation, rational_vector, revolve

@@ -280,6 +280,9 @@ def main() -> None:
     if args.launch:
         launch(args.launch)
         return
+    from benchmarks.report import compile_sorgui
+
+    compile_sorgui()  # the window processes run bytecode, as an installed sorgui does
     from PySide6.QtCore import QCoreApplication, QSettings
 
     chosen = [(n, t) for n, t in cases() if not args.only or args.only in n]
