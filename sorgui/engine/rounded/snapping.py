@@ -42,6 +42,7 @@ from ..recognition.symmetry import (
     PLANE,
     REVOLUTION,
     Symmetry,
+    rational_symmetry,
     recognize_symmetry,
 )
 from . import dense
@@ -72,6 +73,19 @@ class ExactSurface:
     direction: Vector | QuadraticVector | None
     point: Vector | None
 
+
+@dataclass(frozen=True)
+class _Typed:
+    """The typed polynomial over ``QQ`` in the forms the candidates are compared with: flint's,
+    and its terms as floats (computed once per snap, not once per candidate)."""
+
+    flint: fmpq_mpoly
+    floats: dict[dense.Monomial, float]
+
+
+Candidate: TypeAlias = fmpq_mpoly | Poly
+"""A built exact surface: over ``QQ`` as a flint polynomial (made a sympy ``Poly`` only once it
+passes, :func:`_check`), over ``QQ(√d)`` as a sympy ``Poly``."""
 
 T = TypeVar("T")
 
@@ -365,14 +379,14 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
     """The simplest exact surface of the fit's kind within the rounding, or ``None``: for each
     family of directions the first surface that passes, then the one whose profile
     coefficients have the fewest bits."""
-    exact_f = exact if exact.ring.domain == QQ else None
+    typed = _Typed(to_flint(exact), dense.float_coefficients(exact)) if exact.ring.domain == QQ else None
     found: list[tuple[int, ExactSurface]] = []
     for family in FAMILIES if best.candidate.direction is not None else (None,):
-        surface = _first_exact(f, best, family, exact_f, rounding)
+        surface = _first_exact(f, best, family, typed, rounding)
         if surface is not None:
             found.append(surface)
     if best.candidate.kind in (REVOLUTION, CYLINDER):
-        surface = _first_exact(f, best, _quadratic_family, exact_f, rounding)
+        surface = _first_exact(f, best, _quadratic_family, typed, rounding)
         if surface is not None:
             found.append(surface)
     if not found:
@@ -381,14 +395,14 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
 
 
 def _first_exact(
-    f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None, rounding: Rounding
+    f: Normalised, best: Fit, family: DirectionSnap | None, typed: _Typed | None, rounding: Rounding
 ) -> tuple[int, ExactSurface] | None:
     """The first exact surface, in the order of :func:`exact_axes`, with every coefficient
     within the rounding (else the first within twice it, in the mean), with the bits of its
     coefficients. When the simplest coefficients fail on a coarse axis, the axis is refined with
     them held fixed and snapped again, finely."""
     fallback: tuple[int, ExactSurface] | None = None
-    for coefficients, surface in _exact_surfaces(f, best, family, exact_f, rounding):
+    for coefficients, surface in _exact_surfaces(f, best, family, typed, rounding):
         if surface.largest <= 1.0:
             return _bits(coefficients), surface
         if fallback is None:
@@ -397,7 +411,7 @@ def _first_exact(
 
 
 def _exact_surfaces(
-    f: Normalised, best: Fit, family: DirectionSnap | None, exact_f: Poly | None, rounding: Rounding
+    f: Normalised, best: Fit, family: DirectionSnap | None, typed: _Typed | None, rounding: Rounding
 ) -> Iterator[tuple[list[Fraction], ExactSurface]]:
     """Exact surfaces within twice the rounding (in the mean), simplest axes first; at most
     ``MAX_CHECKS`` exact surfaces are built, and the axis is refined with fixed coefficients
@@ -419,14 +433,14 @@ def _exact_surfaces(
             ratios: list[Fraction], a: Direction | None = a, c: Vector | None = c, local: Fit = local
         ) -> list[Fraction]:
             g = build(kind, a, c, local.exponents, ratios)
-            return [] if g is None or exact_f is None else _matched_scales(g, exact_f, rounding)
+            return [] if not isinstance(g, fmpq_mpoly) or typed is None else _matched_scales(g, typed, rounding)
 
         for rank, coefficients in enumerate(_coefficient_candidates(f, local, matched_scales)):
             checks += 1
             if checks > MAX_CHECKS:
                 return
             g = build(kind, a, c, local.exponents, coefficients)
-            surface = None if g is None else _check(g, exact_f, rounding, f, a, c)
+            surface = None if g is None else _check(g, typed, rounding, f, a, c)
             if surface is not None:
                 yield coefficients, surface
                 if surface.largest <= 1.0:
@@ -451,7 +465,7 @@ def _exact_surfaces(
                 if family is not None and a2 is None:
                     continue
                 g = build(kind, a2, c2, local.exponents, coefficients)
-                surface = None if g is None else _check(g, exact_f, rounding, f, a2, c2)
+                surface = None if g is None else _check(g, typed, rounding, f, a2, c2)
                 if surface is not None:
                     yield coefficients, surface
                     if surface.largest <= 1.0:
@@ -483,19 +497,17 @@ def _coefficient_candidates(
     return sorted(found, key=_bits)
 
 
-def _matched_scales(g: Poly, exact_f: Poly, rounding: Rounding) -> list[Fraction]:
+def _matched_scales(g: fmpq_mpoly, typed: _Typed, rounding: Rounding) -> list[Fraction]:
     """Scales ``λ`` that make ``λ·g`` agree with ``f`` where ``f`` is largest: at each of the
     three largest coefficients of ``f``, the simplest rational within its rounding divided by
     ``g``'s coefficient there (a CAD system that divides by its largest coefficient prints an
     exact ``1.000000000``)."""
-    if g.ring.domain != QQ:
-        return []
-    g_terms = {dense.monomial(m): c for m, c in to_flint(g).to_dict().items()}
-    f_terms = {dense.monomial(m): c for m, c in to_flint(exact_f).to_dict().items()}
-    shared = sorted((m for m in f_terms if m in g_terms), key=lambda m: -abs(float(f_terms[m])))
+    g_terms = dict(zip(map(dense.monomial, g.monoms()), g.coeffs()))
+    f_terms = typed.floats
+    shared = sorted((m for m in f_terms if m in g_terms), key=lambda m: -abs(f_terms[m]))
     scales: list[Fraction] = []
     for m in shared[:3]:
-        value = simplest_near(float(f_terms[m]), rounding.bound(m))
+        value = simplest_near(f_terms[m], rounding.bound(m))
         scale = value / Fraction(int(g_terms[m].p), int(g_terms[m].q))
         if scale and scale not in scales:
             scales.append(scale)
@@ -524,14 +536,13 @@ def build(
     c: Vector | None,
     exponents: tuple[tuple[int, int], ...],
     coefficients: list[Fraction],
-) -> Poly | None:
+) -> Candidate | None:
     """``g = Σ q_ij h^i ρ^j`` over ``QQ`` (``h = a·(p - c)``, ``ρ = |p - c|²``; for a cylinder
-    ``ρ`` is ``|a|²|p - c|² - h²``; for a plane ``h = a·p``); over ``QQ(√d)`` for a direction
-    in that field (:func:`build_quadratic`)."""
+    ``ρ`` is ``|a|²|p - c|² - h²``; for a plane ``h = a·p``), in flint; over ``QQ(√d)`` for a
+    direction in that field (:func:`build_quadratic`)."""
     if a is not None and isinstance(a[0], Quadratic):
         return None if c is None else build_quadratic(kind, a, c, exponents, coefficients)
-    R = poly_ring(XYZ, QQ)
-    ctx = to_flint(R.gens[0]).context()
+    ctx = to_flint(poly_ring(XYZ, QQ).gens[0]).context()
     x, y, z = ctx.gens()
     gens = (x, y, z)
     zero = fmpq_mpoly(0, ctx)
@@ -543,13 +554,20 @@ def build(
         assert a is not None  # a cylinder has an axis direction
         norm2 = sum(v * v for v in a)
         rho = fmpq(norm2.numerator, norm2.denominator) * rho - h * h
-    g = zero
+    top = max(i for i, _ in exponents)
+    rho_powers = [rho**0]
+    for _ in range(max(j for _, j in exponents)):
+        rho_powers.append(rho_powers[-1] * rho)
+    by_power_of_h = [zero] * (top + 1)  # g = Σ_i h^i·(Σ_j q_ij ρ^j), then by Horner's rule in h
     for (i, j), q in zip(exponents, coefficients):
         if q:
-            g += fmpq(q.numerator, q.denominator) * h**i * rho**j
+            by_power_of_h[i] += fmpq(q.numerator, q.denominator) * rho_powers[j]
+    g = by_power_of_h[top]
+    for i in range(top - 1, -1, -1):
+        g = g * h + by_power_of_h[i]
     if g.is_zero() or g.total_degree() < 1:
         return None
-    return from_flint(g, R)
+    return g
 
 
 def build_quadratic(
@@ -609,36 +627,41 @@ def _reduce_root(p: fmpq_mpoly, d: int) -> fmpq_mpoly:
 
 
 def _check(
-    g: Poly, exact_f: Poly | None, rounding: Rounding, f: Normalised, a: Direction | None, c: Vector | None
+    g: Candidate, typed: _Typed | None, rounding: Rounding, f: Normalised, a: Direction | None, c: Vector | None
 ) -> ExactSurface | None:
     """``g`` with its exact residual against ``f``, if the exact recognizer agrees it is a
-    surface of revolution and the residual is within twice the rounding."""
-    rational = g.ring.domain == QQ
-    g_terms = (
-        {dense.monomial(m): c for m, c in to_flint(g).to_dict().items()} if rational else dense.float_coefficients(g)
-    )
-    if exact_f is not None and rational:
-        difference = to_flint(exact_f) - to_flint(g)
-        residual_terms = {dense.monomial(m): float(c) for m, c in difference.to_dict().items()}
-        f_terms = dense.float_coefficients(exact_f)
-    elif exact_f is not None:  # g over QQ(√d): the difference in floats (far below the rounding)
-        f_terms = dense.float_coefficients(exact_f)
-        residual_terms = {m: f_terms.get(m, 0.0) - float(g_terms.get(m, 0)) for m in set(f_terms) | set(g_terms)}
+    surface of revolution and the residual is within twice the rounding (tested first: most
+    candidates fail it)."""
+    rational = isinstance(g, fmpq_mpoly)
+    if typed is not None and rational:
+        residual_terms = _float_terms(typed.flint - g)
+        f_terms = typed.floats
     else:
-        scale = f.scale
-        f_terms = {m: float(v) * scale / f.length ** sum(m) for m, v in zip(_monomials(f), f.vector)}
-        residual_terms = {m: f_terms.get(m, 0.0) - float(g_terms.get(m, 0)) for m in set(f_terms) | set(g_terms)}
+        g_terms = _float_terms(g) if rational else dense.float_coefficients(g)
+        if typed is not None:  # g over QQ(√d): the difference in floats (far below the rounding)
+            f_terms = typed.floats
+        else:
+            scale = f.scale
+            f_terms = {m: float(v) * scale / f.length ** sum(m) for m, v in zip(_monomials(f), f.vector)}
+        residual_terms = {m: f_terms.get(m, 0.0) - g_terms.get(m, 0.0) for m in set(f_terms) | set(g_terms)}
     count = math.comb(rounding.degree + 3, 3)
     ratios = [abs(r) / rounding.bound(m) for m, r in residual_terms.items()]
     residual = math.sqrt(sum(v * v for v in ratios) / count)
     if residual > 2.0:
         return None
-    symmetry = recognize_symmetry(g)
+    symmetry = rational_symmetry(g) if rational else recognize_symmetry(g)
     if not symmetry.is_sor:
         return None
     norm_f = math.sqrt(sum(v * v for v in f_terms.values()))
     distance = math.sqrt(sum(r * r for r in residual_terms.values())) / norm_f
-    return ExactSurface(g, symmetry, residual, max(ratios, default=0.0), distance, a, c)
+    polynomial = from_flint(g, poly_ring(XYZ, QQ)) if rational else g
+    return ExactSurface(polynomial, symmetry, residual, max(ratios, default=0.0), distance, a, c)
+
+
+def _float_terms(p: fmpq_mpoly) -> dict[dense.Monomial, float]:
+    """The terms of ``p`` with float coefficients (``monoms`` and ``coeffs`` take a fifth of the
+    time of ``to_dict``)."""
+    return {dense.monomial(m): float(c) for m, c in zip(p.monoms(), p.coeffs())}
 
 
 def _monomials(f: Normalised) -> list[tuple[int, int, int]]:
