@@ -18,7 +18,7 @@ from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.results import Analysis
 from sorgui.engine.rounded.approximate import approximate_symmetry, rounding_of
 from sorgui.engine.rounded.precision import input_rounding
-from sorgui.engine.rounded.snapping import quadratic_direction, simplest_between
+from sorgui.engine.rounded.snapping import build, quadratic_direction, simplest_between
 from sorgui.samples import (
     cylinder,
     printed,
@@ -231,6 +231,56 @@ def test_simplest_rational_in_an_interval() -> None:
     assert simplest_between(Fraction(-24, 10), Fraction(-23, 10)) == Fraction(-7, 3)
     assert simplest_between(Fraction(-1), Fraction(1)) == 0
     assert simplest_between(Fraction(7, 2), Fraction(4)) == 4
+
+
+def test_an_exact_candidate_is_the_sum_of_its_basis_terms() -> None:
+    """``build`` (Horner's rule in ``h``) gives ``Σ q_ij h^i ρ^j`` with ``h = a·(p − c)`` and
+    ``ρ = |p − c|²``, computed term by term here in sympy."""
+    import sympy
+
+    x, y, z = sympy.symbols("x y z")
+    a = (Fraction(1), Fraction(-2), Fraction(2))
+    c = (Fraction(1, 3), Fraction(0), Fraction(-5, 7))
+    exponents = ((0, 0), (1, 0), (3, 0), (0, 1), (2, 1), (1, 2), (0, 3))
+    coefficients = [
+        Fraction(9),
+        Fraction(-1, 2),
+        Fraction(0),
+        Fraction(3, 4),
+        Fraction(5),
+        Fraction(-7, 3),
+        Fraction(1),
+    ]
+    g = build("revolution", a, c, exponents, coefficients)
+    shifted = [v - sympy.Rational(q.numerator, q.denominator) for v, q in zip((x, y, z), c)]
+    h = sum(sympy.Rational(q.numerator, q.denominator) * s for q, s in zip(a, shifted))
+    rho = sum(s**2 for s in shifted)
+    expected = sum(
+        sympy.Rational(q.numerator, q.denominator) * h**i * rho**j for (i, j), q in zip(exponents, coefficients)
+    )
+    assert g is not None
+    terms = sympy.Poly(expected, x, y, z).terms()
+    assert {tuple(map(int, m)): Fraction(int(q.p), int(q.q)) for m, q in g.to_dict().items()} == {
+        m: Fraction(int(q.p), int(q.q)) for m, q in terms
+    }
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    st.fractions(min_value=-50, max_value=50, max_denominator=400),
+    st.fractions(min_value=0, max_value=2, max_denominator=400),
+)
+def test_simplest_rational_is_the_one_of_smallest_denominator(lo: Fraction, width: Fraction) -> None:
+    """Against a search: the smallest denominator with a rational in ``[lo, hi]``, and there the
+    numerator of smallest magnitude."""
+    hi = lo + width
+    q = 1
+    while math.floor(hi * q) < math.ceil(lo * q):
+        q += 1
+    numerators = range(math.ceil(lo * q), math.floor(hi * q) + 1)
+    expected = Fraction(min(numerators, key=abs), q)
+    assert simplest_between(lo, hi) == expected
+    assert simplest_between(hi, lo) == expected
 
 
 @pytest.mark.parametrize(

@@ -97,19 +97,31 @@ def three(values: Iterable[T]) -> tuple[T, T, T]:
 
 
 def simplest_between(lo: Fraction, hi: Fraction) -> Fraction:
-    """The rational with the smallest denominator (then numerator) in ``[lo, hi]``."""
+    """The rational with the smallest denominator (then numerator) in ``[lo, hi]``: the
+    continued fraction shared by the two ends, with the next term the smallest that fits (the
+    classic recursion ``⌊lo⌋ + 1/simplest(1/(hi − ⌊lo⌋), 1/(lo − ⌊lo⌋))``, on integers)."""
     if lo > hi:
         lo, hi = hi, lo
     if lo <= 0 <= hi:
         return Fraction(0)
     if hi < 0:
         return -simplest_between(-hi, -lo)
-    whole = math.floor(lo)
-    if lo == whole:
-        return Fraction(whole)
-    if whole + 1 <= hi:
-        return Fraction(whole + 1)
-    return whole + 1 / simplest_between(1 / (hi - whole), 1 / (lo - whole))
+    a, b, c, d = lo.numerator, lo.denominator, hi.numerator, hi.denominator  # 0 < a/b ≤ c/d
+    terms: list[int] = []
+    while True:
+        whole = a // b
+        if a == whole * b:
+            terms.append(whole)
+            break
+        if (whole + 1) * d <= c:
+            terms.append(whole + 1)
+            break
+        terms.append(whole)
+        a, b, c, d = d, c - whole * d, b, a - whole * b  # [1/(hi − whole), 1/(lo − whole)]
+    numerator, denominator = terms[-1], 1
+    for term in reversed(terms[:-1]):
+        numerator, denominator = term * numerator + denominator, numerator
+    return Fraction(numerator, denominator)
 
 
 def simplest_near(value: float, radius: float) -> Fraction:
