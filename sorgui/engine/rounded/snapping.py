@@ -83,9 +83,9 @@ class _Typed:
     floats: dict[dense.Monomial, float]
 
 
-Candidate: TypeAlias = fmpq_mpoly | Poly
-"""A built exact surface: over ``QQ`` as a flint polynomial (made a sympy ``Poly`` only once it
-passes, :func:`_check`), over ``QQ(√d)`` as a sympy ``Poly``."""
+Built: TypeAlias = fmpq_mpoly | Poly
+"""An exact surface as :func:`build` makes it: over ``QQ`` a flint polynomial (made a sympy
+``Poly`` only once it passes, :func:`_check`), over ``QQ(√d)`` a sympy ``Poly``."""
 
 T = TypeVar("T")
 
@@ -548,7 +548,7 @@ def build(
     c: Vector | None,
     exponents: tuple[tuple[int, int], ...],
     coefficients: list[Fraction],
-) -> Candidate | None:
+) -> Built | None:
     """``g = Σ q_ij h^i ρ^j`` over ``QQ`` (``h = a·(p - c)``, ``ρ = |p - c|²``; for a cylinder
     ``ρ`` is ``|a|²|p - c|² - h²``; for a plane ``h = a·p``), in flint; over ``QQ(√d)`` for a
     direction in that field (:func:`build_quadratic`)."""
@@ -639,7 +639,7 @@ def _reduce_root(p: fmpq_mpoly, d: int) -> fmpq_mpoly:
 
 
 def _check(
-    g: Candidate, typed: _Typed | None, rounding: Rounding, f: Normalised, a: Direction | None, c: Vector | None
+    g: Built, typed: _Typed | None, rounding: Rounding, f: Normalised, a: Direction | None, c: Vector | None
 ) -> ExactSurface | None:
     """``g`` with its exact residual against ``f``, if the exact recognizer agrees it is a
     surface of revolution and the residual is within twice the rounding (tested first: most
