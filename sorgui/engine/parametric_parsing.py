@@ -78,7 +78,7 @@ def is_parametrization(text: str) -> bool:
         return False
     prefix = parsing._FUNCTION_NAME.match(text)
     body = text[prefix.end() :] if prefix else text
-    if _SEPARATOR.search(body):
+    if ("," in body or ";" in body) and _SEPARATOR.search(body):  # `in` first: a long equation has neither
         return True
     return "\n" in text and len(_LABEL_LINE.findall(text, 0, 10_000)) >= 2
 
