@@ -120,3 +120,37 @@ def test_paper_example_axis_and_profile(paper_example_1):
     assert sympy.expand(p - paper_p) == 0 or sympy.expand(p - paper_p.subs(X, -X)) == 0
     # docs/math.md §1 erratum: with (v : p × v) the Plücker coordinates are (4:3:0:0:0:5).
     assert report.axis.plucker == ("4", "3", "0", "0", "0", "5")
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_the_rows_below_a_few_terms_give_the_whole_systems_algebra(seed: int) -> None:
+    """Over QQ, the algebra found from a part of (★) (a few rows, or values at points) is the
+    null space of the whole system, one row per monomial: on dense surfaces of revolution in
+    general position, on the same surfaces moved slightly off revolution, on cylinders and
+    spheres in general position, and on sparse ones."""
+    import random
+
+    from sorgui.engine.algebra import linalg
+    from sorgui.engine.algebra.polys import to_flint
+    from sorgui.engine.algebra.rationals import RATIONALS
+    from sorgui.engine.recognition.symmetry import _generators, rational_symmetry_algebra
+
+    rng = random.Random(seed)
+    point = rational_vector([rng.randint(-9, 9) for _ in range(3)])
+    direction = rational_vector([rng.randint(1, 9) for _ in range(3)])
+    profile = {(i, j): rng.randint(-5, 5) for i in range(7) for j in range(3) if i + 2 * j <= 6}
+    profile[(0, 3)] = 1
+    surfaces = [
+        revolve(profile, point, direction),
+        (x - rng.randint(-3, 3)) ** 2 + (y + rng.randint(-3, 3)) ** 2 + z**2 - rng.randint(1, 9),
+        (x + 2 * y) ** 2 + (y - 2 * x) ** 2 + 5 * z**4 - 1,
+    ]
+    surfaces.append(surfaces[0] + x * y * z)
+    for f in surfaces:
+        g = to_flint(f)
+        columns = [p.to_dict() for p in _generators(g)]
+        monomials = sorted(set().union(*columns))
+        rows = [[col.get(m, 0) for col in columns] for m in monomials]
+        whole = [(m.b, m.a) for m in rational_symmetry_algebra(g)]
+        expected = [(tuple(v[:3]), tuple(v[3:])) for v in linalg.nullspace(rows, 6, RATIONALS)]
+        assert whole == expected

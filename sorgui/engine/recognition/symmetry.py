@@ -81,8 +81,13 @@ def _generators(g: fmpq_mpoly) -> list[fmpq_mpoly]:
     """The six polynomials whose linear combinations are the left side of (★), over ``QQ``:
     ``f_x, f_y, f_z`` (coefficients of ``b``) and the components of ``p × ∇f`` (those of ``a``,
     since ``∇f·(a × p) = a·(p × ∇f)``)."""
-    x, y, z = g.context().gens()
-    fx, fy, fz = (g.derivative(i) for i in range(3))
+    return _with_moments((g.derivative(0), g.derivative(1), g.derivative(2)))
+
+
+def _with_moments(gradient: tuple[fmpq_mpoly, fmpq_mpoly, fmpq_mpoly]) -> list[fmpq_mpoly]:
+    """The gradient and the components of ``p × ∇f``: the six polynomials of :func:`_generators`."""
+    fx, fy, fz = gradient
+    x, y, z = fx.context().gens()
     return [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
 
 
@@ -116,32 +121,85 @@ def symmetry_algebra(f: Poly) -> list[Motion]:
 
 
 def rational_symmetry_algebra(g: fmpq_mpoly) -> list[Motion]:
-    """``L`` of ``g ∈ QQ[x, y, z]`` from the six polynomials of (★) evaluated at rational points,
-    each candidate checked as a polynomial identity in flint.
+    """``L`` of ``g ∈ QQ[x, y, z]`` from a part of the system of (★), each candidate checked as
+    a polynomial identity in flint.
 
-    The values at points give rows whose null space contains ``L``; when every vector of its
-    reduced basis satisfies (★) identically, the two null spaces (hence their row spaces and
-    reduced bases) are equal, and the answer is exactly that of the system with one row per
-    monomial, at the cost of a few evaluations instead of a pass over every coefficient.
-    Points are added until that holds (the full system is the last resort).
+    Any set of equations of (★) has a null space that contains ``L``; when every vector of its
+    reduced basis satisfies (★) identically (:func:`_invariant`), the two null spaces (hence their
+    reduced bases) are equal, and the answer is exactly that of the whole system. The sets tried,
+    cheapest first:
+
+    * for an equation of many terms (:data:`MANY_TERMS`), as a surface in general position has,
+      the rows of (★) below a few terms of ``g`` spread over its support (:func:`_row`: each a
+      coefficient of the six polynomials, read off the gradient's coefficients; no product of
+      polynomials, no evaluation of one);
+    * the six polynomials at integer points (each point a random combination of all the rows),
+      batch by batch: enough for a sparse equation;
+    * the whole system, one row per monomial, as the last resort.
+
+    A surface with no symmetry has the null space ``{0}`` after the first set, which needs no check.
     """
-    polys = _generators(g)
-    rows: list[list[Any]] = []
-    for batch in range(EVALUATION_BATCHES):
-        for point in _points(batch):
-            rows.append(_values(polys, point))
+    gradient = (g.derivative(0), g.derivative(1), g.derivative(2))
+    if len(g) > MANY_TERMS:
+        rows = [_row(gradient, m) for m in _row_monomials(g)]
         basis = linalg.nullspace(rows, 6, RATIONALS)
-        if all(_vanishes(polys, v) for v in basis):
-            return [Motion(a=tuple(v[3:]), b=tuple(v[:3])) for v in basis]
+        if all(_invariant(gradient, v) for v in basis):
+            return _motions(basis)
+    polys = _with_moments(gradient)
+    rows = []
+    for batch in range(EVALUATION_BATCHES):
+        rows += [_values(polys, point) for point in _points(batch)]
+        basis = linalg.nullspace(rows, 6, RATIONALS)
+        if all(_invariant(gradient, v) for v in basis):
+            return _motions(basis)
     columns = [p.to_dict() for p in polys]
     monomials = sorted(set().union(*columns))
     rows = [[col.get(m, fmpq(0)) for col in columns] for m in monomials]
-    basis = linalg.nullspace(rows, 6, RATIONALS)
+    return _motions(linalg.nullspace(rows, 6, RATIONALS))
+
+
+MANY_TERMS = 40
+"""Equations with more terms than this try the rows below a few of their terms first; the values
+at points of a smaller one cost less than the coefficients of the rows."""
+SPREAD_TERMS = 8
+"""Terms of ``g`` below which the rows of the first set are taken."""
+EVALUATION_BATCHES = 4
+"""Batches of 8 evaluation points tried before the whole system."""
+_ZERO = fmpq(0)
+
+
+def _motions(basis: Sequence[Sequence[Any]]) -> list[Motion]:
+    """The null space vectors ``(b, a)`` (the unknowns in the order of :func:`_generators`) as motions."""
     return [Motion(a=tuple(v[3:]), b=tuple(v[:3])) for v in basis]
 
 
-EVALUATION_BATCHES = 4
-"""Batches of 8 evaluation points tried before the system with one row per monomial."""
+def _row_monomials(g: fmpq_mpoly) -> list[tuple[int, ...]]:
+    """The monomials of the first set of rows: ``m − e_v`` for each variable ``v`` of ``m``, for
+    :data:`SPREAD_TERMS` terms ``m`` of ``g`` a fixed stride apart over its whole support; each
+    row then holds that term's coefficient in a derivative."""
+    n = len(g)
+    found: set[tuple[int, ...]] = set()
+    for k in range(SPREAD_TERMS):
+        m = tuple(int(e) for e in g.monomial((k * n) // SPREAD_TERMS))
+        for v in range(3):
+            if m[v]:
+                found.add(tuple(e - (w == v) for w, e in enumerate(m)))
+    return sorted(found)
+
+
+def _row(gradient: tuple[fmpq_mpoly, fmpq_mpoly, fmpq_mpoly], m: tuple[int, ...]) -> list[Any]:
+    """The coefficient of ``x^i y^j z^k`` in each of the six polynomials of :func:`_generators`,
+    from the gradient's coefficients: ``(y·f_z)[m] = f_z[m − e_y]`` and so on."""
+    fx, fy, fz = gradient
+    i, j, k = m
+    return [
+        fx[m],
+        fy[m],
+        fz[m],
+        (fz[i, j - 1, k] if j else _ZERO) - (fy[i, j, k - 1] if k else _ZERO),
+        (fx[i, j, k - 1] if k else _ZERO) - (fz[i - 1, j, k] if i else _ZERO),
+        (fy[i - 1, j, k] if i else _ZERO) - (fx[i, j - 1, k] if j else _ZERO),
+    ]
 
 
 def _points(batch: int) -> list[tuple[fmpq, fmpq, fmpq]]:
@@ -162,12 +220,13 @@ def _values(polys: list[fmpq_mpoly], point: tuple[fmpq, fmpq, fmpq]) -> list[fmp
     return [fx, fy, fz, y * fz - z * fy, z * fx - x * fz, x * fy - y * fx]
 
 
-def _vanishes(polys: list[fmpq_mpoly], weights: Sequence[Any]) -> bool:
-    """Whether ``Σ w_i·polys_i`` is the zero polynomial (exactly, in flint)."""
-    total = polys[0] * 0
-    for p, w in zip(polys, weights):
-        if w:
-            total += p * fmpq(w)
+def _invariant(gradient: tuple[fmpq_mpoly, ...], v: Sequence[Any]) -> bool:
+    """Whether the motion ``v = (b, a)`` satisfies (★) identically: ``∇f · (b + a × p) ≡ 0``,
+    exactly, in flint (three products by linear polynomials)."""
+    fx, fy, fz = gradient[:3]
+    x, y, z = fx.context().gens()
+    b1, b2, b3, a1, a2, a3 = (fmpq(c) for c in v)
+    total = fx * (a2 * z - a3 * y + b1) + fy * (a3 * x - a1 * z + b2) + fz * (a1 * y - a2 * x + b3)
     return total.is_zero()
 
 
