@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import re
+from typing import Any, cast
 
 from flint import fmpq, fmpq_mpoly
 
@@ -61,7 +62,33 @@ class Limits:
         self.decimal_exponent = decimal_exponent
 
 
-def read_expanded(text: str, limits: Limits) -> fmpq_mpoly | None:
+class Reading:
+    """An equation read by the fast path: ``polynomial`` in ``QQ[x, y, z]`` and, when they come
+    from what was read at little cost, the engine's texts of it (``None`` otherwise, then
+    :func:`.algebra.rationals.flint_str` and :func:`.algebra.rationals.primitive` make them).
+
+    ``printed`` is :func:`~.algebra.rationals.flint_str` of ``polynomial`` (built from the digits
+    as written, when the terms come in the printed order with their fractions in lowest terms,
+    as sorgui prints them); ``primitive`` is the polynomial scaled to integers with content 1
+    and a positive leading (lex) coefficient, from the integers the reader already holds, and
+    ``primitive_printed`` its text when ``printed`` is known."""
+
+    __slots__ = ("polynomial", "primitive", "primitive_printed", "printed")
+
+    def __init__(
+        self,
+        polynomial: fmpq_mpoly,
+        printed: str | None = None,
+        primitive: fmpq_mpoly | None = None,
+        primitive_printed: str | None = None,
+    ) -> None:
+        self.polynomial = polynomial
+        self.printed = printed
+        self.primitive = primitive
+        self.primitive_printed = primitive_printed
+
+
+def read_expanded(text: str, limits: Limits) -> Reading | None:
     """``text`` as a non-constant polynomial of ``QQ[x, y, z]``, or ``None`` when it is not an
     expanded polynomial within ``limits`` (or is constant): the general parser decides then.
     ``lhs = rhs`` is ``lhs - rhs``, and a leading ``f(x, y, z) =`` is skipped, as in the parser."""
@@ -72,35 +99,42 @@ def read_expanded(text: str, limits: Limits) -> fmpq_mpoly | None:
         sides = body.split("=")
         if len(sides) != 2 or not terms.read(sides[0], limits, 1) or not terms.read(sides[1], limits, -1):
             return None
+        terms.plain = False  # two sides: a monomial may be written on both
     elif not terms.read(body, limits, 1):
         return None
-    polynomial = terms.polynomial()
-    return None if polynomial.is_constant() else polynomial  # constant or zero: the parser says which
+    reading = terms.reading()
+    return None if reading.polynomial.is_constant() else reading  # constant or zero: the parser says which
 
 
 class _Terms:
     """The terms read so far: monomial, integer numerator and the digits of the denominator
-    (``""`` for 1) of each, in three lists."""
+    (``""`` for 1) of each, in three lists; the digits of each numerator as written, and whether
+    every term so far was written with integers only (``plain``: no decimal, one divisor)."""
 
-    __slots__ = ("denominators", "monomials", "numerators")
+    __slots__ = ("denominators", "digits", "monomials", "numerators", "plain")
 
     def __init__(self) -> None:
         self.monomials: list[Monomial] = []
         self.numerators: list[int] = []
         self.denominators: list[str] = []
+        self.digits: list[str] = []
+        self.plain = True
 
     def read(self, text: str, limits: Limits, side: int) -> bool:
         """Add the terms of one side (times ``side``, ±1); ``False`` when it is not expanded."""
+        matches = _TERM.findall(text)
+        if matches and self._read_integers(matches, limits, side):
+            return True
         first = True
         short = limits.bits // 4  # literals this long in all cannot reach the bound on a product's bits
         cached = _MONOMIALS.get
-        monomials, numerators, denominators = self.monomials, self.numerators, self.denominators
-        for sign, number, over, monomial, under, bare, bare_under, other in _TERM.findall(text):
+        monomials, numerators, denominators, digits = self.monomials, self.numerators, self.denominators, self.digits
+        for sign, number, over, monomial, under, bare, bare_under, other in matches:
             if other or not (sign or first):
                 return False  # another character, or two terms without a sign between them
             first = False
             if not number:
-                numerator, key = 1, bare_under
+                numerator, key, number = 1, bare_under, "1"
                 monomial, under = bare, bare_under
             elif number.isdigit() and len(number) <= limits.digits and not (over and under):
                 numerator, key = int(number), over or under
@@ -110,6 +144,7 @@ class _Terms:
                     return False
                 numerator, denominator = value
                 key = "" if denominator == 1 else str(denominator)
+                self.plain = False
             if key and (len(key) > limits.digits or not key.strip("0")):
                 return False  # division by zero, or too many digits: the parser says so
             exponents = (cached(monomial) or _exponents(monomial, limits)) if monomial else _CONSTANT
@@ -122,32 +157,98 @@ class _Terms:
             monomials.append(exponents)
             numerators.append(-numerator if (sign == "-") != (side < 0) else numerator)
             denominators.append(key)
+            digits.append(number)
         return not first
 
-    def polynomial(self) -> fmpq_mpoly:
-        """The sum of the terms. Over the common denominator ``L`` of the terms, the numerators
-        are integers, read by flint in one call and divided by ``L`` once (a rational per term
-        would cost as much again as the reading); when ``L`` is much larger than the
-        denominators themselves, one rational per term instead."""
+    def _read_integers(self, matches: list[tuple[str, ...]], limits: Limits, side: int) -> bool:
+        """:meth:`read` for the usual text, whose terms are all written with integers (``3/5*x**2``,
+        ``43*x**10/59``, ``x``), far from the parser's limits, their monomials known: each check
+        is one pass over a column of the terms (in C) instead of a pass over the terms; the
+        numerators go to ``int()`` in one ``map``. ``False`` (nothing added) for any other text,
+        which the loop of :meth:`read` then reads term by term."""
+        signs, numbers, overs, written, unders, bare, bare_unders, others = zip(*matches)
+        if any(others) or not all(signs[1:]) or any(map(all, zip(overs, unders))):
+            return False  # another character, two terms without a sign between them, two divisors
+        keys = [o or u or b for o, u, b in zip(overs, unders, bare_unders)]
+        digits = [n or "1" for n in numbers]
+        longest = max(map(len, digits)) + max(map(len, keys))
+        if longest > min(limits.digits, limits.bits // 4) or not ("".join(digits) + "".join(keys)).isdigit():
+            return False  # decimals, or long numbers: the loop checks the limits on each
+        if any(k and not k.strip("0") for k in set(keys)):
+            return False  # a division by zero: the parser says so
+        texts = [w or b for w, b in zip(written, bare)]
+        cached = list(map(_MONOMIALS.get, texts))
+        if None in cached:
+            for i, found in enumerate(cached):
+                if found is None:
+                    cached[i] = _exponents(texts[i], limits) if texts[i] else _CONSTANT
+            if None in cached:
+                return False  # above the degree limit
+        flip = side < 0
+        self.monomials += cast("list[Monomial]", cached)  # no None left
+        self.numerators += [n if (s == "-") == flip else -n for s, n in zip(signs, map(int, digits))]
+        self.denominators += keys
+        self.digits += digits
+        return True
+
+    def reading(self) -> Reading:
+        """The sum of the terms, with its texts when they come cheaply (:class:`Reading`).
+
+        Over the common denominator ``L`` of the terms, the numerators are integers, read by
+        flint in one call and divided by ``L`` once (a rational per term would cost as much again
+        as the reading); their gcd (one C call) gives the primitive polynomial. When ``L`` is much
+        larger than the denominators themselves, one rational per term instead."""
         context = rationals.context(("x", "y", "z"))
         values = {key: int(key) for key in set(self.denominators) if key}
         common = math.lcm(*values.values())
         values[""] = 1
         largest = max(d.bit_length() for d in values.values())
-        if common.bit_length() <= 2 * largest + _SPARE_BITS:
-            factors = {key: common // d for key, d in values.items()}
-            coefficients: list[int | fmpq] = [n * factors[k] for n, k in zip(self.numerators, self.denominators)]
-            scale = fmpq(1, common)
-        else:
-            coefficients = [n if not k else fmpq(n, values[k]) for n, k in zip(self.numerators, self.denominators)]
-            scale = fmpq(1)
-        terms: dict[Monomial, int | fmpq] = dict(zip(self.monomials, coefficients))
-        if len(terms) < len(coefficients):  # a monomial written twice: its terms are added
+        if common.bit_length() > 2 * largest + _SPARE_BITS:
+            fractions = [n if not k else fmpq(n, values[k]) for n, k in zip(self.numerators, self.denominators)]
+            return Reading(context.from_dict(self._sum(fractions)))
+        factors = {key: common // d for key, d in values.items()}
+        coefficients = [n * factors[k] for n, k in zip(self.numerators, self.denominators)]
+        integers: dict[Monomial, int] = self._sum(coefficients)
+        printed = self._printed(values) if self.plain and len(integers) == len(coefficients) else None
+        whole = context.from_dict(integers)
+        content = math.gcd(*integers.values())
+        if not content:
+            return Reading(whole)
+        primitive = whole if content == 1 else whole * fmpq(1, content)
+        if whole.leading_coefficient() < 0:
+            primitive = -primitive
+        polynomial = whole if common == 1 else whole * fmpq(1, common)
+        primitive_printed = printed if printed is not None and primitive == polynomial else None
+        return Reading(polynomial, printed, primitive, primitive_printed)
+
+    def _sum(self, coefficients: list[Any]) -> dict[Monomial, Any]:
+        """The terms by monomial, the coefficients of a monomial written more than once added."""
+        terms = dict(zip(self.monomials, coefficients))
+        if len(terms) < len(coefficients):
             terms = {}
             for monomial, c in zip(self.monomials, coefficients):
                 terms[monomial] = terms.get(monomial, 0) + c
-        polynomial = context.from_dict(terms)
-        return polynomial if common == 1 else polynomial * scale
+        return terms
+
+    def _printed(self, values: dict[str, int]) -> str | None:
+        """:func:`~.algebra.rationals.flint_str` of the sum, built from the digits as written:
+        when the terms come in its order (decreasing total degree, then decreasing lex; so no
+        monomial twice) and every fraction is in lowest terms without leading zeros; else
+        ``None``."""
+        keys = [_ORDER.get(m) or _order(m) for m in self.monomials]  # (degree, monomial, spelling)
+        if any(a <= b for a, b in zip(keys, keys[1:])):
+            return None
+        out: list[str] = []
+        for (_, _, spelling), numerator, digits, key in zip(keys, self.numerators, self.digits, self.denominators):
+            if digits[0] == "0" or (key and (key[0] == "0" or key == "1" or math.gcd(numerator, values[key]) != 1)):
+                return None
+            magnitude = f"{digits}/{key}" if key else digits
+            body = magnitude if not spelling else (spelling if magnitude == "1" else f"{magnitude}*{spelling}")
+            if out:
+                out.append(f" - {body}" if numerator < 0 else f" + {body}")
+            else:
+                out.append(f"-{body}" if numerator < 0 else body)
+        return "".join(out)
 
 
 def _rational(number: str, over: str, under: str, limits: Limits) -> tuple[int, int] | None:
@@ -181,6 +282,19 @@ def _number(text: str, limits: Limits) -> tuple[int, int] | None:
         scale += int(exponent)
     value = int(digits) if digits else 0
     return (value * 10**scale, 1) if scale >= 0 else (value, 10**-scale)
+
+
+_ORDER: dict[Monomial, tuple[int, Monomial, str]] = {}
+
+
+def _order(monomial: Monomial) -> tuple[int, Monomial, str]:
+    """The key of ``monomial`` in the printed order (total degree, then lex) and its printed
+    spelling (``x**2*y``), kept between calls as :data:`_MONOMIALS` is."""
+    if len(_ORDER) >= _MONOMIALS_KEPT:
+        _ORDER.clear()
+    spelling = "*".join(n if e == 1 else f"{n}**{e}" for n, e in zip("xyz", monomial) if e)
+    key = _ORDER[monomial] = (sum(monomial), monomial, spelling)
+    return key
 
 
 def _exponents(monomial: str, limits: Limits) -> Monomial | None:

@@ -35,7 +35,7 @@ from flint import fmpq, fmpq_mpoly, fmpz
 
 from .algebra import rationals
 from .errors import ParseError
-from .expanded import Limits, read_expanded
+from .expanded import Limits, Reading, read_expanded
 
 if TYPE_CHECKING:
     from sympy.polys.domains.domain import Domain
@@ -136,14 +136,22 @@ def parse_rational(text: str) -> fmpq_mpoly | None:
     """``f ∈ QQ[x, y, z]`` as a flint polynomial (variables ``x, y, z``), without sympy; ``None``
     when the text has square roots (:func:`parse_polynomial` then gives its field). Raises
     :class:`ParseError` as :func:`parse_polynomial` does."""
-    plain = expanded_polynomial(text)
-    if plain is not None:
-        return plain
+    reading = read_rational(text)
+    return None if reading is None else reading.polynomial
+
+
+def read_rational(text: str) -> Reading | None:
+    """:func:`parse_rational` with the engine's texts of the polynomial where the fast path has
+    them at little cost (:class:`~.expanded.Reading`): what the recognition over ``QQ`` prints."""
+    if len(text) <= MAX_LENGTH:
+        reading = read_expanded(text, _LIMITS)
+        if reading is not None:
+            return reading
     tree, evaluator, saw_variable = _checked(text)
     if evaluator.radicands:
         return None
     g: fmpq_mpoly = _evaluate(text, evaluator, tree, _FlintRationals(), saw_variable)
-    return g
+    return Reading(g)
 
 
 def expanded_polynomial(text: str) -> fmpq_mpoly | None:
@@ -155,7 +163,8 @@ def expanded_polynomial(text: str) -> fmpq_mpoly | None:
     parser then reads and reports on exactly."""
     if len(text) > MAX_LENGTH:
         return None
-    return read_expanded(text, _LIMITS)
+    reading = read_expanded(text, _LIMITS)
+    return None if reading is None else reading.polynomial
 
 
 def _checked(text: str) -> tuple[Node, _Evaluator, bool]:

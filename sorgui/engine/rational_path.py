@@ -41,7 +41,8 @@ from .algebra.rationals import (
 )
 from .canal.lines import verdict_without_smat
 from .errors import AnalysisError
-from .parsing import parse_rational
+from .expanded import Reading
+from .parsing import read_rational
 from .recognition.symmetry import (
     CYLINDER,
     REVOLUTION,
@@ -91,16 +92,18 @@ def _analysis(text: str, clock: StageClock, *, full: bool) -> Analysis | None:
     if has_decimals(text):
         return None
     with clock.stage("parse"):
-        g = parse_rational(text)
-    if g is None:
+        reading = read_rational(text)
+    if reading is None:
         return None
+    g = reading.polynomial
+    printed = text if reading.printed == text else reading.printed  # one string, pickled and encoded once
     with clock.stage("recognition"):
-        found = recognize_rational(g)
+        found = recognize_rational(g, printed)
     if found is None or (full and (found[0].is_sor or found[0].degree > FULL_DEGREE)):
         return None
     recognized, square = found
     with clock.stage("factors"):
-        factors = _factor_reports(g, recognized, square)
+        factors = _factor_reports(reading, recognized, square)
     if factors is None:
         return None
     reports, distinct = factors
@@ -155,10 +158,10 @@ def conical_kind(g: fmpq_mpoly) -> str:
     return "none" if augmented.rank() == 4 else "cone"
 
 
-def recognize_rational(g: fmpq_mpoly) -> tuple[Recognition, fmpq_mpoly | None] | None:
+def recognize_rational(g: fmpq_mpoly, printed: str | None = None) -> tuple[Recognition, fmpq_mpoly | None] | None:
     """The :class:`Recognition` of ``g ∈ QQ[x, y, z]`` by the symmetry method and, for a surface
     with a unique axis, its ``P²(s, w)``; ``None`` when the axis direction's ``|a|²`` reaches
-    :data:`MAX_NORM`."""
+    :data:`MAX_NORM`. ``printed``: ``flint_str(g)`` when the caller has it."""
     symmetry = rational_symmetry(g)
     profile = square = None
     if symmetry.kind in (REVOLUTION, CYLINDER):
@@ -168,7 +171,7 @@ def recognize_rational(g: fmpq_mpoly) -> tuple[Recognition, fmpq_mpoly | None] |
             return None
         profile, square = _profile(g, point, direction)
     return Recognition(
-        polynomial=flint_str(g, XYZ),
+        polynomial=flint_str(g, XYZ) if printed is None else printed,
         degree=int(g.total_degree()),
         is_sor=symmetry.is_sor,
         symmetry=symmetry.kind,
@@ -191,23 +194,29 @@ def _radius_squared(g: fmpq_mpoly, symmetry: Symmetry) -> str | None:
 
 
 def _factor_reports(
-    g: fmpq_mpoly, whole: Recognition, square: fmpq_mpoly | None
+    reading: Reading, whole: Recognition, square: fmpq_mpoly | None
 ) -> tuple[tuple[Factor, ...], list[fmpq_mpoly]] | None:
-    """The irreducible factors of ``g``, each recognised, and the distinct ones (``None`` when a
-    factor needs sympy). An irreducible ``g`` keeps ``whole`` as its factor's recognition.
+    """The irreducible factors of ``g`` (``reading``'s polynomial), each recognised, and the
+    distinct ones (``None`` when a factor needs sympy). An irreducible ``g`` keeps ``whole`` as
+    its factor's recognition.
 
     A surface with a unique axis factors as its ``P²`` does (docs/math.md §4: every factor of
     ``f`` over ``QQ`` is invariant under the rotations about the axis, so a polynomial in ``s``
     and ``w``), and ``P²`` has two variables and half the degree in ``w``: when it is
-    irreducible and square-free, so is ``g``, without factoring ``g`` itself."""
+    irreducible and square-free, so is ``g``, without factoring ``g`` itself; its one factor is
+    then ``g``'s primitive form, which the reader may have made and printed already."""
+    g = reading.polynomial
     if square is not None and _irreducible(square):
-        factors = [(primitive(g), 1)]
-    else:
-        factors = factor(g)
+        h = primitive(g) if reading.primitive is None else reading.primitive
+        printed = reading.primitive_printed
+        if printed is None:
+            printed = whole.polynomial if h == g else flint_str(h, XYZ)  # g printed once when it is primitive
+        return (Factor(printed, 1, whole),), [h]
+    factors = factor(g)
     distinct = [h for h, _ in factors]
     if len(factors) == 1 and factors[0][1] == 1:
         h = factors[0][0]
-        text = whole.polynomial if h == g else flint_str(h, XYZ)  # g printed once when it is primitive
+        text = whole.polynomial if h == g else flint_str(h, XYZ)
         return (Factor(text, 1, whole),), distinct
     reports = []
     for h, e in factors:

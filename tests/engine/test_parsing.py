@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import io
 import random
+import re
 import time
 import tokenize
 from fractions import Fraction
@@ -11,6 +12,7 @@ from pathlib import Path
 
 import pytest
 import sympy
+from flint import fmpq
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from sympy.polys.domains import QQ
@@ -586,6 +588,53 @@ def test_whatever_the_fast_path_reads_the_parser_reads_the_same(text: str) -> No
         except ParseError as exc:
             raise AssertionError(f"the fast path read {text!r}, the parser refused it: {exc}") from None
         assert general == fast, text
+
+
+def _reading_is_consistent(text: str) -> None:
+    """What the fast path says of the texts of what it read is what the printer makes of it."""
+    from sorgui.engine.algebra.rationals import flint_str, primitive
+    from sorgui.engine.parsing import read_rational
+
+    try:
+        reading = read_rational(text)
+    except ParseError:
+        return
+    if reading is None:
+        return
+    g = reading.polynomial
+    if reading.printed is not None:
+        assert reading.printed == flint_str(g), text
+    if reading.primitive is not None:
+        assert reading.primitive == primitive(g), text
+    if reading.primitive_printed is not None:
+        assert reading.primitive_printed == flint_str(primitive(g)), text
+
+
+@settings(max_examples=1500, deadline=None)
+@given(st.text(alphabet="xyz0123456789+-*/^ .eE=", min_size=1, max_size=25))
+def test_the_texts_the_fast_path_keeps_are_the_printed_ones(text: str) -> None:
+    _reading_is_consistent(text)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.dictionaries(_MONOMIALS, _COEFFICIENTS, min_size=1, max_size=12), st.randoms(use_true_random=False))
+def test_a_printed_polynomial_is_read_back_with_its_print(terms, rng: random.Random) -> None:
+    """sorgui's own print read back keeps its text (the reader builds it from the digits as
+    written); the same terms shuffled, or a fraction not in lowest terms, are printed afresh."""
+    from sorgui.engine.algebra.rationals import context, flint_str
+    from sorgui.engine.parsing import read_rational
+
+    g = context(("x", "y", "z")).from_dict({m: fmpq(c.numerator, c.denominator) for m, c in terms.items()})
+    if g.is_constant():
+        return
+    text = flint_str(g)
+    reading = read_rational(text)
+    assert reading is not None and reading.printed == text
+    _reading_is_consistent(text)
+    shuffled = text.replace(" - ", " + -").split(" + ")
+    rng.shuffle(shuffled)
+    _reading_is_consistent(" + ".join(shuffled))
+    _reading_is_consistent(re.sub(r"(\d+)/(\d+)", r"\g<1>0/\g<2>0", text, count=1))
 
 
 def _decimal(c: Fraction) -> str | None:
