@@ -11,6 +11,7 @@ running a batch writes the same text.
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import dataclass
 from typing import Any
 
@@ -46,12 +47,55 @@ def answer_of(line: Line, message: FinalMessage) -> Answer:
     match message:
         case Finished(analysis):
             data = {"line": line.number, "line_hash": line.digest, **report_json(analysis)}
-            return Answer(json.dumps(data), ANALYSED, kind_of(data))
+            return Answer(json_line(data), ANALYSED, kind_of(data))
         case Invalid(text_of, position):
             return error_answer(line, text_of, NOT_A_POLYNOMIAL, position)
         case Failed(reason):
             return error_answer(line, reason, FAILED)
     return error_answer(line, "the analysis was cancelled", FAILED)
+
+
+LONG_TEXT = 2048
+"""Characters from which :func:`json_line` encodes a text once, however often it occurs."""
+
+
+def json_line(data: dict[str, Any]) -> str:
+    """``json.dumps(data)``, each long text encoded once: a report holds the equation up to five
+    times (the input, the polynomial, its factor and that factor's recognition, the square-free
+    part), 150 kB each at degree 20, and encoding dominates the time of the whole object. The
+    long texts are set aside (one token each), the rest encoded, and each token replaced by its
+    text encoded once; were a token written elsewhere than where it was set (it never is), the
+    object is encoded whole instead."""
+    tokens: dict[str, str] = {}
+    uses: dict[str, int] = {}
+
+    def set_aside(value: Any) -> Any:  # noqa: ANN401 - any JSON value
+        if isinstance(value, str):
+            if len(value) < LONG_TEXT:
+                return value
+            token = tokens.get(value)
+            if token is None:
+                token = tokens[value] = f"\0sorgui-text-{len(tokens)}\0"
+            uses[token] = uses.get(token, 0) + 1
+            return token
+        if isinstance(value, dict):
+            return {k: set_aside(v) for k, v in value.items()}
+        if isinstance(value, list):
+            return [set_aside(v) for v in value]
+        return value
+
+    skeleton = json.dumps(set_aside(data))
+    encoded = [json.dumps(text) for text in tokens]
+    pieces = _TOKEN.split(skeleton)  # text, token number, text, …: the skeleton is small
+    numbers = pieces[1::2]
+    if any(numbers.count(str(i)) != uses[token] for i, token in enumerate(tokens.values())):
+        return json.dumps(data)
+    pieces[1::2] = [encoded[int(n)] for n in numbers]
+    return "".join(pieces)
+
+
+_TOKEN = re.compile(r'"\\u0000sorgui-text-([0-9]+)\\u0000"')
+"""A token of :func:`json_line` as ``json.dumps`` writes it."""
 
 
 def refused(line: Line) -> Answer:
