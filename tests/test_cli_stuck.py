@@ -169,3 +169,21 @@ def test_the_time_limit_and_the_signals_hold_inside_one_flint_factorization(tmp_
         assert time.monotonic() - sent < 1.0
         assert proc.returncode == (130 if signum == signal.SIGINT else 128 + signum)
         wait_for(lambda children=children: all(dead(pid) for pid in children), 5)
+
+
+def test_each_line_loses_no_line_when_a_worker_is_killed(tmp_path: Path) -> None:
+    """The worker of the slow first line is killed (SIGKILL) while the next line waits behind it in
+    its pipe: the first line says its analysis process died, and the others are analysed by a
+    new worker, once each, in input order."""
+    lines = tmp_path / "lines.txt"
+    lines.write_text(f"{Path(SLOW).read_text(encoding='utf-8').strip()}\nx^2 + 2y^2 - z\n{TORUS}\n", encoding="utf-8")
+    proc = launch([*ANALYZE, "--each-line", "--jobs", "1", "--timeout", "120", "-f", str(lines)])
+    wait_for(lambda: singular_processes(proc.pid), 60)
+    for child in analysis_processes(proc.pid):
+        signal_quietly(child, signal.SIGKILL)
+    out, err = proc.communicate(timeout=120)
+    rows = [json.loads(line) for line in out.splitlines()]
+    assert [row["line"] for row in rows] == [1, 2, 3], err
+    assert "died" in rows[0]["error"]["message"]
+    assert rows[1]["is_sor"] is False and rows[2]["is_sor"] is True
+    assert proc.returncode == 1

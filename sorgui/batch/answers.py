@@ -13,12 +13,12 @@ from __future__ import annotations
 import json
 import re
 from dataclasses import dataclass
-from typing import Any
-
-from sorgui.engine.results import report_json
-from sorgui.session.messages import Failed, FinalMessage, Finished, Invalid
+from typing import TYPE_CHECKING, Any
 
 from .lines import Line
+
+if TYPE_CHECKING:
+    from sorgui.session.messages import FinalMessage
 
 SURFACE_OF_REVOLUTION = "sor"
 NOT_SURFACE_OF_REVOLUTION = "not"
@@ -44,6 +44,9 @@ class Answer:
 
 def answer_of(line: Line, message: FinalMessage) -> Answer:
     """The answer for the final message of a line's analysis."""
+    from sorgui.engine.results import report_json
+    from sorgui.session.messages import Failed, Finished, Invalid
+
     match message:
         case Finished(analysis):
             data = {"line": line.number, "line_hash": line.digest, **report_json(analysis)}

@@ -1,11 +1,14 @@
 """The worker processes of this machine (``--jobs N``): each analyses one line at a time.
 
 Each line is analysed in a worker process (:class:`~sorgui.session.supervised.Supervised`),
-forked after the engine is imported and warmed up (:func:`warm_up`) so that each starts at
-once, under the time limit of one analysis: a worker that does not answer in time is killed
-with its Singular, its line answered with the stages it finished, and the worker replaced; so
-is a worker that dies (killed, out of memory), its line answered with an error object. Every
-worker dies with sorgui.
+started as soon as the batch begins: it imports and warms up the engine itself (:func:`warm_up`)
+while this process reads the input, and this process never loads the engine. Each line is under
+the time limit of one analysis: a worker that does not answer in time is killed with its
+Singular, its line answered with the stages it finished, and the worker replaced; so is a worker
+that dies (killed, out of memory), its line answered with an error object. A worker has the next
+line waiting in its pipe while it works, so that it never waits for this process between lines;
+a line waiting behind one whose worker is ended goes to another worker. Every worker dies with
+sorgui.
 """
 
 from __future__ import annotations
@@ -13,15 +16,13 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable
-from multiprocessing.connection import wait
 from typing import TYPE_CHECKING
-
-from sorgui.session.messages import FinalMessage
 
 from .answers import FAILED, Answer, error_answer
 from .lines import Line
 
 if TYPE_CHECKING:
+    from sorgui.session.messages import FinalMessage
     from sorgui.session.supervised import AnalysisRequest, Supervised
 
 WARM_UP = (
@@ -38,16 +39,16 @@ WORKER_MEMORY = 400 * 2**20
 """Bytes of memory counted for each worker process (an analysis of degree 20 with Singular)."""
 
 LINES_PER_WORKER = 2000
-"""A worker is replaced by a new one (forked from the warmed-up parent, in milliseconds) after
+"""A worker is replaced by a new one (which warms up in about 50 ms, a few microseconds a line) after
 this many lines, so that the memory a long batch leaves behind in it stays bounded: python-flint
 0.9 leaks about 110 bytes at each ``str`` of a polynomial, and a batch prints several per line."""
 
 
 def warm_up() -> None:
-    """Analyse :data:`WARM_UP` a few times (recognition only, without sympy, about 12 ms): the
+    """Analyse :data:`WARM_UP` a few times (recognition only, without sympy, about 8 ms): the
     modules an analysis loads when it first needs them are then loaded, and Python has
     specialised the bytecode of the recognition (the first analyses of a process otherwise run
-    about 1.5 times slower), once for every worker forked after it instead of in each."""
+    about 1.5 times slower). Each worker does it when it starts (and a Dask worker's process)."""
     from sorgui.engine import analyze
 
     for _ in range(WARM_UP_RUNS):
@@ -70,58 +71,120 @@ def worker_count(requested: int) -> tuple[int, str]:
 
 
 class Pool:
-    """``workers`` analysis processes, each given one line at a time (a :class:`.run.Runner`)."""
+    """``workers`` analysis processes (a :class:`.run.Runner`), each working on one line with a
+    second one waiting behind it in its pipe (:meth:`Supervised.queue`): a worker goes from one
+    line to the next without waiting for this process to read its answer and send the next
+    line. A line queued on a worker that is ended (its line's time limit, its death) is given
+    to another one."""
 
     def __init__(self, workers: int, request: Callable[[str], AnalysisRequest]) -> None:
+        import gc
         import multiprocessing
 
-        warm_up()  # once, before the forks, for every worker
-
-        self.capacity = workers
+        self.capacity = 2 * workers
         self.context = multiprocessing.get_context("fork")
         self.request = request
         self.idle: list[Supervised] = []
-        self.running: dict[int, Supervised] = {}  # by the index of the line
+        self.running: dict[int, Supervised] = {}  # by the index of the line, current or queued
+        self.order: dict[int, list[int]] = {}  # each working worker's lines, by id: current, then queued
+        self.queued: dict[int, Line] = {}  # the lines queued on a worker, to start again if it is ended
         self.served: dict[int, int] = {}  # lines given to each worker, by id
+        gc.freeze()  # what is loaded now is shared with the workers: no collection of theirs copies its pages
+        for _ in range(workers):
+            try:
+                self.idle.append(self._worker())
+            except OSError:
+                break  # start() says so, on the line that cannot be started
+        # While the workers get ready, what this process needs to read their answers.
+        import sorgui.engine.results  # noqa: F401
+        import sorgui.session.messages  # noqa: F401
+
+    def _worker(self) -> Supervised:
+        """A new worker process: it imports and warms up the engine itself (:func:`warm_up`),
+        while this process goes on (it never loads the engine)."""
+        from sorgui.session.supervised import Supervised
+
+        return Supervised(self.context, warm_up)
 
     def busy(self) -> int:
         return len(self.running)
 
     def start(self, index: int, line: Line) -> Answer | None:
-        """Give ``line`` to a worker; the line's error object when no worker can be started (a
-        limit on processes, ``ulimit -u``)."""
-        from sorgui.session.supervised import Supervised
-
+        """Give ``line`` to an idle worker, else queue it behind the line of a working one, else
+        start a worker for it; the line's error object when no worker can be started (a limit on
+        processes, ``ulimit -u``)."""
+        behind = None if self.idle else self._free_queue()
+        if behind is not None:
+            behind.queue(self.request(line.equation))
+            self.queued[index] = line
+            self._assign(index, behind)
+            return None
         try:
-            worker = self.idle.pop() if self.idle else Supervised(self.context)
+            worker = self.idle.pop() if self.idle else self._worker()
         except OSError as exc:
             return error_answer(line, f"the analysis process could not be started: {exc.strerror or exc}", FAILED)
         worker.give(self.request(line.equation))
-        self.running[index] = worker
-        self.served[id(worker)] = self.served.get(id(worker), 0) + 1
+        self._assign(index, worker)
         return None
 
-    def answers(self) -> list[tuple[int, FinalMessage]]:
+    def _free_queue(self) -> Supervised | None:
+        """A working worker with no line queued, that may take one more line."""
+        for worker in {id(w): w for w in self.running.values()}.values():
+            if worker.queued is None and self.served[id(worker)] < LINES_PER_WORKER:
+                return worker
+        return None
+
+    def _assign(self, index: int, worker: Supervised) -> None:
+        self.running[index] = worker
+        self.order.setdefault(id(worker), []).append(index)
+        self.served[id(worker)] = self.served.get(id(worker), 0) + 1
+
+    def answers(self) -> list[tuple[int, Answer | FinalMessage]]:
         """The final messages that came (waiting for one, or for the nearest deadline, at most
         1 s); :mod:`.run` makes them the lines' answers."""
+        from multiprocessing.connection import wait
+
+        working = list({id(w): w for w in self.running.values()}.values())
         now = time.monotonic()
-        nearest = min(worker.deadline for worker in self.running.values())
-        wait([worker.child.conn for worker in self.running.values()], timeout=min(max(nearest - now, 0.0), 1.0))
-        found = []
-        for index, worker in list(self.running.items()):
-            message = worker.collect()
-            if message is None:
-                continue
-            del self.running[index]
-            found.append((index, message))
+        nearest = min(worker.deadline for worker in working)
+        if not any(worker.backlog for worker in working):
+            wait([worker.child.conn for worker in working], timeout=min(max(nearest - now, 0.0), 1.0))
+        found: list[tuple[int, Answer | FinalMessage]] = []
+        for worker in working:
+            lines = self.order[id(worker)]
+            while lines:
+                message = worker.collect()
+                if message is None:
+                    break
+                index = lines.pop(0)
+                del self.running[index]
+                self.queued.pop(index, None)
+                found.append((index, message))
+                if worker.child.ended or not worker.child.is_alive():
+                    break
             if worker.child.ended or not worker.child.is_alive() or self.served[id(worker)] >= LINES_PER_WORKER:
-                del self.served[id(worker)]
-                worker.close()  # killed at its deadline, died, or done its share: a new one takes the next line
-            else:
+                if not lines:
+                    self._retire(worker)
+                elif worker.child.ended or not worker.child.is_alive():
+                    self._retire(worker)  # killed at its deadline, or died: its queued line goes to another
+                    for index in lines:
+                        del self.running[index]
+                        refused = self.start(index, self.queued.pop(index))
+                        if refused is not None:
+                            found.append((index, refused))
+            elif not lines:
+                del self.order[id(worker)]
                 self.idle.append(worker)
         return found
 
+    def _retire(self, worker: Supervised) -> None:
+        """End ``worker`` (killed at its deadline, died, or done its share): a new one takes the
+        next line."""
+        self.order.pop(id(worker), None)
+        self.served.pop(id(worker), None)
+        worker.close()
+
     def close(self) -> None:
-        for worker in [*self.idle, *self.running.values()]:
+        for worker in [*self.idle, *{id(w): w for w in self.running.values()}.values()]:
             worker.close()
-        self.idle, self.running = [], {}
+        self.idle, self.running, self.order, self.queued = [], {}, {}, {}

@@ -18,9 +18,7 @@ import stat
 import sys
 from collections.abc import Callable, Generator, Iterable, Iterator, Sequence
 from pathlib import Path
-from typing import BinaryIO, Protocol
-
-from sorgui.session.messages import FinalMessage
+from typing import TYPE_CHECKING, BinaryIO, Protocol
 
 from .answers import FAILED, NOT_A_POLYNOMIAL, Answer, answer_of, refused
 from .errors import BatchError
@@ -57,9 +55,12 @@ class Runner(Protocol):
         ...
 
 
-Reply = Answer | FinalMessage
-"""What a runner gives back for a line: its answer, or the final message of its analysis, made
-into the answer only after the next lines are started (the worker computes meanwhile)."""
+if TYPE_CHECKING:
+    from sorgui.session.messages import FinalMessage
+
+    Reply = Answer | FinalMessage
+    """What a runner gives back for a line: its answer, or the final message of its analysis, made
+    into the answer only after the next lines are started (the worker computes meanwhile)."""
 
 
 def in_order(lines: Iterable[Line], runner: Runner, window: int = WINDOW) -> Generator[tuple[Line, Answer], None, None]:

@@ -69,7 +69,8 @@ class AnalysisRequest:
     deadline: float | None = None
     """The ``time.monotonic()`` by which the engine is to have answered (the clock is the
     machine's, the same in the child), set by :meth:`Supervised.give`; ``None``: ``timeout``
-    seconds from when the child starts on the request."""
+    seconds less :data:`ANSWER_MARGIN` from when the child starts on the request (a request
+    queued behind another, :meth:`Supervised.queue`)."""
 
     def options(self) -> dict[str, Any]:
         """The keywords of :func:`sorgui.engine.analyze`, the time limit being what is left of
@@ -77,6 +78,8 @@ class AnalysisRequest:
         left = self.timeout
         if self.deadline is not None:
             left = max(self.deadline - time.monotonic(), 0.001)
+        elif left is not None:
+            left = max(left - ANSWER_MARGIN, 0.001)
         return {
             "method": self.method,
             "recognition_only": self.recognition_only,
@@ -139,10 +142,13 @@ class StageLog:
         )
 
 
-def analysis_child(conn: Connection) -> None:
-    """The analysis process: answer every :class:`AnalysisRequest` that arrives, streaming what
-    is known, until the pipe closes."""
+def analysis_child(conn: Connection, prepare: Callable[[], None] | None = None) -> None:
+    """The analysis process: run ``prepare`` (a batch's worker imports and warms up the engine
+    itself, while its parent goes on), then answer every :class:`AnalysisRequest` that arrives,
+    streaming what is known, until the pipe closes."""
     become_child()
+    if prepare is not None:
+        prepare()
 
     def send(message: Message) -> None:
         conn.send(message)
@@ -159,17 +165,32 @@ def analysis_child(conn: Connection) -> None:
 
 
 def run_request(request: AnalysisRequest, send: Callable[[Message], None]) -> FinalMessage:
-    """Analyse ``request``, sending every intermediate message; return the final one."""
+    """Analyse ``request``, sending every intermediate message; return the final one.
+
+    The analysis known so far goes out with the next message, not at once: the engine publishes
+    it just before a stage starts (which sends that message) or just before the end, where the
+    final message holds it anyway; a line of a batch then costs one message, not two copies of
+    its analysis (several hundred kB at degree 20)."""
     from sorgui.engine import ParseError, SorguiError, analyze
+
+    known: list[AnalysisKnown] = []
+
+    def now(message: Message) -> None:
+        if known:
+            send(known.pop())
+        send(message)
+
+    def later(analysis: Analysis) -> None:
+        known[:] = [AnalysisKnown(analysis)]
 
     try:
         analysis = analyze(
             request.text,
             **request.options(),
-            progress=lambda stage: send(StageStarted(stage)),
-            partial=lambda known: send(AnalysisKnown(known)),
-            stage_done=lambda stage, seconds: send(StageDone(stage, seconds)),
-            parsed=lambda start: send(Parsed(start)),
+            progress=lambda stage: now(StageStarted(stage)),
+            partial=later,
+            stage_done=lambda stage, seconds: now(StageDone(stage, seconds)),
+            parsed=lambda start: now(Parsed(start)),
         )
         return Finished(analysis)
     except ParseError as exc:
@@ -184,14 +205,18 @@ def run_request(request: AnalysisRequest, send: Callable[[Message], None]) -> Fi
 
 
 class Supervised:
-    """One :class:`ChildProcess` running :func:`analysis_child`, given one request at a time,
-    with the deadline of the request it is working on."""
+    """One :class:`ChildProcess` running :func:`analysis_child` (after ``prepare``, in the child),
+    given one request at a time, with the deadline of the request it is working on; a second
+    request may wait behind it in the pipe (:meth:`queue`), so that the child starts it without
+    waiting for this process to read the first answer and send it."""
 
-    def __init__(self, context: Any) -> None:  # noqa: ANN401 (a multiprocessing context)
-        self.child = ChildProcess(context, analysis_child)
+    def __init__(self, context: Any, prepare: Callable[[], None] | None = None) -> None:  # noqa: ANN401 (a multiprocessing context)
+        self.child = ChildProcess(context, analysis_child, (prepare,))
         self.request: AnalysisRequest | None = None
         self.log: StageLog | None = None
         self.deadline = float("inf")
+        self.queued: AnalysisRequest | None = None
+        self.backlog: list[Message] = []  # read from the pipe after the current request's final message
 
     def give(self, request: AnalysisRequest, started: float | None = None) -> None:
         """Send ``request``; its time limit counts from ``started`` (``time.monotonic()``, by
@@ -202,24 +227,48 @@ class Supervised:
         if limit is not None:
             begun = time.monotonic() if started is None else started
             request = replace(request, deadline=begun + limit - ANSWER_MARGIN)
+        self._begin(request)
+        self.child.send(request)
+
+    def queue(self, request: AnalysisRequest) -> None:
+        """Send ``request`` to follow the current one: the child starts it once it has answered
+        that one, and its time limit counts from then (in the child, and here from when that
+        answer is read)."""
+        assert self.request is not None and self.queued is None
+        self.queued = replace(request, deadline=None)
+        self.child.send(self.queued)
+
+    def _begin(self, request: AnalysisRequest) -> None:
         self.request = request
         self.log = StageLog(request.recognition_only)
-        self.deadline = float("inf") if request.deadline is None else request.deadline + GRACE
-        self.child.send(request)
+        if request.deadline is not None:
+            self.deadline = request.deadline + GRACE
+        elif request.timeout is not None:
+            self.deadline = time.monotonic() + request.timeout - ANSWER_MARGIN + GRACE
+        else:
+            self.deadline = float("inf")
 
     def collect(self, timeout: float = 0.0) -> FinalMessage | None:
         """The final message of the current request if it has come (waiting at most ``timeout``
-        seconds for the first message); the process's death or the deadline make one."""
+        seconds for the first message); the process's death or the deadline make one. After it,
+        a queued request is the current one."""
         assert self.log is not None
-        first = self.child.receive(min(timeout, max(self.deadline - time.monotonic(), 0.0)))
-        for message in ([first] if first is not None else []) + self.child.messages():
+        backlog, self.backlog = self.backlog, []
+        first = None if backlog else self.child.receive(min(timeout, max(self.deadline - time.monotonic(), 0.0)))
+        messages = backlog + ([first] if first is not None else []) + self.child.messages()
+        for i, message in enumerate(messages):
             if isinstance(message, Hangup):
                 self.child.ended = True
                 return Failed(
                     f"the analysis process died ({self.child.exit_description()}); it may have run out of memory"
                 )
             if self.log.take(message):
-                return self.log.final
+                final = self.log.final
+                if self.queued is not None:
+                    self._begin(self.queued)
+                    self.queued = None
+                self.backlog = messages[i + 1 :]
+                return final
         if time.monotonic() >= self.deadline:
             self.child.kill()
             assert self.request is not None and self.request.timeout is not None
