@@ -21,7 +21,7 @@ from typing import Any
 
 from benchmarks.recognition import surface
 from benchmarks.report import run
-from sorgui.engine import parsing
+from sorgui.engine import parsing, syntax
 from sorgui.engine.algebra import rationals
 from sorgui.engine.algebra.polys import poly_str
 
@@ -62,9 +62,9 @@ def best(read: Callable[[], Any], repeats: int) -> tuple[float, Any]:
 
 def general(text: str) -> Any:  # noqa: ANN401 - a flint polynomial
     """The general parser alone, its cache of the last syntax tree emptied first."""
-    parsing._tree.cache_clear()
-    tree, evaluator, saw_variable = parsing._checked(text)
-    return parsing._evaluate(text, evaluator, tree, parsing._FlintRationals(), saw_variable)
+    syntax.parsed_tree.cache_clear()
+    tree, evaluator, saw_variable = syntax.checked(text)
+    return syntax.evaluate(text, evaluator, tree, syntax.FlintRationals(), saw_variable)
 
 
 def previous(text: str) -> Any:  # noqa: ANN401 - a flint polynomial, or None where it did not read the text

@@ -3,7 +3,10 @@
 Entry point: :func:`analyze` turns pasted text into an immutable :class:`Analysis`. Laid out as
 sympy's ``polys``: a core of one module per idea, and subpackages, one idea each.
 
-The core: ``parsing`` (the safe parser of pasted text), ``expressions`` (reading Singular's
+The core: ``parsing`` (reading pasted text: its entry points), ``expanded`` (the fast path for
+expanded polynomials), ``syntax`` (the general parser: tokens, syntax tree, evaluation),
+``limits`` (what both readers accept), ``parametric_parsing`` (a parametrization's text),
+``expressions`` (reading Singular's
 answers and the engine's own strings), ``values`` (the engine's strings decoded once, as sympy
 objects, floats and float terms), ``results`` (the result objects and their JSON),
 ``vocabulary`` (the words for kinds of surface), ``errors`` (the one exception hierarchy),

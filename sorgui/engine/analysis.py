@@ -27,8 +27,7 @@ from typing import TYPE_CHECKING, Any
 
 from .algebra.linalg import Vector
 from .errors import ParseError, TimeLimitReached
-from .parametric_parsing import is_parametrization, parse_parametrization
-from .parsing import parse_polynomial
+from .parsing import has_decimals, is_parametrization, parse_polynomial
 from .recognition.symmetry import NEAREST_CANAL_NOTE, revolution_canal
 from .results import (
     Analysis,
@@ -38,7 +37,6 @@ from .results import (
     Parametrization,
     Rationality,
 )
-from .rounded.precision import has_decimals
 from .stages import DoneCallback, PartialCallback, ProgressCallback, StageClock
 from .timelimit import skeleton, time_limit, unfinished_analysis
 
@@ -90,6 +88,7 @@ def analyze(
     start = time.monotonic()
     if is_parametrization(text):  # x = X(s, t), y = …, z = …: docs/math.md §13
         from .parametric.pipeline import analyze_parametrization
+        from .parametric_parsing import parse_parametrization
 
         with clock.stage("engine"):
             load_engine()

@@ -9,7 +9,7 @@ monomial's exponents are looked up (:func:`_exponents`, cached across calls: a l
 equations share their monomials). Decimals are exact (``0.25`` is ``1/4``), as in the parser.
 
 Anything else (parentheses, roots, powers of numbers, LaTeX, two signs in a row, a limit of the
-parser's reached) is declined with ``None``, and the general parser (:mod:`.parsing`) reads it
+parser's reached) is declined with ``None``, and the general parser (:mod:`.syntax`) reads it
 and reports on it exactly; whatever this path accepts, the general parser reads as the same
 polynomial (a property test compares them), so it changes the speed and nothing else.
 """
@@ -23,6 +23,7 @@ from typing import Any, cast
 from flint import fmpq, fmpq_mpoly
 
 from .algebra import rationals
+from .limits import FUNCTION_NAME, Limits
 
 Monomial = tuple[int, ...]
 
@@ -41,25 +42,12 @@ never read in two ways, and a text is split in half the time)."""
 _FACTOR = re.compile(r"([xyz])(?:\s*(?:\*\*|\^)\s*([0-9]+))?")
 _INDEX = {"x": 0, "y": 1, "z": 2}
 _CONSTANT: Monomial = (0, 0, 0)
-_FUNCTION_NAME = re.compile(r"\s*[A-Za-z]\w*\s*\(\s*x\s*,\s*y\s*,\s*z\s*\)\s*:?=", re.ASCII)
 _MONOMIALS: dict[str, Monomial | None] = {}
 _MONOMIALS_KEPT = 20_000
 """Monomial texts whose exponents are kept between calls."""
 _SPARE_BITS = 256
 """Bits by which the common denominator of the terms may exceed twice the largest one before
 the terms are read one rational each (:meth:`_Terms.polynomial`)."""
-
-
-class Limits:
-    """The parser's limits that an expanded polynomial can reach (see :mod:`.parsing`)."""
-
-    __slots__ = ("bits", "decimal_exponent", "degree", "digits")
-
-    def __init__(self, degree: int, digits: int, bits: int, decimal_exponent: int) -> None:
-        self.degree = degree
-        self.digits = digits
-        self.bits = bits
-        self.decimal_exponent = decimal_exponent
 
 
 class Reading:
@@ -92,7 +80,7 @@ def read_expanded(text: str, limits: Limits) -> Reading | None:
     """``text`` as a non-constant polynomial of ``QQ[x, y, z]``, or ``None`` when it is not an
     expanded polynomial within ``limits`` (or is constant): the general parser decides then.
     ``lhs = rhs`` is ``lhs - rhs``, and a leading ``f(x, y, z) =`` is skipped, as in the parser."""
-    prefix = _FUNCTION_NAME.match(text)
+    prefix = FUNCTION_NAME.match(text)
     body = text[prefix.end() :] if prefix else text
     terms = _Terms()
     if "=" in body:

@@ -30,9 +30,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from . import parsing
+from . import parsing, syntax
 from .errors import ParseError
-from .parsing import MAX_DEGREE, MAX_LENGTH, MAX_WORK, Neg, Node, Num, Power, Product, Reciprocal, Sqrt, Sum, Var
+from .limits import MAX_DEGREE, MAX_LENGTH, MAX_WORK
+from .parsing import is_parametrization
+from .syntax import Neg, Node, Num, Power, Product, Reciprocal, Sqrt, Sum, Var
 
 if TYPE_CHECKING:
     from sympy.polys.domains.domain import Domain
@@ -48,9 +50,7 @@ TRANSCENDENTAL = frozenset(
 
 _RIGHT = re.compile(r"\\right\s*$")
 """LaTeX's ``\\right`` of the closing parenthesis of a triple, left at the end of its last component."""
-_SEPARATOR = re.compile(r"(?<!\\)[,;]")
 _LABEL = re.compile(r"\s*([xyz])\s*(?:\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\))?\s*:?=(?!=)")
-_LABEL_LINE = re.compile(r"(?m)^\s*[xyz]\s*(?:\([^()\n]*\))?\s*:?=")
 _PREFIX = re.compile(
     r"\s*(?:(?![xyz]\s*\()[A-Za-z]\w*\s*\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\)|\(\s*x\s*,\s*y\s*,\s*z\s*\))\s*:?=(?!=)",
     re.ASCII,
@@ -70,19 +70,6 @@ class ParsedParametrization:
     radicands: tuple[int, ...]
 
 
-def is_parametrization(text: str) -> bool:
-    """Whether ``text`` has the form of a parametrization (not whether it is a valid one): a
-    ``,`` or ``;`` outside a leading ``f(x, y, z) =`` (an equation has none), or two lines that
-    start with ``x =``, ``y =`` or ``z =``. Cheap: no tokenizing, no sympy."""
-    if len(text) > MAX_LENGTH:
-        return False
-    prefix = parsing._FUNCTION_NAME.match(text)
-    body = text[prefix.end() :] if prefix else text
-    if ("," in body or ";" in body) and _SEPARATOR.search(body):  # `in` first: a long equation has neither
-        return True
-    return "\n" in text and len(_LABEL_LINE.findall(text, 0, 10_000)) >= 2
-
-
 def parse_input(text: str) -> parsing.ParsedPolynomial | ParsedParametrization:
     """An equation or a parametrization, whichever ``text`` is (:func:`is_parametrization`)."""
     return parse_parametrization(text) if is_parametrization(text) else parsing.parse_polynomial(text)
@@ -99,12 +86,12 @@ def parse_parametrization(text: str) -> ParsedParametrization:
     spans, named = _layout(text)
     parameters = named or _discover(text, spans)
     _check_names(text, spans, parameters)
-    checker = parsing._Evaluator()
+    checker = syntax.Evaluator()
     trees = [_tree(text, span, parameters, checker) for span in spans]
     radicands = tuple(sorted(checker.radicands))
     field = number_field(radicands)
     ring = ParameterRing(field)
-    reader = _Fractions(ring, checker, parsing._square_roots(field, radicands) if radicands else {})
+    reader = _Fractions(ring, checker, syntax.square_roots(field, radicands) if radicands else {})
     fractions = []
     for name, span, tree in zip(COORDINATES, spans, trees):
         try:
@@ -197,7 +184,7 @@ def _structure(text: str, start: int) -> tuple[tuple[list[int], list[int]], tupl
     opened: list[int] = []
     first = last = -1
     after_separator = False
-    for match in parsing._TOKEN.finditer(text, start):
+    for match in syntax.TOKEN.finditer(text, start):
         kind, word, position = match.lastgroup, match.group(), match.start()
         if kind == "space":
             if "\n" in word and depth == 0 and not after_separator and _LABEL.match(text, match.end()):
@@ -241,7 +228,7 @@ def _nonempty(text: str, start: int, end: int, name: str) -> tuple[int, int]:
 def _names(text: str, span: tuple[int, int]) -> list[tuple[str, int]]:
     """The names written in a component (``sqrt`` and LaTeX commands aside), with positions."""
     out = []
-    for match in parsing._TOKEN.finditer(text, *span):
+    for match in syntax.TOKEN.finditer(text, *span):
         if match.lastgroup == "name" and match.group() != "sqrt":
             out.append((match.group(), match.start()))
     return out
@@ -323,14 +310,14 @@ def _check_names(text: str, spans: Sequence[tuple[int, int]], parameters: tuple[
 # --- reading and evaluating one component --------------------------------------------------------
 
 
-def _tree(text: str, span: tuple[int, int], parameters: tuple[str, str], checker: parsing._Evaluator) -> Node:
+def _tree(text: str, span: tuple[int, int], parameters: tuple[str, str], checker: syntax.Evaluator) -> Node:
     """The syntax tree of one component, checked by the equation parser's first pass."""
-    for match in parsing._TOKEN.finditer(text, *span):
+    for match in syntax.TOKEN.finditer(text, *span):
         if match.lastgroup == "op" and match.group() == "=":
             raise ParseError("a component cannot hold '='", match.start(), match.end())
-    tokens = parsing._tokens(text, span, parameters)
+    tokens = syntax.token_stream(text, span, parameters)
     try:
-        tree = parsing._Parser(text, tokens).equation()
+        tree = syntax.Parser(text, tokens).equation()
     except RecursionError:
         raise ParseError("the expression is nested too deeply", *span) from None
     try:
@@ -345,7 +332,7 @@ class _Fractions:
     coefficient 1; the degrees of ``N`` and ``D`` stay within :data:`MAX_DEGREE` and the work
     within :data:`MAX_WORK` coefficient products."""
 
-    def __init__(self, ring: ParameterRing, checked: parsing._Evaluator, roots: dict[int, Any]) -> None:
+    def __init__(self, ring: ParameterRing, checked: syntax.Evaluator, roots: dict[int, Any]) -> None:
         self.ring = ring
         self.checked = checked
         self.roots = roots

@@ -39,10 +39,9 @@ from .algebra.rationals import (
     terms_str,
     times_text,
 )
-from .canal.lines import verdict_without_smat
 from .errors import AnalysisError
 from .expanded import Reading
-from .parsing import read_rational
+from .parsing import has_decimals, read_rational
 from .recognition.symmetry import (
     CYLINDER,
     REVOLUTION,
@@ -51,8 +50,7 @@ from .recognition.symmetry import (
     rational_symmetry,
     revolution_canal,
 )
-from .results import Analysis, Axis, Conical, Factor, Profile, Recognition, Triple
-from .rounded.precision import has_decimals
+from .results import Analysis, Axis, Canal, Conical, Factor, Profile, Recognition, Triple
 
 if TYPE_CHECKING:
     from .stages import StageClock
@@ -119,7 +117,12 @@ def _analysis(text: str, clock: StageClock, *, full: bool) -> Analysis | None:
                 return None
             conical = Conical("none")
     with clock.stage("canal"):
-        canal = revolution_canal(recognized.degree) if recognized.is_sor else verdict_without_smat(g, clock.cancel)
+        if recognized.is_sor:
+            canal: Canal | None = revolution_canal(recognized.degree)
+        else:
+            from .canal.lines import verdict_without_smat  # a surface of revolution's answer needs no line
+
+            canal = verdict_without_smat(g, clock.cancel)
     if canal is None:
         return None
     clock.check()

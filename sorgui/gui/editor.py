@@ -27,8 +27,8 @@ from PySide6.QtGui import (
 from PySide6.QtWidgets import QLabel, QPlainTextEdit, QTextEdit, QVBoxLayout, QWidget
 
 from sorgui.engine.errors import ParseError
-from sorgui.engine.parametric_parsing import ParsedParametrization, is_parametrization, parse_input
-from sorgui.engine.parsing import parse_rational
+from sorgui.engine.parametric_parsing import ParsedParametrization, parse_input
+from sorgui.engine.parsing import is_parametrization, parse_rational
 
 VALIDATION_DELAY_MS = 250
 """Debounce of the live validation: the parser runs this long after the last keystroke."""

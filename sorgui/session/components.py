@@ -12,8 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from sorgui.engine import SorguiError, analyze
-from sorgui.engine.parsing import Neg, Node, Num, Power, Product, Sum, Var, syntax_tree
 from sorgui.engine.results import Recognition
+from sorgui.engine.syntax import Neg, Node, Num, Power, Product, Sum, Var, syntax_tree
 
 MAX_COMPONENTS = 4
 """More typed factors than this are not a blend one explains factor by factor."""

@@ -238,7 +238,7 @@ def decimals(values: Sequence[str]) -> tuple[float, ...] | None:
 def formula_mode(analysis: Analysis) -> Mode:
     """How an analysis' numbers are shown: in decimals for rounded input (its coefficients are
     decimals as typed), exact otherwise."""
-    from sorgui.engine.rounded.precision import has_decimals
+    from sorgui.engine.parsing import has_decimals
 
     return "decimal" if analysis.approximate is not None or has_decimals(analysis.input) else "exact"
 

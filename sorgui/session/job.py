@@ -159,7 +159,7 @@ class _Presenter:
 
     def _awaits_rounding(self, analysis: Analysis) -> bool:
         """Whether ``analysis`` is rounded input's exact verdict, its rounding still to come."""
-        from sorgui.engine.rounded.precision import has_decimals
+        from sorgui.engine.parsing import has_decimals
 
         request = self.request
         rounded = request.tolerance is not None or has_decimals(request.text)

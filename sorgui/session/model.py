@@ -223,8 +223,7 @@ def result_unfinished(message: Finished) -> bool:
 def planned_stages(request: JobRequest) -> tuple[str, ...]:
     """The stages a run of ``request`` may need: the rounded-input ones only for decimals or a
     given tolerance, the analysis' stages only when it is computed (not for a saved report)."""
-    from sorgui.engine.parametric_parsing import is_parametrization
-    from sorgui.engine.rounded.precision import has_decimals
+    from sorgui.engine.parsing import has_decimals, is_parametrization
 
     rounded = request.tolerance is not None or has_decimals(request.text)
     parametric = is_parametrization(request.text)

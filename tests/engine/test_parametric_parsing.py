@@ -7,8 +7,8 @@ import pytest
 from flint import fmpq
 
 from sorgui.engine.errors import ParseError
-from sorgui.engine.parametric_parsing import is_parametrization, parse_input, parse_parametrization
-from sorgui.engine.parsing import ParsedPolynomial, parse_polynomial
+from sorgui.engine.parametric_parsing import parse_input, parse_parametrization
+from sorgui.engine.parsing import ParsedPolynomial, is_parametrization, parse_polynomial
 
 CONE = "x = (1-t^2)/(1+t^2)*(2+s), y = 2*t/(1+t^2)*(2+s), z = s^2"
 """The issue's example (a surface of revolution about the z-axis)."""

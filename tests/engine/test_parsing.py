@@ -309,10 +309,14 @@ def test_errors_point_at_the_offending_characters(text, position, end, message) 
 
 
 def test_the_parser_never_evaluates_text() -> None:
-    """No eval, exec, sympify or parse_expr appears in the parser's code (as names)."""
-    source = Path(parsing.__file__).read_text(encoding="utf-8")
-    names = {tok.string for tok in tokenize.generate_tokens(io.StringIO(source).readline) if tok.type == tokenize.NAME}
-    assert not names & {"eval", "exec", "sympify", "parse_expr", "__import__"}
+    """No eval, exec, sympify or parse_expr appears in the readers' code (as names)."""
+    from sorgui.engine import expanded, limits, syntax
+
+    for module in (parsing, syntax, expanded, limits):
+        source = Path(module.__file__).read_text(encoding="utf-8")
+        tokens = tokenize.generate_tokens(io.StringIO(source).readline)
+        names = {tok.string for tok in tokens if tok.type == tokenize.NAME}
+        assert not names & {"eval", "exec", "sympify", "parse_expr", "__import__"}, module.__name__
 
 
 def test_unknown_name_message_lists_the_variables() -> None:
@@ -482,10 +486,10 @@ def test_equations_parse_as_lhs_minus_rhs(poly, data) -> None:
 
 
 def _general(text: str):  # noqa: ANN202 - the flint polynomial of the general parser
-    from sorgui.engine.parsing import _checked, _evaluate, _FlintRationals
+    from sorgui.engine.syntax import FlintRationals, checked, evaluate
 
-    tree, evaluator, saw_variable = _checked(text)
-    return _evaluate(text, evaluator, tree, _FlintRationals(), saw_variable)
+    tree, evaluator, saw_variable = checked(text)
+    return evaluate(text, evaluator, tree, FlintRationals(), saw_variable)
 
 
 _MONOMIALS = st.tuples(st.integers(0, 4), st.integers(0, 4), st.integers(0, 4))

@@ -28,6 +28,7 @@ from ..algebra.linalg import Vector
 from ..algebra.polys import Poly, field_name, poly_str, to_str
 from ..conical.detect import Conicity
 from ..errors import AnalysisError, SingularError, SingularTimeout, TimeLimitReached
+from ..parsing import has_decimals
 from ..recognition.recognize import axis_report
 from ..recognition.symmetry import Symmetry
 from ..results import (
@@ -41,7 +42,6 @@ from ..results import (
     Recognition,
     Triple,
 )
-from ..rounded.precision import has_decimals
 from ..stages import PartialCallback, StageClock
 from ..timelimit import UNDECIDED, time_limit, unfinished_analysis
 from .maps import ParameterRing, RationalMap, fraction_text

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 from math import comb
 from typing import TypeAlias
 
-from ..parsing import (
+from ..syntax import (
     Neg,
     Node,
     Num,
@@ -78,20 +78,6 @@ class Rounding:
     def bound(self, monomial: Monomial) -> float:
         """``e_α`` for the monomial ``α``."""
         return self.bounds.get(monomial, self.default)
-
-
-_DECIMAL_MARK = re.compile(r"[0-9]\.|\.[0-9]|[0-9][eE][+-]?[0-9]")
-"""A decimal point or an exponent inside a number literal of the parser's tokenizer (which reads
-``2.``, ``.5`` and ``2e-3`` as numbers and nothing else of a valid equation as a point or an
-``e``); a search, so that the check costs no second parse of a long pasted equation."""
-
-
-def has_decimals(text: str) -> bool:
-    """Whether ``text`` prints a number with a decimal point or an exponent (``1.5``, ``2e-3``).
-    Most equations have no ``.``, ``e`` or ``E`` at all, which ``in`` finds faster than a search."""
-    if "." not in text and "e" not in text and "E" not in text:
-        return False
-    return _DECIMAL_MARK.search(text) is not None
 
 
 def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
