@@ -79,10 +79,8 @@ class Pool:
 
     def __init__(self, workers: int, request: Callable[[str], AnalysisRequest]) -> None:
         import gc
-        import multiprocessing
 
         self.capacity = 2 * workers
-        self.context = multiprocessing.get_context("fork")
         self.request = request
         self.idle: list[Supervised] = []
         self.running: dict[int, Supervised] = {}  # by the index of the line, current or queued
@@ -102,9 +100,10 @@ class Pool:
     def _worker(self) -> Supervised:
         """A new worker process: it imports and warms up the engine itself (:func:`warm_up`),
         while this process goes on (it never loads the engine)."""
+        from sorgui.session.child import FORK
         from sorgui.session.supervised import Supervised
 
-        return Supervised(self.context, warm_up)
+        return Supervised(FORK, warm_up)
 
     def busy(self) -> int:
         return len(self.running)
@@ -142,13 +141,13 @@ class Pool:
     def answers(self) -> list[tuple[int, Answer | FinalMessage]]:
         """The final messages that came (waiting for one, or for the nearest deadline, at most
         1 s); :mod:`.run` makes them the lines' answers."""
-        from multiprocessing.connection import wait
+        from sorgui.session.child import wait_for_any
 
         working = list({id(w): w for w in self.running.values()}.values())
         now = time.monotonic()
         nearest = min(worker.deadline for worker in working)
         if not any(worker.backlog for worker in working):
-            wait([worker.child.conn for worker in working], timeout=min(max(nearest - now, 0.0), 1.0))
+            wait_for_any([worker.child for worker in working], min(max(nearest - now, 0.0), 1.0))
         found: list[tuple[int, Answer | FinalMessage]] = []
         for worker in working:
             lines = self.order[id(worker)]

@@ -14,21 +14,32 @@ each line of ``--each-line`` and for the window alike — and its parent ends it
   descendants (Singular runs in a session of its own) with ``SIGKILL``
   (:func:`kill_process_tree`).
 
-Light to import (the standard library only), so that a process can be started before the
-engine is loaded.
+A child is started by a ``multiprocessing`` context (``spawn`` for the window, whose threads a
+fork would not copy) or by :data:`FORK`: a plain ``os.fork()`` with two pipes, for the command
+line's analysis processes, which need none of ``multiprocessing`` (whose import, 10 ms, was a
+tenth of a whole recognition-only process). Light to import (the standard library only, no
+``multiprocessing``), so that a process can be started before the engine is loaded.
 """
 
 from __future__ import annotations
 
-import multiprocessing
-import multiprocessing.context
 import os
+import pickle
+import select
 import signal
-from collections.abc import Callable
+import sys
+import time
+import traceback
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from sorgui.session.messages import Hangup, Message
+
+if TYPE_CHECKING:
+    import multiprocessing.context
+    import multiprocessing.process
+    from multiprocessing.connection import Connection
 
 ENDING = frozenset({signal.SIGTERM, signal.SIGHUP, signal.SIGINT})
 """Blocked while a child is started, so that it never runs its parent's handlers of them."""
@@ -40,6 +51,8 @@ def quick_context() -> multiprocessing.context.BaseContext:
     thread, else ``spawn``: a fork copies the locks other threads hold (Open CASCADE's, VTK's,
     a BLAS pool's) but not the threads, and the child can wait on them forever; an export child
     forked after Open CASCADE had started its threads never answered."""
+    import multiprocessing
+
     if _threads() == 1:
         return multiprocessing.get_context("fork")
     return multiprocessing.get_context("spawn")
@@ -72,18 +85,36 @@ def become_child(*, niceness: int = 0) -> None:
         os.nice(niceness)
 
 
+class Fork:
+    """The way to start a child by ``os.fork()`` (:data:`FORK`): what :class:`ChildProcess` takes in
+    place of a ``multiprocessing`` context, for a parent with one thread."""
+
+    def __repr__(self) -> str:
+        return "FORK"
+
+
+FORK = Fork()
+
+
 class ChildProcess:
     """A process running ``target(conn, *args)``, its end of a duplex pipe being ``conn``."""
 
     def __init__(
         self,
-        context: multiprocessing.context.ForkContext | multiprocessing.context.SpawnContext,
+        context: Fork | multiprocessing.context.ForkContext | multiprocessing.context.SpawnContext,
         target: Callable[..., None],
         args: tuple[Any, ...] = (),
         name: str = "sorgui-analysis",
     ) -> None:
-        self.conn, child_conn = context.Pipe(duplex=True)
-        self.process = context.Process(target=target, args=(child_conn, *args), name=name, daemon=True)
+        self.conn: _Pipe | Connection[Any, Any]
+        self.process: _ForkedProcess | multiprocessing.process.BaseProcess
+        child_conn: _Pipe | Connection[Any, Any]
+        if isinstance(context, Fork):
+            self.conn, child_conn = _pipe_pair()
+            self.process = _ForkedProcess(target, (child_conn, *args), own=self.conn)
+        else:
+            self.conn, child_conn = context.Pipe(duplex=True)
+            self.process = context.Process(target=target, args=(child_conn, *args), name=name, daemon=True)
         previous = signal.pthread_sigmask(signal.SIG_BLOCK, ENDING)
         try:
             self.process.start()
@@ -148,6 +179,134 @@ class ChildProcess:
         self.process.join(0.05)
         code = self.process.exitcode
         return f"signal {-code}" if code is not None and code < 0 else f"exit status {code}"
+
+
+def wait_for_any(children: Sequence[ChildProcess], timeout: float) -> None:
+    """Wait at most ``timeout`` seconds for a message (or the end) of one of ``children``."""
+    if children:
+        select.select([child.conn.fileno() for child in children], [], [], max(timeout, 0.0))
+    else:
+        time.sleep(max(timeout, 0.0))
+
+
+class _Pipe:
+    """One end of a duplex channel between a parent and a child made by :data:`FORK`: a pipe each
+    way, each message a pickle after its length (8 bytes), as ``multiprocessing``'s connections
+    send them, with the part of their interface that :class:`ChildProcess` uses."""
+
+    def __init__(self, read: int, write: int) -> None:
+        self._read, self._write = read, write
+
+    def fileno(self) -> int:
+        return self._read
+
+    def send(self, obj: object) -> None:
+        data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
+        view = memoryview(len(data).to_bytes(8, "big") + data)
+        while view:
+            view = view[os.write(self._write, view) :]
+
+    def recv(self) -> Any:  # noqa: ANN401 - whatever was sent
+        size = int.from_bytes(self._exactly(8), "big")
+        return pickle.loads(self._exactly(size))
+
+    def _exactly(self, size: int) -> bytes:
+        chunks, left = [], size
+        while left:
+            chunk = os.read(self._read, min(left, 1 << 20))
+            if not chunk:
+                raise EOFError("the other end of the pipe closed")
+            chunks.append(chunk)
+            left -= len(chunk)
+        return b"".join(chunks)
+
+    def poll(self, timeout: float = 0.0) -> bool:
+        """Whether a message (or the end of the channel) is waiting, waiting at most ``timeout`` s."""
+        return bool(select.select([self._read], [], [], max(timeout, 0.0))[0])
+
+    def close(self) -> None:
+        for fd in (self._read, self._write):
+            if fd >= 0:
+                try:
+                    os.close(fd)
+                except OSError:
+                    pass
+        self._read = self._write = -1
+
+
+def _pipe_pair() -> tuple[_Pipe, _Pipe]:
+    """The parent's end and the child's end of a new duplex channel."""
+    down_read, down_write = os.pipe()
+    up_read, up_write = os.pipe()
+    return _Pipe(up_read, down_write), _Pipe(down_read, up_write)
+
+
+class _ForkedProcess:
+    """A child made by ``os.fork()`` running ``target(*args)``, with the part of
+    ``multiprocessing.Process``'s interface that :class:`ChildProcess` uses (``start``,
+    ``is_alive``, ``join``, ``pid``, ``exitcode``: minus the signal for a killed one). The child
+    closes the parent's end of its channel and reads standard input from ``/dev/null``, as
+    ``multiprocessing``'s children do, and leaves with ``os._exit`` (no teardown: the exit
+    status 1 and a traceback on standard error if ``target`` raised)."""
+
+    def __init__(self, target: Callable[..., None], args: tuple[Any, ...], own: _Pipe) -> None:
+        self._target, self._args, self._own = target, args, own
+        self.pid: int | None = None
+        self.exitcode: int | None = None
+
+    def start(self) -> None:
+        for stream in (sys.stdout, sys.stderr):  # what is buffered is written once, not by the child too
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        pid = os.fork()
+        if pid:
+            self.pid = pid
+            return
+        code = 1
+        try:
+            self._own.close()
+            try:
+                sys.stdin.close()
+                sys.stdin = open(os.devnull, encoding="utf-8")  # noqa: SIM115 - for the process
+            except (OSError, ValueError):
+                pass
+            self._target(*self._args)
+            code = 0
+        except SystemExit as exc:
+            code = exc.code if isinstance(exc.code, int) else 1
+        except BaseException:  # noqa: BLE001 - the child reports and ends, whatever happened
+            traceback.print_exc()
+        finally:
+            for stream in (sys.stdout, sys.stderr):
+                try:
+                    stream.flush()
+                except (OSError, ValueError):
+                    pass
+            os._exit(code)
+
+    def is_alive(self) -> bool:
+        return self.pid is not None and self._reap(os.WNOHANG) is None
+
+    def join(self, timeout: float | None = None) -> None:
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while self._reap(os.WNOHANG) is None:
+            if deadline is not None and time.monotonic() >= deadline:
+                return
+            time.sleep(0.005)
+
+    def _reap(self, options: int) -> int | None:
+        """The exit code once the child has ended (``-signal`` for a killed one), else ``None``."""
+        if self.exitcode is None and self.pid is not None:
+            try:
+                pid, status = os.waitpid(self.pid, options)
+            except ChildProcessError:
+                self.exitcode = -signal.SIGKILL  # reaped elsewhere; it is gone
+                return self.exitcode
+            if pid:
+                self.exitcode = -os.WTERMSIG(status) if os.WIFSIGNALED(status) else os.WEXITSTATUS(status)
+        return self.exitcode
 
 
 def descendants(pid: int) -> list[tuple[int, int]]:

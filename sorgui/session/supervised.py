@@ -30,7 +30,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
-from sorgui.session.child import ChildProcess, become_child
+from sorgui.session.child import FORK, ChildProcess, become_child
 from sorgui.session.messages import (
     AnalysisKnown,
     Failed,
@@ -297,12 +297,10 @@ def analyze_supervised(request: AnalysisRequest, started: float | None = None) -
 
     A signal that reaches this process (Ctrl+C, ``SIGTERM``, ``SIGHUP``) unwinds through here and
     kills the child and its Singular at once."""
-    import multiprocessing
-
     import sorgui.engine  # noqa: F401 - loaded before the fork: the child starts at once
 
     try:
-        worker = Supervised(multiprocessing.get_context("fork"))
+        worker = Supervised(FORK)
     except OSError as exc:  # a limit on processes (ulimit -u) or on memory
         return Failed(f"the analysis process could not be started: {exc.strerror or exc}")
     try:

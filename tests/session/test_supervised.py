@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import errno
-import multiprocessing
+import os
 
 import pytest
 
@@ -48,10 +48,10 @@ def test_killed_before_the_equation_was_read_is_a_failure() -> None:
 def test_no_process_can_be_started(monkeypatch: pytest.MonkeyPatch) -> None:
     """A limit on processes (``ulimit -u``) is said in one line, not as a traceback."""
 
-    def refuse(self: object) -> None:
+    def refuse() -> int:
         raise BlockingIOError(errno.EAGAIN, "Resource temporarily unavailable")
 
-    monkeypatch.setattr(multiprocessing.context.ForkProcess, "start", refuse)
+    monkeypatch.setattr(os, "fork", refuse)
     assert analyze_supervised(AnalysisRequest("x^2 + y^2 - z", timeout=10)) == Failed(
         "the analysis process could not be started: Resource temporarily unavailable"
     )
