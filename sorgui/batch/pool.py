@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import os
 import time
+from collections import deque
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
@@ -74,25 +75,28 @@ class Pool:
     """``workers`` analysis processes (a :class:`.run.Runner`), each working on one line with a
     second one waiting behind it in its pipe (:meth:`Supervised.queue`): a worker goes from one
     line to the next without waiting for this process to read its answer and send the next
-    line. A line queued on a worker that is ended (its line's time limit, its death) is given
-    to another one."""
+    line. Lines that no worker can take yet wait here, in order; a line queued on a worker that
+    is ended (its line's time limit, its death) goes back to the front."""
 
     def __init__(self, workers: int, request: Callable[[str], AnalysisRequest]) -> None:
         import gc
 
+        self.workers = workers
         self.capacity = 2 * workers
         self.request = request
         self.idle: list[Supervised] = []
-        self.running: dict[int, Supervised] = {}  # by the index of the line, current or queued
-        self.order: dict[int, list[int]] = {}  # each working worker's lines, by id: current, then queued
-        self.queued: dict[int, Line] = {}  # the lines queued on a worker, to start again if it is ended
+        self.working: dict[int, Supervised] = {}  # by id
+        self.lines: dict[int, list[int]] = {}  # each working worker's lines, by its id: current, then queued
+        self.given: dict[int, Line] = {}  # the lines sent to a worker, by index
+        self.waiting: deque[tuple[int, Line]] = deque()  # the lines no worker has taken yet
+        self.refused: list[tuple[int, Answer | FinalMessage]] = []  # lines for which no worker could be started
         self.served: dict[int, int] = {}  # lines given to each worker, by id
         gc.freeze()  # what is loaded now is shared with the workers: no collection of theirs copies its pages
         for _ in range(workers):
             try:
                 self.idle.append(self._worker())
             except OSError:
-                break  # start() says so, on the line that cannot be started
+                break  # the line that cannot be started says so
         # While the workers get ready, what this process needs to read their answers.
         import sorgui.engine.results  # noqa: F401
         import sorgui.session.messages  # noqa: F401
@@ -106,84 +110,99 @@ class Pool:
         return Supervised(FORK, warm_up)
 
     def busy(self) -> int:
-        return len(self.running)
+        return len(self.given) + len(self.waiting) + len(self.refused)
 
     def start(self, index: int, line: Line) -> Answer | None:
-        """Give ``line`` to an idle worker, else queue it behind the line of a working one, else
-        start a worker for it; the line's error object when no worker can be started (a limit on
-        processes, ``ulimit -u``)."""
-        behind = None if self.idle else self._free_queue()
-        if behind is not None:
-            behind.queue(self.request(line.equation))
-            self.queued[index] = line
-            self._assign(index, behind)
-            return None
-        try:
-            worker = self.idle.pop() if self.idle else self._worker()
-        except OSError as exc:
-            return error_answer(line, f"the analysis process could not be started: {exc.strerror or exc}", FAILED)
-        worker.give(self.request(line.equation))
-        self._assign(index, worker)
+        """Take ``line``: it goes to a worker at once if one can take it, else it waits its turn."""
+        self.waiting.append((index, line))
+        self._dispatch()
         return None
 
+    def _dispatch(self) -> None:
+        """Send the waiting lines, in order, each to an idle worker, else behind the line of a
+        working one, else to a new worker while fewer than ``workers``
+        live; a line for which no worker can be started (a limit on processes, ``ulimit -u``)
+        gets its error object."""
+        while self.waiting:
+            index, line = self.waiting[0]
+            request = self.request(line.equation)
+            behind = None if self.idle else self._free_queue()
+            if self.idle:
+                worker = self.idle.pop()
+                worker.give(request)
+            elif behind is not None:
+                worker = behind
+                worker.queue(request)
+            elif len(self.working) + len(self.idle) < self.workers:
+                try:
+                    worker = self._worker()
+                except OSError as exc:
+                    self.waiting.popleft()
+                    message = f"the analysis process could not be started: {exc.strerror or exc}"
+                    self.refused.append((index, error_answer(line, message, FAILED)))
+                    continue
+                worker.give(request)
+            else:
+                return
+            self.waiting.popleft()
+            self.given[index] = line
+            self.working[id(worker)] = worker
+            self.lines.setdefault(id(worker), []).append(index)
+            self.served[id(worker)] = self.served.get(id(worker), 0) + 1
+
     def _free_queue(self) -> Supervised | None:
-        """A working worker with no line queued, that may take one more line."""
-        for worker in {id(w): w for w in self.running.values()}.values():
+        """A working worker with no line queued that may take one behind its own."""
+        for worker in self.working.values():
             if worker.queued is None and self.served[id(worker)] < LINES_PER_WORKER:
                 return worker
         return None
-
-    def _assign(self, index: int, worker: Supervised) -> None:
-        self.running[index] = worker
-        self.order.setdefault(id(worker), []).append(index)
-        self.served[id(worker)] = self.served.get(id(worker), 0) + 1
 
     def answers(self) -> list[tuple[int, Answer | FinalMessage]]:
         """The final messages that came (waiting for one, or for the nearest deadline, at most
         1 s); :mod:`.run` makes them the lines' answers."""
         from sorgui.session.child import wait_for_any
 
-        working = list({id(w): w for w in self.running.values()}.values())
-        now = time.monotonic()
+        found, self.refused = self.refused, []
+        working = list(self.working.values())
+        if found or not working:
+            return found
         nearest = min(worker.deadline for worker in working)
         if not any(worker.backlog for worker in working):
-            wait_for_any([worker.child for worker in working], min(max(nearest - now, 0.0), 1.0))
-        found: list[tuple[int, Answer | FinalMessage]] = []
+            wait_for_any([worker.child for worker in working], min(max(nearest - time.monotonic(), 0.0), 1.0))
         for worker in working:
-            lines = self.order[id(worker)]
+            lines = self.lines[id(worker)]
             while lines:
                 message = worker.collect()
                 if message is None:
                     break
                 index = lines.pop(0)
-                del self.running[index]
-                self.queued.pop(index, None)
+                del self.given[index]
                 found.append((index, message))
                 if worker.child.ended or not worker.child.is_alive():
                     break
-            if worker.child.ended or not worker.child.is_alive() or self.served[id(worker)] >= LINES_PER_WORKER:
-                if not lines:
-                    self._retire(worker)
-                elif worker.child.ended or not worker.child.is_alive():
-                    self._retire(worker)  # killed at its deadline, or died: its queued line goes to another
-                    for index in lines:
-                        del self.running[index]
-                        refused = self.start(index, self.queued.pop(index))
-                        if refused is not None:
-                            found.append((index, refused))
+            if worker.child.ended or not worker.child.is_alive():
+                self._retire(worker)  # killed at its deadline, or died: the line queued on it goes first
+                self.waiting.extendleft((index, self.given.pop(index)) for index in reversed(lines))
             elif not lines:
-                del self.order[id(worker)]
-                self.idle.append(worker)
+                if self.served[id(worker)] >= LINES_PER_WORKER:
+                    self._retire(worker)  # done its share: a new one takes the next line
+                else:
+                    del self.working[id(worker)], self.lines[id(worker)]
+                    self.idle.append(worker)
+        self._dispatch()
+        found += self.refused
+        self.refused = []
         return found
 
     def _retire(self, worker: Supervised) -> None:
-        """End ``worker`` (killed at its deadline, died, or done its share): a new one takes the
-        next line."""
-        self.order.pop(id(worker), None)
+        """End ``worker`` (killed at its deadline, died, or done its share)."""
+        self.working.pop(id(worker), None)
+        self.lines.pop(id(worker), None)
         self.served.pop(id(worker), None)
         worker.close()
 
     def close(self) -> None:
-        for worker in [*self.idle, *{id(w): w for w in self.running.values()}.values()]:
+        for worker in [*self.idle, *self.working.values()]:
             worker.close()
-        self.idle, self.running, self.order, self.queued = [], {}, {}, {}
+        self.idle, self.working, self.lines, self.given = [], {}, {}, {}
+        self.waiting.clear()

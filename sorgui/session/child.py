@@ -23,6 +23,7 @@ tenth of a whole recognition-only process). Light to import (the standard librar
 
 from __future__ import annotations
 
+import fcntl
 import os
 import pickle
 import select
@@ -183,6 +184,8 @@ class ChildProcess:
 
 def wait_for_any(children: Sequence[ChildProcess], timeout: float) -> None:
     """Wait at most ``timeout`` seconds for a message (or the end) of one of ``children``."""
+    if any(isinstance(child.conn, _Pipe) and child.conn.pending() for child in children):
+        return
     if children:
         select.select([child.conn.fileno() for child in children], [], [], max(timeout, 0.0))
     else:
@@ -192,36 +195,63 @@ def wait_for_any(children: Sequence[ChildProcess], timeout: float) -> None:
 class _Pipe:
     """One end of a duplex channel between a parent and a child made by :data:`FORK`: a pipe each
     way, each message a pickle after its length (8 bytes), as ``multiprocessing``'s connections
-    send them, with the part of their interface that :class:`ChildProcess` uses."""
+    send them, with the part of their interface that :class:`ChildProcess` uses.
+
+    Both ends may send at once (a batch's next line goes to a worker while the worker writes its
+    answer, each larger than a pipe's buffer): while its message does not fit, an end reads what
+    the other sends into its inbox, so neither waits for the other to read."""
 
     def __init__(self, read: int, write: int) -> None:
         self._read, self._write = read, write
+        self._inbox = bytearray()
+        self._ended = False
+        os.set_blocking(write, False)
 
     def fileno(self) -> int:
         return self._read
+
+    def pending(self) -> bool:
+        """Whether something was read ahead into the inbox (a file descriptor's readiness does not
+        show it)."""
+        return bool(self._inbox)
 
     def send(self, obj: object) -> None:
         data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
         view = memoryview(len(data).to_bytes(8, "big") + data)
         while view:
-            view = view[os.write(self._write, view) :]
+            try:
+                view = view[os.write(self._write, view) :]
+                continue
+            except BlockingIOError:
+                pass
+            readable, _, _ = select.select([] if self._ended else [self._read], [self._write], [])
+            if readable:
+                self._read_ahead()
+
+    def _read_ahead(self) -> None:
+        chunk = os.read(self._read, 1 << 20)
+        if chunk:
+            self._inbox += chunk
+        else:
+            self._ended = True
 
     def recv(self) -> Any:  # noqa: ANN401 - whatever was sent
         size = int.from_bytes(self._exactly(8), "big")
         return pickle.loads(self._exactly(size))
 
     def _exactly(self, size: int) -> bytes:
-        chunks, left = [], size
-        while left:
-            chunk = os.read(self._read, min(left, 1 << 20))
-            if not chunk:
+        while len(self._inbox) < size:
+            if self._ended:
                 raise EOFError("the other end of the pipe closed")
-            chunks.append(chunk)
-            left -= len(chunk)
-        return b"".join(chunks)
+            self._read_ahead()
+        data = bytes(self._inbox[:size])
+        del self._inbox[:size]
+        return data
 
     def poll(self, timeout: float = 0.0) -> bool:
         """Whether a message (or the end of the channel) is waiting, waiting at most ``timeout`` s."""
+        if self._inbox or self._ended:
+            return True
         return bool(select.select([self._read], [], [], max(timeout, 0.0))[0])
 
     def close(self) -> None:
@@ -234,10 +264,21 @@ class _Pipe:
         self._read = self._write = -1
 
 
+PIPE_SIZE = 1 << 20
+"""Bytes asked of the kernel for each pipe's buffer (Linux's ``F_SETPIPE_SZ``; 1 MB is the
+limit an unprivileged process has by default): an answer of a few hundred kB is then written at
+once, and its sender goes on without waiting for the reader, busy with the line before."""
+
+
 def _pipe_pair() -> tuple[_Pipe, _Pipe]:
     """The parent's end and the child's end of a new duplex channel."""
     down_read, down_write = os.pipe()
     up_read, up_write = os.pipe()
+    for fd in (down_write, up_write):
+        try:
+            fcntl.fcntl(fd, fcntl.F_SETPIPE_SZ, PIPE_SIZE)  # Linux only
+        except (AttributeError, OSError):
+            pass  # the default buffer: a sender may wait longer for its reader, nothing else
     return _Pipe(up_read, down_write), _Pipe(down_read, up_write)
 
 
