@@ -202,7 +202,8 @@ class Pool:
         worker.close()
 
     def close(self) -> None:
+        """Kill every worker (and its Singular) without waiting for the kernel to free them."""
         for worker in [*self.idle, *self.working.values()]:
-            worker.close()
+            worker.close(wait=0.0)
         self.idle, self.working, self.lines, self.given = [], {}, {}, {}
         self.waiting.clear()
