@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import re
+from functools import cached_property
 from typing import Any, cast
 
 from flint import fmpq, fmpq_mpoly
@@ -51,29 +52,50 @@ the terms are read one rational each (:meth:`_Terms.polynomial`)."""
 
 
 class Reading:
-    """An equation read by the fast path: ``polynomial`` in ``QQ[x, y, z]`` and, when they come
-    from what was read at little cost, the engine's texts of it (``None`` otherwise, then
-    :func:`.algebra.rationals.flint_str` and :func:`.algebra.rationals.primitive` make them).
+    """An equation read: ``polynomial`` in ``QQ[x, y, z]`` and, made on demand from what the fast
+    path read (``None`` where it cannot, then :func:`.algebra.rationals.flint_str` and
+    :func:`.algebra.rationals.primitive` make them), the engine's texts of it.
 
     ``printed`` is :func:`~.algebra.rationals.flint_str` of ``polynomial`` (built from the digits
     as written, when the terms come in the printed order with their fractions in lowest terms,
     as sorgui prints them); ``primitive`` is the polynomial scaled to integers with content 1
-    and a positive leading (lex) coefficient, from the integers the reader already holds, and
-    ``primitive_printed`` its text when ``printed`` is known."""
-
-    __slots__ = ("polynomial", "primitive", "primitive_printed", "printed")
+    and a positive leading (lex) coefficient, from the integers the reader holds (their gcd, one
+    C call), and ``primitive_printed`` its text when it is ``printed``. Reading alone costs
+    none of them (the window's editor reads every keystroke)."""
 
     def __init__(
         self,
         polynomial: fmpq_mpoly,
-        printed: str | None = None,
-        primitive: fmpq_mpoly | None = None,
-        primitive_printed: str | None = None,
+        terms: _Terms | None = None,
+        whole: fmpq_mpoly | None = None,
+        integers: dict[Monomial, int] | None = None,
+        values: dict[str, int] | None = None,
     ) -> None:
         self.polynomial = polynomial
-        self.printed = printed
-        self.primitive = primitive
-        self.primitive_printed = primitive_printed
+        self._terms, self._whole, self._integers, self._values = terms, whole, integers, values
+
+    @cached_property
+    def printed(self) -> str | None:
+        terms, integers, values = self._terms, self._integers, self._values
+        if terms is None or integers is None or values is None or not terms.plain:
+            return None
+        return terms._printed(values) if len(integers) == len(terms.monomials) else None
+
+    @cached_property
+    def primitive(self) -> fmpq_mpoly | None:
+        whole, integers = self._whole, self._integers
+        if whole is None or not integers:
+            return None
+        content = math.gcd(*integers.values())
+        if not content:
+            return None  # the zero polynomial (never read: it is constant)
+        primitive = whole if content == 1 else whole * fmpq(1, content)
+        return -primitive if whole.leading_coefficient() < 0 else primitive
+
+    @cached_property
+    def primitive_printed(self) -> str | None:
+        printed, primitive = self.printed, self.primitive
+        return printed if printed is not None and primitive == self.polynomial else None
 
 
 def read_expanded(text: str, limits: Limits) -> Reading | None:
@@ -180,12 +202,12 @@ class _Terms:
         return True
 
     def reading(self) -> Reading:
-        """The sum of the terms, with its texts when they come cheaply (:class:`Reading`).
+        """The sum of the terms, with what makes its texts on demand (:class:`Reading`).
 
         Over the common denominator ``L`` of the terms, the numerators are integers, read by
         flint in one call and divided by ``L`` once (a rational per term would cost as much again
-        as the reading); their gcd (one C call) gives the primitive polynomial. When ``L`` is much
-        larger than the denominators themselves, one rational per term instead."""
+        as the reading). When ``L`` is much larger than the denominators themselves, one rational
+        per term instead."""
         context = rationals.context(("x", "y", "z"))
         values = {key: int(key) for key in set(self.denominators) if key}
         common = math.lcm(*values.values())
@@ -197,17 +219,9 @@ class _Terms:
         factors = {key: common // d for key, d in values.items()}
         coefficients = [n * factors[k] for n, k in zip(self.numerators, self.denominators)]
         integers: dict[Monomial, int] = self._sum(coefficients)
-        printed = self._printed(values) if self.plain and len(integers) == len(coefficients) else None
         whole = context.from_dict(integers)
-        content = math.gcd(*integers.values())
-        if not content:
-            return Reading(whole)
-        primitive = whole if content == 1 else whole * fmpq(1, content)
-        if whole.leading_coefficient() < 0:
-            primitive = -primitive
         polynomial = whole if common == 1 else whole * fmpq(1, common)
-        primitive_printed = printed if printed is not None and primitive == polynomial else None
-        return Reading(polynomial, printed, primitive, primitive_printed)
+        return Reading(polynomial, self, whole, integers, values)
 
     def _sum(self, coefficients: list[Any]) -> dict[Monomial, Any]:
         """The terms by monomial, the coefficients of a monomial written more than once added."""
