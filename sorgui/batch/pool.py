@@ -1,8 +1,8 @@
 """The worker processes of this machine (``--jobs N``): each analyses one line at a time.
 
 Each line is analysed in a worker process (:class:`~sorgui.session.supervised.Supervised`),
-started as soon as the batch begins: it imports and warms up the engine itself (:func:`warm_up`)
-while this process reads the input, and this process never loads the engine. Each line is under
+started as soon as the batch begins: it loads the engine itself (:func:`ready`) while this
+process reads the input, and this process never loads the engine. Each line is under
 the time limit of one analysis: a worker that does not answer in time is killed with its
 Singular, its line answered with the stages it finished, and the worker replaced; so is a worker
 that dies (killed, out of memory), its line answered with an error object. A worker has the next
@@ -34,26 +34,35 @@ WARM_UP = (
 over ``QQ``, on a tilted axis, like the equations of a parts library."""
 
 WARM_UP_RUNS = 8
-"""How often :data:`WARM_UP` is analysed before the workers are forked."""
+"""How often a process that forks analysis processes (a Dask worker) analyses :data:`WARM_UP`
+before it forks them."""
 
 WORKER_MEMORY = 400 * 2**20
 """Bytes of memory counted for each worker process (an analysis of degree 20 with Singular)."""
 
 LINES_PER_WORKER = 2000
-"""A worker is replaced by a new one (which warms up in about 50 ms, a few microseconds a line) after
+"""A worker is replaced by a new one (which loads the engine in about 50 ms, a few microseconds a line) after
 this many lines, so that the memory a long batch leaves behind in it stays bounded: python-flint
 0.9 leaks about 110 bytes at each ``str`` of a polynomial, and a batch prints several per line."""
 
 
-def warm_up() -> None:
-    """Analyse :data:`WARM_UP` a few times (recognition only, without sympy, about 8 ms): the
-    modules an analysis loads when it first needs them are then loaded, and Python has
-    specialised the bytecode of the recognition (the first analyses of a process otherwise run
-    about 1.5 times slower). Each worker does it when it starts (and a Dask worker's process)."""
+def warm_up(runs: int = WARM_UP_RUNS) -> None:
+    """Analyse :data:`WARM_UP` ``runs`` times (recognition only, without sympy, about 0.7 ms a
+    run): the modules an analysis loads when it first needs them are then loaded, and after a
+    few runs Python has specialised the bytecode of the recognition (the first analyses of a
+    process otherwise run about 1.5 times slower). A Dask worker does it once for all the
+    analysis processes it forks; a batch's worker, which is not forked from a warm process, runs
+    it once (:func:`ready`): more runs would only do what its first lines do anyway (10 lines of
+    degree 10 take 36 ms after one run and 41 ms after eight)."""
     from sorgui.engine import analyze
 
-    for _ in range(WARM_UP_RUNS):
+    for _ in range(runs):
         analyze(WARM_UP, recognition_only=True)
+
+
+def ready() -> None:
+    """What a batch's worker does when it starts: load the engine (:func:`warm_up` once)."""
+    warm_up(1)
 
 
 def worker_count(requested: int) -> tuple[int, str]:
@@ -102,12 +111,12 @@ class Pool:
         import sorgui.session.messages  # noqa: F401
 
     def _worker(self) -> Supervised:
-        """A new worker process: it imports and warms up the engine itself (:func:`warm_up`),
-        while this process goes on (it never loads the engine)."""
+        """A new worker process: it loads the engine itself (:func:`ready`), while this process
+        goes on (it never loads the engine)."""
         from sorgui.session.child import FORK
         from sorgui.session.supervised import Supervised
 
-        return Supervised(FORK, warm_up)
+        return Supervised(FORK, ready)
 
     def busy(self) -> int:
         return len(self.given) + len(self.waiting) + len(self.refused)
