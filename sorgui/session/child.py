@@ -296,11 +296,7 @@ class _ForkedProcess:
         self.exitcode: int | None = None
 
     def start(self) -> None:
-        for stream in (sys.stdout, sys.stderr):  # what is buffered is written once, not by the child too
-            try:
-                stream.flush()
-            except (OSError, ValueError):
-                pass
+        _flush_standard_streams()  # what is buffered is written once, not by the child too
         pid = os.fork()
         if pid:
             self.pid = pid
@@ -320,11 +316,7 @@ class _ForkedProcess:
         except BaseException:  # noqa: BLE001 - the child reports and ends, whatever happened
             traceback.print_exc()
         finally:
-            for stream in (sys.stdout, sys.stderr):
-                try:
-                    stream.flush()
-                except (OSError, ValueError):
-                    pass
+            _flush_standard_streams()
             os._exit(code)
 
     def is_alive(self) -> bool:
@@ -363,6 +355,14 @@ class _ForkedProcess:
             if pid:
                 self.exitcode = -os.WTERMSIG(status) if os.WIFSIGNALED(status) else os.WEXITSTATUS(status)
         return self.exitcode
+
+
+def _flush_standard_streams() -> None:
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
 
 
 def descendants(pid: int) -> list[tuple[int, int]]:
