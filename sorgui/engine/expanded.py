@@ -58,7 +58,8 @@ class Reading:
 
     ``printed`` is :func:`~.algebra.rationals.flint_str` of ``polynomial`` (built from the digits
     as written, when the terms come in the printed order with their fractions in lowest terms,
-    as sorgui prints them); ``primitive`` is the polynomial scaled to integers with content 1
+    as sorgui prints them; the read text itself when they agree, so that an analysis holds one
+    string, pickled and encoded once); ``primitive`` is the polynomial scaled to integers with content 1
     and a positive leading (lex) coefficient, from the integers the reader holds (their gcd, one
     C call), and ``primitive_printed`` its text when it is ``printed``. Reading alone costs
     none of them (the window's editor reads every keystroke)."""
@@ -70,16 +71,19 @@ class Reading:
         whole: fmpq_mpoly | None = None,
         integers: dict[Monomial, int] | None = None,
         values: dict[str, int] | None = None,
+        text: str | None = None,
     ) -> None:
         self.polynomial = polynomial
         self._terms, self._whole, self._integers, self._values = terms, whole, integers, values
+        self._text = text
 
     @cached_property
     def printed(self) -> str | None:
         terms, integers, values = self._terms, self._integers, self._values
         if terms is None or integers is None or values is None or not terms.plain:
             return None
-        return terms._printed(values) if len(integers) == len(terms.monomials) else None
+        printed = terms._printed(values) if len(integers) == len(terms.monomials) else None
+        return self._text if printed == self._text else printed  # one string, pickled and encoded once
 
     @cached_property
     def primitive(self) -> fmpq_mpoly | None:
@@ -112,7 +116,7 @@ def read_expanded(text: str, limits: Limits) -> Reading | None:
         terms.plain = False  # two sides: a monomial may be written on both
     elif not terms.read(body, limits, 1):
         return None
-    reading = terms.reading()
+    reading = terms.reading(text)
     return None if reading.polynomial.is_constant() else reading  # constant or zero: the parser says which
 
 
@@ -201,8 +205,8 @@ class _Terms:
         self.digits += digits
         return True
 
-    def reading(self) -> Reading:
-        """The sum of the terms, with what makes its texts on demand (:class:`Reading`).
+    def reading(self, text: str) -> Reading:
+        """The sum of the terms of ``text``, with what makes its texts on demand (:class:`Reading`).
 
         Over the common denominator ``L`` of the terms, the numerators are integers, read by
         flint in one call and divided by ``L`` once (a rational per term would cost as much again
@@ -221,7 +225,7 @@ class _Terms:
         integers: dict[Monomial, int] = self._sum(coefficients)
         whole = context.from_dict(integers)
         polynomial = whole if common == 1 else whole * fmpq(1, common)
-        return Reading(polynomial, self, whole, integers, values)
+        return Reading(polynomial, self, whole, integers, values, text)
 
     def _sum(self, coefficients: list[Any]) -> dict[Monomial, Any]:
         """The terms by monomial, the coefficients of a monomial written more than once added."""

@@ -94,9 +94,8 @@ def _analysis(text: str, clock: StageClock, *, full: bool) -> Analysis | None:
     if reading is None:
         return None
     g = reading.polynomial
-    printed = text if reading.printed == text else reading.printed  # one string, pickled and encoded once
     with clock.stage("recognition"):
-        found = recognize_rational(g, printed)
+        found = recognize_rational(g, reading.printed)
     if found is None or (full and (found[0].is_sor or found[0].degree > FULL_DEGREE)):
         return None
     recognized, square = found
