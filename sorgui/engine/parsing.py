@@ -107,10 +107,9 @@ def parse_rational(text: str) -> fmpq_mpoly | None:
 def read_rational(text: str) -> Reading | None:
     """:func:`parse_rational` with the engine's texts of the polynomial where the fast path has
     them at little cost (:class:`~.expanded.Reading`): what the recognition over ``QQ`` prints."""
-    if len(text) <= MAX_LENGTH:
-        reading = read_expanded(text, LIMITS)
-        if reading is not None:
-            return reading
+    reading = _fast_reading(text)
+    if reading is not None:
+        return reading
     from . import syntax
 
     tree, evaluator, saw_variable = syntax.checked(text)
@@ -127,10 +126,13 @@ def expanded_polynomial(text: str) -> fmpq_mpoly | None:
     regular-expression pass straight into flint (:mod:`.expanded`), no syntax tree. ``None``
     for anything else (parentheses, roots, a limit reached, a constant), which the general
     parser then reads and reports on exactly."""
-    if len(text) > MAX_LENGTH:
-        return None
-    reading = read_expanded(text, LIMITS)
+    reading = _fast_reading(text)
     return None if reading is None else reading.polynomial
+
+
+def _fast_reading(text: str) -> Reading | None:
+    """The fast path's reading of ``text`` (:mod:`.expanded`), within the length limit."""
+    return read_expanded(text, LIMITS) if len(text) <= MAX_LENGTH else None
 
 
 def is_parametrization(text: str) -> bool:
