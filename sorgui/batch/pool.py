@@ -98,7 +98,7 @@ class Pool:
         self.lines: dict[int, list[int]] = {}  # each working worker's lines, by its id: current, then queued
         self.given: dict[int, Line] = {}  # the lines sent to a worker, by index
         self.waiting: deque[tuple[int, Line]] = deque()  # the lines no worker has taken yet
-        self.refused: list[tuple[int, Answer | FinalMessage]] = []  # lines for which no worker could be started
+        self.refused: list[tuple[int, Answer]] = []  # lines for which no worker could be started
         self.served: dict[int, int] = {}  # lines given to each worker, by id
         gc.freeze()  # what is loaded now is shared with the workers: no collection of theirs copies its pages
         for _ in range(workers):
@@ -171,7 +171,8 @@ class Pool:
         1 s); :mod:`.run` makes them the lines' answers."""
         from sorgui.session.child import wait_for_any
 
-        found, self.refused = self.refused, []
+        found: list[tuple[int, Answer | FinalMessage]] = [*self.refused]
+        self.refused = []
         working = list(self.working.values())
         if found or not working:
             return found

@@ -143,8 +143,8 @@ class StageLog:
 
 
 def analysis_child(conn: Connection, prepare: Callable[[], None] | None = None) -> None:
-    """The analysis process: run ``prepare`` (a batch's worker imports and warms up the engine
-    itself, while its parent goes on), then answer every :class:`AnalysisRequest` that arrives,
+    """The analysis process: run ``prepare`` (a batch's worker loads the engine itself, while its
+    parent goes on), then answer every :class:`AnalysisRequest` that arrives,
     streaming what is known, until the pipe closes."""
     become_child()
     if prepare is not None:
