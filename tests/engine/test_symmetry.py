@@ -126,8 +126,8 @@ def test_paper_example_axis_and_profile(paper_example_1):
 def test_the_rows_below_a_few_terms_give_the_whole_systems_algebra(seed: int) -> None:
     """Over QQ, the algebra found from a part of (★) (a few rows, or values at points) is the
     null space of the whole system, one row per monomial: on dense surfaces of revolution in
-    general position, on the same surfaces moved slightly off revolution, on cylinders and
-    spheres in general position, and on sparse ones."""
+    general position, on the same surfaces moved slightly off revolution, on a sphere and on a
+    sparse surface of revolution."""
     import random
 
     from sorgui.engine.algebra import linalg
