@@ -27,7 +27,8 @@ from OCP.GeomAPI import GeomAPI_ProjectPointOnSurf
 from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
 from OCP.TopoDS import TopoDS_Face
 
-from sorgui.engine.results import Analysis, CanalFamily
+from sorgui.engine.results import Analysis
+from sorgui.engine.stage_results import CanalFamily
 from sorgui.engine.values import ExpressionError, Terms, polynomial_terms, rational_function_terms
 from sorgui.render import ClipSphere
 

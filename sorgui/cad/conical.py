@@ -24,7 +24,8 @@ import mpmath
 import numpy as np
 import sympy
 
-from sorgui.engine.results import Analysis, Parametrization
+from sorgui.engine.results import Analysis
+from sorgui.engine.stage_results import Parametrization
 from sorgui.engine.values import ExpressionError, read_expression
 from sorgui.render import ClipSphere
 

@@ -28,7 +28,8 @@ import mpmath
 import numpy as np
 import sympy
 
-from sorgui.engine.results import Analysis, Parametrization, Profile
+from sorgui.engine.results import Analysis, Profile
+from sorgui.engine.stage_results import Parametrization
 from sorgui.engine.values import ExpressionError, Terms, float_vector, polynomial_terms, read_expression
 from sorgui.numerics import real_roots
 from sorgui.render import ClipSphere

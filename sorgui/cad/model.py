@@ -17,7 +17,8 @@ import numpy as np
 import sympy
 from OCP.BRepCheck import BRepCheck_Analyzer
 
-from sorgui.engine.results import Analysis, Parametrization, Recognition
+from sorgui.engine.results import Analysis, Recognition
+from sorgui.engine.stage_results import Parametrization
 from sorgui.engine.values import ExpressionError, polynomial_terms, read_expression
 from sorgui.numerics import without_noise
 from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData

@@ -24,7 +24,7 @@ import numpy as np
 import numpy.polynomial.polynomial as P
 import sympy
 
-from sorgui.engine.results import Parametrization
+from sorgui.engine.stage_results import Parametrization
 from sorgui.engine.values import Terms, read_expression
 from sorgui.render import PATCH_RANGE
 from sorgui.render.sampling import value_and_gradient

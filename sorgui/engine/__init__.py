@@ -8,7 +8,8 @@ expanded polynomials), ``syntax`` (the general parser: tokens, syntax tree, eval
 ``limits`` (what both readers accept), ``parametric_parsing`` (a parametrization's text),
 ``expressions`` (reading Singular's
 answers and the engine's own strings), ``values`` (the engine's strings decoded once, as sympy
-objects, floats and float terms), ``results`` (the result objects and their JSON),
+objects, floats and float terms), ``results`` (the result objects and their JSON) and
+``stage_results`` (those of the stages after the recognition, loaded when first needed),
 ``vocabulary`` (the words for kinds of surface), ``errors`` (the one exception hierarchy),
 ``stages``, ``timelimit`` and ``lifetime`` (ending an analysis when asked), ``analysis`` (the
 staged pipeline) and ``rational_path`` (the recognition-only pipeline over ``QQ`` without
@@ -35,28 +36,25 @@ from .errors import (
     SingularTimeout,
     SorguiError,
 )
-from .results import (
-    Analysis,
-    Axis,
-    Factor,
-    Parametrization,
-    Profile,
-    Rationality,
-    Recognition,
-)
+from .results import Analysis, Axis, Factor, Profile, Recognition
 from .stages import STAGES
 
 if TYPE_CHECKING:
     from .analysis import analyze, analyze_polynomial
+    from .stage_results import Parametrization, Rationality
 
 
 def __getattr__(name: str) -> object:
-    """:func:`analyze` and :func:`analyze_polynomial`, from ``analysis`` when first asked for
-    (PEP 562)."""
+    """:func:`analyze` and :func:`analyze_polynomial` from ``analysis``, :class:`Parametrization`
+    and :class:`Rationality` from ``stage_results``, when first asked for (PEP 562)."""
     if name in ("analyze", "analyze_polynomial"):
         from . import analysis
 
         return getattr(analysis, name)
+    if name in ("Parametrization", "Rationality"):
+        from . import stage_results
+
+        return getattr(stage_results, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

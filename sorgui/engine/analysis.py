@@ -29,19 +29,13 @@ from .algebra.linalg import Vector
 from .errors import ParseError, TimeLimitReached
 from .parsing import has_decimals, is_parametrization, parse_polynomial
 from .recognition.symmetry import NEAREST_CANAL_NOTE, revolution_canal
-from .results import (
-    Analysis,
-    Approximation,
-    Canal,
-    Conical,
-    Parametrization,
-    Rationality,
-)
+from .results import Analysis, Approximation, Canal, Conical
 from .stages import DoneCallback, PartialCallback, ProgressCallback, StageClock
 from .timelimit import skeleton, time_limit, unfinished_analysis
 
 if TYPE_CHECKING:
     from .algebra.polys import Poly
+    from .stage_results import Parametrization
 
 NEAREST_SINGULAR_TIMEOUT = 10.0
 """Each Singular call of the nearest exact surface's analysis stops after this many seconds (or
@@ -196,6 +190,7 @@ def analyze_polynomial(
     from .recognition.profile import profile_curve
     from .recognition.recognize import factor_reports, recognize
     from .revolution.real_locus import real_locus
+    from .stage_results import Rationality
 
     clock = clock or StageClock(None, None)
     cancel = clock.cancel

@@ -20,7 +20,7 @@ from types import FrameType
 from typing import TYPE_CHECKING
 
 from .errors import TimeLimitReached
-from .results import Analysis, Rationality, Recognition
+from .results import Analysis, Recognition
 
 if TYPE_CHECKING:
     from .algebra.polys import Poly
@@ -116,6 +116,8 @@ def unfinished_analysis(
         unfinished.insert(0, current)
     rationality = latest.rationality
     if rationality is None and needs_rationality:
+        from .stage_results import Rationality  # loaded only when a rationality stage was to come
+
         rationality = Rationality(status=f"undecided: {message}")
     elif rationality is not None and "parametrizations" in unfinished:
         rationality = replace(rationality, notes=(*rationality.notes, f"no parameterizations: {message}"))

@@ -22,16 +22,8 @@ from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import TYPE_CHECKING, Literal, TypeAlias
 
-from sorgui.engine.results import (
-    Analysis,
-    Approximation,
-    Canal,
-    Conical,
-    Parametrization,
-    Profile,
-    Rationality,
-    Recognition,
-)
+from sorgui.engine.results import Analysis, Approximation, Canal, Conical, Profile, Recognition
+from sorgui.engine.stage_results import Parametrization, Rationality
 
 if TYPE_CHECKING:
     import sympy

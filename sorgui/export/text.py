@@ -3,20 +3,14 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
-from sorgui.engine.results import (
-    Analysis,
-    BaseCurve,
-    Canal,
-    Conical,
-    NearestSurface,
-    Parametrization,
-    Rationality,
-    RealLocus,
-    Recognition,
-)
+from sorgui.engine.results import Analysis, Canal, Conical, NearestSurface, Recognition
 from sorgui.engine.vocabulary import canal_kind, kind_phrase
 from sorgui.numerics import without_noise
+
+if TYPE_CHECKING:
+    from sorgui.engine.stage_results import BaseCurve, Parametrization, Rationality, RealLocus
 
 TABLE_1 = (
     ("reducible", "0", "rational", "rational"),

@@ -37,7 +37,7 @@ from typing import Any
 
 import sympy
 
-from sorgui.engine import results
+from sorgui.engine import results, stage_results
 from sorgui.engine.claims.formulas import NAMES, REPORT_SYNTAX, formula
 from sorgui.engine.errors import ExpressionError, ParseError, SorguiError
 from sorgui.engine.parsing import MAX_DEGREE
@@ -178,6 +178,11 @@ _FIELD = re.compile(r"QQ(?:\((?P<generators>.+)\))?")
 _STAGE = re.compile(r"[a-z][a-z ]{0,39}")
 
 
+_NAMES = {**vars(stage_results), **vars(results)}
+"""The names the annotations of the result objects use: those of :mod:`.results` name classes of
+:mod:`.stage_results`, which it imports for type checking only."""
+
+
 class ReportInvalid(SorguiError):
     """A value of a report is not one sorgui writes; the message names the field."""
 
@@ -194,7 +199,7 @@ def _check_object(obj: Any, path: str, circles: bool) -> None:  # noqa: ANN401
     if not is_dataclass(obj) or isinstance(obj, type):
         raise ReportInvalid(f"{path} is not an object sorgui writes")
     cls = type(obj)
-    hints = typing.get_type_hints(cls, vars(results))
+    hints = typing.get_type_hints(cls, _NAMES)
     inside = circles or isinstance(obj, results.Canal)
     for item in fields(cls):
         value = getattr(obj, item.name)

@@ -29,15 +29,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from sorgui.engine.results import (
-    Analysis,
-    Approximation,
-    Canal,
-    Conical,
-    ParametricInput,
-    Rationality,
-    Recognition,
-)
+from sorgui.engine.results import Analysis, Approximation, Canal, Conical, Recognition
+from sorgui.engine.stage_results import ParametricInput, Rationality
 from sorgui.export.text import (
     TABLE_1,
     TABLE_1_WORDS,

@@ -10,14 +10,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from sorgui.engine.results import (
-    Analysis,
-    Approximation,
-    Canal,
-    CanalFamily,
-    Conical,
-    Recognition,
-)
+from sorgui.engine.results import Analysis, Approximation, Canal, Conical, Recognition
+from sorgui.engine.stage_results import CanalFamily
 from sorgui.engine.vocabulary import canal_kind, kind_noun, kind_phrase
 from sorgui.export.text import float_text
 from sorgui.session.components import Component

@@ -21,7 +21,8 @@ from fractions import Fraction
 
 import numpy as np
 
-from sorgui.engine.results import BaseCurve, Conical
+from sorgui.engine.results import Conical
+from sorgui.engine.stage_results import BaseCurve
 from sorgui.session import math_text
 from sorgui.session.math_text import Name, Number, Power, Product, Sum, Unreadable
 

@@ -32,7 +32,6 @@ import sys
 import time
 import traceback
 from collections.abc import Callable, Sequence
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from sorgui.session.messages import Hangup, Message
@@ -366,20 +365,30 @@ def _flush_standard_streams() -> None:
 
 
 def descendants(pid: int) -> list[tuple[int, int]]:
-    """``(pid, pgid)`` of every descendant of ``pid``, read from ``/proc`` (empty elsewhere)."""
+    """``(pid, pgid)`` of every descendant of ``pid``, read from ``/proc`` (empty elsewhere).
+
+    Every process's ``stat`` is read, with plain system calls: the end of each ``sorgui
+    analyze`` waits for this, and a desktop runs hundreds of processes."""
     parents: dict[int, list[tuple[int, int]]] = {}
-    proc = Path("/proc")
-    if not proc.is_dir():
+    try:
+        names = os.listdir("/proc")
+    except OSError:
         return []
-    for entry in proc.iterdir():
-        if not entry.name.isdigit():
+    for name in names:
+        if not name.isdigit():
             continue
         try:
-            stat = (entry / "stat").read_text()
+            fd = os.open(f"/proc/{name}/stat", os.O_RDONLY)
         except OSError:
             continue
-        fields = stat.rsplit(")", 1)[1].split()  # after "pid (comm)": state ppid pgrp ...
-        parents.setdefault(int(fields[1]), []).append((int(entry.name), int(fields[2])))
+        try:
+            stat = os.read(fd, 4096)
+        except OSError:
+            continue
+        finally:
+            os.close(fd)
+        fields = stat.rsplit(b")", 1)[1].split()  # after "pid (comm)": state ppid pgrp ...
+        parents.setdefault(int(fields[1]), []).append((int(name), int(fields[2])))
     found, stack = [], [pid]
     while stack:
         for child in parents.get(stack.pop(), []):

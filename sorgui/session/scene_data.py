@@ -23,9 +23,10 @@ from typing import Any
 
 import numpy as np
 
-from sorgui.engine.results import Analysis, Approximation, BaseCurve, Conical, Parametrization, Recognition
+from sorgui.engine.results import Analysis, Approximation, Conical, Recognition
 from sorgui.engine.rounded import dense
 from sorgui.engine.rounded.deviation import view_ball
+from sorgui.engine.stage_results import BaseCurve, Parametrization
 from sorgui.engine.values import (
     ExpressionError,
     Terms,

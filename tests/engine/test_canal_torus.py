@@ -17,7 +17,7 @@ from sorgui.engine.canal.torus import torus_of
 from sorgui.engine.canal.verdict import analyze_canal
 from sorgui.engine.recognition.profile import profile_curve
 from sorgui.engine.recognition.recognize import recognize
-from sorgui.engine.results import CanalFamily
+from sorgui.engine.stage_results import CanalFamily
 from sorgui.samples import rational_vector, revolve
 
 small = st.integers(min_value=-3, max_value=3)

@@ -20,7 +20,7 @@ from sorgui.engine.algebra.polys import XYZ, poly_ring
 from sorgui.engine.parametric.detect import conicity, parametric_symmetry
 from sorgui.engine.parametric.implicit import implicit_equation
 from sorgui.engine.parametric_parsing import parse_parametrization
-from sorgui.engine.results import Parametrization
+from sorgui.engine.stage_results import Parametrization
 from sorgui.samples import apply, move, quaternion_rotation, rational_vector, same_line
 
 DATA = Path(__file__).resolve().parents[1] / "data"

@@ -8,8 +8,9 @@ import sympy
 from sorgui.engine.analysis import analyze
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.recognition.recognize import recognize
-from sorgui.engine.results import Analysis, RealLocus
+from sorgui.engine.results import Analysis
 from sorgui.engine.revolution.real_locus import _norm_in_s, real_locus
+from sorgui.engine.stage_results import RealLocus
 from sorgui.export.text import plain_text, real_locus_line
 
 

@@ -27,7 +27,8 @@ from ..algebra.fractions import RationalFunction, evaluate, factored, from_expr
 from ..algebra.linalg import Vector, dot
 from ..algebra.rationals import context, flint_str, primitive
 from ..recognition.profile import ProfileCurve
-from ..results import CanalFamily, Triple
+from ..results import Triple
+from ..stage_results import CanalFamily
 
 T = sympy.Symbol("t")
 SMAT = ("m1", "m2", "m3", "r")

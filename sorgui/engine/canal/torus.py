@@ -31,7 +31,8 @@ from sympy.polys.domains import QQ
 from ..algebra.linalg import Vector, cross, dot
 from ..algebra.polys import Poly, compose, poly_ring, poly_str, primitive, total_degree
 from ..recognition.profile import ProfileCurve
-from ..results import Canal, CanalEvidence, CanalFamily
+from ..results import Canal, CanalEvidence
+from ..stage_results import CanalFamily
 
 HEIGHT = 12
 """Rational points ``Y = p/q`` with ``q ≤ HEIGHT`` are tried on each family's conic."""

@@ -43,9 +43,10 @@ from ..algebra.polys import (
 from ..errors import AnalysisError, Cancelled, SingularError
 from ..recognition.profile import ProfileCurve
 from ..recognition.symmetry import SOR_EVIDENCE, Motion, satisfies_identity
-from ..results import Canal, CanalEvidence, CanalFamily, Parametrization, Triple
+from ..results import Canal, CanalEvidence, Triple
 from ..singular import curves
 from ..singular.process import emit, parse_int, poly_to_singular, run_script
+from ..stage_results import CanalFamily, Parametrization
 from .axis_family import NOTE as AXIS_NOTE
 from .axis_family import axis_family
 from .focal import DEVELOPABLE, DUPIN, UMBILIC

@@ -15,7 +15,8 @@ from __future__ import annotations
 
 from ..algebra.modular import Point, Redraw
 from ..errors import ClaimError
-from ..results import Canal, CanalEvidence, CanalFamily
+from ..results import Canal, CanalEvidence
+from ..stage_results import CanalFamily
 from .formulas import Surface, formula, values
 from .identities import Identities
 from .maps import check_parametrization

@@ -22,7 +22,8 @@ from ..algebra.linalg import cross, dot, is_zero
 from ..algebra.modular import Point
 from ..algebra.polys import to_expr
 from ..errors import ClaimError
-from ..results import Conical, Parametrization, Profile, Rationality
+from ..results import Conical, Profile
+from ..stage_results import Parametrization, Rationality
 from .formulas import Surface, formula, nonzero, values, vector
 from .identities import Identities, proportional
 

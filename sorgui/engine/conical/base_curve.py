@@ -28,9 +28,10 @@ from ..algebra.linalg import Vector, perpendicular, primitive_vector
 from ..algebra.polys import Poly, compose, factor, poly_ring, poly_str, to_expr, to_str, total_degree
 from ..errors import SorguiError
 from ..recognition.profile import AxisFrame
-from ..results import BaseCurve, Conical, Parametrization
+from ..results import Conical
 from ..revolution.parametrization import PARAMETERS, SurfaceMap, frame_map, numerically_vanishes, vanishes_on
 from ..singular.curves import analyze_curve, parametrize
+from ..stage_results import BaseCurve, Parametrization
 from .detect import Conicity, detect, near_apex, near_direction
 
 S, T = (sympy.Symbol(name) for name in PARAMETERS)

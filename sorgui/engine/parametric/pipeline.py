@@ -31,17 +31,8 @@ from ..errors import AnalysisError, SingularError, SingularTimeout, TimeLimitRea
 from ..parsing import has_decimals
 from ..recognition.recognize import axis_report
 from ..recognition.symmetry import Symmetry
-from ..results import (
-    Analysis,
-    Approximation,
-    Canal,
-    Conical,
-    Factor,
-    ParametricInput,
-    Parametrization,
-    Recognition,
-    Triple,
-)
+from ..results import Analysis, Approximation, Canal, Conical, Factor, Recognition, Triple
+from ..stage_results import ParametricInput, Parametrization
 from ..stages import PartialCallback, StageClock
 from ..timelimit import UNDECIDED, time_limit, unfinished_analysis
 from .maps import ParameterRing, RationalMap, fraction_text

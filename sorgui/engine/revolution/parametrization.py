@@ -32,7 +32,7 @@ from ..algebra.linalg import dot
 from ..algebra.polys import Poly, field_generators, to_expr
 from ..algebra.radicals import RadicalRing, radicals_of
 from ..recognition.profile import AxisFrame, ProfileCurve
-from ..results import Parametrization
+from ..stage_results import Parametrization
 
 T = sympy.Symbol("t")
 PARAMETERS = ("s", "t")

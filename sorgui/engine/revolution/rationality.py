@@ -41,9 +41,9 @@ from ..algebra.polys import (
 from ..algebra.realroots import count_real_roots
 from ..errors import AnalysisError, SingularError, SingularTimeout
 from ..recognition.profile import ProfileCurve
-from ..results import Parametrization, Rationality
 from ..singular import curves, profile_pair
 from ..singular.curves import CurveAnalysis, CurveParametrization
+from ..stage_results import Parametrization, Rationality
 from .parametrization import (
     Section,
     T,

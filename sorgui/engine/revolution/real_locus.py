@@ -36,7 +36,7 @@ from ..algebra.realroots import count_real_roots, sign, sign_changes
 from ..errors import AnalysisError
 from ..recognition.profile import ProfileCurve
 from ..recognition.symmetry import PLANE, SPHERE, Symmetry
-from ..results import RealLocus
+from ..stage_results import RealLocus
 
 S, W, T = sympy.symbols("s w t")
 
