@@ -161,6 +161,28 @@ def test_the_rounded_torus_gets_the_whole_analysis_of_its_nearest_surface() -> N
     assert Analysis.from_json(analysis.to_json()) == analysis
 
 
+GENERIC_TORUS = (
+    "1*x^4 + 2*x^2*y^2 + 2*x^2*z^2 - 8.993026414*x^2 - 4.763433005*x*y + 6.140035204*x*z + 1*y^4"
+    " + 2*y^2*z^2 - 4.36671073*y^2 - 14.52254893*y*z + 1*z^4 - 0.6402628568*z^2 + 9"
+)
+"""The torus ``(|p|² + 3)² = 16·(distance to the axis)²`` about the line through 0 along the third
+column of Rz(0.4)·Rx(0.7), printed with 10 significant digits. Its nearest exact surface is a
+surface of revolution about a rational axis of 23-digit coordinates, whose ``P²`` is a conic of
+54-bit coefficients without a rational point."""
+
+
+def test_a_generic_rounded_torus_gets_the_rationality_of_its_nearest_surface() -> None:
+    """The conic's point over a quadratic field comes from sorgui, not from paraPlaneCurve (11 s,
+    beyond the nearest surface's time limit for Singular: the rationality was undecided)."""
+    analysis = analyze(GENERIC_TORUS)
+    nearest = analysis.approximate.nearest
+    assert nearest is not None and nearest.analysis is not None and nearest.analysis.is_sor
+    rationality = nearest.analysis.rationality
+    assert rationality.status == "decided" and rationality.table_row == 4
+    assert rationality.genus_profile == 1 and rationality.genus_profile_square == 0
+    assert nearest.analysis.parametrizations and all(p.verified for p in nearest.analysis.parametrizations)
+
+
 def _turned_torus() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The torus (R = 3, r = 1) about a line turned by 0.7 rad about z, through (0.3, -1.2, 0.5)."""
     from sorgui.engine.rounded import dense

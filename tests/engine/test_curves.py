@@ -324,6 +324,39 @@ def test_large_coefficients_take_the_conic_route_before_singular(monkeypatch: py
     check(F, para)
 
 
+def test_a_large_conic_without_a_small_point_gets_one_from_legendres_equation(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The hyperbola ``y² − a·x² = y₀² − a·x₀²`` through ``(x₀, y₀)``, beyond the search of small
+    points, with 45-bit coefficients: its point comes from Legendre's equation, not Singular."""
+
+    def no_singular(*args: object, **kwargs: object) -> None:
+        raise AssertionError("Singular must not run")
+
+    monkeypatch.setattr(curves, "run_script", no_singular)
+    a, x0, y0 = 35184372088891, 987654321, 123456789012345
+    F = y**2 - a * x**2 - (y0**2 - a * x0**2)
+    para = parametrize(F, known_genus_zero=True, prefer_conic=True)
+    assert para.method == "conic" and para.field == "QQ" and para.is_real
+    check(F, para)
+
+
+NEAREST_TORUS_CONIC = 9007199254726754 * x**2 + 562949953421312 * y**2 - 5629499534380882 * y + 5066549580791807
+"""``P²`` of the nearest exact surface of a rounded torus (the tests of rounded input), sheared to a
+conic: it has no rational point, and paraPlaneCurve took 11 s to find a point over a quadratic
+field of a 78-digit discriminant."""
+
+
+def test_a_large_conic_without_rational_points_gets_a_real_point_over_a_quadratic_field(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def no_singular(*args: object, **kwargs: object) -> None:
+        raise AssertionError("Singular must not run")
+
+    monkeypatch.setattr(curves, "run_script", no_singular)
+    para = parametrize(NEAREST_TORUS_CONIC, known_genus_zero=True, prefer_conic=True)
+    assert para.method == "conic" and para.field != "QQ" and para.is_real
+    check(NEAREST_TORUS_CONIC, para)
+
+
 @pytest.mark.parametrize(
     "F",
     [

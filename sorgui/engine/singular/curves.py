@@ -37,6 +37,7 @@ from flint import fmpq, fmpq_poly
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 
+from ..algebra import legendre
 from ..algebra import quadratic as quadratic_fields
 from ..algebra.polys import (
     Poly,
@@ -474,7 +475,12 @@ def _large(F: Poly) -> bool:
 CONIC_POINT_SEARCH = 50
 """The conic route looks for a rational point ``(u₀, w₀)`` of ``w² = q(u)`` among the integers
 ``|u₀| ≤`` this (after the points at infinity and ``u₀ = 0``); Singular takes the curve if none
-is found."""
+is found, unless its coefficients are large (:data:`CONIC_LEGENDRE_BITS`)."""
+CONIC_LEGENDRE_BITS = 32
+"""A conic ``w² = q(u)`` whose coefficients (made integral) exceed this many bits and that has no
+small rational point gets its point from Legendre's equation (:mod:`..algebra.legendre`), or
+over a quadratic field when it has no rational point, instead of from Singular, which took 11 s
+on 54-bit coefficients (the nearest exact surface of a rounded torus)."""
 
 
 def _conic(F: Poly) -> tuple[Fraction, Fraction] | None:
@@ -503,10 +509,12 @@ def _conic(F: Poly) -> tuple[Fraction, Fraction] | None:
         conic = _conic_points(q)
         if conic is None:
             continue
-        u, w = conic
+        u, w, generators = conic
         at_u = {R.symbols[0]: u}
         v = sympy.cancel((-b.as_expr().subs(at_u) + s.as_expr().subs(at_u) * w) / (2 * a.as_expr().subs(at_u)))
-        return reduced_fractions(u, v, PARAMETER, ()) if quadratic == 1 else reduced_fractions(v, u, PARAMETER, ())
+        if quadratic == 1:
+            return reduced_fractions(u, v, PARAMETER, generators)
+        return reduced_fractions(v, u, PARAMETER, generators)
     return None
 
 
@@ -521,28 +529,77 @@ def square_part(D: Poly) -> tuple[Poly, Poly]:
     return s, q
 
 
-def _conic_points(q: Poly) -> tuple[sympy.Expr, sympy.Expr] | None:
-    """``(u(t), w(t))`` over ``QQ`` parameterizing ``w² = q(u)`` properly (``deg q`` 1 or 2):
-    the lines through a rational point, at infinity when the leading coefficient is a square,
-    else at ``u₀ = 0, ±1, …, ±``:data:`CONIC_POINT_SEARCH`; ``None`` if there is none."""
+def _conic_points(q: Poly) -> tuple[sympy.Expr, sympy.Expr, tuple[sympy.Expr, ...]] | None:
+    """``(u(t), w(t))`` parameterizing ``w² = q(u)`` properly (``deg q`` 1 or 2), and the
+    generators of their field (none: ``QQ``): the lines through a point, at infinity when the
+    leading coefficient is a square, else at ``u₀ = 0, ±1, …, ±``:data:`CONIC_POINT_SEARCH`; for
+    large coefficients (:data:`CONIC_LEGENDRE_BITS`) then the point of Legendre's equation, or
+    when the conic has no rational point one over ``QQ(√q(u₀))``. ``None`` if there is none."""
     t = PARAMETER
     coefficients = {m[0]: QQ.to_sympy(c) for m, c in q.items()}
     if q.degree() == 1:
         alpha, beta = (coefficients.get(k, sympy.Integer(0)) for k in (1, 0))
-        return (t**2 - beta) / alpha, t
+        return (t**2 - beta) / alpha, t, ()
     if q.degree() != 2:
         return None
     alpha, beta, gamma = (coefficients.get(k, sympy.Integer(0)) for k in (2, 1, 0))
     root = _rational_sqrt(alpha)
     if root is not None:  # the point at infinity: w = root·u + t
         u = (gamma - t**2) / (2 * root * t - beta)
-        return u, root * u + t
-    for u0 in sorted(range(-CONIC_POINT_SEARCH, CONIC_POINT_SEARCH + 1), key=abs):
+        return u, root * u + t, ()
+    search = sorted(range(-CONIC_POINT_SEARCH, CONIC_POINT_SEARCH + 1), key=abs)
+    for u0 in search:
         w0 = _rational_sqrt(alpha * u0**2 + beta * u0 + gamma)
-        if w0 is not None:  # the line w = w0 + t·(u − u0) meets the conic again at u
-            u = (alpha * u0 + beta + t**2 * u0 - 2 * w0 * t) / (t**2 - alpha)
-            return u, w0 + t * (u - u0)
+        if w0 is not None:
+            return _line_through(alpha, beta, u0, w0) + ((),)
+    if max(abs(k).p.bit_length() + abs(k).q.bit_length() for k in (alpha, beta, gamma)) <= CONIC_LEGENDRE_BITS:
+        return None
+    point = _legendre_point(alpha, beta, gamma)
+    if point is not None:
+        return _line_through(alpha, beta, *point) + ((),)
+    if not _has_rational_point(alpha, beta, gamma):
+        values = [(u0, alpha * u0**2 + beta * u0 + gamma) for u0 in search]
+        u0, value = min(((u0, v) for u0, v in values if v), key=lambda uv: (bool(uv[1] < 0), abs(uv[1].p * uv[1].q)))
+        w0 = sympy.sqrt(value)
+        return _line_through(alpha, beta, u0, w0) + ((w0,),)
     return None
+
+
+def _line_through(alpha: sympy.Expr, beta: sympy.Expr, u0: sympy.Expr, w0: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr]:
+    """The lines ``w = w₀ + t·(u − u₀)`` through the point ``(u₀, w₀)`` of ``w² = α·u² + β·u + γ``,
+    each meeting the conic again at ``u(t)``: ``(u(t), w(t))``."""
+    t = PARAMETER
+    u = (alpha * u0 + beta + t**2 * u0 - 2 * w0 * t) / (t**2 - alpha)
+    return u, w0 + t * (u - u0)
+
+
+def _legendre_form(alpha: sympy.Rational, beta: sympy.Rational, gamma: sympy.Rational) -> tuple[int, int, int]:
+    """``w² = α·u² + β·u + γ`` as Legendre's ``A·W² + B·U² + C·Z² = 0`` with ``w = W/Z`` and
+    ``u = U/Z − β/(2α)`` (completing the square: ``w² = α·(u + β/2α)² + δ``, ``δ = γ − β²/4α``),
+    over a common denominator."""
+    delta = gamma - beta**2 / (4 * alpha)
+    return int(alpha.q * delta.q), int(-alpha.p * delta.q), int(-delta.p * alpha.q)
+
+
+def _legendre_point(
+    alpha: sympy.Rational, beta: sympy.Rational, gamma: sympy.Rational
+) -> tuple[sympy.Expr, sympy.Expr] | None:
+    """A rational point ``(u₀, w₀)`` of ``w² = α·u² + β·u + γ`` from Legendre's equation, or ``None``."""
+    if not gamma - beta**2 / (4 * alpha):
+        return None  # two lines: not a conic the route parameterizes
+    found = legendre.solution(*_legendre_form(alpha, beta, gamma))
+    if found is None or found[2] == 0:
+        return None
+    W, U, Z = (sympy.Integer(k) for k in found)
+    return U / Z - beta / (2 * alpha), W / Z
+
+
+def _has_rational_point(alpha: sympy.Rational, beta: sympy.Rational, gamma: sympy.Rational) -> bool:
+    """Whether ``w² = α·u² + β·u + γ`` has a rational point (Legendre's theorem); ``True`` when
+    undecided (coefficients beyond :data:`.legendre.MAX_BITS`), so that the curve goes to Singular."""
+    if not gamma - beta**2 / (4 * alpha):
+        return True
+    return legendre.has_solution(*_legendre_form(alpha, beta, gamma)) is not False
 
 
 def _rational_sqrt(c: sympy.Rational) -> sympy.Rational | None:
