@@ -1,0 +1,79 @@
+"""Benchmark: rounded tori in general position, a whole ``sorgui analyze`` process each.
+
+The ring torus ``(|p − c|² + 3)² = 16·(distance to the axis)²`` (radii 2 and 1) about the axis
+of the tests' generic rounded torus and about random axes (seeded), printed with 10 significant
+digits as a CAD system prints it. The answer includes the whole exact analysis of the nearest
+exact surface (docs/math.md §8.5): its axis is rational with coordinates of up to 23 digits, and
+its ``P²`` a conic whose point, when it has no small one, comes from Legendre's equation
+(docs/math.md §5, "A point of a conic"). Each row: the wall time of the process (median of
+``--repeats``), the nearest surface's rationality status and Table 1 row. Run
+``python -m benchmarks.rounded_tori [--repeats N] [--write]`` from the repository root.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from benchmarks.report import process_times, run
+from sorgui.engine.rounded import dense
+from sorgui.samples import printed
+
+SEEDS = tuple(range(1, 13)) + (42,)
+"""Random axes; the torus of seed 42 took 2.6 s before its conic's point came from Legendre's equation."""
+DIGITS = 10
+TURNED = np.array([np.sin(0.4) * np.sin(0.7), -np.cos(0.4) * np.sin(0.7), np.cos(0.7)])
+"""The axis of the generic rounded torus of the tests (``tests/engine/test_approximate.py``): the
+third column of Rz(0.4)·Rx(0.7). It took 10.9 s, its nearest surface's rationality undecided."""
+
+
+def random_axis(seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """A random unit direction and a point (the origin for even seeds)."""
+    rng = np.random.default_rng(seed)
+    direction = rng.normal(size=3)
+    direction /= np.linalg.norm(direction)
+    point = np.round(rng.uniform(-1, 1, size=3), 1) if seed % 2 else np.zeros(3)
+    return direction, point
+
+
+def rounded_torus(direction: np.ndarray, point: np.ndarray) -> str:
+    """The torus about the line through ``point`` along the unit ``direction``, printed with
+    :data:`DIGITS` significant digits."""
+    one = dense.from_terms({(0, 0, 0): 1.0}, 4)
+    rho = dense.squared_distance(point)
+    h = dense.linear_form(direction, point)
+    h2 = dense.times(dense.times(one, h), h)
+    r1 = dense.times(one, rho)
+    r2 = dense.times(r1, rho)
+    # (ρ + 3)² − 16·(ρ − h²) = ρ² − 10ρ + 16h² + 9
+    return printed(r2 - 10 * r1 + 16 * h2 + 9 * one, DIGITS)
+
+
+def table(repeats: int) -> str:
+    rows = [
+        "| torus | whole process (s) | nearest surface: rationality | Table 1 row |",
+        "|---|---:|---|---:|",
+    ]
+    cases = [("the tests' axis", (TURNED, np.zeros(3)))] + [(f"seed {seed}", random_axis(seed)) for seed in SEEDS]
+    with tempfile.TemporaryDirectory() as folder:
+        for name, (direction, point) in cases:
+            path = Path(folder, "torus.txt")
+            path.write_text(rounded_torus(direction, point) + "\n", encoding="utf-8")
+            wall, _, out = process_times(
+                [sys.executable, "-m", "sorgui.cli", "analyze", "--json", "-f", str(path)], repeats
+            )
+            nearest = json.loads(out)["approximate"]["nearest"]
+            rationality = nearest["analysis"]["rationality"] if nearest and nearest["analysis"] else None
+            status = "no nearest surface" if rationality is None else rationality["status"]
+            row = "-" if rationality is None or rationality["table_row"] is None else rationality["table_row"]
+            rows.append(f"| {name} | {wall:.2f} | {status} | {row} |")
+            print(rows[-1], flush=True)
+    return "\n".join(rows)
+
+
+if __name__ == "__main__":
+    run("rounded-tori", __doc__.splitlines()[0], table)
