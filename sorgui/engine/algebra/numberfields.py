@@ -56,13 +56,26 @@ class RadicalBasis:
         return 1 << len(self.radicands)
 
 
+@lru_cache(maxsize=256)
+def _factors(m: int) -> tuple[tuple[int, int], ...]:
+    """flint's factorization of ``m > 0`` as ``(prime, exponent)`` pairs, kept: the radicands of a
+    field are factored again for every square root taken in it, and those of a nearest exact
+    surface have 30–60 digits (tens of milliseconds each)."""
+    return tuple((int(p), int(e)) for p, e in fmpz(m).factor())
+
+
 def _squarefree(m: int) -> tuple[int, int]:
     """``m = core·q²`` with ``core`` square-free: ``(core, q)``."""
     core, q = 1, 1
-    for p, e in fmpz(m).factor():
-        core *= int(p) ** (e % 2)
-        q *= int(p) ** (e // 2)
+    for p, e in _factors(m):
+        core *= p ** (e % 2)
+        q *= p ** (e // 2)
     return core, q
+
+
+def _odd_primes(m: int) -> frozenset[int]:
+    """The primes dividing the square-free part of ``m``."""
+    return frozenset(p for p, e in _factors(m) if e % 2)
 
 
 def squarefree_core(m: int) -> int:
@@ -88,8 +101,7 @@ class _Decomposer:
 
     def add(self, m: int) -> None:
         core, _ = _squarefree(m)
-        primes = frozenset(int(p) for p, _ in fmpz(core).factor())
-        rest, mask = self._reduce(primes)
+        rest, mask = self._reduce(_odd_primes(m))
         if rest:
             bit = 1 << len(self.radicands)
             self.radicands.append(core)
@@ -98,8 +110,7 @@ class _Decomposer:
     def decompose(self, m: int) -> tuple[int, fmpq]:
         """``(S, c)`` with ``√m = c·ρ^S``."""
         core, q = _squarefree(m)
-        primes = frozenset(int(p) for p, _ in fmpz(core).factor())
-        rest, mask = self._reduce(primes)
+        rest, mask = self._reduce(_odd_primes(m))
         if rest:
             raise AnalysisError(f"sqrt({m}) does not lie in the coefficient field")
         prod = 1
