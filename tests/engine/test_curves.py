@@ -357,6 +357,37 @@ def test_a_large_conic_without_rational_points_gets_a_real_point_over_a_quadrati
     check(NEAREST_TORUS_CONIC, para)
 
 
+NEAREST_TORUS_CONIC_LARGER = (
+    274877906944346313476562500 * x**2
+    + 17179869183999982820130816 * y**2
+    - 171798691837916320800781250 * y
+    + 154618822656000030517578125
+)
+"""The same for another rounded torus (seed 42 of ``benchmarks.rounded_tori``): its Legendre
+coefficients have 254–258 bits, products of small primes and one prime of 103 bits, and the
+quadratic field's root is that of a 42-digit number."""
+
+
+def test_a_conic_of_larger_coefficients_without_rational_points_too(monkeypatch: pytest.MonkeyPatch) -> None:
+    def no_singular(*args: object, **kwargs: object) -> None:
+        raise AssertionError("Singular must not run")
+
+    monkeypatch.setattr(curves, "run_script", no_singular)
+    para = parametrize(NEAREST_TORUS_CONIC_LARGER, known_genus_zero=True, prefer_conic=True)
+    assert para.method == "conic" and para.field != "QQ" and para.is_real
+    # Checked on its fractions: sympy's conversion of the printed map into the field fails on the
+    # root of a 42-digit number (its numerical field isomorphism), so `check` cannot read it back.
+    assert para.fractions is not None
+    (p1, q1), (p2, q2) = para.fractions
+    assert curves._vanishes(NEAREST_TORUS_CONIC_LARGER, p1, q1, p2, q2)
+    assert curves._proper_degree(NEAREST_TORUS_CONIC_LARGER, p1, q1, p2, q2)
+
+
+def test_a_large_conic_without_real_points_is_left_to_singular() -> None:
+    """No rational point and no real one: the conic route declines (Singular finds the field)."""
+    assert curves._conic(y**2 + 35184372088891 * x**2 + 98765432109877) is None
+
+
 @pytest.mark.parametrize(
     "F",
     [

@@ -8,6 +8,7 @@ import math
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from sympy import nextprime
 
 from sorgui.engine.algebra.legendre import MAX_BITS, has_solution, solution
 
@@ -65,6 +66,13 @@ def test_one_sign_or_a_non_residue_has_none() -> None:
     assert has_solution(1, 1, -2) and solution(1, 1, -2) is not None
 
 
-def test_coefficients_beyond_the_bound_are_not_factored() -> None:
-    large = 2 ** (MAX_BITS + 1) + 1
-    assert has_solution(1, -large, 1) is None and solution(1, -large, 1) is None
+def test_a_large_coefficient_is_factored_when_it_is_quick() -> None:
+    """Beyond :data:`MAX_BITS` bits, a number of small primes and one large prime is factored;
+    the product of two primes of 100 bits is not (the equation is left undecided)."""
+    large_prime = nextprime(2**200)
+    smooth = 2**40 * 3**25 * 1009 * large_prime
+    assert smooth.bit_length() > MAX_BITS
+    assert has_solution(1, -smooth, 1) is not None
+    hard = nextprime(2**100) * nextprime(2**101)
+    assert hard.bit_length() > MAX_BITS
+    assert has_solution(1, -hard, 1) is None and solution(1, -hard, 1) is None

@@ -16,7 +16,8 @@ surface of a rounded torus, took 11 s). Legendre's equation decides it instead:
   LLL on its Gram matrix) give a solution among their small combinations (Cremona and Rusin,
   "Efficient solution of rational conics", 2003).
 
-Only numbers below :data:`MAX_BITS` are factored, so the answer comes within about a second.
+Numbers are factored only as far as is quick (:func:`_factorization`), so the answer comes
+within about a second, or the equation is left undecided.
 """
 
 from __future__ import annotations
@@ -28,8 +29,13 @@ from fractions import Fraction
 from flint import fmpz, fmpz_mat
 
 MAX_BITS = 160
-"""Coefficients of more bits than this (48 digits) are not factored: flint factors a 48-digit
-number in at most about 0.2 s, a 56-digit one in 1.5 s."""
+"""A number of at most this many bits (48 digits) is factored whole: flint takes at most about
+0.2 s (a 56-digit one 1.5 s). A larger one only loses its factors of up to :data:`SMOOTH_BITS`
+bits: what is left must then be prime or small enough, else the equation is not decided."""
+SMOOTH_BITS = 32
+"""The size of the prime factors looked for in a number beyond :data:`MAX_BITS` (a few tens of
+milliseconds at 250 bits): the coefficients of conics from rounded input are products of many
+small primes and one or two large ones."""
 SEARCH = 2
 """Coefficients ``|k| ≤`` this of the combinations of the reduced basis that are tried."""
 
@@ -39,43 +45,65 @@ Factors = dict[int, int]
 
 def has_solution(a: int, b: int, c: int) -> bool | None:
     """Whether ``a·x² + b·y² + c·z² = 0`` (``a, b, c`` nonzero integers) has a nontrivial integer
-    solution (Legendre's theorem); ``None`` when a coefficient has more than :data:`MAX_BITS`
-    bits."""
+    solution (Legendre's theorem); ``None`` when a coefficient cannot be factored quickly
+    (:func:`_factorization`)."""
     form = _normal_form(a, b, c)
     return None if form is None else _roots(form) is not None
 
 
 def solution(a: int, b: int, c: int) -> tuple[int, int, int] | None:
     """A nontrivial integer solution of ``a·x² + b·y² + c·z² = 0``, or ``None`` when there is
-    none, a coefficient has more than :data:`MAX_BITS` bits, or the small combinations of the
-    reduced lattice hold none (never seen; the caller then looks elsewhere)."""
+    none, a coefficient cannot be factored quickly, or the small combinations of the reduced
+    lattice hold none (never seen; the caller then looks elsewhere)."""
     form = _normal_form(a, b, c)
     if form is None:
         return None
     roots = _roots(form)
     if roots is None:
         return None
-    (na, nb, nc), scales = form
+    (na, nb, nc), scales, _ = form
     for x, y, z in _short_vectors((na, nb, nc), roots):
         if na * x * x + nb * y * y + nc * z * z == 0:
             return _integers([scales[0] * x, scales[1] * y, scales[2] * z])
     return None
 
 
-_Form = tuple[tuple[int, int, int], tuple[Fraction, Fraction, Fraction]]
-"""Square-free, pairwise coprime coefficients and the scales ``k`` of the variables: a solution
-``v`` of the new equation gives ``(k₁v₁, k₂v₂, k₃v₃)`` of the given one."""
+_Form = tuple[tuple[int, int, int], tuple[Fraction, Fraction, Fraction], tuple[list[int], list[int], list[int]]]
+"""Square-free, pairwise coprime coefficients, the scales ``k`` of the variables (a solution
+``v`` of the new equation gives ``(k₁v₁, k₂v₂, k₃v₃)`` of the given one), and the primes of each
+coefficient."""
+
+
+def _factorization(m: int) -> Factors | None:
+    """The prime factorization of ``m > 0``, or ``None`` when it is not found quickly: whole up to
+    :data:`MAX_BITS` bits; beyond, the factors of up to :data:`SMOOTH_BITS` bits and a cofactor
+    that is proved prime or is factored whole."""
+    if m.bit_length() <= MAX_BITS:
+        return {int(p): int(e) for p, e in fmpz(m).factor()}
+    found: Factors = {}
+    for p, e in fmpz(m).factor_smooth(SMOOTH_BITS):
+        if p.bit_length() <= SMOOTH_BITS or p.is_prime():
+            found[int(p)] = found.get(int(p), 0) + int(e)
+        elif p.bit_length() <= MAX_BITS:
+            for q, f in p.factor():
+                found[int(q)] = found.get(int(q), 0) + int(e) * int(f)
+        else:
+            return None
+    return found
 
 
 def _normal_form(a: int, b: int, c: int) -> _Form | None:
-    """The equation with square-free, pairwise coprime coefficients (``None`` for one of more
-    than :data:`MAX_BITS` bits): a square factor ``s²`` of a coefficient goes into its variable's
-    scale, and a common prime ``p`` of two coefficients moves to the third (``p·(a'x² + b'y²) +
-    c·z² = 0`` is ``a'(px)² + b'(py)² + pc·z² = 0`` divided by ``p``)."""
-    if any(abs(k).bit_length() > MAX_BITS for k in (a, b, c)):
-        return None
+    """The equation with square-free, pairwise coprime coefficients (``None`` when a coefficient
+    is not factored): a square factor ``s²`` of a coefficient goes into its variable's scale, and
+    a common prime ``p`` of two coefficients moves to the third (``p·(a'x² + b'y²) + c·z² = 0`` is
+    ``a'(px)² + b'(py)² + pc·z² = 0`` divided by ``p``)."""
     signs = [1 if k > 0 else -1 for k in (a, b, c)]
-    factors: list[Factors] = [{int(p): int(e) for p, e in fmpz(abs(k)).factor()} for k in (a, b, c)]
+    factors: list[Factors] = []
+    for k in (a, b, c):
+        found = _factorization(abs(k))
+        if found is None:
+            return None
+        factors.append(found)
     scales = [Fraction(1)] * 3
     changed = True
     while changed:
@@ -96,7 +124,12 @@ def _normal_form(a: int, b: int, c: int) -> _Form | None:
                 scales[j] /= p
                 changed = True
     coefficients = [sign * _product(f) for sign, f in zip(signs, factors)]
-    return (coefficients[0], coefficients[1], coefficients[2]), (scales[0], scales[1], scales[2])
+    primes = [sorted(f) for f in factors]
+    return (
+        (coefficients[0], coefficients[1], coefficients[2]),
+        (scales[0], scales[1], scales[2]),
+        (primes[0], primes[1], primes[2]),
+    )
 
 
 def _product(factors: Factors) -> int:
@@ -110,24 +143,23 @@ def _roots(form: _Form) -> tuple[int, int, int] | None:
     """``(r_a, r_b, r_c)``: ``r_a² ≡ −c/b (mod a)``, ``r_b² ≡ −a/c (mod b)``, ``r_c² ≡ −b/a (mod c)``
     for the square-free, pairwise coprime ``a, b, c``; ``None`` when one does not exist or the
     three have one sign (then the conic has no rational point)."""
-    (a, b, c), _ = form
+    (a, b, c), _, primes = form
     if (a > 0) == (b > 0) == (c > 0):
         return None
     out = []
-    for modulus, top, bottom in ((a, -c, b), (b, -a, c), (c, -b, a)):
-        root = _square_root(top, bottom, abs(modulus))
+    for modulus, top, bottom, factors in ((a, -c, b, primes[0]), (b, -a, c, primes[1]), (c, -b, a, primes[2])):
+        root = _square_root(top, bottom, abs(modulus), factors)
         if root is None:
             return None
         out.append(root)
     return out[0], out[1], out[2]
 
 
-def _square_root(top: int, bottom: int, modulus: int) -> int | None:
-    """A square root of ``top/bottom`` modulo the square-free ``modulus`` (coprime to both), by
-    the Chinese remainder theorem over its primes; ``None`` when there is none."""
+def _square_root(top: int, bottom: int, modulus: int, primes: list[int]) -> int | None:
+    """A square root of ``top/bottom`` modulo the square-free ``modulus`` (coprime to both), the
+    product of ``primes``, by the Chinese remainder theorem; ``None`` when there is none."""
     root, done = 0, 1
-    for prime, _ in fmpz(modulus).factor():
-        p = int(prime)
+    for p in primes:
         value = top * pow(bottom, -1, p) % p
         if p == 2:
             r = value

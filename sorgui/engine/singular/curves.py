@@ -512,10 +512,29 @@ def _conic(F: Poly) -> tuple[Fraction, Fraction] | None:
         u, w, generators = conic
         at_u = {R.symbols[0]: u}
         v = sympy.cancel((-b.as_expr().subs(at_u) + s.as_expr().subs(at_u) * w) / (2 * a.as_expr().subs(at_u)))
-        if quadratic == 1:
-            return reduced_fractions(u, v, PARAMETER, generators)
-        return reduced_fractions(v, u, PARAMETER, generators)
+        x, y = (u, v) if quadratic == 1 else (v, u)
+        return _over_root(x, y, generators[0]) if generators else reduced_fractions(x, y, PARAMETER, ())
     return None
+
+
+def _over_root(x: sympy.Expr, y: sympy.Expr, root: sympy.Expr) -> tuple[Fraction, Fraction]:
+    """``x`` and ``y``, rational functions of the parameter with coefficients ``a + b·root``
+    (``root = √n``), as reduced fractions over ``QQ(root)``: the coefficients are read off as
+    polynomials in ``root``, not by sympy's conversion into the field, whose numerical field
+    isomorphism fails on a root of a number of many digits."""
+    D = QQ.algebraic_field(root)
+    R = poly_ring(("t",), D)
+    theta = D([QQ.one, QQ.zero])  # root itself: the field's generator
+    out = []
+    for expr in (x, y):
+        parts = []
+        for part in sympy.fraction(sympy.together(expr)):
+            terms: dict[tuple[int], object] = {}
+            for (i, j), c in sympy.Poly(sympy.expand(part), PARAMETER, root, domain=QQ).terms():
+                terms[(i,)] = terms.get((i,), D.zero) + D.convert(QQ.convert(c)) * theta**j
+            parts.append(R.from_dict(terms))
+        out.append(_reduced(parts[0], parts[1]))
+    return out[0], out[1]
 
 
 def square_part(D: Poly) -> tuple[Poly, Poly]:
@@ -534,7 +553,8 @@ def _conic_points(q: Poly) -> tuple[sympy.Expr, sympy.Expr, tuple[sympy.Expr, ..
     generators of their field (none: ``QQ``): the lines through a point, at infinity when the
     leading coefficient is a square, else at ``u₀ = 0, ±1, …, ±``:data:`CONIC_POINT_SEARCH`; for
     large coefficients (:data:`CONIC_LEGENDRE_BITS`) then the point of Legendre's equation, or
-    when the conic has no rational point one over ``QQ(√q(u₀))``. ``None`` if there is none."""
+    when the conic has no rational point a real one over ``QQ(√q(u₀))`` (``q(u₀) > 0`` of
+    smallest height). ``None`` if there is none."""
     t = PARAMETER
     coefficients = {m[0]: QQ.to_sympy(c) for m, c in q.items()}
     if q.degree() == 1:
@@ -557,11 +577,12 @@ def _conic_points(q: Poly) -> tuple[sympy.Expr, sympy.Expr, tuple[sympy.Expr, ..
     point = _legendre_point(alpha, beta, gamma)
     if point is not None:
         return _line_through(alpha, beta, *point) + ((),)
-    if not _has_rational_point(alpha, beta, gamma):
-        values = [(u0, alpha * u0**2 + beta * u0 + gamma) for u0 in search]
-        u0, value = min(((u0, v) for u0, v in values if v), key=lambda uv: (bool(uv[1] < 0), abs(uv[1].p * uv[1].q)))
+    positive = [(u0, value) for u0 in search if (value := alpha * u0**2 + beta * u0 + gamma) > 0]
+    if positive and not _has_rational_point(alpha, beta, gamma):
+        u0, value = min(positive, key=lambda point: abs(point[1].p * point[1].q))
         w0 = sympy.sqrt(value)
-        return _line_through(alpha, beta, u0, w0) + ((w0,),)
+        _, root = w0.as_coeff_Mul()  # √(p/q) = √(pq)/q
+        return _line_through(alpha, beta, u0, w0) + ((root,),)
     return None
 
 
@@ -596,7 +617,8 @@ def _legendre_point(
 
 def _has_rational_point(alpha: sympy.Rational, beta: sympy.Rational, gamma: sympy.Rational) -> bool:
     """Whether ``w² = α·u² + β·u + γ`` has a rational point (Legendre's theorem); ``True`` when
-    undecided (coefficients beyond :data:`.legendre.MAX_BITS`), so that the curve goes to Singular."""
+    undecided (a coefficient not factored quickly, :mod:`..algebra.legendre`), so that the curve
+    goes to Singular."""
     if not gamma - beta**2 / (4 * alpha):
         return True
     return legendre.has_solution(*_legendre_form(alpha, beta, gamma)) is not False
