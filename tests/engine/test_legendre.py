@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from sympy import nextprime
 
-from sorgui.engine.algebra.legendre import MAX_BITS, has_solution, solution
+from sorgui.engine.algebra.legendre import LARGEST_BITS, MAX_BITS, has_solution, solution
 
 nonzero = st.integers(min_value=-60, max_value=60).filter(bool)
 
@@ -76,3 +76,4 @@ def test_a_large_coefficient_is_factored_when_it_is_quick() -> None:
     hard = nextprime(2**100) * nextprime(2**101)
     assert hard.bit_length() > MAX_BITS
     assert has_solution(1, -hard, 1) is None and solution(1, -hard, 1) is None
+    assert has_solution(1, -(2 ** (LARGEST_BITS + 1)), 1) is None  # not even its small primes

@@ -36,6 +36,9 @@ SMOOTH_BITS = 32
 """The size of the prime factors looked for in a number beyond :data:`MAX_BITS` (a few tens of
 milliseconds at 250 bits): the coefficients of conics from rounded input are products of many
 small primes and one or two large ones."""
+LARGEST_BITS = 1200
+"""No number of more bits is factored at all (looking for its small primes takes 0.09 s at 1,200
+bits, 0.6 s at 3,000): a conic typed with coefficients of hundreds of digits is Singular's."""
 SEARCH = 2
 """Coefficients ``|k| ≤`` this of the combinations of the reduced basis that are tried."""
 
@@ -76,10 +79,12 @@ coefficient."""
 
 def _factorization(m: int) -> Factors | None:
     """The prime factorization of ``m > 0``, or ``None`` when it is not found quickly: whole up to
-    :data:`MAX_BITS` bits; beyond, the factors of up to :data:`SMOOTH_BITS` bits and a cofactor
-    that is proved prime or is factored whole."""
+    :data:`MAX_BITS` bits; beyond, up to :data:`LARGEST_BITS`, the factors of up to
+    :data:`SMOOTH_BITS` bits and a cofactor that is proved prime or is factored whole."""
     if m.bit_length() <= MAX_BITS:
         return {int(p): int(e) for p, e in fmpz(m).factor()}
+    if m.bit_length() > LARGEST_BITS:
+        return None
     found: Factors = {}
     for p, e in fmpz(m).factor_smooth(SMOOTH_BITS):
         if p.bit_length() <= SMOOTH_BITS or p.is_prime():
