@@ -183,6 +183,25 @@ def test_a_generic_rounded_torus_gets_the_rationality_of_its_nearest_surface() -
     assert nearest.analysis.parametrizations and all(p.verified for p in nearest.analysis.parametrizations)
 
 
+def test_a_rounded_paraboloid_snaps_back_to_its_exact_surface() -> None:
+    """``ρ − h² − 2h`` about the line through 0 along ``(2, 1, 2)/3``, printed with 10 digits: its
+    term in ``h`` does not change as the point moves along the axis, and the profile's centre
+    was put at 10¹⁰ by dividing by the fit's noise (no exact surface was found)."""
+    from sorgui.engine.rounded import dense
+
+    direction, point = np.array([2.0, 1.0, 2.0]) / 3, np.zeros(3)
+    one = dense.from_terms({(0, 0, 0): 1.0}, 2)
+    h = dense.times(one, dense.linear_form(direction, point))
+    h2 = dense.times(h, dense.linear_form(direction, point))
+    rho = dense.times(one, dense.squared_distance(point))
+    analysis = analyze(printed(rho - h2 - 2 * h, 10))
+    nearest = analysis.approximate.nearest
+    assert nearest is not None and nearest.within_rounding
+    assert nearest.axis is not None and nearest.axis.direction == ("2", "1", "2")
+    assert nearest.analysis is not None and nearest.analysis.is_sor
+    assert nearest.analysis.rationality.table_row == 3
+
+
 def _turned_torus() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The torus (R = 3, r = 1) about a line turned by 0.7 rad about z, through (0.3, -1.2, 0.5)."""
     from sorgui.engine.rounded import dense

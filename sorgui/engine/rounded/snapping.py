@@ -57,6 +57,10 @@ AXIS_TRIES = 3
 MAX_CHECKS = 16
 SPREADS = (3.0, 1.0, 0.3)
 """Radii, in standard errors, within which a refined axis is snapped (widest first)."""
+FLAT_SLOPE = 1e-8
+"""A change of the profile's terms of degree ``d - 1`` under a unit shift along the axis below
+this (relative to the terms) is the floating-point fit's noise, not a slope: a paraboloid's
+term in ``h`` does not change at all, and dividing by that noise put its centre at 10¹⁰."""
 
 
 @dataclass(frozen=True)
@@ -375,8 +379,8 @@ def profile_centre(f: Normalised, best: Fit, direction: FloatArray) -> FloatArra
 
     at_zero, at_one = below_top(0.0), below_top(1.0)
     slope = at_one - at_zero
-    if not np.any(slope):
-        return foot
+    if float(np.linalg.norm(slope)) <= FLAT_SLOPE * max(float(np.linalg.norm(at_zero)), 1.0):
+        return foot  # those terms do not move with the point (a paraboloid: only the constant does)
     t = -float(slope @ at_zero) / float(slope @ slope)
     return foot + t * unit
 
