@@ -210,6 +210,16 @@ def test_cancel_reaches_singular() -> None:
 # --- parameterizations ------------------------------------------------------------------------
 
 
+@pytest.fixture
+def singular_forbidden(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Singular may not run in the test (a call fails it)."""
+
+    def no_singular(*args: object, **kwargs: object) -> None:
+        raise AssertionError("Singular must not run")
+
+    monkeypatch.setattr(curves, "run_script", no_singular)
+
+
 def check(F: Poly, para: curves.CurveParametrization) -> None:
     assert is_on_curve(F, para.x, para.y, para.parameter, para.generators)
     assert is_proper(F, para.x, para.y, para.parameter, para.generators)
@@ -313,25 +323,17 @@ def test_the_conic_route_without_singular(monkeypatch: pytest.MonkeyPatch, F: Po
     check(F, para)
 
 
-def test_large_coefficients_take_the_conic_route_before_singular(monkeypatch: pytest.MonkeyPatch) -> None:
-    def no_singular(*args: object, **kwargs: object) -> None:
-        raise AssertionError("Singular must not run")
-
-    monkeypatch.setattr(curves, "run_script", no_singular)
+def test_large_coefficients_take_the_conic_route_before_singular(singular_forbidden: None) -> None:
     F = y**2 - (2**70 * x**2 + 3**45) * (x - 1) ** 2
     para = parametrize(F, known_genus_zero=True)
     assert para.method == "conic" and para.field == "QQ"
     check(F, para)
 
 
-def test_a_large_conic_without_a_small_point_gets_one_from_legendres_equation(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_a_large_conic_without_a_small_point_gets_one_from_legendres_equation(singular_forbidden: None) -> None:
     """The hyperbola ``y² − a·x² = y₀² − a·x₀²`` through ``(x₀, y₀)``, beyond the search of small
     points, with 45-bit coefficients: its point comes from Legendre's equation, not Singular."""
 
-    def no_singular(*args: object, **kwargs: object) -> None:
-        raise AssertionError("Singular must not run")
-
-    monkeypatch.setattr(curves, "run_script", no_singular)
     a, x0, y0 = 35184372088891, 987654321, 123456789012345
     F = y**2 - a * x**2 - (y0**2 - a * x0**2)
     para = parametrize(F, known_genus_zero=True, prefer_conic=True)
@@ -346,12 +348,8 @@ field of a 78-digit discriminant."""
 
 
 def test_a_large_conic_without_rational_points_gets_a_real_point_over_a_quadratic_field(
-    monkeypatch: pytest.MonkeyPatch,
+    singular_forbidden: None,
 ) -> None:
-    def no_singular(*args: object, **kwargs: object) -> None:
-        raise AssertionError("Singular must not run")
-
-    monkeypatch.setattr(curves, "run_script", no_singular)
     para = parametrize(NEAREST_TORUS_CONIC, known_genus_zero=True, prefer_conic=True)
     assert para.method == "conic" and para.field != "QQ" and para.is_real
     check(NEAREST_TORUS_CONIC, para)
@@ -368,11 +366,7 @@ coefficients have 254–258 bits, products of small primes and one prime of 103 
 quadratic field's root is that of a 42-digit number."""
 
 
-def test_a_conic_of_larger_coefficients_without_rational_points_too(monkeypatch: pytest.MonkeyPatch) -> None:
-    def no_singular(*args: object, **kwargs: object) -> None:
-        raise AssertionError("Singular must not run")
-
-    monkeypatch.setattr(curves, "run_script", no_singular)
+def test_a_conic_of_larger_coefficients_without_rational_points_too(singular_forbidden: None) -> None:
     para = parametrize(NEAREST_TORUS_CONIC_LARGER, known_genus_zero=True, prefer_conic=True)
     assert para.method == "conic" and para.field != "QQ" and para.is_real
     # Checked on its fractions: sympy's conversion of the printed map into the field fails on the
@@ -401,13 +395,7 @@ def test_the_conic_route_declines(F: Poly) -> None:
     assert curves._conic(F) is None
 
 
-def test_linear_in_y_takes_the_direct_route_without_singular(
-    monkeypatch: pytest.MonkeyPatch,
-) -> None:
-    def no_singular(*args: object, **kwargs: object) -> None:
-        raise AssertionError("Singular must not run")
-
-    monkeypatch.setattr(curves, "run_script", no_singular)
+def test_linear_in_y_takes_the_direct_route_without_singular(singular_forbidden: None) -> None:
     F = y - x**3 - 3 * x**2 + 2 * x
     para = parametrize(F)
     assert para.method == "direct" and para.coordinates == (T, T**3 + 3 * T**2 - 2 * T)

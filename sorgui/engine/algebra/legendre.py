@@ -46,29 +46,32 @@ Factors = dict[int, int]
 """An integer's prime factorization, ``{prime: exponent}``."""
 
 
-def has_solution(a: int, b: int, c: int) -> bool | None:
+def solve(a: int, b: int, c: int) -> tuple[bool | None, tuple[int, int, int] | None]:
     """Whether ``a·x² + b·y² + c·z² = 0`` (``a, b, c`` nonzero integers) has a nontrivial integer
-    solution (Legendre's theorem); ``None`` when a coefficient cannot be factored quickly
-    (:func:`_factorization`)."""
-    form = _normal_form(a, b, c)
-    return None if form is None else _roots(form) is not None
-
-
-def solution(a: int, b: int, c: int) -> tuple[int, int, int] | None:
-    """A nontrivial integer solution of ``a·x² + b·y² + c·z² = 0``, or ``None`` when there is
-    none, a coefficient cannot be factored quickly, or the small combinations of the reduced
-    lattice hold none (never seen; the caller then looks elsewhere)."""
+    solution (Legendre's theorem; ``None`` when a coefficient cannot be factored quickly,
+    :func:`_factorization`), and one with gcd 1 when it has (``None`` if the small combinations
+    of the reduced lattice hold none: never seen; the caller then looks elsewhere)."""
     form = _normal_form(a, b, c)
     if form is None:
-        return None
+        return None, None
     roots = _roots(form)
     if roots is None:
-        return None
+        return False, None
     (na, nb, nc), scales, _ = form
     for x, y, z in _short_vectors((na, nb, nc), roots):
         if na * x * x + nb * y * y + nc * z * z == 0:
-            return _integers([scales[0] * x, scales[1] * y, scales[2] * z])
-    return None
+            return True, _integers([scales[0] * x, scales[1] * y, scales[2] * z])
+    return True, None
+
+
+def has_solution(a: int, b: int, c: int) -> bool | None:
+    """The first half of :func:`solve`: whether a nontrivial solution exists (``None``: undecided)."""
+    return solve(a, b, c)[0]
+
+
+def solution(a: int, b: int, c: int) -> tuple[int, int, int] | None:
+    """The second half of :func:`solve`: a nontrivial solution, or ``None``."""
+    return solve(a, b, c)[1]
 
 
 _Form = tuple[tuple[int, int, int], tuple[Fraction, Fraction, Fraction], tuple[list[int], list[int], list[int]]]

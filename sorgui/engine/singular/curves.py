@@ -574,11 +574,11 @@ def _conic_points(q: Poly) -> tuple[sympy.Expr, sympy.Expr, tuple[sympy.Expr, ..
             return _line_through(alpha, beta, u0, w0) + ((),)
     if max(abs(k).p.bit_length() + abs(k).q.bit_length() for k in (alpha, beta, gamma)) <= CONIC_LEGENDRE_BITS:
         return None
-    point = _legendre_point(alpha, beta, gamma)
+    exists, point = _legendre_point(alpha, beta, gamma)
     if point is not None:
         return _line_through(alpha, beta, *point) + ((),)
     positive = [(u0, value) for u0 in search if (value := alpha * u0**2 + beta * u0 + gamma) > 0]
-    if positive and not _has_rational_point(alpha, beta, gamma):
+    if positive and exists is False:
         u0, value = min(positive, key=lambda point: abs(point[1].p * point[1].q))
         w0 = sympy.sqrt(value)
         _, root = w0.as_coeff_Mul()  # √(p/q) = √(pq)/q
@@ -594,34 +594,22 @@ def _line_through(alpha: sympy.Expr, beta: sympy.Expr, u0: sympy.Expr, w0: sympy
     return u, w0 + t * (u - u0)
 
 
-def _legendre_form(alpha: sympy.Rational, beta: sympy.Rational, gamma: sympy.Rational) -> tuple[int, int, int]:
-    """``w² = α·u² + β·u + γ`` as Legendre's ``A·W² + B·U² + C·Z² = 0`` with ``w = W/Z`` and
-    ``u = U/Z − β/(2α)`` (completing the square: ``w² = α·(u + β/2α)² + δ``, ``δ = γ − β²/4α``),
-    over a common denominator."""
-    delta = gamma - beta**2 / (4 * alpha)
-    return int(alpha.q * delta.q), int(-alpha.p * delta.q), int(-delta.p * alpha.q)
-
-
 def _legendre_point(
     alpha: sympy.Rational, beta: sympy.Rational, gamma: sympy.Rational
-) -> tuple[sympy.Expr, sympy.Expr] | None:
-    """A rational point ``(u₀, w₀)`` of ``w² = α·u² + β·u + γ`` from Legendre's equation, or ``None``."""
-    if not gamma - beta**2 / (4 * alpha):
-        return None  # two lines: not a conic the route parameterizes
-    found = legendre.solution(*_legendre_form(alpha, beta, gamma))
+) -> tuple[bool | None, tuple[sympy.Expr, sympy.Expr] | None]:
+    """Whether ``w² = α·u² + β·u + γ`` has a rational point (``None``: undecided, a coefficient
+    not factored quickly, :mod:`..algebra.legendre`; then the curve goes to Singular) and one,
+    ``(u₀, w₀)``, from Legendre's equation ``A·W² + B·U² + C·Z² = 0`` with ``w = W/Z`` and
+    ``u = U/Z − β/(2α)`` (completing the square: ``w² = α·(u + β/2α)² + δ``, ``δ = γ − β²/4α``,
+    over a common denominator)."""
+    delta = gamma - beta**2 / (4 * alpha)
+    if not delta:
+        return None, None  # two lines: not a conic the route parameterizes
+    exists, found = legendre.solve(int(alpha.q * delta.q), int(-alpha.p * delta.q), int(-delta.p * alpha.q))
     if found is None or found[2] == 0:
-        return None
+        return exists, None
     W, U, Z = (sympy.Integer(k) for k in found)
-    return U / Z - beta / (2 * alpha), W / Z
-
-
-def _has_rational_point(alpha: sympy.Rational, beta: sympy.Rational, gamma: sympy.Rational) -> bool:
-    """Whether ``w² = α·u² + β·u + γ`` has a rational point (Legendre's theorem); ``True`` when
-    undecided (a coefficient not factored quickly, :mod:`..algebra.legendre`), so that the curve
-    goes to Singular."""
-    if not gamma - beta**2 / (4 * alpha):
-        return True
-    return legendre.has_solution(*_legendre_form(alpha, beta, gamma)) is not False
+    return exists, (U / Z - beta / (2 * alpha), W / Z)
 
 
 def _rational_sqrt(c: sympy.Rational) -> sympy.Rational | None:
