@@ -2,6 +2,7 @@
 
 Modules: ``precision`` (the rounding read off the digits), ``approximate`` (the approximate
 symmetry and its verdict), ``near_symmetry`` (the floating-point symmetry algebra and the axis
-refinement), ``snapping`` (the nearest exact surface), ``deviation`` (how far the zero sets are
-apart), ``dense`` (dense floating-point polynomial arrays). Import the module you need.
+refinement), ``snapping`` (the nearest exact surface), ``directions`` (the exact directions
+an axis is snapped to), ``deviation`` (how far the zero sets are apart), ``dense`` (dense
+floating-point polynomial arrays). Import the module you need.
 """

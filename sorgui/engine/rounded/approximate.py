@@ -39,6 +39,7 @@ from ..vocabulary import kind_noun
 from . import dense
 from .dense import FloatArray
 from .deviation import max_deviation
+from .directions import Quadratic, perpendicular, three
 from .near_symmetry import (
     Candidate,
     Fit,
@@ -51,7 +52,7 @@ from .near_symmetry import (
     refine,
 )
 from .precision import Rounding, given_rounding, input_rounding
-from .snapping import ExactSurface, Quadratic, perpendicular, snap, three
+from .snapping import ExactSurface, snap
 
 MAX_SPAN = 1e100
 """Coefficients whose sizes differ by more than this are not compared in floating point."""

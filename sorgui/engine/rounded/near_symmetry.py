@@ -39,6 +39,9 @@ GN_ITERATIONS = 12
 GN_GAIN = 1e-4
 """Gauss–Newton stops when a step lowers the squared residual by less than this fraction."""
 FD_STEP = 1e-7
+MINIMAX_ROUNDS = 4
+LAWSON_STEPS = 40
+"""Relinearisations, and reweightings of each, of :func:`refine_minimax`."""
 
 
 @dataclass(frozen=True)
@@ -351,17 +354,7 @@ def refine_fixed(
     they are snapped, the axis is determined more sharply than with them free. Returns the
     refined candidate and the standard errors of its direction's and point's coordinates (from
     the Gauss–Newton Jacobian, each residual having unit variance in rounding units)."""
-    params, build = parametrisation(candidate)
-    length = 1.0 if candidate.direction is None else float(np.linalg.norm(candidate.direction))
-
-    def scaled(theta: FloatArray) -> Candidate:
-        c = build(theta)
-        return c if c.direction is None else Candidate(c.kind, c.direction * length, c.point)
-
-    def residual_vector(theta: FloatArray) -> FloatArray:
-        basis = invariant_basis(scaled(theta), f.degree, f.selected)[0]
-        return (f.vector - basis @ coefficients) * f.weights
-
+    params, scaled, residual_vector = _fixed_problem(f, candidate, coefficients)
     theta, jacobian = gauss_newton(residual_vector, params)
     refined = scaled(theta)
     covariance = np.linalg.pinv(jacobian.T @ jacobian)
@@ -375,6 +368,69 @@ def refine_fixed(
     if len(theta) == 4:
         point_sigma = np.sqrt(np.abs(np.diag(frame @ covariance[2:, 2:] @ frame.T)))
     return refined, direction_sigma, point_sigma
+
+
+def refine_minimax(
+    f: Normalised, candidate: Candidate, coefficients: FloatArray, *, point_fixed: bool = False
+) -> Candidate:
+    """The axis (or centre, or normal) with the coefficients held fixed that makes the *largest*
+    weighted residual smallest, from ``candidate`` (the least-squares one): "every coefficient
+    within its rounding" is a bound on the largest, and the least-squares axis can miss it where
+    the axis the input was printed from keeps it. Lawson's iteratively reweighted least squares
+    on the linearised problem (docs/math.md §8.5), relinearised a few times. With
+    ``point_fixed``, an axis keeps its point (already snapped) and only turns."""
+    params, scaled, residual_vector = _fixed_problem(f, candidate, coefficients)
+    if point_fixed and candidate.direction is not None and len(params) == 4:
+        turned, whole = scaled, residual_vector
+        params = params[:2]
+
+        def scaled(theta: FloatArray) -> Candidate:
+            return turned(np.concatenate([theta, np.zeros(2)]))
+
+        def residual_vector(theta: FloatArray) -> FloatArray:
+            return whole(np.concatenate([theta, np.zeros(2)]))
+
+    if not len(params):
+        return candidate
+    theta = params
+    r = residual_vector(theta)
+    for _ in range(MINIMAX_ROUNDS):
+        jacobian = np.column_stack([(residual_vector(theta + FD_STEP * e) - r) / FD_STEP for e in np.eye(len(theta))])
+        weights = np.full(len(r), 1.0 / len(r))
+        step = np.zeros(len(theta))
+        for _ in range(LAWSON_STEPS):
+            root = np.sqrt(weights)
+            step, *_ = np.linalg.lstsq(jacobian * root[:, None], -r * root, rcond=None)
+            weights = weights * np.abs(r + jacobian @ step)
+            total = float(weights.sum())
+            if total == 0.0:
+                break
+            weights /= total
+        trial = residual_vector(theta + step)
+        if np.abs(trial).max() >= np.abs(r).max():
+            break
+        theta, r = theta + step, trial
+    return scaled(theta)
+
+
+def _fixed_problem(
+    f: Normalised, candidate: Candidate, coefficients: FloatArray
+) -> tuple[FloatArray, Callable[[FloatArray], Candidate], Callable[[FloatArray], FloatArray]]:
+    """The axis parameters around ``candidate``, the candidate they give (its direction as long
+    as the given one), and the weighted residual of the fixed invariant there."""
+    params, build = parametrisation(candidate)
+    length = 1.0 if candidate.direction is None else float(np.linalg.norm(candidate.direction))
+
+    def scaled(theta: FloatArray) -> Candidate:
+        c = build(theta)
+        return c if c.direction is None else Candidate(c.kind, c.direction * length, c.point)
+
+    def residual_vector(theta: FloatArray) -> FloatArray:
+        basis = invariant_basis(scaled(theta), f.degree, f.selected)[0]
+        residual: FloatArray = (f.vector - basis @ coefficients) * f.weights
+        return residual
+
+    return params, scaled, residual_vector
 
 
 def gauss_newton(residual: Callable[[FloatArray], FloatArray], theta: FloatArray) -> tuple[FloatArray, FloatArray]:

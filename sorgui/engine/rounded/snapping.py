@@ -14,8 +14,11 @@ exact values that keep the fit within the input's rounding:
   rational (fewest continued-fraction steps) within ``ε·L``, the same way.
 * **Coefficients:** each the simplest rational within three standard errors of the weighted
   least-squares fit; or, when ``f`` was normalised by an irrational factor, the ratios to the
-  best-determined coefficient and then the overall factor. The candidate with the fewest bits
-  whose *exact* residual passes wins.
+  best-determined coefficient and then the overall factor; a torus's constant made from its
+  other coefficients. The candidate with the fewest bits whose *exact* residual passes wins.
+* **Minimax axis:** when the simplest coefficients miss the rounding of one coefficient on
+  every snapped axis, the axis that makes the largest residual smallest is tried before the
+  coefficients as fitted.
 
 The exact surface ``g = Σ q_ij h^i ρ^j`` is then built over ``QQ`` (or ``QQ(√d)``) and checked
 by the exact recognizer (docs/math.md §2) before it is returned; a surface within the rounding
@@ -25,11 +28,10 @@ is preferred, then the simplest.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import lru_cache
-from typing import TypeAlias, TypeVar
+from typing import NamedTuple, TypeAlias
 
 import numpy as np
 import sympy
@@ -47,16 +49,30 @@ from ..recognition.symmetry import (
 )
 from . import dense
 from .dense import FloatArray
-from .near_symmetry import Fit, Normalised, fit, invariant_basis, refine_fixed
+from .directions import (
+    EPSILONS,
+    FAMILIES,
+    Direction,
+    DirectionSnap,
+    Quadratic,
+    QuadraticVector,
+    Vector,
+    integer_vector,
+    quadratic_family,
+    simplest_near,
+    snapped_directions,
+    three,
+)
+from .near_symmetry import Candidate, Fit, Normalised, fit, invariant_basis, refine_fixed, refine_minimax
 from .precision import Rounding
 
-Vector: TypeAlias = tuple[Fraction, Fraction, Fraction]
-EPSILONS = tuple(10.0**-k for k in range(2, 14))
-MAX_DENOMINATOR = 10**6
 AXIS_TRIES = 3
 MAX_CHECKS = 16
 SPREADS = (3.0, 1.0, 0.3)
 """Radii, in standard errors, within which a refined axis is snapped (widest first)."""
+MINIMAX_SPREADS = (0.1, 0.01)
+"""The same for the axis that makes the largest residual smallest: that axis is already
+within the rounding, and a coarse snap would undo it."""
 FLAT_SLOPE = 1e-8
 """A change of the profile's terms of degree ``d - 1`` under a unit shift along the axis below
 this (relative to the terms) is the floating-point fit's noise, not a slope: a paraboloid's
@@ -90,237 +106,6 @@ class _Typed:
 Built: TypeAlias = fmpq_mpoly | Poly
 """An exact surface as :func:`build` makes it: over ``QQ`` a flint polynomial (made a sympy
 ``Poly`` only once it passes, :func:`_check`), over ``QQ(√d)`` a sympy ``Poly``."""
-
-T = TypeVar("T")
-
-
-def three(values: Iterable[T]) -> tuple[T, T, T]:
-    """The three coordinates of a point or vector as a triple."""
-    first, second, third = values
-    return first, second, third
-
-
-def simplest_between(lo: Fraction, hi: Fraction) -> Fraction:
-    """The rational with the smallest denominator (then numerator) in ``[lo, hi]``: the
-    continued fraction shared by the two ends, with the next term the smallest that fits (the
-    classic recursion ``⌊lo⌋ + 1/simplest(1/(hi − ⌊lo⌋), 1/(lo − ⌊lo⌋))``, on integers)."""
-    if lo > hi:
-        lo, hi = hi, lo
-    if lo <= 0 <= hi:
-        return Fraction(0)
-    if hi < 0:
-        return -simplest_between(-hi, -lo)
-    a, b, c, d = lo.numerator, lo.denominator, hi.numerator, hi.denominator  # 0 < a/b ≤ c/d
-    terms: list[int] = []
-    while True:
-        whole = a // b
-        if a == whole * b:
-            terms.append(whole)
-            break
-        if (whole + 1) * d <= c:
-            terms.append(whole + 1)
-            break
-        terms.append(whole)
-        a, b, c, d = d, c - whole * d, b, a - whole * b  # [1/(hi − whole), 1/(lo − whole)]
-    numerator, denominator = terms[-1], 1
-    for term in reversed(terms[:-1]):
-        numerator, denominator = term * numerator + denominator, numerator
-    return Fraction(numerator, denominator)
-
-
-def simplest_near(value: float, radius: float) -> Fraction:
-    """The simplest rational within ``radius`` of ``value``."""
-    v = Fraction(value)
-    r = Fraction(abs(radius))
-    return simplest_between(v - r, v + r)
-
-
-def integer_directions(direction: FloatArray, epsilons: Sequence[float]) -> list[tuple[int, int, int] | None]:
-    """For each ``ε``, the primitive integer vector with the smallest common denominator ``D``
-    whose ratios are within ``ε`` of the direction's (``None`` if none has ``D`` up to
-    ``MAX_DENOMINATOR``): one vectorised pass over all ``D``, kept for the next ``ε`` asked of
-    the same direction (the refinement asks at several spreads)."""
-    j = int(np.argmax(np.abs(direction)))
-    ratios = direction / direction[j]
-    best = _running_error(tuple(float(r) for r in ratios), j)
-    found: list[tuple[int, int, int] | None] = []
-    for eps in epsilons:
-        first = int(np.searchsorted(best, -eps, side="left"))
-        if first == len(best):
-            found.append(None)
-            continue
-        ints = [int(round((first + 1) * r)) for r in ratios]
-        g = math.gcd(*ints)
-        found.append(three(v // g for v in ints))
-    return found
-
-
-@lru_cache(maxsize=2)
-def _running_error(ratios: tuple[float, ...], j: int) -> FloatArray:
-    """``−min_{D' ≤ D} max_i |D'·rᵢ − round(D'·rᵢ)|/D'`` for ``D = 1 … MAX_DENOMINATOR``: non-decreasing,
-    so the first ``D`` within ``ε`` is found by bisection."""
-    D = np.arange(1, MAX_DENOMINATOR + 1, dtype=float)
-    error = np.zeros_like(D)
-    scaled = np.empty_like(D)
-    for i, r in enumerate(ratios):
-        if i != j:  # the largest ratio is 1: no error at any D
-            np.multiply(D, r, out=scaled)
-            np.subtract(scaled, np.round(scaled), out=scaled)
-            np.maximum(error, np.abs(scaled, out=scaled), out=error)
-    error /= D
-    best = -np.minimum.accumulate(error)
-    best.flags.writeable = False
-    return best
-
-
-def rational_unit_direction(direction: FloatArray, epsilon: float | FloatArray) -> tuple[Fraction, Fraction, Fraction]:
-    """A rational unit vector near ``direction``: the inverse stereographic image of the
-    simplest rationals ``(u, v)`` within ``epsilon`` (a number, or one radius per coordinate of
-    the direction) of the direction's projection from the pole opposite its largest component.
-    Its ``h = n·(p - c)`` keeps the profile orthonormal."""
-    n = direction / np.linalg.norm(direction)
-    k = int(np.argmax(np.abs(n)))
-    sign = 1.0 if n[k] > 0 else -1.0
-    others = [i for i in range(3) if i != k]
-    radii = np.broadcast_to(np.asarray(epsilon, float), (3,))
-    u, v = (simplest_near(n[i] / (1.0 + sign * n[k]), radii[i] / (1.0 + sign * n[k])) for i in others)
-    denominator = 1 + u * u + v * v
-    result = [Fraction(0)] * 3
-    result[others[0]], result[others[1]] = 2 * u / denominator, 2 * v / denominator
-    result[k] = (1 - u * u - v * v) / denominator * int(sign)
-    return three(result)
-
-
-@dataclass(frozen=True)
-class Quadratic:
-    """``a + b·√d``: an exact coordinate in the real quadratic field ``QQ(√d)`` (``d`` a
-    square-free integer > 1)."""
-
-    a: Fraction
-    b: Fraction
-    d: int
-
-    def __float__(self) -> float:
-        return float(self.a) + float(self.b) * math.sqrt(self.d)
-
-
-QuadraticVector: TypeAlias = tuple[Quadratic, Quadratic, Quadratic]
-Direction: TypeAlias = Vector | QuadraticVector
-"""A snapped direction: rational, or in a real quadratic field."""
-
-MAX_SQUARE_FREE = 10**4
-"""The squared coordinates of a quadratic direction have numerator times denominator at most
-this squared (CAD turns give 1/8, 3/4, …), which also bounds the trial division."""
-
-
-def quadratic_direction(direction: FloatArray, epsilon: float) -> QuadraticVector | None:
-    """A direction in one real quadratic field ``QQ(√d)`` near ``direction``: the squares of the
-    unit vector's coordinates snapped to the simplest rationals within ``epsilon`` (they must
-    add up to 1), their roots scaled by one common ``√k`` so that a single ``√d`` remains (a
-    turn by 30° and 45° gives ``(−1, 1, −√6)``). ``None`` when there is none, or when the
-    direction is rational (the other families have it)."""
-    n = direction / np.linalg.norm(direction)
-    squares = [simplest_near(v * v, max(epsilon, 1e-15)) for v in n]
-    if sum(squares) != 1:
-        return None
-    parts: list[tuple[Fraction, int]] = []  # coordinate = coefficient·√free
-    for q, v in zip(squares, n):
-        if q == 0:
-            parts.append((Fraction(0), 1))
-            continue
-        split = _square_free(q.numerator * q.denominator)
-        if split is None:
-            return None
-        root, free = split
-        parts.append((Fraction(root, q.denominator) * (1 if v > 0 else -1), free))
-    for k in sorted({free for c, free in parts if c}):
-        roots = [_square_free(free * k) for _, free in parts]
-        splits = [split for split in roots if split is not None]
-        if len(splits) < len(roots):
-            continue
-        scaled = [(c * root, rest) for (c, _), (root, rest) in zip(parts, splits)]
-        fields = {rest for c, rest in scaled if c and rest != 1}
-        if len(fields) == 1:
-            (d,) = fields
-            return three(
-                Quadratic(c if rest == 1 else Fraction(0), c if rest == d else Fraction(0), d) for c, rest in scaled
-            )
-    return None
-
-
-def _square_free(m: int) -> tuple[int, int] | None:
-    """``(r, f)`` with ``m = r²·f`` and ``f`` square-free (trial division); ``None`` for ``m``
-    above :data:`MAX_SQUARE_FREE` squared (no simple direction has it)."""
-    if m <= 0 or m > MAX_SQUARE_FREE**2:
-        return None
-    r, f = 1, 1
-    p, rest = 2, m
-    while p * p <= rest:
-        e = 0
-        while rest % p == 0:
-            rest //= p
-            e += 1
-        r *= p ** (e // 2)
-        f *= p ** (e % 2)
-        p += 1 if p == 2 else 2
-    return r, f * rest
-
-
-def _quadratic_family(direction: FloatArray, epsilon: float | FloatArray) -> QuadraticVector | None:
-    """:func:`quadratic_direction` as a family of :func:`snap` (one radius: the largest)."""
-    return quadratic_direction(direction, float(np.max(epsilon)))
-
-
-def perpendicular(direction: Vector) -> Vector:
-    """A vector ``u ⟂ a`` with ``|u| = |a|`` when ``|a|`` is rational: the Householder reflection
-    that maps the coordinate vector ``e_k`` nearest ``a`` onto ``a/|a|`` maps another coordinate
-    vector onto ``u/|u|``; otherwise a primitive ``e_j``-projection. The profile in the frame
-    ``(a, u)`` then keeps the coefficients of the snapped profile."""
-    a = [Fraction(v) for v in direction]
-    norm2 = sum(v * v for v in a)
-    k = max(range(3), key=lambda i: abs(a[i]))
-    j = (k + 1) % 3
-    root = Fraction(math.isqrt(norm2.numerator), math.isqrt(norm2.denominator))
-    if root * root != norm2:
-        e = [Fraction(0)] * 3
-        e[min(range(3), key=lambda i: abs(a[i]))] = Fraction(1)
-        return three(norm2 * e[i] - sum(x * y for x, y in zip(a, e)) * a[i] for i in range(3))
-    n = [v / root for v in a]
-    sign = 1 if n[k] >= 0 else -1
-    v = [n[i] - (sign if i == k else 0) for i in range(3)]
-    vv = sum(x * x for x in v)
-    image = [Fraction(1 if i == j else 0) - (2 * v[i] * v[j] / vv if vv else 0) for i in range(3)]
-    return three(root * x for x in image)
-
-
-def _integer_vector(direction: FloatArray, epsilon: float | FloatArray) -> Vector | None:
-    assert isinstance(epsilon, float)  # one radius for the integer family (_radius)
-    (a,) = integer_directions(direction, [epsilon])
-    return None if a is None else three(Fraction(v) for v in a)
-
-
-DirectionSnap: TypeAlias = Callable[[FloatArray, float | FloatArray], Direction | None]
-"""A family of exact directions: the one near a direction, within a radius (a number, or one
-per coordinate)."""
-FAMILIES: tuple[DirectionSnap, ...] = (_integer_vector, rational_unit_direction)
-"""Primitive integer directions, and rational unit directions (which keep an irrational axis's
-profile coefficients simple)."""
-
-
-def snapped_directions(direction: FloatArray, family: DirectionSnap) -> list[Direction]:
-    """The distinct exact directions of one family near ``direction``, simplest first."""
-    snapped: list[Direction | None]
-    if family is _integer_vector:
-        snapped = [
-            None if a is None else three(Fraction(v) for v in a) for a in integer_directions(direction, EPSILONS)
-        ]
-    else:
-        snapped = [family(direction, eps) for eps in EPSILONS]
-    found: list[Direction] = []
-    for a in snapped:
-        if a is not None and a not in found:
-            found.append(a)
-    return found
 
 
 def exact_axes(
@@ -388,7 +173,7 @@ def profile_centre(f: Normalised, best: Fit, direction: FloatArray) -> FloatArra
 def _radius(sigma: FloatArray, spread: float, family: DirectionSnap) -> float | FloatArray:
     """Snapping radii from standard errors (one number for the integer family)."""
     radii = np.maximum(sigma * spread, 1e-15)
-    return float(radii.max()) if family is _integer_vector else radii
+    return float(radii.max()) if family is integer_vector else radii
 
 
 def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurface | None:
@@ -402,7 +187,7 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
         if surface is not None:
             found.append(surface)
     if best.candidate.kind in (REVOLUTION, CYLINDER):
-        surface = _first_exact(f, best, _quadratic_family, typed, rounding)
+        surface = _first_exact(f, best, quadratic_family, typed, rounding)
         if surface is not None:
             found.append(surface)
     if not found:
@@ -432,13 +217,24 @@ def _exact_surfaces(
     """Exact surfaces within twice the rounding (in the mean), simplest axes first; at most
     ``MAX_CHECKS`` exact surfaces are built, and the axis is refined with fixed coefficients
     on the first axis only (an input with irrational data has no simple exact surface, and
-    that must be found out quickly)."""
+    that must be found out quickly). The axes that make the largest residual smallest come
+    last, for the simplest coefficients only: they fit any coefficients, the intended ones or
+    not, but they are tried before the coefficients as fitted (which always fit) are taken."""
     directions: list[Direction] = []
     if family is not None:
         assert best.candidate.direction is not None  # a family snaps the candidate's direction
         directions = snapped_directions(best.candidate.direction, family)
     kind = best.candidate.kind
+
+    def checked(
+        a: Direction | None, c: Vector | None, exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction]
+    ) -> ExactSurface | None:
+        g = build(kind, a, c, exponents, coefficients)
+        return None if g is None else _check(g, typed, rounding, f, a, c)
+
     checks = 0
+    within: tuple[list[Fraction], ExactSurface] | None = None
+    held: list[tuple[tuple[tuple[int, int], ...], list[Fraction], FloatArray, _Refined]] = []
     for first, (a, c) in enumerate(exact_axes(f, best, directions)):
         direction = None if a is None else np.array([float(v) for v in a])
         point = None if c is None else np.array([float(v) for v in c]) / f.length
@@ -451,12 +247,15 @@ def _exact_surfaces(
             g = build(kind, a, c, local.exponents, ratios)
             return [] if not isinstance(g, fmpq_mpoly) or typed is None else _matched_scales(g, typed, rounding)
 
-        for rank, coefficients in enumerate(_coefficient_candidates(f, local, matched_scales)):
+        norm2 = None if kind != REVOLUTION or a is None else _squared_length(a)
+        for rank, coefficients in enumerate(_coefficient_candidates(f, local, matched_scales, norm2)):
             checks += 1
             if checks > MAX_CHECKS:
-                return
-            g = build(kind, a, c, local.exponents, coefficients)
-            surface = None if g is None else _check(g, typed, rounding, f, a, c)
+                break
+            surface = checked(a, c, local.exponents, coefficients)
+            if surface is not None and surface.largest <= 1.0 and rank >= 2 and held:
+                within = coefficients, surface  # simpler coefficients may hold on a minimax axis
+                break
             if surface is not None:
                 yield coefficients, surface
                 if surface.largest <= 1.0:
@@ -464,36 +263,92 @@ def _exact_surfaces(
             if rank >= 2 or first > 0:
                 continue
             fixed = np.array([float(q) for q in coefficients]) * f.length**degrees / f.scale
-            moved, direction_sigma, point_sigma = refine_fixed(f, local.candidate, fixed)
-            for spread in SPREADS:
-                a2 = None
-                if family is not None:
-                    assert moved.direction is not None  # refined from a candidate with a direction
-                    a2 = family(moved.direction, _radius(direction_sigma, spread, family))
-                c2 = (
-                    None
-                    if moved.point is None
-                    else three(
-                        simplest_near(float(v) * f.length, float(max(e * spread, 1e-15)) * f.length)
-                        for v, e in zip(moved.point, point_sigma)
-                    )
-                )
-                if family is not None and a2 is None:
-                    continue
-                g = build(kind, a2, c2, local.exponents, coefficients)
-                surface = None if g is None else _check(g, typed, rounding, f, a2, c2)
+            refined = _Refined(*refine_fixed(f, local.candidate, fixed))
+            snapped = list(_snapped_axes(f, refined, family, SPREADS))
+            for a2, c2 in snapped:
+                surface = checked(a2, c2, local.exponents, coefficients)
                 if surface is not None:
                     yield coefficients, surface
                     if surface.largest <= 1.0:
                         return
+            held.append((local.exponents, coefficients, fixed, refined._replace(points=tuple(c2 for _, c2 in snapped))))
+        else:
+            continue
+        break
+    for exponents, coefficients, fixed, refined in held:
+        for a2, c2 in _minimax_axes(f, refined, fixed, family):
+            surface = checked(a2, c2, exponents, coefficients)
+            if surface is not None:
+                yield coefficients, surface
+                if surface.largest <= 1.0:
+                    return
+    if within is not None:
+        yield within
+
+
+class _Refined(NamedTuple):
+    """An axis refined with the coefficients held fixed, the standard errors of its direction's
+    and point's coordinates, and the exact points it was snapped to."""
+
+    candidate: Candidate
+    direction_sigma: FloatArray
+    point_sigma: FloatArray
+    points: tuple[Vector | None, ...] = ()
+
+
+def _minimax_axes(
+    f: Normalised, refined: _Refined, fixed: FloatArray, family: DirectionSnap | None
+) -> Iterator[tuple[Direction | None, Vector | None]]:
+    """Exact axes from the axis that makes the largest residual smallest for coefficients held
+    at ``fixed``, snapped finely (``MINIMAX_SPREADS``: that axis is already within the rounding,
+    and a coarse snap would undo it): turned about each snapped point first (a simple point is
+    kept), then moved as well."""
+    points = refined.points
+    for c in [c for i, c in enumerate(points) if c is not None and c not in points[:i]]:
+        at = Candidate(refined.candidate.kind, refined.candidate.direction, np.array([float(v) for v in c]) / f.length)
+        turned = refined._replace(candidate=refine_minimax(f, at, fixed, point_fixed=True))
+        for a, _ in _snapped_axes(f, turned, family, MINIMAX_SPREADS):
+            yield a, c
+    moved = refined._replace(candidate=refine_minimax(f, refined.candidate, fixed))
+    yield from _snapped_axes(f, moved, family, MINIMAX_SPREADS)
+
+
+def _snapped_axes(
+    f: Normalised, refined: _Refined, family: DirectionSnap | None, spreads: Sequence[float]
+) -> Iterator[tuple[Direction | None, Vector | None]]:
+    """The refined axis's direction (in ``family``) and point, each snapped to the simplest
+    exact value within ``spread`` standard errors, for each spread."""
+    moved = refined.candidate
+    for spread in spreads:
+        a = None
+        if family is not None:
+            assert moved.direction is not None  # refined from a candidate with a direction
+            a = family(moved.direction, _radius(refined.direction_sigma, spread, family))
+            if a is None:
+                continue
+        c = (
+            None
+            if moved.point is None
+            else three(
+                simplest_near(float(v) * f.length, float(max(e * spread, 1e-15)) * f.length)
+                for v, e in zip(moved.point, refined.point_sigma)
+            )
+        )
+        yield a, c
 
 
 def _coefficient_candidates(
-    f: Normalised, local: Fit, matched_scales: Callable[[list[Fraction]], list[Fraction]]
+    f: Normalised,
+    local: Fit,
+    matched_scales: Callable[[list[Fraction]], list[Fraction]],
+    norm2: Fraction | None,
 ) -> list[list[Fraction]]:
     """Exact coefficients of ``g`` in the original coordinates, simplest candidates first: each
-    snapped on its own; the ratios to the best-determined one snapped, times the scales that
-    ``matched_scales`` gives them (or that coefficient snapped, or as fitted); as fitted."""
+    snapped on its own; the ratios to the best-determined
+    one snapped, times the scales that ``matched_scales`` gives them (or that coefficient
+    snapped, or as fitted); as fitted; and each of these made a torus when it has a torus's
+    terms (:func:`torus_completion`, ``norm2`` the squared length ``|a|²`` of a rational
+    axis direction)."""
     degrees = np.array([i + 2 * j for i, j in local.exponents])
     factor = f.scale / f.length**degrees
     values = local.coefficients * factor
@@ -510,7 +365,51 @@ def _coefficient_candidates(
             found.append([matched * r for r in snapped])
         found.append([Fraction(values[pivot]) * r for r in snapped])
     found.append([Fraction(v).limit_denominator(10**15) for v in values])
-    return sorted(found, key=_bits)
+    ranked: list[tuple[int, list[Fraction]]] = []
+    for candidate in found:
+        ranked.append((_bits(candidate), candidate))
+        torus = None if norm2 is None else torus_completion(local.exponents, candidate, norm2)
+        if torus is not None:
+            ranked.append((_bits(torus[1:]), torus))
+    distinct: list[list[Fraction]] = []
+    for _, candidate in sorted(ranked, key=lambda item: item[0]):
+        if candidate not in distinct:
+            distinct.append(candidate)
+    return distinct
+
+
+def _squared_length(a: Direction) -> Fraction | None:
+    """``|a|²`` when it is rational: always for a rational direction, and for a quadratic one
+    whose coordinates are each rational or a rational multiple of ``√d``."""
+    rational = [v for v in a if isinstance(v, Fraction)]
+    if len(rational) == 3:
+        return sum((v * v for v in rational), Fraction(0))
+    quadratic = [v for v in a if isinstance(v, Quadratic)]
+    if len(quadratic) < 3 or any(q.a and q.b for q in quadratic):
+        return None
+    return sum((q.a**2 + q.b**2 * q.d for q in quadratic), Fraction(0))
+
+
+TORUS_TERMS = ((0, 0), (2, 0), (0, 1), (0, 2))
+"""The terms ``h^i ρ^j`` of a torus about its centre: ``(ρ + k)² − 4R²(ρ − h²/|a|²)``."""
+
+
+def torus_completion(
+    exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction], norm2: Fraction
+) -> list[Fraction] | None:
+    """The coefficients with the constant that makes ``g`` a torus (or a cyclide of that form),
+    when ``g`` has the terms of one (docs/math.md §8.5): ``q₀₀ = (q₀₁ + q₂₀·|a|²)² / (4 q₀₂)``.
+    Every term is snapped on its own, and a CAD torus's constant ``(R² − r²)²`` lies within the
+    rounding of simpler numbers that are not a torus (P of genus 1 instead of two circles);
+    derived, it costs no bits. ``None`` unless the first term is the constant and the
+    others present are exactly the torus's."""
+    terms = dict(zip(exponents, coefficients))
+    if exponents[:1] != ((0, 0),) or any(q for m, q in terms.items() if m not in TORUS_TERMS):
+        return None
+    q20, q01, q02 = (terms.get(m, Fraction(0)) for m in TORUS_TERMS[1:])
+    if not q02 or not q20:
+        return None
+    return [(q01 + q20 * norm2) ** 2 / (4 * q02), *coefficients[1:]]
 
 
 def _matched_scales(g: fmpq_mpoly, typed: _Typed, rounding: Rounding) -> list[Fraction]:
