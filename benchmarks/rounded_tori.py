@@ -1,11 +1,12 @@
 """Benchmark: rounded tori in general position, a whole ``sorgui analyze`` process each.
 
 The ring torus ``(|p − c|² + 3)² = 16·(distance to the axis)²`` (radii 2 and 1) about the axis
-of the tests' generic rounded torus and about random axes (seeded), printed with 10 significant
-digits as a CAD system prints it. The answer includes the whole exact analysis of the nearest
-exact surface (docs/math.md §8.5): its axis is rational with coordinates of up to 23 digits, and
-its ``P²`` a conic whose point, when it has no small one, comes from Legendre's equation
-(docs/math.md §5, "A point of a conic"). Each row: the wall time of the process (median of
+of the tests' generic rounded torus and about random axes (seeded), and a torus of radii 3.7 and
+0.45, printed with 10 significant digits as a CAD system prints it. The answer includes the
+whole exact analysis of the nearest exact surface (docs/math.md §8.5): its axis is rational with
+coordinates of 20 digits and more, and a torus's profile is two circles (Table 1's row 1); a
+surface that is not quite a torus has a ``P²`` whose conic may need a point from Legendre's
+equation (docs/math.md §5, "A point of a conic"). Each row: the wall time of the process (median of
 ``--repeats``), the nearest surface's rationality status and Table 1 row. Run
 ``python -m benchmarks.rounded_tori [--repeats N] [--write]`` from the repository root.
 """
@@ -31,6 +32,15 @@ TURNED = np.array([np.sin(0.4) * np.sin(0.7), -np.cos(0.4) * np.sin(0.7), np.cos
 third column of Rz(0.4)·Rx(0.7). It took 10.9 s, its nearest surface's rationality undecided."""
 
 
+DECIMAL_RADII = (
+    np.array([0.3, -0.5, 0.81]) / np.linalg.norm([0.3, -0.5, 0.81]),
+    np.array([0.2, -0.1, 0.4]),
+    (3.7, 0.45),
+)
+"""A torus of decimal radii about a rational axis: its constant ``(R² − r²)²``, snapped on its
+own, was not a torus's (10.9 s, its nearest surface's rationality undecided)."""
+
+
 def random_axis(seed: int) -> tuple[np.ndarray, np.ndarray]:
     """A random unit direction and a point (the origin for even seeds)."""
     rng = np.random.default_rng(seed)
@@ -40,17 +50,18 @@ def random_axis(seed: int) -> tuple[np.ndarray, np.ndarray]:
     return direction, point
 
 
-def rounded_torus(direction: np.ndarray, point: np.ndarray) -> str:
-    """The torus about the line through ``point`` along the unit ``direction``, printed with
-    :data:`DIGITS` significant digits."""
+def rounded_torus(direction: np.ndarray, point: np.ndarray, radii: tuple[float, float] = (2.0, 1.0)) -> str:
+    """The torus of ``radii`` (major, minor) about the line through ``point`` along the unit
+    ``direction``, printed with :data:`DIGITS` significant digits."""
     one = dense.from_terms({(0, 0, 0): 1.0}, 4)
     rho = dense.squared_distance(point)
     h = dense.linear_form(direction, point)
     h2 = dense.times(dense.times(one, h), h)
     r1 = dense.times(one, rho)
     r2 = dense.times(r1, rho)
-    # (ρ + 3)² − 16·(ρ − h²) = ρ² − 10ρ + 16h² + 9
-    return printed(r2 - 10 * r1 + 16 * h2 + 9 * one, DIGITS)
+    big, k = radii[0] ** 2, radii[0] ** 2 - radii[1] ** 2
+    # (ρ + k)² − 4R²·(ρ − h²) = ρ² + (2k − 4R²)ρ + 4R²h² + k²; radii 2, 1: ρ² − 10ρ + 16h² + 9
+    return printed(r2 + (2 * k - 4 * big) * r1 + 4 * big * h2 + k * k * one, DIGITS)
 
 
 def table(repeats: int) -> str:
@@ -58,11 +69,13 @@ def table(repeats: int) -> str:
         "| torus | whole process (s) | nearest surface: rationality | Table 1 row |",
         "|---|---:|---|---:|",
     ]
-    cases = [("the tests' axis", (TURNED, np.zeros(3)))] + [(f"seed {seed}", random_axis(seed)) for seed in SEEDS]
+    cases = [("the tests' axis", rounded_torus(TURNED, np.zeros(3)))]
+    cases += [(f"seed {seed}", rounded_torus(*random_axis(seed))) for seed in SEEDS]
+    cases.append(("radii 3.7 and 0.45", rounded_torus(*DECIMAL_RADII)))
     with tempfile.TemporaryDirectory() as folder:
-        for name, (direction, point) in cases:
+        for name, text in cases:
             path = Path(folder, "torus.txt")
-            path.write_text(rounded_torus(direction, point) + "\n", encoding="utf-8")
+            path.write_text(text + "\n", encoding="utf-8")
             wall, _, out = process_times(
                 [sys.executable, "-m", "sorgui.cli", "analyze", "--json", "-f", str(path)], repeats
             )

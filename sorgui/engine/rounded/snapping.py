@@ -70,6 +70,8 @@ AXIS_TRIES = 3
 MAX_CHECKS = 16
 SPREADS = (3.0, 1.0, 0.3)
 """Radii, in standard errors, within which a refined axis is snapped (widest first)."""
+MINIMAX_TRIES = 2
+"""Of the simplest coefficients tried on the snapped axes, how many sets get a minimax axis."""
 MINIMAX_SPREADS = (0.1, 0.01)
 """The same for the axis that makes the largest residual smallest: that axis is already
 within the rounding, and a coarse snap would undo it."""
@@ -234,7 +236,7 @@ def _exact_surfaces(
 
     checks = 0
     within: tuple[list[Fraction], ExactSurface] | None = None
-    held: list[tuple[tuple[tuple[int, int], ...], list[Fraction], FloatArray, _Refined]] = []
+    held: list[_Held] = []
     for first, (a, c) in enumerate(exact_axes(f, best, directions)):
         direction = None if a is None else np.array([float(v) for v in a])
         point = None if c is None else np.array([float(v) for v in c]) / f.length
@@ -260,40 +262,66 @@ def _exact_surfaces(
                 yield coefficients, surface
                 if surface.largest <= 1.0:
                     return
-            if rank >= 2 or first > 0:
+            if rank >= 2:
                 continue
             fixed = np.array([float(q) for q in coefficients]) * f.length**degrees / f.scale
-            refined = _Refined(*refine_fixed(f, local.candidate, fixed))
-            snapped = list(_snapped_axes(f, refined, family, SPREADS))
-            for a2, c2 in snapped:
+            held.append(_Held(_bits(coefficients), local.exponents, coefficients, fixed, local.candidate))
+            if first > 0:
+                continue
+            for a2, c2 in _refined(f, held[-1], family).axes:
                 surface = checked(a2, c2, local.exponents, coefficients)
                 if surface is not None:
                     yield coefficients, surface
                     if surface.largest <= 1.0:
                         return
-            held.append((local.exponents, coefficients, fixed, refined._replace(points=tuple(c2 for _, c2 in snapped))))
         else:
             continue
         break
-    for exponents, coefficients, fixed, refined in held:
-        for a2, c2 in _minimax_axes(f, refined, fixed, family):
-            surface = checked(a2, c2, exponents, coefficients)
+    tried: list[list[Fraction]] = []
+    for simple in sorted(held, key=lambda item: item.bits):
+        if simple.coefficients in tried or len(tried) >= MINIMAX_TRIES:
+            continue
+        tried.append(simple.coefficients)
+        for a2, c2 in _minimax_axes(f, _refined(f, simple, family), simple.fixed, family):
+            surface = checked(a2, c2, simple.exponents, simple.coefficients)
             if surface is not None:
-                yield coefficients, surface
+                yield simple.coefficients, surface
                 if surface.largest <= 1.0:
                     return
     if within is not None:
         yield within
 
 
+@dataclass
+class _Held:
+    """Simple coefficients (with their bits, and as floats in the normalised units) tried on
+    the axis ``candidate``; ``refined`` is that axis refined for them, once it is."""
+
+    bits: int
+    exponents: tuple[tuple[int, int], ...]
+    coefficients: list[Fraction]
+    fixed: FloatArray
+    candidate: Candidate
+    refined: _Refined | None = None
+
+
 class _Refined(NamedTuple):
     """An axis refined with the coefficients held fixed, the standard errors of its direction's
-    and point's coordinates, and the exact points it was snapped to."""
+    and point's coordinates, and the exact axes it was snapped to."""
 
     candidate: Candidate
     direction_sigma: FloatArray
     point_sigma: FloatArray
-    points: tuple[Vector | None, ...] = ()
+    axes: tuple[tuple[Direction | None, Vector | None], ...] = ()
+
+
+def _refined(f: Normalised, held: _Held, family: DirectionSnap | None) -> _Refined:
+    """``held``'s axis refined by least squares for its coefficients and snapped within
+    ``SPREADS`` of its standard errors (computed once)."""
+    if held.refined is None:
+        refined = _Refined(*refine_fixed(f, held.candidate, held.fixed))
+        held.refined = refined._replace(axes=tuple(_snapped_axes(f, refined, family, SPREADS)))
+    return held.refined
 
 
 def _minimax_axes(
@@ -303,7 +331,7 @@ def _minimax_axes(
     at ``fixed``, snapped finely (``MINIMAX_SPREADS``: that axis is already within the rounding,
     and a coarse snap would undo it): turned about each snapped point first (a simple point is
     kept), then moved as well."""
-    points = refined.points
+    points = [c for _, c in refined.axes]
     for c in [c for i, c in enumerate(points) if c is not None and c not in points[:i]]:
         at = Candidate(refined.candidate.kind, refined.candidate.direction, np.array([float(v) for v in c]) / f.length)
         turned = refined._replace(candidate=refine_minimax(f, at, fixed, point_fixed=True))
