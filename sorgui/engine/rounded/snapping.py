@@ -72,6 +72,8 @@ SPREADS = (3.0, 1.0, 0.3)
 """Radii, in standard errors, within which a refined axis is snapped (widest first)."""
 MINIMAX_TRIES = 2
 """Of the simplest coefficients tried on the snapped axes, how many sets get a minimax axis."""
+MINIMAX_POINTS = 3
+"""About how many exact points (the simplest of the snapped axes') a minimax axis is turned."""
 MINIMAX_SPREADS = (0.1, 0.01)
 """The same for the axis that makes the largest residual smallest: that axis is already
 within the rounding, and a coarse snap would undo it."""
@@ -220,8 +222,9 @@ def _exact_surfaces(
     ``MAX_CHECKS`` exact surfaces are built, and the axis is refined with fixed coefficients
     on the first axis only (an input with irrational data has no simple exact surface, and
     that must be found out quickly). The axes that make the largest residual smallest come
-    last, for the simplest coefficients only: they fit any coefficients, the intended ones or
-    not, but they are tried before the coefficients as fitted (which always fit) are taken."""
+    last, for a torus's coefficients and the simplest ones only: they fit any coefficients, the
+    intended ones or not, but they are tried before the coefficients as fitted (which always
+    fit), or any that are not a torus's when a torus's failed, are taken."""
     directions: list[Direction] = []
     if family is not None:
         assert best.candidate.direction is not None  # a family snaps the candidate's direction
@@ -255,9 +258,11 @@ def _exact_surfaces(
             if checks > MAX_CHECKS:
                 break
             surface = checked(a, c, local.exponents, coefficients)
-            if surface is not None and surface.largest <= 1.0 and rank >= 2 and held:
-                within = coefficients, surface  # simpler coefficients may hold on a minimax axis
-                break
+            torus = norm2 is not None and torus_completion(local.exponents, coefficients, norm2) == coefficients
+            if surface is not None and surface.largest <= 1.0 and held:
+                if rank >= 2 or (not torus and any(item.torus for item in held)):
+                    within = coefficients, surface  # simpler coefficients, or a torus, may hold on a minimax axis
+                    break
             if surface is not None:
                 yield coefficients, surface
                 if surface.largest <= 1.0:
@@ -265,7 +270,7 @@ def _exact_surfaces(
             if rank >= 2:
                 continue
             fixed = np.array([float(q) for q in coefficients]) * f.length**degrees / f.scale
-            held.append(_Held(_bits(coefficients), local.exponents, coefficients, fixed, local.candidate))
+            held.append(_Held(_bits(coefficients), torus, local.exponents, coefficients, fixed, local.candidate, c))
             if first > 0:
                 continue
             for a2, c2 in _refined(f, held[-1], family).axes:
@@ -278,11 +283,15 @@ def _exact_surfaces(
             continue
         break
     tried: list[list[Fraction]] = []
-    for simple in sorted(held, key=lambda item: item.bits):
+    simplest = sorted(held, key=lambda item: (not item.torus, item.bits))
+    for simple in simplest:
         if simple.coefficients in tried or len(tried) >= MINIMAX_TRIES:
             continue
         tried.append(simple.coefficients)
-        for a2, c2 in _minimax_axes(f, _refined(f, simple, family), simple.fixed, family):
+        refined = _refined(f, simple, family)
+        seen = [item.point for item in simplest] + [c for item in held if item.refined for _, c in item.refined.axes]
+        points = sorted({c for c in seen if c is not None}, key=lambda c: _bits(list(c)))[:MINIMAX_POINTS]
+        for a2, c2 in _minimax_axes(f, refined, simple.fixed, family, points):
             surface = checked(a2, c2, simple.exponents, simple.coefficients)
             if surface is not None:
                 yield simple.coefficients, surface
@@ -294,14 +303,17 @@ def _exact_surfaces(
 
 @dataclass
 class _Held:
-    """Simple coefficients (with their bits, and as floats in the normalised units) tried on
-    the axis ``candidate``; ``refined`` is that axis refined for them, once it is."""
+    """Simple coefficients (with their bits, whether they are a torus's, and as floats in the
+    normalised units) tried on the axis ``candidate`` through the exact ``point``; ``refined``
+    is that axis refined for them, once it is."""
 
     bits: int
+    torus: bool
     exponents: tuple[tuple[int, int], ...]
     coefficients: list[Fraction]
     fixed: FloatArray
     candidate: Candidate
+    point: Vector | None
     refined: _Refined | None = None
 
 
@@ -325,14 +337,14 @@ def _refined(f: Normalised, held: _Held, family: DirectionSnap | None) -> _Refin
 
 
 def _minimax_axes(
-    f: Normalised, refined: _Refined, fixed: FloatArray, family: DirectionSnap | None
+    f: Normalised, refined: _Refined, fixed: FloatArray, family: DirectionSnap | None, points: list[Vector]
 ) -> Iterator[tuple[Direction | None, Vector | None]]:
     """Exact axes from the axis that makes the largest residual smallest for coefficients held
     at ``fixed``, snapped finely (``MINIMAX_SPREADS``: that axis is already within the rounding,
-    and a coarse snap would undo it): turned about each snapped point first (a simple point is
-    kept), then moved as well."""
-    points = [c for _, c in refined.axes]
-    for c in [c for i, c in enumerate(points) if c is not None and c not in points[:i]]:
+    and a coarse snap would undo it): turned about each of the exact ``points`` first (a simple
+    point is kept: the simplest coefficients and the simplest point may have come from two
+    different snapped axes), then moved as well."""
+    for c in points:
         at = Candidate(refined.candidate.kind, refined.candidate.direction, np.array([float(v) for v in c]) / f.length)
         turned = refined._replace(candidate=refine_minimax(f, at, fixed, point_fixed=True))
         for a, _ in _snapped_axes(f, turned, family, MINIMAX_SPREADS):
