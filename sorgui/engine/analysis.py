@@ -26,7 +26,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from .algebra.linalg import Vector
-from .errors import ParseError, TimeLimitReached
+from .errors import AnalysisError, ParseError, TimeLimitReached
 from .parsing import has_decimals, is_parametrization, parse_polynomial
 from .recognition.symmetry import NEAREST_CANAL_NOTE, revolution_canal
 from .results import Analysis, Approximation, Canal, Conical
@@ -294,17 +294,26 @@ def analyze_polynomial(
     ):
         clock.publish(result(rationality, found))
         with clock.stage("nearest"):
-            of_nearest = analyze_polynomial(
-                near.nearest,
-                method=method,
-                clock=StageClock(None, cancel),
-                singular_timeout=min(singular_timeout, NEAREST_SINGULAR_TIMEOUT),
-                frame=near.frame,
-                canal=False,
-            )
-        if of_nearest.is_sor:  # canal by its symmetry: said without a line test or Singular
-            of_nearest = replace(of_nearest, canal=revolution_canal(of_nearest.recognition.degree, NEAREST_CANAL_NOTE))
-        approximation = replace(near.approximation, nearest=replace(near.approximation.nearest, analysis=of_nearest))
+            try:
+                of_nearest = analyze_polynomial(
+                    near.nearest,
+                    method=method,
+                    clock=StageClock(None, cancel),
+                    singular_timeout=min(singular_timeout, NEAREST_SINGULAR_TIMEOUT),
+                    frame=near.frame,
+                    canal=False,
+                )
+            except AnalysisError as exc:  # the typed equation's answer stands without it
+                note = f"the nearest exact surface was not analysed: {exc.message}"
+                approximation = replace(near.approximation, notes=(*near.approximation.notes, note))
+            else:
+                if of_nearest.is_sor:  # canal by its symmetry: said without a line test or Singular
+                    of_nearest = replace(
+                        of_nearest, canal=revolution_canal(of_nearest.recognition.degree, NEAREST_CANAL_NOTE)
+                    )
+                approximation = replace(
+                    near.approximation, nearest=replace(near.approximation.nearest, analysis=of_nearest)
+                )
     clock.check()
     return result(rationality, found)
 

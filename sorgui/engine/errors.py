@@ -31,6 +31,11 @@ class AnalysisError(SorguiError):
     """The input parsed, but the analysis cannot proceed (e.g. a degenerate surface)."""
 
 
+class OutOfReach(AnalysisError):
+    """An exact step needs what cannot be had quickly (the primes of an integer of hundreds of
+    digits, :mod:`.algebra.factoring`): the stage is left undecided, not run for minutes."""
+
+
 class SingularError(SorguiError):
     """Singular failed, was not found, or answered something that could not be read."""
 

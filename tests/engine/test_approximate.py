@@ -510,3 +510,26 @@ def test_rounded_input_is_nearly_canal_when_its_nearest_surface_is() -> None:
     nearest = result.approximate.nearest.analysis
     assert nearest.is_sor and nearest.canal.is_canal and nearest.canal.kinds == ("revolution",)
     assert "not exactly canal, but nearly: its nearest exact surface (within the rounding)" in plain_text(result)
+
+
+SIX_DIGIT_TORUS = (
+    "+3.47051e+01 -1.87744e+01*z^1 +8.71550e-02*z^2 -2.40000e+00*z^3 +1.00000e+00*z^4 +2.25133e+01*y^1"
+    " -5.35082e+00*y^1*z^1 -1.60000e+00*y^1*z^2 -1.51093e+01*y^2 -2.40000e+00*y^2*z^1 +2.00000e+00*y^2*z^2"
+    " -1.60000e+00*y^3 +1.00000e+00*y^4 -1.03630e+01*x^1 +3.29727e+01*x^1*z^1 -3.20000e+00*x^1*z^2"
+    " -4.37926e+00*x^1*y^1 -3.20000e+00*x^1*y^2 -1.53089e-01*x^2 -2.40000e+00*x^2*z^1 +2.00000e+00*x^2*z^2"
+    " -1.60000e+00*x^2*y^1 +2.00000e+00*x^2*y^2 -3.20000e+00*x^3 +1.00000e+00*x^4"
+)
+"""A torus (radii 2.74 and 1.4, a random axis) printed with 6 digits, as a CAD system may."""
+
+
+def test_a_six_digit_torus_keeps_its_analysis_when_its_nearest_surface_is_out_of_reach() -> None:
+    """Its nearest exact surface (outside the rounding) has a ``P²`` over ``QQ(√d)``, ``d`` of
+    1,200 bits, and coefficients of 10,000 bits: the modular gcd gave up, and the whole
+    analysis was lost to "the modular gcd over a quadratic field did not settle". Now the gcd
+    settles, and the radicand that flint cannot factor quickly leaves the nearest surface's
+    rationality partly undecided: the typed equation's answer stands."""
+    analysis = analyze(SIX_DIGIT_TORUS)
+    assert not analysis.is_sor and analysis.approximate.near_sor
+    nearest = analysis.approximate.nearest
+    assert nearest is not None and nearest.analysis is not None and nearest.analysis.is_sor
+    assert nearest.analysis.rationality.status != "decided"

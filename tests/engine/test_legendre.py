@@ -10,7 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from sympy import nextprime
 
-from sorgui.engine.algebra.legendre import LARGEST_BITS, MAX_BITS, has_solution, solution
+from sorgui.engine.algebra.factoring import LARGEST_BITS, MAX_BITS
+from sorgui.engine.algebra.legendre import has_solution, solution
 
 nonzero = st.integers(min_value=-60, max_value=60).filter(bool)
 

@@ -19,6 +19,7 @@ from sorgui.engine.algebra.polys import (
     sqrt_in_field,
 )
 from sorgui.engine.analysis import analyze
+from sorgui.engine.errors import OutOfReach
 from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.singular.curves import analyze_curves
 
@@ -175,3 +176,13 @@ def test_other_algebraic_fields_stay_with_sympy() -> None:
     x, y = R.gens
     _, factors = factor(x**2 + 3 * y**2)  # splits over QQ(√-3), through sympy
     assert len(factors) == 2
+
+
+def test_a_radicand_that_cannot_be_factored_quickly_is_out_of_reach() -> None:
+    """Two primes of 150 bits: flint could take minutes over their product's square-free part
+    (a 6-digit rounded torus's nearest surface had radicands of hundreds of digits); a product
+    of small primes and one large prime is still factored."""
+    p, q = int(sympy.nextprime(2**150)), int(sympy.nextprime(2**151))
+    with pytest.raises(OutOfReach, match="not factored quickly"):
+        nf.squarefree_core(p * q)
+    assert nf.squarefree_core(p * 3**3 * 5**2) == p * 3

@@ -63,3 +63,16 @@ def test_the_rational_field_is_plain_flint() -> None:
     square = ((t - 1) ** 2 * (t + 2), zero)
     found = quadratic.squarefree_decomposition(K, square)
     assert found == [((t + 2, zero), 1), ((t - 1, zero), 2)]
+
+
+def test_the_gcd_of_polynomials_of_thousands_of_bits_settles() -> None:
+    """The ``P²`` of a 6-digit rounded torus's nearest surface lives over ``QQ(√d)`` with a
+    1,200-bit ``d`` and has coefficients of 10,000 bits: its gcd needed 512 primes, and 400 were
+    allowed ("the modular gcd did not settle", the whole analysis lost)."""
+    rng = random.Random(5)
+    K = quadratic.QuadraticField(fmpq(0), fmpq(-(rng.getrandbits(1200) | 1)))
+    big = lambda: fmpq(rng.getrandbits(8000) - (1 << 7999), rng.getrandbits(8000) | 1)  # noqa: E731
+    common = (fmpq_poly([big(), big(), 1]), fmpq_poly([big(), big()]))
+    a = K.mul(common, (fmpq_poly([big(), big(), big(), 1]), fmpq_poly([big(), big()])))
+    b = K.mul(common, (fmpq_poly([big(), big(), 1]), fmpq_poly([big()])))
+    assert quadratic.gcd(K, a, b) == K.monic(common)

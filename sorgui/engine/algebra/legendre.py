@@ -16,8 +16,8 @@ surface of a rounded torus, took 11 s). Legendre's equation decides it instead:
   LLL on its Gram matrix) give a solution among their small combinations (Cremona and Rusin,
   "Efficient solution of rational conics", 2003).
 
-Numbers are factored only as far as is quick (:func:`_factorization`), so the answer comes
-within about a second, or the equation is left undecided.
+Numbers are factored only as far as is quick (:func:`.factoring.quick_factorization`), so the
+answer comes within about a second, or the equation is left undecided.
 """
 
 from __future__ import annotations
@@ -28,29 +28,17 @@ from fractions import Fraction
 
 from flint import fmpz, fmpz_mat
 
-MAX_BITS = 160
-"""A number of at most this many bits (48 digits) is factored whole: flint takes at most about
-0.2 s (a 56-digit one 1.5 s). A larger one only loses its factors of up to :data:`SMOOTH_BITS`
-bits: what is left must then be prime or small enough, else the equation is not decided."""
-SMOOTH_BITS = 32
-"""The size of the prime factors looked for in a number beyond :data:`MAX_BITS` (a few tens of
-milliseconds at 250 bits): the coefficients of conics from rounded input are products of many
-small primes and one or two large ones."""
-LARGEST_BITS = 1200
-"""No number of more bits is factored at all (looking for its small primes takes 0.09 s at 1,200
-bits, 0.6 s at 3,000): a conic typed with coefficients of hundreds of digits is Singular's."""
+from .factoring import Factors, quick_factorization
+
 SEARCH = 2
 """Coefficients ``|k| ≤`` this of the combinations of the reduced basis that are tried."""
-
-Factors = dict[int, int]
-"""An integer's prime factorization, ``{prime: exponent}``."""
 
 
 def solve(a: int, b: int, c: int) -> tuple[bool | None, tuple[int, int, int] | None]:
     """Whether ``a·x² + b·y² + c·z² = 0`` (``a, b, c`` nonzero integers) has a nontrivial integer
     solution (Legendre's theorem; ``None`` when a coefficient cannot be factored quickly,
-    :func:`_factorization`), and one with gcd 1 when it has (``None`` if the small combinations
-    of the reduced lattice hold none: never seen; the caller then looks elsewhere)."""
+    :func:`.factoring.quick_factorization`), and one with gcd 1 when it has (``None`` if the small
+    combinations of the reduced lattice hold none: never seen; the caller then looks elsewhere)."""
     form = _normal_form(a, b, c)
     if form is None:
         return None, None
@@ -80,26 +68,6 @@ _Form = tuple[tuple[int, int, int], tuple[Fraction, Fraction, Fraction], tuple[l
 coefficient."""
 
 
-def _factorization(m: int) -> Factors | None:
-    """The prime factorization of ``m > 0``, or ``None`` when it is not found quickly: whole up to
-    :data:`MAX_BITS` bits; beyond, up to :data:`LARGEST_BITS`, the factors of up to
-    :data:`SMOOTH_BITS` bits and a cofactor that is proved prime or is factored whole."""
-    if m.bit_length() <= MAX_BITS:
-        return {int(p): int(e) for p, e in fmpz(m).factor()}
-    if m.bit_length() > LARGEST_BITS:
-        return None
-    found: Factors = {}
-    for p, e in fmpz(m).factor_smooth(SMOOTH_BITS):
-        if p.bit_length() <= SMOOTH_BITS or p.is_prime():
-            found[int(p)] = found.get(int(p), 0) + int(e)
-        elif p.bit_length() <= MAX_BITS:
-            for q, f in p.factor():
-                found[int(q)] = found.get(int(q), 0) + int(e) * int(f)
-        else:
-            return None
-    return found
-
-
 def _normal_form(a: int, b: int, c: int) -> _Form | None:
     """The equation with square-free, pairwise coprime coefficients (``None`` when a coefficient
     is not factored): a square factor ``s²`` of a coefficient goes into its variable's scale, and
@@ -108,7 +76,7 @@ def _normal_form(a: int, b: int, c: int) -> _Form | None:
     signs = [1 if k > 0 else -1 for k in (a, b, c)]
     factors: list[Factors] = []
     for k in (a, b, c):
-        found = _factorization(abs(k))
+        found = quick_factorization(abs(k))
         if found is None:
             return None
         factors.append(found)

@@ -33,7 +33,8 @@ from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.rings import PolyElement, PolyRing
 
-from ..errors import AnalysisError
+from ..errors import AnalysisError, OutOfReach
+from .factoring import quick_factorization
 
 Poly: TypeAlias = PolyElement
 
@@ -58,10 +59,18 @@ class RadicalBasis:
 
 @lru_cache(maxsize=256)
 def _factors(m: int) -> tuple[tuple[int, int], ...]:
-    """flint's factorization of ``m > 0`` as ``(prime, exponent)`` pairs, kept: the radicands of a
+    """The factorization of ``m > 0`` as ``(prime, exponent)`` pairs, kept: the radicands of a
     field are factored again for every square root taken in it, and those of a nearest exact
-    surface have 30–60 digits (tens of milliseconds each)."""
-    return tuple((int(p), int(e)) for p, e in fmpz(m).factor())
+    surface have 30–60 digits (tens of milliseconds each). Only as far as is quick
+    (:func:`.factoring.quick_factorization`): the nearest surface of a rounded torus printed
+    with 6 digits had a radicand of hundreds of digits, and flint ran for minutes."""
+    found = quick_factorization(m)
+    if found is None:
+        digits = len(str(m))
+        raise OutOfReach(
+            f"the square-free part of an integer of {digits} digits is needed; it was not factored quickly"
+        )
+    return tuple(sorted(found.items()))
 
 
 def _squarefree(m: int) -> tuple[int, int]:

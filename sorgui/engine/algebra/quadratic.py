@@ -29,7 +29,8 @@ Pair = tuple[fmpq_poly, fmpq_poly]
 """``A + α·B`` in ``K[t]``."""
 
 MAX_PRIMES = 400
-"""Primes tried by the modular gcd before it gives up (each prime adds about 62 bits)."""
+"""Primes tried by the modular gcd before it gives up (each prime adds about 62 bits), at least:
+inputs of many bits get more (:func:`_prime_limit`)."""
 
 
 @dataclass(frozen=True)
@@ -151,7 +152,7 @@ def gcd(K: QuadraticField, x: Pair, y: Pair) -> Pair:
     previous: Pair | None = None
     prime = (1 << 62) + 1
     discriminant = K.p * K.p - 4 * K.q
-    for _ in range(MAX_PRIMES):
+    for _ in range(_prime_limit(K, x, y)):
         prime = _next_prime(prime, discriminant)
         images = _images(K, x, y, prime, discriminant)
         if images is None:
@@ -187,6 +188,22 @@ def gcd(K: QuadraticField, x: Pair, y: Pair) -> Pair:
             return candidate
         previous = candidate
     raise AnalysisError("the modular gcd over a quadratic field did not settle (internal error)")
+
+
+def _prime_limit(K: QuadraticField, x: Pair, y: Pair) -> int:
+    """How many primes the modular gcd may use: :data:`MAX_PRIMES`, or for inputs of many bits
+    the power of two (a lift comes after 1, 2, 4, … primes) that covers four times their bits
+    and the field's. The gcd of the ``P²`` of a 6-digit rounded torus's nearest surface, over
+    ``QQ(√d)`` with a 1,200-bit ``d`` and coefficients of 10,000 bits, settled after 512."""
+    field = (K.p.p, K.p.q, K.q.p, K.q.q)
+    bits = _bits(x) + _bits(y) + sum(abs(int(n)).bit_length() for n in field)
+    needed = 4 * bits // 62 + 1
+    return max(MAX_PRIMES, 1 << (needed - 1).bit_length())
+
+
+def _bits(x: Pair) -> int:
+    """The most bits of a numerator or denominator of ``x``'s coefficients."""
+    return max((max(abs(int(c.p)).bit_length(), int(c.q).bit_length()) for part in x for c in part.coeffs()), default=0)
 
 
 def squarefree_decomposition(K: QuadraticField, x: Pair) -> list[tuple[Pair, int]]:

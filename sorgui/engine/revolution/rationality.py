@@ -39,7 +39,7 @@ from ..algebra.polys import (
     to_flint,
 )
 from ..algebra.realroots import count_real_roots
-from ..errors import AnalysisError, SingularError, SingularTimeout
+from ..errors import AnalysisError, OutOfReach, SingularError, SingularTimeout
 from ..recognition.profile import ProfileCurve
 from ..singular import curves, profile_pair
 from ..singular.curves import CurveAnalysis, CurveParametrization
@@ -202,7 +202,7 @@ def analyze_rationality(
         )
     except SingularTimeout as exc:
         return Rationality(status=f"undecided within the time limit: {exc.message}"), None
-    except SingularError as exc:
+    except (SingularError, OutOfReach) as exc:
         return Rationality(status=f"undecided: {exc.message}"), None
     absolute = _absolute_factors(p)
     reducible = not p.is_absolutely_irreducible
@@ -253,7 +253,18 @@ def analyze_rationality(
             notes=(*notes, f"P² has no real parameterization (field {par.field})"),
             **base,
         ), tube
-    roots = count_real_roots_of(tube.h, par.generators)
+    try:
+        roots = count_real_roots_of(tube.h, par.generators)
+    except OutOfReach as exc:
+        return Rationality(
+            status="partly undecided",
+            square_parametrization=(str(par.x), str(par.y)),
+            tubular_surface=_tube_str(tube),
+            h=str(tube.h),
+            tau=_tau_str(tube),
+            notes=(*notes, f"the real roots of h were not counted: {exc.message}"),
+            **base,
+        ), tube
     unirational = has_real_surface(tube.h, roots)
     return Rationality(
         status="decided",
