@@ -179,10 +179,10 @@ def test_other_algebraic_fields_stay_with_sympy() -> None:
 
 
 def test_a_radicand_that_cannot_be_factored_quickly_is_out_of_reach() -> None:
-    """Two primes of 150 bits: flint could take minutes over their product's square-free part
+    """Two primes of 200 bits: flint could take minutes over their product's square-free part
     (a 6-digit rounded torus's nearest surface had radicands of hundreds of digits); a product
     of small primes and one large prime is still factored."""
-    p, q = int(sympy.nextprime(2**150)), int(sympy.nextprime(2**151))
+    p, q = int(sympy.nextprime(2**200)), int(sympy.nextprime(2**201))
     with pytest.raises(OutOfReach, match="not factored quickly"):
         nf.squarefree_core(p * q)
     assert nf.squarefree_core(p * 3**3 * 5**2) == p * 3

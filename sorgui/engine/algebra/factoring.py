@@ -26,11 +26,11 @@ Factors = dict[int, int]
 """An integer's prime factorization, ``{prime: exponent}``."""
 
 
-def quick_factorization(m: int) -> Factors | None:
+def quick_factorization(m: int, whole_bits: int = MAX_BITS) -> Factors | None:
     """The prime factorization of ``m > 0``, or ``None`` when it is not found quickly: whole up to
-    :data:`MAX_BITS` bits; beyond, up to :data:`LARGEST_BITS`, the factors of up to
+    ``whole_bits`` bits; beyond, up to :data:`LARGEST_BITS`, the factors of up to
     :data:`SMOOTH_BITS` bits and a cofactor that is proved prime or is factored whole."""
-    if m.bit_length() <= MAX_BITS:
+    if m.bit_length() <= whole_bits:
         return {int(p): int(e) for p, e in fmpz(m).factor()}
     if m.bit_length() > LARGEST_BITS:
         return None
@@ -38,7 +38,7 @@ def quick_factorization(m: int) -> Factors | None:
     for p, e in fmpz(m).factor_smooth(SMOOTH_BITS):
         if p.bit_length() <= SMOOTH_BITS or p.is_prime():
             found[int(p)] = found.get(int(p), 0) + int(e)
-        elif p.bit_length() <= MAX_BITS:
+        elif p.bit_length() <= whole_bits:
             for q, f in p.factor():
                 found[int(q)] = found.get(int(q), 0) + int(e) * int(f)
         else:

@@ -57,6 +57,12 @@ class RadicalBasis:
         return 1 << len(self.radicands)
 
 
+RADICAND_BITS = 192
+"""A radicand of at most this many bits (57 digits) is factored whole, as before there was a
+limit (flint: seconds at worst): a field's square roots must not become undecided where they
+were not."""
+
+
 @lru_cache(maxsize=256)
 def _factors(m: int) -> tuple[tuple[int, int], ...]:
     """The factorization of ``m > 0`` as ``(prime, exponent)`` pairs, kept: the radicands of a
@@ -64,7 +70,7 @@ def _factors(m: int) -> tuple[tuple[int, int], ...]:
     surface have 30–60 digits (tens of milliseconds each). Only as far as is quick
     (:func:`.factoring.quick_factorization`): the nearest surface of a rounded torus printed
     with 6 digits had a radicand of hundreds of digits, and flint ran for minutes."""
-    found = quick_factorization(m)
+    found = quick_factorization(m, RADICAND_BITS)
     if found is None:
         digits = len(str(m))
         raise OutOfReach(
