@@ -533,3 +533,23 @@ def test_a_six_digit_torus_keeps_its_analysis_when_its_nearest_surface_is_out_of
     nearest = analysis.approximate.nearest
     assert nearest is not None and nearest.analysis is not None and nearest.analysis.is_sor
     assert nearest.analysis.rationality.status != "decided"
+
+
+ROUNDED_HYPERBOLOID = (
+    "-3.965791360e-01 +1.140717002e-01*z^1 +1.729496458e-01*z^2 +8.517476143e-01*y^1"
+    " +1.605548752e-01*y^1*z^1 +3.087848136e-01*y^2 -3.720940805e-01*x^1 +4.152526675e-01*x^1*z^1"
+    " -1.926111127e-01*x^1*y^1 +9.693994631e-02*x^2"
+)
+"""``d²/1.7² − h²/2.97² = 1`` about a random axis through ``(0.1, −1.4, 0.2)``, 10 digits."""
+
+
+def test_a_rounded_hyperboloid_gets_its_nearest_surfaces_parametrizations_quickly() -> None:
+    """Its nearest surface's real parametrization asked for a rational point of
+    ``X² + n·Y² = c`` with numbers of about 100 digits: sympy's ``diop_ternary_quadratic`` ran ECM
+    on them past the command line's 120-s limit (the nearest surface unfinished); Legendre's
+    equation with quick factorizations answers at once."""
+    analysis = analyze(ROUNDED_HYPERBOLOID)
+    nearest = analysis.approximate.nearest
+    assert nearest is not None and nearest.analysis is not None
+    assert nearest.analysis.rationality.status == "decided" and nearest.analysis.rationality.table_row == 3
+    assert nearest.analysis.parametrizations and all(p.verified for p in nearest.analysis.parametrizations)

@@ -276,3 +276,16 @@ def test_a_profile_in_nested_roots_is_explained_in_words() -> None:
     result = analyze("(x^2+y^2-1)*(x^2+y^2-4)-1")
     notes = " ".join(result.rationality.notes)
     assert "nested or higher roots" in notes and "Error" not in notes and "_rho" not in notes
+
+
+def test_a_norm_equation_of_large_numbers_is_solved_by_legendres_equation() -> None:
+    """``X² + n·Y² = c`` for numbers beyond 32 bits comes from Legendre's equation with quick
+    factorizations; sympy's ``diop_ternary_quadratic`` ran ECM for minutes on those of a rounded
+    hyperboloid's nearest surface. Numbers that cannot be factored quickly give ``None``."""
+    from sorgui.engine.revolution.parametrization import _rational_norm
+
+    c = sympy.Integer(2**61 - 1) * 5 * 13  # a Mersenne prime ≡ 3 mod 4, times two primes ≡ 1 mod 4
+    found = _rational_norm(c, sympy.Integer(2**61 - 1))
+    assert found is not None and found[0] ** 2 + (2**61 - 1) * found[1] ** 2 == c
+    hard = sympy.Integer(sympy.nextprime(2**200)) * sympy.nextprime(2**201)
+    assert _rational_norm(hard, sympy.Integer(3)) is None

@@ -28,6 +28,7 @@ from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.solvers.diophantine.diophantine import diop_ternary_quadratic
 
+from ..algebra import legendre
 from ..algebra.linalg import dot
 from ..algebra.polys import Poly, field_generators, to_expr
 from ..algebra.radicals import RadicalRing, radicals_of
@@ -232,6 +233,13 @@ def _split(P: sympy.Poly, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr]:
     return sympy.expand(A), sympy.expand(B)
 
 
+LEGENDRE_BITS = 32
+"""``X² + n·Y² = c`` with ``n`` or ``c`` (made integral) of more bits is solved by Legendre's
+equation with quick factorizations (:mod:`..algebra.legendre`), not by sympy's
+``diop_ternary_quadratic``, whose ECM ran for minutes on the numbers of a rounded hyperboloid's
+nearest surface (``None`` when they cannot be factored quickly)."""
+
+
 def _rational_norm(c: sympy.Expr, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr] | None:
     """Rational ``(X, Y)`` with ``X² + n·Y² = c``, or ``None``."""
     c, n = sympy.Rational(c), sympy.Rational(n)
@@ -240,10 +248,15 @@ def _rational_norm(c: sympy.Expr, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr
     root = sympy.sqrt(c)
     if root.is_Rational:
         return root, sympy.Integer(0)
-    X, Y, Z = sympy.symbols("X Y Z", integer=True)
     scale_c, scale_n = c.p * c.q, n.p * n.q
-    solution = diop_ternary_quadratic(X**2 + scale_n * Y**2 - scale_c * Z**2)
-    if solution is None or None in solution or solution[2] == 0:
+    solution: tuple[int, int, int] | None
+    if max(abs(int(scale_c)).bit_length(), abs(int(scale_n)).bit_length()) > LEGENDRE_BITS:
+        solution = legendre.solve(1, int(scale_n), -int(scale_c))[1]
+    else:
+        X, Y, Z = sympy.symbols("X Y Z", integer=True)
+        found = diop_ternary_quadratic(X**2 + scale_n * Y**2 - scale_c * Z**2)
+        solution = None if found is None or None in found else (int(found[0]), int(found[1]), int(found[2]))
+    if solution is None or solution[2] == 0:
         return None
     x0, y0, z0 = (sympy.Integer(v) for v in solution)
     # X² + (n p q) Y² = (c p' q') Z²  ⇒  rescale to X² + n Y² = c.

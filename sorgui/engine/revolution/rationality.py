@@ -404,8 +404,9 @@ def _tubular_parametrization(
         )
     else:
         note = (
-            "no real parameterization through T was found: h = N·u²·q with q of degree > 2, or h "
-            "has irrational coefficients; sorgui gives the complex parameterization only"
+            "no real parameterization through T was found: h = N·u²·q with q of degree > 2, h "
+            "has irrational coefficients, or no rational point of y² + n·z² = q(t) was found (its "
+            "numbers not factored quickly); sorgui gives the complex parameterization only"
         )
     return complex_par, note
 
