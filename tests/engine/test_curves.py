@@ -377,6 +377,19 @@ def test_a_conic_of_larger_coefficients_without_rational_points_too(singular_for
     assert curves._proper_degree(NEAREST_TORUS_CONIC_LARGER, p1, q1, p2, q2)
 
 
+def test_a_conic_whose_coefficients_are_not_factored_quickly_gets_a_real_point_over_a_quadratic_field(
+    singular_forbidden: None,
+) -> None:
+    """``w² = a·u² + 3`` with ``a`` the product of two primes of 100 bits: whether it has a
+    rational point is not known quickly, and Singular ran past its 10-s limit on such a conic
+    (a rounded paraboloid's nearest surface); a real point over ``QQ(√3)`` parameterizes it."""
+    a = int(sympy.nextprime(2**100)) * int(sympy.nextprime(2**101))
+    F = y**2 - a * x**2 - 3
+    para = parametrize(F, known_genus_zero=True, prefer_conic=True)
+    assert para.method == "conic" and para.field == "QQ(sqrt(3))" and para.is_real
+    check(F, para)
+
+
 def test_a_large_conic_without_real_points_is_left_to_singular() -> None:
     """No rational point and no real one: the conic route declines (Singular finds the field)."""
     assert curves._conic(y**2 + 35184372088891 * x**2 + 98765432109877) is None

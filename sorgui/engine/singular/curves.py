@@ -553,8 +553,9 @@ def _conic_points(q: Poly) -> tuple[sympy.Expr, sympy.Expr, tuple[sympy.Expr, ..
     generators of their field (none: ``QQ``): the lines through a point, at infinity when the
     leading coefficient is a square, else at ``u₀ = 0, ±1, …, ±``:data:`CONIC_POINT_SEARCH`; for
     large coefficients (:data:`CONIC_LEGENDRE_BITS`) then the point of Legendre's equation, or
-    when the conic has no rational point a real one over ``QQ(√q(u₀))`` (``q(u₀) > 0`` of
-    smallest height). ``None`` if there is none."""
+    when the conic has no rational point, or its coefficients are not factored quickly, a real
+    one over ``QQ(√q(u₀))`` (``q(u₀) > 0`` of smallest height): Singular took past its 10-s limit
+    on such a conic of a rounded paraboloid's nearest surface. ``None`` if there is none."""
     t = PARAMETER
     coefficients = {m[0]: QQ.to_sympy(c) for m, c in q.items()}
     if q.degree() == 1:
@@ -578,7 +579,7 @@ def _conic_points(q: Poly) -> tuple[sympy.Expr, sympy.Expr, tuple[sympy.Expr, ..
     if point is not None:
         return _line_through(alpha, beta, *point) + ((),)
     positive = [(u0, value) for u0 in search if (value := alpha * u0**2 + beta * u0 + gamma) > 0]
-    if positive and exists is False:
+    if positive and exists is not True:  # no rational point, or not known (not factored quickly)
         u0, value = min(positive, key=lambda point: abs(point[1].p * point[1].q))
         w0 = sympy.sqrt(value)
         _, root = w0.as_coeff_Mul()  # √(p/q) = √(pq)/q
@@ -598,7 +599,7 @@ def _legendre_point(
     alpha: sympy.Rational, beta: sympy.Rational, gamma: sympy.Rational
 ) -> tuple[bool | None, tuple[sympy.Expr, sympy.Expr] | None]:
     """Whether ``w² = α·u² + β·u + γ`` has a rational point (``None``: undecided, a coefficient
-    not factored quickly, :mod:`..algebra.legendre`; then the curve goes to Singular) and one,
+    not factored quickly, :mod:`..algebra.legendre`) and one,
     ``(u₀, w₀)``, from Legendre's equation ``A·W² + B·U² + C·Z² = 0`` with ``w = W/Z`` and
     ``u = U/Z − β/(2α)`` (completing the square: ``w² = α·(u + β/2α)² + δ``, ``δ = γ − β²/4α``,
     over a common denominator)."""
