@@ -522,17 +522,17 @@ SIX_DIGIT_TORUS = (
 """A torus (radii 2.74 and 1.4, a random axis) printed with 6 digits, as a CAD system may."""
 
 
-def test_a_six_digit_torus_keeps_its_analysis_when_its_nearest_surface_is_out_of_reach() -> None:
+def test_a_six_digit_torus_keeps_its_analysis() -> None:
     """Its nearest exact surface (outside the rounding) has a ``P²`` over ``QQ(√d)``, ``d`` of
     1,200 bits, and coefficients of 10,000 bits: the modular gcd gave up, and the whole
     analysis was lost to "the modular gcd over a quadratic field did not settle". Now the gcd
-    settles, and the radicand that flint cannot factor quickly leaves the nearest surface's
-    rationality partly undecided: the typed equation's answer stands."""
+    settles, the conic of its profile gets a real point over a quadratic field without
+    Singular, and the typed equation's answer comes with its nearest surface's analysis."""
     analysis = analyze(SIX_DIGIT_TORUS)
     assert not analysis.is_sor and analysis.approximate.near_sor
     nearest = analysis.approximate.nearest
     assert nearest is not None and nearest.analysis is not None and nearest.analysis.is_sor
-    assert nearest.analysis.rationality.status != "decided"
+    assert nearest.analysis.parametrizations and all(p.verified for p in nearest.analysis.parametrizations)
 
 
 ROUNDED_HYPERBOLOID = (
@@ -553,3 +553,22 @@ def test_a_rounded_hyperboloid_gets_its_nearest_surfaces_parametrizations_quickl
     assert nearest is not None and nearest.analysis is not None
     assert nearest.analysis.rationality.status == "decided" and nearest.analysis.rationality.table_row == 3
     assert nearest.analysis.parametrizations and all(p.verified for p in nearest.analysis.parametrizations)
+
+
+def test_an_error_in_the_nearest_surfaces_analysis_becomes_a_note(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The typed equation's answer (and its approximate axis) stands when the nearest exact
+    surface's exact analysis fails: the failure is said in the rounded-input stage's notes."""
+    from sorgui.engine import analysis as analysis_module
+
+    whole = analysis_module.analyze_polynomial
+
+    def failing_on_the_nearest(f: object, **kwargs: object) -> object:
+        if kwargs.get("frame") is not None:
+            raise AnalysisError("an exact division in K[t] left a remainder (internal error)")
+        return whole(f, **kwargs)
+
+    monkeypatch.setattr(analysis_module, "analyze_polynomial", failing_on_the_nearest)
+    result = analyze(GENERIC_TORUS)
+    approx = result.approximate
+    assert approx.near_sor and approx.nearest is not None and approx.nearest.analysis is None
+    assert any("not analysed: an exact division" in note for note in approx.notes)

@@ -289,3 +289,22 @@ def test_a_norm_equation_of_large_numbers_is_solved_by_legendres_equation() -> N
     assert found is not None and found[0] ** 2 + (2**61 - 1) * found[1] ** 2 == c
     hard = sympy.Integer(sympy.nextprime(2**200)) * sympy.nextprime(2**201)
     assert _rational_norm(hard, sympy.Integer(3)) is None
+
+
+def test_an_integer_out_of_reach_leaves_the_rationality_undecided(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A radicand that flint cannot factor quickly (:class:`OutOfReach`) ends the stage with an
+    honest status, not with the whole analysis: undecided in the profile's analysis, partly
+    undecided when only the real roots of ``h`` need it."""
+    from sorgui.engine.errors import OutOfReach
+    from sorgui.engine.revolution import rationality
+
+    def out_of_reach(*args: object, **kwargs: object) -> None:
+        raise OutOfReach("the square-free part of an integer of 400 digits is needed, not factored quickly")
+
+    monkeypatch.setattr(rationality, "count_real_roots_of", out_of_reach)
+    partly = analyze(example_text("paper-example-1")).rationality
+    assert partly.status == "partly undecided" and partly.table_row == 4
+    assert any("400 digits" in note for note in partly.notes)
+    monkeypatch.setattr(rationality.profile_pair, "analyze_profile_pair", out_of_reach)
+    undecided = analyze(example_text("paper-example-1"))
+    assert undecided.recognition.is_sor and undecided.rationality.status.startswith("undecided: ")
