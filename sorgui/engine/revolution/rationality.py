@@ -94,6 +94,16 @@ class _TableFacts(TypedDict):
     complex_rational: bool
 
 
+class _TubeFacts(TypedDict):
+    """The parameterization of ``P²`` and the tubular surface built from it, as every
+    :class:`Rationality` that has them carries them (keyword arguments of :class:`Rationality`)."""
+
+    square_parametrization: tuple[str, str]
+    tubular_surface: str
+    h: str
+    tau: tuple[str, str, str]
+
+
 def table_row(reducible: bool, genus_p: int | None, genus_p2: int) -> int:
     """The row (1–5, top to bottom) of Table 1 of the paper."""
     if reducible:
@@ -240,42 +250,35 @@ def analyze_rationality(
             status="partly undecided", **base, notes=(f"no parameterization of P²: {exc.message}",)
         ), None
     tube = tubular_surface(par)
-    notes = ["T and τ live in the axis frame p = c + s·a + y·u + z·(a × u)/|a| of the profile"]
+    facts: _TubeFacts = {
+        "square_parametrization": (str(par.x), str(par.y)),
+        "tubular_surface": _tube_str(tube),
+        "h": str(tube.h),
+        "tau": _tau_str(tube),
+    }
+    notes: tuple[str, ...] = ("T and τ live in the axis frame p = c + s·a + y·u + z·(a × u)/|a| of the profile",)
     if not par.is_real:
         return Rationality(
             status="decided",
             unirational=False,
             real_rational=False,
-            square_parametrization=(str(par.x), str(par.y)),
-            tubular_surface=_tube_str(tube),
-            h=str(tube.h),
-            tau=_tau_str(tube),
             notes=(*notes, f"P² has no real parameterization (field {par.field})"),
+            **facts,
             **base,
         ), tube
     try:
         roots = count_real_roots_of(tube.h, par.generators)
     except OutOfReach as exc:
-        return Rationality(
-            status="partly undecided",
-            square_parametrization=(str(par.x), str(par.y)),
-            tubular_surface=_tube_str(tube),
-            h=str(tube.h),
-            tau=_tau_str(tube),
-            notes=(*notes, f"the real roots of h were not counted: {exc.message}"),
-            **base,
-        ), tube
+        notes = (*notes, f"the real roots of h were not counted: {exc.message}")
+        return Rationality(status="partly undecided", notes=notes, **facts, **base), tube
     unirational = has_real_surface(tube.h, roots)
     return Rationality(
         status="decided",
         unirational=unirational,
         real_rational=unirational and roots <= 2,
-        square_parametrization=(str(par.x), str(par.y)),
-        tubular_surface=_tube_str(tube),
-        h=str(tube.h),
-        tau=_tau_str(tube),
         real_roots_of_h=roots,
-        notes=tuple(notes),
+        notes=notes,
+        **facts,
         **base,
     ), tube
 
