@@ -395,7 +395,7 @@ def refine_minimax(
     theta = params
     r = residual_vector(theta)
     for _ in range(MINIMAX_ROUNDS):
-        jacobian = np.column_stack([(residual_vector(theta + FD_STEP * e) - r) / FD_STEP for e in np.eye(len(theta))])
+        jacobian = forward_jacobian(residual_vector, theta, r)
         weights = np.full(len(r), 1.0 / len(r))
         step = np.zeros(len(theta))
         for _ in range(LAWSON_STEPS):
@@ -433,16 +433,18 @@ def _fixed_problem(
     return params, scaled, residual_vector
 
 
+def forward_jacobian(residual: Callable[[FloatArray], FloatArray], theta: FloatArray, r: FloatArray) -> FloatArray:
+    """The Jacobian of ``residual`` at ``theta`` (where it is ``r``) by forward differences."""
+    return np.column_stack([(residual(theta + FD_STEP * e) - r) / FD_STEP for e in np.eye(len(theta))])
+
+
 def gauss_newton(residual: Callable[[FloatArray], FloatArray], theta: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Minimise ``‖residual(θ)‖²`` by Gauss–Newton with a forward-difference Jacobian and a
     halving line search, from ``theta``; returns ``θ`` and the last Jacobian."""
     r = residual(theta)
 
-    def jacobian_at(theta: FloatArray, r: FloatArray) -> FloatArray:
-        return np.column_stack([(residual(theta + FD_STEP * e) - r) / FD_STEP for e in np.eye(len(theta))])
-
     for _ in range(GN_ITERATIONS):
-        jacobian = jacobian_at(theta, r)
+        jacobian = forward_jacobian(residual, theta, r)
         step, *_ = np.linalg.lstsq(jacobian, -r, rcond=None)
         for factor in (1.0, 0.5, 0.25, 0.125):
             trial = theta + factor * step
@@ -455,7 +457,7 @@ def gauss_newton(residual: Callable[[FloatArray], FloatArray], theta: FloatArray
         theta, r = trial, r_trial
         if gain < GN_GAIN:
             break
-    return theta, jacobian_at(theta, r)
+    return theta, forward_jacobian(residual, theta, r)
 
 
 def parametrisation(candidate: Candidate) -> tuple[FloatArray, Callable[[FloatArray], Candidate]]:

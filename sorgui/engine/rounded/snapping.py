@@ -384,11 +384,10 @@ def _coefficient_candidates(
     norm2: Fraction | None,
 ) -> list[list[Fraction]]:
     """Exact coefficients of ``g`` in the original coordinates, simplest candidates first: each
-    snapped on its own; the ratios to the best-determined
-    one snapped, times the scales that ``matched_scales`` gives them (or that coefficient
-    snapped, or as fitted); as fitted; and each of these made a torus when it has a torus's
-    terms (:func:`torus_completion`, ``norm2`` the squared length ``|a|²`` of a rational
-    axis direction)."""
+    snapped on its own; the ratios to the best-determined one snapped, times the scales that
+    ``matched_scales`` gives them (or that coefficient snapped, or as fitted); as fitted; and
+    each of these made a torus when it has a torus's terms (:func:`torus_completion`, ``norm2``
+    the squared length ``|a|²`` of the axis direction, when rational)."""
     degrees = np.array([i + 2 * j for i, j in local.exponents])
     factor = f.scale / f.length**degrees
     values = local.coefficients * factor
