@@ -12,6 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from benchmarks.rounded_tori import DECIMAL_RADII, rounded_torus
 from sorgui.engine import analyze
 from sorgui.engine.errors import AnalysisError
 from sorgui.engine.parsing import parse_polynomial
@@ -191,16 +192,7 @@ def test_a_rounded_torus_with_decimal_radii_snaps_back_to_that_torus() -> None:
     ``(0.3, −0.5, 0.81)``, printed with 10 digits: each coefficient snapped on its own gave a
     constant ``(R² − r²)²`` of fewer bits that is not a torus (10.9 s, rationality undecided);
     the constant the other coefficients make a torus of is taken first."""
-    direction = np.array([0.3, -0.5, 0.81])
-    point = np.array([0.2, -0.1, 0.4])
-    unit = direction / np.linalg.norm(direction)
-    one = dense.from_terms({(0, 0, 0): 1.0}, 4)
-    big, small = 3.7**2, 0.45**2
-    shifted = dense.times(one, dense.squared_distance(point)) + (big - small) * one  # ρ + R² − r²
-    h2 = dense.times(dense.times(one, dense.linear_form(unit, point)), dense.linear_form(unit, point))
-    rho = shifted - (big - small) * one
-    torus = dense.times(shifted, dense.squared_distance(point)) + (big - small) * shifted - 4 * big * (rho - h2)
-    analysis = analyze(printed(torus, 10))
+    analysis = analyze(rounded_torus(*DECIMAL_RADII))
     nearest = analysis.approximate.nearest
     assert nearest is not None and nearest.within_rounding
     assert nearest.axis is not None and nearest.axis.direction == ("30", "-50", "81")
