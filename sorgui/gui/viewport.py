@@ -582,6 +582,7 @@ class Viewport(QWidget):
             axis=scene.axis,
             normal_length=0.6 * scene.region.radius,
             snap_distance=2.0 * scene.surface.spacing,
+            typed_terms=scene.typed_terms,
         )
         self._set_actor("pick_normal", info.normal.to_polydata(), color=NORMAL_COLOR, line_width=3)
         self._set_actor("pick_circle", info.latitude.to_polydata(), color=LATITUDE_COLOR, line_width=3)

@@ -168,18 +168,21 @@ def pick_info(
     rel_tol: float = DEFAULT_REL_TOL,
     snap_distance: float = 0.0,
     circle_points: int = 128,
+    typed_terms: Terms | None = None,
 ) -> PickInfo:
     """Inspect ``f`` at a picked ``point``; with ``axis = (c, a)`` test it against that axis.
 
     ``snap_distance > 0`` first moves the point onto ``f = 0`` (:func:`snap_to_surface`), e.g.
     by the mesh's grid spacing. The normal segment has total length ``normal_length``. The
     latitude circle is drawn whenever an axis is given; it lies on the surface when the
-    surface is one of revolution about that axis.
+    surface is one of revolution about that axis. ``terms`` give the zero set and the normal;
+    the value and the gradient reported are those of ``typed_terms`` when given (the equation
+    as typed, where ``terms`` are its square-free part: another scale, or another power).
     """
     p = as_vector(point, "point")
     if snap_distance > 0.0:
         p = snap_to_surface(terms, p, snap_distance)
-    values, grads = value_and_gradient(terms, p[None, :])
+    values, grads = value_and_gradient(terms if typed_terms is None else typed_terms, p[None, :])
     value, gradient = float(values[0]), grads[0]
     # The direction from the overflow-free normalised gradient, which has the same direction.
     direction = unit(value_and_gradient(terms, p[None, :], normalise=True)[1][0])

@@ -27,7 +27,9 @@ if TYPE_CHECKING:
 class SceneData:
     """Everything the viewport draws for one analysis, as plain data.
 
-    ``terms``: float terms of the square-free part of ``f`` (for picking); ``region``: the drawn
+    ``terms``: float terms of the square-free part of ``f`` (for picking: its zero set and
+    normals); ``typed_terms``: those of ``f`` as typed when it is not that part (a multiple, a
+    power, decimals), whose value and gradient the pick reports; ``region``: the drawn
     ball; ``axis_point``/``axis_direction``: the unique axis as floats, if there is one;
     ``notes``: what the picture leaves out, in words for the user. ``factor_axes``: the axes
     of the factors of a reducible surface (one polyline each); ``approximate_axis``: the
@@ -60,6 +62,7 @@ class SceneData:
     canal_families: tuple[FamilyCurves | SmatFamily, ...] = ()
     box: ClipBox | None = None
     base_curve: LineData = LineData.empty()
+    typed_terms: Terms | None = None
 
     @property
     def axis(self) -> tuple[np.ndarray, np.ndarray] | None:

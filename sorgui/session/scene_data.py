@@ -229,8 +229,10 @@ def build_scene(
         for f in analysis.factors
         if f.recognition.axis is not None and len(analysis.factors) > 1
     ]
+    typed = rec.polynomial
     return SceneData(
         terms=terms,
+        typed_terms=polynomial_terms(typed) if typed and typed != analysis.squarefree else None,
         region=region,
         surface=surface,
         axis_segment=segment,

@@ -220,3 +220,28 @@ def test_the_status_summary_shows_no_rounding_noise() -> None:
     scene = build_scene(analyze(example_text("torus")), resolution=20)
     noisy = replace(scene, region=ClipSphere((1.11e-16, 1.67e-16, -5.55e-17), 3.75))
     assert noisy.summary().endswith("in a ball of radius 3.75 about (0, 0, 0)")
+
+
+@pytest.mark.parametrize(
+    ("text", "point", "gradient"),
+    [
+        # Decimals: the square-free part is the typed f times 2·10⁴.
+        ("0.5*x^2 + 0.5*y^2 - 1.5e-3*z - 0.5", (1.0, 0.0, 0.0), (1.0, 0.0, -1.5e-3)),
+        # A multiple: the square-free part is 9x² + 4y² + 36z² − 36.
+        ("x^2/4 + y^2/9 + z^2 - 1", (2.0, 0.0, 0.0), (1.0, 0.0, 0.0)),
+    ],
+)
+def test_a_pick_reports_the_gradient_of_the_equation_as_typed(
+    text: str, point: tuple[float, float, float], gradient: tuple[float, float, float]
+) -> None:
+    """The pick's ``f(p)`` and ``∇f(p)`` are those of what the user typed, not of the integer
+    square-free part the surface is drawn from (10¹⁰ times larger for 10-digit decimals)."""
+    from sorgui.engine import analyze
+    from sorgui.render.picking import pick_info
+    from sorgui.session.scene_data import build_scene
+
+    scene = build_scene(analyze(text), resolution=20)
+    info = pick_info(scene.terms, point, axis=scene.axis, typed_terms=scene.typed_terms)
+    assert np.allclose(info.gradient, gradient, rtol=1e-12, atol=1e-15)
+    assert info.value == pytest.approx(0.0, abs=1e-15)
+    assert f"∇f = ({gradient[0]:.3g}, {gradient[1]:.3g}, {gradient[2]:.3g})" in info.summary()
