@@ -140,6 +140,10 @@ class BaseCurve:
     multiplicity: int = 1
 
 
+BEING_COMPUTED = "being computed"
+"""A map's implicit equation's status (:attr:`ParametricInput.implicit_status`) while its stage runs."""
+
+
 @dataclass(frozen=True)
 class ParametricInput:
     """A surface typed as a rational parametrization ``P(s, t)`` and what the map itself says

@@ -101,8 +101,12 @@ def is_report_path(path: str | Path) -> bool:
     return Path(path).suffix.lower() == ".json"
 
 
-def viewport_image(viewport: Viewport, width: int | None = None, transparent: bool = False) -> QImage:
-    """The 3D view as an image ``width`` pixels wide (default: the view's own size).
+def viewport_image(
+    viewport: Viewport, width: int | None = None, transparent: bool = False, inspection: bool = True
+) -> QImage:
+    """The 3D view as an image ``width`` pixels wide (default: the view's own size);
+    ``inspection=False`` leaves out the picked point's normal, circle and touching spheres (a
+    report's picture is of the surface and its axis).
 
     A transparent background is computed, not asked of OpenGL (the window's surface has no
     alpha channel): the view is rendered once on black and once on white, and each pixel's
@@ -115,6 +119,7 @@ def viewport_image(viewport: Viewport, width: int | None = None, transparent: bo
     renderer = plotter.renderer
     background = (renderer.GetBackground(), renderer.GetBackground2(), renderer.GetGradientBackground())
     forwarders(plotter).hide_axes()
+    hidden = [] if inspection else viewport.hide_inspection()
     try:
         if transparent:
             renderer.GradientBackgroundOff()
@@ -131,6 +136,8 @@ def viewport_image(viewport: Viewport, width: int | None = None, transparent: bo
         renderer.SetBackground2(*background[1])
         renderer.SetGradientBackground(background[2])
         forwarders(plotter).show_axes()
+        for actor in hidden:
+            actor.SetVisibility(True)
         viewport.request_render()
     pixels = np.ascontiguousarray(pixels)
     height, full_width, channels = pixels.shape
@@ -148,7 +155,12 @@ def _render(plotter: pyvista.BasePlotter, scale: int, color: tuple[float, float,
 
 
 def _screenshot(plotter: pyvista.BasePlotter, scale: int) -> np.ndarray:
-    """The view rendered ``scale`` times larger, as ``(h, w, 3)`` pixels."""
+    """The view rendered ``scale`` times larger, as ``(h, w, 3)`` pixels. At scale 1 VTK reads
+    the last frame without rendering again, and pyvistaqt's ``render()`` only asks for one
+    later: the frame with this picture's background and actors is rendered here, at once."""
+    window = plotter.render_window
+    if scale == 1 and window is not None:
+        window.Render()
     image = plotter.screenshot(None, return_img=True, scale=scale)
     assert image is not None  # return_img=True
     pixels: np.ndarray = image[..., :3]

@@ -17,7 +17,7 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from PySide6.QtCore import QEvent, QObject, Qt, Signal
+from PySide6.QtCore import QEvent, QObject, QSize, Qt, Signal
 from PySide6.QtGui import (
     QAction,
     QCloseEvent,
@@ -283,7 +283,7 @@ class MainWindow(QMainWindow):
         self.splitter.setChildrenCollapsible(False)
         self.setCentralWidget(self.splitter)
         self.setMinimumSize(*MINIMUM_SIZE)
-        self.resize(1400, 860)
+        self.resize(*_initial_size(self.screen().availableGeometry().size()))
 
     def _build_actions(self) -> None:
         menu = self.menuBar()
@@ -651,7 +651,7 @@ class MainWindow(QMainWindow):
 
         picture = None
         if format_of(path, fmt).suffix in (".md", ".html", ".png"):
-            picture = png_bytes(viewport_image(self.viewport, REPORT_PICTURE_WIDTH))
+            picture = png_bytes(viewport_image(self.viewport, REPORT_PICTURE_WIDTH, inspection=False))
         return export_analysis(analysis, path, fmt, scene=self.viewport.scene, picture=picture)
 
     def ask_time_limit(self) -> None:
@@ -755,7 +755,7 @@ class MainWindow(QMainWindow):
             return
         picture = None
         if format_of(path).suffix in (".md", ".html", ".png"):
-            picture = png_bytes(viewport_image(self.viewport, REPORT_PICTURE_WIDTH))
+            picture = png_bytes(viewport_image(self.viewport, REPORT_PICTURE_WIDTH, inspection=False))
         self.cad_export.start(analysis, path, self.viewport.scene, picture, timeout=self.time_limit)
         self.statusBar().showMessage(f"Writing {path}…")
 
@@ -929,3 +929,15 @@ class MainWindow(QMainWindow):
             self.settings.forget_camera()
         self._save_layout()
         self.settings.sync()
+
+
+PREFERRED_SIZE = (1400, 860)
+"""The window's first size, where the screen has room for it."""
+
+
+def _initial_size(available: QSize) -> tuple[int, int]:
+    """:data:`PREFERRED_SIZE`, shrunk to 95% of the screen's available area (a 1280×720 laptop
+    screen), never below :data:`MINIMUM_SIZE`."""
+    width = max(MINIMUM_SIZE[0], min(PREFERRED_SIZE[0], int(0.95 * available.width())))
+    height = max(MINIMUM_SIZE[1], min(PREFERRED_SIZE[1], int(0.95 * available.height())))
+    return width, height

@@ -31,6 +31,7 @@ from PySide6.QtWidgets import (
 
 from sorgui.engine.results import Analysis, Approximation, Canal, Conical, Recognition
 from sorgui.engine.stage_results import ParametricInput, Rationality
+from sorgui.engine.vocabulary import kind_noun
 from sorgui.export.text import (
     TABLE_1,
     TABLE_1_WORDS,
@@ -325,7 +326,7 @@ class ResultsPane(QScrollArea):
         smallest = ", ".join(f"{v:.2g}" for v in approx.singular_values[-3:])
         rows = [
             ("tolerance", f"{approx.tolerance:.2g} (relative, {source})"),
-            ("near", ("yes: " if approx.near_sor else "no: ") + (approx.kind or "no symmetry kind")),
+            ("near", _near_words(approx)),
             ("relative distance", "–" if approx.relative_distance is None else f"{approx.relative_distance:.3g}"),
             ("in units of rounding", "–" if approx.residual is None else f"{approx.residual:.3g}"),
             ("singular values", f"smallest: {smallest}" if smallest else "–"),
@@ -510,7 +511,7 @@ class ResultsPane(QScrollArea):
         for index, param in enumerate(analysis.parametrizations):
             kind = "real" if param.real else "complex"
             proper = {True: "proper", False: "not proper", None: "properness unknown"}[param.proper]
-            check = "verified by substitution" if param.verified else "NOT verified"
+            check = f"verified: {param.verification}" if param.verified else "NOT verified"
             names = ", ".join(param.parameters)
             self._section(
                 f"Parameterization {index + 1} ({names})",
@@ -651,3 +652,13 @@ def _undecided(limit: float | None) -> str:
 
 def _value(value: object) -> str:
     return "undecided" if value is None else str(value)
+
+
+def _near_words(approx: Approximation) -> str:
+    """What rounded input is near, in words: "yes: a cylinder of revolution", or what it is
+    nearly instead."""
+    if approx.near_sor:
+        return f"yes: {kind_noun(approx.kind)}"
+    if approx.kind in (None, "none"):
+        return "no: no continuous symmetry within the tolerance"
+    return f"no: nearly {kind_noun(approx.kind)}"

@@ -247,8 +247,10 @@ class RunPanel(QWidget):
             label = html.escape(stage.title)
             if stage.state is StageState.RUNNING:
                 text = f"<b>{label}</b> {seconds_text(stage.elapsed(now))}…"
-            elif stage.state is StageState.DONE:
+            elif stage.state is StageState.DONE or stage.note is not None:
                 text = f"{label} {seconds_text(stage.seconds)}"
+                if stage.note is not None:
+                    text += f" <i>{html.escape(stage.note)}</i>"
             elif stage.state is StageState.UNFINISHED:
                 text = f"{label} <i>not finished within {run.limit:g} s</i>"
             elif stage.state is StageState.PENDING and stage.seconds > 0:

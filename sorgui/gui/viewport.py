@@ -820,6 +820,17 @@ class Viewport(QWidget):
         self._show_surface()
         self.request_render()
 
+    def hide_inspection(self) -> list[Any]:
+        """Hide the visible actors of the picked point (for a picture of the surface alone) and
+        return them, to be shown again."""
+        hidden = []
+        for name in PICK_ACTORS:
+            actor = self.plotter.renderer.actors.get(name)
+            if actor is not None and actor.GetVisibility():
+                actor.SetVisibility(False)
+                hidden.append(actor)
+        return hidden
+
     def _clear_pick(self) -> None:
         for name in PICK_ACTORS:
             forwarders(self.plotter).remove_actor(name, render=False)

@@ -21,6 +21,7 @@ from enum import Enum
 from typing import TYPE_CHECKING, Any, Protocol
 
 from sorgui.engine.results import Analysis
+from sorgui.engine.stage_results import BEING_COMPUTED
 from sorgui.session.components import Component
 from sorgui.session.events import SessionEvents
 from sorgui.session.job import JobRequest, JobResult, run_job
@@ -138,6 +139,8 @@ class Stage:
     state: StageState = StageState.PENDING
     seconds: float = 0.0
     started: float | None = None
+    note: str | None = None
+    """What the stage found when that is the news, e.g. "not found" (a failed stage)."""
 
     @property
     def title(self) -> str:
@@ -213,6 +216,16 @@ class Run:
 
     def unfinished(self) -> list[Stage]:
         return [s for s in self.stages.values() if s.state is StageState.UNFINISHED]
+
+
+def _settled(analysis: Analysis, outcome: str) -> Analysis:
+    """``analysis`` as it stands once its run ended: a map's implicit equation still "being
+    computed" when the run was cancelled or failed is not computed."""
+    record = analysis.parametric
+    if record is None or record.implicit_status != BEING_COMPUTED:
+        return analysis
+    status = f"not computed: the analysis was {'cancelled' if outcome == 'cancelled' else 'stopped'}"
+    return replace(analysis, parametric=replace(record, implicit_status=status))
 
 
 def result_unfinished(message: Finished) -> bool:
@@ -508,6 +521,8 @@ class Session:
                 run.message = "cancelled"
             case _:
                 run.message = "the analysis process hung up"
+        if run.analysis is not None:
+            run.analysis = _settled(run.analysis, run.outcome)
         now = time.monotonic()
         for stage in run.stages.values():
             if stage.state is StageState.RUNNING:
@@ -518,4 +533,9 @@ class Session:
             elif stage.state is StageState.PENDING:
                 waited = StageState.SKIPPED if stage.name in WORKER_STAGES else rest
                 self._set_state(run, stage, StageState.DONE if stage.seconds > 0 else waited)
+        implicit = run.stages.get("implicit equation")
+        record = run.analysis.parametric if run.analysis is not None else None
+        if implicit is not None and record is not None and record.implicit_status.startswith("not found"):
+            implicit.note = "not found"
+            self._set_state(run, implicit, StageState.FAILED)
         self.events.run_finished.emit(run)

@@ -171,6 +171,24 @@ def test_a_picture_on_a_plain_background_never_reaches_the_window(torus_window, 
     assert plotter.grabFramebuffer() == shown
 
 
+def test_a_report_picture_leaves_out_the_picked_point(torus_window, qtbot) -> None:
+    """A report's picture is of the surface and its axis: the picked point's normal, circle and
+    marker are hidden for it, and shown again in the window afterwards."""
+    from sorgui.gui.exporting import viewport_image
+
+    viewport = torus_window.viewport
+    plain = viewport_image(viewport)
+    viewport.pick_point((2.0, 0.0, 1.0))
+    qtbot.wait(300)  # the picked point's actors are added on the next turn of the event loop
+    assert viewport_image(viewport) != plain
+    assert viewport_image(viewport, inspection=False) == plain
+    actors = viewport.plotter.renderer.actors
+    assert all(actors[name].GetVisibility() for name in ("pick_normal", "pick_circle", "pick_point"))
+    transparent = viewport_image(viewport, transparent=True)  # the view's own size: one frame each
+    assert transparent.pixelColor(1, 1).alpha() == 0  # the background
+    assert transparent.pixelColor(transparent.width() // 2, transparent.height() // 2).alpha() == 255  # the axis
+
+
 def test_software_opengl_lights_the_scene_from_the_camera(torus_window) -> None:
     """Under software OpenGL (Xvfb here) one headlight replaces pyvista's kit of five lights:
     a frame costs about a quarter less, and the surface is still lit and shaded."""

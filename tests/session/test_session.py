@@ -7,9 +7,12 @@ unplanned stage) are fed the worker's own messages.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 
 from sorgui.engine.results import Analysis
+from sorgui.engine.stage_results import BEING_COMPUTED
 from sorgui.examples import example_text
 from sorgui.session import Session, StageState
 from sorgui.session.components import component_texts
@@ -114,6 +117,30 @@ def test_cancel_keeps_what_is_done_and_marks_the_rest_cancelled() -> None:
     assert stages["recognition"] is StageState.DONE
     assert stages["rationality"] is StageState.CANCELLED
     assert stages["parametrizations"] is StageState.CANCELLED
+
+
+def test_a_map_whose_equation_was_not_found_marks_that_stage() -> None:
+    """The implicit equation's stage ends "not found" (✗), not done, when the engine found none
+    (here: Singular's elimination runs over QQ only); a cancelled run's equation still "being
+    computed" is "not computed" once the run has ended."""
+    session = Session()
+    run = session.analyze("(s, t, sqrt(2)*s^3*t + t^5 + s)", resolution=20)
+    assert run.outcome == "finished"
+    assert run.analysis.parametric.implicit_status.startswith("not found")
+    stage = run.stages["implicit equation"]
+    assert stage.state is StageState.FAILED and stage.note == "not found"
+    assert states(session)["recognition"] is not StageState.FAILED
+
+    session = Session(ScriptedRunner())
+    session.analyze("(s, t, s^3*t + t^5 + s)")
+    session.handle(StageStarted("parametric"))
+    known = run.analysis.parametric
+    early = replace(run.analysis, parametric=replace(known, implicit_status=BEING_COMPUTED), timings=())
+    session.handle(AnalysisKnown(early))
+    session.handle(StageStarted("implicit equation"))
+    session.handle(JobCancelled())
+    assert session.run.analysis.parametric.implicit_status == "not computed: the analysis was cancelled"
+    assert states(session)["implicit equation"] is StageState.CANCELLED
 
 
 def test_input_errors_end_the_run_with_a_position() -> None:

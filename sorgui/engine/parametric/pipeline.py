@@ -32,7 +32,7 @@ from ..parsing import has_decimals
 from ..recognition.recognize import axis_report
 from ..recognition.symmetry import Symmetry
 from ..results import Analysis, Approximation, Canal, Conical, Factor, Recognition, Triple
-from ..stage_results import ParametricInput, Parametrization
+from ..stage_results import BEING_COMPUTED, ParametricInput, Parametrization
 from ..stages import PartialCallback, StageClock
 from ..timelimit import UNDECIDED, time_limit, unfinished_analysis
 from .maps import ParameterRing, RationalMap, fraction_text
@@ -44,8 +44,6 @@ IMPLICIT_TIMEOUT = 30.0
 """Seconds Singular's elimination may take at most (or the analysis' time left, if shorter)."""
 PROPER_TIMEOUT = 1.0
 """Seconds for the generic fibre over ``QQ(s₀, t₀)`` before one fibre over a point is counted."""
-BEING_COMPUTED = "being computed"
-"""The implicit equation's status while its stage runs."""
 MAP_PARAMETERS = frozenset({"s", "t", "u", "v", "w", "r", "theta", "tau"})
 """Typed parameter names the exported map keeps (the names sorgui's reports use)."""
 
@@ -162,7 +160,10 @@ def _analyze(
     clock.publish(decided)
     if not recognition_only:
         with clock.stage("properness"):
-            known.record = replace(known.record, **_properness(surface, singular_timeout, clock.cancel))
+            known.record = replace(
+                known.record,
+                **_properness(surface, known.record.map_parameters, singular_timeout, clock.cancel),
+            )
         clock.publish(decided)
     with clock.stage("implicit equation"):
         found, status = None, "not computed (recognition only)"
@@ -223,9 +224,12 @@ def _approximate(known: _Known, surface: RationalMap, text: str, tolerance: floa
     known.approximate, known.near = nearly(surface, tau, "given" if tolerance is not None else "input")
 
 
-def _properness(surface: RationalMap, timeout: float, cancel: threading.Event | None) -> dict[str, Any]:
+def _properness(
+    surface: RationalMap, names: tuple[str, str], timeout: float, cancel: threading.Event | None
+) -> dict[str, Any]:
     """``fibre``, ``proper`` and ``proper_method``: the generic fibre if Singular counts it within
-    :data:`PROPER_TIMEOUT`, else the fibre over one point of a fixed, unremarkable parameter value."""
+    :data:`PROPER_TIMEOUT`, else the fibre over one point of a fixed, unremarkable parameter value
+    (named with the typed parameters ``names``)."""
     from ..singular.surfaces import fibre_size
 
     ring = surface.ring
@@ -241,7 +245,7 @@ def _properness(surface: RationalMap, timeout: float, cancel: threading.Event | 
             size = fibre_size(X, W, (point[0], point[1]), timeout=timeout, cancel=cancel)
         except SingularError as exc:
             return {"proper_method": f"not decided: {exc.message}"}
-        method = f"the fibre over the image of (s, t) = ({point[0]}, {point[1]}) (Singular)"
+        method = f"the fibre over the image of ({names[0]}, {names[1]}) = ({point[0]}, {point[1]}) (Singular)"
     except SingularError as exc:
         return {"proper_method": f"not decided: {exc.message}"}
     if size < 1:
