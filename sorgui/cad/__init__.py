@@ -131,4 +131,6 @@ def summary(model: CadModel) -> str:
         words += f"; measured deviation {model.deviation:.2g} ({verdict} the tolerance {model.tolerance:.2g})"
     if model.typed_deviation is not None:
         words += f"; the nearest exact surface's part, {model.typed_deviation:.2g} from the typed surface"
+        if model.beyond_rounding:
+            words += " (BEYOND the input's rounding: no simple exact surface was found within it)"
     return words

@@ -20,6 +20,7 @@ from OCP.BRepCheck import BRepCheck_Analyzer
 from sorgui.engine.results import Analysis, Recognition
 from sorgui.engine.stage_results import Parametrization
 from sorgui.engine.values import ExpressionError, polynomial_terms, read_expression
+from sorgui.engine.vocabulary import kind_noun
 from sorgui.numerics import without_noise
 from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData
 from sorgui.render.geometry import foot_on_line
@@ -84,6 +85,9 @@ class CadModel:
     typed_deviation: float | None = None
     """For rounded input written as its nearest exact surface: the part's measured distance from
     the typed surface."""
+    beyond_rounding: bool = False
+    """That nearest exact surface lies beyond the input's rounding (none simple was found within
+    it): the part is the nearest found, and says so."""
 
     @property
     def faces(self) -> int:
@@ -120,7 +124,9 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
         model = surface_model(exact, nearest_scene(scene, exact), tolerance, cap)
         deviation = typed_deviation(model.shape, analysis.squarefree, scene)
         lines = (*nearest_lines(nearest, deviation), *model.description)
-        return dataclasses.replace(model, description=lines, typed_deviation=deviation)
+        return dataclasses.replace(
+            model, description=lines, typed_deviation=deviation, beyond_rounding=not nearest.within_rounding
+        )
     size = scene.region.radius
     check_size(size)
     faces = _surface_faces(analysis, scene, tolerance, precision(size))
@@ -165,10 +171,7 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
         sweep = canal_sweep(analysis, scene.region, goal, edge)
         if sweep is not None:
             return _swept_faces(sweep, scene.region, goal)
-        raise CadGeometryError(
-            "the surface is not a surface of revolution, nor a cylinder or cone over a rational curve, "
-            "nor a canal surface with known circles; write NAME.patch.step for a rational parameterization"
-        )
+        raise CadGeometryError(_no_part_words(analysis))
     ball = scene.region
     frame = axis_frame(rec.profile) if rec.profile is not None else None
     if frame is not None and _off_axis(ball, frame):
@@ -325,6 +328,24 @@ def _analytic_lines(spec: Analytic) -> tuple[str, ...]:
     return tuple(lines)
 
 
+def _no_part_words(analysis: Analysis) -> str:
+    """Why a surface that is not of revolution has no part, and what may be written instead."""
+    patch = "; write NAME.patch.step for its rational parameterization" if analysis.parametrizations else ""
+    approximate = analysis.approximate
+    if approximate is not None and approximate.near_sor:
+        distance = approximate.relative_distance
+        within = f"within {distance:.2g} (relative) of " if distance is not None else "near "
+        return (
+            f"the typed surface is not exactly a surface of revolution, only {within}{kind_noun(approximate.kind)}, "
+            "and no exact surface with a rational or quadratic axis was found within its rounding to build the "
+            f"part from (the approximate axis is in the report){patch}"
+        )
+    return (
+        "the surface is not a surface of revolution, nor a cylinder or cone over a rational curve, "
+        f"nor a canal surface with known circles{patch}"
+    )
+
+
 def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
     """The first verified real rational parameterization (of ``X``, of a canal surface by its
     circles, of a cone or cylinder by its lines, of a sphere by stereographic projection) over
@@ -336,7 +357,9 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
         model = patch_model(nearest.analysis, nearest_scene(scene, nearest.analysis))
         deviation = typed_deviation(model.shape, analysis.squarefree, scene)
         lines = (*nearest_lines(nearest, deviation), *model.description)
-        return dataclasses.replace(model, description=lines, typed_deviation=deviation)
+        return dataclasses.replace(
+            model, description=lines, typed_deviation=deviation, beyond_rounding=not nearest.within_rounding
+        )
     size = scene.region.radius
     check_size(size)
     candidates = [

@@ -19,7 +19,7 @@ from sorgui.engine.parsing import parse_polynomial
 from sorgui.engine.results import Analysis
 from sorgui.engine.rounded import dense
 from sorgui.engine.rounded.approximate import approximate_symmetry, rounding_of
-from sorgui.engine.rounded.directions import quadratic_direction, simplest_between
+from sorgui.engine.rounded.directions import Quadratic, quadratic_direction, rational_point, simplest_between
 from sorgui.engine.rounded.precision import input_rounding
 from sorgui.engine.rounded.snapping import build
 from sorgui.samples import (
@@ -459,6 +459,47 @@ def test_quadratic_directions_of_cad_turns(direction: tuple[float, ...], d: int)
     assert found is not None and {q.d for q in found} == {d}
     values = np.array([float(q) for q in found])
     assert abs(abs(values @ np.array(direction)) / np.linalg.norm(values) - 1.0) < 1e-12
+
+
+def _turned_cylinder(digits: int) -> str:
+    """The cylinder of radius 2 about the z-axis turned by 30° about x and moved to (0, 0, 3):
+    ``x² + ¾y² − (√3/2)yz + ¼z² + (3√3/2)y − (3/2)z − 2``, printed with ``digits`` digits as a
+    CAD system prints it (its foot, (0, −3√3/4, 3/4), is irrational)."""
+    values = [1.0, 0.75, -math.sqrt(3) / 2, 0.25, 3 * math.sqrt(3) / 2, -1.5, -2.0]
+    monomials = ["x^2", "y^2", "y*z", "z^2", "y", "z", ""]
+    return " ".join(f"{v:+.{digits - 1}e}" + (f"*{m}" if m else "") for v, m in zip(values, monomials))
+
+
+@pytest.mark.parametrize("digits", [8, 10, 12, 15])
+def test_a_turned_cylinder_off_the_origin_snaps_back_over_its_quadratic_field(digits: int) -> None:
+    """The nearest exact surface is the cylinder itself over QQ(√3), through its one rational
+    axis point (0, 0, 3): not a rational direction of 60-bit coordinates within the same
+    rounding (which won the tie at 8–12 digits), nor nothing at all (at 15 digits, where the
+    irrational foot of the axis cannot be snapped to a rational point)."""
+    analysis = analyze(_turned_cylinder(digits))
+    approx = analysis.approximate
+    assert approx.near_sor and approx.nearest is not None and approx.nearest.within_rounding
+    exact = "x^2 + 3/4*y^2 - sqrt(3)/2*y*z + 1/4*z^2 + 3*sqrt(3)/2*y - 3/2*z - 2"
+    assert parse_polynomial(approx.nearest.polynomial).polynomial == parse_polynomial(exact).polynomial
+
+
+@pytest.mark.parametrize(
+    ("point", "direction"),
+    [
+        ((0.3, -1.2, 0.7), ((3, 0), (8, 0), (0, 10))),  # (3, 8, 10√2)
+        ((0.0, 0.0, 3.0), ((0, 0), (Fraction(1, 2), 0), (0, Fraction(1, 2)))),  # (0, 1/2, √3/2)
+        ((0.0, 0.0, 0.0), ((1, 0), (0, 1), (0, 0))),  # (1, √5, 0) through the origin
+    ],
+)
+def test_the_rational_point_of_a_quadratic_axis_is_found_from_any_of_its_points(
+    point: tuple[float, ...], direction: tuple[tuple[Fraction, Fraction], ...]
+) -> None:
+    d = 3 if direction[1][0] == Fraction(1, 2) else (5 if direction[1][1] == 1 else 2)
+    a = tuple(Quadratic(Fraction(p), Fraction(q), d) for p, q in direction)
+    values = np.array([float(q) for q in a])
+    for t in (-7.5, 0.0, 2.25, 100.0):
+        found = rational_point(np.array(point) + t * values, a, 1e-12)
+        assert found is not None and np.allclose(found, point, atol=1e-9), (t, found)
 
 
 @pytest.mark.parametrize("direction", [(0.6, 0.8, 0.0), (0.0, 0.0, 1.0), (0.123456789, 0.456789123, 0.881097)])

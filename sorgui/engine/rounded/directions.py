@@ -22,6 +22,7 @@ from fractions import Fraction
 from functools import lru_cache
 from typing import TypeAlias, TypeVar
 
+import mpmath
 import numpy as np
 
 from .dense import FloatArray
@@ -185,6 +186,47 @@ def quadratic_direction(direction: FloatArray, epsilon: float) -> QuadraticVecto
                 Quadratic(c if rest == 1 else Fraction(0), c if rest == d else Fraction(0), d) for c, rest in scaled
             )
     return None
+
+
+def rational_point(point: FloatArray, direction: QuadraticVector, tolerance: float) -> FloatArray | None:
+    """The rational point of the axis through ``point`` along ``direction ∈ QQ(√d)³``, or ``None``.
+
+    Such an axis has at most one rational point ``c`` (``c + t·a`` is irrational for ``t ≠ 0``),
+    and its foot, the point nearest the origin, is irrational when ``c·a`` is: a CAD part turned
+    by 30° and moved off the origin. Each coordinate of ``a`` is rational or a rational times
+    ``√d`` (:func:`quadratic_direction`); for a rational ``a_j`` and an irrational ``a_i = b·√d``
+    the value ``K = p_i − √d·(b/a_j)·p_j`` is the same at every point ``p`` of the axis, and at
+    ``c`` it reads ``K = c_i − √d·(b/a_j)·c_j``: its rational and irrational parts give ``c_i``
+    and ``c_j``, found as the integer relation ``n₀K + n₁ + n₂√d = 0`` (PSLQ) within
+    ``tolerance`` (relative to ``|K|``). Three numbers known to ``tolerance`` have chance
+    relations of height about ``tolerance^(−1/2)``: only one below ``tolerance^(−1/3)`` is
+    taken (a CAD part's placement, ``(3/10, −6/5, 7/10)``, has a small one)."""
+    irrational = [i for i, q in enumerate(direction) if q.b]
+    rational = [j for j, q in enumerate(direction) if q.a]
+    if not irrational or not rational:
+        return None
+    i, j, d = irrational[0], rational[0], direction[irrational[0]].d
+    ratio = direction[i].b / direction[j].a
+    unit = np.array([float(q) for q in direction])
+    unit /= np.linalg.norm(unit)
+    scale = max(1.0, float(np.max(np.abs(point))))
+    point = point - float(point @ unit) * unit  # K is the same along the axis: read it at the foot
+    k = float(point[i]) - math.sqrt(d) * float(ratio) * float(point[j])
+    if abs(k) <= max(tolerance, 1e-15) * scale:  # c_i = c_j = 0 (an axis through the origin, say)
+        return point - float(point[j]) / float(direction[j].a) * np.array([float(q) for q in direction])
+    tol = max(tolerance, 1e-15)
+    height = max(10, round(tol ** (-1 / 3)))
+    with mpmath.workdps(30):
+        relation = mpmath.pslq(
+            [mpmath.mpf(k), 1, mpmath.sqrt(d)], tol=mpmath.mpf(tol * max(abs(k), 1.0)), maxcoeff=height, maxsteps=2000
+        )
+    if relation is None or relation[0] == 0 or max(abs(int(n)) for n in relation) > height:
+        return None
+    n0, _, n2 = (int(n) for n in relation)
+    c_j = Fraction(n2, n0) / ratio  # K's part −√d·(b/a_j)·c_j is −(n₂/n₀)·√d
+    t = (float(c_j) - float(point[j])) / float(direction[j].a)
+    result: FloatArray = point + t * np.array([float(q) for q in direction])
+    return result
 
 
 def _square_free(m: int) -> tuple[int, int] | None:

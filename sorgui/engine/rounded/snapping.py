@@ -59,6 +59,7 @@ from .directions import (
     Vector,
     integer_vector,
     quadratic_family,
+    rational_point,
     simplest_near,
     snapped_directions,
     three,
@@ -77,7 +78,13 @@ MINIMAX_POINTS = 3
 MINIMAX_SPREADS = (0.1, 0.01)
 """The same for the axis that makes the largest residual smallest: that axis is already
 within the rounding, and a coarse snap would undo it."""
+POINT_PRECISION = 100.0
+"""How many times the input's relative rounding a rational point on a quadratic axis may be off
+(:func:`.directions.rational_point`)."""
 FLAT_SLOPE = 1e-8
+MAX_SHIFT = 1e3
+"""A profile centre farther than this along the axis from its foot (in the units of the
+normalised ``f``, whose points are of size 1) is noise: the foot is taken instead."""
 """A change of the profile's terms of degree ``d - 1`` under a unit shift along the axis below
 this (relative to the terms) is the floating-point fit's noise, not a slope: a paraboloid's
 term in ``h`` does not change at all, and dividing by that noise put its centre at 10¹⁰."""
@@ -113,12 +120,14 @@ Built: TypeAlias = fmpq_mpoly | Poly
 
 
 def exact_axes(
-    f: Normalised, best: Fit, directions: list[Direction]
+    f: Normalised, best: Fit, directions: list[Direction], tolerance: float
 ) -> Iterator[tuple[Direction | None, Vector | None]]:
     """Exact (direction, point) pairs to try, simplest first: the first ``AXIS_TRIES``
     directions whose float fit passes, each with the points near the profile's centre on that
     axis whose float fit passes, coarsest first (docs/math.md §8). A coarse pair can pass with
-    free coefficients and fail once they are snapped, so finer pairs follow."""
+    free coefficients and fail once they are snapped, so finer pairs follow. On an axis in a
+    quadratic field the point is its one rational point, found within ``tolerance`` (the input's
+    relative rounding), when its foot is irrational."""
     kind = best.candidate.kind
     limit = max(1.0 + best.noise, best.residual * 1.5)
     tried = 0
@@ -129,26 +138,53 @@ def exact_axes(
                 yield a, None
                 tried += 1
         else:
-            point = best.candidate.point
-            assert point is not None  # every kind of surface of revolution but a plane has a point
-            if direction is not None:
-                point = profile_centre(f, best, direction)
-                if fit(f, best.candidate, point=point, direction=direction).residual > limit:
-                    continue
+            starts = _start_points(f, best, a, tolerance, limit)
+            if not starts:
+                continue
             tried += 1
             seen: list[Vector] = []
-            passing = False
-            for eps in EPSILONS:
-                c = three(simplest_near(float(v) * f.length, eps * f.length) for v in point)
-                if c in seen:
-                    continue
-                seen.append(c)
-                float_c = np.array([float(v) for v in c]) / f.length
-                passing = passing or fit(f, best.candidate, point=float_c, direction=direction).residual <= limit
-                if passing:
-                    yield a, c
+            for point in starts:
+                passing = False
+                for eps in EPSILONS:
+                    c = three(simplest_near(float(v) * f.length, eps * f.length) for v in point)
+                    if c in seen:
+                        continue
+                    seen.append(c)
+                    float_c = np.array([float(v) for v in c]) / f.length
+                    passing = passing or fit(f, best.candidate, point=float_c, direction=direction).residual <= limit
+                    if passing:
+                        yield a, c
         if tried >= AXIS_TRIES:
             return
+
+
+def _start_points(f: Normalised, best: Fit, a: Direction | None, tolerance: float, limit: float) -> list[FloatArray]:
+    """The points of the axis along ``a`` whose coordinates are snapped, in order, each one whose
+    float fit passes: the profile's centre (:func:`profile_centre`; the foot of a cylinder's
+    axis) and, on an axis in a quadratic field, its one rational point
+    (:func:`.directions.rational_point`, within ``POINT_PRECISION`` times ``tolerance``), first
+    for a cylinder, whose foot is irrational when that point is off the origin."""
+    point = best.candidate.point
+    assert point is not None  # every kind of surface of revolution but a plane has a point
+    if a is None:
+        return [point]
+    direction = np.array([float(v) for v in a])
+    starts = [profile_centre(f, best, direction)]
+    quadratic = _quadratic(a)
+    if quadratic is not None:
+        found = rational_point(starts[0] * f.length, quadratic, POINT_PRECISION * tolerance)
+        if found is not None:
+            rational = found / f.length
+            starts = [rational, *starts] if best.candidate.kind == CYLINDER else [*starts, rational]
+    return [p for p in starts if fit(f, best.candidate, point=p, direction=direction).residual <= limit]
+
+
+def _quadratic(a: Direction | None) -> QuadraticVector | None:
+    """``a`` if it is a direction in a quadratic field."""
+    if a is None:
+        return None
+    x, y, z = a
+    return (x, y, z) if isinstance(x, Quadratic) and isinstance(y, Quadratic) and isinstance(z, Quadratic) else None
 
 
 def profile_centre(f: Normalised, best: Fit, direction: FloatArray) -> FloatArray:
@@ -171,7 +207,7 @@ def profile_centre(f: Normalised, best: Fit, direction: FloatArray) -> FloatArra
     if float(np.linalg.norm(slope)) <= FLAT_SLOPE * max(float(np.linalg.norm(at_zero)), 1.0):
         return foot  # those terms do not move with the point (a paraboloid: only the constant does)
     t = -float(slope @ at_zero) / float(slope @ slope)
-    return foot + t * unit
+    return foot if abs(t) > MAX_SHIFT else foot + t * unit
 
 
 def _radius(sigma: FloatArray, spread: float, family: DirectionSnap) -> float | FloatArray:
@@ -196,7 +232,7 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
             found.append(surface)
     if not found:
         return None
-    return min(found, key=lambda item: (item[1].largest > 1.0, item[0]))[1]
+    return min(found, key=lambda item: (item[1].largest > 1.0, item[0] + _axis_bits(item[1])))[1]
 
 
 def _first_exact(
@@ -240,7 +276,7 @@ def _exact_surfaces(
     checks = 0
     within: tuple[list[Fraction], ExactSurface] | None = None
     held: list[_Held] = []
-    for first, (a, c) in enumerate(exact_axes(f, best, directions)):
+    for first, (a, c) in enumerate(exact_axes(f, best, directions, rounding.tolerance)):
         direction = None if a is None else np.array([float(v) for v in a])
         point = None if c is None else np.array([float(v) for v in c]) / f.length
         local = fit(f, best.candidate, point=point, direction=direction)
@@ -470,6 +506,17 @@ def _matched_scales(g: fmpq_mpoly, typed: _Typed, rounding: Rounding) -> list[Fr
 
 def _bits(values: list[Fraction]) -> int:
     return sum(v.numerator.bit_length() + v.denominator.bit_length() for v in values)
+
+
+def _axis_bits(surface: ExactSurface) -> int:
+    """The bits of an exact surface's axis: its point's coordinates and its direction's (both
+    parts of a coordinate in ``QQ(√d)``). Two families may snap to the same profile
+    coefficients; the simpler axis wins (the turned CAD part's ``(0, 1/2, √3/2)``, not a
+    rational direction of 60-bit coordinates within the same rounding)."""
+    values = list(surface.point or ())
+    for v in surface.direction or ():
+        values += [v.a, v.b] if isinstance(v, Quadratic) else [Fraction(v)]
+    return _bits(values)
 
 
 def _standard_errors(f: Normalised, local: Fit) -> FloatArray:
