@@ -242,3 +242,28 @@ def test_a_cad_file_of_a_surface_outside_the_drawn_ball_is_refused_before_open_c
         done = sorgui("analyze", f"x^2+y^2+z^2-{radius_squared}", "--timeout", "60", "-o", str(tmp_path / "s.step"))
         assert done.returncode == 1 and "no real points inside the drawn ball" in lines(done.stderr)[-1]
         assert not (tmp_path / "s.step").exists()
+
+
+def test_a_nearly_revolving_surface_without_an_exact_one_is_not_called_no_surface_of_revolution(tmp_path: Path) -> None:
+    """A cylinder about the irrational axis (1, √2, √3) printed with 15 digits: near a cylinder of
+    revolution, with no exact surface to build the part from. The refusal says that, and offers
+    no patch file (there is no parameterization to write)."""
+    pytest.importorskip("OCP")
+    text = Path(__file__).parent / "data" / "near-cylinder-irrational-axis.txt"
+    target = tmp_path / "near.step"
+    done = sorgui("analyze", "-f", str(text), "-o", str(target))
+    message = lines(done.stderr)[-1]
+    assert done.returncode == 1 and not target.exists(), done.stderr
+    assert "not exactly a surface of revolution, only within" in message and "cylinder of revolution" in message
+    assert "patch" not in message and "nor a canal surface" not in message
+
+
+def test_a_nearest_surface_beyond_the_rounding_is_written_and_says_so(tmp_path: Path) -> None:
+    """A torus printed with 6 digits whose nearest exact surface found lies beyond the rounding:
+    its part is written, and the line says it is beyond."""
+    pytest.importorskip("OCP")
+    text = Path(__file__).parent / "data" / "rounded-torus-6-digits.txt"
+    target = tmp_path / "torus.step"
+    done = sorgui("analyze", "-f", str(text), "-o", str(target))
+    assert done.returncode == 0 and target.exists(), done.stderr
+    assert "BEYOND the input's rounding" in lines(done.stderr)[-1]
