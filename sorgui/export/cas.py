@@ -19,10 +19,11 @@ from sympy.printing.maple import maple_code
 from sympy.printing.mathematica import mathematica_code
 
 from sorgui.engine.results import Analysis, Approximation
+from sorgui.engine.vocabulary import kind_noun
 from sorgui.export.coverage import CoverageStyle
 from sorgui.export.formulas import Formula, analysis_formulas
 from sorgui.export.quoting import hash_comment, mathematica_comment, one_line
-from sorgui.export.text import TABLE_1
+from sorgui.export.text import TABLE_1, approximation_lines
 
 LATEX_LINE = 100
 """Characters of LaTeX source per displayed line before a long sum is broken."""
@@ -71,7 +72,7 @@ def summary_lines(analysis: Analysis) -> list[str]:
     rec = analysis.recognition
     lines = [
         f"sorgui: {verdict(analysis)}",
-        f"symmetry: {rec.symmetry.replace('_', ' ')} (dim L = {rec.symmetry_dimension}); field K = {analysis.field}",
+        f"symmetry: {kind_noun(rec.symmetry)} (dim L = {rec.symmetry_dimension}); field K = {analysis.field}",
     ]
     rat = analysis.rationality
     if rat is not None and rat.table_row is not None:
@@ -83,14 +84,13 @@ def summary_lines(analysis: Analysis) -> list[str]:
         kinds = f" ({', '.join(canal.kinds)})" if canal.kinds else ""
         count = len(canal.families)
         lines.append(f"canal surface: {answer}{kinds}; {count} sphere {'family' if count == 1 else 'families'} found")
-    if analysis.approximate is not None:
-        lines.append("rounded input: " + approximate_line(analysis.approximate))
+    lines += [line.strip() for line in approximation_lines(analysis, nested=False)]
     return lines
 
 
 def approximate_line(approx: Approximation) -> str:
     """The verdict on a rounded input in one line."""
-    kind = f" ({approx.kind})" if approx.kind else ""
+    kind = f" ({kind_noun(approx.kind)})" if approx.kind else ""
     return (
         f"{'near' if approx.near_sor else 'not near'} a surface of revolution{kind} within the relative "
         f"tolerance {approx.tolerance:g} ({approx.tolerance_source}); residual {approx.residual:.3g} roundings"

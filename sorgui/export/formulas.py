@@ -391,9 +391,37 @@ def _approximate(approx: Approximation) -> list[Formula]:
         out.append(Formula("approximate line", (), "approximate.axis", numbers=numbers, tolerance=approx.tolerance))
     nearest = approx.nearest
     if nearest is not None:
-        out.append(Formula("expression", (nearest.polynomial,), "approximate.nearest", label="g ="))
+        # Named (printed by the files) when within the rounding: the surface the input was meant to be.
+        named = nearest.within_rounding
+        where = "within the rounding of the input" if named else "beyond the rounding"
+        out.append(
+            Formula(
+                "expression",
+                (nearest.polynomial,),
+                "approximate.nearest",
+                "g" if named else "",
+                "g =",
+                f"the nearest exact surface g(x, y, z) = 0, {where}",
+            )
+        )
         if nearest.axis is not None:
             line = nearest.axis.point + nearest.axis.direction
             out.append(Formula("line", line, "approximate.nearest.axis"))
             out.append(Formula("decimal line", line, "approximate.nearest.axis.decimal"))
+            if named:
+                out += [
+                    Formula("vector", nearest.axis.point, name="nearestAxisPoint", description="a point of g's axis"),
+                    Formula(
+                        "vector",
+                        nearest.axis.direction,
+                        name="nearestAxisDirection",
+                        description="the direction of g's axis",
+                    ),
+                ]
     return out
+
+
+def nearest_formulas(analysis: Analysis) -> list[Formula]:
+    """The formulas the files print of rounded input: the nearest exact surface within the
+    rounding and its axis."""
+    return [f for f in _approximate(analysis.approximate) if f.name] if analysis.approximate is not None else []

@@ -28,10 +28,10 @@ from sorgui import __version__
 from sorgui.engine.errors import SorguiError
 from sorgui.engine.results import VERSION_KEY, Analysis, Canal, report_json
 from sorgui.engine.vocabulary import canal_kind
-from sorgui.export.cas import LATEX_STYLE, approximate_line, latex_name, verdict
-from sorgui.export.formulas import Formula, canal_formulas, surface_formulas
+from sorgui.export.cas import LATEX_STYLE, latex_name, verdict
+from sorgui.export.formulas import Formula, canal_formulas, nearest_formulas, surface_formulas
 from sorgui.export.quoting import code_fence, markup_text
-from sorgui.export.text import TABLE_1, conical_lines, parametric_lines, plain_text, symmetry_name
+from sorgui.export.text import TABLE_1, approximation_lines, conical_lines, parametric_lines, plain_text, symmetry_name
 
 KNOWN_KEYS = frozenset(
     {
@@ -337,22 +337,15 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
         facts += [f"note: {n}" for n in rat.notes]
         blocks.append(Block("list", tuple(facts)))
     if analysis.approximate is not None:
-        approx = analysis.approximate
         blocks.append(Block("h2", "Rounded input"))
         blocks.append(
             Block(
                 "list",
-                tuple(
-                    [
-                        approximate_line(approx),
-                        f"relative distance to the nearest invariant polynomial: {approx.relative_distance:.3g}",
-                        *[f"note: {n}" for n in approx.notes],
-                    ]
-                ),
+                tuple([line.strip() for line in approximation_lines(analysis, nested=False)]),
             )
         )
     blocks.append(Block("h2", "Formulas"))
-    for formula in surface_formulas(analysis):
+    for formula in surface_formulas(analysis) + nearest_formulas(analysis):
         blocks += _formula_blocks(formula)
     if analysis.conical is not None and analysis.conical.kind != "none":
         blocks += [

@@ -185,8 +185,9 @@ def _floats(v: tuple[float, ...], tolerance: float | None = None) -> str:
     return float_text(v, 9, tolerance)
 
 
-def approximation_lines(analysis: Analysis) -> list[str]:
-    """The rounded-input verdict in words (docs/math.md §8), with the nearest exact surface."""
+def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
+    """The rounded-input verdict in words (docs/math.md §8), with the nearest exact surface and,
+    when ``nested``, that surface's whole analysis."""
     ap = analysis.approximate
     if ap is None:
         return []
@@ -201,8 +202,12 @@ def approximation_lines(analysis: Analysis) -> list[str]:
     elif ap.normal is not None:
         where = f" with normal {_floats(ap.normal, ap.tolerance)}"
     kind = NEAR_KINDS.get(ap.kind or "", "a surface of revolution")
-    if ap.near_sor and analysis.is_sor:
+    exact = analysis.recognition.symmetry
+    if ap.near_sor and analysis.is_sor and (ap.kind or exact) == exact:
         lines.append(f"  exactly {kind}, and within the tolerance{where}")
+    elif ap.near_sor and analysis.is_sor:  # x² + 1.0001y² + z² − 1: an exact ellipsoid of revolution, nearly a sphere
+        exact_kind = NEAR_KINDS.get(exact, "a surface of revolution")
+        lines.append(f"  exactly {exact_kind}; within the tolerance, nearly {kind}{where}")
     elif ap.near_sor:
         lines.append(f"  not exactly, but within {ap.relative_distance:.2g} (relative) of {kind}{where}")
     elif ap.kind is not None:
@@ -236,10 +241,10 @@ def approximation_lines(analysis: Analysis) -> list[str]:
             f"{deviation} (length units), every coefficient within the rounding: "
             f"{'yes' if near.within_rounding else 'no'}"
         )
-        if near.analysis is not None:
+        if near.analysis is not None and nested:
             lines.append("  the analysis of the nearest exact surface:")
             lines += ["    " + line for line in analysis_lines(near.analysis)]
-        else:
+        elif near.analysis is None:
             lines += ["    " + line for line in recognition_lines_of_nearest(near)]
     return lines
 

@@ -38,7 +38,7 @@ def test_approximate_results_are_kept_and_reported(analyses, tmp_path) -> None:
     path = export_analysis(analysis, tmp_path / "rounded.json")
     assert read_report(path) == analysis
     text = markdown_report(analysis)
-    assert "## Rounded input" in text and "near a surface of revolution (revolution)" in text
+    assert "## Rounded input" in text and "exactly a surface of revolution, and within the tolerance" in text
 
 
 def test_unknown_results_are_listed_not_lost(analyses) -> None:
@@ -119,3 +119,34 @@ def test_a_nearest_surface_outside_the_rounding_is_not_presented_as_the_part() -
         approximate=dataclasses.replace(approx, nearest=dataclasses.replace(approx.nearest, within_rounding=True)),
     )
     assert "the analysis of the nearest exact surface" in plain_text(inside)
+
+
+TURNED_CYLINDER_10_DIGITS = (
+    "+1.000000000e+00*x^2 +7.500000000e-01*y^2 -8.660254038e-01*y*z +2.500000000e-01*z^2 "
+    "+2.598076211e+00*y -1.500000000e+00*z -2.000000000e+00"
+)
+"""The cylinder of radius 2 about the z-axis turned by 30° about x and moved to (0, 0, 3)."""
+
+
+def test_the_files_of_rounded_input_carry_the_nearest_exact_surface(tmp_path) -> None:
+    """What was found is written, not only the verdict: the approximate axis and the nearest
+    exact surface in every file's header, and ``g`` and its exact axis as formulas."""
+    from sorgui.engine import analyze
+    from sorgui.export.cas import latex_document, mathematica_file
+
+    analysis = analyze(TURNED_CYLINDER_10_DIGITS)
+    for text in (latex_document(analysis), mathematica_file(analysis), markdown_report(analysis)):
+        assert "about the axis (0, -1.29903811, 0.75)" in text, text[:1500]
+        assert "within the rounding" in text and "nearest exact surface" in text
+    assert "nearestAxisDirection = {0, 1, 3^(1/2)};" in mathematica_file(analysis)
+    assert "g = x^2 + (3/4)*y^2" in mathematica_file(analysis)
+    assert "(revolution)" not in latex_document(analysis) and "cylinder_of_revolution" not in latex_document(analysis)
+
+
+def test_an_exact_ellipsoid_nearly_a_sphere_is_not_called_exactly_a_sphere() -> None:
+    from sorgui.engine import analyze
+    from sorgui.export.reports import text_report
+
+    text = text_report(analyze("x^2 + 1.0001y^2 + z^2 - 1"))
+    assert "exactly a surface of revolution; within the tolerance, nearly a sphere" in text
+    assert "exactly a sphere" not in text
