@@ -365,6 +365,10 @@ def read_input(args: argparse.Namespace) -> tuple[str, Path | None]:
     if args.expression is None:
         from sorgui.examples import example_text
 
+        print(
+            "sorgui: no equation given: the paper's Example 1 (give an equation, -f FILE, or - to read standard input)",
+            file=sys.stderr,
+        )
         return example_text(DEFAULT_EXAMPLE), None
     if args.expression == "-":
         try:
@@ -587,6 +591,9 @@ def analyze_main(argv: Sequence[str]) -> int:
             return part_main(args, part)
         if args.each_line:
             return each_line(args)
+        for option, given in (("--jobs", args.jobs), ("--scheduler", args.scheduler), ("--resume", args.resume)):
+            if given:
+                raise UsageError(f"{option} applies to --each-line only (one equation per line of -f FILE or -)")
         text, source = read_input(args)
         check_outputs(args.output, source, args.export_format)
     except UsageError as exc:
@@ -744,6 +751,10 @@ def gui_main(argv: Sequence[str]) -> int:
         args = parser.parse_args(argv)
     except UsageError as exc:
         return fail(str(exc), None, False, 2)
+    if args.file is not None and not Path(args.file).exists():
+        commands = ", ".join(sorted(COMMANDS))
+        words = f"no such file or command: {args.file} (the commands are {commands}; see sorgui --help)"
+        return fail(words, None, False, 2)
     return _window(args.file)
 
 

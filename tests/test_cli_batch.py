@@ -289,3 +289,20 @@ def test_resume_refuses_a_file_that_is_not_this_inputs(tmp_path: Path) -> None:
     for command, words in unusable:
         out = subprocess.run(command, capture_output=True, text=True, timeout=60)
         assert out.returncode == 2 and words in out.stderr and out.stderr.count("\n") == 1, (command, out.stderr)
+
+
+def test_the_summary_counts_rounded_surfaces_that_are_nearly_of_revolution(tmp_path: Path) -> None:
+    """A parts library of rounded equations: those within their rounding of a surface of
+    revolution are counted apart, not only as "not"."""
+    source = tmp_path / "rounded.txt"
+    source.write_text("x^2+y^2-1\nx^2+1.0000001*y^2-z\nx^3+y^2*z+1\n", encoding="utf-8")
+    done = subprocess.run(
+        [*SORGUI, "--each-line", "-f", str(source), "-o", str(tmp_path / "out.jsonl")],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr
+    assert "3 lines: 1 surface of revolution, 2 not (1 of them nearly: rounded input within its rounding), " in (
+        done.stderr
+    )

@@ -259,3 +259,17 @@ def test_a_file_given_as_the_expression_says_how_to_read_it(tmp_path: Path) -> N
     [line] = done.stderr.strip().splitlines()
     assert done.returncode == 2 and line.endswith(f"; {part} is a file: give -f {part} to read the equation in it")
     assert sorgui("analyze", "-f", str(part)).returncode == 0
+
+
+def test_options_and_words_that_would_be_ignored_are_refused_in_one_line() -> None:
+    """Batch options without ``--each-line``, and a word that is neither a command nor a file
+    (not "the window needs a display"), are usage errors; no equation at all analyses the
+    paper's Example 1 and says so."""
+    for option in (["--jobs", "2"], ["--resume"], ["--scheduler", "tcp://127.0.0.1:1"]):
+        done = sorgui("analyze", *option, "x + y")
+        assert done.returncode == 2 and "applies to --each-line only" in one_line(done.stderr), done.stderr
+    done = sorgui("bogus")
+    assert done.returncode == 2 and "no such file or command: bogus" in one_line(done.stderr)
+    done = sorgui("analyze", "--recognition-only", stdin=subprocess.DEVNULL)
+    assert done.returncode == 0 and "no equation given: the paper's Example 1" in one_line(done.stderr)
+    assert "surface of revolution: YES" in done.stdout

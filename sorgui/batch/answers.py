@@ -22,11 +22,13 @@ if TYPE_CHECKING:
 
 SURFACE_OF_REVOLUTION = "sor"
 NOT_SURFACE_OF_REVOLUTION = "not"
+NEARLY = "nearly"
 ERROR = "error"
 UNFINISHED = "unfinished"
-KINDS = (SURFACE_OF_REVOLUTION, NOT_SURFACE_OF_REVOLUTION, ERROR, UNFINISHED)
+KINDS = (SURFACE_OF_REVOLUTION, NOT_SURFACE_OF_REVOLUTION, NEARLY, ERROR, UNFINISHED)
 """What a line counts as in the summary: exactly one of these (an error first, then an
-analysis that stopped at its time limit, then its verdict)."""
+analysis that stopped at its time limit, then its verdict; rounded input that is not exactly a
+surface of revolution but within its rounding of one is "nearly")."""
 
 ANALYSED, FAILED, NOT_A_POLYNOMIAL = 0, 1, 2
 """A line's status; the batch exits with 1 when a line failed, else 2 when a line was not a
@@ -124,4 +126,7 @@ def kind_of(data: dict[str, Any]) -> str:
         return ERROR
     if data.get("unfinished"):
         return UNFINISHED
-    return SURFACE_OF_REVOLUTION if data.get("is_sor") else NOT_SURFACE_OF_REVOLUTION
+    if data.get("is_sor"):
+        return SURFACE_OF_REVOLUTION
+    approximate = data.get("approximate")
+    return NEARLY if isinstance(approximate, dict) and approximate.get("near_sor") else NOT_SURFACE_OF_REVOLUTION

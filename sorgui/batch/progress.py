@@ -15,7 +15,7 @@ import sys
 import time
 from typing import TextIO
 
-from .answers import ERROR, KINDS, NOT_SURFACE_OF_REVOLUTION, SURFACE_OF_REVOLUTION, UNFINISHED
+from .answers import ERROR, KINDS, NEARLY, NOT_SURFACE_OF_REVOLUTION, SURFACE_OF_REVOLUTION, UNFINISHED
 
 REDRAW_EVERY = 0.2
 """Seconds between two redraws of the progress line."""
@@ -84,7 +84,8 @@ class Progress:
         sors = counts[SURFACE_OF_REVOLUTION]
         parts = [
             f"{sors:,} surface{'s' if sors != 1 else ''} of revolution",
-            f"{counts[NOT_SURFACE_OF_REVOLUTION]:,} not",
+            f"{counts[NOT_SURFACE_OF_REVOLUTION] + counts[NEARLY]:,} not"
+            + (f" ({counts[NEARLY]:,} of them nearly: rounded input within its rounding)" if counts[NEARLY] else ""),
             f"{counts[ERROR]:,} error{'s' if counts[ERROR] != 1 else ''}",
             f"{counts[UNFINISHED]:,} unfinished",
         ]

@@ -72,7 +72,9 @@ def summary_lines(analysis: Analysis) -> list[str]:
     rec = analysis.recognition
     lines = [
         f"sorgui: {verdict(analysis)}",
-        f"symmetry: {kind_noun(rec.symmetry)} (dim L = {rec.symmetry_dimension}); field K = {analysis.field}",
+        f"symmetry: {kind_noun(rec.symmetry)}"
+        + ("" if rec.symmetry == "undecided" else f" (dim L = {rec.symmetry_dimension})")
+        + f"; field K = {analysis.field}",
     ]
     rat = analysis.rationality
     if rat is not None and rat.table_row is not None:

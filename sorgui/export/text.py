@@ -46,7 +46,8 @@ def _vec(v: tuple[str, ...] | None) -> str:
 
 def recognition_lines(rec: Recognition, indent: str = "") -> list[str]:
     """The recognition facts of one polynomial, one per line."""
-    lines = [f"{indent}symmetry:  {symmetry_name(rec.symmetry)} (dim L = {rec.symmetry_dimension})"]
+    dimension = "" if rec.symmetry == "undecided" else f" (dim L = {rec.symmetry_dimension})"
+    lines = [f"{indent}symmetry:  {symmetry_name(rec.symmetry)}{dimension}"]
     if rec.axis is not None:
         lines.append(f"{indent}axis:      {_vec(rec.axis.point)} + t·{_vec(rec.axis.direction)}")
         lines.append(f"{indent}Plücker:   ({' : '.join(rec.axis.plucker)})")
