@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, Any
 from .algebra.linalg import Vector
 from .errors import AnalysisError, ParseError, TimeLimitReached
 from .parsing import has_decimals, is_parametrization, parse_polynomial
-from .recognition.symmetry import NEAREST_CANAL_NOTE, revolution_canal
+from .recognition.symmetry import NEAREST_CANAL_NOTE, SPHERE, revolution_canal
 from .results import Analysis, Approximation, Canal, Conical
 from .stages import DoneCallback, PartialCallback, ProgressCallback, StageClock
 from .timelimit import skeleton, time_limit, unfinished_analysis
@@ -37,6 +37,10 @@ if TYPE_CHECKING:
     from .algebra.polys import Poly
     from .stage_results import Parametrization
 
+SPHERE_NOTE = (
+    "a sphere: every line through its centre is an axis; the Table 1 row, P and P² are those of the "
+    "axis through the centre along z"
+)
 NEAREST_SINGULAR_TIMEOUT = 10.0
 """Each Singular call of the nearest exact surface's analysis stops after this many seconds (or
 the analysis' own limit, if shorter). That surface can have coefficients of a hundred digits
@@ -188,7 +192,7 @@ def analyze_polynomial(
     """
     from .algebra.polys import field_name, poly_str
     from .recognition.profile import profile_curve
-    from .recognition.recognize import factor_reports, recognize
+    from .recognition.recognize import factor_reports, profile_report, recognize
     from .revolution.real_locus import real_locus
     from .stage_results import Rationality
 
@@ -242,6 +246,14 @@ def analyze_polynomial(
     tube = None
     found: tuple[Parametrization, ...] = ()
     clock.publish(result(rationality, found))
+    # A quadric sphere: every line through the centre is an axis, Table 1 is read about the one along z
+    # (concentric spheres of higher degree are unions of circles in any meridian plane: not read).
+    centre = symmetry.center if profile is None and symmetry.kind == SPHERE and recognition.degree == 2 else None
+    sphere = centre is not None
+    if centre is not None and not recognition_only:
+        K = f.ring.domain
+        profile = profile_curve(f, centre, (K.zero, K.zero, K.one), (K.one, K.zero, K.zero))
+        recognition = replace(recognition, profile=profile_report(profile, K))
     if not recognition_only and profile is not None:
         if len(distinct) > 1:
             rationality = Rationality(status="not analysed: X is reducible over K; see its factors")
@@ -261,6 +273,8 @@ def analyze_polynomial(
             clock.publish(result(rationality, found))
             with clock.stage("parametrizations"):
                 found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)
+            if sphere:
+                notes = (SPHERE_NOTE, *notes)
             rationality = replace(rationality, notes=rationality.notes + notes)
     if canal and not recognition_only:
         from .conical.base_curve import analyze_conical  # Singular's layer: only here
@@ -283,8 +297,8 @@ def analyze_polynomial(
                 full=not recognition_only,
                 timeout=singular_timeout,
                 cancel=cancel,
-                profile=profile,
-                square=None if tube is None or tube.field else (tube.phi, tube.d**2 * tube.h / tube.q**2),
+                profile=None if sphere else profile,  # a sphere's families are its own (no axis of its own)
+                square=None if sphere or tube is None or tube.field else (tube.phi, tube.d**2 * tube.h / tube.q**2),
             )
     if (
         near is not None

@@ -308,3 +308,25 @@ def test_an_integer_out_of_reach_leaves_the_rationality_undecided(monkeypatch: p
     monkeypatch.setattr(rationality.profile_pair, "analyze_profile_pair", out_of_reach)
     undecided = analyze(example_text("paper-example-1"))
     assert undecided.recognition.is_sor and undecided.rationality.status.startswith("undecided: ")
+
+
+@pytest.mark.parametrize(
+    ("text", "field"),
+    [
+        ("x^2 + y^2 + z^2 - 2x - 3", "QQ"),
+        ("x^2 + y^2 + z^2 - 2", "QQ(sqrt(2))"),
+        ("x^2 + y^2 + z^2 - 7", "QQ(sqrt(7))"),
+    ],
+)
+def test_a_sphere_gets_its_table_1_row_and_a_proper_real_parameterization(text: str, field: str) -> None:
+    """Every line through a sphere's centre is an axis: Table 1 is read about the one along z
+    (a circle: row 3), and the stereographic map of the tubular surface is proper and real: over
+    QQ for radius 2; over QQ(√2) for radius² 2 (the map found is not the one from the sphere's
+    rational point (1, 1, 0)); over QQ(√7) for radius² 7, which is no sum of three rational
+    squares."""
+    analysis = analyze(text)
+    assert analysis.recognition.symmetry == "sphere" and analysis.recognition.profile is not None
+    assert analysis.rationality is not None and analysis.rationality.table_row == 3
+    assert any("every line through its centre is an axis" in note for note in analysis.rationality.notes)
+    proper = [p for p in analysis.parametrizations if p.real and p.proper and p.verified]
+    assert proper and proper[0].field == field

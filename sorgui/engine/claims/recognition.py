@@ -42,7 +42,8 @@ def check_recognition(rec: Recognition, surface: Surface, where: str, ids: Ident
     check_symmetry(rec, sym, K, where, "the polynomial's")
     _check_radius(rec, sym, surface, f"{where}radius_squared")
     has_axis = sym.kind in (REVOLUTION, CYLINDER)
-    if (rec.profile is not None) != has_axis:
+    about_any_axis = sym.kind == SPHERE and sym.center is not None  # a sphere's profile: about a chosen axis
+    if (rec.profile is not None) != has_axis and not about_any_axis:
         raise ClaimError(f"{where}profile", "is given for a surface without one axis" if rec.profile else "is missing")
     if rec.profile is not None:
         check_profile(rec.profile, sym, surface, f"{where}profile", ids)
@@ -142,16 +143,22 @@ def _check_radius(rec: Recognition, sym: Symmetry, surface: Surface, where: str)
 
 
 def check_profile(profile: Profile, sym: Symmetry, surface: Surface, where: str, ids: Identities) -> None:
-    """The frame against the axis exactly; the four forms of the profile at random points."""
+    """The frame against the axis exactly (a sphere's: any line through its centre); the four
+    forms of the profile at random points."""
     K = surface.polynomial.ring.domain
-    assert sym.axis_point is not None and sym.axis_direction is not None  # a unique axis
     c = vector(K, profile.frame_point, f"{where}.frame_point")
     a = nonzero(vector(K, profile.frame_direction, f"{where}.frame_direction"), f"{where}.frame_direction")
     u = nonzero(vector(K, profile.frame_normal, f"{where}.frame_normal"), f"{where}.frame_normal")
-    if not is_zero(cross(sub(c, sym.axis_point), sym.axis_direction)):
-        raise ClaimError(f"{where}.frame_point", "is not a point of the axis")
-    if not is_zero(cross(a, sym.axis_direction)):
-        raise ClaimError(f"{where}.frame_direction", "is not along the axis")
+    if sym.kind == SPHERE:
+        assert sym.center is not None  # a sphere's profile is checked only with its centre
+        if not is_zero(sub(c, sym.center)):
+            raise ClaimError(f"{where}.frame_point", "is not the centre of the sphere")
+    else:
+        assert sym.axis_point is not None and sym.axis_direction is not None  # a unique axis
+        if not is_zero(cross(sub(c, sym.axis_point), sym.axis_direction)):
+            raise ClaimError(f"{where}.frame_point", "is not a point of the axis")
+        if not is_zero(cross(a, sym.axis_direction)):
+            raise ClaimError(f"{where}.frame_direction", "is not along the axis")
     if dot(a, u):
         raise ClaimError(f"{where}.frame_normal", "is not perpendicular to the axis")
     if not (profile.even and profile.verified):
