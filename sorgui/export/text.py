@@ -73,6 +73,10 @@ def rationality_lines(rat: Rationality) -> list[str]:
     if rat.table_row is not None:
         row = TABLE_1[rat.table_row - 1]
         lines.append(f"  Table 1, row {rat.table_row}: genus(P) {row[0]}, genus(P²) {row[1]}, X_C {row[2]}, X {row[3]}")
+        if rat.real_rational is False and row[3] == "rational":
+            lines.append(
+                "    (the table's real column is for a surface with real points: this X is not rational over R)"
+            )
     for label, value in (
         ("X_C rational", rat.complex_rational),
         ("X unirational", rat.unirational),

@@ -330,3 +330,15 @@ def test_a_sphere_gets_its_table_1_row_and_a_proper_real_parameterization(text: 
     assert any("every line through its centre is an axis" in note for note in analysis.rationality.notes)
     proper = [p for p in analysis.parametrizations if p.real and p.proper and p.verified]
     assert proper and proper[0].field == field
+
+
+def test_a_surface_without_real_points_is_told_apart_from_the_real_column_of_table_1() -> None:
+    """``x² + y² + 1``: row 1 (its profile splits over C), whose real column says "rational";
+    the report says the column assumes real points, and why no rotated profile was made (its
+    two components are complex conjugates, not "nested or higher roots")."""
+    from sorgui.export.reports import text_report
+
+    analysis = analyze("x^2 + y^2 + 1")
+    assert analysis.rationality.table_row == 1 and analysis.rationality.real_rational is False
+    assert any("its components are complex conjugates" in note for note in analysis.rationality.notes)
+    assert "the table's real column is for a surface with real points" in text_report(analysis)

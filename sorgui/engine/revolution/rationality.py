@@ -454,11 +454,13 @@ def _real_component(p: Poly, *, timeout: float, cancel: threading.Event | None) 
         return rational
     factorization = curves.absolute_factorization(p, timeout=timeout, cancel=cancel)
     s, r = sympy.symbols("s r")
+    real = False
     for fac in factorization.factors:
         if fac.minpoly is None:
             candidates = [fac.factor]
         else:
             candidates = [fac.factor.subs(curves.ALGEBRAIC, root) for root in _real_roots(fac.minpoly)]
+        real = real or bool(candidates)
         for expr in candidates:
             expr = sympy.expand(expr)
             roots = {a for a in expr.atoms(sympy.Pow) if not a.exp.is_Integer}
@@ -472,6 +474,8 @@ def _real_component(p: Poly, *, timeout: float, cancel: threading.Event | None) 
                 if numbers
                 else R(sympy.Poly(expr, s, r).as_expr())
             )
+    if not real:
+        raise AnalysisError("not computed: no component of the profile is real (its components are complex conjugates)")
     raise AnalysisError(
         "not computed: no component of the profile is defined over a real field of square "
         "roots of rational numbers (its components need nested or higher roots)"
