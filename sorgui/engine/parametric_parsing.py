@@ -50,6 +50,8 @@ TRANSCENDENTAL = frozenset(
 
 _RIGHT = re.compile(r"\\right\s*$")
 """LaTeX's ``\\right`` of the closing parenthesis of a triple, left at the end of its last component."""
+_DECIMAL_COMMA = re.compile(r"(?<![\w.^*])\d+,\d+(?![\d.,])")
+"""A number written with a decimal comma, ``1,5``: no separator of components."""
 _LABEL = re.compile(r"\s*([xyz])\s*(?:\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\))?\s*:?=(?!=)")
 _PREFIX = re.compile(
     r"\s*(?:(?![xyz]\s*\()[A-Za-z]\w*\s*\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\)|\(\s*x\s*,\s*y\s*,\s*z\s*\))\s*:?=(?!=)",
@@ -145,12 +147,7 @@ def _layout(text: str) -> tuple[list[tuple[int, int]], tuple[str, str] | None]:
         m = next(m for m, _, _ in labelled if m is not None)
         raise ParseError("the components of a triple have no labels 'x =', 'y =', 'z ='", m.start(1), m.end())
     if len(segments) != 3:
-        raise ParseError(
-            f"a parametrization has three components (x = …, y = …, z = …), not {len(segments)};"
-            " an equation has no ',' or ';'",
-            0,
-            len(text),
-        )
+        raise _count_error(text, start, cuts, len(segments))
     if all(m is None for m, _, _ in labelled):
         spans = [_nonempty(text, a, b, name) for (a, b), name in zip(segments, COORDINATES)]
         return spans, named
@@ -172,6 +169,58 @@ def _layout(text: str) -> tuple[list[tuple[int, int]], tuple[str, str] | None]:
             named = given
         by_name[name] = _nonempty(text, label.end(), b, name)
     return [by_name[name] for name in COORDINATES], named
+
+
+def _count_error(text: str, start: int, cuts: tuple[list[int], list[int]], count: int) -> ParseError:
+    """Why the text is not three components, where it shows: a decimal comma (``1,5``), text
+    around a triple ``(X, Y, Z)``, or the first separator of what is otherwise an equation."""
+    comma = _DECIMAL_COMMA.search(text, start)
+    if comma is not None:
+        at = comma.start() + 1
+        return ParseError(
+            f"'{comma.group()}' reads as two components of a parametrization: write decimals with a point "
+            f"({comma.group().replace(',', '.')})",
+            at,
+            at + 1,
+        )
+    if not cuts[0] and len(cuts[1]) == 2:
+        around = _around_triple(text, start, cuts[1][0])
+        if around is not None:
+            return around
+    words = f"a parametrization has three components (x = …, y = …, z = …), not {count}; an equation has no ',' or ';'"
+    separators = cuts[0] or cuts[1]
+    return ParseError(words, separators[0], separators[0] + 1) if separators else ParseError(words, 0, len(text))
+
+
+def _around_triple(text: str, start: int, inner: int) -> ParseError | None:
+    """The text before or after the parentheses of a triple ``(X, Y, Z)`` that holds ``inner``."""
+    depth, opened = 0, -1
+    for position in range(start, len(text)):
+        character = text[position]
+        if character in "({":
+            opened = position if depth == 0 else opened
+            depth += 1
+        elif character in ")}":
+            depth -= 1
+            if depth == 0 and opened < inner < position:
+                after = text[position + 1 :]
+                if after.strip():
+                    at = position + 1 + len(after) - len(after.lstrip())
+                    return ParseError(
+                        f"'{after.strip()[:12]}' follows the triple (X, Y, Z): a parametrization ends with its ')'",
+                        at,
+                        len(text.rstrip()),
+                    )
+                before = text[start:opened]
+                if before.strip():
+                    at = start + len(before) - len(before.lstrip())
+                    return ParseError(
+                        f"'{before.strip()[:12]}' comes before the triple (X, Y, Z): write it as '(X, Y, Z)'",
+                        at,
+                        opened,
+                    )
+                return None
+    return None
 
 
 def _structure(text: str, start: int) -> tuple[tuple[list[int], list[int]], tuple[int, int] | None]:
