@@ -181,6 +181,7 @@ def _recognition(rec: Recognition, key: str) -> list[Formula]:
             ),
             Formula("vector", axis.plucker, f"{key}axis.plucker"),
             Formula("line", axis.point + axis.direction, f"{key}axis.line"),
+            Formula("decimal line", axis.point + axis.direction, f"{key}axis.decimal"),
         ]
     vectors = (
         ("center", rec.center, "the centre of the sphere"),

@@ -369,8 +369,10 @@ class MainWindow(QMainWindow):
         self.stage_label.setMinimumWidth(50)
         self.busy_indicator = BusyIndicator(self.ticker)
         self.busy_indicator.set_busy(False)
-        self.statusBar().addWidget(self.busy_indicator)
         self.statusBar().addWidget(self.stage_label, 1)
+        # Permanent (at the right): a normal widget shown again while a temporary message is up
+        # was drawn over the message's first letter.
+        self.statusBar().addPermanentWidget(self.busy_indicator)
 
     # --- public API ---
 
@@ -553,7 +555,7 @@ class MainWindow(QMainWindow):
         self.session.set_equation(self.editor.text())
 
     def _on_validity_change(self, valid: object) -> None:
-        self.analyze_button.setEnabled(valid is not False)
+        self.analyze_button.setEnabled(valid is not False and bool(self.editor.text().strip()))
 
     def _on_busy_change(self, busy: bool) -> None:
         self.cancel_button.setEnabled(busy)

@@ -77,6 +77,10 @@ _BANNER_STYLE = {
 }
 
 
+LONG_NUMBER = 12
+"""An exact axis whose numbers print longer than this is shown in decimals first."""
+
+
 class ResultsPane(QScrollArea):
     """A scrolling column of sections, rebuilt for every analysis; its formulas are typeset by
     ``typesetter`` (none: they stay text)."""
@@ -423,15 +427,16 @@ class ResultsPane(QScrollArea):
 
     def _recognition_sections(self, rec: Recognition, key: str) -> None:
         if rec.axis is not None:
-            self._section(
-                "Axis",
-                [
-                    ("point c", f"{key}axis.point"),
-                    ("direction a", f"{key}axis.direction"),
-                    ("line", f"{key}axis.line"),
-                    ("Plücker (a : c × a)", f"{key}axis.plucker"),
-                ],
-            )
+            rows = [
+                ("point c", f"{key}axis.point"),
+                ("direction a", f"{key}axis.direction"),
+                ("line", f"{key}axis.line"),
+                ("Plücker (a : c × a)", f"{key}axis.plucker"),
+            ]
+            long = max(len(v) for v in rec.axis.point + rec.axis.direction) > LONG_NUMBER
+            if long and f"{key}axis.decimal" in self._formulas:  # a snapped axis of 20-digit integers: readable first
+                rows.insert(0, ("≈ line (unit a)", f"{key}axis.decimal"))
+            self._section("Axis", rows)
         if rec.center is not None:
             rows = [("centre", f"{key}center")]
             if rec.radius_squared is not None:

@@ -75,7 +75,7 @@ PROFILE_COLOR = "#c2185b"
 CENTER_COLOR = "#d32f2f"
 BASE_CURVE_COLOR = "#5d4037"
 PATCH_COLOR = "#2e7d32"
-NORMAL_COLOR = "#ff6f00"
+NORMAL_COLOR = "#0277bd"
 LATITUDE_COLOR = "#6a1b9a"
 PICK_COLOR = "#111111"
 STALE_COLOR = "#b0b6bd"
@@ -579,7 +579,7 @@ class Viewport(QWidget):
         info = pick_info(
             scene.terms,
             point,
-            axis=scene.axis,
+            axis=self._axis(),  # the approximate axis of rounded input too: its height, radius and axis test
             normal_length=0.6 * scene.region.radius,
             snap_distance=2.0 * scene.surface.spacing,
             typed_terms=scene.typed_terms,
@@ -594,9 +594,9 @@ class Viewport(QWidget):
         spheres = pyvista.PolyData()
         for touch in touches:
             spheres = spheres.merge(
-                pyvista.Sphere(radius=touch.radius, center=touch.center, theta_resolution=36, phi_resolution=18)
+                pyvista.Sphere(radius=touch.radius, center=touch.center, theta_resolution=24, phi_resolution=12)
             )
-        self._set_actor("pick_sphere", spheres, color=TOUCH_SPHERE_COLOR, style="wireframe", opacity=0.5, line_width=1)
+        self._set_actor("pick_sphere", spheres, color=TOUCH_SPHERE_COLOR, style="wireframe", opacity=0.3, line_width=1)
         circles = LineData.from_polylines([t.circle for t in touches])
         self._set_actor("pick_canal_circle", circles.to_polydata(), color=TOUCH_CIRCLE_COLOR, line_width=4)
         self.pick_label.setText(" · ".join([_pick_text(info)] + [_touch_text(t) for t in touches]))
