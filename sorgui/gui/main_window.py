@@ -198,6 +198,7 @@ class MainWindow(QMainWindow):
         self.typesetter = Typesetter(self, start=False)
         self.results = ResultsPane(self, self.typesetter)
         self.ticker = Ticker(self)
+        self._pick_message = ""
         self.run_panel = RunPanel(self, self.ticker)
         self.viewport = Viewport(self)
         self.help_dialog: HelpDialog | None = None
@@ -233,6 +234,7 @@ class MainWindow(QMainWindow):
         self.worker.busy_changed.connect(self._on_busy_change)
         self.viewport.radius_requested.connect(self._on_radius_change)
         self.viewport.picked.connect(self._show_pick)
+        self.viewport.pick_cleared.connect(self._clear_pick_message)
         # Ctrl+wheel over the results; files dropped on the widgets that take drops themselves
         # (the editor would paste them as text, the render window read them as meshes, a spin
         # box take their names). Not one filter on the whole application: a Python call for
@@ -602,7 +604,14 @@ class MainWindow(QMainWindow):
         return run.analysis if run is not None and run.outcome == "finished" else None
 
     def _show_pick(self, info: PickInfo) -> None:
-        self.statusBar().showMessage(info.summary(), 15000)
+        self._pick_message = info.summary()
+        self.statusBar().showMessage(self._pick_message, 15000)
+
+    def _clear_pick_message(self) -> None:
+        """The picked point is gone (a new scene): so is its line in the status bar."""
+        if self._pick_message and self.statusBar().currentMessage() == self._pick_message:
+            self.statusBar().clearMessage()
+        self._pick_message = ""
 
     def _load_example(self, title: str, text: str) -> None:
         if not self.confirm_discard():

@@ -150,6 +150,7 @@ class Viewport(QWidget):
 
     radius_requested = Signal(float)
     picked = Signal(object)
+    pick_cleared = Signal()
 
     def __init__(self, parent: QWidget | None = None) -> None:
         super().__init__(parent)
@@ -835,6 +836,7 @@ class Viewport(QWidget):
         for name in PICK_ACTORS:
             forwarders(self.plotter).remove_actor(name, render=False)
         self.pick_label.setText("Right-click the surface (or press P) to inspect a point.")
+        self.pick_cleared.emit()
 
 
 def _touch_text(touch: Touch) -> str:
