@@ -328,9 +328,21 @@ def _analytic_lines(spec: Analytic) -> tuple[str, ...]:
     return tuple(lines)
 
 
+def _patch_candidates(analysis: Analysis) -> list[Parametrization]:
+    """The verified real parameterizations a patch may be made of, in the order they are tried."""
+    candidates = [
+        *analysis.parametrizations,
+        *(analysis.canal.parametrizations if analysis.canal is not None else ()),
+        *(analysis.conical.parametrizations if analysis.conical is not None else ()),
+        *sphere_parametrization(analysis.recognition),
+    ]
+    return [p for p in candidates if p.real and p.verified]
+
+
 def _no_part_words(analysis: Analysis) -> str:
-    """Why a surface that is not of revolution has no part, and what may be written instead."""
-    patch = "; write NAME.patch.step for its rational parameterization" if analysis.parametrizations else ""
+    """Why a surface that is not of revolution has no part, and what may be written instead (a
+    patch only when there is a parameterization to make it of)."""
+    patch = "; write NAME.patch.step for its rational parameterization" if _patch_candidates(analysis) else ""
     approximate = analysis.approximate
     if approximate is not None and approximate.near_sor:
         distance = approximate.relative_distance
@@ -362,16 +374,8 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
         )
     size = scene.region.radius
     check_size(size)
-    candidates = [
-        *analysis.parametrizations,
-        *(analysis.canal.parametrizations if analysis.canal is not None else ()),
-        *(analysis.conical.parametrizations if analysis.conical is not None else ()),
-        *sphere_parametrization(analysis.recognition),
-    ]
     terms = polynomial_terms(analysis.squarefree)
-    for param in candidates:
-        if not (param.real and param.verified):
-            continue
+    for param in _patch_candidates(analysis):
         try:
             patches = bezier_patches(param, terms)
         except (CadGeometryError, ExpressionError, sympy.PolynomialError):

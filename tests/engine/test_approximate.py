@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import math
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -34,6 +35,7 @@ from sorgui.samples import (
 )
 
 DIGITS = (6, 8, 10, 12, 15)
+DATA = Path(__file__).resolve().parent.parent / "data"
 
 
 def near(text: str, tolerance: float | None = None, snap: bool = False):
@@ -605,3 +607,16 @@ def test_an_error_in_the_nearest_surfaces_analysis_becomes_a_note(monkeypatch: p
     approx = result.approximate
     assert approx.near_sor and approx.nearest is not None and approx.nearest.analysis is None
     assert any("not analysed: an exact division" in note for note in approx.notes)
+
+
+def test_fifteen_digits_of_a_double_computation_are_read_as_double_precision() -> None:
+    """A torus (R = 3, r = 1) about the axis through (3/10, −6/5, 7/10) along (0, 1, √3),
+    expanded in double precision and printed with 15 digits: its small coefficients carry the
+    noise of the large ones (about 10 ulp of the largest), beyond their own last digit. With
+    that noise as the floor of every bound (docs/math.md §8.1) the torus itself is the nearest
+    exact surface, over QQ(√3), not a rational surface of 600-bit coefficients."""
+    text = (DATA / "rounded-torus-15-digits.txt").read_text(encoding="utf-8")
+    approx = analyze(text).approximate
+    assert approx.near_sor and approx.nearest is not None and approx.nearest.within_rounding
+    assert approx.nearest.polynomial.startswith("x**4 + 2*x**2*y**2 + 2*x**2*z**2 + y**4")
+    assert "sqrt(3)" in approx.nearest.polynomial

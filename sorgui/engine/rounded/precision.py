@@ -44,8 +44,9 @@ from ..syntax import (
     syntax_tree,
 )
 
-FLOAT_FLOOR = 1e-15
-"""Relative noise of coefficients computed in double precision, below any printed digit."""
+FLOAT_FLOOR = 4e-15
+"""Relative noise (to the largest coefficient) of coefficients computed in double precision,
+below any printed digit: about 18 ulp, a sum of products erring with the largest of them."""
 
 MAX_PRODUCTS = 2_000_000
 """Term products the propagation may spend; past this the bound is taken uniform (see below)."""
