@@ -306,3 +306,14 @@ def test_the_summary_counts_rounded_surfaces_that_are_nearly_of_revolution(tmp_p
     assert "3 lines: 1 surface of revolution, 2 not (1 of them nearly: rounded input within its rounding), " in (
         done.stderr
     )
+
+
+def test_a_batch_into_a_report_file_name_is_refused(tmp_path: Path) -> None:
+    """``.json`` is a report that ``sorgui open`` reads; JSON Lines go to ``.jsonl``."""
+    source = tmp_path / "one.txt"
+    source.write_text("x^2+y^2-1\n", encoding="utf-8")
+    target = tmp_path / "results.json"
+    done = subprocess.run(
+        [*SORGUI, "--each-line", "-f", str(source), "-o", str(target)], capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 2 and "name the results file results.jsonl" in done.stderr and not target.exists()

@@ -114,6 +114,11 @@ def run_each_line(args: argparse.Namespace, emit: Callable[[str], None], limit: 
         raise BatchError("--each-line reads -f FILE or '-' (standard input)")
     if len(args.output) > 1:
         raise BatchError("--each-line writes one results file: give -o once")
+    if args.output and Path(args.output[0]).suffix.lower() == ".json":
+        raise BatchError(
+            f"--each-line writes JSON Lines, one object per line, not one report: name the results file "
+            f"{Path(args.output[0]).with_suffix('.jsonl').name} ('sorgui open' reads a .json report)"
+        )
     if args.resume and not args.output:
         raise BatchError("--resume continues a results file: give it with -o RESULTS.jsonl")
     scheduler = args.scheduler or (os.environ.get(SCHEDULER_VARIABLE) if args.jobs is None else None)
