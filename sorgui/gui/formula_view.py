@@ -220,13 +220,15 @@ class FormulaView(QFrame):
             shown = shown_text[:limit]
             hidden = len(shown_text) - len(shown)
             if hidden:
-                shown += f" … ({hidden:,} more characters: copy to get them all)"
+                shown += " …"  # the button below says how much more, and Copy gives it all
             self.content.setText(shown)
             self.content.setTextFormat(Qt.TextFormat.PlainText)
             # wrapped only when it does not fit: a wrapped label is given a width of Qt's choosing
             self.content.setWordWrap(self.content.fontMetrics().horizontalAdvance(shown) > self._max_width)
             self.content.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
-            self.show_all_button.setText(f"show all ({hidden:,} more characters)" if hidden else "exact digits")
+            self.show_all_button.setText(
+                f"show all ({hidden:,} more characters; Copy gives them all)" if hidden else "exact digits"
+            )
         hint = self.content.sizeHint()
         if typeset is not None and hint.width() > self._max_width:
             scroll = RowScroll()
