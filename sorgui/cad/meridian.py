@@ -38,6 +38,8 @@ CORNER = math.radians(25)
 """A turn of the traced polyline sharper than this is a singular point of the profile (a node or
 a cusp, where the tracing turns into another branch): the branch is cut there."""
 
+CLOSED = 0.25
+"""Two free ends closer than this many tracing steps already meet: joined without a trace."""
 REACH = 3.0
 """Ends closer than this many tracing steps are joined, or moved onto the ball or the axis."""
 
@@ -348,6 +350,11 @@ class _Graph:
             singular = _singular_point(self.poly, np.mean([pieces[k][i] for k, i in cluster], axis=0), reach)
             if singular is None:
                 for a, b in _pairs(cluster, pieces, reach, smooth=False):
+                    if np.linalg.norm(pieces[a[0]][a[1]] - pieces[b[0]][b[1]]) <= CLOSED * self.step:
+                        # the ends already meet (a loop traced whole): a trace from one to the other
+                        # went round the loop again, and the part was the solid turned twice
+                        _link(self.links, a, b, np.zeros((0, 2)))
+                        continue
                     trace = self.trace(pieces[a[0]][a[1]], _tangent(pieces[a[0]], a[1]), target=b)
                     between = trace.points[:-1] if trace.reason == "end" else []
                     _link(self.links, a, b, np.array(between).reshape(-1, 2))

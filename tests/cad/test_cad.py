@@ -436,3 +436,23 @@ def test_a_ball_off_the_axis_is_refused_in_one_sentence(tmp_path: Path, cases) -
         export_analysis(analysis, tmp_path / "p.step", scene=scene)
     on_axis = build_scene(analysis, region=ClipSphere((0.0, 0.0, 1.0), 2.0))
     assert faces(read_shape(export_analysis(analysis, tmp_path / "p.step", scene=on_axis)))
+
+
+def test_a_closed_fitted_meridian_is_turned_once(tmp_path: Path) -> None:
+    """``(x² + y² − 4)² + z⁴ = 1``: its meridian is one oval, fitted (no exact form), and the part
+    is that oval turned once: the volume ``2π∫√(1 − h⁴)dh`` over ``[−1, 1]``, not twice it (a trace
+    joining the loop's two meeting ends went round it again)."""
+    import mpmath
+
+    analysis = analyze("(x^2+y^2-4)^2+z^4-1")
+    shape = read_shape(export_analysis(analysis, tmp_path / "ring.step", scene=build_scene(analysis)))
+    assert BRepCheck_Analyzer(shape).IsValid()
+    from OCP.TopAbs import TopAbs_SOLID
+    from OCP.TopExp import TopExp_Explorer
+
+    solids = TopExp_Explorer(shape, TopAbs_SOLID)
+    assert solids.More()
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(solids.Current(), props, 1e-9)
+    exact = 2 * math.pi * float(mpmath.quad(lambda h: mpmath.sqrt(1 - h**4), [-1, 1]))
+    assert props.Mass() == pytest.approx(exact, rel=1e-6)
