@@ -172,6 +172,25 @@ def patch_surface(param: Parametrization, clip: ClipSphere | ClipBox, bounds: tu
     )
 
 
+def _nearest_region(
+    analysis: Analysis, region: ClipSphere, center: np.ndarray, direction: np.ndarray | None
+) -> ClipSphere:
+    """The ball of rounded input: the typed surface's, unless that is many times the nearest
+    exact surface's (within the rounding). A cylinder printed with 6 digits is an ellipsoid 1,500
+    times longer than wide, whose ball of radius 1,862 left the mesh 8 triangles and cut the CAD
+    part 370 units beyond where the typed surface ends."""
+    approx = analysis.approximate
+    nearest = approx.nearest if approx is not None else None
+    if nearest is None or not nearest.within_rounding or analysis.is_sor:
+        return region
+    exact = view_region(polynomial_terms(nearest.polynomial), center, direction)
+    return exact if region.radius > NEAREST_BALL_RATIO * exact.radius else region
+
+
+NEAREST_BALL_RATIO = 4.0
+"""How many times the nearest exact surface's ball the typed one may be before that one is drawn."""
+
+
 def build_scene(
     analysis: Analysis,
     radius: float | None = None,
@@ -195,6 +214,7 @@ def build_scene(
         region = patch_region(real[0])
     if region is None:
         region = view_region(terms, center, axis_direction)
+        region = _nearest_region(analysis, region, center, axis_direction)
     if radius is not None:
         region = ClipSphere(region.center, radius)
     c, r = np.asarray(region.center), region.radius

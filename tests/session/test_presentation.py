@@ -245,3 +245,17 @@ def test_a_pick_reports_the_gradient_of_the_equation_as_typed(
     assert np.allclose(info.gradient, gradient, rtol=1e-12, atol=1e-15)
     assert info.value == pytest.approx(0.0, abs=1e-15)
     assert f"∇f = ({gradient[0]:.3g}, {gradient[1]:.3g}, {gradient[2]:.3g})" in info.summary()
+
+
+def test_a_rounded_cylinder_is_drawn_in_the_ball_of_its_nearest_exact_surface() -> None:
+    """Printed with 6 digits a cylinder of radius 1 is an ellipsoid 1,500 times longer than wide:
+    its own ball (radius 1,862) left the mesh a few triangles and the CAD part 370 units past the
+    typed surface. The ball of the nearest exact cylinder is drawn instead."""
+    from pathlib import Path
+
+    from sorgui.engine import analyze
+    from sorgui.session.scene_data import build_scene
+
+    text = (Path(__file__).resolve().parent.parent / "data" / "rounded-cylinder-6-digits.txt").read_text()
+    scene = build_scene(analyze(text), resolution=40)
+    assert scene.region.radius < 10 and scene.surface.n_faces > 1000
