@@ -267,3 +267,15 @@ def test_a_nearest_surface_beyond_the_rounding_is_written_and_says_so(tmp_path: 
     done = sorgui("analyze", "-f", str(text), "-o", str(target))
     assert done.returncode == 0 and target.exists(), done.stderr
     assert "BEYOND the input's rounding" in lines(done.stderr)[-1]
+
+
+def test_an_iges_file_says_it_holds_faces_not_a_solid(tmp_path: Path) -> None:
+    """IGES gets the trimmed surfaces (entity 144, which every reader takes), not the solid the
+    STEP file holds: the line says so, instead of "in 1 solid"."""
+    pytest.importorskip("OCP")
+    done = sorgui(
+        "analyze", "(x^2+y^2+z^2+3)^2-16(x^2+y^2)", "-o", str(tmp_path / "t.iges"), "-o", str(tmp_path / "t.step")
+    )
+    iges, step = [line for line in lines(done.stderr) if line.startswith("sorgui: wrote")]
+    assert done.returncode == 0 and "IGES holds no solid" in iges and "in 1 solid" not in iges
+    assert "1 face in 1 solid" in step

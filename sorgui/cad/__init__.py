@@ -119,11 +119,14 @@ ROUTES = {
 """What each route of :class:`~.model.CadModel` writes, in words."""
 
 
-def summary(model: CadModel) -> str:
+def summary(model: CadModel, suffix: str = ".step") -> str:
     """What a CAD file holds, in one line: the route, the faces (and solids) and a fit's measured
-    deviation."""
+    deviation. An IGES file (``suffix``) holds the trimmed faces only, not their shells and solids
+    (entity 144, which every reader takes)."""
     faces = f"{model.faces} face{'s' if model.faces != 1 else ''}"
-    if model.solids:
+    if suffix.lower() in (".igs", ".iges"):
+        faces += " (trimmed surfaces: IGES holds no solid; STEP and BRep do)" if model.solids else ""
+    elif model.solids:
         faces += f" in {model.solids} solid{'s' if model.solids != 1 else ''}"
     words = f"{ROUTES[model.route]}, {faces}"
     if model.deviation is not None and model.tolerance is not None:

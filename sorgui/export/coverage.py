@@ -148,6 +148,8 @@ def coverage(
 
 def _excluded(factor: sympy.Expr, parameters: tuple[sympy.Symbol, ...], real: bool) -> Excluded:
     used = [p for p in parameters if factor.has(p)]
+    if len(used) > 1 and _positive_definite(factor, used):
+        return Excluded(factor, False)  # s² + t² + 1: no real zero, the map is defined on all of R²
     if len(used) != 1:
         return Excluded(factor, None)
     poly = sympy.Poly(factor, used[0])
@@ -159,6 +161,21 @@ def _excluded(factor: sympy.Expr, parameters: tuple[sympy.Symbol, ...], real: bo
     real_roots = [r for r in roots if r.is_real]
     shown = real_roots if real else list(roots)
     return Excluded(factor, bool(real_roots), tuple(sorted(shown, key=sympy.default_sort_key)))
+
+
+def _positive_definite(factor: sympy.Expr, parameters: list[sympy.Symbol]) -> bool:
+    """Whether ``factor`` (or its negative) is a sum of even monomials with coefficients of one
+    sign and a nonzero constant: positive at every real point, so it has no real zero."""
+    try:
+        poly = sympy.Poly(factor, *parameters)
+    except sympy.PolynomialError:
+        return False
+    if not (poly.domain.is_QQ or poly.domain.is_ZZ):
+        return False
+    terms = poly.terms()
+    signs = {c > 0 for _, c in terms}
+    constant = any(not any(m) for m, _ in terms)
+    return len(signs) == 1 and constant and all(e % 2 == 0 for m, _ in terms for e in m)
 
 
 def _limit(fractions: list[tuple[sympy.Expr, sympy.Expr]], parameter: sympy.Symbol) -> Limit:

@@ -67,7 +67,7 @@ def export_file(
     from sorgui.cad import cad_file, summary
 
     data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance, cap)
-    return atomic_write_bytes(path, data), summary(model)
+    return atomic_write_bytes(path, data), summary(model, form.suffix)
 
 
 def _has_a_surface(analysis: Analysis, form: Format, patch: bool) -> None:

@@ -114,7 +114,7 @@ def read_report(path: str | Path) -> Analysis:
     try:
         analysis = Analysis.from_json(data)
     except (KeyError, TypeError, AttributeError, ValueError) as exc:
-        raise ReportError(f"{path} is not a sorgui report (missing or bad {_one_line(str(exc))})") from None
+        raise ReportError(f"{path} is not a sorgui report ({_missing_words(exc)})") from None
     except RecursionError:
         raise ReportError(f"{path} is not a sorgui report: it is nested too deeply") from None
     try:
@@ -198,6 +198,19 @@ def _not_written(data: Any, written: Any, where: str) -> str | None:  # noqa: AN
                 return found
         return None
     return None if data == written else f"{where} does not agree with the rest of the report"
+
+
+def _missing_words(exc: Exception) -> str:
+    """What a report lacks, in words: "its Approximation object lacks 'tolerance', 'kind'", not
+    Python's "Approximation.__init__() missing 6 required positional arguments"."""
+    text = _one_line(str(exc))
+    missing = _MISSING.search(text)
+    if missing is not None:
+        return f"its {missing.group(1)} object lacks {missing.group(2)}"
+    return f"missing or bad {text}"
+
+
+_MISSING = re.compile(r"(\w+)\.__init__\(\) missing \d+ required (?:positional |keyword-only )?arguments?: (.*)")
 
 
 def _one_line(text: str) -> str:

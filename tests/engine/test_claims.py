@@ -119,6 +119,14 @@ LIES = [
         "approximate.nearest",
     ),
     ("rounded about a rational axis", ("approximate", "nearest", "axis", "point"), ["7", "7", "7"], "approximate"),
+    ("torus", ("parametrizations", 0, "real"), False, "parametrizations[0].real"),
+    ("torus", ("unfinished",), ["rationality"], "unfinished"),
+    ("torus", ("unfinished",), ["parametrizations"], "unfinished"),
+    ("rounded about a rational axis", ("approximate", "tolerance"), -0.5, "approximate.tolerance"),
+    ("rounded about a rational axis", ("approximate", "residual"), 7.0, "approximate.near_sor"),
+    ("rounded about a rational axis", ("approximate", "kind"), "none", "approximate.near_sor"),
+    ("rounded about a rational axis", ("approximate", "axis", "direction"), [0.0, 0.0, 0.0], "approximate.axis"),
+    ("sphere", ("profile", "frame_point"), ["0", "0", "0"], "profile.frame_point"),
 ]
 
 

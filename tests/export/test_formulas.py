@@ -69,3 +69,13 @@ def test_a_point_reached_again_is_not_called_missed() -> None:
     reached = coverage((s / (s**2 + 1) + t, t, t), (s, t), True).limits[0]
     assert missed.check[1] is True
     assert reached.check[1] is False
+
+
+def test_a_denominator_positive_everywhere_in_two_parameters_has_no_real_zeros() -> None:
+    """The stereographic map's ``s² + t² + 1``: defined on all of R², not "undefined on the real
+    points of a curve of parameter values"."""
+    s, t = sympy.symbols("s t")
+    d = s**2 + t**2 + 1
+    found = coverage((2 * s / d, 2 * t / d, (s**2 + t**2 - 1) / d), (s, t), real=True, limits=False)
+    text = "\n".join(found.lines())
+    assert "s**2 + t**2 + 1 = 0: no real zeros" in text and "curve of parameter values" not in text

@@ -217,8 +217,13 @@ def _text(data: Any) -> str:
         ),
         (lambda text: text.replace(f'"sorgui_version": "{__version__}"', '"sorgui_version": 7'), "is not a version"),
         (lambda text: text.replace("{", '{"frobnicate": 1, ', 1), "frobnicate is not a field sorgui writes"),
+        (lambda text: text.replace('"is_sor": true', '"is_sor": false', 1), "is_sor is false"),
+        (
+            lambda text: text.replace('"approximate": null', '"approximate": {"near_sor": true}', 1),
+            "its Approximation object lacks 'tolerance'",
+        ),
     ],
-    ids=["duplicate key", "NaN", "future version", "bad version", "unknown key"],
+    ids=["duplicate key", "NaN", "future version", "bad version", "unknown key", "is_sor", "approximate"],
 )
 def test_a_file_sorgui_did_not_write_is_refused_in_one_line(tmp_path: Path, torus_report, change, words: str) -> None:
     path = tmp_path / "crafted.json"

@@ -53,6 +53,8 @@ def check_parametrization_form(param: Parametrization, where: str) -> None:
     """A real map has no ``I``; its two parameters are different names."""
     if param.real and any(_complex(formula(c)) for c in param.coordinates):
         raise ClaimError(f"{where}.real", "is claimed, but the coordinates hold I")
+    if not param.real and not any(formula(c).has(sympy.I) for c in param.coordinates):
+        raise ClaimError(f"{where}.real", "is false (a complex map), but the coordinates hold no I")
     if len(set(param.parameters)) != 2:
         raise ClaimError(f"{where}.parameters", "must be two different names")
 

@@ -64,6 +64,10 @@ def undecided(rec: Recognition, where: str) -> bool:
 def check_symmetry(rec: Recognition, sym: Symmetry, K: Any, where: str, whose: str) -> None:  # noqa: ANN401
     """The kind, dimension, basis, axis, centre, normal and direction ``rec`` claims against the
     symmetry algebra ``sym`` (``whose``: the polynomial's, or the map's normal lines')."""
+    if rec.is_sor != sym.is_sor and rec.symmetry == sym.kind:
+        raise ClaimError(
+            f"{where}is_sor", f"is {str(rec.is_sor).lower()}, but {whose} symmetry algebra is {sym.kind!r}"
+        )
     if rec.symmetry != sym.kind or rec.symmetry_dimension != sym.dimension or rec.is_sor != sym.is_sor:
         raise ClaimError(
             f"{where}symmetry",

@@ -13,11 +13,13 @@ equation, against that equation as an equation's report.
 
 from __future__ import annotations
 
+import math
+
 from ..algebra.linalg import cross, is_zero, sub
 from ..algebra.modular import Point
 from ..algebra.polys import field_name
 from ..errors import AnalysisError, ClaimError
-from ..recognition.symmetry import recognize_symmetry
+from ..recognition.symmetry import SOR_KINDS, recognize_symmetry
 from ..results import Analysis, Approximation, Factor
 from .canal import check_canal
 from .formulas import Surface, read_polynomial, vector
@@ -42,7 +44,9 @@ def _check_analysis(analysis: Analysis, where: str, ids: Identities) -> None:
     locus = analysis.real_locus
     if locus is not None and DIMENSIONS[locus.kind] != locus.dimension:
         raise ClaimError(f"{where}real_locus.dimension", f"is {locus.dimension}, but {locus.kind!r} has another")
+    _check_unfinished(analysis, where)
     if analysis.approximate is not None:
+        _check_approximation(analysis.approximate, f"{where}approximate")
         _check_nearest(analysis.approximate, f"{where}approximate", ids)
     if analysis.input_kind == "parametrization":
         found = check_parametric(analysis, where, ids)
@@ -130,6 +134,32 @@ def _check_factor(factor: Factor, where: str, ids: Identities) -> Surface:
     ids.need(*surface.radicands)
     check_recognition(factor.recognition, Surface.of(recognised), f"{where}.recognition.", ids)
     return surface
+
+
+def _check_unfinished(analysis: Analysis, where: str) -> None:
+    """A stage the time limit cut short has no result: no Table 1 row, no parameterization."""
+    unfinished = set(analysis.unfinished)
+    rat = analysis.rationality
+    if "rationality" in unfinished and rat is not None and rat.table_row is not None:
+        raise ClaimError(f"{where}unfinished", "lists the rationality, but the report gives its Table 1 row")
+    if "parametrizations" in unfinished and analysis.parametrizations:
+        raise ClaimError(f"{where}unfinished", "lists the parameterizations, but the report gives some")
+
+
+def _check_approximation(approx: Approximation, where: str) -> None:
+    """The floating-point verdict on rounded input agrees with itself: "near" is a surface of
+    revolution's kind within the rounding, and the sizes are sizes."""
+    if approx.near_sor and (approx.kind not in SOR_KINDS or (approx.residual is not None and approx.residual > 1)):
+        raise ClaimError(f"{where}.near_sor", "is claimed, but the kind or the residual says otherwise")
+    for name in ("tolerance", "relative_distance", "residual"):
+        value = getattr(approx, name)
+        if value is not None and not (math.isfinite(value) and value >= 0):
+            raise ClaimError(f"{where}.{name}", "must be a finite number, at least 0")
+    nearest = approx.nearest
+    if nearest is not None and nearest.max_deviation is not None and not nearest.max_deviation >= 0:
+        raise ClaimError(f"{where}.nearest.max_deviation", "must be at least 0")
+    if approx.axis is not None and not any(approx.axis.direction):
+        raise ClaimError(f"{where}.axis.direction", "must not be 0")
 
 
 def _check_nearest(approx: Approximation, where: str, ids: Identities) -> None:
