@@ -242,10 +242,6 @@ def analyze_polynomial(
             near = approximate_symmetry(f, rounding, notes=rounding_notes, snap_exact=not recognition.is_sor)
         approximation = near.approximation
 
-    rationality = None
-    tube = None
-    found: tuple[Parametrization, ...] = ()
-    clock.publish(result(rationality, found))
     # A quadric sphere: every line through the centre is an axis, Table 1 is read about the one along z
     # (concentric spheres of higher degree are unions of circles in any meridian plane: not read).
     centre = symmetry.center if profile is None and symmetry.kind == SPHERE and recognition.degree == 2 else None
@@ -254,6 +250,10 @@ def analyze_polynomial(
         K = f.ring.domain
         profile = profile_curve(f, centre, (K.zero, K.zero, K.one), (K.one, K.zero, K.zero))
         recognition = replace(recognition, profile=profile_report(profile, K))
+    rationality = None
+    tube = None
+    found: tuple[Parametrization, ...] = ()
+    clock.publish(result(rationality, found))
     if not recognition_only and profile is not None:
         if len(distinct) > 1:
             rationality = Rationality(status="not analysed: X is reducible over K; see its factors")

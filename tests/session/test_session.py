@@ -232,3 +232,11 @@ def test_a_blend_is_explained_by_its_typed_components() -> None:
     assert Session().analyze(TORUS, resolution=30).components == ()
     assert component_texts("x^2 + 2y^2 + 3z^2 - 1") == (), "a monomial's variables are no surfaces"
     assert component_texts("2(x+1)(y-2) - 3") == ("x+1", "y-2")
+
+
+def test_a_sphere_s_meridian_is_drawn_with_its_first_scene() -> None:
+    """The profile a quadric sphere is read about (the axis along z through its centre) is known
+    with the recognition, so the first scene draws it."""
+    run = Session().analyze("x^2 + y^2 + z^2 - 2", resolution=30)
+    assert run.outcome == "finished" and not run.scene.profile_curve.is_empty
+    assert run.analysis.rationality.table_row == 3
