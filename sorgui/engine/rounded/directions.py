@@ -207,14 +207,14 @@ def rational_point(point: FloatArray, direction: QuadraticVector, tolerance: flo
         return None
     i, j, d = irrational[0], rational[0], direction[irrational[0]].d
     ratio = direction[i].b / direction[j].a
-    unit = np.array([float(q) for q in direction])
-    unit /= np.linalg.norm(unit)
+    a = np.array([float(q) for q in direction])
+    unit = a / np.linalg.norm(a)
     scale = max(1.0, float(np.max(np.abs(point))))
     point = point - float(point @ unit) * unit  # K is the same along the axis: read it at the foot
     k = float(point[i]) - math.sqrt(d) * float(ratio) * float(point[j])
-    if abs(k) <= max(tolerance, 1e-15) * scale:  # c_i = c_j = 0 (an axis through the origin, say)
-        return point - float(point[j]) / float(direction[j].a) * np.array([float(q) for q in direction])
     tol = max(tolerance, 1e-15)
+    if abs(k) <= tol * scale:  # c_i = c_j = 0 (an axis through the origin, say)
+        return point - float(point[j]) / float(direction[j].a) * a
     height = max(10, round(tol ** (-1 / 3)))
     with mpmath.workdps(30):
         relation = mpmath.pslq(
@@ -225,7 +225,7 @@ def rational_point(point: FloatArray, direction: QuadraticVector, tolerance: flo
     n0, _, n2 = (int(n) for n in relation)
     c_j = Fraction(n2, n0) / ratio  # K's part −√d·(b/a_j)·c_j is −(n₂/n₀)·√d
     t = (float(c_j) - float(point[j])) / float(direction[j].a)
-    result: FloatArray = point + t * np.array([float(q) for q in direction])
+    result: FloatArray = point + t * a
     return result
 
 

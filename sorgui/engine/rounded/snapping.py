@@ -82,12 +82,12 @@ POINT_PRECISION = 100.0
 """How many times the input's relative rounding a rational point on a quadratic axis may be off
 (:func:`.directions.rational_point`)."""
 FLAT_SLOPE = 1e-8
-MAX_SHIFT = 1e3
-"""A profile centre farther than this along the axis from its foot (in the units of the
-normalised ``f``, whose points are of size 1) is noise: the foot is taken instead."""
 """A change of the profile's terms of degree ``d - 1`` under a unit shift along the axis below
 this (relative to the terms) is the floating-point fit's noise, not a slope: a paraboloid's
 term in ``h`` does not change at all, and dividing by that noise put its centre at 10¹⁰."""
+MAX_SHIFT = 1e3
+"""A profile centre farther than this along the axis from its foot (in the units of the
+normalised ``f``, whose points are of size 1) is noise: the foot is taken instead."""
 
 
 @dataclass(frozen=True)
