@@ -159,7 +159,7 @@ def finished(part: Faces, scene: Scene, polynomial: str, cap: bool = False) -> C
 
 def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, edge: float) -> Faces:
     rec = analysis.recognition
-    if rec.symmetry == "undecided":
+    if not rec.decided:
         raise CadGeometryError(
             "the analysis did not finish, so it is not known whether the surface is one of revolution"
         )

@@ -54,6 +54,10 @@ class Profile:
     verified: bool
 
 
+UNDECIDED = "undecided"
+"""The ``symmetry`` of a recognition that did not finish within the time limit."""
+
+
 @dataclass(frozen=True)
 class Recognition:
     """What the symmetry algebra says about one polynomial (docs/math.md §2)."""
@@ -71,6 +75,11 @@ class Recognition:
     profile: Profile | None = None
     radius_squared: str | None = None
     """A sphere of degree 2: the square of its radius (negative: no real point)."""
+
+    @property
+    def decided(self) -> bool:
+        """Whether the symmetry is known: not :data:`UNDECIDED` (a time limit met first)."""
+        return self.symmetry != UNDECIDED
 
 
 @dataclass(frozen=True)

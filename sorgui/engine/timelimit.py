@@ -20,7 +20,7 @@ from types import FrameType
 from typing import TYPE_CHECKING
 
 from .errors import TimeLimitReached
-from .results import Analysis, Recognition
+from .results import UNDECIDED, Analysis, Recognition
 
 if TYPE_CHECKING:
     from .algebra.polys import Poly
@@ -57,10 +57,6 @@ def time_limit(seconds: float | None, stated: float | None = None) -> Iterator[N
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)
-
-
-UNDECIDED = "undecided"
-"""The ``symmetry`` of a recognition that did not finish within the time limit."""
 
 
 def skeleton(f: Poly, *, text: str, method: str) -> Analysis:

@@ -64,6 +64,8 @@ _TEX_UNICODE = {
 
 def verdict(analysis: Analysis) -> str:
     """One line: whether ``X`` is a surface of revolution."""
+    if not analysis.recognition.decided:
+        return "undecided whether it is a surface of revolution (the recognition did not finish within the time limit)"
     return "a surface of revolution" if analysis.is_sor else "not a surface of revolution"
 
 
@@ -73,7 +75,7 @@ def summary_lines(analysis: Analysis) -> list[str]:
     lines = [
         f"sorgui: {verdict(analysis)}",
         f"symmetry: {kind_noun(rec.symmetry)}"
-        + ("" if rec.symmetry == "undecided" else f" (dim L = {rec.symmetry_dimension})")
+        + (f" (dim L = {rec.symmetry_dimension})" if rec.decided else "")
         + f"; field K = {analysis.field}",
     ]
     rat = analysis.rationality

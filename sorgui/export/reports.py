@@ -313,12 +313,8 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
         else f"Equation: the implicit equation is not known (the field $K$ = {analysis.field})."
     )
     blocks.append(Block("p", equation))
-    blocks.append(
-        Block(
-            "p",
-            f"Symmetry: {symmetry_name(rec.symmetry)} (the symmetry algebra has dimension {rec.symmetry_dimension}).",
-        )
-    )
+    dimension = f" (the symmetry algebra has dimension {rec.symmetry_dimension})" if rec.decided else ""
+    blocks.append(Block("p", f"Symmetry: {symmetry_name(rec.symmetry)}{dimension}."))
     locus = analysis.to_json().get("real_locus")
     if locus:
         dimension = f" (dimension {locus['dimension']})" if locus.get("dimension") is not None else ""

@@ -46,7 +46,7 @@ def _vec(v: tuple[str, ...] | None) -> str:
 
 def recognition_lines(rec: Recognition, indent: str = "") -> list[str]:
     """The recognition facts of one polynomial, one per line."""
-    dimension = "" if rec.symmetry == "undecided" else f" (dim L = {rec.symmetry_dimension})"
+    dimension = f" (dim L = {rec.symmetry_dimension})" if rec.decided else ""
     lines = [f"{indent}symmetry:  {symmetry_name(rec.symmetry)}{dimension}"]
     if rec.axis is not None:
         lines.append(f"{indent}axis:      {_vec(rec.axis.point)} + t·{_vec(rec.axis.direction)}")
@@ -264,7 +264,7 @@ def recognition_lines_of_nearest(near: NearestSurface) -> list[str]:
 def analysis_lines(analysis: Analysis) -> list[str]:
     """Everything the report says of one analysis but the polynomial and the timings."""
     rec = analysis.recognition
-    verdict = "undecided" if rec.symmetry == "undecided" else ("YES" if rec.is_sor else "NO")
+    verdict = ("YES" if rec.is_sor else "NO") if rec.decided else "undecided"
     lines = [
         f"field K = {analysis.field}, degree {rec.degree if rec.polynomial else 'unknown'}, method {analysis.method}",
         f"surface of revolution: {verdict}",

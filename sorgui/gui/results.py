@@ -187,7 +187,7 @@ class ResultsPane(QScrollArea):
         if reasons:
             self._section("Why it is not a surface of revolution", [("", line) for line in reasons])
         self._recognition_sections(rec, "")
-        if len(analysis.factors) > 1 or analysis.factors[0].multiplicity > 1:
+        if len(analysis.factors) > 1 or any(factor.multiplicity > 1 for factor in analysis.factors):
             self._factor_section(analysis)
         if analysis.rationality is not None:
             self._rationality_section(analysis.rationality)

@@ -211,6 +211,8 @@ def verdict(analysis: Analysis, rounding_pending: bool = False) -> tuple[str, st
         )
     kind = kind_phrase(rec.symmetry)
     degree = f"degree {rec.degree}" if rec.polynomial else "degree unknown"  # a map's equation may not be found
+    if not rec.decided:
+        return "Undecided within the time limit", f"{kind} · {degree} over {analysis.field}", "info"
     detail = f"{kind} · {degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
     conical = analysis.conical
     if conical is not None and conical.kind == "cone" and conical.apex is not None:
@@ -238,7 +240,7 @@ def why_not(analysis: Analysis, components: Sequence[Component] = ()) -> list[st
     """Sentences that explain a *no*: the symmetry algebra, the symmetry there is, the factors,
     and the typed components of a blend (:mod:`sorgui.session.components`)."""
     rec = analysis.recognition
-    if rec.is_sor:
+    if rec.is_sor or not rec.decided:
         return []
     lines = _symmetry_lines(analysis)
     if components:

@@ -12,7 +12,8 @@ import pytest
 from sorgui.engine import Analysis, analyze
 from sorgui.engine.errors import TimeLimitReached
 from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.timelimit import UNDECIDED, skeleton, time_limit, unfinished_analysis
+from sorgui.engine.results import UNDECIDED
+from sorgui.engine.timelimit import skeleton, time_limit, unfinished_analysis
 
 SLOW = (Path(__file__).resolve().parents[1] / "data" / "slow-singular.txt").read_text(encoding="utf-8")
 
@@ -59,6 +60,12 @@ def test_nothing_finished_is_reported_undecided() -> None:
 
     report = plain_text(result)
     assert "surface of revolution: undecided" in report and "not finished within the time limit" in report
+    from sorgui.export.cas import summary_lines
+    from sorgui.export.reports import markdown_report
+
+    for text in (markdown_report(result), "\n".join(summary_lines(result))):
+        assert "undecided whether it is a surface of revolution" in text
+        assert "not a surface of revolution" not in text and "dimension 0" not in text and "dim L" not in text
 
 
 def test_the_alarm_is_restored_and_only_armed_in_the_main_thread() -> None:

@@ -194,6 +194,25 @@ def test_a_time_limit_met_is_said_and_not_taken_for_a_finished_analysis(window, 
         assert "not finished within the time limit of 3 s" in pane_text(window)
 
 
+def test_a_time_limit_met_before_the_recognition_shows_the_equation_as_undecided(window) -> None:
+    """A limit met while the equation is still being recognised leaves the analysis the process
+    sent once the equation was read (no factor yet): the pane shows it as undecided, neither
+    "not a surface of revolution" nor "dim L = 0", with no factor section (it indexed the first
+    factor: IndexError, the pane left at "Analysing…", seen under load with a limit of 3 s)."""
+    from sorgui.engine.parsing import parse_polynomial
+    from sorgui.engine.timelimit import skeleton
+
+    text = "x^2 + y^2 + z^4 - 1"
+    start = skeleton(parse_polynomial(text).polynomial, text=text, method="symmetry")
+    assert start.factors == ()
+    window.results.show_analysis(start, unfinished={"recognition", "canal"}, limit=3.0)
+    text_shown = pane_text(window)
+    assert "Analysing" not in text_shown and "Factor" not in text_shown
+    assert ">Undecided within the time limit<" in window.results.banner.text()
+    assert "not a surface of revolution" not in text_shown.lower() and "dim L" not in text_shown
+    assert "not finished within the time limit of 3 s" in text_shown
+
+
 def test_a_report_is_shown_as_saved_and_its_stages_are_not_replayed(window, run_analysis, qtbot, tmp_path) -> None:
     run_analysis(window, example_text("torus"))
     report = window.export_results(tmp_path / "torus.json")

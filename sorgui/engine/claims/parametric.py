@@ -39,9 +39,8 @@ from ..parametric.implicit import implicit_route
 from ..parametric.maps import RationalMap, fraction_text
 from ..parametric_parsing import parse_parametrization
 from ..recognition.symmetry import Symmetry
-from ..results import Analysis, Canal, Conical, Recognition
+from ..results import UNDECIDED, Analysis, Canal, Conical, Recognition
 from ..stage_results import ParametricInput, Parametrization
-from ..timelimit import UNDECIDED
 from .formulas import Surface, formula, nonzero, read_polynomial, values, vector
 from .identities import Identities, proportional
 from .maps import check_parametrization_form

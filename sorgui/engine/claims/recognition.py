@@ -20,8 +20,7 @@ from ..algebra.modular import Point
 from ..algebra.polys import to_expr, to_str, total_degree
 from ..errors import AnalysisError, ClaimError
 from ..recognition.symmetry import CYLINDER, REVOLUTION, SPHERE, Symmetry, recognize_symmetry
-from ..results import Axis, Profile, Recognition
-from ..timelimit import UNDECIDED
+from ..results import UNDECIDED, Axis, Profile, Recognition
 from .formulas import Surface, nonzero, number, values, vector
 from .identities import Identities, proportional
 

@@ -94,7 +94,7 @@ def _check_factors(analysis: Analysis, surface: Surface, where: str, ids: Identi
     squarefree = Surface.of(read_polynomial(analysis.squarefree, f"{where}squarefree"))
     ids.need(*squarefree.radicands)
     if not factors:
-        if analysis.recognition.symmetry != "undecided" and "factors" not in analysis.unfinished:
+        if analysis.recognition.decided and "factors" not in analysis.unfinished:
             raise ClaimError(f"{where}factors", "are missing")
         if squarefree.polynomial != surface.polynomial:
             raise ClaimError(f"{where}squarefree", "is not the polynomial (its factors are not known)")

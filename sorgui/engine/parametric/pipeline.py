@@ -31,10 +31,10 @@ from ..errors import AnalysisError, SingularError, SingularTimeout, TimeLimitRea
 from ..parsing import has_decimals
 from ..recognition.recognize import axis_report
 from ..recognition.symmetry import Symmetry
-from ..results import Analysis, Approximation, Canal, Conical, Factor, Recognition, Triple
+from ..results import UNDECIDED, Analysis, Approximation, Canal, Conical, Factor, Recognition, Triple
 from ..stage_results import BEING_COMPUTED, ParametricInput, Parametrization
 from ..stages import PartialCallback, StageClock
-from ..timelimit import UNDECIDED, time_limit, unfinished_analysis
+from ..timelimit import time_limit, unfinished_analysis
 from .maps import ParameterRing, RationalMap, fraction_text
 
 if TYPE_CHECKING:
