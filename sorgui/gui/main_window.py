@@ -11,7 +11,6 @@ Open, New, Quit); the window works down to 800×560 (the panes scroll).
 
 from __future__ import annotations
 
-import html
 from collections.abc import Callable
 from functools import partial
 from pathlib import Path
@@ -84,7 +83,7 @@ from sorgui.gui.settings import (
 from sorgui.gui.stages import RunPanel, Ticker
 from sorgui.gui.typesetter import Typesetter
 from sorgui.gui.viewport import Viewport
-from sorgui.gui.wording import invalid_heading, no_surface_caption
+from sorgui.gui.wording import INVALID_NOTICE, invalid_heading, no_surface_caption
 from sorgui.gui.worker import AnalysisWorker
 from sorgui.session.model import Session
 from sorgui.session.part_job import PART_SUFFIXES
@@ -570,7 +569,7 @@ class MainWindow(QMainWindow):
         self.results.show_message(heading, message, "error")
         self.run_panel.show_run(None)  # the previous equation's stages are not this one's
         self.run_panel.set_nearest_available(False)  # nor its nearest exact surface
-        self.run_panel.set_notice("error", f"<b>{html.escape(heading)}:</b> {html.escape(message)}")
+        self.run_panel.set_notice("error", INVALID_NOTICE)
         self.viewport.clear(caption=no_surface_caption(message))
         self.stage_label.setText("Fix the equation to analyse it")
 

@@ -27,7 +27,7 @@ from sorgui.gui.editor import EquationEditor
 from sorgui.gui.results import ResultsPane
 from sorgui.gui.stages import RunPanel, seconds_text
 from sorgui.gui.viewport import Viewport
-from sorgui.gui.wording import invalid_heading, no_surface_caption
+from sorgui.gui.wording import INVALID_NOTICE, invalid_heading, no_surface_caption
 from sorgui.session.job import JobResult
 from sorgui.session.model import Run, Session, StageState
 
@@ -190,8 +190,7 @@ class SessionView(QObject):
         elif run is None or run.running or run.outcome == "finished":
             self.panel.set_notice(None)
         elif run.outcome == "invalid":
-            message = run.message or ""
-            self.panel.set_notice("error", f"<b>{html.escape(invalid_heading(message))}:</b> {html.escape(message)}")
+            self.panel.set_notice("error", INVALID_NOTICE)
         elif run.outcome == "failed":
             failed = run.failed_stage()
             where = f" in the stage “{failed.title}”" if failed is not None else ""

@@ -132,6 +132,11 @@ def invalid_heading(message: str) -> str:
     return "Not a polynomial in x, y, z"
 
 
+INVALID_NOTICE = "<b>Not analysed.</b> Correct the equation, then press Analyze (Ctrl+Return)."
+"""The run panel's notice of a refused equation: what to do, not the reason again (the editor's
+line and the results pane's banner say that, one above it and one below)."""
+
+
 def no_surface_caption(message: str) -> str:
     """What the 3D view's header says of a refused equation: its real reason, in a few words."""
     heading = invalid_heading(message)

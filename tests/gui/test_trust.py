@@ -120,6 +120,9 @@ def test_input_error_is_said_at_the_top_and_clears_the_view(window, run_analysis
     assert window.analyze() is False
     assert window.run_panel.notice_kind == "error"
     assert "Not a polynomial" in window.results.banner.text()
+    reason = window.editor.error.message
+    assert reason in window.results.banner.text() and reason in window.editor.status_label.text()
+    assert reason not in window.run_panel.notice.text() and "Correct the equation" in window.run_panel.notice.text()
     assert "surface" not in window.viewport.actor_names()
 
 
