@@ -289,15 +289,16 @@ class SessionView(QObject):
             verdict = "surface of revolution" if analysis.is_sor else "not a surface of revolution"
             if analysis.approximate is not None and analysis.approximate.near_sor and not analysis.is_sor:
                 verdict = "nearly a surface of revolution"
+            if not analysis.recognition.decided:
+                verdict = "undecided whether it is a surface of revolution"
             summary = run.scene.summary() if run.scene is not None else ""
             notes = " ".join(run.scene.notes) if run.scene is not None else ""
             if run.report:
                 self.status.setText(f"Report shown as saved, not analysed again: {verdict}; {summary}".strip())
             elif run.limited:
-                self.status.setText(
-                    f"Stopped at the time limit of {run.limit:g} s after {run.elapsed():.2f} s: "
-                    f"{verdict} so far, some stages undecided; {summary}".strip()
-                )
+                so_far = f"{verdict} so far, some stages undecided" if analysis.recognition.decided else verdict
+                stopped = f"Stopped at the time limit of {run.limit:g} s after {run.elapsed():.2f} s"
+                self.status.setText(f"{stopped}: {so_far}; {summary}".strip())
             else:
                 self.status.setText(f"Done in {run.elapsed():.2f} s: {verdict}; {summary}. {notes}".strip())
             if run.result is not None:

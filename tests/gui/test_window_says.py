@@ -200,7 +200,9 @@ def test_a_time_limit_met_before_the_recognition_shows_the_equation_as_undecided
     "not a surface of revolution" nor "dim L = 0", with no factor section (it indexed the first
     factor: IndexError, the pane left at "Analysing…", seen under load with a limit of 3 s)."""
     from sorgui.engine.parsing import parse_polynomial
-    from sorgui.engine.timelimit import skeleton
+    from sorgui.engine.timelimit import skeleton, unfinished_analysis
+    from sorgui.session.job import JobRequest
+    from sorgui.session.model import Run
 
     text = "x^2 + y^2 + z^4 - 1"
     start = skeleton(parse_polynomial(text).polynomial, text=text, method="symmetry")
@@ -211,6 +213,14 @@ def test_a_time_limit_met_before_the_recognition_shows_the_equation_as_undecided
     assert ">Undecided within the time limit<" in window.results.banner.text()
     assert "not a surface of revolution" not in text_shown.lower() and "dim L" not in text_shown
     assert "not finished within the time limit of 3 s" in text_shown
+    limited = unfinished_analysis(
+        start, recognition=None, latest=None, timings=(), current="recognition", message="", recognition_only=False
+    )
+    run = Run(text, JobRequest(text, singular_timeout=3.0), analysis=limited, outcome="finished")
+    window.view._on_run_finish_change(run)
+    status = window.stage_label.text()
+    assert status.startswith("Stopped at the time limit of 3 s") and "not a surface" not in status, status
+    assert "undecided whether it is a surface of revolution" in status, status
 
 
 def test_a_report_is_shown_as_saved_and_its_stages_are_not_replayed(window, run_analysis, qtbot, tmp_path) -> None:
