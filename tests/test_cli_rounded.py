@@ -61,7 +61,7 @@ def test_recognition_only_keeps_the_approximation_without_the_nearest_analysis(t
 def test_the_text_report_says_it_in_words(torus_text: str) -> None:
     out = sorgui(torus_text)
     assert out.returncode == 0, out.stderr
-    assert "surface of revolution: NO" in out.stdout
+    assert "surface of revolution: NO exactly, but NEARLY: within the rounding of the input" in out.stdout
     assert (
         "not exactly, but within" in out.stdout and "(relative) of a surface of revolution about the axis" in out.stdout
     )

@@ -209,10 +209,10 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
     missed, where = uncovered(splines, curve, surface, ball, goal)
     deviation = max(missed, *(f.deviation for f in fits))
     if deviation > goal:
-        near = f" (near {_vector(where)})" if where is not None else ""
+        near = f" (near ({', '.join(f'{c:.4g}' for c in where)}))" if where is not None else ""
         raise CadGeometryError(
             f"the fitted profile strays {deviation:.2g} from the surface{near}, more than the tolerance "
-            f"{goal:.2g} ({goal / ball.radius:.2g} of the ball's radius): give a larger --fit-tolerance"
+            f"{goal:.2g} ({goal / ball.radius:.2g} of the ball's radius); {LARGER_TOLERANCE}"
         )
     lines = (axis, f"profile: B-spline fitted to tolerance {goal:.3g}; measured deviation {deviation:.3g} (within it)")
     return Faces(shapes.revolution_faces(frame, splines, edge), "fitted", lines, deviation, goal)
@@ -223,7 +223,7 @@ def _swept_faces(sweep: Sweep, ball: ClipSphere, goal: float) -> Faces:
     if sweep.deviation > goal:
         raise CadGeometryError(
             f"the sweep of the canal surface's circles strays {sweep.deviation:.2g} from the surface, more than "
-            f"the tolerance {goal:.2g} ({goal / ball.radius:.2g} of the ball's radius): give a larger --fit-tolerance"
+            f"the tolerance {goal:.2g} ({goal / ball.radius:.2g} of the ball's radius); {LARGER_TOLERANCE}"
         )
     faces = shapes.cut_to(sweep.faces, ball)
     if not faces:
@@ -308,6 +308,10 @@ def _cut(part: Faces, scene: Scene, edge: float) -> tuple[list[Any], tuple[str, 
 
 def _axis_line(point: np.ndarray, direction: np.ndarray) -> str:
     return f"axis: point {_vector(point)}, direction {_vector(direction)}"
+
+
+LARGER_TOLERANCE = "a larger fit tolerance may allow it (sorgui analyze --fit-tolerance)"
+"""The remedy a fit beyond its tolerance names (the command line's; the window has none)."""
 
 
 def _vector(v: np.ndarray) -> str:

@@ -66,7 +66,11 @@ def verdict(analysis: Analysis) -> str:
     """One line: whether ``X`` is a surface of revolution."""
     if not analysis.recognition.decided:
         return "undecided whether it is a surface of revolution (the recognition did not finish within the time limit)"
-    return "a surface of revolution" if analysis.is_sor else "not a surface of revolution"
+    if analysis.is_sor:
+        return "a surface of revolution"
+    if analysis.approximate is not None and analysis.approximate.near_sor:
+        return "nearly a surface of revolution (not exactly: within the rounding of the input)"
+    return "not a surface of revolution"
 
 
 def summary_lines(analysis: Analysis) -> list[str]:

@@ -236,7 +236,7 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
         lines.append(
             "  no simple exact surface was found within the rounding: the nearest one found lies "
             f"outside it (relative distance {near.relative_distance:.2g}, largest deviation of the zero "
-            f"sets {deviation}); its exact analysis is in the JSON (--json)"
+            f"sets {deviation}); its exact analysis is in the JSON report"
         )
     elif near is not None:
         deviation = "-" if near.max_deviation is None else f"{near.max_deviation:.2g}"
@@ -265,6 +265,8 @@ def analysis_lines(analysis: Analysis) -> list[str]:
     """Everything the report says of one analysis but the polynomial and the timings."""
     rec = analysis.recognition
     verdict = ("YES" if rec.is_sor else "NO") if rec.decided else "undecided"
+    if verdict == "NO" and analysis.approximate is not None and analysis.approximate.near_sor:
+        verdict = "NO exactly, but NEARLY: within the rounding of the input (see below)"
     lines = [
         f"field K = {analysis.field}, degree {rec.degree if rec.polynomial else 'unknown'}, method {analysis.method}",
         f"surface of revolution: {verdict}",

@@ -143,6 +143,20 @@ def test_the_files_of_rounded_input_carry_the_nearest_exact_surface(tmp_path) ->
     assert "(revolution)" not in latex_document(analysis) and "cylinder_of_revolution" not in latex_document(analysis)
 
 
+def test_the_headline_of_rounded_input_within_its_rounding_is_nearly_as_in_the_window() -> None:
+    """Not exactly of revolution but within its rounding: every file says *nearly* first, as
+    the window's banner does (the Markdown and HTML said "not a surface of revolution")."""
+    from sorgui.engine import analyze
+    from sorgui.export.reports import html_report, text_report
+
+    analysis = analyze(TURNED_CYLINDER_10_DIGITS)
+    assert not analysis.is_sor and analysis.approximate is not None and analysis.approximate.near_sor
+    assert markdown_report(analysis).startswith("# sorgui: nearly a surface of revolution (not exactly")
+    html = html_report(analysis)
+    assert "sorgui: nearly a surface of revolution" in html and "sorgui: not a surface of revolution" not in html
+    assert "surface of revolution: NO exactly, but NEARLY: within the rounding" in text_report(analysis)
+
+
 def test_an_exact_ellipsoid_nearly_a_sphere_is_not_called_exactly_a_sphere() -> None:
     from sorgui.engine import analyze
     from sorgui.export.reports import text_report
