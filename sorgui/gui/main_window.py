@@ -527,7 +527,9 @@ class MainWindow(QMainWindow):
             self._show_invalid(str(error) if error is not None else "The editor is empty.")
             return False
         superseded = self.worker.is_busy
-        self.report_reader.cancel()  # this equation replaces a report still being read
+        if self.report_reader.busy:  # this equation replaces a report still being read
+            self.report_reader.cancel()
+            self.statusBar().clearMessage()  # "Reading the report …"
         self.session.analyze(
             self.editor.text(),
             resolution=self.viewport.mesh_resolution(),

@@ -296,7 +296,7 @@ class SessionView(QObject):
             if run.report:
                 self.status.setText(f"Report shown as saved, not analysed again: {verdict}; {summary}".strip())
             elif run.limited:
-                so_far = f"{verdict} so far, some stages undecided" if analysis.recognition.decided else verdict
+                so_far = f"{verdict}; some later stages undecided" if analysis.recognition.decided else verdict
                 stopped = f"Stopped at the time limit of {run.limit:g} s after {run.elapsed():.2f} s"
                 self.status.setText(f"{stopped}: {so_far}; {summary}".strip())
             else:

@@ -86,3 +86,4 @@ def test_analysing_an_equation_drops_the_report_being_read(window, run_analysis,
     assert not window.report_reader.busy
     qtbot.wait(500)
     assert window.editor.text() == "x^2+y^2+z^2-1" and window.session.run.text == "x^2+y^2+z^2-1"
+    assert "Reading the report" not in window.statusBar().currentMessage()  # it stayed there for good

@@ -190,6 +190,7 @@ def test_a_time_limit_met_is_said_and_not_taken_for_a_finished_analysis(window, 
     assert all(f"{stage.title}" in line for stage in unfinished) and "not finished within 3 s" in line
     assert window.run_panel.notice_kind == "limit" and "time limit of 3 s" in window.run_panel.notice.text()
     assert not window.stage_label.text().startswith("Done") and "time limit" in window.stage_label.text()
+    assert "so far" not in window.stage_label.text()  # the verdict of a finished recognition is final
     if "canal" in {s.name for s in unfinished}:
         assert "not finished within the time limit of 3 s" in pane_text(window)
 
