@@ -95,7 +95,9 @@ def unfinished_analysis(
 ) -> Analysis:
     """The analysis as far as it got: ``latest`` (the last complete group of stages), else
     ``start`` (the :func:`skeleton`) with the ``recognition`` if there is one; ``unfinished``
-    lists the stage that was running (``current``) and the stages that were still to come.
+    lists the stage that was running (``current``) and the stages of the equation's analysis
+    (:func:`~.analysis.analyze_polynomial`) that were still to come, the cone and canal ones
+    included.
 
     Needs no sympy: the parent of a killed analysis process composes it from what the process
     sent before it was ended."""
@@ -104,8 +106,16 @@ def unfinished_analysis(
             start if recognition is None else replace(start, recognition=recognition, squarefree=recognition.polynomial)
         )
     rec = latest.recognition
+    may_be_sor = rec.symmetry == UNDECIDED or rec.is_sor
     needs_rationality = not recognition_only and (rec.symmetry == UNDECIDED or (rec.is_sor and rec.profile is not None))
-    pipeline = ["recognition", "factors", *(("rationality", "parametrizations") if needs_rationality else ())]
+    pipeline = [
+        "recognition",
+        "factors",
+        *(("real locus",) if not recognition_only and may_be_sor else ()),
+        *(("rationality", "parametrizations") if needs_rationality else ()),
+        *(() if recognition_only else ("conical",)),
+        "canal",
+    ]
     done = {name for name, _ in timings}
     unfinished = [s for s in pipeline if s not in done]
     if current is not None and current not in done and current not in unfinished:

@@ -19,7 +19,7 @@ def test_the_worker_reports_unfinished_stages_and_keeps_the_rest() -> None:
     assert time.monotonic() - start < 4 + 20  # plus the scene of the surface, on a busy machine
     analysis = result.analysis
     assert analysis.is_sor and analysis.recognition.axis is not None
-    assert analysis.unfinished == ("rationality", "parametrizations")
+    assert analysis.unfinished == ("rationality", "parametrizations", "conical", "canal")
     assert analysis.rationality.status.startswith("undecided")
 
 
