@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from PySide6.QtCore import QObject, Qt, QTimer, Signal
-from PySide6.QtGui import QAction, QKeySequence
+from PySide6.QtGui import QAction, QCursor, QKeySequence
 from PySide6.QtWidgets import (
     QCheckBox,
     QDoubleSpinBox,
@@ -696,8 +696,16 @@ class Viewport(QWidget):
         iren.add_key_event("P", self._pick_at_mouse)
 
     def _pick_at_mouse(self) -> None:
-        x, y = self.plotter.iren.interactor.GetEventPosition()
-        self.plotter.iren.picker.Pick(x, y, 0, self.plotter.renderer)
+        """P: pick the point under the pointer where it is now. The interactor's own event
+        position is where it last saw the mouse move, and a pointer that has not moved since a
+        new render window came under it sends no move (Qt drops a move to the same place)."""
+        plotter = self.plotter
+        where = plotter.mapFromGlobal(QCursor.pos())
+        ratio = plotter.devicePixelRatioF()
+        interactor = plotter.iren.interactor
+        interactor.SetEventInformationFlipY(int(round(where.x() * ratio)), int(round(where.y() * ratio)))
+        x, y = interactor.GetEventPosition()
+        plotter.iren.picker.Pick(x, y, 0, plotter.renderer)
 
     def _build_view_actions(self) -> dict[str, QAction]:
         specs = (
