@@ -748,19 +748,12 @@ class MainWindow(QMainWindow):
         picture = Path(path).with_suffix(".png")
         if Path(path).suffix.lower() == ".md" and picture.exists() and not self.confirm_replace(picture):
             return
-        if format_of(path).kind == "cad" or self._report is not None:  # a report's, whatever it holds
-            self.export_in_background(path)
-            return
-        try:
-            written = self.export_results(path)
-        except (OSError, ValueError) as exc:
-            self._show_error("Export failed", str(exc))
-            return
-        self.statusBar().showMessage(f"Exported {written}", 4000)
+        self.export_in_background(path)
 
     def export_in_background(self, path: str | Path) -> None:
         """Write the shown analysis to ``path`` in a process of its own, killed at the time limit:
-        a CAD file (it takes seconds), or any file of a report opened from elsewhere."""
+        every format, since any may take seconds (a CAD file; the LaTeX of a degree-60 equation
+        took 25 s of sympy's printing, the window frozen meanwhile when it was written here)."""
         analysis = self._finished_analysis()
         if analysis is None or self.cad_export.busy:
             self.statusBar().showMessage("A file is still being written" if analysis else "Nothing to export", 4000)

@@ -123,6 +123,21 @@ def test_exporting_markdown_asks_before_replacing_its_picture(window, run_analys
     assert picture.read_bytes() == b"the user's own picture" and not (tmp_path / "part.md").exists()
 
 
+def test_every_export_of_the_menu_is_written_in_the_background(
+    window, run_analysis, qtbot, tmp_path, monkeypatch
+) -> None:
+    """File → Export of LaTeX runs in the export process as CAD files do: sympy's printing of a
+    large equation took 25 s on the GUI thread, the window frozen meanwhile."""
+    run_analysis(window, TORUS)
+    path = tmp_path / "torus.tex"
+    monkeypatch.setattr(window, "ask_export_path", lambda _suffix: str(path))
+    with qtbot.waitSignal(window.cad_export.written, timeout=120_000):
+        window._export_results(".tex")
+        assert window.cad_export.busy and window.cad_export.pid != __import__("os").getpid()
+    assert path.read_text(encoding="utf-8").startswith("\\documentclass")
+    assert window.statusBar().currentMessage().startswith(f"Exported {path}")
+
+
 def _without_time_stamp(step: str) -> str:
     """A STEP file without its FILE_NAME entry (the time of writing)."""
     start = step.index("FILE_NAME(")
