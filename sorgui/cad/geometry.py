@@ -387,9 +387,13 @@ def exact_profile(analysis: Analysis, frame: Frame, ball: ClipSphere, size: floa
         if not 0 < section.degree <= MAX_DEGREE:
             continue
         normal = _meridian_normal(section, terms, frame, size)
-        if normal is not None:
+        if normal is None:
+            continue
+        try:
             arcs = _arcs(section, Frame(frame.point, frame.direction, normal), ball, size)
-            return [_turned(arc, frame, normal) for arc in arcs]
+        except CadGeometryError:  # a weight vanishes on a drawn arc: the next map, else the fit
+            continue
+        return [_turned(arc, frame, normal) for arc in arcs]
     return None
 
 

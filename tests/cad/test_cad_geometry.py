@@ -155,3 +155,22 @@ def test_an_unfinished_analysis_is_not_called_a_surface_that_is_not_of_revolutio
     )
     with pytest.raises(CadGeometryError, match="did not finish"):
         surface_model(undecided, build_scene(analysis))
+
+
+def test_a_map_whose_weights_vanish_on_a_drawn_arc_leaves_the_profile_to_the_fit() -> None:
+    """A 6-digit hyperboloid of one sheet about (1, 1, 1), exactly of revolution as typed: its
+    parameterization's denominator changes sign on an arc in the ball, so its arcs cannot be
+    drawn exactly; the next map or the fitted profile makes the part (the export failed)."""
+    pytest.importorskip("OCP")
+    from OCP.BRepCheck import BRepCheck_Analyzer
+
+    from sorgui.cad.model import surface_model
+
+    text = (
+        "+3.33333e-01*x^2 -1.33333e+00*x*y -1.33333e+00*x*z +3.33333e-01*y^2 -1.33333e+00*y*z "
+        "+3.33333e-01*z^2 -1.00000e+00"
+    )
+    analysis = analyze(text)
+    assert analysis.is_sor and analysis.parametrizations
+    model = surface_model(analysis, build_scene(analysis))
+    assert BRepCheck_Analyzer(model.shape).IsValid()
