@@ -30,9 +30,12 @@ Monomial = tuple[int, ...]
 
 _NUMBER = r"(?:[0-9]++(?:\.[0-9]*+)?+|\.[0-9]++)(?:[eE][-+]?+[0-9]++)?+"
 _POWER = r"(?:\s*+(?:\*\*|\^)\s*+[0-9]{1,6}+)?+"
-_MONOMIAL = rf"[xyz]{_POWER}(?:\s*+\*?+\s*+[xyz]{_POWER})*+"
+_TIMES = r"(?:\s*+\*\s*+|[ \t]*+)"
+"""A product's ``*``, or none across spaces on one line: a line break with no operator is not a
+product (two equations on two lines were multiplied); the parser says so."""
+_MONOMIAL = rf"[xyz]{_POWER}(?:{_TIMES}[xyz]{_POWER})*+"
 _TERM = re.compile(
-    rf"\s*+([-+]?+)\s*+(?:({_NUMBER})(?:\s*+/\s*+([0-9]++))?+(?:\s*+\*?+\s*+({_MONOMIAL})(?:\s*+/\s*+([0-9]++))?+)?+"
+    rf"\s*+([-+]?+)\s*+(?:({_NUMBER})(?:\s*+/\s*+([0-9]++))?+(?:{_TIMES}({_MONOMIAL})(?:\s*+/\s*+([0-9]++))?+)?+"
     rf"|({_MONOMIAL})(?:\s*+/\s*+([0-9]++))?+)\s*+|(.)",
     re.DOTALL,
 )

@@ -333,6 +333,14 @@ class Parser:
                     denominator = self._factor(depth)
                     factors.append(Reciprocal(tok.start, self._prev.end, denominator))
                 elif tok.kind in _IMPLICIT:
+                    if "\n" in self._text[self._prev.end : tok.start]:
+                        raise ParseError(
+                            "a new line starts here without an operator, which would multiply the two lines: "
+                            "end a line with '+', '-' or '*' to go on, or give one equation at a time "
+                            "(sorgui analyze --each-line reads one per line)",
+                            tok.start,
+                            tok.end,
+                        )
                     factors.append(self._factor(depth))
                 elif tok.kind == "num":
                     raise ParseError(

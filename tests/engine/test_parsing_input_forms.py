@@ -61,3 +61,27 @@ def test_every_accepted_number_prints() -> None:
     assert MAX_PRINTED_DIGITS >= 10 * MAX_DIGITS
     with pytest.raises(ParseError, match="more than 20,000 digits"):
         parse_polynomial("1" * (MAX_DIGITS + 1) + " x")
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "x^2+y^2-z^2-1\nx^2+y^2-4",  # two equations pasted together: read as -1·x², a product
+        "x^2+y^2-1\n\nz",
+        "2\nx^2+y^2-1",
+        "x^2+y^2-z^2\nx^2-1",
+        "x^2+y^2-z^2-1\n(x^2+y^2-4)",
+        "x^2+y^2-z^2-1\r\nsqrt(2)*x",
+    ],
+)
+def test_a_line_break_without_an_operator_is_not_a_product(text: str) -> None:
+    """Both readers refuse a new line that starts without an operator, pointing at it; an
+    equation continued after an operator, or with a ``*``, is read across lines."""
+    with pytest.raises(ParseError, match="a new line starts here without an operator") as caught:
+        parse_polynomial(text)
+    assert text[caught.value.position] not in " \r\n"
+
+
+@pytest.mark.parametrize("text", ["x^2 +\ny^2 - 1", "x^2\n+ y^2\n- 1", "x^2 + y^2 - 1 *\n1", "2 x^2 + y^2\r\n- 1 x"])
+def test_an_equation_goes_on_across_lines_after_an_operator(text: str) -> None:
+    assert parse_polynomial(text).polynomial == parse_polynomial(" ".join(text.split())).polynomial
