@@ -620,3 +620,14 @@ def test_fifteen_digits_of_a_double_computation_are_read_as_double_precision() -
     assert approx.near_sor and approx.nearest is not None and approx.nearest.within_rounding
     assert approx.nearest.polynomial.startswith("x**4 + 2*x**2*y**2 + 2*x**2*z**2 + y**4")
     assert "sqrt(3)" in approx.nearest.polynomial
+
+
+def test_digits_finer_than_floating_point_are_said_to_be_read_at_its_floor() -> None:
+    """``1.0000000000000000000003`` is 3·10⁻²² from 1, finer than a double: the rounding in
+    force is the floor of floating point, and a note says "within the rounding" means that,
+    not the last digit printed (it said "within the rounding" as if of the 23 digits)."""
+    approx = analyze("x^2+1.0000000000000000000003*y^2-z^2-1", recognition_only=True).approximate
+    assert approx is not None and approx.near_sor
+    assert any("23 significant digits, more than floating point holds" in note for note in approx.notes)
+    fifteen = analyze("x^2+1.00000000000003*y^2-z^2-1", recognition_only=True).approximate
+    assert not any("floating point holds" in note for note in fifteen.notes)

@@ -51,7 +51,7 @@ from .near_symmetry import (
     plain_distance,
     refine,
 )
-from .precision import Rounding, given_rounding, input_rounding
+from .precision import FLOAT_FLOOR, Rounding, given_rounding, input_rounding
 from .snapping import ExactSurface, snap
 
 MAX_SPAN = 1e100
@@ -84,7 +84,7 @@ def rounding_of(f: Poly, text: str | None, tolerance: float | None) -> tuple[Rou
     coefficients = dense.float_coefficients(f)
     printed = None if text is None else input_rounding(text, coefficients)
     if tolerance is None:
-        return printed, ()
+        return printed, _finer_than_floats(printed)
     if not (math.isfinite(tolerance) and 0.0 < tolerance < 1.0):
         raise AnalysisError(f"the tolerance must be a number between 0 and 1, not {tolerance}")
     notes: tuple[str, ...] = ()
@@ -94,6 +94,23 @@ def rounding_of(f: Poly, text: str | None, tolerance: float | None) -> tuple[Rou
             f"({printed.tolerance:.2g} relative): a rounded surface may be missed",
         )
     return given_rounding(tolerance, coefficients), notes
+
+
+FLOAT_DIGITS = 15
+"""Significant digits a double holds for sure: a rounding read off more digits is floored at
+:data:`~.precision.FLOAT_FLOOR` of the largest coefficient."""
+
+
+def _finer_than_floats(printed: Rounding | None) -> tuple[str, ...]:
+    """A note when the input prints more digits than the computation's floating point holds:
+    "within the rounding" then means within its floor, not within the last digit printed."""
+    if printed is None or printed.digits is None or printed.digits <= FLOAT_DIGITS:
+        return ()
+    return (
+        f"the input prints {printed.digits} significant digits, more than floating point holds: "
+        f"'within the rounding' means within {FLOAT_FLOOR:.0e} of the largest coefficient, "
+        "not within the last digit printed",
+    )
 
 
 def approximate_symmetry(
