@@ -55,6 +55,18 @@ ANSWER_MARGIN = 0.7
 GRACE = 0.4
 """Seconds after the engine's deadline that an analysis process is given to answer before it is
 killed: the kill comes ``ANSWER_MARGIN - GRACE`` seconds before the user's limit."""
+SHORT_SHARE = 0.3
+"""A short limit keeps at most this share of itself for the margins (``--timeout 1`` left the
+engine 0.3 s, most of it the start of Python, and ended "while reading the equation")."""
+
+
+def margins(limit: float) -> tuple[float, float]:
+    """``(answer margin, grace)`` for a time limit of ``limit`` seconds: :data:`ANSWER_MARGIN`
+    and :data:`GRACE`, scaled down together for a limit under ``ANSWER_MARGIN / SHORT_SHARE``."""
+    if SHORT_SHARE * limit >= ANSWER_MARGIN:
+        return ANSWER_MARGIN, GRACE
+    answer = SHORT_SHARE * limit
+    return answer, GRACE * answer / ANSWER_MARGIN
 
 
 @dataclass(frozen=True)
@@ -79,7 +91,7 @@ class AnalysisRequest:
         if self.deadline is not None:
             left = max(self.deadline - time.monotonic(), 0.001)
         elif left is not None:
-            left = max(left - ANSWER_MARGIN, 0.001)
+            left = max(left - margins(left)[0], 0.001)
         return {
             "method": self.method,
             "recognition_only": self.recognition_only,
@@ -226,7 +238,7 @@ class Supervised:
         limit = request.timeout
         if limit is not None:
             begun = time.monotonic() if started is None else started
-            request = replace(request, deadline=begun + limit - ANSWER_MARGIN)
+            request = replace(request, deadline=begun + limit - margins(limit)[0])
         self._begin(request)
         self.child.send(request)
 
@@ -242,9 +254,11 @@ class Supervised:
         self.request = request
         self.log = StageLog(request.recognition_only)
         if request.deadline is not None:
-            self.deadline = request.deadline + GRACE
+            grace = GRACE if request.timeout is None else margins(request.timeout)[1]
+            self.deadline = request.deadline + grace
         elif request.timeout is not None:
-            self.deadline = time.monotonic() + request.timeout - ANSWER_MARGIN + GRACE
+            answer, grace = margins(request.timeout)
+            self.deadline = time.monotonic() + request.timeout - answer + grace
         else:
             self.deadline = float("inf")
 

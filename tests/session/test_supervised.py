@@ -55,3 +55,14 @@ def test_no_process_can_be_started(monkeypatch: pytest.MonkeyPatch) -> None:
     assert analyze_supervised(AnalysisRequest("x^2 + y^2 - z", timeout=10)) == Failed(
         "the analysis process could not be started: Resource temporarily unavailable"
     )
+
+
+def test_a_short_limit_keeps_most_of_itself_for_the_engine() -> None:
+    """``--timeout 1`` left the engine 0.3 s, most of it Python's start: the margins of a short
+    limit shrink with it, the kill still before the limit."""
+    from sorgui.session.supervised import ANSWER_MARGIN, GRACE, margins
+
+    assert margins(60.0) == (ANSWER_MARGIN, GRACE)
+    for limit in (0.2, 0.5, 1.0, 2.0):
+        answer, grace = margins(limit)
+        assert answer <= 0.3 * limit + 1e-12 and 0 < grace < answer
