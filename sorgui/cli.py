@@ -589,6 +589,7 @@ def analyze_main(argv: Sequence[str]) -> int:
         part = part_source(args)
         if part is not None:
             return part_main(args, part)
+        _check_file_options(args)
         if args.each_line:
             return each_line(args)
         for option, given in (("--jobs", args.jobs), ("--scheduler", args.scheduler), ("--resume", args.resume)):
@@ -722,6 +723,33 @@ def part_main(args: argparse.Namespace, source: Path) -> int:
     if unevaluated is not None:
         print(f"sorgui: {one_line(unevaluated)}", file=sys.stderr)
     return 0
+
+
+def _check_file_options(args: argparse.Namespace) -> None:
+    """The options of ``-o`` files (formats, CAD) need a file of one equation: without ``-o``,
+    or with ``--each-line`` (its ``-o`` is the JSON Lines of the results), they would be
+    ignored, so they are refused in one line; so is ``--each-line -o`` of an export format."""
+    given = [
+        name
+        for name, on in (
+            ("--format", args.export_format is not None),
+            ("--fit-tolerance", args.fit_tolerance is not None),
+            ("--cap", args.cap),
+            ("--region", args.region != UserRegion()),
+            ("--units", args.units != "mm"),
+        )
+        if on
+    ]
+    if given and args.each_line:
+        raise UsageError(f"{given[0]} applies to the -o files of one equation, not to --each-line")
+    if given and not args.output:
+        raise UsageError(f"{given[0]} applies to -o files: give -o FILE")
+    suffix = Path(args.output[0]).suffix.lower() if args.each_line and args.output else ""
+    if suffix in EXPORT_SUFFIXES and suffix != ".json":  # .json: the batch names .jsonl itself
+        raise UsageError(
+            f"--each-line writes JSON Lines, one object per line, not a {suffix} file: name the results "
+            f"file {Path(args.output[0]).with_suffix('.jsonl').name}"
+        )
 
 
 def each_line(args: argparse.Namespace) -> int:

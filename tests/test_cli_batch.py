@@ -279,10 +279,13 @@ def test_resume_refuses_a_file_that_is_not_this_inputs(tmp_path: Path) -> None:
     assert results.read_bytes() == before
     assert edited.stderr.count("\n") == shorter.stderr.count("\n") == 1
 
+    plain = tmp_path / "lines"
+    plain.write_text(many_lines(5), encoding="utf-8")
     unusable = [
         ([*SORGUI, "--each-line", "-f", str(lines), "--resume"], "--resume continues a results file"),
         ([*batch, "-o", str(tmp_path / "two.jsonl")], "give -o once"),
-        ([*SORGUI, "--each-line", "-f", str(lines), "-o", str(lines)], "refusing to overwrite the input file"),
+        ([*SORGUI, "--each-line", "-f", str(plain), "-o", str(plain)], "refusing to overwrite the input file"),
+        ([*SORGUI, "--each-line", "-f", str(lines), "-o", str(lines)], "not a .txt file"),
         ([*SORGUI, "--each-line", "-f", str(lines), "-o", str(tmp_path)], "it is a folder"),
         ([*SORGUI, "--each-line", "-f", str(lines), "--jobs", "2", "--scheduler", "tcp://x:1"], "exclude each other"),
     ]

@@ -59,6 +59,11 @@ def test_an_equation_may_start_with_a_minus_sign() -> None:
         (["--region", "0,0,0,-1", "x^2+y^2-z"], "radius must be positive"),
         (["--region", "1,2", "x^2+y^2-z"], "not a region"),
         (["--region", "inf", "x^2+y^2-z"], "must be finite"),
+        (["--cap", "x^2+y^2-z"], "--cap applies to -o files: give -o FILE"),
+        (["--units", "cm", "x^2+y^2-z"], "--units applies to -o files"),
+        (["--each-line", "--fit-tolerance", "1e-6", "-"], "not to --each-line"),
+        (["--each-line", "-", "-o", "results.txt"], "not a .txt file: name the results file results.jsonl"),
+        (["--each-line", "-", "-o", "results.step"], "not a .step file"),
     ],
 )
 def test_every_argument_error_is_one_line_and_an_error_object(args: list[str], words: str) -> None:
