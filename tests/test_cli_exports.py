@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -279,3 +280,25 @@ def test_an_iges_file_says_it_holds_faces_not_a_solid(tmp_path: Path) -> None:
     iges, step = [line for line in lines(done.stderr) if line.startswith("sorgui: wrote")]
     assert done.returncode == 0 and "IGES holds no solid" in iges and "in 1 solid" not in iges
     assert "1 face in 1 solid" in step
+
+
+TURNED_TORUS = (
+    "((x-3/10)^2+(y+7/10)^2+(z-11/10)^2+351/100)^2"
+    "-16*((x-3/10)^2+(y+7/10)^2+(z-11/10)^2-((x-3/10)+2*(y+7/10)+2*(z-11/10))^2/9)"
+)
+"""The torus R = 2, r = 0.7 about the axis through (3/10, −7/10, 11/10) along (1, 2, 2)."""
+
+
+def test_the_patch_of_a_map_with_a_parameter_of_another_scale_covers_the_surface(tmp_path: Path) -> None:
+    """This torus's map through its tube had ``t`` of order 10⁶: the patch over ``t ∈ [−3, 3]``
+    was a sliver of area 0.00016 against the torus's 55. Its parameters are now balanced
+    (``t ↦ 10⁶·t``) and its numbers smaller."""
+    import pyvista
+
+    patch, whole = tmp_path / "t.patch.stl", tmp_path / "t.stl"
+    done = sorgui("analyze", "--json", TURNED_TORUS, "-o", str(patch), "-o", str(whole))
+    assert done.returncode == 0, done.stderr
+    area = pyvista.read(patch).area
+    assert area > 0.5 * pyvista.read(whole).area, area
+    tube = next(p for p in json.loads(done.stdout)["parametrizations"] if p["method"].startswith("via tubular"))
+    assert max(len(n) for n in re.findall(r"[0-9]+", " ".join(tube["coordinates"]))) <= 12

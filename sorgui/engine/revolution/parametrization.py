@@ -17,13 +17,14 @@ Every parameterization is substituted back into ``f`` and must reduce to 0 exact
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TypeAlias, cast
 
 import mpmath
 import sympy
-from flint import fmpq_mpoly
+from flint import fmpq, fmpq_mpoly
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.solvers.diophantine.diophantine import diop_ternary_quadratic
@@ -70,9 +71,23 @@ class SurfaceMap:
         out = []
         for num in self.numerators:
             g = num.gcd(self.denominator) if num else self.denominator
-            out.append(self.ring.to_expr(num / g) / self.ring.to_expr(self.denominator / g))
+            top, bottom = num / g, self.denominator / g
+            common = _content(top, bottom)
+            out.append(self.ring.to_expr(top / common) / self.ring.to_expr(bottom / common))
         x, y, z = out
         return x, y, z
+
+
+def _content(*polys: fmpq_mpoly) -> fmpq:
+    """The rational content shared by ``polys``: the gcd of their coefficients' numerators over
+    the lcm of their denominators (a numerator and a denominator divided by it keep their
+    quotient with smaller numbers)."""
+    coefficients = [c for p in polys for c in p.coeffs()]
+    if not coefficients:
+        return fmpq(1)
+    top = math.gcd(*(int(c.p) for c in coefficients))
+    bottom = math.lcm(*(int(c.q) for c in coefficients))
+    return fmpq(top, bottom) if top else fmpq(1)
 
 
 def sweep(section: Section, frame: AxisFrame, K: Domain) -> SurfaceMap:
@@ -461,7 +476,7 @@ def make_parametrization(
     in_frame = profile.verified
     if not (identity() if in_frame else vanishes_on(f, surface)):
         return None
-    x, y, z = surface.coordinates()
+    x, y, z = balanced(surface).coordinates()
     return Parametrization(
         coordinates=(str(x), str(y), str(z)),
         parameters=PARAMETERS,
@@ -472,6 +487,47 @@ def make_parametrization(
         verified=True,
         verification=IN_FRAME if in_frame else "substituted into f",
     )
+
+
+BALANCE_FROM = 100
+"""A parameter whose natural scale is this far from 1 (either way) is rescaled by
+:func:`balanced`."""
+
+
+def parameter_scale(denominator: fmpq_mpoly, index: int) -> int:
+    """The power of ten nearest to the natural scale of the parameter ``index`` of a map with
+    this denominator: ``(A₀/A_d)^(1/d)``, ``A_k`` the largest coefficient of the terms of degree
+    ``k`` in it (``d`` the largest), where the terms of lowest and highest degree weigh alike."""
+    by_degree: dict[int, float] = {}  # log10 of the largest coefficient (exact integers: no overflow)
+    for monomial, c in denominator.to_dict().items():
+        if c:
+            k = int(monomial[index])
+            size = math.log10(abs(int(c.p))) - math.log10(int(c.q))
+            by_degree[k] = max(by_degree.get(k, -math.inf), size)
+    top = max(by_degree, default=0)
+    if top == 0 or 0 not in by_degree:
+        return 0
+    return round((by_degree[0] - by_degree[top]) / top)
+
+
+def balanced(surface: SurfaceMap) -> SurfaceMap:
+    """The same map with each parameter whose natural scale is a power of ten at least
+    :data:`BALANCE_FROM` from 1 scaled by it (``t ↦ 10ᵏ·t``): a map of a torus on a turned axis
+    had ``t`` of order 10⁶, and the patch drawn and exported over ``t ∈ [−3, 3]`` was a sliver of
+    the surface. A reparameterization by a constant keeps the map, its properness and its field."""
+    ctx = surface.ring.context
+    gens = list(ctx.gens())
+    images = list(gens)
+    for index in range(len(surface.ring.variables)):
+        power = parameter_scale(surface.denominator, index)
+        if 10 ** abs(power) >= BALANCE_FROM:
+            images[index] = gens[index] * fmpq(10) ** power
+    if images == gens:
+        return surface
+    x, y, z, d, axial, u, w = (
+        p.compose(*images, ctx=ctx) for p in (*surface.numerators, surface.denominator, surface.axial, *surface.radial)
+    )
+    return SurfaceMap(surface.ring, (x, y, z), d, axial, (u, w))
 
 
 IN_FRAME = "substituted into f in the axis frame"
