@@ -653,19 +653,6 @@ class MainWindow(QMainWindow):
         QGuiApplication.clipboard().setText(self.results.plain_text())
         self.statusBar().showMessage("Report copied to the clipboard", 3000)
 
-    def export_results(self, path: str | Path, fmt: str | None = None) -> Path:
-        """Write the shown analysis to ``path`` in any format of :mod:`sorgui.export.files` (by
-        suffix, or ``fmt``): meshes from the drawn scene, Markdown/HTML with a picture of the view."""
-        analysis = self._finished_analysis()
-        if analysis is None:
-            raise ValueError("there is no analysis to export yet")
-        from sorgui.export.files import export_analysis  # its writers load sympy: not before an export
-
-        picture = None
-        if format_of(path, fmt).suffix in (".md", ".html", ".png"):
-            picture = png_bytes(viewport_image(self.viewport, REPORT_PICTURE_WIDTH, inspection=False))
-        return export_analysis(analysis, path, fmt, scene=self.viewport.scene, picture=picture)
-
     def ask_time_limit(self) -> None:
         """Analysis → Time Limit…: the seconds one analysis may take (kept for the next start)."""
         seconds, ok = QInputDialog.getDouble(
@@ -758,8 +745,13 @@ class MainWindow(QMainWindow):
         if analysis is None or self.cad_export.busy:
             self.statusBar().showMessage("A file is still being written" if analysis else "Nothing to export", 4000)
             return
+        try:
+            suffix = format_of(path).suffix
+        except ValueError as exc:  # a name typed in the dialog with a suffix of no format
+            self._show_error("Export failed", str(exc))
+            return
         picture = None
-        if format_of(path).suffix in (".md", ".html", ".png"):
+        if suffix in (".md", ".html", ".png"):
             picture = png_bytes(viewport_image(self.viewport, REPORT_PICTURE_WIDTH, inspection=False))
         self.cad_export.start(analysis, path, self.viewport.scene, picture, timeout=self.time_limit)
         self.statusBar().showMessage(f"Writing {path}…")

@@ -221,3 +221,17 @@ def hanging_singular(tmp_path: Path) -> Path:
     script.write_text("#!/bin/sh\nexec sleep 600\n")
     script.chmod(0o755)
     return script
+
+
+def export_through_window(window, qtbot, path: Path) -> Path:  # noqa: ANN001
+    """File → Export's writing of ``path``, in the export process as the menu runs it, waited
+    for; the reason it failed (what the window would show) fails the test."""
+    failures: list[str] = []
+    window.cad_export.failed.connect(failures.append)
+    try:
+        window.export_in_background(path)
+        qtbot.waitUntil(lambda: not window.cad_export.busy, timeout=120_000)
+    finally:
+        window.cad_export.failed.disconnect(failures.append)
+    assert not failures and Path(path).exists(), failures
+    return Path(path)

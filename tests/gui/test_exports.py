@@ -15,20 +15,21 @@ from PySide6.QtGui import QImage
 from sorgui.engine import analyze
 from sorgui.export.formats import FORMATS
 from sorgui.export.reports import read_report
+from tests.gui.conftest import export_through_window
 
 pytestmark = pytest.mark.gui
 
 TORUS = "(x^2 + y^2 + z^2 + 8)^2 - 36(x^2 + y^2)"
 
 
-def test_every_format_is_exported_from_the_window(window, run_analysis, tmp_path) -> None:
+def test_every_format_is_exported_from_the_window(window, run_analysis, qtbot, tmp_path) -> None:
     run_analysis(window, TORUS)
     for suffix in FORMATS:
-        window.export_results(tmp_path / f"{'report' if suffix == '.md' else 'torus'}{suffix}")
+        export_through_window(window, qtbot, tmp_path / f"{'report' if suffix == '.md' else 'torus'}{suffix}")
     assert read_report(tmp_path / "torus.json").recognition.polynomial == analyze(TORUS).recognition.polynomial
     scene = window.viewport.scene
     assert pyvista.read(tmp_path / "torus.stl").n_cells == scene.surface.n_faces
-    window.export_results(tmp_path / "torus.patch.ply")
+    export_through_window(window, qtbot, tmp_path / "torus.patch.ply")
     assert pyvista.read(tmp_path / "torus.patch.ply").n_cells > 100
     markdown = (tmp_path / "report.md").read_text(encoding="utf-8")
     assert "![The surface and its axis](report.png)" in markdown  # the view's picture beside it

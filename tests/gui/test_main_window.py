@@ -82,16 +82,21 @@ def test_formulas_are_typeset_and_copyable(window, qtbot, run_analysis) -> None:
     assert QGuiApplication.clipboard().text() == r"\left(1, 0, 1\right)"
 
 
-def test_results_are_exported_to_files(window, run_analysis, tmp_path) -> None:
+def test_results_are_exported_to_files(window, run_analysis, qtbot, tmp_path, monkeypatch) -> None:
     import json
 
+    from tests.gui.conftest import export_through_window
+
     run_analysis(window, example_text("cone"))
-    written = window.export_results(tmp_path / "cone.json")
+    written = export_through_window(window, qtbot, tmp_path / "cone.json")
     data = json.loads(written.read_text(encoding="utf-8"))
     assert data["symmetry"] == "revolution" and data["rationality"]["table_row"] == 1
-    assert "\\documentclass" in window.export_results(tmp_path / "cone.tex").read_text(encoding="utf-8")
-    with pytest.raises(ValueError):
-        window.export_results(tmp_path / "cone.xyz")
+    tex = export_through_window(window, qtbot, tmp_path / "cone.tex")
+    assert "\\documentclass" in tex.read_text(encoding="utf-8")
+    shown: list[str] = []
+    monkeypatch.setattr(window, "_show_error", lambda _title, message: shown.append(message))
+    window.export_in_background(tmp_path / "cone.xyz")  # a name typed with a suffix of no format
+    assert shown and "unknown export format" in shown[0] and not window.cad_export.busy
 
 
 def test_invalid_equation_is_underlined_and_starts_no_worker(make_window, qtbot) -> None:

@@ -18,7 +18,7 @@ from PySide6.QtWidgets import QApplication, QFileDialog
 from benchmarks.window import rounded_degree_12, three_tori, turned_torus
 from sorgui.examples import example_text
 from sorgui.session.model import StageState
-from tests.gui.conftest import typeset_all
+from tests.gui.conftest import export_through_window, typeset_all
 from tests.gui.test_canal import pane_text
 
 pytestmark = pytest.mark.gui
@@ -226,7 +226,7 @@ def test_a_time_limit_met_before_the_recognition_shows_the_equation_as_undecided
 
 def test_a_report_is_shown_as_saved_and_its_stages_are_not_replayed(window, run_analysis, qtbot, tmp_path) -> None:
     run_analysis(window, example_text("torus"))
-    report = window.export_results(tmp_path / "torus.json")
+    report = export_through_window(window, qtbot, tmp_path / "torus.json")
     with qtbot.waitSignal(window.result_shown, timeout=120_000):
         assert window.open_report(str(report))
     qtbot.waitUntil(lambda: window.session.run.outcome == "finished", timeout=60_000)
