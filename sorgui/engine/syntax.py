@@ -336,8 +336,7 @@ class Parser:
                     if "\n" in self._text[self._prev.end : tok.start]:
                         raise ParseError(
                             "a new line starts here without an operator, which would multiply the two lines: "
-                            "end a line with '+', '-' or '*' to go on, or give one equation at a time "
-                            "(sorgui analyze --each-line reads one per line)",
+                            "end a line with '+', '-' or '*' to go on, or give one equation at a time",
                             tok.start,
                             tok.end,
                         )
