@@ -104,18 +104,24 @@ def times_text(q: fmpq, atom: str) -> str:
     return text if denominator == 1 else f"{text}/{denominator}"
 
 
-def primitive(g: fmpq_mpoly) -> fmpq_mpoly:
-    """``g`` scaled to integer coefficients with gcd 1 and a positive leading (lex) coefficient."""
-    if g.is_zero():
-        return g
-    coefficients = g.coeffs()
+def content(*polys: fmpq_mpoly) -> fmpq:
+    """The positive rational content of ``polys`` together: the gcd of their coefficients over
+    ``QQ`` (1 when they are all zero); each divided by it has integer coefficients, gcd 1 in all."""
+    coefficients = [c for g in polys for c in g.coeffs()]
     denominator = fmpz(1)
     for c in coefficients:
         denominator = denominator.lcm(c.q)
     numerator = fmpz(0)
     for c in coefficients:
         numerator = numerator.gcd(c.p * (denominator // c.q))
-    scale = fmpq(denominator, numerator)
+    return fmpq(numerator, denominator) if numerator else fmpq(1)
+
+
+def primitive(g: fmpq_mpoly) -> fmpq_mpoly:
+    """``g`` scaled to integer coefficients with gcd 1 and a positive leading (lex) coefficient."""
+    if g.is_zero():
+        return g
+    scale = 1 / content(g)
     return -g * scale if g.leading_coefficient() < 0 else g * scale
 
 

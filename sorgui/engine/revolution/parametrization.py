@@ -33,6 +33,7 @@ from ..algebra import legendre
 from ..algebra.linalg import dot
 from ..algebra.polys import Poly, field_generators, to_expr
 from ..algebra.radicals import RadicalRing, radicals_of
+from ..algebra.rationals import content
 from ..recognition.profile import AxisFrame, ProfileCurve
 from ..stage_results import Parametrization
 
@@ -72,22 +73,10 @@ class SurfaceMap:
         for num in self.numerators:
             g = num.gcd(self.denominator) if num else self.denominator
             top, bottom = num / g, self.denominator / g
-            common = _content(top, bottom)
+            common = content(top, bottom)
             out.append(self.ring.to_expr(top / common) / self.ring.to_expr(bottom / common))
         x, y, z = out
         return x, y, z
-
-
-def _content(*polys: fmpq_mpoly) -> fmpq:
-    """The rational content shared by ``polys``: the gcd of their coefficients' numerators over
-    the lcm of their denominators (a numerator and a denominator divided by it keep their
-    quotient with smaller numbers)."""
-    coefficients = [c for p in polys for c in p.coeffs()]
-    if not coefficients:
-        return fmpq(1)
-    top = math.gcd(*(int(c.p) for c in coefficients))
-    bottom = math.lcm(*(int(c.q) for c in coefficients))
-    return fmpq(top, bottom) if top else fmpq(1)
 
 
 def sweep(section: Section, frame: AxisFrame, K: Domain) -> SurfaceMap:
