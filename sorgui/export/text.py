@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from sorgui.engine.results import Analysis, Canal, Conical, NearestSurface, Recognition
+from sorgui.engine.results import UNDECIDED, Analysis, Canal, Conical, NearestSurface, Recognition
 from sorgui.engine.vocabulary import canal_kind, kind_phrase
 from sorgui.numerics import without_noise
 
@@ -138,7 +138,7 @@ def parametric_lines(analysis: Analysis) -> list[str]:
     names = ", ".join(record.parameters)
     lines = [f"parametrization in {names} (over {record.field}, degree {record.degree}):"]
     lines += [f"  {c} = {value}" for c, value in zip("xyz", record.components)]
-    decided = "undecided" if record.symmetry == "undecided" else symmetry_name(record.symmetry)
+    decided = "undecided" if record.symmetry == UNDECIDED else symmetry_name(record.symmetry)
     lines.append(f"from the map's normal lines: {decided} (dim L = {record.symmetry_dimension})")
     if record.conical == "cone" and record.apex is not None:
         lines.append(f"  a cone: every tangent plane passes through the apex {_vec(record.apex)}")

@@ -29,7 +29,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from sorgui.engine.results import Analysis, Approximation, Canal, Conical, Recognition
+from sorgui.engine.results import UNDECIDED, Analysis, Approximation, Canal, Conical, Recognition
 from sorgui.engine.stage_results import ParametricInput, Rationality
 from sorgui.engine.vocabulary import kind_noun
 from sorgui.export.text import (
@@ -305,7 +305,7 @@ class ResultsPane(QScrollArea):
         names = ", ".join(record.parameters)
         rows = [(f"{c}({names})", value) for c, value in zip("xyz", record.components)]
         rows.append(("degree", f"{record.degree} over {record.field} (over a common denominator)"))
-        decided = "being decided" if record.symmetry == "undecided" else symmetry_name(record.symmetry)
+        decided = "being decided" if record.symmetry == UNDECIDED else symmetry_name(record.symmetry)
         rows.append(("normal lines", f"{decided} (dim L = {record.symmetry_dimension})"))
         if record.profile_check is not None:
             rows.append(
