@@ -268,18 +268,15 @@ def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> tuple[Profile, 
     """The profile in the frame ``(c, a, u)`` of :func:`.recognition.profile.axis_frame` and its
     ``P²(s, w)``; the presented ``p(x, y)`` lies over ``QQ(|a|)``.
 
-    The paper's exact test ``f(c + s·a + r₁·u + r₂·w) = P²(s, r₁² + |a|²·r₂²)`` is not computed
-    again: the rotation about this axis satisfies (★) identically (checked exactly in flint by
-    :func:`.recognition.symmetry.rational_symmetry_algebra`), so ``f`` is constant on every circle
-    about the axis, which is that identity (docs/math.md §3.1). ``p̃`` even in ``r`` is asserted."""
+    ``P²`` comes from a coordinate slice of ``f`` (:func:`_slice_square`, docs/math.md §3.1), and
+    ``p̃(s, r) = P²(s, r²)``. The paper's exact test ``f(c + s·a + r₁·u + r₂·w) = P²(s, r₁² +
+    |a|²·r₂²)`` is not computed again: the rotation about this axis satisfies (★) identically
+    (checked exactly in flint by :func:`.recognition.symmetry.rational_symmetry_algebra`), so ``f``
+    is constant on every circle about the axis, which is that identity (docs/math.md §3.1)."""
     c, a, u = point, direction, perpendicular(direction, RATIONALS)
-    s, r = context(("s", "r")).gens()
-    raw = g.compose(*[c[i] + s * a[i] + r * u[i] for i in range(3)], ctx=context(("s", "r")))
-    if any(int(m[1]) % 2 for m in raw.monoms()):
-        raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
-    rational = primitive(raw)
+    square = primitive(_slice_square(g, c, a, dot(u, u)))
+    rational = square.inflate([1, 2])
     orthonormal = _orthonormal(rational, dot(a, a), dot(u, u))
-    square = _halve_second(rational, ("s", "w"))
     return Profile(
         polynomial=_surd_str(orthonormal, ("x", "y")),
         square=_surd_str({(i, j // 2): c for (i, j), c in orthonormal.items()}, ("x", "y")),
@@ -293,9 +290,35 @@ def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> tuple[Profile, 
     ), square
 
 
-def _halve_second(p: fmpq_mpoly, names: Sequence[str]) -> fmpq_mpoly:
-    """``p(s, r)``, even in ``r``, with ``r²`` replaced by ``w`` (``P²``), in the ring ``names``."""
-    return context(tuple(names)).from_dict({(i, j // 2): q for (i, j), q in terms(p)})
+def _slice_square(g: fmpq_mpoly, c: Vector, a: Vector, norm_u: fmpq) -> fmpq_mpoly:
+    """``P²(s, w)`` of ``g``, a surface of revolution about the line ``c + t·a``, in the frame
+    ``(c, a, u)`` with ``|u|² = norm_u``, from ``g`` on the coordinate plane ``x_k = γ``.
+
+    The slice has two variables where ``p̃ = g(c + s·a + r·u)`` composes all of ``g``'s terms
+    (a fifth of the time at degree 20). In the slice's coordinates ``q, w`` about the axis point
+    ``c' = c + τ·a`` of that plane, ``g = K(q², w)``, and ``P²(s, w) = K(n·|u|²·w −
+    |a|²·a_k²·(s − τ)², |a|²·(s − τ))`` (docs/math.md §3.1). Raises :class:`AnalysisError`
+    when the slice is not even in ``q``: ``g`` is then not of revolution about this axis."""
+    moving = [i for i in range(3) if a[i]]
+    if len(moving) > 1:  # the plane x_k = 0 meets the axis at one point, c + τ·a
+        k = moving[-1]
+        tau, gamma = -c[k] / a[k], fmpq(0)
+    else:  # the axis runs along e_j: the plane x_k = c_k holds it
+        k = (moving[0] + 1) % 3
+        tau, gamma = fmpq(0), c[k]
+    i, j = (m for m in range(3) if m != k)
+    n = a[i] ** 2 + a[j] ** 2
+    slice_ring = context(("q", "w"))
+    q, w = slice_ring.gens()
+    along = {i: (a[i] * w - a[j] * q) / n, j: (a[j] * w + a[i] * q) / n}
+    arguments = [c[m] + tau * a[m] + along[m] if m != k else slice_ring.from_dict({}) for m in range(3)]
+    slice_qw = g.subs({k: gamma}).compose(*arguments, ctx=slice_ring)
+    halved = slice_qw.deflate([2, 1])
+    if halved.inflate([2, 1]) != slice_qw:
+        raise AnalysisError("the axis found does not pass the exact profile test (internal error)")
+    s, w = context(("s", "w")).gens()
+    norm_a = dot(a, a)
+    return halved.compose(n * norm_u * w - norm_a * a[k] ** 2 * (s - tau) ** 2, norm_a * (s - tau))
 
 
 def _orthonormal(p: fmpq_mpoly, norm_a: fmpq, norm_u: fmpq) -> dict[Monomial, Surd]:

@@ -12,12 +12,14 @@ from flint import fmpq, fmpq_poly
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from sorgui.engine.algebra.linalg import dot, perpendicular
 from sorgui.engine.algebra.polys import poly_str
+from sorgui.engine.algebra.rationals import RATIONALS, context
 from sorgui.engine.analysis import StageClock, analyze_polynomial
 from sorgui.engine.canal.lines import univariate_str
 from sorgui.engine.errors import ParseError
-from sorgui.engine.parsing import parse_polynomial
-from sorgui.engine.rational_path import _surd_text, recognition_only_analysis
+from sorgui.engine.parsing import parse_polynomial, read_rational
+from sorgui.engine.rational_path import _slice_square, _surd_text, recognition_only_analysis
 from sorgui.engine.results import Analysis
 from sorgui.samples import move, quaternion_rotation, rational_vector, revolve
 
@@ -96,6 +98,25 @@ def test_rotated_profiles_agree(F, point, direction, q) -> None:  # type: ignore
     quick = recognition_only_analysis(text, StageClock(None, None))
     assert quick is not None
     assert _without_timings(quick) == _without_timings(_general(text))
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    profiles(),
+    st.tuples(fractions, fractions, fractions),
+    st.tuples(*[st.sampled_from([0, 0, 1, -2, 3])] * 3).filter(any),
+)
+def test_the_slice_gives_the_profile_of_the_whole_composition(F, point, direction) -> None:  # type: ignore[no-untyped-def]
+    """``P²`` from a coordinate slice (docs/math.md §3.1) is ``g(c + s·a + r·u)`` with ``r²`` as
+    ``w``, on axes along a coordinate, in a coordinate plane and in general position."""
+    g = read_rational(poly_str(revolve(F, rational_vector(point), rational_vector(direction))))
+    assert g is not None
+    c = tuple(fmpq(x.numerator, x.denominator) for x in point)
+    a = tuple(fmpq(x) for x in direction)
+    u = perpendicular(a, RATIONALS)
+    s, r = context(("s", "r")).gens()
+    whole = g.polynomial.compose(*[c[i] + s * a[i] + r * u[i] for i in range(3)])
+    assert _slice_square(g.polynomial, c, a, dot(u, u)).inflate([1, 2]).to_dict() == whole.to_dict()
 
 
 @pytest.mark.parametrize("case", corpus_cases(), ids=lambda case: case["name"])
