@@ -89,20 +89,32 @@ class Reading:
         return self._text if printed == self._text else printed  # one string, pickled and encoded once
 
     @cached_property
-    def primitive(self) -> fmpq_mpoly | None:
+    def _scale(self) -> int | None:
+        """The signed content by which ``whole`` divides into ``primitive`` (``None``: no integers)."""
         whole, integers = self._whole, self._integers
         if whole is None or not integers:
             return None
         content = math.gcd(*integers.values())
         if not content:
             return None  # the zero polynomial (never read: it is constant)
-        primitive = whole if content == 1 else whole * fmpq(1, content)
-        return -primitive if whole.leading_coefficient() < 0 else primitive
+        return -content if whole.leading_coefficient() < 0 else content
+
+    @cached_property
+    def primitive(self) -> fmpq_mpoly | None:
+        whole, scale = self._whole, self._scale
+        if whole is None or scale is None:
+            return None
+        return whole if scale == 1 else whole * fmpq(1, scale)
 
     @cached_property
     def primitive_printed(self) -> str | None:
-        printed, primitive = self.printed, self.primitive
-        return printed if printed is not None and primitive == self.polynomial else None
+        printed, primitive, scale = self.printed, self.primitive, self._scale
+        if printed is None or primitive is None or scale is None or self._integers is None or self._terms is None:
+            return None
+        if primitive == self.polynomial:
+            return printed
+        integers = self._integers
+        return self._terms.printed_integers([integers[m] // scale for m in self._terms.monomials])
 
 
 def read_expanded(text: str, limits: Limits) -> Reading | None:
@@ -247,17 +259,31 @@ class _Terms:
         keys = [_ORDER.get(m) or _order(m) for m in self.monomials]  # (degree, monomial, spelling)
         if any(a <= b for a, b in zip(keys, keys[1:])):
             return None
-        out: list[str] = []
-        for (_, _, spelling), numerator, digits, key in zip(keys, self.numerators, self.digits, self.denominators):
+        magnitudes: list[str] = []
+        for numerator, digits, key in zip(self.numerators, self.digits, self.denominators):
             if digits[0] == "0" or (key and (key[0] == "0" or key == "1" or math.gcd(numerator, values[key]) != 1)):
                 return None
-            magnitude = f"{digits}/{key}" if key else digits
-            body = magnitude if not spelling else (spelling if magnitude == "1" else f"{magnitude}*{spelling}")
-            if out:
-                out.append(f" - {body}" if numerator < 0 else f" + {body}")
-            else:
-                out.append(f"-{body}" if numerator < 0 else body)
-        return "".join(out)
+            magnitudes.append(f"{digits}/{key}" if key else digits)
+        return _joined([k[2] for k in keys], [n < 0 for n in self.numerators], magnitudes)
+
+    def printed_integers(self, coefficients: list[int]) -> str:
+        """:func:`~.algebra.rationals.flint_str` of the polynomial with these integer coefficients
+        on the terms' monomials, which :meth:`_printed` found in the printed order."""
+        spellings = [(_ORDER.get(m) or _order(m))[2] for m in self.monomials]
+        return _joined(spellings, [c < 0 for c in coefficients], [str(abs(c)) for c in coefficients])
+
+
+def _joined(spellings: list[str], negatives: list[bool], magnitudes: list[str]) -> str:
+    """The printed sum of terms ``±magnitude*spelling`` (``spelling`` empty for the constant,
+    a magnitude ``1`` not written before a monomial)."""
+    out: list[str] = []
+    for spelling, negative, magnitude in zip(spellings, negatives, magnitudes):
+        body = magnitude if not spelling else (spelling if magnitude == "1" else f"{magnitude}*{spelling}")
+        if out:
+            out.append(f" - {body}" if negative else f" + {body}")
+        else:
+            out.append(f"-{body}" if negative else body)
+    return "".join(out)
 
 
 def _rational(number: str, over: str, under: str, limits: Limits) -> tuple[int, int] | None:
