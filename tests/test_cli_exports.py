@@ -302,3 +302,31 @@ def test_the_patch_of_a_map_with_a_parameter_of_another_scale_covers_the_surface
     assert area > 0.5 * pyvista.read(whole).area, area
     tube = next(p for p in json.loads(done.stdout)["parametrizations"] if p["method"].startswith("via tubular"))
     assert max(len(n) for n in re.findall(r"[0-9]+", " ".join(tube["coordinates"]))) <= 12
+
+
+def test_a_mesh_patch_is_written_where_the_cad_patch_is(tmp_path: Path) -> None:
+    """``.patch.stl`` takes the map ``.patch.step`` takes: a cylinder over a curve's map by its
+    lines (it was refused, "no real parameterization", while ``.patch.step`` was written)."""
+    import pyvista
+
+    patch = tmp_path / "nodal.patch.stl"
+    done = sorgui("analyze", "y^2 - x^3 - x^2", "-o", str(patch), "-o", str(tmp_path / "nodal.patch.step"))
+    assert done.returncode == 0, done.stderr
+    assert pyvista.read(patch).n_cells > 100
+
+
+def test_the_mesh_patch_of_rounded_input_is_the_nearest_surfaces_and_says_so(tmp_path: Path) -> None:
+    """Rounded input has no map of its own: its mesh patch is that of the nearest exact surface,
+    as its ``.patch.step`` is, and the header and the line on stderr say so."""
+    import pyvista
+
+    data = Path(__file__).parent / "data" / "rounded-torus-6-digits.txt"
+    stl, obj = tmp_path / "t.patch.stl", tmp_path / "t.patch.obj"
+    done = sorgui("analyze", "-f", str(data), "-o", str(stl), "-o", str(obj))
+    assert done.returncode == 0, done.stderr
+    assert "nearest exact surface of revolution (rounded input: not the typed surface's)" in done.stderr
+    assert stl.read_bytes()[:80].startswith(b"sorgui nearest exact SOR's patch;")
+    header = obj.read_text(encoding="utf-8").splitlines()[0]
+    assert header.startswith("# sorgui: parametric patch of the nearest exact surface of revolution ")
+    assert "(rounded input; its coefficients" in header
+    assert pyvista.read(stl).n_cells > 100

@@ -17,9 +17,9 @@ import numpy as np
 import sympy
 from OCP.BRepCheck import BRepCheck_Analyzer
 
-from sorgui.engine.results import Analysis, Recognition
-from sorgui.engine.stage_results import Parametrization
-from sorgui.engine.values import ExpressionError, polynomial_terms, read_expression
+from sorgui.engine.patches import nearest_surface, own_maps
+from sorgui.engine.results import Analysis
+from sorgui.engine.values import ExpressionError, polynomial_terms
 from sorgui.engine.vocabulary import kind_noun
 from sorgui.numerics import without_noise
 from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData
@@ -40,7 +40,7 @@ from .geometry import (
     exact_profile,
 )
 from .meridian import meridian_curve, profile_arcs, profile_distance
-from .nearest import nearest_lines, nearest_scene, nearest_surface, typed_deviation
+from .nearest import nearest_lines, nearest_scene, typed_deviation
 from .patch import bezier_patches
 from .reading import faces_of
 from .sewing import CONFUSION, assemble, check_size, compound, precision, solids_of
@@ -332,21 +332,10 @@ def _analytic_lines(spec: Analytic) -> tuple[str, ...]:
     return tuple(lines)
 
 
-def _patch_candidates(analysis: Analysis) -> list[Parametrization]:
-    """The verified real parameterizations a patch may be made of, in the order they are tried."""
-    candidates = [
-        *analysis.parametrizations,
-        *(analysis.canal.parametrizations if analysis.canal is not None else ()),
-        *(analysis.conical.parametrizations if analysis.conical is not None else ()),
-        *sphere_parametrization(analysis.recognition),
-    ]
-    return [p for p in candidates if p.real and p.verified]
-
-
 def _no_part_words(analysis: Analysis) -> str:
     """Why a surface that is not of revolution has no part, and what may be written instead (a
     patch only when there is a parameterization to make it of)."""
-    patch = "; write NAME.patch.step for its rational parameterization" if _patch_candidates(analysis) else ""
+    patch = "; write NAME.patch.step for its rational parameterization" if own_maps(analysis) else ""
     approximate = analysis.approximate
     if approximate is not None and approximate.near_sor:
         distance = approximate.relative_distance
@@ -379,7 +368,7 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
     size = scene.region.radius
     check_size(size)
     terms = polynomial_terms(analysis.squarefree)
-    for param in _patch_candidates(analysis):
+    for param in own_maps(analysis):
         try:
             patches = bezier_patches(param, terms)
         except (CadGeometryError, ExpressionError, sympy.PolynomialError):
@@ -396,18 +385,3 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
         lines = (f"rational B-spline patch of the parameterization ({param.method}) over s, t in [{low:g}, {high:g}]",)
         return finished(Faces(faces, "patch", lines, groups=tuple(groups)), scene, analysis.squarefree)
     raise CadGeometryError("the analysis has no verified real rational parameterization to write as a patch")
-
-
-def sphere_parametrization(rec: Recognition) -> list[Parametrization]:
-    """A sphere's inverse stereographic projection ``c + r·(2s, 2t, s² + t² − 1)/(s² + t² + 1)``
-    (exact: ``r = √(r²)`` of the recognition), none for another surface."""
-    if rec.symmetry != "sphere" or rec.center is None or rec.radius_squared is None:
-        return []
-    if not float(read_expression(rec.radius_squared).evalf(30)) > 0:
-        return []
-    r = f"sqrt({rec.radius_squared})"
-    c = rec.center
-    d = "(s**2 + t**2 + 1)"
-    coordinates = (f"({c[0]}) + ({r})*2*s/{d}", f"({c[1]}) + ({r})*2*t/{d}", f"({c[2]}) + ({r})*(s**2 + t**2 - 1)/{d}")
-    method = "stereographic projection of the sphere"
-    return [Parametrization(coordinates, ("s", "t"), "QQ", True, True, method, True, "an identity of the sphere")]

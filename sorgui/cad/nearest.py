@@ -55,18 +55,6 @@ class NearestScene:
     surface: MeshData
 
 
-def nearest_surface(analysis: Analysis) -> NearestSurface | None:
-    """The exact surface of revolution a rounded input was meant to be, if the engine found one
-    (and analysed it) and the input itself is not one."""
-    approx = analysis.approximate
-    if analysis.recognition.is_sor or approx is None or approx.nearest is None:
-        return None
-    nearest = approx.nearest
-    if nearest.analysis is None or not nearest.analysis.recognition.is_sor:
-        return None
-    return nearest
-
-
 def nearest_scene(scene: Where, exact: Analysis) -> NearestScene:
     """``scene`` made the exact surface's (see :class:`NearestScene`)."""
     rec = exact.recognition

@@ -18,6 +18,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from sorgui.engine.patches import nearest_surface, own_maps
 from sorgui.engine.results import Analysis
 from sorgui.engine.vocabulary import no_surface
 from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
@@ -29,6 +30,9 @@ from sorgui.export.reports import html_report, json_report, markdown_report, tex
 PNG_SIZE = (1600, 1200)
 """The size of a PNG written from the command line (the window saves the viewport's own)."""
 
+
+NEAREST_PATCH = "the patch of a map of the nearest exact surface of revolution (rounded input: not the typed surface's)"
+"""What a mesh file of rounded input's patch holds, said when it is written."""
 
 TEXT_WRITERS: dict[str, Callable[[Analysis], str]] = {
     ".json": json_report,
@@ -57,7 +61,9 @@ def export_file(
     form = format_of(path, fmt)
     _has_a_surface(analysis, form, wants_patch(path, fmt))
     if form.kind != "cad":
-        return export_analysis(analysis, path, fmt, scene=scene, picture=picture, units=units, tolerance=tolerance), ""
+        written = export_analysis(analysis, path, fmt, scene=scene, picture=picture, units=units, tolerance=tolerance)
+        nearest = form.kind == "mesh" and wants_patch(path, fmt) and _nearest_patch_words(analysis) is not None
+        return written, NEAREST_PATCH if nearest else ""
     if scene is not None and not wants_patch(path, fmt) and scene.surface.is_empty:
         # nothing for Open CASCADE to cut: a sphere of radius 10^200 about a ball of radius 2 kept
         # its Boolean busy for minutes, one of radius 10^20 gave a file of no face
@@ -78,6 +84,27 @@ def _has_a_surface(analysis: Analysis, form: Format, patch: bool) -> None:
         reason = no_surface(locus.kind, locus.points, locus.circles, locus.axis_line)
         if reason is not None:
             raise ValueError(f"{reason}: there is no surface to write")
+
+
+def _patch_words(analysis: Analysis) -> str:
+    """What a mesh file's patch is of: the analysis's first map, or the nearest exact surface's
+    for rounded input (:func:`~sorgui.engine.patches.patch_maps`)."""
+    substitute = _nearest_patch_words(analysis)
+    if substitute is None:
+        return "parametric patch of the first real parameterization"
+    return f"parametric patch of the nearest exact surface of revolution {substitute}"
+
+
+def _nearest_patch_words(analysis: Analysis) -> str | None:
+    """``g = 0 (rounded input; …)`` when a patch of ``analysis`` is the nearest exact surface's."""
+    nearest = nearest_surface(analysis)
+    if own_maps(analysis) or nearest is None:
+        return None
+    within = "within" if nearest.within_rounding else "BEYOND"
+    return (
+        f"{nearest.polynomial} = 0 (rounded input; its coefficients {nearest.relative_distance:.2g} "
+        f"(relative) from the typed ones, {within} their rounding)"
+    )
 
 
 def export_analysis(
@@ -107,7 +134,7 @@ def export_analysis(
     if form.kind == "mesh":
         from sorgui.export.meshes import write_mesh
 
-        return write_mesh(scene, analysis.recognition.polynomial, path, form.suffix, patch)
+        return write_mesh(scene, analysis.recognition.polynomial, path, form.suffix, patch, _patch_words(analysis))
     if form.kind == "cad":
         from sorgui.cad import cad_file
 

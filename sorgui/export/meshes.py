@@ -85,12 +85,18 @@ def mesh_polydata(scene: Scene, patch: bool) -> pyvista.PolyData:
 
 
 def write_mesh(
-    scene: Scene, equation: str, path: str | Path, fmt: str | None = None, patch: bool | None = None
+    scene: Scene,
+    equation: str,
+    path: str | Path,
+    fmt: str | None = None,
+    patch: bool | None = None,
+    patch_words: str = "parametric patch of the first real parameterization",
 ) -> Path:
     """Write the surface (or the patch) of ``scene`` to ``path``.
 
     ``fmt`` is one of :data:`MESH_SUFFIXES` (default: the suffix of ``path``); ``patch`` chooses
-    the parametric patch (default: whether the name ends in ``.patch.<suffix>``).
+    the parametric patch (default: whether the name ends in ``.patch.<suffix>``), described in
+    the header as ``patch_words``.
     """
     path = Path(path)
     suffix = (fmt or path.suffix).lower()
@@ -103,11 +109,7 @@ def write_mesh(
             f" {path.stem}.patch{suffix} holds the given map's patch"
         )
     poly = mesh_polydata(scene, patch)
-    kind = (
-        "parametric patch of the first real parameterization"
-        if patch
-        else "triangulated surface f = 0 inside the drawn ball"
-    )
+    kind = patch_words if patch else "triangulated surface f = 0 inside the drawn ball"
     xmin, xmax, ymin, ymax, zmin, zmax = (float(v) for v in poly.bounds)
     info = MeshInfo(equation, kind, (xmin, xmax, ymin, ymax, zmin, zmax))
     writer = {".stl": _write_stl, ".obj": _write_obj, ".ply": _write_ply, ".vtp": _write_vtp}[suffix]
@@ -121,7 +123,7 @@ def _write_stl(poly: pyvista.PolyData, info: MeshInfo, path: Path) -> None:
 
     b = info.bounds
     header = (
-        f"sorgui f=0 {'patch' if 'patch' in info.kind else 'surface'}; input units; "
+        f"sorgui {_stl_kind(info.kind)}; input units; "
         f"bbox {b[0]:.4g} {b[1]:.4g} {b[2]:.4g} {b[3]:.4g} {b[4]:.4g} {b[5]:.4g}"
     )
     writer = vtkSTLWriter()
@@ -130,6 +132,13 @@ def _write_stl(poly: pyvista.PolyData, info: MeshInfo, path: Path) -> None:
     writer.SetFileTypeToBinary()
     writer.SetHeader(header[:80])
     _run(writer, path)
+
+
+def _stl_kind(kind: str) -> str:
+    """The few words of an STL header (80 bytes in all) for a mesh of ``kind``."""
+    if "nearest" in kind:
+        return "nearest exact SOR's patch"
+    return "f=0 patch" if "patch" in kind else "f=0 surface"
 
 
 def _write_obj(poly: pyvista.PolyData, info: MeshInfo, path: Path) -> None:

@@ -109,7 +109,8 @@ class _Presenter:
     timings: list[tuple[str, float]] = field(default_factory=list)
     scene: Any = None
     nearest_scene: Any = None
-    _patched: bool = False
+    _patch_map: Any = None
+    """The map whose patch the scene has (:func:`~sorgui.engine.patches.patch_maps`'s first)."""
     _approximated: bool = False
     _canal: tuple[Any, ...] = ()
     _conical: bool = False
@@ -133,7 +134,7 @@ class _Presenter:
         request = self.request
         if self.scene is not None and self._without_equation and analysis.squarefree:
             # a parametrization's implicit equation has come: the surface replaces the patch
-            self.scene, self._patched, self._approximated, self._conical, self._canal = (None, False, False, False, ())
+            self.scene, self._patch_map, self._approximated, self._conical, self._canal = (None, None, False, False, ())
         if self.scene is None and self._awaits_rounding(analysis):
             return  # rounded input is drawn about its approximate axis, once that is known
         if self.scene is None:
@@ -188,11 +189,13 @@ class _Presenter:
     def _extras(self, analysis: Analysis) -> Callable[[Any], Any] | None:
         """What the scene still lacks of ``analysis``: the patch, the rounded-input extras, the
         canal surface's spines and circles, the apex and base curve of a cone or a cylinder."""
+        from sorgui.engine.patches import patch_maps
         from sorgui.session import scene_data
 
         steps: list[Callable[[Any], Any]] = []
-        if not self._patched and analysis.parametrizations:
-            self._patched = True
+        maps = patch_maps(analysis)
+        if maps and maps[0] != self._patch_map:  # a sphere's projection comes first, X's own map later
+            self._patch_map = maps[0]
             steps.append(lambda scene: scene_data.with_patch(scene, analysis))
         if not self._approximated and analysis.approximate is not None:
             self._approximated = True

@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from sorgui.engine.patches import patch_maps
 from sorgui.engine.results import Analysis, Approximation, Conical, Recognition
 from sorgui.engine.rounded import dense
 from sorgui.engine.rounded.deviation import view_ball
@@ -243,7 +244,6 @@ def build_scene(
     marker = sphere_center_marker(float_vector(rec.center), region) if rec.center else None
     if not analysis.squarefree:
         notes.append("The implicit equation is not known: the surface drawn is the given map's patch.")
-    real = real if patch else []
     factor_lines = [
         axis_line(float_vector(f.recognition.axis.point), float_vector(f.recognition.axis.direction), region)
         for f in analysis.factors
@@ -258,7 +258,7 @@ def build_scene(
         axis_segment=segment,
         profile_curve=profile,
         center_marker=marker,
-        patch=_patch(real[0], region) if real else None,
+        patch=_first_patch(patch_maps(analysis) if patch else [], region),
         axis_point=axis_point,
         axis_direction=tuple(axis_direction) if axis_direction is not None else None,
         notes=tuple(notes),
@@ -275,9 +275,17 @@ def build_scene_of(analysis: Analysis, request: Any) -> SceneData:
 
 
 def with_patch(scene: SceneData, analysis: Analysis) -> SceneData:
-    """``scene`` with the patch of the first real verified parameterization of ``analysis``."""
-    real = [p for p in analysis.parametrizations if p.real and p.verified]
-    return replace(scene, patch=_patch(real[0], scene.region) if real else None)
+    """``scene`` with the patch of the first map of :func:`~sorgui.engine.patches.patch_maps`."""
+    return replace(scene, patch=_first_patch(patch_maps(analysis), scene.region))
+
+
+def _first_patch(maps: list[Parametrization], region: ClipSphere | ClipBox) -> PatchData | None:
+    """The patch of the first of ``maps`` whose coordinates can be read (``None``: none)."""
+    for param in maps:
+        patch = _patch(param, region)
+        if patch is not None:
+            return patch
+    return None
 
 
 def with_approximation(scene: SceneData, analysis: Analysis) -> SceneData:

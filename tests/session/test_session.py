@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import numpy as np
 import pytest
 
 from sorgui.engine.results import Analysis
@@ -55,6 +56,25 @@ def test_results_arrive_stage_by_stage_as_typed_objects() -> None:
     assert run.progress == (len(run.stages), len(run.stages))
     assert "formulas" not in run.stages, "the worker does not typeset: the window has them typeset on the side"
     assert names[-1] == "run_finished"
+
+
+@pytest.mark.parametrize("text", ["x^2 + y^2 + z^2 - 4", "y^2 - x^3 - x^2"])
+def test_the_scenes_patch_is_the_first_map_the_files_take(text: str) -> None:
+    """The window's patch is made of :func:`~sorgui.engine.patches.patch_maps`'s first map, as
+    the patch files are: the sphere's own map once it comes (its stereographic projection is known
+    first, from the recognition), the map of a cylinder over a curve by its lines."""
+    from sorgui.engine.patches import patch_maps
+    from sorgui.session.scene_data import with_patch
+
+    session = Session()
+    run = session.analyze(text, resolution=30)
+    assert run.outcome == "finished"
+    first = patch_maps(run.analysis)[0]
+    assert first.method != "stereographic projection of the sphere"
+    assert run.scene.patch is not None
+    expected = with_patch(replace(run.scene, patch=None), run.analysis).patch
+    assert expected is not None
+    np.testing.assert_array_equal(run.scene.patch.points, expected.points)  # nan where the other's is
 
 
 def test_the_stage_list_is_planned_once_and_no_stage_runs_again_after_it_is_done() -> None:
