@@ -218,7 +218,7 @@ def analyze_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "expression", nargs="?", help="the equation (it may start with '-'), or '-' to read standard input"
     )
-    parser.add_argument("-f", "--file", type=Path, help="read the equation from a file")
+    parser.add_argument("-f", "--file", type=Path, help="read the equation from a file ('-': standard input)")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     parser.add_argument("--recognition-only", action="store_true", help="skip the rationality analysis")
     parser.add_argument(
@@ -338,7 +338,10 @@ def parse_arguments(parser: argparse.ArgumentParser, argv: Sequence[str]) -> arg
                 kept += [arg] if value is None else [arg, value]
             else:  # its value follows, even "-5" or "-1:1,-1:1,0:2", which argparse takes for an option
                 kept.append(f"{arg}={value}" if arg.startswith("--") else arg + value)
-    return parser.parse_args([*kept, "--", *expressions] if expressions else kept)
+    args = parser.parse_args([*kept, "--", *expressions] if expressions else kept)
+    if getattr(args, "file", None) == Path("-") and args.expression is None:
+        args.file, args.expression = None, "-"  # -f - reads standard input, as - does (./- names a file)
+    return args
 
 
 def _is_option(arg: str, options: dict[str, argparse.Action]) -> bool:

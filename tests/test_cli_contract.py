@@ -278,3 +278,12 @@ def test_options_and_words_that_would_be_ignored_are_refused_in_one_line() -> No
     done = sorgui("analyze", "--recognition-only", stdin=subprocess.DEVNULL)
     assert done.returncode == 0 and "no equation given: the paper's Example 1" in one_line(done.stderr)
     assert "surface of revolution: YES" in done.stdout
+
+
+@pytest.mark.parametrize("each_line", [False, True])
+def test_dash_f_dash_reads_standard_input(each_line: bool) -> None:
+    """``-f -`` reads standard input, as ``-`` does (it said "cannot read -: No such file")."""
+    options = ["--each-line"] if each_line else []
+    done = sorgui("analyze", "--json", "--recognition-only", *options, "-f", "-", input="x^2 + y^2 - z\n")
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout.splitlines()[0] if each_line else done.stdout)["is_sor"] is True
