@@ -86,9 +86,9 @@ def test_json_lines_in_input_order_with_an_error_object_for_the_bad_line(tmp_pat
 
 
 def test_a_line_s_object_is_the_report_of_json_with_its_line_in_front(tmp_path: Path) -> None:
-    """Every field of ``sorgui analyze --json`` (its ``sorgui_version`` first) after ``line`` and
-    ``line_hash``; a results file of an older sorgui, whose lines have no ``sorgui_version``, is
-    still resumed."""
+    """Every field of ``sorgui analyze --json`` (its ``sorgui_version`` first) after ``line``,
+    ``line_hash`` and ``options``; a results file of an older sorgui, whose lines have no
+    ``sorgui_version`` and no ``options``, is still resumed."""
     from sorgui import __version__
 
     out = run_batch(tmp_path, "--recognition-only")
@@ -97,14 +97,14 @@ def test_a_line_s_object_is_the_report_of_json_with_its_line_in_front(tmp_path: 
         [*SORGUI, "--json", "--recognition-only", "x^2 + y^2 - z"], capture_output=True, text=True, timeout=120
     )
     report = json.loads(single.stdout)
-    assert list(rows[0]) == ["line", "line_hash", *report] and list(report)[0] == "sorgui_version"
-    assert without_timings({k: v for k, v in rows[0].items() if k not in ("line", "line_hash")}) == without_timings(
-        report
-    )
+    assert list(rows[0]) == ["line", "line_hash", "options", *report] and list(report)[0] == "sorgui_version"
+    assert rows[0]["options"] == {"method": "symmetry", "recognition_only": True, "tolerance": None, "timeout": 120.0}
+    bookkeeping = ("line", "line_hash", "options")
+    assert without_timings({k: v for k, v in rows[0].items() if k not in bookkeeping}) == without_timings(report)
     assert [row.get("sorgui_version") for row in rows] == [__version__, None, __version__, __version__]
 
     results = tmp_path / "results.jsonl"
-    older = [json.dumps({k: v for k, v in row.items() if k != "sorgui_version"}) for row in rows[:2]]
+    older = [json.dumps({k: v for k, v in row.items() if k not in ("sorgui_version", "options")}) for row in rows[:2]]
     results.write_text("\n".join(older) + "\n", encoding="utf-8")
     resumed = run_batch(tmp_path, "--recognition-only", "-o", str(results), "--resume")
     assert resumed.returncode == 0 and resumed.stdout == "" and "(2 kept from before)" in resumed.stderr
@@ -320,3 +320,22 @@ def test_a_batch_into_a_report_file_name_is_refused(tmp_path: Path) -> None:
         [*SORGUI, "--each-line", "-f", str(source), "-o", str(target)], capture_output=True, text=True, timeout=120
     )
     assert done.returncode == 2 and "name the results file results.jsonl" in done.stderr and not target.exists()
+
+
+def test_a_results_file_is_resumed_only_with_the_options_it_was_written_with(tmp_path: Path) -> None:
+    """A batch resumed with other options (``--recognition-only`` added, another ``--timeout``)
+    would mix answers of two kinds in one file: it is refused, before anything is changed."""
+    results = tmp_path / "results.jsonl"
+    good = "x^2 + y^2 - z\nx^2 + y^2 + z^2 - 1\n"
+    first = run_batch(tmp_path, "--recognition-only", "-o", str(results), lines=good)
+    assert first.returncode == 0, first.stderr
+    kept = results.read_bytes()[: results.read_bytes().index(b"\n") + 1]
+    results.write_bytes(kept)
+    for options in (["--timeout", "60"], []):
+        other = run_batch(tmp_path, *options, "-o", str(results), "--resume", lines=good)
+        assert other.returncode == 2 and results.read_bytes() == kept, other.stderr
+        assert (
+            "line 1 was analysed with --method symmetry --recognition-only --timeout 120, this run has" in other.stderr
+        )
+    same = run_batch(tmp_path, "--recognition-only", "-o", str(results), "--resume", lines=good)
+    assert same.returncode == 0 and "(1 kept from before)" in same.stderr

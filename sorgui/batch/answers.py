@@ -1,9 +1,10 @@
 """The output object of one line of ``--each-line``, and what it counts as in the summary.
 
 A line's object is the report JSON of ``sorgui analyze --json`` (``"sorgui_version"`` and the
-analysis: :func:`~sorgui.engine.results.report_json`) with ``"line"`` (its 1-based number) and
-``"line_hash"`` (:func:`.lines.line_hash`) in front, or
-``{"line", "line_hash", "input", "error": {"message", "position"}}``. The object is made where
+analysis: :func:`~sorgui.engine.results.report_json`) with ``"line"`` (its 1-based number),
+``"line_hash"`` (:func:`.lines.line_hash`) and ``"options"`` (:func:`options_of`: what
+``--resume`` must find the same) in front, or
+``{"line", "line_hash", "options", "input", "error": {"message", "position"}}``. The object is made where
 the analysis ran (a worker process of this machine, or a Dask worker), so that every way of
 running a batch writes the same text.
 """
@@ -19,6 +20,9 @@ from .lines import Line
 
 if TYPE_CHECKING:
     from sorgui.session.messages import FinalMessage
+    from sorgui.session.supervised import AnalysisRequest
+
+Options = dict[str, Any]
 
 SURFACE_OF_REVOLUTION = "sor"
 NOT_SURFACE_OF_REVOLUTION = "not"
@@ -44,20 +48,43 @@ class Answer:
     kind: str
 
 
-def answer_of(line: Line, message: FinalMessage) -> Answer:
-    """The answer for the final message of a line's analysis."""
+def options_of(request: AnalysisRequest) -> Options:
+    """The options a line was analysed with, as its object holds them: what changes its answer."""
+    return {
+        "method": request.method,
+        "recognition_only": request.recognition_only,
+        "tolerance": request.tolerance,
+        "timeout": request.timeout,
+    }
+
+
+def options_text(options: Options | None) -> str:
+    """``options`` as the command line gives them (``--method symmetry --recognition-only``)."""
+    if not isinstance(options, dict):
+        return "options this version does not record"
+    words = [f"--method {options.get('method')}"]
+    if options.get("recognition_only"):
+        words.append("--recognition-only")
+    if options.get("tolerance") is not None:
+        words.append(f"--tolerance {options['tolerance']:g}")
+    words.append(f"--timeout {options['timeout']:g}" if options.get("timeout") is not None else "no --timeout")
+    return " ".join(words)
+
+
+def answer_of(line: Line, message: FinalMessage, options: Options) -> Answer:
+    """The answer for the final message of a line's analysis with ``options``."""
     from sorgui.engine.results import report_json
     from sorgui.session.messages import Failed, Finished, Invalid
 
     match message:
         case Finished(analysis):
-            data = {"line": line.number, "line_hash": line.digest, **report_json(analysis)}
+            data = {"line": line.number, "line_hash": line.digest, "options": options, **report_json(analysis)}
             return Answer(json_line(data), ANALYSED, kind_of(data))
         case Invalid(text_of, position):
-            return error_answer(line, text_of, NOT_A_POLYNOMIAL, position)
+            return error_answer(line, text_of, NOT_A_POLYNOMIAL, options, position)
         case Failed(reason):
-            return error_answer(line, reason, FAILED)
-    return error_answer(line, "the analysis was cancelled", FAILED)
+            return error_answer(line, reason, FAILED, options)
+    return error_answer(line, "the analysis was cancelled", FAILED, options)
 
 
 LONG_TEXT = 2048
@@ -103,17 +130,18 @@ _TOKEN = re.compile(r'"\\u0000sorgui-text-([0-9]+)\\u0000"')
 """A token of :func:`json_line` as ``json.dumps`` writes it."""
 
 
-def refused(line: Line) -> Answer:
+def refused(line: Line, options: Options) -> Answer:
     """The answer of a line refused whole (too long, not text): not a polynomial."""
     assert line.refusal is not None
-    return error_answer(line, line.refusal, NOT_A_POLYNOMIAL)
+    return error_answer(line, line.refusal, NOT_A_POLYNOMIAL, options)
 
 
-def error_answer(line: Line, message: str, status: int, position: int | None = None) -> Answer:
-    """The error object of a line."""
+def error_answer(line: Line, message: str, status: int, options: Options, position: int | None = None) -> Answer:
+    """The error object of a line analysed with ``options``."""
     data = {
         "line": line.number,
         "line_hash": line.digest,
+        "options": options,
         "input": line.equation,
         "error": {"message": message, "position": position},
     }

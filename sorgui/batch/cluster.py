@@ -21,7 +21,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any
 
-from .answers import FAILED, Answer, answer_of, error_answer
+from .answers import FAILED, Answer, answer_of, error_answer, options_of
 from .errors import BatchError
 from .lines import Line
 from .pool import LINES_PER_WORKER
@@ -118,7 +118,7 @@ class Cluster:
             message = "the analysis ended every Dask worker that ran it (out of memory?)"
         else:
             message = f"the Dask task failed ({type(exception).__name__}: {exception})"
-        return error_answer(line, message, FAILED)
+        return error_answer(line, message, FAILED, options_of(self.request(line.equation)))
 
     def close(self) -> None:
         try:
@@ -156,14 +156,15 @@ def analyse_on_worker(line: Line, request: AnalysisRequest) -> Answer:
             with _children_allowed():
                 worker = Supervised(multiprocessing.get_context("fork"))
         except OSError as exc:
-            return error_answer(line, f"the analysis process could not be started: {exc.strerror or exc}", FAILED)
+            reason = f"the analysis process could not be started: {exc.strerror or exc}"
+            return error_answer(line, reason, FAILED, options_of(request))
         _local.worker = worker
     message = worker.run(request)
     _local.served = getattr(_local, "served", 0) + 1
     if worker.child.ended or not worker.child.is_alive() or _local.served >= LINES_PER_WORKER:
         worker.close()
         _local.worker, _local.served = None, 0
-    return answer_of(line, message)
+    return answer_of(line, message, options_of(request))
 
 
 @contextmanager

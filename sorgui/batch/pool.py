@@ -19,7 +19,7 @@ from collections import deque
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from .answers import FAILED, Answer, error_answer
+from .answers import FAILED, Answer, error_answer, options_of
 from .lines import Line
 
 if TYPE_CHECKING:
@@ -148,7 +148,7 @@ class Pool:
                 except OSError as exc:
                     self.waiting.popleft()
                     message = f"the analysis process could not be started: {exc.strerror or exc}"
-                    self.refused.append((index, error_answer(line, message, FAILED)))
+                    self.refused.append((index, error_answer(line, message, FAILED, options_of(request))))
                     continue
                 worker.give(request)
             else:

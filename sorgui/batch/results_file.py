@@ -9,9 +9,11 @@ input's lines by line number and :func:`.lines.line_hash`; the lines it holds ar
 again, and the rest are appended. A last line that is cut short (or the zeros a power cut
 leaves) is dropped and redone. The result is the file one uninterrupted run writes.
 
-Nothing is lost silently: without ``--resume`` a file that holds results is refused, and with
-it a file whose lines do not match the input (the input was edited, or it is another batch's
-file) is refused before anything is changed.
+Nothing is lost or mixed silently: without ``--resume`` a file that holds results is refused,
+and with it a file whose lines do not match the input (the input was edited, or it is another
+batch's file), or were analysed with other options (``--recognition-only``, ``--method``,
+``--tolerance``, ``--timeout``: each line's ``"options"``), is refused before anything is
+changed.
 """
 
 from __future__ import annotations
@@ -24,10 +26,12 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any, BinaryIO
 
-from .answers import Answer, kind_of
+from .answers import Answer, Options, kind_of, options_text
 from .errors import BatchError
 from .lines import Line
 
+Entry = tuple[int, str, str, Any]
+"""A results file's line: its number, ``line_hash``, kind (:data:`.answers.KINDS`) and options."""
 SYNC_EVERY = 1.0
 """Seconds between two flushes of the results file to the disk (``fsync``)."""
 
@@ -35,8 +39,9 @@ SYNC_EVERY = 1.0
 class ResultsFile:
     """The ``-o`` file of a batch: its kept lines (with ``--resume``) and the lines written."""
 
-    def __init__(self, path: Path, resume: bool, inputs: list[os.stat_result]) -> None:
+    def __init__(self, path: Path, resume: bool, inputs: list[os.stat_result], options: Options) -> None:
         self.path = path
+        self.options = options
         self.kept: dict[str, int] = {}
         """How many kept lines count as each kind (:data:`.answers.KINDS`)."""
         self._fd: int | None = None
@@ -47,8 +52,8 @@ class ResultsFile:
             raise BatchError(f"cannot resume {path}: it is not a regular file")
         if not resume and regular and status is not None and status.st_size > 0:
             raise BatchError(f"{path} already holds results: add --resume to continue it, or remove it first")
-        self._entries: Iterator[tuple[int, str, str]] | None = None
-        self._next: tuple[int, str, str] | None = None
+        self._entries: Iterator[Entry] | None = None
+        self._next: Entry | None = None
         self._valid_end = 0
         if resume and regular:
             self._reader: BinaryIO | None = open(path, "rb")  # noqa: SIM115 - closed when the prefix is read
@@ -68,7 +73,12 @@ class ResultsFile:
         if entry is None:
             self._open(truncate=False)
             return False
-        number, digest, kind = entry
+        number, digest, kind, options = entry
+        if options is not None and options != self.options:  # an older sorgui's lines have none
+            raise BatchError(
+                f"cannot resume {self.path}: its line {number} was analysed with {options_text(options)}, "
+                f"this run has {options_text(self.options)}; give the same options, or start a new results file"
+            )
         if number != line.number or digest != line.digest:
             where = (
                 f"line {number}" if number == line.number else f"line {number} (the input's next is line {line.number})"
@@ -137,8 +147,8 @@ class ResultsFile:
         except OSError as exc:
             raise BatchError(f"cannot write {self.path}: {exc.strerror or exc}") from None
 
-    def _scan(self, reader: BinaryIO) -> Iterator[tuple[int, str, str]]:
-        """``(line, line_hash, kind)`` of each whole line of the file, in order, recording where the
+    def _scan(self, reader: BinaryIO) -> Iterator[Entry]:
+        """The :data:`Entry` of each whole line of the file, in order, recording where the
         last one ends; a line that is cut short or not an output object may only be the last."""
         offset = 0
         previous = 0
@@ -158,8 +168,8 @@ class ResultsFile:
                 )
 
 
-def _entry(raw: bytes) -> tuple[int, str, str] | None:
-    """``(line, line_hash, kind)`` of one line of a results file, ``None`` if it is not one."""
+def _entry(raw: bytes) -> Entry | None:
+    """The :data:`Entry` of one line of a results file, ``None`` if it is not one."""
     try:
         data: Any = json.loads(raw)
     except (ValueError, UnicodeDecodeError):
@@ -169,7 +179,7 @@ def _entry(raw: bytes) -> tuple[int, str, str] | None:
     number, digest = data.get("line"), data.get("line_hash")
     if not isinstance(number, int) or not isinstance(digest, str):
         return None
-    return number, digest, kind_of(data)
+    return number, digest, kind_of(data), data.get("options")
 
 
 def _status(path: Path, inputs: list[os.stat_result]) -> os.stat_result | None:

@@ -20,7 +20,7 @@ from collections.abc import Callable, Generator, Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, BinaryIO, Protocol
 
-from .answers import FAILED, NOT_A_POLYNOMIAL, Answer, answer_of, refused
+from .answers import FAILED, NOT_A_POLYNOMIAL, Answer, Options, answer_of, options_of, refused
 from .errors import BatchError
 from .lines import Line, LineReader, count_lines
 from .progress import Progress
@@ -57,16 +57,20 @@ class Runner(Protocol):
 
 if TYPE_CHECKING:
     from sorgui.session.messages import FinalMessage
+    from sorgui.session.supervised import AnalysisRequest
 
     Reply = Answer | FinalMessage
     """What a runner gives back for a line: its answer, or the final message of its analysis, made
     into the answer only after the next lines are started (the worker computes meanwhile)."""
 
 
-def in_order(lines: Iterable[Line], runner: Runner, window: int = WINDOW) -> Generator[tuple[Line, Answer], None, None]:
-    """Each line with its answer, in input order; a refused line is answered at once. The runner
-    is kept full: after each wait the next lines are started before the answers are made and
-    written, so that this process's part of a line overlaps the workers' analyses."""
+def in_order(
+    lines: Iterable[Line], runner: Runner, options: Options, window: int = WINDOW
+) -> Generator[tuple[Line, Answer], None, None]:
+    """Each line with its answer (analysed with ``options``), in input order; a refused line is
+    answered at once. The runner is kept full: after each wait the next lines are started before
+    the answers are made and written, so that this process's part of a line overlaps the
+    workers' analyses."""
     waiting: dict[int, tuple[Line, Reply]] = {}
     started: dict[int, Line] = {}
     pending = iter(lines)
@@ -80,7 +84,7 @@ def in_order(lines: Iterable[Line], runner: Runner, window: int = WINDOW) -> Gen
             if line is None:
                 more = False
                 return
-            answer = refused(line) if line.refusal is not None else runner.start(index, line)
+            answer = refused(line, options) if line.refusal is not None else runner.start(index, line)
             if answer is None:
                 started[index] = line
             else:
@@ -92,7 +96,7 @@ def in_order(lines: Iterable[Line], runner: Runner, window: int = WINDOW) -> Gen
         while first in waiting:
             line, reply = waiting.pop(first)
             first += 1
-            yield line, reply if isinstance(reply, Answer) else answer_of(line, reply)
+            yield line, reply if isinstance(reply, Answer) else answer_of(line, reply, options)
             refill()
         if not runner.busy():
             if not more:
@@ -128,13 +132,14 @@ def run_each_line(args: argparse.Namespace, emit: Callable[[str], None], limit: 
     stream = _open_input(args.file)
     try:
         inputs = _regular_status(stream)
-        results = ResultsFile(args.output[0], args.resume, inputs) if args.output else None
+        options = options_of(_requests(args)(""))
+        results = ResultsFile(args.output[0], args.resume, inputs, options) if args.output else None
         try:
             show = sys.stderr if sys.stderr.isatty() else None
             total = count_lines(stream) if show is not None and inputs else None
             progress = Progress(show, total)
             reader = LineReader(stream, limit)
-            status = _run(reader, results, emit, progress, _runner(args, scheduler))
+            status = _run(reader, results, emit, progress, _runner(args, scheduler), options)
         finally:
             if results is not None:
                 results.close()
@@ -157,10 +162,11 @@ def _run(
     emit: Callable[[str], None],
     progress: Progress,
     runner: Runner,
+    options: Options,
 ) -> int:
     """Analyse the lines ``reader`` gives that ``results`` does not keep; the exit status."""
     statuses: set[int] = set()
-    answers = in_order(_fresh(reader, results), runner)
+    answers = in_order(_fresh(reader, results), runner, options)
     try:
         for line, answer in answers:
             if results is not None:
@@ -189,8 +195,8 @@ def _fresh(lines: Iterable[Line], results: ResultsFile | None) -> Iterator[Line]
         results.finish_reading()
 
 
-def _runner(args: argparse.Namespace, scheduler: str | None) -> Runner:
-    """The worker processes of this machine, or the Dask cluster at ``scheduler``."""
+def _requests(args: argparse.Namespace) -> Callable[[str], AnalysisRequest]:
+    """The analysis request of a line's text, with the options of ``args``."""
     from sorgui.session.supervised import AnalysisRequest
 
     def request(text: str) -> AnalysisRequest:
@@ -202,6 +208,12 @@ def _runner(args: argparse.Namespace, scheduler: str | None) -> Runner:
             timeout=args.timeout,
         )
 
+    return request
+
+
+def _runner(args: argparse.Namespace, scheduler: str | None) -> Runner:
+    """The worker processes of this machine, or the Dask cluster at ``scheduler``."""
+    request = _requests(args)
     if scheduler:
         from .cluster import Cluster
 
