@@ -113,8 +113,8 @@ class Reading:
             return None
         if primitive == self.polynomial:
             return printed
-        integers = self._integers
-        return self._terms.printed_integers([integers[m] // scale for m in self._terms.monomials])
+        coefficients = list(self._integers.values())  # in the terms' order: printed, no monomial is twice
+        return self._terms.printed_integers(coefficients if scale == 1 else [c // scale for c in coefficients])
 
 
 def read_expanded(text: str, limits: Limits) -> Reading | None:
@@ -276,14 +276,16 @@ class _Terms:
 def _joined(spellings: list[str], negatives: list[bool], magnitudes: list[str]) -> str:
     """The printed sum of terms ``±magnitude*spelling`` (``spelling`` empty for the constant,
     a magnitude ``1`` not written before a monomial)."""
-    out: list[str] = []
-    for spelling, negative, magnitude in zip(spellings, negatives, magnitudes):
-        body = magnitude if not spelling else (spelling if magnitude == "1" else f"{magnitude}*{spelling}")
-        if out:
-            out.append(f" - {body}" if negative else f" + {body}")
-        else:
-            out.append(f"-{body}" if negative else body)
-    return "".join(out)
+    if not spellings:
+        return ""
+    text = "".join(
+        [
+            (" - " if negative else " + ")
+            + (magnitude if not spelling else (spelling if magnitude == "1" else f"{magnitude}*{spelling}"))
+            for spelling, negative, magnitude in zip(spellings, negatives, magnitudes)
+        ]
+    )
+    return "-" + text[3:] if negatives[0] else text[3:]
 
 
 def _rational(number: str, over: str, under: str, limits: Limits) -> tuple[int, int] | None:

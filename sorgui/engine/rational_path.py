@@ -331,9 +331,12 @@ def _orthonormal(p: fmpq_mpoly, norm_a: fmpq, norm_u: fmpq) -> dict[Monomial, Su
     content 1 and that coefficient positive; otherwise that coefficient is 1.
     """
     k, d = rational_surd(norm_a)
+    s_degree, r_degree = (int(e) for e in p.degrees())
+    over_a = [1 / norm_a**e for e in range((s_degree + 1) // 2 + 1)]
+    over_u = [1 / norm_u**e for e in range(r_degree // 2 + 1)]
     coefficients: dict[Monomial, Surd] = {}
     for (i, j), q in terms(p):
-        value = q / norm_a ** ((i + 1) // 2) / norm_u ** (j // 2)
+        value = q * over_a[(i + 1) // 2] * over_u[j // 2]
         coefficients[(i, j)] = (value * k, d) if i % 2 else (value, 1)
     top_monomial = max(coefficients, key=lambda m: (m[1], m[0]))
     scaled = {m: _divide(c, coefficients[top_monomial]) for m, c in coefficients.items()}
