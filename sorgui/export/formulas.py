@@ -117,8 +117,39 @@ def catalogue(analysis: Analysis) -> list[Formula]:
 
 def analysis_formulas(analysis: Analysis) -> list[Formula]:
     """The formulas the files print, in reading order: those of the surface of revolution, of a
-    cone or cylinder, then those of its canal sphere families."""
-    return [f for f in catalogue(analysis) if f.name]
+    cone or cylinder, then those of its canal sphere families; for rounded input, those of the
+    nearest exact surface within its rounding (:func:`nearest_analysis_formulas`)."""
+    return [f for f in catalogue(analysis) if f.name] + nearest_analysis_formulas(analysis)
+
+
+NEAREST_PREFIX = "nearest"
+"""The start of the files' names of the nearest exact surface's formulas (``nearestX1``)."""
+
+
+def nearest_analysis_formulas(analysis: Analysis) -> list[Formula]:
+    """For rounded input whose nearest exact surface ``g`` lies within the rounding, what the
+    files print of ``g``'s own analysis: its profile, the rationality's curves and maps, and its
+    parameterizations, named ``nearestP``, ``nearestX1`` and so on (the window shows them in the
+    nearest surface's view, from its own analysis)."""
+    approx = analysis.approximate
+    nearest = approx.nearest if approx is not None else None
+    if nearest is None or not nearest.within_rounding or nearest.analysis is None:
+        return []
+    exact = nearest.analysis
+    formulas = _profile(exact.recognition.profile) if exact.recognition.profile is not None else []
+    if exact.rationality is not None:
+        formulas += _rationality(exact.rationality)
+    formulas += [_map(par, f"parametrization.{i}", f"X{i + 1}", "") for i, par in enumerate(exact.parametrizations)]
+    return [
+        replace(
+            f,
+            key=f"approximate.nearest.analysis.{f.key}" if f.key else "",
+            name=f"{NEAREST_PREFIX}{f.name[0].upper()}{f.name[1:]}",
+            description=f"of the nearest exact surface g: {f.description}",
+        )
+        for f in formulas
+        if f.name
+    ]
 
 
 def surface_formulas(analysis: Analysis) -> list[Formula]:

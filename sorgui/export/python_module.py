@@ -25,7 +25,7 @@ from sympy.printing.numpy import NumPyPrinter
 
 from sorgui.engine.results import Analysis
 from sorgui.export.cas import summary_lines
-from sorgui.export.formulas import CANAL_PREFIX, Formula, analysis_formulas
+from sorgui.export.formulas import CANAL_PREFIX, NEAREST_PREFIX, Formula, analysis_formulas
 from sorgui.export.quoting import hash_comment, one_line, python_literal
 
 _NUMPY = NumPyPrinter({"fully_qualified_modules": True})
@@ -119,10 +119,24 @@ def _canal_checks(formulas: list[Formula]) -> list[str]:
     return lines
 
 
+def _check_target(formula: Formula) -> tuple[str, str]:
+    """A map and the equation ``check()`` substitutes it into (``""``: none): ``P2K`` for the
+    parameterization of ``P²``, the surface ``F`` for a map of ``X`` or of a canal surface; for
+    rounded input, the nearest exact surface ``g``'s (``nearestX1`` into ``g``)."""
+    name = formula.name
+    nearest = name.startswith(NEAREST_PREFIX)
+    own = name[len(NEAREST_PREFIX) :] if nearest else name
+    if own == "P2param":
+        return name, name.replace("P2param", "P2K")
+    if own.startswith(("X", "C")) and own[1:].isdigit() and len(formula.value) == 3:
+        return name, "g" if nearest else "F"
+    return name, ""
+
+
 def python_module(analysis: Analysis) -> str:
     """The source of the Python module for ``analysis`` (module docstring)."""
     formulas = analysis_formulas(analysis)
-    maps = [f for f in formulas if f.coverage is not None and f.name != "tau"]
+    maps = [f for f in formulas if f.coverage is not None and f.name not in ("tau", NEAREST_PREFIX + "Tau")]
     head = summary_lines(analysis)
     docstring = [
         head[0] + ".",
@@ -156,11 +170,7 @@ def python_module(analysis: Analysis) -> str:
     ]
     for formula in maps:
         lines += _function(formula)
-    targets = {
-        f.name: ("P2K" if f.name == "P2param" else "F")
-        for f in maps
-        if f.name == "P2param" or (f.name.startswith(("X", "C")) and f.name[1:].isdigit() and len(f.value) == 3)
-    }
+    targets = {name: target for name, target in map(_check_target, maps) if target}
     lines += [
         *_VANISHES.splitlines(),
         "",
@@ -170,7 +180,7 @@ def python_module(analysis: Analysis) -> str:
         "    checked = []",
     ]
     for name, target in targets.items():
-        variables = "(s, w)" if target == "P2K" else "(x, y, z)"
+        variables = "(s, w)" if target.endswith("P2K") else "(x, y, z)"
         lines += [
             f"    assert _vanishes({target}, {variables}, {name}_EXACT, PARAMETERS[{name!r}]), {name!r}",
             f"    checked.append({name!r})",

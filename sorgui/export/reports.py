@@ -27,9 +27,16 @@ import sympy
 from sorgui import __version__
 from sorgui.engine.errors import SorguiError
 from sorgui.engine.results import VERSION_KEY, Analysis, Canal, report_json
+from sorgui.engine.stage_results import Rationality
 from sorgui.engine.vocabulary import canal_kind
 from sorgui.export.cas import LATEX_STYLE, latex_name, verdict
-from sorgui.export.formulas import Formula, canal_formulas, nearest_formulas, surface_formulas
+from sorgui.export.formulas import (
+    Formula,
+    canal_formulas,
+    nearest_analysis_formulas,
+    nearest_formulas,
+    surface_formulas,
+)
 from sorgui.export.quoting import code_fence, markup_text
 from sorgui.export.text import TABLE_1, approximation_lines, conical_lines, parametric_lines, plain_text, symmetry_name
 
@@ -299,6 +306,27 @@ def canal_blocks(canal: Canal) -> list[Block]:
     return blocks
 
 
+def _rationality_facts(rat: Rationality) -> tuple[str, ...]:
+    """The rationality stage as a list: status, the row of Table 1, the genera and the verdicts."""
+    facts = [f"status: {rat.status}"]
+    if rat.table_row is not None:
+        row = TABLE_1[rat.table_row - 1]
+        facts.append(
+            f"Table 1, row {rat.table_row}: genus($P$) {row[0]}, genus($P^2$) {row[1]}, "
+            f"$X_{{\\mathbb{{C}}}}$ {row[2]}, $X$ {row[3]}"
+        )
+    genus_p = "reducible" if rat.profile_reducible else rat.genus_profile
+    facts.append(f"genus($P$) = {genus_p}, genus($P^2$) = {rat.genus_profile_square}")
+    for label, value in (
+        ("$X_{\\mathbb{C}}$ rational", rat.complex_rational),
+        ("$X$ unirational", rat.unirational),
+        ("$X$ rational over the reals", rat.real_rational),
+    ):
+        facts.append(f"{label}: {'undecided' if value is None else ('yes' if value else 'no')}")
+    facts += [f"note: {n}" for n in rat.notes]
+    return tuple(facts)
+
+
 def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]:
     """The report as blocks; ``picture`` is the image's address (file name or ``data:`` URI)."""
     rec = analysis.recognition
@@ -325,26 +353,9 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
         )
     if picture is not None:
         blocks.append(Block("image", picture))
-    rat = analysis.rationality
-    if rat is not None:
+    if analysis.rationality is not None:
         blocks.append(Block("h2", "Rationality"))
-        facts = [f"status: {rat.status}"]
-        if rat.table_row is not None:
-            row = TABLE_1[rat.table_row - 1]
-            facts.append(
-                f"Table 1, row {rat.table_row}: genus($P$) {row[0]}, genus($P^2$) {row[1]}, "
-                f"$X_{{\\mathbb{{C}}}}$ {row[2]}, $X$ {row[3]}"
-            )
-        genus_p = "reducible" if rat.profile_reducible else rat.genus_profile
-        facts.append(f"genus($P$) = {genus_p}, genus($P^2$) = {rat.genus_profile_square}")
-        for label, value in (
-            ("$X_{\\mathbb{C}}$ rational", rat.complex_rational),
-            ("$X$ unirational", rat.unirational),
-            ("$X$ rational over the reals", rat.real_rational),
-        ):
-            facts.append(f"{label}: {'undecided' if value is None else ('yes' if value else 'no')}")
-        facts += [f"note: {n}" for n in rat.notes]
-        blocks.append(Block("list", tuple(facts)))
+        blocks.append(Block("list", _rationality_facts(analysis.rationality)))
     if analysis.approximate is not None:
         blocks.append(Block("h2", "Rounded input"))
         blocks.append(
@@ -353,8 +364,14 @@ def report_blocks(analysis: Analysis, picture: str | None = None) -> list[Block]
                 tuple([line.strip() for line in approximation_lines(analysis, nested=False)]),
             )
         )
+        nearest = analysis.approximate.nearest
+        exact = nearest.analysis if nearest is not None else None
+        if nearest is not None and exact is not None and exact.rationality is not None:
+            where = "within" if nearest.within_rounding else "beyond"
+            blocks.append(Block("h2", f"Rationality of the nearest exact surface $g$ ({where} the rounding)"))
+            blocks.append(Block("list", _rationality_facts(exact.rationality)))
     blocks.append(Block("h2", "Formulas"))
-    for formula in surface_formulas(analysis) + nearest_formulas(analysis):
+    for formula in surface_formulas(analysis) + nearest_formulas(analysis) + nearest_analysis_formulas(analysis):
         blocks += _formula_blocks(formula)
     if analysis.conical is not None and analysis.conical.kind != "none":
         blocks += [

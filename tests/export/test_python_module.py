@@ -81,3 +81,24 @@ def test_module_runs_as_a_script(analyses, tmp_path) -> None:
     run = subprocess.run([sys.executable, str(path)], capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip() == "verified: P2param, X1, X2, C1, canal1M, canal1Rho"
+
+
+def test_rounded_input_carries_the_nearest_surfaces_maps_checked_on_it(tmp_path) -> None:
+    """Rounded input is exactly no surface of revolution: its files print the nearest exact
+    surface g's profile, rationality and maps (``nearestX1`` …), and check() substitutes each
+    into ``g``; the Markdown report gives g's row of Table 1."""
+    from sorgui.engine import analyze
+    from sorgui.export.files import export_analysis as export
+
+    text = (Path(__file__).parents[1] / "data" / "rounded-torus-15-digits.txt").read_text(encoding="utf-8")
+    analysis = analyze(text)
+    nearest = analysis.approximate.nearest
+    assert nearest.within_rounding and nearest.analysis.parametrizations
+    module = load(export(analysis, tmp_path / "rounded_torus.py"), "exported_rounded_torus")
+    count = len(nearest.analysis.parametrizations)
+    assert module.check() == ["nearestP2param", *[f"nearestX{i}" for i in range(1, count + 1)]]
+    x, y, z = module.nearestX1(np.linspace(-2.0, 2.0, 5), 0.5)
+    assert relative_residual(nearest.polynomial, np.stack([x, y, z], axis=1)).max() <= RELATIVE
+    report = export(analysis, tmp_path / "rounded_torus.md").read_text(encoding="utf-8")
+    assert "## Rationality of the nearest exact surface $g$ (within the rounding)" in report
+    assert f"Table 1, row {nearest.analysis.rationality.table_row}:" in report and "nearestX_{1}(s, t) =" in report
