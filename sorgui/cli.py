@@ -458,13 +458,15 @@ def write_outputs(
     deadline: float | None = None,
     report: Path | None = None,
     limit: float | None = None,
+    report_line: int | None = None,
     cap: bool = False,
 ) -> None:
-    """Write ``result`` (or the saved report ``report``, read and checked there) to every ``-o``
-    file, atomically, in a child process that is killed at ``deadline`` (``time.monotonic()``)
-    or on a signal (:mod:`sorgui.session.export_process`). Each CAD file's content is said on
-    stderr; every file is tried, and a file not written raises :class:`_OutputError` naming it
-    (the others before it are said on stderr), a refused report :class:`_ReportRefused`."""
+    """Write ``result`` (or the saved report ``report``, read and checked there: the result of
+    input line ``report_line`` in a results file of ``--each-line``) to every ``-o`` file,
+    atomically, in a child process that is killed at ``deadline`` (``time.monotonic()``) or on a
+    signal (:mod:`sorgui.session.export_process`). Each CAD file's content is said on stderr;
+    every file is tried, and a file not written raises :class:`_OutputError` naming it (the
+    others before it are said on stderr), a refused report :class:`_ReportRefused`."""
     if not outputs:
         return  # nothing to write: the export modules (and numpy) stay unloaded
     from sorgui.session.export_process import (
@@ -480,6 +482,7 @@ def write_outputs(
         targets=tuple(ExportTarget(str(path), fmt) for path in outputs),
         analysis=result,
         report=None if report is None else str(report),
+        report_line=report_line,
         units=units,
         tolerance=fit_tolerance,
         radius=region.radius,
@@ -515,6 +518,7 @@ def write_files(args: argparse.Namespace, result: Analysis | None = None, report
         report=report,
         limit=args.timeout,
         cap=args.cap,
+        report_line=getattr(args, "line", None),
     )
 
 
@@ -827,7 +831,14 @@ def open_parser() -> argparse.ArgumentParser:
         "are checked against its polynomial first.",
         allow_abbrev=False,
     )
-    parser.add_argument("report", type=Path, help="the JSON report")
+    parser.add_argument("report", type=Path, help="the JSON report, or a results file of --each-line with --line")
+    parser.add_argument(
+        "--line",
+        type=positive_int,
+        default=None,
+        metavar="N",
+        help="in a results file of analyze --each-line (JSON Lines): the result of input line N",
+    )
     parser.add_argument(
         "--timeout",
         type=positive_seconds,
@@ -861,7 +872,7 @@ def open_main(argv: Sequence[str]) -> int:
     from sorgui.export.reports import ReportError, read_report
 
     try:
-        report = read_report(args.report)
+        report = read_report(args.report, args.line)
     except ReportError as exc:
         return fail(exc.message, None, False, 2)
     return _window(str(args.report), report)  # shown as read here, not read again

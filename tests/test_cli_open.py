@@ -106,3 +106,29 @@ def test_a_lying_report_is_refused_before_anything_is_written(torus_report: Path
     assert not step.exists() and not (tmp_path / "out.stl").exists()
     window = sorgui("open", str(lying), timeout=120)
     assert window.returncode == 2 and "refused" in one_line(window.stderr)
+
+
+def test_a_result_of_a_batch_opens_by_its_input_line(tmp_path: Path) -> None:
+    """A results file of ``--each-line`` holds one object per input line: ``--line N`` opens the
+    one of line N (its bookkeeping keys set aside), a file of one such object opens as it is,
+    and the whole file, an error line or a missing line are refused in one line each."""
+    lines = tmp_path / "lines.txt"
+    lines.write_text("x^2 + y^2 - z\nx^2 + y^2 + z^2 - 1\nx y z + (\n", encoding="utf-8")
+    results = tmp_path / "results.jsonl"
+    batch = sorgui("analyze", "--each-line", "--recognition-only", "-f", str(lines), "-o", str(results))
+    assert batch.returncode == 2, batch.stderr  # line 3 is not a polynomial
+    sphere = tmp_path / "sphere.txt"
+    done = sorgui("open", str(results), "--line", "2", "-o", str(sphere))
+    assert done.returncode == 0, done.stderr
+    assert sphere.read_text(encoding="utf-8").startswith("f = x**2 + y**2 + z**2 - 1\n")
+    single = tmp_path / "one.json"
+    single.write_text(results.read_text(encoding="utf-8").splitlines()[0] + "\n", encoding="utf-8")
+    assert sorgui("open", str(single), "-o", str(tmp_path / "one.md")).returncode == 0
+    for args, words in (
+        ([], "holds the results of a batch (JSON Lines, one object per line of its input): give --line N"),
+        (["--line", "3"], "line 3 of"),
+        (["--line", "7"], "holds no result of input line 7"),
+    ):
+        refused = sorgui("open", str(results), *args, "-o", str(tmp_path / "x.txt"))
+        assert refused.returncode == 2 and words in one_line(refused.stderr)
+    assert not (tmp_path / "x.txt").exists()

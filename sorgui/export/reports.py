@@ -20,7 +20,7 @@ import json
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
 
 import sympy
 
@@ -89,9 +89,15 @@ MAX_REPORT_BYTES = 64 * 1024 * 1024
 """A report larger than this is refused before it is decoded (sorgui's largest are a few MB)."""
 
 
-def read_report(path: str | Path) -> Analysis:
+BATCH_KEYS = ("line", "line_hash", "options")
+"""What a line's object of ``sorgui analyze --each-line`` holds beside its report."""
+
+
+def read_report(path: str | Path, line: int | None = None) -> Analysis:
     """The analysis saved in the JSON report ``path`` (the inverse of :func:`json_report`),
     validated (:func:`sorgui.export.validation.validate`): a report is a file from elsewhere.
+    A results file of ``--each-line`` (JSON Lines) gives the object of its input's ``line``
+    (:func:`_batch_line`), and a file of one such object that object.
 
     At most :data:`MAX_REPORT_BYTES` are read (``/dev/zero`` is refused, not read whole)."""
     from sorgui.engine.claims.report import check_report
@@ -100,7 +106,7 @@ def read_report(path: str | Path) -> Analysis:
 
     try:
         with open(path, "rb") as stream:
-            raw = stream.read(MAX_REPORT_BYTES + 1)
+            raw = stream.read(MAX_REPORT_BYTES + 1) if line is None else _batch_line(stream, line, path)
     except OSError as exc:
         raise ReportError(f"cannot read {path}: {exc.strerror or exc}") from None
     if len(raw) > MAX_REPORT_BYTES:
@@ -110,11 +116,22 @@ def read_report(path: str | Path) -> Analysis:
     except _Duplicate as exc:
         raise ReportError(f"{path} is not a sorgui report: the key {exc.key!r} occurs twice in one object") from None
     except (UnicodeDecodeError, ValueError) as exc:  # JSONDecodeError, and integers too long to read
+        if line is None and _is_json_lines(raw):
+            raise ReportError(
+                f"{path} holds the results of a batch (JSON Lines, one object per line of its input): "
+                "give --line N to open the one of input line N"
+            ) from None
         raise ReportError(f"{path} is not a JSON report: {_one_line(str(exc))}") from None
     except RecursionError:
         raise ReportError(f"{path} is not a sorgui report: it is nested too deeply") from None
     if not isinstance(data, dict):
         raise ReportError(f"{path} is not a sorgui report: it is not a JSON object")
+    if isinstance(data.get("line"), int) and isinstance(data.get("line_hash"), str):  # a batch's line
+        if "error" in data:
+            message = data["error"].get("message") if isinstance(data["error"], dict) else None
+            raise ReportError(f"line {data['line']} of {path} is an error, not an analysis: {_one_line(str(message))}")
+        for key in BATCH_KEYS:
+            data.pop(key, None)
     if "error" in data and "input" not in data:
         raise ReportError(f"{path} holds an error, not an analysis")
     _check_version(data.pop(VERSION_KEY, None), path)
@@ -136,6 +153,27 @@ def read_report(path: str | Path) -> Analysis:
     except ClaimError as exc:
         raise ReportError(f"{path} is refused: its {exc.message}") from None
     return analysis
+
+
+def _batch_line(stream: BinaryIO, line: int, path: str | Path) -> bytes:
+    """The object of input line ``line`` in a results file of ``--each-line``: the file's line
+    that starts ``{"line": N,`` (as every one sorgui writes does), found without decoding the
+    others; at most :data:`MAX_REPORT_BYTES` of it."""
+    prefix = b'{"line": %d,' % line
+    for raw in iter(lambda: stream.readline(MAX_REPORT_BYTES + 1), b""):
+        if raw.startswith(prefix):
+            return raw
+        if len(raw) > MAX_REPORT_BYTES:  # a line this long is no line of a results file: skip its rest
+            while raw and not raw.endswith(b"\n"):
+                raw = stream.readline(MAX_REPORT_BYTES + 1)
+    raise ReportError(f"{path} holds no result of input line {line}")
+
+
+def _is_json_lines(raw: bytes) -> bool:
+    """Whether ``raw`` is a results file of ``--each-line``: more than one line, the first an
+    object with ``"line"`` in front."""
+    first, _, rest = raw.partition(b"\n")
+    return first.startswith(b'{"line": ') and bool(rest.strip())
 
 
 class _Duplicate(ValueError):

@@ -57,6 +57,8 @@ class ExportRequest:
     targets: tuple[ExportTarget, ...]
     analysis: Analysis | None = None
     report: str | None = None
+    report_line: int | None = None
+    """In a results file of ``--each-line`` named by ``report``: the result of this input line."""
     units: str = "mm"
     tolerance: float | None = None
     radius: float | None = None
@@ -122,7 +124,7 @@ def run_exports(request: ExportRequest) -> Iterator[ExportMessage]:
 
         assert request.report is not None
         try:
-            analysis = read_report(request.report)
+            analysis = read_report(request.report, request.report_line)
         except ReportError as exc:
             yield ReportRefused(exc.message)
             yield ExportsDone()
