@@ -13,7 +13,7 @@ what makes or reads them.
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, fields
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Literal
 
 if TYPE_CHECKING:
     from .stage_results import BaseCurve, CanalFamily, ParametricInput, Parametrization, Rationality, RealLocus
@@ -309,6 +309,10 @@ class Conical:
         )
 
 
+Verdict = Literal["sor", "near", "not", "undecided"]
+"""What :attr:`Analysis.verdict` says."""
+
+
 @dataclass(frozen=True)
 class Analysis:
     """The whole answer for one input: recognition, factors, rationality and parameterizations."""
@@ -336,6 +340,17 @@ class Analysis:
     def is_sor(self) -> bool:
         """Whether ``X`` is a surface of revolution (spheres, planes and cylinders included)."""
         return self.recognition.is_sor
+
+    @property
+    def verdict(self) -> Verdict:
+        """The answer every view words: ``undecided`` (the recognition met the time limit),
+        ``sor`` (a surface of revolution), ``near`` (rounded input that is none exactly but one
+        within its rounding, docs/math.md §8), else ``not``."""
+        if not self.recognition.decided:
+            return "undecided"
+        if self.recognition.is_sor:
+            return "sor"
+        return "near" if self.approximate is not None and self.approximate.near_sor else "not"
 
     def to_json(self) -> dict[str, Any]:
         """The JSON object of ``sorgui analyze --json`` (recognition keys at the top level)."""

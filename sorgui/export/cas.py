@@ -63,14 +63,14 @@ _TEX_UNICODE = {
 
 
 def verdict(analysis: Analysis) -> str:
-    """One line: whether ``X`` is a surface of revolution."""
-    if not analysis.recognition.decided:
-        return "undecided whether it is a surface of revolution (the recognition did not finish within the time limit)"
-    if analysis.is_sor:
-        return "a surface of revolution"
-    if analysis.approximate is not None and analysis.approximate.near_sor:
-        return "nearly a surface of revolution (not exactly: within the rounding of the input)"
-    return "not a surface of revolution"
+    """One line: whether ``X`` is a surface of revolution (:attr:`Analysis.verdict`)."""
+    return {
+        "undecided": "undecided whether it is a surface of revolution "
+        "(the recognition did not finish within the time limit)",
+        "sor": "a surface of revolution",
+        "near": "nearly a surface of revolution (not exactly: within the rounding of the input)",
+        "not": "not a surface of revolution",
+    }[analysis.verdict]
 
 
 def summary_lines(analysis: Analysis) -> list[str]:

@@ -264,9 +264,12 @@ def recognition_lines_of_nearest(near: NearestSurface) -> list[str]:
 def analysis_lines(analysis: Analysis) -> list[str]:
     """Everything the report says of one analysis but the polynomial and the timings."""
     rec = analysis.recognition
-    verdict = ("YES" if rec.is_sor else "NO") if rec.decided else "undecided"
-    if verdict == "NO" and analysis.approximate is not None and analysis.approximate.near_sor:
-        verdict = "NO exactly, but NEARLY: within the rounding of the input (see below)"
+    verdict = {
+        "sor": "YES",
+        "not": "NO",
+        "near": "NO exactly, but NEARLY: within the rounding of the input (see below)",
+        "undecided": "undecided",
+    }[analysis.verdict]
     lines = [
         f"field K = {analysis.field}, degree {rec.degree if rec.polynomial else 'unknown'}, method {analysis.method}",
         f"surface of revolution: {verdict}",

@@ -207,7 +207,7 @@ class ResultsPane(QScrollArea):
         elif "conical" in unfinished:
             self._section("Cone or cylinder", [("", _undecided(limit))])
         if analysis.canal is not None:
-            near = analysis.approximate is not None and analysis.approximate.near_sor and not rec.is_sor
+            near = analysis.verdict == "near"
             self._canal_section(analysis.canal, nearly_canal(analysis), near and "nearest" in pending)
         elif "canal" in pending:
             self._section("Canal surface", [("", "being decided: the sphere family and its certificate follow")])

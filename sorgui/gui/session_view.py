@@ -286,11 +286,12 @@ class SessionView(QObject):
         if run.outcome == "finished":
             analysis = run.analysis
             assert analysis is not None  # a finished run has its whole analysis
-            verdict = "surface of revolution" if analysis.is_sor else "not a surface of revolution"
-            if analysis.approximate is not None and analysis.approximate.near_sor and not analysis.is_sor:
-                verdict = "nearly a surface of revolution"
-            if not analysis.recognition.decided:
-                verdict = "undecided whether it is a surface of revolution"
+            verdict = {
+                "sor": "surface of revolution",
+                "near": "nearly a surface of revolution",
+                "not": "not a surface of revolution",
+                "undecided": "undecided whether it is a surface of revolution",
+            }[analysis.verdict]
             summary = run.scene.summary() if run.scene is not None else ""
             notes = " ".join(run.scene.notes) if run.scene is not None else ""
             if run.report:

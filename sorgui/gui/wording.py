@@ -216,7 +216,8 @@ def verdict(analysis: Analysis, rounding_pending: bool = False) -> tuple[str, st
         )
     kind = kind_phrase(rec.symmetry)
     degree = f"degree {rec.degree}" if rec.polynomial else "degree unknown"  # a map's equation may not be found
-    if not rec.decided:
+    answer = analysis.verdict
+    if answer == "undecided":
         return "Undecided within the time limit", f"{kind} · {degree} over {analysis.field}", "info"
     detail = f"{kind} · {degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
     conical = analysis.conical
@@ -232,9 +233,9 @@ def verdict(analysis: Analysis, rounding_pending: bool = False) -> tuple[str, st
     if not rec.is_sor and canal is not None and canal.is_canal:
         kinds = ", ".join(canal_kind(k) for k in canal.kinds if k != "revolution")
         detail += " · a canal surface" + (f": {kinds}" if kinds else "")
-    if rec.is_sor:
+    if answer == "sor":
         return "Surface of revolution", detail, "sor"
-    if approx is not None and approx.near_sor:
+    if answer == "near" and approx is not None:
         return "Nearly a surface of revolution", near_words(approx) + f" · {degree}", "near"
     if approx is not None:
         return "Not a surface of revolution", far_words(approx), "not"
