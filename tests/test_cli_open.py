@@ -132,3 +132,7 @@ def test_a_result_of_a_batch_opens_by_its_input_line(tmp_path: Path) -> None:
         refused = sorgui("open", str(results), *args, "-o", str(tmp_path / "x.txt"))
         assert refused.returncode == 2 and words in one_line(refused.stderr)
     assert not (tmp_path / "x.txt").exists()
+    report = tmp_path / "sphere.json"
+    assert sorgui("open", str(results), "--line", "2", "-o", str(report)).returncode == 0
+    refused = sorgui("open", str(report), "--line", "1", "-o", str(tmp_path / "x.txt"))
+    assert refused.returncode == 2 and "is not a results file of --each-line" in one_line(refused.stderr)

@@ -160,9 +160,11 @@ def _batch_line(stream: BinaryIO, line: int, path: str | Path) -> bytes:
     that starts ``{"line": N,`` (as every one sorgui writes does), found without decoding the
     others; at most :data:`MAX_REPORT_BYTES` of it."""
     prefix = b'{"line": %d,' % line
-    for raw in iter(lambda: stream.readline(MAX_REPORT_BYTES + 1), b""):
+    for count, raw in enumerate(iter(lambda: stream.readline(MAX_REPORT_BYTES + 1), b"")):
         if raw.startswith(prefix):
             return raw
+        if count == 0 and not raw.startswith(b'{"line": '):
+            raise ReportError(f"{path} is not a results file of --each-line: --line picks a result of one")
         if len(raw) > MAX_REPORT_BYTES:  # a line this long is no line of a results file: skip its rest
             while raw and not raw.endswith(b"\n"):
                 raw = stream.readline(MAX_REPORT_BYTES + 1)
