@@ -129,3 +129,11 @@ def test_norm_in_s_agrees_with_sympy() -> None:
     s = sympy.Symbol("s")
     p = sympy.Poly(s**3 - sympy.sqrt(2) * s + sympy.sqrt(6) - 1, s, domain=K)
     assert _norm_in_s(p).monic() == p.norm().monic()
+
+
+def test_a_profile_whose_singular_points_defeat_sympys_fglm_over_an_algebraic_field() -> None:
+    """``√2·ρ·(x² + ρ²)`` (``ρ = x² + y² + z²``): sympy's FGLM over ``QQ(√2)`` divided by a zero
+    it had not reduced (an internal error, found by the fuzz test); the lex basis is then computed
+    directly. Its only real point is the origin."""
+    analysis = analyze("(sqrt(2)*(x^2+y^2+z^2)^1)*(1*x^2+1*(x^2+y^2+z^2)^2)")
+    assert analysis.real_locus == RealLocus(kind="points", dimension=0, points=1, circles=0, axis_line=False)

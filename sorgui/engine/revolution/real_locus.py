@@ -28,6 +28,7 @@ import flint
 import sympy
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
+from sympy.polys.polyerrors import NotInvertible
 
 from ..algebra import numberfields
 from ..algebra.linalg import Vector
@@ -263,9 +264,15 @@ def _circles(H: sympy.Poly) -> int:
 
 def _lex_basis(system: list[sympy.Expr], first: sympy.Symbol, second: sympy.Symbol, K: Domain) -> sympy.GroebnerBasis:
     """The reduced lexicographic Gröbner basis (``first > second``) of a zero-dimensional ideal:
-    F5B in degree order, then FGLM to lex (much faster than Buchberger in lex directly)."""
+    F5B in degree order, then FGLM to lex (much faster than Buchberger in lex directly, which is
+    the resort where sympy's FGLM fails: over ``QQ(√2)`` it divided by an unreduced zero)."""
     basis = sympy.groebner(system, first, second, order="grevlex", method="f5b", domain=K)
-    return basis if basis.exprs == [1] else basis.fglm("lex")
+    if basis.exprs == [1]:
+        return basis
+    try:
+        return basis.fglm("lex")
+    except NotInvertible:  # sympy's FGLM over an algebraic field divided by a zero it did not reduce
+        return sympy.groebner(system, first, second, order="lex", domain=K)
 
 
 def _radical(system: list[sympy.Expr], K: Domain) -> list[sympy.Expr] | None:
