@@ -173,7 +173,8 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
             return _swept_faces(sweep, scene.region, goal)
         raise CadGeometryError(_no_part_words(analysis))
     ball = scene.region
-    frame = axis_frame(rec.profile) if rec.profile is not None else None
+    # a sphere's or a plane's profile is about a chosen line, not an axis of its own
+    frame = axis_frame(rec.profile) if rec.profile is not None and rec.axis is not None else None
     if frame is not None and _off_axis(ball, frame):
         raise CadGeometryError(
             "a CAD file of a surface of revolution is cut to a ball centred on its axis or to a box; "

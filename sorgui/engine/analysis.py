@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, Any
 from .algebra.linalg import Vector
 from .errors import AnalysisError, ParseError, TimeLimitReached
 from .parsing import has_decimals, is_parametrization, parse_polynomial
-from .recognition.symmetry import NEAREST_CANAL_NOTE, SPHERE, revolution_canal
+from .recognition.symmetry import NEAREST_CANAL_NOTE, PLANE, SPHERE, revolution_canal
 from .results import Analysis, Approximation, Canal, Conical
 from .stages import DoneCallback, PartialCallback, ProgressCallback, StageClock
 from .timelimit import skeleton, time_limit, unfinished_analysis
@@ -40,6 +40,10 @@ if TYPE_CHECKING:
 SPHERE_NOTE = (
     "a sphere: every line through its centre is an axis; the Table 1 row, P and P² are those of the "
     "axis through the centre along z"
+)
+PLANE_NOTE = (
+    "a plane: every line along its normal is an axis; the Table 1 row, P and P² are those of the "
+    "normal through the point of the plane nearest the origin"
 )
 NEAREST_SINGULAR_TIMEOUT = 10.0
 """Each Singular call of the nearest exact surface's analysis stops after this many seconds (or
@@ -190,8 +194,9 @@ def analyze_polynomial(
     hence canal; the typed equation's canal analysis is the one shown). ``section`` is a rational
     curve on ``X`` that may parameterize ``P²`` (a typed parametrization's, docs/math.md §13).
     """
+    from .algebra.linalg import perpendicular
     from .algebra.polys import field_name, poly_str
-    from .recognition.profile import profile_curve
+    from .recognition.profile import plane_foot, profile_curve
     from .recognition.recognize import factor_reports, profile_report, recognize
     from .revolution.real_locus import real_locus
     from .stage_results import Rationality
@@ -250,6 +255,13 @@ def analyze_polynomial(
         K = f.ring.domain
         profile = profile_curve(f, centre, (K.zero, K.zero, K.one), (K.one, K.zero, K.zero))
         recognition = replace(recognition, profile=profile_report(profile, K))
+    # A plane likewise: every normal line is an axis, Table 1 is read about one of them.
+    plane = profile is None and symmetry.kind == PLANE and recognition.degree == 1
+    if plane and not recognition_only:
+        K = f.ring.domain
+        foot, normal = plane_foot(f)
+        profile = profile_curve(f, foot, normal, perpendicular(normal, K))
+        recognition = replace(recognition, profile=profile_report(profile, K))
     rationality = None
     tube = None
     found: tuple[Parametrization, ...] = ()
@@ -258,6 +270,7 @@ def analyze_polynomial(
         if len(distinct) > 1:
             rationality = Rationality(status="not analysed: X is reducible over K; see its factors")
         else:
+            from .revolution.parametrization import plane_map
             from .revolution.rationality import (  # Singular's layer: only here
                 analyze_rationality,
                 parametrizations,
@@ -273,8 +286,10 @@ def analyze_polynomial(
             clock.publish(result(rationality, found))
             with clock.stage("parametrizations"):
                 found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)
-            if sphere:
-                notes = (SPHERE_NOTE, *notes)
+                if plane:
+                    found = (plane_map(g, profile.frame.point, profile.frame.direction), *found)
+            if sphere or plane:
+                notes = (SPHERE_NOTE if sphere else PLANE_NOTE, *notes)
             rationality = replace(rationality, notes=rationality.notes + notes)
     if canal and not recognition_only:
         from .conical.base_curve import analyze_conical  # Singular's layer: only here
@@ -297,8 +312,10 @@ def analyze_polynomial(
                 full=not recognition_only,
                 timeout=singular_timeout,
                 cancel=cancel,
-                profile=None if sphere else profile,  # a sphere's families are its own (no axis of its own)
-                square=None if sphere or tube is None or tube.field else (tube.phi, tube.d**2 * tube.h / tube.q**2),
+                profile=None if sphere or plane else profile,  # their families are their own (no axis of their own)
+                square=None
+                if sphere or plane or tube is None or tube.field
+                else (tube.phi, tube.d**2 * tube.h / tube.q**2),
             )
     if (
         near is not None

@@ -332,6 +332,26 @@ def test_a_sphere_gets_its_table_1_row_and_a_proper_real_parameterization(text: 
     assert proper and proper[0].field == field
 
 
+@pytest.mark.parametrize(
+    ("text", "field"), [("x + 2y - 3z - 1", "QQ"), ("z", "QQ"), ("x + sqrt(2) y - 1", "QQ(sqrt(2))")]
+)
+def test_a_plane_gets_its_table_1_row_and_its_affine_map_first(text: str, field: str) -> None:
+    """Every normal line of a plane is an axis: Table 1 is read about the one through its point
+    nearest the origin (a line: row 3), and its first map is the affine one, proper and onto; a
+    saved report of it passes the claims' checks (its profile's frame is a point of the plane and
+    its normal)."""
+    from sorgui.engine.claims.report import check_report
+
+    analysis = analyze(text)
+    assert analysis.recognition.symmetry == "plane" and analysis.recognition.profile is not None
+    assert analysis.rationality is not None and analysis.rationality.table_row == 3
+    assert any("every line along its normal is an axis" in note for note in analysis.rationality.notes)
+    first = analysis.parametrizations[0]
+    assert first.method == "affine map of the plane" and first.verified and first.proper and first.field == field
+    assert all(p.verified for p in analysis.parametrizations)
+    check_report(analysis)
+
+
 def test_a_surface_without_real_points_is_told_apart_from_the_real_column_of_table_1() -> None:
     """``x² + y² + 1``: row 1 (its profile splits over C), whose real column says "rational";
     the report says the column assumes real points, and why no rotated profile was made (its

@@ -5,7 +5,8 @@ deterministic method): the claimed kind and dimension must be its, the claimed b
 in ``L`` and span it, and the axis, the centre of a sphere, the normal of a plane and the
 direction of an extrusion must be those ``L`` determines (the same line, the same point, a
 parallel vector). A sphere of degree 2 has ``r² = −f(c)/a``. The profile's frame must be a point
-of the axis, a direction along it and a normal ``u ⟂ a``; the profile ``p̃(s, r)`` is
+of the axis, a direction along it and a normal ``u ⟂ a`` (a sphere's: its centre; a plane's: a
+point of it and its normal); the profile ``p̃(s, r)`` is
 ``f(c + s·a + r·u)`` up to a constant factor, ``P²`` is it with ``r² = w``, and the orthonormal
 profile is ``p̃(x/|a|, y/|u|)`` (identities at random points, :mod:`.identities`).
 """
@@ -19,7 +20,7 @@ from ..algebra.linalg import Vector, cross, dot, is_zero, sub
 from ..algebra.modular import Point
 from ..algebra.polys import to_expr, to_str, total_degree
 from ..errors import AnalysisError, ClaimError
-from ..recognition.symmetry import CYLINDER, REVOLUTION, SPHERE, Symmetry, recognize_symmetry
+from ..recognition.symmetry import CYLINDER, PLANE, REVOLUTION, SPHERE, Symmetry, recognize_symmetry
 from ..results import UNDECIDED, Axis, Profile, Recognition
 from .formulas import Surface, nonzero, number, values, vector
 from .identities import Identities, proportional
@@ -41,7 +42,8 @@ def check_recognition(rec: Recognition, surface: Surface, where: str, ids: Ident
     check_symmetry(rec, sym, K, where, "the polynomial's")
     _check_radius(rec, sym, surface, f"{where}radius_squared")
     has_axis = sym.kind in (REVOLUTION, CYLINDER)
-    about_any_axis = sym.kind == SPHERE and sym.center is not None  # a sphere's profile: about a chosen axis
+    # a sphere's profile is about a chosen line through its centre, a plane's about a chosen normal
+    about_any_axis = (sym.kind == SPHERE and sym.center is not None) or (sym.kind == PLANE and total_degree(g) == 1)
     if (rec.profile is not None) != has_axis and not about_any_axis:
         raise ClaimError(f"{where}profile", "is given for a surface without one axis" if rec.profile else "is missing")
     if rec.profile is not None:
@@ -156,6 +158,12 @@ def check_profile(profile: Profile, sym: Symmetry, surface: Surface, where: str,
         assert sym.center is not None  # a sphere's profile is checked only with its centre
         if not is_zero(sub(c, sym.center)):
             raise ClaimError(f"{where}.frame_point", "is not the centre of the sphere")
+    elif sym.kind == PLANE:
+        assert sym.normal is not None  # a plane's symmetry gives its normal
+        if surface.polynomial(*c):
+            raise ClaimError(f"{where}.frame_point", "is not a point of the plane")
+        if not is_zero(cross(a, sym.normal)):
+            raise ClaimError(f"{where}.frame_direction", "is not along the normal of the plane")
     else:
         assert sym.axis_point is not None and sym.axis_direction is not None  # a unique axis
         if not is_zero(cross(sub(c, sym.axis_point), sym.axis_direction)):

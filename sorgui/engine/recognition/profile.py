@@ -78,6 +78,16 @@ def axis_frame(point: Vector, direction: Vector, K: Domain) -> AxisFrame:
     return AxisFrame(point=point, direction=direction, normal=perpendicular(direction, K))
 
 
+def plane_foot(f: Poly) -> tuple[Vector, Vector]:
+    """For a plane ``f = n·p + d`` (degree 1): the point of it nearest the origin, ``−d·n/|n|²``,
+    and its normal ``n``, the frame of the normal line a plane's profile is read about."""
+    K = f.ring.domain
+    d = f(K.zero, K.zero, K.zero)
+    normal = tuple(f(*(K.one if j == i else K.zero for j in range(3))) - d for i in range(3))
+    scale = K.quo(-d, dot(normal, normal))
+    return tuple(scale * n for n in normal), normal
+
+
 def profile_polynomial(f: Poly, frame: AxisFrame) -> Poly:
     """``p̃(s, r) = f(c + s·a + r·u)`` in ``K[s, r]``."""
     K = f.ring.domain

@@ -30,8 +30,8 @@ from sympy.polys.domains.domain import Domain
 from sympy.solvers.diophantine.diophantine import diop_ternary_quadratic
 
 from ..algebra import legendre
-from ..algebra.linalg import dot
-from ..algebra.polys import Poly, field_generators, to_expr
+from ..algebra.linalg import Vector, cross, dot, perpendicular
+from ..algebra.polys import Poly, field_generators, field_name, to_expr
 from ..algebra.radicals import RadicalRing, radicals_of
 from ..algebra.rationals import content
 from ..recognition.profile import AxisFrame, ProfileCurve
@@ -521,3 +521,37 @@ def balanced(surface: SurfaceMap) -> SurfaceMap:
 
 IN_FRAME = "substituted into f in the axis frame"
 """The verification of a map checked through the profile identity (docs/math.md §6)."""
+
+
+def plane_map(f: Poly, point: Vector, normal: Vector) -> Parametrization:
+    """The affine map ``c + s·u + t·w`` of the plane ``f = 0`` through ``point`` with ``normal``:
+    ``u`` the simple perpendicular of :func:`~..algebra.linalg.perpendicular` and ``w = n × u``,
+    each divided by the integer part of its length (so that a patch over ``s, t ∈ [−3, 3]``
+    covers about as much of the plane as of a ball of radius 3); proper and onto, verified by
+    substitution into ``f``."""
+    K = f.ring.domain
+    u = perpendicular(normal, K)
+    w = cross(normal, u)
+    u, w = _about_unit(u, K), _about_unit(w, K)
+    s, t = sympy.symbols("s t")
+    images = [to_expr(K, point[i]) + s * to_expr(K, u[i]) + t * to_expr(K, w[i]) for i in range(3)]
+    x, y, z = sympy.symbols("x y z")
+    value = sympy.expand(f.as_expr().subs({x: images[0], y: images[1], z: images[2]}, simultaneous=True))
+    return Parametrization(
+        coordinates=(str(sympy.expand(images[0])), str(sympy.expand(images[1])), str(sympy.expand(images[2]))),
+        parameters=("s", "t"),
+        field=field_name(K),
+        real=True,
+        proper=True,
+        method="affine map of the plane",
+        verified=value == 0,
+        verification="substituted into f",
+    )
+
+
+def _about_unit(v: Vector, K: Domain) -> Vector:
+    """``v`` divided by the integer part of its length (at least 1): a rational vector about as
+    long as a unit one."""
+    length = math.isqrt(int(sympy.floor(to_expr(K, dot(v, v)))))  # exact: |v|² may be 10⁸⁰⁰
+    scale = K.quo(K.one, K.convert(max(1, length)))
+    return tuple(c * scale for c in v)
