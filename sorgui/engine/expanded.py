@@ -275,17 +275,11 @@ class _Terms:
 
 def _joined(spellings: list[str], negatives: list[bool], magnitudes: list[str]) -> str:
     """The printed sum of terms ``±magnitude*spelling`` (``spelling`` empty for the constant,
-    a magnitude ``1`` not written before a monomial)."""
-    if not spellings:
-        return ""
-    text = "".join(
-        [
-            (" - " if negative else " + ")
-            + (magnitude if not spelling else (spelling if magnitude == "1" else f"{magnitude}*{spelling}"))
-            for spelling, negative, magnitude in zip(spellings, negatives, magnitudes)
-        ]
+    a magnitude ``1`` not written before a monomial), as :func:`~.algebra.rationals.terms_str` writes it."""
+    return rationals.signed_sum(
+        (negative, magnitude if not spelling else (spelling if magnitude == "1" else f"{magnitude}*{spelling}"))
+        for spelling, negative, magnitude in zip(spellings, negatives, magnitudes)
     )
-    return "-" + text[3:] if negatives[0] else text[3:]
 
 
 def _rational(number: str, over: str, under: str, limits: Limits) -> tuple[int, int] | None:
