@@ -29,11 +29,16 @@ def own_maps(analysis: Analysis) -> list[Parametrization]:
 
 def patch_maps(analysis: Analysis) -> list[Parametrization]:
     """:func:`own_maps`, or for rounded input without any, the nearest exact surface's."""
-    own = own_maps(analysis)
+    stand_in = patch_stand_in(analysis)
+    exact = stand_in.analysis if stand_in is not None else None
+    return own_maps(analysis if exact is None else exact)
+
+
+def patch_stand_in(analysis: Analysis) -> NearestSurface | None:
+    """The nearest exact surface whose maps :func:`patch_maps` gives for ``analysis``: rounded
+    input without maps of its own; ``None`` when the maps are its own (or there are none)."""
     nearest = nearest_surface(analysis)
-    if own or nearest is None or nearest.analysis is None:
-        return own
-    return own_maps(nearest.analysis)
+    return None if nearest is None or own_maps(analysis) else nearest
 
 
 def nearest_surface(analysis: Analysis) -> NearestSurface | None:

@@ -18,7 +18,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from sorgui.engine.patches import nearest_surface, own_maps
+from sorgui.engine.patches import patch_stand_in
 from sorgui.engine.results import Analysis
 from sorgui.engine.vocabulary import no_surface
 from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
@@ -97,8 +97,8 @@ def _patch_words(analysis: Analysis) -> str:
 
 def _nearest_patch_words(analysis: Analysis) -> str | None:
     """``g = 0 (rounded input; …)`` when a patch of ``analysis`` is the nearest exact surface's."""
-    nearest = nearest_surface(analysis)
-    if own_maps(analysis) or nearest is None:
+    nearest = patch_stand_in(analysis)
+    if nearest is None:
         return None
     within = "within" if nearest.within_rounding else "BEYOND"
     return (
