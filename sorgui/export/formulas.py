@@ -139,7 +139,7 @@ def nearest_analysis_formulas(analysis: Analysis) -> list[Formula]:
     formulas = _profile(exact.recognition.profile) if exact.recognition.profile is not None else []
     if exact.rationality is not None:
         formulas += _rationality(exact.rationality)
-    formulas += [_map(par, f"parametrization.{i}", f"X{i + 1}", "") for i, par in enumerate(exact.parametrizations)]
+    formulas += _maps(exact)
     return [
         replace(
             f,
@@ -172,11 +172,12 @@ def _surface(analysis: Analysis) -> list[Formula]:
             out += [replace(f, name="") for f in _recognition(factor.recognition, f"factor.{index}.")]  # pane only
     if analysis.rationality is not None:
         out += _rationality(analysis.rationality)
-    out += [
-        _map(par, f"parametrization.{index}", f"X{index + 1}", "")
-        for index, par in enumerate(analysis.parametrizations)
-    ]
-    return out
+    return out + _maps(analysis)
+
+
+def _maps(analysis: Analysis) -> list[Formula]:
+    """The verified parameterizations of ``X``: ``X1``, ``X2``, …"""
+    return [_map(par, f"parametrization.{i}", f"X{i + 1}", "") for i, par in enumerate(analysis.parametrizations)]
 
 
 def _map(par: Parametrization, key: str, name: str, how: str) -> Formula:
