@@ -42,6 +42,7 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
     from vtkmodules.vtkCommonCore import vtkObject
 
     from sorgui.render import mesh_to_polydata
+    from sorgui.render.geometry import view_direction, view_up
     from sorgui.render.plotting import forwarders
 
     warnings = vtkObject.GetGlobalWarningDisplay()
@@ -64,7 +65,8 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
                     plotter.add_mesh(data.to_polydata(), color=color, line_width=4)
             if scene.center_marker is not None:
                 plotter.add_mesh(scene.center_marker.to_polydata(), color=CENTER_COLOR)
-            forwarders(plotter).view_isometric()
+            direction = view_direction(scene.surface.normals, scene.surface.side)
+            forwarders(plotter).view_vector(direction, view_up(direction))
             c, r = np.asarray(scene.region.center), scene.region.radius
             forwarders(plotter).reset_camera(bounds=[v for i in range(3) for v in (c[i] - r, c[i] + r)])
             # The ball's corners are empty: frame the ball, not its box (pyvista leaves zoom unannotated).

@@ -56,6 +56,7 @@ from sorgui.gui.camera import (
 from sorgui.gui.flow_layout import ElidedLabel, FlowLayout
 from sorgui.gui.wording import floats
 from sorgui.render.canal_touch import Touch, touching_spheres
+from sorgui.render.geometry import view_direction, view_up
 from sorgui.render.plotting import forwarders
 
 if TYPE_CHECKING:
@@ -446,9 +447,14 @@ class Viewport(QWidget):
         return self._stale
 
     def reset_camera(self, render: bool = True) -> None:
-        """Look at the drawn ball from an isometric direction."""
-        forwarders(self.plotter).view_isometric(render=False)
-        if self._scene is not None:
+        """Look at the drawn ball from an isometric direction (a plane from its front,
+        :func:`~sorgui.render.geometry.view_direction`)."""
+        if self._scene is None:
+            forwarders(self.plotter).view_isometric(render=False)
+        else:
+            surface = self._scene.surface
+            direction = view_direction(surface.normals, surface.side)
+            forwarders(self.plotter).view_vector(direction, view_up(direction), render=False)
             c, r = np.asarray(self._scene.region.center), self._scene.region.radius
             bounds = tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
             # The renderer's own method: pyvista's Plotter.reset_camera renders regardless.

@@ -203,6 +203,33 @@ def foot_on_line(point: Vector, line_point: Vector, line_direction: Vector) -> n
     return foot
 
 
+ISOMETRIC = (1.0, 1.0, 1.0)
+"""The default view looks from this direction at the centre, with ``z`` up (pyvista's isometric view)."""
+FLAT = 0.999
+"""A drawn surface is flat when the mean of its front faces' unit normals is this long."""
+
+
+def view_direction(normals: np.ndarray, side: np.ndarray) -> np.ndarray:
+    """The unit vector from the centre to the camera of the default view of a mesh whose unit
+    normals are ``normals`` and whose front faces point along ``side · normals``: the isometric
+    direction, unless the mesh is flat (a plane), which that direction may see edge-on or from
+    behind; a plane is seen from its front, within 27° of its normal, leaning towards the
+    isometric direction."""
+    isometric = unit(ISOMETRIC)
+    if len(normals):
+        mean = (np.asarray(normals, dtype=np.float64) * np.asarray(side, dtype=np.float64)[:, None]).mean(axis=0)
+        if np.linalg.norm(mean) > FLAT:
+            normal = unit(mean)
+            return unit(2.0 * normal + isometric - (isometric @ normal) * normal)
+    return isometric
+
+
+def view_up(direction: Vector) -> np.ndarray:
+    """The up vector of a camera looking from ``direction``: ``z``, or ``y`` when ``direction``
+    is nearly ``z`` itself."""
+    return np.array([0.0, 1.0, 0.0]) if abs(unit(direction)[2]) > 0.99 else np.array([0.0, 0.0, 1.0])
+
+
 # --- VTK flat cell arrays -------------------------------------------------------------------
 
 

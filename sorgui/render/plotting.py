@@ -42,6 +42,14 @@ class Forwarders(Protocol):
 
     def reset_camera(self, render: bool = True, bounds: Sequence[float] | None = None) -> None: ...
 
+    def view_vector(
+        self,
+        vector: Sequence[float] | np.ndarray,
+        viewup: Sequence[float] | np.ndarray | None = None,
+        render: bool = True,
+        bounds: Sequence[float] | None = None,
+    ) -> None: ...
+
     def hide_axes(self) -> None: ...
 
     def add_legend(

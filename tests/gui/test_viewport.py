@@ -61,6 +61,14 @@ def test_sphere_shows_its_centre_and_no_axis(window, run_analysis) -> None:
     assert "surface" in names and "center" in names and "axis" not in names
 
 
+def test_a_plane_edge_on_to_the_isometric_view_is_shown_from_its_front(window, run_analysis) -> None:
+    run_analysis(window, "x - y")  # its normal is perpendicular to the isometric direction (1, 1, 1)
+    camera = window.viewport.plotter.renderer.GetActiveCamera()
+    sight = np.asarray(camera.GetPosition()) - np.asarray(camera.GetFocalPoint())
+    sight /= np.linalg.norm(sight)
+    assert abs(sight @ np.array([1.0, -1.0, 0.0])) / np.sqrt(2) > 0.89
+
+
 def test_radius_box_re_meshes_a_larger_ball(torus_window, qtbot) -> None:
     viewport = torus_window.viewport
     old = viewport.scene.region

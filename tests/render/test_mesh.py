@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from sorgui.render.geometry import ClipBox, ClipSphere
+from sorgui.render.geometry import ClipBox, ClipSphere, view_direction, view_up
 from sorgui.render.mesh import (
     GRID_OFFSET,
     MeshData,
@@ -163,3 +163,22 @@ def test_paper_example_1_mesh_is_on_the_surface_and_its_normals_meet_the_axis():
     assert distance.max() < mesh.spacing
     assert pick_many(terms, mesh.points, ((0.6, -0.8, 0.0), (4.0, 3.0, 0.0))).all()
     assert not pick_many(terms, mesh.points, ((0.0, 0.0, 0.0), (0.0, 0.0, 1.0))).all()
+
+
+@pytest.mark.parametrize("normal", [(1, -1, 0), (-1, 1, 0), (0, 0, 1), (1, 1, 1), (2, -1, -1)])
+def test_a_plane_is_seen_from_its_front_and_never_edge_on(normal) -> None:  # noqa: ANN001
+    a, b, c = normal
+    plane = [((1, 0, 0), a), ((0, 1, 0), b), ((0, 0, 1), c), ((0, 0, 0), 0.1)]
+    mesh = surface_mesh(plane, BOX, resolution=40)
+    direction = view_direction(mesh.normals, mesh.side)
+    front = (mesh.normals * mesh.side[:, None]).mean(axis=0)
+    n = np.asarray(normal) / np.linalg.norm(normal)
+    assert np.linalg.norm(direction) == pytest.approx(1.0)
+    assert abs(direction @ n) > 0.89  # within 27° of the normal: never edge-on
+    assert direction @ front > 0  # the front faces turn to the camera
+    assert abs(view_up(direction) @ direction) < 0.99
+
+
+def test_a_curved_surface_keeps_the_isometric_view(sphere_mesh) -> None:  # noqa: ANN001
+    assert np.allclose(view_direction(sphere_mesh.normals, sphere_mesh.side), np.ones(3) / np.sqrt(3))
+    assert np.allclose(view_direction(np.zeros((0, 3)), np.zeros(0)), np.ones(3) / np.sqrt(3))
