@@ -570,7 +570,7 @@ def fail(message: str, position: int | None, as_json: bool, status: int) -> int:
     file name with a newline in it is shown escaped, so the message stays one line."""
     if as_json:
         try:
-            emit(json.dumps({"error": {"message": message, "position": position}}))
+            emit(json.dumps({"error": {"message": message, "position": position, "exit_status": status}}))
         except _OutputError:
             pass
     try:

@@ -78,6 +78,7 @@ def test_json_lines_in_input_order_with_an_error_object_for_the_bad_line(tmp_pat
         assert [row.get("is_sor") for row in rows] == [True, None, True, False]
         error = rows[1]["error"]
         assert "sin" in error["message"] and error["position"] == 6 and rows[1]["input"] == "x^2 + sin(y)"
+        assert error["exit_status"] == 2
         assert rows[1]["line_hash"] == line_hash(LINES.splitlines()[3].encode())
         assert rows[0]["rationality"] is not None  # the whole analysis, Singular included
         assert out.stderr == ""  # stderr is not a terminal: no progress, no summary
@@ -107,7 +108,10 @@ def test_a_line_s_object_is_the_report_of_json_with_its_line_in_front(tmp_path: 
     older = [json.dumps({k: v for k, v in row.items() if k not in ("sorgui_version", "options")}) for row in rows[:2]]
     results.write_text("\n".join(older) + "\n", encoding="utf-8")
     resumed = run_batch(tmp_path, "--recognition-only", "-o", str(results), "--resume")
-    assert resumed.returncode == 0 and resumed.stdout == "" and "(2 kept from before)" in resumed.stderr
+    # its kept line 4 was not a polynomial (an error with a position): the exit status says so
+    assert (
+        resumed.returncode == out.returncode == 2 and resumed.stdout == "" and "(2 kept from before)" in resumed.stderr
+    )
     lines = [json.loads(line) for line in results.read_text(encoding="utf-8").splitlines()]
     assert [row["line"] for row in lines] == [2, 4, 5, 6]
     assert "sorgui_version" not in lines[0] and lines[2]["sorgui_version"] == __version__
@@ -258,8 +262,24 @@ def test_a_batch_killed_and_resumed_writes_the_file_of_one_uninterrupted_run(tmp
     assert resumed.stderr.startswith("sorgui: 400 lines (") and "23 errors" in resumed.stderr
 
     again = subprocess.run([*batch, "-o", str(results), "--resume"], capture_output=True, text=True, timeout=120)
-    assert again.returncode == 0 and "(400 kept from before)" in again.stderr
+    assert again.returncode == whole.returncode and "(400 kept from before)" in again.stderr  # the kept errors count
     assert rows_of(results.read_text(encoding="utf-8")) == rows_of(whole.stdout)
+
+
+def test_a_kept_failure_gives_the_exit_status_of_the_run_that_wrote_it(tmp_path: Path) -> None:
+    """A line whose analysis failed (exit status 1) in the first run, kept by ``--resume``: the
+    resumed run, which analyses nothing that fails, still exits with 1."""
+    good = "x^2 + y^2 - z\nx^2 + y^2 + z^2 - 1\n"
+    first = run_batch(tmp_path, "--recognition-only", lines=good)
+    rows = first.stdout.splitlines()
+    failed = json.dumps(
+        {**json.loads(rows[0]), "error": {"message": "the analysis failed", "position": None, "exit_status": 1}}
+    )
+    results = tmp_path / "results.jsonl"
+    results.write_text(failed + "\n", encoding="utf-8")
+    resumed = run_batch(tmp_path, "--recognition-only", "-o", str(results), "--resume", lines=good)
+    assert first.returncode == 0 and resumed.returncode == 1, resumed.stderr
+    assert "(1 kept from before)" in resumed.stderr and "1 error" in resumed.stderr
 
 
 def test_resume_refuses_a_file_that_is_not_this_inputs(tmp_path: Path) -> None:

@@ -4,7 +4,7 @@ A line's object is the report JSON of ``sorgui analyze --json`` (``"sorgui_versi
 analysis: :func:`~sorgui.engine.results.report_json`) with ``"line"`` (its 1-based number),
 ``"line_hash"`` (:func:`.lines.line_hash`) and ``"options"`` (:func:`options_of`: what
 ``--resume`` must find the same) in front, or
-``{"line", "line_hash", "options", "input", "error": {"message", "position"}}``. The object is made where
+``{"line", "line_hash", "options", "input", "error": {"message", "position", "exit_status"}}``. The object is made where
 the analysis ran (a worker process of this machine, or a Dask worker), so that every way of
 running a batch writes the same text.
 """
@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -36,7 +37,13 @@ surface of revolution but within its rounding of one is "nearly")."""
 
 ANALYSED, FAILED, NOT_A_POLYNOMIAL = 0, 1, 2
 """A line's status; the batch exits with 1 when a line failed, else 2 when a line was not a
-polynomial, else 0."""
+polynomial, else 0 (:func:`batch_status`). An error object holds its status as ``"exit_status"``."""
+
+
+def batch_status(statuses: Iterable[int]) -> int:
+    """The exit status of a batch whose lines have ``statuses``."""
+    seen = set(statuses)
+    return FAILED if FAILED in seen else (NOT_A_POLYNOMIAL if NOT_A_POLYNOMIAL in seen else ANALYSED)
 
 
 @dataclass(frozen=True, slots=True)
@@ -143,7 +150,7 @@ def error_answer(line: Line, message: str, status: int, options: Options, positi
         "line_hash": line.digest,
         "options": options,
         "input": line.equation,
-        "error": {"message": message, "position": position},
+        "error": {"message": message, "position": position, "exit_status": status},
     }
     return Answer(json.dumps(data), status, ERROR)
 

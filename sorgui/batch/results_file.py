@@ -26,12 +26,13 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any, BinaryIO
 
-from .answers import Answer, Options, kind_of, options_text
+from .answers import ANALYSED, FAILED, NOT_A_POLYNOMIAL, Answer, Options, kind_of, options_text
 from .errors import BatchError
 from .lines import Line
 
-Entry = tuple[int, str, str, Any]
-"""A results file's line: its number, ``line_hash``, kind (:data:`.answers.KINDS`) and options."""
+Entry = tuple[int, str, str, Any, int]
+"""A results file's line: its number, ``line_hash``, kind (:data:`.answers.KINDS`), options and
+status (:data:`.answers.ANALYSED` and the others)."""
 SYNC_EVERY = 1.0
 """Seconds between two flushes of the results file to the disk (``fsync``)."""
 
@@ -44,6 +45,8 @@ class ResultsFile:
         self.options = options
         self.kept: dict[str, int] = {}
         """How many kept lines count as each kind (:data:`.answers.KINDS`)."""
+        self.kept_statuses: set[int] = set()
+        """The statuses of the kept lines: the batch's exit status counts them as the run that wrote them did."""
         self._fd: int | None = None
         self._synced = time.monotonic()
         status = _status(path, inputs)
@@ -73,7 +76,7 @@ class ResultsFile:
         if entry is None:
             self._open(truncate=False)
             return False
-        number, digest, kind, options = entry
+        number, digest, kind, options, status = entry
         if options is not None and options != self.options:  # an older sorgui's lines have none
             raise BatchError(
                 f"cannot resume {self.path}: its line {number} was analysed with {options_text(options)}, "
@@ -88,6 +91,7 @@ class ResultsFile:
                 "start a new results file"
             )
         self.kept[kind] = self.kept.get(kind, 0) + 1
+        self.kept_statuses.add(status)
         assert self._entries is not None
         self._next = next(self._entries, None)
         return True
@@ -179,7 +183,19 @@ def _entry(raw: bytes) -> Entry | None:
     number, digest = data.get("line"), data.get("line_hash")
     if not isinstance(number, int) or not isinstance(digest, str):
         return None
-    return number, digest, kind_of(data), data.get("options")
+    return number, digest, kind_of(data), data.get("options"), _status_of(data)
+
+
+def _status_of(data: dict[str, Any]) -> int:
+    """The status of a results file's line: an error object's ``exit_status``; an older sorgui's
+    error objects have none, and a line that was not a polynomial has the position of the fault."""
+    error = data.get("error")
+    if not isinstance(error, dict):
+        return ANALYSED
+    status = error.get("exit_status")
+    if status in (FAILED, NOT_A_POLYNOMIAL):
+        return int(status)
+    return NOT_A_POLYNOMIAL if isinstance(error.get("position"), int) else FAILED
 
 
 def _status(path: Path, inputs: list[os.stat_result]) -> os.stat_result | None:

@@ -20,7 +20,7 @@ from collections.abc import Callable, Generator, Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, BinaryIO, Protocol
 
-from .answers import FAILED, NOT_A_POLYNOMIAL, Answer, Options, answer_of, options_of, refused
+from .answers import FAILED, NOT_A_POLYNOMIAL, Answer, Options, answer_of, batch_status, options_of, refused
 from .errors import BatchError
 from .lines import Line, LineReader, count_lines
 from .progress import Progress
@@ -145,6 +145,7 @@ def run_each_line(args: argparse.Namespace, emit: Callable[[str], None], limit: 
                 results.close()
         if results is not None:
             progress.keep(results.kept)
+            status = batch_status((status, *results.kept_statuses))
         if reader.stopped:
             print(f"sorgui: stopped reading {source}: {reader.stopped}", file=sys.stderr)
             status = status or NOT_A_POLYNOMIAL
@@ -183,7 +184,7 @@ def _run(
     finally:
         answers.close()
         runner.close()  # Ctrl+C, a signal, a closed pipe, or done: the workers go too
-    return FAILED if FAILED in statuses else (NOT_A_POLYNOMIAL if NOT_A_POLYNOMIAL in statuses else 0)
+    return batch_status(statuses)
 
 
 def _fresh(lines: Iterable[Line], results: ResultsFile | None) -> Iterator[Line]:
