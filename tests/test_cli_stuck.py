@@ -85,6 +85,7 @@ def test_the_time_limit_holds_when_the_analysis_is_frozen() -> None:
     data = json.loads(out)
     if proc.returncode == 0:  # the equation had been read: the stages done, the rest unfinished
         assert data["unfinished"] and data["symmetry"] in ("undecided", "revolution")
+        assert data["is_sor"] is (None if data["symmetry"] == "undecided" else True)
     else:  # frozen while still reading the equation
         assert "did not finish within the time limit of 4 s" in data["error"]["message"]
 

@@ -362,7 +362,7 @@ class Analysis:
             "field": self.field,
             "method": self.method,
             "degree": rec["degree"],
-            "is_sor": rec["is_sor"],
+            "is_sor": rec["is_sor"] if self.recognition.decided else None,  # not known: neither yes nor no
             "symmetry": rec["symmetry"],
             "symmetry_dimension": rec["symmetry_dimension"],
             "symmetry_basis": rec["symmetry_basis"],
@@ -462,7 +462,7 @@ def _recognition_from(data: dict[str, Any]) -> Recognition:
     return Recognition(
         polynomial=data["polynomial"],
         degree=data["degree"],
-        is_sor=data["is_sor"],
+        is_sor=bool(data["is_sor"]),
         symmetry=data["symmetry"],
         symmetry_dimension=data["symmetry_dimension"],
         symmetry_basis=_tuples(data["symmetry_basis"]),

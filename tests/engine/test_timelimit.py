@@ -64,6 +64,9 @@ def test_nothing_finished_is_reported_undecided() -> None:
         "canal",
     )
     assert result.rationality.status == "undecided: too slow"
+    data = result.to_json()
+    assert data["is_sor"] is None and data["symmetry"] == UNDECIDED  # neither yes nor no
+    assert Analysis.from_json(data) == result
     from sorgui.export.text import plain_text
 
     report = plain_text(result)
