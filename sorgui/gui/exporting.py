@@ -39,7 +39,7 @@ if TYPE_CHECKING:
 EXPORT_FILTERS = {suffix: form.name for suffix, form in FORMATS.items()}
 """The file dialog's choices for File → Export (every format of :mod:`sorgui.export.formats`)."""
 
-REPORT_FILTER = "sorgui reports (*.json)"
+REPORT_FILTER = "sorgui reports and batch results (*.json *.jsonl)"
 """File → Open also opens a report saved as JSON, shown without analysing again."""
 
 MAX_PICTURE_WIDTH = 8000
@@ -97,8 +97,15 @@ def suffix_of_filter(chosen: str) -> str:
 
 
 def is_report_path(path: str | Path) -> bool:
-    """Whether File → Open should treat ``path`` as a saved report rather than an equation."""
-    return Path(path).suffix.lower() == ".json"
+    """Whether File → Open should treat ``path`` as a saved report (or a batch's results file,
+    :func:`is_results_path`) rather than an equation."""
+    return Path(path).suffix.lower() in (".json", ".jsonl")
+
+
+def is_results_path(path: str | Path) -> bool:
+    """Whether ``path`` names the results file of ``sorgui analyze --each-line`` (JSON Lines),
+    one report per input line: File → Open asks which line to show."""
+    return Path(path).suffix.lower() == ".jsonl"
 
 
 def viewport_image(

@@ -61,6 +61,7 @@ from sorgui.gui.exporting import (
     export_filters,
     filter_of_suffix,
     is_report_path,
+    is_results_path,
     png_bytes,
     suffix_of_filter,
     viewport_image,
@@ -137,10 +138,12 @@ class BusyIndicator(QWidget):
         painter.drawArc(self.rect().adjusted(2, 2, -2, -2), self._angle * 16, 270 * 16)
 
 
-DROPPED_SUFFIXES = (".sor", ".poly", ".txt", ".json", *PART_SUFFIXES)
+DROPPED_SUFFIXES = (".sor", ".poly", ".txt", ".json", ".jsonl", *PART_SUFFIXES)
 """The files a drop on the window opens: equation files, reports and CAD parts."""
 
-OPENABLE_FILTER = "Equations, reports and CAD parts (*.txt *.sor *.poly *.json *.step *.stp *.iges *.igs *.brep)"
+OPENABLE_FILTER = (
+    "Equations, reports and CAD parts (*.txt *.sor *.poly *.json *.jsonl *.step *.stp *.iges *.igs *.brep)"
+)
 """The Open dialog's first filter: everything sorgui opens, reports and parts included."""
 
 _DROP_EVENTS = (QEvent.Type.DragEnter, QEvent.Type.DragMove, QEvent.Type.Drop)
@@ -204,6 +207,8 @@ class MainWindow(QMainWindow):
         self._file: str | None = None
         self._report: str | None = None
         """The report shown (File → Open of a ``.json``), when the editor holds its equation."""
+        self._report_line: int | None = None
+        """The input line of the batch result being read or shown (File → Open of a ``.jsonl``)."""
         self._zoom = 1.0
 
         self.analyze_button = QPushButton("Analyze")
@@ -483,13 +488,33 @@ class MainWindow(QMainWindow):
         self.analyze()
         return True
 
-    def open_report(self, path: str) -> bool:
+    def open_report(self, path: str, line: int | None = None) -> bool:
         """Read the JSON report ``path`` and check its claims in a process of its own
         (:mod:`sorgui.gui.report_reader`; the window stays responsive), then show it with
-        :meth:`show_report`, or say in one line why not. ``True``: the reading has started."""
-        self.report_reader.start(path, timeout=self.time_limit)
-        self.statusBar().showMessage(f"Reading the report {Path(path).name} and checking its claims…")
+        :meth:`show_report`, or say in one line why not. A batch's results file (``.jsonl``)
+        gives the report of its input ``line``, asked for when not given (:meth:`ask_result_line`).
+        ``True``: the reading has started."""
+        if line is None and is_results_path(path):
+            line = self.ask_result_line(path)
+            if line is None:
+                return False
+        self._report_line = line
+        self.report_reader.start(path, timeout=self.time_limit, line=line)
+        which = "" if line is None else f", input line {line},"
+        self.statusBar().showMessage(f"Reading the report {Path(path).name}{which} and checking its claims…")
         return True
+
+    def ask_result_line(self, path: str) -> int | None:
+        """The input line whose result to show from the batch's results file ``path`` (``None``: cancelled)."""
+        line, ok = QInputDialog.getInt(
+            self,
+            "Open a result of a batch",
+            f"{Path(path).name} holds one result per line of the batch's input.\nShow the result of input line:",
+            1,
+            1,
+            2**31 - 1,
+        )
+        return line if ok else None
 
     def _report_refused(self, _path: str, message: str) -> None:
         self.statusBar().clearMessage()
@@ -795,8 +820,9 @@ class MainWindow(QMainWindow):
 
     def _update_title(self) -> None:
         """The window's title: the equation file, the report shown, or Untitled."""
-        report = self._report
-        name = Path(self._file).name if self._file else (f"{Path(report).name} (report)" if report else "Untitled")
+        report, line = self._report, "" if self._report_line is None else f", line {self._report_line}"
+        name = f"{Path(report).name}{line} (report)" if report else "Untitled"
+        name = Path(self._file).name if self._file else name
         self.setWindowTitle(f"{name}[*] — sorgui")
 
     def _restore_layout(self) -> None:
@@ -862,7 +888,9 @@ class MainWindow(QMainWindow):
             return True
         if not openable:
             self.statusBar().showMessage(
-                "sorgui opens equation files (.sor, .poly, .txt), reports (.json) and CAD parts", 6000
+                "sorgui opens equation files (.sor, .poly, .txt), reports (.json), batch results (.jsonl) "
+                "and CAD parts",
+                6000,
             )
             event.ignore()
             return True

@@ -46,10 +46,11 @@ class ReportReader(QObject):
         child = self._reading.child
         return child.pid if child is not None else None
 
-    def start(self, path: str, timeout: float | None = None) -> None:
-        """Read the report ``path`` (the one being read is dropped), killed after ``timeout`` seconds."""
+    def start(self, path: str, timeout: float | None = None, line: int | None = None) -> None:
+        """Read the report ``path`` (of a batch's results file, the result of input ``line``; the
+        one being read is dropped), killed after ``timeout`` seconds."""
         self._reading.limit = timeout
-        self._reading.give(path, None if timeout is None else time.monotonic() + timeout)
+        self._reading.give(path, None if timeout is None else time.monotonic() + timeout, line)
         self._timer.start()
 
     def cancel(self) -> None:

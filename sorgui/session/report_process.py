@@ -48,12 +48,13 @@ class ReportNotRead:
 ReportAnswer = ReportRead | ReportNotRead
 
 
-def read_answer(path: str) -> ReportAnswer:
-    """Read and check the report ``path``; every failure is one line."""
+def read_answer(path: str, line: int | None = None) -> ReportAnswer:
+    """Read and check the report ``path`` (of a batch's results file, the one of input ``line``);
+    every failure is one line."""
     from sorgui.export.reports import ReportError, read_report
 
     try:
-        return ReportRead(path, read_report(path))
+        return ReportRead(path, read_report(path, line))
     except ReportError as exc:
         return ReportNotRead(path, exc.message)
     except MemoryError:
@@ -64,12 +65,12 @@ def read_answer(path: str) -> ReportAnswer:
 
 
 def read_child(conn: Connection) -> None:
-    """The reading process: answer every path that arrives until the pipe closes."""
+    """The reading process: answer every ``(path, line)`` that arrives until the pipe closes."""
     become_child()
     while True:
         try:
-            path = conn.recv()
-            conn.send(read_answer(path))
+            path, line = conn.recv()
+            conn.send(read_answer(path, line))
         except (EOFError, OSError):
             return
 
@@ -90,15 +91,16 @@ class ReportReading:
     def busy(self) -> bool:
         return self.path is not None
 
-    def give(self, path: str, deadline: float | None = None) -> None:
-        """Read ``path`` (starting the child if there is none, ending a reading under way) by ``deadline``."""
+    def give(self, path: str, deadline: float | None = None, line: int | None = None) -> None:
+        """Read ``path`` (its input ``line``'s result, for a batch's results file; starting the
+        child if there is none, ending a reading under way) by ``deadline``."""
         if self.busy:
             self.cancel()
         if self.child is None or not self.child.is_alive():
             self.child = ChildProcess(self.context, read_child, name="sorgui-report")
         self.path = path
         self.deadline = float("inf") if deadline is None else deadline
-        self.child.send(path)
+        self.child.send((path, line))
 
     def collect(self) -> ReportAnswer | None:
         """The answer, if it has come (without waiting); at the deadline, or when the child died,

@@ -65,6 +65,30 @@ def test_a_file_that_is_not_a_report_is_refused_with_a_dialog(window, qtbot, tmp
     assert shown and shown[0].startswith("Cannot open report:") and "notes.json" in shown[0]
 
 
+def test_a_batch_results_file_opens_the_result_of_the_line_asked_for(window, qtbot, tmp_path, monkeypatch) -> None:
+    """File → Open of a ``.jsonl`` asks for the input line; a line the file lacks is refused in
+    one line, and a cancelled question reads nothing."""
+    lines = tmp_path / "lines.txt"
+    lines.write_text("x^2 + y^2 - z\n# a comment\n" + TORUS + "\n", encoding="utf-8")
+    results = tmp_path / "results.jsonl"
+    batch = [sys.executable, "-m", "sorgui.cli", "analyze", "--each-line", "-f", str(lines), "-o", str(results)]
+    assert subprocess.run(batch, capture_output=True, timeout=300).returncode == 0
+    asked: list[int | None] = [None]
+    monkeypatch.setattr(window, "ask_result_line", lambda path: asked[0])
+    assert not window.open_file(str(results)) and not window.report_reader.busy  # cancelled
+    asked[0] = 3
+    with qtbot.waitSignal(window.result_shown, timeout=120_000):
+        assert window.open_file(str(results))
+    assert window.editor.text() == TORUS and window.session.run.analysis.is_sor
+    assert window.windowTitle().startswith("results.jsonl, line 3 (report)")
+    shown: list[str] = []
+    monkeypatch.setattr(window, "_show_error", lambda title, message: shown.append(message))
+    asked[0] = 2
+    with qtbot.waitSignal(window.report_reader.refused, timeout=120_000):
+        assert window.open_file(str(results))
+    assert shown == [f"{results} holds no result of input line 2"]
+
+
 def pixels(path) -> np.ndarray:  # noqa: ANN001
     image = QImage(str(path)).convertToFormat(QImage.Format.Format_RGBA8888)
     data = np.frombuffer(image.constBits(), dtype=np.uint8, count=image.sizeInBytes())
