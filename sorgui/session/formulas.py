@@ -196,9 +196,9 @@ def _vector_formula(values: tuple[str, ...], prefix: str, mode: Mode) -> Typeset
 
 
 def line_formula(point: Sequence[str], direction: Sequence[str], mode: Mode = "exact") -> TypesetFormula:
-    """The parametric line ``c + t·a``."""
+    """The parametric line ``c + t·a``, wrapped (when wider than the pane) before ``+ t·a``."""
     c, a = vector_formula(point, mode=mode), vector_formula(direction, mode=mode)
-    pieces = (f"{c.pieces[0]} + t\\,{a.pieces[0]}",) if c.pieces and a.pieces else ()
+    pieces = (c.pieces[0], f" + t\\,{a.pieces[0]}") if c.pieces and a.pieces else ()
     return TypesetFormula(
         f"{c.plain} + t*{a.plain}",
         f"{c.text} + t·{a.text}",
@@ -214,13 +214,18 @@ def decimal_line_formula(
 ) -> TypesetFormula:
     """The line ``c + t·a`` in decimals, ``a`` a unit vector: shown with 6 significant digits,
     copied with 16 (a double's precision); entries below the rounding ``tolerance`` (or 1e-12)
-    of the largest are 0."""
+    of the largest are 0. Wrapped (when wider than the pane) before ``+ t·a``."""
     norm = math.sqrt(sum(v * v for v in direction)) or 1.0
     unit = [v / norm for v in direction]
     plain = f"{float_text(point, 16, tolerance)} + t*{float_text(unit, 16, tolerance)}"
-    shown = f"{float_text(point, 6, tolerance)} + t·{float_text(unit, 6, tolerance)}"
-    latex = shown.replace("·", r"\,").replace("e-", r"\mathrm{e}{-}").replace("e+", r"\mathrm{e}{+}")
-    return TypesetFormula(plain, shown, (latex,), shape="decimal", latex=latex)
+    c, a = float_text(point, 6, tolerance), float_text(unit, 6, tolerance)
+    pieces = (_decimal_latex(c), r" + t\," + _decimal_latex(a))
+    return TypesetFormula(plain, f"{c} + t·{a}", pieces, shape="decimal", latex="".join(pieces))
+
+
+def _decimal_latex(text: str) -> str:
+    """Decimals as mathtext typesets them (``1e-05``: the exponent upright)."""
+    return text.replace("e-", r"\mathrm{e}{-}").replace("e+", r"\mathrm{e}{+}")
 
 
 def decimals(values: Sequence[str]) -> tuple[float, ...] | None:

@@ -122,6 +122,22 @@ def test_every_formula_typesets_or_is_kept_as_text() -> None:
     assert bad.masks == () and bad.lines == ()
 
 
+def test_a_line_wider_than_the_pane_wraps_before_its_direction() -> None:
+    """The axis ``c + t·a`` of rounded input (decimals) or of a large exact line: two lines in a
+    narrow pane, the second starting ``+ t``; one line when it fits."""
+    from sorgui.session.formulas import decimal_line_formula, line_formula
+    from sorgui.session.typesetting import CONTINUATION
+
+    decimal = decimal_line_formula((0.633333, -0.533333, 0.866667), (-0.436436, -0.872872, -0.218218))
+    exact = line_formula(("3/10", "-6/5", "7/10"), ("123456789/1000", "4", "1"))
+    for formula in (decimal, exact):
+        assert len(formula.pieces) == 2 and formula.pieces[1].startswith(r" + t\,")
+        lines, masks = render(formula.pieces, Style(width=200, size=10.5))
+        assert len(lines) == len(masks) == 2 and lines[1].startswith(CONTINUATION + r" + t\,")
+        assert len(render(formula.pieces, Style(width=2000, size=10.5))[0]) == 1
+    assert decimal.latex == "".join(decimal.pieces) and decimal.text.startswith("(0.633333, -0.533333, 0.866667) + t·(")
+
+
 def test_the_pane_shows_the_catalogues_formulas_and_reads_them_without_sympy(monkeypatch) -> None:
     """The pane's formulas are those of the export catalogue with a key (a vector with rows one
     per entry), printed without reading any string with sympy's reader."""
