@@ -155,7 +155,8 @@ def _one_per_cell(xy: np.ndarray, origins: np.ndarray, cell: float) -> tuple[np.
 def _curve_distances(curves: Sequence[Geom_BSplineCurve], points: np.ndarray, spacing: float) -> np.ndarray:
     """The distance of each point to the nearest of ``curves``: the nearest of samples at most
     about ``spacing`` apart found first, then the exact foot (``GeomAPI_ProjectPointOnCurve``)
-    on that curve between the samples next to it."""
+    on that curve between the samples next to it; on a closed curve (a loop fitted whole) a
+    sample at one end is next to the samples at both ends, its seam."""
     samples, owners, parameters = [], [], []
     for index, c in enumerate(curves):
         u = _samples(c, spacing)
@@ -169,9 +170,11 @@ def _curve_distances(curves: Sequence[Geom_BSplineCurve], points: np.ndarray, sp
         chunk = points[start : start + 256]
         gaps = np.linalg.norm(chunk[:, None, :] - xyz[None, :, :], axis=2)
         for k, j in enumerate(np.argmin(gaps, axis=1)):
-            u = parameters[owner[j]]
-            low, high = u[max(place[j] - 1, 0)], u[min(place[j] + 1, len(u) - 1)]
-            out[start + k] = min(gaps[k, j], _foot_distance(curves[owner[j]], chunk[k], low, high))
+            curve, u, i = curves[owner[j]], parameters[owner[j]], place[j]
+            spans = [(u[max(i - 1, 0)], u[min(i + 1, len(u) - 1)])]
+            if i in (0, len(u) - 1) and curve.IsClosed():
+                spans.append((u[-2], u[-1]) if i == 0 else (u[0], u[1]))
+            out[start + k] = min(gaps[k, j], *(_foot_distance(curve, chunk[k], low, high) for low, high in spans))
     return out
 
 

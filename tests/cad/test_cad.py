@@ -456,3 +456,20 @@ def test_a_closed_fitted_meridian_is_turned_once(tmp_path: Path) -> None:
     BRepGProp.VolumeProperties_s(solids.Current(), props, 1e-9)
     exact = 2 * math.pi * float(mpmath.quad(lambda h: mpmath.sqrt(1 - h**4), [-1, 1]))
     assert props.Mass() == pytest.approx(exact, rel=1e-6)
+
+
+def test_the_distance_to_a_closed_fitted_profile_is_measured_across_its_seam() -> None:
+    """A loop fitted whole starts and ends at one point; a point of the loop just before its end
+    may be nearest the first sample. Its distance is 0 there, not the distance to that sample
+    (which refused the part of (x² + y² − 4)² + z⁴ = 1 once the mesh sampled that place)."""
+    from OCP.Geom import Geom_Circle
+    from OCP.GeomConvert import GeomConvert
+    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
+
+    from sorgui.cad.fitted import _curve_distances
+
+    circle = GeomConvert.CurveToBSplineCurve_s(Geom_Circle(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 1.0))
+    assert circle.IsClosed() and circle.Value(circle.FirstParameter()).Coord() == pytest.approx((1.0, 0.0, 0.0))
+    angles = np.linspace(-0.3, 0.3, 61)  # about the seam at angle 0
+    points = np.column_stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)])
+    assert _curve_distances([circle], points, 0.5).max() < 1e-12
