@@ -338,6 +338,9 @@ def finish_mesh(
     )
 
 
+CLIP_MARGIN = 2
+"""Grid spacings by which a clipped mesh's grid reaches beyond the clip's box (:func:`surface_mesh`)."""
+
 DEFAULT_RESOLUTION = 150
 """Grid nodes along each side of the sampled box (150³ samples, docs/benchmarks.md's mesh table)."""
 
@@ -355,7 +358,15 @@ def surface_mesh(
     :class:`ClipBox` (or ``None``: the box ``bounds`` itself); ``refine`` moves vertices onto
     the surface by one bounded Newton step. An empty :class:`MeshData` when the surface has no
     real points there (``x²+y²+z²+1``) or ``f`` is constant. ``ValueError`` on invalid input.
+
+    With a ball for ``clip``, the grid reaches :data:`CLIP_MARGIN` spacings beyond ``bounds``, so
+    that the ball, not the last row of grid cells, makes the rim: the ball's box touches the ball,
+    and a surface through such a point would end in a flat cut short of it. (A box's faces are
+    not passed: the refinement would move the rim's vertices out of the box.)
     """
+    if isinstance(clip, ClipSphere):
+        margin = CLIP_MARGIN * float(np.ptp(np.asarray(as_bounds(bounds)).reshape(3, 2), axis=1).max()) / resolution
+        bounds = tuple(v + (margin if i % 2 else -margin) for i, v in enumerate(as_bounds(bounds)))
     grid = sampling_grid(bounds, resolution)
     points, triangles = zero_level_triangles(sample_surface(terms, grid), grid, clip)
     return finish_mesh(terms, points, triangles, grid, refine)

@@ -182,3 +182,16 @@ def test_a_plane_is_seen_from_its_front_and_never_edge_on(normal) -> None:  # no
 def test_a_curved_surface_keeps_the_isometric_view(sphere_mesh) -> None:  # noqa: ANN001
     assert np.allclose(view_direction(sphere_mesh.normals, sphere_mesh.side), np.ones(3) / np.sqrt(3))
     assert np.allclose(view_direction(np.zeros((0, 3)), np.zeros(0)), np.ones(3) / np.sqrt(3))
+
+
+def test_a_mesh_clipped_to_a_ball_reaches_the_ball_where_it_touches_the_balls_box() -> None:
+    """The plane x = y in the unit ball: its rim is the ball's circle up to the top and bottom
+    (where the ball touches its box), not a flat cut where the last row of grid cells ends."""
+    mesh = surface_mesh([((1, 0, 0), 1.0), ((0, 1, 0), -1.0)], BOX_OF_BALL, resolution=40, clip=BALL)
+    assert np.linalg.norm(mesh.points, axis=1).max() == pytest.approx(1.0, abs=1e-4)
+    heights = mesh.points[:, 2]
+    assert heights.max() == pytest.approx(1.0, abs=1e-3) and heights.min() == pytest.approx(-1.0, abs=1e-3)
+
+
+BALL = ClipSphere((0.0, 0.0, 0.0), 1.0)
+BOX_OF_BALL = (-1.0, 1.0, -1.0, 1.0, -1.0, 1.0)
