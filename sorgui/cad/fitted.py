@@ -12,7 +12,7 @@ tracing, is a measured deviation, not a silent gap (docs/math.md §11).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -153,10 +153,11 @@ def _one_per_cell(xy: np.ndarray, origins: np.ndarray, cell: float) -> tuple[np.
 
 
 def _curve_distances(curves: Sequence[Geom_BSplineCurve], points: np.ndarray, spacing: float) -> np.ndarray:
-    """The distance of each point to the nearest of ``curves``: the nearest of samples at most
-    about ``spacing`` apart found first, then the exact foot (``GeomAPI_ProjectPointOnCurve``)
-    on that curve between the samples next to it; on a closed curve (a loop fitted whole) a
-    sample at one end is next to the samples at both ends, its seam."""
+    """The distance of each point to the nearest of ``curves``: the samples at most about
+    ``spacing`` apart found first, then the exact foot (``GeomAPI_ProjectPointOnCurve``) on the
+    curves between the samples next to each sample within ``spacing`` of the nearest one. Not
+    the nearest sample's alone: where a curve comes back close to itself (two branches into a
+    cusp, the seam of a loop) the nearest sample can lie on the other branch."""
     samples, owners, parameters = [], [], []
     for index, c in enumerate(curves):
         u = _samples(c, spacing)
@@ -169,13 +170,21 @@ def _curve_distances(curves: Sequence[Geom_BSplineCurve], points: np.ndarray, sp
     for start in range(0, len(points), 256):
         chunk = points[start : start + 256]
         gaps = np.linalg.norm(chunk[:, None, :] - xyz[None, :, :], axis=2)
-        for k, j in enumerate(np.argmin(gaps, axis=1)):
-            curve, u, i = curves[owner[j]], parameters[owner[j]], place[j]
-            spans = [(u[max(i - 1, 0)], u[min(i + 1, len(u) - 1)])]
-            if i in (0, len(u) - 1) and curve.IsClosed():
-                spans.append((u[-2], u[-1]) if i == 0 else (u[0], u[1]))
-            out[start + k] = min(gaps[k, j], *(_foot_distance(curve, chunk[k], low, high) for low, high in spans))
+        for k, row in enumerate(gaps):
+            spans = _spans(np.flatnonzero(row <= row.min() + spacing), owner, place, parameters)
+            out[start + k] = min(float(row.min()), *(_foot_distance(curves[c], chunk[k], a, b) for c, a, b in spans))
     return out
+
+
+def _spans(
+    near: np.ndarray, owner: np.ndarray, place: np.ndarray, parameters: list[np.ndarray]
+) -> Iterator[tuple[int, float, float]]:
+    """``(curve, low, high)``: the parameter ranges about the runs of consecutive samples ``near``
+    (indices into all curves' samples, in order), one sample beyond each end of a run."""
+    for run in np.split(near, np.flatnonzero(np.diff(near) != 1) + 1):
+        for c in np.unique(owner[run]):
+            u, ours = parameters[c], place[run[owner[run] == c]]
+            yield int(c), u[max(int(ours.min()) - 1, 0)], u[min(int(ours.max()) + 1, len(u) - 1)]
 
 
 def _samples(curve: Geom_BSplineCurve, spacing: float) -> np.ndarray:
