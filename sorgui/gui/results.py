@@ -56,7 +56,7 @@ from sorgui.gui.wording import (
 )
 from sorgui.session.base_curves import base_curve_rows
 from sorgui.session.components import Component
-from sorgui.session.formulas import TypesetFormula, pane_formulas
+from sorgui.session.formulas import TypesetFormula, expression_formula, pane_formulas
 from sorgui.session.typesetting import Style, Typeset
 
 TABLE_HEADERS = ("row", "genus(P)", "genus(P²)", "X over ℂ", "X over ℝ")
@@ -167,6 +167,9 @@ class ResultsPane(QScrollArea):
         self._analysis = analysis
         self._formulas = pane_formulas(analysis, "decimal" if nearest else None)
         rec = analysis.recognition
+        name = "g" if nearest else "f"  # the nearest exact surface is g, as in the reports
+        if nearest and rec.polynomial:
+            self._formulas["polynomial"] = expression_formula(rec.polynomial, "g =", "decimal")
         self._begin(analysis.input)
         title, detail, kind = verdict(analysis, rounding_pending="approximate" in pending)
         if nearest:
@@ -180,7 +183,7 @@ class ResultsPane(QScrollArea):
         equation = "polynomial" if rec.polynomial else "not known"
         if not rec.polynomial and analysis.parametric is not None:
             equation = "not known: " + analysis.parametric.implicit_status.removeprefix("not found: ")
-        self._section("Equation", [("f(x, y, z)", equation)])
+        self._section("Equation", [(f"{name}(x, y, z)", equation)])
         if analysis.approximate is not None:
             self._approximation_section(analysis.approximate, pending)
         reasons = why_not(analysis, components)

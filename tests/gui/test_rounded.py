@@ -55,6 +55,8 @@ def test_a_rounded_torus_is_shown_near_with_its_axis_and_its_nearest_surface(
     qtbot.waitUntil(lambda: "nearest exact surface" in window.viewport.caption.text().lower(), timeout=60_000)
     assert "nearest exact surface" in window.results.banner.text().lower()
     assert window.session.nearest_analysis.is_sor
+    qtbot.waitUntil(lambda: "polynomial" in window.results.views, timeout=60_000)
+    assert window.results.views["polynomial"].formula.text.startswith("g = ")  # g, as the reports name it
     qtbot.wait(1000)
     window.grab().save(str(artifacts / "rounded-nearest.png"))
 
