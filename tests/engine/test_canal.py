@@ -182,6 +182,18 @@ def test_varying_radius_is_not_a_pipe() -> None:
     assert _substitute(family.equations, {"m1": t, "m2": t**2, "m3": 0, "r": (1 + t) ** 2 / 4}) == [0, 0, 0]
 
 
+@pytest.mark.parametrize("recognition_only", [False, True])
+def test_a_power_of_high_degree_is_analysed_by_its_square_free_part(recognition_only: bool) -> None:
+    """``q¹⁶`` has degree 32, above the canal test's limit of 30: its zero set is ``q``'s, which is
+    answered (the flint path of recognition only, and the general pipeline)."""
+    triaxial = analyze("(x^2 + 2y^2 + 3z^2 - 1)^16", recognition_only=recognition_only).canal
+    assert triaxial is not None and triaxial.is_canal is False and "degree above" not in triaxial.status
+    cone = analyze("(x^2 + y^2 - z^2)^16", recognition_only=recognition_only).canal
+    assert cone is not None and cone.is_canal is True
+    high = analyze("(x^31 + y^2 - z)^1", recognition_only=recognition_only).canal
+    assert high is not None and "degree above 30" in high.status
+
+
 def test_recognition_only_gives_the_verdict_without_the_families_parameterization() -> None:
     canal = canal_of("pipe parabola", full=False)
     assert canal.is_canal is True and canal.certificate.method == "incidence"

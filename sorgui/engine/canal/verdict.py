@@ -128,7 +128,9 @@ def _analyze_canal(
 ) -> Canal:
     """The canal verdict of a surface that is not a torus."""
     clock = CanalClock(cancel)
-    if total_degree(f) > MAX_DEGREE:
+    rational = is_rational_field(f.ring.domain)
+    # a power (an ellipsoid to the 16th) is analysed by its square-free part's degree
+    if total_degree(f) > MAX_DEGREE and not (rational and squarefree(to_flint(f)).total_degree() <= MAX_DEGREE):
         if is_sor:
             return Canal(
                 True,
@@ -138,7 +140,7 @@ def _analyze_canal(
                 notes=(f"degree above {MAX_DEGREE}: only the symmetry algebra's answer is given",),
             )
         return Canal(None, f"not analysed: degree above {MAX_DEGREE}")
-    if is_sor and not is_rational_field(f.ring.domain):
+    if is_sor and not rational:
         # The norm holds the conjugate surfaces too, about other axes: no surface of revolution,
         # and its SMAT is what Singular would be asked for. The symmetry algebra answers.
         return Canal(
