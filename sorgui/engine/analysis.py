@@ -195,7 +195,7 @@ def analyze_polynomial(
     curve on ``X`` that may parameterize ``P²`` (a typed parametrization's, docs/math.md §13).
     """
     from .algebra.linalg import perpendicular
-    from .algebra.polys import field_name, poly_str
+    from .algebra.polys import field_name, poly_str, total_degree
     from .recognition.profile import plane_foot, profile_curve
     from .recognition.recognize import factor_reports, profile_report, recognize
     from .revolution.real_locus import real_locus
@@ -247,19 +247,20 @@ def analyze_polynomial(
             near = approximate_symmetry(f, rounding, notes=rounding_notes, snap_exact=not recognition.is_sor)
         approximation = near.approximation
 
-    # A quadric sphere: every line through the centre is an axis, Table 1 is read about the one along z
-    # (concentric spheres of higher degree are unions of circles in any meridian plane: not read).
-    centre = symmetry.center if profile is None and symmetry.kind == SPHERE and recognition.degree == 2 else None
+    # A quadric sphere (or a power of one): every line through the centre is an axis, Table 1 is read
+    # about the one along z (concentric spheres are unions of circles in any meridian plane: not read).
+    kept = total_degree(distinct[0]) if len(distinct) == 1 else None  # the degree of the zero set's equation
+    centre = symmetry.center if profile is None and symmetry.kind == SPHERE and kept == 2 else None
     sphere = centre is not None
     if centre is not None and not recognition_only:
         K = f.ring.domain
         profile = profile_curve(f, centre, (K.zero, K.zero, K.one), (K.one, K.zero, K.zero))
         recognition = replace(recognition, profile=profile_report(profile, K))
     # A plane likewise: every normal line is an axis, Table 1 is read about one of them.
-    plane = profile is None and symmetry.kind == PLANE and recognition.degree == 1
+    plane = profile is None and symmetry.kind == PLANE and kept == 1
     if plane and not recognition_only:
         K = f.ring.domain
-        foot, normal = plane_foot(f)
+        foot, normal = plane_foot(distinct[0])  # the plane itself, not a power of it
         profile = profile_curve(f, foot, normal, perpendicular(normal, K))
         recognition = replace(recognition, profile=profile_report(profile, K))
     rationality = None

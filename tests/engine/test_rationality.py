@@ -316,6 +316,7 @@ def test_an_integer_out_of_reach_leaves_the_rationality_undecided(monkeypatch: p
         ("x^2 + y^2 + z^2 - 2x - 3", "QQ"),
         ("x^2 + y^2 + z^2 - 2", "QQ(sqrt(2))"),
         ("x^2 + y^2 + z^2 - 7", "QQ(sqrt(7))"),
+        ("(x^2 + y^2 + z^2 - 2x - 3)^2", "QQ"),  # a power: its zero set is the sphere's
     ],
 )
 def test_a_sphere_gets_its_table_1_row_and_a_proper_real_parameterization(text: str, field: str) -> None:
@@ -333,7 +334,8 @@ def test_a_sphere_gets_its_table_1_row_and_a_proper_real_parameterization(text: 
 
 
 @pytest.mark.parametrize(
-    ("text", "field"), [("x + 2y - 3z - 1", "QQ"), ("z", "QQ"), ("x + sqrt(2) y - 1", "QQ(sqrt(2))")]
+    ("text", "field"),
+    [("x + 2y - 3z - 1", "QQ"), ("z", "QQ"), ("x + sqrt(2) y - 1", "QQ(sqrt(2))"), ("(x + 2y - 3z - 1)^3", "QQ")],
 )
 def test_a_plane_gets_its_table_1_row_and_its_affine_map_first(text: str, field: str) -> None:
     """Every normal line of a plane is an axis: Table 1 is read about the one through its point
