@@ -166,7 +166,7 @@ def _surface(analysis: Analysis) -> list[Formula]:
     out += _recognition(rec, "")
     if rec.profile is not None:
         out += _profile(rec.profile)
-    if len(analysis.factors) > 1:
+    if len(analysis.factors) > 1 or any(factor.multiplicity > 1 for factor in analysis.factors):  # as the pane lists
         for index, factor in enumerate(analysis.factors):
             out.append(Formula("expression", (factor.polynomial,), f"factor.{index}"))
             out += [replace(f, name="") for f in _recognition(factor.recognition, f"factor.{index}.")]  # pane only

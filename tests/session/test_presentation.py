@@ -122,6 +122,15 @@ def test_every_formula_typesets_or_is_kept_as_text() -> None:
     assert bad.masks == () and bad.lines == ()
 
 
+def test_the_factor_of_a_power_has_its_formulas() -> None:
+    """``(x² + y² + z² − 1)²`` is listed with its one factor and that factor's centre (the pane
+    showed the keys ``factor.0`` and ``factor.0.center`` as text)."""
+    from sorgui.engine import analyze
+
+    shown = pane_formulas(analyze("(x^2 + y^2 + z^2 - 1)^2"))
+    assert shown["factor.0"].plain == "x**2 + y**2 + z**2 - 1" and shown["factor.0.center"].vector
+
+
 def test_a_line_wider_than_the_pane_wraps_before_its_direction() -> None:
     """The axis ``c + t·a`` of rounded input (decimals) or of a large exact line: two lines in a
     narrow pane, the second starting ``+ t``; one line when it fits."""
