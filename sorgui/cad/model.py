@@ -129,8 +129,17 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
         )
     size = scene.region.radius
     check_size(size)
-    faces = _surface_faces(analysis, scene, tolerance, precision(size))
+    faces = _surface_faces(_of_its_zero_set(analysis), scene, tolerance, precision(size))
     return finished(faces, scene, analysis.squarefree, cap)
+
+
+def _of_its_zero_set(analysis: Analysis) -> Analysis:
+    """A power ``f = g^k`` (a doubled face) read as ``g``, whose recognition gives its profile (a
+    power's profile changes no sign: no point of it settles by Newton's method)."""
+    if len(analysis.factors) != 1 or analysis.factors[0].multiplicity == 1:
+        return analysis
+    factor = analysis.factors[0].recognition
+    return dataclasses.replace(analysis, recognition=factor) if factor.profile is not None else analysis
 
 
 def finished(part: Faces, scene: Scene, polynomial: str, cap: bool = False) -> CadModel:

@@ -19,7 +19,7 @@ import numpy as np
 import sympy
 from flint import fmpq
 
-from .algebra.rationals import expanded_terms
+from .algebra.rationals import Monomial, context, expanded_terms, squarefree
 from .errors import ExpressionError
 from .expressions import SYMPY, read
 
@@ -75,10 +75,26 @@ def polynomial_terms(text: str, names: Sequence[str] = ("x", "y", "z")) -> Terms
     floats are for, stays the same."""
     terms = expanded_terms(text, names)
     if terms is not None:
-        shift = max(0, max((_bits(c) for c in terms.values()), default=0) - MAX_FLOAT_BITS)
-        return [(monomial, _rounded(c, shift)) for monomial, c in terms.items()]
+        return _floats(terms)
     symbols = [sympy.Symbol(n) for n in names]
     return _float_terms(read_expression(text), symbols)
+
+
+def squarefree_terms(text: str, names: Sequence[str] = ("x", "y", "z")) -> Terms:
+    """:func:`polynomial_terms` of the square-free part of ``text`` over ``QQ`` (a power ``g^k``
+    changes no sign across its zero set, which a contour then misses: ``g``'s has the same zero
+    set); of ``text`` itself when it is not an expanded polynomial over ``QQ``."""
+    terms = expanded_terms(text, names)
+    if terms is None:
+        return polynomial_terms(text, names)
+    part = squarefree(context(tuple(names)).from_dict(terms))
+    return _floats({tuple(int(e) for e in monomial): c for monomial, c in part.terms()})
+
+
+def _floats(terms: dict[Monomial, fmpq | int]) -> Terms:
+    """Exact terms as float terms, all divided by one power of two when beyond floats' range."""
+    shift = max(0, max((_bits(c) for c in terms.values()), default=0) - MAX_FLOAT_BITS)
+    return [(monomial, _rounded(c, shift)) for monomial, c in terms.items()]
 
 
 MAX_FLOAT_BITS = 1000

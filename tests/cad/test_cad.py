@@ -490,3 +490,23 @@ def test_a_profile_with_cusps_is_turned_from_its_exact_parameterization(tmp_path
     BRepGProp.VolumeProperties_s(shape, props, 1e-9)
     mesh = build_scene(analysis, resolution=300).surface.to_polydata()
     assert props.Mass() == pytest.approx(mesh.volume, rel=0.02)  # the mesh misses thin parts at the cusps
+
+
+@pytest.mark.parametrize(
+    ("text", "volume"),
+    [
+        ("((x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2))^2", 2 * math.pi**2 * 2),  # the torus R = 2, r = 1
+        ("(x^2 + y^2 + z^2 - 1)^2", 4 * math.pi / 3),
+    ],
+)
+def test_a_power_is_the_part_of_its_zero_set(tmp_path: Path, text: str, volume: float) -> None:
+    """A doubled face (``g²``): its profile changes no sign across its zero set, and the part is
+    ``g``'s (it had no profile curve and was refused as having no real points in the ball)."""
+    analysis = analyze(text)
+    scene = build_scene(analysis)
+    assert len(scene.profile_curve.points) > 100
+    shape = read_shape(export_analysis(analysis, tmp_path / "power.step", scene=scene))
+    assert BRepCheck_Analyzer(shape).IsValid()
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, props, 1e-9)
+    assert props.Mass() == pytest.approx(volume, rel=1e-6)

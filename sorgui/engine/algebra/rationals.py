@@ -97,6 +97,15 @@ def flint_str(g: fmpq_mpoly, names: Sequence[str] | None = None) -> str:
     return str(g.compose(*printer.gens(), ctx=printer)).replace("^", "**")
 
 
+def squarefree(F: fmpq_mpoly) -> fmpq_mpoly:
+    """The square-free part of ``F`` over ``QQ``."""
+    _, parts = F.factor_squarefree()
+    out = F.context().constant(1)
+    for h, _ in parts:
+        out *= h
+    return out
+
+
 def times_text(q: fmpq, atom: str) -> str:
     """``q·atom`` for ``q > 0`` as sympy prints it: ``atom``, ``3*atom``, ``atom/2``, ``3*atom/2``."""
     numerator, denominator = int(q.p), int(q.q)

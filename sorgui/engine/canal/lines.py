@@ -19,7 +19,7 @@ from dataclasses import dataclass, field, replace
 
 from flint import fmpq_mpoly, fmpq_poly
 
-from ..algebra.rationals import signed_sum, times_text
+from ..algebra.rationals import signed_sum, squarefree, times_text
 from ..errors import AnalysisError, Cancelled, SorguiError
 from ..recognition.symmetry import PLANE_CANAL, SOR_EVIDENCE
 from ..results import Canal, CanalEvidence
@@ -104,15 +104,6 @@ class Lines:
         while SmatSample(tuple(self.canal)).point_count < points:
             self.next()
         return SmatSample(tuple(self.canal))
-
-
-def squarefree(F: fmpq_mpoly) -> fmpq_mpoly:
-    """The square-free part of ``F`` over ``QQ``."""
-    _, parts = F.factor_squarefree()
-    out = F.context().constant(1)
-    for h, _ in parts:
-        out *= h
-    return out
 
 
 def factor_verdict(h: fmpq_mpoly, clock: CanalClock, is_sor: bool | None) -> tuple[Canal | None, Lines | None]:

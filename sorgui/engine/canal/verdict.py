@@ -40,6 +40,7 @@ from ..algebra.polys import (
     to_flint,
     total_degree,
 )
+from ..algebra.rationals import squarefree
 from ..errors import AnalysisError, Cancelled, SingularError
 from ..recognition.profile import ProfileCurve
 from ..recognition.symmetry import SOR_EVIDENCE, Motion, satisfies_identity
@@ -60,7 +61,6 @@ from .lines import (
     assemble,
     factor_verdict,
     not_canal,
-    squarefree,
     undecided,
 )
 from .parametrization import (
