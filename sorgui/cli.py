@@ -793,15 +793,16 @@ def gui_main(argv: Sequence[str]) -> int:
     return _window(args.file)
 
 
-def _window(path: str | None, report: Analysis | None = None) -> int:
-    """The window with ``path`` (the ``report`` it holds, read and checked already), or one line
-    and status 1 when there is no display to show it on."""
+def _window(path: str | None, report: Analysis | None = None, line: int | None = None) -> int:
+    """The window with ``path`` (the ``report`` it holds, read and checked already; that of input
+    ``line`` of a batch's results file), or one line and status 1 when there is no display to
+    show it on."""
     problem = display_problem(os.environ, sys.platform)
     if problem is not None:
         return fail(f"the window needs a display: {problem}", None, False, 1)
     from sorgui.gui.app import run_gui
 
-    return run_gui(path, report)
+    return run_gui(path, report, line)
 
 
 WINDOWLESS_PLATFORMS = ("offscreen", "minimal", "minimalegl", "vnc")
@@ -875,7 +876,7 @@ def open_main(argv: Sequence[str]) -> int:
         report = read_report(args.report, args.line)
     except ReportError as exc:
         return fail(exc.message, None, False, 2)
-    return _window(str(args.report), report)  # shown as read here, not read again
+    return _window(str(args.report), report, args.line)  # shown as read here, not read again
 
 
 COMMANDS: dict[str, Callable[[Sequence[str]], int]] = {"analyze": analyze_main, "open": open_main}

@@ -58,10 +58,11 @@ def create_application(argv: list[str] | None = None) -> QApplication:
     return app
 
 
-def open_main_window(path: str | None = None, report: Analysis | None = None) -> MainWindow:
+def open_main_window(path: str | None = None, report: Analysis | None = None, line: int | None = None) -> MainWindow:
     """Show the main window at once; once it is drawn, start analysing the startup equation
     (``path``, the last session's or Example 1), or show ``report``, the analysis of the report
-    ``path`` read already (``sorgui open``), and then create the 3D view's render window.
+    ``path`` read already (``sorgui open``; of its input ``line``, for a batch's results file),
+    and then create the 3D view's render window.
 
     In that order the window appears before pyvista and VTK's rendering are imported (a second,
     on a thread), and the worker process analyses while they are. The worker process itself is
@@ -82,7 +83,7 @@ def open_main_window(path: str | None = None, report: Analysis | None = None) ->
             QTimer.singleShot(10, when_drawn)
             return
         if report is not None and path is not None:
-            window.show_report(path, report)
+            window.show_report(path, report, line)
         else:
             window.load_startup_equation(path)
         window.viewport.start_rendering_soon()
@@ -196,10 +197,10 @@ class SignalEnding:
             self.window.end_at_once()  # the text is kept in the settings: nothing to ask
 
 
-def run_gui(path: str | None = None, report: Analysis | None = None) -> int:
+def run_gui(path: str | None = None, report: Analysis | None = None, line: int | None = None) -> int:
     """Open the main window (with ``path``, if given: an equation file, a report or a CAD part;
-    ``report``: the analysis of the report ``path``, read already) and run the event loop; the
-    exit status.
+    ``report``: the analysis of the report ``path``, read already, of input ``line`` of a
+    batch's results file) and run the event loop; the exit status.
 
     A crash in C++ (Qt, VTK, OpenGL) prints the Python stack of every thread to stderr
     (:mod:`faulthandler`), so that a report of it says where it happened."""
@@ -207,7 +208,7 @@ def run_gui(path: str | None = None, report: Analysis | None = None) -> int:
     app = create_application()
     ending = SignalEnding(app)
     try:
-        ending.window = open_main_window(path, report)
+        ending.window = open_main_window(path, report, line)
         early = ending.pending()
         return early if early is not None else app.exec()
     finally:

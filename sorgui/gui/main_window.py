@@ -520,11 +520,14 @@ class MainWindow(QMainWindow):
         self.statusBar().clearMessage()
         self._show_error("Cannot open report", message)
 
-    def show_report(self, path: str, analysis: Analysis) -> None:
-        """Show ``analysis``, read from the report ``path``, without analysing it again (only its
-        scene and formulas are drawn)."""
+    def show_report(self, path: str, analysis: Analysis, line: int | None = None) -> None:
+        """Show ``analysis``, read from the report ``path`` (the result of input ``line`` of a
+        batch's results file, when given; else the line File → Open asked for), without
+        analysing it again (only its scene and formulas are drawn)."""
         self.set_equation(analysis.input)
         self._report = path
+        if line is not None:
+            self._report_line = line
         self._update_title()
         self.settings.add_recent_file(path)
         self.session.analyze(analysis.input, analysis=analysis, resolution=self.viewport.mesh_resolution())

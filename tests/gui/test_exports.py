@@ -87,6 +87,9 @@ def test_a_batch_results_file_opens_the_result_of_the_line_asked_for(window, qtb
     with qtbot.waitSignal(window.report_reader.refused, timeout=120_000):
         assert window.open_file(str(results))
     assert shown == [f"{results} holds no result of input line 2"]
+    with qtbot.waitSignal(window.result_shown, timeout=120_000):  # as sorgui open RESULTS.jsonl --line 1 shows it
+        window.show_report(str(results), read_report(results, 1), 1)
+    assert window.windowTitle().startswith("results.jsonl, line 1 (report)") and window.editor.text() == "x^2 + y^2 - z"
 
 
 def pixels(path) -> np.ndarray:  # noqa: ANN001
