@@ -118,6 +118,16 @@ def test_planes_through_a_line_are_a_cylinder_with_an_apex() -> None:
     assert result.base_curve is not None and result.base_curve.reducible is True
 
 
+def test_a_power_of_a_plane_is_answered_as_the_plane_and_parallel_planes_as_a_cylinder() -> None:
+    from sorgui.engine.conical.base_curve import PLANE_NOTE
+
+    for text in ("x + 2y - 3z - 1", "(x + 2y - 3z - 1)^3"):
+        result = analyze_conical(parse_polynomial(text).polynomial)
+        assert result.kind == "none" and result.notes == (PLANE_NOTE,)
+    parallel = analyze_conical(parse_polynomial("x*(x - 1)").polynomial)
+    assert parallel.kind == "cylinder" and "a union of parallel planes" in parallel.notes[0]
+
+
 def _vanishes_at_random_points(f, coordinates) -> None:  # noqa: ANN001
     s, t = sympy.symbols("s t")
     x, y, z = sympy.symbols("x y z")

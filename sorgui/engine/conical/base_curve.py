@@ -43,6 +43,12 @@ PLANE = ("u", "v")
 """The coordinates of a cylinder's section plane, along ``U`` and ``W``."""
 
 
+def _power_of_a_plane(f: Poly) -> bool:
+    """Whether ``f`` is a power of a linear polynomial (its zero set one plane)."""
+    factors = factor(f)[1]
+    return len(factors) == 1 and total_degree(factors[0][0]) == 1
+
+
 def analyze_conical(
     f: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None, tolerance: float | None = None
 ) -> Conical:
@@ -66,6 +72,8 @@ def analyze_conical(
             return Conical("none", near_direction=along[0], near_residual=along[1])
         return Conical("none")
     if len(found.directions) > 1:
+        if _power_of_a_plane(f):  # parallel planes, but only one: a plane's answer
+            return Conical("none", notes=(PLANE_NOTE,))
         return Conical(
             "cylinder",
             apex=apex,
