@@ -219,6 +219,14 @@ def factor(f: Poly) -> tuple[Any, list[tuple[Poly, int]]]:
     return content, factors
 
 
+def power_of_a_plane(f: Poly) -> bool:
+    """Whether ``f`` is a power of one linear polynomial: its zero set is one plane."""
+    if total_degree(f) == 1:
+        return True
+    factors = factor(f)[1]
+    return len(factors) == 1 and total_degree(factors[0][0]) == 1
+
+
 def _normalize_sign(g: Poly, e: int) -> tuple[Poly, int]:
     """Make the leading coefficient of a factor positive, so printed factors are stable."""
     K = g.ring.domain

@@ -18,7 +18,7 @@ from typing import Any
 from ..algebra import linalg
 from ..algebra.linalg import Vector, cross, dot, is_zero, sub
 from ..algebra.modular import Point
-from ..algebra.polys import Poly, factor, to_expr, to_str, total_degree
+from ..algebra.polys import power_of_a_plane, to_expr, to_str, total_degree
 from ..errors import AnalysisError, ClaimError
 from ..recognition.symmetry import CYLINDER, PLANE, REVOLUTION, SPHERE, Symmetry, recognize_symmetry
 from ..results import UNDECIDED, Axis, Profile, Recognition
@@ -43,20 +43,12 @@ def check_recognition(rec: Recognition, surface: Surface, where: str, ids: Ident
     _check_radius(rec, sym, surface, f"{where}radius_squared")
     has_axis = sym.kind in (REVOLUTION, CYLINDER)
     # a sphere's profile is about a chosen line through its centre, a plane's about a chosen normal
-    about_any_axis = (sym.kind == SPHERE and sym.center is not None) or (sym.kind == PLANE and _one_plane(g))
+    about_any_axis = (sym.kind == SPHERE and sym.center is not None) or (sym.kind == PLANE and power_of_a_plane(g))
     if (rec.profile is not None) != has_axis and not about_any_axis:
         raise ClaimError(f"{where}profile", "is given for a surface without one axis" if rec.profile else "is missing")
     if rec.profile is not None:
         check_profile(rec.profile, sym, surface, f"{where}profile", ids)
     return sym
-
-
-def _one_plane(g: Poly) -> bool:
-    """Whether ``g`` (of a plane's symmetry: parallel planes) is one plane or a power of one."""
-    if total_degree(g) == 1:
-        return True
-    factors = factor(g)[1]
-    return len(factors) == 1 and total_degree(factors[0][0]) == 1
 
 
 def undecided(rec: Recognition, where: str) -> bool:

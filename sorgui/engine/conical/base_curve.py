@@ -25,7 +25,17 @@ import sympy
 from sympy.polys.domains.domain import Domain
 
 from ..algebra.linalg import Vector, perpendicular, primitive_vector
-from ..algebra.polys import Poly, compose, factor, poly_ring, poly_str, to_expr, to_str, total_degree
+from ..algebra.polys import (
+    Poly,
+    compose,
+    factor,
+    poly_ring,
+    poly_str,
+    power_of_a_plane,
+    to_expr,
+    to_str,
+    total_degree,
+)
 from ..errors import SorguiError
 from ..recognition.profile import AxisFrame
 from ..results import Conical
@@ -41,12 +51,6 @@ NAMES = ("x", "y", "z")
 PLANE_NOTE = "a plane: a cone about each of its points and a cylinder along each of its directions"
 PLANE = ("u", "v")
 """The coordinates of a cylinder's section plane, along ``U`` and ``W``."""
-
-
-def _power_of_a_plane(f: Poly) -> bool:
-    """Whether ``f`` is a power of a linear polynomial (its zero set one plane)."""
-    factors = factor(f)[1]
-    return len(factors) == 1 and total_degree(factors[0][0]) == 1
 
 
 def analyze_conical(
@@ -72,7 +76,7 @@ def analyze_conical(
             return Conical("none", near_direction=along[0], near_residual=along[1])
         return Conical("none")
     if len(found.directions) > 1:
-        if _power_of_a_plane(f):  # parallel planes, but only one: a plane's answer
+        if power_of_a_plane(f):  # parallel planes, but only one: a plane's answer
             return Conical("none", notes=(PLANE_NOTE,))
         return Conical(
             "cylinder",
