@@ -100,9 +100,12 @@ def test_open_refuses_what_is_not_a_report(tmp_path, capsys: pytest.CaptureFixtu
 def test_open_hands_a_valid_report_to_the_window(analyses, tmp_path, monkeypatch) -> None:
     import sorgui.gui.app
 
-    opened: list[tuple[str, object]] = []
-    monkeypatch.setattr(sorgui.gui.app, "run_gui", lambda path=None, report=None: opened.append((path, report)) or 0)
+    opened: list[tuple[str, object, object]] = []
+    monkeypatch.setattr(
+        sorgui.gui.app, "run_gui", lambda path=None, report=None, line=None: opened.append((path, report, line)) or 0
+    )
     report = export_analysis(analyses["torus"], tmp_path / "torus.sorgui.json")
     assert main(["open", str(report)]) == 0
-    [(path, read)] = opened
+    [(path, read, line)] = opened
     assert path == str(report) and read.recognition.polynomial == analyses["torus"].recognition.polynomial  # read once
+    assert line is None  # a report, not a line of a batch's results file
