@@ -176,20 +176,22 @@ def _surface(analysis: Analysis) -> list[Formula]:
 
 
 def _maps(analysis: Analysis) -> list[Formula]:
-    """The verified parameterizations of ``X``: ``X1``, ``X2``, …"""
+    """The parameterizations of ``X``: ``X1``, ``X2``, … (each says whether substitution verified it)."""
     return [_map(par, f"parametrization.{i}", f"X{i + 1}", "") for i, par in enumerate(analysis.parametrizations)]
 
 
 def _map(par: Parametrization, key: str, name: str, how: str) -> Formula:
-    """A verified parameterization of ``X`` (of the surface, or ``how`` = " by its lines")."""
+    """A parameterization of ``X`` (of the surface, or ``how`` = " by its lines"), its
+    description ending in "NOT verified" when substitution did not verify it."""
     kind = "real" if par.real else "complex"
     proper = {True: "proper", False: "not proper", None: "properness not decided"}[par.proper]
+    check = "" if par.verified else ", NOT verified"
     return Formula(
         "vector",
         par.coordinates,
         key,
         name,
-        description=f"parameterization {name[1:]} of X{how}: {par.method} ({kind}, {proper}, over {par.field})",
+        description=f"parameterization {name[1:]} of X{how}: {par.method} ({kind}, {proper}, over {par.field}{check})",
         rows=XYZ_ROWS,
         parameter_names=par.parameters,
         domain="parameters",

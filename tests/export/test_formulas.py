@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import sympy
 
 from sorgui.export.coverage import coverage
@@ -87,3 +89,12 @@ def test_a_denominator_positive_everywhere_in_two_parameters_has_no_real_zeros()
     found = coverage((2 * s / d, 2 * t / d, (s**2 + t**2 - 1) / d), (s, t), real=True, limits=False)
     text = "\n".join(found.lines())
     assert "s**2 + t**2 + 1 = 0: no real zeros" in text and "curve of parameter values" not in text
+
+
+def test_a_map_substitution_did_not_verify_says_so(analyses) -> None:
+    """The catalogue lists every parameterization; one that substitution did not verify says so."""
+    torus = analyses["torus"]
+    unverified = replace(torus, parametrizations=(replace(torus.parametrizations[0], verified=False),))
+    descriptions = {f.name: f.description for f in analysis_formulas(unverified)}
+    assert descriptions["X1"].endswith(", NOT verified)")
+    assert "NOT verified" not in {f.name: f.description for f in analysis_formulas(torus)}["X1"]
