@@ -19,7 +19,7 @@ from OCP.BRepCheck import BRepCheck_Analyzer
 
 from sorgui.engine.patches import nearest_surface, own_maps
 from sorgui.engine.results import Analysis
-from sorgui.engine.values import ExpressionError, polynomial_terms
+from sorgui.engine.values import ExpressionError, polynomial_terms, zero_set_profile
 from sorgui.engine.vocabulary import kind_noun
 from sorgui.numerics import without_noise
 from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData
@@ -134,12 +134,12 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
 
 
 def _of_its_zero_set(analysis: Analysis) -> Analysis:
-    """A power ``f = g^k`` (a doubled face) read as ``g``, whose recognition gives its profile (a
-    power's profile changes no sign: no point of it settles by Newton's method)."""
-    if len(analysis.factors) != 1 or analysis.factors[0].multiplicity == 1:
+    """``analysis`` with the profile of its zero set (:func:`~sorgui.engine.values.zero_set_profile`):
+    a power's profile, ``g^k``'s, changes no sign, so no point of it settles by Newton's method."""
+    rec = analysis.recognition
+    if rec.profile is None:
         return analysis
-    factor = analysis.factors[0].recognition
-    return dataclasses.replace(analysis, recognition=factor) if factor.profile is not None else analysis
+    return dataclasses.replace(analysis, recognition=dataclasses.replace(rec, profile=zero_set_profile(rec.profile)))
 
 
 def finished(part: Faces, scene: Scene, polynomial: str, cap: bool = False) -> CadModel:

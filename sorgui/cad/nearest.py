@@ -17,7 +17,7 @@ from typing import Protocol
 import numpy as np
 
 from sorgui.engine.results import Analysis, NearestSurface
-from sorgui.engine.values import float_vector, polynomial_terms
+from sorgui.engine.values import float_vector, polynomial_terms, zero_set_profile
 from sorgui.render import ClipBox, ClipSphere, LineData, MeshData, profile_curve
 from sorgui.render.geometry import foot_on_line
 from sorgui.render.sampling import first_order_distance
@@ -66,7 +66,7 @@ def nearest_scene(scene: Where, exact: Analysis) -> NearestScene:
         region = ClipSphere((float(centre[0]), float(centre[1]), float(centre[2])), region.radius)
     if rec.profile is not None:
         profile = profile_curve(
-            polynomial_terms(rec.profile.rational, ("s", "r")),
+            polynomial_terms(zero_set_profile(rec.profile).rational, ("s", "r")),
             float_vector(rec.profile.frame_point),
             float_vector(rec.profile.frame_direction),
             float_vector(rec.profile.frame_normal),

@@ -13,15 +13,17 @@ from it). It has no Qt: the exporters, the window, its worker process and the sc
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 from functools import lru_cache
 
 import numpy as np
 import sympy
 from flint import fmpq
 
-from .algebra.rationals import Monomial, context, expanded_terms, squarefree
+from .algebra.rationals import Monomial, context, expanded_terms, flint_str, squarefree
 from .errors import ExpressionError
 from .expressions import SYMPY, read
+from .results import Profile
 
 Terms = list[tuple[tuple[int, ...], float]]
 """A polynomial as plain data for :mod:`sorgui.render`: ``[(exponents, coefficient), ...]``."""
@@ -80,15 +82,37 @@ def polynomial_terms(text: str, names: Sequence[str] = ("x", "y", "z")) -> Terms
     return _float_terms(read_expression(text), symbols)
 
 
-def squarefree_terms(text: str, names: Sequence[str] = ("x", "y", "z")) -> Terms:
-    """:func:`polynomial_terms` of the square-free part of ``text`` over ``QQ`` (a power ``g^k``
-    changes no sign across its zero set, which a contour then misses: ``g``'s has the same zero
-    set); of ``text`` itself when it is not an expanded polynomial over ``QQ``."""
+def zero_set_profile(profile: Profile) -> Profile:
+    """``profile`` with each of its polynomials replaced by its square-free part, in the same
+    frame (docs/math.md §5, powers). The profile of a power ``g^k`` (a doubled face) changes no
+    sign across its zero set, so neither a contour nor Newton's method finds its points there;
+    the square-free part has the same zero set. ``profile`` itself when it is square-free."""
+    polynomial, square = (_squarefree_text(text, ("x", "y")) for text in (profile.polynomial, profile.square))
+    rational = _squarefree_text(profile.rational, ("s", "r"))
+    rational_square = _squarefree_text(profile.rational_square, ("s", "w"))
+    if (polynomial, square, rational, rational_square) == (
+        profile.polynomial,
+        profile.square,
+        profile.rational,
+        profile.rational_square,
+    ):
+        return profile
+    return replace(profile, polynomial=polynomial, square=square, rational=rational, rational_square=rational_square)
+
+
+def _squarefree_text(text: str, names: tuple[str, ...]) -> str:
+    """The square-free part of the engine polynomial ``text`` (over ``QQ`` with flint, over a
+    number field with sympy), printed; ``text`` itself when it is square-free."""
     terms = expanded_terms(text, names)
-    if terms is None:
-        return polynomial_terms(text, names)
-    part = squarefree(context(tuple(names)).from_dict(terms))
-    return _floats({tuple(int(e) for e in monomial): c for monomial, c in part.terms()})
+    if terms is not None:
+        whole = context(names).from_dict(terms)
+        if whole.is_zero() or whole.is_constant():
+            return text
+        part = squarefree(whole)
+        return text if part.total_degree() == whole.total_degree() else flint_str(part, names)
+    poly = sympy.Poly(read_expression(text), *sympy.symbols(names), extension=True)
+    part = sympy.sqf_part(poly)
+    return text if part.total_degree() == poly.total_degree() else str(part.as_expr())
 
 
 def _floats(terms: dict[Monomial, fmpq | int]) -> Terms:

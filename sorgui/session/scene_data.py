@@ -34,7 +34,7 @@ from sorgui.engine.values import (
     float_vector,
     polynomial_terms,
     rational_function_terms,
-    squarefree_terms,
+    zero_set_profile,
 )
 from sorgui.render import (
     PATCH_RANGE,
@@ -236,7 +236,7 @@ def build_scene(
         axis_point = tuple(point)
     if rec.profile is not None:
         profile = profile_curve(
-            squarefree_terms(rec.profile.rational, ("s", "r")),  # a power's profile changes no sign
+            polynomial_terms(zero_set_profile(rec.profile).rational, ("s", "r")),
             float_vector(rec.profile.frame_point),
             float_vector(rec.profile.frame_direction),
             float_vector(rec.profile.frame_normal),

@@ -497,11 +497,14 @@ def test_a_profile_with_cusps_is_turned_from_its_exact_parameterization(tmp_path
     [
         ("((x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2))^2", 2 * math.pi**2 * 2),  # the torus R = 2, r = 1
         ("(x^2 + y^2 + z^2 - 1)^2", 4 * math.pi / 3),
+        # a doubled torus inside a sphere of radius 6: both faces, two solids
+        ("((x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2))^2 * (x^2 + y^2 + z^2 - 36)", 4 * math.pi**2 + 288 * math.pi),
     ],
 )
 def test_a_power_is_the_part_of_its_zero_set(tmp_path: Path, text: str, volume: float) -> None:
-    """A doubled face (``g²``): its profile changes no sign across its zero set, and the part is
-    ``g``'s (it had no profile curve and was refused as having no real points in the ball)."""
+    """A doubled face (``g²``, ``g²·h``): its profile changes no sign across its zero set, and the
+    part is that of the square-free part's zero set (it had no profile curve and was refused as
+    having no real points in the ball; ``g²·h``'s fitted profile strayed from ``g``)."""
     analysis = analyze(text)
     scene = build_scene(analysis)
     assert len(scene.profile_curve.points) > 100
