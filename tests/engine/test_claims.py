@@ -90,7 +90,7 @@ LIES = [
     ("torus", ("squarefree",), "x**2 + y**2 + z**2 - 1", "squarefree"),
     ("torus", ("factors", 0, "polynomial"), "x**2 + y**2 + z**2 - 1", "factors"),
     ("torus", ("parametrizations", 0, "coordinates", 0), "s", "parametrizations[0]"),
-    ("torus", ("parametrizations", 1, "coordinates"), ["1", "0", "0"], "parametrizations[1]"),
+    ("torus", ("parametrizations", 0, "coordinates"), ["1", "0", "0"], "parametrizations[0]"),
     ("torus", ("rationality", "table_row"), 3, "rationality.table_row"),
     ("torus", ("rationality", "square_parametrization", 0), "t", "rationality.square_parametrization"),
     ("torus", ("rationality", "h"), "t", "rationality"),

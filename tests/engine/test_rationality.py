@@ -10,6 +10,7 @@ import sympy
 from sympy.polys.domains import QQ
 
 from sorgui.engine.analysis import analyze, analyze_polynomial
+from sorgui.engine.revolution.parametrization import Section, rescaling
 from sorgui.engine.revolution.rationality import table_row
 from sorgui.examples import example_text
 from sorgui.samples import PARAPLANECURVE_SEXTIC, move, quaternion_rotation, rational_vector, revolve
@@ -77,6 +78,35 @@ def test_cone_has_a_reducible_profile() -> None:
     assert rat.real_rational is True
     assert_parametrizations_verified(result)
     assert any(p.method == "rotated profile" and p.real for p in result.parametrizations)
+
+
+@pytest.mark.parametrize(
+    ("text", "after"),
+    [
+        ("(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)", " after t ↦ 1/4·t"),
+        ("(x - 1)^2 + (y - 2)^2 - 4", ""),
+        ("x^2 + y^2 - z^2", ""),
+    ],
+)
+def test_the_same_map_is_listed_once(text: str, after: str) -> None:
+    """The map through T that is the rotated profile's again (up to ``t ↦ k·t``) is not listed a
+    second time; the rotated profile's map is then proper, and a note says why (docs/math.md §6)."""
+    result = analyze(text)
+    assert [(p.method, p.real, p.proper) for p in result.parametrizations] == [("rotated profile", True, True)]
+    assert (
+        f"via tubular surface: the rotated profile's map{after}, which is therefore proper" in result.rationality.notes
+    )
+    assert_parametrizations_verified(result)
+
+
+def test_a_rescaling_of_the_parameter_is_found_exactly() -> None:
+    """``second(t) = first(k·t)``: ``k`` rational or a square root, ``None`` for another section."""
+    phi, rho = sympy.sqrt(2) * t / (t**2 + 3), (t**2 - 1) / (t**2 + 3)
+    first = Section(phi, rho, sympy.Integer(0))
+    for k in (sympy.Rational(1, 4), sympy.sqrt(3), -1):
+        assert rescaling(first, Section(phi.subs(t, k * t), rho.subs(t, k * t), sympy.Integer(0))) == k
+    assert rescaling(first, Section(phi, rho + 1, sympy.Integer(0))) is None
+    assert rescaling(first, Section(rho, phi, sympy.Integer(0))) is None
 
 
 def squarefree_polynomial(rng: random.Random, degree: int) -> sympy.Expr:

@@ -37,7 +37,7 @@ class Scene:
 def torus(analyses) -> tuple[Analysis, Scene]:
     analysis = analyses["torus"]
     surface = surface_mesh(polynomial_terms(analysis.squarefree), (-4.0, 4.0, -4.0, 4.0, -1.5, 1.5), resolution=60)
-    formula = {f.name: f for f in analysis_formulas(analysis)}["X2"]
+    formula = {f.name: f for f in analysis_formulas(analysis)}["X1"]
     functions = [sympy.lambdify(formula.parameters, c, "numpy") for c in formula.value]
     patch = parametric_patch(*functions, (-3.0, 3.0), (-3.0, 3.0), n=(25, 21))
     return analysis, Scene(surface, patch)

@@ -67,10 +67,10 @@ def test_module_checks_and_evaluates_on_the_surface(analyses, tmp_path, name: st
 
 def test_check_fails_for_a_wrong_parameterization(analyses, tmp_path) -> None:
     path = export_analysis(analyses["torus"], tmp_path / "torus_wrong.py")
-    text = path.read_text(encoding="utf-8").replace("X2_EXACT = (", "X2_EXACT = (S(1)/7 + ", 1)
+    text = path.read_text(encoding="utf-8").replace("X1_EXACT = (", "X1_EXACT = (S(1)/7 + ", 1)
     path.write_text(text, encoding="utf-8")
     module = load(path, "exported_torus_wrong")
-    with pytest.raises(AssertionError, match="X2"):
+    with pytest.raises(AssertionError, match="X1"):
         module.check()
 
 

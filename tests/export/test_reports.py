@@ -57,7 +57,7 @@ def test_markdown_has_latex_formulas_and_the_picture_beside_it(analyses, tmp_pat
     assert text.startswith("# sorgui: a surface of revolution")
     assert "![The surface and its axis](torus.png)" in text
     assert (tmp_path / "torus.png").read_bytes() == PNG
-    assert "$X_{2}(s, t) = " in text or "$$\nX_{2}(s, t) = " in text
+    assert "$X_{1}(s, t) = " in text or "$$\nX_{1}(s, t) = " in text
     assert r"- parameter domain: $(s, t) \in \mathbb{R}^{2}$" in text
     assert "Table 1, row 1" in text
 

@@ -280,6 +280,30 @@ def tubular_section(
     return Section(phi=phi, rho_u=d * A / q, rho_w=d * B / q, named=named)
 
 
+def rescaling(first: Section, second: Section) -> sympy.Expr | None:
+    """The constant ``k ≠ 0`` with ``second(t) = first(k·t)``, or ``None`` (docs/math.md §6): then
+    both sweep to the same map up to ``t ↦ k·t``, a bijection of the parameter line. Exact: the
+    coefficients in ``t`` of ``first(k·t) - second(t)`` are polynomials in ``k``, whose common
+    roots are the candidates, each checked by the identity itself."""
+    if first.named or second.named:
+        return None
+    k = sympy.Dummy("k")
+    pairs = list(zip((first.phi, first.rho_u, first.rho_w), (second.phi, second.rho_u, second.rho_w)))
+    conditions: list[sympy.Expr] = []
+    for a, b in pairs:
+        difference = sympy.numer(sympy.together(a.subs(T, k * T) - b))
+        conditions += sympy.Poly(sympy.expand(difference), T).coeffs() if difference != 0 else []
+    if not conditions:
+        return sympy.Integer(1)
+    common = sympy.gcd_list(conditions, k, extension=True)
+    if not common.has(k):
+        return None
+    for root in sympy.roots(sympy.Poly(common, k, extension=True)):
+        if root != 0 and all(sympy.cancel(a.subs(T, root * T) - b, extension=True) == 0 for a, b in pairs):
+            return root
+    return None
+
+
 def vanishes_on(f: Poly, surface: SurfaceMap) -> bool:
     """Whether ``f(N₁/D, N₂/D, N₃/D) = 0`` exactly: the homogenised ``f`` (its coefficients
     written with the radicals of ``K``) is composed with ``(N₁, N₂, N₃, D)`` in flint and reduced

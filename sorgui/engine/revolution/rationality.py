@@ -17,7 +17,7 @@ never in a hang.
 from __future__ import annotations
 
 import threading
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TypedDict
 
 import sympy
@@ -52,6 +52,7 @@ from .parametrization import (
     norm_decomposition,
     quadric_section,
     quadric_vanishes,
+    rescaling,
     section_vanishes,
     sweep,
     tube_section_vanishes,
@@ -349,6 +350,7 @@ def parametrizations(
     notes: list[str] = []
     K = f.ring.domain
     frame = profile.frame
+    rotated: tuple[Section, Parametrization] | None = None
     if rationality.genus_profile == 0 or rationality.profile_reducible:
         try:
             section = _profile_section(profile, rationality, timeout=timeout, cancel=cancel)
@@ -356,6 +358,7 @@ def parametrizations(
             par = _swept(f, profile, section, method="rotated profile", proper=proper)
             if par is not None:
                 found.append(par)
+                rotated = section, par
         except (AnalysisError, SingularError) as exc:
             notes.append(f"rotated profile: {exc.message}")
         except UNSUPPORTED:
@@ -363,9 +366,14 @@ def parametrizations(
     if tube is not None:
         n = to_expr(K, dot(frame.direction, frame.direction))
         try:
-            par, note = _tubular_parametrization(f, profile, tube, n, K, rationality)
+            par, note, swept = _tubular_parametrization(f, profile, tube, n, K, rationality)
+            k = rescaling(rotated[0], swept) if rotated and par and par.proper and swept else None
         except UNSUPPORTED:
-            par, note = None, f"parameterization through T: {UNSUPPORTED_NOTE}"
+            par, note, k = None, f"parameterization through T: {UNSUPPORTED_NOTE}", None
+        if rotated is not None and k is not None:  # one map, listed once: its properness is the tube's
+            found[found.index(rotated[1])] = replace(rotated[1], proper=True)
+            after = "" if k == 1 else f" after t ↦ {k}·t"
+            par, note = None, f"via tubular surface: the rotated profile's map{after}, which is therefore proper"
         found += [par] if par is not None else []
         notes += [note] if note else []
     return tuple(found), tuple(notes)
@@ -373,16 +381,18 @@ def parametrizations(
 
 def _tubular_parametrization(
     f: Poly, profile: ProfileCurve, tube: TubularSurface, n: sympy.Expr, K: Domain, rationality: Rationality
-) -> tuple[Parametrization | None, str]:
+) -> tuple[Parametrization | None, str, Section | None]:
     """The parameterization through ``T`` (docs/math.md §6): real when ``h = A² + n·B²``, or when the
     rest after the norm part is of degree ≤ 2 (a quadric, projected stereographically); the
-    complex one otherwise. Returns it and a note on what could not be done."""
+    complex one otherwise. Returns it, a note on what could not be done, and the real section
+    swept (``None`` for the others)."""
     frame = profile.frame
     real = norm_decomposition(tube.h, n)
     radius = tube.d**2 * tube.h / tube.q**2
     if real is not None:
         section = tubular_section(tube.phi, tube.d, tube.q, *real)
-        return _swept(f, profile, section, method="via tubular surface (real)", proper=True, radius=radius), ""
+        par = _swept(f, profile, section, method="via tubular surface (real)", proper=True, radius=radius)
+        return par, "", section
     quadric = quadric_section(tube.h, n)
     if quadric is not None:
         x, Y, Z = quadric
@@ -392,9 +402,10 @@ def _tubular_parametrization(
         def on_tube() -> bool:
             return quadric_vanishes(quadric, tube.h, n)
 
-        return make_parametrization(
+        stereographic = make_parametrization(
             f, profile, surface, on_tube, method="via tubular surface (real, stereographic)", proper=True
-        ), ""
+        )
+        return stereographic, "", None
     A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * ALPHA)
     section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
     complex_par = _swept(f, profile, section, method="via tubular surface (complex)", proper=True, radius=radius)
@@ -411,7 +422,7 @@ def _tubular_parametrization(
             "has irrational coefficients, or no rational point of y² + n·z² = q(t) was found (its "
             "numbers not factored quickly); sorgui gives the complex parameterization only"
         )
-    return complex_par, note
+    return complex_par, note, None
 
 
 def _swept(
