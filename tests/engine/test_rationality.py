@@ -83,7 +83,7 @@ def test_cone_has_a_reducible_profile() -> None:
 @pytest.mark.parametrize(
     ("text", "after"),
     [
-        ("(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)", " after t ↦ 1/4·t"),
+        ("(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)", " with t ↦ 1/4·t"),
         ("(x - 1)^2 + (y - 2)^2 - 4", ""),
         ("x^2 + y^2 - z^2", ""),
     ],
@@ -94,7 +94,7 @@ def test_the_same_map_is_listed_once(text: str, after: str) -> None:
     result = analyze(text)
     assert [(p.method, p.real, p.proper) for p in result.parametrizations] == [("rotated profile", True, True)]
     assert (
-        f"via tubular surface: the rotated profile's map{after}, which is therefore proper" in result.rationality.notes
+        f"the map through T is parametrization 1{after}: listed once, and proper as it is" in result.rationality.notes
     )
     assert_parametrizations_verified(result)
 

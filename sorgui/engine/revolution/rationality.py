@@ -371,9 +371,11 @@ def parametrizations(
         except UNSUPPORTED:
             par, note, k = None, f"parameterization through T: {UNSUPPORTED_NOTE}", None
         if rotated is not None and k is not None:  # one map, listed once: its properness is the tube's
-            found[found.index(rotated[1])] = replace(rotated[1], proper=True)
-            after = "" if k == 1 else f" after t ↦ {k}·t"
-            par, note = None, f"via tubular surface: the rotated profile's map{after}, which is therefore proper"
+            index = found.index(rotated[1])
+            found[index] = replace(rotated[1], proper=True)
+            after = "" if k == 1 else f" with t ↦ {k}·t"
+            note = f"the map through T is parametrization {index + 1}{after}: listed once, and proper as it is"
+            par = None
         found += [par] if par is not None else []
         notes += [note] if note else []
     return tuple(found), tuple(notes)
