@@ -107,6 +107,12 @@ def test_a_rescaling_of_the_parameter_is_found_exactly() -> None:
         assert rescaling(first, Section(phi.subs(t, k * t), rho.subs(t, k * t), sympy.Integer(0))) == k
     assert rescaling(first, Section(phi, rho + 1, sympy.Integer(0))) is None
     assert rescaling(first, Section(rho, phi, sympy.Integer(0))) is None
+    line = Section(t, 2 * t, sympy.Integer(0))  # monomials: a cone's generator
+    assert rescaling(line, Section(-3 * t, -6 * t, sympy.Integer(0))) == -3
+    assert rescaling(line, Section(3 * t, 5 * t, sympy.Integer(0))) is None
+    assert rescaling(
+        Section(1 / t, t**2, sympy.Integer(0)), Section(2 / t, t**2 / 4, sympy.Integer(0))
+    ) == sympy.Rational(1, 2)
 
 
 def squarefree_polynomial(rng: random.Random, degree: int) -> sympy.Expr:
