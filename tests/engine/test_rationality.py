@@ -94,7 +94,8 @@ def test_the_same_map_is_listed_once(text: str, after: str) -> None:
     result = analyze(text)
     assert [(p.method, p.real, p.proper) for p in result.parametrizations] == [("rotated profile", True, True)]
     assert (
-        f"the map through T is parametrization 1{after}: listed once, and proper as it is" in result.rationality.notes
+        f"the map through T is the rotated profile's{after}: listed once, and proper as it is"
+        in result.rationality.notes
     )
     assert_parametrizations_verified(result)
 

@@ -367,18 +367,31 @@ def parametrizations(
         n = to_expr(K, dot(frame.direction, frame.direction))
         try:
             par, note, swept = _tubular_parametrization(f, profile, tube, n, K, rationality)
-            k = rescaling(rotated[0], swept) if rotated and par and par.proper and swept else None
         except UNSUPPORTED:
-            par, note, k = None, f"parameterization through T: {UNSUPPORTED_NOTE}", None
+            par, note, swept = None, f"parameterization through T: {UNSUPPORTED_NOTE}", None
+        k = _rescaled_rotation(rotated[0] if rotated else None, par, swept)
         if rotated is not None and k is not None:  # one map, listed once: its properness is the tube's
-            index = found.index(rotated[1])
-            found[index] = replace(rotated[1], proper=True)
+            found[found.index(rotated[1])] = replace(rotated[1], proper=True)
             after = "" if k == 1 else f" with t ↦ {k}·t"
-            note = f"the map through T is parametrization {index + 1}{after}: listed once, and proper as it is"
+            note = f"the map through T is the rotated profile's{after}: listed once, and proper as it is"
             par = None
         found += [par] if par is not None else []
         notes += [note] if note else []
     return tuple(found), tuple(notes)
+
+
+def _rescaled_rotation(
+    rotated: Section | None, par: Parametrization | None, swept: Section | None
+) -> sympy.Expr | None:
+    """``k`` when the proper map ``par`` through ``T``, which sweeps the section ``swept``, is the
+    rotated profile's map (of the section ``rotated``) after ``t ↦ k·t``; else ``None``, also
+    when sympy cannot decide it (the map is then listed as it is)."""
+    if rotated is None or par is None or not par.proper or swept is None:
+        return None
+    try:
+        return rescaling(rotated, swept)
+    except UNSUPPORTED:
+        return None
 
 
 def _tubular_parametrization(
