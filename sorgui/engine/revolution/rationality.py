@@ -366,48 +366,54 @@ def parametrizations(
     if tube is not None:
         n = to_expr(K, dot(frame.direction, frame.direction))
         try:
-            par, note, swept = _tubular_parametrization(f, profile, tube, n, K, rationality)
+            real = _real_tube_section(tube, n)
+            k = _rescaling_of(rotated[0], real) if rotated and real else None
+            if rotated is not None and k is not None:  # one map, listed once: proper as the tube's is
+                found[found.index(rotated[1])] = replace(rotated[1], proper=True)
+                after = "" if k == 1 else f" with t ↦ {k}·t"
+                par, note = None, f"the map through T is the rotated profile's{after}: listed once, and proper as it is"
+            else:
+                par, note = _tubular_parametrization(f, profile, tube, n, K, rationality, real)
         except UNSUPPORTED:
-            par, note, swept = None, f"parameterization through T: {UNSUPPORTED_NOTE}", None
-        k = _rescaled_rotation(rotated[0] if rotated else None, par, swept)
-        if rotated is not None and k is not None:  # one map, listed once: its properness is the tube's
-            found[found.index(rotated[1])] = replace(rotated[1], proper=True)
-            after = "" if k == 1 else f" with t ↦ {k}·t"
-            note = f"the map through T is the rotated profile's{after}: listed once, and proper as it is"
-            par = None
+            par, note = None, f"parameterization through T: {UNSUPPORTED_NOTE}"
         found += [par] if par is not None else []
         notes += [note] if note else []
     return tuple(found), tuple(notes)
 
 
-def _rescaled_rotation(
-    rotated: Section | None, par: Parametrization | None, swept: Section | None
-) -> sympy.Expr | None:
-    """``k`` when the proper map ``par`` through ``T``, which sweeps the section ``swept``, is the
-    rotated profile's map (of the section ``rotated``) after ``t ↦ k·t``; else ``None``, also
-    when sympy cannot decide it (the map is then listed as it is)."""
-    if rotated is None or par is None or not par.proper or swept is None:
-        return None
+def _real_tube_section(tube: TubularSurface, n: sympy.Expr) -> Section | None:
+    """The real section through ``T`` when ``h = A² + n·B²`` (docs/math.md §6), else ``None``."""
+    real = norm_decomposition(tube.h, n)
+    return None if real is None else tubular_section(tube.phi, tube.d, tube.q, *real)
+
+
+def _rescaling_of(rotated: Section, real: Section) -> sympy.Expr | None:
+    """``k`` when the real section through ``T`` is the rotated profile's after ``t ↦ k·t``, so
+    that both sweep to one map (:func:`.parametrization.rescaling`); ``None`` otherwise, also
+    when sympy cannot decide it (the map through ``T`` is then made and listed as usual)."""
     try:
-        return rescaling(rotated, swept)
+        return rescaling(rotated, real)
     except UNSUPPORTED:
         return None
 
 
 def _tubular_parametrization(
-    f: Poly, profile: ProfileCurve, tube: TubularSurface, n: sympy.Expr, K: Domain, rationality: Rationality
-) -> tuple[Parametrization | None, str, Section | None]:
-    """The parameterization through ``T`` (docs/math.md §6): real when ``h = A² + n·B²``, or when the
-    rest after the norm part is of degree ≤ 2 (a quadric, projected stereographically); the
-    complex one otherwise. Returns it, a note on what could not be done, and the real section
-    swept (``None`` for the others)."""
+    f: Poly,
+    profile: ProfileCurve,
+    tube: TubularSurface,
+    n: sympy.Expr,
+    K: Domain,
+    rationality: Rationality,
+    real: Section | None,
+) -> tuple[Parametrization | None, str]:
+    """The parameterization through ``T`` (docs/math.md §6): real when ``h = A² + n·B²`` (``real``
+    is then its section, :func:`_real_tube_section`), or when the rest after the norm part is of
+    degree ≤ 2 (a quadric, projected stereographically); the complex one otherwise. Returns it
+    and a note on what could not be done."""
     frame = profile.frame
-    real = norm_decomposition(tube.h, n)
     radius = tube.d**2 * tube.h / tube.q**2
     if real is not None:
-        section = tubular_section(tube.phi, tube.d, tube.q, *real)
-        par = _swept(f, profile, section, method="via tubular surface (real)", proper=True, radius=radius)
-        return par, "", section
+        return _swept(f, profile, real, method="via tubular surface (real)", proper=True, radius=radius), ""
     quadric = quadric_section(tube.h, n)
     if quadric is not None:
         x, Y, Z = quadric
@@ -417,10 +423,9 @@ def _tubular_parametrization(
         def on_tube() -> bool:
             return quadric_vanishes(quadric, tube.h, n)
 
-        stereographic = make_parametrization(
+        return make_parametrization(
             f, profile, surface, on_tube, method="via tubular surface (real, stereographic)", proper=True
-        )
-        return stereographic, "", None
+        ), ""
     A, B = (tube.h + 1) / 2, (tube.h - 1) / (2 * ALPHA)
     section = tubular_section(tube.phi, tube.d, tube.q, A, B, named=((ALPHA, sympy.sqrt(-n)),))
     complex_par = _swept(f, profile, section, method="via tubular surface (complex)", proper=True, radius=radius)
@@ -437,7 +442,7 @@ def _tubular_parametrization(
             "has irrational coefficients, or no rational point of y² + n·z² = q(t) was found (its "
             "numbers not factored quickly); sorgui gives the complex parameterization only"
         )
-    return complex_par, note, None
+    return complex_par, note
 
 
 def _swept(
