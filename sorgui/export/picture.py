@@ -1,10 +1,10 @@
 """A PNG picture of the surface and its axis, rendered off screen for the Markdown/HTML reports.
 
 The scene (``sorgui.session.scene_data.SceneData``: surface mesh, axis segment, profile curve,
-sphere centre) is drawn by an off-screen pyvista plotter in the viewport's colours, from the
-viewport's isometric direction. VTK picks the OpenGL context itself: GLX under X (or Xvfb), EGL
-or OSMesa without a display; when none can be had, :func:`render_png` raises ``RuntimeError``
-and the reports are written without a picture.
+sphere centre, and rounded input's approximate axis) is drawn by an off-screen pyvista plotter
+in the viewport's colours, from the viewport's isometric direction. VTK picks the OpenGL context
+itself: GLX under X (or Xvfb), EGL or OSMesa without a display; when none can be had,
+:func:`render_png` raises ``RuntimeError`` and the reports are written without a picture.
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ PICTURE_SIZE = (900, 700)
 SURFACE_COLOR = "#7fa7d6"
 BACK_COLOR = "#e8a95b"
 AXIS_COLOR = "#1f2a44"
+APPROXIMATE_AXIS_COLOR = "#ef6c00"
 PROFILE_COLOR = "#c2185b"
 CENTER_COLOR = "#d32f2f"
 
@@ -31,6 +32,7 @@ class PictureScene(Protocol):
 
     surface: MeshData
     axis_segment: LineData
+    approximate_axis: LineData
     profile_curve: LineData
     center_marker: MarkerData | None
     region: ClipSphere
@@ -60,7 +62,12 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
                     smooth_shading=True,
                 )
                 actor.prop.interpolation = "gouraud"
-            for data, color in ((scene.axis_segment, AXIS_COLOR), (scene.profile_curve, PROFILE_COLOR)):
+            lines = (
+                (scene.axis_segment, AXIS_COLOR),
+                (scene.approximate_axis, APPROXIMATE_AXIS_COLOR),
+                (scene.profile_curve, PROFILE_COLOR),
+            )
+            for data, color in lines:
                 if not data.is_empty:
                     plotter.add_mesh(data.to_polydata(), color=color, line_width=4)
             if scene.center_marker is not None:

@@ -155,13 +155,15 @@ def _needs_scene(target: ExportTarget) -> bool:
 
 
 def _scene(analysis: Analysis, request: ExportRequest) -> Any:  # noqa: ANN401 - a SceneData
-    """The scene of ``analysis`` in the request's region (the drawn ball by default)."""
+    """The scene of ``analysis`` in the request's region (the drawn ball by default), with rounded
+    input's approximate axis, as the window draws it."""
     from sorgui.render import ClipBox, ClipSphere
-    from sorgui.session.scene_data import build_scene
+    from sorgui.session.scene_data import build_scene, with_approximation
 
     ball = ClipSphere(request.center, request.radius) if request.center is not None and request.radius else None
     box = ClipBox(request.bounds) if request.bounds else None
-    return build_scene(analysis, radius=request.radius if ball is None else None, region=ball, box=box)
+    scene = build_scene(analysis, radius=request.radius if ball is None else None, region=ball, box=box)
+    return with_approximation(scene, analysis)
 
 
 def _write(analysis: Analysis, target: ExportTarget, request: ExportRequest, scene: Any) -> ExportMessage:  # noqa: ANN401

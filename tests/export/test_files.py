@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 import sympy
@@ -109,3 +110,23 @@ def test_open_hands_a_valid_report_to_the_window(analyses, tmp_path, monkeypatch
     [(path, read, line)] = opened
     assert path == str(report) and read.recognition.polynomial == analyses["torus"].recognition.polynomial  # read once
     assert line is None  # a report, not a line of a batch's results file
+
+
+def test_the_picture_of_rounded_input_shows_its_approximate_axis(tmp_path) -> None:
+    """As the window draws it, in its orange: rounded input has no exact axis of its own, and its
+    report's picture ("the surface and its axis") had none."""
+    import numpy as np
+    import pyvista
+
+    data = Path(__file__).parents[1] / "data" / "rounded-torus-6-digits.txt"
+    rounded, exact = tmp_path / "rounded.png", tmp_path / "exact.png"
+    assert main(["analyze", "-f", str(data), "-o", str(rounded)]) == 0
+    assert main(["analyze", "(x^2 + y^2 + z^2 + 8)^2 - 36(x^2 + y^2)", "-o", str(exact)]) == 0
+
+    def orange_pixels(path: Path) -> int:
+        image = pyvista.read(path)
+        rgb = np.asarray(image.point_data.active_scalars)[:, :3].astype(int)
+        return int(np.sum(np.all(np.abs(rgb - (239, 108, 0)) <= 24, axis=1)))
+
+    assert orange_pixels(rounded) > 200
+    assert orange_pixels(exact) == 0
