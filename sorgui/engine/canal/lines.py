@@ -193,11 +193,11 @@ def assemble(parts: list[Canal], is_sor: bool | None, clock: CanalClock, notes: 
 def verdict_without_smat(f: fmpq_mpoly, cancel: threading.Event | None = None) -> Canal | None:
     """The canal verdict of ``f ∈ QQ[x, y, z]``, not a surface of revolution, when no factor
     needs its SMAT (as :func:`.verdict.analyze_canal` gives it), else ``None``."""
-    g = squarefree(f) if f.total_degree() > MAX_DEGREE else None  # a power: its square-free part's degree
-    if g is not None and g.total_degree() > MAX_DEGREE:
+    g = squarefree(f)  # a power is judged by its square-free part's degree
+    if g.total_degree() > MAX_DEGREE:
         return Canal(None, f"not analysed: degree above {MAX_DEGREE}")
     clock = CanalClock(cancel)
-    _, factors = (g if g is not None else squarefree(f)).factor()
+    _, factors = g.factor()
     parts = []
     for h, _ in factors:
         verdict, _ = factor_verdict(h, clock, False if len(factors) == 1 else None)
