@@ -24,7 +24,7 @@ import sys
 import time
 import traceback
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -158,12 +158,12 @@ def _scene(analysis: Analysis, request: ExportRequest) -> Any:  # noqa: ANN401 -
     """The scene of ``analysis`` in the request's region (the drawn ball by default), with rounded
     input's approximate axis, as the window draws it."""
     from sorgui.render import ClipBox, ClipSphere
-    from sorgui.session.scene_data import build_scene, with_approximation
+    from sorgui.session.scene_data import approximate_axis, build_scene
 
     ball = ClipSphere(request.center, request.radius) if request.center is not None and request.radius else None
     box = ClipBox(request.bounds) if request.bounds else None
     scene = build_scene(analysis, radius=request.radius if ball is None else None, region=ball, box=box)
-    return with_approximation(scene, analysis)
+    return replace(scene, approximate_axis=approximate_axis(analysis, scene.region))
 
 
 def _write(analysis: Analysis, target: ExportTarget, request: ExportRequest, scene: Any) -> ExportMessage:  # noqa: ANN401

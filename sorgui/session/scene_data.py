@@ -295,13 +295,18 @@ def with_approximation(scene: SceneData, analysis: Analysis) -> SceneData:
     approx = analysis.approximate
     if approx is None:
         return scene
-    line = LineData.empty()
-    if approx.axis is not None:
-        line = axis_line(np.asarray(approx.axis.point), np.asarray(approx.axis.direction), scene.region)
     deviation = None
     if approx.nearest is not None and not scene.surface.is_empty:
         deviation = surface_deviation(polynomial_terms(approx.nearest.polynomial), scene.surface.points)
-    return replace(scene, approximate_axis=line, deviation=deviation)
+    return replace(scene, approximate_axis=approximate_axis(analysis, scene.region), deviation=deviation)
+
+
+def approximate_axis(analysis: Analysis, region: ClipSphere) -> LineData:
+    """Rounded input's approximate axis inside ``region`` (empty when there is none)."""
+    approx = analysis.approximate
+    if approx is None or approx.axis is None:
+        return LineData.empty()
+    return axis_line(np.asarray(approx.axis.point), np.asarray(approx.axis.direction), region)
 
 
 def with_canal(scene: SceneData, analysis: Analysis) -> SceneData:
