@@ -10,8 +10,9 @@ import sympy
 from sympy.polys.domains import QQ
 
 from sorgui.engine.analysis import analyze, analyze_polynomial
-from sorgui.engine.revolution.parametrization import Section, rescaling
+from sorgui.engine.revolution.parametrization import Section
 from sorgui.engine.revolution.rationality import table_row
+from sorgui.engine.revolution.reparametrization import rescaling, same_sweep
 from sorgui.examples import example_text
 from sorgui.samples import PARAPLANECURVE_SEXTIC, move, quaternion_rotation, rational_vector, revolve
 
@@ -86,11 +87,15 @@ def test_cone_has_a_reducible_profile() -> None:
         ("(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)", " with t ↦ 1/4·t"),
         ("(x - 1)^2 + (y - 2)^2 - 4", ""),
         ("x^2 + y^2 - z^2", ""),
+        ("(x^2 + y^2 + z^2 - 5/4)^2 - 4(x^2 + y^2)", " with s ↦ -1/s, t ↦ t/8"),
+        ("y^2 - 2xz", " with s ↦ (2*s - sqrt(2))/(2*sqrt(2)*s + 2)"),
     ],
 )
 def test_the_same_map_is_listed_once(text: str, after: str) -> None:
-    """The map through T that is the rotated profile's again (up to ``t ↦ k·t``) is not listed a
-    second time; the rotated profile's map is then proper, and a note says why (docs/math.md §6)."""
+    """The map through T that is the rotated profile's again (up to ``t ↦ k·t``, or a Möbius map
+    of ``t`` and a turn about the axis: the spindle torus's half turn, the cone's turn over
+    ``QQ(√2)``) is not listed a second time; the rotated profile's map is then proper, and a note
+    says why (docs/math.md §6)."""
     result = analyze(text)
     assert [(p.method, p.real, p.proper) for p in result.parametrizations] == [("rotated profile", True, True)]
     assert (
@@ -114,6 +119,31 @@ def test_a_rescaling_of_the_parameter_is_found_exactly() -> None:
     assert rescaling(
         Section(1 / t, t**2, sympy.Integer(0)), Section(2 / t, t**2 / 4, sympy.Integer(0))
     ) == sympy.Rational(1, 2)
+
+
+@pytest.mark.parametrize("turn", [sympy.Integer(0), sympy.Rational(1, 2), sympy.oo])
+@pytest.mark.parametrize("n", [sympy.Integer(1), sympy.Integer(3)])
+def test_a_moebius_map_and_a_turn_are_found_exactly(turn: sympy.Expr, n: sympy.Expr) -> None:
+    """``second(t) = R(σ₀)·first(ψ(t))``: the reparametrization found makes the two sweeps one
+    map, checked by substituting it into the sweep (docs/math.md §6)."""
+    s = sympy.Symbol("s")
+    phi, rho = (t**2 + 1) / (t**2 - 2 * t + 3), (2 * t - 1) / (t**2 - 2 * t + 3)
+    first = Section(phi, rho, sympy.Integer(0))
+    psi = (2 * t + 1) / (t - 3)
+    t1, t2 = (-1, 0) if turn is sympy.oo else ((1 - n * turn**2) / (1 + n * turn**2), 2 * turn / (1 + n * turn**2))
+    u, w = rho.subs(t, psi), sympy.Integer(0)
+    second = Section(phi.subs(t, psi), t1 * u - n * t2 * w, t2 * u + t1 * w)
+    found = same_sweep(first, second, n)
+    assert found is not None and sympy.cancel(found.t_image - psi) == 0
+
+    def swept(section: Section, sigma: sympy.Expr) -> list[sympy.Expr]:
+        cos, sin = (1 - n * sigma**2) / (1 + n * sigma**2), 2 * sigma / (1 + n * sigma**2)
+        return [section.phi, section.rho_u * cos - n * sin * section.rho_w, section.rho_u * sin + cos * section.rho_w]
+
+    moved = [c.subs({s: found.s_image, t: found.t_image}, simultaneous=True) for c in swept(first, s)]
+    assert all(sympy.cancel(a - b) == 0 for a, b in zip(moved, swept(second, s)))
+    assert same_sweep(first, Section(phi.subs(t, psi), rho.subs(t, psi) + 1, sympy.Integer(0)), n) is None
+    assert same_sweep(first, Section(rho, phi, sympy.Integer(0)), n) is None
 
 
 def squarefree_polynomial(rng: random.Random, degree: int) -> sympy.Expr:

@@ -80,7 +80,7 @@ def test_module_runs_as_a_script(analyses, tmp_path) -> None:
     path = export_analysis(analyses["cone"], tmp_path / "cone.py")
     run = subprocess.run([sys.executable, str(path)], capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
-    assert run.stdout.strip() == "verified: P2param, X1, X2, C1, canal1M, canal1Rho"
+    assert run.stdout.strip() == "verified: P2param, X1, C1, canal1M, canal1Rho"
 
 
 def test_rounded_input_carries_the_nearest_surfaces_maps_checked_on_it(tmp_path) -> None:

@@ -280,55 +280,6 @@ def tubular_section(
     return Section(phi=phi, rho_u=d * A / q, rho_w=d * B / q, named=named)
 
 
-def rescaling(first: Section, second: Section) -> sympy.Expr | None:
-    """The real constant ``k ≠ 0`` with ``second(t) = first(k·t)``, or ``None`` (docs/math.md §6):
-    then both sweep to the same map up to ``t ↦ k·t``, a bijection of the parameter line.
-
-    In lowest terms, ``first(k·t) = second(t)`` scales the coefficient of ``tʲ`` in a numerator
-    or denominator of ``first`` by ``kʲ`` (up to one common factor), so two of its terms, of
-    degrees ``i < j``, give ``k^(j−i)`` (a monomial ``c·tᵐ`` gives ``kᵐ``); each real root is a
-    candidate, accepted only when the three identities hold exactly."""
-    if first.named or second.named:
-        return None
-    pairs = list(zip((first.phi, first.rho_u, first.rho_w), (second.phi, second.rho_u, second.rho_w)))
-    moving = [(a, b) for a, b in pairs if a.has(T)]
-    candidates = _scales(*moving[0]) if moving else [sympy.Integer(1)]
-    for k in candidates:
-        if all(sympy.expand(sympy.numer(sympy.together(a.subs(T, k * T) - b))) == 0 for a, b in pairs):
-            return k
-    return None
-
-
-def _scales(a: sympy.Expr, b: sympy.Expr) -> list[sympy.Expr]:
-    """The real ``k`` that the terms of ``a`` and ``b`` allow for ``a(k·t) = b(t)`` (see
-    :func:`rescaling`); ``a`` depends on ``t``."""
-    for mine, theirs in zip(sympy.fraction(sympy.cancel(a)), sympy.fraction(sympy.cancel(b))):
-        p, q = sympy.Poly(mine, T), sympy.Poly(theirs, T)
-        terms = p.terms()
-        if len(terms) < 2:
-            continue
-        (j,), top = terms[0]
-        (i,), low = terms[-1]
-        if q.degree() != j or q.coeff_monomial(T**i) == 0:
-            return []
-        return _real_roots_of_power(q.coeff_monomial(T**j) * low / (q.coeff_monomial(T**i) * top), j - i)
-    ratio = sympy.cancel(b / a)  # a = c·tᵐ: b = c·kᵐ·tᵐ
-    numerator, denominator = sympy.fraction(sympy.cancel(a))
-    m = sympy.degree(numerator, T) - sympy.degree(denominator, T)
-    return [] if ratio.has(T) or m == 0 else _real_roots_of_power(ratio if m > 0 else 1 / ratio, abs(m))
-
-
-def _real_roots_of_power(ratio: sympy.Expr, n: int) -> list[sympy.Expr]:
-    """The real ``k`` with ``kⁿ = ratio`` (``n ≥ 1``)."""
-    ratio = sympy.radsimp(ratio)
-    if ratio == 0 or not ratio.is_real:
-        return []
-    root = sympy.root(abs(ratio), n)
-    if n % 2:
-        return [root if ratio > 0 else -root]
-    return [root, -root] if ratio > 0 else []
-
-
 def vanishes_on(f: Poly, surface: SurfaceMap) -> bool:
     """Whether ``f(N₁/D, N₂/D, N₃/D) = 0`` exactly: the homogenised ``f`` (its coefficients
     written with the radicals of ``K``) is composed with ``(N₁, N₂, N₃, D)`` in flint and reduced

@@ -52,12 +52,12 @@ from .parametrization import (
     norm_decomposition,
     quadric_section,
     quadric_vanishes,
-    rescaling,
     section_vanishes,
     sweep,
     tube_section_vanishes,
     tubular_section,
 )
+from .reparametrization import Reparametrization, same_sweep
 
 UNSUPPORTED = (BasePolynomialError, NotImplementedError)
 """What sympy raises for coefficient fields it cannot handle; a parameterization is then left
@@ -367,10 +367,10 @@ def parametrizations(
         n = to_expr(K, dot(frame.direction, frame.direction))
         try:
             real = _real_tube_section(tube, n)
-            k = _rescaling_of(rotated[0], real) if rotated and real else None
-            if rotated is not None and k is not None:  # one map, listed once: proper as the tube's is
+            same = _same_sweep(rotated[0], real, n) if rotated and real else None
+            if rotated is not None and same is not None:  # one map, listed once: proper as the tube's is
                 found[found.index(rotated[1])] = replace(rotated[1], proper=True)
-                after = "" if k == 1 else f" with t ↦ {k}·t"
+                after = same.describe()
                 par, note = None, f"the map through T is the rotated profile's{after}: listed once, and proper as it is"
             else:
                 par, note = _tubular_parametrization(f, profile, tube, n, K, rationality, real)
@@ -387,12 +387,12 @@ def _real_tube_section(tube: TubularSurface, n: sympy.Expr) -> Section | None:
     return None if real is None else tubular_section(tube.phi, tube.d, tube.q, *real)
 
 
-def _rescaling_of(rotated: Section, real: Section) -> sympy.Expr | None:
-    """``k`` when the real section through ``T`` is the rotated profile's after ``t ↦ k·t``, so
-    that both sweep to one map (:func:`.parametrization.rescaling`); ``None`` otherwise, also
-    when sympy cannot decide it (the map through ``T`` is then made and listed as usual)."""
+def _same_sweep(rotated: Section, real: Section, n: sympy.Expr) -> Reparametrization | None:
+    """How the real section through ``T`` sweeps to the rotated profile's map after bijections of
+    the parameters (:func:`.reparametrization.same_sweep`); ``None`` otherwise, also when sympy
+    cannot decide it (the map through ``T`` is then made and listed as usual)."""
     try:
-        return rescaling(rotated, real)
+        return same_sweep(rotated, real, n)
     except UNSUPPORTED:
         return None
 
