@@ -35,6 +35,7 @@ from .timelimit import skeleton, time_limit, unfinished_analysis
 
 if TYPE_CHECKING:
     from .algebra.polys import Poly
+    from .revolution.reparametrization import GivenMap
     from .stage_results import Parametrization
 
 SPHERE_NOTE = (
@@ -98,7 +99,7 @@ def analyze(
             source = parse_parametrization(text)
         limit = singular_timeout
 
-        def implicit(f: Poly, section: tuple[Any, Any, Any] | None) -> Analysis:
+        def implicit(f: Poly, section: tuple[Any, Any, Any] | None, given: GivenMap) -> Analysis:
             return analyze_polynomial(
                 f,
                 method=method,
@@ -106,6 +107,7 @@ def analyze(
                 singular_timeout=limit,
                 clock=clock,
                 section=section,
+                given=given,
             )
 
         return analyze_parametrization(
@@ -185,6 +187,7 @@ def analyze_polynomial(
     frame: tuple[Vector, Vector, Vector] | None = None,
     canal: bool = True,
     section: tuple[Any, Any, Any] | None = None,
+    given: GivenMap | None = None,
 ) -> Analysis:
     """The analysis of a polynomial over ``K`` that is already parsed (``text`` defaults to it).
 
@@ -192,7 +195,8 @@ def analyze_polynomial(
     ``frame`` is a preferred axis frame for the profile (see :func:`.recognition.recognize.recognize`).
     ``canal=False`` skips the canal stage (the nearest exact surface is a surface of revolution,
     hence canal; the typed equation's canal analysis is the one shown). ``section`` is a rational
-    curve on ``X`` that may parameterize ``P²`` (a typed parametrization's, docs/math.md §13).
+    curve on ``X`` that may parameterize ``P²`` (a typed parametrization's, docs/math.md §13);
+    ``given`` the typed map itself, whose reparametrizations are not listed again (docs/math.md §6).
     """
     from .algebra.linalg import perpendicular
     from .algebra.polys import field_name, poly_str, total_degree
@@ -286,7 +290,9 @@ def analyze_polynomial(
                 )
             clock.publish(result(rationality, found))
             with clock.stage("parametrizations"):
-                found, notes = parametrizations(g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel)
+                found, notes = parametrizations(
+                    g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel, given=given
+                )
                 if plane:
                     found = (plane_map(g, profile.frame.point, profile.frame.direction), *found)
             if sphere or plane:

@@ -39,8 +39,41 @@ def test_the_issue_example_is_a_surface_of_revolution_with_the_keys_of_an_equati
     assert record["proper"] is True and record["fibre"] == 1
     given = data["parametrizations"][0]
     assert given["method"] == "the given parametrization" and given["proper"] is True
-    assert len(data["parametrizations"]) == 1 + len(equation["parametrizations"])
+    assert [p["method"] for p in equation["parametrizations"]] == ["rotated profile"]
+    assert [p["method"] for p in data["parametrizations"]] == ["the given parametrization"]
+    note = "the rotated profile's map is the given map at (s, t) = (-t - 2, -1/s): listed once"
+    assert note in data["rationality"]["notes"]
     assert Analysis.from_json(json.loads(json.dumps(data))) == analysis
+
+
+@pytest.mark.parametrize(
+    ("given", "names"),
+    [
+        ("x = (1-t^2)/(1+t^2)*(2+s), y = 2*t/(1+t^2)*(2+s), z = s^2", ("s", "t")),
+        ("x = 2*u/(1+u^2)*(3+(1-v^2)/(1+v^2)), y = (1-u^2)/(1+u^2)*(3+(1-v^2)/(1+v^2)), z = 2*v/(1+v^2)", ("u", "v")),
+    ],
+)
+def test_a_map_the_typed_one_is_after_a_change_of_parameters_is_not_listed(given: str, names: tuple[str, str]) -> None:
+    """The rotated profile's map that is the typed map after Möbius maps of its parameters (and a
+    swap of them) is left out with a note (docs/math.md §6); the note's change is checked by
+    substituting it: the map the equation's own analysis lists is the typed map at those values."""
+    import sympy
+
+    analysis = analyze(given, timeout=120)
+    equation = analyze(analysis.recognition.polynomial, timeout=120)
+    assert [p.method for p in analysis.parametrizations] == ["the given parametrization"]
+    assert [p.method for p in equation.parametrizations] == ["rotated profile"]
+    start = f"the rotated profile's map is the given map at ({', '.join(names)}) = ("
+    note = next(n for n in analysis.rationality.notes if n.startswith(start))
+    s, t = sympy.symbols("s t")
+    local = {"s": s, "t": t, "sqrt": sympy.sqrt}
+    images = [sympy.sympify(e, locals=local) for e in note.removeprefix(start).split("): listed once")[0].split(", ")]
+    typed = [
+        sympy.sympify(c, locals={**local, names[0]: s, names[1]: t}) for c in analysis.parametrizations[0].coordinates
+    ]
+    rotated = [sympy.sympify(c, locals=local) for c in equation.parametrizations[0].coordinates]
+    moved = [c.subs({s: images[0], t: images[1]}, simultaneous=True) for c in typed]
+    assert all(sympy.cancel(a - b) == 0 for a, b in zip(moved, rotated))
 
 
 def test_a_bidegree_4_2_surface_of_revolution_on_a_rational_axis() -> None:

@@ -40,6 +40,8 @@ from .maps import ParameterRing, RationalMap, fraction_text
 if TYPE_CHECKING:
     from sympy.polys.domains.domain import Domain
 
+    from ..revolution.reparametrization import GivenMap
+
 IMPLICIT_TIMEOUT = 30.0
 """Seconds Singular's elimination may take at most (or the analysis' time left, if shorter)."""
 PROPER_TIMEOUT = 1.0
@@ -67,9 +69,10 @@ class TypedMap(Protocol):
     def field(self) -> Domain: ...
 
 
-ImplicitAnalysis = Callable[[Poly, tuple[Any, Any, Any] | None], Analysis]
+ImplicitAnalysis = Callable[[Poly, tuple[Any, Any, Any] | None, "GivenMap"], Analysis]
 """The analysis of the implicit equation on the same clock, given a rational curve on ``X`` that
-may parameterize its ``P²`` (:func:`~sorgui.engine.analysis.analyze_polynomial`)."""
+may parameterize its ``P²`` and the typed map itself, whose reparametrizations are not listed
+again (:func:`~sorgui.engine.analysis.analyze_polynomial`)."""
 
 
 def analyze_parametrization(
@@ -191,7 +194,7 @@ def _analyze(
         return _decorated(
             replace(final, timings=tuple(clock.timings)), text, known.record, known.approximate, known.near
         )
-    analysis = implicit(found.polynomial, found.section)
+    analysis = implicit(found.polynomial, found.section, _given(surface, known.record.map_parameters))
     clock.decorate = None
     _agree(analysis, decided)
     if analysis.conical is None:  # recognition only: the map's own apex or directions
@@ -295,6 +298,18 @@ def _record(
         profile_check=profile_check,
         implicit_status=BEING_COMPUTED if symmetry is not None else "",
     )
+
+
+def _given(surface: RationalMap, names: tuple[str, str]) -> GivenMap:
+    """The typed map as sympy rational functions of ``s, t`` (the engine's names of its
+    parameters) with the names the user gave them."""
+    import sympy
+
+    from ..revolution.reparametrization import GivenMap
+
+    W = surface.ring.to_sympy(surface.W).as_expr()
+    x, y, z = (sympy.cancel(surface.ring.to_sympy(c).as_expr() / W) for c in surface.X)
+    return GivenMap((x, y, z), names)
 
 
 def _undecided(source: TypedMap, method: str) -> Analysis:

@@ -57,7 +57,7 @@ from .parametrization import (
     tube_section_vanishes,
     tubular_section,
 )
-from .reparametrization import Reparametrization, same_sweep
+from .reparametrization import GivenMap, Reparametrization, same_sweep, typed_sweep
 
 UNSUPPORTED = (BasePolynomialError, NotImplementedError)
 """What sympy raises for coefficient fields it cannot handle; a parameterization is then left
@@ -343,10 +343,13 @@ def parametrizations(
     *,
     timeout: float = 60.0,
     cancel: threading.Event | None = None,
+    given: GivenMap | None = None,
 ) -> tuple[tuple[Parametrization, ...], tuple[str, ...]]:
     """Every parameterization docs/math.md §6 provides, each verified; and notes on those that could
-    not be built."""
+    not be built. A map that is the ``given`` (typed) map's after a change of parameters is left
+    out, with a note (docs/math.md §6, "One map, listed once")."""
     found: list[Parametrization] = []
+    swept: list[tuple[Section, Parametrization]] = []
     notes: list[str] = []
     K = f.ring.domain
     frame = profile.frame
@@ -359,6 +362,7 @@ def parametrizations(
             if par is not None:
                 found.append(par)
                 rotated = section, par
+                swept.append(rotated)
         except (AnalysisError, SingularError) as exc:
             notes.append(f"rotated profile: {exc.message}")
         except UNSUPPORTED:
@@ -369,16 +373,50 @@ def parametrizations(
             real = _real_tube_section(tube, n)
             same = _same_sweep(rotated[0], real, n) if rotated and real else None
             if rotated is not None and same is not None:  # one map, listed once: proper as the tube's is
-                found[found.index(rotated[1])] = replace(rotated[1], proper=True)
+                proper_map = replace(rotated[1], proper=True)
+                found[found.index(rotated[1])] = proper_map
+                swept[swept.index(rotated)] = (rotated[0], proper_map)
                 after = same.describe()
                 par, note = None, f"the map through T is the rotated profile's{after}: listed once, and proper as it is"
             else:
                 par, note = _tubular_parametrization(f, profile, tube, n, K, rationality, real)
+                if par is not None and real is not None:
+                    swept.append((real, par))
         except UNSUPPORTED:
             par, note = None, f"parameterization through T: {UNSUPPORTED_NOTE}"
         found += [par] if par is not None else []
         notes += [note] if note else []
+    if given is not None and swept:
+        for par, note in _given_again(given, swept, profile, K):
+            found.remove(par)
+            notes.append(note)
     return tuple(found), tuple(notes)
+
+
+def _given_again(
+    given: GivenMap, swept: list[tuple[Section, Parametrization]], profile: ProfileCurve, K: Domain
+) -> list[tuple[Parametrization, str]]:
+    """The maps of ``swept`` that are the typed map's after a change of parameters
+    (:func:`.reparametrization.typed_sweep`, :func:`.reparametrization.same_sweep`), each with
+    its note; none when sympy cannot decide it."""
+    frame = profile.frame
+    vectors = [[to_expr(K, c) for c in v] for v in (frame.point, frame.direction, frame.normal, frame.binormal)]
+    n = to_expr(K, dot(frame.direction, frame.direction))
+    again = []
+    try:
+        typed = typed_sweep(given.coordinates, (vectors[0], vectors[1], vectors[2], vectors[3]), n)
+        if typed is None:
+            return []
+        for section, par in swept:
+            same = same_sweep(typed.section, section, n)
+            if same is not None:
+                first, second = typed.given_in(same)
+                names = ", ".join(given.names)
+                name = "the rotated profile's map" if par.method == "rotated profile" else "the map through T"
+                again.append((par, f"{name} is the given map at ({names}) = ({first}, {second}): listed once"))
+    except UNSUPPORTED:
+        return []
+    return again
 
 
 def _real_tube_section(tube: TubularSurface, n: sympy.Expr) -> Section | None:

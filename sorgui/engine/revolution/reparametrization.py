@@ -189,3 +189,80 @@ def _degree(a: sympy.Expr) -> int:
 def _vanishes(e: sympy.Expr) -> bool:
     """Whether the rational function ``e`` is zero: its numerator expands to 0."""
     return bool(sympy.expand(sympy.numer(sympy.together(e))) == 0)
+
+
+@dataclass(frozen=True)
+class TypedSweep:
+    """A typed map ``X(s, t)`` that is a sweep: in the axis frame its height and squared radius
+    depend on the parameter ``profile_index`` alone, and ``X(q, v) = sweep(section)(σ(q), v)``
+    with ``σ`` a Möbius map of the other parameter ``q`` (``v`` written ``t`` in ``section``)."""
+
+    section: Section
+    profile_index: int
+    sigma: sympy.Expr
+    """``σ(q)``, in :data:`S`."""
+
+    def given_in(self, found: Reparametrization) -> tuple[sympy.Expr, sympy.Expr]:
+        """The typed map's ``(s, t)`` as functions of another sweep's ``(s, t)``, when that sweep
+        is this section's after ``found`` (:func:`same_sweep`): ``X(q, v)`` with ``v = ψ(t)``
+        and ``σ(q) = μ(s)``."""
+        (alpha, beta), (gamma, delta) = (
+            sympy.Poly(part, S).all_coeffs()[-2:] if sympy.degree(part, S) == 1 else [0, part]
+            for part in sympy.fraction(self.sigma)
+        )
+        y = found.s_image  # σ(q) = (α·q + β)/(γ·q + δ) = y: q = (δ·y − β)/(α − γ·y)
+        q_image = sympy.cancel((delta * y - beta) / (alpha - gamma * y))
+        return (q_image, found.t_image) if self.profile_index == 1 else (found.t_image, q_image)
+
+
+def typed_sweep(
+    given: tuple[sympy.Expr, sympy.Expr, sympy.Expr],
+    frame: tuple[list[sympy.Expr], list[sympy.Expr], list[sympy.Expr], list[sympy.Expr]],
+    n: sympy.Expr,
+) -> TypedSweep | None:
+    """The typed map ``given`` (rational functions of ``s`` and ``t``) as a sweep about the axis
+    of ``frame`` (``c, a, u, w = a × u``; ``n = |a|²``), or ``None`` when it is not one
+    (docs/math.md §6, "One map, listed once"). Its frame coordinates are
+    ``φ = a·(X − c)/n``, ``ρ_u = u·(X − c)/|u|²``, ``ρ_w = w·(X − c)/(n·|u|²)``; the section is the
+    map at a value ``q₀`` of the other parameter, and ``R(σ(q))`` is found as in :func:`_turned`."""
+    c, a, u, w = frame
+    offset = [x - ci for x, ci in zip(given, c)]
+    uu = sum(ui * ui for ui in u)
+    phi = sympy.cancel(sum(ai * d for ai, d in zip(a, offset)) / n)
+    rho_u = sympy.cancel(sum(ui * d for ui, d in zip(u, offset)) / uu)
+    rho_w = sympy.cancel(sum(wi * d for wi, d in zip(w, offset)) / (n * uu))
+    radius = sympy.cancel(rho_u**2 + n * rho_w**2)
+    free = [v for v in (S, T) if not phi.has(v) and not radius.has(v)]
+    if len(free) != 1:
+        return None  # height and radius must follow one parameter: the profile's
+    q = free[0]
+    v = T if q == S else S
+    for q0 in SAMPLES:
+        at = [e.subs(q, q0) for e in (rho_u, rho_w)]
+        norm = sympy.cancel(at[0] ** 2 + n * at[1] ** 2)
+        if norm.has(sympy.zoo, sympy.nan) or _vanishes(norm):
+            continue
+        t1 = sympy.cancel((rho_u * at[0] + n * rho_w * at[1]) / norm)
+        t2 = sympy.cancel((rho_w * at[0] - rho_u * at[1]) / norm)
+        if t1.has(v) or t2.has(v) or _vanishes(t1 + 1):
+            return None
+        sigma = sympy.cancel((t2 / (1 + t1)).subs(q, S))
+        if _degree_in(sigma, S) != 1:
+            return None
+        section = Section(phi.subs(v, T), at[0].subs(v, T), at[1].subs(v, T))
+        return TypedSweep(section, 0 if v == S else 1, sigma)
+    return None
+
+
+def _degree_in(a: sympy.Expr, variable: sympy.Symbol) -> int:
+    numerator, denominator = sympy.fraction(sympy.cancel(a))
+    return int(max(sympy.degree(numerator, variable), sympy.degree(denominator, variable)))
+
+
+@dataclass(frozen=True)
+class GivenMap:
+    """A typed parametrization: its coordinates as rational functions of :data:`S` and :data:`T`
+    over ``K``, and the names the user gave its two parameters."""
+
+    coordinates: tuple[sympy.Expr, sympy.Expr, sympy.Expr]
+    names: tuple[str, str]
