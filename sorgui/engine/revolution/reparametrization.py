@@ -6,7 +6,8 @@ the axis by the rotations ``R(σ)`` of the ``K``-rational circle, ``R(σ)·R(σ�
 ``μ(σ) = (σ + σ₀)/(1 − n·σ·σ₀)`` (``n = |a|²``; the half turn ``σ₀ = ∞`` gives
 ``μ(σ) = −1/(n·σ)``). So when ``second(t) = R(σ₀)·first(ψ(t))`` for a Möbius map ``ψ``, the two
 sweeps are one map after the bijections ``σ ↦ μ(σ)``, ``t ↦ ψ(t)``: :func:`same_sweep` finds
-``ψ`` and ``σ₀`` exactly, or says there are none it can prove.
+``ψ`` and ``σ₀`` exactly, or says there are none it can prove. A typed parametrization that is
+itself a sweep (:func:`typed_sweep`) is compared with the swept maps the same way.
 """
 
 from __future__ import annotations
@@ -179,11 +180,11 @@ def _moebius(points: list[tuple[sympy.Expr, sympy.Expr]]) -> sympy.Expr | None:
     return sympy.cancel((alpha * T + beta) / (gamma * T + delta))
 
 
-def _degree(a: sympy.Expr) -> int:
-    """The degree of the rational function ``a`` of ``t``: its numerator's or denominator's, the
-    larger, in lowest terms."""
+def _degree(a: sympy.Expr, variable: sympy.Symbol = T) -> int:
+    """The degree of the rational function ``a`` of ``variable``: its numerator's or
+    denominator's, the larger, in lowest terms."""
     numerator, denominator = sympy.fraction(sympy.cancel(a))
-    return int(max(sympy.degree(numerator, T), sympy.degree(denominator, T)))
+    return int(max(sympy.degree(numerator, variable), sympy.degree(denominator, variable)))
 
 
 def _vanishes(e: sympy.Expr) -> bool:
@@ -247,16 +248,11 @@ def typed_sweep(
         if t1.has(v) or t2.has(v) or _vanishes(t1 + 1):
             return None
         sigma = sympy.cancel((t2 / (1 + t1)).subs(q, S))
-        if _degree_in(sigma, S) != 1:
+        if _degree(sigma, S) != 1:
             return None
         section = Section(phi.subs(v, T), at[0].subs(v, T), at[1].subs(v, T))
         return TypedSweep(section, 0 if v == S else 1, sigma)
     return None
-
-
-def _degree_in(a: sympy.Expr, variable: sympy.Symbol) -> int:
-    numerator, denominator = sympy.fraction(sympy.cancel(a))
-    return int(max(sympy.degree(numerator, variable), sympy.degree(denominator, variable)))
 
 
 @dataclass(frozen=True)
