@@ -308,9 +308,12 @@ def _values(form: Form, t: np.ndarray) -> np.ndarray:
     return np.polyval(np.array([float(c) for c in reversed(form)]), t)
 
 
-def meridian_section(param: Parametrization) -> Section:
-    """The curve ``σ = 0`` of a parameterization swept about the axis (docs/math.md §6), as forms."""
-    s, t = (sympy.Symbol(name) for name in param.parameters)
+def meridian_section(param: Parametrization, held: int = 0) -> Section:
+    """The curve of a parameterization where its parameter ``held`` is 0, as forms in the other:
+    ``σ = 0`` of one swept about the axis (docs/math.md §6); a typed map may turn about the axis
+    along either parameter."""
+    names = [sympy.Symbol(name) for name in param.parameters]
+    s, t = names[held], names[1 - held]
     polys = [sympy.Poly(e, t) for e in over_one_denominator([read_expression(c).subs(s, 0) for c in param.coordinates])]
     n = max(p.degree() for p in polys)
     forms = [binary_form(p, n) for p in polys]
@@ -374,14 +377,15 @@ def _powers(p: mpmath.mpf, q: mpmath.mpf, n: int) -> list[Form]:
 
 def exact_profile(analysis: Analysis, frame: Frame, ball: ClipSphere, size: float) -> list[RationalCurve] | None:
     """The real profile in the half-plane ``y ≥ 0`` inside ``ball``, as exact rational arcs of the
-    first verified real parameterization whose meridian section lies on ``X`` in a plane through
-    the axis; ``None`` when there is none (the profile is then fitted)."""
+    first verified real parameterization whose meridian section (where its first parameter is 0,
+    else where its second is) lies on ``X`` in a plane through the axis; ``None`` when there is
+    none (the profile is then fitted)."""
     terms = polynomial_terms(analysis.recognition.polynomial)
-    for param in analysis.parametrizations:
+    for param, held in ((p, i) for p in analysis.parametrizations for i in (0, 1)):
         if not (param.real and param.verified):
             continue
         try:
-            section = meridian_section(param)
+            section = meridian_section(param, held)
         except (ExpressionError, CadGeometryError, sympy.PolynomialError):
             continue
         if not 0 < section.degree <= MAX_DEGREE:

@@ -174,3 +174,19 @@ def test_a_map_whose_weights_vanish_on_a_drawn_arc_leaves_the_profile_to_the_fit
     assert analysis.is_sor and analysis.parametrizations
     model = surface_model(analysis, build_scene(analysis))
     assert BRepCheck_Analyzer(model.shape).IsValid()
+
+
+def test_a_typed_map_turning_along_its_second_parameter_gives_the_exact_profile() -> None:
+    """The README's map turns about the axis along ``t`` (``z = s²``): its meridian is the curve
+    ``t = 0``, and the part's profile is that exact rational curve, not a fit (it is the only map
+    listed: the rotated profile's is the typed one again, docs/math.md §6)."""
+    pytest.importorskip("OCP")
+    from OCP.BRepCheck import BRepCheck_Analyzer
+
+    from sorgui.cad.model import surface_model
+
+    analysis = analyze("x = (1-t^2)/(1+t^2)*(2+s), y = 2*t/(1+t^2)*(2+s), z = s^2")
+    assert [p.method for p in analysis.parametrizations] == ["the given parametrization"]
+    model = surface_model(analysis, build_scene(analysis))
+    assert model.route == "exact"
+    assert BRepCheck_Analyzer(model.shape).IsValid()
