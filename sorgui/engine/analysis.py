@@ -99,7 +99,7 @@ def analyze(
             source = parse_parametrization(text)
         limit = singular_timeout
 
-        def implicit(f: Poly, section: tuple[Any, Any, Any] | None, given: GivenMap) -> Analysis:
+        def implicit(f: Poly, section: tuple[Any, Any, Any] | None, given: GivenMap | None) -> Analysis:
             return analyze_polynomial(
                 f,
                 method=method,

@@ -69,7 +69,7 @@ class TypedMap(Protocol):
     def field(self) -> Domain: ...
 
 
-ImplicitAnalysis = Callable[[Poly, tuple[Any, Any, Any] | None, "GivenMap"], Analysis]
+ImplicitAnalysis = Callable[[Poly, tuple[Any, Any, Any] | None, "GivenMap | None"], Analysis]
 """The analysis of the implicit equation on the same clock, given a rational curve on ``X`` that
 may parameterize its ``P²`` and the typed map itself, whose reparametrizations are not listed
 again (:func:`~sorgui.engine.analysis.analyze_polynomial`)."""
@@ -194,7 +194,8 @@ def _analyze(
         return _decorated(
             replace(final, timings=tuple(clock.timings)), text, known.record, known.approximate, known.near
         )
-    analysis = implicit(found.polynomial, found.section, _given(surface, known.record.map_parameters))
+    given = None if recognition_only or not symmetry.is_sor else _given(surface, known.record.map_parameters)
+    analysis = implicit(found.polynomial, found.section, given)
     clock.decorate = None
     _agree(analysis, decided)
     if analysis.conical is None:  # recognition only: the map's own apex or directions
