@@ -46,6 +46,7 @@ from PySide6.QtWidgets import (
 )
 
 from sorgui import __version__
+from sorgui.engine.parsing import is_parametrization
 from sorgui.engine.results import Analysis
 from sorgui.examples import EXAMPLES, example_text
 from sorgui.export.atomic import atomic_write_bytes
@@ -152,6 +153,16 @@ DEFAULT_TIME_LIMIT = 60.0
 """The window's time limit of one analysis, in seconds."""
 
 
+EQUATION_LABEL = "<b>f(x, y, z) = 0</b>"
+PARAMETRIZATION_LABEL = "<b>x, y, z: a rational map</b>"
+
+
+def input_label_text(text: str) -> str:
+    """The heading over the editor: the equation ``f(x, y, z) = 0``, or the rational map the text
+    has the form of (:func:`~sorgui.engine.parsing.is_parametrization`, cheap on every keystroke)."""
+    return PARAMETRIZATION_LABEL if is_parametrization(text) else EQUATION_LABEL
+
+
 def parse_tolerance(text: str) -> float | None | bool:
     """``None`` for ``auto`` (or nothing), the tolerance for a number strictly between 0 and 1,
     ``False`` for anything else."""
@@ -211,6 +222,8 @@ class MainWindow(QMainWindow):
         """The input line of the batch result being read or shown (File → Open of a ``.jsonl``)."""
         self._zoom = 1.0
 
+        self.input_label = QLabel(EQUATION_LABEL)
+        """What the editor holds: an equation, or a parametrization (:func:`input_label_text`)."""
         self.analyze_button = QPushButton("Analyze")
         self.analyze_button.setObjectName("analyzeButton")
         self.analyze_button.setDefault(True)
@@ -257,7 +270,7 @@ class MainWindow(QMainWindow):
 
     def _build_layout(self) -> None:
         buttons = QHBoxLayout()
-        buttons.addWidget(QLabel("<b>f(x, y, z) = 0</b>"))
+        buttons.addWidget(self.input_label)
         buttons.addStretch(1)
         buttons.addWidget(self.cancel_button)
         buttons.addWidget(self.analyze_button)
@@ -583,6 +596,7 @@ class MainWindow(QMainWindow):
 
     def _on_text_change(self) -> None:
         self.setWindowModified(True)
+        self.input_label.setText(input_label_text(self.editor.text()))
         self.session.set_equation(self.editor.text())
 
     def _on_validity_change(self, valid: object) -> None:

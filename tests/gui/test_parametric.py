@@ -25,14 +25,18 @@ def _pane_text(window) -> str:  # noqa: ANN001
 
 
 def test_the_editor_checks_a_parametrization(window) -> None:  # noqa: ANN001
+    assert window.input_label.text() == "<b>f(x, y, z) = 0</b>"
     window.editor.set_text("x = u, y = v,\nz = u^2 + v^2")
     assert window.editor.is_valid is True
+    assert window.input_label.text() == "<b>x, y, z: a rational map</b>"  # the heading says what is typed
     assert "a parametrization in u and v of degree 2 over QQ" in window.editor.status_label.text()
     window.editor.set_text("x = s, y = t, z = sin(s)")
     assert window.editor.is_valid is False
     assert "'sin' is not allowed" in window.editor.status_label.text()
     (selection,) = window.editor.error_selections()
     assert selection.cursor.selectedText() == "sin"
+    window.editor.set_text("x^2 + y^2 - z")
+    assert window.input_label.text() == "<b>f(x, y, z) = 0</b>"
 
 
 def test_the_pane_shows_the_map_as_typed_and_that_it_is_proper(
