@@ -46,34 +46,49 @@ def test_the_issue_example_is_a_surface_of_revolution_with_the_keys_of_an_equati
     assert Analysis.from_json(json.loads(json.dumps(data))) == analysis
 
 
+TILTED = map_text(revolved_patch(RADIUS, HEIGHT, quaternion_rotation((1, 2, -2, 4)), (1, Fraction(-1, 2), 3)))
+"""The profile of :data:`RADIUS` and :data:`HEIGHT` turned about a tilted rational axis (``|a|² ≠ 1``)."""
+
+
 @pytest.mark.parametrize(
-    ("given", "names"),
+    ("given", "names", "dropped"),
     [
-        ("x = (1-t^2)/(1+t^2)*(2+s), y = 2*t/(1+t^2)*(2+s), z = s^2", ("s", "t")),
-        ("x = 2*u/(1+u^2)*(3+(1-v^2)/(1+v^2)), y = (1-u^2)/(1+u^2)*(3+(1-v^2)/(1+v^2)), z = 2*v/(1+v^2)", ("u", "v")),
+        ("x = (1-t^2)/(1+t^2)*(2+s), y = 2*t/(1+t^2)*(2+s), z = s^2", ("s", "t"), "rotated profile"),
+        (
+            "x = 2*u/(1+u^2)*(3+(1-v^2)/(1+v^2)), y = (1-u^2)/(1+u^2)*(3+(1-v^2)/(1+v^2)), z = 2*v/(1+v^2)",
+            ("u", "v"),
+            "rotated profile",
+        ),
+        (TILTED, ("s", "t"), "via tubular surface (real)"),
     ],
 )
-def test_a_map_the_typed_one_is_after_a_change_of_parameters_is_not_listed(given: str, names: tuple[str, str]) -> None:
-    """The rotated profile's map that is the typed map after Möbius maps of its parameters (and a
-    swap of them) is left out with a note (docs/math.md §6); the note's change is checked by
-    substituting it: the map the equation's own analysis lists is the typed map at those values."""
+def test_a_map_the_typed_one_is_after_a_change_of_parameters_is_not_listed(
+    monkeypatch, given: str, names: tuple[str, str], dropped: str
+) -> None:
+    """A map that is the typed map after Möbius maps of its parameters (and a swap of them) is
+    left out with a note (docs/math.md §6); the note's change is checked by substituting it into
+    the typed map: it gives the map left out (made again with the comparison turned off)."""
     import sympy
 
+    from sorgui.engine.revolution import rationality
+
     analysis = analyze(given, timeout=120)
-    equation = analyze(analysis.recognition.polynomial, timeout=120)
     assert [p.method for p in analysis.parametrizations] == ["the given parametrization"]
-    assert [p.method for p in equation.parametrizations] == ["rotated profile"]
-    start = f"the rotated profile's map is the given map at ({', '.join(names)}) = ("
+    name = "the rotated profile's map" if dropped == "rotated profile" else "the map through T"
+    start = f"{name} is the given map at ({', '.join(names)}) = ("
     note = next(n for n in analysis.rationality.notes if n.startswith(start))
+    monkeypatch.setattr(rationality, "_given_again", lambda *_: [])
+    every = analyze(given, timeout=120)
+    (left_out,) = [p for p in every.parametrizations if p.method == dropped]
     s, t = sympy.symbols("s t")
     local = {"s": s, "t": t, "sqrt": sympy.sqrt}
     images = [sympy.sympify(e, locals=local) for e in note.removeprefix(start).split("): listed once")[0].split(", ")]
     typed = [
         sympy.sympify(c, locals={**local, names[0]: s, names[1]: t}) for c in analysis.parametrizations[0].coordinates
     ]
-    rotated = [sympy.sympify(c, locals=local) for c in equation.parametrizations[0].coordinates]
+    made = [sympy.sympify(c, locals=local) for c in left_out.coordinates]
     moved = [c.subs({s: images[0], t: images[1]}, simultaneous=True) for c in typed]
-    assert all(sympy.cancel(a - b) == 0 for a, b in zip(moved, rotated))
+    assert all(sympy.cancel(a - b) == 0 for a, b in zip(moved, made))
 
 
 def test_a_bidegree_4_2_surface_of_revolution_on_a_rational_axis() -> None:

@@ -302,15 +302,12 @@ def _record(
 
 
 def _given(surface: RationalMap, names: tuple[str, str]) -> GivenMap:
-    """The typed map as sympy rational functions of ``s, t`` (the engine's names of its
-    parameters) with the names the user gave them."""
-    import sympy
-
+    """The typed map in sympy's ``K[s, t]`` (the engine's names of its parameters) with the names
+    the user gave them."""
     from ..revolution.reparametrization import GivenMap
 
-    W = surface.ring.to_sympy(surface.W).as_expr()
-    x, y, z = (sympy.cancel(surface.ring.to_sympy(c).as_expr() / W) for c in surface.X)
-    return GivenMap((x, y, z), names)
+    x, y, z = (surface.ring.to_sympy(c) for c in surface.X)
+    return GivenMap((x, y, z), surface.ring.to_sympy(surface.W), names)
 
 
 def _undecided(source: TypedMap, method: str) -> Analysis:

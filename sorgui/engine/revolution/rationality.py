@@ -400,15 +400,15 @@ def _given_again(
     (:func:`.reparametrization.typed_sweep`, :func:`.reparametrization.same_sweep`), each with
     its note; none when sympy cannot decide it."""
     frame = profile.frame
-    vectors = [[to_expr(K, c) for c in v] for v in (frame.point, frame.direction, frame.normal, frame.binormal)]
-    n = to_expr(K, dot(frame.direction, frame.direction))
+    n = dot(frame.direction, frame.direction)
     again = []
     try:
-        typed = typed_sweep(given.coordinates, (vectors[0], vectors[1], vectors[2], vectors[3]), n)
+        typed = typed_sweep(given, (frame.point, frame.direction, frame.normal, frame.binormal), n)
         if typed is None:
             return []
+        n_expr = to_expr(K, n)
         for section, par in swept:
-            same = same_sweep(typed.section, section, n)
+            same = same_sweep(typed.section, section, n_expr)
             if same is not None:
                 first, second = typed.given_in(same)
                 names = ", ".join(given.names)

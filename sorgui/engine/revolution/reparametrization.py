@@ -13,9 +13,11 @@ itself a sweep (:func:`typed_sweep`) is compared with the swept maps the same wa
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import sympy
 
+from ..algebra.linalg import Vector
 from .parametrization import Section, T
 
 S = sympy.Symbol("s")
@@ -216,49 +218,88 @@ class TypedSweep:
         return (q_image, found.t_image) if self.profile_index == 1 else (found.t_image, q_image)
 
 
-def typed_sweep(
-    given: tuple[sympy.Expr, sympy.Expr, sympy.Expr],
-    frame: tuple[list[sympy.Expr], list[sympy.Expr], list[sympy.Expr], list[sympy.Expr]],
-    n: sympy.Expr,
-) -> TypedSweep | None:
-    """The typed map ``given`` (rational functions of ``s`` and ``t``) as a sweep about the axis
-    of ``frame`` (``c, a, u, w = a × u``; ``n = |a|²``), or ``None`` when it is not one
-    (docs/math.md §6, "One map, listed once"). Its frame coordinates are
-    ``φ = a·(X − c)/n``, ``ρ_u = u·(X − c)/|u|²``, ``ρ_w = w·(X − c)/(n·|u|²)``; the section is the
-    map at a value ``q₀`` of the other parameter, and ``R(σ(q))`` is found as in :func:`_turned`."""
-    c, a, u, w = frame
-    offset = [x - ci for x, ci in zip(given, c)]
-    uu = sum(ui * ui for ui in u)
-    phi = sympy.cancel(sum(ai * d for ai, d in zip(a, offset)) / n)
-    rho_u = sympy.cancel(sum(ui * d for ui, d in zip(u, offset)) / uu)
-    rho_w = sympy.cancel(sum(wi * d for wi, d in zip(w, offset)) / (n * uu))
-    radius = sympy.cancel(rho_u**2 + n * rho_w**2)
-    free = [v for v in (S, T) if not phi.has(v) and not radius.has(v)]
+def typed_sweep(given: GivenMap, frame: tuple[Vector, Vector, Vector, Vector], n: Any) -> TypedSweep | None:
+    """The typed map ``given`` as a sweep about the axis of ``frame`` (``c, a, u, w = a × u``
+    over ``K``; ``n = |a|²``), or ``None`` when it is not one (docs/math.md §6, "One map, listed
+    once"). With ``D = X − c·W`` its frame coordinates are ``φ = a·D/(n·W)``, ``ρ_u = U/(|u|²·W)``,
+    ``ρ_w = V/(n·|u|²·W)`` (``U = u·D``, ``V = w·D``). In polynomials of ``K[s, t]``, no
+    cancellation: ``φ`` and the squared radius ``(n·U² + V²)/(n·|u|⁴·W²)`` depend on one parameter
+    ``v`` alone (their derivatives in the other, ``q``, vanish); the section is the map at a value
+    ``q₀`` (``U₀, V₀, W₀``); ``σ(q) = t₂/(1 + t₁)`` of the turn taking it to ``X(q, v)`` (as in
+    :func:`_turned`) is read at one value of ``v`` and must be a Möbius map, and the map is then
+    checked to be that turn of the section, identically."""
+    ring, (X, W) = given.ring, (given.numerators, given.denominator)
+    K = ring.domain
+    c, a, u, w = ([ring.ground_new(K.convert(x)) for x in vector] for vector in frame)
+    n = K.convert(n)
+    D = [x - ci * W for x, ci in zip(X, c)]
+    phi, U, V = (sum((vi * d for vi, d in zip(vector, D)), ring.zero) for vector in (a, u, w))
+    radius = n * U**2 + V**2
+    free = [
+        q
+        for q in ring.gens
+        if not (phi.diff(q) * W - phi * W.diff(q)) and not (radius.diff(q) * W - 2 * radius * W.diff(q))
+    ]
     if len(free) != 1:
         return None  # height and radius must follow one parameter: the profile's
     q = free[0]
-    v = T if q == S else S
+    v = ring.gens[1] if q == ring.gens[0] else ring.gens[0]
     for q0 in SAMPLES:
-        at = [e.subs(q, q0) for e in (rho_u, rho_w)]
-        norm = sympy.cancel(at[0] ** 2 + n * at[1] ** 2)
-        if norm.has(sympy.zoo, sympy.nan) or _vanishes(norm):
+        U0, V0, W0 = (p.subs(q, K.convert(q0)) for p in (U, V, W))
+        if not W0 or not (n * U0**2 + V0**2):
             continue
-        t1 = sympy.cancel((rho_u * at[0] + n * rho_w * at[1]) / norm)
-        t2 = sympy.cancel((rho_w * at[0] - rho_u * at[1]) / norm)
-        if t1.has(v) or t2.has(v) or _vanishes(t1 + 1):
+        top = (V * U0 - U * V0) * W0  # t₂ and 1 + t₁ over one denominator
+        bottom = (n * U0**2 + V0**2) * W + (n * U * U0 + V * V0) * W0
+        sigma = _moebius_in(q, v, top, bottom)
+        if sigma is None:
             return None
-        sigma = sympy.cancel((t2 / (1 + t1)).subs(q, S))
-        if _degree(sigma, S) != 1:
+        A, B = sigma
+        turned = (B**2 - n * A**2, 2 * A * B, B**2 + n * A**2)  # R(σ) = (B² − nA², 2AB)/(B² + nA²)
+        if U * W0 * turned[2] != W * (turned[0] * U0 - turned[1] * V0) or V * W0 * turned[2] != W * (
+            turned[1] * U0 * n + turned[0] * V0
+        ):
             return None
-        section = Section(phi.subs(v, T), at[0].subs(v, T), at[1].subs(v, T))
-        return TypedSweep(section, 0 if v == S else 1, sigma)
+        uu = sum((ui * ui for ui in u), ring.zero)
+        named = {v.as_expr(): T}
+        section = Section(
+            *(
+                sympy.cancel((p.as_expr() / d.as_expr()).subs(named))
+                for p, d in ((phi.subs(q, K.convert(q0)), n * W0), (U0, uu * W0), (V0, n * uu * W0))
+            )
+        )
+        sigma_expr = sympy.cancel((A.as_expr() / B.as_expr()).subs(q.as_expr(), S))
+        return TypedSweep(section, 0 if v == ring.gens[0] else 1, sigma_expr)
+    return None
+
+
+def _moebius_in(q: Any, v: Any, top: Any, bottom: Any) -> tuple[Any, Any] | None:
+    """``top/bottom`` (polynomials in ``q`` and ``v``) as ``A(q)/B(q)`` in lowest terms, read at a
+    value of ``v`` where ``bottom`` does not vanish, when that is a Möbius map of ``q``; else ``None``.
+    That it does not depend on ``v`` is left to the identities the caller checks."""
+    K = top.ring.domain
+    for v0 in SAMPLES:
+        b = bottom.subs(v, K.convert(v0))
+        if not b:
+            continue
+        A, B = top.subs(v, K.convert(v0)), b
+        common = A.gcd(B)
+        A, B = A.quo(common), B.quo(common)
+        if max(A.degree(q), B.degree(q)) != 1 or not (A * B.diff(q) - B * A.diff(q)):
+            return None
+        return A, B
     return None
 
 
 @dataclass(frozen=True)
 class GivenMap:
-    """A typed parametrization: its coordinates as rational functions of :data:`S` and :data:`T`
-    over ``K``, and the names the user gave its two parameters."""
+    """A typed parametrization ``X/W``: its numerators and denominator in ``K[s, t]`` (sympy's
+    sparse polynomials, generators :data:`S` and :data:`T`), and the names the user gave its two
+    parameters."""
 
-    coordinates: tuple[sympy.Expr, sympy.Expr, sympy.Expr]
+    numerators: tuple[Any, Any, Any]
+    denominator: Any
     names: tuple[str, str]
+
+    @property
+    def ring(self) -> Any:  # noqa: ANN401 - sympy's PolyRing
+        return self.denominator.ring
