@@ -60,14 +60,16 @@ TILTED = map_text(revolved_patch(RADIUS, HEIGHT, quaternion_rotation((1, 2, -2, 
             "rotated profile",
         ),
         (TILTED, ("s", "t"), "via tubular surface (real)"),
+        ("x = (1-t^2)/(1+t^2)*(sqrt(2)+s), y = 2*t/(1+t^2)*(sqrt(2)+s), z = s^2", ("s", "t"), "rotated profile"),
     ],
 )
 def test_a_map_the_typed_one_is_after_a_change_of_parameters_is_not_listed(
     monkeypatch, given: str, names: tuple[str, str], dropped: str
 ) -> None:
     """A map that is the typed map after Möbius maps of its parameters (and a swap of them) is
-    left out with a note (docs/math.md §6); the note's change is checked by substituting it into
-    the typed map: it gives the map left out (made again with the comparison turned off)."""
+    left out with a note (docs/math.md §6), over ``QQ`` and over ``QQ(√2)``; the note's change is
+    checked by substituting it into the typed map: it gives the map left out (made again with the
+    comparison turned off)."""
     import sympy
 
     from sorgui.engine.revolution import rationality

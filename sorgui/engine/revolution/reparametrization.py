@@ -231,7 +231,7 @@ def typed_sweep(given: GivenMap, frame: tuple[Vector, Vector, Vector, Vector], n
     ring, (X, W) = given.ring, (given.numerators, given.denominator)
     K = ring.domain
     c, a, u, w = ([ring.ground_new(K.convert(x)) for x in vector] for vector in frame)
-    n = K.convert(n)
+    n = ring.ground_new(K.convert(n))
     D = [x - ci * W for x, ci in zip(X, c)]
     phi, U, V = (sum((vi * d for vi, d in zip(vector, D)), ring.zero) for vector in (a, u, w))
     radius = n * U**2 + V**2
