@@ -202,18 +202,15 @@ class TypedSweep:
 
     section: Section
     profile_index: int
-    sigma: sympy.Expr
-    """``σ(q)``, in :data:`S`."""
+    sigma: tuple[sympy.Expr, sympy.Expr, sympy.Expr, sympy.Expr]
+    """``(α, β, γ, δ)``: ``σ(q) = (α·q + β)/(γ·q + δ)``."""
 
     def given_in(self, found: Reparametrization) -> tuple[sympy.Expr, sympy.Expr]:
         """The typed map's ``(s, t)`` as functions of another sweep's ``(s, t)``, when that sweep
         is this section's after ``found`` (:func:`same_sweep`): ``X(q, v)`` with ``v = ψ(t)``
         and ``σ(q) = μ(s)``."""
-        (alpha, beta), (gamma, delta) = (
-            sympy.Poly(part, S).all_coeffs()[-2:] if sympy.degree(part, S) == 1 else [0, part]
-            for part in sympy.fraction(self.sigma)
-        )
-        y = found.s_image  # σ(q) = (α·q + β)/(γ·q + δ) = y: q = (δ·y − β)/(α − γ·y)
+        alpha, beta, gamma, delta = self.sigma
+        y = found.s_image  # σ(q) = y: q = (δ·y − β)/(α − γ·y)
         q_image = sympy.cancel((delta * y - beta) / (alpha - gamma * y))
         return (q_image, found.t_image) if self.profile_index == 1 else (found.t_image, q_image)
 
@@ -246,10 +243,11 @@ def typed_sweep(given: GivenMap, frame: tuple[Vector, Vector, Vector, Vector], n
     v = ring.gens[1] if q == ring.gens[0] else ring.gens[0]
     for q0 in SAMPLES:
         U0, V0, W0 = (p.subs(q, K.convert(q0)) for p in (U, V, W))
-        if not W0 or not (n * U0**2 + V0**2):
+        radius0 = n * U0**2 + V0**2
+        if not W0 or not radius0:
             continue
         top = (V * U0 - U * V0) * W0  # t₂ and 1 + t₁ over one denominator
-        bottom = (n * U0**2 + V0**2) * W + (n * U * U0 + V * V0) * W0
+        bottom = radius0 * W + (n * U * U0 + V * V0) * W0
         sigma = _moebius_in(q, v, top, bottom)
         if sigma is None:
             return None
@@ -267,8 +265,8 @@ def typed_sweep(given: GivenMap, frame: tuple[Vector, Vector, Vector, Vector], n
                 for p, d in ((phi.subs(q, K.convert(q0)), n * W0), (U0, uu * W0), (V0, n * uu * W0))
             )
         )
-        sigma_expr = sympy.cancel((A.as_expr() / B.as_expr()).subs(q.as_expr(), S))
-        return TypedSweep(section, 0 if v == ring.gens[0] else 1, sigma_expr)
+        (alpha, beta), (gamma, delta) = ((K.to_sympy(p.coeff(q)), K.to_sympy(p.coeff(1))) for p in (A, B))
+        return TypedSweep(section, 0 if v == ring.gens[0] else 1, (alpha, beta, gamma, delta))
     return None
 
 
