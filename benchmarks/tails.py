@@ -3,18 +3,20 @@
 The constructed tails: the surfaces of revolution whose ``P²`` is the rational sextic of
 Singular's ``paraPlaneCurve`` example, as ``F(h, ρ) = 0`` and as ``y² + z² = `` the sextic, about
 three axes (degree 12), the envelope of spheres on a line with a varying radius
-(``tests/data/sphere-envelope.txt``, degree 6) and a surface of revolution of degree 12 in
-general position. Then every surface of the test corpus (``tests/data/cases.json``,
-``tests/data/canal-examples.txt``, ``benchmarks/published-surfaces.txt``) whose degree is at most
-12, of which the five slowest are listed. Each is ``python -m sorgui.cli analyze --json --timeout
-120 -f FILE`` in a new process (the full analysis), wall time, the best of ``--repeats`` for the
-constructed ones and one run for the corpus. Run ``python -m benchmarks.tails [--repeats N]
-[--write]`` from the repository root.
+(``tests/data/sphere-envelope.txt``, degree 6), a surface of revolution of degree 12 in
+general position and a sphere whose radius² is a 5000-digit integer. Then every surface of the
+test corpus (``tests/data/cases.json``, ``tests/data/canal-examples.txt``,
+``benchmarks/published-surfaces.txt``) whose degree is at most 12, of which the five slowest
+are listed. Each is ``python -m sorgui.cli analyze --json --timeout 120 -f FILE`` in a new
+process (the full analysis), wall time, the best of ``--repeats`` for the constructed ones and
+one run for the corpus. Run ``python -m benchmarks.tails [--repeats N] [--write]`` from the
+repository root.
 """
 
 from __future__ import annotations
 
 import json
+import random
 import subprocess
 import sys
 import tempfile
@@ -30,6 +32,9 @@ DATA = ROOT / "tests" / "data"
 SEXTIC = PARAPLANECURVE_SEXTIC
 AXES = (((0, 0, 0), (1, 0, 0)), ((1, -2, 3), (2, 1, 2)), ((0, 0, 0), (1, 1, 1)))
 GOAL = 10.0
+HUGE = "".join(random.Random(1).choice("123456789") for _ in range(5000))
+"""A 5000-digit constant, not a square: sympy tests the cofactor of each square root's radicand
+for primality (48 s in pure Python, before sorgui handed that test to flint)."""
 
 
 def constructed() -> list[tuple[str, str]]:
@@ -41,6 +46,7 @@ def constructed() -> list[tuple[str, str]]:
             cases.append((f"paraPlaneCurve's sextic, {form}, axis {point} + t·{direction}", poly_str(f)))
     cases.append(("spheres on a line, radius 1 + t² (sphere-envelope.txt)", (DATA / "sphere-envelope.txt").read_text()))
     cases.append(("a surface of revolution of degree 12 in general position", poly_str(general_position(12, 5))))
+    cases.append(("a sphere whose radius² is a 5000-digit integer (hostile input)", f"x^2 + y^2 + z^2 - {HUGE}"))
     return cases
 
 

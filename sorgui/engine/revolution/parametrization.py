@@ -215,7 +215,7 @@ def quadric_section(h: sympy.Expr, n: sympy.Expr) -> Quadric | None:
 
 def _real_point(q: sympy.Poly, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr, sympy.Expr] | None:
     """A smooth real point ``(t₀, y₀, z₀)`` of ``y² + n·z² = q(t)``."""
-    roots = sorted(q.real_roots(), key=lambda r: (not r.is_Rational, sympy.count_ops(r)))
+    roots = sorted(_real_roots(q), key=lambda r: (not r.is_Rational, sympy.count_ops(r)))
     for root in roots:
         if q.diff(T).as_expr().subs(T, root) != 0:
             return root, sympy.Integer(0), sympy.Integer(0)
@@ -225,6 +225,24 @@ def _real_point(q: sympy.Poly, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr, s
         if found is not None:
             return sympy.Integer(t0), found[0], found[1]
     return None
+
+
+def _real_roots(q: sympy.Poly) -> list[sympy.Expr]:
+    """The real roots of ``q`` (degree 1 or 2, rational coefficients), increasing, in closed
+    form: sympy's ``real_roots`` isolates them first, and refined the roots of ``t² − c`` for a
+    5000-digit ``c`` in 120,000 steps (6 s)."""
+    if q.degree() == 1:
+        a, b = q.all_coeffs()
+        return [-b / a]
+    a, b, c = q.all_coeffs()
+    discriminant = b**2 - 4 * a * c
+    if discriminant < 0:
+        return []
+    if discriminant == 0:
+        return [-b / (2 * a)]
+    root = sympy.sqrt(discriminant)
+    roots = [(-b - root) / (2 * a), (-b + root) / (2 * a)]
+    return roots if a > 0 else roots[::-1]  # increasing, as sympy gives them
 
 
 def _split(P: sympy.Poly, n: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr]:
