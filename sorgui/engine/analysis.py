@@ -290,14 +290,16 @@ def analyze_polynomial(
                 )
             clock.publish(result(rationality, found))
             with clock.stage("parametrizations"):
-                found, notes = parametrizations(
+                found, notes, given_proper = parametrizations(
                     g, profile, rationality, tube, timeout=singular_timeout, cancel=cancel, given=given
                 )
                 if plane:
                     found = (plane_map(g, profile.frame.point, profile.frame.direction), *found)
             if sphere or plane:
                 notes = (SPHERE_NOTE if sphere else PLANE_NOTE, *notes)
-            rationality = replace(rationality, notes=rationality.notes + notes)
+            rationality = replace(
+                rationality, notes=rationality.notes + notes, given_map_proper=True if given_proper else None
+            )
     if canal and not recognition_only:
         from .conical.base_curve import analyze_conical  # Singular's layer: only here
 

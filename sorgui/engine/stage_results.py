@@ -40,6 +40,10 @@ class Rationality:
     tau: Triple | None = None
     real_roots_of_h: int | None = None
     notes: tuple[str, ...] = ()
+    given_map_proper: bool | None = None
+    """``True`` when a proper map found here is the typed parametrization's after bijections of
+    the parameters, and was left out for it (docs/math.md §6, "The typed map"): the typed map
+    is then proper too. ``None`` otherwise (no typed map, or none such)."""
 
 
 @dataclass(frozen=True)

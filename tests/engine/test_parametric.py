@@ -93,6 +93,27 @@ def test_a_map_the_typed_one_is_after_a_change_of_parameters_is_not_listed(
     assert all(sympy.cancel(a - b) == 0 for a, b in zip(moved, made))
 
 
+def test_a_typed_map_is_proper_as_the_proper_map_left_out_for_it() -> None:
+    """Singular counts fibres over ``QQ`` only, so it leaves a map over ``QQ(√2)`` undecided; the
+    rotated profile's map, proper as the map through ``T`` is, is that map after bijections of
+    the parameters and is left out for it: so the typed map is proper (docs/math.md §6, "The
+    typed map"), and its report passes the claims' checks. Over ``QQ`` Singular's generic fibre
+    says the same."""
+    from sorgui.engine.claims.report import check_report
+    from sorgui.engine.parametric.pipeline import PROPER_AS_LEFT_OUT
+
+    over_root = analyze("x = (1-t^2)/(1+t^2)*(sqrt(2)+s), y = 2*t/(1+t^2)*(sqrt(2)+s), z = s^2", timeout=120)
+    record = over_root.parametric
+    assert record is not None and over_root.rationality is not None and over_root.rationality.given_map_proper
+    assert (record.proper, record.fibre, record.proper_method) == (True, 1, PROPER_AS_LEFT_OUT)
+    assert [p.proper for p in over_root.parametrizations] == [True]
+    check_report(Analysis.from_json(json.loads(json.dumps(over_root.to_json()))))
+    over_q = analyze("x = (1-t^2)/(1+t^2)*(2+s), y = 2*t/(1+t^2)*(2+s), z = s^2", timeout=120)
+    assert over_q.rationality is not None and over_q.rationality.given_map_proper
+    assert over_q.parametric is not None and over_q.parametric.proper is True
+    assert over_q.parametric.proper_method == "the generic fibre (Singular, over QQ(s0, t0))"
+
+
 def test_a_bidegree_4_2_surface_of_revolution_on_a_rational_axis() -> None:
     R = quaternion_rotation((1, 2, -2, 4))
     text = map_text(revolved_patch(RADIUS, HEIGHT, R, (1, Fraction(-1, 2), 3)))

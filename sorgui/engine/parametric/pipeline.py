@@ -363,6 +363,12 @@ def _decided(source: TypedMap, symmetry: Symmetry, cones: Conicity, method: str)
     )
 
 
+PROPER_AS_LEFT_OUT = (
+    "a proper map of the analysis is the given map after bijections of the parameters, and was left out for it"
+)
+"""How a typed map is known to be proper when Singular did not decide it (docs/math.md §6)."""
+
+
 def _decorated(
     analysis: Analysis,
     text: str,
@@ -371,7 +377,12 @@ def _decorated(
     near: Any = None,
 ) -> Analysis:
     """``analysis`` as the answer for the typed parametrization: its text, kind and record, the
-    given map first among the parameterizations, the least-squares results of rounded input."""
+    given map first among the parameterizations, the least-squares results of rounded input.
+    A record whose properness Singular left undecided is proper when the analysis left out a
+    proper map that is the given one after bijections of the parameters."""
+    rationality = analysis.rationality
+    if record.proper is None and rationality is not None and rationality.given_map_proper:
+        record = replace(record, fibre=1, proper=True, proper_method=PROPER_AS_LEFT_OUT)
     given = Parametrization(
         coordinates=record.map,
         parameters=record.map_parameters,

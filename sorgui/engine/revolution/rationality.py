@@ -344,10 +344,11 @@ def parametrizations(
     timeout: float = 60.0,
     cancel: threading.Event | None = None,
     given: GivenMap | None = None,
-) -> tuple[tuple[Parametrization, ...], tuple[str, ...]]:
-    """Every parameterization docs/math.md §6 provides, each verified; and notes on those that could
-    not be built. A map that is the ``given`` (typed) map's after a change of parameters is left
-    out, with a note (docs/math.md §6, "One map, listed once")."""
+) -> tuple[tuple[Parametrization, ...], tuple[str, ...], bool]:
+    """Every parameterization docs/math.md §6 provides, each verified; notes on those that could
+    not be built; and whether the ``given`` (typed) map is proper. A map that is the given map's
+    after a change of parameters is left out, with a note (docs/math.md §6, "One map, listed
+    once"); the change being a bijection, the given map is proper when that map is."""
     found: list[Parametrization] = []
     swept: list[tuple[Section, Parametrization]] = []
     notes: list[str] = []
@@ -386,11 +387,13 @@ def parametrizations(
             par, note = None, f"parameterization through T: {UNSUPPORTED_NOTE}"
         found += [par] if par is not None else []
         notes += [note] if note else []
+    given_proper = False
     if given is not None and swept:
         for par, note in _given_again(given, swept, profile, K):
             found.remove(par)
             notes.append(note)
-    return tuple(found), tuple(notes)
+            given_proper = given_proper or par.proper is True
+    return tuple(found), tuple(notes), given_proper
 
 
 def _given_again(
