@@ -308,27 +308,13 @@ def test_the_real_roots_of_a_quadric_section_are_sympys(a: int, b: int, c: int, 
 def test_a_sphere_of_a_1500_digit_radius_squared_gets_its_maps() -> None:
     """A hostile constant: ``x² + y² + z² = c`` with ``c`` of 1500 digits, not a square. sympy
     tests the cofactor of each radicand for primality (flint does it, not sympy's pure Python:
-    :func:`sorgui.engine.algebra.polys._probable_prime`); the maps are over ``QQ(√c)``."""
+    :func:`sorgui.engine.algebra.sympy_fixes.probable_prime`); the maps are over ``QQ(√c)``."""
     rng = random.Random(5)
     c = rng.randrange(10**1499, 10**1500)
     analysis = analyze(f"x^2 + y^2 + z^2 - {c}")
     assert analysis.rationality is not None and analysis.rationality.table_row == 3
     proper = [p for p in analysis.parametrizations if p.real and p.proper and p.verified]
     assert proper and all(str(c)[:40] in p.field for p in proper)
-
-
-@pytest.mark.parametrize(
-    "n",
-    [2, 7919, 561, 2**61 - 1, 2**89 - 1, 2**89 + 1, 3215031751, 2**521 - 1, (2**127 - 1) * (2**89 - 1), 10**400 + 267],
-)
-def test_sympys_primality_test_is_flints(n: int) -> None:
-    """sympy's strong BPSW test, replaced by flint's (:mod:`sorgui.engine.algebra.polys`), agrees
-    with sympy's own on primes, Carmichael numbers and products of two large primes."""
-    from sympy.external.ntheory import is_strong_bpsw_prp
-    from sympy.ntheory import primetest
-
-    assert primetest.is_strong_bpsw_prp(n) == is_strong_bpsw_prp(n)
-    assert sympy.isprime(n) == is_strong_bpsw_prp(n)
 
 
 def test_a_time_limit_ends_in_an_undecided_result() -> None:

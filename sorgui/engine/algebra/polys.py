@@ -16,13 +16,12 @@ from functools import lru_cache
 from typing import Any, TypeAlias
 
 import sympy
-from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx, fmpz
-from sympy.ntheory import primetest
+from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 from sympy.polys.domains import QQ
 from sympy.polys.domains.domain import Domain
 from sympy.polys.rings import PolyElement, PolyRing, ring
 
-from . import numberfields
+from . import numberfields, sympy_fixes
 from .rationals import Monomial, terms_str
 
 if QQ.dtype is not fmpq:  # sympy was imported before sorgui, with other ground types
@@ -31,15 +30,7 @@ if QQ.dtype is not fmpq:  # sympy was imported before sorgui, with other ground 
     )
 
 
-def _probable_prime(n: int) -> bool:
-    """sympy's strong BPSW probable-prime test, done by flint in C. With flint ground types sympy
-    runs it in pure Python, and ``sympy.sqrt`` of an integer tests its cofactor after trial
-    division: 7 s for one square root of a 5000-digit constant (a sphere's radius), a few ms
-    here."""
-    return bool(fmpz(n).is_probable_prime())
-
-
-primetest.is_strong_bpsw_prp = _probable_prime
+sympy_fixes.install()
 
 Poly: TypeAlias = PolyElement
 """A polynomial of the engine: sympy's sparse ``PolyElement`` over ``K``."""
