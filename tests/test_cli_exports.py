@@ -235,13 +235,32 @@ def test_a_sphere_of_degree_60_is_written_as_its_sphere(tmp_path: Path) -> None:
     assert props.Mass() == pytest.approx(4 * math.pi * (2 ** (1 / 30) - 1), rel=1e-9)
 
 
+@pytest.mark.parametrize("suffix", [".stl", ".step"])
+def test_a_surface_beyond_floating_point_says_so(tmp_path: Path, suffix: str) -> None:
+    """A sphere of radius about 10^1000 (a 2000-digit constant): its exact analysis stands, and a
+    mesh or CAD file says that its numbers are beyond floating point, not that a ball holds no real
+    point of it (no ``--region`` would help); the report is still written."""
+    if suffix == ".step":
+        pytest.importorskip("OCP")
+    constant = "7" * 2000
+    report, shape = tmp_path / "s.json", tmp_path / f"s{suffix}"
+    done = sorgui("analyze", f"x^2+y^2+z^2-{constant}", "--timeout", "60", "-o", str(report), "-o", str(shape))
+    assert done.returncode == 1 and "cannot be drawn: its coefficients span about 10^2000" in lines(done.stderr)[-1]
+    assert "give --region" not in done.stderr and "no real points" not in done.stderr
+    assert json.loads(report.read_text(encoding="utf-8"))["is_sor"] and not shape.exists()
+
+
 def test_a_cad_file_of_a_surface_outside_the_drawn_ball_is_refused_before_open_cascade(tmp_path: Path) -> None:
     """A sphere of radius 10^200 about a ball of radius 2 kept Open CASCADE's cut busy for
-    minutes (and one of radius 10^20 gave a STEP file of no face): said at once."""
+    minutes (and one of radius 10^20 gave a STEP file of no face): said at once; of radius 10^200,
+    that its numbers are beyond floating point."""
     pytest.importorskip("OCP")
-    for radius_squared in ("10^400", "10^40"):
+    for radius_squared, words in (
+        ("10^400", "cannot be drawn: its coefficients span about 10^400"),
+        ("10^40", "no real points inside the drawn ball (give --region)"),
+    ):
         done = sorgui("analyze", f"x^2+y^2+z^2-{radius_squared}", "--timeout", "60", "-o", str(tmp_path / "s.step"))
-        assert done.returncode == 1 and "no real points inside the drawn ball" in lines(done.stderr)[-1]
+        assert done.returncode == 1 and words in lines(done.stderr)[-1]
         assert not (tmp_path / "s.step").exists()
 
 

@@ -12,6 +12,7 @@ from it). It has no Qt: the exporters, the window, its worker process and the sc
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import replace
 from functools import lru_cache
@@ -123,6 +124,27 @@ def _floats(terms: dict[Monomial, fmpq | int]) -> Terms:
 
 MAX_FLOAT_BITS = 1000
 """The largest coefficient is brought below ``2^1000`` (floats reach ``2^1024``)."""
+
+DRAWABLE_SPAN_BITS = 600
+"""Coefficients whose sizes span more bits than this (about 10¹⁸⁰) put the real points, or the
+values of ``f`` near them, beyond what floating-point arithmetic evaluates: ``x² + y² + z² − c``
+with ``c`` of 5000 digits is a sphere of radius about 10²⁵⁰⁰."""
+
+
+def beyond_floats(text: str, names: Sequence[str] = ("x", "y", "z")) -> str | None:
+    """Why the zero set of the polynomial ``text`` cannot be drawn at all, in words (``None``
+    when it can): the sizes of its nonzero coefficients span more than
+    :data:`DRAWABLE_SPAN_BITS` (a sphere of radius 10²⁵⁰⁰), where no ball a user gives helps.
+    Only an expanded polynomial over ``QQ`` is measured."""
+    terms = expanded_terms(text, names) if text else None
+    sizes = [_bits(c) for c in terms.values() if c] if terms else []
+    span = max(sizes) - min(sizes) if sizes else 0
+    if span <= DRAWABLE_SPAN_BITS:
+        return None
+    return (
+        f"the surface cannot be drawn: its coefficients span about 10^{round(span * math.log10(2))}, "
+        "more than floating-point arithmetic evaluates"
+    )
 
 
 def _bits(c: fmpq | int) -> int:

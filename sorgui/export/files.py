@@ -20,6 +20,7 @@ from typing import Any
 
 from sorgui.engine.patches import patch_stand_in
 from sorgui.engine.results import Analysis
+from sorgui.engine.values import beyond_floats
 from sorgui.engine.vocabulary import no_surface
 from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
 from sorgui.export.cas import latex_document, maple_file, mathematica_file
@@ -68,7 +69,8 @@ def export_file(
         # nothing for Open CASCADE to cut: a sphere of radius 10^200 about a ball of radius 2 kept
         # its Boolean busy for minutes, one of radius 10^20 gave a file of no face
         raise ValueError(
-            f"the surface has no real points inside the {'box' if scene.box else 'drawn ball'} (give --region)"
+            beyond_floats(analysis.squarefree)
+            or f"the surface has no real points inside the {'box' if scene.box else 'drawn ball'} (give --region)"
         )
     from sorgui.cad import cad_file, summary
 

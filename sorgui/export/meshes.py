@@ -42,6 +42,7 @@ class Scene(Protocol):
 
     surface: MeshData
     patch: PatchData | None
+    notes: tuple[str, ...]
 
 
 @dataclass(frozen=True)
@@ -79,7 +80,8 @@ def mesh_polydata(scene: Scene, patch: bool) -> pyvista.PolyData:
         triangles: pyvista.PolyData = scene.patch.to_polydata().triangulate()
         return triangles
     if scene.surface.is_empty:
-        raise ValueError("the surface has no real points in the drawn ball: there is no mesh to export")
+        why = scene.notes[0] if scene.notes else "The surface has no real points in the drawn ball."
+        raise ValueError(f"there is no mesh to export: {why[0].lower()}{why[1:].rstrip('.')}")
     poly = mesh_to_polydata(scene.surface)
     return poly
 

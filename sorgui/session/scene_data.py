@@ -31,6 +31,7 @@ from sorgui.engine.stage_results import BaseCurve, Parametrization
 from sorgui.engine.values import (
     ExpressionError,
     Terms,
+    beyond_floats,
     float_vector,
     polynomial_terms,
     rational_function_terms,
@@ -227,7 +228,7 @@ def build_scene(
         surface = patch_surface(real[0], clip, bounds)
     notes = []
     if surface.is_empty:
-        notes.append(f"The surface has no real points that can be drawn inside the {'box' if box else 'ball'}.")
+        notes.append(_empty_note(analysis.squarefree, "box" if box else "ball"))
     segment, profile = LineData.empty(), LineData.empty()
     axis_point = None
     if rec.axis is not None:
@@ -266,6 +267,12 @@ def build_scene(
         factor_axes=LineData.from_polylines([line.points for line in factor_lines if not line.is_empty]),
         box=box,
     )
+
+
+def _empty_note(squarefree: str, where: str) -> str:
+    """Why nothing of the surface is drawn, as a note of the scene."""
+    why = beyond_floats(squarefree) or f"the surface has no real points that can be drawn inside the {where}"
+    return f"{why[0].upper()}{why[1:]}."
 
 
 def build_scene_of(analysis: Analysis, request: Any) -> SceneData:

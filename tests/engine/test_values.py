@@ -47,3 +47,17 @@ def test_a_power_times_another_face_keeps_both() -> None:
 def test_a_square_free_profile_is_kept() -> None:
     profile = analyze("(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)").recognition.profile
     assert profile is not None and zero_set_profile(profile) is profile
+
+
+def test_a_polynomial_beyond_floating_point_is_named() -> None:
+    """Coefficients spanning more than floats evaluate (a sphere of radius 10^200) are named
+    with their span; a 300-digit coefficient alone, or a polynomial that is not expanded over
+    ``QQ``, is not."""
+    from sorgui.engine.values import beyond_floats
+
+    assert beyond_floats("x**2 + y**2 + z**2 - " + "1" + "0" * 400) == (
+        "the surface cannot be drawn: its coefficients span about 10^400, more than floating-point arithmetic evaluates"
+    )
+    assert beyond_floats("x**2 + y**2 - 1/" + "7" * 420) is not None
+    assert beyond_floats("x**2 + y**2 + z**2 - " + "3" * 150) is None
+    assert beyond_floats("x**2 + y**2 - 2*sqrt(2)") is None and beyond_floats("") is None

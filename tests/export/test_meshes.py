@@ -31,6 +31,7 @@ most this (the float32 coordinates of STL and PLY limit it, not the parameteriza
 class Scene:
     surface: MeshData
     patch: PatchData | None
+    notes: tuple[str, ...] = ()
 
 
 @pytest.fixture(scope="module")
