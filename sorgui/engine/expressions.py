@@ -26,7 +26,10 @@ from dataclasses import dataclass, field
 
 import sympy
 
+from .algebra import sympy_fixes
 from .errors import ExpressionError
+
+sympy_fixes.install()  # the exports read the engine's roots of large integers here
 
 MAX_EXPONENT = 10_000
 """The largest ``|n|`` accepted in ``base^n``: a larger power is never a sensible answer."""

@@ -5,12 +5,15 @@ take (real sympy, real flint)."""
 from __future__ import annotations
 
 import random
+import re
 
 import pytest
 import sympy
+from hypothesis import given
+from hypothesis import strategies as st
 from sympy.external.ntheory import is_strong_bpsw_prp
 
-from sorgui.engine.algebra import sympy_fixes  # noqa: F401 - sorgui installs the fixes on import
+from sorgui.engine.algebra import polys, sympy_fixes  # noqa: F401 - importing polys installs the fixes
 from sorgui.engine.analysis import analyze
 
 
@@ -51,3 +54,10 @@ def test_a_paraboloid_with_a_2000_digit_coefficient_is_analysed() -> None:
     assert analysis.recognition.axis.direction == ("0", "0", "1")
     assert analysis.canal is not None and analysis.canal.is_canal
     assert any(p.real and p.verified for p in analysis.parametrizations)
+
+
+@given(st.text(alphabet="xy_(*)/+-0123456789 ", max_size=40))
+def test_generators_are_split_as_sympy_splits_them(text: str) -> None:
+    """The linear pattern gives sympy's own name and index for any one-line generator text."""
+    sympys = re.compile(r"^(.*?)(\d*)$", re.MULTILINE)
+    assert sympy_fixes.GENERATOR.match(text).groups() == sympys.match(text).groups()
