@@ -631,3 +631,25 @@ def test_digits_finer_than_floating_point_are_said_to_be_read_at_its_floor() -> 
     assert any("23 significant digits, more than floating point holds" in note for note in approx.notes)
     fifteen = analyze("x^2+1.00000000000003*y^2-z^2-1", recognition_only=True).approximate
     assert not any("floating point holds" in note for note in fifteen.notes)
+
+
+@pytest.mark.parametrize("power", [-200, -120, 150, 250])
+def test_a_rounded_surface_far_from_unit_scale_is_judged_as_at_unit_scale(power: int) -> None:
+    """A rounded torus with every coefficient times ``10^power``: the float computations squared
+    coefficients of 1e-200 to 0 and stopped with an internal error. It is analysed as the same
+    surface at unit scale: the same verdict, and a nearest exact surface that is the unit-scale
+    one times ``10^power`` (so that it is compared with the input as typed)."""
+    from sympy.polys.domains import QQ
+
+    terms = [("1", 0, "*x^4"), ("2", 0, "*x^2*y^2"), ("1", 0, "*y^4"), ("2", 0, "*x^2*z^2"), ("2", 0, "*y^2*z^2")]
+    terms += [("1", 0, "*z^4"), ("-2.0000001", 1, "*x^2"), ("-2", 1, "*y^2"), ("1.6", 1, "*z^2"), ("6.4", 1, "")]
+    unit, scaled = (
+        analyze(" + ".join(f"{c}e{e + shift}{m}" for c, e, m in terms).replace("+ -", "- ")) for shift in (0, power)
+    )
+    assert unit.approximate is not None and scaled.approximate is not None
+    assert scaled.approximate.near_sor == unit.approximate.near_sor is True
+    assert unit.approximate.nearest is not None and scaled.approximate.nearest is not None
+    g = parse_polynomial(scaled.approximate.nearest.polynomial).polynomial
+    g_unit = parse_polynomial(unit.approximate.nearest.polynomial).polynomial
+    assert g == g_unit * (QQ(10) ** power if power > 0 else QQ(1, 10 ** (-power)))
+    assert scaled.approximate.nearest.within_rounding == unit.approximate.nearest.within_rounding

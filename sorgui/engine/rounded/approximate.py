@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
 
 import numpy as np
@@ -113,10 +113,51 @@ def _finer_than_floats(printed: Rounding | None) -> tuple[str, ...]:
     )
 
 
+BALANCE_FROM = 30
+"""A rounded ``f`` whose largest coefficient is beyond ``10^±30`` is analysed as ``10^k·f`` (the
+same surface, its decimals shifted), its largest coefficient near 1: the squares and sums of
+squares of the float computations underflowed for coefficients of ``1e-200`` and stopped the
+analysis."""
+
+
 def approximate_symmetry(
     f: Poly, rounding: Rounding, *, snap_exact: bool = True, notes: tuple[str, ...] = ()
 ) -> NearResult:
-    """The :class:`Approximation` of ``f`` under ``rounding`` (docs/math.md §8)."""
+    """The :class:`Approximation` of ``f`` under ``rounding`` (docs/math.md §8), computed for
+    ``10^k·f`` and its rounding ``10^k·e`` when ``f``'s coefficients are far from 1
+    (:data:`BALANCE_FROM`); the nearest exact surface is then scaled back by ``10^-k``, so that
+    it is compared with ``f`` as typed. Relative distances and zero sets do not depend on ``k``."""
+    k = _balancing_power(f)
+    if not k:
+        return _approximate_symmetry(f, rounding, snap_exact=snap_exact, notes=notes)
+    scale = QQ(10) ** k if k > 0 else QQ(1, 10 ** (-k))
+    scaled = replace(
+        rounding,
+        bounds={m: b * 10.0**k for m, b in rounding.bounds.items()},
+        default=rounding.default * 10.0**k,
+    )
+    near = _approximate_symmetry(f * scale, scaled, snap_exact=snap_exact, notes=notes)
+    if near.nearest is None or near.approximation.nearest is None:
+        return near
+    g = near.nearest * (1 / scale)
+    nearest = replace(near.approximation.nearest, polynomial=poly_str(g))
+    return NearResult(replace(near.approximation, nearest=nearest), g, near.frame)
+
+
+def _balancing_power(f: Poly) -> int:
+    """``k`` with ``10^k·f``'s largest coefficient near 1, or 0 when it is within
+    ``10^±BALANCE_FROM`` already (ordinary input is analysed as typed)."""
+    largest = max((abs(c) for c in dense.float_coefficients(f).values()), default=0.0)
+    if not math.isfinite(largest) or largest == 0:
+        return 0
+    exponent = math.floor(math.log10(largest))
+    return -exponent if abs(exponent) > BALANCE_FROM else 0
+
+
+def _approximate_symmetry(
+    f: Poly, rounding: Rounding, *, snap_exact: bool = True, notes: tuple[str, ...] = ()
+) -> NearResult:
+    """:func:`approximate_symmetry` for coefficients of ordinary size."""
     coefficients = dense.float_coefficients(f)
     sizes = [abs(c) for c in coefficients.values() if c]
     finite = all(math.isfinite(c) for c in coefficients.values()) and math.isfinite(rounding.tolerance)
