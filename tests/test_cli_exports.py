@@ -323,6 +323,31 @@ def test_the_patch_of_a_map_with_a_parameter_of_another_scale_covers_the_surface
     assert max(len(n) for n in re.findall(r"[0-9]+", " ".join(tube["coordinates"]))) <= 12
 
 
+ROUNDED_HYPERBOLOID = (
+    "0.912239*x^2 - 0.534922*x*y + 0.620593*x*z - 3.0135*x + 0.184881*y^2 + 1.89133*y*z - 0.564965*y"
+    " - 0.09712*z^2 + 0.315604*z + 0.623847"
+)
+"""x² + y² − z² = 1 turned and moved, printed with 6 digits (as a CAD system prints it)."""
+
+
+def test_a_patch_is_the_first_map_that_meets_the_ball(tmp_path: Path) -> None:
+    """The nearest exact hyperboloid's first map (the rotated profile's) meets the drawn ball
+    only outside ``[−3, 3]²``, and its second, through ``T``, had ``x ≈ 1.8 + 417·t`` over a
+    denominator without ``t``: both patch files were refused ("no real parameterization", "no
+    point inside the drawn ball"). The second map is balanced (``t ↦ t/1000``) and both files
+    take its patch."""
+    import pyvista
+
+    pytest.importorskip("OCP")
+    stl, step = tmp_path / "h.patch.stl", tmp_path / "h.patch.step"
+    done = sorgui("analyze", "--json", ROUNDED_HYPERBOLOID, "-o", str(stl), "-o", str(step))
+    assert done.returncode == 0, done.stderr
+    assert pyvista.read(stl).n_cells > 100 and "4 faces" in done.stderr
+    maps = json.loads(done.stdout)["approximate"]["nearest"]["analysis"]["parametrizations"]
+    tube = next(p for p in maps if p["method"].startswith("via tubular"))
+    assert "2174623000000*t" in tube["coordinates"][0]
+
+
 def test_a_mesh_patch_is_written_where_the_cad_patch_is(tmp_path: Path) -> None:
     """``.patch.stl`` takes the map ``.patch.step`` takes: a cylinder over a curve's map by its
     lines (it was refused, "no real parameterization", while ``.patch.step`` was written)."""

@@ -378,7 +378,8 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
     size = scene.region.radius
     check_size(size)
     terms = polynomial_terms(analysis.squarefree)
-    for param in own_maps(analysis):
+    outside = False
+    for param in own_maps(analysis):  # the first whose patch meets the ball, as the window's
         try:
             patches = bezier_patches(param, terms)
         except (CadGeometryError, ExpressionError, sympy.PolynomialError):
@@ -390,8 +391,11 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
             faces += cut
             groups += [int(patch.turned)] * len(cut)
         if not faces:
-            raise CadGeometryError("the parameterization's patch has no point inside the drawn ball")
+            outside = True
+            continue
         low, high = PATCH_RANGE
         lines = (f"rational B-spline patch of the parameterization ({param.method}) over s, t in [{low:g}, {high:g}]",)
         return finished(Faces(faces, "patch", lines, groups=tuple(groups)), scene, analysis.squarefree)
+    if outside:
+        raise CadGeometryError("the parameterization's patch has no point inside the drawn ball")
     raise CadGeometryError("the analysis has no verified real rational parameterization to write as a patch")

@@ -75,8 +75,10 @@ def mesh_polydata(scene: Scene, patch: bool) -> pyvista.PolyData:
     from sorgui.render import mesh_to_polydata
 
     if patch:
-        if scene.patch is None or scene.patch.is_empty:
+        if scene.patch is None:
             raise ValueError("there is no parametric patch to export (no real parameterization)")
+        if scene.patch.is_empty:
+            raise ValueError("there is no parametric patch to export: no map's patch has a point inside the drawn ball")
         triangles: pyvista.PolyData = scene.patch.to_polydata().triangulate()
         return triangles
     if scene.surface.is_empty:

@@ -288,12 +288,17 @@ def with_patch(scene: SceneData, analysis: Analysis) -> SceneData:
 
 
 def _first_patch(maps: list[Parametrization], region: ClipSphere | ClipBox) -> PatchData | None:
-    """The patch of the first of ``maps`` whose coordinates can be read (``None``: none)."""
+    """The patch of the first of ``maps`` that has points inside ``region`` (as the CAD file's
+    patch, :func:`sorgui.cad.model.patch_model`), else of the first whose coordinates can be
+    read (``None``: none). A hyperboloid's first map, about a turned axis, met the ball only
+    outside ``[−3, 3]²``; its second one covered it."""
+    readable = None
     for param in maps:
         patch = _patch(param, region)
-        if patch is not None:
+        if patch is not None and not patch.is_empty:
             return patch
-    return None
+        readable = readable or patch
+    return readable
 
 
 def with_approximation(scene: SceneData, analysis: Analysis) -> SceneData:

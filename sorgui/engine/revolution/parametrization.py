@@ -18,6 +18,7 @@ Every parameterization is substituted back into ``f`` and must reduce to 0 exact
 from __future__ import annotations
 
 import math
+import statistics
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TypeAlias, cast
@@ -501,12 +502,20 @@ BALANCE_FROM = 100
 :func:`balanced`."""
 
 
-def parameter_scale(denominator: fmpq_mpoly, index: int) -> int:
-    """The power of ten nearest to the natural scale of the parameter ``index`` of a map with
-    this denominator: ``(A₀/A_d)^(1/d)``, ``A_k`` the largest coefficient of the terms of degree
-    ``k`` in it (``d`` the largest), where the terms of lowest and highest degree weigh alike."""
+def _appears(polynomial: fmpq_mpoly, index: int) -> bool:
+    """Whether the parameter ``index`` occurs in ``polynomial``."""
+    return any(monomial[index] for monomial in polynomial.to_dict())
+
+
+def parameter_scale(polynomial: fmpq_mpoly, index: int) -> int:
+    """The power of ten nearest to the natural scale of the parameter ``index`` in a map's
+    denominator (or, where it does not occur there, in a numerator): ``(A₀/A_d)^(1/d)``,
+    ``A_k`` the largest coefficient of the terms of degree ``k`` in it (``d`` the largest), where
+    the terms of lowest and highest degree weigh alike. A map of a hyperboloid on a turned axis
+    had ``x ≈ 1.8 + 417·t`` with no ``t`` below the line: its patch over ``t ∈ [−3, 3]`` missed
+    the drawn ball."""
     by_degree: dict[int, float] = {}  # log10 of the largest coefficient (exact integers: no overflow)
-    for monomial, c in denominator.to_dict().items():
+    for monomial, c in polynomial.to_dict().items():
         if c:
             k = int(monomial[index])
             size = math.log10(abs(int(c.p))) - math.log10(int(c.q))
@@ -527,6 +536,8 @@ def balanced(surface: SurfaceMap) -> SurfaceMap:
     images = list(gens)
     for index in range(len(surface.ring.variables)):
         power = parameter_scale(surface.denominator, index)
+        if not power and not _appears(surface.denominator, index):
+            power = round(statistics.median(parameter_scale(n, index) for n in surface.numerators))
         if 10 ** abs(power) >= BALANCE_FROM:
             images[index] = gens[index] * fmpq(10) ** power
     if images == gens:
