@@ -160,8 +160,8 @@ def analytic_surfaces(analysis: Analysis, ball: ClipSphere) -> list[Analytic] | 
     except (ExpressionError, sympy.PolynomialError):
         return None
     spec = None
-    if square.total_degree() <= 2 and square.degree(w) == 1:
-        spec = _quadric(square, frame, centre, ball.radius)
+    if square.total_degree() <= 2 and square.degree(w) == 1 and not square.coeff_monomial(x * w):
+        spec = _quadric(square, frame, centre, ball.radius)  # P² = q(x) + c·w: a quadric (x·w is a cubic)
     elif square.total_degree() == 4:
         spec = _torus(square, frame)
     return None if spec is None else [spec]

@@ -82,6 +82,7 @@ def test_the_analytic_kinds_are_read_from_the_exact_profile() -> None:
         "x+2*y-3": ("plane", 0.0, 0.0),
         "x^2+y^2-z": (None, 0.0, 0.0),
         "(x^2+y^2+z^2-1)^2-4*(x^2+y^2)": ("torus", 1.0, math.sqrt(2.0)),  # a spindle torus: R < r
+        "x^3+y^3+z^3-3*x*y*z-1": (None, 0.0, 0.0),  # P² = x·w − c: a cubic, not a quadric (it was "nan across")
     }
     for text, (kind, radius, minor) in cases.items():
         analysis = analyze(text)
