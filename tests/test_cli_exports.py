@@ -348,6 +348,21 @@ def test_a_patch_is_the_first_map_that_meets_the_ball(tmp_path: Path) -> None:
     assert "2174623000000*t" in tube["coordinates"][0]
 
 
+def test_a_patch_widens_its_box_until_it_meets_the_ball(tmp_path: Path) -> None:
+    """A hyperboloid with a neck of radius 0.055 is drawn in a ball of its own size; its map
+    reaches the neck at ``t ≈ 9``, so no patch over ``[−3, 3]²`` met the ball. Both patch files
+    take the box ``[−30, 30]²``, and the CAD file says so."""
+    import pyvista
+
+    pytest.importorskip("OCP")
+    stl, step = tmp_path / "h.patch.stl", tmp_path / "h.patch.step"
+    done = sorgui("analyze", "0.5*x^2+0.5*y^2-0.25*z^2-1.5e-3", "-o", str(stl), "-o", str(step))
+    assert done.returncode == 0, done.stderr
+    assert pyvista.read(stl).n_cells > 100
+    description = " ".join(step_strings(step.read_text(encoding="ascii"), "FILE_DESCRIPTION"))
+    assert "s, t in [-30, 30]" in description
+
+
 def test_a_mesh_patch_is_written_where_the_cad_patch_is(tmp_path: Path) -> None:
     """``.patch.stl`` takes the map ``.patch.step`` takes: a cylinder over a curve's map by its
     lines (it was refused, "no real parameterization", while ``.patch.step`` was written)."""

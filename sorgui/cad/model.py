@@ -22,7 +22,7 @@ from sorgui.engine.results import Analysis
 from sorgui.engine.values import ExpressionError, polynomial_terms, zero_set_profile
 from sorgui.engine.vocabulary import kind_noun
 from sorgui.numerics import without_noise
-from sorgui.render import PATCH_RANGE, ClipBox, ClipSphere, LineData, MeshData
+from sorgui.render import PATCH_RANGES, ClipBox, ClipSphere, LineData, MeshData
 from sorgui.render.geometry import foot_on_line
 
 from . import shapes
@@ -379,23 +379,28 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
     check_size(size)
     terms = polynomial_terms(analysis.squarefree)
     outside = False
-    for param in own_maps(analysis):  # the first whose patch meets the ball, as the window's
-        try:
-            patches = bezier_patches(param, terms)
-        except (CadGeometryError, ExpressionError, sympy.PolynomialError):
-            continue
-        faces, groups = [], []
-        for patch in patches:
-            face = shapes.patch_face(patch, precision(size))
-            cut = shapes.cut_to([shapes.reversed_face(face) if patch.turned else face], scene.region)
-            faces += cut
-            groups += [int(patch.turned)] * len(cut)
-        if not faces:
-            outside = True
-            continue
-        low, high = PATCH_RANGE
-        lines = (f"rational B-spline patch of the parameterization ({param.method}) over s, t in [{low:g}, {high:g}]",)
-        return finished(Faces(faces, "patch", lines, groups=tuple(groups)), scene, analysis.squarefree)
+    for box in PATCH_RANGES:  # the first box and map whose patch meets the ball, as the window's
+        for param in own_maps(analysis):
+            try:
+                patches = bezier_patches(param, terms, box)
+            except (CadGeometryError, ExpressionError, sympy.PolynomialError):
+                continue
+            faces, groups = [], []
+            for patch in patches:
+                face = shapes.patch_face(patch, precision(size))
+                cut = shapes.cut_to([shapes.reversed_face(face) if patch.turned else face], scene.region)
+                faces += cut
+                groups += [int(patch.turned)] * len(cut)
+            if not faces:
+                outside = True
+                continue
+            low, high = box
+            lines = (
+                f"rational B-spline patch of the parameterization ({param.method}) over s, t in [{low:g}, {high:g}]",
+            )
+            return finished(Faces(faces, "patch", lines, groups=tuple(groups)), scene, analysis.squarefree)
+        if not outside:
+            break  # no map could be written: a wider box writes none either
     if outside:
         raise CadGeometryError("the parameterization's patch has no point inside the drawn ball")
     raise CadGeometryError("the analysis has no verified real rational parameterization to write as a patch")

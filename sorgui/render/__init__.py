@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from sorgui.render.picking import AxisTest, PickInfo, normal_meets_axis, pick_info
     from sorgui.render.scene import (
         PATCH_RANGE,
+        PATCH_RANGES,
         LineData,
         MarkerData,
         PatchData,
@@ -39,6 +40,7 @@ _MODULES = {
     "picking": ("AxisTest", "PickInfo", "normal_meets_axis", "pick_info"),
     "scene": (
         "PATCH_RANGE",
+        "PATCH_RANGES",
         "LineData",
         "MarkerData",
         "PatchData",
@@ -57,6 +59,7 @@ _MODULE_OF = {name: module for module, names in _MODULES.items() for name in nam
 
 __all__ = [
     "PATCH_RANGE",
+    "PATCH_RANGES",
     "AxisTest",
     "ClipBox",
     "ClipSphere",

@@ -296,6 +296,11 @@ PATCH_RANGE = (-3.0, 3.0)
 tangent of half the angle, so ``±3`` covers about 287° and leaves the seam open); a CAD patch
 export covers the same box."""
 
+PATCH_RANGES = (PATCH_RANGE, (-30.0, 30.0), (-300.0, 300.0))
+"""The boxes tried in turn when no map's patch over :data:`PATCH_RANGE` meets the drawn ball (a
+small hyperboloid whose map reaches its neck at ``t ≈ 9``); the window and a CAD patch export
+take the first box and map that meet it."""
+
 PatchCoordinate = Callable[[Any, Any], Any] | float
 """A coordinate of a patch: ``fn(s, t)``, called on the grid's arrays (or, where that fails, on
 each pair of numbers), or a constant."""

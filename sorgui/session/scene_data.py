@@ -39,6 +39,7 @@ from sorgui.engine.values import (
 )
 from sorgui.render import (
     PATCH_RANGE,
+    PATCH_RANGES,
     ClipBox,
     ClipSphere,
     LineData,
@@ -108,8 +109,14 @@ def natural_center(rec: Recognition, approximate: Approximation | None = None) -
 # --- the scene ------------------------------------------------------------------------------
 
 
-def _patch(param: Parametrization, region: ClipSphere | ClipBox | None, n: int = PATCH_GRID) -> PatchData | None:
-    """A grid patch of a real parameterization (``None`` if its coordinates cannot be read)."""
+def _patch(
+    param: Parametrization,
+    region: ClipSphere | ClipBox | None,
+    n: int = PATCH_GRID,
+    box: tuple[float, float] = PATCH_RANGE,
+) -> PatchData | None:
+    """A grid patch of a real parameterization over ``box × box`` (``None`` if its coordinates
+    cannot be read)."""
     try:
         coordinates = [rational_function_terms(c, param.parameters) for c in param.coordinates]
     except (ExpressionError, ValueError, TypeError):
@@ -126,7 +133,7 @@ def _patch(param: Parametrization, region: ClipSphere | ClipBox | None, n: int =
         return evaluate
 
     fx, fy, fz = (coordinate(n, d) for n, d in coordinates)
-    return parametric_patch(fx, fy, fz, PATCH_RANGE, PATCH_RANGE, n=n, region=region)
+    return parametric_patch(fx, fy, fz, box, box, n=n, region=region)
 
 
 def patch_region(param: Parametrization) -> ClipSphere | None:
@@ -288,16 +295,21 @@ def with_patch(scene: SceneData, analysis: Analysis) -> SceneData:
 
 
 def _first_patch(maps: list[Parametrization], region: ClipSphere | ClipBox) -> PatchData | None:
-    """The patch of the first of ``maps`` that has points inside ``region`` (as the CAD file's
-    patch, :func:`sorgui.cad.model.patch_model`), else of the first whose coordinates can be
-    read (``None``: none). A hyperboloid's first map, about a turned axis, met the ball only
-    outside ``[−3, 3]²``; its second one covered it."""
+    """The patch of the first of ``maps`` that has points inside ``region`` over the first box of
+    :data:`~sorgui.render.PATCH_RANGES` where one does (as the CAD file's patch,
+    :func:`sorgui.cad.model.patch_model`), else of the first whose coordinates can be read
+    (``None``: none). A hyperboloid's first map, about a turned axis, met the ball only outside
+    ``[−3, 3]²``, and its second one covered it; a small hyperboloid's only map meets it at
+    ``t ≈ 9``."""
     readable = None
-    for param in maps:
-        patch = _patch(param, region)
-        if patch is not None and not patch.is_empty:
-            return patch
-        readable = readable or patch
+    for box in PATCH_RANGES:
+        for param in maps:
+            patch = _patch(param, region, box=box)
+            if patch is not None and not patch.is_empty:
+                return patch
+            readable = readable or patch
+        if readable is None:
+            return None  # no map can be read: a wider box reads none either
     return readable
 
 

@@ -179,6 +179,21 @@ def test_view_region_frames_the_bounded_part() -> None:
     assert 3.0 < region.radius < 4.5
 
 
+@pytest.mark.parametrize("scale", [1e-2, 1e-4])
+def test_a_small_part_is_framed_at_its_own_size(scale: float) -> None:
+    """A torus 4 cm across written in metres (``R = 0.03``, ``r = 0.01``) was drawn a speck in a
+    ball of radius 2, and one of 0.4 mm not at all (the ball's radius was at least 1): the ball
+    now fits the part, and its mesh has points."""
+    from sorgui.engine import analyze
+    from sorgui.session.scene_data import build_scene
+
+    R2, r2 = (3 * scale) ** 2, scale**2
+    torus = f"(x^2 + y^2 + z^2 + {R2!r} - {r2!r})^2 - 4*{R2!r}*(x^2 + y^2)"
+    scene = build_scene(analyze(torus, recognition_only=True))
+    assert 4 * scale < scene.region.radius < 6 * scale
+    assert not scene.surface.is_empty
+
+
 def test_job_returns_plain_picklable_data() -> None:
     final = run_job(JobRequest(example_text("cylinder"), resolution=40))
     assert isinstance(final, Finished)

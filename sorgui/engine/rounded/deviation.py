@@ -20,7 +20,15 @@ from . import dense
 from .dense import FloatArray
 
 MIN_RADIUS = 1.0
+"""The smallest ball drawn for a surface of unit size or more (:func:`natural_length`)."""
+SMALLEST_RADIUS = 1.0e-6
+"""The smallest ball drawn for a small part: one measured in metres (a torus 4 cm across,
+``R = 0.03``) was drawn a speck in a ball of radius 2, and one of 0.4 mm not at all, when every
+ball's radius was at least :data:`MIN_RADIUS`."""
 MAX_RADIUS = 1.0e4
+NO_POINTS_RADIUS = 2.0
+"""The ball's radius when no line through the centre meets the surface away from it (a cone
+about its apex, a plane through the centre)."""
 MARGIN = 1.25
 SPREAD = 3.0
 LINES = 160
@@ -97,7 +105,7 @@ def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = N
     distances = np.linalg.norm(pts - center, axis=1)
     positive = distances[distances > 1e-9 * max(1.0, float(np.linalg.norm(center)))]
     if len(positive) == 0:
-        return center, 2.0 * MIN_RADIUS
+        return center, NO_POINTS_RADIUS
     far = distances.max() if bounded else SPREAD * float(np.median(positive))
     core = pts[distances <= min(distances.max(), far)]
     if axis is not None:
@@ -107,7 +115,28 @@ def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = N
     else:
         middle = 0.5 * (core.min(axis=0) + core.max(axis=0))
     radius = MARGIN * float(np.linalg.norm(core - middle, axis=1).max())
-    return middle, float(np.clip(radius, MIN_RADIUS, MAX_RADIUS))
+    return middle, float(np.clip(radius, natural_length(array), MAX_RADIUS))
+
+
+def natural_length(array: FloatArray) -> float:
+    """The length at which ``f``'s lowest and highest homogeneous parts weigh alike,
+    ``(|f_low| / |f_high|)^(1/(high − low))``, between :data:`SMALLEST_RADIUS` and
+    :data:`MIN_RADIUS`: the floor of the view ball's radius. A small part (``x² + y² − 2.5e-5``:
+    0.005) gets a ball of its size; a cone about its apex, whose numerical roots near the apex
+    are noise of about 10⁻⁵, keeps the floor of 1 (its parts are all of one degree)."""
+    i, j, k = np.indices(array.shape)
+    degrees = (i + j + k).ravel()
+    values = np.abs(array).ravel()
+    largest = float(values.max(initial=0.0))
+    if largest == 0:
+        return MIN_RADIUS
+    sizes = np.bincount(degrees, weights=(values / largest) ** 2)
+    present = np.nonzero(sizes)[0]
+    low, high = int(present.min()), int(present.max())
+    if high == low:
+        return MIN_RADIUS
+    length = float((np.sqrt(sizes[low]) / np.sqrt(sizes[high])) ** (1.0 / (high - low)))
+    return float(np.clip(length, SMALLEST_RADIUS, MIN_RADIUS))
 
 
 def sample_zero_set(array: FloatArray, center: FloatArray, radius: float, seed: int = 0) -> FloatArray:
