@@ -28,7 +28,7 @@ import mpmath
 import numpy as np
 import sympy
 
-from sorgui.engine.results import Analysis, Profile
+from sorgui.engine.results import Analysis, Factor, Profile, Recognition
 from sorgui.engine.stage_results import Parametrization
 from sorgui.engine.values import ExpressionError, Terms, float_vector, polynomial_terms, read_expression
 from sorgui.numerics import real_roots
@@ -151,6 +151,35 @@ def analytic_surfaces(analysis: Analysis, ball: ClipSphere) -> list[Analytic] | 
         return _planes(analysis.squarefree, rec.normal, centre, ball.radius)
     if rec.symmetry == "sphere" and rec.center is not None:
         return _spheres(analysis.squarefree, rec.center, centre, ball.radius)
+    if len(analysis.factors) > 1:
+        return _union(analysis.factors, centre, ball.radius)
+    return _of_profile(rec, centre, ball.radius)
+
+
+def _union(factors: Sequence[Factor], centre: np.ndarray, radius: float) -> list[Analytic] | None:
+    """The analytic surfaces of a reducible ``X`` when each factor is one (a cylinder and a plane,
+    two cones: their fitted profile strayed at the curves where they cross), those that miss
+    the ball left out; ``None`` when a factor is not analytic."""
+    specs: list[Analytic] = []
+    for factor in factors:
+        rec = factor.recognition
+        try:
+            if rec.symmetry == "plane" and rec.normal is not None:
+                specs += _planes(factor.polynomial, rec.normal, centre, radius)
+            elif rec.symmetry == "sphere" and rec.center is not None:
+                specs += _spheres(factor.polynomial, rec.center, centre, radius)
+            else:
+                found = _of_profile(rec, centre, radius)
+                if found is None:
+                    return None
+                specs += found
+        except CadGeometryError:
+            continue  # this factor misses the ball
+    return specs
+
+
+def _of_profile(rec: Recognition, centre: np.ndarray, radius: float) -> list[Analytic] | None:
+    """A cylinder, cone or torus from the exact squared profile ``P²(x, w)`` of ``rec``."""
     if rec.profile is None or rec.axis is None:
         return None
     frame = axis_frame(rec.profile)
@@ -161,7 +190,7 @@ def analytic_surfaces(analysis: Analysis, ball: ClipSphere) -> list[Analytic] | 
         return None
     spec = None
     if square.total_degree() <= 2 and square.degree(w) == 1 and not square.coeff_monomial(x * w):
-        spec = _quadric(square, frame, centre, ball.radius)  # P² = q(x) + c·w: a quadric (x·w is a cubic)
+        spec = _quadric(square, frame, centre, radius)  # P² = q(x) + c·w: a quadric (x·w is a cubic)
     elif square.total_degree() == 4:
         spec = _torus(square, frame)
     return None if spec is None else [spec]
