@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 from sympy.polys.domains import QQ
 
 from sorgui.engine.algebra.polys import compose, number_field, poly_ring, total_degree
+from sorgui.engine.analysis import analyze
 from sorgui.engine.conical.base_curve import analyze_conical
 from sorgui.engine.conical.detect import detect
 from sorgui.engine.parsing import parse_polynomial
@@ -255,3 +256,15 @@ def test_a_reducible_base_curve_has_each_component_analysed() -> None:
 
     maple = maple_file(analysis)  # and the formula files carry each component
     assert "baseCurveComponent1 := x + 2*y - 1;" in maple and "baseCurveComponent2 := x^3 + x*y - x + 2*y^3;" in maple
+
+
+def test_a_small_rounded_torus_is_not_nearly_a_cone() -> None:
+    """A torus 4 cm across written in metres: its lower terms are small beside
+    ``(x² + y² + z²)²``, and coefficient by coefficient it read as nearly that quartic cone about
+    the origin (the window's heading said "nearly a cone about (0, 0, 0)"). At its own scale it
+    is no cone; a rounded cone of that size still is one, its apex scaled back."""
+    torus = analyze("(x^2+y^2+z^2+0.0009-0.0001)^2-4*0.0009*(x^2+y^2)")
+    assert torus.conical is not None and torus.conical.near_apex is None
+    cone = analyze("x^2 + y^2 - 0.25*(z - 0.0123)^2 + 1e-12*x")
+    assert cone.conical is not None and cone.conical.near_apex is not None
+    assert cone.conical.near_apex[2] == pytest.approx(0.0123, rel=1e-6)

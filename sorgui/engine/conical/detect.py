@@ -77,6 +77,7 @@ def near_apex(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], fl
     within :data:`NEAR_FACTOR` times the rounding and ``M`` has full rank (no near translation)."""
     import numpy as np  # rounded input only: an exact analysis need not load numpy
 
+    f, k = at_unit_scale(f)
     K = f.ring.domain
     rows, rhs = _system(f)
     M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
@@ -89,8 +90,27 @@ def near_apex(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], fl
     residual = float(np.max(np.abs(M @ apex - b))) / (total_degree(f) * size * (1 + float(np.linalg.norm(apex))))
     if residual > NEAR_FACTOR * tolerance:
         return None
-    x, y, z = (float(v) for v in apex)
+    x, y, z = (float(v) * 10.0**k for v in apex)
     return (x, y, z), residual
+
+
+def at_unit_scale(f: Poly) -> tuple[Poly, int]:
+    """``f(10ᵏ·p)`` and ``k``, with ``10ᵏ`` near ``f``'s natural length
+    (:func:`..rounded.deviation.natural_length`) when that is below 0.1, else ``f`` and 0. The
+    near tests compare coefficients: a torus 4 cm across written in metres, whose lower terms
+    are small beside ``(x² + y² + z²)²``, read as nearly the cone ``(x² + y² + z²)² = 0``."""
+    import math
+
+    from ..rounded import dense
+    from ..rounded.deviation import natural_length
+
+    length = natural_length(dense.from_terms(dense.float_coefficients(f), total_degree(f)))
+    k = round(math.log10(length))
+    if k >= 0 or length >= 0.1:
+        return f, 0
+    K = f.ring.domain
+    scale = K.convert(10) ** k if k > 0 else K.one / K.convert(10) ** (-k)
+    return f.ring.from_dict({m: c * scale ** sum(m) for m, c in f.items()}), k
 
 
 def near_direction(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], float] | None:
@@ -100,6 +120,7 @@ def near_direction(f: Poly, tolerance: float) -> tuple[tuple[float, float, float
     relative residual ``|M a| / |M|``); ``None`` unless exactly one such direction exists."""
     import numpy as np  # rounded input only
 
+    f, _k = at_unit_scale(f)  # a direction is the same at any scale
     K = f.ring.domain
     rows, _rhs = _system(f)
     M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
