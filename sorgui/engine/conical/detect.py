@@ -105,11 +105,10 @@ def at_unit_scale(f: Poly) -> tuple[Poly, int]:
     from ..rounded.deviation import natural_length
 
     length = natural_length(dense.from_terms(dense.float_coefficients(f), total_degree(f)))
-    k = round(math.log10(length))
-    if k >= 0 or length >= 0.1:
+    if length >= 0.1:
         return f, 0
-    K = f.ring.domain
-    scale = K.convert(10) ** k if k > 0 else K.one / K.convert(10) ** (-k)
+    k = round(math.log10(length))  # at most -1
+    scale = f.ring.domain.one / f.ring.domain.convert(10) ** (-k)
     return f.ring.from_dict({m: c * scale ** sum(m) for m, c in f.items()}), k
 
 
