@@ -96,9 +96,8 @@ def normalise(coefficients: dict[tuple[int, int, int], float], rounding: Roundin
     for (i, j, k), e in rounding.bounds.items():
         bounds[i, j, k] = e
     by_degree: dict[int, float] = {}
-    top = max(abs(c) for c in coefficients.values())  # the squares of 1.5e-300 are 0 in floats
     for (i, j, k), c in coefficients.items():
-        by_degree[i + j + k] = by_degree.get(i + j + k, 0.0) + (c / top) ** 2
+        by_degree[i + j + k] = by_degree.get(i + j + k, 0.0) + c * c
     low, high = min(by_degree), max(by_degree)
     length = 1.0
     if high > low:
