@@ -24,7 +24,7 @@ from typing import Any, cast
 from flint import fmpq, fmpq_mpoly
 
 from .algebra import rationals
-from .limits import FUNCTION_NAME, Limits
+from .limits import Limits, equation_span
 
 Monomial = tuple[int, ...]
 
@@ -120,9 +120,10 @@ class Reading:
 def read_expanded(text: str, limits: Limits) -> Reading | None:
     """``text`` as a non-constant polynomial of ``QQ[x, y, z]``, or ``None`` when it is not an
     expanded polynomial within ``limits`` (or is constant): the general parser decides then.
-    ``lhs = rhs`` is ``lhs - rhs``, and a leading ``f(x, y, z) =`` is skipped, as in the parser."""
-    prefix = FUNCTION_NAME.match(text)
-    body = text[prefix.end() :] if prefix else text
+    ``lhs = rhs`` is ``lhs - rhs``; a label such as ``f(x, y, z) =`` and a final ``;`` are skipped
+    (:func:`.limits.equation_span`), as in the parser."""
+    start, end = equation_span(text)
+    body = text[start:end]
     terms = _Terms()
     if "=" in body:
         sides = body.split("=")

@@ -1,6 +1,7 @@
 """What both readers of an equation accept (:mod:`.expanded`, the fast path, and :mod:`.syntax`,
 the general parser): the limits on degree, digits, nesting and work that make hostile or mistyped
-input fail fast, checked before anything is expanded, and the optional ``f(x, y, z) =`` in front.
+input fail fast, checked before anything is expanded, and what a pasted statement may wrap the equation in
+(a label ``f(x, y, z) =``, a final ``;``, LaTeX's ``$ $``).
 Light to import: the parser's entry points (:mod:`.parsing`) load the general parser only for a
 text that the fast path declines."""
 
@@ -41,5 +42,46 @@ class Limits:
 
 LIMITS = Limits(degree=MAX_DEGREE, digits=MAX_DIGITS, bits=MAX_BITS, decimal_exponent=MAX_DECIMAL_EXPONENT)
 
-FUNCTION_NAME = re.compile(r"\s*[A-Za-z]\w*\s*\(\s*x\s*,\s*y\s*,\s*z\s*\)\s*:?=", re.ASCII)
-"""A leading ``f(x, y, z) =`` (any name, ``=`` or ``:=``): skipped, ``f(x,y,z) = g`` is ``g = 0``."""
+_LABEL = re.compile(
+    r"\s*(?:poly\s+)?([A-Za-z_]\w*)\s*(\(\s*x\s*,\s*y\s*,\s*z\s*\)|\[\s*x_?\s*,\s*y_?\s*,\s*z_?\s*\])?\s*:?=(?!=)",
+    re.ASCII,
+)
+"""A label in front of an equation: ``f(x, y, z) =``, Maple's ``f :=``, Singular's ``poly f =``,
+Mathematica's ``f[x_, y_, z_] :=`` (any name, ``=`` or ``:=``)."""
+_MONOMIAL_NAME = re.compile(r"[xyz0-9]*", re.ASCII)
+"""A name that is a monomial (``xy``, Singular's ``x2``): the left side of an equation, no label."""
+_OPENING = re.compile(r"\s*(\$\$?|\\\[|\\\()")
+_CLOSING = {"$": "$", "$$": "$$", "\\[": "\\]", "\\(": "\\)"}
+
+
+def statement_span(text: str) -> tuple[int, int]:
+    """The characters ``start:end`` of ``text`` that hold the equation or the parametrization a
+    user pasted as a statement of another program: without LaTeX's math delimiters (``$ $``,
+    ``$$ $$``, ``\\[ \\]``, ``\\( \\)``) and a final ``;`` or ``:`` (Maple, Singular,
+    Mathematica, MATLAB). The readers read only these characters, so every position they report
+    is one of ``text``."""
+    start, end = 0, _unterminated(text, 0, len(text))
+    opening = _OPENING.match(text)
+    if opening is not None:
+        closing = _CLOSING[opening.group(1)]
+        if end - len(closing) >= opening.end() and text.endswith(closing, opening.end(), end):
+            start, end = opening.end(), _unterminated(text, opening.end(), end - len(closing))
+    return start, end
+
+
+def _unterminated(text: str, start: int, end: int) -> int:
+    """``end`` moved back over trailing white space and one final ``;`` or ``:``."""
+    while end > start and text[end - 1].isspace():
+        end -= 1
+    return end - 1 if end > start and text[end - 1] in ";:" else end
+
+
+def equation_span(text: str) -> tuple[int, int]:
+    """:func:`statement_span` without a label in front (:data:`_LABEL`): ``f(x,y,z) = g`` and
+    ``f := g`` are the equation ``g = 0``. A left side that is a monomial (``z = x^2 + y^2``)
+    is no label."""
+    start, end = statement_span(text)
+    label = _LABEL.match(text, start, end)
+    if label is None or (label.group(2) is None and _MONOMIAL_NAME.fullmatch(label.group(1))):
+        return start, end
+    return label.end(), end

@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING, Any
 
 from . import parsing, syntax
 from .errors import ParseError
-from .limits import MAX_DEGREE, MAX_LENGTH, MAX_WORK
+from .limits import MAX_DEGREE, MAX_LENGTH, MAX_WORK, statement_span
 from .parsing import is_parametrization
 from .syntax import Neg, Node, Num, Power, Product, Reciprocal, Sqrt, Sum, Var
 
@@ -128,9 +128,11 @@ def parse_parametrization(text: str) -> ParsedParametrization:
 
 def _layout(text: str) -> tuple[list[tuple[int, int]], tuple[str, str] | None]:
     """The spans of the three components in the order x, y, z, and the parameters a prefix or
-    the labels name (``None`` when none does)."""
-    start, named = 0, None
-    prefix = _PREFIX.match(text)
+    the labels name (``None`` when none does); LaTeX's ``$ $`` and a final ``;`` aside
+    (:func:`.limits.statement_span`)."""
+    start, end = statement_span(text)
+    text, named = text[:end], None  # the same positions
+    prefix = _PREFIX.match(text, start)
     if prefix is not None:
         start = prefix.end()
         if prefix.group(1) is not None:

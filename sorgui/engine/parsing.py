@@ -21,7 +21,6 @@ from flint import fmpq_mpoly
 
 from .expanded import Reading, read_expanded
 from .limits import (
-    FUNCTION_NAME,
     LIMITS,
     MAX_DECIMAL_EXPONENT,
     MAX_DEGREE,
@@ -30,6 +29,7 @@ from .limits import (
     MAX_NESTING,
     MAX_PRINTED_DIGITS,
     MAX_WORK,
+    equation_span,
 )
 
 if TYPE_CHECKING:
@@ -137,12 +137,13 @@ def _fast_reading(text: str) -> Reading | None:
 
 def is_parametrization(text: str) -> bool:
     """Whether ``text`` has the form of a parametrization (not whether it is a valid one): a
-    ``,`` or ``;`` outside a leading ``f(x, y, z) =`` (an equation has none), or two lines that
-    start with ``x =``, ``y =`` or ``z =``. Cheap: no tokenizing, no sympy."""
+    ``,`` or ``;`` (an equation has none) outside a label and a final ``;``
+    (:func:`.limits.equation_span`), or two lines that start with ``x =``, ``y =`` or ``z =``.
+    Cheap: no tokenizing, no sympy."""
     if len(text) > MAX_LENGTH:
         return False
-    prefix = FUNCTION_NAME.match(text)
-    body = text[prefix.end() :] if prefix else text
+    start, end = equation_span(text)
+    body = text[start:end]
     if ("," in body or ";" in body) and _SEPARATOR.search(body):  # `in` first: a long equation has neither
         return True
     return "\n" in text and len(_LABEL_LINE.findall(text, 0, 10_000)) >= 2

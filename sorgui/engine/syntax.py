@@ -37,7 +37,6 @@ from flint import fmpq, fmpq_mpoly, fmpz
 from .algebra import rationals
 from .errors import ParseError
 from .limits import (
-    FUNCTION_NAME,
     MAX_BITS,
     MAX_DECIMAL_EXPONENT,
     MAX_DEGREE,
@@ -48,6 +47,7 @@ from .limits import (
     MAX_RADICAND_DIGITS,
     MAX_RADICANDS,
     MAX_WORK,
+    equation_span,
 )
 
 if TYPE_CHECKING:
@@ -59,6 +59,7 @@ _VARIABLES = ("x", "y", "z")
 _VARIABLE_INDEX = {name: i for i, name in enumerate(_VARIABLES)}
 _OPERATORS = {
     "**": "^",
+    "==": "=",
     "−": "-",
     "–": "-",
     "·": "*",
@@ -72,11 +73,11 @@ _OPERATORS = {
 }
 _SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
 TOKEN = re.compile(
-    r"(?P<space>[\s\ufeff]+|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:!]))"
+    r"(?P<space>[\s\ufeff]+|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:!\\]))"
     r"|(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
     r"|(?P<name>[A-Za-z]+)"
     r"|(?P<sup>[⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
-    r"|(?P<op>\*\*|[-+*/^()=−–·⋅×∗{}]|\\(?:cdot|times)(?![A-Za-z]))"
+    r"|(?P<op>\*\*|==|[-+*/^()=−–·⋅×∗{}]|\\(?:cdot|times)(?![A-Za-z]))"
     r"|(?P<latex>\\(?:sqrt|frac)(?![A-Za-z]))"
     r"|(?P<bad>.)",
     re.DOTALL,
@@ -151,26 +152,32 @@ def token_stream(
 ) -> Iterator[Token]:
     """The tokens of ``text``, lazily, so that the first error in reading order is reported.
 
-    A leading ``f(x, y, z) =`` (any name, ``=`` or ``:=``) is skipped: ``f(x,y,z) = g`` is the
-    equation ``g = 0``. LaTeX's ``{ }`` are parentheses, ``\\cdot`` and ``\\times`` are ``*``,
-    ``\\sqrt`` is ``sqrt``, and ``\\left``, ``\\right`` and LaTeX spacing are ignored.
-    ``span`` (characters ``start:end``, no prefix skipped) and ``variables`` (the names of the
+    Only :func:`.limits.equation_span` is read: a label (``f(x,y,z) = g`` is the equation
+    ``g = 0``), a final ``;`` and LaTeX's ``$ $`` are skipped. LaTeX's ``{ }`` are parentheses,
+    ``\\cdot`` and ``\\times`` are ``*``, ``\\sqrt`` is ``sqrt``, and ``\\left``, ``\\right``,
+    LaTeX spacing and line breaks (``\\\\``) are ignored; Mathematica's ``==`` is ``=``. Digits
+    written right after a variable are its exponent, as Singular prints them (``x2y`` is
+    ``x^2*y``).
+    ``span`` (characters ``start:end``, no label skipped) and ``variables`` (the names of the
     variables, by index) read one component of a parametrization in its parameters
     (:mod:`.parametric_parsing`).
     """
     if span is None:
-        prefix = FUNCTION_NAME.match(text)
-        span = (prefix.end() if prefix else 0), len(text)
+        span = equation_span(text)
     index = _VARIABLE_INDEX if variables == _VARIABLES else {name: i for i, name in enumerate(variables)}
+    after_variable = -1  # where the last variable ends
     for match in TOKEN.finditer(text, *span):
         kind, word = match.lastgroup, match.group()
         start, end = match.span()
         if kind == "op":
             yield Token(_OPERATORS.get(word, word), start, end)
+        elif kind == "num" and start == after_variable and word.isdigit():
+            yield _exponent(word, start, end)  # Singular's x2
         elif kind == "num":
             value = int(word) if len(word) < 500 and word.isdigit() else _number(text, start, end)
             yield Token("num", start, end, value)
         elif kind == "name":
+            after_variable = end if word != "sqrt" else -1
             if word in index:  # fast path for a single variable
                 yield Token("var", start, end, index[word])
             else:
@@ -178,13 +185,17 @@ def token_stream(
         elif kind == "latex":
             yield Token(word[1:], start, end)  # sqrt or frac
         elif kind == "sup":
-            digits = word.translate(_SUPERSCRIPTS)
-            if len(digits) > 6:
-                raise ParseError("the exponent is too large", start, end)
-            yield Token("sup", start, end, int(digits))
+            yield _exponent(word.translate(_SUPERSCRIPTS), start, end)
         elif kind == "bad":
             raise ParseError(f"unexpected character {word!r}", start)
     yield Token("end", span[1], span[1])
+
+
+def _exponent(digits: str, start: int, end: int) -> Token:
+    """An exponent written without ``^``: Unicode's ``²``, Singular's ``x2``."""
+    if len(digits) > 6:
+        raise ParseError("the exponent is too large", start, end)
+    return Token("sup", start, end, int(digits))
 
 
 def _name(word: str, start: int, variables: tuple[str, ...] = _VARIABLES) -> Iterator[Token]:

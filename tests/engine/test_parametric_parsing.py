@@ -150,13 +150,13 @@ def test_an_equation_with_a_stray_comma_says_what_a_parametrization_needs() -> N
     [
         ("1,5x + y", "write decimals with a point (1.5)", ","),
         ("x + 2,5*y^2 - z", "write decimals with a point (2.5)", ","),
-        ("x^2 + y^2 + z^2 - 1;", "three components", ";"),
+        ("x^2 + y^2; + z^2 - 1", "three components", ";"),
         ("(s, t, s^2 + t^2)+", "follows the triple (X, Y, Z)", "+"),
         ("2*(s, t, s^2 + t^2)", "comes before the triple (X, Y, Z)", "2*"),
     ],
 )
 def test_a_stray_separator_is_pointed_at_where_it_is(text: str, words: str, at: str) -> None:
-    """Not "at character 1": the decimal comma, the trailing ';', the text around a triple."""
+    """Not "at character 1": the decimal comma, a stray ";", the text around a triple."""
     with pytest.raises(ParseError) as info:
         parse_input(text)
     assert words in info.value.message, info.value.message

@@ -246,7 +246,8 @@ ERRORS = [
     (")x", 0, 1, "unmatched ')'"),
     ("()", 1, 2, "expected an expression"),
     ("(x = 1)", 3, 4, "expected ')'"),
-    ("x2", 1, 2, "missing operator"),
+    ("x 2", 2, 3, "missing operator"),
+    ("x2.5", 1, 4, "missing operator"),
     ("(x+1)2", 5, 6, "missing operator"),
     ("2 3 x", 2, 3, "missing operator"),
     ("x^2 3", 4, 5, "missing operator"),
@@ -533,6 +534,9 @@ def test_the_fast_path_reads_expanded_polynomials_as_the_parser_does(terms, powe
         "x y z - 1e3",
         "x**2*x*y + x^3y",
         "2E+3 x^60",
+        "f := x^2 + y^2 - 1;",
+        "poly f = 3*x^2 - y;",
+        "$x^2 + y^2 = z$",
     ],
 )
 def test_the_fast_path_reads_what_libraries_print_as_the_parser_does(text: str) -> None:
@@ -580,7 +584,7 @@ def test_the_fast_path_leaves_everything_else_to_the_parser(text: str) -> None:
 
 
 @settings(max_examples=1500, deadline=None)
-@given(st.text(alphabet="xyz0123456789+-*/^ .eE=", min_size=1, max_size=25))
+@given(st.text(alphabet="xyz0123456789+-*/^ .eE=f:;$", min_size=1, max_size=25))
 def test_whatever_the_fast_path_reads_the_parser_reads_the_same(text: str) -> None:
     from sorgui.engine.errors import ParseError
     from sorgui.engine.parsing import expanded_polynomial

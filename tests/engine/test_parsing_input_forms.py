@@ -1,5 +1,5 @@
-"""Input as users paste it: a byte-order mark, ``f(x, y, z) =``, LaTeX; and number sizes that
-every later stage can print."""
+"""Input as users paste it: a byte-order mark, ``f(x, y, z) =``, LaTeX, a statement of Maple,
+Singular or Mathematica; and number sizes that every later stage can print."""
 
 from __future__ import annotations
 
@@ -26,10 +26,56 @@ X, Y, Z = R.gens
         r"x \cdot x + y \times y - z",
         r"\frac{2}{2} x^2 + \frac{y^2}{1} - z",
         r"x^2 + y^2\,-\;z",
+        "f := x^2 + y^2 - z;",  # Maple
+        "poly f = x2+y2-z;",  # Singular, which writes x2 for x^2
+        "f[x_, y_, z_] := x^2 + y^2 - z",  # Mathematica
+        "x^2 + y^2 - z == 0",
+        "x^2 + y^2 = z;  \n",
+        "F = x^2 + y^2 - z:",
+        "$x^2 + y^2 - z$",
+        "$$ x^{2} + y^{2} = z; $$",
+        r"\[ x^{2} + y^{2} - z \]",
+        r"\(x^2 + y^2 - z\);",
     ],
 )
 def test_pasted_forms_of_the_same_paraboloid(text: str) -> None:
     assert parse_polynomial(text).polynomial == X**2 + Y**2 - Z
+
+
+@pytest.mark.parametrize(
+    "text, expected",
+    [
+        ("z = x2 + y2", Z - X**2 - Y**2),
+        ("xy = 1", X * Y - 1),
+        ("x2 = y", X**2 - Y),
+        ("2x2y3z - 1", 2 * X**2 * Y**3 * Z - 1),
+        ("1/2x2 + y", X**2 / 2 + Y),
+    ],
+)
+def test_a_left_side_that_is_a_monomial_is_no_label(text: str, expected: object) -> None:
+    """Only a name that is not a monomial labels an equation; digits right after a variable are
+    its exponent, as Singular prints them."""
+    assert parse_polynomial(text).polynomial == expected
+
+
+@pytest.mark.parametrize("text", ["f := x^2 + y^2 - w;", "$x^2 + y^2 - w$", "poly g = x2 + y2 - w;"])
+def test_errors_inside_a_statement_point_into_the_text_as_pasted(text: str) -> None:
+    with pytest.raises(ParseError, match="unknown name 'w'") as info:
+        parse_polynomial(text)
+    assert info.value.position == text.index("w")
+
+
+@pytest.mark.parametrize(
+    "text", ["x = s, y = t, z = s^2 + t^2;", "$(s, t, s^2 + t^2)$", "x = s; y = t; z = s^2 + t^2;"]
+)
+def test_a_statement_of_a_parametrization_is_read_as_one(text: str) -> None:
+    from sorgui.engine.parametric_parsing import parse_parametrization
+    from sorgui.engine.parsing import is_parametrization
+
+    assert is_parametrization(text)
+    parsed = parse_parametrization(text)
+    assert parsed.parameters == ("s", "t")
+    assert parsed.components == ("s", "t", "s^2 + t^2")
 
 
 def test_latex_square_roots_give_the_number_field() -> None:

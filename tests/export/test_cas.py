@@ -86,3 +86,27 @@ def test_latex_document_compiles(analyses, name: str, tmp_path) -> None:
     )
     assert run.returncode == 0, run.stdout[-2000:]
     assert (tmp_path / f"{name}.pdf").stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_the_equation_line_of_each_file_pastes_back_into_sorgui(analyses, name: str) -> None:
+    """A user who copies the line ``f = …;`` (Mathematica), ``f := …;`` (Maple) or the LaTeX
+    document's ``f = …`` (all its lines, with their line breaks and ``quad``) back into sorgui gets
+    the same polynomial."""
+    from sorgui.engine.parsing import parse_polynomial
+
+    analysis = analyses[name]
+    expected = parse_polynomial(analysis.recognition.polynomial).polynomial
+    lines = [
+        next(line for line in mathematica_file(analysis).splitlines() if line.startswith("f = ")),
+        next(line for line in maple_file(analysis).splitlines() if line.startswith("f := ")),
+        _latex_equation(latex_document(analysis)),
+    ]
+    for line in lines:
+        assert parse_polynomial(line).polynomial == expected, line
+
+
+def _latex_equation(document: str) -> str:
+    """The lines of the equation ``f = …`` in a LaTeX document, as a user selects them."""
+    start = document.index("f = ")
+    return document[start : min(document.index(end, start) for end in ("\\end{", "\\]"))]
