@@ -4,8 +4,9 @@ The forms (docs/math.md §13)::
 
     x = X, y = Y, z = Z     in any order, separated by ',' or ';' or line breaks; a label may
                             name the parameters: x(u, v) = X
-    (X, Y, Z)               a triple, also after 'P(u, v) =' or '(x, y, z) =', or without its
-                            parentheses: X, Y, Z
+    (X, Y, Z)               a triple, also after 'P(u, v) =', '(x, y, z) =' or a name, in
+                            parentheses, brackets or braces (Maple's X1 := [X, Y, Z];,
+                            Mathematica's X1 = {X, Y, Z};), or without them: X, Y, Z
 
 The parameters are the two names other than ``x, y, z`` that the components use (one-letter names
 run together are products, as ``x, y, z`` are in equations: ``st`` is ``s·t``), in the order a
@@ -54,9 +55,12 @@ _DECIMAL_COMMA = re.compile(r"(?<![\w.^*])\d+,\d+(?![\d.,])")
 """A number written with a decimal comma, ``1,5``: no separator of components."""
 _LABEL = re.compile(r"\s*([xyz])\s*(?:\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\))?\s*:?=(?!=)")
 _PREFIX = re.compile(
-    r"\s*(?:(?![xyz]\s*\()[A-Za-z]\w*\s*\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\)|\(\s*x\s*,\s*y\s*,\s*z\s*\))\s*:?=(?!=)",
+    r"\s*(?:(?![xyz]\s*\()[A-Za-z]\w*\s*\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\)|(\(\s*x\s*,\s*y\s*,\s*z\s*\))"
+    r"|(?![xyz0-9]+\b)[A-Za-z_]\w*)\s*:?=(?!=)",
     re.ASCII,
 )
+"""What may come before the components: ``P(u, v) =`` (naming the parameters), ``(x, y, z) =``
+(then a triple follows) or a name that is not a monomial (Maple's ``X1 := [X, Y, Z]``)."""
 
 
 @dataclass(frozen=True)
@@ -140,7 +144,7 @@ def _layout(text: str) -> tuple[list[tuple[int, int]], tuple[str, str] | None]:
     cuts, outer = _structure(text, start)
     if outer is not None:  # '(X, Y, Z)': the commas inside the parentheses
         segments = _between(outer[0] + 1, cuts[1], outer[1])
-    elif prefix is not None and named is None:
+    elif prefix is not None and prefix.group(3) is not None:
         raise ParseError("after '(x, y, z) =' write the triple '(X, Y, Z)'", start, len(text))
     else:
         segments = _between(start, cuts[0], len(text))
@@ -199,10 +203,10 @@ def _around_triple(text: str, start: int, inner: int) -> ParseError | None:
     depth, opened = 0, -1
     for position in range(start, len(text)):
         character = text[position]
-        if character in "({":
+        if character in "({[":
             opened = position if depth == 0 else opened
             depth += 1
-        elif character in ")}":
+        elif character in ")}]":
             depth -= 1
             if depth == 0 and opened < inner < position:
                 after = text[position + 1 :]
@@ -244,11 +248,11 @@ def _structure(text: str, start: int) -> tuple[tuple[list[int], list[int]], tupl
         first = position if first < 0 else first
         last = position
         after_separator = kind == "bad" and word in ",;"
-        if kind == "op" and word in "({":
+        if kind == "op" and word in "({[":
             if depth == 0:
                 opened.append(position)
             depth += 1
-        elif kind == "op" and word in ")}":
+        elif kind == "op" and word in ")}]":
             depth -= 1
             if depth < 0:
                 raise ParseError("unmatched ')'", position, position + 1)

@@ -68,6 +68,8 @@ _OPERATORS = {
     "∗": "*",
     "{": "(",
     "}": ")",
+    "[": "(",
+    "]": ")",
     "\\cdot": "*",
     "\\times": "*",
 }
@@ -77,7 +79,7 @@ TOKEN = re.compile(
     r"|(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
     r"|(?P<name>[A-Za-z]+)"
     r"|(?P<sup>[⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
-    r"|(?P<op>\*\*|==|[-+*/^()=−–·⋅×∗{}]|\\(?:cdot|times)(?![A-Za-z]))"
+    r"|(?P<op>\*\*|==|[-+*/^()=−–·⋅×∗{}\[\]]|\\(?:cdot|times)(?![A-Za-z]))"
     r"|(?P<latex>\\(?:sqrt|frac)(?![A-Za-z]))"
     r"|(?P<bad>.)",
     re.DOTALL,
@@ -153,7 +155,7 @@ def token_stream(
     """The tokens of ``text``, lazily, so that the first error in reading order is reported.
 
     Only :func:`.limits.equation_span` is read: a label (``f(x,y,z) = g`` is the equation
-    ``g = 0``), a final ``;`` and LaTeX's ``$ $`` are skipped. LaTeX's ``{ }`` are parentheses,
+    ``g = 0``), a final ``;`` and LaTeX's ``$ $`` are skipped. ``{ }`` and ``[ ]`` are parentheses,
     ``\\cdot`` and ``\\times`` are ``*``, ``\\sqrt`` is ``sqrt``, and ``\\left``, ``\\right``,
     LaTeX spacing and line breaks (``\\\\``) are ignored; Mathematica's ``==`` is ``=``. Digits
     written right after a variable are its exponent, as Singular prints them (``x2y`` is

@@ -161,3 +161,12 @@ def test_a_stray_separator_is_pointed_at_where_it_is(text: str, words: str, at: 
         parse_input(text)
     assert words in info.value.message, info.value.message
     assert text[info.value.position : info.value.end].strip() == at
+
+
+@pytest.mark.parametrize(
+    "text", ["[s, t, s^2 + t^2]", "X1 := [s, t, s^2 + t^2];", "X = (s, t, s^2 + t^2)", "P = {s, t, s^2 + t^2};"]
+)
+def test_a_named_triple_in_brackets_or_braces_is_a_parametrization(text: str) -> None:
+    parsed = parse_parametrization(text)
+    assert parsed.parameters == ("s", "t")
+    assert parsed.components == ("s", "t", "s^2 + t^2")

@@ -110,3 +110,17 @@ def _latex_equation(document: str) -> str:
     """The lines of the equation ``f = …`` in a LaTeX document, as a user selects them."""
     start = document.index("f = ")
     return document[start : min(document.index(end, start) for end in ("\\end{", "\\]"))]
+
+
+def test_the_parameterization_lines_paste_back_as_the_same_map(analyses) -> None:
+    """Maple's ``X1 := [X, Y, Z];`` and Mathematica's ``X1 = {X, Y, Z};`` of the torus read back
+    as the map the analysis found."""
+    from sorgui.engine.parametric_parsing import parse_parametrization
+
+    analysis = analyses["torus"]
+    found = parse_parametrization("(" + ", ".join(analysis.parametrizations[0].coordinates) + ")").map
+    maple = next(line for line in maple_file(analysis).splitlines() if line.startswith("X1 := ["))
+    mathematica = next(line for line in mathematica_file(analysis).splitlines() if line.startswith("X1 = {"))
+    for line in (maple, mathematica):
+        parsed = parse_parametrization(line).map
+        assert (parsed.X, parsed.W) == (found.X, found.W), line
