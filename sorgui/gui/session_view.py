@@ -22,6 +22,7 @@ from PySide6.QtCore import QObject, QTimer, Signal
 from PySide6.QtWidgets import QLabel
 
 from sorgui.engine.errors import ParseError
+from sorgui.engine.limits import equation_span, statement_span
 from sorgui.gui.camera import CameraState
 from sorgui.gui.editor import EquationEditor
 from sorgui.gui.results import ResultsPane
@@ -167,8 +168,11 @@ class SessionView(QObject):
             return "The nearest exact surface of revolution of: " + short(run.text)
         analysis = run.analysis
         if analysis is not None and analysis.input_kind == "parametrization":
-            return "P: " + short(run.text)
-        return "f = " + short(run.text)
+            start, end = statement_span(run.text)
+            return "P: " + short(run.text[start:end])
+        start, end = equation_span(run.text)  # without a label ('f :=') or a final ';'
+        equation = short(run.text[start:end])
+        return equation if "=" in equation else "f = " + equation
 
     def _update_notice(self) -> None:
         run = self.session.run

@@ -127,6 +127,16 @@ def test_input_error_is_said_at_the_top_and_clears_the_view(window, run_analysis
     assert "surface" not in window.viewport.actor_names()
 
 
+def test_a_statement_pasted_from_singular_is_analysed_and_named_by_its_equation(window, run_analysis) -> None:
+    """``poly f = x2+y2-z2-1;`` (Singular's print of a hyperboloid) is its equation; the caption
+    of the drawn surface is that equation, without the label or the ';'."""
+    run_analysis(window, "poly f = x2+y2-z2-1;")
+    assert "Surface of revolution" in window.results.banner.text()
+    assert window.viewport.caption.text() == "f = x2+y2-z2-1"
+    run_analysis(window, "$$ x^2 + y^2 = z $$")
+    assert window.viewport.caption.text() == "x^2 + y^2 = z"
+
+
 def test_vtk_keys_change_nothing_and_close_nothing(window, run_analysis, qtbot) -> None:
     """VTK's interactor style: 3 stereo, w/s wireframe/surface, e/q quit, f fly to, r reset,
     j/t joystick/trackball, u user; pyvista: v, b, C, +, -, arrows. None of them does anything."""
