@@ -232,13 +232,14 @@ def _around_triple(text: str, start: int, inner: int) -> ParseError | None:
 def _structure(text: str, start: int) -> tuple[tuple[list[int], list[int]], tuple[int, int] | None]:
     """Where components end: the ``,`` and ``;`` at depth 0 (and the line breaks there that a
     label follows), and those at depth 1; and the span of one pair of parentheses around all of
-    the rest, if there is one (the triple ``(X, Y, Z)``)."""
+    the rest, if there is one (the triple ``(X, Y, Z)``). The comma of a ``pow(a, n)`` is none."""
     depth = 0
     cuts: tuple[list[int], list[int]] = ([], [])
     pairs: list[tuple[int, int]] = []
     opened: list[int] = []
     first = last = -1
-    after_separator = False
+    after_separator = after_pow = False
+    inside_pow: list[bool] = []  # for each parenthesis open, whether it is a pow's
     for match in syntax.TOKEN.finditer(text, start):
         kind, word, position = match.lastgroup, match.group(), match.start()
         if kind == "space":
@@ -247,19 +248,22 @@ def _structure(text: str, start: int) -> tuple[tuple[list[int], list[int]], tupl
             continue
         first = position if first < 0 else first
         last = position
-        after_separator = kind == "bad" and word in ",;"
+        after_separator = kind == "bad" and word in ",;" and not (inside_pow and inside_pow[-1])
         if kind == "op" and word in "({[":
             if depth == 0:
                 opened.append(position)
             depth += 1
+            inside_pow.append(after_pow)
         elif kind == "op" and word in ")}]":
             depth -= 1
             if depth < 0:
                 raise ParseError("unmatched ')'", position, position + 1)
+            inside_pow.pop()
             if depth == 0 and opened:
                 pairs.append((opened.pop(), position))
         elif after_separator and depth in (0, 1):
             cuts[depth].append(position)
+        after_pow = kind == "name" and word == "pow"
     if depth > 0 and opened:
         raise ParseError("unmatched '('", opened[-1], opened[-1] + 1)
     whole = len(pairs) == 1 and not cuts[0] and cuts[1] and pairs[0] == (first, last)
@@ -281,10 +285,10 @@ def _nonempty(text: str, start: int, end: int, name: str) -> tuple[int, int]:
 
 
 def _names(text: str, span: tuple[int, int]) -> list[tuple[str, int]]:
-    """The names written in a component (``sqrt`` and LaTeX commands aside), with positions."""
+    """The names written in a component (``sqrt``, ``pow`` and LaTeX commands aside), with positions."""
     out = []
     for match in syntax.TOKEN.finditer(text, *span):
-        if match.lastgroup == "name" and match.group() != "sqrt":
+        if match.lastgroup == "name" and match.group() not in ("sqrt", "pow"):
             out.append((match.group(), match.start()))
     return out
 
@@ -305,7 +309,7 @@ def _discover(text: str, spans: Sequence[tuple[int, int]]) -> tuple[str, str]:
         if word in found and called and (len(word) > 1 or len(found) > 2):
             raise ParseError(
                 f"'{word}(…)' is not allowed: the components must be rational functions of the parameters"
-                " (the only function is sqrt, of a number)",
+                " (the functions are pow and sqrt, of a number)",
                 position,
                 position + len(word),
             )
@@ -338,7 +342,7 @@ def _refuse_names(text: str, words: Sequence[tuple[str, int]]) -> None:
         if word in TRANSCENDENTAL:
             raise ParseError(
                 f"'{word}' is not allowed: the components must be rational functions of the parameters"
-                " (the only function is sqrt, of a number)",
+                " (the functions are pow and sqrt, of a number)",
                 position,
                 end,
             )
@@ -356,7 +360,7 @@ def _check_names(text: str, spans: Sequence[tuple[int, int]], parameters: tuple[
         if word not in parameters and not set(word) <= set(parameters):
             raise ParseError(
                 f"unknown name '{word}' (the parameters are {parameters[0]} and {parameters[1]};"
-                " the only function is sqrt)",
+                " the functions are sqrt and pow)",
                 position,
                 position + len(word),
             )

@@ -144,12 +144,33 @@ def is_parametrization(text: str) -> bool:
         return False
     start, end = equation_span(text)
     body = text[start:end]
-    if ("," in body or ";" in body) and _SEPARATOR.search(body):  # `in` first: a long equation has neither
-        return True
+    if ("," in body or ";" in body) and _SEPARATOR.search(body) and _separates(body):  # `in` first: a long
+        return True  # equation has neither
     return "\n" in text and len(_LABEL_LINE.findall(text, 0, 10_000)) >= 2
 
 
+def _separates(body: str) -> bool:
+    """Whether a ``,`` or ``;`` of ``body`` lies outside the parentheses of every ``pow(a, n)``
+    (whose comma separates its arguments, not components)."""
+    if "pow" not in body:
+        return True
+    calls = {match.end() - 1 for match in _POW_CALL.finditer(body)}  # where each pow's '(' is
+    inside_pow: list[bool] = []  # for each parenthesis open, whether it is a pow's
+    for match in _BRACKET_OR_SEPARATOR.finditer(body):
+        character = match.group()
+        if character in "([{":
+            inside_pow.append(match.start() in calls)
+        elif character in ")]}":
+            if inside_pow:
+                inside_pow.pop()
+        elif not (inside_pow and inside_pow[-1]):
+            return True
+    return False
+
+
 _SEPARATOR = re.compile(r"(?<!\\)[,;]")
+_POW_CALL = re.compile(r"(?<![A-Za-z])pow\s*\(")
+_BRACKET_OR_SEPARATOR = re.compile(r"[(\[{)\]}]|(?<!\\)[,;]")
 _LABEL_LINE = re.compile(r"(?m)^\s*[xyz]\s*(?:\([^()\n]*\))?\s*:?=")
 
 

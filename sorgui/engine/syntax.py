@@ -17,8 +17,11 @@ Grammar, from the lowest to the highest precedence::
     product  := factor (('*' | '/') factor | factor)*    -- juxtaposition is '*': 1/2x = x/2
     factor   := ('+' | '-')* atom superscript* ['^' factor]   -- -x^2 = -(x^2), 2^3^2 = 2^9
     atom     := number | x | y | z | 'sqrt' '(' sum ')' | '(' sum ')' | '\\frac' '(' sum ')' '(' sum ')'
+              | 'pow' '(' sum ',' sum ')'                -- pow(a, n) = a^n
 
-A leading ``f(x, y, z) =`` is skipped, a byte-order mark is a space, and LaTeX-style input
+``==`` is ``=``, ``[ ]`` and ``{ }`` are parentheses, and a superscript is ``²`` or digits right
+after a variable (Singular's ``x2``). A label (``f(x, y, z) =``, ``f :=``) and a final ``;`` are
+skipped (:func:`.limits.equation_span`), a byte-order mark is a space, and LaTeX-style input
 (``x^{2}``, ``\\cdot``, ``\\left( \\right)``, ``\\sqrt{2}``, ``\\frac{1}{2}``) reads as the plain syntax above.
 """
 
@@ -179,7 +182,7 @@ def token_stream(
             value = int(word) if len(word) < 500 and word.isdigit() else _number(text, start, end)
             yield Token("num", start, end, value)
         elif kind == "name":
-            after_variable = end if word != "sqrt" else -1
+            after_variable = end if word not in ("sqrt", "pow") else -1
             if word in index:  # fast path for a single variable
                 yield Token("var", start, end, index[word])
             else:
@@ -188,6 +191,8 @@ def token_stream(
             yield Token(word[1:], start, end)  # sqrt or frac
         elif kind == "sup":
             yield _exponent(word.translate(_SUPERSCRIPTS), start, end)
+        elif kind == "bad" and word == ",":
+            yield Token(",", start, end)  # between the arguments of pow; the parser refuses any other
         elif kind == "bad":
             raise ParseError(f"unexpected character {word!r}", start)
     yield Token("end", span[1], span[1])
@@ -201,17 +206,19 @@ def _exponent(digits: str, start: int, end: int) -> Token:
 
 
 def _name(word: str, start: int, variables: tuple[str, ...] = _VARIABLES) -> Iterator[Token]:
-    """``sqrt``, or a run of x, y, z (``xyz`` is ``x*y*z``; of one-letter ``variables``); any
-    other name is an error."""
-    if word == "sqrt":
-        yield Token("sqrt", start, start + 4)
+    """``sqrt``, ``pow`` (C's and Python's ``pow(a, n)``), or a run of x, y, z (``xyz`` is
+    ``x*y*z``; of one-letter ``variables``); any other name is an error."""
+    if word in ("sqrt", "pow"):
+        yield Token(word, start, start + len(word))
     elif set(word) <= set(variables):
         for i, letter in enumerate(word):
             yield Token("var", start + i, start + i + 1, variables.index(letter))
     else:
         names = ", ".join(variables)
         raise ParseError(
-            f"unknown name '{word}' (the variables are {names}; the only function is sqrt)", start, start + len(word)
+            f"unknown name '{word}' (the variables are {names}; the functions are sqrt and pow)",
+            start,
+            start + len(word),
         )
 
 
@@ -393,6 +400,8 @@ class Parser:
             node = self._group(depth)
         elif tok.kind == "frac":
             node = self._fraction(depth)
+        elif tok.kind == "pow":
+            node = self._pow(depth)
         else:
             raise self._missing_operand(tok)
         while self._tok.kind == "sup":
@@ -416,6 +425,26 @@ class Parser:
         return Product(
             frac.start, self._prev.end, (numerator, Reciprocal(denominator.start, denominator.end, denominator))
         )
+
+    def _pow(self, depth: int) -> Node:
+        """``pow(a, n)``, read as ``(a)^(n)``."""
+        name = self._advance()
+        if self._tok.kind != "(":
+            raise ParseError("'pow' must be followed by '(base, exponent)'", name.start, name.end)
+        opening = self._advance()
+        self._open += 1
+        arguments = [self._sum(depth + 1)]
+        if self._tok.kind == ",":
+            self._advance()
+            arguments.append(self._sum(depth + 1))
+        tok = self._tok
+        if tok.kind == "end":
+            raise ParseError("unmatched '('", opening.start, opening.end)
+        if tok.kind != ")" or len(arguments) != 2:
+            raise ParseError("'pow' takes two arguments: pow(base, exponent)", name.start, tok.end)
+        self._advance()
+        self._open -= 1
+        return Power(name.start, self._prev.end, arguments[0], arguments[1])
 
     def _group(self, depth: int) -> Node:
         """``'(' sum ')'``; the error for a missing ')' points at the unmatched '('."""

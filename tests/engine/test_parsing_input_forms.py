@@ -36,6 +36,8 @@ X, Y, Z = R.gens
         "$$ x^{2} + y^{2} = z; $$",
         r"\[ x^{2} + y^{2} - z \]",
         r"\(x^2 + y^2 - z\);",
+        "pow(x, 2) + pow(y, 2) - z",  # C, Python, GLSL
+        "pow(x,2.0) + pow(-y, 2) - pow(z, 1);",
     ],
 )
 def test_pasted_forms_of_the_same_paraboloid(text: str) -> None:
@@ -76,6 +78,33 @@ def test_a_statement_of_a_parametrization_is_read_as_one(text: str) -> None:
     parsed = parse_parametrization(text)
     assert parsed.parameters == ("s", "t")
     assert parsed.components == ("s", "t", "s^2 + t^2")
+
+
+@pytest.mark.parametrize(
+    "text, words",
+    [
+        ("pow(x)", "'pow' takes two arguments"),
+        ("pow(x, 2, 3)", "'pow' takes two arguments"),
+        ("pow x", "'pow' must be followed by"),
+        ("pow(x, y)", "an exponent must be a constant number"),
+        ("pow(x, 2", "unmatched '('"),
+    ],
+)
+def test_a_malformed_pow_is_a_clear_error(text: str, words: str) -> None:
+    with pytest.raises(ParseError) as info:
+        parse_polynomial(text)
+    assert words in info.value.message
+
+
+def test_the_comma_of_pow_separates_no_components() -> None:
+    from sorgui.engine.parametric_parsing import parse_parametrization
+    from sorgui.engine.parsing import is_parametrization
+
+    assert not is_parametrization("pow(x, 2) + pow(y, 2) - z")
+    assert is_parametrization("(pow(s, 2), t, s)")
+    parsed = parse_parametrization("x = pow(s, 2), y = t, z = pow(s + t, 2)")
+    assert parsed.parameters == ("s", "t")
+    assert parsed.components == ("pow(s, 2)", "t", "pow(s + t, 2)")
 
 
 def test_latex_square_roots_give_the_number_field() -> None:
