@@ -174,9 +174,9 @@ _BRACKET_OR_SEPARATOR = re.compile(r"[(\[{)\]}]|(?<!\\)[,;]")
 _LABEL_LINE = re.compile(r"(?m)^\s*[xyz]\s*(?:\([^()\n]*\))?\s*:?=")
 
 
-_DECIMAL_MARK = re.compile(r"[0-9]\.|\.[0-9]|[0-9][eE][+-]?[0-9]")
+_DECIMAL_MARK = re.compile(r"[0-9]\.|\.[0-9]|[0-9][eE][-+−]?[0-9]")
 """A decimal point or an exponent inside a number literal of the parser's tokenizer (which reads
-``2.``, ``.5`` and ``2e-3`` as numbers and nothing else of a valid equation as a point or an
+``2.``, ``.5``, ``2e-3`` and ``2e−3`` as numbers and nothing else of a valid equation as a point or an
 ``e``); a search, so that the check costs no second parse of a long pasted equation."""
 
 

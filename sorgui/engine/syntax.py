@@ -68,6 +68,9 @@ _OPERATORS = {
     "·": "*",
     "⋅": "*",
     "×": "*",
+    "∙": "*",
+    "•": "*",
+    "÷": "/",
     "∗": "*",
     "{": "(",
     "}": ")",
@@ -76,18 +79,18 @@ _OPERATORS = {
     "\\cdot": "*",
     "\\times": "*",
 }
-_SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹", "0123456789")
+_SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻", "0123456789-")
 TOKEN = re.compile(
-    r"(?P<space>[\s\ufeff]+|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:!\\]))"
-    r"|(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)"
+    r"(?P<space>[\s\ufeff\u200b-\u200d\u2060]+|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:!\\]))"
+    r"|(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+−]?[0-9]+)?)"
     r"|(?P<name>[A-Za-z]+)"
-    r"|(?P<sup>[⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
-    r"|(?P<op>\*\*|==|[-+*/^()=−–·⋅×∗{}\[\]]|\\(?:cdot|times)(?![A-Za-z]))"
+    r"|(?P<sup>⁻?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
+    r"|(?P<op>\*\*|==|[-+*/^()=−–·⋅×∗∙•÷{}\[\]]|\\(?:cdot|times)(?![A-Za-z]))"
     r"|(?P<latex>\\(?:sqrt|frac)(?![A-Za-z]))"
     r"|(?P<bad>.)",
     re.DOTALL,
 )
-_NUMBER = re.compile(r"([0-9]*)(?:\.([0-9]*))?(?:[eE]([+-]?[0-9]+))?")
+_NUMBER = re.compile(r"([0-9]*)(?:\.([0-9]*))?(?:[eE]([-+−]?[0-9]+))?")
 _IMPLICIT = frozenset({"var", "sqrt", "frac", "("})  # tokens that start an implicit product
 
 
@@ -199,8 +202,8 @@ def token_stream(
 
 
 def _exponent(digits: str, start: int, end: int) -> Token:
-    """An exponent written without ``^``: Unicode's ``²``, Singular's ``x2``."""
-    if len(digits) > 6:
+    """An exponent written without ``^``: Unicode's ``²`` (``10⁻³``), Singular's ``x2``."""
+    if len(digits.lstrip("-")) > 6:
         raise ParseError("the exponent is too large", start, end)
     return Token("sup", start, end, int(digits))
 
@@ -222,11 +225,18 @@ def _name(word: str, start: int, variables: tuple[str, ...] = _VARIABLES) -> Ite
         )
 
 
-def _number(text: str, start: int, end: int) -> Rational:
-    """The exact value of a decimal literal such as ``12``, ``0.25``, ``.5`` or ``2.5E+2``."""
+def number_parts(text: str, start: int, end: int) -> tuple[str, str | None, str | None]:
+    """The digits of a number token ``text[start:end]``: before the point, after it (``None``
+    without a point) and the exponent (``None`` without one; a PDF's ``−`` read as ``-``)."""
     match = _NUMBER.fullmatch(text, start, end)
     assert match is not None  # every number token is a literal that _NUMBER matches
     whole, fraction, exponent = match.groups()
+    return whole, fraction, None if exponent is None else exponent.replace("−", "-")
+
+
+def _number(text: str, start: int, end: int) -> Rational:
+    """The exact value of a decimal literal such as ``12``, ``0.25``, ``.5`` or ``2.5E+2``."""
+    whole, fraction, exponent = number_parts(text, start, end)
     digits = whole + (fraction or "")
     if len(digits) > MAX_DIGITS:
         raise ParseError(f"the number has more than {MAX_DIGITS:,} digits", start, end)

@@ -20,7 +20,7 @@ NUMBERS = st.one_of(
     st.sampled_from(["sqrt(2)", "sqrt(3)", "(1/2)", "(2/3)", "sqrt(2)/2"]),
 )
 ATOMS = st.sampled_from(
-    ["x", "y", "z", "(x^2+y^2)", "(x^2+y^2+z^2)", "(x-1)", "(y+2z)", "(x+y+z)", "(y^2+z^2)", "(x-sqrt(2)*y)"]
+    ["x", "y", "z", "(x^2+y^2)", "(x²+y²)", "(x^2+y^2+z^2)", "(x-1)", "(y+2z)", "(x+y+z)", "(y^2+z^2)", "(x-sqrt(2)*y)"]
 )
 
 

@@ -4,6 +4,8 @@ Singular or Mathematica; and number sizes that every later stage can print."""
 from __future__ import annotations
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from sympy import QQ
 
 from sorgui.engine.algebra.polys import XYZ, poly_ring, poly_str
@@ -107,6 +109,33 @@ def test_the_comma_of_pow_separates_no_components() -> None:
     assert parsed.components == ("pow(s, 2)", "t", "pow(s + t, 2)")
 
 
+@pytest.mark.parametrize(
+    "text, plain",
+    [
+        ("x^2 +\u200b y^2 - z", "x^2 + y^2 - z"),  # a zero-width space
+        ("x∙y + x•z + z^2", "x*y + x*z + z^2"),
+        ("x^2 + y^2 - z ÷ 2", "x^2 + y^2 - z / 2"),
+        ("x^2 + y^2 - 1.5e−3", "x^2 + y^2 - 1.5e-3"),  # the exponent's minus sign
+        ("x^2 + y^2 - 1.5·10⁻³ z", "x^2 + y^2 - 1.5*10^(-3) z"),
+        ("1.5x² + 1.5y² - z", "1.5x^2 + 1.5y^2 - z"),  # was an internal error
+        ("1.5x2 + 1.5y2 - z", "1.5x^2 + 1.5y^2 - z"),
+    ],
+)
+def test_what_a_pdf_copies_reads_as_typed(text: str, plain: str) -> None:
+    """Characters a PDF viewer copies: the same polynomial, and the same rounding read off the
+    digits, as the text typed on a keyboard."""
+    from sorgui.engine.parsing import has_decimals
+    from sorgui.engine.rounded.dense import float_coefficients
+    from sorgui.engine.rounded.precision import input_rounding
+
+    f = parse_polynomial(text).polynomial
+    assert f == parse_polynomial(plain).polynomial
+    assert has_decimals(text) == has_decimals(plain)
+    if has_decimals(text):
+        rounding = input_rounding(text, float_coefficients(f))
+        assert rounding is not None and rounding == input_rounding(plain, float_coefficients(f))
+
+
 def test_latex_square_roots_give_the_number_field() -> None:
     parsed = parse_polynomial(r"x^2 + y^2 - \sqrt{2} z")
     assert parsed.radicands == (2,)
@@ -160,3 +189,40 @@ def test_a_line_break_without_an_operator_is_not_a_product(text: str) -> None:
 @pytest.mark.parametrize("text", ["x^2 +\ny^2 - 1", "x^2\n+ y^2\n- 1", "x^2 + y^2 - 1 *\n1", "2 x^2 + y^2\r\n- 1 x"])
 def test_an_equation_goes_on_across_lines_after_an_operator(text: str) -> None:
     assert parse_polynomial(text).polynomial == parse_polynomial(" ".join(text.split())).polynomial
+
+
+_PIECES = [
+    *"xyz0123456789+-*/^ .eE=();,²³⁻[]{}$:",
+    "pow(",
+    "sqrt(",
+    "\\frac",
+    "−",
+    "==",
+    "f :=",
+    "\\\\",
+    "x2",
+    "s",
+    "t",
+]
+"""Pieces of pasted text: every character the readers treat specially, and a few words."""
+
+
+@settings(max_examples=1500, deadline=None)
+@given(st.lists(st.sampled_from(_PIECES), min_size=1, max_size=14).map("".join))
+def test_any_text_is_read_or_refused_in_words(text: str) -> None:
+    """Whatever is pasted — statements, superscripts, decimals, pow — is read (and its rounding
+    read off its digits) or refused with a ParseError; never an internal error (``1.5y²`` was one)."""
+    from sorgui.engine.parametric_parsing import parse_parametrization
+    from sorgui.engine.parsing import has_decimals, is_parametrization
+    from sorgui.engine.rounded.dense import float_coefficients
+    from sorgui.engine.rounded.precision import input_rounding
+
+    try:
+        if is_parametrization(text):
+            parse_parametrization(text)
+            return
+        f = parse_polynomial(text).polynomial
+    except ParseError:
+        return
+    if has_decimals(text):
+        input_rounding(text, float_coefficients(f))

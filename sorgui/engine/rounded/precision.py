@@ -25,7 +25,6 @@ prints were computed in double precision and carry that much noise whatever it p
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from math import comb
@@ -41,6 +40,7 @@ from ..syntax import (
     Sqrt,
     Sum,
     Var,
+    number_parts,
     syntax_tree,
 )
 
@@ -53,7 +53,6 @@ MAX_PRODUCTS = 2_000_000
 
 Monomial: TypeAlias = tuple[int, int, int]
 FloatPoly: TypeAlias = dict[Monomial, float]
-_DECIMAL = re.compile(r"([0-9]*)(?:\.([0-9]*))?(?:[eE]([+-]?[0-9]+))?")
 _VARIABLES: tuple[Monomial, Monomial, Monomial] = ((1, 0, 0), (0, 1, 0), (0, 0, 1))
 """The monomials ``x``, ``y``, ``z``, by the index of the variable."""
 
@@ -153,16 +152,14 @@ def _is_decimal(text: str, node: Num) -> bool:
     return any(ch in ".eE" for ch in text[node.start : node.end])
 
 
-def _literal(text: str, node: Num) -> re.Match[str]:
+def _literal(text: str, node: Num) -> tuple[str, str | None, str | None]:
     """The digits of a literal: whole part, fraction (or ``None``), exponent (or ``None``)."""
-    match = _DECIMAL.fullmatch(text, node.start, node.end)
-    assert match is not None  # every number token is a literal that _DECIMAL matches
-    return match
+    return number_parts(text, node.start, node.end)
 
 
 def _significant_digits(text: str, node: Num) -> int:
     """Significant digits of a literal: ``0.00120`` has 3, ``1.5e-3`` has 2."""
-    whole, fraction, _ = _literal(text, node).groups()
+    whole, fraction, _ = _literal(text, node)
     return max(len((whole + (fraction or "")).lstrip("0")), 1)
 
 
@@ -177,12 +174,15 @@ def _fixed_point(text: str, decimals: list[Num]) -> bool:
 
 
 def _fraction(text: str, node: Num) -> str:
-    return _literal(text, node).group(2) or ""
+    return _literal(text, node)[1] or ""
 
 
 def _literal_bound(text: str, node: Num, digits: int, fixed_point: bool) -> float:
-    """Half a unit in the last printed place of a literal, read as the module docstring says."""
-    _, fraction, exponent = _literal(text, node).groups()
+    """Half a unit in the last printed place of a literal, read as the module docstring says; 0
+    for a superscript (``x²``, ``10⁻³``), an exponent and exact."""
+    if not text[node.start].isascii():
+        return 0.0
+    _, fraction, exponent = _literal(text, node)
     value = abs(float(node.value))
     decimal = fraction is not None or exponent is not None
     if not decimal and fixed_point:
