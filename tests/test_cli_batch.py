@@ -35,6 +35,13 @@ def test_lines_comments_and_blank_lines() -> None:
     ]
 
 
+def test_comments_of_singular_matlab_and_latex_are_comments() -> None:
+    """A library exported from Singular (``//``), MATLAB or LaTeX (``%``), its statements read
+    as their equations."""
+    text = "// Singular\npoly f = x2+y2-z; // a paraboloid\n% MATLAB\nx^2 + y^2 - 1 % a cylinder\n"
+    assert equations(text) == [(2, "poly f = x2+y2-z;"), (4, "x^2 + y^2 - 1")]
+
+
 def test_a_line_is_refused_whole_when_it_is_too_long_or_not_text() -> None:
     """Each line gives one object; a line over the limit is refused however it ends, a line that
     is not UTF-8 too, and a NUL byte stops the reading."""

@@ -1,6 +1,6 @@
 """The input of ``--each-line``: its lines, read as bytes a line at a time, in bounded memory.
 
-Every line that holds an equation (``#`` starts a comment; blank lines are skipped) becomes one
+Every line that holds an equation (``#``, ``//`` and ``%`` start a comment; blank lines are skipped) becomes one
 :class:`Line`: its 1-based number, the equation, and :func:`line_hash`, the hash by which
 ``--resume`` recognises a line already done. A line that cannot be analysed is refused whole
 (:attr:`Line.refusal`) and the batch goes on: a line longer than the limit of one equation
@@ -13,6 +13,7 @@ stops, saying why (:attr:`LineReader.stopped`).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any, BinaryIO
@@ -112,8 +113,13 @@ class LineReader:
             return Line(number, shown, digest, f"the line is not UTF-8 text (byte {exc.start + 1} cannot be read)")
         if len(text) > self._limit:
             return Line(number, shown, digest, f"the line is too long (more than {self._limit:,} characters)")
-        equation = text.split("#", 1)[0].strip()
+        equation = _COMMENT.split(text, 1)[0].strip()
         return Line(number, equation, digest) if equation else None
+
+
+_COMMENT = re.compile("#|//|%")
+"""Where a comment starts: Python's and Maple's ``#``, Singular's ``//``, MATLAB's and LaTeX's
+``%`` (none of them has a place in an equation)."""
 
 
 def _without_break(line: bytes) -> bytes:
