@@ -43,11 +43,13 @@ class Limits:
 LIMITS = Limits(degree=MAX_DEGREE, digits=MAX_DIGITS, bits=MAX_BITS, decimal_exponent=MAX_DECIMAL_EXPONENT)
 
 _LABEL = re.compile(
-    r"\s*(?:poly\s+)?([A-Za-z_]\w*)\s*(\(\s*x\s*,\s*y\s*,\s*z\s*\)|\[\s*x_?\s*,\s*y_?\s*,\s*z_?\s*\])?\s*:?=(?!=)",
+    r"\s*+(?:poly\s++)?([A-Za-z_]\w*+)\s*+"
+    r"(\(\s*+x\s*+,\s*+y\s*+,\s*+z\s*+\)|\[\s*+x_?\s*+,\s*+y_?\s*+,\s*+z_?\s*+\])?+\s*+:?=(?!=)",
     re.ASCII,
 )
 """A label in front of an equation: ``f(x, y, z) =``, Maple's ``f :=``, Singular's ``poly f =``,
-Mathematica's ``f[x_, y_, z_] :=`` (any name, ``=`` or ``:=``)."""
+Mathematica's ``f[x_, y_, z_] :=`` (any name, ``=`` or ``:=``). Possessive: a run of spaces is
+read once, never again in another way (a megabyte of them takes a few milliseconds)."""
 _MONOMIAL_NAME = re.compile(r"[xyz0-9]*", re.ASCII)
 """A name that is a monomial (``xy``, Singular's ``x2``): the left side of an equation, no label."""
 _OPENING = re.compile(r"\s*(\$\$?|\\\[|\\\()")

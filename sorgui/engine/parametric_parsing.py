@@ -53,7 +53,8 @@ _RIGHT = re.compile(r"\\right\s*$")
 """LaTeX's ``\\right`` of the closing parenthesis of a triple, left at the end of its last component."""
 _DECIMAL_COMMA = re.compile(r"(?<![\w.^*])\d+,\d+(?![\d.,])")
 """A number written with a decimal comma, ``1,5``: no separator of components."""
-_LABEL = re.compile(r"\s*([xyz])\s*(?:\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\))?\s*:?=(?!=)")
+_LABEL = re.compile(r"\s*+([xyz])\s*+(?:\(\s*+([A-Za-z]++)\s*+,\s*+([A-Za-z]++)\s*+\))?+\s*+:?=(?!=)")
+"""``x =`` or ``x(u, v) =`` in front of a component (possessive, as :data:`.limits._LABEL`)."""
 _PREFIX = re.compile(
     r"\s*(?:(?![xyz]\s*\()[A-Za-z]\w*\s*\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\)|(\(\s*x\s*,\s*y\s*,\s*z\s*\))"
     r"|(?![xyz0-9]+\b)[A-Za-z_]\w*)\s*:?=(?!=)",

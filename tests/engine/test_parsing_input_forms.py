@@ -226,3 +226,18 @@ def test_any_text_is_read_or_refused_in_words(text: str) -> None:
         return
     if has_decimals(text):
         input_rounding(text, float_coefficients(f))
+
+
+@pytest.mark.parametrize("head", ["x", "poly", "f", "P", "x(s, t)", "\n", "$"])
+def test_long_runs_of_white_space_are_read_once(head: str) -> None:
+    """Hostile input: a name then 200,000 spaces (or empty lines). Every pattern that looks for a
+    label reads such a run once (possessive quantifiers); one that read it again for each way
+    of splitting it took 8 s for 40,000 spaces and would take hours for this one. No time is
+    asserted: a regression hangs here."""
+    from sorgui.engine.parametric_parsing import parse_input
+
+    for tail in ("x", ", t, s", "\nx = s"):
+        try:
+            parse_input(head + " " * 200_000 + tail)
+        except ParseError:
+            pass
