@@ -31,14 +31,13 @@ import math
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import NamedTuple, TypeAlias
+from typing import Any, NamedTuple, TypeAlias
 
 import numpy as np
-import sympy
 from flint import fmpq, fmpq_mpoly, fmpq_mpoly_ctx
 from sympy.polys.domains import QQ
 
-from ..algebra.polys import XYZ, Poly, from_flint, poly_ring, to_flint
+from ..algebra.polys import XYZ, Poly, from_flint, number_field, poly_ring, to_flint
 from ..recognition.symmetry import (
     CYLINDER,
     PLANE,
@@ -47,6 +46,7 @@ from ..recognition.symmetry import (
     rational_symmetry,
     recognize_symmetry,
 )
+from ..syntax import square_roots
 from . import dense
 from .dense import FloatArray
 from .directions import (
@@ -606,15 +606,15 @@ def build_quadratic(
     g = _reduce_root(g, d)
     if g.is_zero() or g.total_degree() < 1:
         return None
-    root = sympy.sqrt(d)
-    K = QQ.algebraic_field(root)
-    terms: dict[tuple[int, int, int], sympy.Expr] = {}
+    K = number_field((d,))
+    root = square_roots(K, (d,))[d]  # √d in K once: K.from_sympy of each coefficient took 30 ms
+    terms: dict[tuple[int, int, int], Any] = {}
     for monom, coeff in zip(g.monoms(), g.coeffs()):
         key = dense.monomial(monom[:3])
-        value = sympy.Rational(int(coeff.p), int(coeff.q)) * (root if monom[3] else 1)
-        terms[key] = terms.get(key, sympy.Integer(0)) + value
+        value = K.convert(QQ(int(coeff.p), int(coeff.q)))
+        terms[key] = terms.get(key, K.zero) + (value * root if monom[3] else value)
     R = poly_ring(XYZ, K)
-    return R.from_dict({m: K.from_sympy(v) for m, v in terms.items() if v != 0})
+    return R.from_dict({m: v for m, v in terms.items() if v})
 
 
 def _reduce_root(p: fmpq_mpoly, d: int) -> fmpq_mpoly:
