@@ -30,6 +30,7 @@ from .canal import Sweep, canal_sweep
 from .caps import capped
 from .conical import Extrusion, Ruled, lined_part
 from .coverage import missing
+from .factors import factor_parts
 from .fitted import FIT_TOLERANCE, fitted_arc, uncovered
 from .geometry import (
     Analytic,
@@ -182,13 +183,6 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
             return _swept_faces(sweep, scene.region, goal)
         raise CadGeometryError(_no_part_words(analysis))
     ball = scene.region
-    # a sphere's or a plane's profile is about a chosen line, not an axis of its own
-    frame = axis_frame(rec.profile) if rec.profile is not None and rec.axis is not None else None
-    if frame is not None and _off_axis(ball, frame):
-        raise CadGeometryError(
-            "a CAD file of a surface of revolution is cut to a ball centred on its axis or to a box; "
-            "give the ball's radius alone (--region R) or a box (--region X0:X1,Y0:Y1,Z0:Z1)"
-        )
     specs = analytic_surfaces(analysis, ball)
     if specs is not None:
         faces = []
@@ -198,6 +192,15 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
         if not faces:
             raise CadGeometryError("the surface has no real points inside the drawn ball")
         return Faces(faces, "analytic", tuple(line for spec in specs for line in _analytic_lines(spec)))
+    if len(analysis.factors) > 1:
+        return _factor_faces(analysis, scene, tolerance, edge)
+    # a sphere's or a plane's profile is about a chosen line, not an axis of its own
+    frame = axis_frame(rec.profile) if rec.profile is not None and rec.axis is not None else None
+    if frame is not None and _off_axis(ball, frame):
+        raise CadGeometryError(
+            "a CAD file of a surface of revolution is cut to a ball centred on its axis or to a box; "
+            "give the ball's radius alone (--region R) or a box (--region X0:X1,Y0:Y1,Z0:Z1)"
+        )
     if rec.profile is None or rec.axis is None or frame is None:
         raise CadGeometryError(f"a {rec.symmetry} surface has no single axis to turn a profile about")
     curve = meridian_curve(rec.profile, frame, ball)
@@ -226,6 +229,32 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
         )
     lines = (axis, f"profile: B-spline fitted to tolerance {goal:.3g}; measured deviation {deviation:.3g} (within it)")
     return Faces(shapes.revolution_faces(frame, splines, edge), "fitted", lines, deviation, goal)
+
+
+def _factor_faces(analysis: Analysis, scene: Scene, tolerance: float | None, edge: float) -> Faces:
+    """A reducible surface of revolution as the union of its factors' parts, each by its own
+    route (:mod:`.factors`): the least exact route names the whole."""
+    parts = []
+    for own, part_scene in factor_parts(analysis, scene.region, scene.box, scene.profile_curve, scene.surface):
+        made = _surface_faces(own, part_scene, tolerance, edge)
+        lines = tuple(f"{own.squarefree} = 0: {line}" for line in made.description)
+        parts.append(dataclasses.replace(made, description=lines))
+    if not parts:
+        raise CadGeometryError("the surface has no real points inside the drawn ball")
+    route = max((part.route for part in parts), key=ROUTES.index)
+    deviations = [part.deviation for part in parts if part.deviation is not None]
+    tolerances = [part.tolerance for part in parts if part.tolerance is not None]
+    return Faces(
+        [face for part in parts for face in part.faces],
+        route,
+        tuple(line for part in parts for line in part.description),
+        max(deviations) if deviations else None,
+        min(tolerances) if tolerances else None,
+    )
+
+
+ROUTES = ("analytic", "exact", "fitted")
+"""The routes of a surface of revolution's faces, the most exact first."""
 
 
 def _swept_faces(sweep: Sweep, ball: ClipSphere, goal: float) -> Faces:

@@ -125,6 +125,36 @@ def test_a_reducible_surface_of_analytic_factors_is_their_union(text: str, kinds
         assert model.route == "analytic" and BRepCheck_Analyzer(model.shape).IsValid()
 
 
+@pytest.mark.parametrize(
+    ("text", "parts", "faces"),
+    [
+        ("(x^2+y^2-z^4-1)*(2*z-1)", ["x^2+y^2-z^4-1", "2*z-1"], 2),  # a quartic and the plane across it
+        ("(x^2+y^2-1)*(x^2+y^2-z^3)", ["x^2+y^2-1", "x^2+y^2-z^3"], 2),
+        ("(x^2+y^2-z^4-1)*(x^2+y^2-z^3-2)", ["x^2+y^2-z^4-1", "x^2+y^2-z^3-2"], 2),
+        ("(x^2+y^2-z^4-1)^2*(z-100)", ["x^2+y^2-z^4-1"], 1),  # the plane misses the ball
+    ],
+)
+def test_a_reducible_surface_is_the_union_of_its_factors_parts(text: str, parts: list[str], faces: int) -> None:
+    """A reducible surface of revolution with a factor that is not analytic: its fitted profile
+    strayed where the factors cross, and the STEP file was refused. Each factor now gets its own
+    route in the same ball; the part is valid and as large as the factors' parts together."""
+    pytest.importorskip("OCP")
+    from OCP.BRepCheck import BRepCheck_Analyzer
+
+    from sorgui.cad.model import surface_model
+    from tests.cad.readback import area
+
+    analysis = analyze(text)
+    scene = build_scene(analysis)
+    model = surface_model(analysis, scene)
+    assert BRepCheck_Analyzer(model.shape).IsValid() and model.faces == faces
+    alone = 0.0
+    for part in parts:
+        own = analyze(part)
+        alone += area(surface_model(own, build_scene(own, region=scene.region)).shape)
+    assert area(model.shape) == pytest.approx(alone, rel=1e-4)
+
+
 def test_without_open_cascade_the_command_line_says_how_to_install_it(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path
 ) -> None:
