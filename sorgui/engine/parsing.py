@@ -176,10 +176,11 @@ _LABEL_LINE = re.compile(r"(?m)^[^\S\n]*+[xyz][^\S\n]*+(?:\([^()\n]*+\))?+[^\S\n
 a page of spaces or of empty lines is read once."""
 
 
-_DECIMAL_MARK = re.compile(r"[0-9]\.|\.[0-9]|[0-9][eE][-+−]?[0-9]")
+_DECIMAL_MARK = re.compile(r"[0-9]\.|\.[0-9]|[0-9](?:[eEdD]|\*\^)[-+−]?[0-9]")
 """A decimal point or an exponent inside a number literal of the parser's tokenizer (which reads
-``2.``, ``.5``, ``2e-3`` and ``2e−3`` as numbers and nothing else of a valid equation as a point or an
-``e``); a search, so that the check costs no second parse of a long pasted equation."""
+``2.``, ``.5``, ``2e-3``, ``2e−3``, ``2D-3`` and ``2*^-3`` as numbers and nothing else of a
+valid equation as a point, an ``e``, a ``D`` or ``*^``); a search, so that the check costs no
+second parse of a long pasted equation."""
 
 
 def has_decimals(text: str) -> bool:

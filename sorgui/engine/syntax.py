@@ -82,7 +82,7 @@ _OPERATORS = {
 _SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻", "0123456789-")
 TOKEN = re.compile(
     r"(?P<space>[\s\ufeff\u200b-\u200d\u2060]+|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:!\\]))"
-    r"|(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+−]?[0-9]+)?)"
+    r"|(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:(?:[eEdD]|\*\^)[-+−]?[0-9]+)?)"
     r"|(?P<name>[A-Za-z]+)"
     r"|(?P<sup>⁻?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
     r"|(?P<op>\*\*|==|[-+*/^()=−–·⋅×∗∙•÷{}\[\]]|\\(?:cdot|times)(?![A-Za-z]))"
@@ -90,7 +90,8 @@ TOKEN = re.compile(
     r"|(?P<bad>.)",
     re.DOTALL,
 )
-_NUMBER = re.compile(r"([0-9]*)(?:\.([0-9]*))?(?:[eE]([-+−]?[0-9]+))?")
+_NUMBER = re.compile(r"([0-9]*)(?:\.([0-9]*))?(?:(?:[eEdD]|\*\^)([-+−]?[0-9]+))?")
+"""A number: its exponent as C, Fortran (``1.5D-3``) or Mathematica (``1.5*^-3``) prints it."""
 _IMPLICIT = frozenset({"var", "sqrt", "frac", "("})  # tokens that start an implicit product
 
 

@@ -119,11 +119,13 @@ def test_the_comma_of_pow_separates_no_components() -> None:
         ("x^2 + y^2 - 1.5·10⁻³ z", "x^2 + y^2 - 1.5*10^(-3) z"),
         ("1.5x² + 1.5y² - z", "1.5x^2 + 1.5y^2 - z"),  # was an internal error
         ("1.5x2 + 1.5y2 - z", "1.5x^2 + 1.5y^2 - z"),
+        ("1.5D-03*x^2 + y^2 - 2.5d2 z", "1.5e-03*x^2 + y^2 - 2.5e2 z"),  # Fortran
+        ("x^2 + y^2 - 1.5*^-3 z", "x^2 + y^2 - 1.5e-3 z"),  # Mathematica's InputForm
     ],
 )
 def test_what_a_pdf_copies_reads_as_typed(text: str, plain: str) -> None:
-    """Characters a PDF viewer copies: the same polynomial, and the same rounding read off the
-    digits, as the text typed on a keyboard."""
+    """Characters a PDF viewer copies, and numbers as Fortran and Mathematica print them: the
+    same polynomial, and the same rounding read off the digits, as the text typed on a keyboard."""
     from sorgui.engine.parsing import has_decimals
     from sorgui.engine.rounded.dense import float_coefficients
     from sorgui.engine.rounded.precision import input_rounding
@@ -201,6 +203,8 @@ _PIECES = [
     "f :=",
     "\\\\",
     "x2",
+    "D",
+    "*^",
     "s",
     "t",
 ]

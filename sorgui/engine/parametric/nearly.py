@@ -63,7 +63,8 @@ SINE_FLOOR = 0.1
 """Normals within this sine of the axis direction are left out of the distance to the axis."""
 
 _DECIMAL = re.compile(
-    r"(?<![A-Za-z0-9_.])([0-9]*)\.([0-9]*)(?:[eE][-+−]?[0-9]+)?|(?<![A-Za-z0-9_.])([0-9]+)[eE][-+−]?[0-9]+"
+    r"(?<![A-Za-z0-9_.])([0-9]*)\.([0-9]*)(?:(?:[eEdD]|\*\^)[-+−]?[0-9]+)?"
+    r"|(?<![A-Za-z0-9_.])([0-9]+)(?:[eEdD]|\*\^)[-+−]?[0-9]+"
 )
 
 

@@ -149,7 +149,7 @@ def _nodes(node: Node) -> Iterator[Node]:
 
 
 def _is_decimal(text: str, node: Num) -> bool:
-    return any(ch in ".eE" for ch in text[node.start : node.end])
+    return any(ch in ".eEdD^" for ch in text[node.start : node.end])
 
 
 def _literal(text: str, node: Num) -> tuple[str, str | None, str | None]:
