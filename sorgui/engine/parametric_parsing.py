@@ -333,6 +333,15 @@ def _discover(text: str, spans: Sequence[tuple[int, int]]) -> tuple[str, str]:
 def _refuse_names(text: str, words: Sequence[tuple[str, int]]) -> None:
     for word, position in words:
         end = position + len(word)
+        if text[end : end + 1] and text[end] in "0123456789":  # not str.isdigit: t² is a power
+            digits = len(text[end:]) - len(text[end:].lstrip("0123456789"))
+            power = f"{word[-1]}^{text[end : end + digits]}"
+            raise ParseError(
+                f"'{text[position : end + digits]}': write {power} for a power; a parameter's name is letters only"
+                " (s and t, u and v, …)",
+                position,
+                end + digits,
+            )
         if set(word) & set(COORDINATES) and set(word) <= set(COORDINATES):
             raise ParseError(
                 f"a component cannot use '{word}': x, y, z are the coordinates; name the parameters"

@@ -165,8 +165,8 @@ def token_stream(
     ``g = 0``), a final ``;`` and LaTeX's ``$ $`` are skipped. ``{ }`` and ``[ ]`` are parentheses,
     ``\\cdot`` and ``\\times`` are ``*``, ``\\sqrt`` is ``sqrt``, and ``\\left``, ``\\right``,
     LaTeX spacing and line breaks (``\\\\``) are ignored; Mathematica's ``==`` is ``=``. Digits
-    written right after a variable are its exponent, as Singular prints them (``x2y`` is
-    ``x^2*y``).
+    written right after x, y or z are its exponent, as Singular prints them (``x2y`` is
+    ``x^2*y``); after a parameter they are refused (``t1`` is no power of ``t``).
     ``span`` (characters ``start:end``, no label skipped) and ``variables`` (the names of the
     variables, by index) read one component of a parametrization in its parameters
     (:mod:`.parametric_parsing`).
@@ -174,7 +174,7 @@ def token_stream(
     if span is None:
         span = equation_span(text)
     index = _VARIABLE_INDEX if variables == _VARIABLES else {name: i for i, name in enumerate(variables)}
-    after_variable = -1  # where the last variable ends
+    after_variable = -1  # where the last of x, y, z ends (a parameter's digits are no exponent: t1, t2)
     for match in TOKEN.finditer(text, *span):
         kind, word = match.lastgroup, match.group()
         start, end = match.span()
@@ -186,7 +186,7 @@ def token_stream(
             value = int(word) if len(word) < 500 and word.isdigit() else _number(text, start, end)
             yield Token("num", start, end, value)
         elif kind == "name":
-            after_variable = end if word not in ("sqrt", "pow") else -1
+            after_variable = end if word not in ("sqrt", "pow") and variables == _VARIABLES else -1
             if word in index:  # fast path for a single variable
                 yield Token("var", start, end, index[word])
             else:

@@ -170,3 +170,13 @@ def test_a_named_triple_in_brackets_or_braces_is_a_parametrization(text: str) ->
     parsed = parse_parametrization(text)
     assert parsed.parameters == ("s", "t")
     assert parsed.components == ("s", "t", "s^2 + t^2")
+
+
+@pytest.mark.parametrize(("text", "at"), [("x = t1, y = t2, z = t1*t2", "t1"), ("(s, t, 3s2 + t)", "s2")])
+def test_digits_after_a_parameter_are_refused_where_they_are(text: str, at: str) -> None:
+    """Not read as Singular's powers (which x, y, z take in an equation): ``t1, t2`` were one
+    parameter, and the map a curve."""
+    with pytest.raises(ParseError) as info:
+        parse_parametrization(text)
+    assert text[info.value.position : info.value.end] == at
+    assert "a parameter's name is letters only" in info.value.message
