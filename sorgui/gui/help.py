@@ -44,6 +44,9 @@ SYNTAX_EXAMPLES = (
     ("0.25x^2 + y^2/4 + z^2 - 1", "decimals are exact: 0.25 is 1/4"),
     ("x^2 + y^2 - 2z^2 + sqrt(2)·x·z", "square roots of rationals, the dot · as multiplication"),
     ("1.5E-3x^2 + y^2 + z^2 - 1", "E-notation (rounded input: sorgui also looks for a nearby exact surface)"),
+    ("f := pow(x, 2) + y^2 - z;", "a statement of Maple or C: its label, pow and the final ; are read"),
+    ("poly f = x2+y2-z2-1;", "Singular's print: x2 is x^2"),
+    ("$x^{2} + y^{2} = \\frac{1}{2} z$", "LaTeX as typeset, inside $ $"),
     (
         "x = (1-t^2)/(1+t^2)*(2+s), y = 2t/(1+t^2)*(2+s), z = s^2",
         "a parametrization: x = …, y = …, z = … in two parameters (here a surface of revolution)",
@@ -56,7 +59,8 @@ PARAMETRIZATIONS_HTML = """
 <h3>Parametrizations</h3>
 <p>A surface may also be given as a rational map (s, t) ↦ (x, y, z): <b>x = X, y = Y, z = Z</b> in
 any order, separated by commas, semicolons or line breaks (<tt>x(u, v) = …</tt> names the
-parameters), or a triple <b>(X, Y, Z)</b> (also after <tt>P(u, v) =</tt>). The parameters are the
+parameters), or a triple <b>(X, Y, Z)</b>, <b>[X, Y, Z]</b> or <b>{X, Y, Z}</b> (also after
+<tt>P(u, v) =</tt> or a name, as Maple's <tt>X1 := [X, Y, Z];</tt>). The parameters are the
 two names other than x, y, z that the components use; the components are rational functions with
 coefficients as for equations (decimals, square roots). sorgui decides <b>from the map itself,
 exactly</b>, whether its image is a surface of revolution (every normal line meets the axis), a
