@@ -219,13 +219,14 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
         lines.append(
             f"  not near a surface of revolution; within {ap.relative_distance:.2g} (relative) of {kind}{where}"
         )
-    elif ap.residual is None:
+    elif ap.residual is None and not ap.singular_values:
         lines.append("  nearness not decided")
     else:
         lines.append("  not near a surface of revolution within the tolerance")
     if ap.residual is not None:
+        scale = "at most 1: within it" if ap.near_sor or ap.residual > 1 else "no kind of symmetry was tried, see below"
         lines.append(
-            f"  residual {ap.residual:.3g} times the rounding (at most 1: within it); singular values "
+            f"  residual {ap.residual:.3g} times the rounding ({scale}); singular values "
             f"of (★): {', '.join(f'{v:.2g}' for v in ap.singular_values)}"
         )
     lines += [f"  note: {note}" for note in ap.notes]

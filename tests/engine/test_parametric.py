@@ -179,3 +179,24 @@ def test_a_time_limit_keeps_the_parametrization() -> None:
     analysis = analyze(map_text(bicubic_patch(seed=5)), timeout=1.5)
     assert analysis.input_kind == "parametrization" and analysis.parametric is not None
     assert analysis.recognition.symmetry == "none"  # the decision takes milliseconds
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "x = 2.000*s/(1+s^2+t^2), y = 2.040*t/(1+s^2+t^2), z = 1.010*(s^2+t^2-1)/(1+s^2+t^2)",
+        "x = 2.0*s/(1+s^2+t^2), y = 3.0*t/(1+s^2+t^2), z = 4.0*(s^2+t^2-1)/(1+s^2+t^2)",
+    ],
+)
+def test_a_rounded_map_near_no_symmetry_says_so_once(text: str) -> None:
+    """Two ellipsoids, not of revolution: the report said "not near" and then "residual 0.718
+    times the rounding (at most 1: within it)", or "nearness not decided" with no reason; it now
+    says why no kind was tried."""
+    from sorgui.export.text import plain_text
+
+    analysis = analyze(text, recognition_only=True)
+    assert analysis.approximate is not None and not analysis.approximate.near_sor
+    report = plain_text(analysis)
+    assert "not near a surface of revolution" in report
+    assert "within it" not in report and "not decided" not in report
+    assert "not near any continuous symmetry: the smallest singular value" in report

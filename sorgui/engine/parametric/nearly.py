@@ -145,7 +145,14 @@ def nearly(surface: RationalMap, tolerance: float, source: str) -> tuple[Approxi
         axis = rotation_axis(samples)
         deviation = None if axis is None else _axis_deviation(samples, axis)
         residual = None if deviation is None else deviation / (NEAR_FACTOR * tolerance)
-        approximation = Approximation(tolerance, source, False, None, deviation, residual, singular, notes=NOTES)
+        far = (
+            f"not near any continuous symmetry: the smallest singular value of (★) is {singular[-1]:.4g}, "
+            f"above {gate:.4g}, so no kind is tried"
+            + ("" if deviation is None else " (the residual is that of the best rotation axis)")
+        )
+        approximation = Approximation(
+            tolerance, source, False, None, deviation, residual, singular, notes=(far, *NOTES)
+        )
         return approximation, _near_cone(samples, tolerance)
     kind, deviation, axis, center, normal = found
     near = deviation <= NEAR_FACTOR * tolerance
