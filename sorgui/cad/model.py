@@ -379,10 +379,14 @@ def _no_part_words(analysis: Analysis) -> str:
     if approximate is not None and approximate.near_sor:
         distance = approximate.relative_distance
         within = f"within {distance:.2g} (relative) of " if distance is not None else "near "
+        found = (
+            "no nearest exact surface is computed for a parametrization"
+            if analysis.input_kind == "parametrization"
+            else "no exact surface with a rational or quadratic axis was found within its rounding"
+        )
         return (
             f"the typed surface is not exactly a surface of revolution, only {within}{kind_noun(approximate.kind)}, "
-            "and no exact surface with a rational or quadratic axis was found within its rounding to build the "
-            f"part from (the approximate axis is in the report){patch}"
+            f"and {found} to build the part from (the approximate axis is in the report){patch}"
         )
     return (
         "the surface is not a surface of revolution, nor a cylinder or cone over a rational curve, "

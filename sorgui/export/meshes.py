@@ -110,7 +110,7 @@ def write_mesh(
     if not patch and not equation:
         raise ValueError(
             f"the implicit equation of this parametrization is not known, so there is no mesh of f = 0;"
-            f" {path.stem}.patch{suffix} holds the given map's patch"
+            f" write {path.stem}.patch{suffix} for the given map's patch"
         )
     poly = mesh_polydata(scene, patch)
     kind = patch_words if patch else "triangulated surface f = 0 inside the drawn ball"
@@ -142,7 +142,7 @@ def _stl_kind(kind: str) -> str:
     """The few words of an STL header (80 bytes in all) for a mesh of ``kind``."""
     if "nearest" in kind:
         return "nearest exact SOR's patch"
-    return "f=0 patch" if "patch" in kind else "f=0 surface"
+    return "parametric patch" if "patch" in kind else "f=0 surface"  # a typed map's f may be unknown
 
 
 def _write_obj(poly: pyvista.PolyData, info: MeshInfo, path: Path) -> None:

@@ -248,3 +248,15 @@ def test_a_typed_map_turning_along_its_second_parameter_gives_the_exact_profile(
     model = surface_model(analysis, build_scene(analysis))
     assert model.route == "exact"
     assert BRepCheck_Analyzer(model.shape).IsValid()
+
+
+def test_a_rounded_map_near_a_surface_of_revolution_says_why_it_has_no_part() -> None:
+    """Not "no exact surface with a rational or quadratic axis was found within its rounding":
+    for a typed map none is looked for."""
+    pytest.importorskip("OCP")
+    from sorgui.cad.model import surface_model
+
+    analysis = analyze("x = 2*s/(1+s^2+t^2), y = 2.000001*t/(1+s^2+t^2), z = 1.5*(s^2+t^2-1)/(1+s^2+t^2)")
+    assert analysis.approximate is not None and analysis.approximate.near_sor and not analysis.is_sor
+    with pytest.raises(ValueError, match="no nearest exact surface is computed for a parametrization"):
+        surface_model(analysis, build_scene(analysis))

@@ -71,6 +71,21 @@ def test_patch_round_trips(torus, tmp_path, suffix: str) -> None:
     assert expected.n_cells == 2 * 24 * 20  # every quad of the 25 × 21 grid, split in two
     points = np.asarray(mesh.points, dtype=np.float64)
     assert relative_residual(analysis.recognition.polynomial, points).max() <= PATCH_TOLERANCE
+    if suffix == ".stl":
+        assert path.read_bytes()[:80].decode("ascii").startswith("sorgui parametric patch; input units; bbox ")
+
+
+def test_a_map_without_its_equation_names_the_patch_file_to_write(tmp_path) -> None:
+    """Its mesh of f = 0 cannot be made; the message named NAME.patch.stl as if it held the patch
+    already ("m.patch.stl holds the given map's patch"), though nothing was written."""
+    from sorgui.engine import analyze
+    from sorgui.export.files import export_analysis
+    from sorgui.session.scene_data import build_scene
+
+    analysis = analyze("(sqrt(2)*s, t, s*t)", recognition_only=True)
+    with pytest.raises(ValueError, match=r"write m\.patch\.stl for the given map's patch"):
+        export_analysis(analysis, tmp_path / "m.stl", scene=build_scene(analysis))
+    assert not (tmp_path / "m.patch.stl").exists()
 
 
 def test_headers_state_units_bounds_and_equation(torus, tmp_path) -> None:
