@@ -52,17 +52,30 @@ Mathematica's ``f[x_, y_, z_] :=`` (any name, ``=`` or ``:=``). Possessive: a ru
 read once, never again in another way (a megabyte of them takes a few milliseconds)."""
 _MONOMIAL_NAME = re.compile(r"[xyz0-9]*", re.ASCII)
 """A name that is a monomial (``xy``, Singular's ``x2``): the left side of an equation, no label."""
+COMMENT = r"(?:(?<=\s)|(?<![\s\S]))(?:#|//|%)[^\n]*+"
+"""A comment to the end of its line: Python's and Maple's ``#``, Singular's ``//``, MATLAB's and
+LaTeX's ``%``, at the start of a line or after a space (``x%2`` is no comment, but an error)."""
+_COMMENT = re.compile(COMMENT)
 _OPENING = re.compile(r"\s*(\$\$?|\\\[|\\\()")
 _CLOSING = {"$": "$", "$$": "$$", "\\[": "\\]", "\\(": "\\)"}
 
 
+def without_comments(text: str) -> str:
+    """``text`` with each comment (:data:`COMMENT`) replaced by spaces: the same positions."""
+    if "#" not in text and "//" not in text and "%" not in text:
+        return text
+    return _COMMENT.sub(lambda match: " " * len(match.group()), text)
+
+
 def statement_span(text: str) -> tuple[int, int]:
     """The characters ``start:end`` of ``text`` that hold the equation or the parametrization a
-    user pasted as a statement of another program: without LaTeX's math delimiters (``$ $``,
-    ``$$ $$``, ``\\[ \\]``, ``\\( \\)``) and a final ``;`` or ``:`` (Maple, Singular,
-    Mathematica, MATLAB). The readers read only these characters, so every position they report
-    is one of ``text``."""
-    start, end = 0, _unterminated(text, 0, len(text))
+    user pasted as a statement of another program: without comments around it, LaTeX's math
+    delimiters (``$ $``, ``$$ $$``, ``\\[ \\]``, ``\\( \\)``) and a final ``;`` or ``:``
+    (Maple, Singular, Mathematica, MATLAB). The readers read only these characters, so every
+    position they report is one of ``text``."""
+    text = without_comments(text)
+    end = _unterminated(text, 0, len(text))
+    start = len(text) - len(text.lstrip()) if text[:1].isspace() else 0
     opening = _OPENING.match(text)
     if opening is not None:
         closing = _CLOSING[opening.group(1)]
@@ -83,7 +96,7 @@ def equation_span(text: str) -> tuple[int, int]:
     ``f := g`` are the equation ``g = 0``. A left side that is a monomial (``z = x^2 + y^2``)
     is no label."""
     start, end = statement_span(text)
-    label = _LABEL.match(text, start, end)
+    label = _LABEL.match(without_comments(text), start, end)
     if label is None or (label.group(2) is None and _MONOMIAL_NAME.fullmatch(label.group(1))):
         return start, end
     return label.end(), end

@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING, Any
 
 from . import parsing, syntax
 from .errors import ParseError
-from .limits import MAX_DEGREE, MAX_LENGTH, MAX_WORK, statement_span
+from .limits import MAX_DEGREE, MAX_LENGTH, MAX_WORK, statement_span, without_comments
 from .parsing import is_parametrization
 from .syntax import Neg, Node, Num, Power, Product, Reciprocal, Sqrt, Sum, Var
 
@@ -122,7 +122,8 @@ def parse_parametrization(text: str) -> ParsedParametrization:
         )
     if _is_degenerate(surface):
         raise ParseError("the image is a curve or a point, not a surface: P_s × P_t is identically zero", 0, len(text))
-    components = tuple(_RIGHT.sub("", text[a:b]).strip() for a, b in spans)
+    plain = without_comments(text)
+    components = tuple(_RIGHT.sub("", plain[a:b]).strip() for a, b in spans)
     return ParsedParametrization(
         text, (components[0], components[1], components[2]), parameters, surface, field, radicands
     )
@@ -133,10 +134,10 @@ def parse_parametrization(text: str) -> ParsedParametrization:
 
 def _layout(text: str) -> tuple[list[tuple[int, int]], tuple[str, str] | None]:
     """The spans of the three components in the order x, y, z, and the parameters a prefix or
-    the labels name (``None`` when none does); LaTeX's ``$ $`` and a final ``;`` aside
+    the labels name (``None`` when none does); comments, LaTeX's ``$ $`` and a final ``;`` aside
     (:func:`.limits.statement_span`)."""
     start, end = statement_span(text)
-    text, named = text[:end], None  # the same positions
+    text, named = without_comments(text)[:end], None  # the same positions
     prefix = _PREFIX.match(text, start)
     if prefix is not None:
         start = prefix.end()
@@ -244,7 +245,7 @@ def _structure(text: str, start: int) -> tuple[tuple[list[int], list[int]], tupl
     for match in syntax.TOKEN.finditer(text, start):
         kind, word, position = match.lastgroup, match.group(), match.start()
         if kind == "space":
-            if "\n" in word and depth == 0 and not after_separator and _LABEL.match(text, match.end()):
+            if "\n" in word and depth == 0 and first >= 0 and not after_separator and _LABEL.match(text, match.end()):
                 cuts[0].append(position + word.index("\n"))
             continue
         first = position if first < 0 else first

@@ -30,6 +30,7 @@ from .limits import (
     MAX_PRINTED_DIGITS,
     MAX_WORK,
     equation_span,
+    without_comments,
 )
 
 if TYPE_CHECKING:
@@ -143,7 +144,7 @@ def is_parametrization(text: str) -> bool:
     if len(text) > MAX_LENGTH:
         return False
     start, end = equation_span(text)
-    body = text[start:end]
+    body = without_comments(text)[start:end]
     if ("," in body or ";" in body) and _SEPARATOR.search(body) and _separates(body):  # `in` first: a long
         return True  # equation has neither
     return "\n" in text and len(_LABEL_LINE.findall(text, 0, 10_000)) >= 2
@@ -184,8 +185,9 @@ second parse of a long pasted equation."""
 
 
 def has_decimals(text: str) -> bool:
-    """Whether ``text`` prints a number with a decimal point or an exponent (``1.5``, ``2e-3``).
-    Most equations have no ``.``, ``e`` or ``E`` at all, which ``in`` finds faster than a search."""
-    if "." not in text and "e" not in text and "E" not in text:
+    """Whether ``text`` prints a number with a decimal point or an exponent (``1.5``, ``2e-3``,
+    ``2D-3``, ``2*^-3``; in a comment, none counts). Most equations have none of ``.``, ``e``,
+    ``E``, ``d``, ``D`` and ``*^``, which ``in`` finds faster than a search."""
+    if not any(mark in text for mark in (".", "e", "E", "d", "D", "*^")):
         return False
-    return _DECIMAL_MARK.search(text) is not None
+    return _DECIMAL_MARK.search(without_comments(text)) is not None

@@ -40,6 +40,7 @@ from flint import fmpq, fmpq_mpoly, fmpz
 from .algebra import rationals
 from .errors import ParseError
 from .limits import (
+    COMMENT,
     MAX_BITS,
     MAX_DECIMAL_EXPONENT,
     MAX_DEGREE,
@@ -81,7 +82,7 @@ _OPERATORS = {
 }
 _SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻", "0123456789-")
 TOKEN = re.compile(
-    r"(?P<space>[\s\ufeff\u200b-\u200d\u2060]+|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:!\\]))"
+    rf"(?P<space>[\s\ufeff\u200b-\u200d\u2060]+|{COMMENT}|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:!\\]))"
     r"|(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:(?:[eEdD]|\*\^)[-+−]?[0-9]+)?)"
     r"|(?P<name>[A-Za-z]+)"
     r"|(?P<sup>⁻?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
@@ -162,7 +163,8 @@ def token_stream(
     """The tokens of ``text``, lazily, so that the first error in reading order is reported.
 
     Only :func:`.limits.equation_span` is read: a label (``f(x,y,z) = g`` is the equation
-    ``g = 0``), a final ``;`` and LaTeX's ``$ $`` are skipped. ``{ }`` and ``[ ]`` are parentheses,
+    ``g = 0``), a final ``;`` and LaTeX's ``$ $`` are skipped, and comments (``#``, ``//``,
+    ``%`` to the end of the line) are spaces. ``{ }`` and ``[ ]`` are parentheses,
     ``\\cdot`` and ``\\times`` are ``*``, ``\\sqrt`` is ``sqrt``, and ``\\left``, ``\\right``,
     LaTeX spacing and line breaks (``\\\\``) are ignored; Mathematica's ``==`` is ``=``. Digits
     written right after x, y or z are its exponent, as Singular prints them (``x2y`` is

@@ -27,6 +27,7 @@ from PySide6.QtGui import (
 from PySide6.QtWidgets import QLabel, QPlainTextEdit, QTextEdit, QVBoxLayout, QWidget
 
 from sorgui.engine.errors import ParseError
+from sorgui.engine.limits import COMMENT
 from sorgui.engine.parametric_parsing import ParsedParametrization, parse_input
 from sorgui.engine.parsing import is_parametrization, parse_rational
 
@@ -71,6 +72,7 @@ class PolynomialHighlighter(QSyntaxHighlighter):
             (re.compile(r"\*\*|[-+*/^=]"), _char_format("#ef6c00")),
             (re.compile(r"[()\[\]{}]"), _char_format("#616161")),
             (re.compile(r"\b(?:sqrt|pow)\b"), _char_format("#00838f", italic=True)),
+            (re.compile(COMMENT), _char_format("#9e9e9e", italic=True)),  # last: over what it holds
         ]
 
     def highlightBlock(self, text: str) -> None:  # noqa: N802 (Qt override)

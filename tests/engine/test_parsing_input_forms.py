@@ -38,6 +38,9 @@ X, Y, Z = R.gens
         "$$ x^{2} + y^{2} = z; $$",
         r"\[ x^{2} + y^{2} - z \]",
         r"\(x^2 + y^2 - z\);",
+        "# a paraboloid, from my notes\nx^2 + y^2 - z  # its vertex at (0, 0, 0)",
+        "x^2 + y^2 // Singular's comment\n - z;",
+        "% MATLAB\nx^2 + y^2 - z; % v1.5",
         "pow(x, 2) + pow(y, 2) - z",  # C, Python, GLSL
         "pow(x,2.0) + pow(-y, 2) - pow(z, 1);",
     ],
@@ -70,7 +73,13 @@ def test_errors_inside_a_statement_point_into_the_text_as_pasted(text: str) -> N
 
 
 @pytest.mark.parametrize(
-    "text", ["x = s, y = t, z = s^2 + t^2;", "$(s, t, s^2 + t^2)$", "x = s; y = t; z = s^2 + t^2;"]
+    "text",
+    [
+        "x = s, y = t, z = s^2 + t^2;",
+        "$(s, t, s^2 + t^2)$",
+        "x = s; y = t; z = s^2 + t^2;",
+        "# a paraboloid\nx = s,  # its axis: z\ny = t,\nz = s^2 + t^2  # up, as (0, 0, 1)",
+    ],
 )
 def test_a_statement_of_a_parametrization_is_read_as_one(text: str) -> None:
     from sorgui.engine.parametric_parsing import parse_parametrization
@@ -80,6 +89,19 @@ def test_a_statement_of_a_parametrization_is_read_as_one(text: str) -> None:
     parsed = parse_parametrization(text)
     assert parsed.parameters == ("s", "t")
     assert parsed.components == ("s", "t", "s^2 + t^2")
+
+
+def test_a_comment_holds_no_separator_and_no_decimal() -> None:
+    """Its commas do not make a parametrization, its digits no rounded input; a ``%`` or ``#``
+    glued to the equation is no comment (``x%2`` is Python's remainder): an error."""
+    from sorgui.engine.parsing import has_decimals, is_parametrization
+
+    text = "x^2 + y^2 - z  # apex (0, 0, 0), version 1.5"
+    assert not is_parametrization(text) and not has_decimals(text)
+    assert parse_polynomial(text).polynomial == X**2 + Y**2 - Z
+    for glued in ("x%2 + y", "x^2#c"):
+        with pytest.raises(ParseError, match="unexpected character"):
+            parse_polynomial(glued)
 
 
 @pytest.mark.parametrize(
@@ -202,6 +224,9 @@ _PIECES = [
     "==",
     "f :=",
     "\\\\",
+    " # c\n",
+    " % c",
+    " //",
     "x2",
     "D",
     "*^",
