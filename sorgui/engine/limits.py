@@ -71,8 +71,8 @@ def statement_span(text: str) -> tuple[int, int]:
     """The characters ``start:end`` of ``text`` that hold the equation or the parametrization a
     user pasted as a statement of another program: without comments around it, LaTeX's math
     delimiters (``$ $``, ``$$ $$``, ``\\[ \\]``, ``\\( \\)``) and a final ``;`` or ``:``
-    (Maple, Singular, Mathematica, MATLAB). The readers read only these characters, so every
-    position they report is one of ``text``."""
+    (Maple, Singular, Mathematica, MATLAB) or ``,`` (an item of a list). The readers read only
+    these characters, so every position they report is one of ``text``."""
     text = without_comments(text)
     end = _unterminated(text, 0, len(text))
     start = len(text) - len(text.lstrip()) if text[:1].isspace() else 0
@@ -85,10 +85,10 @@ def statement_span(text: str) -> tuple[int, int]:
 
 
 def _unterminated(text: str, start: int, end: int) -> int:
-    """``end`` moved back over trailing white space and one final ``;`` or ``:``."""
+    """``end`` moved back over trailing white space and one final ``;``, ``:`` or ``,``."""
     while end > start and text[end - 1].isspace():
         end -= 1
-    return end - 1 if end > start and text[end - 1] in ";:" else end
+    return end - 1 if end > start and text[end - 1] in ";:," else end
 
 
 def equation_span(text: str) -> tuple[int, int]:

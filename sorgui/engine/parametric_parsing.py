@@ -53,15 +53,17 @@ _RIGHT = re.compile(r"\\right\s*$")
 """LaTeX's ``\\right`` of the closing parenthesis of a triple, left at the end of its last component."""
 _DECIMAL_COMMA = re.compile(r"(?<![\w.^*])\d+,\d+(?![\d.,])")
 """A number written with a decimal comma, ``1,5``: no separator of components."""
-_LABEL = re.compile(r"\s*+([xyz])\s*+(?:\(\s*+([A-Za-z]++)\s*+,\s*+([A-Za-z]++)\s*+\))?+\s*+:?=(?!=)")
-"""``x =`` or ``x(u, v) =`` in front of a component (possessive, as :data:`.limits._LABEL`)."""
+_LABEL = re.compile(r"\s*+([xyz])\s*+(?:\(\s*+([A-Za-z]++)\s*+,\s*+([A-Za-z]++)\s*+\))?+\s*+(?::?=(?!=)|->)")
+"""``x =``, ``x(u, v) =`` or Mathematica's rule ``x ->`` in front of a component (possessive, as
+:data:`.limits._LABEL`)."""
 _PREFIX = re.compile(
-    r"\s*(?:(?![xyz]\s*\()[A-Za-z]\w*\s*\(\s*([A-Za-z]+)\s*,\s*([A-Za-z]+)\s*\)|(\(\s*x\s*,\s*y\s*,\s*z\s*\))"
+    r"\s*(?:(?![xyz]\s*\()[A-Za-z]\w*\s*[(\[]\s*([A-Za-z]+)_?\s*,\s*([A-Za-z]+)_?\s*[)\]]|(\(\s*x\s*,\s*y\s*,\s*z\s*\))"
     r"|(?![xyz0-9]+\b)[A-Za-z_]\w*)\s*:?=(?!=)",
     re.ASCII,
 )
-"""What may come before the components: ``P(u, v) =`` (naming the parameters), ``(x, y, z) =``
-(then a triple follows) or a name that is not a monomial (Maple's ``X1 := [X, Y, Z]``)."""
+"""What may come before the components: ``P(u, v) =`` or Mathematica's ``P[u_, v_] :=`` (naming
+the parameters), ``(x, y, z) =`` (then a triple follows) or a name that is not a monomial
+(Maple's ``X1 := [X, Y, Z]``)."""
 
 
 @dataclass(frozen=True)
@@ -91,6 +93,7 @@ def parse_parametrization(text: str) -> ParsedParametrization:
     if len(text) > MAX_LENGTH:
         raise ParseError(f"the input is too long (more than {MAX_LENGTH:,} characters)", 0, len(text))
     spans, named = _layout(text)
+    _refuse_characters(text, spans)
     parameters = named or _discover(text, spans)
     _check_names(text, spans, parameters)
     checker = syntax.Evaluator()
@@ -290,7 +293,7 @@ def _names(text: str, span: tuple[int, int]) -> list[tuple[str, int]]:
     """The names written in a component (``sqrt``, ``pow`` and LaTeX commands aside), with positions."""
     out = []
     for match in syntax.TOKEN.finditer(text, *span):
-        if match.lastgroup == "name" and match.group() not in ("sqrt", "pow"):
+        if match.lastgroup == "name" and match.group() not in ("sqrt", "pow", "Sqrt"):
             out.append((match.group(), match.start()))
     return out
 
@@ -326,9 +329,28 @@ def _discover(text: str, spans: Sequence[tuple[int, int]]) -> tuple[str, str]:
         )
     raise ParseError(
         f"the components use {len(names)} parameters ({', '.join(names)}): a surface is given by two",
-        next(p for w, p in words if w == names[2]),
-        len(text),
+        *_last_new(words, found),
     )
+
+
+def _last_new(words: Sequence[tuple[str, int]], names: set[str]) -> tuple[int, int]:
+    """Where the name of ``names`` that comes last to be written first is written: the odd one
+    out of ``x = s, y = t, z = s + r`` is ``r``, not the third in alphabetical order."""
+    first: dict[str, int] = {}
+    for word, position in words:
+        if word in names:
+            first.setdefault(word, position)
+    word, position = max(first.items(), key=lambda item: item[1])
+    return position, position + len(word)
+
+
+def _refuse_characters(text: str, spans: Sequence[tuple[int, int]]) -> None:
+    """A character that has no place in a component (``@``, a ``#`` glued to it) is the error,
+    before any name is counted as a parameter (the comma of a ``pow`` aside)."""
+    for span in spans:
+        for match in syntax.TOKEN.finditer(text, *span):
+            if match.lastgroup == "bad" and match.group() != ",":
+                raise ParseError(f"unexpected character {match.group()!r}", match.start(), match.end())
 
 
 def _refuse_names(text: str, words: Sequence[tuple[str, int]]) -> None:

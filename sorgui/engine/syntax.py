@@ -188,7 +188,7 @@ def token_stream(
             value = int(word) if len(word) < 500 and word.isdigit() else _number(text, start, end)
             yield Token("num", start, end, value)
         elif kind == "name":
-            after_variable = end if word not in ("sqrt", "pow") and variables == _VARIABLES else -1
+            after_variable = end if word not in ("sqrt", "pow", "Sqrt") and variables == _VARIABLES else -1
             if word in index:  # fast path for a single variable
                 yield Token("var", start, end, index[word])
             else:
@@ -214,8 +214,8 @@ def _exponent(digits: str, start: int, end: int) -> Token:
 def _name(word: str, start: int, variables: tuple[str, ...] = _VARIABLES) -> Iterator[Token]:
     """``sqrt``, ``pow`` (C's and Python's ``pow(a, n)``), or a run of x, y, z (``xyz`` is
     ``x*y*z``; of one-letter ``variables``); any other name is an error."""
-    if word in ("sqrt", "pow"):
-        yield Token(word, start, start + len(word))
+    if word in ("sqrt", "pow", "Sqrt"):
+        yield Token(word.lower(), start, start + len(word))  # Mathematica's Sqrt[2] too
     elif set(word) <= set(variables):
         for i, letter in enumerate(word):
             yield Token("var", start + i, start + i + 1, variables.index(letter))
@@ -488,7 +488,7 @@ class Parser:
 _NOT_RATIONAL = {
     "exponent": ("an exponent must be a constant number", "an exponent must be rational"),
     "radicand": (
-        "the square root of a non-constant expression is not a polynomial",
+        "the square root of a non-constant expression is not allowed: only square roots of numbers (sqrt(2))",
         "nested square roots are not supported",
     ),
 }

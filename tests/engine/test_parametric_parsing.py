@@ -180,3 +180,36 @@ def test_digits_after_a_parameter_are_refused_where_they_are(text: str, at: str)
         parse_parametrization(text)
     assert text[info.value.position : info.value.end] == at
     assert "a parameter's name is letters only" in info.value.message
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "{x -> s, y -> t, z -> s^2 + t^2}",  # Mathematica's rules
+        "f[s_, t_] := {s, t, s^2 + t^2}",  # Mathematica's function
+        "x=s,y=t,z=s^2 + t^2,",  # an item of a list
+    ],
+)
+def test_mathematica_forms_and_a_final_comma_are_read(text: str) -> None:
+    parsed = parse_parametrization(text)
+    assert parsed.parameters == ("s", "t") and parsed.components == ("s", "t", "s^2 + t^2")
+
+
+def test_mathematica_sqrt_is_sqrt() -> None:
+    assert parse_parametrization("{u, v, Sqrt[2]*u*v}").radicands == (2,)
+
+
+@pytest.mark.parametrize(
+    ("text", "at", "words"),
+    [
+        ("(s, t, s^2+t^2+r)", "r", "3 parameters"),
+        ("x = s, y = t, z = s + q", "q", "3 parameters"),
+        ("x = s, y = t, z = s^2 @ t^2 + q", "@", "unexpected character"),
+    ],
+)
+def test_the_error_points_at_the_odd_one_out(text: str, at: str, words: str) -> None:
+    """The name written last for the first time, not the third in alphabetical order (``t``);
+    a stray character before any name is counted."""
+    with pytest.raises(ParseError) as info:
+        parse_parametrization(text)
+    assert text[info.value.position : info.value.end] == at and words in info.value.message
