@@ -96,7 +96,7 @@ def parse_parametrization(text: str) -> ParsedParametrization:
     _refuse_characters(text, spans)
     parameters = named or _discover(text, spans)
     _check_names(text, spans, parameters)
-    checker = syntax.Evaluator()
+    checker = syntax.Evaluator(fractions=True)
     trees = [_tree(text, span, parameters, checker) for span in spans]
     radicands = tuple(sorted(checker.radicands))
     field = number_field(radicands)
@@ -464,10 +464,15 @@ class _Fractions:
                     return self._surd(node), ring.one
                 exponent = int(self.checked._exponents[node])
                 n, d = self.value(node.base)
-                if exponent < 0:  # a constant base: the first pass refuses other negative powers
+                if exponent < 0:  # 1/base^|exponent|
                     n, d, exponent = d, n, -exponent
-                    if not n:
-                        raise ParseError("division by zero", node.start, node.end)
+                    if not d:
+                        written = self.checked.check(node.base)[0] > 0  # a parameter is written in it
+                        raise ParseError(
+                            "the denominator is identically zero" if written else "division by zero",
+                            node.start,
+                            node.end,
+                        )
                 result = ring.one, ring.one
                 for _ in range(exponent):
                     self._charge(node, len(result[0]) * len(n) + len(result[1]) * len(d))

@@ -504,9 +504,12 @@ def _show(n: int) -> str:
 
 
 class Evaluator:
-    """Pass 1 (:meth:`check`): bounds and radicands over QQ; pass 2 (:meth:`evaluate`): K[x,y,z]."""
+    """Pass 1 (:meth:`check`): bounds and radicands over QQ; pass 2 (:meth:`evaluate`): K[x,y,z].
+    ``fractions``: the tree is a rational function (a parametrization's component), whose
+    non-constant parts may have negative integer powers (``s^-1``); an equation's may not."""
 
-    def __init__(self) -> None:
+    def __init__(self, *, fractions: bool = False) -> None:
+        self.fractions = fractions
         self.radicands: set[int] = set()
         self._rationals: dict[Node, Fraction] = {}
         self._exponents: dict[Power, Rational] = {}
@@ -552,13 +555,14 @@ class Evaluator:
         n = self._exponent(node)
         degree, bits = self.check(node.base)
         if degree > 0:
-            if n.denominator != 1 or n < 0:
+            if n.denominator != 1 or (n < 0 and not self.fractions):
                 raise ParseError(
-                    "a non-constant expression can only be raised to a non-negative integer power",
+                    "a non-constant expression can only be raised to "
+                    + ("an integer power" if self.fractions else "a non-negative integer power"),
                     node.exponent.start,
                     node.exponent.end,
                 )
-            return self._within_limits(node, degree * int(n), bits * int(n))
+            return self._within_limits(node, degree * abs(int(n)), bits * abs(int(n)))
         if n.denominator == 1:
             self._check_exponent(node, n)
             return self._within_limits(node, 0, bits * abs(int(n)))

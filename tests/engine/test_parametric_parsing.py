@@ -102,7 +102,7 @@ def test_coefficients_as_for_equations() -> None:
         ("(s, t, s*t", "unmatched '('"),
         ("(s, t, s*t))", "unmatched ')'"),
         ("x = s, y = t = 2, z = s", "cannot hold '='"),
-        ("x = s, y = t, z = s^(1/2)", "non-negative integer power"),
+        ("x = s, y = t, z = s^(1/2)", "can only be raised to an integer power"),
         ("x = s, y = t, z = s^70", "degree is too high"),
         ("x = 1/(1+s)^40, y = 1/(1+t)^40, z = s", "degree is too high"),
     ],
@@ -213,3 +213,17 @@ def test_the_error_points_at_the_odd_one_out(text: str, at: str, words: str) -> 
     with pytest.raises(ParseError) as info:
         parse_parametrization(text)
     assert text[info.value.position : info.value.end] == at and words in info.value.message
+
+
+def test_a_negative_power_of_a_parameter_is_a_denominator() -> None:
+    """Components are rational functions: ``s^-1`` and ``(s^2+t^2)^-1`` are read as Maple and
+    Mathematica users write them (an equation still refuses them)."""
+    same = parse_parametrization("(s, t, 1/(s^2+t^2) + 1/s^2)").map
+    parsed = parse_parametrization("(s, t, (s^2+t^2)^-1 + s^(-2))").map
+    assert (parsed.X, parsed.W) == (same.X, same.W)
+    for text, words in (
+        ("(s, t, (s-s)^-1 + t)", "the denominator is identically zero"),
+        ("(s, t, 0^-1*s)", "division by zero"),
+    ):
+        with pytest.raises(ParseError, match=words):
+            parse_parametrization(text)
