@@ -200,3 +200,10 @@ def test_a_rounded_map_near_no_symmetry_says_so_once(text: str) -> None:
     assert "not near a surface of revolution" in report
     assert "within it" not in report and "not decided" not in report
     assert "not near any continuous symmetry: the smallest singular value" in report
+
+
+def test_a_map_over_a_number_field_prints_without_denominator_one() -> None:
+    """Its components printed as ``(t)/(1)``: the denominator, an element of QQ(√2), was compared
+    with the integer 1."""
+    analysis = analyze("(sqrt(2)*s, t, s*t)")
+    assert analysis.parametric is not None and analysis.parametric.map == ("sqrt(2)*s", "t", "s*t")

@@ -122,7 +122,7 @@ class ParameterRing:
 def fraction_text(ring: ParameterRing, numerator: Any, denominator: Any, names: Sequence[str] = PARAMETERS) -> str:
     """``N/D`` as an exact string in ``names``: ``N`` when ``D`` is ``1``, ``(N)/(D)`` else."""
     top = ring.text(numerator, names)
-    if ring.is_constant(denominator) and ring.value(denominator, (0, 0)) == 1:
+    if denominator == ring.one:  # not value(…) == 1: an element of QQ(√2) is never equal to the int 1
         return top
     return f"({top})/({ring.text(denominator, names)})"
 
