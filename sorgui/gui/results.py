@@ -312,7 +312,11 @@ class ResultsPane(QScrollArea):
         rows.append(("normal lines", f"{decided} (dim L = {record.symmetry_dimension})"))
         if record.profile_check is not None:
             rows.append(
-                ("cross-check", "∂(h, ρ)/∂(s, t) ≡ 0 about the axis: " + ("yes" if record.profile_check else "NO"))
+                (
+                    "cross-check",
+                    f"∂(h, ρ)/∂({', '.join(record.parameters)}) ≡ 0 about the axis: "
+                    + ("yes" if record.profile_check else "NO"),
+                )
             )
         if record.implicit_status:
             rows.append(("implicit equation", record.implicit_status))
