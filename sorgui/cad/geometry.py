@@ -628,14 +628,30 @@ def _pieces(spans: list[_Span], kept: list[int]) -> list[list[_Span]]:
 
 def _curve(section: Section, spans: list[_Span]) -> RationalCurve:
     """One rational B-spline through ``spans``: the Bernstein form of each, halved until the
-    weights share one sign."""
+    weights share one sign, each arc reparameterized to end weights 1 (``w_i·c^i/w₀`` with
+    ``c = (w₀/w_n)^(1/n)``, the same arc). Every pole where arcs meet then weighs 1, the first
+    and the last too: a closed profile whose end weights differed (1/9 and 1) was read back from
+    STEP as a periodic curve with the first weight at both ends, its last arc off the surface."""
     arcs: list[tuple[np.ndarray, np.ndarray]] = []
     for span in spans:
         arcs += _bezier(section, span.start, span.end, depth=0)
-    sign = 1.0 if np.sum([w.sum() for _, w in arcs]) > 0 else -1.0
+    balanced = [_ends_one(w, section.degree) for _, w in arcs]
     poles = np.concatenate([arcs[0][0][:1]] + [p[1:] for p, _ in arcs])
-    weights = sign * np.concatenate([arcs[0][1][:1]] + [w[1:] for _, w in arcs])
+    weights = np.concatenate([balanced[0][:1]] + [w[1:] for w in balanced])
     return RationalCurve(section.degree, poles, weights / weights.max())
+
+
+def _ends_one(weights: np.ndarray, n: int) -> np.ndarray:
+    """The weights of one arc of degree ``n`` reparameterized to ``1`` at both ends; those within
+    a few units in the last place of 1 are 1 (an arc of a parabola is a polynomial one: all 1)."""
+    out: np.ndarray
+    if weights[0] == weights[-1]:
+        out = weights / weights[0]
+    else:
+        out = weights * ((weights[0] / weights[-1]) ** (1.0 / n)) ** np.arange(n + 1) / weights[0]
+    out[np.abs(out - 1.0) <= 4 * np.finfo(float).eps] = 1.0
+    out[0] = out[-1] = 1.0
+    return out
 
 
 def _bezier(section: Section, start: float, end: float, depth: int) -> list[tuple[np.ndarray, np.ndarray]]:

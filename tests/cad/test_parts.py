@@ -374,3 +374,16 @@ def test_a_canal_surface_is_swept_through_its_circles_within_the_stated_toleranc
     points = readback.surface_points(surface, scene.surface.points, scene.region, 800)
     assert readback.surface_to_part(shape, points).max() <= stated
     assert readback.gmsh_part(path).surfaces == topology.faces
+
+
+def test_a_closed_exact_profile_reads_back_from_step_on_the_surface(tmp_path: Path) -> None:
+    """A profile through a node on the axis is one closed rational B-spline. Its end weights
+    differed (1/9 and 1), and Open CASCADE's STEP reader made it periodic with the first weight
+    at both ends: the last arc left the surface by 3e-4 (0.1 once the surface was moved off the
+    origin), while the BREP of the same run was exact. Every arc now ends with weight 1."""
+    analysis = analyze("(x^2+y^2+z^2)^2-2*(x^2+y^2)+3*z^2")
+    scene = build_scene(analysis)
+    path, _ = export_file(analysis, tmp_path / "node.step", scene=scene)
+    assert "profile: exact rational B-spline" in path.read_text(encoding="ascii")
+    surface = readback.Surface(analysis.squarefree, scene.region.center)
+    assert readback.part_to_surface(read_shape(path), surface, scene.region.radius, 800) <= 1e-9 * scene.region.radius
