@@ -122,13 +122,16 @@ class _FloatMap:
             return np.column_stack([n[0] / n[3], n[1] / n[3], n[2] / n[3]])
 
     def normals(self, s: np.ndarray, t: np.ndarray) -> np.ndarray:
-        """``(N_s·D − N·D_s) × (N_t·D − N·D_t)``: ``X_s × X_t`` times ``D⁴ > 0``."""
-        value = [P.polyval2d(s, t, g) for g in self.grids]
-        ds = [P.polyval2d(s, t, P.polyder(g, axis=0)) for g in self.grids]
-        dt = [P.polyval2d(s, t, P.polyder(g, axis=1)) for g in self.grids]
-        xs = np.column_stack([ds[k] * value[3] - value[k] * ds[3] for k in range(3)])
-        xt = np.column_stack([dt[k] * value[3] - value[k] * dt[3] for k in range(3)])
-        return np.asarray(np.cross(xs, xt))
+        """``(N_s·D − N·D_s) × (N_t·D − N·D_t)``: ``X_s × X_t`` times ``D⁴ > 0`` (not finite where
+        the products leave floating point: far out on a wide parameter box, those points say
+        nothing)."""
+        with np.errstate(over="ignore", invalid="ignore"):
+            value = [P.polyval2d(s, t, g) for g in self.grids]
+            ds = [P.polyval2d(s, t, P.polyder(g, axis=0)) for g in self.grids]
+            dt = [P.polyval2d(s, t, P.polyder(g, axis=1)) for g in self.grids]
+            xs = np.column_stack([ds[k] * value[3] - value[k] * ds[3] for k in range(3)])
+            xt = np.column_stack([dt[k] * value[3] - value[k] * dt[3] for k in range(3)])
+            return np.asarray(np.cross(xs, xt))
 
     def outer_profile(self, box: tuple[float, float]) -> list[tuple[float, float]]:
         """The ``t``-intervals of ``box`` where the profile ``X(0, t)`` lies on one side of the
@@ -186,9 +189,7 @@ class _FloatMap:
         if not good.any():
             return [(s_box, t_box, 1.0)]
         _, gradients = value_and_gradient(terms, points[good], normalise=True)
-        n = normals[good] / np.maximum(np.linalg.norm(normals[good], axis=1, keepdims=True), 1e-300)
-        g = gradients / np.maximum(np.linalg.norm(gradients, axis=1, keepdims=True), 1e-300)
-        agreement = np.einsum("ij,ij->i", n, g)
+        agreement = np.einsum("ij,ij->i", _unit(normals[good]), _unit(gradients))
         signs = np.sign(agreement[np.abs(agreement) > 1e-6])
         if len(signs) == 0:
             return [(s_box, t_box, 1.0)]
@@ -228,3 +229,10 @@ def _patches(
         )
     weights_out = np.abs(values)
     return [BezierPatch(poles, weights_out / weights_out.max())]
+
+
+def _unit(vectors: np.ndarray) -> np.ndarray:
+    """Each row divided by its length, scaled first by its largest entry (a normal of 1e200
+    would overflow when squared)."""
+    scaled = vectors / np.maximum(np.max(np.abs(vectors), axis=1, keepdims=True), 1e-300)
+    return np.asarray(scaled / np.maximum(np.linalg.norm(scaled, axis=1, keepdims=True), 1e-300))
