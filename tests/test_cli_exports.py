@@ -253,13 +253,16 @@ def test_a_surface_beyond_floating_point_says_so(tmp_path: Path, suffix: str) ->
 def test_a_cad_file_of_a_surface_outside_the_drawn_ball_is_refused_before_open_cascade(tmp_path: Path) -> None:
     """A sphere of radius 10^200 about a ball of radius 2 kept Open CASCADE's cut busy for
     minutes (and one of radius 10^20 gave a STEP file of no face): said at once; of radius 10^200,
-    that its numbers are beyond floating point."""
+    that its numbers are beyond floating point. A unit sphere in a ball of radius 1000 falls
+    between the mesh's grid points: it was said to have no real points there."""
     pytest.importorskip("OCP")
     for radius_squared, words in (
         ("10^400", "cannot be drawn: its coefficients span about 10^400"),
-        ("10^40", "no real points inside the drawn ball (give --region)"),
+        ("10^40", "no real points that can be drawn inside the ball (give --region)"),
+        ("1 --region 1000", "less than the mesh's grid spacing in a ball this large: give a smaller one"),
     ):
-        done = sorgui("analyze", f"x^2+y^2+z^2-{radius_squared}", "--timeout", "60", "-o", str(tmp_path / "s.step"))
+        constant, *region = radius_squared.split()
+        done = sorgui("analyze", f"x^2+y^2+z^2-{constant}", *region, "--timeout", "60", "-o", str(tmp_path / "s.step"))
         assert done.returncode == 1 and words in lines(done.stderr)[-1]
         assert not (tmp_path / "s.step").exists()
 

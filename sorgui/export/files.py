@@ -20,7 +20,6 @@ from typing import Any
 
 from sorgui.engine.patches import patch_stand_in
 from sorgui.engine.results import Analysis
-from sorgui.engine.values import beyond_floats
 from sorgui.engine.vocabulary import no_surface
 from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
 from sorgui.export.cas import latex_document, maple_file, mathematica_file
@@ -68,10 +67,10 @@ def export_file(
     if scene is not None and not wants_patch(path, fmt) and scene.surface.is_empty:
         # nothing for Open CASCADE to cut: a sphere of radius 10^200 about a ball of radius 2 kept
         # its Boolean busy for minutes, one of radius 10^20 gave a file of no face
-        raise ValueError(
-            beyond_floats(analysis.squarefree)
-            or f"the surface has no real points inside the {'box' if scene.box else 'drawn ball'} (give --region)"
-        )
+        why = (scene.notes[0] if scene.notes else "the surface has no real points inside the ball").rstrip(".")
+        if "--region" not in why and "cannot be drawn" not in why:
+            why += " (give --region)"
+        raise ValueError(f"{why[0].lower()}{why[1:]}")
     from sorgui.cad import cad_file, summary
 
     data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance, cap)

@@ -225,6 +225,7 @@ def build_scene(
     if region is None:
         region = view_region(terms, center, axis_direction)
         region = _nearest_region(analysis, region, center, axis_direction)
+    drawn = region  # the ball the surface would be drawn in by default
     if radius is not None:
         region = ClipSphere(region.center, radius)
     c, r = np.asarray(region.center), region.radius
@@ -235,7 +236,9 @@ def build_scene(
         surface = patch_surface(real[0], clip, bounds)
     notes = []
     if surface.is_empty:
-        notes.append(_empty_note(analysis.squarefree, "box" if box else "ball"))
+        spacing = 2 * region.radius / (resolution or DEFAULT_RESOLUTION)
+        small = box is None and drawn.radius < 2 * spacing < region.radius
+        notes.append(_empty_note(analysis.squarefree, "box" if box else "ball", drawn if small else None))
     segment, profile = LineData.empty(), LineData.empty()
     axis_point = None
     if rec.axis is not None:
@@ -276,9 +279,16 @@ def build_scene(
     )
 
 
-def _empty_note(squarefree: str, where: str) -> str:
-    """Why nothing of the surface is drawn, as a note of the scene."""
+def _empty_note(squarefree: str, where: str, drawn: ClipSphere | None = None) -> str:
+    """Why nothing of the surface is drawn, as a note of the scene; ``drawn``: the default ball,
+    when it is smaller than the mesh's grid in the given one (a unit sphere in a ball of radius
+    1000 was said to have "no real points inside the ball")."""
     why = beyond_floats(squarefree) or f"the surface has no real points that can be drawn inside the {where}"
+    if drawn is not None:
+        why = (
+            f"the surface lies within about {drawn.radius:.3g} of its centre, less than the mesh's grid spacing in "
+            f"a ball this large: give a smaller one (--region {drawn.radius:.3g})"
+        )
     return f"{why[0].upper()}{why[1:]}."
 
 
