@@ -26,7 +26,7 @@ import numpy as np
 from sorgui.engine.patches import patch_maps
 from sorgui.engine.results import Analysis, Approximation, Conical, Recognition
 from sorgui.engine.rounded import dense
-from sorgui.engine.rounded.deviation import view_ball
+from sorgui.engine.rounded.deviation import extent_directions, is_bounded, view_ball
 from sorgui.engine.stage_results import BaseCurve, Parametrization
 from sorgui.engine.values import (
     ExpressionError,
@@ -70,10 +70,40 @@ def view_region(terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
     """A ball that shows the interesting part of ``f = 0`` around ``center``: the engine's
     :func:`~sorgui.engine.rounded.deviation.view_ball` (real points on a star of lines, far branches
     dropped), the same ball in which a rounded input's deviation is measured (docs/math.md §8.6)."""
+    middle, radius = view_ball(_dense(terms), np.asarray(center, dtype=np.float64), axis)
+    return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
+
+
+def _dense(terms: Terms) -> np.ndarray:
     exps, coefs = term_arrays(terms, 3)
     degree = int(exps.sum(axis=1).max(initial=0))
-    array = dense.from_terms({(int(e[0]), int(e[1]), int(e[2])): float(c) for e, c in zip(exps, coefs)}, degree)
-    middle, radius = view_ball(array, np.asarray(center, dtype=np.float64), axis)
+    return dense.from_terms({(int(e[0]), int(e[1]), int(e[2])): float(c) for e, c in zip(exps, coefs)}, degree)
+
+
+def with_bounded_factors(
+    region: ClipSphere, factors: list[str], center: np.ndarray, axis: np.ndarray | None
+) -> ClipSphere:
+    """``region`` grown to hold every bounded factor of a reducible surface whole: the far
+    branches the view ball drops can be a whole component (a torus about a thin coaxial
+    cylinder, whose many near points made the torus's look far, was left out of the picture and
+    the CAD file). An unbounded factor (a plane far along the axis) does not grow it."""
+    balls = [region]
+    for polynomial in factors:
+        array = _dense(polynomial_terms(polynomial))
+        if array.shape[0] > 1 and is_bounded(array, extent_directions(axis)):
+            middle, radius = view_ball(array, np.asarray(center, dtype=np.float64), axis)
+            balls.append(ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius))
+    if len(balls) == 1:
+        return region
+    centres = np.array([b.center for b in balls])
+    radii = np.array([b.radius for b in balls])
+    if axis is not None:  # a ball centred on the axis: the same disk in every meridian half-plane
+        a = axis / np.linalg.norm(axis)
+        heights = (centres - centres[0]) @ a
+        middle = centres[0] + 0.5 * ((heights - radii).min() + (heights + radii).max()) * a
+    else:
+        middle = 0.5 * ((centres - radii[:, None]).min(axis=0) + (centres + radii[:, None]).max(axis=0))
+    radius = float((np.linalg.norm(centres - middle, axis=1) + radii).max())
     return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
 
 
@@ -224,6 +254,9 @@ def build_scene(
         region = patch_region(real[0])
     if region is None:
         region = view_region(terms, center, axis_direction)
+        if len(analysis.factors) > 1:
+            factors = [factor.polynomial for factor in analysis.factors]
+            region = with_bounded_factors(region, factors, center, axis_direction)
         region = _nearest_region(analysis, region, center, axis_direction)
     drawn = region  # the ball the surface would be drawn in by default
     if radius is not None:

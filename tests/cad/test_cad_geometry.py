@@ -274,3 +274,13 @@ def test_a_rounded_cone_s_patch_is_written_without_float_warnings(tmp_path: Path
     )
     analysis = analyze(text)
     assert export_analysis(analysis, tmp_path / "cone.patch.step", scene=build_scene(analysis)).stat().st_size
+
+
+def test_the_default_ball_holds_every_bounded_factor() -> None:
+    """A torus about a thin coaxial cylinder: the cylinder's many near points made the torus's
+    look like far branches, and the ball, the picture and the CAD file held the cylinder alone."""
+    analysis = analyze("((x^2+y^2+z^2+8)^2-36*(x^2+y^2))*(4*x^2+4*y^2-1)")
+    scene = build_scene(analysis)
+    assert scene.region.radius >= 4
+    radial = np.hypot(scene.surface.points[:, 0], scene.surface.points[:, 1])
+    assert radial.max() > 3.9 and radial.min() < 0.6  # the torus's outer equator and the cylinder
