@@ -268,3 +268,18 @@ def test_a_small_rounded_torus_is_not_nearly_a_cone() -> None:
     cone = analyze("x^2 + y^2 - 0.25*(z - 0.0123)^2 + 1e-12*x")
     assert cone.conical is not None and cone.conical.near_apex is not None
     assert cone.conical.near_apex[2] == pytest.approx(0.0123, rel=1e-6)
+
+
+def test_a_large_rounded_torus_is_not_nearly_a_cone() -> None:
+    """A torus 8 m across written in mm (radii 3000 and 1000, turned, 6 digits): its lower terms
+    are large beside the quartic ones, and it read as nearly a cone about (−2811, −1742, 5775).
+    Judged at its own size it is none."""
+    from sorgui.engine.conical.detect import near_apex
+
+    text = (
+        "x^4 - 5200*x^3 + 2*x^2*y^2 + 2800*x^2*y + 2*x^2*z^2 - 8400*x^2*z + 2.20569e+06*x^2 - 5200*x*y^2"
+        " - 1.26598e+07*x*y - 5200*x*z^2 + 3.84768e+07*x*z - 2.6862e+10*x + y^4 + 2800*y^3 + 2*y^2*z^2"
+        " - 8400*y^2*z - 1.66641e+06*y^2 + 2800*y*z^2 - 3.15119e+07*y*z + 4.33958e+10*y + z^4 - 8400*z^3"
+        " + 4.13607e+07*z^2 - 1.35081e+11*z + 1.95056e+14"
+    )
+    assert near_apex(parse_polynomial(text).polynomial, 5e-6) is None

@@ -95,20 +95,22 @@ def near_apex(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], fl
 
 
 def at_unit_scale(f: Poly) -> tuple[Poly, int]:
-    """``f(10ᵏ·p)`` and ``k``, with ``10ᵏ`` near ``f``'s natural length
-    (:func:`..rounded.deviation.natural_length`) when that is below 0.1, else ``f`` and 0. The
-    near tests compare coefficients: a torus 4 cm across written in metres, whose lower terms
-    are small beside ``(x² + y² + z²)²``, read as nearly the cone ``(x² + y² + z²)² = 0``."""
+    """``f(10ᵏ·p)`` and ``k``, with ``10ᵏ`` near the size of the part
+    (:func:`..rounded.deviation.part_size`) when that is below 0.1 or above 10, else ``f`` and
+    0. The near tests compare coefficients: a torus 4 cm across written in metres, whose lower
+    terms are small beside ``(x² + y² + z²)²``, read as nearly the cone ``(x² + y² + z²)² = 0``;
+    one 8 m across written in mm, whose lower terms are large, as nearly a cone far away."""
     import math
 
     from ..rounded import dense
-    from ..rounded.deviation import natural_length
+    from ..rounded.deviation import part_size
 
-    length = natural_length(dense.from_terms(dense.float_coefficients(f), total_degree(f)))
-    if length >= 0.1:
+    length = part_size(dense.from_terms(dense.float_coefficients(f), total_degree(f)))
+    if length is None or 0.1 <= length <= 10 or not math.isfinite(length):
         return f, 0
-    k = round(math.log10(length))  # at most -1
-    scale = f.ring.domain.one / f.ring.domain.convert(10) ** (-k)
+    k = round(math.log10(length))
+    K = f.ring.domain
+    scale = K.convert(10) ** k if k > 0 else K.one / K.convert(10) ** (-k)
     return f.ring.from_dict({m: c * scale ** sum(m) for m, c in f.items()}), k
 
 

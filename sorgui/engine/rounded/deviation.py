@@ -124,19 +124,25 @@ def natural_length(array: FloatArray) -> float:
     :data:`MIN_RADIUS`: the floor of the view ball's radius. A small part (``x² + y² − 2.5e-5``:
     0.005) gets a ball of its size; a cone about its apex, whose numerical roots near the apex
     are noise of about 10⁻⁵, keeps the floor of 1 (its parts are all of one degree)."""
+    length = part_size(array)
+    return MIN_RADIUS if length is None else float(np.clip(length, SMALLEST_RADIUS, MIN_RADIUS))
+
+
+def part_size(array: FloatArray) -> float | None:
+    """``(|f_low| / |f_high|)^(1/(high − low))``, unclipped (:func:`natural_length`); ``None``
+    when ``f`` is zero or homogeneous (a cone about the origin has no size)."""
     i, j, k = np.indices(array.shape)
     degrees = (i + j + k).ravel()
     values = np.abs(array).ravel()
     largest = float(values.max(initial=0.0))
     if largest == 0:
-        return MIN_RADIUS
+        return None
     sizes = np.bincount(degrees, weights=(values / largest) ** 2)
     present = np.nonzero(sizes)[0]
     low, high = int(present.min()), int(present.max())
     if high == low:
-        return MIN_RADIUS
-    length = float((np.sqrt(sizes[low]) / np.sqrt(sizes[high])) ** (1.0 / (high - low)))
-    return float(np.clip(length, SMALLEST_RADIUS, MIN_RADIUS))
+        return None
+    return float((np.sqrt(sizes[low]) / np.sqrt(sizes[high])) ** (1.0 / (high - low)))
 
 
 def sample_zero_set(array: FloatArray, center: FloatArray, radius: float, seed: int = 0) -> FloatArray:
