@@ -40,6 +40,7 @@ _TEX_SPECIAL = {
     "~": r"\textasciitilde{}",
     "^": r"\textasciicircum{}",
 }
+_GREEK = "alpha beta gamma delta varepsilon zeta eta theta lambda mu nu xi pi rho sigma varphi chi psi"
 _TEX_UNICODE = {
     "τ": r"$\tau$",
     "·": r"$\cdot$",
@@ -59,6 +60,30 @@ _TEX_UNICODE = {
     "ℚ": r"$\mathbb{Q}$",
     "–": "--",
     "—": "---",
+    "★": r"$\bigstar$",
+    "…": r"\ldots{}",
+    "≡": r"$\equiv$",
+    "≈": r"$\approx$",
+    "≠": r"$\neq$",
+    "∈": r"$\in$",
+    "∂": r"$\partial$",
+    "∇": r"$\nabla$",
+    "↦": r"$\mapsto$",
+    "⟂": r"$\perp$",
+    "⊥": r"$\perp$",
+    "‖": r"$\|$",
+    "°": r"$^\circ$",
+    "′": r"$'$",
+    "Σ": r"$\Sigma$",
+    "Π": r"$\Pi$",
+    "Δ": r"$\Delta$",
+    **{g: f"$\\{name}$" for g, name in zip("αβγδεζηθλμνξπρσφχψ", _GREEK.split())},
+    **{s: f"$_{d}$" for s, d in zip("₀₁₂₃₄₅₆₇₈₉", "0123456789")},
+    **{s: f"$^{d}$" for s, d in zip("⁰¹⁴⁵⁶⁷⁸⁹", "01456789")},
+    "⁻": r"$^-$",
+    "ᵏ": "$^k$",
+    "ᵢ": "$_i$",
+    "ₖ": "$_k$",
 }
 
 

@@ -124,3 +124,9 @@ def test_the_parameterization_lines_paste_back_as_the_same_map(analyses) -> None
     for line in (maple, mathematica):
         parsed = parse_parametrization(line).map
         assert (parsed.X, parsed.W) == (found.X, found.W), line
+
+
+def test_the_unicode_of_sorgui_s_words_is_typeset() -> None:
+    """The notes' ★, ρ, ≡, subscripts and ellipses were printed as [U+2605] and the like."""
+    text = tex_text("singular values of (★): ρ₀ ≡ 0 … ∂(h, ρ)/∂(s, t), 10⁻³")
+    assert "U+" not in text and r"$\bigstar$" in text and r"$\rho$" in text
