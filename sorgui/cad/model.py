@@ -130,8 +130,17 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
         )
     size = scene.region.radius
     check_size(size)
-    faces = _surface_faces(_of_its_zero_set(analysis), scene, tolerance, precision(size))
-    return finished(faces, scene, analysis.squarefree, cap)
+    own = _of_its_zero_set(analysis)
+    faces = _surface_faces(own, scene, tolerance, precision(size))
+    try:
+        return finished(faces, scene, analysis.squarefree, cap)
+    except CadGeometryError:
+        if faces.route != "analytic" or len(analysis.factors) > 1 or own.recognition.profile is None:
+            raise
+        # Open CASCADE's Boolean of an analytic torus with a ball through its tube can leave an
+        # invalid part; the profile's arcs are cut to the ball's disk before they are turned
+        faces = _surface_faces(own, scene, tolerance, precision(size), analytic=False)
+        return finished(faces, scene, analysis.squarefree, cap)
 
 
 def _of_its_zero_set(analysis: Analysis) -> Analysis:
@@ -167,7 +176,9 @@ def finished(part: Faces, scene: Scene, polynomial: str, cap: bool = False) -> C
     return CadModel(shape, part.route, lines, part.deviation, part.tolerance, precision(size))
 
 
-def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, edge: float) -> Faces:
+def _surface_faces(
+    analysis: Analysis, scene: Scene, tolerance: float | None, edge: float, analytic: bool = True
+) -> Faces:
     rec = analysis.recognition
     if not rec.decided:
         raise CadGeometryError(
@@ -183,7 +194,7 @@ def _surface_faces(analysis: Analysis, scene: Scene, tolerance: float | None, ed
             return _swept_faces(sweep, scene.region, goal)
         raise CadGeometryError(_no_part_words(analysis))
     ball = scene.region
-    specs = analytic_surfaces(analysis, ball)
+    specs = analytic_surfaces(analysis, ball) if analytic else None
     if specs is not None:
         faces = []
         for spec in specs:

@@ -284,3 +284,25 @@ def test_the_default_ball_holds_every_bounded_factor() -> None:
     assert scene.region.radius >= 4
     radial = np.hypot(scene.surface.points[:, 0], scene.surface.points[:, 1])
     assert radial.max() > 3.9 and radial.min() < 0.6  # the torus's outer equator and the cylinder
+
+
+def test_a_ball_through_a_torus_s_tube_gives_a_valid_part() -> None:
+    """Open CASCADE's Boolean of the analytic torus with a ball through its tube left a part
+    that failed its own check, and no file was written; the exact profile cut to the ball's disk
+    and turned is valid."""
+    pytest.importorskip("OCP")
+    from OCP.BRepCheck import BRepCheck_Analyzer
+
+    from sorgui.cad.model import surface_model
+    from tests.cad.readback import Surface, part_to_surface
+
+    analysis = analyze(  # a torus about a turned axis, rational coefficients
+        "x^4 - 26*x^3/5 + 2*x^2*y^2 + 14*x^2*y/5 + 2*x^2*z^2 - 42*x^2*z/5 + 38693*x^2/8450 - 26*x*y^2/5"
+        " - 125958*x*y/4225 - 26*x*z^2/5 + 9898*x*z/325 - 1191223*x/42250 + y^4 + 14*y^3/5 + 2*y^2*z^2"
+        " - 42*y^2*z/5 + 190133*y^2/8450 + 14*y*z^2/5 - 10622*y*z/325 + 4308997*y/42250 + z^4 - 42*z^3/5"
+        " + 741*z^2/50 - 45507*z/3250 + 150911089/1690000"
+    )
+    scene = build_scene(analysis, radius=2.5)
+    model = surface_model(analysis, scene)
+    assert BRepCheck_Analyzer(model.shape).IsValid() and model.faces >= 1
+    assert part_to_surface(model.shape, Surface(analysis.squarefree, scene.region.center), 2.5, 500) <= 1e-9
