@@ -19,6 +19,7 @@ import numpy as np
 from sorgui.engine.results import Analysis
 from sorgui.engine.values import Terms, polynomial_terms
 from sorgui.render import ClipBox, ClipSphere, LineData, MeshData
+from sorgui.render.geometry import runs
 from sorgui.render.sampling import first_order_distance
 
 
@@ -58,7 +59,7 @@ def factor_parts(
             rationality=None,
             parametrizations=(),
         )
-        runs = [run for line, owner in zip(polylines, lines) for run in _runs(line, owner == index)]
+        pieces = [piece for line, owner in zip(polylines, lines) for piece in runs(line, owner == index)]
         mesh = dataclasses.replace(
             surface,
             points=surface.points[on],
@@ -66,7 +67,7 @@ def factor_parts(
             normals=surface.normals[on],
             side=surface.side[on],
         )
-        parts.append((own, FactorScene(region, LineData.from_polylines(runs), box, mesh)))
+        parts.append((own, FactorScene(region, LineData.from_polylines(pieces), box, mesh)))
     return parts
 
 
@@ -76,16 +77,3 @@ def _owners(terms: list[Terms], points: np.ndarray) -> np.ndarray:
     distances = np.stack([np.nan_to_num(first_order_distance(t, points), nan=0.0) for t in terms])
     owners: np.ndarray = np.argmin(distances, axis=0)
     return owners
-
-
-def _runs(line: np.ndarray, mask: np.ndarray) -> list[np.ndarray]:
-    """The stretches of a polyline whose points are all in ``mask`` (two points at least)."""
-    runs, start = [], None
-    for i, inside in enumerate([*mask, False]):
-        if inside and start is None:
-            start = i
-        elif not inside and start is not None:
-            if i - start >= 2:
-                runs.append(line[start:i])
-            start = None
-    return runs

@@ -15,6 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from sorgui.render.geometry import runs
+
 Function = tuple[np.ndarray, np.ndarray]
 """A rational function of ``t``: numerator and denominator coefficients, highest degree first."""
 
@@ -110,15 +112,7 @@ def _vectors(triple: Sequence[Function], t: np.ndarray) -> np.ndarray:
 def _split(points: np.ndarray, bound: float) -> list[np.ndarray]:
     """The runs of finite points inside the ball of radius ``bound`` (at least two points each)."""
     inside = np.all(np.isfinite(points), axis=1) & (np.linalg.norm(np.nan_to_num(points), axis=1) <= bound)
-    pieces, start = [], None
-    for i, ok in enumerate(list(inside) + [False]):
-        if ok and start is None:
-            start = i
-        elif not ok and start is not None:
-            if i - start >= 2:
-                pieces.append(points[start:i])
-            start = None
-    return pieces
+    return runs(points, inside)
 
 
 def _circles(family: FamilyCurves, bound: float, count: int, points: int) -> list[np.ndarray]:

@@ -233,6 +233,19 @@ def view_up(direction: Vector) -> np.ndarray:
 # --- VTK flat cell arrays -------------------------------------------------------------------
 
 
+def runs(points: np.ndarray, keep: Sequence[bool] | np.ndarray) -> list[np.ndarray]:
+    """The stretches of the polyline ``points`` whose points are all kept (two points at least)."""
+    pieces, start = [], None
+    for i, kept in enumerate([*keep, False]):
+        if kept and start is None:
+            start = i
+        elif not kept and start is not None:
+            if i - start >= 2:
+                pieces.append(points[start:i])
+            start = None
+    return pieces
+
+
 def polyline_cells(lengths: Sequence[int], closed: Sequence[bool] | None = None) -> np.ndarray:
     """The VTK flat cell array ``[n, i0, …, i(n-1), …]`` for consecutive polylines.
 
