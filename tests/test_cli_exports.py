@@ -269,8 +269,9 @@ def test_a_cad_file_of_a_surface_outside_the_drawn_ball_is_refused_before_open_c
 
 def test_a_nearly_revolving_surface_without_an_exact_one_is_not_called_no_surface_of_revolution(tmp_path: Path) -> None:
     """A cylinder about the irrational axis (1, √2, √3) printed with 15 digits: near a cylinder of
-    revolution, with no exact surface to build the part from. The refusal says that, and offers
-    no patch file (there is no parameterization to write)."""
+    revolution, with no exact surface to build the part from. The refusal says that, offers no
+    patch file (there is no parameterization to write), and names the tolerance that finds one
+    (a double printed in full got no part at all)."""
     pytest.importorskip("OCP")
     text = Path(__file__).parent / "data" / "near-cylinder-irrational-axis.txt"
     target = tmp_path / "near.step"
@@ -279,6 +280,11 @@ def test_a_nearly_revolving_surface_without_an_exact_one_is_not_called_no_surfac
     assert done.returncode == 1 and not target.exists(), done.stderr
     assert "not exactly a surface of revolution, only within" in message and "cylinder of revolution" in message
     assert "patch" not in message and "nor a canal surface" not in message
+    # 15 digits: finer than the arithmetic that printed them; the tolerance it names finds a part
+    assert "a larger tolerance (--tolerance 1e-10) may find one" in message
+    done = sorgui("analyze", "-f", str(text), "--tolerance", "1e-10", "-o", str(target))
+    assert done.returncode == 0 and target.exists(), done.stderr
+    assert "the nearest exact surface's part" in lines(done.stderr)[-1]
 
 
 def test_a_nearest_surface_beyond_the_rounding_is_written_and_says_so(tmp_path: Path) -> None:

@@ -46,6 +46,11 @@ from .patch import bezier_patches
 from .reading import faces_of
 from .sewing import CONFUSION, assemble, check_size, compound, precision, solids_of
 
+FULL_PRECISION = 1e-13
+"""A rounding read off the digits below this (14 significant digits and more) is that of a
+double printed in full: the CAD system's own arithmetic erred more, and no simple exact surface
+lies that close; a given ``--tolerance`` finds one."""
+
 EXACT_COVERAGE = 1e-6
 """Exact arcs must pass this close (relative to the ball's radius) to every point of the real
 profile (a parameterization of one component of a reducible profile does not)."""
@@ -395,9 +400,16 @@ def _no_part_words(analysis: Analysis) -> str:
             if analysis.input_kind == "parametrization"
             else "no exact surface with a rational or quadratic axis was found within its rounding"
         )
+        tight = approximate.tolerance_source == "input" and (approximate.tolerance or 1.0) < FULL_PRECISION
+        looser = (
+            "; its 14 or more digits are finer than the arithmetic that printed them: "
+            "a larger tolerance (--tolerance 1e-10) may find one"
+            if tight and analysis.input_kind != "parametrization"
+            else ""
+        )
         return (
             f"the typed surface is not exactly a surface of revolution, only {within}{kind_noun(approximate.kind)}, "
-            f"and {found} to build the part from (the approximate axis is in the report){patch}"
+            f"and {found} to build the part from (the approximate axis is in the report){looser}{patch}"
         )
     return (
         "the surface is not a surface of revolution, nor a cylinder or cone over a rational curve, "
