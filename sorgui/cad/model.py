@@ -411,6 +411,14 @@ def _no_part_words(analysis: Analysis) -> str:
             f"the typed surface is not exactly a surface of revolution, only {within}{kind_noun(approximate.kind)}, "
             f"and {found} to build the part from (the approximate axis is in the report){looser}{patch}"
         )
+    conical = analysis.conical
+    if conical is not None and conical.kind == "none" and (conical.near_apex or conical.near_direction):
+        kind = "cone" if conical.near_apex is not None else "cylinder"
+        return (
+            f"the typed surface is nearly a {kind} over a curve, not exactly one, and no exact {kind} is made "
+            f"from rounded input to build the part from (its approximate "
+            f"{'apex' if kind == 'cone' else 'direction'} is in the report){patch}"
+        )
     return (
         "the surface is not a surface of revolution, nor a cylinder or cone over a rational curve, "
         f"nor a canal surface with known circles{patch}"

@@ -306,3 +306,18 @@ def test_a_ball_through_a_torus_s_tube_gives_a_valid_part() -> None:
     model = surface_model(analysis, scene)
     assert BRepCheck_Analyzer(model.shape).IsValid() and model.faces >= 1
     assert part_to_surface(model.shape, Surface(analysis.squarefree, scene.region.center), 2.5, 500) <= 1e-9
+
+
+def test_a_rounded_cylinder_over_a_curve_says_it_is_nearly_one() -> None:
+    """An elliptic cylinder printed with 6 digits is "nearly a cylinder" in the report; its CAD
+    file's refusal said it was "not ... a cylinder or cone over a rational curve"."""
+    pytest.importorskip("OCP")
+    from sorgui.cad.model import surface_model
+
+    analysis = analyze(
+        "(0.936361)*x^2 + (0.15111)*x*y + (-0.461211)*x*z + (-1.36022)*x + (0.910298)*y^2 + (0.547569)*y*z"
+        " + (-0.071919)*y + (0.151344)*z^2 + (0.347228)*z + (-1.75562)"
+    )
+    assert analysis.conical is not None and analysis.conical.near_direction is not None
+    with pytest.raises(ValueError, match="nearly a cylinder over a curve, not exactly one"):
+        surface_model(analysis, build_scene(analysis))
