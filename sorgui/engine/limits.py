@@ -95,8 +95,9 @@ def equation_span(text: str) -> tuple[int, int]:
     """:func:`statement_span` without a label in front (:data:`_LABEL`): ``f(x,y,z) = g`` and
     ``f := g`` are the equation ``g = 0``. A left side that is a monomial (``z = x^2 + y^2``)
     is no label."""
-    start, end = statement_span(text)
-    label = _LABEL.match(without_comments(text), start, end)
+    plain = without_comments(text)  # once: statement_span finds no comment left in it
+    start, end = statement_span(plain)
+    label = _LABEL.match(plain, start, end)
     if label is None or (label.group(2) is None and _MONOMIAL_NAME.fullmatch(label.group(1))):
         return start, end
     return label.end(), end

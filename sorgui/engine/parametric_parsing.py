@@ -139,8 +139,9 @@ def _layout(text: str) -> tuple[list[tuple[int, int]], tuple[str, str] | None]:
     """The spans of the three components in the order x, y, z, and the parameters a prefix or
     the labels name (``None`` when none does); comments, LaTeX's ``$ $`` and a final ``;`` aside
     (:func:`.limits.statement_span`)."""
-    start, end = statement_span(text)
-    text, named = without_comments(text)[:end], None  # the same positions
+    plain = without_comments(text)  # the same positions
+    start, end = statement_span(plain)
+    text, named = plain[:end], None
     prefix = _PREFIX.match(text, start)
     if prefix is not None:
         start = prefix.end()

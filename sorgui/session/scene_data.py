@@ -71,6 +71,10 @@ def view_region(terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
     :func:`~sorgui.engine.rounded.deviation.view_ball` (real points on a star of lines, far branches
     dropped), the same ball in which a rounded input's deviation is measured (docs/math.md §8.6)."""
     middle, radius = view_ball(_dense(terms), np.asarray(center, dtype=np.float64), axis)
+    return _ball(middle, radius)
+
+
+def _ball(middle: np.ndarray, radius: float) -> ClipSphere:
     return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
 
 
@@ -92,7 +96,7 @@ def with_bounded_factors(
         array = _dense(polynomial_terms(polynomial))
         if array.shape[0] > 1 and is_bounded(array, extent_directions(axis)):
             middle, radius = view_ball(array, np.asarray(center, dtype=np.float64), axis)
-            balls.append(ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius))
+            balls.append(_ball(middle, radius))
     if len(balls) == 1:
         return region
     centres = np.array([b.center for b in balls])
@@ -104,7 +108,7 @@ def with_bounded_factors(
     else:
         middle = 0.5 * ((centres - radii[:, None]).min(axis=0) + (centres + radii[:, None]).max(axis=0))
     radius = float((np.linalg.norm(centres - middle, axis=1) + radii).max())
-    return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
+    return _ball(middle, radius)
 
 
 def ball_about(box: ClipBox, point: np.ndarray, axis: np.ndarray | None) -> ClipSphere:
@@ -116,7 +120,7 @@ def ball_about(box: ClipBox, point: np.ndarray, axis: np.ndarray | None) -> Clip
         middle = foot_on_line(middle, point, axis)
     corners = np.array(list(itertools.product(*zip(low, high))))
     radius = float(np.max(np.linalg.norm(corners - middle, axis=1)))
-    return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
+    return _ball(middle, radius)
 
 
 def natural_center(rec: Recognition, approximate: Approximation | None = None) -> tuple[np.ndarray, np.ndarray | None]:
@@ -179,7 +183,7 @@ def patch_region(param: Parametrization) -> ClipSphere | None:
         return None
     middle = np.median(points, axis=0)
     radius = 1.1 * float(np.percentile(np.linalg.norm(points - middle, axis=1), 90)) or 1.0
-    return ClipSphere((float(middle[0]), float(middle[1]), float(middle[2])), radius)
+    return _ball(middle, radius)
 
 
 def patch_surface(param: Parametrization, clip: ClipSphere | ClipBox, bounds: tuple[float, ...]) -> MeshData:
