@@ -169,7 +169,9 @@ def test_startup_loads_and_analyses_example_1_and_screenshots(window, qtbot, art
     for path, minimum in ((window_png, (1200, 700)), (viewport_png, (600, 500))):
         image = QImage(str(path))
         assert image.width() >= minimum[0] and image.height() >= minimum[1], path
-    pixels = np.asarray(QImage(str(viewport_png)).convertToFormat(QImage.Format.Format_Grayscale8).constBits())
+    # The image is kept while its pixels are read: constBits() views its memory without owning it.
+    grey = QImage(str(viewport_png)).convertToFormat(QImage.Format.Format_Grayscale8)
+    pixels = np.frombuffer(grey.constBits(), dtype=np.uint8, count=grey.sizeInBytes()).copy()
     assert pixels.std() > 10, "the render window shows something"
 
 
