@@ -1,7 +1,10 @@
 """An open part capped by the region into a solid (docs/math.md §11).
 
 The faces of the part and the boundary of the region (the ball's sphere or the box) cut the
-region into volumes (``BOPAlgo_MakerVolume``); the solid kept is ``{f ≤ 0}`` inside the region:
+region into volumes (``BOPAlgo_MakerVolume``; each piece of the part, a factor's shell or solid,
+is an argument of its own: Open CASCADE intersects the arguments with one another, never the
+shapes inside one, so a sphere and a plane through it given as one compound were not cut by each
+other); the solid kept is ``{f ≤ 0}`` inside the region:
 the volumes where ``f < 0`` at points inside them (``BRepClass3d_SolidClassifier`` tells which
 sampled points are inside), the side the faces' normals point away from. A part that is closed
 already (a sphere, a torus inside the ball) gives its own solid.
@@ -16,9 +19,9 @@ from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepClass3d import BRepClass3d_SolidClassifier
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
 from OCP.gp import gp_Pnt
-from OCP.TopAbs import TopAbs_IN, TopAbs_SOLID
+from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_IN, TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS_Shape
+from OCP.TopoDS import TopoDS_Iterator, TopoDS_Shape
 
 from sorgui.engine.values import Terms
 from sorgui.render import ClipBox, ClipSphere
@@ -39,7 +42,8 @@ def capped(shape: TopoDS_Shape, region: ClipSphere | ClipBox, terms: Terms, tole
         low, high = region.bounds[0::2], region.bounds[1::2]
         boundary = BRepPrimAPI_MakeBox(gp_Pnt(*low), gp_Pnt(*high)).Shape()
     maker = BOPAlgo_MakerVolume()
-    maker.AddArgument(shape)
+    for piece in _pieces(shape):
+        maker.AddArgument(piece)
     maker.AddArgument(boundary)
     maker.SetIntersect(True)
     maker.SetFuzzyValue(tolerance)
@@ -50,6 +54,18 @@ def capped(shape: TopoDS_Shape, region: ClipSphere | ClipBox, terms: Terms, tole
     if not kept:
         raise CadGeometryError("the region holds no point where f < 0 to make a solid of")
     return kept[0] if len(kept) == 1 else compound(kept)
+
+
+def _pieces(shape: TopoDS_Shape) -> list[TopoDS_Shape]:
+    """The shells and solids of a compound (the part's pieces), or the shape itself."""
+    if shape.ShapeType() != TopAbs_COMPOUND:
+        return [shape]
+    pieces = []
+    children = TopoDS_Iterator(shape)
+    while children.More():
+        pieces.extend(_pieces(children.Value()))
+        children.Next()
+    return pieces
 
 
 def _solids(shape: TopoDS_Shape) -> list[TopoDS_Shape]:

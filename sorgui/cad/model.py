@@ -127,25 +127,28 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
     nearest = nearest_surface(analysis)
     if nearest is not None and nearest.analysis is not None:
         exact = nearest.analysis
-        model = surface_model(exact, nearest_scene(scene, exact), tolerance, cap)
+        exact_scene = nearest_scene(scene, exact)
+        model = surface_model(exact, exact_scene, tolerance)
         deviation = typed_deviation(model.shape, analysis.squarefree, scene)
         lines = (*nearest_lines(nearest, deviation), *model.description)
-        return dataclasses.replace(
+        model = dataclasses.replace(
             model, description=lines, typed_deviation=deviation, beyond_rounding=not nearest.within_rounding
         )
+        return _capped(model, exact_scene, analysis.recognition.polynomial) if cap else model
     size = scene.region.radius
     check_size(size)
     own = _of_its_zero_set(analysis)
     faces = _surface_faces(own, scene, tolerance, precision(size))
     try:
-        return finished(faces, scene, analysis.squarefree, cap)
+        model = finished(faces, scene, analysis.squarefree)
     except CadGeometryError:
         if faces.route != "analytic" or len(analysis.factors) > 1 or own.recognition.profile is None:
             raise
         # Open CASCADE's Boolean of an analytic torus with a ball through its tube can leave an
         # invalid part; the profile's arcs are cut to the ball's disk before they are turned
         faces = _surface_faces(own, scene, tolerance, precision(size), analytic=False)
-        return finished(faces, scene, analysis.squarefree, cap)
+        model = finished(faces, scene, analysis.squarefree)
+    return _capped(model, scene, analysis.recognition.polynomial) if cap else model
 
 
 def _of_its_zero_set(analysis: Analysis) -> Analysis:
@@ -157,9 +160,9 @@ def _of_its_zero_set(analysis: Analysis) -> Analysis:
     return dataclasses.replace(analysis, recognition=dataclasses.replace(rec, profile=zero_set_profile(rec.profile)))
 
 
-def finished(part: Faces, scene: Scene, polynomial: str, cap: bool = False) -> CadModel:
+def finished(part: Faces, scene: Scene, polynomial: str) -> CadModel:
     """The faces cut to the user's box, sewn into shells and solids (each group apart), checked
-    (:func:`.sewing.assemble`), capped by the region if asked; an error if nothing is left."""
+    (:func:`.sewing.assemble`); an error if nothing is left."""
     size = scene.region.radius
     terms = polynomial_terms(polynomial)
     labels = part.groups or (0,) * len(part.faces)
@@ -172,13 +175,21 @@ def finished(part: Faces, scene: Scene, polynomial: str, cap: bool = False) -> C
     if not pieces:
         raise CadGeometryError("the surface has no real points inside the box")
     shape = pieces[0] if len(pieces) == 1 else compound(pieces)
-    if cap:
-        region = scene.box if scene.box is not None else scene.region
-        shape = capped(shape, region, terms, precision(size))
-        if not BRepCheck_Analyzer(shape).IsValid():
-            raise CadGeometryError("Open CASCADE finds the capped solid invalid (BRepCheck)")
-        lines = (*lines, f"capped by the {'box' if scene.box is not None else 'ball'}: the solid f <= 0 inside it")
     return CadModel(shape, part.route, lines, part.deviation, part.tolerance, precision(size))
+
+
+def _capped(model: CadModel, scene: Scene, typed: str) -> CadModel:
+    """``model`` capped by the region (the scene's box, else its ball) into the solid ``f ≤ 0``
+    inside it, ``f`` as typed (``typed``): its sign, which the square-free part and the nearest
+    exact surface do not keep, says which side is the solid. The deviations stay those of the
+    surface's faces, measured before the caps were added."""
+    region = scene.box if scene.box is not None else scene.region
+    shape = capped(model.shape, region, polynomial_terms(typed), model.precision)
+    if not BRepCheck_Analyzer(shape).IsValid():
+        raise CadGeometryError("Open CASCADE finds the capped solid invalid (BRepCheck)")
+    kind = "box" if scene.box is not None else "ball"
+    lines = (*model.description, f"capped by the {kind}: the solid f <= 0 inside it")
+    return dataclasses.replace(model, shape=shape, description=lines)
 
 
 def _surface_faces(
