@@ -800,9 +800,30 @@ def _window(path: str | None, report: Analysis | None = None, line: int | None =
     problem = display_problem(os.environ, sys.platform)
     if problem is not None:
         return fail(f"the window needs a display: {problem}", None, False, 1)
-    from sorgui.gui.app import run_gui
+    with signals_held():  # run_gui lets them through once its own handlers are in place
+        from sorgui.gui.app import run_gui
 
-    return run_gui(path, report, line)
+        return run_gui(path, report, line)
+
+
+@contextmanager
+def signals_held() -> Iterator[None]:
+    """Ctrl+C, ``SIGTERM`` and ``SIGHUP`` wait while inside and are delivered on leaving (or
+    when the code inside unblocks them). PySide6 runs Python code inside its C++, as its modules
+    load (shiboken6's signature module) and whenever it first makes an enum: the exception
+    that :func:`ending_signals` raises either aborts the process there ("libshiboken/signature:
+    could not initialize", SIGABRT and a core dump) or is swallowed with the signal, and the
+    window then opened and stayed (both seen with a SIGTERM in the window's first half-second
+    on a loaded machine). The window's own handlers never raise (:class:`sorgui.gui.app.SignalEnding`)."""
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    ending = {signal.SIGINT, signal.SIGTERM, signal.SIGHUP}
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, ending)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 WINDOWLESS_PLATFORMS = ("offscreen", "minimal", "minimalegl", "vnc")

@@ -123,10 +123,13 @@ class SignalEnding:
 
     Installed before the window is built, so that a signal sent while sorgui starts (its worker
     process already running) is not met by the default action, which would end the window and
-    leave the worker behind. Qt's event loop runs in C++, where Python's signal handlers wait:
-    the handler only writes the signal to a socket (``signal.set_wakeup_fd``) that a
-    ``QSocketNotifier`` watches, and the window is closed from the event loop, never from inside
-    another slot; a signal met before the loop runs is answered by :meth:`pending`. When the
+    leave the worker behind; until then the signals wait (:func:`sorgui.cli.signals_held`). The
+    handler never raises: PySide6 runs Python code inside its C++ (it makes an enum the first
+    time one is used), where an exception would be swallowed, and the signal with it. Qt's
+    event loop runs in C++, where Python's signal handlers wait: the handler only writes the
+    signal to a socket (``signal.set_wakeup_fd``) that a ``QSocketNotifier`` watches, and the
+    window is closed from the event loop, never from inside another slot; a signal met before
+    the loop runs is answered by :meth:`pending`. When the
     event loop cannot answer within :data:`ENDING_DEADLINE_S` (the window still loading its
     modules, or a long call on the GUI thread), the process exits from a watchdog thread:
     the worker processes die with it (they die with their parent), and nothing typed is lost
@@ -207,6 +210,8 @@ def run_gui(path: str | None = None, report: Analysis | None = None, line: int |
     faulthandler.enable()
     app = create_application()
     ending = SignalEnding(app)
+    if hasattr(signal, "pthread_sigmask"):  # held while PySide6 loaded (sorgui.cli.signals_held)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, ENDING_SIGNALS)
     try:
         ending.window = open_main_window(path, report, line)
         early = ending.pending()

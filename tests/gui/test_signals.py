@@ -14,6 +14,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from tests.test_cli_signals import dead, descendants, wait_for
@@ -86,6 +87,44 @@ def test_sigterm_while_the_window_starts_or_analyses_ends_it_within_a_second(tmp
     assert seconds < PROMISE_S + ROOM_S, seconds
     assert proc.returncode == 128 + signal.SIGTERM and not _noise(err), err
     wait_for(lambda: all(dead(pid) for pid in children), 10)
+
+
+def test_sigterm_in_the_first_moments_ends_the_window_with_its_status(tmp_path: Path) -> None:
+    """SIGTERM at moments through the window's first half-second, while Python, PySide6 and
+    shiboken6 load: always ``128 + SIGTERM`` and nothing on stderr (one sent while shiboken6 ran
+    its start-up aborted the process: "libshiboken/signature: could not initialize", SIGABRT),
+    or, before Python runs sorgui's code at all, the signal's own end of the process."""
+    env = {**os.environ, "HOME": str(tmp_path), "XDG_CONFIG_HOME": str(tmp_path / "config")}
+    for after in np.linspace(0.05, 0.5, 10):
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "sorgui.cli"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env
+        )
+        time.sleep(after)
+        children = descendants(proc.pid)
+        _seconds, err = end_with(proc, signal.SIGTERM)
+        assert proc.returncode in (128 + signal.SIGTERM, -signal.SIGTERM), (after, proc.returncode, err)
+        assert not _noise(err), (after, err)
+        wait_for(lambda children=children: all(dead(pid) for pid in children), 10)
+
+
+def test_a_signal_held_while_shiboken_starts_is_delivered_after_it() -> None:
+    """The signal waits while PySide6 loads (:func:`sorgui.cli.signals_held`) and then ends the
+    process as any other: the import finishes, then ``_Terminated`` unwinds the stack."""
+    script = (
+        "import os, signal\n"
+        "from sorgui.cli import _Terminated, ending_signals, signals_held\n"
+        "try:\n"
+        "    with ending_signals():\n"
+        "        with signals_held():\n"
+        "            os.kill(os.getpid(), signal.SIGTERM)\n"
+        "            import PySide6.QtCore\n"
+        "            print('loaded', flush=True)\n"
+        "        print('not ended')\n"
+        "except _Terminated as exc:\n"
+        "    print('ended by', exc.signum)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
+    assert done.stdout.split("\n")[:2] == ["loaded", f"ended by {int(signal.SIGTERM)}"], done
 
 
 def test_a_signal_while_the_window_starts_ends_it_and_its_worker(tmp_path: Path) -> None:
