@@ -107,6 +107,22 @@ def test_the_time_limit_keeps_the_finished_stages() -> None:
     wait_for(lambda: all(dead(pid) for pid in children + singulars), 5)
 
 
+def test_a_verdict_found_before_a_stuck_real_locus_is_kept() -> None:
+    """The real locus of ``(x² + y² + z² + 10⁵⁰)¹⁰ − 10⁵⁰·x`` takes minutes; its analysis process
+    frozen there (as inside one long C call) and ended at the limit: the verdict and the axis,
+    found in milliseconds before it, are in the answer (it said "undecided")."""
+    timeout = 6.0
+    proc = launch([*ANALYZE, "--json", "--timeout", str(timeout), "(x^2+y^2+z^2+10^50)^10 - 10^50*x"])
+    time.sleep(3.0)  # the recognition is done and the real locus started
+    children = freeze_analysis(proc)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 0 and "Traceback" not in err, err
+    data = json.loads(out)
+    assert data["is_sor"] is True and data["axis"]["direction"] == ["1", "0", "0"]
+    assert "real locus" in data["unfinished"] and len(data["factors"]) == 1
+    wait_for(lambda: all(dead(pid) for pid in children), 5)
+
+
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT, signal.SIGHUP])
 def test_a_signal_ends_sorgui_within_a_second_when_the_analysis_is_frozen(signum: int) -> None:
     proc = launch([*ANALYZE, "--timeout", "600", "-f", SLOW])

@@ -213,9 +213,23 @@ def analyze_polynomial(
     with clock.stage("factors"):
         factors, distinct = factor_reports(f, recognition, method)
     real = None
-    if not recognition_only and recognition.is_sor:
-        with clock.stage("real locus"):
-            real = real_locus(f, symmetry, profile)
+    own_profile = profile  # the real locus reads a sphere or a plane as such, not about one axis
+    # A quadric sphere (or a power of one): every line through the centre is an axis, Table 1 is read
+    # about the one along z (concentric spheres are unions of circles in any meridian plane: not read).
+    kept = total_degree(distinct[0]) if len(distinct) == 1 else None  # the degree of the zero set's equation
+    centre = symmetry.center if profile is None and symmetry.kind == SPHERE and kept == 2 else None
+    sphere = centre is not None
+    if centre is not None and not recognition_only:
+        K = f.ring.domain
+        profile = profile_curve(f, centre, (K.zero, K.zero, K.one), (K.one, K.zero, K.zero))
+        recognition = replace(recognition, profile=profile_report(profile, K))
+    # A plane likewise: every normal line is an axis, Table 1 is read about one of them.
+    plane = profile is None and symmetry.kind == PLANE and kept == 1
+    if plane and not recognition_only:
+        K = f.ring.domain
+        foot, normal = plane_foot(distinct[0])  # the plane itself, not a power of it
+        profile = profile_curve(f, foot, normal, perpendicular(normal, K))
+        recognition = replace(recognition, profile=profile_report(profile, K))
     approximation: Approximation | None = None
     near = None
     canal_result: Canal | None = None
@@ -238,6 +252,12 @@ def analyze_polynomial(
             conical=conical_result,
         )
 
+    if not recognition_only and recognition.is_sor:
+        # The exact verdict goes out before the real locus, which may outlast the time limit
+        # inside one C call: a process killed there had said nothing of its verdict.
+        clock.publish(result(None, ()))
+        with clock.stage("real locus"):
+            real = real_locus(f, symmetry, own_profile)
     if tolerance is not None or (text is not None and has_decimals(text)):
         clock.publish(result(None, ()))  # the exact verdict at once: the rounding takes seconds at high degree
         from .rounded.approximate import (  # numpy: only for rounded input
@@ -251,22 +271,6 @@ def analyze_polynomial(
             near = approximate_symmetry(f, rounding, notes=rounding_notes, snap_exact=not recognition.is_sor)
         approximation = near.approximation
 
-    # A quadric sphere (or a power of one): every line through the centre is an axis, Table 1 is read
-    # about the one along z (concentric spheres are unions of circles in any meridian plane: not read).
-    kept = total_degree(distinct[0]) if len(distinct) == 1 else None  # the degree of the zero set's equation
-    centre = symmetry.center if profile is None and symmetry.kind == SPHERE and kept == 2 else None
-    sphere = centre is not None
-    if centre is not None and not recognition_only:
-        K = f.ring.domain
-        profile = profile_curve(f, centre, (K.zero, K.zero, K.one), (K.one, K.zero, K.zero))
-        recognition = replace(recognition, profile=profile_report(profile, K))
-    # A plane likewise: every normal line is an axis, Table 1 is read about one of them.
-    plane = profile is None and symmetry.kind == PLANE and kept == 1
-    if plane and not recognition_only:
-        K = f.ring.domain
-        foot, normal = plane_foot(distinct[0])  # the plane itself, not a power of it
-        profile = profile_curve(f, foot, normal, perpendicular(normal, K))
-        recognition = replace(recognition, profile=profile_report(profile, K))
     rationality = None
     tube = None
     found: tuple[Parametrization, ...] = ()
