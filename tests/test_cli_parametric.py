@@ -79,3 +79,27 @@ def test_bad_maps_are_one_line_and_exit_2(text: str, words: str) -> None:
     assert out.stderr.count("\n") == 1 and words in out.stderr and "Traceback" not in out.stderr
     data = json.loads(sorgui("analyze", "--json", text).stdout)
     assert words in data["error"]["message"] and isinstance(data["error"]["position"], int)
+
+
+def test_a_flat_rounded_map_writes_standard_json_that_reads_back(tmp_path: Path) -> None:
+    """A paraboloid ``z = 0.01·(s² + t²)`` turned by a rotation printed to 12 digits: over the
+    sampled patch every normal lies along the axis, so its distance from the map is not measured.
+    It was written as ``Infinity``, which no JSON reader (sorgui's own included) accepts."""
+    rows = (
+        ("0.781639173907", "-0.482929284214", "0.394739798174"),
+        ("0.550117230704", "0.832030133775", "-0.0713924994179"),
+        ("-0.293957878439", "0.272956338888", "0.916015066887"),
+    )
+    text = "(" + ", ".join(f"{a}*s + {b}*t + {c}*0.01*(s^2+t^2)" for a, b, c in rows) + ")"
+    report = tmp_path / "map.json"
+    done = sorgui("analyze", "--json", "-o", str(report), text)
+    assert done.returncode == 0, done.stderr
+
+    def refuse(constant: str) -> None:
+        raise AssertionError(f"not standard JSON: {constant}")
+
+    data = json.loads(done.stdout, parse_constant=refuse)
+    near = data["approximate"]
+    assert near["relative_distance"] is None and near["near_sor"] is False
+    assert any("not measured" in note for note in near["notes"])
+    assert read_report(report).approximate is not None  # sorgui reads its own file back

@@ -12,6 +12,7 @@ what makes or reads them.
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass, fields
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -437,10 +438,14 @@ def _plain(obj: Any) -> Any:
 
 
 def _lists(value: Any) -> Any:
+    """Tuples as lists, and a number that is not finite as ``None``: JSON has no infinity (a
+    report holding ``Infinity`` was refused by sorgui's own reader and by other programs)."""
     if isinstance(value, dict):
         return {k: _lists(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return [_lists(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
     return value
 
 

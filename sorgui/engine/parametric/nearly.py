@@ -144,11 +144,25 @@ def nearly(surface: RationalMap, tolerance: float, source: str) -> tuple[Approxi
     if found is None:
         axis = rotation_axis(samples)
         deviation = None if axis is None else _axis_deviation(samples, axis)
+        along = deviation is not None and not math.isfinite(deviation)
+        deviation = None if along else deviation
         residual = None if deviation is None else deviation / (NEAR_FACTOR * tolerance)
-        far = (
+        why = (
             f"not near any continuous symmetry: the smallest singular value of (★) is {singular[-1]:.4g}, "
             f"above {gate:.4g}, so no kind is tried"
+            if small == 0
+            else f"{small} singular value(s) of (★) are at most {gate:.4g}, but no kind of symmetry could be "
+            "measured on the sampled patch"
+        )
+        far = (
+            why
             + ("" if deviation is None else " (the residual is that of the best rotation axis)")
+            + (
+                f"; the sampled normals all lie along the best rotation axis (within {SINE_FLOOR:g}), "
+                "so their distance from it is not measured"
+                if along
+                else ""
+            )
         )
         approximation = Approximation(
             tolerance, source, False, None, deviation, residual, singular, notes=(far, *NOTES)
@@ -197,6 +211,8 @@ def _nearest_kind(samples: Samples, small: int) -> Found | None:
                 axis = axis_of(candidate.point, candidate.direction, np.zeros(3))
                 found = (candidate.kind, _axis_deviation(samples, axis), axis, None, None)
             else:
+                continue
+            if not math.isfinite(found[1]):  # no normal far enough from the axis to measure it
                 continue
             if best is None or found[1] < best[1]:
                 best = found
