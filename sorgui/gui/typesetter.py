@@ -1,7 +1,7 @@
 """The window's typesetting process, from the GUI thread: ask for formulas, receive their pictures.
 
 :class:`Typesetter` starts :func:`sorgui.session.typesetting.serve` in a process of its own
-(``spawn``, niceness 15, dying with the window) and keeps it for the window's life. The results
+(``spawn``, below the worker in priority, dying with the window) and keeps it for the window's life. The results
 pane calls :meth:`Typesetter.request` with every formula it still shows as text, the rows on
 screen first; a request replaces the one before. A timer takes the answers off the pipe (a few
 per turn of the event loop, so that showing them never holds the loop up) and

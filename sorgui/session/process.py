@@ -42,9 +42,10 @@ def worker_main(conn: Any, cancel: CancelFlag, niceness: int | None = None) -> N
     serve(conn, cancel, WORKER_NICENESS if niceness is None else niceness)
 
 
-TYPESETTER_NICENESS = 15
-"""The typesetting process runs below the worker (niceness 10) and the window: it takes the
-processor only when they leave it."""
+TYPESETTER_NICENESS = 5
+"""The typesetting process runs below the worker (niceness 1) and the window, which show the
+formulas as text first. At 15 a machine busy with other programs' work typeset a rounded
+torus's formulas in 27 s instead of 4 s (docs/benchmarks.md)."""
 
 
 def typesetter_main(conn: Any) -> None:  # noqa: ANN401 (a Connection)
