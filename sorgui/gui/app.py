@@ -129,11 +129,11 @@ class SignalEnding:
     event loop runs in C++, where Python's signal handlers wait: the handler only writes the
     signal to a socket (``signal.set_wakeup_fd``) that a ``QSocketNotifier`` watches, and the
     window is closed from the event loop, never from inside another slot; a signal met before
-    the loop runs is answered by :meth:`pending`. When the
-    event loop cannot answer within :data:`ENDING_DEADLINE_S` (the window still loading its
-    modules, or a long call on the GUI thread), the process exits from a watchdog thread:
-    the worker processes die with it (they die with their parent), and nothing typed is lost
-    that was not already lost to the busy window."""
+    the loop runs is answered by :meth:`pending`. When the event loop cannot answer within
+    :data:`ENDING_DEADLINE_S` (the window still loading its modules, or a long call on the GUI
+    thread), the process exits from a watchdog thread: the worker processes die with it (they
+    die with their parent), and nothing typed is lost that was not already lost to the busy
+    window."""
 
     def __init__(self, app: QApplication) -> None:
         self.app = app
