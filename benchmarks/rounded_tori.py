@@ -51,9 +51,15 @@ def random_axis(seed: int) -> tuple[np.ndarray, np.ndarray]:
     return direction, point
 
 
-def rounded_torus(direction: np.ndarray, point: np.ndarray, radii: tuple[float, float] = (2.0, 1.0)) -> str:
+def rounded_torus(
+    direction: np.ndarray,
+    point: np.ndarray,
+    radii: tuple[float, float] = (2.0, 1.0),
+    factor: float = 1.0,
+    digits: int = DIGITS,
+) -> str:
     """The torus of ``radii`` (major, minor) about the line through ``point`` along the unit
-    ``direction``, printed with :data:`DIGITS` significant digits."""
+    ``direction``, its equation times ``factor``, printed with ``digits`` significant digits."""
     one = dense.from_terms({(0, 0, 0): 1.0}, 4)
     rho = dense.squared_distance(point)
     h = dense.linear_form(direction, point)
@@ -62,7 +68,7 @@ def rounded_torus(direction: np.ndarray, point: np.ndarray, radii: tuple[float, 
     r2 = dense.times(r1, rho)
     big, k = radii[0] ** 2, radii[0] ** 2 - radii[1] ** 2
     # (ρ + k)² − 4R²·(ρ − h²) = ρ² + (2k − 4R²)ρ + 4R²h² + k²; radii 2, 1: ρ² − 10ρ + 16h² + 9
-    return printed(r2 + (2 * k - 4 * big) * r1 + 4 * big * h2 + k * k * one, DIGITS)
+    return printed(factor * (r2 + (2 * k - 4 * big) * r1 + 4 * big * h2 + k * k * one), digits)
 
 
 def table(repeats: int) -> str:

@@ -13,7 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from benchmarks.rounded_tori import DECIMAL_RADII, rounded_torus
+from benchmarks.rounded_tori import DECIMAL_RADII, random_axis, rounded_torus
 from sorgui.engine import analyze
 from sorgui.engine.errors import AnalysisError
 from sorgui.engine.parsing import parse_polynomial
@@ -199,6 +199,21 @@ def test_a_rounded_torus_with_decimal_radii_snaps_back_to_that_torus() -> None:
     assert nearest is not None and nearest.within_rounding
     assert nearest.axis is not None and nearest.axis.direction == ("30", "-50", "81")
     assert nearest.axis.point == ("1/5", "-1/10", "2/5")
+    assert nearest.analysis is not None and nearest.analysis.rationality.table_row == 1
+
+
+@pytest.mark.parametrize("factor", [0.94515, 37.25])
+@pytest.mark.parametrize("seed", range(1, 7))
+def test_a_rounded_torus_times_a_printed_factor_snaps_back_to_a_torus(seed: int, factor: float) -> None:
+    """A CAD part in millimetres (``R = 32``, ``r = 8`` about a random axis) whose equation was
+    multiplied by a factor before it was printed with 6 digits. The simplest scale within the
+    fit's errors (``1189/1258`` for ``0.94515``) missed the rounding of the large coefficients,
+    and the nearest surface was of row 4 or 5, or outside the rounding; the surface is now
+    snapped up to a factor (docs/math.md §8.5) and is the torus again."""
+    direction, point = random_axis(seed)
+    analysis = analyze(rounded_torus(direction, 40 * point, (32.0, 8.0), factor, 6))
+    nearest = analysis.approximate.nearest
+    assert nearest is not None and nearest.within_rounding
     assert nearest.analysis is not None and nearest.analysis.rationality.table_row == 1
 
 

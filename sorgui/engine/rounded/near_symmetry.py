@@ -354,7 +354,7 @@ def refine_fixed(
     they are snapped, the axis is determined more sharply than with them free. Returns the
     refined candidate and the standard errors of its direction's and point's coordinates (from
     the Gauss–Newton Jacobian, each residual having unit variance in rounding units)."""
-    params, scaled, residual_vector = _fixed_problem(f, candidate, coefficients)
+    params, scaled, residual_vector = _fixed_problem(f, candidate, coefficients, free_scale=True)
     theta, jacobian = gauss_newton(residual_vector, params)
     refined = scaled(theta)
     covariance = np.linalg.pinv(jacobian.T @ jacobian)
@@ -414,10 +414,12 @@ def refine_minimax(
 
 
 def _fixed_problem(
-    f: Normalised, candidate: Candidate, coefficients: FloatArray
+    f: Normalised, candidate: Candidate, coefficients: FloatArray, *, free_scale: bool = False
 ) -> tuple[FloatArray, Callable[[FloatArray], Candidate], Callable[[FloatArray], FloatArray]]:
     """The axis parameters around ``candidate``, the candidate they give (its direction as long
-    as the given one), and the weighted residual of the fixed invariant there."""
+    as the given one), and the weighted residual of the fixed invariant there; with
+    ``free_scale``, of the fixed invariant times the factor that fits best (variable
+    projection): the coefficients then fix the surface, not the scale of its equation."""
     params, build = parametrisation(candidate)
     length = 1.0 if candidate.direction is None else float(np.linalg.norm(candidate.direction))
 
@@ -427,7 +429,10 @@ def _fixed_problem(
 
     def residual_vector(theta: FloatArray) -> FloatArray:
         basis = invariant_basis(scaled(theta), f.degree, f.selected)[0]
-        residual: FloatArray = (f.vector - basis @ coefficients) * f.weights
+        target, fitted = f.vector * f.weights, (basis @ coefficients) * f.weights
+        if free_scale and fitted @ fitted > 0.0:
+            fitted = fitted * float(target @ fitted / (fitted @ fitted))
+        residual: FloatArray = target - fitted
         return residual
 
     return params, scaled, residual_vector

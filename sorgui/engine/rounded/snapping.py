@@ -60,6 +60,7 @@ from .directions import (
     integer_vector,
     quadratic_family,
     rational_point,
+    simplest_between,
     simplest_near,
     snapped_directions,
     three,
@@ -85,6 +86,9 @@ FLAT_SLOPE = 1e-8
 """A change of the profile's terms of degree ``d - 1`` under a unit shift along the axis below
 this (relative to the terms) is the floating-point fit's noise, not a slope: a paraboloid's
 term in ``h`` does not change at all, and dividing by that noise put its centre at 10¹⁰."""
+WITHIN = 1.0 - 1e-8
+"""The share of each coefficient's rounding a rescaled surface is fitted within: the residual
+is measured in floats, a hair from where the exact interval ends."""
 MAX_SHIFT = 1e3
 """A profile centre farther than this along the axis from its foot (in the units of the
 normalised ``f``, whose points are of size 1) is noise: the foot is taken instead."""
@@ -245,9 +249,9 @@ def _first_exact(
     fallback: tuple[int, ExactSurface] | None = None
     for coefficients, surface in _exact_surfaces(f, best, family, typed, rounding):
         if surface.largest <= 1.0:
-            return _bits(coefficients), surface
+            return _shape_bits(coefficients), surface
         if fallback is None:
-            fallback = _bits(coefficients), surface
+            fallback = _shape_bits(coefficients), surface
     return fallback
 
 
@@ -268,13 +272,33 @@ def _exact_surfaces(
     kind = best.candidate.kind
 
     def checked(
-        a: Direction | None, c: Vector | None, exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction]
-    ) -> ExactSurface | None:
+        a: Direction | None,
+        c: Vector | None,
+        exponents: tuple[tuple[int, int], ...],
+        coefficients: list[Fraction],
+        simplest: bool = True,
+    ) -> tuple[list[Fraction], ExactSurface | None]:
+        """The coefficients and the surface they make, if it is near ``f``. When they miss the
+        rounding and are among the simplest, they are rescaled by the simplest factor that puts
+        every coefficient within it (:func:`_within_scale`), and a surface that passes only so
+        is kept in ``rescaled`` for after every other axis and coefficient: a rescaled fit is
+        a weaker sign than one that holds as snapped."""
         g = build(kind, a, c, exponents, coefficients)
-        return None if g is None else _check(g, typed, rounding, f, a, c)
+        if g is None:
+            return coefficients, None
+        surface = _check(g, typed, rounding, f, a, c)
+        if simplest and (surface is None or surface.largest > 1.0) and isinstance(g, fmpq_mpoly) and typed is not None:
+            scale = _within_scale(g, typed, rounding)
+            if scale is not None:
+                coefficients = [scale * v for v in coefficients]
+                fitted = _check(g * fmpq(scale.numerator, scale.denominator), typed, rounding, f, a, c)
+                if fitted is not None and fitted.largest <= 1.0:
+                    rescaled.append((coefficients, fitted))
+        return coefficients, surface
 
     checks = 0
     within: tuple[list[Fraction], ExactSurface] | None = None
+    rescaled: list[tuple[list[Fraction], ExactSurface]] = []
     held: list[_Held] = []
     for first, (a, c) in enumerate(exact_axes(f, best, directions, rounding.tolerance)):
         direction = None if a is None else np.array([float(v) for v in a])
@@ -289,50 +313,54 @@ def _exact_surfaces(
             return [] if not isinstance(g, fmpq_mpoly) or typed is None else _matched_scales(g, typed, rounding)
 
         norm2 = None if kind != REVOLUTION or a is None else _squared_length(a)
-        for rank, coefficients in enumerate(_coefficient_candidates(f, local, matched_scales, norm2)):
+        for rank, (coefficients, snapped) in enumerate(_coefficient_candidates(f, local, matched_scales, norm2)):
             checks += 1
             if checks > MAX_CHECKS:
                 break
-            surface = checked(a, c, local.exponents, coefficients)
+            simplest = snapped and rank < 2
+            coefficients, surface = checked(a, c, local.exponents, coefficients, simplest)
             torus = norm2 is not None and torus_completion(local.exponents, coefficients, norm2) == coefficients
             if surface is not None and surface.largest <= 1.0 and held:
-                if rank >= 2 or (not torus and any(item.torus for item in held)):
+                if not simplest or (not torus and any(item.torus for item in held)):
                     within = coefficients, surface  # simpler coefficients, or a torus, may hold on a minimax axis
                     break
             if surface is not None:
                 yield coefficients, surface
                 if surface.largest <= 1.0:
                     return
-            if rank >= 2:
+            if not simplest:
                 continue
             fixed = np.array([float(q) for q in coefficients]) * f.length**degrees / f.scale
-            held.append(_Held(_bits(coefficients), torus, local.exponents, coefficients, fixed, local.candidate, c))
+            bits = _shape_bits(coefficients)
+            held.append(_Held(bits, torus, local.exponents, coefficients, fixed, local.candidate, c))
             if first > 0:
                 continue
             for a2, c2 in _refined(f, held[-1], family).axes:
-                surface = checked(a2, c2, local.exponents, coefficients)
+                scaled, surface = checked(a2, c2, local.exponents, coefficients)
                 if surface is not None:
-                    yield coefficients, surface
+                    yield scaled, surface
                     if surface.largest <= 1.0:
                         return
         else:
             continue
         break
     tried: list[list[Fraction]] = []
-    simplest = sorted(held, key=lambda item: (not item.torus, item.bits))
-    for simple in simplest:
+    ordered = sorted(held, key=lambda item: (not item.torus, item.bits))
+    for simple in ordered:
         if simple.coefficients in tried or len(tried) >= MINIMAX_TRIES:
             continue
         tried.append(simple.coefficients)
         refined = _refined(f, simple, family)
-        seen = [item.point for item in simplest] + [c for item in held if item.refined for _, c in item.refined.axes]
+        seen = [item.point for item in ordered] + [c for item in held if item.refined for _, c in item.refined.axes]
         points = sorted({c for c in seen if c is not None}, key=lambda c: _bits(list(c)))[:MINIMAX_POINTS]
         for a2, c2 in _minimax_axes(f, refined, simple.fixed, family, points):
-            surface = checked(a2, c2, simple.exponents, simple.coefficients)
+            scaled, surface = checked(a2, c2, simple.exponents, simple.coefficients)
             if surface is not None:
-                yield simple.coefficients, surface
+                yield scaled, surface
                 if surface.largest <= 1.0:
                     return
+    if rescaled:
+        yield rescaled[0]
     if within is not None:
         yield within
 
@@ -418,12 +446,14 @@ def _coefficient_candidates(
     local: Fit,
     matched_scales: Callable[[list[Fraction]], list[Fraction]],
     norm2: Fraction | None,
-) -> list[list[Fraction]]:
-    """Exact coefficients of ``g`` in the original coordinates, simplest candidates first: each
-    snapped on its own; the ratios to the best-determined one snapped, times the scales that
-    ``matched_scales`` gives them (or that coefficient snapped, or as fitted); as fitted; and
-    each of these made a torus when it has a torus's terms (:func:`torus_completion`, ``norm2``
-    the squared length ``|a|²`` of the axis direction, when rational)."""
+) -> list[tuple[list[Fraction], bool]]:
+    """Exact coefficients of ``g`` in the original coordinates, simplest first (the fewest bits
+    up to a common factor, :func:`_shape_bits`; one of each shape), each with whether it was
+    snapped (else it is as fitted): each snapped on its own; the ratios to the best-determined
+    one snapped, times that coefficient snapped and times the scales that ``matched_scales``
+    gives them; as fitted; and each of these made a torus when it has a torus's terms
+    (:func:`torus_completion`, ``norm2`` the squared length ``|a|²`` of the axis direction, when
+    rational)."""
     degrees = np.array([i + 2 * j for i, j in local.exponents])
     factor = f.scale / f.length**degrees
     values = local.coefficients * factor
@@ -438,18 +468,21 @@ def _coefficient_candidates(
         found.append([scale * r for r in snapped])
         for matched in matched_scales(snapped):
             found.append([matched * r for r in snapped])
-        found.append([Fraction(values[pivot]) * r for r in snapped])
-    found.append([Fraction(v).limit_denominator(10**15) for v in values])
-    ranked: list[tuple[int, list[Fraction]]] = []
-    for candidate in found:
-        ranked.append((_bits(candidate), candidate))
+    fitted = [Fraction(v).limit_denominator(10**15) for v in values]
+    ranked: list[tuple[int, list[Fraction], bool]] = []
+    for candidate in [*found, fitted]:
+        is_snapped = candidate is not fitted
+        ranked.append((_shape_bits(candidate), candidate, is_snapped))
         torus = None if norm2 is None else torus_completion(local.exponents, candidate, norm2)
         if torus is not None:
-            ranked.append((_bits(torus[1:]), torus))
-    distinct: list[list[Fraction]] = []
-    for _, candidate in sorted(ranked, key=lambda item: item[0]):
-        if candidate not in distinct:
-            distinct.append(candidate)
+            ranked.append((_shape_bits(torus[1:]), torus, is_snapped))
+    distinct: list[tuple[list[Fraction], bool]] = []
+    shapes: set[tuple[int, ...]] = set()
+    for _, candidate, is_snapped in sorted(ranked, key=lambda item: item[0]):
+        shape = _shape(candidate)
+        if shape not in shapes:  # the same surface scaled: its scale is found when it is checked
+            shapes.add(shape)
+            distinct.append((candidate, is_snapped))
     return distinct
 
 
@@ -504,8 +537,61 @@ def _matched_scales(g: fmpq_mpoly, typed: _Typed, rounding: Rounding) -> list[Fr
     return scales
 
 
+def _within_scale(g: fmpq_mpoly, typed: _Typed, rounding: Rounding) -> Fraction | None:
+    """The factor ``μ ≠ 1`` that makes ``μ·g`` the monic form of ``g`` times the simplest ``λ``
+    (the fewest bits, a decimal when one is simplest) with every coefficient within its
+    rounding of ``f``'s, or ``None`` when there is no such ``λ`` (docs/math.md §8.5). ``f`` may be
+    a simple surface times a printed factor (``0.94515``), and the scale snapped from one
+    coefficient of the fit (the simplest rational within its standard errors, ``1189/1258``)
+    misses the rounding of ``f``'s largest coefficients by a millionth."""
+    monomials = [dense.monomial(m) for m in g.monoms()]
+    values = [Fraction(int(c.p), int(c.q)) for c in g.coeffs()]
+    lo: Fraction | None = None
+    hi: Fraction | None = None
+    for m, n in zip(monomials, (v / values[0] for v in values)):
+        value, bound = Fraction(typed.floats.get(m, 0.0)), Fraction(rounding.bound(m) * WITHIN)
+        first, last = sorted(((value - bound) / n, (value + bound) / n))
+        lo = first if lo is None else max(lo, first)
+        hi = last if hi is None else min(hi, last)
+        if lo > hi:
+            return None
+    if lo is None or hi is None or lo <= 0 <= hi:
+        return None
+    factor = min((simplest_between(lo, hi), _shortest_decimal(lo, hi)), key=lambda v: _bits([v])) / values[0]
+    return None if factor == 1 else factor
+
+
+def _shortest_decimal(lo: Fraction, hi: Fraction) -> Fraction:
+    """The decimal with the fewest digits in ``[lo, hi]`` (``0 < lo`` or ``hi < 0``): a printed
+    factor reads as one (``0.9451502``, not ``606759779/641971867``)."""
+    if hi < 0:
+        return -_shortest_decimal(-hi, -lo)
+    power = 10 ** max(0, -math.floor(math.log10(hi - lo)))
+    while True:
+        n = math.ceil(lo * power)
+        if n <= hi * power:
+            return Fraction(n, power)
+        power *= 10
+
+
 def _bits(values: list[Fraction]) -> int:
     return sum(v.numerator.bit_length() + v.denominator.bit_length() for v in values)
+
+
+def _shape(values: list[Fraction]) -> tuple[int, ...]:
+    """The primitive integer vector proportional to ``values`` (its first non-zero entry
+    positive): the coefficients of one surface ``g = 0`` up to the factor of ``g``."""
+    common = math.lcm(*(v.denominator for v in values))
+    integers = [v.numerator * (common // v.denominator) for v in values]
+    content = math.gcd(*integers) or 1
+    sign = -1 if next((n for n in integers if n), 0) < 0 else 1
+    return tuple(sign * n // content for n in integers)
+
+
+def _shape_bits(values: list[Fraction]) -> int:
+    """The bits of the surface's coefficients up to a factor, those of :func:`_shape`: ``g`` and
+    ``0.94515·g`` are one surface, as simple as each other (docs/math.md §8.5)."""
+    return sum(n.bit_length() + 1 for n in _shape(values))
 
 
 def _axis_bits(surface: ExactSurface) -> int:
