@@ -50,6 +50,20 @@ def test_json_has_the_approximate_object_with_the_nearest_analysis(torus_text: s
     assert nearest["analysis"]["is_sor"] is True
     assert nearest["analysis"]["rationality"]["table_row"] == 1
     assert nearest["max_deviation"] < 1e-7
+    assert nearest["within_rounding"] is True and 0 <= nearest["largest_residual"] <= 1
+
+
+def test_a_nearest_surface_outside_the_rounding_says_by_how_much() -> None:
+    """Its relative distance can be below the tolerance with one coefficient beyond its own
+    rounding: the report says which figure put it outside (and a report saved before the figure
+    existed still reads)."""
+    from sorgui.engine.results import NearestSurface
+    from sorgui.export.text import outside_words
+
+    near = NearestSurface("x**2 + y**2 - z**2", "revolution", None, None, None, 1.4e-4, 0.11, False)
+    assert outside_words(near) == "a coefficient is off by more than its rounding"
+    near = NearestSurface("x**2 + y**2 - z**2", "revolution", None, None, None, 1.4e-4, 0.11, False, None, 2.615)
+    assert outside_words(near) == "one coefficient is off by 2.6 times its own rounding"
 
 
 def test_recognition_only_keeps_the_approximation_without_the_nearest_analysis(torus_text: str) -> None:
@@ -80,6 +94,34 @@ def test_a_near_miss_says_how_far_it_is() -> None:
     out = sorgui("--recognition-only", "x^2 + 2.5y^2 + 3.7z^2 - 1")
     assert "not near a surface of revolution" in out.stdout
     assert "smallest singular value" in out.stdout
+
+
+ROUNDED_ELLIPTIC_CYLINDER = (
+    "0.0649354*z^2 + 0.205178*y*z + 0.1634*y^2 + 0.0426503*x*z + 0.0931828*x*y + 0.132775*x^2"
+    " - 0.205178*z - 0.3268*y - 0.0931828*x - 0.8366"
+)
+"""An elliptic cylinder about a tilted line, printed with 6 digits: within the rounding of an
+extrusion, not near a surface of revolution."""
+
+
+def test_rounded_input_near_an_extrusion_says_so_in_the_report_and_the_banner() -> None:
+    """The report said "within … of an extrusion with normal (…)" (its vector is the direction
+    of the extrusion) and "(no kind of symmetry was tried, see below)" of the extrusion's own
+    residual; the window's banner called that residual the distance to "the nearest
+    rotation-invariant polynomial"."""
+    from sorgui.engine import analyze
+    from sorgui.gui.wording import verdict
+
+    out = sorgui("--recognition-only", ROUNDED_ELLIPTIC_CYLINDER)
+    assert "not near a surface of revolution; within" in out.stdout
+    assert "of an extrusion along (0.0556" in out.stdout and "with normal" not in out.stdout
+    assert "times the rounding (at most 1: within it)" in out.stdout and "no kind of symmetry" not in out.stdout
+    title, detail, kind = verdict(analyze(ROUNDED_ELLIPTIC_CYLINDER, recognition_only=True))
+    assert (title, kind) == ("Not a surface of revolution", "not")
+    assert detail.startswith("not near one either, but within the rounding it is an extrusion")
+    assert "along (0.0556" in detail and "rotation-invariant" not in detail
+    title, detail, _ = verdict(analyze("x^2 + 2.5y^2 + 3.7z^2 - 1", recognition_only=True))
+    assert "the nearest rotation-invariant polynomial is" in detail
 
 
 @pytest.mark.parametrize("value", ["0", "-1e-3", "1.5", "nan", "inf", "tight"])

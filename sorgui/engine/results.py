@@ -108,7 +108,8 @@ class NearestSurface:
     rest of the JSON; ``relative_distance`` is ``‖f - g‖₂ / ‖f‖₂`` over the coefficients, with
     ``g`` the snapped polynomial; ``max_deviation`` is the largest distance (length units) from a
     sampled point of ``g = 0`` to ``f = 0`` inside the viewport's box; ``within_rounding`` says
-    whether every coefficient of ``f - g`` lies within the rounding of the printed input.
+    whether every coefficient of ``f - g`` lies within the rounding of the printed input, and
+    ``largest_residual`` is the largest of them in units of that rounding (``≤ 1``: within it).
     ``analysis`` is the whole exact analysis of ``g`` (``None`` with ``--recognition-only``).
     """
 
@@ -121,6 +122,7 @@ class NearestSurface:
     max_deviation: float | None
     within_rounding: bool
     analysis: Analysis | None = None
+    largest_residual: float | None = None
 
 
 @dataclass(frozen=True)
@@ -181,6 +183,7 @@ class Approximation:
                 max_deviation=nearest.get("max_deviation"),
                 within_rounding=nearest["within_rounding"],
                 analysis=None if nearest.get("analysis") is None else Analysis.from_json(nearest["analysis"]),
+                largest_residual=nearest.get("largest_residual"),
             )
         plain = {k: _tuples(v) for k, v in data.items() if k in _field_names(cls) and k not in ("axis", "nearest")}
         return cls(**plain, axis=_build(ApproximateAxis, data.get("axis")), nearest=nearest)

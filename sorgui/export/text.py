@@ -206,7 +206,8 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
     elif ap.center is not None:
         where = f" centred at {_floats(ap.center, ap.tolerance)}"
     elif ap.normal is not None:
-        where = f" with normal {_floats(ap.normal, ap.tolerance)}"
+        across = "along" if ap.kind == "extrusion" else "with normal"  # an extrusion's vector is its direction
+        where = f" {across} {_floats(ap.normal, ap.tolerance)}"
     kind = NEAR_KINDS.get(ap.kind or "", "a surface of revolution")
     exact = analysis.recognition.symmetry
     if ap.near_sor and analysis.is_sor and (ap.kind or exact) == exact:
@@ -225,7 +226,8 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
     else:
         lines.append("  not near a surface of revolution within the tolerance")
     if ap.residual is not None:
-        scale = "at most 1: within it" if ap.near_sor or ap.residual > 1 else "no kind of symmetry was tried, see below"
+        tried = ap.near_sor or ap.kind not in (None, "none") or ap.residual > 1
+        scale = "at most 1: within it" if tried else "no kind of symmetry was tried, see the notes"
         lines.append(
             f"  residual {ap.residual:.3g} times the rounding ({scale}); singular values "
             f"of (★): {', '.join(f'{v:.2g}' for v in ap.singular_values)}"
@@ -237,8 +239,8 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
         deviation = "-" if near.max_deviation is None else f"{near.max_deviation:.2g}"
         lines.append(
             "  no simple exact surface was found within the rounding: the nearest one found lies "
-            f"outside it (relative distance {near.relative_distance:.2g}, largest deviation of the zero "
-            f"sets {deviation}); its exact analysis is in the JSON report"
+            f"outside it ({outside_words(near)}; relative distance {near.relative_distance:.2g}, "
+            f"largest deviation of the zero sets {deviation}); its exact analysis is in the JSON report"
         )
     elif near is not None:
         deviation = "-" if near.max_deviation is None else f"{near.max_deviation:.2g}"
@@ -254,6 +256,15 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
         elif near.analysis is None:
             lines += ["    " + line for line in recognition_lines_of_nearest(near)]
     return lines
+
+
+def outside_words(near: NearestSurface) -> str:
+    """How far outside the rounding a nearest surface is: its coefficient farthest off, in units
+    of that coefficient's own rounding (a relative distance below the tolerance can still have
+    one coefficient beyond it)."""
+    if near.largest_residual is None:
+        return "a coefficient is off by more than its rounding"
+    return f"one coefficient is off by {near.largest_residual:.2g} times its own rounding"
 
 
 def recognition_lines_of_nearest(near: NearestSurface) -> list[str]:

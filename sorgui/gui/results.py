@@ -38,6 +38,7 @@ from sorgui.export.text import (
     component_words,
     float_text,
     nearly_canal,
+    outside_words,
     plain_text,
     symmetry_name,
 )
@@ -350,8 +351,9 @@ class ResultsPane(QScrollArea):
                 (
                     "nearest exact surface",
                     "none within the rounding: no simple exact surface was found within it; the nearest one "
-                    f"found lies outside it (coefficient distance {nearest.relative_distance:.3g}, relative), "
-                    "and its analysis is shown only when you switch the view to it",
+                    f"found lies outside it ({outside_words(nearest)}; coefficient distance "
+                    f"{nearest.relative_distance:.3g}, relative), and its analysis is shown only when you "
+                    "switch the view to it",
                 )
             )
         elif nearest is not None:

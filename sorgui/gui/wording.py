@@ -184,11 +184,20 @@ def near_words(approx: Approximation) -> str:
 
 
 def far_words(approx: Approximation) -> str:
-    """Why rounded input is *not* near a surface of revolution: how far it is."""
+    """Why rounded input is *not* near a surface of revolution: how far it is, or what it is
+    near instead (an extrusion: its distance and residual are those of the extrusion)."""
+    if approx.kind not in (None, "none", "revolution") and approx.relative_distance is not None:
+        along = "" if approx.normal is None else f" along {floats(approx.normal, tolerance=approx.tolerance)}"
+        residual = "" if approx.residual is None else f", {approx.residual:.3g} times the rounding of the input"
+        return (
+            f"not near one either, but within the rounding it is {kind_noun(approx.kind)}{along}: "
+            f"{approx.relative_distance:.2g} away (relative){residual} (tolerance {approx.tolerance:.2g})"
+        )
+    distance = "–" if approx.relative_distance is None else f"{approx.relative_distance:.2g}"
+    residual = "" if approx.residual is None else f", {approx.residual:.3g} times the rounding of the input"
     return (
-        f"not near one either: the nearest rotation-invariant polynomial is {approx.relative_distance:.2g} "
-        f"away (relative), {approx.residual:.3g} times the rounding of the input "
-        f"(tolerance {approx.tolerance:.2g})"
+        f"not near one either: the nearest rotation-invariant polynomial is {distance} "
+        f"away (relative){residual} (tolerance {approx.tolerance:.2g})"
     )
 
 

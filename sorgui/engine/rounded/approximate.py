@@ -352,4 +352,5 @@ def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> Near
         relative_distance=exact.relative_distance,
         max_deviation=None if deviation is None else deviation * f.length,
         within_rounding=exact.largest <= 1.0,
+        largest_residual=exact.largest,
     )
