@@ -226,9 +226,10 @@ class FormulaView(QFrame):
             # wrapped only when it does not fit: a wrapped label is given a width of Qt's choosing
             self.content.setWordWrap(self.content.fontMetrics().horizontalAdvance(shown) > self._max_width)
             self.content.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
-            self.show_all_button.setText(
-                f"show all ({hidden:,} more characters; Copy gives them all)" if hidden else "exact digits"
-            )
+            # short: a wider button made the narrowest pane scroll sideways
+            self.show_all_button.setText(f"show all ({hidden:,} more characters)" if hidden else "exact digits")
+            if hidden:
+                self.show_all_button.setToolTip("Show the whole formula (Copy gives it all)")
         hint = self.content.sizeHint()
         if typeset is not None and hint.width() > self._max_width:
             scroll = RowScroll()

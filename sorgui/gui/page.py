@@ -19,6 +19,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QGridLayout, QLabel, QTableWidget, QVBoxLayout, QWidget
 
 from sorgui.gui.formula_view import FormulaView, retire
+from sorgui.gui.wording import short_numbers
 from sorgui.session.formulas import TypesetFormula
 
 CAPTION_WIDTH = 130
@@ -118,7 +119,7 @@ def _section(
     layout = QVBoxLayout(box)
     layout.setContentsMargins(0, 0, 0, 0)
     layout.setSpacing(6)
-    title = QLabel(heading)
+    title = QLabel(short_numbers(heading))
     title.setObjectName("sectionHeading")
     font = title.font()
     font.setBold(True)
@@ -146,7 +147,7 @@ def _section(
             views[key] = view
             grid.addWidget(view, index, 1)
         else:
-            text = QLabel(value)
+            text = QLabel(short_numbers(value))
             text.setWordWrap(True)
             text.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
             grid.addWidget(text, index, 1)

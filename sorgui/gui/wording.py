@@ -8,6 +8,7 @@ algebra ``L``, the profile ``P``, Table 1 of Vršek & Lávička).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 
 from sorgui.engine.results import Analysis, Approximation, Canal, Conical, Recognition
@@ -170,6 +171,19 @@ def floats(values: tuple[float, ...] | None, digits: int = 6, tolerance: float |
     return float_text(values, digits, tolerance)
 
 
+LONG_NUMBER = re.compile(r"[0-9]{25,}")
+"""A number too long to read in the window: one unbreakable line of 126 digits (the ``d`` of a
+field ``QQ(√d)`` of a nearest surface on an irrational axis) widened the results pane beyond
+the window."""
+
+
+def short_numbers(text: str) -> str:
+    """``text`` with each number of 25 digits or more shortened to its first and last digits and
+    its length (``QQ(sqrt(4258300637…634111 [126 digits]))``), for the window's words; the
+    formulas, their copy buttons and the exports keep every digit."""
+    return LONG_NUMBER.sub(lambda m: f"{m.group()[:10]}…{m.group()[-6:]} [{len(m.group())} digits]", text)
+
+
 def near_words(approx: Approximation) -> str:
     """The near case in one sentence, as the issue's user expects it."""
     axis = approx.axis
@@ -227,8 +241,8 @@ def verdict(analysis: Analysis, rounding_pending: bool = False) -> tuple[str, st
     degree = f"degree {rec.degree}" if rec.polynomial else "degree unknown"  # a map's equation may not be found
     answer = analysis.verdict
     if answer == "undecided":
-        return "Undecided within the time limit", f"{kind} · {degree} over {analysis.field}", "info"
-    detail = f"{kind} · {degree} over {analysis.field} · dim L = {rec.symmetry_dimension}"
+        return "Undecided within the time limit", f"{kind} · {degree} over {short_numbers(analysis.field)}", "info"
+    detail = f"{kind} · {degree} over {short_numbers(analysis.field)} · dim L = {rec.symmetry_dimension}"
     conical = analysis.conical
     if conical is not None and conical.kind == "cone" and conical.apex is not None:
         detail += f" · a cone with apex ({', '.join(conical.apex)}){_over(conical)}"

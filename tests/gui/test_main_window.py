@@ -251,6 +251,32 @@ def test_undo_stays_within_the_loaded_document(make_window, qtbot) -> None:
     assert edit.toPlainText() == example_text("cone")
 
 
+def test_the_editor_wraps_a_rounded_equation_between_its_numbers(make_window, qtbot) -> None:
+    """A pasted CAD equation was wrapped anywhere, "- 0." at the end of one line and "0618315" at
+    the start of the next. It now wraps between terms; an equation too long for Qt to wrap that
+    way quickly (a dense surface of degree 40, 200,000 characters) still wraps anywhere."""
+    from benchmarks.gui_heartbeat import dense_surface
+    from sorgui.gui.editor import WORD_WRAP_LIMIT
+
+    window = make_window(prestart_worker=False)
+    text = (
+        "0.172059*z^2 + 0.196915*y*z + 0.125626*y^2 + 0.0489472*x*z - 0.0618315*x*y + 0.242315*x^2"
+        " - 0.638162*z + 0.0429165*y - 1.61362*x + 2.08005"
+    )
+    window.set_equation(text)
+    edit = window.editor.text_edit
+    qtbot.waitUntil(lambda: edit.document().firstBlock().layout().lineCount() > 1, timeout=5000)
+    layout = edit.document().firstBlock().layout()
+    starts = [layout.lineAt(i).textStart() for i in range(1, layout.lineCount())]
+    assert starts and all(text[start - 1] == " " for start in starts), [text[s - 5 : s + 5] for s in starts]
+    dense = dense_surface(40)
+    assert len(dense) > WORD_WRAP_LIMIT
+    window.set_equation(dense)
+    assert edit.wordWrapMode() == edit.wordWrapMode().WrapAnywhere
+    window.set_equation(text)
+    assert edit.wordWrapMode() == edit.wordWrapMode().WrapAtWordBoundaryOrAnywhere
+
+
 @pytest.mark.parametrize("target", ["editor", "viewport"])
 def test_a_dropped_equation_file_is_opened(window, qtbot, tmp_path, target: str) -> None:
     """A file dropped on the editor or on the 3D view opens (it is not pasted as ``file://``

@@ -79,3 +79,30 @@ def test_a_cad_torus_on_an_irrational_axis_switches_to_its_exact_surface_over_a_
     qtbot.waitUntil(lambda: "QQ(sqrt(6))" in window.results.banner.text() + pane_text(window), timeout=60_000)
     qtbot.wait(500)
     window.grab().save(str(artifacts / "rounded-quadratic-nearest.png"))
+
+
+ROUNDED_PROLATE = (
+    "0.172059*z^2 + 0.196915*y*z + 0.125626*y^2 + 0.0489472*x*z - 0.0618315*x*y + 0.242315*x^2"
+    " - 0.638162*z + 0.0429165*y - 1.61362*x + 2.08005"
+)
+"""A prolate spheroid about a tilted axis, printed with 6 digits: its nearest exact surface has
+maps over ``QQ(√d)`` with ``d`` of more than 100 digits."""
+
+
+def test_a_field_of_a_hundred_digits_does_not_widen_the_results_pane(window, run_analysis, qtbot, artifacts) -> None:
+    """The nearest surface's maps were listed "over QQ(sqrt(4258300637…))" with every digit, one
+    unbreakable line that made the results pane wider than its view (a horizontal scroll bar,
+    the right half of every row out of sight). Long numbers in the pane's words are shortened."""
+    from tests.gui.test_canal import pane_text
+
+    run_analysis(window, ROUNDED_PROLATE, timeout_ms=300_000)
+    qtbot.waitUntil(lambda: window.session.nearest_analysis is not None, timeout=300_000)
+    switch = window.findChild(QRadioButton, "viewNearest")
+    assert switch is not None and switch.isEnabled()
+    switch.click()
+    qtbot.waitUntil(lambda: "digits])" in pane_text(window), timeout=60_000)
+    qtbot.wait(300)
+    window.grab().save(str(artifacts / "rounded-long-field.png"))
+    pane = window.results
+    assert pane.horizontalScrollBar().maximum() == 0
+    assert pane.widget().width() <= pane.viewport().width()
