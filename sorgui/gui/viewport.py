@@ -131,8 +131,16 @@ the GUI thread (a few milliseconds) before :func:`_import_rendering` runs on its
 module's C++ side is initialised on the GUI thread, never beside the widgets being built."""
 
 
-RENDERING_MODULES = ("pyvistaqt", "vtkmodules.vtkCommonDataModel")
-"""What the render window needs, imported by :func:`_import_rendering`."""
+RENDERING_MODULES = (
+    "pyvistaqt",
+    "vtkmodules.vtkCommonDataModel",
+    "vtkmodules.vtkInteractionWidgets",
+    "vtkmodules.vtkViewsContext2D",
+    "vtkmodules.vtkViewsCore",
+)
+"""What the render window needs, imported by :func:`_import_rendering`: pyvistaqt and the VTK
+modules that pyvista's interactor imports when it is made (``vtkInteractionWidgets`` alone took a
+quarter of a second, on the GUI thread)."""
 
 
 def _import_rendering() -> None:
@@ -157,6 +165,10 @@ class Viewport(QWidget):
         super().__init__(parent)
         self._plotter: RenderWindow | None = None
         self._loading: threading.Thread | None = None
+        self._waiting: tuple[SceneData, bool, CameraState | None] | None = None
+        """A scene that came while the import thread ran, whether to frame it and the camera to
+        put back: drawn when the render window is made, instead of waiting for the thread on the
+        GUI thread (the start of the window froze for 1–4 s on a busy machine)."""
         self._collecting = False
         """Whether the cycle collector is to be enabled again once the import thread ends."""
         self._loading_timer = QTimer(self)
@@ -346,6 +358,13 @@ class Viewport(QWidget):
         plotter.show()
         self.software_rendering()  # found once the render window shows, for the next meshes
         _freeze_what_is_loaded()
+        if self._waiting is not None:
+            scene, reset_camera, camera = self._waiting
+            stale, self._waiting = self._stale, None
+            self.show_scene(scene, reset_camera)
+            self.set_stale(stale)
+            if camera is not None:
+                self.restore_camera(camera)
 
     # --- public API ---
 
@@ -364,6 +383,9 @@ class Viewport(QWidget):
         self._stale = False
         if caption is not None:
             self.caption.setText(caption)
+        if self._plotter is None and self._loading is not None and self._loading.is_alive():
+            self._waiting = (scene, reset_camera or (self._waiting is not None and self._waiting[1]), None)
+            return  # drawn by start_rendering, once pyvista and VTK are imported
         self._clear_pick()
         self._show_surface()
         self._set_actor("axis", scene.axis_segment.to_polydata(), color=AXIS_COLOR, line_width=4)
@@ -415,6 +437,7 @@ class Viewport(QWidget):
     def clear(self, caption: str = "No surface") -> None:
         """Remove the scene (a new analysis started, or the input is not a polynomial)."""
         self._scene = None
+        self._waiting = None
         self._stale = False
         self.caption.setText(caption)
         self.radius_box.blockSignals(True)
@@ -435,9 +458,9 @@ class Viewport(QWidget):
         """Grey the surface (it belongs to the previous equation) or colour it again."""
         if caption is not None:
             self.caption.setText(caption)
-        if stale == self._stale or self._scene is None:
+        if stale == self._stale or self._scene is None or self._waiting is not None:
             self._stale = stale and self._scene is not None
-            return
+            return  # a waiting scene is drawn as it then is
         self._stale = stale
         self._show_surface()
         self.request_render()
@@ -520,7 +543,11 @@ class Viewport(QWidget):
         )
 
     def restore_camera(self, state: CameraState) -> None:
-        """Put the camera where ``state`` says."""
+        """Put the camera where ``state`` says (once the render window exists, when a scene is
+        waiting for it)."""
+        if self._waiting is not None:
+            self._waiting = (*self._waiting[:2], state)
+            return
         camera = self.plotter.renderer.GetActiveCamera()
         camera.SetPosition(*state.position)
         camera.SetFocalPoint(*state.focal_point)

@@ -206,3 +206,37 @@ def test_software_opengl_lights_the_scene_from_the_camera(torus_window) -> None:
         assert len(lights) == 1 and lights[0].is_headlight
     else:
         assert len(lights) == 5
+
+
+def test_a_scene_that_comes_while_vtk_is_imported_waits_for_it_without_freezing(torus_window, qtbot) -> None:
+    """At start-up the first scene (and the camera saved by the last session) came while the
+    import thread was still loading pyvista and VTK, and the GUI thread waited for it: 1–4 s of
+    a frozen window on a busy machine. The scene now waits instead, and is drawn, framed as
+    saved, once the render window is made."""
+    import threading
+    import time
+
+    from sorgui.gui.viewport import Viewport
+
+    scene, camera = torus_window.viewport.scene, torus_window.viewport.camera_state()
+    assert scene is not None
+    released = threading.Event()
+    viewport = Viewport()
+    qtbot.addWidget(viewport)
+    viewport.resize(400, 300)
+    viewport.show()
+    viewport._loading = threading.Thread(target=released.wait, args=(30.0,), daemon=True)  # an import still running
+    viewport._loading.start()
+    viewport._loading_timer.start()
+    start = time.monotonic()
+    viewport.show_scene(scene, reset_camera=True, caption="the torus")
+    viewport.restore_camera(camera)
+    viewport.set_stale(True)
+    assert time.monotonic() - start < 1.0 and not viewport.rendering
+    assert viewport.caption.text() == "the torus"
+    released.set()
+    qtbot.waitUntil(lambda: viewport.rendering, timeout=30_000)
+    assert "surface" in viewport.actor_names() and "axis" in viewport.actor_names()
+    assert np.allclose(viewport.camera_state().position, camera.position)
+    assert viewport.stale
+    viewport.close_plotter()
