@@ -39,6 +39,25 @@ def test_the_issue_example_is_analysed(tmp_path: Path) -> None:
     assert "parametrization in s, t" in text.read_text(encoding="utf-8")
 
 
+@pytest.mark.parametrize(
+    ("text", "parameters"),
+    [
+        (
+            r"\mathbf{r}(u,v) = \left( \frac{1-u^2}{1+u^2}(2+v), \frac{2u}{1+u^2}(2+v), v^2 \right)",
+            "u, v",
+        ),
+        ("P := (s,t) -> [(1-s^2)/(1+s^2)*(2+t), 2*s/(1+s^2)*(2+t), t^2];", "s, t"),
+    ],
+)
+def test_a_map_pasted_from_latex_or_maple_is_analysed(text: str, parameters: str) -> None:
+    """A LaTeX vector label and a Maple function were refused as 'not 1 component'; the map is
+    a surface of revolution about the z-axis."""
+    out = sorgui("analyze", text)
+    assert out.returncode == 0, out.stderr
+    assert f"parametrization in {parameters} (over QQ, degree 4):" in out.stdout
+    assert "surface of revolution: YES" in out.stdout
+
+
 def test_a_file_of_three_lines(tmp_path: Path) -> None:
     path = tmp_path / "cone.sor"
     path.write_text("x = s*(1-t^2)/(1+t^2) + 1\ny = 3*s*2*t/(1+t^2) + 2\nz = 3 + 2*s\n", encoding="utf-8")

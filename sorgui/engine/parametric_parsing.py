@@ -4,22 +4,27 @@ The forms (docs/math.md §13)::
 
     x = X, y = Y, z = Z     in any order, separated by ',' or ';' or line breaks; a label may
                             name the parameters: x(u, v) = X
-    (X, Y, Z)               a triple, also after 'P(u, v) =', '(x, y, z) =' or a name, in
-                            parentheses, brackets or braces (Maple's X1 := [X, Y, Z];,
-                            Mathematica's X1 = {X, Y, Z};), or without them: X, Y, Z
+    (X, Y, Z)               a triple, also after 'P(u, v) =', '\\mathbf{r}(u, v) =', '(x, y, z) ='
+                            or a name, in parentheses, brackets or braces (Maple's
+                            X1 := [X, Y, Z];, Mathematica's X1 = {X, Y, Z};), or without them:
+                            X, Y, Z; and after a function's head, after a name or none: Maple's
+                            P := (u, v) -> [X, Y, Z], LaTeX's (u, v) \\mapsto (X, Y, Z), Python's
+                            lambda u, v: (X, Y, Z), def P(u, v): return (X, Y, Z), return X, Y, Z,
+                            numpy's np.array([X, Y, Z])
 
 The parameters are the two names other than ``x, y, z`` that the components use (one-letter names
 run together are products, as ``x, y, z`` are in equations: ``st`` is ``s·t``), in the order a
-label or a prefix gives, else in alphabetical order. Each component is read by the equation
-parser's own tokenizer and recursive descent (:mod:`.parsing`) with the parameters as its
-variables, checked by its first pass (sizes, exponents, square roots: the field ``K`` is the
-same as for an equation), then evaluated as a fraction ``N/D`` of polynomials in ``K[s, t]``
-(python-flint over ``QQ``). Nothing typed is evaluated as code.
+label, a prefix or a function's head gives, else in alphabetical order. Each component is read
+by the equation parser's own tokenizer and recursive descent (:mod:`.parsing`) with the
+parameters as its variables, checked by its first pass (sizes, exponents, square roots: the
+field ``K`` is the same as for an equation), then evaluated as a fraction ``N/D`` of polynomials
+in ``K[s, t]`` (python-flint over ``QQ``). Nothing typed is evaluated as code.
 
 Refused, each in one line with its position: a component count other than three, a label given
-twice, an empty or a constant component, ``x``, ``y`` or ``z`` inside a component, a function
-other than ``sqrt`` of a number (the components are rational functions), one, three or more
-parameters, a denominator that is identically zero, a map whose image is a curve or a point
+twice, parameters named differently twice, a function's head that takes other than two, an
+empty or a constant component, ``x``, ``y`` or ``z`` inside a component, a function other than
+``sqrt`` of a number (the components are rational functions), one, three or more parameters, a
+denominator that is identically zero, a map whose image is a curve or a point
 (``P_s × P_t ≡ 0``), and the limits of the equation parser (degree 60 over a common
 denominator, number sizes, nesting).
 """
@@ -56,14 +61,28 @@ _DECIMAL_COMMA = re.compile(r"(?<![\w.^*])\d+,\d+(?![\d.,])")
 _LABEL = re.compile(r"\s*+([xyz])\s*+(?:\(\s*+([A-Za-z]++)\s*+,\s*+([A-Za-z]++)\s*+\))?+\s*+(?::?=(?!=)|->)")
 """``x =``, ``x(u, v) =`` or Mathematica's rule ``x ->`` in front of a component (possessive, as
 :data:`.limits._LABEL`)."""
+_NAME = r"(?:[A-Za-z_]\w*+|\\[A-Za-z]++(?:\s*+\{\s*+[A-Za-z]\w*+\s*+\}|\s++[A-Za-z]\w*+))"
+"""The name of a map: ``P``, ``X1``, or one in a LaTeX command, ``\\mathbf{r}``, ``\\vec r``."""
 _PREFIX = re.compile(
-    r"\s*(?:(?![xyz]\s*\()[A-Za-z]\w*\s*[(\[]\s*([A-Za-z]+)_?\s*,\s*([A-Za-z]+)_?\s*[)\]]|(\(\s*x\s*,\s*y\s*,\s*z\s*\))"
-    r"|(?![xyz0-9]+\b)[A-Za-z_]\w*)\s*:?=(?!=)",
+    rf"\s*+(?:(?![xyz]\s*+\(){_NAME}\s*+[(\[]\s*+([A-Za-z]++)_?+\s*+,\s*+([A-Za-z]++)_?+\s*+[)\]]"
+    r"|(\(\s*+x\s*+,\s*+y\s*+,\s*+z\s*+\))"
+    rf"|(?![xyz0-9]+\b){_NAME})\s*+:?=(?!=)",
     re.ASCII,
 )
-"""What may come before the components: ``P(u, v) =`` or Mathematica's ``P[u_, v_] :=`` (naming
-the parameters), ``(x, y, z) =`` (then a triple follows) or a name that is not a monomial
-(Maple's ``X1 := [X, Y, Z]``)."""
+"""What may come before the components: ``P(u, v) =``, ``\\mathbf{r}(u, v) =`` or Mathematica's
+``P[u_, v_] :=`` (naming the parameters), ``(x, y, z) =`` (then a triple follows) or a name
+that is not a monomial (Maple's ``X1 := [X, Y, Z]``)."""
+_ARGUMENTS = r"\s*+([A-Za-z]++(?:\s*+,\s*+[A-Za-z]++)*+)\s*+"
+"""The names a function takes, ``u, v``: one group."""
+_HEAD = re.compile(
+    rf"\s*+(?:\({_ARGUMENTS}\)\s*+(?:->|\\mapsto(?![A-Za-z])|↦)|lambda\s{_ARGUMENTS}:"
+    rf"|(?:def\s++[A-Za-z_]\w*+\s*+\({_ARGUMENTS}\)\s*+:\s*+)?+return\b)",
+    re.ASCII,
+)
+"""A function's head before the components, after a name or none: Maple's ``(u, v) ->``,
+LaTeX's ``(u, v) \\mapsto``, Python's ``lambda u, v:``, ``def P(u, v): return`` or ``return``."""
+_CALL = re.compile(r"\s*+((?:(?:np|numpy)\s*+\.\s*+)?+array)\s*+(?=\()", re.ASCII)
+"""numpy's ``np.array`` before the parentheses that hold the triple: ``np.array([X, Y, Z])``."""
 
 
 @dataclass(frozen=True)
@@ -136,9 +155,10 @@ def parse_parametrization(text: str) -> ParsedParametrization:
 
 
 def _layout(text: str) -> tuple[list[tuple[int, int]], tuple[str, str] | None]:
-    """The spans of the three components in the order x, y, z, and the parameters a prefix or
-    the labels name (``None`` when none does); comments, LaTeX's ``$ $`` and a final ``;`` aside
-    (:func:`.limits.statement_span`)."""
+    """The spans of the three components in the order x, y, z, and the parameters a prefix, a
+    function's head or the labels name (``None`` when none does); comments, LaTeX's ``$ $`` and a
+    final ``;`` aside (:func:`.limits.statement_span`), and what comes in front of the components
+    (:data:`_PREFIX`, :data:`_HEAD`, :data:`_CALL` with its parentheses)."""
     plain = without_comments(text)  # the same positions
     start, end = statement_span(plain)
     text, named = plain[:end], None
@@ -147,15 +167,31 @@ def _layout(text: str) -> tuple[list[tuple[int, int]], tuple[str, str] | None]:
         start = prefix.end()
         if prefix.group(1) is not None:
             named = (prefix.group(1), prefix.group(2))
+    head = _HEAD.match(text, start)
+    if head is not None:
+        start = head.end()
+        if head.lastindex is not None:  # the one group of _ARGUMENTS that matched
+            span = head.span(head.lastindex)
+            named = _agreeing(named, _two(text, *span), *span)
+    call = _CALL.match(text, start)
+    if call is not None:  # np.array(…): what its parentheses hold
+        around = _structure(text, call.end())[1]
+        if around is None:
+            raise ParseError(
+                f"{call.group(1)}(…) holds the whole triple: write {call.group(1)}([X, Y, Z])",
+                call.start(1),
+                len(text),
+            )
+        text, start = text[: around[1]], around[0] + 1
     cuts, outer = _structure(text, start)
-    if outer is not None:  # '(X, Y, Z)': the commas inside the parentheses
+    if outer is not None and cuts[1]:  # '(X, Y, Z)': the commas inside the parentheses
         segments = _between(outer[0] + 1, cuts[1], outer[1])
     elif prefix is not None and prefix.group(3) is not None:
         raise ParseError("after '(x, y, z) =' write the triple '(X, Y, Z)'", start, len(text))
     else:
         segments = _between(start, cuts[0], len(text))
     labelled = [(_LABEL.match(text, a, b), a, b) for a, b in segments]
-    if prefix is not None and any(m is not None for m, _, _ in labelled):
+    if (prefix or head or call) and any(m is not None for m, _, _ in labelled):
         m = next(m for m, _, _ in labelled if m is not None)
         raise ParseError("the components of a triple have no labels 'x =', 'y =', 'z ='", m.start(1), m.end())
     if len(segments) != 3:
@@ -171,16 +207,32 @@ def _layout(text: str) -> tuple[list[tuple[int, int]], tuple[str, str] | None]:
         if name in by_name:
             raise ParseError(f"'{name}' is given twice", label.start(1), label.end(1))
         if label.group(2) is not None:
-            given = (label.group(2), label.group(3))
-            if named is not None and given != named:
-                raise ParseError(
-                    f"the parameters are named ({', '.join(named)}) before and ({', '.join(given)}) here",
-                    label.start(2),
-                    label.end(3),
-                )
-            named = given
+            named = _agreeing(named, (label.group(2), label.group(3)), label.start(2), label.end(3))
         by_name[name] = _nonempty(text, label.end(), b, name)
     return [by_name[name] for name in COORDINATES], named
+
+
+def _agreeing(named: tuple[str, str] | None, given: tuple[str, str], start: int, end: int) -> tuple[str, str]:
+    """The parameters ``given`` at ``start:end``, the same as those ``named`` before, if any."""
+    if named is not None and given != named:
+        raise ParseError(
+            f"the parameters are named ({', '.join(named)}) before and ({', '.join(given)}) here", start, end
+        )
+    return given
+
+
+def _two(text: str, start: int, end: int) -> tuple[str, str]:
+    """The parameters a function's head takes at ``start:end``: two (one names a curve)."""
+    names = [name.strip() for name in text[start:end].split(",")]
+    if len(names) == 2:
+        return names[0], names[1]
+    raise ParseError(
+        f"the map takes one parameter ({names[0]}): the image is a curve, not a surface"
+        if len(names) == 1
+        else f"the map takes {len(names)} parameters ({', '.join(names)}): a surface is given by two",
+        start,
+        end,
+    )
 
 
 def _count_error(text: str, start: int, cuts: tuple[list[int], list[int]], count: int) -> ParseError:
@@ -238,7 +290,8 @@ def _around_triple(text: str, start: int, inner: int) -> ParseError | None:
 def _structure(text: str, start: int) -> tuple[tuple[list[int], list[int]], tuple[int, int] | None]:
     """Where components end: the ``,`` and ``;`` at depth 0 (and the line breaks there that a
     label follows), and those at depth 1; and the span of one pair of parentheses around all of
-    the rest, if there is one (the triple ``(X, Y, Z)``). The comma of a ``pow(a, n)`` is none."""
+    the rest, if there is one (a triple ``(X, Y, Z)`` when it holds cuts). The comma of a
+    ``pow(a, n)`` is none."""
     depth = 0
     cuts: tuple[list[int], list[int]] = ([], [])
     pairs: list[tuple[int, int]] = []
@@ -272,8 +325,7 @@ def _structure(text: str, start: int) -> tuple[tuple[list[int], list[int]], tupl
         after_pow = kind == "name" and word == "pow"
     if depth > 0 and opened:
         raise ParseError("unmatched '('", opened[-1], opened[-1] + 1)
-    whole = len(pairs) == 1 and not cuts[0] and cuts[1] and pairs[0] == (first, last)
-    return cuts, pairs[0] if whole else None
+    return cuts, pairs[0] if len(pairs) == 1 and pairs[0] == (first, last) else None
 
 
 def _between(start: int, cuts: Sequence[int], end: int) -> list[tuple[int, int]]:

@@ -60,15 +60,16 @@ PARAMETRIZATIONS_HTML = """
 <p>A surface may also be given as a rational map (s, t) ↦ (x, y, z): <b>x = X, y = Y, z = Z</b> in
 any order, separated by commas, semicolons or line breaks (<tt>x(u, v) = …</tt> names the
 parameters), or a triple <b>(X, Y, Z)</b>, <b>[X, Y, Z]</b> or <b>{X, Y, Z}</b> (also after
-<tt>P(u, v) =</tt> or a name, as Maple's <tt>X1 := [X, Y, Z];</tt>). The parameters are the
-two names other than x, y, z that the components use; the components are rational functions with
-coefficients as for equations (decimals, square roots). sorgui decides <b>from the map itself,
-exactly</b>, whether its image is a surface of revolution (every normal line meets the axis), a
-cone or a cylinder, then finds its implicit equation and analyses that as it would a typed one;
-the given map is the first of the parameterizations shown. A map printed with decimals is also
-asked whether it is, within its rounding, a surface of revolution. A curve or a point, a constant
-component, a function such as sin, one or three parameters and a zero denominator are refused in
-one line (docs/math.md §13).</p>
+<tt>P(u, v) =</tt>, <tt>\\mathbf{r}(u, v) =</tt> or a name, as Maple's <tt>X1 := [X, Y, Z];</tt>;
+after <tt>(u, v) -&gt;</tt>, <tt>lambda u, v:</tt> or <tt>return</tt>; inside
+<tt>np.array(…)</tt>). The parameters are the two names other than x, y, z that the components use;
+the components are rational functions with coefficients as for equations (decimals, square roots).
+sorgui decides <b>from the map itself, exactly</b>, whether its image is a surface of revolution
+(every normal line meets the axis), a cone or a cylinder, then finds its implicit equation and
+analyses that as it would a typed one; the given map is the first of the parameterizations shown. A
+map printed with decimals is also asked whether it is, within its rounding, a surface of
+revolution. A curve or a point, a constant component, a function such as sin, one or three
+parameters and a zero denominator are refused in one line (docs/math.md §13).</p>
 """
 
 KEYS = (

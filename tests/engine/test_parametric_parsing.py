@@ -7,7 +7,7 @@ import pytest
 from flint import fmpq
 
 from sorgui.engine.errors import ParseError
-from sorgui.engine.parametric_parsing import parse_input, parse_parametrization
+from sorgui.engine.parametric_parsing import ParsedParametrization, parse_input, parse_parametrization
 from sorgui.engine.parsing import ParsedPolynomial, is_parametrization, parse_polynomial
 
 CONE = "x = (1-t^2)/(1+t^2)*(2+s), y = 2*t/(1+t^2)*(2+s), z = s^2"
@@ -227,3 +227,83 @@ def test_a_negative_power_of_a_parameter_is_a_denominator() -> None:
     ):
         with pytest.raises(ParseError, match=words):
             parse_parametrization(text)
+
+
+TORUS_UV = "x = (1-u^2)/(1+u^2)*(2+v), y = 2*u/(1+u^2)*(2+v), z = v^2"
+TORUS_ST = "x = (1-s^2)/(1+s^2)*(2+t), y = 2*s/(1+s^2)*(2+t), z = t^2"
+"""The map of a surface of revolution about the z-axis, as pasted from other tools below."""
+LATEX = r"\frac{1-u^2}{1+u^2}(2+v), \frac{2u}{1+u^2}(2+v), v^2"
+PLAIN = "(1-s^2)/(1+s^2)*(2+t), 2*s/(1+s^2)*(2+t), t^2"
+PYTHON = "(1-s**2)/(1+s**2)*(2+t), 2*s/(1+s**2)*(2+t), t**2"
+
+
+@pytest.mark.parametrize(
+    ("text", "plain"),
+    [
+        (rf"\mathbf{{r}}(u,v) = \left( {LATEX} \right)", TORUS_UV),
+        (rf"$\mathbf{{r}}(u,v) = \left( {LATEX} \right)$", TORUS_UV),
+        (rf"r(u, v) = ({LATEX})", TORUS_UV),
+        (rf"\vec{{r}}(u,v) = ({LATEX})", TORUS_UV),
+        (rf"\vec r(u, v) = \left({LATEX}\right)", TORUS_UV),
+        (rf"\boldsymbol{{x}}(u, v) = ({LATEX})", TORUS_UV),
+        (rf"X(u,v) = ({LATEX})", TORUS_UV),
+        (rf"(u, v) \mapsto \left( {LATEX} \right)", TORUS_UV),
+        (f"(u, v) ↦ ({LATEX})", TORUS_UV),
+        (f"P := (s,t) -> [{PLAIN}];", TORUS_ST),
+        (f"P := (s, t) -> [{PLAIN}]:", TORUS_ST),
+        (f"[{PLAIN}];", TORUS_ST),
+        (f"[{PLAIN}]:", TORUS_ST),
+        (f"{{{PLAIN}}}", TORUS_ST),
+        (f"f[s_, t_] := {{{PLAIN}}}", TORUS_ST),
+        (f"np.array([{PYTHON}])", TORUS_ST),
+        (f"numpy.array([{PYTHON}])", TORUS_ST),
+        (f"lambda s, t: ({PYTHON})", TORUS_ST),
+        (f"P = lambda s, t: np.array([{PYTHON}])", TORUS_ST),
+        (f"return ({PYTHON})", TORUS_ST),
+        (f"return {PYTHON}", TORUS_ST),
+        (f"def P(s, t):\n    return np.array([{PYTHON}])", TORUS_ST),
+    ],
+)
+def test_a_map_pasted_from_another_tool_is_the_plain_map(text: str, plain: str) -> None:
+    """LaTeX, Maple, Mathematica and numpy/Python print a map with a label, a function's head or
+    a call around the triple; each is the map of ``x = …, y = …, z = …`` (they were refused, as
+    'not 1 component' or as a third parameter 'return')."""
+    parsed = parse_input(text)
+    expected = parse_parametrization(plain)
+    assert isinstance(parsed, ParsedParametrization)
+    assert parsed.parameters == expected.parameters
+    assert (parsed.map.X, parsed.map.W) == (expected.map.X, expected.map.W)
+
+
+@pytest.mark.parametrize(
+    ("text", "parameters"),
+    [
+        (r"\mathbf{r}(v, u) = \left( u, v, uv \right)", ("v", "u")),
+        ("P := (v, u) -> [u, v, u*v];", ("v", "u")),
+        ("lambda v, u: (u, v, u*v)", ("v", "u")),
+        ("def P(v, u): return (u, v, u*v)", ("v", "u")),
+        ("return (u, v, u*v)", ("u", "v")),  # nothing names them: alphabetical
+    ],
+)
+def test_a_label_or_a_head_names_the_parameters_in_its_order(text: str, parameters: tuple[str, str]) -> None:
+    assert parse_parametrization(text).parameters == parameters
+
+
+@pytest.mark.parametrize(
+    ("text", "words", "at"),
+    [
+        ("lambda t: (t, t^2, t^3)", "the map takes one parameter (t): the image is a curve", "t"),
+        ("(s, t, r) -> [s, t, r]", "the map takes 3 parameters (s, t, r)", "s, t, r"),
+        ("P(u, v) := (s, t) -> [s, t, s*t]", "named (u, v) before and (s, t) here", "s, t"),
+        ("np.array([s, t, s*t]) + 1", "np.array(…) holds the whole triple", "np.array([s, t, s*t]) + 1"),
+        ("np.array([s, t, s*t]", "unmatched '('", "("),
+        ("np.array([s, t])", "three components", ","),
+        ("lambda s, t: x = s, y = t, z = s*t", "have no labels", "x ="),
+        (r"\mathbf{r}(u,v) = (s, t, s*t)", "unknown name 's'", "s"),
+    ],
+)
+def test_a_mistyped_head_or_call_is_a_one_line_error(text: str, words: str, at: str) -> None:
+    with pytest.raises(ParseError) as info:
+        parse_input(text)
+    assert words in info.value.message and "\n" not in info.value.message, info.value.message
+    assert text[info.value.position : info.value.end] == at

@@ -246,7 +246,10 @@ def test_any_text_is_read_or_refused_in_words(text: str) -> None:
         input_rounding(text, float_coefficients(f))
 
 
-@pytest.mark.parametrize("head", ["x", "poly", "f", "P", "x(s, t)", "\n", "$"])
+@pytest.mark.parametrize(
+    "head",
+    ["x", "poly", "f", "P", "x(s, t)", "\n", "$", "\\vec", "lambda s, t:", "(s, t) ->", "def P(s, t):", "np.array"],
+)
 def test_long_runs_of_white_space_are_read_once(head: str) -> None:
     """Hostile input: a name then 200,000 spaces (or empty lines). Every pattern that looks for a
     label reads such a run once (possessive quantifiers); one that read it again for each way
