@@ -207,3 +207,50 @@ def test_a_map_over_a_number_field_prints_without_denominator_one() -> None:
     with the integer 1."""
     analysis = analyze("(sqrt(2)*s, t, s*t)")
     assert analysis.parametric is not None and analysis.parametric.map == ("sqrt(2)*s", "t", "s*t")
+
+
+TORUS_FIXED_POINT = (
+    "(1.500000 + 0.781639*((30+10*(1-u^2)/(1+u^2))*(1-v^2)/(1+v^2)) + -0.482929*((30+10*(1-u^2)/(1+u"
+    "^2))*2*v/(1+v^2)) + 0.394740*(10*2*u/(1+u^2)), -2.250000 + 0.550117*((30+10*(1-u^2)/(1+u^2))*(1"
+    "-v^2)/(1+v^2)) + 0.832030*((30+10*(1-u^2)/(1+u^2))*2*v/(1+v^2)) + -0.071392*(10*2*u/(1+u^2)), 1"
+    "00.125000 + -0.293958*((30+10*(1-u^2)/(1+u^2))*(1-v^2)/(1+v^2)) + 0.272956*((30+10*(1-u^2)/(1+u"
+    "^2))*2*v/(1+v^2)) + 0.916015*(10*2*u/(1+u^2)))"
+    ""
+)
+"""A torus (radii 30 and 10) turned by a float rotation and moved to ``(1.5, −2.25, 100.125)``, its
+map printed with fixed decimals (``%.6f``)."""
+
+TORUS_ALL_DIGITS = (
+    "(1.5 + 0.78163917390702498*((30+10*(1-u^2)/(1+u^2))*(1-v^2)/(1+v^2)) + -0.48292928421421222*((30+10*"
+    "(1-u^2)/(1+u^2))*2*v/(1+v^2)) + 0.39473979817379978*(10*2*u/(1+u^2)), -2.25 + 0.55011723070435836*(("
+    "30+10*(1-u^2)/(1+u^2))*(1-v^2)/(1+v^2)) + 0.83203013377463464*((30+10*(1-u^2)/(1+u^2))*2*v/(1+v^2)) "
+    "+ -0.071392499417875871*(10*2*u/(1+u^2)), 100.125 + -0.29395787843858057*((30+10*(1-u^2)/(1+u^2))*(1"
+    "-v^2)/(1+v^2)) + 0.27295633888831433*((30+10*(1-u^2)/(1+u^2))*2*v/(1+v^2)) + 0.91601506688731726*(10"
+    "*2*u/(1+u^2)))"
+)
+"""The same torus with the rotation's entries printed with 17 significant digits (``%.17g``)."""
+
+
+def test_a_map_printed_with_fixed_decimals_is_judged_by_its_coarsest_literal() -> None:
+    """Its translation ``100.125000`` has 9 significant digits, and the tolerance was read off
+    it (``5·10⁻⁹``), a hundred times finer than the rotation's ``0.071392``: the torus was "not
+    near" (1.46 times outside). Each literal's own last place now counts, relative to its size
+    or to 1; an entry moved by ``10⁻³`` stays far outside."""
+    approx = analyze(TORUS_FIXED_POINT, timeout=60, recognition_only=True).approximate
+    assert approx is not None and approx.tolerance == pytest.approx(5e-7)
+    assert approx.near_sor and approx.kind == "revolution"
+    missed = analyze(TORUS_FIXED_POINT.replace("0.781639", "0.782639"), timeout=60, recognition_only=True)
+    assert missed.approximate is not None and not missed.approximate.near_sor
+    assert missed.approximate.residual is not None and missed.approximate.residual > 10
+
+
+def test_a_map_printed_with_every_digit_of_a_double_is_read_at_floating_point_precision() -> None:
+    """With 17 digits the tolerance was ``5·10⁻¹⁷``, below the double precision its normals are
+    sampled in, and the torus was 7.9 times outside it; it is now read at ``4·10⁻¹⁵``, and an
+    entry moved by ``10⁻¹²`` stays outside."""
+    approx = analyze(TORUS_ALL_DIGITS, timeout=60, recognition_only=True).approximate
+    assert approx is not None and approx.tolerance == pytest.approx(4e-15)
+    assert approx.near_sor and approx.kind == "revolution"
+    moved = TORUS_ALL_DIGITS.replace("0.78163917390702498", "0.78163917390802498")
+    missed = analyze(moved, timeout=60, recognition_only=True).approximate
+    assert missed is not None and not missed.near_sor

@@ -59,6 +59,10 @@ GRID = 24
 """Samples per parameter over :data:`SPAN`."""
 SPAN = 2.0
 """The samples lie in ``[−SPAN, SPAN]²`` of the parameter plane."""
+FLOAT_FLOOR = 4e-15
+"""The finest relative rounding a printed map is read at: its points and normals are sampled in
+double precision (a torus's map printed with 17 digits was 7.9 times outside a rounding of
+``5·10⁻¹⁷``), as an equation's coefficients are (docs/math.md §8.1)."""
 SINE_FLOOR = 0.1
 """Normals within this sine of the axis direction are left out of the distance to the axis."""
 
@@ -78,13 +82,25 @@ class NearCone:
 
 
 def printed_tolerance(text: str) -> float | None:
-    """The relative rounding of the most precise decimal of ``text`` (``None``: no decimal)."""
-    digits = 0
-    for match in _DECIMAL.finditer(text):
-        whole, fraction, plain = match.group(1), match.group(2), match.group(3)
-        written = (whole or "") + (fraction or "") if plain is None else plain
-        digits = max(digits, len(written.lstrip("0")) or 1)
-    return None if digits == 0 else 0.5 * 10.0 ** (1 - digits)
+    """The relative rounding of the decimals of ``text`` (``None``: no decimal), at least
+    :data:`FLOAT_FLOOR`. Printed with significant digits (``%g``: no fraction ends in ``0``), the
+    rounding of the most precise one, ``0.5·10^(1−k)`` for ``k`` digits: short exact numbers
+    (``1.5``) stand beside the rounded ones. Printed with fixed decimals (``%.6f``: some fraction
+    ends in ``0``), each literal's own last place counts, relative to its size or to 1, and the
+    coarsest is taken: ``0.071392`` is as rounded as ``0.781639``, and the ``100.125000`` of a
+    translation had made it ``5·10⁻⁹`` (the rotation's entries are off by ``5·10⁻⁷``)."""
+    literals = [
+        ((m.group(1) or "") + (m.group(2) or "") if m.group(3) is None else m.group(3), m)
+        for m in _DECIMAL.finditer(text)
+    ]
+    if not literals:
+        return None
+    fixed = [m for _, m in literals if m.group(3) is None and m.group(0) == f"{m.group(1)}.{m.group(2)}"]
+    if any(m.group(2).endswith("0") for m in fixed):
+        coarsest = max(0.5 * 10.0 ** -len(m.group(2)) / max(1.0, abs(float(m.group(0) + "0"))) for m in fixed)
+        return max(coarsest, FLOAT_FLOOR)
+    digits = max(len(written.lstrip("0")) or 1 for written, _ in literals)
+    return max(0.5 * 10.0 ** (1 - digits), FLOAT_FLOOR)
 
 
 def _samples(surface: RationalMap) -> Samples | None:
