@@ -195,6 +195,68 @@ def test_a_reports_method_in_a_patch_header_reads_back_literally(tmp_path: Path)
     assert method in description and "\r" not in description
 
 
+def _a_safe_cut(before: str, after: str, width: int) -> bool:
+    """Two pieces of a header line meet between terms or words, else (a term longer than a
+    piece) after a ``*`` or ``/`` between factors, else inside a number longer than a piece."""
+    if after.startswith(" ") or re.search(r"[^*/][*/]$", before) and after[0].isalnum():
+        return True
+    number = re.search(r"\d*$", before).group() + re.match(r"\d*", after).group()
+    return len(number) > width and before[-1].isdigit() and after[0].isdigit()
+
+
+def test_a_long_equation_reads_back_from_the_header_as_it_was_written(tmp_path: Path) -> None:
+    """A rounded torus's equation (25 terms) and its nearest surface's (numbers of 80 digits)
+    span several STEP strings and IGES start lines: each is cut between two terms, so the pieces
+    joined as they are give the equation back, and joined by line breaks sorgui reads the same
+    polynomial (a cut inside ``**`` or a number, ``'...z*'`` then ``'*2...'``, read as another
+    one). Open CASCADE's and gmsh's readers take both files, and sorgui reads the part's torus."""
+    pytest.importorskip("OCP")
+    pytest.importorskip("gmsh")
+    from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
+    from OCP.IGESControl import IGESControl_Reader
+    from OCP.STEPControl import STEPControl_Reader
+
+    from sorgui.engine.parsing import parse_polynomial
+
+    from .cad.readback import gmsh_part
+
+    typed = Path(__file__).parent / "data" / "rounded-torus-6-digits.txt"
+    step, iges = tmp_path / "torus.step", tmp_path / "torus.igs"
+    done = sorgui("analyze", "-f", str(typed), "-o", str(step), "-o", str(iges))
+    assert done.returncode == 0, done.stderr
+    reader = STEPControl_Reader()
+    reader.ReadFile(str(step))
+    header = APIHeaderSection_MakeHeader(reader.StepModel())
+    strings = [header.DescriptionValue(i).ToCString() for i in range(1, header.NbDescription() + 1)]
+    assert strings == step_strings(step.read_text(encoding="ascii"), "FILE_DESCRIPTION")
+    assert max(map(len, strings)) <= 256
+    reader = IGESControl_Reader()
+    reader.ReadFile(str(iges))
+    model = reader.IGESModel()
+    start = [model.StartLine(i) for i in range(1, model.NbStartLines() + 1)]
+    assert max(map(len, start)) <= 72
+    expected = parse_polynomial(typed.read_text(encoding="utf-8")).polynomial
+    equations = []
+    for pieces in (strings, start):
+        ends = [i for i, piece in enumerate(pieces) if piece.endswith(" = 0")]
+        assert len(ends) >= 2, pieces  # the typed equation, then the nearest surface's
+        equation = pieces[: ends[0] + 1]
+        assert len(equation) > 1 and all(piece.startswith(" ") for piece in equation[1:])
+        assert parse_polynomial("".join(equation)).polynomial == expected
+        assert parse_polynomial("\n".join(equation)).polynomial == expected
+        nearest = "".join(pieces[ends[0] + 1 : ends[1] + 1])
+        assert nearest.startswith("rounded input: the part of the nearest exact surface of revolution ")
+        for before, after in zip(pieces[ends[0] + 1 : ends[1]], pieces[ends[0] + 2 : ends[1] + 1]):
+            assert _a_safe_cut(before, after, 72 if pieces is start else 256), (before, after)
+        equations.append("".join(equation))
+    assert equations[0] == equations[1]
+    for path in (step, iges):
+        assert gmsh_part(path).surfaces == 1
+    done = sorgui("analyze", "--json", str(step))
+    assert done.returncode == 0, done.stderr
+    assert [face["kind"] for face in json.loads(done.stdout)["faces"]] == ["torus"]
+
+
 @pytest.mark.parametrize(
     ("equation", "suffix", "words"),
     [

@@ -12,7 +12,10 @@ output.
 from __future__ import annotations
 
 import io
+import re
+from collections.abc import Callable
 from dataclasses import dataclass
+from itertools import accumulate
 from pathlib import Path
 from typing import Any
 
@@ -34,6 +37,8 @@ REAL_FORMAT = "%.16E"
 
 STEP_STRING = 256
 """The longest string of a STEP header's description list (ISO 10303-21's ``STRING(256)``)."""
+IGES_START = 72
+"""The characters of a line of IGES's start section (columns 1-72)."""
 
 UNITS = {
     "mm": ("MM", 1.0),
@@ -126,7 +131,8 @@ def iges_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
     writer.AddShape(shape)
     writer.ComputeModel()
     for line in header_lines(header):
-        model.AddStartLine(_ascii(line))
+        for piece in _pieces(_ascii(line), IGES_START):
+            model.AddStartLine(piece)
     section = model.GlobalSection()
     section.SetSendName(TCollection_HAsciiString(_ascii(Path(header.name).stem)))
     section.SetFileName(TCollection_HAsciiString(_ascii(header.name)))
@@ -157,17 +163,28 @@ def header_lines(header: CadHeader) -> list[str]:
 def _step_strings(header: CadHeader) -> list[str]:
     """:func:`header_lines` cut into strings a STEP description list takes (long equations span
     several), each escaped (:func:`_step_text`) and at most :data:`STEP_STRING` long."""
+    return [piece for line in header_lines(header) for piece in _pieces(_ascii(line), STEP_STRING, _step_text)]
+
+
+def _pieces(line: str, width: int, encoded: Callable[[str], str] = str) -> list[str]:
+    """``line`` cut into pieces of at most ``width`` characters once ``encoded``, which joined as
+    they are give it back: each cut before a space (between an equation's terms, ``... + 3*x*y -``
+    then `` z**2 ...``, or words), else after a ``*`` or ``/`` between the factors of a term, else
+    (a number longer than a piece) where the piece is full. Cut anywhere, a reader that shows the
+    pieces apart or joins them with a space saw ``z*`` and ``*2`` of a ``z**2``."""
     pieces = []
-    for line in header_lines(header):
-        piece = ""
-        for char in _ascii(line):
-            escaped = _step_text(char)
-            if len(piece) + len(escaped) > STEP_STRING:
-                pieces.append(piece)
-                piece = ""
-            piece += escaped
-        pieces.append(piece)
-    return pieces
+    while len(encoded(line[: width + 1])) > width:  # a character is at least one once encoded
+        fits = sum(1 for length in accumulate(len(encoded(c)) for c in line[:width]) if length <= width)
+        space = line.rfind(" ", 1, fits + 1)
+        factors = [m.end() for m in FACTOR_SIGN.finditer(line, 0, fits + 1) if m.end() <= fits]
+        cut = space if space > 0 else factors[-1] if factors else fits
+        pieces.append(encoded(line[:cut]))
+        line = line[cut:]
+    return [*pieces, encoded(line)]
+
+
+FACTOR_SIGN = re.compile(r"(?<![*/])[*/](?![*/])")
+"""A multiplication or division sign between factors (not a power's ``**``)."""
 
 
 def _step_text(text: str) -> str:

@@ -302,7 +302,9 @@ def test_the_headers_name_the_equation_the_route_the_version_and_the_unit(tmp_pa
 
 
 def test_a_long_equation_spans_several_step_strings(tmp_path: Path) -> None:
-    """A header string of STEP holds at most 256 characters; a long equation is cut, not lost."""
+    """A header string of STEP holds at most 256 characters; a long equation is cut, not lost:
+    its strings joined as they are give it back. Its numbers of 301 digits are cut where a
+    string is full, the only place a number longer than a string can be cut."""
     from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
     from OCP.STEPControl import STEPControl_Reader
 
@@ -315,7 +317,42 @@ def test_a_long_equation_spans_several_step_strings(tmp_path: Path) -> None:
     description = [header.DescriptionValue(i).ToCString() for i in range(1, header.NbDescription() + 1)]
     assert max(map(len, description)) <= 256
     equation = f"{analysis.recognition.polynomial} = 0"
-    assert "".join(description[: math.ceil(len(equation) / 256)]) == equation
+    ends = [i for i, piece in enumerate(description) if piece.endswith(" = 0")]
+    assert "".join(description[: ends[0] + 1]) == equation
+
+
+@pytest.mark.parametrize(
+    ("line", "width", "pieces"),
+    [
+        # between terms: each cut before a space, never inside a number or a power's **
+        ("11*x**2 + 22*y**2 - 33*z**2 = 0", 12, ["11*x**2 +", " 22*y**2 -", " 33*z**2 = 0"]),
+        # a term longer than a piece: after a * or / between its factors, never inside **
+        ("123/456*x**2*y**2*z**2", 10, ["123/456*", "x**2*y**2*", "z**2"]),
+        ("x*y**2222222", 10, ["x*", "y**2222222"]),
+        # a number longer than a piece: where the piece is full
+        ("1234567890123*x", 10, ["1234567890", "123*x"]),
+    ],
+)
+def test_a_long_line_is_cut_between_terms_then_factors(line: str, width: int, pieces: list[str]) -> None:
+    """The cuts of a STEP string and an IGES start line: the pieces joined as they are give the
+    line back, and they hold whole terms and factors (a STEP file split ``z**2`` into ``'...z*'``
+    and ``'*2...'``, a number into ``'...30763/25'`` and ``'00*z...'``)."""
+    from sorgui.cad.writers import _pieces
+
+    assert _pieces(line, width) == pieces
+    assert "".join(pieces) == line
+
+
+def test_a_step_string_is_full_once_escaped() -> None:
+    """A backslash takes 12 characters in a STEP string (``\\X2\\005C\\X0\\``): a piece is
+    measured escaped, and no escape is cut."""
+    from sorgui.cad.writers import BACKSLASH, STEP_STRING, CadHeader, _step_strings
+
+    name = "a\\b " * 100
+    strings = _step_strings(CadHeader("", (name,), "0", "n.step"))[:-2]
+    assert max(map(len, strings)) <= STEP_STRING
+    assert "".join(strings).replace(BACKSLASH, "\\") == name
+    assert all(piece.count("\\") % 4 == 0 for piece in strings)
 
 
 @pytest.mark.parametrize("suffix", [".step", ".iges"])
