@@ -320,13 +320,49 @@ def test_a_cad_file_of_a_surface_outside_the_drawn_ball_is_refused_before_open_c
     pytest.importorskip("OCP")
     for radius_squared, words in (
         ("10^400", "cannot be drawn: its coefficients span about 10^400"),
-        ("10^40", "no real points that can be drawn inside the ball (give --region)"),
-        ("1 --region 1000", "less than the mesh's grid spacing in a ball this large: give a smaller one"),
+        (
+            "10^40",
+            "inside the ball of radius 2 about (0, 0, 0), chosen for it: give a region that holds some (--region)",
+        ),
+        ("1 --region 1000", "the ball of radius 1000 about (0, 0, 0) asked for is too large to draw the surface in"),
     ):
         constant, *region = radius_squared.split()
         done = sorgui("analyze", f"x^2+y^2+z^2-{constant}", *region, "--timeout", "60", "-o", str(tmp_path / "s.step"))
         assert done.returncode == 1 and words in lines(done.stderr)[-1]
         assert not (tmp_path / "s.step").exists()
+
+
+@pytest.mark.parametrize(
+    ("equation", "region", "suffix", "words"),
+    [
+        ("x^2+y^2-z^2", "0,0,1e6,1", ".step", "the ball of radius 1 about (0, 0, 1e+06) asked for: give a region"),
+        ("x^2+y^2-1", "100:101,100:101,0:1", ".step", "the box (100, 100, 0) to (101, 101, 1) asked for: give"),
+        ("x^2+y^2-z", "0.1,0,-1,0.5", ".step", "the ball of radius 0.5 about (0.1, 0, -1) asked for: give"),
+        ("x^2+y^2-z^2+1", "0.5", ".stl", "the ball of radius 0.5 about (0, 0, 0) asked for: give a region"),
+        ("x^2+y^2-z^2-1", "0,0,50,1", ".iges", "the ball of radius 1 about (0, 0, 50) asked for: give a region"),
+        # the mesh's grid passes between the points of an unbounded surface (it was said to lie
+        # "within about 1.77 of its centre")
+        ("x^2+y^2-1", "1e9", ".step", "the ball of radius 1e+09 about (0, 0, 0) asked for is too large to draw"),
+        ("x^2+y^2-z", "1e9", ".stl", "the ball of radius 1e+09 about (0, 0, 0.5) asked for is too large to draw"),
+    ],
+)
+def test_a_region_that_misses_the_surface_is_named_and_not_asked_for_again(
+    tmp_path: Path, equation: str, region: str, suffix: str, words: str
+) -> None:
+    """An unbounded surface (a cone, a cylinder, a paraboloid, hyperboloids) and a --region that
+    holds none of it: the line names the region and what is wrong with it, and the ball chosen
+    without one; it said "(give --region)" of the region given with --region."""
+    if suffix != ".stl":
+        pytest.importorskip("OCP")
+    target = tmp_path / f"out{suffix}"
+    done = sorgui("analyze", equation, f"--region={region}", "-o", str(target))
+    message = lines(done.stderr)[-1]
+    assert done.returncode == 1 and words in message and not target.exists(), done.stderr
+    assert "give --region" not in message and "lies within" not in message
+    if "too large" in message:
+        assert "give a smaller one (--region 1." in message
+    else:
+        assert "meets it (without one, the ball of radius " in message
 
 
 def test_a_nearly_revolving_surface_without_an_exact_one_is_not_called_no_surface_of_revolution(tmp_path: Path) -> None:

@@ -68,8 +68,6 @@ def export_file(
         # nothing for Open CASCADE to cut: a sphere of radius 10^200 about a ball of radius 2 kept
         # its Boolean busy for minutes, one of radius 10^20 gave a file of no face
         why = (scene.notes[0] if scene.notes else "the surface has no real points inside the ball").rstrip(".")
-        if "--region" not in why and "cannot be drawn" not in why:
-            why += " (give --region)"
         raise ValueError(f"{why[0].lower()}{why[1:]}")
     from sorgui.cad import cad_file, summary
 

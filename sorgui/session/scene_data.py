@@ -37,6 +37,7 @@ from sorgui.engine.values import (
     rational_function_terms,
     zero_set_profile,
 )
+from sorgui.export.text import float_text
 from sorgui.render import (
     PATCH_RANGE,
     PATCH_RANGES,
@@ -235,6 +236,20 @@ NEAREST_BALL_RATIO = 4.0
 """How many times the nearest exact surface's ball the typed one may be before that one is drawn."""
 
 
+def chosen_region(analysis: Analysis, terms: Terms, center: np.ndarray, axis: np.ndarray | None) -> ClipSphere:
+    """The ball ``analysis`` is drawn in when no region is asked for: a map's patch's when its
+    equation is not known, else :func:`view_region` about ``center``, grown to hold bounded
+    factors, or the nearest exact surface's (:func:`_nearest_region`)."""
+    real = [p for p in analysis.parametrizations if p.real and p.verified]
+    patch = patch_region(real[0]) if not analysis.squarefree and real else None
+    if patch is not None:
+        return patch
+    region = view_region(terms, center, axis)
+    if len(analysis.factors) > 1:
+        region = with_bounded_factors(region, [factor.polynomial for factor in analysis.factors], center, axis)
+    return _nearest_region(analysis, region, center, axis)
+
+
 def build_scene(
     analysis: Analysis,
     radius: float | None = None,
@@ -251,31 +266,29 @@ def build_scene(
     rec = analysis.recognition
     terms = polynomial_terms(analysis.squarefree)
     center, axis_direction = natural_center(rec, analysis.approximate)
+    asked = region is not None or box is not None  # a region of the caller's, not the chosen ball
     if box is not None:
         region = ball_about(box, center, axis_direction)
-    real = [p for p in analysis.parametrizations if p.real and p.verified]
-    if region is None and not analysis.squarefree and real:  # a parametrization without its equation
-        region = patch_region(real[0])
     if region is None:
-        region = view_region(terms, center, axis_direction)
-        if len(analysis.factors) > 1:
-            factors = [factor.polynomial for factor in analysis.factors]
-            region = with_bounded_factors(region, factors, center, axis_direction)
-        region = _nearest_region(analysis, region, center, axis_direction)
-    drawn = region  # the ball the surface would be drawn in by default
+        region = chosen_region(analysis, terms, center, axis_direction)
+    drawn = region  # the chosen ball, when no region was asked for
     if radius is not None:
         region = ClipSphere(region.center, radius)
     c, r = np.asarray(region.center), region.radius
     bounds = box.bounds if box is not None else tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
     clip: ClipSphere | ClipBox = box if box is not None else region
     surface = surface_mesh(terms, bounds, resolution=resolution or DEFAULT_RESOLUTION, clip=clip)
+    real = [p for p in analysis.parametrizations if p.real and p.verified]
     if not analysis.squarefree and real:  # a parametrization without its equation: its patch is the surface
         surface = patch_surface(real[0], clip, bounds)
     notes = []
     if surface.is_empty:
         spacing = 2 * region.radius / (resolution or DEFAULT_RESOLUTION)
-        small = box is None and drawn.radius < 2 * spacing < region.radius
-        notes.append(_empty_note(analysis.squarefree, "box" if box else "ball", drawn if small else None))
+        if asked:
+            chosen: ClipSphere | None = chosen_region(analysis, terms, center, axis_direction)
+        else:
+            chosen = drawn if radius is not None else None
+        notes.append(_empty_note(analysis.squarefree, box if box is not None else region, chosen, spacing))
     segment, profile = LineData.empty(), LineData.empty()
     axis_point = None
     if rec.axis is not None:
@@ -316,17 +329,45 @@ def build_scene(
     )
 
 
-def _empty_note(squarefree: str, where: str, drawn: ClipSphere | None = None) -> str:
-    """Why nothing of the surface is drawn, as a note of the scene; ``drawn``: the default ball,
-    when it is smaller than the mesh's grid in the given one (a unit sphere in a ball of radius
-    1000 was said to have "no real points inside the ball")."""
-    why = beyond_floats(squarefree) or f"the surface has no real points that can be drawn inside the {where}"
-    if drawn is not None:
-        why = (
-            f"the surface lies within about {drawn.radius:.3g} of its centre, less than the mesh's grid spacing in "
-            f"a ball this large: give a smaller one (--region {drawn.radius:.3g})"
-        )
+def _empty_note(squarefree: str, where: ClipSphere | ClipBox, chosen: ClipSphere | None, spacing: float) -> str:
+    """Why nothing of the surface is drawn in ``where``, as a note of the scene: its numbers
+    beyond floating point, or :func:`_empty_words`."""
+    why = beyond_floats(squarefree) or _empty_words(where, chosen, spacing)
     return f"{why[0].upper()}{why[1:]}."
+
+
+def _empty_words(where: ClipSphere | ClipBox, chosen: ClipSphere | None, spacing: float) -> str:
+    """What is wrong with ``where`` and what to do; ``chosen``: the ball chosen for the surface
+    when ``where`` was asked for instead (``None``: ``where`` is that ball). A ball asked for
+    whose mesh's grid (``spacing``) is coarse beside the chosen ball is too large: a unit sphere
+    in a ball of radius 1000 was said to have "no real points inside the ball", and a cylinder
+    of radius 1 in a ball of radius 10^9 to "lie within about 1.77 of its centre". A region
+    asked for is named, with the chosen ball: "give --region" was said of a region given with
+    ``--region``."""
+    region = _region_words(where)
+    if chosen is None:
+        return (
+            f"the surface has no real points that can be drawn inside {region}, chosen for it: "
+            "give a region that holds some (--region)"
+        )
+    if isinstance(where, ClipSphere) and chosen.radius < 2 * spacing < where.radius:
+        return (
+            f"{region} asked for is too large to draw the surface in: the mesh's grid (spacing "
+            f"{spacing:.3g}) passes between its points; give a smaller one (--region {chosen.radius:.3g}, "
+            "the radius of the ball chosen for it)"
+        )
+    return (
+        f"the surface has no real points that can be drawn inside {region} asked for: give a region that "
+        f"meets it (without one, {_region_words(chosen)})"
+    )
+
+
+def _region_words(region: ClipSphere | ClipBox) -> str:
+    """``the ball of radius 2 about (0, 0, 0)`` or ``the box (0, 0, 0) to (1, 1, 1)``."""
+    if isinstance(region, ClipBox):
+        low, high = region.bounds[0::2], region.bounds[1::2]
+        return f"the box {float_text(low, 6)} to {float_text(high, 6)}"
+    return f"the ball of radius {region.radius:.6g} about {float_text(region.center, 6)}"
 
 
 def build_scene_of(analysis: Analysis, request: Any) -> SceneData:
