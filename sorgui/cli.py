@@ -132,9 +132,9 @@ class UserRegion:
 
 def region_value(text: str) -> UserRegion:
     """``R``, ``X,Y,Z,R`` or ``XMIN:XMAX,YMIN:YMAX,ZMIN:ZMAX``, every number finite and each
-    radius and side positive."""
+    radius and side positive; spaces around the numbers, not inside them (``1 2`` was read as 12)."""
     usage = "give R, X,Y,Z,R or XMIN:XMAX,YMIN:YMAX,ZMIN:ZMAX"
-    parts = [p.split(":") for p in text.replace(" ", "").split(",")]
+    parts = [p.split(":") for p in text.split(",")]
     try:
         numbers = [float(v) for part in parts for v in part]
     except ValueError:
@@ -391,12 +391,13 @@ SIDE_FILES = {".md": ".png"}
 """The file a format writes beside its target (a Markdown report's picture ``NAME.png``)."""
 
 
-def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None = None) -> None:
+def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None = None, cap: bool = False) -> None:
     """Refuse, before any analysis, ``-o`` targets that cannot be written: an unknown format, a
     missing or read-only folder, a folder or read-only file in the way, the input file itself
     (also when it was read on standard input), a file that is neither a regular file nor a
     character device or a pipe. The file a format writes beside its target (the Markdown
-    report's picture) gets the same checks."""
+    report's picture) gets the same checks. ``--cap`` (``cap``) needs a CAD file of the
+    surface among them: a mesh or a patch was written uncapped without a word."""
     inputs = [os.stat(source)] if source is not None and source.exists() else []
     inputs += _stdin_file()
     for path in outputs:
@@ -412,6 +413,18 @@ def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None 
         side = [path.with_suffix(SIDE_FILES[suffix])] if suffix in SIDE_FILES else []
         for target in (path, *side):
             _check_target(target, inputs, beside=path if target is not path else None)
+    if cap and not any(_capped(path, fmt) for path in outputs):
+        raise UsageError(
+            f"--cap applies to CAD files of the surface ({' '.join(CAD_SUFFIXES)}; not a NAME.patch.step "
+            "patch): give -o PART.step"
+        )
+
+
+def _capped(path: Path, fmt: str | None) -> bool:
+    """Whether ``--cap`` applies to ``path``: a CAD file of the surface, not of the patch."""
+    from sorgui.export.formats import format_of, wants_patch
+
+    return format_of(path, fmt).suffix in CAD_SUFFIXES and not wants_patch(path, fmt)
 
 
 def _stdin_file() -> list[os.stat_result]:
@@ -603,7 +616,7 @@ def analyze_main(argv: Sequence[str]) -> int:
             if given:
                 raise UsageError(f"{option} applies to --each-line only (one equation per line of -f FILE or -)")
         text, source = read_input(args)
-        check_outputs(args.output, source, args.export_format)
+        check_outputs(args.output, source, args.export_format, args.cap)
     except UsageError as exc:
         return fail(str(exc), None, as_json, 2)
     except _OutputError as exc:
@@ -732,11 +745,9 @@ def part_main(args: argparse.Namespace, source: Path) -> int:
     return 0
 
 
-def _check_file_options(args: argparse.Namespace) -> None:
-    """The options of ``-o`` files (formats, CAD) need a file of one equation: without ``-o``,
-    or with ``--each-line`` (its ``-o`` is the JSON Lines of the results), they would be
-    ignored, so they are refused in one line; so is ``--each-line -o`` of an export format."""
-    given = [
+def file_options_given(args: argparse.Namespace) -> list[str]:
+    """The options of ``-o`` files given on the command line (:func:`add_export_options`)."""
+    return [
         name
         for name, on in (
             ("--format", args.export_format is not None),
@@ -747,6 +758,13 @@ def _check_file_options(args: argparse.Namespace) -> None:
         )
         if on
     ]
+
+
+def _check_file_options(args: argparse.Namespace) -> None:
+    """The options of ``-o`` files (formats, CAD) need a file of one equation: without ``-o``,
+    or with ``--each-line`` (its ``-o`` is the JSON Lines of the results), they would be
+    ignored, so they are refused in one line; so is ``--each-line -o`` of an export format."""
+    given = file_options_given(args)
     if given and args.each_line:
         raise UsageError(f"{given[0]} applies to the -o files of one equation, not to --each-line")
     if given and not args.output:
@@ -879,9 +897,9 @@ def open_main(argv: Sequence[str]) -> int:
     try:
         args = open_parser().parse_args(argv)
         if args.output:
-            check_outputs(args.output, args.report, args.export_format)
-        elif args.export_format is not None or args.fit_tolerance is not None or args.region != UserRegion():
-            raise UsageError("--format, --fit-tolerance and --region apply to -o files: give -o FILE")
+            check_outputs(args.output, args.report, args.export_format, args.cap)
+        elif file_options_given(args):
+            raise UsageError(f"{file_options_given(args)[0]} applies to -o files: give -o FILE")
     except UsageError as exc:
         return fail(str(exc), None, False, 2)
     if args.output:

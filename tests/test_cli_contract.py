@@ -58,9 +58,17 @@ def test_an_equation_may_start_with_a_minus_sign() -> None:
         (["--region", "1:0,0:1,0:1", "x^2+y^2-z"], "from low to high"),
         (["--region", "0,0,0,-1", "x^2+y^2-z"], "radius must be positive"),
         (["--region", "1,2", "x^2+y^2-z"], "not a region"),
+        (["--region", "1 2", "x^2+y^2-z"], "not a region"),  # it was read as 12
+        (["--region", "nan", "x^2+y^2-z"], "must be finite"),
+        (["--region", "-2", "x^2+y^2-z"], "radius must be positive"),
+        (["--region", "0:0,0:1,0:1", "x^2+y^2-z"], "from low to high"),
         (["--region", "inf", "x^2+y^2-z"], "must be finite"),
         (["--cap", "x^2+y^2-z"], "--cap applies to -o files: give -o FILE"),
         (["--units", "cm", "x^2+y^2-z"], "--units applies to -o files"),
+        # --cap left a mesh or a patch uncapped without a word
+        (["--cap", "x^2+y^2-z", "-o", "p.stl"], "--cap applies to CAD files of the surface"),
+        (["--cap", "x^2+y^2-z", "-o", "p.patch.step"], "--cap applies to CAD files of the surface"),
+        (["--cap", "--format", "patch.step", "x^2+y^2-z", "-o", "p.out"], "--cap applies to CAD files"),
         (["--each-line", "--fit-tolerance", "1e-6", "-"], "not to --each-line"),
         (["--each-line", "-", "-o", "results.txt"], "not a .txt file: name the results file results.jsonl"),
         (["--each-line", "-", "-o", "results.step"], "not a .step file"),
@@ -239,6 +247,7 @@ def test_a_region_is_a_radius_a_ball_or_a_box_and_may_start_with_a_minus_sign() 
     assert cli.region_value("1, 2, 3, 1.5e-3") == cli.UserRegion(radius=1.5e-3, center=(1.0, 2.0, 3.0))
     box = cli.UserRegion(bounds=(-1.0, 1.0, -2.0, 2.0, 0.0, 3.0))
     assert cli.region_value("-1:1,-2:2,0:3") == box
+    assert cli.region_value(" -1 : 1, -2:2 ,0:3 ") == box
     args = cli.parse_arguments(cli.analyze_parser(), ["--region", "-1:1,-2:2,0:3", "-x^2-y^2+z"])
     assert args.region == box and args.expression == "-x^2-y^2+z"
 

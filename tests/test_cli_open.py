@@ -88,6 +88,12 @@ def test_open_refuses_what_it_cannot_do_in_one_line(torus_report: Path, tmp_path
     assert itself.returncode == 2 and "refusing to overwrite the input file" in one_line(itself.stderr)
     no_output = sorgui("open", str(torus_report), "--region", "2", timeout=60)
     assert no_output.returncode == 2 and "give -o FILE" in one_line(no_output.stderr)
+    for option in (["--cap"], ["--units", "cm"]):  # the window opened, the option ignored
+        no_output = sorgui("open", str(torus_report), *option, timeout=60)
+        assert no_output.returncode == 2 and f"{option[0]} applies to -o files" in one_line(no_output.stderr)
+    uncapped = sorgui("open", str(torus_report), "--cap", "-o", str(tmp_path / "t.stl"), timeout=60)
+    assert uncapped.returncode == 2 and "--cap applies to CAD files" in one_line(uncapped.stderr)
+    assert not (tmp_path / "t.stl").exists()
     missing = sorgui("open", str(tmp_path / "missing.json"), "-o", str(tmp_path / "x.txt"), timeout=60)
     assert missing.returncode == 2 and "cannot read" in one_line(missing.stderr)
     assert not (tmp_path / "x.txt").exists()
