@@ -33,6 +33,7 @@ from .algebra.rationals import (
     context,
     factor,
     flint_str,
+    irreducible,
     primitive,
     rational_surd,
     terms,
@@ -208,7 +209,7 @@ def _factor_reports(
     irreducible and square-free, so is ``g``, without factoring ``g`` itself; its one factor is
     then ``g``'s primitive form, which the reader may have made and printed already."""
     g = reading.polynomial
-    if square is not None and _irreducible(square):
+    if square is not None and irreducible(square):
         h = primitive(g) if reading.primitive is None else reading.primitive
         printed = reading.primitive_printed
         if printed is None:
@@ -227,12 +228,6 @@ def _factor_reports(
             return None
         reports.append(Factor(flint_str(h, XYZ), e, found[0]))
     return tuple(reports), distinct
-
-
-def _irreducible(p: fmpq_mpoly) -> bool:
-    """Whether ``p`` is irreducible over ``QQ`` and square-free (one factor, multiplicity 1)."""
-    _, factors = p.factor()
-    return len(factors) == 1 and factors[0][1] == 1
 
 
 @overload

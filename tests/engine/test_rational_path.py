@@ -72,6 +72,17 @@ def test_same_analysis_as_the_general_pipeline(text: str) -> None:
     assert _without_timings(quick) == _without_timings(_general(text))
 
 
+def test_a_profile_of_3001_digit_coefficients_is_one_factor() -> None:
+    """``(x² + y² + z² + 10¹⁰⁰)³⁰ − 10¹⁰⁰·x``: its ``P²`` is shown irreducible modulo a prime
+    (flint's factorization of it took 18 to 47 s), so ``f`` is its one factor, as in the general
+    pipeline."""
+    text = "(x^2+y^2+z^2+10^100)^30-10^100*x"
+    quick = recognition_only_analysis(text, StageClock(None, None))
+    assert quick is not None and quick.is_sor and quick.recognition.axis is not None
+    assert [(factor.polynomial, factor.multiplicity) for factor in quick.factors] == [(quick.recognition.polynomial, 1)]
+    assert _without_timings(quick) == _without_timings(_general(text))
+
+
 @pytest.mark.parametrize(
     "text",
     [

@@ -1,12 +1,22 @@
-"""The printer of flint polynomials: flint's own ``deglex`` text is the project's term order."""
+"""The printer of flint polynomials: flint's own ``deglex`` text is the project's term order; the
+factorization over ``QQ``, and the primes that show a polynomial irreducible without it."""
 
 from __future__ import annotations
 
 from flint import fmpq
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from sorgui.engine.algebra.rationals import context, flint_str, terms, terms_str
+from sorgui.engine.algebra.rationals import (
+    context,
+    factor,
+    flint_str,
+    irreducible,
+    irreducible_modulo_a_prime,
+    primitive,
+    terms,
+    terms_str,
+)
 
 monomials = st.tuples(st.integers(0, 4), st.integers(0, 4), st.integers(0, 4))
 coefficients = st.builds(fmpq, st.integers(-50, 50), st.sampled_from([1, 1, 2, 3, 7, 12]))
@@ -17,3 +27,45 @@ coefficients = st.builds(fmpq, st.integers(-50, 50), st.sampled_from([1, 1, 2, 3
 def test_flint_str_prints_as_terms_str(d: dict, names: tuple[str, str, str]) -> None:
     g = context(("x", "y", "z")).from_dict(d)
     assert flint_str(g, names) == terms_str(names, terms(g))
+
+
+def test_a_prime_shows_irreducible_what_flint_took_27_s_to_factor() -> None:
+    """``P²`` of ``(x² + y² + z² + 10¹⁰⁰)³⁰ − 10¹⁰⁰·x`` (3001-digit coefficients) is irreducible
+    modulo a prime, so over ``QQ`` (docs/math.md §4): its one factor, without flint's factorization."""
+    s, w = context(("s", "w")).gens()
+    square = (s**2 + w + 10**100) ** 30 - 10**100 * s
+    assert irreducible_modulo_a_prime(square) and irreducible(square)
+    assert factor(square) == [(primitive(square), 1)]
+
+
+def test_what_no_prime_shows_irreducible_is_factored_in_full() -> None:
+    x, y, z = context(("x", "y", "z")).gens()
+    quartic = x**4 + y**4  # irreducible over QQ, split modulo every prime
+    assert not irreducible_modulo_a_prime(quartic) and factor(quartic) == [(quartic, 1)]
+    assert not irreducible_modulo_a_prime((x**2 + y**2 - z) ** 2)  # a square is no prime's irreducible
+    assert factor(-2 * (x**2 + y**2 - z) ** 2 * (x - 1) / 3) == [(x - 1, 1), (x**2 + y**2 - z, 2)]
+    assert not irreducible_modulo_a_prime(context(("x", "y", "z")).constant(5))
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.lists(st.dictionaries(monomials, coefficients, min_size=1, max_size=4), min_size=1, max_size=3),
+    st.sampled_from([1, 10**30]),
+    st.booleans(),
+)
+def test_factor_is_flints_factorization(parts: list[dict], scale: int, curve: bool) -> None:  # type: ignore[type-arg]
+    """Whether or not a prime is asked first (two variables, large coefficients), :func:`factor`
+    is flint's factorization (primitive factors) and :func:`irreducible` says what it says; a
+    polynomial a prime shows irreducible is one factor of multiplicity 1 in flint's too."""
+    ring = context(("x", "y", "z"))
+    g = ring.constant(1)
+    for i, d in enumerate(parts):
+        h = ring.from_dict(d) + scale
+        g *= h.subs({2: 1}) if curve else h ** (1 + i % 2)
+    assume(g.total_degree() >= 1)
+    _, flints = g.factor()
+    expected = sorted(((primitive(h), int(e)) for h, e in flints), key=str)
+    assert sorted(factor(g), key=str) == expected
+    assert irreducible(g) == (len(flints) == 1 and flints[0][1] == 1)
+    if irreducible_modulo_a_prime(g):
+        assert [e for _, e in flints] == [1]

@@ -23,6 +23,7 @@ from sympy.polys.rings import PolyElement, PolyRing, ring
 
 from . import numberfields, sympy_fixes
 from .rationals import Monomial, terms_str
+from .rationals import factor as rational_factor
 
 if QQ.dtype is not fmpq:  # sympy was imported before sorgui, with other ground types
     raise ImportError(
@@ -206,8 +207,7 @@ def factor(f: Poly) -> tuple[Any, list[tuple[Poly, int]]]:
     if f.is_ground:
         return f.LC if f else f.ring.domain.zero, []
     if is_rational_field(f.ring.domain):
-        c, fs = to_flint(f).factor()
-        factors = [(from_flint(g, f.ring), int(e)) for g, e in fs]
+        factors = [(from_flint(g, f.ring), e) for g, e in rational_factor(to_flint(f))]
     elif numberfields.supports(f.ring.domain) and numberfields.norm_degree(f) <= numberfields.MAX_NORM_DEGREE:
         factors = numberfields.factor(f)[1]
     else:  # the norm would be too large for flint's factorization over QQ: sympy's own route
