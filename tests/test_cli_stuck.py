@@ -188,6 +188,27 @@ def test_the_time_limit_and_the_signals_hold_inside_one_flint_factorization(tmp_
         wait_for(lambda children=children: all(dead(pid) for pid in children), 5)
 
 
+def test_a_limit_met_in_the_flint_paths_factorization_names_that_stage(tmp_path: Path) -> None:
+    """``--recognition-only`` runs on flint alone; the factors stage of the same product is one
+    flint call of 10 s or more there too. Ended in it at the limit, the answer names that stage
+    and keeps the recognition: it said the analysis had stopped "while reading the equation"."""
+    from tests.long_c_call import factored_product
+
+    equation = tmp_path / "product.txt"
+    equation.write_text(factored_product(), encoding="utf-8")
+    done = subprocess.run(
+        [*ANALYZE, "--json", "--recognition-only", "--timeout", "8", "-f", str(equation)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr
+    data = json.loads(done.stdout)
+    assert data["unfinished"] == ["factors", "canal"]
+    assert data["symmetry"] == "none" and data["is_sor"] is False
+    assert list(data["timings"]) == ["parse", "recognition"]
+
+
 def test_each_line_loses_no_line_when_a_worker_is_killed(tmp_path: Path) -> None:
     """The worker of the slow first line is killed (SIGKILL) while the next line waits behind it in
     its pipe: the first line says its analysis process died, and the others are analysed by a

@@ -15,7 +15,10 @@ reported as undecided, those done are kept.
 A recognition-only analysis of an equation over ``QQ`` is first tried on python-flint alone
 (:mod:`.rational_path`), which gives the same result without loading sympy, and so is the full
 analysis of a surface that is neither of revolution, a cone, a cylinder nor canal on its lines;
-the sympy-based stages are imported only when the equation needs them.
+the sympy-based stages are imported only when the equation needs them. That path runs its stages
+on the same clock: a time limit met there reports them as the general pipeline would (it does
+not start again), and the stages the general pipeline runs again after the path declined are
+timed as one.
 """
 
 from __future__ import annotations
@@ -26,7 +29,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from .algebra.linalg import Vector
-from .errors import AnalysisError, ParseError, TimeLimitReached
+from .errors import AnalysisError, TimeLimitReached
 from .parsing import has_decimals, is_parametrization, parse_polynomial
 from .recognition.symmetry import NEAREST_CANAL_NOTE, PLANE, SPHERE, revolution_canal
 from .results import Analysis, Approximation, Canal, Conical
@@ -77,8 +80,8 @@ def analyze(
     Inside one long C call (flint, sympy's compiled parts) that bound waits for the call to
     return: a caller that must stop at once runs the analysis in a process it can kill
     (:mod:`sorgui.session.supervised`), which ``stage_done`` (each stage's name and seconds as
-    it ends) and ``parsed`` (the :func:`~.timelimit.skeleton` of the equation once it is read)
-    keep informed.
+    it ends) and ``parsed`` (the :func:`~.timelimit.skeleton` of the equation once it is read,
+    again with the recognition once that is done) keep informed.
 
     ``tolerance`` (relative) asks whether ``f`` is near a surface of revolution; without it,
     that is asked whenever ``text`` prints decimals, with the tolerance their digits give.
@@ -87,7 +90,7 @@ def analyze(
     Raises :class:`~sorgui.engine.errors.ParseError` for bad input, :class:`Cancelled` when
     ``cancel`` is set; every other engine failure is a :class:`SorguiError` too.
     """
-    clock = StageClock(progress, cancel, partial, stage_done)
+    clock = StageClock(progress, cancel, partial, stage_done, parsed)
     start = time.monotonic()
     if is_parametrization(text):  # x = X(s, t), y = …, z = …: docs/math.md §13
         from .parametric.pipeline import analyze_parametrization
@@ -127,14 +130,13 @@ def analyze(
         from .rational_path import full_analysis, recognition_only_analysis
 
         flint_only = recognition_only_analysis if recognition_only else full_analysis
-        try:  # milliseconds: its stages are not announced to ``progress``
+        try:
             with time_limit(timeout, stated_timeout):
-                quick = flint_only(text, StageClock(None, cancel))
-        except TimeLimitReached:
-            quick = None  # the general pipeline below reports what was done in the time left
-        except ParseError:
-            with clock.stage("parse"):  # the error is the parse stage's, as in the general pipeline
-                raise
+                quick = flint_only(text, clock)
+        except TimeLimitReached as exc:  # the general pipeline would only run the same stages again
+            if clock.start is None:
+                raise TimeLimitReached(f"{exc.message} (while reading the equation)") from None
+            return _unfinished(clock, clock.start, exc.message, recognition_only)
         if quick is not None:
             clock.publish(quick)
             return quick
@@ -142,8 +144,8 @@ def analyze(
         load_engine()
     with clock.stage("parse"):
         f = parse_polynomial(text).polynomial
-    if parsed is not None:  # printing f costs at high degree: only for a caller that asks
-        parsed(skeleton(f, text=text, method=method))
+    if clock.start is None and parsed is not None:  # printing f costs at high degree: only for a caller that asks
+        clock.read(skeleton(f, text=text, method=method))
     remaining = None if timeout is None else max(timeout - (time.monotonic() - start), 0.001)
     try:
         with time_limit(remaining, stated_timeout or timeout):
@@ -157,15 +159,21 @@ def analyze(
                 tolerance=tolerance,
             )
     except TimeLimitReached as exc:
-        return unfinished_analysis(
-            skeleton(f, text=text, method=method),
-            recognition=clock.recognition,
-            latest=clock.latest,
-            timings=tuple(clock.timings),
-            current=clock.current,
-            message=exc.message,
-            recognition_only=recognition_only,
-        )
+        return _unfinished(clock, clock.start or skeleton(f, text=text, method=method), exc.message, recognition_only)
+
+
+def _unfinished(clock: StageClock, start: Analysis, message: str, recognition_only: bool) -> Analysis:
+    """The analysis as far as ``clock`` saw it when the time limit was met (``message``), from the
+    equation's skeleton ``start`` (:func:`~.timelimit.unfinished_analysis`)."""
+    return unfinished_analysis(
+        start,
+        recognition=clock.recognition,
+        latest=clock.latest,
+        timings=tuple(clock.timings),
+        current=clock.current,
+        message=message,
+        recognition_only=recognition_only,
+    )
 
 
 def load_engine() -> None:
@@ -209,7 +217,7 @@ def analyze_polynomial(
     cancel = clock.cancel
     with clock.stage("recognition"):
         recognition, symmetry, profile = recognize(f, method, frame)
-    clock.recognition = recognition
+    clock.recognized(recognition)
     with clock.stage("factors"):
         factors, distinct = factor_reports(f, recognition, method)
     real = None

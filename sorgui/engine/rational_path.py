@@ -52,6 +52,7 @@ from .recognition.symmetry import (
     revolution_canal,
 )
 from .results import Analysis, Axis, Canal, Conical, Factor, Profile, Recognition, Triple
+from .timelimit import printed_skeleton
 
 if TYPE_CHECKING:
     from .stages import StageClock
@@ -63,18 +64,19 @@ MAX_NORM = 2**30
 square factors of ``|a|²``; sympy looks for them by trial division up to ``2¹⁵`` only, so larger
 ``|a|²`` (which might have a square factor beyond it) are left to the general pipeline."""
 FULL_DEGREE = 12
-"""The full analysis on flint alone is for surfaces up to this degree: its stages are not
-reported one by one to a supervising parent (they take milliseconds there), whereas factoring a
-surface of much higher degree can be one long C call, which the general pipeline's reported
-stages let a parent end with what was done."""
+"""The full analysis on flint alone is for surfaces up to this degree; one of higher degree keeps
+the general pipeline (tests/test_cli_stuck.py ends one of degree 45 inside its factorization)."""
 Surd = tuple[fmpq, int]
 """``(q, d)``: the number ``q·√d`` (``d`` square-free; ``d = 1`` for a rational)."""
 
 
 def recognition_only_analysis(text: str, clock: StageClock) -> Analysis | None:
     """The recognition-only analysis of ``text`` over ``QQ`` (stages parse, recognition, factors,
-    canal, timed by ``clock``), or ``None`` when it needs sympy. Raises :class:`ParseError` for
-    bad input, as the general pipeline does."""
+    canal, run on ``clock``), or ``None`` when it needs sympy. Raises :class:`ParseError` for
+    bad input, as the general pipeline does.
+
+    ``clock`` is told the equation's skeleton once it is read (:meth:`StageClock.read`) and the
+    recognition once it is done: a time limit met later reports them."""
     return _analysis(text, clock, full=False)
 
 
@@ -92,14 +94,18 @@ def _analysis(text: str, clock: StageClock, *, full: bool) -> Analysis | None:
         return None
     with clock.stage("parse"):
         reading = read_rational(text)
-    if reading is None:
-        return None
-    g = reading.polynomial
+        if reading is None:
+            return None
+        g = reading.polynomial
+        printed = flint_str(g, XYZ) if reading.printed is None else reading.printed
+        start = printed_skeleton(printed, int(g.total_degree()), "QQ", text=text, method="symmetry")
+    clock.read(start)
     with clock.stage("recognition"):
-        found = recognize_rational(g, reading.printed)
+        found = recognize_rational(g, printed)
     if found is None or (full and (found[0].is_sor or found[0].degree > FULL_DEGREE)):
         return None
     recognized, square = found
+    clock.recognized(recognized)
     with clock.stage("factors"):
         factors = _factor_reports(reading, recognized, square)
     if factors is None:

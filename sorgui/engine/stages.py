@@ -12,6 +12,7 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from dataclasses import replace
 
 from .errors import Cancelled
 from .results import Analysis, Recognition
@@ -43,7 +44,13 @@ class StageClock:
 
     ``partial`` is given the :class:`Analysis` known so far whenever a group of stages is done
     (after the factors, then at the end), so that a window can show the verdict and the axis
-    while Singular still runs; ``done`` the name and seconds of every stage as it ends.
+    while Singular still runs; ``done`` the name and seconds of every stage as it ends;
+    ``parsed`` the equation's skeleton (:func:`~.timelimit.skeleton`) once it is read, and again
+    with the recognition once that is known: what a supervising parent that ends the analysis
+    reports.
+
+    A stage run a second time (the flint path, :mod:`.rational_path`, declined after it and the
+    general pipeline runs it again) is one stage: its seconds add up, in the place of its last run.
     """
 
     def __init__(
@@ -52,13 +59,16 @@ class StageClock:
         cancel: threading.Event | None,
         partial: PartialCallback | None = None,
         done: DoneCallback | None = None,
+        parsed: PartialCallback | None = None,
     ) -> None:
         self.progress = progress
         self.cancel = cancel
         self.partial = partial
         self.done = done
+        self.parsed = parsed
         self.timings: list[tuple[str, float]] = []
         self.current: str | None = None
+        self.start: Analysis | None = None  # the skeleton, for a time limit met before any result
         self.recognition: Recognition | None = None  # kept for a time limit met before publish
         self.latest: Analysis | None = None
         self.decorate: Callable[[Analysis], Analysis] | None = None
@@ -71,6 +81,19 @@ class StageClock:
         self.latest = analysis
         if self.partial is not None:
             self.partial(analysis)
+
+    def read(self, start: Analysis) -> None:
+        """The equation is read: keep its skeleton ``start`` and hand it to ``parsed``."""
+        self.start = start
+        if self.parsed is not None:
+            self.parsed(start)
+
+    def recognized(self, recognition: Recognition) -> None:
+        """The recognition is done: keep it, and hand ``parsed`` the skeleton with it (the verdict
+        and the axis outlive a stage after it that is ended from outside)."""
+        self.recognition = recognition
+        if self.start is not None and self.parsed is not None:
+            self.parsed(replace(self.start, recognition=recognition, squarefree=recognition.polynomial))
 
     def check(self) -> None:
         """Raise :class:`Cancelled` when the caller asked to stop."""
@@ -87,6 +110,10 @@ class StageClock:
         start = time.perf_counter()
         yield
         seconds = time.perf_counter() - start
+        earlier = [before for done, before in self.timings if done == name]
+        if earlier:
+            self.timings = [(done, before) for done, before in self.timings if done != name]
+            seconds += earlier[0]
         self.timings.append((name, seconds))
         if self.done is not None:
             self.done(name, seconds)

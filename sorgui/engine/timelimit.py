@@ -65,9 +65,15 @@ def skeleton(f: Poly, *, text: str, method: str) -> Analysis:
     analysis process sends it to its parent as soon as the equation is read."""
     from .algebra.polys import field_name, poly_str, total_degree
 
+    return printed_skeleton(poly_str(f), total_degree(f), field_name(f.ring.domain), text=text, method=method)
+
+
+def printed_skeleton(printed: str, degree: int, field: str, *, text: str, method: str) -> Analysis:
+    """The :func:`skeleton` of the polynomial ``printed`` of total degree ``degree`` over
+    ``field``, without sympy (the flint path's, :mod:`.rational_path`)."""
     recognition = Recognition(
-        polynomial=poly_str(f),
-        degree=total_degree(f),
+        polynomial=printed,
+        degree=degree,
         is_sor=False,
         symmetry=UNDECIDED,
         symmetry_dimension=0,
@@ -75,11 +81,11 @@ def skeleton(f: Poly, *, text: str, method: str) -> Analysis:
     )
     return Analysis(
         input=text,
-        field=field_name(f.ring.domain),
+        field=field,
         method=method,
         recognition=recognition,
         factors=(),
-        squarefree=recognition.polynomial,
+        squarefree=printed,
     )
 
 

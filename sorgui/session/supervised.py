@@ -121,7 +121,8 @@ class StageLog:
                 self.start = analysis
             case StageStarted(stage):
                 self.current = stage
-            case StageDone(stage, seconds):
+            case StageDone(stage, seconds):  # a stage run again is timed as one (StageClock)
+                self.timings = [(done, before) for done, before in self.timings if done != stage]
                 self.timings.append((stage, seconds))
             case AnalysisKnown(analysis):
                 self.latest = analysis
@@ -133,11 +134,12 @@ class StageLog:
     def outcome(self, reason: str) -> Finished | Failed:
         """The final message for a process that was ended (``reason``: why, in words): the stages
         it finished as done and the rest unfinished, or ``failed`` if it had not yet read the
-        equation."""
+        equation (naming the stage, the engine's loading or the reading)."""
         from sorgui.engine.timelimit import unfinished_analysis
 
         if self.start is None and self.latest is None:
-            return Failed(f"{reason} (while reading the equation)")
+            doing = "loading the engine" if self.current == "engine" else "reading the equation"
+            return Failed(f"{reason} (while {doing})")
         start = self.start if self.start is not None else self.latest
         assert start is not None
         timings = tuple(self.timings) if self.timings or self.latest is None else self.latest.timings

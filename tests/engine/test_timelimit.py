@@ -6,6 +6,7 @@ import signal
 import threading
 import time
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -39,6 +40,39 @@ def test_a_limit_met_in_python_keeps_what_finished() -> None:
     assert not done & set(result.unfinished)
     assert result.recognition.symmetry == ("none" if "recognition" in done else UNDECIDED)
     assert bool(result.factors) == ("factors" in done)
+
+
+def test_a_limit_met_on_the_flint_path_is_reported_from_there(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A recognition-only analysis over ``QQ`` runs on flint alone (:mod:`~sorgui.engine.rational_path`).
+    A limit met in its factors stage (held here in Python for 30 s) names that stage and keeps
+    the verdict and the axis; the general pipeline does not start the analysis again (it did, and
+    reported the recognition as unfinished after loading sympy and reading the equation anew)."""
+    from sorgui.engine import rational_path
+
+    factors = rational_path._factor_reports
+
+    def held(*args: Any) -> Any:  # noqa: ANN401 - the arguments of the wrapped function
+        time.sleep(30)
+        return factors(*args)
+
+    monkeypatch.setattr(rational_path, "_factor_reports", held)
+    started: list[str] = []
+    result = analyze("(x^2+y^2+z^2+21)^2-100(x^2+y^2)", recognition_only=True, timeout=1, progress=started.append)
+    assert started == ["parse", "recognition", "factors"]
+    assert result.is_sor and result.recognition.axis is not None and not result.factors
+    assert [name for name, _ in result.timings] == ["parse", "recognition"]
+    assert result.unfinished == ("factors", "canal")
+
+
+def test_a_limit_met_while_reading_says_so(monkeypatch: pytest.MonkeyPatch) -> None:
+    from sorgui.engine import rational_path
+
+    def held(text: str) -> None:
+        time.sleep(30)
+
+    monkeypatch.setattr(rational_path, "read_rational", held)
+    with pytest.raises(TimeLimitReached, match=r"time limit of 1 s \(while reading the equation\)"):
+        analyze("x^2 + y^2 - z", recognition_only=True, timeout=1)
 
 
 def test_nothing_finished_is_reported_undecided() -> None:

@@ -15,12 +15,14 @@ from sorgui.session.supervised import (
     run_request,
 )
 
+TORUS = "(x^2+y^2+z^2+21)^2-100(x^2+y^2)"
+
 
 def test_the_streamed_messages_rebuild_an_unfinished_analysis() -> None:
     """Everything the process sends before it is killed gives the same answer as the engine's own
     time limit: the stages done, the rest unfinished."""
     sent: list[Message] = []
-    request = AnalysisRequest("(x^2+y^2+z^2+21)^2-100(x^2+y^2)", timeout=60)
+    request = AnalysisRequest(TORUS, timeout=60)
     final = run_request(request, sent.append)
     assert isinstance(final, Finished)
     kinds = [type(m) for m in sent]
@@ -37,12 +39,51 @@ def test_the_streamed_messages_rebuild_an_unfinished_analysis() -> None:
     assert {name for name, _ in analysis.timings} == {m.stage for m in sent[:cut] if isinstance(m, StageDone)}
 
 
-def test_killed_before_the_equation_was_read_is_a_failure() -> None:
+def test_ended_in_the_factors_of_the_flint_path_names_them() -> None:
+    """A recognition-only analysis runs on flint alone (:mod:`sorgui.engine.rational_path`) and
+    streams its stages, its reading and its recognition as the general pipeline does: a process
+    ended in its factors stage (as inside one long flint factorization) reports that stage
+    unfinished and keeps the verdict and the axis (it said "while reading the equation")."""
+    sent: list[Message] = []
+    request = AnalysisRequest(TORUS, recognition_only=True, timeout=60)
+    final = run_request(request, sent.append)
+    assert isinstance(final, Finished)
+    cut = sent.index(StageStarted("factors"))
+    log = StageLog(request.recognition_only)
+    for message in sent[: cut + 1]:
+        assert not log.take(message)
+    outcome = log.outcome("the analysis did not finish within the time limit of 60 s")
+    assert isinstance(outcome, Finished)
+    analysis = outcome.result
+    assert analysis.is_sor and analysis.recognition.axis == final.result.recognition.axis
+    assert analysis.unfinished == ("factors", "canal") and not analysis.factors
+    assert [name for name, _ in analysis.timings] == ["parse", "recognition"]
+
+
+def test_a_stage_run_again_after_the_flint_path_declined_is_timed_once() -> None:
+    """The full analysis of a torus: flint reads and recognises it, then leaves it to the general
+    pipeline (Table 1 needs sympy and Singular), which reads and recognises it again; each of the
+    two stages is timed once, in the place of its last run, by the engine and the parent alike."""
+    sent: list[Message] = []
+    final = run_request(AnalysisRequest(TORUS, timeout=60), sent.append)
+    assert isinstance(final, Finished)
+    assert [m.stage for m in sent if isinstance(m, StageDone)].count("parse") == 2
+    names = [name for name, _ in final.result.timings]
+    assert names[:4] == ["engine", "parse", "recognition", "factors"] and len(set(names)) == len(names)
     log = StageLog(recognition_only=False)
-    log.take(StageStarted("engine"))
-    assert log.outcome("the analysis did not finish within the time limit of 1 s") == Failed(
-        "the analysis did not finish within the time limit of 1 s (while reading the equation)"
-    )
+    for message in sent:
+        log.take(message)
+    assert [name for name, _ in log.timings] == names
+
+
+def test_killed_before_the_equation_was_read_is_a_failure() -> None:
+    """The failure names what was running: the engine's loading, or the reading."""
+    for stage, doing in (("engine", "loading the engine"), ("parse", "reading the equation")):
+        log = StageLog(recognition_only=False)
+        log.take(StageStarted(stage))
+        assert log.outcome("the analysis did not finish within the time limit of 1 s") == Failed(
+            f"the analysis did not finish within the time limit of 1 s (while {doing})"
+        )
 
 
 def test_no_process_can_be_started(monkeypatch: pytest.MonkeyPatch) -> None:
