@@ -197,7 +197,8 @@ def _fresh(lines: Iterable[Line], results: ResultsFile | None) -> Iterator[Line]
 
 
 def _requests(args: argparse.Namespace) -> Callable[[str], AnalysisRequest]:
-    """The analysis request of a line's text, with the options of ``args``."""
+    """The analysis request of a line's text, with the options of ``args`` (the stages of the
+    engine's flint-only path, a few milliseconds, not reported)."""
     from sorgui.session.supervised import AnalysisRequest
 
     def request(text: str) -> AnalysisRequest:
@@ -207,6 +208,7 @@ def _requests(args: argparse.Namespace) -> Callable[[str], AnalysisRequest]:
             recognition_only=args.recognition_only,
             tolerance=args.tolerance,
             timeout=args.timeout,
+            quick_stages=False,
         )
 
     return request

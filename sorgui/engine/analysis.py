@@ -70,6 +70,7 @@ def analyze(
     stated_timeout: float | None = None,
     stage_done: DoneCallback | None = None,
     parsed: PartialCallback | None = None,
+    quick_stages: bool = True,
 ) -> Analysis:
     """Analyse the equation ``text`` exactly and return the immutable :class:`Analysis`; a
     rational parametrization ``x = X(s, t), y = …, z = …`` is analysed as its surface.
@@ -87,6 +88,9 @@ def analyze(
     that is asked whenever ``text`` prints decimals, with the tolerance their digits give.
 
     ``partial`` receives the results known so far as they arrive (see :class:`StageClock`).
+    ``quick_stages=False`` keeps the stages of the flint-only path (:mod:`.rational_path`, a few
+    milliseconds) from the callbacks: a batch's worker analyses hundreds of lines a second, and
+    a message for each of their stages made a line a third slower.
     Raises :class:`~sorgui.engine.errors.ParseError` for bad input, :class:`Cancelled` when
     ``cancel`` is set; every other engine failure is a :class:`SorguiError` too.
     """
@@ -130,13 +134,14 @@ def analyze(
         from .rational_path import full_analysis, recognition_only_analysis
 
         flint_only = recognition_only_analysis if recognition_only else full_analysis
+        quick_clock = clock if quick_stages else StageClock(None, cancel)
         try:
             with time_limit(timeout, stated_timeout):
-                quick = flint_only(text, clock)
+                quick = flint_only(text, quick_clock)
         except TimeLimitReached as exc:  # the general pipeline would only run the same stages again
-            if clock.start is None:
+            if quick_clock.start is None:
                 raise TimeLimitReached(f"{exc.message} (while reading the equation)") from None
-            return _unfinished(clock, clock.start, exc.message, recognition_only)
+            return _unfinished(quick_clock, quick_clock.start, exc.message, recognition_only)
         if quick is not None:
             clock.publish(quick)
             return quick

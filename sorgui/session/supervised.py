@@ -83,6 +83,9 @@ class AnalysisRequest:
     machine's, the same in the child), set by :meth:`Supervised.give`; ``None``: ``timeout``
     seconds less :data:`ANSWER_MARGIN` from when the child starts on the request (a request
     queued behind another, :meth:`Supervised.queue`)."""
+    quick_stages: bool = True
+    """Whether the stages of the engine's flint-only path are reported (``analyze``'s
+    ``quick_stages``): not for a batch's lines, each a few milliseconds."""
 
     def options(self) -> dict[str, Any]:
         """The keywords of :func:`sorgui.engine.analyze`, the time limit being what is left of
@@ -99,15 +102,18 @@ class AnalysisRequest:
             "timeout": left,
             "stated_timeout": self.timeout,
             "singular_timeout": 60.0 if left is None else left,
+            "quick_stages": self.quick_stages,
         }
 
 
 @dataclass
 class StageLog:
     """What an analysis process has said so far about one request (``recognition_only``: whether
-    the request skipped the rationality, which decides the stages still to come)."""
+    the request skipped the rationality, which decides the stages still to come;
+    ``quick_stages``: whether the flint-only path reports its stages, :class:`AnalysisRequest`)."""
 
     recognition_only: bool
+    quick_stages: bool = True
     start: Analysis | None = None
     latest: Analysis | None = None
     timings: list[tuple[str, float]] = field(default_factory=list)
@@ -138,6 +144,8 @@ class StageLog:
         from sorgui.engine.timelimit import unfinished_analysis
 
         if self.start is None and self.latest is None:
+            if not self.quick_stages:  # a batch's line: its first stages are not reported
+                return Failed(f"{reason} (before it reported a stage)")
             doing = "loading the engine" if self.current == "engine" else "reading the equation"
             return Failed(f"{reason} (while {doing})")
         start = self.start if self.start is not None else self.latest
@@ -254,7 +262,7 @@ class Supervised:
 
     def _begin(self, request: AnalysisRequest) -> None:
         self.request = request
-        self.log = StageLog(request.recognition_only)
+        self.log = StageLog(request.recognition_only, request.quick_stages)
         if request.deadline is not None:
             grace = GRACE if request.timeout is None else margins(request.timeout)[1]
             self.deadline = request.deadline + grace
