@@ -321,3 +321,61 @@ def test_a_rounded_cylinder_over_a_curve_says_it_is_nearly_one() -> None:
     assert analysis.conical is not None and analysis.conical.near_direction is not None
     with pytest.raises(ValueError, match="nearly a cylinder over a curve, not exactly one"):
         surface_model(analysis, build_scene(analysis))
+
+
+ROUNDED_CONE = (
+    "+1.76768e+01 +1.06327e+00*z +7.62636e-03*z^2 +2.32155e-01*y -2.04920e+00*y*z -5.78760e-02*y^2"
+    " -1.85815e+01*x +3.42184e+00*x*z +3.53297e+00*x*y -1.94975e+00*x^2"
+)
+"""The cone ``r = 2h`` turned by a random rotation, its apex at about (2.16, 4.15, 3.60), printed
+with 6 significant digits (``sorgui.samples.printed``)."""
+
+
+def test_a_rounded_cone_s_typed_deviation_is_its_distance_from_the_typed_surface() -> None:
+    """The typed quadric is ``(p − c)ᵀA(p − c) + f(c)`` about its centre ``c``, within 10⁻⁶ of the
+    exact cone's apex: a hyperboloid whose distance from ``c`` is ``√(|f(c)|/|λ|)`` (``λ`` the
+    eigenvalue of ``A`` of largest size and the sign opposite to ``f(c)``), 0.0025 here (the
+    square root of the rounding: the apex is where it moves the zero set most). No point of the
+    part is farther from it (at most 1% more is allowed). The first-order distance ``|f|/|∇f|``
+    is ``10¹⁰`` at ``c`` and gave 0.18 from a sample 2e-5 from the apex. A typed surface that
+    really is elsewhere is measured as far as it is: the exact cone shifted 0.05 along its axis
+    lies ``0.05·sin(atan 2) = 0.0447`` from the part, and one with no real points at all (no foot
+    settles, the first-order distance is kept) more than 1."""
+    pytest.importorskip("OCP")
+    import sympy
+
+    from sorgui.cad.model import surface_model
+    from sorgui.cad.nearest import foot_distances, typed_deviation
+    from sorgui.engine.values import float_vector
+    from sorgui.render.sampling import evaluate_points, first_order_distance
+
+    analysis = analyze(ROUNDED_CONE)
+    nearest = analysis.approximate.nearest if analysis.approximate else None
+    assert nearest is not None and nearest.within_rounding and nearest.analysis is not None
+    scene = build_scene(analysis)
+    model = surface_model(analysis, scene)
+    terms = polynomial_terms(analysis.squarefree)
+    quadratic, linear = np.zeros((3, 3)), np.zeros(3)
+    for exponents, c in terms:
+        variables = [v for v in range(3) for _ in range(exponents[v])]
+        if len(variables) == 2:
+            quadratic[variables[0], variables[1]] += c / 2
+            quadratic[variables[1], variables[0]] += c / 2
+        elif len(variables) == 1:
+            linear[variables[0]] += c
+    centre = np.linalg.solve(quadratic, -linear / 2)
+    value = evaluate_points(terms, centre[None])[0]
+    eigenvalues = np.linalg.eigvalsh(quadratic)
+    gap = math.sqrt(abs(value) / np.abs(eigenvalues[np.sign(eigenvalues) == -np.sign(value)]).max())
+    assert 0.002 < gap < 0.003
+    assert foot_distances(terms, centre[None], scene.region.radius)[0] == pytest.approx(gap, rel=1e-6)
+    assert first_order_distance(terms, centre[None])[0] > 1e6 * gap
+    assert model.typed_deviation is not None and model.typed_deviation <= 1.01 * gap
+
+    axis = float_vector(nearest.analysis.recognition.axis.direction)
+    axis /= np.linalg.norm(axis)
+    x, y, z = sympy.symbols("x y z")
+    shift = dict(zip((x, y, z), (x - 0.05 * axis[0], y - 0.05 * axis[1], z - 0.05 * axis[2])))
+    shifted = sympy.expand(sympy.sympify(nearest.polynomial).subs(shift, simultaneous=True))
+    assert typed_deviation(model.shape, str(shifted), scene) == pytest.approx(0.05 * 2 / math.sqrt(5), rel=0.01)
+    assert typed_deviation(model.shape, "x^2 + y^2 + z^2 + 1", scene) > 1
