@@ -7,6 +7,7 @@ import os
 
 import pytest
 
+from sorgui.engine.results import Analysis
 from sorgui.session.messages import AnalysisKnown, Failed, Finished, Message, Parsed, StageDone, StageStarted
 from sorgui.session.supervised import (
     AnalysisRequest,
@@ -16,6 +17,16 @@ from sorgui.session.supervised import (
 )
 
 TORUS = "(x^2+y^2+z^2+21)^2-100(x^2+y^2)"
+
+
+def _ended_after(request: AnalysisRequest, heard: list[Message]) -> Analysis:
+    """What the parent makes of a process ended once it had sent ``heard`` (not its final message)."""
+    log = StageLog(request.recognition_only)
+    for message in heard:
+        assert not log.take(message)
+    outcome = log.outcome("the analysis did not finish within the time limit of 60 s")
+    assert isinstance(outcome, Finished)
+    return outcome.result
 
 
 def test_the_streamed_messages_rebuild_an_unfinished_analysis() -> None:
@@ -28,12 +39,7 @@ def test_the_streamed_messages_rebuild_an_unfinished_analysis() -> None:
     kinds = [type(m) for m in sent]
     assert kinds[:2] == [StageStarted, StageDone] and Parsed in kinds and AnalysisKnown in kinds
     cut = kinds.index(StageStarted, kinds.index(AnalysisKnown))  # killed while the stage after the verdict ran
-    log = StageLog(request.recognition_only)
-    for message in sent[: cut + 1]:
-        assert not log.take(message)
-    outcome = log.outcome("the analysis did not finish within the time limit of 60 s")
-    assert isinstance(outcome, Finished)
-    analysis = outcome.result
+    analysis = _ended_after(request, sent[: cut + 1])
     assert analysis.is_sor and analysis.unfinished
     assert analysis.unfinished[0] == sent[cut].stage  # type: ignore[union-attr]
     assert {name for name, _ in analysis.timings} == {m.stage for m in sent[:cut] if isinstance(m, StageDone)}
@@ -49,12 +55,7 @@ def test_ended_in_the_factors_of_the_flint_path_names_them() -> None:
     final = run_request(request, sent.append)
     assert isinstance(final, Finished)
     cut = sent.index(StageStarted("factors"))
-    log = StageLog(request.recognition_only)
-    for message in sent[: cut + 1]:
-        assert not log.take(message)
-    outcome = log.outcome("the analysis did not finish within the time limit of 60 s")
-    assert isinstance(outcome, Finished)
-    analysis = outcome.result
+    analysis = _ended_after(request, sent[: cut + 1])
     assert analysis.is_sor and analysis.recognition.axis == final.result.recognition.axis
     assert analysis.unfinished == ("factors", "canal") and not analysis.factors
     assert [name for name, _ in analysis.timings] == ["parse", "recognition"]
