@@ -94,15 +94,15 @@ def _analysis(text: str, clock: StageClock, *, full: bool) -> Analysis | None:
         return None
     with clock.stage("parse"):
         reading = read_rational(text)
-        if reading is None:
-            return None
+        if reading is None or (full and reading.polynomial.total_degree() > FULL_DEGREE):
+            return None  # the general pipeline: not read, printed and recognised twice
         g = reading.polynomial
         printed = flint_str(g, XYZ) if reading.printed is None else reading.printed
         start = printed_skeleton(printed, int(g.total_degree()), "QQ", text=text, method="symmetry")
     clock.read(start)
     with clock.stage("recognition"):
         found = recognize_rational(g, printed)
-    if found is None or (full and (found[0].is_sor or found[0].degree > FULL_DEGREE)):
+    if found is None or (full and found[0].is_sor):
         return None
     recognized, square = found
     clock.recognized(recognized)
