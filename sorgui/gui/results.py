@@ -157,6 +157,7 @@ class ResultsPane(QScrollArea):
         wall: float | None = None,
         unfinished: Collection[str] = (),
         limit: float | None = None,
+        beyond: bool = False,
     ) -> None:
         """Show ``analysis``, every formula as text at once and typeset when the typesetting
         process has it. ``stages`` are the run's finished stages with their times and ``wall``
@@ -164,7 +165,8 @@ class ResultsPane(QScrollArea):
         ``pending`` names the stages still to come (shown as such), ``unfinished`` those the time
         limit of ``limit`` seconds cut short (shown as undecided); ``nearest`` says that
         ``analysis`` is that of the nearest exact surface (its numbers in decimals, as rounded
-        input's); ``components`` are the typed components of a blend, to explain a *no*."""
+        input's), ``beyond`` that it lies outside the input's rounding; ``components`` are the
+        typed components of a blend, to explain a *no*."""
         self._analysis = analysis
         self._formulas = pane_formulas(analysis, "decimal" if nearest else None)
         rec = analysis.recognition
@@ -175,9 +177,13 @@ class ResultsPane(QScrollArea):
         title, detail, kind = verdict(analysis, rounding_pending="approximate" in pending)
         if nearest:
             title = "The nearest exact surface: " + title.lower()
-            detail = (
-                "the exact analysis of the surface of revolution that the rounded input was meant to be · " + detail
+            meant = (
+                "the exact analysis of the surface of revolution found nearest the rounded input, outside its "
+                "rounding: not known to be the one meant"
+                if beyond
+                else "the exact analysis of the surface of revolution that the rounded input was meant to be"
             )
+            detail = f"{meant} · {detail}"
         self._banner(title, detail, kind)
         if analysis.parametric is not None:
             self._parametric_section(analysis.parametric)

@@ -139,6 +139,7 @@ class SessionView(QObject):
             nearest_analysis = self.session.nearest_analysis if self.session.view == "nearest" else None
             nearest = nearest_analysis is not None
             analysis = nearest_analysis if nearest_analysis is not None else run.analysis
+            found = run.analysis.approximate.nearest if run.analysis.approximate is not None else None
             pending = {s.name for s in run.stage_list() if s.state in (StageState.PENDING, StageState.RUNNING)}
             done = (
                 () if run.report else tuple((s.name, s.seconds) for s in run.stage_list() if s.state is StageState.DONE)
@@ -150,6 +151,7 @@ class SessionView(QObject):
                 unfinished={s.name for s in run.unfinished()} if not nearest else set(),
                 limit=run.limit,
                 nearest=nearest,
+                beyond=nearest and found is not None and not found.within_rounding,
                 components=() if nearest else run.components,
                 wall=None if run.running or run.report else run.elapsed(),
             )

@@ -106,3 +106,31 @@ def test_a_field_of_a_hundred_digits_does_not_widen_the_results_pane(window, run
     pane = window.results
     assert pane.horizontalScrollBar().maximum() == 0
     assert pane.widget().width() <= pane.viewport().width()
+
+
+TORUS_FIXED_DECIMALS = (
+    "1.000000*x^4 - 482.000000*x^3 + 2.000000*x^2*y^2 + 140.800000*x^2*y + 2.000000*x^2*z^2 - "
+    "320.000000*x^2*z + 97990.603743*x^2 - 482.000000*x*y^2 - 36944.545809*x*y - "
+    "482.000000*x*z^2 + 81999.028210*x*z - 10114550.211232*x + 1.000000*y^4 + 140.800000*y^3 + "
+    "2.000000*y^2*z^2 - 320.000000*y^2*z + 46472.028174*y^2 + 140.800000*y*z^2 - "
+    "30659.713683*y*z + 3936169.584053*y + 1.000000*z^4 - 320.000000*z^3 + 71192.768084*z^2 - "
+    "8169002.114326*z + 519897350.237484"
+)
+"""A torus in millimetres about a tilted axis, printed with 6 fixed decimals: the nearest exact
+surface found lies outside its rounding (one coefficient 6.8 times its rounding off)."""
+
+
+def test_a_nearest_surface_outside_the_rounding_is_not_called_the_one_meant(window, run_analysis, qtbot) -> None:
+    """Switched to it, its banner said "the surface of revolution that the rounded input was meant
+    to be", while the typed view said none was found within the rounding."""
+    from tests.gui.test_canal import pane_text
+
+    run_analysis(window, TORUS_FIXED_DECIMALS, timeout_ms=300_000)
+    qtbot.waitUntil(lambda: window.session.nearest_analysis is not None, timeout=300_000)
+    assert not window.session.run.analysis.approximate.nearest.within_rounding
+    switch = window.findChild(QRadioButton, "viewNearest")
+    assert switch is not None and switch.isEnabled()
+    switch.click()
+    qtbot.waitUntil(lambda: "outside its rounding" in window.results.banner.text() + pane_text(window), timeout=60_000)
+    shown = window.results.banner.text() + pane_text(window)
+    assert "not known to be the one meant" in shown and "was meant to be" not in shown
