@@ -108,8 +108,9 @@ class NearestSurface:
     rest of the JSON; ``relative_distance`` is ``‖f - g‖₂ / ‖f‖₂`` over the coefficients, with
     ``g`` the snapped polynomial; ``max_deviation`` is the largest distance (length units) from a
     sampled point of ``g = 0`` to ``f = 0`` inside the viewport's box; ``within_rounding`` says
-    whether every coefficient of ``f - g`` lies within the rounding of the printed input, and
-    ``largest_residual`` is the largest of them in units of that rounding (``≤ 1``: within it).
+    whether every coefficient of ``f - g`` lies within the rounding of the printed input (and the
+    zero sets are not far apart, docs/math.md §8.6), and ``largest_residual`` is the largest of
+    them in units of that rounding (``≤ 1``: within it).
     ``analysis`` is the whole exact analysis of ``g`` (``None`` with ``--recognition-only``).
     """
 

@@ -261,9 +261,11 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
 def outside_words(near: NearestSurface) -> str:
     """How far outside the rounding a nearest surface is: its coefficient farthest off, in units
     of that coefficient's own rounding (a relative distance below the tolerance can still have
-    one coefficient beyond it)."""
+    one coefficient beyond it), or its zero set far from the typed one."""
     if near.largest_residual is None:
         return "a coefficient is off by more than its rounding"
+    if near.largest_residual <= 1.0:  # the coefficients are within it, the zero sets far apart
+        return "its coefficients are within the rounding, but its zero set is far from the typed one"
     return f"one coefficient is off by {near.largest_residual:.2g} times its own rounding"
 
 

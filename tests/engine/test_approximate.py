@@ -685,3 +685,27 @@ def test_floating_point_noise_does_not_make_a_surface_near(text: str) -> None:
     approx = analyze(text, recognition_only=True).approximate
     assert approx is not None and not approx.near_sor
     assert approx.residual is not None and approx.residual > 2
+
+
+PARABOLOID_FIXED_DECIMALS = (
+    "0.637863*x^2 - 0.120712*x*y - 0.953626*x*z + 11.676702*x"
+    " + 0.989941*y^2 - 0.158938*y*z - 128.053883*y + 0.372196*z^2 - 93.625676*z + 4712.941809"
+)
+"""The paraboloid ``d² = 80·h`` about a tilted axis through ``(−30, 60, 15)``, in millimetres,
+printed with 6 fixed decimals."""
+
+
+def test_a_nearest_surface_whose_zero_set_is_far_is_not_within_the_rounding() -> None:
+    """Its coefficients were within the rounding of an ellipsoid (the coefficients as fitted)
+    centred about 6·10⁸ away, 2.6·10⁴ from the typed paraboloid where that ellipsoid is drawn,
+    and it was reported within the rounding, as what the part was meant to be. A surface within
+    the rounding now has its zero set near the typed one (docs/math.md §8.6), and one whose
+    coefficients are within it but whose zero set is far says so."""
+    from sorgui.engine.results import NearestSurface
+    from sorgui.export.text import outside_words
+
+    nearest = analyze(PARABOLOID_FIXED_DECIMALS, recognition_only=True).approximate.nearest
+    assert nearest is not None and nearest.max_deviation is not None
+    assert not nearest.within_rounding or nearest.max_deviation < 1.0  # the part is 100 mm across
+    far = NearestSurface("x**2 + y**2 + z**2 - 1", "sphere", None, None, None, 1.5e-10, 2.6e4, False, None, 0.86)
+    assert outside_words(far) == "its coefficients are within the rounding, but its zero set is far from the typed one"

@@ -317,8 +317,16 @@ def _normal(result: Fit) -> tuple[float, float, float] | None:
     return three(float(v) for v in c.direction / np.linalg.norm(c.direction))
 
 
+FAR_ZERO_SET = 0.05
+"""A snapped surface whose zero set lies farther than this from ``f``'s (in the units of the
+normalised ``f``, whose points are of size 1) is not within the rounding, whatever its
+coefficients: a paraboloid printed with fixed decimals had coefficients within the rounding of
+an ellipsoid centred 6·10⁸ away, 2.6·10⁴ from it where that ellipsoid is drawn."""
+
+
 def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> NearestSurface:
-    """The report of the snapped surface, with the deviation of its zero set from ``f``'s."""
+    """The report of the snapped surface, with the deviation of its zero set from ``f``'s; within
+    the rounding when its coefficients are and its zero set is not :data:`FAR_ZERO_SET` away."""
     sym = exact.symmetry
     K = exact.polynomial.ring.domain
 
@@ -343,6 +351,7 @@ def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> Near
     elif sym.center is not None:
         center = floats(sym.center) / f.length
     deviation = max_deviation(f.array, g, center, direction)
+    near_zero_set = deviation is None or deviation <= FAR_ZERO_SET
     return NearestSurface(
         polynomial=poly_str(exact.polynomial),
         kind=sym.kind,
@@ -351,6 +360,6 @@ def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> Near
         normal=triple(sym.normal),
         relative_distance=exact.relative_distance,
         max_deviation=None if deviation is None else deviation * f.length,
-        within_rounding=exact.largest <= 1.0,
+        within_rounding=exact.largest <= 1.0 and near_zero_set,
         largest_residual=exact.largest,
     )
