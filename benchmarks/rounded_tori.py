@@ -60,6 +60,12 @@ def rounded_torus(
 ) -> str:
     """The torus of ``radii`` (major, minor) about the line through ``point`` along the unit
     ``direction``, its equation times ``factor``, printed with ``digits`` significant digits."""
+    return printed(factor * torus(direction, point, radii), digits)
+
+
+def torus(direction: np.ndarray, point: np.ndarray, radii: tuple[float, float]) -> np.ndarray:
+    """The coefficients, in floats, of the torus of ``radii`` (major, minor) about the line
+    through ``point`` along the unit ``direction``."""
     one = dense.from_terms({(0, 0, 0): 1.0}, 4)
     rho = dense.squared_distance(point)
     h = dense.linear_form(direction, point)
@@ -68,7 +74,8 @@ def rounded_torus(
     r2 = dense.times(r1, rho)
     big, k = radii[0] ** 2, radii[0] ** 2 - radii[1] ** 2
     # (ρ + k)² − 4R²·(ρ − h²) = ρ² + (2k − 4R²)ρ + 4R²h² + k²; radii 2, 1: ρ² − 10ρ + 16h² + 9
-    return printed(factor * (r2 + (2 * k - 4 * big) * r1 + 4 * big * h2 + k * k * one), digits)
+    result: np.ndarray = r2 + (2 * k - 4 * big) * r1 + 4 * big * h2 + k * k * one
+    return result
 
 
 def table(repeats: int) -> str:

@@ -13,7 +13,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from benchmarks.rounded_tori import DECIMAL_RADII, random_axis, rounded_torus
+from benchmarks.rounded_tori import DECIMAL_RADII, random_axis, rounded_torus, torus
 from sorgui.engine import analyze
 from sorgui.engine.errors import AnalysisError
 from sorgui.engine.parsing import parse_polynomial
@@ -232,6 +232,48 @@ def test_a_rounded_paraboloid_snaps_back_to_its_exact_surface() -> None:
     assert nearest.axis is not None and nearest.axis.direction == ("2", "1", "2")
     assert nearest.analysis is not None and nearest.analysis.is_sor
     assert nearest.analysis.rationality.table_row == 3
+
+
+def _cad_cone() -> np.ndarray:
+    """A CAD cone in millimetres about an irrational axis: half-angle 20°, its apex at
+    (25, 40, −10), along (1, 2, −0.7), expanded in floats."""
+    direction, apex = np.array([1.0, 2.0, -0.7]), np.array([25.0, 40.0, -10.0])
+    direction /= np.linalg.norm(direction)
+    one = dense.from_terms({(0, 0, 0): 1.0}, 2)
+    h = dense.linear_form(direction, apex)
+    h2 = dense.times(dense.times(one, h), h)
+    rho = dense.times(one, dense.squared_distance(apex))
+    return rho - (1 + math.tan(math.radians(20)) ** 2) * h2
+
+
+@pytest.mark.parametrize("print_", [lambda f: printed(f, 6), lambda f: printed_fixed(f, 6), lambda f: printed(f, 10)])
+def test_a_rounded_cone_snaps_back_to_a_cone_with_its_apex(print_) -> None:  # noqa: ANN001 - a printer
+    """Each coefficient snapped within three standard errors of the free fit missed the
+    rounding together; the nearest surface was the coefficients as fitted: a hyperboloid of
+    60-digit coefficients about an axis of 14-digit integers, of Table 1's row 3. With the
+    terms ``1`` and ``h`` held at 0 (the apex at the profile's centre), the ratios are snapped
+    one at a time (docs/math.md §8.5): a cone about the exact axis, with its apex."""
+    nearest = analyze(print_(_cad_cone())).approximate.nearest
+    assert nearest is not None and nearest.within_rounding
+    assert nearest.axis is not None and nearest.axis.direction == ("10", "20", "-7")
+    assert nearest.axis.point == ("25", "40", "-10")
+    assert nearest.analysis is not None and nearest.analysis.rationality.table_row == 1
+    assert nearest.analysis.rationality.profile_reducible
+
+
+def test_a_torus_printed_with_fixed_decimals_snaps_back_to_that_torus() -> None:
+    """Printed with ``%.6f`` in millimetres, no simple surface was found within the rounding: the
+    ratio ``10000/9961`` of the ``h²`` term was snapped to ``255/254`` within the free fit's
+    errors. Snapped one ratio at a time with the odd powers of ``h`` held at 0, the constant
+    made a torus's, it is the torus again."""
+    direction = np.array([0.3, -0.5, 0.81]) / np.linalg.norm([0.3, -0.5, 0.81])
+    nearest = analyze(
+        printed_fixed(torus(direction, np.array([120.5, -35.2, 80.0]), (50.0, 12.5)), 6)
+    ).approximate.nearest
+    assert nearest is not None and nearest.within_rounding
+    assert nearest.axis is not None and nearest.axis.direction == ("30", "-50", "81")
+    assert nearest.axis.point == ("241/2", "-176/5", "80")
+    assert nearest.analysis is not None and nearest.analysis.rationality.table_row == 1
 
 
 def _turned_torus() -> tuple[np.ndarray, np.ndarray, np.ndarray]:

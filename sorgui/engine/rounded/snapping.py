@@ -12,10 +12,9 @@ exact values that keep the fit within the input's rounding:
   the axes of CAD parts turned by 30° or 45°) are the other two families.
 * **Point:** the foot of the axis (its point nearest the origin), each coordinate the simplest
   rational (fewest continued-fraction steps) within ``ε·L``, the same way.
-* **Coefficients:** each the simplest rational within three standard errors of the weighted
-  least-squares fit; or, when ``f`` was normalised by an irrational factor, the ratios to the
-  best-determined coefficient and then the overall factor; a torus's constant made from its
-  other coefficients. The candidate with the fewest bits whose *exact* residual passes wins.
+* **Coefficients** (:mod:`.coefficients`): snapped from the fit, snapped one ratio at a time
+  with some held, or as fitted; the candidate with the fewest bits whose *exact* residual
+  passes wins.
 * **Minimax axis:** when the simplest coefficients miss the rounding of one coefficient on
   every snapped axis, the axis that makes the largest residual smallest is tried before the
   coefficients as fitted.
@@ -28,7 +27,7 @@ is preferred, then the simplest.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, NamedTuple, TypeAlias
@@ -48,6 +47,17 @@ from ..recognition.symmetry import (
 )
 from ..syntax import square_roots
 from . import dense
+from .coefficients import (
+    HELD,
+    SNAPPED,
+    Typed,
+    bits,
+    coefficient_candidates,
+    matched_scales,
+    shape_bits,
+    torus_completion,
+    within_scale,
+)
 from .dense import FloatArray
 from .directions import (
     EPSILONS,
@@ -60,12 +70,11 @@ from .directions import (
     integer_vector,
     quadratic_family,
     rational_point,
-    simplest_between,
     simplest_near,
     snapped_directions,
     three,
 )
-from .near_symmetry import Candidate, Fit, Normalised, fit, invariant_basis, refine_fixed, refine_minimax
+from .near_symmetry import Candidate, Fit, Normalised, fit, refine_fixed, refine_minimax
 from .precision import Rounding
 
 AXIS_TRIES = 3
@@ -86,9 +95,6 @@ FLAT_SLOPE = 1e-8
 """A change of the profile's terms of degree ``d - 1`` under a unit shift along the axis below
 this (relative to the terms) is the floating-point fit's noise, not a slope: a paraboloid's
 term in ``h`` does not change at all, and dividing by that noise put its centre at 10¹⁰."""
-WITHIN = 1.0 - 1e-8
-"""The share of each coefficient's rounding a rescaled surface is fitted within: the residual
-is measured in floats, a hair from where the exact interval ends."""
 MAX_SHIFT = 1e3
 """A profile centre farther than this along the axis from its foot (in the units of the
 normalised ``f``, whose points are of size 1) is noise: the foot is taken instead."""
@@ -107,15 +113,6 @@ class ExactSurface:
     relative_distance: float
     direction: Vector | QuadraticVector | None
     point: Vector | None
-
-
-@dataclass(frozen=True)
-class _Typed:
-    """The typed polynomial over ``QQ`` in the forms the candidates are compared with: flint's,
-    and its terms as floats (computed once per snap, not once per candidate)."""
-
-    flint: fmpq_mpoly
-    floats: dict[dense.Monomial, float]
 
 
 Built: TypeAlias = fmpq_mpoly | Poly
@@ -222,10 +219,11 @@ def _radius(sigma: FloatArray, spread: float, family: DirectionSnap) -> float | 
 
 def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurface | None:
     """The simplest exact surface of the fit's kind within the rounding, or ``None``: for each
-    family of directions the first surface that passes, then the one whose profile
-    coefficients have the fewest bits."""
-    typed = _Typed(to_flint(exact), dense.float_coefficients(exact)) if exact.ring.domain == QQ else None
-    found: list[tuple[int, ExactSurface]] = []
+    family of directions the first surface that passes, then one whose coefficients were
+    snapped (not fitted: coefficients fitted to an axis fit it whatever the axis), then the one
+    whose profile coefficients and axis have the fewest bits."""
+    typed = Typed(to_flint(exact), dense.float_coefficients(exact)) if exact.ring.domain == QQ else None
+    found: list[tuple[bool, int, ExactSurface]] = []
     for family in FAMILIES if best.candidate.direction is not None else (None,):
         surface = _first_exact(f, best, family, typed, rounding)
         if surface is not None:
@@ -236,28 +234,28 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
             found.append(surface)
     if not found:
         return None
-    return min(found, key=lambda item: (item[1].largest > 1.0, item[0] + _axis_bits(item[1])))[1]
+    return min(found, key=lambda item: (item[2].largest > 1.0, item[0], item[1] + _axis_bits(item[2])))[2]
 
 
 def _first_exact(
-    f: Normalised, best: Fit, family: DirectionSnap | None, typed: _Typed | None, rounding: Rounding
-) -> tuple[int, ExactSurface] | None:
+    f: Normalised, best: Fit, family: DirectionSnap | None, typed: Typed | None, rounding: Rounding
+) -> tuple[bool, int, ExactSurface] | None:
     """The first exact surface, in the order of :func:`exact_axes`, with every coefficient
-    within the rounding (else the first within twice it, in the mean), with the bits of its
-    coefficients. When the simplest coefficients fail on a coarse axis, the axis is refined with
-    them held fixed and snapped again, finely."""
-    fallback: tuple[int, ExactSurface] | None = None
-    for coefficients, surface in _exact_surfaces(f, best, family, typed, rounding):
+    within the rounding (else the first within twice it, in the mean), with whether its
+    coefficients were fitted rather than snapped and their bits. When the simplest coefficients
+    fail on a coarse axis, the axis is refined with them held fixed and snapped again, finely."""
+    fallback: tuple[bool, int, ExactSurface] | None = None
+    for coefficients, surface, fitted in _exact_surfaces(f, best, family, typed, rounding):
         if surface.largest <= 1.0:
-            return _shape_bits(coefficients), surface
+            return fitted, shape_bits(coefficients), surface
         if fallback is None:
-            fallback = _shape_bits(coefficients), surface
+            fallback = fitted, shape_bits(coefficients), surface
     return fallback
 
 
 def _exact_surfaces(
-    f: Normalised, best: Fit, family: DirectionSnap | None, typed: _Typed | None, rounding: Rounding
-) -> Iterator[tuple[list[Fraction], ExactSurface]]:
+    f: Normalised, best: Fit, family: DirectionSnap | None, typed: Typed | None, rounding: Rounding
+) -> Iterator[tuple[list[Fraction], ExactSurface, bool]]:
     """Exact surfaces within twice the rounding (in the mean), simplest axes first; at most
     ``MAX_CHECKS`` exact surfaces are built, and the axis is refined with fixed coefficients
     on the first axis only (an input with irrational data has no simple exact surface, and
@@ -280,7 +278,7 @@ def _exact_surfaces(
     ) -> tuple[list[Fraction], ExactSurface | None]:
         """The coefficients and the surface they make, if it is near ``f``. When they miss the
         rounding and are among the simplest, they are rescaled by the simplest factor that puts
-        every coefficient within it (:func:`_within_scale`), and a surface that passes only so
+        every coefficient within it (:func:`within_scale`), and a surface that passes only so
         is kept in ``rescaled`` for after every other axis and coefficient: a rescaled fit is
         a weaker sign than one that holds as snapped."""
         g = build(kind, a, c, exponents, coefficients)
@@ -288,8 +286,8 @@ def _exact_surfaces(
             return coefficients, None
         surface = _check(g, typed, rounding, f, a, c)
         if simplest and (surface is None or surface.largest > 1.0) and isinstance(g, fmpq_mpoly) and typed is not None:
-            scale = _within_scale(g, typed, rounding)
-            if scale is not None:
+            scale = within_scale(g, typed, rounding)
+            if scale is not None and scale != 1:
                 coefficients = [scale * v for v in coefficients]
                 fitted = _check(g * fmpq(scale.numerator, scale.denominator), typed, rounding, f, a, c)
                 if fitted is not None and fitted.largest <= 1.0:
@@ -297,8 +295,9 @@ def _exact_surfaces(
         return coefficients, surface
 
     checks = 0
-    within: tuple[list[Fraction], ExactSurface] | None = None
+    within: tuple[list[Fraction], ExactSurface, bool] | None = None
     rescaled: list[tuple[list[Fraction], ExactSurface]] = []
+    refitted: list[tuple[list[Fraction], ExactSurface]] = []  # coefficients held at 0, the rest refitted
     held: list[_Held] = []
     for first, (a, c) in enumerate(exact_axes(f, best, directions, rounding.tolerance)):
         direction = None if a is None else np.array([float(v) for v in a])
@@ -306,39 +305,54 @@ def _exact_surfaces(
         local = fit(f, best.candidate, point=point, direction=direction)
         degrees = np.array([i + 2 * j for i, j in local.exponents])
 
-        def matched_scales(
+        def scales_for(
             ratios: list[Fraction], a: Direction | None = a, c: Vector | None = c, local: Fit = local
         ) -> list[Fraction]:
             g = build(kind, a, c, local.exponents, ratios)
-            return [] if not isinstance(g, fmpq_mpoly) or typed is None else _matched_scales(g, typed, rounding)
+            return [] if not isinstance(g, fmpq_mpoly) or typed is None else matched_scales(g, typed, rounding)
+
+        def scale_for(
+            ratios: list[Fraction], a: Direction | None = a, c: Vector | None = c, local: Fit = local
+        ) -> Fraction | None:
+            g = build(kind, a, c, local.exponents, ratios)
+            return None if not isinstance(g, fmpq_mpoly) or typed is None else within_scale(g, typed, rounding)
 
         norm2 = None if kind != REVOLUTION or a is None else _squared_length(a)
-        for rank, (coefficients, snapped) in enumerate(_coefficient_candidates(f, local, matched_scales, norm2)):
+        candidates = coefficient_candidates(f, local, scales_for, norm2, scale_for)
+        for rank, (coefficients, source) in enumerate(candidates):
             checks += 1
             if checks > MAX_CHECKS:
                 break
-            simplest = snapped and rank < 2
+            simplest = source == SNAPPED and rank < 2
             coefficients, surface = checked(a, c, local.exponents, coefficients, simplest)
+            if source == HELD:
+                if surface is not None and surface.largest <= 1.0 and not refitted:
+                    refitted.append((coefficients, surface))
+                continue
             torus = norm2 is not None and torus_completion(local.exponents, coefficients, norm2) == coefficients
             if surface is not None and surface.largest <= 1.0 and held:
                 if not simplest or (not torus and any(item.torus for item in held)):
-                    within = coefficients, surface  # simpler coefficients, or a torus, may hold on a minimax axis
+                    within = (
+                        coefficients,
+                        surface,
+                        source != SNAPPED,
+                    )  # simpler ones, or a torus, may hold on a minimax axis
                     break
             if surface is not None:
-                yield coefficients, surface
+                yield coefficients, surface, source != SNAPPED
                 if surface.largest <= 1.0:
                     return
             if not simplest:
                 continue
             fixed = np.array([float(q) for q in coefficients]) * f.length**degrees / f.scale
-            bits = _shape_bits(coefficients)
-            held.append(_Held(bits, torus, local.exponents, coefficients, fixed, local.candidate, c))
+            size = shape_bits(coefficients)
+            held.append(_Held(size, torus, local.exponents, coefficients, fixed, local.candidate, c))
             if first > 0:
                 continue
             for a2, c2 in _refined(f, held[-1], family).axes:
                 scaled, surface = checked(a2, c2, local.exponents, coefficients)
                 if surface is not None:
-                    yield scaled, surface
+                    yield scaled, surface, False
                     if surface.largest <= 1.0:
                         return
         else:
@@ -352,15 +366,17 @@ def _exact_surfaces(
         tried.append(simple.coefficients)
         refined = _refined(f, simple, family)
         seen = [item.point for item in ordered] + [c for item in held if item.refined for _, c in item.refined.axes]
-        points = sorted({c for c in seen if c is not None}, key=lambda c: _bits(list(c)))[:MINIMAX_POINTS]
+        points = sorted({c for c in seen if c is not None}, key=lambda c: bits(list(c)))[:MINIMAX_POINTS]
         for a2, c2 in _minimax_axes(f, refined, simple.fixed, family, points):
             scaled, surface = checked(a2, c2, simple.exponents, simple.coefficients)
             if surface is not None:
-                yield scaled, surface
+                yield scaled, surface, False
                 if surface.largest <= 1.0:
                     return
     if rescaled:
-        yield rescaled[0]
+        yield (*rescaled[0], False)
+    if refitted:
+        yield (*refitted[0], True)
     if within is not None:
         yield within
 
@@ -441,51 +457,6 @@ def _snapped_axes(
         yield a, c
 
 
-def _coefficient_candidates(
-    f: Normalised,
-    local: Fit,
-    matched_scales: Callable[[list[Fraction]], list[Fraction]],
-    norm2: Fraction | None,
-) -> list[tuple[list[Fraction], bool]]:
-    """Exact coefficients of ``g`` in the original coordinates, simplest first (the fewest bits
-    up to a common factor, :func:`_shape_bits`; one of each shape), each with whether it was
-    snapped (else it is as fitted): each snapped on its own; the ratios to the best-determined
-    one snapped, times that coefficient snapped and times the scales that ``matched_scales``
-    gives them; as fitted; and each of these made a torus when it has a torus's terms
-    (:func:`torus_completion`, ``norm2`` the squared length ``|a|²`` of the axis direction, when
-    rational)."""
-    degrees = np.array([i + 2 * j for i, j in local.exponents])
-    factor = f.scale / f.length**degrees
-    values = local.coefficients * factor
-    errors = _standard_errors(f, local) * factor * 3.0 * max(1.0, local.residual)
-    found = [[simplest_near(v, e) for v, e in zip(values, errors)]]
-    pivot = int(np.argmax(np.abs(values) / np.maximum(errors, 1e-300)))
-    if values[pivot] != 0.0:
-        ratios = values / values[pivot]
-        ratio_errors = errors / abs(values[pivot]) + np.abs(ratios) * errors[pivot] / abs(values[pivot])
-        snapped = [simplest_near(r, e) for r, e in zip(ratios, ratio_errors)]
-        scale = simplest_near(values[pivot], errors[pivot])
-        found.append([scale * r for r in snapped])
-        for matched in matched_scales(snapped):
-            found.append([matched * r for r in snapped])
-    fitted = [Fraction(v).limit_denominator(10**15) for v in values]
-    ranked: list[tuple[int, list[Fraction], bool]] = []
-    for candidate in [*found, fitted]:
-        is_snapped = candidate is not fitted
-        ranked.append((_shape_bits(candidate), candidate, is_snapped))
-        torus = None if norm2 is None else torus_completion(local.exponents, candidate, norm2)
-        if torus is not None:
-            ranked.append((_shape_bits(torus[1:]), torus, is_snapped))
-    distinct: list[tuple[list[Fraction], bool]] = []
-    shapes: set[tuple[int, ...]] = set()
-    for _, candidate, is_snapped in sorted(ranked, key=lambda item: item[0]):
-        shape = _shape(candidate)
-        if shape not in shapes:  # the same surface scaled: its scale is found when it is checked
-            shapes.add(shape)
-            distinct.append((candidate, is_snapped))
-    return distinct
-
-
 def _squared_length(a: Direction) -> Fraction | None:
     """``|a|²`` when it is rational: always for a rational direction, and for a quadratic one
     whose coordinates are each rational or a rational multiple of ``√d``."""
@@ -498,102 +469,6 @@ def _squared_length(a: Direction) -> Fraction | None:
     return sum((q.a**2 + q.b**2 * q.d for q in quadratic), Fraction(0))
 
 
-TORUS_TERMS = ((0, 0), (2, 0), (0, 1), (0, 2))
-"""The terms ``h^i ρ^j`` of a torus about its centre: ``(ρ + k)² − 4R²(ρ − h²/|a|²)``."""
-
-
-def torus_completion(
-    exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction], norm2: Fraction
-) -> list[Fraction] | None:
-    """The coefficients with the constant that makes ``g`` a torus (or a cyclide of that form),
-    when ``g`` has the terms of one (docs/math.md §8.5): ``q₀₀ = (q₀₁ + q₂₀·|a|²)² / (4 q₀₂)``.
-    Every term is snapped on its own, and a CAD torus's constant ``(R² − r²)²`` lies within the
-    rounding of simpler numbers that are not a torus (P of genus 1 instead of two circles);
-    derived, it costs no bits. ``None`` unless the first term is the constant and the
-    others present are exactly the torus's."""
-    terms = dict(zip(exponents, coefficients))
-    if exponents[:1] != ((0, 0),) or any(q for m, q in terms.items() if m not in TORUS_TERMS):
-        return None
-    q20, q01, q02 = (terms.get(m, Fraction(0)) for m in TORUS_TERMS[1:])
-    if not q02 or not q20:
-        return None
-    return [(q01 + q20 * norm2) ** 2 / (4 * q02), *coefficients[1:]]
-
-
-def _matched_scales(g: fmpq_mpoly, typed: _Typed, rounding: Rounding) -> list[Fraction]:
-    """Scales ``λ`` that make ``λ·g`` agree with ``f`` where ``f`` is largest: at each of the
-    three largest coefficients of ``f``, the simplest rational within its rounding divided by
-    ``g``'s coefficient there (a CAD system that divides by its largest coefficient prints an
-    exact ``1.000000000``)."""
-    g_terms = dict(zip(map(dense.monomial, g.monoms()), g.coeffs()))
-    f_terms = typed.floats
-    shared = sorted((m for m in f_terms if m in g_terms), key=lambda m: -abs(f_terms[m]))
-    scales: list[Fraction] = []
-    for m in shared[:3]:
-        value = simplest_near(f_terms[m], rounding.bound(m))
-        scale = value / Fraction(int(g_terms[m].p), int(g_terms[m].q))
-        if scale and scale not in scales:
-            scales.append(scale)
-    return scales
-
-
-def _within_scale(g: fmpq_mpoly, typed: _Typed, rounding: Rounding) -> Fraction | None:
-    """The factor ``μ ≠ 1`` that makes ``μ·g`` the monic form of ``g`` times the simplest ``λ``
-    (the fewest bits, a decimal when one is simplest) with every coefficient within its
-    rounding of ``f``'s, or ``None`` when there is no such ``λ`` (docs/math.md §8.5). ``f`` may be
-    a simple surface times a printed factor (``0.94515``), and the scale snapped from one
-    coefficient of the fit (the simplest rational within its standard errors, ``1189/1258``)
-    misses the rounding of ``f``'s largest coefficients by a millionth."""
-    monomials = [dense.monomial(m) for m in g.monoms()]
-    values = [Fraction(int(c.p), int(c.q)) for c in g.coeffs()]
-    lo: Fraction | None = None
-    hi: Fraction | None = None
-    for m, n in zip(monomials, (v / values[0] for v in values)):
-        value, bound = Fraction(typed.floats.get(m, 0.0)), Fraction(rounding.bound(m) * WITHIN)
-        first, last = sorted(((value - bound) / n, (value + bound) / n))
-        lo = first if lo is None else max(lo, first)
-        hi = last if hi is None else min(hi, last)
-        if lo > hi:
-            return None
-    if lo is None or hi is None or lo <= 0 <= hi:
-        return None
-    factor = min((simplest_between(lo, hi), _shortest_decimal(lo, hi)), key=lambda v: _bits([v])) / values[0]
-    return None if factor == 1 else factor
-
-
-def _shortest_decimal(lo: Fraction, hi: Fraction) -> Fraction:
-    """The decimal with the fewest digits in ``[lo, hi]`` (``0 < lo`` or ``hi < 0``): a printed
-    factor reads as one (``0.9451502``, not ``606759779/641971867``)."""
-    if hi < 0:
-        return -_shortest_decimal(-hi, -lo)
-    power = 10 ** max(0, -math.floor(math.log10(hi - lo)))
-    while True:
-        n = math.ceil(lo * power)
-        if n <= hi * power:
-            return Fraction(n, power)
-        power *= 10
-
-
-def _bits(values: list[Fraction]) -> int:
-    return sum(v.numerator.bit_length() + v.denominator.bit_length() for v in values)
-
-
-def _shape(values: list[Fraction]) -> tuple[int, ...]:
-    """The primitive integer vector proportional to ``values`` (its first non-zero entry
-    positive): the coefficients of one surface ``g = 0`` up to the factor of ``g``."""
-    common = math.lcm(*(v.denominator for v in values))
-    integers = [v.numerator * (common // v.denominator) for v in values]
-    content = math.gcd(*integers) or 1
-    sign = -1 if next((n for n in integers if n), 0) < 0 else 1
-    return tuple(sign * n // content for n in integers)
-
-
-def _shape_bits(values: list[Fraction]) -> int:
-    """The bits of the surface's coefficients up to a factor, those of :func:`_shape`: ``g`` and
-    ``0.94515·g`` are one surface, as simple as each other (docs/math.md §8.5)."""
-    return sum(n.bit_length() + 1 for n in _shape(values))
-
-
 def _axis_bits(surface: ExactSurface) -> int:
     """The bits of an exact surface's axis: its point's coordinates and its direction's (both
     parts of a coordinate in ``QQ(√d)``). Two families may snap to the same profile
@@ -602,19 +477,7 @@ def _axis_bits(surface: ExactSurface) -> int:
     values = list(surface.point or ())
     for v in surface.direction or ():
         values += [v.a, v.b] if isinstance(v, Quadratic) else [Fraction(v)]
-    return _bits(values)
-
-
-def _standard_errors(f: Normalised, local: Fit) -> FloatArray:
-    """Standard errors of the fitted coefficients, in units of the rounding bounds."""
-    weighted = invariant_basis(local.candidate, f.degree, f.selected)[0] * f.weights[:, None]
-    norms = np.linalg.norm(weighted, axis=0)
-    norms[norms == 0.0] = 1.0
-    _, s, vt = np.linalg.svd(weighted / norms, full_matrices=False)
-    s = np.maximum(s, s[0] * 1e-15)
-    covariance = (vt.T / s**2) @ vt
-    errors: FloatArray = np.sqrt(np.abs(np.diag(covariance))) / norms
-    return errors
+    return bits(values)
 
 
 def build(
@@ -714,7 +577,7 @@ def _reduce_root(p: fmpq_mpoly, d: int) -> fmpq_mpoly:
 
 
 def _check(
-    g: Built, typed: _Typed | None, rounding: Rounding, f: Normalised, a: Direction | None, c: Vector | None
+    g: Built, typed: Typed | None, rounding: Rounding, f: Normalised, a: Direction | None, c: Vector | None
 ) -> ExactSurface | None:
     """``g`` with its exact residual against ``f``, if the exact recognizer agrees it is a
     surface of revolution and the residual is within twice the rounding (tested first: most

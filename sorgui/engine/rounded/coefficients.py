@@ -1,0 +1,316 @@
+"""The coefficients of the nearest exact surface (docs/math.md §8.5, "The nearest exact surface"):
+the exact values of the coefficients ``q_ij`` of ``g = Σ q_ij h^i ρ^j`` on one exact axis,
+simplest first, and the factor that puts a set of them within the input's rounding.
+
+* **Snapped:** each the simplest rational within three standard errors of the weighted
+  least-squares fit; or the ratios to the best-determined one, times a scale (snapped, or one
+  that makes ``g`` agree with ``f`` where ``f`` is largest).
+* **Held:** the coefficients that snap to 0 held there, and the ratios snapped one at a time,
+  each within the errors of the fit with the ratios snapped so far held.
+* **As fitted.**
+* **A torus's constant** derived from its other coefficients, and **the factor** of fewest bits
+  with every coefficient of ``λ·g`` within the rounding: ``g`` and ``λ·g`` are one surface, and
+  candidates are ranked by the bits of their primitive integer vector.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+from flint import fmpq_mpoly
+
+from . import dense
+from .dense import FloatArray
+from .directions import simplest_between, simplest_near
+from .near_symmetry import Fit, Normalised, invariant_basis
+from .precision import Rounding
+
+
+@dataclass(frozen=True)
+class Typed:
+    """The typed polynomial over ``QQ`` in the forms the candidates are compared with: flint's,
+    and its terms as floats (computed once per snap, not once per candidate)."""
+
+    flint: fmpq_mpoly
+    floats: dict[dense.Monomial, float]
+
+
+WITHIN = 1.0 - 1e-8
+"""The share of each coefficient's rounding a rescaled surface is fitted within: the residual
+is measured in floats, a hair from where the exact interval ends."""
+
+SNAPPED, HELD, FITTED = "snapped", "held", "fitted"
+"""Where a set of coefficients comes from (:func:`coefficient_candidates`): snapped from the
+free fit; snapped one ratio at a time from fits with some coefficients held
+(:func:`_held_candidates`), within the rounding by construction, so a weak sign, tried after
+every simpler set on every axis; as fitted."""
+HELD_SPREADS = (3.0, 1.0, 0.3, 0.1)
+"""Radii, in standard errors, within which the ratios of a fit with coefficients held are
+snapped one at a time (widest first, until the set is within the rounding)."""
+
+
+def coefficient_candidates(
+    f: Normalised,
+    local: Fit,
+    scales_for: Callable[[list[Fraction]], list[Fraction]],
+    norm2: Fraction | None,
+    scale_for: Callable[[list[Fraction]], Fraction | None],
+) -> list[tuple[list[Fraction], str]]:
+    """Exact coefficients of ``g`` in the original coordinates for the fit ``local``, simplest
+    first (the fewest bits up to a common factor, :func:`shape_bits`; one of each shape), each
+    with where it comes from (:data:`SNAPPED`, :data:`HELD`, :data:`FITTED`): each snapped on
+    its own; the ratios to the best-determined one snapped, times that coefficient snapped and
+    times the scales ``scales_for`` gives them (:func:`matched_scales` on the axis); as fitted;
+    snapped one ratio at a time with the coefficients that snap to 0 held there, times the
+    factor ``scale_for`` gives them (:func:`within_scale`; :func:`_held_candidates`); and each
+    of these made a torus when it has a torus's terms (:func:`torus_completion`, ``norm2`` the
+    squared length ``|a|²`` of the axis direction, when rational)."""
+    degrees = np.array([i + 2 * j for i, j in local.exponents])
+    factor = f.scale / f.length**degrees
+    values = local.coefficients * factor
+    errors = standard_errors(f, local) * factor * 3.0 * max(1.0, local.residual)
+    found = [[simplest_near(v, e) for v, e in zip(values, errors)]]
+    found += _ratio_candidates(values, errors, scales_for)
+    sources = [(candidate, SNAPPED) for candidate in found]
+    sources.append(([Fraction(v).limit_denominator(10**15) for v in values], FITTED))
+    zeros = [k for k, q in enumerate(found[0]) if not q]
+    if zeros and len(zeros) < len(values) - 1:
+        sources += [(candidate, HELD) for candidate in _held_candidates(f, local, zeros, factor, scale_for, norm2)]
+    ranked: list[tuple[int, list[Fraction], str]] = []
+    for candidate, source in sources:
+        ranked.append((shape_bits(candidate), candidate, source))
+        torus = None if norm2 is None else torus_completion(local.exponents, candidate, norm2)
+        if torus is not None:
+            ranked.append((shape_bits(torus[1:]), torus, source))
+    distinct: list[tuple[list[Fraction], str]] = []
+    shapes: set[tuple[int, ...]] = set()
+    for _, candidate, source in sorted(ranked, key=lambda item: item[0]):
+        shape = primitive_shape(candidate)
+        if shape not in shapes:  # the same surface scaled: its scale is found when it is checked
+            shapes.add(shape)
+            distinct.append((candidate, source))
+    return distinct
+
+
+def _ratio_candidates(
+    values: FloatArray, errors: FloatArray, scales_for: Callable[[list[Fraction]], list[Fraction]]
+) -> list[list[Fraction]]:
+    """The ratios of ``values`` to the best-determined one, each snapped within its errors,
+    times that value snapped and times the scales ``scales_for`` gives them."""
+    pivot = int(np.argmax(np.abs(values) / np.maximum(errors, 1e-300)))
+    if values[pivot] == 0.0:
+        return []
+    ratios = values / values[pivot]
+    ratio_errors = errors / abs(values[pivot]) + np.abs(ratios) * errors[pivot] / abs(values[pivot])
+    snapped = [simplest_near(r, e) for r, e in zip(ratios, ratio_errors)]
+    scale = simplest_near(values[pivot], errors[pivot])
+    return [[scale * r for r in snapped]] + [[matched * r for r in snapped] for matched in scales_for(snapped)]
+
+
+def _held_candidates(
+    f: Normalised,
+    local: Fit,
+    zeros: list[int],
+    factor: FloatArray,
+    scale_for: Callable[[list[Fraction]], Fraction | None],
+    norm2: Fraction | None,
+) -> list[list[Fraction]]:
+    """Coefficients within the rounding for a fit whose coefficients at ``zeros`` snap to 0 on
+    their own (the structure of the part: a cone's apex at the profile's centre makes the terms
+    ``1`` and ``h`` vanish, a torus's centre the odd powers of ``h``), while the others, each
+    snapped within three standard errors of the free fit, miss the rounding together
+    (docs/math.md §8.5). With the zeros held, the ratios to the best-determined coefficient are
+    snapped one at a time, the best-determined first, each within ``k`` standard errors of the
+    fit with every ratio snapped so far held (each held ratio sharpens the rest), for
+    ``k`` in :data:`HELD_SPREADS`; the set, or its torus completion (:func:`torus_completion`,
+    whose constant is derived, not snapped), is kept with the simplest scale that puts every
+    coefficient within the rounding. ``factor`` turns the normalised fit's coefficients into
+    those of ``f``'s coordinates."""
+    for spread in HELD_SPREADS:
+        ratios: dict[int, Fraction] = dict.fromkeys(zeros, Fraction(0))
+        pivot: int | None = None
+        while True:
+            fitted = _ratio_fit(f, local, ratios, pivot, factor)
+            if fitted is None:
+                return []
+            pivot, values, errors = fitted
+            free = [k for k in range(len(values)) if k != pivot and k not in ratios]
+            if not free:
+                break
+            relative = errors / np.maximum(np.maximum(np.abs(values), errors), 1e-300)
+            k = free[int(np.argmin(relative[free]))]
+            ratios[k] = simplest_near(values[k], spread * errors[k])
+        ratios[pivot] = Fraction(1)
+        snapped = [ratios[k] for k in range(len(values))]
+        torus = None if norm2 is None else torus_completion(local.exponents, snapped, norm2)
+        for candidate in (snapped, torus) if torus is not None else (snapped,):
+            scale = scale_for(candidate)
+            if scale is not None:
+                return [[scale * r for r in candidate]]
+    return []
+
+
+def _ratio_fit(
+    f: Normalised, local: Fit, ratios: dict[int, Fraction], pivot: int | None, factor: FloatArray
+) -> tuple[int, FloatArray, FloatArray] | None:
+    """The weighted least-squares fit of ``f`` on the local invariant basis with the
+    coefficients at ``ratios`` held at those multiples of the one at ``pivot`` (the
+    best-determined of the others when ``pivot`` is ``None``): the pivot, every coefficient's
+    ratio to it in ``f``'s coordinates and the standard errors of the ratios (to first order,
+    from the covariance of the fit). ``None`` when the fit is degenerate."""
+    basis = invariant_basis(local.candidate, f.degree, f.selected)[0] * f.weights[:, None]
+    count = basis.shape[1]
+    target = f.vector * f.weights
+    if pivot is None:
+        free = [k for k in range(count) if k not in ratios]
+        solved = _least_squares(basis[:, free], target)
+        if solved is None:
+            return None
+        values, covariance = solved
+        pivot = free[int(np.argmax(np.abs(values) / np.sqrt(np.maximum(np.diag(covariance), 1e-300))))]
+    free = [k for k in range(count) if k != pivot and k not in ratios]
+    held = basis[:, pivot].copy()
+    for k, r in ratios.items():
+        held += float(r) * factor[pivot] / factor[k] * basis[:, k]
+    solved = _least_squares(np.column_stack([held, *(basis[:, k] for k in free)]), target)
+    if solved is None or solved[0][0] == 0.0:
+        return None
+    solution, covariance = solved
+    c = solution[0]
+    values, errors = np.ones(count), np.zeros(count)
+    for k, r in ratios.items():
+        values[k] = float(r)
+    for column, k in enumerate(free, start=1):
+        scale = factor[k] / (factor[pivot] * c)
+        values[k] = solution[column] * scale
+        gradient = np.zeros(len(solution))  # of the ratio c_k·scale in (c, c_k): to first order
+        gradient[column], gradient[0] = scale, -values[k] / c
+        errors[k] = math.sqrt(max(float(gradient @ covariance @ gradient), 0.0))
+    return pivot, values, errors
+
+
+def _least_squares(columns: FloatArray, target: FloatArray) -> tuple[FloatArray, FloatArray] | None:
+    """The least-squares solution of ``columns · c ≈ target`` (columns scaled to unit length
+    for the solve) and the covariance of ``c`` for unit errors in ``target`` (the weighted
+    system of §8.3, whose errors are in units of the rounding); ``None`` when the columns are
+    dependent."""
+    norms = np.linalg.norm(columns, axis=0)
+    if not norms.all():
+        return None
+    u, s, vt = np.linalg.svd(columns / norms, full_matrices=False)
+    if s[-1] <= s[0] * 1e-13:
+        return None
+    solution: FloatArray = (vt.T @ ((u.T @ target) / s)) / norms
+    covariance: FloatArray = ((vt.T / s**2) @ vt) / np.outer(norms, norms)
+    return solution, covariance
+
+
+TORUS_TERMS = ((0, 0), (2, 0), (0, 1), (0, 2))
+"""The terms ``h^i ρ^j`` of a torus about its centre: ``(ρ + k)² − 4R²(ρ − h²/|a|²)``."""
+
+
+def torus_completion(
+    exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction], norm2: Fraction
+) -> list[Fraction] | None:
+    """The coefficients with the constant that makes ``g`` a torus (or a cyclide of that form),
+    when ``g`` has the terms of one (docs/math.md §8.5): ``q₀₀ = (q₀₁ + q₂₀·|a|²)² / (4 q₀₂)``.
+    Every term is snapped on its own, and a CAD torus's constant ``(R² − r²)²`` lies within the
+    rounding of simpler numbers that are not a torus (P of genus 1 instead of two circles);
+    derived, it costs no bits. ``None`` unless the first term is the constant and the
+    others present are exactly the torus's."""
+    terms = dict(zip(exponents, coefficients))
+    if exponents[:1] != ((0, 0),) or any(q for m, q in terms.items() if m not in TORUS_TERMS):
+        return None
+    q20, q01, q02 = (terms.get(m, Fraction(0)) for m in TORUS_TERMS[1:])
+    if not q02 or not q20:
+        return None
+    return [(q01 + q20 * norm2) ** 2 / (4 * q02), *coefficients[1:]]
+
+
+def matched_scales(g: fmpq_mpoly, typed: Typed, rounding: Rounding) -> list[Fraction]:
+    """Scales ``λ`` that make ``λ·g`` agree with ``f`` where ``f`` is largest: at each of the
+    three largest coefficients of ``f``, the simplest rational within its rounding divided by
+    ``g``'s coefficient there (a CAD system that divides by its largest coefficient prints an
+    exact ``1.000000000``)."""
+    g_terms = dict(zip(map(dense.monomial, g.monoms()), g.coeffs()))
+    f_terms = typed.floats
+    shared = sorted((m for m in f_terms if m in g_terms), key=lambda m: -abs(f_terms[m]))
+    scales: list[Fraction] = []
+    for m in shared[:3]:
+        value = simplest_near(f_terms[m], rounding.bound(m))
+        scale = value / Fraction(int(g_terms[m].p), int(g_terms[m].q))
+        if scale and scale not in scales:
+            scales.append(scale)
+    return scales
+
+
+def within_scale(g: fmpq_mpoly, typed: Typed, rounding: Rounding) -> Fraction | None:
+    """The factor ``μ`` that makes ``μ·g`` the monic form of ``g`` times the simplest ``λ``
+    (the fewest bits, a decimal when one is simplest) with every coefficient within its
+    rounding of ``f``'s, or ``None`` when there is no such ``λ`` (docs/math.md §8.5). ``f`` may be
+    a simple surface times a printed factor (``0.94515``), and the scale snapped from one
+    coefficient of the fit (the simplest rational within its standard errors, ``1189/1258``)
+    misses the rounding of ``f``'s largest coefficients by a millionth."""
+    monomials = [dense.monomial(m) for m in g.monoms()]
+    values = [Fraction(int(c.p), int(c.q)) for c in g.coeffs()]
+    lo: Fraction | None = None
+    hi: Fraction | None = None
+    for m, n in zip(monomials, (v / values[0] for v in values)):
+        value, bound = Fraction(typed.floats.get(m, 0.0)), Fraction(rounding.bound(m) * WITHIN)
+        first, last = sorted(((value - bound) / n, (value + bound) / n))
+        lo = first if lo is None else max(lo, first)
+        hi = last if hi is None else min(hi, last)
+        if lo > hi:
+            return None
+    if lo is None or hi is None or lo <= 0 <= hi:
+        return None
+    return min((simplest_between(lo, hi), _shortest_decimal(lo, hi)), key=lambda v: bits([v])) / values[0]
+
+
+def _shortest_decimal(lo: Fraction, hi: Fraction) -> Fraction:
+    """The decimal with the fewest digits in ``[lo, hi]`` (``0 < lo`` or ``hi < 0``): a printed
+    factor reads as one (``0.9451502``, not ``606759779/641971867``)."""
+    if hi < 0:
+        return -_shortest_decimal(-hi, -lo)
+    power = 10 ** max(0, -math.floor(math.log10(hi - lo)))
+    while True:
+        n = math.ceil(lo * power)
+        if n <= hi * power:
+            return Fraction(n, power)
+        power *= 10
+
+
+def bits(values: list[Fraction]) -> int:
+    return sum(v.numerator.bit_length() + v.denominator.bit_length() for v in values)
+
+
+def primitive_shape(values: list[Fraction]) -> tuple[int, ...]:
+    """The primitive integer vector proportional to ``values`` (its first non-zero entry
+    positive): the coefficients of one surface ``g = 0`` up to the factor of ``g``."""
+    common = math.lcm(*(v.denominator for v in values))
+    integers = [v.numerator * (common // v.denominator) for v in values]
+    content = math.gcd(*integers) or 1
+    sign = -1 if next((n for n in integers if n), 0) < 0 else 1
+    return tuple(sign * n // content for n in integers)
+
+
+def shape_bits(values: list[Fraction]) -> int:
+    """The bits of the surface's coefficients up to a factor, those of :func:`_shape`: ``g`` and
+    ``0.94515·g`` are one surface, as simple as each other (docs/math.md §8.5)."""
+    return sum(n.bit_length() + 1 for n in primitive_shape(values))
+
+
+def standard_errors(f: Normalised, local: Fit) -> FloatArray:
+    """Standard errors of the fitted coefficients, in units of the rounding bounds."""
+    weighted = invariant_basis(local.candidate, f.degree, f.selected)[0] * f.weights[:, None]
+    norms = np.linalg.norm(weighted, axis=0)
+    norms[norms == 0.0] = 1.0
+    _, s, vt = np.linalg.svd(weighted / norms, full_matrices=False)
+    s = np.maximum(s, s[0] * 1e-15)
+    covariance = (vt.T / s**2) @ vt
+    errors: FloatArray = np.sqrt(np.abs(np.diag(covariance))) / norms
+    return errors
