@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -259,6 +260,26 @@ def test_a_rounded_cone_snaps_back_to_a_cone_with_its_apex(print_) -> None:  # n
     assert nearest.axis.point == ("25", "40", "-10")
     assert nearest.analysis is not None and nearest.analysis.rationality.table_row == 1
     assert nearest.analysis.rationality.profile_reducible
+
+
+@pytest.mark.parametrize("unit", [1.0, 1e-3])
+def test_a_paraboloid_printed_with_fixed_decimals_snaps_back_to_a_paraboloid(unit: float) -> None:
+    """``d² = 4·20·h`` about the line through (−30, 60, 15) along (0.6, 0.1, 0.79), in millimetres
+    or metres, printed with ``%.6f``. Its coefficients were within the rounding of an ellipsoid
+    centred 6·10⁸ away only, and no surface within the rounding was found (the window drew
+    nothing, the exports failed). With the paraboloid's ``q₂₀|a|² + q₀₁ = 0`` held, the ratios
+    snapped one at a time make a paraboloid: its quadratic part is singular."""
+    direction, vertex = np.array([0.6, 0.1, 0.79]), np.array([-30.0, 60.0, 15.0]) * unit
+    direction /= np.linalg.norm(direction)
+    one = dense.from_terms({(0, 0, 0): 1.0}, 2)
+    h = dense.times(one, dense.linear_form(direction, vertex))
+    h2 = dense.times(h, dense.linear_form(direction, vertex))
+    rho = dense.times(one, dense.squared_distance(vertex))
+    nearest = analyze(printed_fixed(rho - h2 - 80 * unit * h, 6)).approximate.nearest
+    assert nearest is not None and nearest.within_rounding
+    g = parse_polynomial(nearest.polynomial).polynomial.as_expr()
+    assert sympy.Matrix(sympy.hessian(g, sympy.symbols("x y z"))).det() == 0
+    assert nearest.analysis is not None and nearest.analysis.rationality.table_row == 3
 
 
 def test_a_torus_printed_with_fixed_decimals_snaps_back_to_that_torus() -> None:

@@ -77,9 +77,16 @@ def coefficient_candidates(
     found += _ratio_candidates(values, errors, scales_for)
     sources = [(candidate, SNAPPED) for candidate in found]
     sources.append(([Fraction(v).limit_denominator(10**15) for v in values], FITTED))
-    zeros = [k for k, q in enumerate(found[0]) if not q]
-    if zeros and len(zeros) < len(values) - 1:
-        sources += [(candidate, HELD) for candidate in _held_candidates(f, local, zeros, factor, scale_for, norm2)]
+    held: dict[int, Fraction] = {k: q for k, q in enumerate(found[0]) if not q}
+    pivot = None
+    paraboloid = _paraboloid(local.exponents, values, errors, norm2)
+    if paraboloid is not None:
+        pivot, k, ratio = paraboloid
+        held[k] = ratio
+    if held and len(held) < len(values) - 1:
+        sources += [
+            (candidate, HELD) for candidate in _held_candidates(f, local, held, pivot, factor, scale_for, norm2)
+        ]
     ranked: list[tuple[int, list[Fraction], str]] = []
     for candidate, source in sources:
         ranked.append((shape_bits(candidate), candidate, source))
@@ -114,25 +121,28 @@ def _ratio_candidates(
 def _held_candidates(
     f: Normalised,
     local: Fit,
-    zeros: list[int],
+    held: dict[int, Fraction],
+    start: int | None,
     factor: FloatArray,
     scale_for: Callable[[list[Fraction]], Fraction | None],
     norm2: Fraction | None,
 ) -> list[list[Fraction]]:
-    """Coefficients within the rounding for a fit whose coefficients at ``zeros`` snap to 0 on
-    their own (the structure of the part: a cone's apex at the profile's centre makes the terms
-    ``1`` and ``h`` vanish, a torus's centre the odd powers of ``h``), while the others, each
-    snapped within three standard errors of the free fit, miss the rounding together
-    (docs/math.md §8.5). With the zeros held, the ratios to the best-determined coefficient are
-    snapped one at a time, the best-determined first, each within ``k`` standard errors of the
-    fit with every ratio snapped so far held (each held ratio sharpens the rest), for
-    ``k`` in :data:`HELD_SPREADS`; the set, or its torus completion (:func:`torus_completion`,
-    whose constant is derived, not snapped), is kept with the simplest scale that puts every
+    """Coefficients within the rounding for a fit whose structure is known: ``held`` gives the
+    ratios of some coefficients to the one at ``start`` (to the best-determined of the others
+    when ``start`` is ``None``): those that snap to 0 on their own (a cone's apex at the
+    profile's centre makes the terms ``1`` and ``h`` vanish, a torus's centre the odd powers of
+    ``h``) and a paraboloid's ``q₂₀ = −q₀₁/|a|²`` (:func:`_paraboloid`). The others, each
+    snapped within three standard errors of the free fit, can miss the rounding together
+    (docs/math.md §8.5). With those held, the other ratios are snapped one at a time, the
+    best-determined first, each within ``k`` standard errors of the fit with every ratio
+    snapped so far held (each held ratio sharpens the rest), for ``k`` in
+    :data:`HELD_SPREADS`; the set, or its torus completion (:func:`torus_completion`, whose
+    constant is derived, not snapped), is kept with the simplest scale that puts every
     coefficient within the rounding. ``factor`` turns the normalised fit's coefficients into
     those of ``f``'s coordinates."""
     for spread in HELD_SPREADS:
-        ratios: dict[int, Fraction] = dict.fromkeys(zeros, Fraction(0))
-        pivot: int | None = None
+        ratios = dict(held)
+        pivot = start
         while True:
             fitted = _ratio_fit(f, local, ratios, pivot, factor)
             if fitted is None:
@@ -152,6 +162,22 @@ def _held_candidates(
             if scale is not None:
                 return [[scale * r for r in candidate]]
     return []
+
+
+def _paraboloid(
+    exponents: tuple[tuple[int, int], ...], values: FloatArray, errors: FloatArray, norm2: Fraction | None
+) -> tuple[int, int, Fraction] | None:
+    """For a quadric about an axis of rational ``|a|²`` whose fitted coefficients (``errors``
+    the radii they are snapped within) are a paraboloid's, ``q₂₀|a|² + q₀₁ = 0`` (no term in
+    the squared distance along the axis, ``ρ − h²/|a|²`` the squared distance to it): the
+    index of ``q₀₁``, that of ``q₂₀`` and the ratio ``−1/|a|²`` of the two."""
+    if norm2 is None or max(i + 2 * j for i, j in exponents) != 2 or (2, 0) not in exponents or (0, 1) not in exponents:
+        return None
+    h2, rho = exponents.index((2, 0)), exponents.index((0, 1))
+    along = values[h2] * float(norm2) + values[rho]
+    if not values[rho] or abs(along) > errors[h2] * float(norm2) + errors[rho]:
+        return None
+    return rho, h2, -1 / norm2
 
 
 def _ratio_fit(
