@@ -218,6 +218,19 @@ def test_a_rounded_torus_times_a_printed_factor_snaps_back_to_a_torus(seed: int,
     assert nearest.analysis is not None and nearest.analysis.rationality.table_row == 1
 
 
+@pytest.mark.parametrize("seed", [3, 4])
+def test_a_six_digit_torus_on_a_random_axis_snaps_back_to_a_torus(seed: int) -> None:
+    """``R = 32``, ``r = 8`` in millimetres about a random axis, printed with 6 digits. For seed 4
+    a quartic of snapped coefficients on the axis ``(3835, 1028, −9789)`` (row 4) was taken
+    before the torus found on another: ``q₂₀ = 4R²/|a|²`` was snapped to the simplest rational
+    near it, not ``4096/111588530``. Coefficients are now also snapped in unit heights along the
+    axis, and a torus is preferred to a surface that is not one (docs/math.md §8.5)."""
+    direction, point = random_axis(seed)
+    nearest = analyze(rounded_torus(direction, 40 * point, (32.0, 8.0), 1.0, 6)).approximate.nearest
+    assert nearest is not None and nearest.within_rounding
+    assert nearest.analysis is not None and nearest.analysis.rationality.table_row == 1
+
+
 def test_a_rounded_paraboloid_snaps_back_to_its_exact_surface() -> None:
     """``ρ − h² − 2h`` about the line through 0 along ``(2, 1, 2)/3``, printed with 10 digits: its
     term in ``h`` does not change as the point moves along the axis, and the profile's centre

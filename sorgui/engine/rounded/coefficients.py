@@ -63,17 +63,20 @@ def coefficient_candidates(
     """Exact coefficients of ``g`` in the original coordinates for the fit ``local``, simplest
     first (the fewest bits up to a common factor, :func:`shape_bits`; one of each shape), each
     with where it comes from (:data:`SNAPPED`, :data:`HELD`, :data:`FITTED`): each snapped on
-    its own; the ratios to the best-determined one snapped, times that coefficient snapped and
-    times the scales ``scales_for`` gives them (:func:`matched_scales` on the axis); as fitted;
-    snapped one ratio at a time with the coefficients that snap to 0 held there, times the
-    factor ``scale_for`` gives them (:func:`within_scale`; :func:`_held_candidates`); and each
-    of these made a torus when it has a torus's terms (:func:`torus_completion`, ``norm2`` the
-    squared length ``|a|²`` of the axis direction, when rational)."""
+    its own, as it is and in unit heights along the axis (:func:`_in_unit_heights`); the ratios
+    to the best-determined one snapped, times that coefficient snapped and times the scales
+    ``scales_for`` gives them (:func:`matched_scales` on the axis); as fitted; snapped one
+    ratio at a time with the coefficients that snap to 0 held there, times the factor
+    ``scale_for`` gives them (:func:`within_scale`; :func:`_held_candidates`); and each of these
+    made a torus when it has a torus's terms (:func:`torus_completion`, ``norm2`` the squared
+    length ``|a|²`` of the axis direction, when rational)."""
     degrees = np.array([i + 2 * j for i, j in local.exponents])
     factor = f.scale / f.length**degrees
     values = local.coefficients * factor
     errors = standard_errors(f, local) * factor * 3.0 * max(1.0, local.residual)
     found = [[simplest_near(v, e) for v, e in zip(values, errors)]]
+    if norm2 is not None and norm2 != 1:
+        found.append(_in_unit_heights(local.exponents, values, errors, norm2))
     found += _ratio_candidates(values, errors, scales_for)
     sources = [(candidate, SNAPPED) for candidate in found]
     sources.append(([Fraction(v).limit_denominator(10**15) for v in values], FITTED))
@@ -101,6 +104,20 @@ def coefficient_candidates(
             shapes.add(shape)
             distinct.append((candidate, source))
     return distinct
+
+
+def _in_unit_heights(
+    exponents: tuple[tuple[int, int], ...], values: FloatArray, errors: FloatArray, norm2: Fraction
+) -> list[Fraction]:
+    """Each coefficient snapped on its own in unit heights along the axis: ``q_ij h^i`` is
+    ``(q_ij |a|^i)(h/|a|)^i``, and for an even ``i`` the designed value is ``q_ij |a|^i``, rational
+    (a torus's ``4R²`` in ``q₂₀ = 4R²/|a|²``: ``4096/73940621``, not the simplest rational
+    ``6/108311`` near it). An odd ``i`` has an irrational ``|a|^i`` and is snapped as it is."""
+    snapped = []
+    for (i, _), v, e in zip(exponents, values, errors):
+        unit = norm2 ** (i // 2) if i % 2 == 0 else Fraction(1)
+        snapped.append(simplest_near(v * float(unit), e * float(unit)) / unit)
+    return snapped
 
 
 def _ratio_candidates(

@@ -219,11 +219,12 @@ def _radius(sigma: FloatArray, spread: float, family: DirectionSnap) -> float | 
 
 def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurface | None:
     """The simplest exact surface of the fit's kind within the rounding, or ``None``: for each
-    family of directions the first surface that passes, then one whose coefficients were
-    snapped (not fitted: coefficients fitted to an axis fit it whatever the axis), then the one
-    whose profile coefficients and axis have the fewest bits."""
+    family of directions the first surface that passes; of these a torus (its profile two
+    circles, the CAD part) first, then one whose coefficients were snapped (not fitted:
+    coefficients fitted to an axis fit it whatever the axis), then the one whose profile
+    coefficients and axis have the fewest bits."""
     typed = Typed(to_flint(exact), dense.float_coefficients(exact)) if exact.ring.domain == QQ else None
-    found: list[tuple[bool, int, ExactSurface]] = []
+    found: list[tuple[tuple[bool, bool, int], ExactSurface]] = []
     for family in FAMILIES if best.candidate.direction is not None else (None,):
         surface = _first_exact(f, best, family, typed, rounding)
         if surface is not None:
@@ -234,28 +235,41 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
             found.append(surface)
     if not found:
         return None
-    return min(found, key=lambda item: (item[2].largest > 1.0, item[0], item[1] + _axis_bits(item[2])))[2]
+    return min(found, key=lambda item: (item[1].largest > 1.0, *item[0][:2], item[0][2] + _axis_bits(item[1])))[1]
 
 
 def _first_exact(
     f: Normalised, best: Fit, family: DirectionSnap | None, typed: Typed | None, rounding: Rounding
-) -> tuple[bool, int, ExactSurface] | None:
+) -> tuple[tuple[bool, bool, int], ExactSurface] | None:
     """The first exact surface, in the order of :func:`exact_axes`, with every coefficient
-    within the rounding (else the first within twice it, in the mean), with whether its
-    coefficients were fitted rather than snapped and their bits. When the simplest coefficients
-    fail on a coarse axis, the axis is refined with them held fixed and snapped again, finely."""
-    fallback: tuple[bool, int, ExactSurface] | None = None
-    for coefficients, surface, fitted in _exact_surfaces(f, best, family, typed, rounding):
-        if surface.largest <= 1.0:
-            return fitted, shape_bits(coefficients), surface
+    within the rounding (else the first within twice it, in the mean), with whether it is not
+    a torus, whether its coefficients were fitted rather than snapped, and their bits (a
+    torus's constant, derived, costs none). When the simplest coefficients fail on a coarse
+    axis, the axis is refined with them held fixed and snapped again, finely."""
+    fallback: tuple[tuple[bool, bool, int], ExactSurface] | None = None
+    for found in _exact_surfaces(f, best, family, typed, rounding):
+        size = shape_bits(found.coefficients[1:] if found.torus else found.coefficients)
+        ranked = (not found.torus, found.fitted, size), found.surface
+        if found.surface.largest <= 1.0:
+            return ranked
         if fallback is None:
-            fallback = fitted, shape_bits(coefficients), surface
+            fallback = ranked
     return fallback
+
+
+class _Found(NamedTuple):
+    """An exact surface of :func:`_exact_surfaces`: its coefficients, whether they were fitted
+    rather than snapped, and whether they are a torus's (:func:`torus_completion`)."""
+
+    coefficients: list[Fraction]
+    surface: ExactSurface
+    fitted: bool
+    torus: bool
 
 
 def _exact_surfaces(
     f: Normalised, best: Fit, family: DirectionSnap | None, typed: Typed | None, rounding: Rounding
-) -> Iterator[tuple[list[Fraction], ExactSurface, bool]]:
+) -> Iterator[_Found]:
     """Exact surfaces within twice the rounding (in the mean), simplest axes first; at most
     ``MAX_CHECKS`` exact surfaces are built, and the axis is refined with fixed coefficients
     on the first axis only (an input with irrational data has no simple exact surface, and
@@ -268,6 +282,10 @@ def _exact_surfaces(
         assert best.candidate.direction is not None  # a family snaps the candidate's direction
         directions = snapped_directions(best.candidate.direction, family)
     kind = best.candidate.kind
+
+    def is_torus(a: Direction | None, exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction]) -> bool:
+        norm2 = None if kind != REVOLUTION or a is None else _squared_length(a)
+        return norm2 is not None and torus_completion(exponents, coefficients, norm2) == coefficients
 
     def checked(
         a: Direction | None,
@@ -291,13 +309,13 @@ def _exact_surfaces(
                 coefficients = [scale * v for v in coefficients]
                 fitted = _check(g * fmpq(scale.numerator, scale.denominator), typed, rounding, f, a, c)
                 if fitted is not None and fitted.largest <= 1.0:
-                    rescaled.append((coefficients, fitted))
+                    rescaled.append(_Found(coefficients, fitted, False, is_torus(a, exponents, coefficients)))
         return coefficients, surface
 
     checks = 0
-    within: tuple[list[Fraction], ExactSurface, bool] | None = None
-    rescaled: list[tuple[list[Fraction], ExactSurface]] = []
-    refitted: list[tuple[list[Fraction], ExactSurface]] = []  # coefficients held at 0, the rest refitted
+    within: _Found | None = None
+    rescaled: list[_Found] = []
+    refitted: list[_Found] = []  # snapped one ratio at a time, some held (.coefficients)
     held: list[_Held] = []
     for first, (a, c) in enumerate(exact_axes(f, best, directions, rounding.tolerance)):
         direction = None if a is None else np.array([float(v) for v in a])
@@ -327,19 +345,15 @@ def _exact_surfaces(
             coefficients, surface = checked(a, c, local.exponents, coefficients, simplest)
             if source == HELD:
                 if surface is not None and surface.largest <= 1.0 and not refitted:
-                    refitted.append((coefficients, surface))
+                    refitted.append(_Found(coefficients, surface, True, is_torus(a, local.exponents, coefficients)))
                 continue
-            torus = norm2 is not None and torus_completion(local.exponents, coefficients, norm2) == coefficients
+            torus = is_torus(a, local.exponents, coefficients)
             if surface is not None and surface.largest <= 1.0 and held:
                 if not simplest or (not torus and any(item.torus for item in held)):
-                    within = (
-                        coefficients,
-                        surface,
-                        source != SNAPPED,
-                    )  # simpler ones, or a torus, may hold on a minimax axis
-                    break
+                    within = _Found(coefficients, surface, source != SNAPPED, torus)  # simpler ones, or a torus,
+                    break  # may hold on a minimax axis
             if surface is not None:
-                yield coefficients, surface, source != SNAPPED
+                yield _Found(coefficients, surface, source != SNAPPED, torus)
                 if surface.largest <= 1.0:
                     return
             if not simplest:
@@ -352,7 +366,7 @@ def _exact_surfaces(
             for a2, c2 in _refined(f, held[-1], family).axes:
                 scaled, surface = checked(a2, c2, local.exponents, coefficients)
                 if surface is not None:
-                    yield scaled, surface, False
+                    yield _Found(scaled, surface, False, torus)
                     if surface.largest <= 1.0:
                         return
         else:
@@ -370,13 +384,13 @@ def _exact_surfaces(
         for a2, c2 in _minimax_axes(f, refined, simple.fixed, family, points):
             scaled, surface = checked(a2, c2, simple.exponents, simple.coefficients)
             if surface is not None:
-                yield scaled, surface, False
+                yield _Found(scaled, surface, False, simple.torus)
                 if surface.largest <= 1.0:
                     return
     if rescaled:
-        yield (*rescaled[0], False)
+        yield rescaled[0]
     if refitted:
-        yield (*refitted[0], True)
+        yield refitted[0]
     if within is not None:
         yield within
 
