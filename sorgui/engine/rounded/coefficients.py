@@ -3,10 +3,12 @@ the exact values of the coefficients ``q_ij`` of ``g = Σ q_ij h^i ρ^j`` on one
 simplest first, and the factor that puts a set of them within the input's rounding.
 
 * **Snapped:** each the simplest rational within three standard errors of the weighted
-  least-squares fit; or the ratios to the best-determined one, times a scale (snapped, or one
-  that makes ``g`` agree with ``f`` where ``f`` is largest).
-* **Held:** the coefficients that snap to 0 held there, and the ratios snapped one at a time,
-  each within the errors of the fit with the ratios snapped so far held.
+  least-squares fit, as it is and in unit heights along the axis; or the ratios to the
+  best-determined one, times a scale (snapped, or one that makes ``g`` agree with ``f`` where
+  ``f`` is largest).
+* **Held:** the coefficients that snap to 0 held there (and a paraboloid's ratio of its terms
+  ``h²`` and ``ρ``), and the other ratios snapped one at a time, each within the errors of the
+  fit with the ratios snapped so far held.
 * **As fitted.**
 * **A torus's constant** derived from its other coefficients, and **the factor** of fewest bits
   with every coefficient of ``λ·g`` within the rounding: ``g`` and ``λ·g`` are one surface, and
@@ -56,18 +58,18 @@ snapped one at a time (widest first, until the set is within the rounding)."""
 def coefficient_candidates(
     f: Normalised,
     local: Fit,
-    scales_for: Callable[[list[Fraction]], list[Fraction]],
+    matched_for: Callable[[list[Fraction]], list[Fraction]],
     norm2: Fraction | None,
-    scale_for: Callable[[list[Fraction]], Fraction | None],
+    within_for: Callable[[list[Fraction]], Fraction | None],
 ) -> list[tuple[list[Fraction], str]]:
     """Exact coefficients of ``g`` in the original coordinates for the fit ``local``, simplest
     first (the fewest bits up to a common factor, :func:`shape_bits`; one of each shape), each
     with where it comes from (:data:`SNAPPED`, :data:`HELD`, :data:`FITTED`): each snapped on
     its own, as it is and in unit heights along the axis (:func:`_in_unit_heights`); the ratios
     to the best-determined one snapped, times that coefficient snapped and times the scales
-    ``scales_for`` gives them (:func:`matched_scales` on the axis); as fitted; snapped one
+    ``matched_for`` gives them (:func:`matched_scales` on the axis); as fitted; snapped one
     ratio at a time with the coefficients that snap to 0 held there, times the factor
-    ``scale_for`` gives them (:func:`within_scale`; :func:`_held_candidates`); and each of these
+    ``within_for`` gives them (:func:`within_scale`; :func:`_held_candidates`); and each of these
     made a torus when it has a torus's terms (:func:`torus_completion`, ``norm2`` the squared
     length ``|a|²`` of the axis direction, when rational)."""
     degrees = np.array([i + 2 * j for i, j in local.exponents])
@@ -77,7 +79,7 @@ def coefficient_candidates(
     found = [[simplest_near(v, e) for v, e in zip(values, errors)]]
     if norm2 is not None and norm2 != 1:
         found.append(_in_unit_heights(local.exponents, values, errors, norm2))
-    found += _ratio_candidates(values, errors, scales_for)
+    found += _ratio_candidates(values, errors, matched_for)
     sources = [(candidate, SNAPPED) for candidate in found]
     sources.append(([Fraction(v).limit_denominator(10**15) for v in values], FITTED))
     held: dict[int, Fraction] = {k: q for k, q in enumerate(found[0]) if not q}
@@ -88,7 +90,7 @@ def coefficient_candidates(
         held[k] = ratio
     if held and len(held) < len(values) - 1:
         sources += [
-            (candidate, HELD) for candidate in _held_candidates(f, local, held, pivot, factor, scale_for, norm2)
+            (candidate, HELD) for candidate in _held_candidates(f, local, held, pivot, factor, within_for, norm2)
         ]
     ranked: list[tuple[int, list[Fraction], str]] = []
     for candidate, source in sources:
@@ -111,8 +113,8 @@ def _in_unit_heights(
 ) -> list[Fraction]:
     """Each coefficient snapped on its own in unit heights along the axis: ``q_ij h^i`` is
     ``(q_ij |a|^i)(h/|a|)^i``, and for an even ``i`` the designed value is ``q_ij |a|^i``, rational
-    (a torus's ``4R²`` in ``q₂₀ = 4R²/|a|²``: ``4096/73940621``, not the simplest rational
-    ``6/108311`` near it). An odd ``i`` has an irrational ``|a|^i`` and is snapped as it is."""
+    (a torus's ``4R²`` in ``q₂₀ = 4R²/|a|²``: ``4096/111588530``, not the simplest rational
+    ``3/81730`` near it). An odd ``i`` has an irrational ``|a|^i`` and is snapped as it is."""
     snapped = []
     for (i, _), v, e in zip(exponents, values, errors):
         unit = norm2 ** (i // 2) if i % 2 == 0 else Fraction(1)
@@ -121,10 +123,10 @@ def _in_unit_heights(
 
 
 def _ratio_candidates(
-    values: FloatArray, errors: FloatArray, scales_for: Callable[[list[Fraction]], list[Fraction]]
+    values: FloatArray, errors: FloatArray, matched_for: Callable[[list[Fraction]], list[Fraction]]
 ) -> list[list[Fraction]]:
     """The ratios of ``values`` to the best-determined one, each snapped within its errors,
-    times that value snapped and times the scales ``scales_for`` gives them."""
+    times that value snapped and times the scales ``matched_for`` gives them."""
     pivot = int(np.argmax(np.abs(values) / np.maximum(errors, 1e-300)))
     if values[pivot] == 0.0:
         return []
@@ -132,7 +134,7 @@ def _ratio_candidates(
     ratio_errors = errors / abs(values[pivot]) + np.abs(ratios) * errors[pivot] / abs(values[pivot])
     snapped = [simplest_near(r, e) for r, e in zip(ratios, ratio_errors)]
     scale = simplest_near(values[pivot], errors[pivot])
-    return [[scale * r for r in snapped]] + [[matched * r for r in snapped] for matched in scales_for(snapped)]
+    return [[scale * r for r in snapped]] + [[matched * r for r in snapped] for matched in matched_for(snapped)]
 
 
 def _held_candidates(
@@ -141,7 +143,7 @@ def _held_candidates(
     held: dict[int, Fraction],
     start: int | None,
     factor: FloatArray,
-    scale_for: Callable[[list[Fraction]], Fraction | None],
+    within_for: Callable[[list[Fraction]], Fraction | None],
     norm2: Fraction | None,
 ) -> list[list[Fraction]]:
     """Coefficients within the rounding for a fit whose structure is known: ``held`` gives the
@@ -175,7 +177,7 @@ def _held_candidates(
         snapped = [ratios[k] for k in range(len(values))]
         torus = None if norm2 is None else torus_completion(local.exponents, snapped, norm2)
         for candidate in (snapped, torus) if torus is not None else (snapped,):
-            scale = scale_for(candidate)
+            scale = within_for(candidate)
             if scale is not None:
                 return [[scale * r for r in candidate]]
     return []

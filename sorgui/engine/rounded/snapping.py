@@ -323,20 +323,20 @@ def _exact_surfaces(
         local = fit(f, best.candidate, point=point, direction=direction)
         degrees = np.array([i + 2 * j for i, j in local.exponents])
 
-        def scales_for(
+        def matched_for(
             ratios: list[Fraction], a: Direction | None = a, c: Vector | None = c, local: Fit = local
         ) -> list[Fraction]:
             g = build(kind, a, c, local.exponents, ratios)
             return [] if not isinstance(g, fmpq_mpoly) or typed is None else matched_scales(g, typed, rounding)
 
-        def scale_for(
+        def within_for(
             ratios: list[Fraction], a: Direction | None = a, c: Vector | None = c, local: Fit = local
         ) -> Fraction | None:
             g = build(kind, a, c, local.exponents, ratios)
             return None if not isinstance(g, fmpq_mpoly) or typed is None else within_scale(g, typed, rounding)
 
         norm2 = None if kind != REVOLUTION or a is None else _squared_length(a)
-        candidates = coefficient_candidates(f, local, scales_for, norm2, scale_for)
+        candidates = coefficient_candidates(f, local, matched_for, norm2, within_for)
         for rank, (coefficients, source) in enumerate(candidates):
             checks += 1
             if checks > MAX_CHECKS:
