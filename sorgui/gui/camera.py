@@ -42,9 +42,10 @@ class CameraState:
 
     @classmethod
     def from_dict(cls, data: dict[str, object]) -> CameraState | None:
-        """The state saved by :meth:`to_dict`, or ``None`` if ``data`` is not one."""
+        """The state saved by :meth:`to_dict`, or ``None`` if ``data`` is not one, or is the
+        camera of a scene never framed (:meth:`framed`)."""
         try:
-            return cls(
+            state = cls(
                 position=_triple(data["position"]),
                 focal_point=_triple(data["focal_point"]),
                 view_up=_triple(data["view_up"]),
@@ -54,6 +55,14 @@ class CameraState:
             )
         except (KeyError, TypeError, ValueError):
             return None
+        return state if state.framed else None
+
+    @property
+    def framed(self) -> bool:
+        """Whether this is not VTK's camera before any scene was framed, from ``(1, 1, 1)`` at
+        the origin: a window that drew a scene without its camera kept that one in the
+        settings, and every later start restored it, looking from inside the surface."""
+        return self != UNFRAMED
 
 
 def _triple(value: object) -> tuple[float, float, float]:
@@ -93,3 +102,7 @@ def meridian_normal(axis_point: np.ndarray, axis_direction: np.ndarray, profile_
         if np.linalg.norm(far) > 1e-9:
             return unit(np.cross(a, far))
     return unit(np.cross(a, perpendicular_vector(a)))
+
+
+UNFRAMED = CameraState((1.0, 1.0, 1.0), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
+"""VTK's camera before any scene is framed (:attr:`CameraState.framed`)."""

@@ -965,8 +965,9 @@ class MainWindow(QMainWindow):
         if self.viewport.detected_software is not None:
             self.settings.software_rendering = self.viewport.detected_software
         run = self.session.run
-        if run is not None and self.viewport.scene is not None:
-            self.settings.set_camera(run.text, self.viewport.camera_state().to_dict())
+        camera = self.viewport.camera_state() if run is not None and self.viewport.scene is not None else None
+        if run is not None and camera is not None and camera.framed:
+            self.settings.set_camera(run.text, camera.to_dict())
         else:
             self.settings.forget_camera()
         self._save_layout()

@@ -384,7 +384,11 @@ class Viewport(QWidget):
         if caption is not None:
             self.caption.setText(caption)
         if self._plotter is None and self._loading is not None and self._loading.is_alive():
-            self._waiting = (scene, reset_camera or (self._waiting is not None and self._waiting[1]), None)
+            # A later scene of the same surface (its curves) keeps the camera waiting with the
+            # first: the one restored from the last session, else the framing asked for.
+            waiting = self._waiting
+            camera = None if reset_camera or waiting is None else waiting[2]
+            self._waiting = (scene, reset_camera or (waiting is not None and waiting[1]), camera)
             return  # drawn by start_rendering, once pyvista and VTK are imported
         self._clear_pick()
         self._show_surface()

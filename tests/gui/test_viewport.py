@@ -240,3 +240,33 @@ def test_a_scene_that_comes_while_vtk_is_imported_waits_for_it_without_freezing(
     assert np.allclose(viewport.camera_state().position, camera.position)
     assert viewport.stale
     viewport.close_plotter()
+
+
+def test_the_saved_camera_survives_a_second_scene_that_comes_while_vtk_is_imported(torus_window, qtbot) -> None:
+    """At start-up the saved camera was restored on the first scene, still waiting for the
+    render window, and the scene with the curves, which came next, dropped it: the surface was
+    drawn from VTK's unframed camera, at (1, 1, 1) looking at the origin (for a CAD cone, a
+    brown wall of its inside), and that camera was saved for the next start."""
+    import threading
+
+    from sorgui.gui.camera import UNFRAMED, CameraState
+    from sorgui.gui.viewport import Viewport
+
+    scene, camera = torus_window.viewport.scene, torus_window.viewport.camera_state()
+    assert scene is not None
+    released = threading.Event()
+    viewport = Viewport()
+    qtbot.addWidget(viewport)
+    viewport.resize(400, 300)
+    viewport.show()
+    viewport._loading = threading.Thread(target=released.wait, args=(30.0,), daemon=True)
+    viewport._loading.start()
+    viewport._loading_timer.start()
+    viewport.show_scene(scene, reset_camera=False, caption="the torus")  # a camera is restored: no framing
+    viewport.restore_camera(camera)
+    viewport.show_scene(scene, reset_camera=False, caption="the torus")  # the scene with its curves
+    released.set()
+    qtbot.waitUntil(lambda: viewport.rendering, timeout=30_000)
+    assert np.allclose(viewport.camera_state().position, camera.position)
+    viewport.close_plotter()
+    assert CameraState.from_dict(UNFRAMED.to_dict()) is None  # such a camera saved before is not restored
