@@ -4,11 +4,15 @@ VTK render window and a real worker process."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 from PySide6.QtWidgets import QRadioButton
 
 from sorgui.samples import printed
 from tests.engine.test_approximate import _turned_torus
+
+DATA = Path(__file__).resolve().parent.parent / "data"
 
 pytestmark = pytest.mark.gui
 
@@ -81,25 +85,19 @@ def test_a_cad_torus_on_an_irrational_axis_switches_to_its_exact_surface_over_a_
     window.grab().save(str(artifacts / "rounded-quadratic-nearest.png"))
 
 
-ROUNDED_PROLATE = (
-    "0.172059*z^2 + 0.196915*y*z + 0.125626*y^2 + 0.0489472*x*z - 0.0618315*x*y + 0.242315*x^2"
-    " - 0.638162*z + 0.0429165*y - 1.61362*x + 2.08005"
-)
-"""A prolate spheroid about a tilted axis, printed with 6 digits: its nearest exact surface has
-maps over ``QQ(√d)`` with ``d`` of more than 100 digits."""
+BIG_SPHERE = "x^2 + y^2 + z^2 - " + "1234567890" * 9 + "1234567891"
+"""A sphere whose radius² has 100 digits: its maps are over ``QQ(√d)`` with ``d`` of 100 digits."""
 
 
 def test_a_field_of_a_hundred_digits_does_not_widen_the_results_pane(window, run_analysis, qtbot, artifacts) -> None:
-    """The nearest surface's maps were listed "over QQ(sqrt(4258300637…))" with every digit, one
-    unbreakable line that made the results pane wider than its view (a horizontal scroll bar,
-    the right half of every row out of sight). Long numbers in the pane's words are shortened."""
+    """The maps of a rounded prolate spheroid's nearest surface were listed "over
+    QQ(sqrt(4258300637…))" with every digit, one unbreakable line that made the results pane
+    wider than its view (a horizontal scroll bar, the right half of every row out of sight).
+    Long numbers in the pane's words are shortened (here a sphere's maps, over the field of its
+    radius)."""
     from tests.gui.test_canal import pane_text
 
-    run_analysis(window, ROUNDED_PROLATE, timeout_ms=300_000)
-    qtbot.waitUntil(lambda: window.session.nearest_analysis is not None, timeout=300_000)
-    switch = window.findChild(QRadioButton, "viewNearest")
-    assert switch is not None and switch.isEnabled()
-    switch.click()
+    run_analysis(window, BIG_SPHERE, timeout_ms=300_000)
     qtbot.waitUntil(lambda: "digits])" in pane_text(window), timeout=60_000)
     qtbot.wait(300)
     window.grab().save(str(artifacts / "rounded-long-field.png"))
@@ -108,16 +106,9 @@ def test_a_field_of_a_hundred_digits_does_not_widen_the_results_pane(window, run
     assert pane.widget().width() <= pane.viewport().width()
 
 
-TORUS_FIXED_DECIMALS = (
-    "1.000000*x^4 - 482.000000*x^3 + 2.000000*x^2*y^2 + 140.800000*x^2*y + 2.000000*x^2*z^2 - "
-    "320.000000*x^2*z + 97990.603743*x^2 - 482.000000*x*y^2 - 36944.545809*x*y - "
-    "482.000000*x*z^2 + 81999.028210*x*z - 10114550.211232*x + 1.000000*y^4 + 140.800000*y^3 + "
-    "2.000000*y^2*z^2 - 320.000000*y^2*z + 46472.028174*y^2 + 140.800000*y*z^2 - "
-    "30659.713683*y*z + 3936169.584053*y + 1.000000*z^4 - 320.000000*z^3 + 71192.768084*z^2 - "
-    "8169002.114326*z + 519897350.237484"
-)
-"""A torus in millimetres about a tilted axis, printed with 6 fixed decimals: the nearest exact
-surface found lies outside its rounding (one coefficient 6.8 times its rounding off)."""
+CONE_FOUR_DIGITS = (DATA / "rounded-cone-4-digits.txt").read_text(encoding="utf-8")
+"""A cone printed with 4 digits: the nearest exact surface found lies outside its rounding (one
+coefficient 2.9 times its rounding off)."""
 
 
 def test_a_nearest_surface_outside_the_rounding_is_not_called_the_one_meant(window, run_analysis, qtbot) -> None:
@@ -125,7 +116,7 @@ def test_a_nearest_surface_outside_the_rounding_is_not_called_the_one_meant(wind
     to be", while the typed view said none was found within the rounding."""
     from tests.gui.test_canal import pane_text
 
-    run_analysis(window, TORUS_FIXED_DECIMALS, timeout_ms=300_000)
+    run_analysis(window, CONE_FOUR_DIGITS, timeout_ms=300_000)
     qtbot.waitUntil(lambda: window.session.nearest_analysis is not None, timeout=300_000)
     assert not window.session.run.analysis.approximate.nearest.within_rounding
     switch = window.findChild(QRadioButton, "viewNearest")
