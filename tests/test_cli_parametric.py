@@ -87,7 +87,8 @@ def test_each_line_mixes_equations_and_parametrizations(tmp_path: Path) -> None:
     [
         ("x = s, y = s^2, z = s^3", "the image is a curve"),
         ("x = s, y = t, z = 2", "the component z is constant"),
-        ("x = s, y = t, z = cos(t)", "'cos' is not allowed"),
+        ("x = s, y = t, z = cos(t)", "t is written both inside cos or sin and outside them"),
+        ("x = s, y = t, z = exp(t)", "'exp' is not allowed"),
         ("x = s, y = t, z = s*t*u", "3 parameters"),
         ("x = s/(t-t), y = t, z = s", "the denominator is identically zero"),
     ],

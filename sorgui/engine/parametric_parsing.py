@@ -18,12 +18,15 @@ label, a prefix or a function's head gives, else in alphabetical order. Each com
 by the equation parser's own tokenizer and recursive descent (:mod:`.parsing`) with the
 parameters as its variables, checked by its first pass (sizes, exponents, square roots: the
 field ``K`` is the same as for an equation), then evaluated as a fraction ``N/D`` of polynomials
-in ``K[s, t]`` (python-flint over ``QQ``). Nothing typed is evaluated as code.
+in ``K[s, t]`` (python-flint over ``QQ``). Nothing typed is evaluated as code. A parameter
+written only in ``cos(k·u)`` and ``sin(k·u)`` is an angle, read in ``t = tan(u/2)``
+(:func:`_angles`).
 
 Refused, each in one line with its position: a component count other than three, a label given
 twice, parameters named differently twice, a function's head that takes other than two, an
 empty or a constant component, ``x``, ``y`` or ``z`` inside a component, a function other than
-``sqrt`` of a number (the components are rational functions), one, three or more parameters, a
+``sqrt`` of a number and ``cos`` and ``sin`` of a whole multiple of a parameter (the components
+are rational functions), a parameter both inside and outside them, one, three or more parameters, a
 denominator that is identically zero, a map whose image is a curve or a point
 (``P_s × P_t ≡ 0``), and the limits of the equation parser (degree 60 over a common
 denominator, number sizes, nesting).
@@ -49,10 +52,15 @@ if TYPE_CHECKING:
 
 COORDINATES = ("x", "y", "z")
 TRANSCENDENTAL = frozenset(
-    {"sin", "cos", "tan", "cot", "sec", "csc", "exp", "log", "ln", "sinh", "cosh", "tanh", "atan", "asin", "acos"}
+    {"tan", "cot", "sec", "csc", "exp", "log", "ln", "sinh", "cosh", "tanh", "atan", "asin", "acos"}
     | {"arctan", "arcsin", "arccos", "pi", "abs"}
 )
-"""Names a user may write that have no place in a rational function."""
+"""Names a user may write that have no place in a rational function (``cos`` and ``sin`` of a
+parameter have: :func:`_angles`)."""
+FUNCTIONS = frozenset({"sqrt", "pow", "Sqrt"}) | syntax.TRIGONOMETRIC
+"""The functions a component may call: no parameter's name."""
+ANGLE_NAMES = ("t", "s", "w", "r")
+"""The names of ``tan(u/2)`` for an angle ``u``, the first not otherwise taken."""
 
 _RIGHT = re.compile(r"\\right\s*$")
 """LaTeX's ``\\right`` of the closing parenthesis of a triple, left at the end of its last component."""
@@ -96,6 +104,26 @@ class ParsedParametrization:
     map: RationalMap
     field: Domain
     radicands: tuple[int, ...]
+    angles: tuple[tuple[str, str], ...] = ()
+    """For each parameter ``u`` written in ``cos`` and ``sin`` only, ``(u, t)``: the map's
+    parameter is ``t = tan(u/2)`` (:func:`_angles`)."""
+
+    @property
+    def names(self) -> tuple[str, str] | None:
+        """The names of the map's parameters when an angle was replaced (``None``: as typed)."""
+        if not self.angles:
+            return None
+        renamed = dict(self.angles)
+        return renamed.get(self.parameters[0], self.parameters[0]), renamed.get(self.parameters[1], self.parameters[1])
+
+    @property
+    def notes(self) -> tuple[str, ...]:
+        """What was done to read the typed map as a rational one."""
+        return tuple(
+            f"{u} is an angle: cos({u}) = (1 - {t}^2)/(1 + {t}^2) and sin({u}) = 2*{t}/(1 + {t}^2) with"
+            f" {t} = tan({u}/2), so the map is rational in {t} (all of the circle but {u} = pi)"
+            for u, t in self.angles
+        )
 
 
 def parse_input(text: str) -> parsing.ParsedPolynomial | ParsedParametrization:
@@ -117,6 +145,7 @@ def parse_parametrization(text: str) -> ParsedParametrization:
     _check_names(text, spans, parameters)
     checker = syntax.Evaluator(fractions=True)
     trees = [_tree(text, span, parameters, checker) for span in spans]
+    angles = _angles(text, trees, parameters)
     radicands = tuple(sorted(checker.radicands))
     field = number_field(radicands)
     ring = ParameterRing(field)
@@ -147,8 +176,49 @@ def parse_parametrization(text: str) -> ParsedParametrization:
     plain = without_comments(text)
     components = tuple(_RIGHT.sub("", plain[a:b]).strip() for a, b in spans)
     return ParsedParametrization(
-        text, (components[0], components[1], components[2]), parameters, surface, field, radicands
+        text, (components[0], components[1], components[2]), parameters, surface, field, radicands, angles
     )
+
+
+def _angles(text: str, trees: Sequence[Node], parameters: tuple[str, str]) -> tuple[tuple[str, str], ...]:
+    """The parameters written inside ``cos`` and ``sin`` (an angle ``u``), each with the name of
+    ``tan(u/2)``, which replaces it (docs/math.md §13): ``cos(k·u)`` and ``sin(k·u)`` are then
+    rational, the real and imaginary parts of ``((1 − t² + 2i·t)/(1 + t²))^k``. A parameter
+    written also outside them is refused: the map is not rational in it."""
+    inside: dict[int, Node] = {}
+    outside: dict[int, Node] = {}
+    stack = list(trees)
+    while stack:
+        node = stack.pop()
+        match node:
+            case syntax.Trig():
+                inside.setdefault(node.index, node)
+            case Var():
+                outside.setdefault(node.index, node)
+            case Neg() | Reciprocal() | Sqrt():
+                stack.append(node.arg)
+            case Sum():
+                stack.extend(node.terms)
+            case Product():
+                stack.extend(node.factors)
+            case Power():
+                stack.extend((node.base, node.exponent))
+    for index in inside:
+        if index in outside:
+            name = parameters[index]
+            raise ParseError(
+                f"{name} is written both inside cos or sin and outside them: the map is rational in"
+                f" neither {name} nor tan({name}/2) (write {name} only as an angle, or not at all in cos and sin)",
+                outside[index].start,
+                outside[index].end,
+            )
+    taken = set(parameters)
+    angles = []
+    for index in sorted(inside):
+        name = next(n for n in ANGLE_NAMES if n not in taken)
+        taken.add(name)
+        angles.append((parameters[index], name))
+    return tuple(angles)
 
 
 # --- the layout: which characters hold x(s, t), y(s, t), z(s, t) ----------------------------
@@ -343,10 +413,10 @@ def _nonempty(text: str, start: int, end: int, name: str) -> tuple[int, int]:
 
 
 def _names(text: str, span: tuple[int, int]) -> list[tuple[str, int]]:
-    """The names written in a component (``sqrt``, ``pow`` and LaTeX commands aside), with positions."""
+    """The names written in a component (its functions and LaTeX commands aside), with positions."""
     out = []
     for match in syntax.TOKEN.finditer(text, *span):
-        if match.lastgroup == "name" and match.group() not in ("sqrt", "pow", "Sqrt"):
+        if match.lastgroup == "name" and match.group() not in FUNCTIONS:
             out.append((match.group(), match.start()))
     return out
 
@@ -367,7 +437,7 @@ def _discover(text: str, spans: Sequence[tuple[int, int]]) -> tuple[str, str]:
         if word in found and called and (len(word) > 1 or len(found) > 2):
             raise ParseError(
                 f"'{word}(…)' is not allowed: the components must be rational functions of the parameters"
-                " (the functions are pow and sqrt, of a number)",
+                " (the functions are pow and sqrt of a number, cos and sin of a parameter)",
                 position,
                 position + len(word),
             )
@@ -428,7 +498,7 @@ def _refuse_names(text: str, words: Sequence[tuple[str, int]]) -> None:
         if word in TRANSCENDENTAL:
             raise ParseError(
                 f"'{word}' is not allowed: the components must be rational functions of the parameters"
-                " (the functions are pow and sqrt, of a number)",
+                " (the functions are pow and sqrt of a number, cos and sin of a parameter)",
                 position,
                 end,
             )
@@ -446,7 +516,7 @@ def _check_names(text: str, spans: Sequence[tuple[int, int]], parameters: tuple[
         if word not in parameters and not set(word) <= set(parameters):
             raise ParseError(
                 f"unknown name '{word}' (the parameters are {parameters[0]} and {parameters[1]};"
-                " the functions are sqrt and pow)",
+                " the functions are sqrt, pow, cos and sin)",
                 position,
                 position + len(word),
             )
@@ -495,6 +565,8 @@ class _Fractions:
                 return -n, d
             case Sqrt():
                 return self._surd(node), ring.one
+            case syntax.Trig():
+                return self._trig(node)
             case Sum():
                 return self._sum(node)
             case Product():
@@ -532,6 +604,18 @@ class _Fractions:
                     result = self._reduced(node, result[0] * n, result[1] * d)
                 return result
         raise TypeError(node)
+
+    def _trig(self, node: syntax.Trig) -> tuple[Any, Any]:
+        """``cos(k·u)`` or ``sin(k·u)`` in ``t = tan(u/2)`` (the ring's generator for ``u``): the
+        real or imaginary part of ``(1 − t² + 2i·t)^k``, over ``(1 + t²)^k``."""
+        ring = self.ring
+        t = ring.gens[node.index]
+        one = ring.one
+        real, imaginary = one, one - one  # (1 − t² + 2i·t)^0
+        for _ in range(node.multiple):
+            real, imaginary = real * (one - t * t) - imaginary * 2 * t, real * 2 * t + imaginary * (one - t * t)
+        denominator = (one + t * t) ** node.multiple
+        return self._reduced(node, real if node.function == "cos" else imaginary, denominator)
 
     def _surd(self, node: Node) -> Any:
         c, m = self.checked._surds[node]

@@ -18,6 +18,7 @@ Grammar, from the lowest to the highest precedence::
     factor   := ('+' | '-')* atom superscript* ['^' factor]   -- -x^2 = -(x^2), 2^3^2 = 2^9
     atom     := number | x | y | z | 'sqrt' '(' sum ')' | '(' sum ')' | '\\frac' '(' sum ')' '(' sum ')'
               | 'pow' '(' sum ',' sum ')'                -- pow(a, n) = a^n
+              | ('cos' | 'sin') '(' [k '*'] parameter ')' -- in a parametrization's component only
 
 ``==`` is ``=``, ``[ ]`` and ``{ }`` are parentheses, and a superscript is ``²`` or digits right
 after a variable (Singular's ``x2``). A label (``f(x, y, z) =``, ``f :=``) and a final ``;`` are
@@ -93,7 +94,7 @@ TOKEN = re.compile(
 )
 _NUMBER = re.compile(r"([0-9]*)(?:\.([0-9]*))?(?:(?:[eEdD]|\*\^)([-+−]?[0-9]+))?")
 """A number: its exponent as C, Fortran (``1.5D-3``) or Mathematica (``1.5*^-3``) prints it."""
-_IMPLICIT = frozenset({"var", "sqrt", "frac", "("})  # tokens that start an implicit product
+_IMPLICIT = frozenset({"var", "sqrt", "frac", "(", "cos", "sin"})  # tokens that start an implicit product
 
 
 def checked(text: str) -> tuple[Node, Evaluator, bool]:
@@ -216,6 +217,8 @@ def _name(word: str, start: int, variables: tuple[str, ...] = _VARIABLES) -> Ite
     ``x*y*z``; of one-letter ``variables``); any other name is an error."""
     if word in ("sqrt", "pow", "Sqrt"):
         yield Token(word.lower(), start, start + len(word))  # Mathematica's Sqrt[2] too
+    elif word in TRIGONOMETRIC and variables != _VARIABLES:
+        yield Token(word.lower(), start, start + len(word))  # cos(u) in a parametrization's component
     elif set(word) <= set(variables):
         for i, letter in enumerate(word):
             yield Token("var", start + i, start + i + 1, variables.index(letter))
@@ -307,7 +310,21 @@ class Sqrt(_Span):
     arg: Node
 
 
-Node: TypeAlias = Num | Var | Neg | Sum | Product | Reciprocal | Power | Sqrt
+@dataclass(frozen=True, slots=True, eq=False)
+class Trig(_Span):
+    """``cos(k·u)`` or ``sin(k·u)`` of a parameter ``u`` (its index) of a parametrization."""
+
+    function: str  # "cos" or "sin"
+    multiple: int
+    index: int
+
+
+Node: TypeAlias = Num | Var | Neg | Sum | Product | Reciprocal | Power | Sqrt | Trig
+
+TRIGONOMETRIC = frozenset({"cos", "sin", "Cos", "Sin"})
+"""The functions a parametrization's component may take of a parameter (Mathematica's too)."""
+MAX_MULTIPLE = 12
+"""The largest ``k`` of ``cos(k·u)``: degree ``2k`` in ``tan(u/2)``."""
 
 
 # --- the parser --------------------------------------------------------------------------
@@ -415,6 +432,8 @@ class Parser:
             node = self._fraction(depth)
         elif tok.kind == "pow":
             node = self._pow(depth)
+        elif tok.kind in ("cos", "sin"):
+            node = self._trig(depth)
         else:
             raise self._missing_operand(tok)
         while self._tok.kind == "sup":
@@ -458,6 +477,36 @@ class Parser:
         self._advance()
         self._open -= 1
         return Power(name.start, self._prev.end, arguments[0], arguments[1])
+
+    def _trig(self, depth: int) -> Node:
+        """``cos(k·u)`` or ``sin(k·u)``: a whole multiple ``k`` (at most :data:`MAX_MULTIPLE`) of
+        one parameter, ``cos(u)``, ``sin(2*u)``, ``cos(-u)`` (docs/math.md §13)."""
+        name = self._advance()
+        if self._tok.kind != "(":
+            raise ParseError(f"'{self._show(name)}' must be followed by '(' and a parameter", name.start, name.end)
+        arg = self._group(depth)
+        sign, inner = 1, arg
+        while isinstance(inner, Neg):
+            sign, inner = -sign, inner.arg
+        multiple, index = 1, None
+        if isinstance(inner, Var):
+            index = inner.index
+        elif isinstance(inner, Product) and len(inner.factors) == 2:
+            first, second = inner.factors
+            number, variable = (first, second) if isinstance(first, Num) else (second, first)
+            if isinstance(number, Num) and isinstance(variable, Var) and isinstance(number.value, int):
+                multiple, index = number.value, variable.index
+        if index is None or not 1 <= multiple <= MAX_MULTIPLE:
+            raise ParseError(
+                f"{self._show(name)}(…) takes a whole multiple of one parameter, from 1 to {MAX_MULTIPLE} times"
+                " (cos(u), sin(2*u)): the map is then rational in tan(u/2)",
+                arg.start,
+                arg.end,
+            )
+        end = self._prev.end
+        function = self._show(name).lower()
+        node = Trig(name.start, end, function, multiple, index)
+        return Neg(name.start, end, node) if sign < 0 and function == "sin" else node
 
     def _group(self, depth: int) -> Node:
         """``'(' sum ')'``; the error for a missing ')' points at the unmatched '('."""
@@ -549,6 +598,8 @@ class Evaluator:
                 return self._within_limits(node, degree, bits)
             case Power():
                 return self._check_power(node)
+            case Trig():
+                return 2 * node.multiple, 2 * node.multiple
         raise TypeError(node)
 
     def _check_power(self, node: Power) -> tuple[int, int]:
@@ -608,7 +659,7 @@ class Evaluator:
         match node:
             case Num():
                 value = Fraction(node.value)
-            case Var():
+            case Var() | Trig():
                 raise ParseError(not_constant, node.start, node.end)
             case Neg():
                 value = -self._rational(node.arg, role)

@@ -145,7 +145,7 @@ def parametric_lines(analysis: Analysis) -> list[str]:
     elif record.conical == "cylinder" and record.directions:
         lines.append(f"  a cylinder: every tangent plane contains the direction {_vec(record.directions[0])}")
     if record.profile_check is not None:
-        u, v = record.parameters
+        u, v = record.map_parameters
         lines.append(f"  cross-check ∂(h, ρ)/∂({u}, {v}) ≡ 0 about the axis: {'yes' if record.profile_check else 'NO'}")
     if record.profile_curve is not None:
         lines.append(f"  profile curve (h, ρ): {record.profile_curve} = 0")

@@ -65,7 +65,8 @@ def summary(text: str) -> str:
     if isinstance(parsed, ParsedParametrization):
         names = " and ".join(parsed.parameters)
         field = short_numbers(field_name(parsed.field))
-        return f"✓ a parametrization in {names} of degree {parsed.map.degree} over {field}"
+        angles = (", in " + " and ".join(f"tan({u}/2)" for u, _ in parsed.angles)) if parsed.angles else ""
+        return f"✓ a parametrization in {names} of degree {parsed.map.degree} over {field}{angles}"
     return f"✓ degree {total_degree(parsed.polynomial)} over {short_numbers(field_name(parsed.field))}"
 
 

@@ -321,7 +321,7 @@ class ResultsPane(QScrollArea):
             rows.append(
                 (
                     "cross-check",
-                    f"∂(h, ρ)/∂({', '.join(record.parameters)}) ≡ 0 about the axis: "
+                    f"∂(h, ρ)/∂({', '.join(record.map_parameters)}) ≡ 0 about the axis: "
                     + ("yes" if record.profile_check else "NO"),
                 )
             )

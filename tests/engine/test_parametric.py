@@ -254,3 +254,28 @@ def test_a_map_printed_with_every_digit_of_a_double_is_read_at_floating_point_pr
     moved = TORUS_ALL_DIGITS.replace("0.78163917390702498", "0.78163917390802498")
     missed = analyze(moved, timeout=60, recognition_only=True).approximate
     assert missed is not None and not missed.near_sor
+
+
+def test_a_textbook_torus_in_cos_and_sin_is_the_torus() -> None:
+    """``((50 + 12.5 cos v) cos u, (50 + 12.5 cos v) sin u, 12.5 sin v)`` was refused ("'cos' is
+    not allowed"). Read in ``t = tan(u/2)`` and ``s = tan(v/2)`` (docs/math.md §13) it is the
+    torus of radii 50 and 12.5, of Table 1's row 1, its map proper and listed as given."""
+    analysis = analyze("x = (50 + 12.5*cos(v))*cos(u), y = (50 + 12.5*cos(v))*sin(u), z = 12.5*sin(v)", timeout=120)
+    assert analysis.is_sor and analysis.input_kind == "parametrization"
+    assert analysis.recognition.polynomial == (
+        "16*x**4 + 32*x**2*y**2 + 32*x**2*z**2 + 16*y**4 + 32*y**2*z**2 + 16*z**4"
+        " - 85000*x**2 - 85000*y**2 + 75000*z**2 + 87890625"
+    )
+    record = analysis.parametric
+    assert record is not None and record.map_parameters == ("t", "s") and record.proper
+    assert any("t = tan(u/2)" in note for note in record.notes)
+    assert analysis.rationality.table_row == 1
+    assert any(p.verified and p.real for p in analysis.parametrizations)
+
+
+def test_a_rounded_turned_torus_in_cos_and_sin_is_nearly_of_revolution() -> None:
+    """The same torus (radii 2 and 1) turned by 45° about y, with ``√2/2`` printed to 10 digits."""
+    c = "0.7071067812"
+    text = f"x = {c}*(2+cos(v))*cos(u) - {c}*sin(v), y = (2+cos(v))*sin(u), z = {c}*(2+cos(v))*cos(u) + {c}*sin(v)"
+    analysis = analyze(text, timeout=120)
+    assert not analysis.is_sor and analysis.approximate is not None and analysis.approximate.near_sor

@@ -86,7 +86,11 @@ def test_coefficients_as_for_equations() -> None:
         ("x = 1, y = 2, z = 3", "no parameter"),
         ("x = s, y = t, z = 1", "the component z is constant"),
         ("x = s, y = t, z = s + t - s - t + 2", "the component z is constant"),
-        ("x = s, y = t, z = sin(s)", "'sin' is not allowed"),
+        ("x = s, y = t, z = sin(s)", "s is written both inside cos or sin and outside them"),
+        ("x = cos(s + 1), y = t, z = s", "takes a whole multiple of one parameter"),
+        ("x = cos(13*s), y = sin(t), z = t", "from 1 to 12 times"),
+        ("x = cos(s/2), y = sin(t), z = t", "takes a whole multiple of one parameter"),
+        ("x = tan(s), y = t, z = s", "'tan' is not allowed"),
         ("x = s, y = t, z = exp(s*t)", "'exp' is not allowed"),
         ("x = s, y = t, z = f(s)", "'f(…)' is not allowed"),
         ("x = s, y = t, z = abc(s)", "'abc(…)' is not allowed"),
@@ -307,3 +311,27 @@ def test_a_mistyped_head_or_call_is_a_one_line_error(text: str, words: str, at: 
         parse_input(text)
     assert words in info.value.message and "\n" not in info.value.message, info.value.message
     assert text[info.value.position : info.value.end] == at
+
+
+def test_cos_and_sin_of_a_parameter_are_read_in_the_tangent_of_its_half_angle() -> None:
+    """A textbook's torus, ``((2 + cos v) cos u, (2 + cos v) sin u, sin v)``: with
+    ``t = tan(u/2)``, ``cos(k·u)`` and ``sin(k·u)`` are the parts of ``((1 − t² + 2i·t)/(1 + t²))^k``
+    (docs/math.md §13), and the map is rational in ``t`` and ``s = tan(v/2)``."""
+    import math
+
+    text = "x = (2 + cos(v))*cos(2*u), y = (2 + cos(v)) sin(2 u), z = -sin(-v)"
+    parsed = parse_parametrization(text)
+    assert parsed.angles == (("u", "t"), ("v", "s")) and parsed.names == ("t", "s")
+    assert "t = tan(u/2)" in parsed.notes[0] and "s = tan(v/2)" in parsed.notes[1]
+    for u, v in ((0.3, 1.1), (2.0, -0.7), (-2.5, 3.0)):
+        point = tuple(fmpq(*math.tan(a / 2).as_integer_ratio()) for a in (u, v))
+        X, W, _normal = parsed.map.values(point)
+        got = [float(c / W) for c in X]
+        expected = [(2 + math.cos(v)) * math.cos(2 * u), (2 + math.cos(v)) * math.sin(2 * u), math.sin(v)]
+        assert all(abs(a - b) < 1e-12 for a, b in zip(got, expected))
+    assert parse_parametrization("x = s, y = t, z = s*t").angles == ()
+
+
+def test_cos_and_sin_stay_refused_in_an_equation() -> None:
+    with pytest.raises(ParseError, match="unknown name 'cos'"):
+        parse_polynomial("x^2 + cos(y)")

@@ -30,11 +30,14 @@ def test_the_editor_checks_a_parametrization(window) -> None:  # noqa: ANN001
     assert window.editor.is_valid is True
     assert window.input_label.text() == "<b>x, y, z: a rational map</b>"  # the heading says what is typed
     assert "a parametrization in u and v of degree 2 over QQ" in window.editor.status_label.text()
-    window.editor.set_text("x = s, y = t, z = sin(s)")
+    window.editor.set_text("x = s, y = t, z = exp(s)")
     assert window.editor.is_valid is False
-    assert "'sin' is not allowed" in window.editor.status_label.text()
+    assert "'exp' is not allowed" in window.editor.status_label.text()
     (selection,) = window.editor.error_selections()
-    assert selection.cursor.selectedText() == "sin"
+    assert selection.cursor.selectedText() == "exp"
+    window.editor.set_text("x = (2 + cos(v)) cos(u), y = (2 + cos(v)) sin(u), z = sin(v)")
+    assert window.editor.is_valid is True
+    assert "of degree 4 over QQ, in tan(u/2) and tan(v/2)" in window.editor.status_label.text()
     window.editor.set_text("x^2 + y^2 - z")
     assert window.input_label.text() == "<b>f(x, y, z) = 0</b>"
 

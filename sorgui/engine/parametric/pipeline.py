@@ -68,6 +68,12 @@ class TypedMap(Protocol):
     @property
     def field(self) -> Domain: ...
 
+    @property
+    def names(self) -> tuple[str, str] | None: ...
+
+    @property
+    def notes(self) -> tuple[str, ...]: ...
+
 
 ImplicitAnalysis = Callable[[Poly, tuple[Any, Any, Any] | None, "GivenMap | None"], Analysis]
 """The analysis of the implicit equation on the same clock, given a rational curve on ``X`` that
@@ -267,8 +273,10 @@ def _triple(K: Any, v: Vector | None) -> Triple | None:
 
 
 def _names(source: TypedMap) -> tuple[str, str]:
-    """The parameter names of the exported map: the typed ones when reports use them."""
-    return source.parameters if set(source.parameters) <= MAP_PARAMETERS else ("s", "t")
+    """The parameter names of the exported map: the typed ones when reports use them (an
+    angle's replaced by its ``tan(u/2)``'s)."""
+    names = source.names or source.parameters
+    return names if set(names) <= MAP_PARAMETERS else ("s", "t")
 
 
 def _record(
@@ -298,6 +306,7 @@ def _record(
         directions=() if cones is None else tuple(t for d in cones.directions if (t := _triple(K, d)) is not None),
         profile_check=profile_check,
         implicit_status=BEING_COMPUTED if symmetry is not None else "",
+        notes=source.notes,
     )
 
 
