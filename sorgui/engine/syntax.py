@@ -88,7 +88,7 @@ TOKEN = re.compile(
     r"|(?P<name>[A-Za-z]+)"
     r"|(?P<sup>⁻?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
     r"|(?P<op>\*\*|==|[-+*/^()=−–·⋅×∗∙•÷{}\[\]]|\\(?:cdot|times)(?![A-Za-z]))"
-    r"|(?P<latex>\\(?:sqrt|frac)(?![A-Za-z]))"
+    r"|(?P<latex>\\(?:sqrt|frac|cos|sin)(?![A-Za-z]))"
     r"|(?P<bad>.)",
     re.DOTALL,
 )
@@ -194,6 +194,8 @@ def token_stream(
                 yield Token("var", start, end, index[word])
             else:
                 yield from _name(word, start, variables)
+        elif kind == "latex" and word[1:] in TRIGONOMETRIC:
+            yield from _name(word[1:], start + 1, variables)  # \\cos u: in a parametrization only
         elif kind == "latex":
             yield Token(word[1:], start, end)  # sqrt or frac
         elif kind == "sup":
@@ -480,11 +482,15 @@ class Parser:
 
     def _trig(self, depth: int) -> Node:
         """``cos(k·u)`` or ``sin(k·u)``: a whole multiple ``k`` (at most :data:`MAX_MULTIPLE`) of
-        one parameter, ``cos(u)``, ``sin(2*u)``, ``cos(-u)`` (docs/math.md §13)."""
+        one parameter, ``cos(u)``, ``sin(2*u)``, ``cos(-u)``, or ``cos u`` (docs/math.md §13)."""
         name = self._advance()
-        if self._tok.kind != "(":
+        if self._tok.kind == "var":  # cos u, LaTeX's \\cos u: the one parameter that follows
+            parameter = self._advance()
+            arg: Node = Var(parameter.start, parameter.end, parameter.value)
+        elif self._tok.kind == "(":
+            arg = self._group(depth)
+        else:
             raise ParseError(f"'{self._show(name)}' must be followed by '(' and a parameter", name.start, name.end)
-        arg = self._group(depth)
         sign, inner = 1, arg
         while isinstance(inner, Neg):
             sign, inner = -sign, inner.arg

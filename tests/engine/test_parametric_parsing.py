@@ -332,6 +332,22 @@ def test_cos_and_sin_of_a_parameter_are_read_in_the_tangent_of_its_half_angle() 
     assert parse_parametrization("x = s, y = t, z = s*t").angles == ()
 
 
-def test_cos_and_sin_stay_refused_in_an_equation() -> None:
-    with pytest.raises(ParseError, match="unknown name 'cos'"):
-        parse_polynomial("x^2 + cos(y)")
+@pytest.mark.parametrize(
+    "text",
+    [
+        "x = (2 + cos v) cos u, y = (2 + cos v) sin u, z = sin v",
+        "{(2 + Cos[v]) Cos[u], (2 + Cos[v]) Sin[u], Sin[v]}",
+        "\\mathbf{r}(u, v) = \\left( (2 + \\cos v)\\cos u, (2 + \\cos v)\\sin u, \\sin v \\right)",
+    ],
+)
+def test_cos_and_sin_as_papers_and_other_programs_write_them(text: str) -> None:
+    """``cos u`` without parentheses (the one parameter that follows), Mathematica's ``Cos[u]``,
+    LaTeX's ``\\cos u``: the same torus as ``cos(u)``."""
+    torus = "x = (2 + cos(v))*cos(u), y = (2 + cos(v))*sin(u), z = sin(v)"
+    assert _values(text, (2, 3)) == _values(torus, (2, 3))
+
+
+@pytest.mark.parametrize("text", ["x^2 + cos(y)", "x^2 + \\cos y", "x^2 + Sin[z]"])
+def test_cos_and_sin_stay_refused_in_an_equation(text: str) -> None:
+    with pytest.raises(ParseError, match="unknown name '(cos|sin|Sin)'"):
+        parse_polynomial(text)
