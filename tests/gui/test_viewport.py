@@ -208,18 +208,12 @@ def test_software_opengl_lights_the_scene_from_the_camera(torus_window) -> None:
         assert len(lights) == 5
 
 
-def test_a_scene_that_comes_while_vtk_is_imported_waits_for_it_without_freezing(torus_window, qtbot) -> None:
-    """At start-up the first scene (and the camera saved by the last session) came while the
-    import thread was still loading pyvista and VTK, and the GUI thread waited for it: 1–4 s of
-    a frozen window on a busy machine. The scene now waits instead, and is drawn, framed as
-    saved, once the render window is made."""
+def _viewport_still_importing(qtbot):  # noqa: ANN001, ANN202 - a QtBot; (Viewport, threading.Event)
+    """A shown viewport whose import thread (pyvista and VTK) runs until the event is set."""
     import threading
-    import time
 
     from sorgui.gui.viewport import Viewport
 
-    scene, camera = torus_window.viewport.scene, torus_window.viewport.camera_state()
-    assert scene is not None
     released = threading.Event()
     viewport = Viewport()
     qtbot.addWidget(viewport)
@@ -228,6 +222,19 @@ def test_a_scene_that_comes_while_vtk_is_imported_waits_for_it_without_freezing(
     viewport._loading = threading.Thread(target=released.wait, args=(30.0,), daemon=True)  # an import still running
     viewport._loading.start()
     viewport._loading_timer.start()
+    return viewport, released
+
+
+def test_a_scene_that_comes_while_vtk_is_imported_waits_for_it_without_freezing(torus_window, qtbot) -> None:
+    """At start-up the first scene (and the camera saved by the last session) came while the
+    import thread was still loading pyvista and VTK, and the GUI thread waited for it: 1–4 s of
+    a frozen window on a busy machine. The scene now waits instead, and is drawn, framed as
+    saved, once the render window is made."""
+    import time
+
+    scene, camera = torus_window.viewport.scene, torus_window.viewport.camera_state()
+    assert scene is not None
+    viewport, released = _viewport_still_importing(qtbot)
     start = time.monotonic()
     viewport.show_scene(scene, reset_camera=True, caption="the torus")
     viewport.restore_camera(camera)
@@ -247,21 +254,11 @@ def test_the_saved_camera_survives_a_second_scene_that_comes_while_vtk_is_import
     render window, and the scene with the curves, which came next, dropped it: the surface was
     drawn from VTK's unframed camera, at (1, 1, 1) looking at the origin (for a CAD cone, a
     brown wall of its inside), and that camera was saved for the next start."""
-    import threading
-
     from sorgui.gui.camera import UNFRAMED, CameraState
-    from sorgui.gui.viewport import Viewport
 
     scene, camera = torus_window.viewport.scene, torus_window.viewport.camera_state()
     assert scene is not None
-    released = threading.Event()
-    viewport = Viewport()
-    qtbot.addWidget(viewport)
-    viewport.resize(400, 300)
-    viewport.show()
-    viewport._loading = threading.Thread(target=released.wait, args=(30.0,), daemon=True)
-    viewport._loading.start()
-    viewport._loading_timer.start()
+    viewport, released = _viewport_still_importing(qtbot)
     viewport.show_scene(scene, reset_camera=False, caption="the torus")  # a camera is restored: no framing
     viewport.restore_camera(camera)
     viewport.show_scene(scene, reset_camera=False, caption="the torus")  # the scene with its curves
