@@ -224,7 +224,7 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
     coefficients fitted to an axis fit it whatever the axis), then the one whose profile
     coefficients and axis have the fewest bits."""
     typed = Typed(to_flint(exact), dense.float_coefficients(exact)) if exact.ring.domain == QQ else None
-    found: list[tuple[tuple[bool, bool, int], ExactSurface]] = []
+    found: list[_Found] = []
     for family in FAMILIES if best.candidate.direction is not None else (None,):
         surface = _first_exact(f, best, family, typed, rounding)
         if surface is not None:
@@ -235,25 +235,30 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
             found.append(surface)
     if not found:
         return None
-    return min(found, key=lambda item: (item[1].largest > 1.0, *item[0][:2], item[0][2] + _axis_bits(item[1])))[1]
+    return min(found, key=_rank).surface
+
+
+def _rank(found: _Found) -> tuple[bool, bool, bool, int]:
+    """How :func:`snap` orders the families' surfaces: within the rounding first, then a torus,
+    then snapped coefficients, then the fewest bits of the coefficients (a torus's constant,
+    derived, costs none) and the axis."""
+    size = shape_bits(found.coefficients[1:] if found.torus else found.coefficients)
+    return found.surface.largest > 1.0, not found.torus, found.fitted, size + _axis_bits(found.surface)
 
 
 def _first_exact(
     f: Normalised, best: Fit, family: DirectionSnap | None, typed: Typed | None, rounding: Rounding
-) -> tuple[tuple[bool, bool, int], ExactSurface] | None:
+) -> _Found | None:
     """The first exact surface, in the order of :func:`exact_axes`, with every coefficient
-    within the rounding (else the first within twice it, in the mean), with whether it is not
-    a torus, whether its coefficients were fitted rather than snapped, and their bits (a
-    torus's constant, derived, costs none). When the simplest coefficients fail on a coarse
-    axis, the axis is refined with them held fixed and snapped again, finely."""
-    fallback: tuple[tuple[bool, bool, int], ExactSurface] | None = None
+    within the rounding (else the first within twice it, in the mean). When the simplest
+    coefficients fail on a coarse axis, the axis is refined with them held fixed and snapped
+    again, finely."""
+    fallback: _Found | None = None
     for found in _exact_surfaces(f, best, family, typed, rounding):
-        size = shape_bits(found.coefficients[1:] if found.torus else found.coefficients)
-        ranked = (not found.torus, found.fitted, size), found.surface
         if found.surface.largest <= 1.0:
-            return ranked
+            return found
         if fallback is None:
-            fallback = ranked
+            fallback = found
     return fallback
 
 
