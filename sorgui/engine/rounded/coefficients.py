@@ -159,11 +159,13 @@ def _held_candidates(
     constant is derived, not snapped), is kept with the simplest scale that puts every
     coefficient within the rounding. ``factor`` turns the normalised fit's coefficients into
     those of ``f``'s coordinates."""
+    basis = invariant_basis(local.candidate, f.degree, f.selected)[0] * f.weights[:, None]
+    target = f.vector * f.weights
     for spread in HELD_SPREADS:
         ratios = dict(held)
         pivot = start
         while True:
-            fitted = _ratio_fit(f, local, ratios, pivot, factor)
+            fitted = _ratio_fit(basis, target, ratios, pivot, factor)
             if fitted is None:
                 return []
             pivot, values, errors = fitted
@@ -200,16 +202,14 @@ def _paraboloid(
 
 
 def _ratio_fit(
-    f: Normalised, local: Fit, ratios: dict[int, Fraction], pivot: int | None, factor: FloatArray
+    basis: FloatArray, target: FloatArray, ratios: dict[int, Fraction], pivot: int | None, factor: FloatArray
 ) -> tuple[int, FloatArray, FloatArray] | None:
-    """The weighted least-squares fit of ``f`` on the local invariant basis with the
-    coefficients at ``ratios`` held at those multiples of the one at ``pivot`` (the
-    best-determined of the others when ``pivot`` is ``None``): the pivot, every coefficient's
-    ratio to it in ``f``'s coordinates and the standard errors of the ratios (to first order,
-    from the covariance of the fit). ``None`` when the fit is degenerate."""
-    basis = invariant_basis(local.candidate, f.degree, f.selected)[0] * f.weights[:, None]
+    """The least-squares fit of ``target`` (``f``, weighted) on the weighted local invariant
+    ``basis`` with the coefficients at ``ratios`` held at those multiples of the one at
+    ``pivot`` (the best-determined of the others when ``pivot`` is ``None``): the pivot, every
+    coefficient's ratio to it in ``f``'s coordinates and the standard errors of the ratios (to
+    first order, from the covariance of the fit). ``None`` when the fit is degenerate."""
     count = basis.shape[1]
-    target = f.vector * f.weights
     if pivot is None:
         free = [k for k in range(count) if k not in ratios]
         solved = _least_squares(basis[:, free], target)
