@@ -119,6 +119,11 @@ class _Presenter:
     _conical: bool = False
     _without_equation: bool = False
     """The scene was drawn before a parametrization's implicit equation was known (its patch)."""
+    _apex_seen: bool = False
+    """The cone's apex (or a cone's within the rounding) was known when the scene was drawn, or
+    the scene was drawn again to hold it (:meth:`_misses_apex`)."""
+    _components: tuple[Any, ...] | None = None
+    """The typed components of a *no*, once found (:meth:`_explain`)."""
 
     def stage(self, name: str, work: Callable[[], Any]) -> Any:
         self.check()
@@ -138,10 +143,15 @@ class _Presenter:
         if self.scene is not None and self._without_equation and analysis.squarefree:
             # a parametrization's implicit equation has come: the surface replaces the patch
             self.scene, self._patch_map, self._approximated, self._conical, self._canal = (None, None, False, False, ())
+        if self.scene is not None and self._misses_apex(analysis):
+            # drawn before the cone's apex was known, in a ball without it: drawn again
+            self.scene, self._patch_map, self._approximated, self._conical, self._canal = (None, None, False, False, ())
+            self.nearest_scene = None
         if self.scene is None and self._awaits_rounding(analysis):
             return  # rounded input is drawn about its approximate axis, once that is known
         if self.scene is None:
             self._without_equation = not analysis.squarefree
+            self._apex_seen = self._apex_seen or analysis.conical is not None
             self.scene = self.stage("scene", lambda: scene_data.build_scene_of(analysis, request))
             self.send(SceneKnown(self.scene))
             self._explain(analysis)
@@ -170,8 +180,23 @@ class _Presenter:
         typed = analysis.input_kind != "parametrization"  # a map's scene does not wait for a rounding
         return rounded and typed and request.analysis is None and analysis.approximate is None
 
+    def _misses_apex(self, analysis: Analysis) -> bool:
+        """Whether the scene, drawn before the cone stage, is in a ball that leaves out the apex
+        that ``analysis`` now gives (:func:`~sorgui.session.scene_data.with_apex`): asked once,
+        when the cone stage's answer first comes; never for a ball or a box of the user's."""
+        from sorgui.session import scene_data
+
+        if self._apex_seen or analysis.conical is None:
+            return False
+        self._apex_seen = True
+        if self.request.radius is not None or self.request.box is not None:
+            return False
+        region = self.scene.region
+        return bool(scene_data.with_apex(region, analysis.conical, None) != region)
+
     def _explain(self, analysis: Analysis) -> None:
-        """For a *no* on irreducible input: the typed components of a blend and their axes."""
+        """For a *no* on irreducible input: the typed components of a blend and their axes
+        (found once, drawn again in a scene drawn again)."""
         from sorgui.session import scene_data
         from sorgui.session.components import typed_components
 
@@ -182,10 +207,12 @@ class _Presenter:
             or analysis.input_kind == "parametrization"  # a map has no typed components
         ):
             return
-        components = self.stage("components", lambda: typed_components(self.request.text))
-        if components:
-            self.send(ComponentsKnown(tuple(components)))
-            recognitions = [c.recognition for c in components]
+        if self._components is None:
+            self._components = tuple(self.stage("components", lambda: typed_components(self.request.text)))
+            if self._components:
+                self.send(ComponentsKnown(self._components))
+        if self._components:
+            recognitions = [c.recognition for c in self._components]
             self.scene = scene_data.with_component_axes(self.scene, recognitions)
             self.send(SceneKnown(self.scene))
 

@@ -98,11 +98,39 @@ def with_bounded_factors(
         if array.shape[0] > 1 and is_bounded(array, extent_directions(axis)):
             middle, radius = view_ball(array, np.asarray(center, dtype=np.float64), axis)
             balls.append(_ball(middle, radius))
-    if len(balls) == 1:
+    return _holding(balls, axis)
+
+
+APEX_SHARE = 0.5
+"""A cone's ball holds the ball about its apex of this share of the apex's distance from the
+origin (:func:`with_apex`)."""
+
+
+def with_apex(region: ClipSphere, conical: Conical | None, axis: np.ndarray | None) -> ClipSphere:
+    """``region`` grown to hold a cone's apex (exact, or that of a cone within the rounding) and
+    the ball about it of :data:`APEX_SHARE` times its distance from the origin, the one length a
+    cone's equation gives. The lines through the foot of the origin on the axis see no size when
+    the apex is next to that foot (a cone about ``(30, 40, 1)`` along ``z`` was drawn in a ball of
+    radius 1, and its CAD part was 3 units² of cone), and leave the apex out when it is far."""
+    if conical is None:
         return region
+    apex = float_vector(conical.apex) if conical.kind == "cone" and conical.apex is not None else conical.near_apex
+    if apex is None or not np.all(np.isfinite(apex)):
+        return region
+    size = APEX_SHARE * float(np.linalg.norm(apex))
+    if size <= 0:
+        return region
+    return _holding([region, _ball(np.asarray(apex, dtype=np.float64), size)], axis)
+
+
+def _holding(balls: list[ClipSphere], axis: np.ndarray | None) -> ClipSphere:
+    """The first ball of ``balls`` grown to hold them all: centred on the axis when there is one
+    (a ball centred on the axis meets every meridian half-plane in the same disk)."""
     centres = np.array([b.center for b in balls])
     radii = np.array([b.radius for b in balls])
-    if axis is not None:  # a ball centred on the axis: the same disk in every meridian half-plane
+    if np.all(np.linalg.norm(centres - centres[0], axis=1) + radii <= radii[0]):
+        return balls[0]
+    if axis is not None:
         a = axis / np.linalg.norm(axis)
         heights = (centres - centres[0]) @ a
         middle = centres[0] + 0.5 * ((heights - radii).min() + (heights + radii).max()) * a
@@ -239,7 +267,8 @@ NEAREST_BALL_RATIO = 4.0
 def chosen_region(analysis: Analysis, terms: Terms, center: np.ndarray, axis: np.ndarray | None) -> ClipSphere:
     """The ball ``analysis`` is drawn in when no region is asked for: a map's patch's when its
     equation is not known, else :func:`view_region` about ``center``, grown to hold bounded
-    factors, or the nearest exact surface's (:func:`_nearest_region`)."""
+    factors, or the nearest exact surface's (:func:`_nearest_region`); a cone's grown to hold
+    its apex (:func:`with_apex`)."""
     real = [p for p in analysis.parametrizations if p.real and p.verified]
     patch = patch_region(real[0]) if not analysis.squarefree and real else None
     if patch is not None:
@@ -247,7 +276,7 @@ def chosen_region(analysis: Analysis, terms: Terms, center: np.ndarray, axis: np
     region = view_region(terms, center, axis)
     if len(analysis.factors) > 1:
         region = with_bounded_factors(region, [factor.polynomial for factor in analysis.factors], center, axis)
-    return _nearest_region(analysis, region, center, axis)
+    return with_apex(_nearest_region(analysis, region, center, axis), analysis.conical, axis)
 
 
 def build_scene(

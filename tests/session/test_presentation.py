@@ -194,6 +194,62 @@ def test_a_small_part_is_framed_at_its_own_size(scale: float) -> None:
     assert not scene.surface.is_empty
 
 
+TURNED_CONE_APEX = np.array([10.0, -20.0, 5.0])
+
+
+def turned_cone() -> str:
+    """A CAD cone of 15° about :data:`TURNED_CONE_APEX`, on a turned axis, printed with 6 digits."""
+    from tests.engine.test_rounded_cones import turned_cone as cone
+
+    x, y, z = TURNED_CONE_APEX
+    return cone(15.0, (17.0, 41.0), ".6g", (float(x), float(y), float(z)))
+
+
+@pytest.mark.parametrize(
+    ("equation", "rounded"),
+    [
+        ("(x - 30)^2 + (y - 40)^2 - (z - 1)^2/50", False),  # the apex next to the foot of the origin
+        ("x^2 + y^2 - (z - 50)^2/9", False),
+        (None, True),  # a cone about (10, -20, 5) on a turned axis, printed with 6 digits
+    ],
+)
+def test_a_cone_is_drawn_about_its_apex(equation: str | None, rounded: bool) -> None:
+    """The lines through the foot of the origin on a cone's axis see no size when the apex is
+    next to that foot (a ball of radius 1, and 3 units² of cone in the CAD part), and leave the
+    apex out when it is far: the ball holds the apex and the ball about it of half its distance
+    from the origin."""
+    from sorgui.engine import analyze
+    from sorgui.session.scene_data import build_scene
+
+    apex = None
+    if rounded:
+        apex, equation = TURNED_CONE_APEX, turned_cone()
+    assert equation is not None
+    analysis = analyze(equation)
+    conical = analysis.conical
+    assert conical is not None
+    if apex is None:
+        assert conical.kind == "cone" and conical.apex is not None
+        apex = float_vector(conical.apex)
+    else:
+        assert conical.near_apex == pytest.approx(apex, abs=1e-3)
+    region = build_scene(analysis, resolution=30).region
+    held = 0.5 * float(np.linalg.norm(apex))
+    assert float(np.linalg.norm(np.asarray(region.center) - apex)) + held <= region.radius + 1e-3
+
+
+def test_the_window_draws_a_rounded_cone_again_once_its_apex_is_known() -> None:
+    """The window's first scene of rounded input is drawn once the rounding is known, before the
+    cone stage: a turned CAD cone's ball about the foot of the origin on its axis left the apex
+    out. Once the apex is known, the scene is drawn again in a ball that holds it."""
+    final = run_job(JobRequest(turned_cone(), resolution=30))
+    assert isinstance(final, Finished)
+    region = final.result.scene.region
+    assert final.result.analysis.conical.near_apex == pytest.approx(TURNED_CONE_APEX, abs=1e-3)
+    assert float(np.linalg.norm(np.asarray(region.center) - TURNED_CONE_APEX)) < region.radius
+    assert final.result.nearest_scene.region == region  # the nearest exact cone, in the same ball
+
+
 def test_job_returns_plain_picklable_data() -> None:
     final = run_job(JobRequest(example_text("cylinder"), resolution=40))
     assert isinstance(final, Finished)
