@@ -58,6 +58,7 @@ from .coefficients import (
     torus_completion,
     within_scale,
 )
+from .cones import EXPONENTS, nearest_cone
 from .dense import FloatArray
 from .directions import (
     EPSILONS,
@@ -117,7 +118,7 @@ class ExactSurface:
 
 Built: TypeAlias = fmpq_mpoly | Poly
 """An exact surface as :func:`build` makes it: over ``QQ`` a flint polynomial (made a sympy
-``Poly`` only once it passes, :func:`_check`), over ``QQ(√d)`` a sympy ``Poly``."""
+``Poly`` only once it passes, :func:`check_surface`), over ``QQ(√d)`` a sympy ``Poly``."""
 
 
 def exact_axes(
@@ -219,10 +220,10 @@ def _radius(sigma: FloatArray, spread: float, family: DirectionSnap) -> float | 
 
 def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurface | None:
     """The simplest exact surface of the fit's kind within the rounding, or ``None``: for each
-    family of directions the first surface that passes; of these a torus (its profile two
-    circles, the CAD part) first, then one whose coefficients were snapped (not fitted:
-    coefficients fitted to an axis fit it whatever the axis), then the one whose profile
-    coefficients and axis have the fewest bits."""
+    family of directions the first surface that passes, and for a quadric the nearest cone
+    (:func:`.cones.nearest_cone`); of these a torus or a cone (the CAD part) first, then one
+    whose coefficients were snapped (not fitted: coefficients fitted to an axis fit it whatever
+    the axis), then the one whose profile coefficients and axis have the fewest bits."""
     typed = Typed(to_flint(exact), dense.float_coefficients(exact)) if exact.ring.domain == QQ else None
     found: list[_Found] = []
     for family in FAMILIES if best.candidate.direction is not None else (None,):
@@ -233,17 +234,64 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
         surface = _first_exact(f, best, quadratic_family, typed, rounding)
         if surface is not None:
             found.append(surface)
+    if best.candidate.kind == REVOLUTION and f.degree == 2 and typed is not None:
+        assert best.candidate.direction is not None  # an axis has a direction
+        centre = profile_centre(f, best, best.candidate.direction) * f.length
+
+        def built(a: Vector, c: Vector, coefficients: list[Fraction]) -> fmpq_mpoly | None:
+            g = build(REVOLUTION, a, c, EXPONENTS, coefficients)
+            return g if isinstance(g, fmpq_mpoly) else None
+
+        def checked(g: fmpq_mpoly, a: Vector, c: Vector, typed: Typed = typed) -> ExactSurface | None:
+            return check_surface(g, typed, rounding, f, a, c)
+
+        cone = nearest_cone(f, typed, rounding, centre, built, checked)
+        found = [item._replace(cone=_about_apex(item.coefficients)) for item in found]
+        if cone is not None:
+            found.append(_Found(cone[0], cone[1], False, False, True))
     if not found:
         return None
     return min(found, key=_rank).surface
 
 
 def _rank(found: _Found) -> tuple[bool, bool, bool, int]:
-    """How :func:`snap` orders the families' surfaces: within the rounding first, then a torus,
-    then snapped coefficients, then the fewest bits of the coefficients (a torus's constant,
-    derived, costs none) and the axis."""
+    """How :func:`snap` orders the families' surfaces: within the rounding first, then a torus
+    or a cone, then snapped coefficients (a cone's, held about its apex, are its structure
+    however its slope was found), then the fewest bits of the coefficients (a torus's constant,
+    derived, costs none; a cone's slope ``K`` counts :data:`CONE_SLOPE_WEIGHT` times its bits) and the axis."""
     size = shape_bits(found.coefficients[1:] if found.torus else found.coefficients)
-    return found.surface.largest > 1.0, not found.torus, found.fitted, size + _axis_bits(found.surface)
+    slope = _slope(found) if found.cone else None
+    if slope is not None:
+        size = CONE_SLOPE_WEIGHT * bits([slope])
+    return (
+        found.surface.largest > 1.0,
+        not (found.torus or found.cone),
+        found.fitted and not found.cone,
+        size + _axis_bits(found.surface),
+    )
+
+
+CONE_SLOPE_WEIGHT = 8
+"""How many times the bits of a cone's ``K = tan²θ`` count against its axis's (:func:`_rank`):
+the slope is the part's design (45°: ``−x² + y²``), while a turned axis's direction is an
+approximation at any size (45° on an axis of 52-bit coordinates, not ``−11026149x² +
+11026160y²`` on one of 12; a 20° cone on its designed axis ``(10, 20, −7)``, not a simpler
+slope on an axis of 82-bit coordinates)."""
+
+
+def _slope(found: _Found) -> Fraction | None:
+    """``K = −(q₂₀|a|² + q₀₁)/q₀₁`` of a cone about its apex, when ``|a|²`` is rational."""
+    direction = found.surface.direction
+    norm2 = None if direction is None else _squared_length(direction)
+    q20, q01 = found.coefficients[2], found.coefficients[3]
+    return None if norm2 is None or not q01 else -(q20 * norm2 + q01) / q01
+
+
+def _about_apex(coefficients: list[Fraction]) -> bool:
+    """Whether a quadric's ``q_ij`` (on ``1, h, h², ρ``, the fit's terms) are a cone's about its
+    apex: no term ``1`` or ``h`` (the general families find cones so when the profile's centre
+    snaps to the apex)."""
+    return len(coefficients) == 4 and not coefficients[0] and not coefficients[1] and all(coefficients[2:])
 
 
 def _first_exact(
@@ -263,13 +311,15 @@ def _first_exact(
 
 
 class _Found(NamedTuple):
-    """An exact surface of :func:`_exact_surfaces`: its coefficients, whether they were fitted
-    rather than snapped, and whether they are a torus's (:func:`torus_completion`)."""
+    """An exact surface of :func:`_exact_surfaces` (or :func:`.cones.nearest_cone`): its
+    coefficients, whether they were fitted rather than snapped, and whether they are a torus's
+    (:func:`torus_completion`) or a cone's."""
 
     coefficients: list[Fraction]
     surface: ExactSurface
     fitted: bool
     torus: bool
+    cone: bool = False
 
 
 def _exact_surfaces(
@@ -307,12 +357,12 @@ def _exact_surfaces(
         g = build(kind, a, c, exponents, coefficients)
         if g is None:
             return coefficients, None
-        surface = _check(g, typed, rounding, f, a, c)
+        surface = check_surface(g, typed, rounding, f, a, c)
         if simplest and (surface is None or surface.largest > 1.0) and isinstance(g, fmpq_mpoly) and typed is not None:
             scale = within_scale(g, typed, rounding)
             if scale is not None and scale != 1:
                 coefficients = [scale * v for v in coefficients]
-                fitted = _check(g * fmpq(scale.numerator, scale.denominator), typed, rounding, f, a, c)
+                fitted = check_surface(g * fmpq(scale.numerator, scale.denominator), typed, rounding, f, a, c)
                 if fitted is not None and fitted.largest <= 1.0:
                     rescaled.append(_Found(coefficients, fitted, False, is_torus(a, exponents, coefficients)))
         return coefficients, surface
@@ -595,7 +645,7 @@ def _reduce_root(p: fmpq_mpoly, d: int) -> fmpq_mpoly:
     return p.context().from_dict({m: c for m, c in terms.items() if c})
 
 
-def _check(
+def check_surface(
     g: Built, typed: Typed | None, rounding: Rounding, f: Normalised, a: Direction | None, c: Vector | None
 ) -> ExactSurface | None:
     """``g`` with its exact residual against ``f``, if the exact recognizer agrees it is a

@@ -1,0 +1,259 @@
+"""The nearest exact cone of revolution of a rounded quadric (docs/math.md §8.5, "Cones").
+
+A cone is fixed by its apex ``A``, its axis direction ``a`` and ``K = tan²θ``:
+
+    g = |a|²·|p − A|² − (1 + K)·(a·(p − A))²,
+
+rational when ``A``, ``a`` and ``K`` are. The profile's snapping (:mod:`.snapping`) fits the
+coefficients of ``g`` on one exact axis, and a CAD cone on a turned axis comes out as a
+hyperboloid there: its axis direction is irrational, a rational one near it leaves the terms of
+degree 0 and 1 (``−2QA`` and ``AᵀQA``, large where ``A`` is far from the origin) far outside
+their rounding unless the profile keeps them free, and free they are a hyperboloid's. Here the
+structure is held and the axis is found from every coefficient:
+
+1. the apex is the profile's centre (where the term in ``h`` vanishes), snapped coordinate by
+   coordinate to the shortest decimals, then to the simplest rationals, coarsest first;
+2. with the apex held, ``f ≈ (p − A)ᵀ Q (p − A)`` is linear in the six entries of ``Q``: a
+   weighted least-squares fit (weights: the rounding of each coefficient) over all ten
+   coefficients, whose terms of degree 0 and 1 fix ``Q`` along ``A`` to their rounding;
+3. ``Q = λ(I − (1 + K)ââᵀ)``: ``â`` is the eigenvector of the eigenvalue ``−λK``, and ``K``
+   is snapped (coarsest first); with ``A`` and ``K`` held, ``(λ, â)`` are fitted again (Gauss
+   and Newton's steps), and ``â`` is snapped in each family of directions;
+4. ``g`` is scaled by the simplest factor that puts every coefficient within the rounding
+   (:func:`.coefficients.within_scale`), and checked exactly (:func:`.snapping.check_surface`).
+
+The simplest cone that passes, by the bits of its coefficients and axis, is the answer.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from fractions import Fraction
+from typing import TYPE_CHECKING, Protocol, TypeVar
+
+import numpy as np
+from flint import fmpq, fmpq_mpoly
+
+from .coefficients import Typed, bits, shape_bits, within_scale
+from .dense import FloatArray, Monomial
+from .directions import FAMILIES, DirectionSnap, simplest_near, three
+from .precision import Rounding
+
+if TYPE_CHECKING:
+    from ..algebra.linalg import Vector
+    from .near_symmetry import Normalised
+
+
+class Checked(Protocol):
+    """An exact surface checked against the typed one (:class:`.snapping.ExactSurface`)."""
+
+    @property
+    def largest(self) -> float: ...
+
+
+S = TypeVar("S", bound=Checked)
+Build = Callable[["Vector", "Vector", list[Fraction]], "fmpq_mpoly | None"]
+"""``g`` of the quadric of revolution with ``q_ij`` on :data:`EXPONENTS` about the axis through
+a point along a direction (:func:`.snapping.build`)."""
+
+EXPONENTS = ((0, 0), (1, 0), (2, 0), (0, 1))
+"""The terms ``h^i ρ^j`` of a quadric of revolution (:func:`.snapping.build`); a cone about its
+apex has only the last two."""
+APEX_RADII = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
+"""Radii, relative to the apex's distance from the origin (at least the size of the surface's
+normalised coordinates), within which its coordinates are snapped, coarsest first."""
+SLOPE_RADII = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11)
+"""The same for ``K = tan²θ``, relative to ``K``."""
+DIRECTION_RADII = (1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
+"""The same for the unit axis direction."""
+MAX_RESIDUAL = 2.0
+"""The weighted residual (in units of the rounding, root mean square) of the fit of ``Q`` with
+the apex held above which that apex is not the cone's."""
+MAX_CHECKS = 400
+"""Exact surfaces built and checked at most, over all apexes, slopes and directions."""
+_QUADRATIC: tuple[Monomial, ...] = ((2, 0, 0), (0, 2, 0), (0, 0, 2), (1, 1, 0), (1, 0, 1), (0, 1, 1))
+_LINEAR: tuple[Monomial, ...] = ((1, 0, 0), (0, 1, 0), (0, 0, 1))
+_PAIRS = ((0, 1), (0, 2), (1, 2))
+
+
+def nearest_cone(
+    f: Normalised,
+    typed: Typed,
+    rounding: Rounding,
+    centre: FloatArray,
+    build: Build,
+    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+) -> tuple[list[Fraction], S] | None:
+    """The simplest cone of revolution with every coefficient within the rounding of the
+    quadric ``f`` (its ``q_ij`` on :data:`EXPONENTS`, and the surface), or ``None``. ``centre``
+    is the profile's centre in ``f``'s coordinates: the apex, for a cone. ``build`` makes ``g``
+    and ``check`` checks it against the typed surface (:func:`.snapping.check_surface`)."""
+    if f.degree != 2 or not np.all(np.isfinite(centre)):
+        return None
+    monomials = [m for m in typed.floats if sum(m) <= 2]
+    weights = np.array([1.0 / rounding.bound(m) for m in monomials])
+    target = np.array([typed.floats[m] for m in monomials]) * weights
+    scale = max(float(np.linalg.norm(centre)), f.length)
+    found: list[tuple[int, list[Fraction], S]] = []
+    checks = 0
+    tried: set[tuple[Fraction, Fraction, Fraction]] = set()
+    for apex in _apexes(centre, scale):
+        if apex in tried:
+            continue
+        tried.add(apex)
+        A = np.array([float(v) for v in apex])
+        design = _design(monomials, A) * weights[:, None]
+        q, *_ = np.linalg.lstsq(design, target, rcond=None)
+        if np.sqrt(np.mean((design @ q - target) ** 2)) > MAX_RESIDUAL:
+            continue
+        axis = _axis(_matrix(q))
+        if axis is None:
+            continue
+        lam, slope, unit = axis
+        refits: dict[Fraction, FloatArray] = {}
+        for family in FAMILIES:
+            for k_radius in SLOPE_RADII:
+                K = simplest_near(slope, k_radius * slope)
+                if K <= 0:
+                    continue
+                if K not in refits:
+                    refits[K] = _refit(design, target, lam, float(K), unit)
+                passed = _first_direction(family, refits[K], K, apex, typed, rounding, build, check)
+                checks += len(DIRECTION_RADII) if passed is None else 1
+                if passed is not None:
+                    found.append(passed)
+                    break  # the coarsest slope of this family that passes
+                if checks >= MAX_CHECKS:
+                    return _simplest(found)
+        if found:
+            return _simplest(found)
+    return _simplest(found)
+
+
+def _first_direction(
+    family: DirectionSnap,
+    unit: FloatArray,
+    K: Fraction,
+    apex: tuple[Fraction, Fraction, Fraction],
+    typed: Typed,
+    rounding: Rounding,
+    build: Build,
+    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+) -> tuple[int, list[Fraction], S] | None:
+    """The cone about ``apex`` with ``K`` along the coarsest direction of ``family`` near
+    ``unit`` (within :data:`DIRECTION_RADII`) with every coefficient within the rounding, once
+    scaled: its bits (coefficients and axis), coefficients and surface."""
+    for radius in DIRECTION_RADII:
+        a = family(unit, radius)
+        if a is None or not all(isinstance(v, Fraction) for v in a):
+            continue
+        rational = three(v for v in a if isinstance(v, Fraction))
+        norm2 = sum((v * v for v in rational), Fraction(0))
+        coefficients = [Fraction(0), Fraction(0), -(1 + K), norm2]
+        g = build(rational, apex, coefficients)
+        if g is None:
+            continue
+        factor = within_scale(g, typed, rounding)
+        if factor is None:
+            continue
+        surface = check(g * fmpq(factor.numerator, factor.denominator), rational, apex)
+        if surface is not None and surface.largest <= 1.0:
+            scaled = [factor * c for c in coefficients]
+            return shape_bits(scaled) + bits([*apex, *rational]), scaled, surface
+    return None
+
+
+def _apexes(centre: FloatArray, scale: float) -> list[tuple[Fraction, Fraction, Fraction]]:
+    """The apex's coordinates snapped within each of :data:`APEX_RADII` (times ``scale``): to
+    the nearest decimals of fewest places first (a CAD part's ``−0.00725`` m, not the simpler
+    ``−1/138``), then to the simplest rationals."""
+    found = []
+    for radius in APEX_RADII:
+        r = radius * scale
+        found.append(three(_decimal_near(float(v), r) for v in centre))
+        found.append(three(simplest_near(float(v), r) for v in centre))
+    return found
+
+
+def _decimal_near(value: float, radius: float) -> Fraction:
+    """The decimal of fewest places nearest ``value`` within ``radius``."""
+    places = max(0, -math.floor(math.log10(radius))) if radius > 0 else 17
+    for p in range(-6, places + 2):
+        candidate = Fraction(round(Fraction(value) * Fraction(10) ** p)) / Fraction(10) ** p
+        if abs(candidate - Fraction(value)) <= radius:
+            return candidate
+    return Fraction(value)
+
+
+def _simplest(found: list[tuple[int, list[Fraction], S]]) -> tuple[list[Fraction], S] | None:
+    if not found:
+        return None
+    _, coefficients, surface = min(found, key=lambda item: item[0])
+    return coefficients, surface
+
+
+def _design(monomials: list[Monomial], A: FloatArray) -> FloatArray:
+    """The coefficients of ``(p − A)ᵀ Q (p − A)`` at ``monomials`` as linear forms in the entries
+    ``(Q₀₀, Q₁₁, Q₂₂, Q₀₁, Q₀₂, Q₁₂)``."""
+    rows = []
+    for m in monomials:
+        row = np.zeros(6)
+        if m in _QUADRATIC:
+            index = _QUADRATIC.index(m)
+            row[index] = 1.0 if index < 3 else 2.0
+        elif m in _LINEAR:
+            i = _LINEAR.index(m)
+            row[i] = -2.0 * A[i]
+            for index, (r, s) in enumerate(_PAIRS, start=3):
+                if i in (r, s):
+                    row[index] = -2.0 * A[s if i == r else r]
+        else:  # the constant AᵀQA
+            row[:3] = A**2
+            row[3:] = [2.0 * A[r] * A[s] for r, s in _PAIRS]
+        rows.append(row)
+    return np.array(rows)
+
+
+def _matrix(q: FloatArray) -> FloatArray:
+    return np.array([[q[0], q[3], q[4]], [q[3], q[1], q[5]], [q[4], q[5], q[2]]])
+
+
+def _axis(Q: FloatArray) -> tuple[float, float, FloatArray] | None:
+    """``(λ, K, â)`` of ``Q ≈ λ(I − (1 + K)ââᵀ)``: the two nearest eigenvalues are ``λ``, the
+    third ``−λK`` with the eigenvector ``â``; ``None`` unless ``K > 0`` (a real cone)."""
+    values, vectors = np.linalg.eigh(Q)
+    gaps = [abs(values[1] - values[2]), abs(values[0] - values[2]), abs(values[0] - values[1])]
+    odd = int(np.argmin(gaps))  # the eigenvalue not in the nearest pair
+    lam = float(np.mean([values[i] for i in range(3) if i != odd]))
+    if lam == 0.0:
+        return None
+    slope = -float(values[odd]) / lam
+    return (lam, slope, vectors[:, odd]) if slope > 0 else None
+
+
+def _refit(design: FloatArray, target: FloatArray, lam: float, K: float, unit: FloatArray) -> FloatArray:
+    """``â`` of the least-squares fit of ``Q = λ(I − (1 + K)ââᵀ)`` with ``K`` held (Gauss and
+    Newton's steps in ``λ`` and the two angles of ``â``, from ``unit``)."""
+
+    def entries(params: FloatArray) -> FloatArray:
+        scale, theta, phi = params
+        n = np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
+        Q = scale * (np.eye(3) - (1 + K) * np.outer(n, n))
+        return np.array([Q[0, 0], Q[1, 1], Q[2, 2], Q[0, 1], Q[0, 2], Q[1, 2]])
+
+    unit = unit / np.linalg.norm(unit)
+    params = np.array([lam, np.arccos(np.clip(unit[2], -1.0, 1.0)), np.arctan2(unit[1], unit[0])])
+    for _ in range(8):
+        residual = design @ entries(params) - target
+        jacobian = np.empty((len(target), 3))
+        for j in range(3):
+            step = np.zeros(3)
+            step[j] = 1e-7 * max(1.0, abs(params[j]))
+            jacobian[:, j] = (design @ entries(params + step) - design @ entries(params - step)) / (2 * step[j])
+        delta, *_ = np.linalg.lstsq(jacobian, -residual, rcond=None)
+        params = params + delta
+        if np.all(np.abs(delta[1:]) < 1e-15):
+            break
+    _, theta, phi = params
+    return np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])

@@ -1,0 +1,72 @@
+"""The nearest exact surface of a rounded CAD cone is a cone (docs/math.md §8.5, "Cones").
+
+A cone on a turned axis (an irrational direction) printed with 6 or 10 digits, or with 6
+decimals, had for its nearest exact surface a hyperboloid in a third of the cases: the
+profile's coefficients, snapped on one exact axis, keep the terms of degree 0 and 1 free.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import sympy
+
+from sorgui.engine import analyze
+
+APEX = (12.5, -7.25, 30.0)
+
+
+def turned_cone(
+    half_angle: float, turn: tuple[float, float], digits: str, apex: tuple[float, float, float] = APEX
+) -> str:
+    """A cone of ``half_angle`` degrees about ``apex``, its axis turned by ``turn`` degrees about
+    z and then x, expanded and printed with the format ``digits`` (``.6g``, ``.6f``)."""
+    a, b = (math.radians(v) for v in turn)
+    rotation = np.array([[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]]) @ np.array(
+        [[1, 0, 0], [0, math.cos(b), -math.sin(b)], [0, math.sin(b), math.cos(b)]]
+    )
+    # X = rotationᵀ (p − apex): the cone X₁² + X₂² = tan²θ X₃², a quadric (p − apex)ᵀ Q (p − apex)
+    Q = rotation @ np.diag([1.0, 1.0, -(math.tan(math.radians(half_angle)) ** 2)]) @ rotation.T
+    centre = np.array(apex)
+    linear, constant = -2 * Q @ centre, float(centre @ Q @ centre)
+    names = ["x", "y", "z"]
+    terms = [f"{format(Q[i, i], digits)}*{names[i]}^2" for i in range(3)]
+    terms += [f"{format(2 * Q[i, j], digits)}*{names[i]}*{names[j]}" for i in range(3) for j in range(i + 1, 3)]
+    terms += [f"{format(linear[i], digits)}*{names[i]}" for i in range(3)] + [format(constant, digits)]
+    return " + ".join(terms).replace("+ -", "- ")
+
+
+@pytest.mark.parametrize(
+    ("half_angle", "turn", "digits", "apex"),
+    [
+        (45.0, (17.0, 41.0), ".6f", APEX),  # was a hyperboloid with 29-digit coefficients
+        (25.0, (17.0, 41.0), ".6g", APEX),
+        (15.0, (71.0, 13.0), ".10g", APEX),
+        (25.0, (23.0, 61.0), ".6g", (0.0125, -0.00725, 0.03)),  # in metres
+    ],
+)
+def test_a_rounded_turned_cone_is_near_the_cone_with_its_apex(
+    half_angle: float, turn: tuple[float, float], digits: str, apex: tuple[float, float, float]
+) -> None:
+    analysis = analyze(turned_cone(half_angle, turn, digits, apex))
+    approximate = analysis.approximate
+    assert approximate is not None and approximate.nearest is not None
+    nearest = approximate.nearest
+    assert nearest.within_rounding and nearest.analysis is not None
+    exact = nearest.analysis
+    assert exact.is_sor and exact.rationality is not None and exact.rationality.table_row == 1
+    x, y, z = sympy.symbols("x y z")
+    g = sympy.sympify(nearest.polynomial)  # the engine's own print of a polynomial over QQ
+    point = {x: sympy.nsimplify(apex[0]), y: sympy.nsimplify(apex[1]), z: sympy.nsimplify(apex[2])}
+    # the apex is exact: g and its gradient vanish there
+    assert g.subs(point) == 0
+    assert all(sympy.diff(g, v).subs(point) == 0 for v in (x, y, z))
+    # the profile is a pair of lines through the apex: c·x² − d·y²
+    profile = exact.recognition.profile
+    assert profile is not None
+    terms = sympy.Poly(sympy.sympify(profile.polynomial), x, y).monoms()
+    assert sorted(terms) == [(0, 2), (2, 0)]
+    a, d = (sympy.Poly(sympy.sympify(profile.polynomial), x, y).coeff_monomial(m) for m in ((2, 0), (0, 2)))
+    assert math.degrees(math.atan(math.sqrt(float(-a / d)))) == pytest.approx(half_angle, abs=1e-4)
