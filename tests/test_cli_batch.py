@@ -260,7 +260,7 @@ def test_a_batch_killed_and_resumed_writes_the_file_of_one_uninterrupted_run(tmp
     results.write_bytes(data[: len(data) - 25])  # the last line cut short, as a power cut leaves it
 
     refused = subprocess.run([*batch, "-o", str(results)], capture_output=True, text=True, timeout=60)
-    assert refused.returncode == 2 and "already holds results: add --resume" in refused.stderr
+    assert refused.returncode == 2 and "already exists and is not empty: add --resume" in refused.stderr
     assert results.read_bytes() == data[: len(data) - 25]  # untouched
 
     resumed = subprocess.run([*batch, "-o", str(results), "--resume"], capture_output=True, text=True, timeout=300)
@@ -305,6 +305,15 @@ def test_resume_refuses_a_file_that_is_not_this_inputs(tmp_path: Path) -> None:
     assert shorter.returncode == 2 and "cannot resume" in shorter.stderr
     assert results.read_bytes() == before
     assert edited.stderr.count("\n") == shorter.stderr.count("\n") == 1
+    lines.write_text(many_lines(5), encoding="utf-8")  # the input of ``before`` again
+    for other in (b"my precious notes\n", b'{"a": 1}\n', before + b"a note\n" + before):
+        results.write_bytes(other)  # one whole line that is not sorgui's was taken for a cut-short one
+        kept = subprocess.run([*batch, "--resume"], capture_output=True, text=True, timeout=120)
+        assert kept.returncode == 2 and "is not a line of sorgui's output in order" in kept.stderr, kept.stderr
+        assert results.read_bytes() == other
+    results.write_bytes(before + b"\0" * 40)  # the zeros a power cut leaves: dropped and redone
+    again = subprocess.run([*batch, "--resume"], capture_output=True, text=True, timeout=120)
+    assert again.returncode == 0 and results.read_bytes() == before
 
     plain = tmp_path / "lines"
     plain.write_text(many_lines(5), encoding="utf-8")

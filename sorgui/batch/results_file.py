@@ -54,7 +54,10 @@ class ResultsFile:
         if resume and status is not None and not regular:
             raise BatchError(f"cannot resume {path}: it is not a regular file")
         if not resume and regular and status is not None and status.st_size > 0:
-            raise BatchError(f"{path} already holds results: add --resume to continue it, or remove it first")
+            raise BatchError(
+                f"{path} already exists and is not empty: add --resume to continue a batch's results, "
+                "or remove it first"
+            )
         self._entries: Iterator[Entry] | None = None
         self._next: Entry | None = None
         self._valid_end = 0
@@ -153,22 +156,26 @@ class ResultsFile:
 
     def _scan(self, reader: BinaryIO) -> Iterator[Entry]:
         """The :data:`Entry` of each whole line of the file, in order, recording where the
-        last one ends; a line that is cut short or not an output object may only be the last."""
+        last one ends. Only the end of the file may be what a crash leaves (a line cut short,
+        without its newline, or the zeros of a power cut), which is dropped and redone; any
+        other line that is not a line of sorgui's output, in order, is refused (a notes file
+        of one line was taken for a cut-short line and replaced)."""
         offset = 0
         previous = 0
-        bad: int | None = None
-        for raw in reader:
+        debris = False
+        for number, raw in enumerate(reader, start=1):
             entry = _entry(raw) if raw.endswith(b"\n") else None
-            if entry is not None and bad is None and entry[0] > previous:
+            if entry is not None and not debris and entry[0] > previous:
                 offset += len(raw)
                 self._valid_end = offset
                 previous = entry[0]
                 yield entry
-            elif bad is None:
-                bad = previous
+            elif not raw.endswith(b"\n") or not raw.strip(b"\0\n"):
+                debris = True  # cut short, or zeros: the end of the file as a crash left it
             else:
                 raise BatchError(
-                    f"cannot resume {self.path}: the lines after line {bad} are not sorgui's output; start a new file"
+                    f"cannot resume {self.path}: its line {number} is not a line of sorgui's output in order; "
+                    "give another results file, or remove it first"
                 )
 
 
