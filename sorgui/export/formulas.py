@@ -176,8 +176,14 @@ def _surface(analysis: Analysis) -> list[Formula]:
 
 
 def _maps(analysis: Analysis) -> list[Formula]:
-    """The parameterizations of ``X``: ``X1``, ``X2``, … (each says whether substitution verified it)."""
-    return [_map(par, f"parametrization.{i}", f"X{i + 1}", "") for i, par in enumerate(analysis.parametrizations)]
+    """The parameterizations of ``X``: ``X1``, ``X2``, … (each says whether substitution verified
+    it); the typed map's ``X1`` says how it was read (an angle ``u`` as ``t = tan(u/2)``), since
+    a formula file has no report beside it."""
+    maps = [_map(par, f"parametrization.{i}", f"X{i + 1}", "") for i, par in enumerate(analysis.parametrizations)]
+    record = analysis.parametric
+    if maps and record is not None and record.notes and analysis.input_kind == "parametrization":
+        maps[0] = replace(maps[0], description=f"{maps[0].description}; {'; '.join(record.notes)}")
+    return maps
 
 
 def _map(par: Parametrization, key: str, name: str, how: str) -> Formula:

@@ -102,3 +102,29 @@ def test_rounded_input_carries_the_nearest_surfaces_maps_checked_on_it(tmp_path)
     report = export(analysis, tmp_path / "rounded_torus.md").read_text(encoding="utf-8")
     assert "## Rationality of the nearest exact surface $g$ (within the rounding)" in report
     assert f"Table 1, row {nearest.analysis.rationality.table_row}:" in report and "nearestX_{1}(s, t) =" in report
+
+
+def test_a_map_without_its_implicit_equation_is_not_checked_against_it(tmp_path) -> None:
+    """A map over ``QQ(√2)`` has no implicit equation (Singular's elimination runs over ``QQ``):
+    its module named an equation ``F`` it did not define, and failed with a ``NameError``."""
+    from sorgui.engine import analyze
+
+    analysis = analyze("(u, v, sqrt(2)*u*v)")
+    assert not analysis.squarefree  # the implicit equation is not known
+    path = export_analysis(analysis, tmp_path / "graph.py")
+    module = load(path, "exported_graph")
+    assert module.check() == []
+    assert "# X1: not checked, the equation F it lies on is not known" in path.read_text(encoding="utf-8")
+    x, y, z = module.X1(np.array([0.5]), np.array([2.0]))
+    assert float(z[0]) == pytest.approx(np.sqrt(2))
+
+
+def test_the_formula_files_of_a_map_in_angles_say_how_it_was_read(tmp_path) -> None:
+    """The typed map in ``cos u`` is listed in ``t = tan(u/2)``: the formula files, which have no
+    report beside them, say so."""
+    from sorgui.engine import analyze
+
+    analysis = analyze("x=(2+cos(v))*cos(u), y=(2+cos(v))*sin(u), z=sin(v)")
+    for suffix in (".py", ".tex", ".m", ".mpl"):
+        text = export_analysis(analysis, tmp_path / f"torus{suffix}").read_text(encoding="utf-8")
+        assert "u is an angle" in text and "tan(u/2)" in text and "tan(v/2)" in text, suffix
