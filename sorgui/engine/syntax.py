@@ -83,7 +83,7 @@ _OPERATORS = {
 }
 _SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻", "0123456789-")
 TOKEN = re.compile(
-    rf"(?P<space>[\s\ufeff\u200b-\u200d\u2060]+|{COMMENT}|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:!\\]))"
+    rf"(?P<space>[\s\ufeff\u200b-\u200d\u2060]+|{COMMENT}|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:! \\]))"
     r"|(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:(?:[eEdD]|\*\^)[-+−]?[0-9]+)?)"
     r"|(?P<name>[A-Za-z]+)"
     r"|(?P<sup>⁻?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)"

@@ -338,6 +338,7 @@ def test_cos_and_sin_of_a_parameter_are_read_in_the_tangent_of_its_half_angle() 
         "x = (2 + cos v) cos u, y = (2 + cos v) sin u, z = sin v",
         "{(2 + Cos[v]) Cos[u], (2 + Cos[v]) Sin[u], Sin[v]}",
         "\\mathbf{r}(u, v) = \\left( (2 + \\cos v)\\cos u, (2 + \\cos v)\\sin u, \\sin v \\right)",
+        "\\left((2 + \\cos v)\\,\\cos u,\\ (2 + \\cos v)\\,\\sin u,\\ \\sin v\\right)",  # LaTeX's spaces
     ],
 )
 def test_cos_and_sin_as_papers_and_other_programs_write_them(text: str) -> None:
