@@ -382,9 +382,11 @@ def read_input(args: argparse.Namespace) -> tuple[str, Path | None]:
 
 
 def _bounded(text: str, source: str) -> str:
+    """``text`` within :data:`MAX_INPUT`, without the line breaks that end a file or ``echo``'s
+    output (the JSON's ``input`` kept them)."""
     if len(text) > MAX_INPUT:
         raise UsageError(f"{source} is too long (more than {MAX_INPUT:,} characters)")
-    return text
+    return text.rstrip("\r\n")
 
 
 SIDE_FILES = {".md": ".png"}

@@ -295,4 +295,6 @@ def test_dash_f_dash_reads_standard_input(each_line: bool) -> None:
     options = ["--each-line"] if each_line else []
     done = sorgui("analyze", "--json", "--recognition-only", *options, "-f", "-", input="x^2 + y^2 - z\n")
     assert done.returncode == 0, done.stderr
-    assert json.loads(done.stdout.splitlines()[0] if each_line else done.stdout)["is_sor"] is True
+    answer = json.loads(done.stdout.splitlines()[0] if each_line else done.stdout)
+    assert answer["is_sor"] is True
+    assert answer["input"] == "x^2 + y^2 - z"  # without the line break that ends the text
