@@ -199,7 +199,7 @@ TURNED_CONE_APEX = np.array([10.0, -20.0, 5.0])
 
 def turned_cone() -> str:
     """A CAD cone of 15° about :data:`TURNED_CONE_APEX`, on a turned axis, printed with 6 digits."""
-    from tests.engine.test_rounded_cones import turned_cone as cone
+    from tests.engine.test_rounded_quadrics import turned_cone as cone
 
     x, y, z = TURNED_CONE_APEX
     return cone(15.0, (17.0, 41.0), ".6g", (float(x), float(y), float(z)))

@@ -27,7 +27,6 @@ The simplest cone that passes, by the bits of its coefficients and axis, is the 
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from fractions import Fraction
 from typing import TYPE_CHECKING, Protocol, TypeVar
@@ -37,7 +36,7 @@ from flint import fmpq, fmpq_mpoly
 
 from .coefficients import Typed, bits, shape_bits, within_scale
 from .dense import FloatArray, Monomial
-from .directions import FAMILIES, DirectionSnap, simplest_near, three
+from .directions import FAMILIES, DirectionSnap, decimal_near, simplest_near, three
 from .precision import Rounding
 
 if TYPE_CHECKING:
@@ -171,19 +170,9 @@ def _apexes(centre: FloatArray, scale: float) -> list[tuple[Fraction, Fraction, 
     found = []
     for radius in APEX_RADII:
         r = radius * scale
-        found.append(three(_decimal_near(float(v), r) for v in centre))
+        found.append(three(decimal_near(float(v), r) for v in centre))
         found.append(three(simplest_near(float(v), r) for v in centre))
     return found
-
-
-def _decimal_near(value: float, radius: float) -> Fraction:
-    """The decimal of fewest places nearest ``value`` within ``radius``."""
-    places = max(0, -math.floor(math.log10(radius))) if radius > 0 else 17
-    for p in range(-6, places + 2):
-        candidate = Fraction(round(Fraction(value) * Fraction(10) ** p)) / Fraction(10) ** p
-        if abs(candidate - Fraction(value)) <= radius:
-            return candidate
-    return Fraction(value)
 
 
 def _simplest(found: list[tuple[int, list[Fraction], S]]) -> tuple[list[Fraction], S] | None:

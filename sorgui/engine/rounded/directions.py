@@ -75,6 +75,16 @@ def simplest_near(value: float, radius: float) -> Fraction:
     return simplest_between(v - r, v + r)
 
 
+def decimal_near(value: float, radius: float) -> Fraction:
+    """The decimal of fewest places nearest ``value`` within ``radius``."""
+    places = max(0, -math.floor(math.log10(radius))) if radius > 0 else 17
+    for p in range(-6, places + 2):
+        candidate = Fraction(round(Fraction(value) * Fraction(10) ** p)) / Fraction(10) ** p
+        if abs(candidate - Fraction(value)) <= radius:
+            return candidate
+    return Fraction(value)
+
+
 def integer_directions(direction: FloatArray, epsilons: Sequence[float]) -> list[tuple[int, int, int] | None]:
     """For each ``ε``, the primitive integer vector with the smallest common denominator ``D``
     whose ratios are within ``ε`` of the direction's (``None`` if none has ``D`` up to

@@ -27,7 +27,7 @@ is preferred, then the simplest.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, NamedTuple, TypeAlias
@@ -59,6 +59,8 @@ from .coefficients import (
     within_scale,
 )
 from .cones import EXPONENTS, nearest_cone
+from .cylinders import EXPONENTS as CYLINDER_TERMS
+from .cylinders import nearest_cylinder, radius_cost
 from .dense import FloatArray
 from .directions import (
     EPSILONS,
@@ -220,10 +222,11 @@ def _radius(sigma: FloatArray, spread: float, family: DirectionSnap) -> float | 
 
 def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurface | None:
     """The simplest exact surface of the fit's kind within the rounding, or ``None``: for each
-    family of directions the first surface that passes, and for a quadric the nearest cone
-    (:func:`.cones.nearest_cone`); of these a torus or a cone (the CAD part) first, then one
-    whose coefficients were snapped (not fitted: coefficients fitted to an axis fit it whatever
-    the axis), then the one whose profile coefficients and axis have the fewest bits."""
+    family of directions the first surface that passes, and for a quadric the nearest cone or
+    cylinder (:func:`.cones.nearest_cone`, :func:`.cylinders.nearest_cylinder`); of these a
+    torus or a cone (the CAD part) first, then one whose coefficients were snapped (not fitted:
+    coefficients fitted to an axis fit it whatever the axis), then the one whose profile
+    coefficients and axis have the fewest bits."""
     typed = Typed(to_flint(exact), dense.float_coefficients(exact)) if exact.ring.domain == QQ else None
     found: list[_Found] = []
     for family in FAMILIES if best.candidate.direction is not None else (None,):
@@ -234,18 +237,19 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
         surface = _first_exact(f, best, quadratic_family, typed, rounding)
         if surface is not None:
             found.append(surface)
+    if best.candidate.kind == CYLINDER and f.degree == 2 and typed is not None:
+        assert best.candidate.direction is not None  # an axis has a direction
+        builder, checker = _quadric_builder(CYLINDER, CYLINDER_TERMS), _checker(f, typed, rounding)
+        cylinder = nearest_cylinder(f, typed, rounding, best.candidate.direction, builder, checker)
+        if cylinder is not None:
+            found.append(_Found(cylinder[0], cylinder[1], False, False))
     if best.candidate.kind == REVOLUTION and f.degree == 2 and typed is not None:
         assert best.candidate.direction is not None  # an axis has a direction
         centre = profile_centre(f, best, best.candidate.direction) * f.length
 
-        def built(a: Vector, c: Vector, coefficients: list[Fraction]) -> fmpq_mpoly | None:
-            g = build(REVOLUTION, a, c, EXPONENTS, coefficients)
-            return g if isinstance(g, fmpq_mpoly) else None
-
-        def checked(g: fmpq_mpoly, a: Vector, c: Vector, typed: Typed = typed) -> ExactSurface | None:
-            return check_surface(g, typed, rounding, f, a, c)
-
-        cone = nearest_cone(f, typed, rounding, centre, built, checked)
+        cone = nearest_cone(
+            f, typed, rounding, centre, _quadric_builder(REVOLUTION, EXPONENTS), _checker(f, typed, rounding)
+        )
         found = [item._replace(cone=_about_apex(item.coefficients)) for item in found]
         if cone is not None:
             found.append(_Found(cone[0], cone[1], False, False, True))
@@ -257,16 +261,21 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
 def _rank(found: _Found) -> tuple[bool, bool, bool, int]:
     """How :func:`snap` orders the families' surfaces: within the rounding first, then a torus
     or a cone, then snapped coefficients (a cone's, held about its apex, are its structure
-    however its slope was found), then the fewest bits of the coefficients (a torus's constant,
-    derived, costs none; a cone's slope ``K`` counts :data:`CONE_SLOPE_WEIGHT` times its bits) and the axis."""
+    however its slope was found; a cylinder's radius costs its bits, however it was found),
+    then the fewest bits of the coefficients (a torus's constant,
+    derived, costs none; a cone's slope ``K`` counts :data:`CONE_SLOPE_WEIGHT` times its bits, a
+    cylinder's radius :data:`.cylinders.RADIUS_WEIGHT` times) and the axis."""
     size = shape_bits(found.coefficients[1:] if found.torus else found.coefficients)
+    squared = _radius_squared(found)
+    if squared is not None:
+        size = radius_cost(squared)
     slope = _slope(found) if found.cone else None
     if slope is not None:
         size = CONE_SLOPE_WEIGHT * bits([slope])
     return (
         found.surface.largest > 1.0,
         not (found.torus or found.cone),
-        found.fitted and not found.cone,
+        found.fitted and not found.cone and squared is None,
         size + _axis_bits(found.surface),
     )
 
@@ -279,12 +288,46 @@ approximation at any size (45° on an axis of 52-bit coordinates, not ``−11026
 slope on an axis of 82-bit coordinates)."""
 
 
+def _radius_squared(found: _Found) -> Fraction | None:
+    """``r² = −q₀₀/(q₀₁|a|²)`` of a cylinder (``ρ = |a|²|p − c|² − h²``), when ``|a|²`` is rational."""
+    direction = found.surface.direction
+    if found.surface.symmetry.kind != CYLINDER or direction is None or len(found.coefficients) != 2:
+        return None
+    norm2 = _squared_length(direction)
+    q00, q01 = found.coefficients
+    return None if norm2 is None or not q01 else -q00 / (q01 * norm2)
+
+
 def _slope(found: _Found) -> Fraction | None:
     """``K = −(q₂₀|a|² + q₀₁)/q₀₁`` of a cone about its apex, when ``|a|²`` is rational."""
     direction = found.surface.direction
     norm2 = None if direction is None else _squared_length(direction)
     q20, q01 = found.coefficients[2], found.coefficients[3]
     return None if norm2 is None or not q01 else -(q20 * norm2 + q01) / q01
+
+
+def _quadric_builder(
+    kind: str, exponents: tuple[tuple[int, int], ...]
+) -> Callable[[Vector, Vector, list[Fraction]], fmpq_mpoly | None]:
+    """:func:`build` over ``QQ`` of a quadric of ``kind`` on ``exponents``, for :mod:`.cones`
+    and :mod:`.cylinders`."""
+
+    def built(a: Vector, c: Vector, coefficients: list[Fraction]) -> fmpq_mpoly | None:
+        g = build(kind, a, c, exponents, coefficients)
+        return g if isinstance(g, fmpq_mpoly) else None
+
+    return built
+
+
+def _checker(
+    f: Normalised, typed: Typed, rounding: Rounding
+) -> Callable[[fmpq_mpoly, Vector, Vector], ExactSurface | None]:
+    """:func:`check_surface` against the typed ``f``, for :mod:`.cones` and :mod:`.cylinders`."""
+
+    def checked(g: fmpq_mpoly, a: Vector, c: Vector) -> ExactSurface | None:
+        return check_surface(g, typed, rounding, f, a, c)
+
+    return checked
 
 
 def _about_apex(coefficients: list[Fraction]) -> bool:

@@ -1,8 +1,11 @@
-"""The nearest exact surface of a rounded CAD cone is a cone (docs/math.md §8.5, "Cones").
+"""The nearest exact surface of a rounded CAD cone is a cone with its apex, and a rounded CAD
+cylinder's has its radius (docs/math.md §8.5, "Cones" and "Cylinders").
 
 A cone on a turned axis (an irrational direction) printed with 6 or 10 digits, or with 6
 decimals, had for its nearest exact surface a hyperboloid in a third of the cases: the
-profile's coefficients, snapped on one exact axis, keep the terms of degree 0 and 1 free.
+profile's coefficients, snapped on one exact axis, keep the terms of degree 0 and 1 free. A
+cylinder of radius 12.7 printed with 6 digits had ``r² = 6129/38``: its axis point, snapped
+coordinate by coordinate, left the axis, and the radius fitted about it was off.
 """
 
 from __future__ import annotations
@@ -70,3 +73,39 @@ def test_a_rounded_turned_cone_is_near_the_cone_with_its_apex(
     assert sorted(terms) == [(0, 2), (2, 0)]
     a, d = (sympy.Poly(sympy.sympify(profile.polynomial), x, y).coeff_monomial(m) for m in ((2, 0), (0, 2)))
     assert math.degrees(math.atan(math.sqrt(float(-a / d)))) == pytest.approx(half_angle, abs=1e-4)
+
+
+def turned_cylinder(digits: str) -> str:
+    """A cylinder of radius 12.7 about the axis through ``(25/2, −13/4, 7)`` along ``(11, 10, 2)``
+    (the rational turn of the quaternion ``(1, 2, 3, 4)``), expanded and printed with the
+    format ``digits``."""
+    point = sympy.Matrix([sympy.Rational(25, 2), sympy.Rational(-13, 4), 7])
+    a, b, c, d = 1, 2, 3, 4
+    rotation = sympy.Matrix(
+        [
+            [a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)],
+            [2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)],
+            [2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d],
+        ]
+    ) / (a * a + b * b + c * c + d * d)
+    x, y, z = sympy.symbols("x y z")
+    local = rotation.T * (sympy.Matrix([x, y, z]) - point)
+    f = sympy.Poly(sympy.expand(local[0] ** 2 + local[1] ** 2 - sympy.Rational(16129, 100)), x, y, z)
+    terms = []
+    for monomial, coefficient in f.terms():
+        power = "*".join(f"{v}^{e}" for v, e in zip("xyz", monomial) if e)
+        terms.append(f"{format(float(coefficient), digits)}*{power}" if power else format(float(coefficient), digits))
+    return " + ".join(terms).replace("+ -", "- ")
+
+
+@pytest.mark.parametrize("digits", [".6g", ".10g", ".6f"])
+def test_a_rounded_cylinder_is_near_the_cylinder_of_its_radius(digits: str) -> None:
+    analysis = analyze(turned_cylinder(digits))
+    nearest = analysis.approximate.nearest if analysis.approximate is not None else None
+    assert nearest is not None and nearest.within_rounding and nearest.analysis is not None
+    profile = nearest.analysis.recognition.profile
+    assert profile is not None
+    assert profile.polynomial == "100*y**2 - 16129"  # r = 12.7
+    axis = nearest.analysis.recognition.axis  # the exact axis, through the foot of the origin on it
+    assert axis is not None and axis.direction == ("11", "10", "2")
+    assert axis.point == ("3007/450", "-1537/180", "1337/225")
