@@ -386,11 +386,11 @@ def test_a_nearly_revolving_surface_without_an_exact_one_is_not_called_no_surfac
 
 
 def test_a_nearest_surface_beyond_the_rounding_is_written_and_says_so(tmp_path: Path) -> None:
-    """A cone printed with 4 digits whose nearest exact surface found lies beyond the rounding
-    (one coefficient 2.6 times its rounding off): its part is written, and the line says it is
-    beyond."""
+    """A cone of 7.5° printed with 6 decimals whose nearest exact surface found lies beyond the
+    rounding (one coefficient 2.7 times its rounding off): its part is written, and the line
+    says it is beyond."""
     pytest.importorskip("OCP")
-    text = Path(__file__).parent / "data" / "rounded-cone-4-digits.txt"
+    text = Path(__file__).parent / "data" / "rounded-cone-outside.txt"
     target = tmp_path / "cone.step"
     done = sorgui("analyze", "-f", str(text), "-o", str(target))
     assert done.returncode == 0 and target.exists(), done.stderr

@@ -109,3 +109,18 @@ def test_a_rounded_cylinder_is_near_the_cylinder_of_its_radius(digits: str) -> N
     axis = nearest.analysis.recognition.axis  # the exact axis, through the foot of the origin on it
     assert axis is not None and axis.direction == ("11", "10", "2")
     assert axis.point == ("3007/450", "-1537/180", "1337/225")
+
+
+def test_a_cone_printed_with_4_digits_is_a_cone_within_its_rounding() -> None:
+    """Its nearest exact surface lay beyond the rounding (one coefficient 2.9 times its rounding
+    off) before cones were fitted with their apex held."""
+    from pathlib import Path
+
+    text = (Path(__file__).parents[1] / "data" / "rounded-cone-4-digits.txt").read_text(encoding="utf-8")
+    nearest = analyze(text).approximate.nearest
+    assert nearest is not None and nearest.within_rounding and nearest.analysis is not None
+    assert nearest.analysis.rationality.table_row == 1
+    x, y, z = sympy.symbols("x y z")
+    g = sympy.sympify(nearest.polynomial)
+    apex = {x: sympy.Rational(21, 2), y: sympy.Rational(-16, 5), z: 7}
+    assert g.subs(apex) == 0 and all(sympy.diff(g, v).subs(apex) == 0 for v in (x, y, z))

@@ -106,9 +106,9 @@ def test_a_field_of_a_hundred_digits_does_not_widen_the_results_pane(window, run
     assert pane.widget().width() <= pane.viewport().width()
 
 
-CONE_FOUR_DIGITS = (DATA / "rounded-cone-4-digits.txt").read_text(encoding="utf-8")
-"""A cone printed with 4 digits: the nearest exact surface found lies outside its rounding (one
-coefficient 2.9 times its rounding off)."""
+CONE_OUTSIDE = (DATA / "rounded-cone-outside.txt").read_text(encoding="utf-8")
+"""A cone of 7.5° printed with 6 decimals: the nearest exact surface found lies outside its
+rounding (one coefficient 2.7 times its rounding off)."""
 
 
 def test_a_nearest_surface_outside_the_rounding_is_not_called_the_one_meant(window, run_analysis, qtbot) -> None:
@@ -116,7 +116,7 @@ def test_a_nearest_surface_outside_the_rounding_is_not_called_the_one_meant(wind
     to be", while the typed view said none was found within the rounding."""
     from tests.gui.test_canal import pane_text
 
-    run_analysis(window, CONE_FOUR_DIGITS, timeout_ms=300_000)
+    run_analysis(window, CONE_OUTSIDE, timeout_ms=300_000)
     qtbot.waitUntil(lambda: window.session.nearest_analysis is not None, timeout=300_000)
     assert not window.session.run.analysis.approximate.nearest.within_rounding
     switch = window.findChild(QRadioButton, "viewNearest")
