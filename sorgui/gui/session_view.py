@@ -354,5 +354,6 @@ class SessionView(QObject):
             self.status.setText("Could not redo the mesh")
             return
         assert result.scene is not None  # a redrawing sends its scene before it finishes
-        self.status.setText(f"Re-meshed: {result.scene.summary()}")
+        notes = " ".join(result.scene.notes)  # why nothing is drawn in the ball asked for
+        self.status.setText(f"Re-meshed: {result.scene.summary()}. {notes}".strip())
         self.shown.emit(result)

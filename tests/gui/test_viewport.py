@@ -81,6 +81,17 @@ def test_radius_box_re_meshes_a_larger_ball(torus_window, qtbot) -> None:
     assert viewport.scene is scene and "Re-meshed" in torus_window.stage_label.text()
 
 
+def test_a_ball_without_the_surface_says_why_nothing_is_drawn(torus_window, qtbot) -> None:
+    """The torus of radii 2 and 1 has no points within 1 of its centre: the view was empty and the
+    status line said nothing."""
+    viewport = torus_window.viewport
+    with qtbot.waitSignal(torus_window.result_shown, timeout=60_000) as blocker:
+        viewport.radius_box.setValue(0.5)
+    assert blocker.args[0].scene.surface.is_empty
+    said = torus_window.stage_label.text()
+    assert "Re-meshed" in said and "no real points" in said, said
+
+
 def test_parameterization_patch_toggles(torus_window, qtbot) -> None:
     viewport = torus_window.viewport
     assert viewport.patch_box.isEnabled()
