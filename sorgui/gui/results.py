@@ -590,7 +590,7 @@ class ResultsPane(QScrollArea):
         assert vector is not None and conical.near_residual is not None  # the caller checked
         rows = [
             ("kind", f"not exactly a {kind}, but nearly: a {kind} within the rounding of the input"),
-            (caption, float_text(vector, 10)),
+            (caption, float_text(vector, 6)),
             ("relative residual", f"{conical.near_residual:.2g}"),
         ]
         self._section("Cone or cylinder", rows)

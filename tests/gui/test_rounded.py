@@ -125,3 +125,17 @@ def test_a_nearest_surface_outside_the_rounding_is_not_called_the_one_meant(wind
     qtbot.waitUntil(lambda: "outside its rounding" in window.results.banner.text() + pane_text(window), timeout=60_000)
     shown = window.results.banner.text() + pane_text(window)
     assert "not known to be the one meant" in shown and "was meant to be" not in shown
+
+
+def test_a_rounded_cone_shows_its_apex_as_the_text_report_does(window, run_analysis, qtbot) -> None:
+    """The typed cone's apex within the rounding was shown with 10 digits
+    (``(0.9999979276, 1.999997171, 2.999993479)``), the text report's with 6."""
+    from sorgui.export.text import float_text
+    from tests.engine.test_rounded_quadrics import turned_cone
+    from tests.gui.test_canal import pane_text
+
+    run_analysis(window, turned_cone(15.0, (17.0, 41.0), ".6g"), timeout_ms=300_000)
+    apex = window.session.run.analysis.conical.near_apex
+    assert apex is not None
+    qtbot.waitUntil(lambda: "apex (about)" in pane_text(window), timeout=60_000)
+    assert f"apex (about)\n{float_text(apex, 6)}" in pane_text(window)
