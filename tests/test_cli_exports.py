@@ -499,3 +499,38 @@ def test_the_mesh_patch_of_rounded_input_is_the_nearest_surfaces_and_says_so(tmp
     assert header.startswith("# sorgui: parametric patch of the nearest exact surface of revolution ")
     assert "(rounded input; its coefficients" in header
     assert pyvista.read(stl).n_cells > 100
+
+
+SPHERE_TIMES_PLANE = (
+    "11*x^3/15 + 2*x^2*y/3 + 2*x^2*z/15 - 44*x^2/45 + 11*x*y^2/15 + 4*x*y/5 + 11*x*z^2/15 - 28*x*z/45"
+    " + 55*x/108 + 2*y^3/3 + 2*y^2*z/15 + 49*y^2/45 + 2*y*z^2/3 - 8*y*z/45 - 67*y/270 + 2*z^3/15 - z^2/3"
+    " + 19*z/90 - 143/1620"
+)
+"""``(x² + y² + z² − 1)(z − 1/2)`` turned by the rotation of the quaternion ``(1, 2, 3, 4)`` and
+moved by ``(1/2, −1, 1/3)``."""
+
+
+def test_a_step_file_reads_back_as_the_part_it_was_written_of(tmp_path: Path) -> None:
+    """Capped in a box, one face of the sphere is bounded by one loop, which bounds two regions
+    of the sphere: Open CASCADE read the STEP file back with the other region, a valid file of a
+    solid of volume 29.23 instead of 25.04 (the BRep and IGES files were right). The file is now
+    written with B-spline faces, which read back as written, and says so."""
+    pytest.importorskip("OCP")
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    from sorgui.cad.writers import read_shape
+
+    step, brep = tmp_path / "part.step", tmp_path / "part.brep"
+    done = sorgui(
+        "analyze", SPHERE_TIMES_PLANE, "--region=-2:2,-2:2,-1.5:1.5", "--cap", "-o", str(step), "-o", str(brep)
+    )
+    assert done.returncode == 0, done.stderr
+    volumes = []
+    for path in (step, brep):
+        props = GProp_GProps()
+        BRepGProp.VolumeProperties_s(read_shape(path), props)
+        volumes.append(props.Mass())
+    assert volumes[0] == pytest.approx(volumes[1], rel=2e-3)  # Open CASCADE's volumes of B-spline faces
+    assert volumes[1] == pytest.approx(25.0432, rel=1e-4)  # f <= 0 in the box, integrated numerically
+    assert "faces written as B-splines" in step.read_text(encoding="ascii")
