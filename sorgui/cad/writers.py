@@ -32,8 +32,6 @@ from OCP.StepData import StepData_StepWriter
 from OCP.TCollection import TCollection_HAsciiString
 from OCP.TopoDS import TopoDS_Shape
 
-from .geometry import CadGeometryError
-
 REAL_FORMAT = "%.16E"
 """17 significant digits: every double reads back to itself."""
 
@@ -112,8 +110,10 @@ def step_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
     )
 
 
-class StepReadBackError(CadGeometryError):
-    """A STEP file that Open CASCADE reads back as another shape than the one written."""
+class StepReadBackError(ValueError):
+    """A STEP file that Open CASCADE reads back as another shape than the one written (a
+    ``ValueError``, as :class:`.geometry.CadGeometryError` is, without loading that module: the
+    part route rewrites parts without sympy)."""
 
 
 READ_BACK = 1e-3
