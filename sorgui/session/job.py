@@ -141,11 +141,9 @@ class _Presenter:
         self.send(AnalysisKnown(analysis))
         request = self.request
         if self.scene is not None and self._without_equation and analysis.squarefree:
-            # a parametrization's implicit equation has come: the surface replaces the patch
-            self.scene, self._patch_map, self._approximated, self._conical, self._canal = (None, None, False, False, ())
+            self._forget_scene()  # a parametrization's implicit equation has come: the surface replaces the patch
         if self.scene is not None and self._misses_apex(analysis):
-            # drawn before the cone's apex was known, in a ball without it: drawn again
-            self.scene, self._patch_map, self._approximated, self._conical, self._canal = (None, None, False, False, ())
+            self._forget_scene()  # drawn before the cone's apex was known, in a ball without it: drawn again
             self.nearest_scene = None
         if self.scene is None and self._awaits_rounding(analysis):
             return  # rounded input is drawn about its approximate axis, once that is known
@@ -179,6 +177,10 @@ class _Presenter:
         rounded = request.tolerance is not None or has_decimals(request.text)
         typed = analysis.input_kind != "parametrization"  # a map's scene does not wait for a rounding
         return rounded and typed and request.analysis is None and analysis.approximate is None
+
+    def _forget_scene(self) -> None:
+        """Drop the scene and what was added to it: the next analysis draws it again, whole."""
+        self.scene, self._patch_map, self._approximated, self._conical, self._canal = (None, None, False, False, ())
 
     def _misses_apex(self, analysis: Analysis) -> bool:
         """Whether the scene, drawn before the cone stage, is in a ball that leaves out the apex
