@@ -514,7 +514,8 @@ def test_a_step_file_reads_back_as_the_part_it_was_written_of(tmp_path: Path) ->
     """Capped in a box, one face of the sphere is bounded by one loop, which bounds two regions
     of the sphere: Open CASCADE read the STEP file back with the other region, a valid file of a
     solid of volume 29.23 instead of 25.04 (the BRep and IGES files were right). The file is now
-    written with B-spline faces, which read back as written, and says so."""
+    written with B-spline faces, which read back as written, and says so in its header and in
+    the line that reports it (which said "an analytic surface" alone)."""
     pytest.importorskip("OCP")
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
@@ -534,3 +535,6 @@ def test_a_step_file_reads_back_as_the_part_it_was_written_of(tmp_path: Path) ->
     assert volumes[0] == pytest.approx(volumes[1], rel=2e-3)  # Open CASCADE's volumes of B-spline faces
     assert volumes[1] == pytest.approx(25.0432, rel=1e-4)  # f <= 0 in the box, integrated numerically
     assert "faces written as B-splines" in step.read_text(encoding="ascii")
+    wrote = next(line for line in done.stderr.splitlines() if "part.step" in line)
+    assert "faces written as B-splines" in wrote, done.stderr
+    assert "faces written as B-splines" not in next(line for line in done.stderr.splitlines() if "part.brep" in line)

@@ -21,6 +21,7 @@ nor the render layer, which the writers of an analysis (:mod:`.geometry`, :mod:`
 from __future__ import annotations
 
 import weakref
+from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -101,10 +102,11 @@ def cad_file(
     from sorgui import __version__
 
     model = cad_model(analysis, scene, patch, tolerance, cap)
-    from .writers import WRITERS, CadHeader
+    from .writers import CadHeader, write_cad
 
     header = CadHeader(analysis.recognition.polynomial, model.description, __version__, name, units, model.precision)
-    return WRITERS[suffix](model.shape, header), model
+    data, note = write_cad(suffix, model.shape, header)
+    return data, replace(model, file_note=note)
 
 
 ROUTES = {
@@ -129,6 +131,8 @@ def summary(model: CadModel, suffix: str = ".step") -> str:
     elif model.solids:
         faces += f" in {model.solids} solid{'s' if model.solids != 1 else ''}"
     words = f"{ROUTES[model.route]}, {faces}"
+    if model.file_note:
+        words += f" ({model.file_note})"
     if model.deviation is not None and model.tolerance is not None:
         verdict = "within" if model.deviation <= model.tolerance else "ABOVE"
         words += f"; measured deviation {model.deviation:.2g} ({verdict} the tolerance {model.tolerance:.2g})"

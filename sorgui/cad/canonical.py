@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from OCP.BRep import BRep_Builder, BRep_Tool
@@ -53,6 +53,9 @@ class Canonical:
     replaced: tuple[int, ...]
     kept: tuple[tuple[int, str], ...]
     valid: bool
+    file_note: str = ""
+    """What the file written holds beyond the canonical part, in words (a STEP file written
+    again with B-spline faces, :data:`.writers.BSPLINE_NOTE`)."""
 
     def summary(self) -> str:
         """What the file holds, in one line."""
@@ -60,7 +63,8 @@ class Canonical:
         words = f"{n} face{'s' if n != 1 else ''} on native surfaces"
         if self.kept:
             words += f", {len(self.kept)} recognised face{'s' if len(self.kept) != 1 else ''} kept as they were"
-        return words + ("; valid (BRepCheck)" if self.valid else "; NOT valid under BRepCheck")
+        words += "; valid (BRepCheck)" if self.valid else "; NOT valid under BRepCheck"
+        return f"{words} ({self.file_note})" if self.file_note else words
 
 
 def canonical_part(part: Part, recognised: Sequence[Recognised]) -> Canonical:
@@ -472,8 +476,9 @@ def canonical_file(part: Part, recognised: Sequence[Recognised], name: str, suff
     """The bytes of the CAD file ``name`` (format ``suffix``) of the canonical part, and the part."""
     from sorgui import __version__
 
-    from .writers import WRITERS, CadHeader
+    from .writers import CadHeader, write_cad
 
     canonical = canonical_part(part, recognised)
     description = (f"the canonical form of {part.path.name}", canonical.summary())
-    return WRITERS[suffix](canonical.shape, CadHeader("", description, __version__, name)), canonical
+    data, note = write_cad(suffix, canonical.shape, CadHeader("", description, __version__, name))
+    return data, replace(canonical, file_note=note)

@@ -94,6 +94,9 @@ class CadModel:
     beyond_rounding: bool = False
     """That nearest exact surface lies beyond the input's rounding (none simple was found within
     it): the part is the nearest found, and says so."""
+    file_note: str = ""
+    """What the file written holds beyond the route, in words (a STEP file written again with
+    B-spline faces, :data:`.writers.BSPLINE_NOTE`)."""
 
     @property
     def faces(self) -> int:

@@ -84,30 +84,48 @@ def _full_precision(writer: Any) -> None:
 
 
 def step_bytes(shape: TopoDS_Shape, header: CadHeader) -> bytes:
+    """An AP242 STEP file of ``shape`` (:func:`step_file`, without what it says of the file)."""
+    return step_file(shape, header)[0]
+
+
+def step_file(shape: TopoDS_Shape, header: CadHeader) -> tuple[bytes, str]:
     """An AP242 STEP file of ``shape``, one product (a compound of shells or solids is not made
     an assembly), its uncertainty the part's precision; :func:`header_lines` are its
-    ``FILE_DESCRIPTION``.
+    ``FILE_DESCRIPTION``. With it, what the file holds beyond the part's route, in words (``""``
+    when nothing).
 
     The file is read back and its area compared with the shape's: a face on a sphere, trimmed
     by one loop that bounds two regions of the sphere, was read back as the other region (a
     sphere times a plane on a turned axis, capped in a box: the volume 29.23 instead of 25.04),
     a valid file of the wrong solid. Such a shape is written again with its faces converted to
-    B-splines (said in the header), which read back as written; one that still does not is
-    refused (:class:`StepReadBackError`)."""
+    B-splines (:data:`BSPLINE_NOTE`, said in the header too), which read back as written; one
+    that still does not is refused (:class:`StepReadBackError`)."""
     data = _step(shape, header)
     if _reads_back(data, shape):
-        return data
+        return data, ""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_NurbsConvert
 
     converted = BRepBuilderAPI_NurbsConvert(shape, True).Shape()
-    note = "faces written as B-splines: the STEP file of the analytic faces did not read back as the part"
-    data = _step(converted, replace(header, description=(*header.description, note)))
+    data = _step(converted, replace(header, description=(*header.description, BSPLINE_NOTE)))
     if _reads_back(data, converted):
-        return data
+        return data, BSPLINE_NOTE
     raise StepReadBackError(
         "Open CASCADE's STEP file of the part does not read back as the part (its area differs); "
         "write the part as .brep"
     )
+
+
+BSPLINE_NOTE = "faces written as B-splines: the STEP file of the analytic faces did not read back as the part"
+"""What a STEP file written again with B-spline faces says of itself, in its header and in the
+line that reports it."""
+
+
+def write_cad(suffix: str, shape: TopoDS_Shape, header: CadHeader) -> tuple[bytes, str]:
+    """The bytes of ``shape`` in the CAD format of ``suffix``, and what the file holds beyond the
+    part's route, in words (``""`` when nothing: only a STEP file may be written again)."""
+    if suffix in (".step", ".stp"):
+        return step_file(shape, header)
+    return WRITERS[suffix](shape, header), ""
 
 
 class StepReadBackError(ValueError):
