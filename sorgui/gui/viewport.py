@@ -63,6 +63,7 @@ if TYPE_CHECKING:
     import pyvista
     from vtkmodules.vtkCommonDataModel import vtkPlane
 
+    from sorgui.gui.hidden_lines import HiddenLines
     from sorgui.gui.render_window import RenderWindow
     from sorgui.render.picking import PickInfo
     from sorgui.session.scene import SceneData
@@ -98,6 +99,8 @@ SCENE_ACTORS = (
     "canal_circles",
     "base_curve",
 )
+AXIS_ACTORS = ("axis", "approx_axis", "factor_axes")
+"""The lines drawn through the surface too, faint (:mod:`.hidden_lines`)."""
 CANAL_ACTORS = ("canal_spine", "canal_circles")
 PICK_ACTORS = ("pick_normal", "pick_circle", "pick_point", "pick_sphere", "pick_canal_circle")
 TOUCH_SPHERE_COLOR = "#80cbc4"
@@ -185,6 +188,8 @@ class Viewport(QWidget):
         self._stale = False
         self._clip_plane: vtkPlane | None = None
         """The meridian plane of the section view (a ``vtkPlane``, made with the render window)."""
+        self._hidden: HiddenLines | None = None
+        """The axes drawn faint where the surface hides them (made with the render window)."""
         self._drop_filter: QObject | None = None
 
         self.caption = ElidedLabel("No surface yet", self)  # cut with "…" in a narrow window, whole as tooltip
@@ -334,10 +339,12 @@ class Viewport(QWidget):
         self._end_loading()
         from vtkmodules.vtkCommonDataModel import vtkPlane
 
+        from sorgui.gui.hidden_lines import HiddenLines
         from sorgui.gui.render_window import RenderWindow
 
         plotter = RenderWindow(self, auto_update=False, multi_samples=0)
         self._plotter = plotter
+        self._hidden = HiddenLines(plotter)
         forwarders(plotter).set_background("#fbfcfe", top="#d9e2ee")
         forwarders(plotter).add_axes(line_width=3, labels_off=False)
         forwarders(plotter).enable_surface_point_picking(
@@ -392,9 +399,9 @@ class Viewport(QWidget):
             return  # drawn by start_rendering, once pyvista and VTK are imported
         self._clear_pick()
         self._show_surface()
-        self._set_actor("axis", scene.axis_segment.to_polydata(), color=AXIS_COLOR, line_width=4)
-        self._set_actor("approx_axis", scene.approximate_axis.to_polydata(), color=APPROXIMATE_AXIS_COLOR, line_width=3)
-        self._set_actor("factor_axes", scene.factor_axes.to_polydata(), color=FACTOR_AXES_COLOR, line_width=3)
+        self._set_axis("axis", scene.axis_segment.to_polydata(), AXIS_COLOR, 4)
+        self._set_axis("approx_axis", scene.approximate_axis.to_polydata(), APPROXIMATE_AXIS_COLOR, 3)
+        self._set_axis("factor_axes", scene.factor_axes.to_polydata(), FACTOR_AXES_COLOR, 3)
         self.deviation_box.setEnabled(scene.deviation is not None)
         self.view_actions["along"].setEnabled(self._axis() is not None)
         self.view_actions["across"].setEnabled(self._axis() is not None)
@@ -456,6 +463,8 @@ class Viewport(QWidget):
         self._remove_scalar_bar()
         for name in SCENE_ACTORS + PICK_ACTORS:
             forwarders(self._plotter).remove_actor(name, render=False)
+        for name in AXIS_ACTORS:
+            self.hidden_lines.remove(name)
         self.request_render()
 
     def set_stale(self, stale: bool, caption: str | None = None) -> None:
@@ -685,6 +694,19 @@ class Viewport(QWidget):
         if interpolation is not None:
             actor.prop.interpolation = interpolation
         actor.SetVisibility(visible)
+
+    def _set_axis(self, name: str, mesh: pyvista.PolyData, color: str, line_width: float) -> None:
+        """Add or replace the axis ``name``, and its faint copy where the surface hides it."""
+        self._set_actor(name, mesh, color=color, line_width=line_width)
+        self.hidden_lines.show(name, mesh, color, line_width)
+
+    @property
+    def hidden_lines(self) -> HiddenLines:
+        """The axes drawn faint through the surface (made with the render window)."""
+        if self._hidden is None:
+            self.start_rendering()
+        assert self._hidden is not None  # made by start_rendering
+        return self._hidden
 
     def software_rendering(self) -> bool:
         """Whether OpenGL runs in software (Mesa's llvmpipe, e.g. under Xvfb), found once.

@@ -278,3 +278,25 @@ def test_the_saved_camera_survives_a_second_scene_that_comes_while_vtk_is_import
     assert np.allclose(viewport.camera_state().position, camera.position)
     viewport.close_plotter()
     assert CameraState.from_dict(UNFRAMED.to_dict()) is None  # such a camera saved before is not restored
+
+
+def test_the_axis_shows_faintly_through_the_surface_that_hides_it(window, run_analysis) -> None:
+    """A cylinder hides its axis from end to end (a rounded CAD cone showed a few pixels of it,
+    at the apex): the axis is drawn again, faint, on a layer over the scene."""
+    from sorgui.gui.exporting import viewport_image
+    from sorgui.gui.hidden_lines import HIDDEN_OPACITY
+
+    run_analysis(window, "x^2 + y^2 - 1")
+    viewport = window.viewport
+    assert viewport.hidden_lines.names() == {"axis"}
+    viewport.set_view("across")
+    image = viewport_image(viewport)
+    middle = image.pixelColor(image.width() // 2, image.height() // 2)
+    viewport.hidden_lines.set_visible("axis", False)
+    surface = viewport_image(viewport).pixelColor(image.width() // 2, image.height() // 2)
+    viewport.hidden_lines.set_visible("axis", True)
+    axis = (0x1F, 0x2A, 0x44)  # AXIS_COLOR
+    seen = (surface.red(), surface.green(), surface.blue())
+    assert max(abs(a - b) for a, b in zip(axis, seen)) > 40  # the cylinder, not the axis, without the copy
+    expected = [HIDDEN_OPACITY * a + (1 - HIDDEN_OPACITY) * b for a, b in zip(axis, seen)]
+    assert np.allclose((middle.red(), middle.green(), middle.blue()), expected, atol=12), (middle, seen)
