@@ -44,6 +44,12 @@ class SmatFamily:
     equations: tuple[Terms4, ...]
 
 
+CIRCLE_POINTS = 256
+"""Points of a drawn characteristic circle: its chords stay within the surface's own triangles
+(a 64-point circle of radius 1 sagged 1.2e-3 inside its chords, more than a mesh of spacing
+0.04 does, and was drawn dotted through the surface that hid it)."""
+
+
 @dataclass(frozen=True)
 class CanalScene:
     """Polylines ``(n, 3)``: the spines (one or more pieces per family) and closed circles."""
@@ -58,7 +64,7 @@ def canal_scene(
     bound: float = 20.0,
     samples: int = 400,
     circles: int = 12,
-    circle_points: int = 64,
+    circle_points: int = CIRCLE_POINTS,
 ) -> CanalScene:
     """The spines and ``circles`` characteristic circles of every rational family.
 

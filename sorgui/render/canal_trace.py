@@ -17,7 +17,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from sorgui.render.canal_scene import CanalScene, SmatFamily, Terms4
+from sorgui.render.canal_scene import CIRCLE_POINTS, CanalScene, SmatFamily, Terms4
 from sorgui.render.canal_touch import (
     characteristic_circle,
     gradient4,
@@ -41,7 +41,7 @@ def smat_scene(
     bound: float,
     step: float,
     circles: int = 12,
-    circle_points: int = 64,
+    circle_points: int = CIRCLE_POINTS,
     starts: int = 40,
 ) -> CanalScene:
     """The spines (polylines of ``m``) and ``circles`` characteristic circles of ``families``,

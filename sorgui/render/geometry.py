@@ -246,6 +246,43 @@ def runs(points: np.ndarray, keep: Sequence[bool] | np.ndarray) -> list[np.ndarr
     return pieces
 
 
+def clip_to_ball(points: np.ndarray, ball: ClipSphere) -> list[np.ndarray]:
+    """The pieces of the polyline ``points (n, 3)`` inside ``ball``, each ending where its
+    segment crosses the sphere (not at the last point inside, which left gaps of a segment at
+    the boundary); non-finite points end a piece."""
+    center, radius2 = np.asarray(ball.center), ball.radius**2
+    pts = np.asarray(points, dtype=np.float64)
+    finite = np.all(np.isfinite(pts), axis=1)
+    with np.errstate(invalid="ignore"):
+        inside = finite & (np.sum((np.nan_to_num(pts) - center) ** 2, axis=1) <= radius2)
+    pieces: list[np.ndarray] = []
+    current: list[np.ndarray] = []
+    for i in range(len(pts)):
+        if inside[i]:
+            if not current and i > 0 and finite[i - 1]:
+                current.append(_crossing(pts[i], pts[i - 1], center, radius2))
+            current.append(pts[i])
+            continue
+        if current:
+            if finite[i]:
+                current.append(_crossing(pts[i - 1], pts[i], center, radius2))
+            pieces.append(np.array(current))
+            current = []
+    if current:
+        pieces.append(np.array(current))
+    return [piece for piece in pieces if len(piece) >= 2]
+
+
+def _crossing(inner: np.ndarray, outer: np.ndarray, center: np.ndarray, radius2: float) -> np.ndarray:
+    """The point where the segment from ``inner`` (inside the sphere) to ``outer`` (outside)
+    crosses it: the root in ``[0, 1]`` of ``|inner − center + s (outer − inner)|² = radius²``."""
+    d, e = outer - inner, inner - center
+    a, b, c = d @ d, 2.0 * (d @ e), e @ e - radius2
+    s = (-b + np.sqrt(max(b * b - 4.0 * a * c, 0.0))) / (2.0 * a) if a > 0 else 0.0
+    point: np.ndarray = inner + min(max(s, 0.0), 1.0) * d
+    return point
+
+
 def polyline_cells(lengths: Sequence[int], closed: Sequence[bool] | None = None) -> np.ndarray:
     """The VTK flat cell array ``[n, i0, …, i(n-1), …]`` for consecutive polylines.
 

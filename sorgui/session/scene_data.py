@@ -53,7 +53,7 @@ from sorgui.render import (
     surface_mesh,
 )
 from sorgui.render.canal_scene import SmatFamily
-from sorgui.render.geometry import foot_on_line, readonly
+from sorgui.render.geometry import clip_to_ball, foot_on_line, readonly
 from sorgui.render.mesh import DEFAULT_RESOLUTION
 from sorgui.render.sampling import evaluate_points, first_order_distance, term_arrays
 from sorgui.session.scene import SceneData
@@ -452,7 +452,7 @@ def approximate_axis(analysis: Analysis, region: ClipSphere) -> LineData:
 
 def with_canal(scene: SceneData, analysis: Analysis) -> SceneData:
     """``scene`` with the spines and characteristic circles of the canal surface of ``analysis``
-    (:func:`sorgui.render.canal_scene.canal_scene`), kept near the drawn ball."""
+    (:func:`sorgui.render.canal_scene.canal_scene`), cut to the drawn ball."""
     canal = analysis.canal
     if canal is None or not canal.is_canal:
         return scene
@@ -477,6 +477,9 @@ def with_canal(scene: SceneData, analysis: Analysis) -> SceneData:
         )
         spines += traced.spines
         circles += traced.circles
+    # cut to the drawn ball, as the surface is: whole circles beyond it floated about a cylinder
+    spines = [piece for line in spines for piece in clip_to_ball(line, scene.region)]
+    circles = [piece for line in circles for piece in clip_to_ball(line, scene.region)]
     return replace(
         scene,
         canal_spine=LineData.from_polylines(spines),

@@ -125,3 +125,32 @@ def test_a_spine_of_genus_1_is_traced_with_its_circles() -> None:
         assert np.abs(y * y + z * z - 16).max() < 1e-5 and np.abs(x * x + z * z - 9).max() < 1e-5
     assert len(scene.circles) == 12
     assert max(relative_values(text, ring).max() for ring in scene.circles) < 1e-9
+
+
+def test_a_polyline_is_cut_where_it_crosses_the_ball() -> None:
+    """The pieces inside the ball end on its sphere (exactly where the segments cross it), and
+    a non-finite point ends a piece."""
+    from sorgui.render.geometry import ClipSphere, clip_to_ball
+
+    ball = ClipSphere((0.0, 0.0, 0.0), 1.0)
+    line = np.array([[-2.0, 0, 0], [-0.5, 0, 0], [0.5, 0, 0], [np.nan, 0, 0], [0.2, 0, 0], [0.6, 0, 0], [3.0, 0, 0]])
+    pieces = clip_to_ball(line, ball)
+    assert [piece[:, 0].tolist() for piece in pieces] == [[-1.0, -0.5, 0.5], [0.2, 0.6, 1.0]]
+    circle = np.array([[np.cos(a), np.sin(a), 0.0] for a in np.linspace(0, 2 * np.pi, 65)]) * 2.0
+    assert clip_to_ball(circle, ball) == []
+    assert len(clip_to_ball(circle, ClipSphere((2.0, 0.0, 0.0), 1.0))) == 2  # the arc each side of its start
+
+
+def test_the_canal_circles_of_a_cylinder_lie_in_the_drawn_ball() -> None:
+    """A cylinder's characteristic circles beyond the drawn ball floated above and below the
+    surface: they are cut to the ball, as the surface is."""
+    from sorgui.engine.analysis import analyze
+    from sorgui.session.scene_data import build_scene, with_canal
+
+    analysis = analyze("x^2 + y^2 - 1")
+    scene = with_canal(build_scene(analysis, 2.0, 40, patch=False), analysis)
+    points = np.asarray(scene.canal_circles.points)
+    assert len(points) > 0
+    distances = np.linalg.norm(points - np.asarray(scene.region.center), axis=1)
+    assert distances.max() <= scene.region.radius * (1 + 1e-9)
+    assert np.allclose(np.hypot(points[:, 0], points[:, 1]), 1.0)  # on the cylinder
