@@ -177,17 +177,12 @@ def _vector_formula(values: tuple[str, ...], prefix: str, mode: Mode) -> Typeset
     except Unreadable:
         return TypesetFormula(plain, plain)
     separator = " : " if len(values) == 6 else ", "
-    body = separator.join(e.latex for e in entries)
-    # mathtext sizes \left( by the content: around digits and colons it draws parentheses
-    # smaller than the text's, so plain ones are typeset unless an entry is tall
-    tall = any(mark in e.latex for e in entries for mark in ("\\frac", "\\sqrt", "^"))
-    shown = (r"\left(" + body + r"\right)") if tall else "(" + body + ")"
     label = math_text.unicode_label(prefix) + " " if prefix else ""
     text = label + "(" + separator.join(e.unicode for e in entries) + ")"
     return TypesetFormula(
         plain,
         text,
-        ((prefix + " " if prefix else "") + shown,),
+        _vector_pieces([e.latex for e in entries], separator, prefix),
         source=values,
         shape="vector",
         shortened=any(e.shortened for e in entries),
@@ -195,10 +190,31 @@ def _vector_formula(values: tuple[str, ...], prefix: str, mode: Mode) -> Typeset
     )
 
 
+def _vector_pieces(entries: list[str], separator: str, prefix: str) -> tuple[str, ...]:
+    r"""A vector's LaTeX, one piece per entry, so that a vector wider than the pane wraps between
+    its entries (a line of 25-digit directions, shortened or not, scrolled sideways).
+
+    mathtext sizes ``\left(`` by the content: around digits and colons it draws parentheses
+    smaller than the text's, so plain ones are typeset unless an entry is tall; then each piece
+    is balanced on its own (``\left( … \right.`` and ``\left. … \right)``), as mathtext needs."""
+    tall = any(mark in e for e in entries for mark in ("\\frac", "\\sqrt", "^"))
+    opening, closing = (r"\left(", r"\right)") if tall else ("(", ")")
+    if len(entries) == 1:
+        pieces = [opening + entries[0] + closing]
+    else:
+        first, last = (r"\right.", r"\left.") if tall else ("", "")
+        middle = [entry + separator for entry in entries[1:-1]]
+        pieces = [opening + entries[0] + separator + first, *middle, last + entries[-1] + closing]
+    if prefix:
+        pieces[0] = f"{prefix} {pieces[0]}"
+    return tuple(pieces)
+
+
 def line_formula(point: Sequence[str], direction: Sequence[str], mode: Mode = "exact") -> TypesetFormula:
-    """The parametric line ``c + t·a``, wrapped (when wider than the pane) before ``+ t·a``."""
+    """The parametric line ``c + t·a``, wrapped (when wider than the pane) before ``+ t·a``, and
+    between the entries of ``c`` and ``a`` when one is wider."""
     c, a = vector_formula(point, mode=mode), vector_formula(direction, mode=mode)
-    pieces = (c.pieces[0], f" + t\\,{a.pieces[0]}") if c.pieces and a.pieces else ()
+    pieces = (*c.pieces, f" + t\\,{a.pieces[0]}", *a.pieces[1:]) if c.pieces and a.pieces else ()
     return TypesetFormula(
         f"{c.plain} + t*{a.plain}",
         f"{c.text} + t·{a.text}",

@@ -151,18 +151,38 @@ def _piece_boxes(pieces: Sequence[str], style: Style) -> list[_Box]:
 
 def wrap(pieces: Sequence[str], style: Style) -> tuple[tuple[int, ...], ...]:
     """Greedy lines of ``pieces`` (as tuples of piece indices) no wider than ``style.width``
-    (one piece may be wider); the second and later lines are indented by :data:`CONTINUATION`."""
+    (one piece may be wider); the second and later lines are indented by :data:`CONTINUATION`.
+
+    A piece that starts with a space (a term's `` + …``, a line's `` + t·a``) starts a group
+    with the pieces after it that do not (a vector's entries): lines break between groups, and
+    inside a group only where it is wider than a line, so ``c + t·a`` breaks before ``+ t``
+    first and between the entries of ``c`` or ``a`` only if one is wider than the pane."""
     boxes = _piece_boxes(pieces, style)
     indent = _box(CONTINUATION, style).width
     lines: list[list[int]] = [[]]
     width = 0.0
-    for index, box in enumerate(boxes):
-        if lines[-1] and width + box.width > style.width:
+    for group in _groups(pieces):
+        if lines[-1] and width + sum(boxes[i].width for i in group) > style.width:
             lines.append([])
             width = indent
-        lines[-1].append(index)
-        width += box.width
+        for index in group:
+            if lines[-1] and width + boxes[index].width > style.width:
+                lines.append([])
+                width = indent
+            lines[-1].append(index)
+            width += boxes[index].width
     return tuple(tuple(line) for line in lines)
+
+
+def _groups(pieces: Sequence[str]) -> list[list[int]]:
+    """The indices of ``pieces`` in groups, each starting at the first piece or at one that
+    starts with a space (:func:`wrap`)."""
+    groups: list[list[int]] = []
+    for index, piece in enumerate(pieces):
+        if not groups or piece.startswith(" "):
+            groups.append([])
+        groups[-1].append(index)
+    return groups
 
 
 LATEX_PIXELS_PER_CHARACTER = 5.0

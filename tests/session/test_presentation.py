@@ -23,11 +23,11 @@ from sorgui.engine.values import (
 from sorgui.examples import example_text
 from sorgui.export.formulas import catalogue
 from sorgui.numerics import real_roots
-from sorgui.session.formulas import expression_formula, pane_formulas, vector_formula
+from sorgui.session.formulas import expression_formula, line_formula, pane_formulas, vector_formula
 from sorgui.session.job import JobRequest, run_job
 from sorgui.session.messages import Failed, Finished, Invalid, JobCancelled
 from sorgui.session.scene_data import view_region
-from sorgui.session.typesetting import Style, render
+from sorgui.session.typesetting import PAD, Style, render
 
 s, t = sympy.symbols("s t")
 
@@ -63,8 +63,22 @@ def test_formulas_wrap_to_the_width_and_keep_exact_plain_text() -> None:
     wide, _masks = render(expression_formula(text).pieces, Style(width=5000))
     assert len(wide) == 1
     vector = vector_formula(("3/5", "-sqrt(2)", "0"))
-    assert vector.text == "(3/5, −√2, 0)" and vector.pieces == (r"\left(3/5, -\sqrt{2}, 0\right)",)
+    assert vector.text == "(3/5, −√2, 0)"
+    assert vector.pieces == (r"\left(3/5, \right.", r"-\sqrt{2}, ", r"\left.0\right)")  # each piece balanced
     assert vector.code("LaTeX") == r"\left(3 / 5, - \sqrt{2}, 0\right)"
+    assert vector_formula(("1", "2")).pieces == ("(1, ", "2)")
+
+
+def test_a_line_of_long_numbers_wraps_between_its_entries() -> None:
+    """The exact axis of a rounded cylinder (25-digit directions) scrolled sideways in the pane:
+    the line wraps between the entries of its point and its direction, shortened or not."""
+    point = ("52927/28073", "-1528367/54860", "-41935/52623")
+    direction = ("1034595518194622955967539", "50599067836203377800736", "678758058548794637421372")
+    formula = line_formula(point, direction)
+    assert formula.shortened  # 1.034595518…×10²⁴
+    lines, masks = render(formula.pieces, Style(width=300))
+    assert len(lines) > 2, lines
+    assert max(m.shape[1] for m in masks) <= 300 + sum(PAD[1]), lines
 
 
 @pytest.mark.parametrize(
@@ -140,7 +154,7 @@ def test_a_line_wider_than_the_pane_wraps_before_its_direction() -> None:
     decimal = decimal_line_formula((0.633333, -0.533333, 0.866667), (-0.436436, -0.872872, -0.218218))
     exact = line_formula(("3/10", "-6/5", "7/10"), ("123456789/1000", "4", "1"))
     for formula in (decimal, exact):
-        assert len(formula.pieces) == 2 and formula.pieces[1].startswith(r" + t\,")
+        assert sum(piece.startswith(r" + t\,") for piece in formula.pieces) == 1
         lines, masks = render(formula.pieces, Style(width=200, size=10.5))
         assert len(lines) == len(masks) == 2 and lines[1].startswith(CONTINUATION + r" + t\,")
         assert len(render(formula.pieces, Style(width=2000, size=10.5))[0]) == 1
