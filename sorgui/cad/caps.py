@@ -15,9 +15,11 @@ from __future__ import annotations
 import numpy as np
 from OCP.Bnd import Bnd_Box
 from OCP.BOPAlgo import BOPAlgo_MakerVolume
+from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepClass3d import BRepClass3d_SolidClassifier
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
+from OCP.GeomAbs import GeomAbs_Sphere
 from OCP.gp import gp_Pnt
 from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_IN, TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
@@ -28,6 +30,7 @@ from sorgui.render import ClipBox, ClipSphere
 from sorgui.render.sampling import value_and_gradient
 
 from .geometry import CadGeometryError
+from .reading import faces_of
 from .sewing import compound
 
 PROBES = 400
@@ -35,16 +38,18 @@ PROBES = 400
 
 
 def capped(shape: TopoDS_Shape, region: ClipSphere | ClipBox, terms: Terms, tolerance: float) -> TopoDS_Shape:
-    """The solid ``{f ≤ 0}`` inside ``region`` bounded by the part ``shape`` and the region."""
-    if isinstance(region, ClipSphere):
-        boundary = BRepPrimAPI_MakeSphere(gp_Pnt(*region.center), region.radius).Shape()
-    else:
-        low, high = region.bounds[0::2], region.bounds[1::2]
-        boundary = BRepPrimAPI_MakeBox(gp_Pnt(*low), gp_Pnt(*high)).Shape()
+    """The solid ``{f ≤ 0}`` inside ``region`` bounded by the part ``shape`` and the region. A
+    part on the ball's own sphere closes itself: that sphere is not added again (a sphere of
+    radius 2 in a ball of radius 2 about a centre 4e-16 away gave two solids, the part's and
+    the ball's, the area of the file twice the sphere's)."""
     maker = BOPAlgo_MakerVolume()
     for piece in _pieces(shape):
         maker.AddArgument(piece)
-    maker.AddArgument(boundary)
+    if isinstance(region, ClipBox):
+        low, high = region.bounds[0::2], region.bounds[1::2]
+        maker.AddArgument(BRepPrimAPI_MakeBox(gp_Pnt(*low), gp_Pnt(*high)).Shape())
+    elif not _on_sphere(shape, region, tolerance):
+        maker.AddArgument(BRepPrimAPI_MakeSphere(gp_Pnt(*region.center), region.radius).Shape())
     maker.SetIntersect(True)
     maker.SetFuzzyValue(tolerance)
     maker.Perform()
@@ -54,6 +59,20 @@ def capped(shape: TopoDS_Shape, region: ClipSphere | ClipBox, terms: Terms, tole
     if not kept:
         raise CadGeometryError("the region holds no point where f < 0 to make a solid of")
     return kept[0] if len(kept) == 1 else compound(kept)
+
+
+def _on_sphere(shape: TopoDS_Shape, ball: ClipSphere, tolerance: float) -> bool:
+    """Whether every face of ``shape`` lies on the ball's sphere (within ``tolerance``)."""
+    faces = faces_of(shape)
+    for face in faces:
+        surface = BRepAdaptor_Surface(face, False)
+        if surface.GetType() != GeomAbs_Sphere:
+            return False
+        sphere = surface.Sphere()
+        centre = np.array(sphere.Location().Coord())
+        if np.linalg.norm(centre - ball.center) > tolerance or abs(sphere.Radius() - ball.radius) > tolerance:
+            return False
+    return bool(faces)
 
 
 def _pieces(shape: TopoDS_Shape) -> list[TopoDS_Shape]:

@@ -230,16 +230,30 @@ def _planes(polynomial: str, normal: Sequence[str], centre: np.ndarray, radius: 
 
 def _spheres(polynomial: str, center: Sequence[str], centre: np.ndarray, radius: float) -> list[Analytic]:
     """The spheres about ``center`` whose radii are the positive real roots of ``g(center + t·e₁)``
-    (even in ``t``) and that meet the ball."""
+    (even in ``t``) and that meet the ball in more than a point: inside it, or the ball's own
+    sphere (a sphere of radius 2 in the ball of radius 2 about its centre was refused, as if it
+    had no point there, while a ball about a centre off by 4e-16 gave the whole sphere)."""
     middle = float_vector(center)
     reach = float(np.linalg.norm(middle - centre))
     radii = sorted({r for r in _line_roots(polynomial, center, ("1", "0", "0")) if r > 0})
     spheres = [
-        Analytic("sphere", middle, np.array([0.0, 0.0, 1.0]), radius=r) for r in radii if abs(reach - r) < radius
+        Analytic("sphere", middle, np.array([0.0, 0.0, 1.0]), radius=r)
+        for r in radii
+        if abs(reach - r) < radius or _same_sphere(reach, r, radius)
     ]
     if not spheres:
         raise CadGeometryError("the sphere has no real points in the drawn region")
     return spheres
+
+
+def _same_sphere(reach: float, r: float, radius: float) -> bool:
+    """Whether the sphere of radius ``r`` whose centre is ``reach`` from the ball's is the ball's
+    own sphere, within :data:`SAME_SPHERE` of its radius."""
+    return reach <= SAME_SPHERE * radius and abs(r - radius) <= SAME_SPHERE * radius
+
+
+SAME_SPHERE = 1e-12
+"""The relative distance of centres and of radii within which a sphere is the ball's own."""
 
 
 def _number(value: sympy.Expr) -> float:

@@ -429,3 +429,25 @@ def test_a_closed_exact_profile_reads_back_from_step_on_the_surface(tmp_path: Pa
     assert "profile: exact rational B-spline" in path.read_text(encoding="ascii")
     surface = readback.Surface(analysis.squarefree, scene.region.center)
     assert readback.part_to_surface(read_shape(path), surface, scene.region.radius, 800) <= 1e-9 * scene.region.radius
+
+
+@pytest.mark.parametrize("centre", [(0.0, 0.0, 0.0), (4.4408921e-16, 4.4408921e-16, 4.4408921e-16)])
+@pytest.mark.parametrize("cap", [False, True])
+def test_a_sphere_on_the_balls_own_sphere_is_written_whole(tmp_path: Path, centre, cap: bool) -> None:
+    """A sphere of radius 2 in the ball of radius 2 about its centre was refused ("no real
+    points in the drawn region"); about a centre 4e-16 away (what ``--region=2`` gives), capped,
+    it was two solids, the part's and the ball's, of twice the sphere's area."""
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    from sorgui.render import ClipSphere
+
+    analysis = analyze("x^2 + y^2 + z^2 - 4")
+    scene = build_scene(analysis, region=ClipSphere(centre, 2.0))
+    path, _holds = export_file(analysis, tmp_path / "ball.step", scene=scene, cap=cap)
+    shape = read_shape(path)
+    topology = readback.topology(shape)
+    assert topology.valid and topology.solids == 1
+    props = GProp_GProps()
+    BRepGProp.SurfaceProperties_s(shape, props)
+    assert props.Mass() == pytest.approx(16 * np.pi, rel=1e-6)
