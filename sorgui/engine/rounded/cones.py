@@ -97,12 +97,12 @@ def nearest_cone(
     found: list[tuple[int, list[Fraction], S]] = []
     checks = 0
     tried: set[tuple[Fraction, Fraction, Fraction]] = set()
-    for apex in _apexes(centre, scale):
+    for apex in snapped_points(centre, scale):
         if apex in tried:
             continue
         tried.add(apex)
         A = np.array([float(v) for v in apex])
-        design = _design(monomials, A) * weights[:, None]
+        design = form_design(monomials, A) * weights[:, None]
         q, *_ = np.linalg.lstsq(design, target, rcond=None)
         if np.sqrt(np.mean((design @ q - target) ** 2)) > MAX_RESIDUAL:
             continue
@@ -117,56 +117,61 @@ def nearest_cone(
                 if K <= 0:
                     continue
                 if K not in refits:
-                    refits[K] = _refit(design, target, lam, float(K), unit)
-                passed = _first_direction(family, refits[K], K, apex, typed, rounding, build, check)
+                    refits[K] = refit_direction(design, target, _cone_model(float(K)), lam, unit)
+                passed = first_direction(family, refits[K], _cone_coefficients(K), apex, typed, rounding, build, check)
                 checks += len(DIRECTION_RADII) if passed is None else 1
                 if passed is not None:
                     found.append(passed)
                     break  # the coarsest slope of this family that passes
                 if checks >= MAX_CHECKS:
-                    return _simplest(found)
+                    return simplest(found)
         if found:
-            return _simplest(found)
-    return _simplest(found)
+            return simplest(found)
+    return simplest(found)
 
 
-def _first_direction(
+def first_direction(
     family: DirectionSnap,
     unit: FloatArray,
-    K: Fraction,
-    apex: tuple[Fraction, Fraction, Fraction],
+    coefficients_of: Callable[[Fraction], list[Fraction]],
+    point: tuple[Fraction, Fraction, Fraction],
     typed: Typed,
     rounding: Rounding,
     build: Build,
     check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
 ) -> tuple[int, list[Fraction], S] | None:
-    """The cone about ``apex`` with ``K`` along the coarsest direction of ``family`` near
-    ``unit`` (within :data:`DIRECTION_RADII`) with every coefficient within the rounding, once
-    scaled: its bits (coefficients and axis), coefficients and surface."""
+    """The surface about the axis through ``point`` along the coarsest direction ``a`` of
+    ``family`` near ``unit`` (within :data:`DIRECTION_RADII`) with every coefficient within the
+    rounding, once scaled; ``coefficients_of(|a|²)`` are its ``q_ij``. Its bits (coefficients,
+    point and axis), coefficients and surface."""
     for radius in DIRECTION_RADII:
         a = family(unit, radius)
         if a is None or not all(isinstance(v, Fraction) for v in a):
             continue
         rational = three(v for v in a if isinstance(v, Fraction))
-        norm2 = sum((v * v for v in rational), Fraction(0))
-        coefficients = [Fraction(0), Fraction(0), -(1 + K), norm2]
-        g = build(rational, apex, coefficients)
+        coefficients = coefficients_of(sum((v * v for v in rational), Fraction(0)))
+        g = build(rational, point, coefficients)
         if g is None:
             continue
         factor = within_scale(g, typed, rounding)
         if factor is None:
             continue
-        surface = check(g * fmpq(factor.numerator, factor.denominator), rational, apex)
+        surface = check(g * fmpq(factor.numerator, factor.denominator), rational, point)
         if surface is not None and surface.largest <= 1.0:
             scaled = [factor * c for c in coefficients]
-            return shape_bits(scaled) + bits([*apex, *rational]), scaled, surface
+            return shape_bits(scaled) + bits([*point, *rational]), scaled, surface
     return None
 
 
-def _apexes(centre: FloatArray, scale: float) -> list[tuple[Fraction, Fraction, Fraction]]:
-    """The apex's coordinates snapped within each of :data:`APEX_RADII` (times ``scale``): to
-    the nearest decimals of fewest places first (a CAD part's ``−0.00725`` m, not the simpler
-    ``−1/138``), then to the simplest rationals."""
+def _cone_coefficients(K: Fraction) -> Callable[[Fraction], list[Fraction]]:
+    """A cone's ``q_ij`` about its apex on :data:`EXPONENTS`, for a direction of ``|a|²``."""
+    return lambda norm2: [Fraction(0), Fraction(0), -(1 + K), norm2]
+
+
+def snapped_points(centre: FloatArray, scale: float) -> list[tuple[Fraction, Fraction, Fraction]]:
+    """A point's coordinates (a cone's apex, a torus's centre) snapped within each of
+    :data:`APEX_RADII` (times ``scale``): to the nearest decimals of fewest places first (a CAD
+    part's ``−0.00725`` m, not the simpler ``−1/138``), then to the simplest rationals."""
     found = []
     for radius in APEX_RADII:
         r = radius * scale
@@ -175,16 +180,17 @@ def _apexes(centre: FloatArray, scale: float) -> list[tuple[Fraction, Fraction, 
     return found
 
 
-def _simplest(found: list[tuple[int, list[Fraction], S]]) -> tuple[list[Fraction], S] | None:
+def simplest(found: list[tuple[int, list[Fraction], S]]) -> tuple[list[Fraction], S] | None:
+    """The coefficients and surface of the fewest bits of ``found``, if any."""
     if not found:
         return None
     _, coefficients, surface = min(found, key=lambda item: item[0])
     return coefficients, surface
 
 
-def _design(monomials: list[Monomial], A: FloatArray) -> FloatArray:
-    """The coefficients of ``(p − A)ᵀ Q (p − A)`` at ``monomials`` as linear forms in the entries
-    ``(Q₀₀, Q₁₁, Q₂₂, Q₀₁, Q₀₂, Q₁₂)``."""
+def form_design(monomials: list[Monomial], A: FloatArray) -> FloatArray:
+    """The coefficients of ``(p − A)ᵀ Q (p − A)`` at ``monomials`` (of degree at most 2; 0 at
+    the others) as linear forms in the entries ``(Q₀₀, Q₁₁, Q₂₂, Q₀₁, Q₀₂, Q₁₂)``."""
     rows = []
     for m in monomials:
         row = np.zeros(6)
@@ -197,7 +203,7 @@ def _design(monomials: list[Monomial], A: FloatArray) -> FloatArray:
             for index, (r, s) in enumerate(_PAIRS, start=3):
                 if i in (r, s):
                     row[index] = -2.0 * A[s if i == r else r]
-        else:  # the constant AᵀQA
+        elif not any(m):  # the constant AᵀQA
             row[:3] = A**2
             row[3:] = [2.0 * A[r] * A[s] for r, s in _PAIRS]
         rows.append(row)
@@ -221,15 +227,35 @@ def _axis(Q: FloatArray) -> tuple[float, float, FloatArray] | None:
     return (lam, slope, vectors[:, odd]) if slope > 0 else None
 
 
-def _refit(design: FloatArray, target: FloatArray, lam: float, K: float, unit: FloatArray) -> FloatArray:
-    """``â`` of the least-squares fit of ``Q = λ(I − (1 + K)ââᵀ)`` with ``K`` held (Gauss and
-    Newton's steps in ``λ`` and the two angles of ``â``, from ``unit``)."""
+def _cone_model(K: float) -> Callable[[float, FloatArray], FloatArray]:
+    """The entries of ``Q = λ(I − (1 + K)ââᵀ)`` for ``(λ, â)``, ``K`` held."""
+
+    def entries(scale: float, n: FloatArray) -> FloatArray:
+        return form_entries(scale * (np.eye(3) - (1 + K) * np.outer(n, n)))
+
+    return entries
+
+
+def form_entries(Q: FloatArray) -> FloatArray:
+    """``(Q₀₀, Q₁₁, Q₂₂, Q₀₁, Q₀₂, Q₁₂)``, the unknowns of :func:`form_design`."""
+    return np.array([Q[0, 0], Q[1, 1], Q[2, 2], Q[0, 1], Q[0, 2], Q[1, 2]])
+
+
+def refit_direction(
+    design: FloatArray,
+    target: FloatArray,
+    model: Callable[[float, FloatArray], FloatArray],
+    lam: float,
+    unit: FloatArray,
+) -> FloatArray:
+    """``â`` of the least-squares fit of ``design @ model(λ, â) ≈ target`` (Gauss and Newton's
+    steps in ``λ`` and the two angles of ``â``, from ``unit``): the axis refitted with the
+    surface's shape held (a cone's ``K``, a torus's radii)."""
 
     def entries(params: FloatArray) -> FloatArray:
         scale, theta, phi = params
         n = np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
-        Q = scale * (np.eye(3) - (1 + K) * np.outer(n, n))
-        return np.array([Q[0, 0], Q[1, 1], Q[2, 2], Q[0, 1], Q[0, 2], Q[1, 2]])
+        return model(scale, n)
 
     unit = unit / np.linalg.norm(unit)
     params = np.array([lam, np.arccos(np.clip(unit[2], -1.0, 1.0)), np.arctan2(unit[1], unit[0])])

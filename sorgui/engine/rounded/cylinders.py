@@ -37,7 +37,7 @@ import numpy as np
 from flint import fmpq, fmpq_mpoly
 
 from .coefficients import Typed, bits, within_scale
-from .cones import DIRECTION_RADII, MAX_RESIDUAL, Build, S
+from .cones import DIRECTION_RADII, MAX_RESIDUAL, Build, S, simplest
 from .dense import FloatArray, Monomial
 from .directions import FAMILIES, decimal_near, simplest_near, three
 from .precision import Rounding
@@ -96,15 +96,8 @@ def nearest_cylinder(
                 if passed[0] < RADIUS_WEIGHT * DECIMAL_BITS:
                     break  # a short radius: a finer direction has no simpler one
             if checks >= MAX_CHECKS:
-                return _simplest(found)
-    return _simplest(found)
-
-
-def _simplest(found: list[tuple[int, list[Fraction], S]]) -> tuple[list[Fraction], S] | None:
-    if not found:
-        return None
-    _, coefficients, surface = min(found, key=lambda item: item[0])
-    return coefficients, surface
+                return simplest(found)
+    return simplest(found)
 
 
 def _cylinder_along(

@@ -392,7 +392,13 @@ def refine_minimax(
 
     if not len(params):
         return candidate
-    theta = params
+    return scaled(lawson(residual_vector, params))
+
+
+def lawson(residual_vector: Callable[[FloatArray], FloatArray], theta: FloatArray) -> FloatArray:
+    """The parameters near ``theta`` that make the largest entry of ``residual_vector`` smallest:
+    Lawson's iteratively reweighted least squares on the linearised problem, relinearised
+    :data:`MINIMAX_ROUNDS` times while the largest residual falls."""
     r = residual_vector(theta)
     for _ in range(MINIMAX_ROUNDS):
         jacobian = forward_jacobian(residual_vector, theta, r)
@@ -410,7 +416,7 @@ def refine_minimax(
         if np.abs(trial).max() >= np.abs(r).max():
             break
         theta, r = theta + step, trial
-    return scaled(theta)
+    return theta
 
 
 def _fixed_problem(

@@ -50,6 +50,7 @@ from . import dense
 from .coefficients import (
     HELD,
     SNAPPED,
+    TORUS_TERMS,
     Typed,
     bits,
     coefficient_candidates,
@@ -79,6 +80,7 @@ from .directions import (
 )
 from .near_symmetry import Candidate, Fit, Normalised, fit, refine_fixed, refine_minimax
 from .precision import Rounding
+from .tori import nearest_torus
 
 AXIS_TRIES = 3
 MAX_CHECKS = 16
@@ -223,7 +225,9 @@ def _radius(sigma: FloatArray, spread: float, family: DirectionSnap) -> float | 
 def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurface | None:
     """The simplest exact surface of the fit's kind within the rounding, or ``None``: for each
     family of directions the first surface that passes, and for a quadric the nearest cone or
-    cylinder (:func:`.cones.nearest_cone`, :func:`.cylinders.nearest_cylinder`); of these a
+    cylinder (:func:`.cones.nearest_cone`, :func:`.cylinders.nearest_cylinder`), and for a
+    quartic with no torus within the rounding yet the nearest torus (:func:`.tori.nearest_torus`);
+    of these a
     torus or a cone (the CAD part) first, then one whose coefficients were snapped (not fitted:
     coefficients fitted to an axis fit it whatever the axis), then the one whose profile
     coefficients and axis have the fewest bits."""
@@ -253,6 +257,15 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
         found = [item._replace(cone=_about_apex(item.coefficients)) for item in found]
         if cone is not None:
             found.append(_Found(cone[0], cone[1], False, False, True))
+    has_torus = any(item.torus and item.surface.largest <= 1.0 for item in found)
+    if best.candidate.kind == REVOLUTION and f.degree == 4 and typed is not None and not has_torus:
+        assert best.candidate.direction is not None  # an axis has a direction
+        centre = profile_centre(f, best, best.candidate.direction) * f.length
+        torus = nearest_torus(
+            f, typed, rounding, centre, _quadric_builder(REVOLUTION, TORUS_TERMS), _checker(f, typed, rounding)
+        )
+        if torus is not None:
+            found.append(_Found(torus[0], torus[1], False, True))
     if not found:
         return None
     return min(found, key=_rank).surface
@@ -309,8 +322,8 @@ def _slope(found: _Found) -> Fraction | None:
 def _quadric_builder(
     kind: str, exponents: tuple[tuple[int, int], ...]
 ) -> Callable[[Vector, Vector, list[Fraction]], fmpq_mpoly | None]:
-    """:func:`build` over ``QQ`` of a quadric of ``kind`` on ``exponents``, for :mod:`.cones`
-    and :mod:`.cylinders`."""
+    """:func:`build` over ``QQ`` of a surface of ``kind`` on ``exponents``, for :mod:`.cones`,
+    :mod:`.cylinders` and :mod:`.tori`."""
 
     def built(a: Vector, c: Vector, coefficients: list[Fraction]) -> fmpq_mpoly | None:
         g = build(kind, a, c, exponents, coefficients)
@@ -322,7 +335,8 @@ def _quadric_builder(
 def _checker(
     f: Normalised, typed: Typed, rounding: Rounding
 ) -> Callable[[fmpq_mpoly, Vector, Vector], ExactSurface | None]:
-    """:func:`check_surface` against the typed ``f``, for :mod:`.cones` and :mod:`.cylinders`."""
+    """:func:`check_surface` against the typed ``f``, for :mod:`.cones`, :mod:`.cylinders` and
+    :mod:`.tori`."""
 
     def checked(g: fmpq_mpoly, a: Vector, c: Vector) -> ExactSurface | None:
         return check_surface(g, typed, rounding, f, a, c)

@@ -1,0 +1,195 @@
+"""The nearest exact torus of a rounded quartic of revolution (docs/math.md §8.5, "Tori").
+
+A torus is fixed by its centre ``C``, its axis direction ``a`` and its radii ``R`` (of the
+circle of centres) and ``r`` (of the tube). With ``q = p − C``, ``ρ = |q|²``, ``h = a·q``,
+``k = R² − r²`` and ``S = 4R²``:
+
+    g = (ρ + k)² − S·(ρ − h²/|a|²) = ρ² + (2k − S)·ρ + (S/|a|²)·h² + k²,
+
+rational when ``C``, ``a``, ``R²`` and ``r²`` are. The profile's snapping (:mod:`.snapping`)
+fits the coefficients of ``g`` on one exact axis; a CAD torus on a turned axis has an
+irrational direction, and on a rational one near it the fit's radii slip by a few of their
+standard errors (a 6-digit torus of ``R = 32``, ``r = 8`` in mm had ``4R²`` at
+``4095.990 ± 0.003``): no torus was tried within the rounding. Here the radii are found from
+every coefficient with the centre held, snapped, and the axis fitted again for them:
+
+1. the centre is the profile's, snapped as a cone's apex is (:func:`.cones.snapped_points`);
+2. with the centre held, ``f ≈ λρ² + qᵀMq + c₀`` is linear in ``λ``, the six entries of ``M``
+   and ``c₀``: a weighted least-squares fit over every coefficient (weights: the rounding);
+3. ``M/λ = (2k − S)·I + S·ââᵀ``: the odd eigenvalue is ``2k``, the pair ``2k − S``; ``R`` and
+   ``r`` are snapped to decimals (coarsest first), and with them held ``(λ, â)`` are fitted
+   again (:func:`.cones.refit_direction`); ``â`` is snapped in each family of directions;
+4. ``g`` is scaled by the simplest factor that puts every coefficient within the rounding and
+   checked exactly, as a cone is (:func:`.cones.first_direction`).
+
+The simplest torus that passes, by the bits of its coefficients, centre and axis, is the answer.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from fractions import Fraction
+from typing import TYPE_CHECKING
+
+import numpy as np
+from flint import fmpq_mpoly
+
+from .cones import (
+    DIRECTION_RADII,
+    MAX_RESIDUAL,
+    Build,
+    S,
+    first_direction,
+    form_design,
+    form_entries,
+    refit_direction,
+    simplest,
+    snapped_points,
+)
+from .dense import FloatArray, Monomial
+from .directions import FAMILIES, decimal_near
+from .near_symmetry import lawson
+from .precision import Rounding
+
+if TYPE_CHECKING:
+    from ..algebra.linalg import Vector
+    from .coefficients import Typed
+    from .near_symmetry import Normalised
+
+RADIUS_RADII = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
+"""Radii, relative to each of the torus's radii, within which it is snapped to the decimal of
+fewest places, coarsest first."""
+MAX_CHECKS = 400
+"""Exact surfaces built and checked at most, over all centres, radii and directions."""
+
+
+def nearest_torus(
+    f: Normalised,
+    typed: Typed,
+    rounding: Rounding,
+    centre: FloatArray,
+    build: Build,
+    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+) -> tuple[list[Fraction], S] | None:
+    """The simplest torus with every coefficient within the rounding of the quartic ``f`` (its
+    ``q_ij`` on :data:`.coefficients.TORUS_TERMS`, and the surface), or ``None``. ``centre`` is
+    the profile's centre in ``f``'s coordinates. ``build`` makes ``g`` and ``check`` checks it
+    against the typed surface (:func:`.snapping.check_surface`)."""
+    if f.degree != 4 or not np.all(np.isfinite(centre)):
+        return None
+    monomials = [(i, j, d - i - j) for d in range(5) for i in range(d + 1) for j in range(d - i + 1)]
+    weights = np.array([1.0 / rounding.bound(m) for m in monomials])
+    target = np.array([typed.floats.get(m, 0.0) for m in monomials]) * weights
+    scale = max(float(np.linalg.norm(centre)), f.length)
+    found: list[tuple[int, list[Fraction], S]] = []
+    checks = 0
+    tried: set[tuple[Fraction, Fraction, Fraction]] = set()
+    for point in snapped_points(centre, scale):
+        if point in tried:
+            continue
+        tried.add(point)
+        design = _design(monomials, np.array([float(v) for v in point])) * weights[:, None]
+        solution, *_ = np.linalg.lstsq(design, target, rcond=None)
+        if np.sqrt(np.mean((design @ solution - target) ** 2)) > MAX_RESIDUAL:
+            continue
+        shape = _shape(solution)
+        if shape is None:
+            continue
+        lam, R, r, unit = shape
+        refits: dict[tuple[Fraction, Fraction], FloatArray] = {}
+        for family in FAMILIES:
+            for radius in RADIUS_RADII:
+                radii = decimal_near(R, radius * R), decimal_near(r, radius * r)
+                if not all(radii):
+                    continue
+                k, S4 = radii[0] ** 2 - radii[1] ** 2, 4 * radii[0] ** 2
+                if radii not in refits:
+                    model = _torus_model(float(k), float(S4))
+                    fitted = refit_direction(design, target, model, lam, unit)
+                    refits[radii] = _largest_smallest(design, target, model, fitted)
+                passed = first_direction(
+                    family, refits[radii], _torus_coefficients(k, S4), point, typed, rounding, build, check
+                )
+                checks += len(DIRECTION_RADII) if passed is None else 1
+                if passed is not None:
+                    found.append(passed)
+                    break  # the coarsest radii of this family that pass
+                if checks >= MAX_CHECKS:
+                    return simplest(found)
+        if found:
+            return simplest(found)
+    return simplest(found)
+
+
+def _torus_coefficients(k: Fraction, S4: Fraction) -> Callable[[Fraction], list[Fraction]]:
+    """A torus's ``q_ij`` on :data:`.coefficients.TORUS_TERMS` (``1, h², ρ, ρ²``) for a direction
+    of ``|a|²``: ``k², S/|a|², 2k − S, 1``."""
+    return lambda norm2: [k * k, S4 / norm2, 2 * k - S4, Fraction(1)]
+
+
+def _torus_model(k: float, S4: float) -> Callable[[float, FloatArray], FloatArray]:
+    """The unknowns of :func:`_design` for ``(λ, â)``, the radii held: ``λ``, the entries of
+    ``λ((2k − S)I + Sââᵀ)`` and ``λk²``."""
+
+    def unknowns(scale: float, n: FloatArray) -> FloatArray:
+        M = scale * ((2 * k - S4) * np.eye(3) + S4 * np.outer(n, n))
+        return np.concatenate([[scale], form_entries(M), [scale * k * k]])
+
+    return unknowns
+
+
+def _largest_smallest(
+    design: FloatArray, target: FloatArray, model: Callable[[float, FloatArray], FloatArray], unit: FloatArray
+) -> FloatArray:
+    """The direction near ``unit`` (the least-squares one) that makes the largest weighted
+    residual smallest, with the scale (:func:`.near_symmetry.lawson`): every coefficient within
+    its rounding is a bound on the largest. The least-squares axis of a 6-digit torus was
+    1.6e-7 from the one it was printed from, and only a torus scaled by ``2481838/2481837``
+    was within the rounding about the directions near it."""
+    column = design @ model(1.0, unit)
+    lam = float(column @ target) / float(column @ column)
+
+    def direction(theta: float, phi: float) -> FloatArray:
+        return np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
+
+    def residual(params: FloatArray) -> FloatArray:
+        scale, theta, phi = params
+        return design @ model(lam * (1.0 + scale), direction(theta, phi)) - target
+
+    start = np.array([0.0, np.arccos(np.clip(unit[2], -1.0, 1.0)), np.arctan2(unit[1], unit[0])])
+    _, theta, phi = lawson(residual, start)
+    return direction(theta, phi)
+
+
+def _shape(solution: FloatArray) -> tuple[float, float, float, FloatArray] | None:
+    """``(λ, R, r, â)`` of the fit ``λρ² + qᵀMq + c₀``: ``M/λ = (2k − S)I + Sââᵀ``, its odd
+    eigenvalue ``2k`` with the eigenvector ``â``, the pair ``2k − S``; ``None`` unless it is a
+    real torus (``S > 0``, ``r² > 0``)."""
+    lam = float(solution[0])
+    if lam == 0.0:
+        return None
+    M = solution[1:7] / lam
+    values, vectors = np.linalg.eigh(np.array([[M[0], M[3], M[4]], [M[3], M[1], M[5]], [M[4], M[5], M[2]]]))
+    gaps = [abs(values[1] - values[2]), abs(values[0] - values[2]), abs(values[0] - values[1])]
+    odd = int(np.argmin(gaps))  # the eigenvalue not in the nearest pair
+    pair = float(np.mean([values[i] for i in range(3) if i != odd]))
+    k, S4 = float(values[odd]) / 2, float(values[odd]) - pair
+    if S4 <= 0 or S4 / 4 - k <= 0:
+        return None
+    return lam, float(np.sqrt(S4 / 4)), float(np.sqrt(S4 / 4 - k)), vectors[:, odd]
+
+
+def _design(monomials: list[Monomial], C: FloatArray) -> FloatArray:
+    """The coefficients of ``λρ² + qᵀMq + c₀`` (``q = p − C``) at ``monomials`` as linear forms
+    in ``λ``, the entries of ``M`` (:func:`.cones.form_design`) and ``c₀``."""
+    rho: dict[Monomial, float] = {(2, 0, 0): 1.0, (0, 2, 0): 1.0, (0, 0, 2): 1.0, (0, 0, 0): float(C @ C)}
+    for i, m in enumerate(((1, 0, 0), (0, 1, 0), (0, 0, 1))):
+        rho[m] = -2.0 * C[i]
+    squared: dict[Monomial, float] = {}
+    for m1, v1 in rho.items():
+        for m2, v2 in rho.items():
+            m = (m1[0] + m2[0], m1[1] + m2[1], m1[2] + m2[2])
+            squared[m] = squared.get(m, 0.0) + v1 * v2
+    constant = np.array([1.0 if not any(m) else 0.0 for m in monomials])
+    quartic = np.array([squared.get(m, 0.0) for m in monomials])
+    return np.column_stack([quartic, form_design(monomials, C), constant])
