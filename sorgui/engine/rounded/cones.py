@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from fractions import Fraction
-from typing import TYPE_CHECKING, Protocol, TypeVar
+from typing import TYPE_CHECKING, NamedTuple, Protocol, TypeAlias, TypeVar
 
 import numpy as np
 from flint import fmpq, fmpq_mpoly
@@ -94,40 +94,110 @@ def nearest_cone(
     weights = np.array([1.0 / rounding.bound(m) for m in monomials])
     target = np.array([typed.floats[m] for m in monomials]) * weights
     scale = max(float(np.linalg.norm(centre)), f.length)
-    found: list[tuple[int, list[Fraction], S]] = []
-    checks = 0
-    tried: set[tuple[Fraction, Fraction, Fraction]] = set()
-    for apex in snapped_points(centre, scale):
-        if apex in tried:
-            continue
-        tried.add(apex)
-        A = np.array([float(v) for v in apex])
-        design = form_design(monomials, A) * weights[:, None]
-        q, *_ = np.linalg.lstsq(design, target, rcond=None)
-        if np.sqrt(np.mean((design @ q - target) ** 2)) > MAX_RESIDUAL:
-            continue
+
+    def tries(design: FloatArray, q: FloatArray) -> Tries | None:
         axis = _axis(_matrix(q))
         if axis is None:
-            continue
+            return None
         lam, slope, unit = axis
-        refits: dict[Fraction, FloatArray] = {}
-        for family in FAMILIES:
-            for k_radius in SLOPE_RADII:
-                K = simplest_near(slope, k_radius * slope)
-                if K <= 0:
-                    continue
-                if K not in refits:
-                    refits[K] = refit_direction(design, target, _cone_model(float(K)), lam, unit)
-                passed = first_direction(family, refits[K], _cone_coefficients(K), apex, typed, rounding, build, check)
-                checks += len(DIRECTION_RADII) if passed is None else 1
-                if passed is not None:
-                    found.append(passed)
-                    break  # the coarsest slope of this family that passes
-                if checks >= MAX_CHECKS:
-                    return simplest(found)
-        if found:
-            return simplest(found)
+        slopes = dict.fromkeys(simplest_near(slope, radius * slope) for radius in SLOPE_RADII)
+        shapes = [Shape(K, _cone_coefficients(K), _cone_model(float(K))) for K in slopes if K > 0]
+        return shapes, least_squares(design, target, lam, unit)
+
+    def design_at(A: FloatArray) -> FloatArray:
+        design: FloatArray = form_design(monomials, A) * weights[:, None]
+        return design
+
+    return nearest_about(snapped_points(centre, scale), design_at, target, tries, typed, rounding, build, check)
+
+
+def nearest_about(
+    points: list[tuple[Fraction, Fraction, Fraction]],
+    design_at: Callable[[FloatArray], FloatArray],
+    target: FloatArray,
+    tries: Callable[[FloatArray, FloatArray], Tries | None],
+    typed: Typed,
+    rounding: Rounding,
+    build: Build,
+    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+) -> tuple[list[Fraction], S] | None:
+    """The simplest surface that passes about the first of ``points`` (a cone's apex, a torus's
+    centre; coarsest first) about which one passes. At each, the weighted least-squares fit of
+    ``design_at(point)`` to ``target`` (refuted by a residual above :data:`MAX_RESIDUAL`) gives,
+    through ``tries``, the shapes to snap and the axis refit (:func:`first_shapes`); at most
+    :data:`MAX_CHECKS` exact surfaces are checked in all."""
+    found: list[tuple[int, list[Fraction], S]] = []
+    checks = 0
+    for point in dict.fromkeys(points):
+        design = design_at(np.array([float(v) for v in point]))
+        solution, *_ = np.linalg.lstsq(design, target, rcond=None)
+        if np.sqrt(np.mean((design @ solution - target) ** 2)) > MAX_RESIDUAL:
+            continue
+        shapes = tries(design, np.asarray(solution, dtype=np.float64))
+        if shapes is None:
+            continue
+        passed, used = first_shapes(*shapes, point, typed, rounding, build, check, MAX_CHECKS - checks)
+        found += passed
+        checks += used
+        if found or checks >= MAX_CHECKS:
+            break
     return simplest(found)
+
+
+Model = Callable[[float, FloatArray], FloatArray]
+"""The unknowns of a fit's design for ``(λ, â)``, the shape held (:func:`refit_direction`)."""
+
+
+Tries: TypeAlias = "tuple[list[Shape], Callable[[Model], FloatArray]]"
+"""The shapes to try about a point, and the axis refit for each one's model."""
+
+
+class Shape(NamedTuple):
+    """A shape tried about a snapped point: its snapped parameters (a cone's ``K``, a torus's
+    radii), its ``q_ij`` for a direction of ``|a|²``, and its model of the fit."""
+
+    key: object
+    coefficients_of: Callable[[Fraction], list[Fraction]]
+    model: Model
+
+
+def least_squares(
+    design: FloatArray, target: FloatArray, lam: float, unit: FloatArray
+) -> Callable[[Model], FloatArray]:
+    """The axis refitted for a shape's model by least squares (:func:`refit_direction`)."""
+    return lambda model: refit_direction(design, target, model, lam, unit)
+
+
+def first_shapes(
+    shapes: list[Shape],
+    refit: Callable[[Model], FloatArray],
+    point: tuple[Fraction, Fraction, Fraction],
+    typed: Typed,
+    rounding: Rounding,
+    build: Build,
+    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+    budget: int,
+) -> tuple[list[tuple[int, list[Fraction], S]], int]:
+    """For each family of directions, the first of ``shapes`` (coarsest first) that passes
+    about ``point`` along the direction ``refit`` fits for it (:func:`first_direction`), and
+    the exact surfaces checked (at most about ``budget``)."""
+    refits: dict[object, FloatArray] = {}
+    found = []
+    checks = 0
+    for family in FAMILIES:
+        for shape in shapes:
+            if shape.key not in refits:
+                refits[shape.key] = refit(shape.model)
+            passed = first_direction(
+                family, refits[shape.key], shape.coefficients_of, point, typed, rounding, build, check
+            )
+            checks += len(DIRECTION_RADII) if passed is None else 1
+            if passed is not None:
+                found.append(passed)
+                break  # the coarsest shape of this family that passes
+            if checks >= budget:
+                return found, checks
+    return found, checks
 
 
 def first_direction(
@@ -227,7 +297,7 @@ def _axis(Q: FloatArray) -> tuple[float, float, FloatArray] | None:
     return (lam, slope, vectors[:, odd]) if slope > 0 else None
 
 
-def _cone_model(K: float) -> Callable[[float, FloatArray], FloatArray]:
+def _cone_model(K: float) -> Model:
     """The entries of ``Q = λ(I − (1 + K)ââᵀ)`` for ``(λ, â)``, ``K`` held."""
 
     def entries(scale: float, n: FloatArray) -> FloatArray:
@@ -244,7 +314,7 @@ def form_entries(Q: FloatArray) -> FloatArray:
 def refit_direction(
     design: FloatArray,
     target: FloatArray,
-    model: Callable[[float, FloatArray], FloatArray],
+    model: Model,
     lam: float,
     unit: FloatArray,
 ) -> FloatArray:

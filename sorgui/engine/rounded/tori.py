@@ -35,19 +35,19 @@ import numpy as np
 from flint import fmpq_mpoly
 
 from .cones import (
-    DIRECTION_RADII,
-    MAX_RESIDUAL,
     Build,
+    Model,
     S,
-    first_direction,
+    Shape,
+    Tries,
     form_design,
     form_entries,
+    nearest_about,
     refit_direction,
-    simplest,
     snapped_points,
 )
 from .dense import FloatArray, Monomial
-from .directions import FAMILIES, decimal_near
+from .directions import decimal_near
 from .near_symmetry import lawson
 from .precision import Rounding
 
@@ -59,8 +59,6 @@ if TYPE_CHECKING:
 RADIUS_RADII = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
 """Radii, relative to each of the torus's radii, within which it is snapped to the decimal of
 fewest places, coarsest first."""
-MAX_CHECKS = 400
-"""Exact surfaces built and checked at most, over all centres, radii and directions."""
 
 
 def nearest_torus(
@@ -81,44 +79,31 @@ def nearest_torus(
     weights = np.array([1.0 / rounding.bound(m) for m in monomials])
     target = np.array([typed.floats.get(m, 0.0) for m in monomials]) * weights
     scale = max(float(np.linalg.norm(centre)), f.length)
-    found: list[tuple[int, list[Fraction], S]] = []
-    checks = 0
-    tried: set[tuple[Fraction, Fraction, Fraction]] = set()
-    for point in snapped_points(centre, scale):
-        if point in tried:
-            continue
-        tried.add(point)
-        design = _design(monomials, np.array([float(v) for v in point])) * weights[:, None]
-        solution, *_ = np.linalg.lstsq(design, target, rcond=None)
-        if np.sqrt(np.mean((design @ solution - target) ** 2)) > MAX_RESIDUAL:
-            continue
+
+    def tries(design: FloatArray, solution: FloatArray) -> Tries | None:
         shape = _shape(solution)
         if shape is None:
-            continue
+            return None
         lam, R, r, unit = shape
-        refits: dict[tuple[Fraction, Fraction], FloatArray] = {}
-        for family in FAMILIES:
-            for radius in RADIUS_RADII:
-                radii = decimal_near(R, radius * R), decimal_near(r, radius * r)
-                if not all(radii):
-                    continue
-                k, S4 = radii[0] ** 2 - radii[1] ** 2, 4 * radii[0] ** 2
-                if radii not in refits:
-                    model = _torus_model(float(k), float(S4))
-                    fitted = refit_direction(design, target, model, lam, unit)
-                    refits[radii] = _largest_smallest(design, target, model, fitted)
-                passed = first_direction(
-                    family, refits[radii], _torus_coefficients(k, S4), point, typed, rounding, build, check
-                )
-                checks += len(DIRECTION_RADII) if passed is None else 1
-                if passed is not None:
-                    found.append(passed)
-                    break  # the coarsest radii of this family that pass
-                if checks >= MAX_CHECKS:
-                    return simplest(found)
-        if found:
-            return simplest(found)
-    return simplest(found)
+        radii = dict.fromkeys((decimal_near(R, e * R), decimal_near(r, e * r)) for e in RADIUS_RADII)
+        shapes = [
+            Shape(pair, _torus_coefficients(*_shape_of(pair)), _torus_model(*map(float, _shape_of(pair))))
+            for pair in radii
+            if all(pair)
+        ]
+        return shapes, _largest_smallest(design, target, lam, unit)
+
+    def design_at(C: FloatArray) -> FloatArray:
+        design: FloatArray = _design(monomials, C) * weights[:, None]
+        return design
+
+    return nearest_about(snapped_points(centre, scale), design_at, target, tries, typed, rounding, build, check)
+
+
+def _shape_of(radii: tuple[Fraction, Fraction]) -> tuple[Fraction, Fraction]:
+    """``(k, S) = (R² − r², 4R²)`` of the radii ``(R, r)``."""
+    R, r = radii
+    return R * R - r * r, 4 * R * R
 
 
 def _torus_coefficients(k: Fraction, S4: Fraction) -> Callable[[Fraction], list[Fraction]]:
@@ -127,7 +112,7 @@ def _torus_coefficients(k: Fraction, S4: Fraction) -> Callable[[Fraction], list[
     return lambda norm2: [k * k, S4 / norm2, 2 * k - S4, Fraction(1)]
 
 
-def _torus_model(k: float, S4: float) -> Callable[[float, FloatArray], FloatArray]:
+def _torus_model(k: float, S4: float) -> Model:
     """The unknowns of :func:`_design` for ``(λ, â)``, the radii held: ``λ``, the entries of
     ``λ((2k − S)I + Sââᵀ)`` and ``λk²``."""
 
@@ -139,26 +124,32 @@ def _torus_model(k: float, S4: float) -> Callable[[float, FloatArray], FloatArra
 
 
 def _largest_smallest(
-    design: FloatArray, target: FloatArray, model: Callable[[float, FloatArray], FloatArray], unit: FloatArray
-) -> FloatArray:
-    """The direction near ``unit`` (the least-squares one) that makes the largest weighted
-    residual smallest, with the scale (:func:`.near_symmetry.lawson`): every coefficient within
-    its rounding is a bound on the largest. The least-squares axis of a 6-digit torus was
-    1.6e-7 from the one it was printed from, and only a torus scaled by ``2481838/2481837``
-    was within the rounding about the directions near it."""
-    column = design @ model(1.0, unit)
-    lam = float(column @ target) / float(column @ column)
+    design: FloatArray, target: FloatArray, lam: float, unit: FloatArray
+) -> Callable[[Model], FloatArray]:
+    """The axis refitted for a torus's model: by least squares (:func:`.cones.refit_direction`),
+    then the direction near it that makes the largest weighted residual smallest, with the
+    scale (:func:`.near_symmetry.lawson`): every coefficient within its rounding is a bound on
+    the largest. The least-squares axis of a 6-digit torus was 1.6e-7 from the one it was
+    printed from, and only a torus scaled by ``2481838/2481837`` was within the rounding about
+    the directions near it."""
 
     def direction(theta: float, phi: float) -> FloatArray:
         return np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
 
-    def residual(params: FloatArray) -> FloatArray:
-        scale, theta, phi = params
-        return design @ model(lam * (1.0 + scale), direction(theta, phi)) - target
+    def refit(model: Model) -> FloatArray:
+        fitted = refit_direction(design, target, model, lam, unit)
+        column = design @ model(1.0, fitted)
+        scale = float(column @ target) / float(column @ column)
 
-    start = np.array([0.0, np.arccos(np.clip(unit[2], -1.0, 1.0)), np.arctan2(unit[1], unit[0])])
-    _, theta, phi = lawson(residual, start)
-    return direction(theta, phi)
+        def residual(params: FloatArray) -> FloatArray:
+            change, theta, phi = params
+            return design @ model(scale * (1.0 + change), direction(theta, phi)) - target
+
+        start = np.array([0.0, np.arccos(np.clip(fitted[2], -1.0, 1.0)), np.arctan2(fitted[1], fitted[0])])
+        _, theta, phi = lawson(residual, start)
+        return direction(theta, phi)
+
+    return refit
 
 
 def _shape(solution: FloatArray) -> tuple[float, float, float, FloatArray] | None:
