@@ -270,6 +270,26 @@ def test_a_small_rounded_torus_is_not_nearly_a_cone() -> None:
     assert cone.conical.near_apex[2] == pytest.approx(0.0123, rel=1e-6)
 
 
+@pytest.mark.parametrize(
+    "text",
+    [
+        "((x-5)^2+y^2+z^2+0.03^2-0.01^2)^2-4*0.03^2*((x-5)^2+y^2)",
+        "(x-0.3)^2+(y-0.2)^2+z^2-0.000025",
+    ],
+)
+def test_a_small_part_away_from_the_origin_is_not_nearly_a_cone(text: str) -> None:
+    """A torus 8 cm across about ``(5, 0, 0)`` and a sphere of radius 5 mm about ``(0.3, 0.2, 0)``:
+    coefficient by coefficient they read as nearly the cone of their top form about their centre,
+    a cone whose only real point is its apex (``(x² + y² + z²)² = 0``), and the view was grown
+    to a ball of half the apex's distance from the origin (16 and 152 triangles of the part)."""
+    from sorgui.session.scene_data import build_scene
+
+    analysis = analyze(text)
+    assert analysis.conical is not None and analysis.conical.near_apex is None
+    scene = build_scene(analysis)
+    assert scene.region.radius < 0.1 and scene.surface.n_faces > 10_000
+
+
 def test_a_large_rounded_torus_is_not_nearly_a_cone() -> None:
     """A torus 8 m across written in mm (radii 3000 and 1000, turned, 6 digits): its lower terms
     are large beside the quartic ones, and it read as nearly a cone about (−2811, −1742, 5775).

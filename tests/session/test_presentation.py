@@ -193,6 +193,15 @@ def test_view_region_frames_the_bounded_part() -> None:
     assert 3.0 < region.radius < 4.5
 
 
+def test_a_small_sphere_far_from_the_origin_is_framed_at_its_own_size() -> None:
+    """A sphere of radius 1 mm about ``(10, 0, 0)``: the floor of the ball's radius, the part's
+    size, was measured about the origin (10), clamped to 1, and the mesh of that ball had no
+    point of the sphere ("no real points that can be drawn")."""
+    terms = polynomial_terms("(x-10)^2+y^2+z^2-0.001^2")
+    region = view_region(terms, np.array([10.0, 0.0, 0.0]))
+    assert region.radius == pytest.approx(0.00125, rel=1e-6)
+
+
 @pytest.mark.parametrize("scale", [1e-2, 1e-4])
 def test_a_small_part_is_framed_at_its_own_size(scale: float) -> None:
     """A torus 4 cm across written in metres (``R = 0.03``, ``r = 0.01``) was drawn a speck in a

@@ -79,6 +79,8 @@ def near_apex(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], fl
 
     f, k = at_unit_scale(f)
     K = f.ring.domain
+    if _definite_top(f, tolerance):
+        return None
     rows, rhs = _system(f)
     M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
     b = np.array([float(to_expr(K, c)) for c in rhs])
@@ -92,6 +94,31 @@ def near_apex(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], fl
         return None
     x, y, z = (float(v) * 10.0**k for v in apex)
     return (x, y, z), residual
+
+
+SPHERE_POINTS = 400
+"""Directions on which :func:`_definite_top` evaluates the top form."""
+
+
+def _definite_top(f: Poly, tolerance: float) -> bool:
+    """Whether the top homogeneous part of ``f`` keeps one sign on the unit sphere, farther from 0
+    than :data:`NEAR_FACTOR` times the rounding of its largest value: then every cone within the
+    rounding has no real point but its apex (a torus 8 cm across about ``(5, 0, 0)`` with two
+    printed digits was "nearly a cone" about its centre, the point ``(x² + y² + z²)² = 0``, and
+    its view was grown to a ball of radius 2.5 about that apex)."""
+    import numpy as np  # rounded input only
+
+    K = f.ring.domain
+    degree = total_degree(f)
+    top = [(m, float(to_expr(K, c))) for m, c in f.items() if sum(m) == degree]
+    index = np.arange(SPHERE_POINTS) + 0.5
+    height = 1 - 2 * index / SPHERE_POINTS
+    angle = np.pi * (1 + 5**0.5) * index
+    across = np.sqrt(1 - height**2)
+    x, y, z = across * np.cos(angle), across * np.sin(angle), height
+    values = sum((c * x ** m[0] * y ** m[1] * z ** m[2] for m, c in top), np.zeros(SPHERE_POINTS))
+    bound = NEAR_FACTOR * tolerance * float(np.abs(values).max(initial=0.0))
+    return bool(bound > 0 and (values.min() > bound or values.max() < -bound))
 
 
 def at_unit_scale(f: Poly) -> tuple[Poly, int]:

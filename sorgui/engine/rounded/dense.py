@@ -151,6 +151,20 @@ def scaled(array: FloatArray, length: float) -> FloatArray:
     return result
 
 
+def translated(array: FloatArray, point: FloatArray) -> FloatArray:
+    """The coefficients of ``f(point + X)``: each variable shifted in turn by the binomial
+    expansion ``(x + a)^i = Σ_j C(i, j) a^(i − j) x^j``."""
+    n = array.shape[0]
+    i, j = np.indices((n, n))
+    binomials = np.array([[math.comb(int(a), int(b)) if b <= a else 0 for b in range(n)] for a in range(n)], float)
+    result: FloatArray = array
+    for axis, shift in enumerate(np.asarray(point, dtype=np.float64)):
+        with np.errstate(all="ignore"):
+            matrix = np.where(j <= i, binomials * float(shift) ** np.maximum(i - j, 0), 0.0)  # [i, j]: x^i to x^j
+        result = np.moveaxis(np.tensordot(np.moveaxis(result, axis, -1), matrix, axes=([-1], [0])), -1, axis)
+    return result
+
+
 @overload
 def evaluate(array: FloatArray, points: FloatArray) -> FloatArray: ...
 

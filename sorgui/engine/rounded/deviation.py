@@ -10,6 +10,7 @@ the deviation is the largest distance moved, both ways (a sampled Hausdorff dist
 
 from __future__ import annotations
 
+import math
 from itertools import product
 
 import numpy as np
@@ -115,16 +116,21 @@ def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = N
     else:
         middle = 0.5 * (core.min(axis=0) + core.max(axis=0))
     radius = MARGIN * float(np.linalg.norm(core - middle, axis=1).max())
-    return middle, float(np.clip(radius, natural_length(array), MAX_RADIUS))
+    return middle, float(np.clip(radius, natural_length(array, middle), MAX_RADIUS))
 
 
-def natural_length(array: FloatArray) -> float:
-    """The length at which ``f``'s lowest and highest homogeneous parts weigh alike,
-    ``(|f_low| / |f_high|)^(1/(high − low))``, between :data:`SMALLEST_RADIUS` and
-    :data:`MIN_RADIUS`: the floor of the view ball's radius. A small part (``x² + y² − 2.5e-5``:
-    0.005) gets a ball of its size; a cone about its apex, whose numerical roots near the apex
-    are noise of about 10⁻⁵, keeps the floor of 1 (its parts are all of one degree)."""
+def natural_length(array: FloatArray, middle: FloatArray | None = None) -> float:
+    """The length at which the lowest and highest homogeneous parts of ``f`` about ``middle``
+    (the origin if not given) weigh alike, ``(|f_low| / |f_high|)^(1/(high − low))``, between
+    :data:`SMALLEST_RADIUS` and :data:`MIN_RADIUS`: the floor of the view ball's radius. A small
+    part (``x² + y² − 2.5e-5``: 0.005) gets a ball of its size, about its middle wherever it is
+    (a sphere of radius 0.005 about ``(0.3, 0.2, 0)`` had the floor 0.36 about the origin, and
+    was drawn with 52 triangles); a cone about its apex, whose numerical roots near the apex are
+    noise of about 10⁻⁵, keeps the floor of 1 (its parts are all of one degree)."""
     length = part_size(array)
+    if middle is not None:
+        about = part_size(dense.translated(array, middle))
+        length = about if about is not None and math.isfinite(about) else length
     return MIN_RADIUS if length is None else float(np.clip(length, SMALLEST_RADIUS, MIN_RADIUS))
 
 
