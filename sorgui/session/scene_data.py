@@ -306,6 +306,10 @@ def build_scene(
     c, r = np.asarray(region.center), region.radius
     bounds = box.bounds if box is not None else tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
     clip: ClipSphere | ClipBox = box if box is not None else region
+    too_far = _too_far(region, analysis.recognition.degree)
+    if too_far is not None:
+        empty = LineData.empty()
+        return SceneData(terms, region, MeshData.empty(), empty, empty, None, None, None, None, (too_far,), box=box)
     surface = surface_mesh(terms, bounds, resolution=resolution or DEFAULT_RESOLUTION, clip=clip)
     real = [p for p in analysis.parametrizations if p.real and p.verified]
     if not analysis.squarefree and real:  # a parametrization without its equation: its patch is the surface
@@ -355,6 +359,28 @@ def build_scene(
         notes=tuple(notes),
         factor_axes=LineData.from_polylines([line.points for line in factor_lines if not line.is_empty]),
         box=box,
+    )
+
+
+FLOAT_ERROR = 1e-3
+"""The error of floating-point values of ``f`` in the ball, relative to their spread there,
+above which the surface is not drawn (:func:`_too_far`)."""
+
+
+def _too_far(region: ClipSphere, degree: int) -> str | None:
+    """Why a surface in ``region`` cannot be drawn in floating point, in words (``None`` when it
+    can): about a centre at distance ``D`` the terms of ``f`` are ``(D/r)^degree`` times larger
+    than its spread in a ball of radius ``r``, and their rounding error swamps it. A sphere of
+    radius 10⁻³ about ``(10¹², 0, 0)`` was meshed as a flat disc 17 000 across (67 MB), one of
+    radius 1 about ``(10¹⁷, 0, 0)`` failed the whole run's drawing stage with an internal error."""
+    distance = float(np.linalg.norm(region.center))
+    ratio = distance / region.radius
+    if ratio <= 1 or float(np.finfo(np.float64).eps) * ratio ** max(degree, 1) <= FLOAT_ERROR:
+        return None
+    return (
+        f"The surface cannot be drawn in floating point: it lies {distance:.3g} from the origin, in a ball of radius "
+        f"{region.radius:.3g}, and the rounding of f's values there is larger than their spread (the exact analysis "
+        "is not affected; move the part nearer the origin to draw it)."
     )
 
 

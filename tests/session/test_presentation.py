@@ -202,6 +202,19 @@ def test_a_small_sphere_far_from_the_origin_is_framed_at_its_own_size() -> None:
     assert region.radius == pytest.approx(0.00125, rel=1e-6)
 
 
+@pytest.mark.parametrize("text", ["(x-10^17)^2+y^2+z^2-1", "(x-10^12)^2+y^2+z^2-1/10^6"])
+def test_a_part_too_small_for_its_distance_is_not_drawn_and_says_why(text: str) -> None:
+    """About ``(10¹², 0, 0)`` a sphere of radius 10⁻³ was meshed as a flat disc 17 000 across;
+    about ``(10¹⁷, 0, 0)`` the ball's bounds collapsed in floating point and the drawing stage
+    failed with an internal error, which skipped every later stage of the window's run."""
+    from sorgui.engine import analyze
+    from sorgui.session.scene_data import build_scene
+
+    scene = build_scene(analyze(text))
+    assert scene.surface.is_empty
+    assert scene.notes and "cannot be drawn in floating point" in scene.notes[0]
+
+
 @pytest.mark.parametrize("scale", [1e-2, 1e-4])
 def test_a_small_part_is_framed_at_its_own_size(scale: float) -> None:
     """A torus 4 cm across written in metres (``R = 0.03``, ``r = 0.01``) was drawn a speck in a
