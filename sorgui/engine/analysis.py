@@ -39,6 +39,7 @@ from .timelimit import skeleton, time_limit, unfinished_analysis
 if TYPE_CHECKING:
     from .algebra.polys import Poly
     from .revolution.reparametrization import GivenMap
+    from .rounded.precision import Rounding
     from .stage_results import Parametrization
 
 SPHERE_NOTE = (
@@ -271,6 +272,7 @@ def analyze_polynomial(
         clock.publish(result(None, ()))
         with clock.stage("real locus"):
             real = real_locus(f, symmetry, own_profile)
+    rounding: Rounding | None = None
     if tolerance is not None or (text is not None and has_decimals(text)):
         clock.publish(result(None, ()))  # the exact verdict at once: the rounding takes seconds at high degree
         from .rounded.approximate import (  # numpy: only for rounded input
@@ -322,8 +324,8 @@ def analyze_polynomial(
 
         clock.publish(result(rationality, found))
         with clock.stage("conical"):
-            tolerance_in_force = None if approximation is None else approximation.tolerance
-            conical_result = analyze_conical(f, timeout=singular_timeout, cancel=cancel, tolerance=tolerance_in_force)
+            in_force = rounding if approximation is not None else None
+            conical_result = analyze_conical(f, timeout=singular_timeout, cancel=cancel, rounding=in_force)
     if canal and recognition_only and recognition.is_sor:
         with clock.stage("canal"):
             canal_result = revolution_canal(recognition.degree)

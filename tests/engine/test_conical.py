@@ -290,11 +290,31 @@ def test_a_small_part_away_from_the_origin_is_not_nearly_a_cone(text: str) -> No
     assert scene.region.radius < 0.1 and scene.surface.n_faces > 10_000
 
 
+CONE_FIXED = (
+    "+6869.209189 +154.545841*z^1 +0.891398*z^2 -55.811620*y^1 -0.625488*y^1*z^1 +0.099387*y^2 +21.857127*x^1"
+    " -0.059381*x^1*z^1 -0.171002*x^1*y^1 +0.991883*x^2"
+)
+"""A cone of half-angle 7.5° about ``(−11.1, 26.1, −77.9)`` on a turned axis, printed with
+``%.6f`` (every coefficient within 5e-7)."""
+
+
+def test_a_cone_printed_with_fixed_decimals_is_nearly_a_cone_about_its_apex() -> None:
+    """Measured against its largest coefficient (the constant 6869), the rounding of its
+    quadratic terms was 10⁴ times too small once the part was brought to unit size, and the cone
+    was not "nearly a cone": the window drew 1 mm of it, away from its apex, while the same cone
+    printed with ``%.6g`` was drawn in a ball of 41 about its apex. Each row of the apex's
+    system is now measured against the bounds of the coefficients in it."""
+    conical = analyze(CONE_FIXED).conical
+    assert conical is not None and conical.near_apex is not None
+    assert conical.near_apex == pytest.approx((-11.1, 26.1, -77.9), abs=1e-3)
+
+
 def test_a_large_rounded_torus_is_not_nearly_a_cone() -> None:
     """A torus 8 m across written in mm (radii 3000 and 1000, turned, 6 digits): its lower terms
     are large beside the quartic ones, and it read as nearly a cone about (−2811, −1742, 5775).
     Judged at its own size it is none."""
     from sorgui.engine.conical.detect import near_apex
+    from sorgui.engine.rounded.approximate import rounding_of
 
     text = (
         "x^4 - 5200*x^3 + 2*x^2*y^2 + 2800*x^2*y + 2*x^2*z^2 - 8400*x^2*z + 2.20569e+06*x^2 - 5200*x*y^2"
@@ -302,4 +322,6 @@ def test_a_large_rounded_torus_is_not_nearly_a_cone() -> None:
         " - 8400*y^2*z - 1.66641e+06*y^2 + 2800*y*z^2 - 3.15119e+07*y*z + 4.33958e+10*y + z^4 - 8400*z^3"
         " + 4.13607e+07*z^2 - 1.35081e+11*z + 1.95056e+14"
     )
-    assert near_apex(parse_polynomial(text).polynomial, 5e-6) is None
+    f = parse_polynomial(text).polynomial
+    rounding, _notes = rounding_of(f, text, None)
+    assert rounding is not None and near_apex(f, rounding) is None

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import threading
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import sympy
 from sympy.polys.domains.domain import Domain
@@ -44,6 +44,9 @@ from ..singular.curves import analyze_curve, parametrize
 from ..stage_results import BaseCurve, Parametrization
 from .detect import Conicity, detect, near_apex, near_direction
 
+if TYPE_CHECKING:
+    from ..rounded.precision import Rounding
+
 S, T = (sympy.Symbol(name) for name in PARAMETERS)
 CHARTS = (2, 1, 0)
 """The affine charts of a cone's base curve, in the order tried: ``z = 1``, ``y = 1``, ``x = 1``."""
@@ -54,11 +57,11 @@ PLANE = ("u", "v")
 
 
 def analyze_conical(
-    f: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None, tolerance: float | None = None
+    f: Poly, *, timeout: float = 60.0, cancel: threading.Event | None = None, rounding: Rounding | None = None
 ) -> Conical:
     """Cone, cylinder or neither (:func:`.detect.detect`); for a cone or a cylinder whose
     base curve is a curve (not points), its genus and the verified parameterizations. With the
-    ``tolerance`` of rounded input, a surface that is exactly neither may be nearly a cone
+    ``rounding`` of rounded input, a surface that is exactly neither may be nearly a cone
     (:func:`.detect.near_apex`) or nearly a cylinder (:func:`.detect.near_direction`)."""
     if total_degree(f) < 2:
         return Conical("none", notes=(PLANE_NOTE,))
@@ -66,12 +69,12 @@ def analyze_conical(
     K = f.ring.domain
     apex = None if found.apex is None else _triple(K, found.apex)
     if found.kind == "none":
-        if tolerance is None:
+        if rounding is None:
             return Conical("none")
-        near = near_apex(f, tolerance)
+        near = near_apex(f, rounding)
         if near is not None:
             return Conical("none", near_apex=near[0], near_residual=near[1])
-        along = near_direction(f, tolerance)
+        along = near_direction(f, rounding.tolerance)
         if along is not None:
             return Conical("none", near_direction=along[0], near_residual=along[1])
         return Conical("none")

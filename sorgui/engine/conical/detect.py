@@ -17,10 +17,14 @@ is ``c + null space``) is also a cylinder: planes through a line, reported as a 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..algebra.linalg import Vector, nullspace, primitive_vector, rref
 from ..algebra.polys import Poly, derivative, to_expr, total_degree
+
+if TYPE_CHECKING:
+    from ..rounded.dense import Monomial
+    from ..rounded.precision import Rounding
 
 NEAR_FACTOR = 10.0
 """How many times the rounding a rounded cone's Euler residual may reach (docs/math.md §10)."""
@@ -42,8 +46,9 @@ class Conicity:
         return "cone" if self.apex is not None else "none"
 
 
-def _system(f: Poly) -> tuple[list[list[Any]], list[Any]]:
-    """The rows of ``M`` and the right-hand side ``X·∇f − d·f``, one per monomial."""
+def _system(f: Poly) -> tuple[list[list[Any]], list[Any], list[Monomial]]:
+    """The rows of ``M`` and the right-hand side ``X·∇f − d·f``, one per monomial (and those
+    monomials)."""
     K = f.ring.domain
     d = total_degree(f)
     gradient = [derivative(f, i) for i in range(3)]
@@ -52,13 +57,14 @@ def _system(f: Poly) -> tuple[list[list[Any]], list[Any]]:
     columns = [dict(g.items()) for g in gradient]
     rhs = dict(euler.items())
     monomials = sorted(set(rhs).union(*columns))
-    return [[column.get(m, K.zero) for column in columns] for m in monomials], [rhs.get(m, K.zero) for m in monomials]
+    rows = [[column.get(m, K.zero) for column in columns] for m in monomials]
+    return rows, [rhs.get(m, K.zero) for m in monomials], monomials
 
 
 def detect(f: Poly) -> Conicity:
     """The translations of ``f`` and an apex, from the one linear system above over ``K``."""
     K = f.ring.domain
-    rows, rhs = _system(f)
+    rows, rhs, _monomials = _system(f)
     directions = tuple(primitive_vector(v, K) for v in nullspace(rows, 3, K))
     augmented = [[*row, b] for row, b in zip(rows, rhs)]
     reduced, pivots = rref(augmented, 4, K)
@@ -70,31 +76,60 @@ def detect(f: Poly) -> Conicity:
     return Conicity(directions, tuple(apex))
 
 
-def near_apex(f: Poly, tolerance: float) -> tuple[tuple[float, float, float], float] | None:
-    """For rounded input that is no exact cone: the least-squares apex of ``M c = X·∇f − d·f``
-    in floating point and its residual, relative to ``d·max|f|·(1 + |c|)`` (what rounding the
-    coefficients of an exact cone by ``tolerance`` leaves); ``None`` unless that residual is
-    within :data:`NEAR_FACTOR` times the rounding and ``M`` has full rank (no near translation)."""
+def near_apex(f: Poly, rounding: Rounding) -> tuple[tuple[float, float, float], float] | None:
+    """For rounded input that is no exact cone: the least-squares apex ``c`` of
+    ``M c = X·∇f − d·f`` in floating point, each row weighted by its bound (:data:`WEIGHTINGS`
+    times), and its residual, relative to ``d·max|f|·(1 + |c|)``;
+    ``None`` unless every row's residual is within :data:`NEAR_FACTOR` times what rounding the
+    coefficients of an exact cone by their bounds leaves there (:func:`_row_bounds`) and ``M``
+    has full rank (no near translation)."""
     import numpy as np  # rounded input only: an exact analysis need not load numpy
 
     f, k = at_unit_scale(f)
     K = f.ring.domain
-    if _definite_top(f, tolerance):
+    if _definite_top(f, rounding.tolerance):
         return None
-    rows, rhs = _system(f)
+    rows, rhs, monomials = _system(f)
     M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
     b = np.array([float(to_expr(K, c)) for c in rhs])
     size = max(abs(float(to_expr(K, c))) for c in f.values())
     singular = np.linalg.svd(M, compute_uv=False)
-    if len(singular) < 3 or singular[-1] <= NEAR_FACTOR * tolerance * singular[0]:
+    if len(singular) < 3 or singular[-1] <= NEAR_FACTOR * rounding.tolerance * singular[0]:
         return None
     apex, *_ = np.linalg.lstsq(M, b, rcond=None)
-    residual = float(np.max(np.abs(M @ apex - b))) / (total_degree(f) * size * (1 + float(np.linalg.norm(apex))))
-    if residual > NEAR_FACTOR * tolerance:
+    for _ in range(WEIGHTINGS):  # each row in units of its bound (which the apex moves)
+        weights = 1.0 / _row_bounds(monomials, apex, total_degree(f), rounding, k)
+        apex, *_ = np.linalg.lstsq(M * weights[:, None], b * weights, rcond=None)
+    misses = np.abs(M @ apex - b)
+    if np.any(misses > NEAR_FACTOR * _row_bounds(monomials, apex, total_degree(f), rounding, k)):
         return None
+    residual = float(misses.max()) / (total_degree(f) * size * (1 + float(np.linalg.norm(apex))))
     x, y, z = (float(v) * 10.0**k for v in apex)
     return (x, y, z), residual
 
+
+def _row_bounds(monomials: list[Monomial], apex: Any, degree: int, rounding: Rounding, k: int) -> Any:  # noqa: ANN401 - numpy
+    """What rounding each coefficient of an exact cone by its bound (of ``f(10ᵏ·p)``: times
+    ``10^(k·|α|)``) leaves at most in the row of each monomial ``m`` of ``M c − b``:
+    ``Σᵢ |cᵢ|·(mᵢ + 1)·e(m + eᵢ) + |d − |m||·e(m)``. A single relative tolerance measured a cone
+    printed with ``%.6f`` (bounds of 5e-7 on every coefficient, the constant 6869) against its
+    largest coefficient: after the unit scaling its quadratic terms' bounds were 10⁴ times
+    larger, and the cone was not "nearly a cone" (its view a ball of radius 1 beside its apex)."""
+    import numpy as np  # rounded input only
+
+    def bound(m: Monomial) -> float:
+        return rounding.bound(m) * 10.0 ** (k * sum(m))
+
+    bounds = []
+    for m in monomials:
+        shifted = [(m[0] + 1, m[1], m[2]), (m[0], m[1] + 1, m[2]), (m[0], m[1], m[2] + 1)]
+        moved = sum(abs(float(apex[i])) * (m[i] + 1) * bound(shifted[i]) for i in range(3))
+        bounds.append(moved + abs(degree - sum(m)) * bound(m))
+    return np.array(bounds)
+
+
+WEIGHTINGS = 3
+"""Weighted least-squares solutions of :func:`near_apex`, each with the rows' bounds at the last."""
 
 SPHERE_POINTS = 400
 """Directions on which :func:`_definite_top` evaluates the top form."""
@@ -150,7 +185,7 @@ def near_direction(f: Poly, tolerance: float) -> tuple[tuple[float, float, float
 
     f, _k = at_unit_scale(f)  # a direction is the same at any scale
     K = f.ring.domain
-    rows, _rhs = _system(f)
+    rows, _rhs, _monomials = _system(f)
     M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
     _u, singular, vt = np.linalg.svd(M)
     if len(singular) < 3 or singular[0] == 0:
