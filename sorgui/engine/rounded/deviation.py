@@ -119,6 +119,11 @@ def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = N
     return middle, float(np.clip(radius, natural_length(array, middle), MAX_RADIUS))
 
 
+TRANSLATION_NOISE = 1e-12
+"""Coefficients of ``f`` about the ball's middle below this share of the largest are rounding
+noise of the translation (:func:`natural_length`)."""
+
+
 def natural_length(array: FloatArray, middle: FloatArray | None = None) -> float:
     """The length at which the lowest and highest homogeneous parts of ``f`` about ``middle``
     (the origin if not given) weigh alike, ``(|f_low| / |f_high|)^(1/(high − low))``, between
@@ -129,7 +134,10 @@ def natural_length(array: FloatArray, middle: FloatArray | None = None) -> float
     noise of about 10⁻⁵, keeps the floor of 1 (its parts are all of one degree)."""
     length = part_size(array)
     if middle is not None:
-        about = part_size(dense.translated(array, middle))
+        moved = dense.translated(array, middle)
+        largest = float(np.abs(moved).max(initial=0.0))
+        moved[np.abs(moved) <= TRANSLATION_NOISE * largest] = 0.0  # a shift by 5e-16 made terms of 1e-46
+        about = part_size(moved)
         length = about if about is not None and math.isfinite(about) else length
     return MIN_RADIUS if length is None else float(np.clip(length, SMALLEST_RADIUS, MIN_RADIUS))
 
