@@ -22,7 +22,6 @@ that are not surfaces of revolution, in a fifth of a second as a whole process i
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from typing import TYPE_CHECKING, overload
 
 from flint import fmpq, fmpq_mat, fmpq_mpoly
@@ -38,7 +37,6 @@ from .algebra.rationals import (
     rational_surd,
     terms,
     terms_str,
-    times_text,
 )
 from .errors import AnalysisError
 from .expanded import Reading
@@ -58,6 +56,7 @@ if TYPE_CHECKING:
     from .stages import StageClock
 
 XYZ = ("x", "y", "z")
+XY = ("x", "y")
 Monomial = tuple[int, int]
 MAX_NORM = 2**30
 """The rational path writes ``|a| = k·√d`` with ``d`` square-free, as sympy does when it finds the
@@ -278,9 +277,10 @@ def _profile(g: fmpq_mpoly, point: Vector, direction: Vector) -> tuple[Profile, 
     square = primitive(_slice_square(g, c, a, dot(u, u)))
     rational = square.inflate([1, 2])
     orthonormal = _orthonormal(rational, dot(a, a), dot(u, u))
+    texts = {m: _surd_text(c) for m, c in orthonormal.items()}  # printed once for p and for P²
     return Profile(
-        polynomial=_surd_str(orthonormal, ("x", "y")),
-        square=_surd_str({(i, j // 2): c for (i, j), c in orthonormal.items()}, ("x", "y")),
+        polynomial=terms_str(XY, texts.items(), _given),
+        square=terms_str(XY, {(i, j // 2): t for (i, j), t in texts.items()}.items(), _given),
         rational=flint_str(rational, ("s", "r")),
         rational_square=flint_str(square, ("s", "w")),
         frame_point=_triple(c),
@@ -358,10 +358,18 @@ def _divide(c: Surd, top: Surd) -> Surd:
 
 
 def _surd_text(c: Surd) -> tuple[bool, str]:
-    """The sign and the magnitude of ``q·√d`` as sympy prints it (``2*sqrt(3)/3``)."""
+    """The sign and the magnitude of ``q·√d`` as sympy prints it (``2*sqrt(3)/3``), from the
+    numerator and denominator of ``q`` as Python integers (flint's text of ``q`` costs twice as
+    much)."""
     q, d = c
-    return q < 0, str(abs(q)) if d == 1 else times_text(abs(q), f"sqrt({d})")
+    numerator, denominator = int(q.p), int(q.q)
+    negative = numerator < 0
+    magnitude = str(-numerator if negative else numerator)
+    if d != 1:
+        magnitude = f"sqrt({d})" if magnitude == "1" else f"{magnitude}*sqrt({d})"
+    return negative, magnitude if denominator == 1 else f"{magnitude}/{denominator}"
 
 
-def _surd_str(terms: dict[Monomial, Surd], names: Sequence[str]) -> str:
-    return terms_str(names, terms.items(), _surd_text)
+def _given(text: tuple[bool, str]) -> tuple[bool, str]:
+    """A coefficient already printed (:func:`_surd_text`), for :func:`.algebra.rationals.terms_str`."""
+    return text

@@ -62,10 +62,16 @@ def terms_str(names: Sequence[str], terms: Iterable[tuple[Monomial, Any]], coeff
     coefficient to ``(negative, text of its magnitude)``; by default it prints rationals.
     """
     sign = coefficient or _rational_coefficient
+    spellings = _spellings(tuple(names))
     bodies: list[tuple[bool, str]] = []
-    for monom, c in sorted(terms, key=lambda t: (sum(t[0]), tuple(t[0])), reverse=True):
+    for monom, c in sorted(terms, key=_degree_then_lex, reverse=True):
         negative, magnitude = sign(c)
-        variables = "*".join(n if e == 1 else f"{n}**{e}" for n, e in zip(names, monom) if e)
+        key = tuple(monom)
+        variables = spellings.get(key)
+        if variables is None:
+            if len(spellings) >= SPELLINGS_KEPT:
+                spellings.clear()
+            variables = spellings[key] = "*".join(n if e == 1 else f"{n}**{e}" for n, e in zip(names, key) if e)
         if not variables:
             body = magnitude
         elif magnitude == "1":
@@ -74,6 +80,24 @@ def terms_str(names: Sequence[str], terms: Iterable[tuple[Monomial, Any]], coeff
             body = f"{magnitude}*{variables}"
         bodies.append((negative, body))
     return signed_sum(bodies)
+
+
+def _degree_then_lex(term: tuple[Monomial, Any]) -> tuple[int, Monomial]:
+    """The key of :func:`terms_str`'s order: total degree, then the exponents."""
+    monom = term[0]
+    return sum(monom), tuple(monom)
+
+
+SPELLINGS_KEPT = 20_000
+"""Printed monomials kept between calls of :func:`terms_str`, per tuple of variable names."""
+
+
+@lru_cache(maxsize=16)
+def _spellings(names: tuple[str, ...]) -> dict[Monomial, str]:
+    """The printed monomials (``x**2*y``) in the variables ``names`` that :func:`terms_str` has
+    made, kept between calls: a profile prints the same few dozen every time (the spelling was
+    half of the printing)."""
+    return {}
 
 
 def signed_sum(terms: Iterable[tuple[bool, str]]) -> str:
