@@ -82,6 +82,13 @@ class Reading:
         self._terms, self._whole, self._integers, self._values = terms, whole, integers, values
         self._text = text
 
+    @property
+    def multiple(self) -> dict[Monomial, int] | None:
+        """The coefficients of ``whole``, a multiple of ``polynomial`` by the common denominator
+        of the terms, as the reader holds them (``None`` when it holds none): by monomial,
+        Python integers (some may be zero)."""
+        return self._integers
+
     @cached_property
     def printed(self) -> str | None:
         terms, integers, values = self._terms, self._integers, self._values

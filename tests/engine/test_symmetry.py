@@ -132,7 +132,7 @@ def test_the_rows_below_a_few_terms_give_the_whole_systems_algebra(seed: int) ->
 
     from sorgui.engine.algebra import linalg
     from sorgui.engine.algebra.polys import to_flint
-    from sorgui.engine.algebra.rationals import RATIONALS
+    from sorgui.engine.algebra.rationals import RATIONALS, content
     from sorgui.engine.recognition.symmetry import _generators, rational_symmetry_algebra
 
     rng = random.Random(seed)
@@ -154,3 +154,6 @@ def test_the_rows_below_a_few_terms_give_the_whole_systems_algebra(seed: int) ->
         whole = [(m.b, m.a) for m in rational_symmetry_algebra(g)]
         expected = [(tuple(v[:3]), tuple(v[3:])) for v in linalg.nullspace(rows, 6, RATIONALS)]
         assert whole == expected
+        h = g * (6 / content(g))  # a multiple with integer coefficients, as the reader holds them
+        multiple = {tuple(int(e) for e in m): int(c.p) for m, c in zip(h.monoms(), h.coeffs())}
+        assert [(m.b, m.a) for m in rational_symmetry_algebra(g, multiple)] == expected
