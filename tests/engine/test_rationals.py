@@ -13,6 +13,7 @@ from sorgui.engine.algebra.rationals import (
     flint_str,
     irreducible,
     irreducible_modulo_a_prime,
+    irreducible_on_a_line,
     primitive,
     terms,
     terms_str,
@@ -69,3 +70,29 @@ def test_factor_is_flints_factorization(parts: list[dict], scale: int, curve: bo
     assert irreducible(g) == (len(flints) == 1 and flints[0][1] == 1)
     if irreducible_modulo_a_prime(g):
         assert [e for _, e in flints] == [1]
+    if irreducible_on_a_line(g):
+        assert [e for _, e in flints] == [1]
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    st.lists(
+        st.dictionaries(st.tuples(st.integers(0, 4), st.integers(0, 3)), coefficients, max_size=5),
+        min_size=1,
+        max_size=3,
+    )
+)
+def test_a_line_shows_irreducible_only_what_flint_finds_irreducible(parts: list[dict]) -> None:  # type: ignore[type-arg]
+    """A curve ``g(s, w)`` whose leading coefficient in ``w`` is constant and whose restriction to
+    ``s = 2`` is irreducible is irreducible and square-free in flint's factorization too; the
+    torus's ``P²``, which splits at ``s = 0`` and ``s = 1``, is shown irreducible."""
+    ring = context(("s", "w"))
+    s, w = ring.gens()
+    g = ring.constant(1)
+    for i, d in enumerate(parts):
+        g *= (ring.from_dict(d) + w ** (4 + i)) ** (1 + i % 2)  # a constant leading coefficient in w
+    _, flints = g.factor()
+    if irreducible_on_a_line(g):
+        assert len(flints) == 1 and flints[0][1] == 1
+    torus = (s**2 + w + 3) ** 2 - 16 * w
+    assert irreducible_on_a_line(torus) and not irreducible_on_a_line((s**2 + w) ** 2)
