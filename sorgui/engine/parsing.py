@@ -143,10 +143,11 @@ def is_parametrization(text: str) -> bool:
     Cheap: no tokenizing, no sympy."""
     if len(text) > MAX_LENGTH:
         return False
-    start, end = equation_span(text)
-    body = without_comments(text)[start:end]
-    if ("," in body or ";" in body) and _SEPARATOR.search(body) and _separates(body):  # `in` first: a long
-        return True  # equation has neither
+    if "," in text or ";" in text:  # a long equation has neither: its span is not looked for
+        start, end = equation_span(text)
+        body = without_comments(text)[start:end]  # comments become spaces: no separator is added
+        if ("," in body or ";" in body) and _SEPARATOR.search(body) and _separates(body):
+            return True
     return "\n" in text and len(_LABEL_LINE.findall(text, 0, 10_000)) >= 2
 
 
