@@ -35,6 +35,7 @@ from .algebra.rationals import (
     flint_str,
     irreducible,
     primitive,
+    rational_str,
     rational_surd,
     terms,
     terms_str,
@@ -188,7 +189,7 @@ def recognize_rational(
         is_sor=symmetry.is_sor,
         symmetry=symmetry.kind,
         symmetry_dimension=symmetry.dimension,
-        symmetry_basis=tuple(tuple(str(c) for c in m.a + m.b) for m in symmetry.basis),
+        symmetry_basis=tuple(tuple(map(rational_str, m.a + m.b)) for m in symmetry.basis),
         axis=_axis(symmetry),
         center=_triple(symmetry.center),
         normal=_triple(symmetry.normal),
@@ -251,7 +252,7 @@ def _triple(v: Vector | None) -> Triple | None:
     if v is None:
         return None
     x, y, z = v
-    return str(x), str(y), str(z)
+    return rational_str(x), rational_str(y), rational_str(z)
 
 
 def _axis(symmetry: Symmetry) -> Axis | None:

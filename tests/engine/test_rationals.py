@@ -15,6 +15,7 @@ from sorgui.engine.algebra.rationals import (
     irreducible_modulo_a_prime,
     irreducible_on_a_line,
     primitive,
+    rational_str,
     terms,
     terms_str,
 )
@@ -28,6 +29,12 @@ coefficients = st.builds(fmpq, st.integers(-50, 50), st.sampled_from([1, 1, 2, 3
 def test_flint_str_prints_as_terms_str(d: dict, names: tuple[str, str, str]) -> None:
     g = context(("x", "y", "z")).from_dict(d)
     assert flint_str(g, names) == terms_str(names, terms(g))
+
+
+@given(st.integers(-(10**40), 10**40), st.integers(1, 10**30))
+def test_rational_str_is_flints_text(numerator: int, denominator: int) -> None:
+    q = fmpq(numerator, denominator)
+    assert rational_str(q) == str(q)
 
 
 def test_a_prime_shows_irreducible_what_flint_took_27_s_to_factor() -> None:
