@@ -75,7 +75,7 @@ def canal_scene(
     rings: list[np.ndarray] = []
     for family in families:
         if isinstance(family, FamilyCurves):
-            spines += _split(_vectors(family.center, _parameters(samples)), bound)
+            spines += _split(_spine(family.center, samples), bound)
             rings += _circles(family, bound, circles, circle_points)
     return CanalScene(tuple(spines), tuple(rings))
 
@@ -109,6 +109,14 @@ def _parameters(samples: int) -> np.ndarray:
     """``t = tan φ`` for ``φ`` evenly spaced in ``(−π/2, π/2)``: the whole real line."""
     phi = np.linspace(-np.pi / 2, np.pi / 2, samples + 2)[1:-1]
     return np.tan(phi)
+
+
+def _spine(triple: Sequence[Function], samples: int) -> np.ndarray:
+    """``samples`` points of the spine ``m(t)``, ``t = tan φ`` for ``φ`` evenly spaced in
+    ``[−π/2, π/2]``, ends included (:func:`evaluate_angle`): a spine through its point at
+    ``t = ∞`` (a torus's circle of centres, a Dupin cyclide's ellipse) was drawn with a gap there."""
+    phi = np.linspace(-np.pi / 2, np.pi / 2, samples)
+    return np.column_stack([evaluate_angle(fn, phi) for fn in triple])
 
 
 def _vectors(triple: Sequence[Function], t: np.ndarray) -> np.ndarray:

@@ -48,6 +48,14 @@ def test_spine_is_the_ellipse_of_ball_centres(blend) -> None:
     assert np.allclose(3 * points[:, 0] + 4 * points[:, 2], 5, atol=1e-8)
 
 
+def test_a_closed_spine_is_drawn_closed(blend) -> None:
+    """The ellipse of ball centres passes through its point at ``t = ∞``: it was drawn from
+    ``t = tan(−π/2 + ε)`` to ``tan(π/2 − ε)``, with a gap of 0.09 there."""
+    _, scene = blend
+    closed = [spine for spine in scene.spines if len(spine) > 100]
+    assert closed and all(np.allclose(spine[0], spine[-1], atol=1e-9) for spine in closed)
+
+
 def test_characteristic_circles_lie_on_the_surface(blend) -> None:
     text, scene = blend
     assert len(scene.circles) >= 6
