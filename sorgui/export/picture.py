@@ -1,8 +1,10 @@
 """A PNG picture of the surface and its axis, rendered off screen for the Markdown/HTML reports.
 
 The scene (``sorgui.session.scene_data.SceneData``: surface mesh, axis segment, profile curve,
-sphere centre, and rounded input's approximate axis) is drawn by an off-screen pyvista plotter
-in the viewport's colours, from the viewport's isometric direction. VTK picks the OpenGL context
+sphere centre, rounded input's approximate axis and the axes of a product's factors) is drawn by
+an off-screen pyvista plotter in the viewport's colours, from the viewport's isometric
+direction; the axes show faint where the surface hides them, as in the window
+(:mod:`sorgui.render.hidden_lines`). VTK picks the OpenGL context
 itself: GLX under X (or Xvfb), EGL or OSMesa without a display; when none can be had,
 :func:`render_png` raises ``RuntimeError`` and the reports are written without a picture.
 """
@@ -23,6 +25,7 @@ SURFACE_COLOR = "#7fa7d6"
 BACK_COLOR = "#e8a95b"
 AXIS_COLOR = "#1f2a44"
 APPROXIMATE_AXIS_COLOR = "#ef6c00"
+FACTOR_AXES_COLOR = "#455a64"
 PROFILE_COLOR = "#c2185b"
 CENTER_COLOR = "#d32f2f"
 
@@ -33,6 +36,7 @@ class PictureScene(Protocol):
     surface: MeshData
     axis_segment: LineData
     approximate_axis: LineData
+    factor_axes: LineData
     profile_curve: LineData
     center_marker: MarkerData | None
     region: ClipSphere
@@ -45,6 +49,7 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
 
     from sorgui.render import mesh_to_polydata
     from sorgui.render.geometry import view_direction, view_up
+    from sorgui.render.hidden_lines import HiddenLines
     from sorgui.render.plotting import forwarders
 
     warnings = vtkObject.GetGlobalWarningDisplay()
@@ -62,14 +67,18 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
                     smooth_shading=True,
                 )
                 actor.prop.interpolation = "gouraud"
-            lines = (
-                (scene.axis_segment, AXIS_COLOR),
-                (scene.approximate_axis, APPROXIMATE_AXIS_COLOR),
-                (scene.profile_curve, PROFILE_COLOR),
+            hidden = HiddenLines(plotter)
+            axes = (
+                ("axis", scene.axis_segment, AXIS_COLOR),
+                ("approx_axis", scene.approximate_axis, APPROXIMATE_AXIS_COLOR),
+                ("factor_axes", scene.factor_axes, FACTOR_AXES_COLOR),
             )
-            for data, color in lines:
+            for name, data, color in axes:
                 if not data.is_empty:
                     plotter.add_mesh(data.to_polydata(), color=color, line_width=4)
+                    hidden.show(name, data.to_polydata(), color, 4)
+            if not scene.profile_curve.is_empty:
+                plotter.add_mesh(scene.profile_curve.to_polydata(), color=PROFILE_COLOR, line_width=4)
             if scene.center_marker is not None:
                 plotter.add_mesh(scene.center_marker.to_polydata(), color=CENTER_COLOR)
             direction = view_direction(scene.surface.normals, scene.surface.side)

@@ -63,8 +63,8 @@ if TYPE_CHECKING:
     import pyvista
     from vtkmodules.vtkCommonDataModel import vtkPlane
 
-    from sorgui.gui.hidden_lines import HiddenLines
     from sorgui.gui.render_window import RenderWindow
+    from sorgui.render.hidden_lines import HiddenLines
     from sorgui.render.picking import PickInfo
     from sorgui.session.scene import SceneData
 
@@ -100,7 +100,7 @@ SCENE_ACTORS = (
     "base_curve",
 )
 AXIS_ACTORS = ("axis", "approx_axis", "factor_axes")
-"""The lines drawn through the surface too, faint (:mod:`.hidden_lines`)."""
+"""The lines drawn through the surface too, faint (:mod:`sorgui.render.hidden_lines`)."""
 CANAL_ACTORS = ("canal_spine", "canal_circles")
 PICK_ACTORS = ("pick_normal", "pick_circle", "pick_point", "pick_sphere", "pick_canal_circle")
 TOUCH_SPHERE_COLOR = "#80cbc4"
@@ -339,8 +339,8 @@ class Viewport(QWidget):
         self._end_loading()
         from vtkmodules.vtkCommonDataModel import vtkPlane
 
-        from sorgui.gui.hidden_lines import HiddenLines
         from sorgui.gui.render_window import RenderWindow
+        from sorgui.render.hidden_lines import HiddenLines
 
         plotter = RenderWindow(self, auto_update=False, multi_samples=0)
         self._plotter = plotter

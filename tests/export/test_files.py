@@ -130,3 +130,14 @@ def test_the_picture_of_rounded_input_shows_its_approximate_axis(tmp_path) -> No
 
     assert orange_pixels(rounded) > 200
     assert orange_pixels(exact) == 0
+
+
+def test_the_picture_shows_the_axes_of_a_products_factors(tmp_path) -> None:
+    """As the window draws them (the picture had none); faint where the surface hides them."""
+    import numpy as np
+    import pyvista
+
+    product = tmp_path / "product.png"
+    assert main(["analyze", "(x^2+y^2-1)*(y^2+z^2-1)", "-o", str(product)]) == 0
+    rgb = np.asarray(pyvista.read(product).point_data.active_scalars)[:, :3].astype(int)
+    assert int(np.sum(np.all(np.abs(rgb - (0x45, 0x5A, 0x64)) <= 4, axis=1))) > 100  # FACTOR_AXES_COLOR

@@ -284,7 +284,7 @@ def test_the_axis_shows_faintly_through_the_surface_that_hides_it(window, run_an
     """A cylinder hides its axis from end to end (a rounded CAD cone showed a few pixels of it,
     at the apex): the axis is drawn again, faint, on a layer over the scene."""
     from sorgui.gui.exporting import viewport_image
-    from sorgui.gui.hidden_lines import HIDDEN_OPACITY
+    from sorgui.render.hidden_lines import HIDDEN_OPACITY
 
     run_analysis(window, "x^2 + y^2 - 1")
     viewport = window.viewport

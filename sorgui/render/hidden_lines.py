@@ -10,6 +10,7 @@ copy falls on the line itself and changes nothing; where it is hidden, it shows 
 system shows hidden edges. The layer renders no background and takes no clicks (picking stays
 with the surface).
 
+The window's 3D view and the reports' pictures (:mod:`sorgui.export.picture`) draw them alike.
 This module imports VTK: only the code that creates a render window imports it.
 """
 
@@ -21,7 +22,7 @@ import pyvista
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
 
 if TYPE_CHECKING:
-    from sorgui.gui.render_window import RenderWindow
+    from pyvista.plotting.plotter import BasePlotter
 
 HIDDEN_OPACITY = 0.3
 """The opacity of a line where the surface hides it."""
@@ -32,13 +33,13 @@ HIDDEN_LAYER = 1
 class HiddenLines:
     """The faint copies of some of a plotter's lines, drawn over the whole scene."""
 
-    def __init__(self, plotter: RenderWindow) -> None:
+    def __init__(self, plotter: BasePlotter) -> None:
         renderer = vtkRenderer()
         renderer.SetLayer(HIDDEN_LAYER)
         renderer.SetInteractive(False)
         renderer.SetActiveCamera(plotter.renderer.GetActiveCamera())
         window = plotter.ren_win
-        assert window is not None  # the render window exists with its plotter
+        assert window is not None  # the render window is made with the plotter
         window.SetNumberOfLayers(max(window.GetNumberOfLayers(), HIDDEN_LAYER + 1))
         window.AddRenderer(renderer)
         self._renderer = renderer
