@@ -19,7 +19,7 @@ from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QGridLayout, QLabel, QTableWidget, QVBoxLayout, QWidget
 
 from sorgui.gui.formula_view import FormulaView, retire
-from sorgui.gui.wording import short_numbers
+from sorgui.gui.wording import breakable, short_numbers
 from sorgui.session.formulas import TypesetFormula
 
 CAPTION_WIDTH = 130
@@ -147,7 +147,7 @@ def _section(
             views[key] = view
             grid.addWidget(view, index, 1)
         else:
-            text = QLabel(short_numbers(value))
+            text = QLabel(breakable(short_numbers(value)))
             text.setWordWrap(True)
             text.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
             grid.addWidget(text, index, 1)

@@ -184,6 +184,20 @@ def short_numbers(text: str) -> str:
     return LONG_NUMBER.sub(lambda m: f"{m.group()[:10]}…{m.group()[-6:]} [{len(m.group())} digits]", text)
 
 
+LONG_WORD = re.compile(r"\S{25,}")
+"""A run of text without a space long enough to widen the results pane beyond a narrow window."""
+BREAK_AFTER = re.compile(r"([*/(,^])")
+
+
+def breakable(text: str) -> str:
+    """``text`` with a zero-width space after each ``*``, ``/``, ``(``, ``,`` and ``^`` of its
+    long words (:data:`LONG_WORD`), where a line may break: a note holding a formula of
+    20-digit numbers (``30303833264442169684*sqrt(82216202341731479742)*s``) was one unbreakable
+    word, and the pane scrolled sideways in a window 800 pixels wide. The copies and exports are
+    of the analysis, not of these words."""
+    return LONG_WORD.sub(lambda m: BREAK_AFTER.sub("\\1\u200b", m.group()), text)
+
+
 def near_words(approx: Approximation) -> str:
     """The near case in one sentence, as the issue's user expects it."""
     axis = approx.axis

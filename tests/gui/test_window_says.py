@@ -359,3 +359,16 @@ def test_every_formula_is_readable_before_it_is_typeset_and_the_visible_ones_are
     start = time.monotonic()
     typeset_all(window, qtbot)
     assert time.monotonic() - start < 60
+
+
+def test_a_note_holding_a_long_formula_wraps_in_a_narrow_window(window, run_analysis, qtbot) -> None:
+    """A rationality note holds the map through T, 20-digit numbers times square roots: one
+    word of 50 characters, and the pane scrolled sideways in a window 800 pixels wide."""
+    window.resize(800, 900)
+    qtbot.wait(200)
+    text = "(x^2+y^2+z^2)-(12345*x+67891*y+23456*z)^2/(12345^2+67891^2+23456^2)-1/3"
+    run_analysis(window, text, timeout_ms=SLOW_MS)
+    assert any("map through T" in note for note in window.session.run.analysis.rationality.notes)
+    qtbot.wait(500)  # laid out
+    assert window.results.horizontalScrollBar().maximum() == 0
+    assert "map through T" in pane_text(window).replace("\u200b", "")
