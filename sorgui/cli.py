@@ -131,13 +131,14 @@ class UserRegion:
 
 
 def region_value(text: str) -> UserRegion:
-    """``R``, ``X,Y,Z,R`` or ``XMIN:XMAX,YMIN:YMAX,ZMIN:ZMAX``, every number finite and each
-    radius and side positive; spaces around the numbers, not inside them (``1 2`` was read as 12)."""
+    """``R``, ``X,Y,Z,R`` or ``XMIN:XMAX,YMIN:YMAX,ZMIN:ZMAX``, every number (a decimal or a
+    fraction ``1/3``, as an equation's) finite and each radius and side positive; spaces around
+    the numbers, not inside them (``1 2`` was read as 12)."""
     usage = "give R, X,Y,Z,R or XMIN:XMAX,YMIN:YMAX,ZMIN:ZMAX"
     parts = [p.split(":") for p in text.split(",")]
     try:
-        numbers = [float(v) for part in parts for v in part]
-    except ValueError:
+        numbers = [_region_number(v) for part in parts for v in part]
+    except (ValueError, ZeroDivisionError):
         raise argparse.ArgumentTypeError(f"not a region: {text!r} ({usage})") from None
     if not all(map(math.isfinite, numbers)):
         raise argparse.ArgumentTypeError(f"the region's numbers must be finite, not {text!r}")
@@ -158,6 +159,15 @@ def region_value(text: str) -> UserRegion:
         x0, x1, y0, y1, z0, z1 = numbers
         return UserRegion(bounds=(x0, x1, y0, y1, z0, z1))
     raise argparse.ArgumentTypeError(f"not a region: {text!r} ({usage})")
+
+
+def _region_number(text: str) -> float:
+    """A number of ``--region``: a decimal, or a fraction of decimals (``1/3``, ``-2/7``)."""
+    if "/" not in text:
+        return float(text)
+    from fractions import Fraction  # not at the start of every command
+
+    return float(Fraction(text.strip()))
 
 
 REGION_REACH = 1e12

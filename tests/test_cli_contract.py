@@ -7,6 +7,7 @@ the text report's final newline, and the one time limit of the whole analysis.
 
 from __future__ import annotations
 
+import argparse
 import json
 import multiprocessing
 import os
@@ -250,6 +251,16 @@ def test_a_region_is_a_radius_a_ball_or_a_box_and_may_start_with_a_minus_sign() 
     assert cli.region_value(" -1 : 1, -2:2 ,0:3 ") == box
     args = cli.parse_arguments(cli.analyze_parser(), ["--region", "-1:1,-2:2,0:3", "-x^2-y^2+z"])
     assert args.region == box and args.expression == "-x^2-y^2+z"
+
+
+def test_a_regions_numbers_may_be_fractions_as_an_equations_are() -> None:
+    """``--region=1/3,-2/7,5,1/3`` was "not a region", though the equation it frames is written
+    with fractions."""
+    assert cli.region_value("1/3,-2/7,5,1/3") == cli.UserRegion(radius=1 / 3, center=(1 / 3, -2 / 7, 5.0))
+    assert cli.region_value("-1/2:1/2, 0:1, -3:3") == cli.UserRegion(bounds=(-0.5, 0.5, 0.0, 1.0, -3.0, 3.0))
+    for bad in ("1/0", "1/3/4", "1 /3"):
+        with pytest.raises(argparse.ArgumentTypeError, match="not a region"):
+            cli.region_value(bad)
 
 
 def test_a_box_cuts_the_mesh_it_writes(tmp_path: Path) -> None:
