@@ -35,6 +35,7 @@ from sorgui.engine.values import (
     float_vector,
     polynomial_terms,
     rational_function_terms,
+    to_float,
     zero_set_profile,
 )
 from sorgui.export.text import float_text
@@ -336,7 +337,9 @@ def build_scene(
             float_vector(rec.profile.frame_normal),
             region,
         )
-    marker = sphere_center_marker(float_vector(rec.center), region) if rec.center else None
+    imaginary = rec.radius_squared is not None and to_float(rec.radius_squared) < 0
+    # a sphere without real points (x² + y² + z² + 1) drew its centre, a point that is not on it
+    marker = sphere_center_marker(float_vector(rec.center), region) if rec.center and not imaginary else None
     if not analysis.squarefree:
         notes.append("The implicit equation is not known: the surface drawn is the given map's patch.")
     factor_lines = [

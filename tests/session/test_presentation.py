@@ -391,3 +391,13 @@ def test_a_rounded_cylinder_is_drawn_in_the_ball_of_its_nearest_exact_surface() 
     text = (Path(__file__).resolve().parent.parent / "data" / "rounded-cylinder-6-digits.txt").read_text()
     scene = build_scene(analyze(text), resolution=40)
     assert scene.region.radius < 10 and scene.surface.n_faces > 1000
+
+
+def test_a_sphere_without_real_points_draws_no_centre() -> None:
+    """``x² + y² + z² + 1`` drew a lone red dot at its centre, which is not a point of it; the
+    point sphere ``x² + y² + z² = 0`` is its centre, and draws it."""
+    from sorgui.engine import analyze
+    from sorgui.session.scene_data import build_scene
+
+    assert build_scene(analyze("x^2+y^2+z^2+1")).center_marker is None
+    assert build_scene(analyze("x^2+y^2+z^2")).center_marker is not None
