@@ -72,8 +72,16 @@ def view_region(terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
     """A ball that shows the interesting part of ``f = 0`` around ``center``: the engine's
     :func:`~sorgui.engine.rounded.deviation.view_ball` (real points on a star of lines, far branches
     dropped), the same ball in which a rounded input's deviation is measured (docs/math.md §8.6)."""
-    middle, radius = view_ball(_dense(terms), np.asarray(center, dtype=np.float64), axis)
+    center = np.asarray(center, dtype=np.float64)
+    middle, radius = view_ball(_dense(terms), center, axis)
+    if np.linalg.norm(middle - center) <= SAME_CENTRE * max(radius, float(np.linalg.norm(center))):
+        middle = center  # the exact centre, not one 4e-16 off it (a sphere's CAD part was cut in two)
     return _ball(middle, radius)
+
+
+SAME_CENTRE = 1e-12
+"""How near the view ball's middle must be to the surface's own centre, relative to the ball's
+radius or the centre's distance from the origin, to be taken as that centre."""
 
 
 def _ball(middle: np.ndarray, radius: float) -> ClipSphere:

@@ -401,3 +401,13 @@ def test_a_sphere_without_real_points_draws_no_centre() -> None:
 
     assert build_scene(analyze("x^2+y^2+z^2+1")).center_marker is None
     assert build_scene(analyze("x^2+y^2+z^2")).center_marker is not None
+
+
+def test_the_view_ball_of_a_sphere_is_centred_on_its_exact_centre() -> None:
+    """The ball's middle came out 4e-16 off the sphere's centre, and the sphere's CAD part in a
+    ball of its own radius (``--region=2``) was cut into 2 faces, with ``0,0,0,2`` 1."""
+    from sorgui.engine import analyze
+    from sorgui.session.scene_data import build_scene
+
+    assert build_scene(analyze("x^2+y^2+z^2-4")).region.center == (0.0, 0.0, 0.0)
+    assert build_scene(analyze("(x^2+y^2+z^2+3)^2-16(x^2+y^2)")).region.center == (0.0, 0.0, 0.0)

@@ -116,7 +116,7 @@ def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = N
     else:
         middle = 0.5 * (core.min(axis=0) + core.max(axis=0))
     radius = MARGIN * float(np.linalg.norm(core - middle, axis=1).max())
-    return middle, float(np.clip(radius, natural_length(array, middle), MAX_RADIUS))
+    return middle, float(np.clip(radius, natural_length(array, center), MAX_RADIUS))
 
 
 TRANSLATION_NOISE = 1e-12
@@ -126,12 +126,14 @@ noise of the translation (:func:`natural_length`)."""
 
 def natural_length(array: FloatArray, middle: FloatArray | None = None) -> float:
     """The length at which the lowest and highest homogeneous parts of ``f`` about ``middle``
-    (the origin if not given) weigh alike, ``(|f_low| / |f_high|)^(1/(high − low))``, between
-    :data:`SMALLEST_RADIUS` and :data:`MIN_RADIUS`: the floor of the view ball's radius. A small
-    part (``x² + y² − 2.5e-5``: 0.005) gets a ball of its size, about its middle wherever it is
-    (a sphere of radius 0.005 about ``(0.3, 0.2, 0)`` had the floor 0.36 about the origin, and
-    was drawn with 52 triangles); a cone about its apex, whose numerical roots near the apex are
-    noise of about 10⁻⁵, keeps the floor of 1 (its parts are all of one degree)."""
+    (the surface's own centre, exact; the origin if not given) weigh alike,
+    ``(|f_low| / |f_high|)^(1/(high − low))``, between :data:`SMALLEST_RADIUS` and
+    :data:`MIN_RADIUS`: the floor of the view ball's radius. A small part (``x² + y² − 2.5e-5``:
+    0.005) gets a ball of its size wherever it is (a sphere of radius 0.005 about
+    ``(0.3, 0.2, 0)`` had the floor 0.36 about the origin, and was drawn with 52 triangles); a
+    cone about its apex, whose numerical roots near the apex are noise of about 10⁻⁵, keeps the
+    floor of 1 (its parts are all of one degree; about the middle of those roots they were not,
+    and a cubic cone was drawn in a ball 6e-6 across)."""
     length = part_size(array)
     if middle is not None:
         moved = dense.translated(array, middle)
