@@ -3,7 +3,9 @@ genus, and the verified parameterizations, in general position over QQ and QQ(âˆ
 
 from __future__ import annotations
 
+import re
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -307,6 +309,17 @@ def test_a_cone_printed_with_fixed_decimals_is_nearly_a_cone_about_its_apex() ->
     conical = analyze(CONE_FIXED).conical
     assert conical is not None and conical.near_apex is not None
     assert conical.near_apex == pytest.approx((-11.1, 26.1, -77.9), abs=1e-3)
+
+
+def test_a_rounded_part_times_1e300_is_judged_as_the_part() -> None:
+    """Printed times 1e300 (coefficients near the largest double), the near tests' SVD overflowed
+    and the run ended in an internal error; the same cone is nearly a cone about its apex."""
+    scaled = re.sub(r"([0-9]+\.[0-9]+)", r"\1e300", CONE_FIXED)
+    conical = analyze(scaled).conical
+    assert conical is not None and conical.near_apex == pytest.approx((-11.1, 26.1, -77.9), abs=1e-3)
+    torus = (Path(__file__).parents[1] / "data" / "rounded-torus-times-1e300.txt").read_text(encoding="ascii")
+    analysis = analyze(torus)  # a torus of R = 32, r = 8 printed with 6 digits, times 1e300
+    assert analysis.conical is not None and analysis.conical.near_apex is None
 
 
 def test_a_large_rounded_torus_is_not_nearly_a_cone() -> None:

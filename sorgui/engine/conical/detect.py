@@ -92,16 +92,25 @@ def near_apex(f: Poly, rounding: Rounding) -> tuple[tuple[float, float, float], 
     rows, rhs, monomials = _system(f)
     M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
     b = np.array([float(to_expr(K, c)) for c in rhs])
-    size = max(abs(float(to_expr(K, c))) for c in f.values())
+    # in units of the largest entry: a part printed times 1e300 overflowed the SVD's squares
+    unit = max(float(np.abs(M).max(initial=0.0)), float(np.abs(b).max(initial=0.0)))
+    if not (np.isfinite(unit) and unit > 0):
+        return None
+    M, b = M / unit, b / unit
+    size = max(abs(float(to_expr(K, c))) for c in f.values()) / unit
+
+    def bounds(apex: Any) -> Any:  # noqa: ANN401 - numpy
+        return _row_bounds(monomials, apex, total_degree(f), rounding, k) / unit
+
     singular = np.linalg.svd(M, compute_uv=False)
     if len(singular) < 3 or singular[-1] <= NEAR_FACTOR * rounding.tolerance * singular[0]:
         return None
     apex, *_ = np.linalg.lstsq(M, b, rcond=None)
     for _ in range(WEIGHTINGS):  # each row in units of its bound (which the apex moves)
-        weights = 1.0 / _row_bounds(monomials, apex, total_degree(f), rounding, k)
+        weights = 1.0 / bounds(apex)
         apex, *_ = np.linalg.lstsq(M * weights[:, None], b * weights, rcond=None)
     misses = np.abs(M @ apex - b)
-    if np.any(misses > NEAR_FACTOR * _row_bounds(monomials, apex, total_degree(f), rounding, k)):
+    if np.any(misses > NEAR_FACTOR * bounds(apex)):
         return None
     residual = float(misses.max()) / (total_degree(f) * size * (1 + float(np.linalg.norm(apex))))
     x, y, z = (float(v) * 10.0**k for v in apex)
@@ -187,7 +196,10 @@ def near_direction(f: Poly, tolerance: float) -> tuple[tuple[float, float, float
     K = f.ring.domain
     rows, _rhs, _monomials = _system(f)
     M = np.array([[float(to_expr(K, c)) for c in row] for row in rows])
-    _u, singular, vt = np.linalg.svd(M)
+    unit = float(np.abs(M).max(initial=0.0))  # the SVD's squares overflowed for a part times 1e300
+    if not (np.isfinite(unit) and unit > 0):
+        return None
+    _u, singular, vt = np.linalg.svd(M / unit)
     if len(singular) < 3 or singular[0] == 0:
         return None
     small = singular <= NEAR_FACTOR * tolerance * singular[0]
