@@ -791,3 +791,21 @@ def test_a_nearest_surface_whose_zero_set_is_far_is_not_within_the_rounding() ->
     assert not nearest.within_rounding or nearest.max_deviation < 1.0  # the part is 100 mm across
     far = NearestSurface("x**2 + y**2 + z**2 - 1", "sphere", None, None, None, 1.5e-10, 2.6e4, False, None, 0.86)
     assert outside_words(far) == "its coefficients are within the rounding, but its zero set is far from the typed one"
+
+
+def test_a_torus_about_an_irrational_centre_printed_with_10_digits_keeps_its_radii() -> None:
+    """``R = 0.0254``, ``r = 0.00635`` m about a centre of 16 digits (an assembly's transform) on
+    a random axis, printed with 10 digits: the centre was snapped no finer than 10⁻⁷ of its size,
+    too coarse for 10 digits, and the nearest surface was a quartic of Table 1's row 4."""
+    text = (Path(__file__).parents[1] / "data" / "rounded-torus-metres-10-digits.txt").read_text(encoding="ascii")
+    nearest = analyze(text).approximate.nearest
+    assert nearest is not None and nearest.within_rounding
+    assert nearest.analysis is not None and nearest.analysis.rationality.table_row == 1
+    profile = nearest.analysis.recognition.profile
+    assert profile is not None
+    from sorgui.engine.values import polynomial_terms
+
+    terms = {tuple(e): c for e, c in polynomial_terms(profile.rational, ("s", "r"))}
+    R2, r2 = 0.0254**2, 0.00635**2  # (ρ + R² − r²)² − 4R²·r_axis², up to a factor
+    assert terms[(2, 0)] / terms[(4, 0)] == pytest.approx(2 * (R2 - r2), rel=1e-12)
+    assert terms[(0, 2)] / terms[(4, 0)] == pytest.approx(2 * (R2 - r2) - 4 * R2, rel=1e-12)

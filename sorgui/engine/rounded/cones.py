@@ -59,9 +59,11 @@ a point along a direction (:func:`.snapping.build`)."""
 EXPONENTS = ((0, 0), (1, 0), (2, 0), (0, 1))
 """The terms ``h^i ρ^j`` of a quadric of revolution (:func:`.snapping.build`); a cone about its
 apex has only the last two."""
-APEX_RADII = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
+APEX_RADII = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11)
 """Radii, relative to the apex's distance from the origin (at least the size of the surface's
-normalised coordinates), within which its coordinates are snapped, coarsest first."""
+normalised coordinates), within which its coordinates are snapped, coarsest first: down to
+10⁻¹¹ for a point of 16 digits printed with 10 (a torus's centre moved by an assembly's
+transform was snapped no finer than 10⁻⁷, and no torus held the rounding about it)."""
 SLOPE_RADII = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11)
 """The same for ``K = tan²θ``, relative to ``K``."""
 DIRECTION_RADII = (1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
