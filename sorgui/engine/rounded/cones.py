@@ -36,7 +36,7 @@ from flint import fmpq, fmpq_mpoly
 
 from .coefficients import Typed, bits, shape_bits, within_scale
 from .dense import FloatArray, Monomial
-from .directions import FAMILIES, DirectionSnap, decimal_near, simplest_near, three
+from .directions import FAMILIES, DirectionSnap, angles_of, decimal_near, simplest_near, three, unit_at
 from .precision import Rounding
 
 if TYPE_CHECKING:
@@ -326,11 +326,10 @@ def refit_direction(
 
     def entries(params: FloatArray) -> FloatArray:
         scale, theta, phi = params
-        n = np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
-        return model(scale, n)
+        return model(scale, unit_at(theta, phi))
 
     unit = unit / np.linalg.norm(unit)
-    params = np.array([lam, np.arccos(np.clip(unit[2], -1.0, 1.0)), np.arctan2(unit[1], unit[0])])
+    params = np.array([lam, *angles_of(unit)])
     for _ in range(8):
         residual = design @ entries(params) - target
         jacobian = np.empty((len(target), 3))
@@ -343,4 +342,4 @@ def refit_direction(
         if np.all(np.abs(delta[1:]) < 1e-15):
             break
     _, theta, phi = params
-    return np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
+    return unit_at(theta, phi)

@@ -39,7 +39,7 @@ from flint import fmpq, fmpq_mpoly
 from .coefficients import Typed, bits, within_scale
 from .cones import DIRECTION_RADII, MAX_RESIDUAL, Build, S, simplest
 from .dense import FloatArray, Monomial
-from .directions import FAMILIES, decimal_near, simplest_near, three
+from .directions import FAMILIES, angles_of, decimal_near, simplest_near, three, unit_at
 from .precision import Rounding
 
 if TYPE_CHECKING:
@@ -261,13 +261,12 @@ def _refined_direction(
 
     def residual(angles: FloatArray) -> FloatArray:
         theta, phi = angles
-        n = np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
-        design = _design(monomials, n) * weights[:, None]
+        design = _design(monomials, unit_at(theta, phi)) * weights[:, None]
         z, *_ = np.linalg.lstsq(design, target, rcond=None)
         values: FloatArray = design @ z - target
         return values
 
-    angles = np.array([np.arccos(np.clip(unit[2], -1.0, 1.0)), np.arctan2(unit[1], unit[0])])
+    angles = np.array(angles_of(unit))
     for _ in range(8):
         r = residual(angles)
         jacobian = np.empty((len(r), 2))
@@ -280,4 +279,4 @@ def _refined_direction(
         if np.all(np.abs(delta) < 1e-15):
             break
     theta, phi = angles
-    return np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
+    return unit_at(theta, phi)

@@ -312,3 +312,14 @@ def snapped_directions(direction: FloatArray, family: DirectionSnap) -> list[Dir
         if a is not None and a not in found:
             found.append(a)
     return found
+
+
+def unit_at(theta: float, phi: float) -> FloatArray:
+    """The unit vector of polar angle ``theta`` and azimuth ``phi``: the two parameters of a
+    direction fitted by Gauss and Newton's steps (cones, cylinders, tori)."""
+    return np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
+
+
+def angles_of(unit: FloatArray) -> tuple[float, float]:
+    """``(theta, phi)`` of the unit vector ``unit`` (:func:`unit_at`)."""
+    return float(np.arccos(np.clip(unit[2], -1.0, 1.0))), float(np.arctan2(unit[1], unit[0]))

@@ -47,7 +47,7 @@ from .cones import (
     snapped_points,
 )
 from .dense import FloatArray, Monomial
-from .directions import decimal_near
+from .directions import angles_of, decimal_near, unit_at
 from .near_symmetry import lawson
 from .precision import Rounding
 
@@ -133,9 +133,6 @@ def _largest_smallest(
     printed from, and only a torus scaled by ``2481838/2481837`` was within the rounding about
     the directions near it."""
 
-    def direction(theta: float, phi: float) -> FloatArray:
-        return np.array([np.sin(theta) * np.cos(phi), np.sin(theta) * np.sin(phi), np.cos(theta)])
-
     def refit(model: Model) -> FloatArray:
         fitted = refit_direction(design, target, model, lam, unit)
         column = design @ model(1.0, fitted)
@@ -143,11 +140,11 @@ def _largest_smallest(
 
         def residual(params: FloatArray) -> FloatArray:
             change, theta, phi = params
-            return design @ model(scale * (1.0 + change), direction(theta, phi)) - target
+            return design @ model(scale * (1.0 + change), unit_at(theta, phi)) - target
 
-        start = np.array([0.0, np.arccos(np.clip(fitted[2], -1.0, 1.0)), np.arctan2(fitted[1], fitted[0])])
+        start = np.array([0.0, *angles_of(fitted)])
         _, theta, phi = lawson(residual, start)
-        return direction(theta, phi)
+        return unit_at(theta, phi)
 
     return refit
 
