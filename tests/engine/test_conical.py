@@ -195,6 +195,29 @@ def test_a_cone_printed_with_ten_digits_is_nearly_a_cone_about_its_apex() -> Non
     assert analyze(printed_exact(exact, 10)).conical.near_apex is None
 
 
+@pytest.mark.parametrize("digits", [6, 10])
+def test_a_rounded_cone_about_a_decimal_apex_is_nearly_a_cone_about_that_decimal(digits: int) -> None:
+    """A quadric cone about ``(3.1, −2.4, 5.05)`` on the axis along ``(11, 10, 2)``, printed with
+    6 digits, was "nearly a cone about (3.09999, −2.4, 5.05)": the least-squares apex is moved to
+    the decimal of fewest places that the rounding allows; an apex of no short decimal keeps
+    the least squares' digits."""
+    from sorgui.engine import analyze
+    from sorgui.samples import printed_exact, rational_sor
+
+    profile = {(0, 1): Fraction(1), (2, 0): Fraction(-10, 9)}  # (ρ − h²) − h²/9 about the apex
+    for apex, exact in [
+        ((Fraction(31, 10), Fraction(-12, 5), Fraction(101, 20)), True),
+        ((Fraction(1, 3), Fraction(2, 7), Fraction(-5, 11)), False),
+    ]:
+        text = printed_exact(rational_sor((1, 2, 3, 4), apex, profile), digits)
+        conical = analyze(text).conical
+        assert conical is not None and conical.near_apex is not None, text
+        if exact:
+            assert conical.near_apex == tuple(float(c) for c in apex)
+        else:
+            assert all(abs(a - float(b)) < 10.0 ** (2 - digits) for a, b in zip(conical.near_apex, apex))
+
+
 def test_a_cylinder_printed_with_ten_digits_is_nearly_a_cylinder_along_its_direction() -> None:
     """Along (3, -1/7, 2): ``M a = 0`` holds to the rounding; moving the ``x³`` coefficient by
     1/100 (a near miss, rounded alike) makes no translation nearly leave it invariant."""

@@ -16,6 +16,7 @@ is ``c + null space``) is also a cylinder: planes through a line, reported as a 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -113,8 +114,29 @@ def near_apex(f: Poly, rounding: Rounding) -> tuple[tuple[float, float, float], 
     if np.any(misses > NEAR_FACTOR * bounds(apex)):
         return None
     residual = float(misses.max()) / (total_degree(f) * size * (1 + float(np.linalg.norm(apex))))
-    x, y, z = (float(v) * 10.0**k for v in apex)
+    x, y, z = (float(v) * 10.0**k for v in _decimal_apex(apex, lambda c: bool(np.all(np.abs(M @ c - b) <= bounds(c)))))
     return (x, y, z), residual
+
+
+APEX_PLACES = tuple(10.0**-e for e in range(1, 12))
+"""The radii (times ``1 + |c|``) within which :func:`_decimal_apex` looks for a decimal apex."""
+
+
+def _decimal_apex(apex: Any, consistent: Callable[[Any], bool]) -> Any:  # noqa: ANN401 - numpy
+    """The apex of fewest decimal places near the least-squares ``apex`` that is ``consistent``
+    with the rounding (every row of ``M c − b`` within its bound, which the exact cone's apex
+    meets), else ``apex``: a cone printed with ``%.6g`` about ``(3.1, −2.4, 5.05)`` was "nearly
+    a cone about (3.09999, −2.4, 5.05)"."""
+    import numpy as np  # rounded input only
+
+    from ..rounded.directions import decimal_near
+
+    scale = 1.0 + float(np.linalg.norm(apex))
+    for radius in APEX_PLACES:
+        candidate = np.array([float(decimal_near(float(v), radius * scale)) for v in apex])
+        if consistent(candidate):
+            return candidate
+    return apex
 
 
 def _row_bounds(monomials: list[Monomial], apex: Any, degree: int, rounding: Rounding, k: int) -> Any:  # noqa: ANN401 - numpy
