@@ -75,11 +75,11 @@ def test_a_rounded_turned_cone_is_near_the_cone_with_its_apex(
     assert math.degrees(math.atan(math.sqrt(float(-a / d)))) == pytest.approx(half_angle, abs=1e-4)
 
 
-def turned_cylinder(digits: str) -> str:
-    """A cylinder of radius 12.7 about the axis through ``(25/2, −13/4, 7)`` along ``(11, 10, 2)``
-    (the rational turn of the quaternion ``(1, 2, 3, 4)``), expanded and printed with the
-    format ``digits``."""
-    point = sympy.Matrix([sympy.Rational(25, 2), sympy.Rational(-13, 4), 7])
+def turned_cylinder(digits: str, through: tuple[str, str, str] = ("25/2", "-13/4", "7")) -> str:
+    """A cylinder of radius 12.7 about the axis through ``through`` along ``(11, 10, 2)`` (the
+    rational turn of the quaternion ``(1, 2, 3, 4)``), expanded and printed with the format
+    ``digits``."""
+    point = sympy.Matrix([sympy.Rational(v) for v in through])
     a, b, c, d = 1, 2, 3, 4
     rotation = sympy.Matrix(
         [
@@ -109,6 +109,20 @@ def test_a_rounded_cylinder_is_near_the_cylinder_of_its_radius(digits: str) -> N
     axis = nearest.analysis.recognition.axis  # the exact axis, through the foot of the origin on it
     assert axis is not None and axis.direction == ("11", "10", "2")
     assert axis.point == ("3007/450", "-1537/180", "1337/225")
+
+
+@pytest.mark.parametrize("digits", [".6g", ".10g", ".6f"])
+def test_a_rounded_cylinder_through_a_decimal_point_has_the_designed_axis(digits: str) -> None:
+    """Through ``(3.1, −2.4, 5.05)``: the foot of the origin is ``(4753/2250, …)``, whose
+    ``|a|²·c = (475.3, −742, 1095.85)`` are the designer's numbers; with ``%.6g`` the point
+    ``(526/249, …)``, simpler by plain bits and a ten-thousandth off the axis, was the answer."""
+    analysis = analyze(turned_cylinder(digits, ("31/10", "-12/5", "101/20")))
+    nearest = analysis.approximate.nearest if analysis.approximate is not None else None
+    assert nearest is not None and nearest.within_rounding and nearest.analysis is not None
+    recognition = nearest.analysis.recognition
+    assert recognition.profile is not None and recognition.profile.polynomial == "100*y**2 - 16129"
+    assert recognition.axis is not None and recognition.axis.direction == ("11", "10", "2")
+    assert recognition.axis.point == ("4753/2250", "-742/225", "21917/4500")
 
 
 def test_a_cone_printed_with_4_digits_is_a_cone_within_its_rounding() -> None:

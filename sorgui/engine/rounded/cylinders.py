@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from flint import fmpq, fmpq_mpoly
 
-from .coefficients import Typed, bits, within_scale
+from .coefficients import Typed, axis_bits, bits, within_scale
 from .cones import DIRECTION_RADII, MAX_RESIDUAL, Build, S, simplest
 from .dense import FloatArray, Monomial
 from .directions import FAMILIES, angles_of, decimal_near, simplest_near, three, unit_at
@@ -138,7 +138,7 @@ def _cylinder_along(
             checks += tried
             if passed is not None and (best is None or passed[0] < best[0]):
                 best = passed
-            if best is not None and (best[0] < RADIUS_WEIGHT * DECIMAL_BITS + bits([*c, *a]) or checks >= MAX_CHECKS):
+            if best is not None and (best[0] < RADIUS_WEIGHT * DECIMAL_BITS + axis_bits(a, c) or checks >= MAX_CHECKS):
                 return best, checks  # a short radius: a finer point has no simpler one
     return best, checks
 
@@ -167,7 +167,7 @@ def _radius_about(
                 continue
             surface = check(g * fmpq(factor.numerator, factor.denominator), a, c)
             if surface is not None and surface.largest <= 1.0:
-                return (radius_cost(squared) + bits([*c, *a]), [factor * q for q in coefficients], surface), checks
+                return (radius_cost(squared) + axis_bits(a, c), [factor * q for q in coefficients], surface), checks
     return None, checks
 
 

@@ -52,6 +52,7 @@ from .coefficients import (
     SNAPPED,
     TORUS_TERMS,
     Typed,
+    axis_bits,
     bits,
     coefficient_candidates,
     matched_scales,
@@ -597,11 +598,17 @@ def _squared_length(a: Direction) -> Fraction | None:
 
 def _axis_bits(surface: ExactSurface) -> int:
     """The bits of an exact surface's axis: its point's coordinates and its direction's (both
-    parts of a coordinate in ``QQ(√d)``). Two families may snap to the same profile
-    coefficients; the simpler axis wins (the turned CAD part's ``(0, 1/2, √3/2)``, not a
-    rational direction of 60-bit coordinates within the same rounding)."""
-    values = list(surface.point or ())
-    for v in surface.direction or ():
+    parts of a coordinate in ``QQ(√d)``; on a rational direction, :func:`.coefficients.axis_bits`).
+    Two families may snap to the same profile coefficients; the simpler axis wins (the turned CAD
+    part's ``(0, 1/2, √3/2)``, not a rational direction of 60-bit coordinates within the same
+    rounding)."""
+    direction = surface.direction or ()
+    point = [Fraction(v) for v in surface.point or ()]
+    rational = [Fraction(v) for v in direction if not isinstance(v, Quadratic)]
+    if point and direction and len(rational) == len(direction):
+        return axis_bits(rational, point)
+    values = list(point)
+    for v in direction:
         values += [v.a, v.b] if isinstance(v, Quadratic) else [Fraction(v)]
     return bits(values)
 
