@@ -211,7 +211,8 @@ class _Terms:
         keys = [o or u or b for o, u, b in zip(overs, unders, bare_unders)]
         digits = [n or "1" for n in numbers]
         longest = max(map(len, digits)) + max(map(len, keys))
-        if longest > min(limits.digits, limits.bits // 4) or not ("".join(digits) + "".join(keys)).isdigit():
+        # bytes.isdigit: ASCII digits only, by a table (str.isdigit asks Unicode of each character)
+        if longest > min(limits.digits, limits.bits // 4) or not ("".join(digits) + "".join(keys)).encode().isdigit():
             return False  # decimals, or long numbers: the loop checks the limits on each
         if any(k and not k.strip("0") for k in set(keys)):
             return False  # a division by zero: the parser says so
@@ -269,11 +270,13 @@ class _Terms:
         keys = [_ORDER.get(m) or _order(m) for m in self.monomials]  # (degree, monomial, spelling)
         if any(a <= b for a, b in zip(keys, keys[1:])):
             return None
-        magnitudes: list[str] = []
-        for numerator, digits, key in zip(self.numerators, self.digits, self.denominators):
-            if digits[0] == "0" or (key and (key[0] == "0" or key == "1" or math.gcd(numerator, values[key]) != 1)):
-                return None
-            magnitudes.append(f"{digits}/{key}" if key else digits)
+        denominators = self.denominators
+        if any(d[0] == "0" for d in self.digits) or any(k[0] == "0" or k == "1" for k in set(denominators) if k):
+            return None  # a leading zero, or a division by 1
+        # lowest terms: gcd(numerator, denominator) = 1 for each term (1 without a denominator), in one C loop
+        if max(map(math.gcd, self.numerators, map(values.__getitem__, denominators)), default=1) != 1:
+            return None
+        magnitudes = [f"{digits}/{key}" if key else digits for digits, key in zip(self.digits, denominators)]
         return _joined([k[2] for k in keys], [n < 0 for n in self.numerators], magnitudes)
 
     def printed_integers(self, coefficients: list[int]) -> str:
@@ -286,10 +289,22 @@ class _Terms:
 def _joined(spellings: list[str], negatives: list[bool], magnitudes: list[str]) -> str:
     """The printed sum of terms ``±magnitude*spelling`` (``spelling`` empty for the constant,
     a magnitude ``1`` not written before a monomial), as :func:`~.algebra.rationals.terms_str` writes it."""
-    return rationals.signed_sum(
-        (negative, magnitude if not spelling else (spelling if magnitude == "1" else f"{magnitude}*{spelling}"))
-        for spelling, negative, magnitude in zip(spellings, negatives, magnitudes)
-    )
+    pieces: list[str] = []  # signs and bodies, joined once (no string per term)
+    add = pieces.append
+    for spelling, negative, magnitude in zip(spellings, negatives, magnitudes):
+        add(" - " if negative else " + ")
+        if not spelling:
+            add(magnitude)
+        elif magnitude == "1":
+            add(spelling)
+        else:
+            add(magnitude)
+            add("*")
+            add(spelling)
+    if not pieces:
+        return "0"
+    pieces[0] = "-" if negatives[0] else ""
+    return "".join(pieces)
 
 
 def _rational(number: str, over: str, under: str, limits: Limits) -> tuple[int, int] | None:
