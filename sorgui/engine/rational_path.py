@@ -25,7 +25,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, overload
 
-from flint import fmpq, fmpq_mat, fmpq_mpoly
+from flint import fmpq, fmpq_mat, fmpq_mpoly, fmpz_mpoly
 
 from .algebra.linalg import Vector, cross, dot, perpendicular, primitive_vector
 from .algebra.rationals import (
@@ -102,7 +102,7 @@ def _analysis(text: str, clock: StageClock, *, full: bool) -> Analysis | None:
         start = printed_skeleton(printed, int(g.total_degree()), "QQ", text=text, method="symmetry")
     clock.read(start)
     with clock.stage("recognition"):
-        found = recognize_rational(g, printed, reading.multiple)
+        found = recognize_rational(g, printed, reading.multiple, reading.whole)
     if found is None or (full and found[0].is_sor):
         return None
     recognized, square = found
@@ -169,13 +169,17 @@ def conical_kind(g: fmpq_mpoly) -> str:
 
 
 def recognize_rational(
-    g: fmpq_mpoly, printed: str | None = None, multiple: Mapping[tuple[int, ...], int] | None = None
+    g: fmpq_mpoly,
+    printed: str | None = None,
+    multiple: Mapping[tuple[int, ...], int] | None = None,
+    whole: fmpz_mpoly | None = None,
 ) -> tuple[Recognition, fmpq_mpoly | None] | None:
     """The :class:`Recognition` of ``g ∈ QQ[x, y, z]`` by the symmetry method and, for a surface
     with a unique axis, its ``P²(s, w)``; ``None`` when the axis direction's ``|a|²`` reaches
     :data:`MAX_NORM`. ``printed``: ``flint_str(g)`` when the caller has it; ``multiple``: the
-    integer coefficients of a multiple of ``g`` when it has them (:attr:`.expanded.Reading.multiple`)."""
-    symmetry = rational_symmetry(g, multiple)
+    integer coefficients of a multiple of ``g`` when it has them (:attr:`.expanded.Reading.multiple`),
+    ``whole`` that multiple over ``ZZ`` (:attr:`.expanded.Reading.whole`)."""
+    symmetry = rational_symmetry(g, multiple, whole)
     profile = square = None
     if symmetry.kind in (REVOLUTION, CYLINDER):
         point, direction = symmetry.axis_point, symmetry.axis_direction
