@@ -13,15 +13,30 @@ Otherwise the paint copies VTK's last frame to the widget, as the C++ ``QVTKOpen
 does after a render that VTK made itself. A frame VTK has just rendered (the interactor's, while
 the user turns the view, or ``render()``'s) is shown without rendering it twice.
 
+pyvistaqt keeps a Python wrapper of the OpenGL surface of the render window's context, which Qt
+deletes with the render window unseen by PySide (a surface is not a ``QObject``). The wrapper
+then stays in PySide's table of wrappers, keyed by address: a widget made later at that address
+shares the key with it, and Qt's deletion of that widget can crash (SIGSEGV in
+``BindingManager::releaseWrapper``). The wrapper is taken out of the table when the context is
+deleted, just before its surface.
+
 This module imports pyvistaqt and VTK: only the code that creates a render window imports it.
 """
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Any
 
+import shiboken6
+from PySide6.QtGui import QSurface
 from PySide6.QtOpenGLWidgets import QOpenGLWidget
 from pyvistaqt import QtInteractor
+
+
+def _forget_surface(surface: QSurface, *_destroyed: object) -> None:
+    """Take ``surface``'s wrapper out of PySide's table of wrappers (Qt deletes the surface next)."""
+    shiboken6.invalidate(surface)
 
 
 class RenderWindow(QtInteractor):
@@ -50,6 +65,9 @@ class RenderWindow(QtInteractor):
     def initializeGL(self) -> None:  # noqa: N802 (Qt override)
         self._stale = True
         super().initializeGL()  # type: ignore[no-untyped-call]  # pyvistaqt's rwi is untyped
+        context, surface = self._ctx, self._surface  # pyvistaqt's, set by its initializeGL
+        if context is not None and surface is not None:
+            context.destroyed.connect(partial(_forget_surface, surface))
 
     def resizeGL(self, w: int, h: int) -> None:  # noqa: N802 (Qt override)
         self._stale = True

@@ -300,3 +300,26 @@ def test_the_axis_shows_faintly_through_the_surface_that_hides_it(window, run_an
     assert max(abs(a - b) for a, b in zip(axis, seen)) > 40  # the cylinder, not the axis, without the copy
     expected = [HIDDEN_OPACITY * a + (1 - HIDDEN_OPACITY) * b for a, b in zip(axis, seen)]
     assert np.allclose((middle.red(), middle.green(), middle.blue()), expected, atol=12), (middle, seen)
+
+
+def test_the_render_windows_surface_leaves_pysides_wrappers_with_it(qtbot) -> None:
+    """pyvistaqt keeps a wrapper of the render window's OpenGL surface, which Qt deletes with the
+    render window. Left in PySide's table of wrappers, its address, once taken by a new widget,
+    made Qt's deletion of that widget crash (SIGSEGV in BindingManager::releaseWrapper)."""
+    import shiboken6
+    from PySide6.QtCore import QCoreApplication, QEvent
+
+    from sorgui.gui.viewport import Viewport
+
+    viewport = Viewport()
+    viewport.resize(400, 300)
+    viewport.show()
+    plotter = viewport.plotter
+    qtbot.waitUntil(lambda: plotter.context() is not None, timeout=10_000)  # initializeGL has run
+    address = shiboken6.getCppPointer(plotter.context().surface())[0]
+    viewport.close_plotter()
+    viewport.deleteLater()
+    QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
+    assert not shiboken6.isValid(viewport)
+    left = [w for w in shiboken6.getAllValidWrappers() if shiboken6.getCppPointer(w)[0] == address]
+    assert not left, f"wrappers of deleted objects still registered: {left}"
