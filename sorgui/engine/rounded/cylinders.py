@@ -23,7 +23,8 @@ found from every coefficient, and then snapped:
    coefficient within the rounding (:func:`.coefficients.within_scale`) and checked exactly.
 
 The simplest cylinder that passes, by the bits of its radius (:data:`RADIUS_WEIGHT` times),
-point and direction, is the answer.
+point and direction (:func:`.coefficients.axis_bits`: the point as the decimals ``|a|²·c``), is
+the answer.
 """
 
 from __future__ import annotations
