@@ -283,7 +283,13 @@ def analyze_polynomial(
         with clock.stage("approximate"):
             rounding, rounding_notes = rounding_of(f, text, tolerance)
             assert rounding is not None  # a tolerance is given, or ``text`` prints decimals
-            near = approximate_symmetry(f, rounding, notes=rounding_notes, snap_exact=not recognition.is_sor)
+            near = approximate_symmetry(
+                f,
+                rounding,
+                notes=rounding_notes,
+                snap_exact=not recognition.is_sor,
+                sphere=recognition.symmetry == SPHERE,
+            )
         approximation = near.approximation
 
     rationality = None

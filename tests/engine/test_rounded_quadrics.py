@@ -138,3 +138,20 @@ def test_a_cone_printed_with_4_digits_is_a_cone_within_its_rounding() -> None:
     g = sympy.sympify(nearest.polynomial)
     apex = {x: sympy.Rational(21, 2), y: sympy.Rational(-16, 5), z: 7}
     assert g.subs(apex) == 0 and all(sympy.diff(g, v).subs(apex) == 0 for v in (x, y, z))
+
+
+def test_a_rounded_sphere_has_its_designed_sphere_for_nearest_exact_surface() -> None:
+    """Radius 150.25 about (58.315, 24.271, 64.029), printed with 6 digits: the typed equation is
+    exactly a sphere, of ``r² = 14485.6 + |c|²`` with as many digits as the input; the sphere of
+    the designed decimals is within the rounding too, and is the nearest exact surface. Printed
+    with 10 digits the typed sphere is the designed one, and there is no other."""
+    text = "1*x^2 - 116.63*x + 1*y^2 - 48.542*y + 1*z^2 - 128.058*z - 14485.6"
+    analysis = analyze(text)
+    assert analysis.recognition.symmetry == "sphere"
+    nearest = analysis.approximate.nearest if analysis.approximate is not None else None
+    assert nearest is not None and nearest.within_rounding and nearest.analysis is not None
+    assert nearest.analysis.recognition.center == ("11663/200", "24271/1000", "64029/1000")
+    assert nearest.analysis.recognition.radius_squared == "361201/16"  # 150.25²
+    assert any("radius 150.25 about (58.315, 24.271, 64.029)" in note for note in analysis.approximate.notes)
+    exact = analyze("1*x^2 - 116.63*x + 1*y^2 - 48.542*y + 1*z^2 - 128.058*z - 14485.628993")
+    assert exact.approximate is not None and exact.approximate.nearest is None

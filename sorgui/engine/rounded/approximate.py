@@ -37,6 +37,7 @@ from ..results import ApproximateAxis, Approximation, NearestSurface, Triple
 from ..syntax import square_roots
 from ..vocabulary import kind_noun
 from . import dense
+from .coefficients import is_decimal
 from .dense import FloatArray
 from .deviation import max_deviation
 from .directions import Quadratic, perpendicular, three
@@ -128,22 +129,24 @@ analysis."""
 
 
 def approximate_symmetry(
-    f: Poly, rounding: Rounding, *, snap_exact: bool = True, notes: tuple[str, ...] = ()
+    f: Poly, rounding: Rounding, *, snap_exact: bool = True, notes: tuple[str, ...] = (), sphere: bool = False
 ) -> NearResult:
     """The :class:`Approximation` of ``f`` under ``rounding`` (docs/math.md §8), computed for
     ``10^k·f`` and its rounding ``10^k·e`` when ``f``'s coefficients are far from 1
     (:data:`BALANCE_FROM`); the nearest exact surface is then scaled back by ``10^-k``, so that
-    it is compared with ``f`` as typed. Relative distances and zero sets do not depend on ``k``."""
+    it is compared with ``f`` as typed. Relative distances and zero sets do not depend on ``k``.
+    ``sphere``: ``f`` is exactly a sphere, and its designed sphere (§8.5, "Spheres") is the
+    nearest exact surface when it is another one."""
     k = _balancing_power(f)
     if not k:
-        return _approximate_symmetry(f, rounding, snap_exact=snap_exact, notes=notes)
+        return _approximate_symmetry(f, rounding, snap_exact=snap_exact, notes=notes, sphere=sphere)
     scale = QQ(10) ** k if k > 0 else QQ(1, 10 ** (-k))
     scaled = replace(
         rounding,
         bounds={m: b * 10.0**k for m, b in rounding.bounds.items()},
         default=rounding.default * 10.0**k,
     )
-    near = _approximate_symmetry(f * scale, scaled, snap_exact=snap_exact, notes=notes)
+    near = _approximate_symmetry(f * scale, scaled, snap_exact=snap_exact, notes=notes, sphere=sphere)
     if near.nearest is None or near.approximation.nearest is None:
         return near
     g = near.nearest * (1 / scale)
@@ -162,7 +165,7 @@ def _balancing_power(f: Poly) -> int:
 
 
 def _approximate_symmetry(
-    f: Poly, rounding: Rounding, *, snap_exact: bool = True, notes: tuple[str, ...] = ()
+    f: Poly, rounding: Rounding, *, snap_exact: bool = True, notes: tuple[str, ...] = (), sphere: bool = False
 ) -> NearResult:
     """:func:`approximate_symmetry` for coefficients of ordinary size."""
     coefficients = dense.float_coefficients(f)
@@ -195,7 +198,20 @@ def _approximate_symmetry(
     near = accepted is not None and accepted.candidate.kind in SOR_KINDS
     shown = accepted or best
     exact: ExactSurface | None = None
-    if near and snap_exact:
+    if near and sphere:
+        assert accepted is not None  # near: an accepted fit
+        exact = snap(normalised, accepted, f, rounding)
+        radius = None if exact is None else _designed_radius(exact, f)
+        if radius is None:
+            exact = None  # the typed sphere is its own designed sphere, or none was found
+        else:
+            assert exact is not None and exact.point is not None  # a designed radius: a sphere about a point
+            centre = ", ".join(_decimal_text(Fraction(v)) for v in exact.point)
+            collected.append(
+                f"exactly a sphere as typed; the sphere of radius {_decimal_text(radius)} about ({centre}), the "
+                "nearest exact surface below, is within the rounding too (decimals, as a CAD system designs them)"
+            )
+    elif near and snap_exact:
         assert accepted is not None  # near: an accepted fit
         exact = snap(normalised, accepted, f, rounding)
         if exact is None:
@@ -235,6 +251,31 @@ def _approximate_symmetry(
             normal = _in_field(perpendicular(snapped), K)
         frame = (point, direction, normal)
     return NearResult(approximation, exact.polynomial, frame)
+
+
+def _decimal_text(v: Fraction) -> str:
+    """A decimal ``d/10ᵏ`` as it is printed (``150.25``), exactly."""
+    places = 0
+    while (v * 10**places).denominator != 1:
+        places += 1
+    n = int(v * 10**places)
+    digits = str(abs(n)).rjust(places + 1, "0")
+    return ("-" if n < 0 else "") + (f"{digits[:-places]}.{digits[-places:]}" if places else digits)
+
+
+def _designed_radius(exact: ExactSurface, f: Poly) -> Fraction | None:
+    """The radius of ``exact`` when it is a sphere other than ``f`` whose centre and radius are
+    decimals, as a CAD system designs them (§8.5, "Spheres"), else ``None``: a sphere snapped to
+    other rationals within the rounding is no simpler an answer than the typed one."""
+    g = exact.polynomial
+    if exact.point is None or g * f.LC == f * g.LC:
+        return None
+    centre = [Fraction(v) for v in exact.point]
+    lam, constant = (Fraction(int(c.numerator), int(c.denominator)) for c in (g.LC, g.coeff(1)))
+    squared = sum((c * c for c in centre), Fraction(0)) - constant / lam  # g = λ(|p − c|² − r²)
+    n, d = math.isqrt(squared.numerator), math.isqrt(squared.denominator)
+    radius = Fraction(n, d) if squared > 0 and n * n == squared.numerator and d * d == squared.denominator else None
+    return radius if radius is not None and all(is_decimal(v) for v in (*centre, radius)) else None
 
 
 def _in_field(vector: Sequence[Fraction | Quadratic], K: Domain) -> Vector:

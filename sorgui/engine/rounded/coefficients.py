@@ -364,6 +364,15 @@ def axis_bits(a: Sequence[Fraction], c: Sequence[Fraction]) -> int:
     return sum(decimal_bits(norm2 * v) for v in c) + bits(list(a))
 
 
+def is_decimal(v: Fraction) -> bool:
+    """Whether ``v`` is ``d/10ᵏ`` for integers ``d`` and ``k ≥ 0``."""
+    denominator = v.denominator
+    for prime in (2, 5):
+        while denominator % prime == 0:
+            denominator //= prime
+    return denominator == 1
+
+
 def decimal_bits(v: Fraction) -> int:
     """The bits of ``v`` as a CAD system prints it: a decimal ``d/10ᵏ`` costs the bits of its
     digits ``d`` and of ``k`` (``4.964``: 13 + 2, against 18 for ``690/139`` beside it), or its

@@ -41,6 +41,7 @@ from ..recognition.symmetry import (
     CYLINDER,
     PLANE,
     REVOLUTION,
+    SPHERE,
     Symmetry,
     rational_symmetry,
     recognize_symmetry,
@@ -55,6 +56,7 @@ from .coefficients import (
     axis_bits,
     bits,
     coefficient_candidates,
+    decimal_bits,
     matched_scales,
     shape_bits,
     torus_completion,
@@ -81,6 +83,8 @@ from .directions import (
 )
 from .near_symmetry import Candidate, Fit, Normalised, fit, refine_fixed, refine_minimax
 from .precision import Rounding
+from .spheres import EXPONENTS as SPHERE_TERMS
+from .spheres import nearest_sphere
 from .tori import nearest_torus
 
 AXIS_TRIES = 3
@@ -258,6 +262,16 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
         found = [item._replace(cone=_about_apex(item.coefficients)) for item in found]
         if cone is not None:
             found.append(_Found(cone[0], cone[1], False, False, True))
+    if best.candidate.kind == SPHERE and f.degree == 2 and typed is not None:
+        about = _quadric_builder(SPHERE, SPHERE_TERMS)
+        sphere = nearest_sphere(
+            typed,
+            rounding,
+            lambda c, coefficients: about(None, c, coefficients),
+            lambda g, c: check_surface(g, typed, rounding, f, None, c),
+        )
+        if sphere is not None:
+            found.append(_Found(sphere[0], sphere[1], False, False))
     has_torus = any(item.torus and item.surface.largest <= 1.0 for item in found)
     if best.candidate.kind == REVOLUTION and f.degree == 4 and typed is not None and not has_torus:
         assert best.candidate.direction is not None  # an axis has a direction
@@ -303,8 +317,11 @@ slope on an axis of 82-bit coordinates)."""
 
 
 def _radius_squared(found: _Found) -> Fraction | None:
-    """``r² = −q₀₀/(q₀₁|a|²)`` of a cylinder (``ρ = |a|²|p − c|² − h²``), when ``|a|²`` is rational."""
+    """``r² = −q₀₀/(q₀₁|a|²)`` of a cylinder (``ρ = |a|²|p − c|² − h²``), when ``|a|²`` is rational;
+    ``r² = −q₀₀/q₀₁`` of a sphere about its centre."""
     direction = found.surface.direction
+    if found.surface.symmetry.kind == SPHERE and len(found.coefficients) == 2 and found.coefficients[1]:
+        return -found.coefficients[0] / found.coefficients[1]
     if found.surface.symmetry.kind != CYLINDER or direction is None or len(found.coefficients) != 2:
         return None
     norm2 = _squared_length(direction)
@@ -322,11 +339,11 @@ def _slope(found: _Found) -> Fraction | None:
 
 def _quadric_builder(
     kind: str, exponents: tuple[tuple[int, int], ...]
-) -> Callable[[Vector, Vector, list[Fraction]], fmpq_mpoly | None]:
+) -> Callable[[Vector | None, Vector, list[Fraction]], fmpq_mpoly | None]:
     """:func:`build` over ``QQ`` of a surface of ``kind`` on ``exponents``, for :mod:`.cones`,
-    :mod:`.cylinders` and :mod:`.tori`."""
+    :mod:`.cylinders` and :mod:`.tori` (and with no direction, :mod:`.spheres`)."""
 
-    def built(a: Vector, c: Vector, coefficients: list[Fraction]) -> fmpq_mpoly | None:
+    def built(a: Vector | None, c: Vector, coefficients: list[Fraction]) -> fmpq_mpoly | None:
         g = build(kind, a, c, exponents, coefficients)
         return g if isinstance(g, fmpq_mpoly) else None
 
@@ -607,6 +624,8 @@ def _axis_bits(surface: ExactSurface) -> int:
     rational = [Fraction(v) for v in direction if not isinstance(v, Quadratic)]
     if point and direction and len(rational) == len(direction):
         return axis_bits(rational, point)
+    if point and not direction:  # a sphere's centre, as a CAD system prints it
+        return sum(decimal_bits(v) for v in point)
     values = list(point)
     for v in direction:
         values += [v.a, v.b] if isinstance(v, Quadratic) else [Fraction(v)]
