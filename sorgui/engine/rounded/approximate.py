@@ -209,7 +209,7 @@ def _approximate_symmetry(
             centre = ", ".join(_decimal_text(Fraction(v)) for v in exact.point)
             collected.append(
                 f"exactly a sphere as typed; the sphere of radius {_decimal_text(radius)} about ({centre}), the "
-                "nearest exact surface below, is within the rounding too (decimals, as a CAD system designs them)"
+                "nearest exact surface, is within the rounding too (decimals, as a CAD system designs them)"
             )
     elif near and snap_exact:
         assert accepted is not None  # near: an accepted fit
