@@ -37,10 +37,9 @@ from ..results import ApproximateAxis, Approximation, NearestSurface, Triple
 from ..syntax import square_roots
 from ..vocabulary import kind_noun
 from . import dense
-from .coefficients import is_decimal
 from .dense import FloatArray
 from .deviation import max_deviation
-from .directions import Quadratic, perpendicular, three
+from .directions import Quadratic, decimal_places, perpendicular, rational_sqrt, three
 from .near_symmetry import (
     Candidate,
     Fit,
@@ -255,9 +254,7 @@ def _approximate_symmetry(
 
 def _decimal_text(v: Fraction) -> str:
     """A decimal ``d/10ᵏ`` as it is printed (``150.25``), exactly."""
-    places = 0
-    while (v * 10**places).denominator != 1:
-        places += 1
+    places = decimal_places(v) or 0
     n = int(v * 10**places)
     digits = str(abs(n)).rjust(places + 1, "0")
     return ("-" if n < 0 else "") + (f"{digits[:-places]}.{digits[-places:]}" if places else digits)
@@ -273,9 +270,10 @@ def _designed_radius(exact: ExactSurface, f: Poly) -> Fraction | None:
     centre = [Fraction(v) for v in exact.point]
     lam, constant = (Fraction(int(c.numerator), int(c.denominator)) for c in (g.LC, g.coeff(1)))
     squared = sum((c * c for c in centre), Fraction(0)) - constant / lam  # g = λ(|p − c|² − r²)
-    n, d = math.isqrt(squared.numerator), math.isqrt(squared.denominator)
-    radius = Fraction(n, d) if squared > 0 and n * n == squared.numerator and d * d == squared.denominator else None
-    return radius if radius is not None and all(is_decimal(v) for v in (*centre, radius)) else None
+    radius = rational_sqrt(squared) if squared > 0 else None
+    if radius is None or any(decimal_places(v) is None for v in (*centre, radius)):
+        return None
+    return radius
 
 
 def _in_field(vector: Sequence[Fraction | Quadratic], K: Domain) -> Vector:

@@ -27,7 +27,7 @@ from flint import fmpq_mpoly
 
 from . import dense
 from .dense import FloatArray
-from .directions import simplest_between, simplest_near
+from .directions import decimal_places, simplest_between, simplest_near
 from .near_symmetry import Fit, Normalised, invariant_basis
 from .precision import Rounding
 
@@ -364,28 +364,14 @@ def axis_bits(a: Sequence[Fraction], c: Sequence[Fraction]) -> int:
     return sum(decimal_bits(norm2 * v) for v in c) + bits(list(a))
 
 
-def is_decimal(v: Fraction) -> bool:
-    """Whether ``v`` is ``d/10ᵏ`` for integers ``d`` and ``k ≥ 0``."""
-    denominator = v.denominator
-    for prime in (2, 5):
-        while denominator % prime == 0:
-            denominator //= prime
-    return denominator == 1
-
-
 def decimal_bits(v: Fraction) -> int:
     """The bits of ``v`` as a CAD system prints it: a decimal ``d/10ᵏ`` costs the bits of its
     digits ``d`` and of ``k`` (``4.964``: 13 + 2, against 18 for ``690/139`` beside it), or its
     :func:`bits` when fewer (``1/8``); any other rational its :func:`bits`."""
-    denominator = v.denominator
-    twos = (denominator & -denominator).bit_length() - 1
-    rest, fives = denominator >> twos, 0
-    while rest % 5 == 0:
-        rest, fives = rest // 5, fives + 1
-    if rest != 1:
+    places = decimal_places(v)
+    if places is None:
         return bits([v])
-    places = max(twos, fives)
-    digits: int = abs(v.numerator) * 10**places // denominator
+    digits: int = abs(v.numerator) * 10**places // v.denominator
     return min(bits([v]), digits.bit_length() + places.bit_length())
 
 

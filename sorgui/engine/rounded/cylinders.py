@@ -40,7 +40,7 @@ from flint import fmpq, fmpq_mpoly
 from .coefficients import Typed, axis_bits, bits, within_scale
 from .cones import DIRECTION_RADII, MAX_RESIDUAL, Build, S, simplest
 from .dense import FloatArray, Monomial
-from .directions import FAMILIES, angles_of, decimal_near, simplest_near, three, unit_at
+from .directions import FAMILIES, angles_of, decimal_near, rational_sqrt, simplest_near, three, unit_at
 from .precision import Rounding
 
 if TYPE_CHECKING:
@@ -175,11 +175,8 @@ def _radius_about(
 def radius_cost(squared: Fraction) -> int:
     """What the radius ``√squared`` costs against an axis: :data:`RADIUS_WEIGHT` times the bits
     of ``r`` when it is rational, else of ``r²``."""
-    if squared <= 0:
-        return RADIUS_WEIGHT * bits([squared])
-    n, d = math.isqrt(squared.numerator), math.isqrt(squared.denominator)
-    rational = n * n == squared.numerator and d * d == squared.denominator
-    return RADIUS_WEIGHT * bits([Fraction(n, d) if rational else squared])
+    root = rational_sqrt(squared) if squared > 0 else None
+    return RADIUS_WEIGHT * bits([squared if root is None else root])
 
 
 def _basis(unit: FloatArray) -> tuple[FloatArray, FloatArray]:

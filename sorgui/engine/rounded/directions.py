@@ -85,6 +85,22 @@ def decimal_near(value: float, radius: float) -> Fraction:
     return Fraction(value)
 
 
+def decimal_places(v: Fraction) -> int | None:
+    """The fewest ``k`` with ``v = d/10ᵏ`` for an integer ``d``, or ``None`` when ``v`` is no decimal."""
+    denominator = v.denominator
+    twos = (denominator & -denominator).bit_length() - 1
+    rest, fives = denominator >> twos, 0
+    while rest % 5 == 0:
+        rest, fives = rest // 5, fives + 1
+    return max(twos, fives) if rest == 1 else None
+
+
+def rational_sqrt(squared: Fraction) -> Fraction | None:
+    """``√squared`` when it is rational (``squared ≥ 0``), else ``None``."""
+    root = Fraction(math.isqrt(squared.numerator), math.isqrt(squared.denominator))
+    return root if root * root == squared else None
+
+
 def integer_directions(direction: FloatArray, epsilons: Sequence[float]) -> list[tuple[int, int, int] | None]:
     """For each ``ε``, the primitive integer vector with the smallest common denominator ``D``
     whose ratios are within ``ε`` of the direction's (``None`` if none has ``D`` up to
@@ -268,11 +284,11 @@ def perpendicular(direction: Vector) -> Vector:
     vector onto ``u/|u|``; otherwise a primitive ``e_j``-projection. The profile in the frame
     ``(a, u)`` then keeps the coefficients of the snapped profile."""
     a = [Fraction(v) for v in direction]
-    norm2 = sum(v * v for v in a)
+    norm2 = sum((v * v for v in a), Fraction(0))
     k = max(range(3), key=lambda i: abs(a[i]))
     j = (k + 1) % 3
-    root = Fraction(math.isqrt(norm2.numerator), math.isqrt(norm2.denominator))
-    if root * root != norm2:
+    root = rational_sqrt(norm2)
+    if root is None:
         e = [Fraction(0)] * 3
         e[min(range(3), key=lambda i: abs(a[i]))] = Fraction(1)
         return three(norm2 * e[i] - sum(x * y for x, y in zip(a, e)) * a[i] for i in range(3))
