@@ -156,19 +156,41 @@ def _radius_about(
     """The cylinder about the axis through ``c`` along ``a`` with the coarsest snapped radius
     near ``√r2`` that passes (its cost, coefficients and surface), and how many were checked."""
     norm2 = sum((v * v for v in a), Fraction(0))
+    found, checks = snapped_radius(
+        r2, norm2, lambda coefficients: build(a, c, coefficients), typed, rounding, lambda g: check(g, a, c)
+    )
+    if found is None:
+        return None, checks
+    squared, coefficients, surface = found
+    return (radius_cost(squared) + axis_bits(a, c), coefficients, surface), checks
+
+
+def snapped_radius(
+    r2: float,
+    norm2: Fraction,
+    build: Callable[[list[Fraction]], fmpq_mpoly | None],
+    typed: Typed,
+    rounding: Rounding,
+    check: Callable[[fmpq_mpoly], S | None],
+) -> tuple[tuple[Fraction, list[Fraction], S] | None, int]:
+    """The coarsest radius snapped near ``√r2`` (:data:`RADIUS_RADII`: the decimal of fewest
+    places, else ``r²`` the simplest rational) whose surface ``build([−norm2·r², 1])``, scaled
+    within the rounding (:func:`.coefficients.within_scale`), passes ``check`` within it: its
+    ``r²``, the scaled coefficients and the surface; and how many were checked (cylinders, and
+    spheres with ``norm2 = 1``)."""
     r = math.sqrt(r2)
     checks = 0
     for r_radius in RADIUS_RADII:
         for squared in (decimal_near(r, r_radius * r) ** 2, simplest_near(r2, 2 * r_radius * r2)):
             checks += 1
             coefficients = [-norm2 * squared, Fraction(1)]
-            g = build(a, c, coefficients)
+            g = build(coefficients)
             factor = None if g is None else within_scale(g, typed, rounding)
             if g is None or factor is None:
                 continue
-            surface = check(g * fmpq(factor.numerator, factor.denominator), a, c)
+            surface = check(g * fmpq(factor.numerator, factor.denominator))
             if surface is not None and surface.largest <= 1.0:
-                return (radius_cost(squared) + axis_bits(a, c), [factor * q for q in coefficients], surface), checks
+                return (squared, [factor * q for q in coefficients], surface), checks
     return None, checks
 
 

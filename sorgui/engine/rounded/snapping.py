@@ -268,7 +268,7 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
             typed,
             rounding,
             lambda c, coefficients: about(None, c, coefficients),
-            lambda g, c: check_surface(g, typed, rounding, f, None, c),
+            lambda c, g: check_surface(g, typed, rounding, f, None, c),
         )
         if sphere is not None:
             found.append(_Found(sphere[0], sphere[1], False, False))

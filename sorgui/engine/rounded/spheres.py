@@ -6,7 +6,7 @@ centre and radius with as many digits as the input: ``x² − 6.2x + y² + 4.8y 
 120.418`` (radius 12.7 about ``(3.1, −2.4, 5.05)``, 6 digits) is the sphere of ``r² =
 322581/2000``, ``r = 12.70002``. Here the centre is snapped as a cone's apex is
 (:func:`.cones.snapped_points`: decimals of fewest places first, coarsest first), and about each
-centre the radius as a cylinder's is (:data:`.cylinders.RADIUS_RADII`: the decimal of fewest
+centre the radius as a cylinder's is (:func:`.cylinders.snapped_radius`: the decimal of fewest
 places, else ``r²`` the simplest rational), the radius fitted to the constant term; the first
 sphere whose every coefficient is within the rounding, up to the simplest factor
 (:func:`.coefficients.within_scale`), and that the exact recognizer confirms, is the answer.
@@ -17,15 +17,15 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from fractions import Fraction
+from functools import partial
 from typing import TYPE_CHECKING
 
 import numpy as np
-from flint import fmpq, fmpq_mpoly
+from flint import fmpq_mpoly
 
-from .coefficients import Typed, within_scale
+from .coefficients import Typed
 from .cones import MAX_CHECKS, S, snapped_points
-from .cylinders import RADIUS_RADII
-from .directions import decimal_near, simplest_near
+from .cylinders import snapped_radius
 
 if TYPE_CHECKING:
     from ..algebra.linalg import Vector
@@ -39,12 +39,13 @@ SphereBuild = Callable[["Vector", list[Fraction]], "fmpq_mpoly | None"]
 
 
 def nearest_sphere(
-    typed: Typed, rounding: Rounding, build: SphereBuild, check: Callable[[fmpq_mpoly, Vector], S | None]
+    typed: Typed, rounding: Rounding, build: SphereBuild, check: Callable[[Vector, fmpq_mpoly], S | None]
 ) -> tuple[list[Fraction], S] | None:
     """The designed sphere within the rounding of the typed quadric (its ``q₀₀, q₀₁`` on
     :data:`EXPONENTS`, and the surface), or ``None``: its centre and ``r²`` are read off the
     typed coefficients (``λ|p|² + b·p + k``: ``c = −b/2λ``, ``r² = |c|² − k/λ``), then snapped;
-    ``check`` checks a sphere against the typed surface (:func:`.snapping.check_surface`)."""
+    ``check`` checks the sphere ``g`` about ``c`` against the typed surface
+    (:func:`.snapping.check_surface`), called as ``check(c, g)``."""
     floats = typed.floats
     lam = floats.get((2, 0, 0), 0.0)
     if not lam or any(floats.get(m, 0.0) != lam for m in ((0, 2, 0), (0, 0, 2))):
@@ -60,17 +61,18 @@ def nearest_sphere(
         r2 = float(about @ about) - constant  # the radius that keeps the constant term
         if r2 <= 0:
             continue
-        r = math.sqrt(r2)
-        for r_radius in RADIUS_RADII:
-            for squared in dict.fromkeys((decimal_near(r, r_radius * r) ** 2, simplest_near(r2, 2 * r_radius * r2))):
-                checks += 1
-                coefficients = [-squared, Fraction(1)]
-                g = build(point, coefficients)
-                factor = None if g is None else within_scale(g, typed, rounding)
-                if g is not None and factor is not None:
-                    surface = check(g * fmpq(factor.numerator, factor.denominator), point)
-                    if surface is not None and surface.largest <= 1.0:
-                        return [factor * q for q in coefficients], surface
-                if checks >= MAX_CHECKS:
-                    return None
+        found, tried = snapped_radius(
+            r2,
+            Fraction(1),
+            partial(build, point),
+            typed,
+            rounding,
+            partial(check, point),
+        )
+        if found is not None:
+            _, coefficients, surface = found
+            return coefficients, surface
+        checks += tried
+        if checks >= MAX_CHECKS:
+            return None
     return None
