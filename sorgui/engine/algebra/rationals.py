@@ -180,7 +180,7 @@ def factor(g: fmpq_mpoly) -> list[tuple[fmpq_mpoly, int]]:
 
     A curve's equation with large coefficients (:func:`_slow_to_factor`) that a prime shows
     irreducible (:func:`irreducible_modulo_a_prime`) is not factored."""
-    if irreducible_on_a_line(g) or (_slow_to_factor(g) and irreducible_modulo_a_prime(g)):
+    if _shown_irreducible(g):
         return [(primitive(g), 1)]
     _, factors = g.factor()
     normal = [(primitive(h), int(e)) for h, e in factors]
@@ -193,10 +193,17 @@ def irreducible(g: fmpq_mpoly) -> bool:
     """Whether ``g`` is irreducible over ``QQ`` and square-free (one factor, multiplicity 1), by a
     line (:func:`irreducible_on_a_line`), by a prime where flint's factorization would be slow
     (:func:`_slow_to_factor`), else by flint's."""
-    if irreducible_on_a_line(g) or (_slow_to_factor(g) and irreducible_modulo_a_prime(g)):
+    if _shown_irreducible(g):
         return True
     _, factors = g.factor()
     return len(factors) == 1 and factors[0][1] == 1
+
+
+def _shown_irreducible(g: fmpq_mpoly) -> bool:
+    """Whether ``g`` is shown irreducible and square-free without flint's factorization: by a
+    line (:func:`irreducible_on_a_line`), or by a prime where that factorization would be slow
+    (:func:`_slow_to_factor`). ``False`` proves nothing."""
+    return irreducible_on_a_line(g) or (_slow_to_factor(g) and irreducible_modulo_a_prime(g))
 
 
 def _slow_to_factor(g: fmpq_mpoly) -> bool:
