@@ -63,7 +63,8 @@ intended surface: decimals such as ``0.5`` or ``3.0`` (a gallery's exact numbers
 exact, and nearness is only decided with ``--tolerance``."""
 
 GATE = 1e4
-"""A kind is tried when its singular values are below ``GATE·τ`` (and 10⁻²): a cheap filter;
+"""A kind is tried when its singular values are below ``GATE·τ`` (and 10⁻²), ``τ`` the rounding
+of the coefficients (★) reads (:func:`gradient_tolerance`) if larger than the input's: a cheap filter;
 the weighted residual decides."""
 
 NOISE_ALLOWANCE = 1.0
@@ -291,7 +292,7 @@ def _in_field(vector: Sequence[Fraction | Quadratic], K: Domain) -> Vector:
 def _search(f: Normalised, sigma: FloatArray, vectors: FloatArray, tolerance: float) -> tuple[Fit | None, Fit | None]:
     """The first kind (most symmetric first) whose refined fit is within the rounding, and the
     best fit seen (for saying how far a miss is)."""
-    gate = min(1e-2, GATE * tolerance)
+    gate = min(1e-2, GATE * max(tolerance, gradient_tolerance(f)))
     best: Fit | None = None
     for count in (3, 2, 1):
         if sigma[6 - count] > gate and not (count == 1 and best is None):
@@ -303,6 +304,17 @@ def _search(f: Normalised, sigma: FloatArray, vectors: FloatArray, tolerance: fl
             if result.residual <= 1.0 + min(result.noise, NOISE_ALLOWANCE):
                 return result, best
     return None, best
+
+
+def gradient_tolerance(f: Normalised) -> float:
+    """The relative rounding of the coefficients that (★) reads: all but the constant term,
+    which no derivative sees. A large constant (a part far from the origin, printed with a fixed
+    number of places) makes the input's tolerance far smaller than the rounding of ``∇f``, and
+    a cylinder printed with ``%.6f`` about a point 10 units away had the singular value of its
+    second symmetry over a gate drawn from the constant's digits."""
+    varying = f.array[f.selected][1:], f.bounds[f.selected][1:]
+    size = float(np.linalg.norm(varying[0]))
+    return float(np.linalg.norm(varying[1])) / size if size > 0.0 else math.inf
 
 
 def _starts(vectors: FloatArray, count: int, sigma: FloatArray, gate: float) -> list[Candidate]:
