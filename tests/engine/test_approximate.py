@@ -809,3 +809,56 @@ def test_a_torus_about_an_irrational_centre_printed_with_10_digits_keeps_its_rad
     R2, r2 = 0.0254**2, 0.00635**2  # (ρ + R² − r²)² − 4R²·r_axis², up to a factor
     assert terms[(2, 0)] / terms[(4, 0)] == pytest.approx(2 * (R2 - r2), rel=1e-12)
     assert terms[(0, 2)] / terms[(4, 0)] == pytest.approx(2 * (R2 - r2) - 4 * R2, rel=1e-12)
+
+
+def _full_precision(shape: str, quaternion: tuple[int, int, int, int], point: tuple[str, str, str]) -> str:
+    """``shape`` (an axial quadric about the z-axis) turned by the rational rotation of
+    ``quaternion``, moved to ``point`` and printed with 17 significant digits, as a CAD system
+    writes a double."""
+    x, y, z = sympy.symbols("x y z")
+    a, b, c, d = quaternion
+    turn = sympy.Matrix(
+        [
+            [a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)],
+            [2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)],
+            [2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d],
+        ]
+    ) / (a * a + b * b + c * c + d * d)
+    local = turn.T * (sympy.Matrix([x, y, z]) - sympy.Matrix([sympy.Rational(v) for v in point]))
+    moved = sympy.Poly(sympy.sympify(shape).subs(dict(zip((x, y, z), local)), simultaneous=True), x, y, z)
+    terms = []
+    for monomial, coefficient in moved.terms():
+        power = "*".join(f"{v}^{e}" for v, e in zip("xyz", monomial) if e)
+        terms.append(f"{float(coefficient):.16e}" + (f"*{power}" if power else ""))
+    return " + ".join(terms).replace("+ -", "- ")
+
+
+@pytest.mark.parametrize(
+    ("shape", "quaternion", "point", "direction"),
+    [
+        (
+            "x**2 + y**2 - z/3",
+            (-1, -2, -3, 3),
+            ("-63800470/69106759", "40841452/34756067", "21937473/16853690"),
+            ("6", "22", "3"),
+        ),
+        (
+            "x**2 + y**2 - 4*z**2/81",
+            (-5, -1, -3, -4),
+            ("-10644909/12387040", "-91953922/67925731", "-66097496/91658353"),
+            ("38", "14", "31"),
+        ),
+    ],
+)
+def test_a_quadric_printed_at_full_precision_has_a_nearest_exact_surface(
+    shape: str, quaternion: tuple[int, int, int, int], point: tuple[str, str, str], direction: tuple[str, str, str]
+) -> None:
+    """A paraboloid and a cone about points of 16 digits, printed with ``%.16e``: their rounding
+    is floating point's (4e-15 of the largest coefficient), and the axis point snapped at most
+    to 1e-13 missed it, so the nearest exact surface, with its profile and Table 1 row, was
+    not found ("the axis above is approximate"). The ladder of ``ε`` now goes on to 1e-16."""
+    analysis = analyze(_full_precision(shape, quaternion, point))
+    nearest = analysis.approximate.nearest
+    assert nearest is not None and nearest.within_rounding
+    assert nearest.axis is not None and nearest.axis.direction == direction
+    assert nearest.analysis is not None and nearest.analysis.is_sor

@@ -28,7 +28,7 @@ import numpy as np
 from .dense import FloatArray
 
 Vector: TypeAlias = tuple[Fraction, Fraction, Fraction]
-EPSILONS = tuple(10.0**-k for k in range(2, 14))
+EPSILONS = tuple(10.0**-k for k in range(2, 17))
 MAX_DENOMINATOR = 10**6
 
 T = TypeVar("T")
