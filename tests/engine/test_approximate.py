@@ -301,6 +301,24 @@ def test_a_paraboloid_printed_with_fixed_decimals_snaps_back_to_a_paraboloid(uni
     assert nearest.analysis is not None and nearest.analysis.rationality.table_row == 3
 
 
+def test_a_paraboloid_on_a_turned_axis_snaps_back_to_its_decimal_vertex() -> None:
+    """``d² = 2·12.7·h`` about the vertex (186.8, −186.836, −137.08) on the axis turned by 60°
+    and 120° (along ``(−√3/4, 3/4, 1/2)``), printed with ``%.6f``: its nearest exact surface was
+    "outside the rounding" (its zero set 1.8·10⁴ away), since the fitted axis turned to the exact
+    direction about a point near the origin missed the vertex 250 units away, and the simplest
+    rationals near the foot are no designer's numbers. Its vertex is now fitted again on the
+    exact axis and snapped to decimals first."""
+    direction = np.array([-math.sqrt(3) / 4, 0.75, 0.5])
+    vertex = np.array([186.8, -186.836, -137.08])
+    one = dense.from_terms({(0, 0, 0): 1.0}, 2)
+    h = dense.times(one, dense.linear_form(direction, vertex))
+    h2 = dense.times(h, dense.linear_form(direction, vertex))
+    rho = dense.times(one, dense.squared_distance(vertex))
+    nearest = analyze(printed_fixed(rho - h2 - 25.4 * h, 6), recognition_only=True).approximate.nearest
+    assert nearest is not None and nearest.within_rounding
+    assert nearest.axis is not None and nearest.axis.point == ("934/5", "-46709/250", "-3427/25")
+
+
 def test_a_torus_printed_with_fixed_decimals_snaps_back_to_that_torus() -> None:
     """Printed with ``%.6f`` in millimetres, no simple surface was found within the rounding: the
     ratio ``10000/9961`` of the ``h²`` term was snapped to ``255/254`` within the free fit's

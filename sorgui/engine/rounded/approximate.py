@@ -52,7 +52,7 @@ from .near_symmetry import (
     refine,
 )
 from .precision import FLOAT_FLOOR, Rounding, given_rounding, input_rounding
-from .snapping import ExactSurface, snap
+from .snapping import ExactSurface, snap, snap_again
 
 MAX_SPAN = 1e100
 """Coefficients whose sizes differ by more than this are not compared in floating point."""
@@ -198,6 +198,7 @@ def _approximate_symmetry(
     near = accepted is not None and accepted.candidate.kind in SOR_KINDS
     shown = accepted or best
     exact: ExactSurface | None = None
+    nearest: NearestSurface | None = None
     if near and sphere:
         assert accepted is not None  # near: an accepted fit
         exact = snap(normalised, accepted, f, rounding)
@@ -214,6 +215,12 @@ def _approximate_symmetry(
     elif near and snap_exact:
         assert accepted is not None  # near: an accepted fit
         exact = snap(normalised, accepted, f, rounding)
+        nearest = None if exact is None else _nearest_surface(exact, normalised, f)
+        if nearest is None or not nearest.within_rounding:
+            again = snap_again(normalised, accepted, f, rounding)
+            found = None if again is None else _nearest_surface(again, normalised, f)
+            if found is not None and found.within_rounding:
+                exact, nearest = again, found
         if exact is None:
             collected.append(
                 "no exact surface with rational axis and coefficients was found within the "
@@ -222,7 +229,8 @@ def _approximate_symmetry(
     distance = None if shown is None else plain_distance(normalised, shown.candidate)
     if accepted is None:
         collected.append(_far_note(sigma, best, rounding, distance))
-    nearest = None if exact is None else _nearest_surface(exact, normalised, f)
+    if nearest is None and exact is not None:
+        nearest = _nearest_surface(exact, normalised, f)
     approximation = Approximation(
         tolerance=rounding.tolerance,
         tolerance_source=rounding.source,

@@ -311,6 +311,30 @@ def refine(f: Normalised, candidate: Candidate) -> Fit:
     params, build = parametrisation(candidate)
     if len(params) == 0:
         return fit(f, candidate)
+    return fit(f, build(gauss_newton(_free_residual(f, build), params)[0]))
+
+
+def refit_point(f: Normalised, candidate: Candidate, direction: FloatArray) -> FloatArray:
+    """The point of the axis along ``direction`` (held: a snapped exact direction) that fits
+    ``f`` best, by Gauss–Newton on its two offsets across the axis from ``candidate``'s point.
+    An exact direction turns the fitted axis about that point, and far from it (the vertex of a
+    paraboloid 250 units away) the turned axis leaves the rounding."""
+    params, build = parametrisation(Candidate(candidate.kind, _unit(direction), candidate.point))
+    if len(params) != 4:
+        assert candidate.point is not None  # only an axis has a point to move across it
+        return candidate.point
+
+    def moved(theta: FloatArray) -> Candidate:
+        return build(np.concatenate([np.zeros(2), theta]))
+
+    point = moved(gauss_newton(_free_residual(f, moved), np.zeros(2))[0]).point
+    assert point is not None  # an axis keeps its point
+    return point
+
+
+def _free_residual(f: Normalised, build: Callable[[FloatArray], Candidate]) -> Callable[[FloatArray], FloatArray]:
+    """The weighted residual of the nearest invariant polynomial of the candidate ``build(θ)``,
+    its coefficients free (variable projection: the fit is redone at every ``θ``)."""
 
     def residual_vector(theta: FloatArray) -> FloatArray:
         basis = invariant_basis(build(theta), f.degree, f.selected)[0] * f.weights[:, None]
@@ -321,7 +345,7 @@ def refine(f: Normalised, candidate: Candidate) -> Fit:
         remainder: FloatArray = target - (basis / norms) @ solution
         return remainder
 
-    return fit(f, build(gauss_newton(residual_vector, params)[0]))
+    return residual_vector
 
 
 def plain_distance(f: Normalised, candidate: Candidate) -> float:

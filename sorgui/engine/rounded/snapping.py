@@ -10,8 +10,9 @@ exact values that keep the fit within the input's rounding:
   ``D``), for ``ε = 10⁻², 10⁻³, …``: the first one whose float fit still passes wins. Rational
   unit vectors and directions in a real quadratic field ``QQ(√d)`` (:func:`quadratic_direction`,
   the axes of CAD parts turned by 30° or 45°) are the other two families.
-* **Point:** the foot of the axis (its point nearest the origin), each coordinate the simplest
-  rational (fewest continued-fraction steps) within ``ε·L``, the same way.
+* **Point:** the profile's centre (a cylinder's foot), each coordinate the simplest rational
+  (fewest continued-fraction steps) within ``ε·L``, the same way; in a quadric's second pass
+  (:func:`snap_again`) refitted on the exact axis, a paraboloid's vertex, decimals first.
 * **Coefficients** (:mod:`.coefficients`): snapped from the fit, snapped one ratio at a time
   with some held, or as fitted; the candidate with the fewest bits whose *exact* residual
   passes wins.
@@ -74,6 +75,7 @@ from .directions import (
     Quadratic,
     QuadraticVector,
     Vector,
+    decimal_near,
     integer_vector,
     quadratic_family,
     rational_point,
@@ -81,7 +83,7 @@ from .directions import (
     snapped_directions,
     three,
 )
-from .near_symmetry import Candidate, Fit, Normalised, fit, refine_fixed, refine_minimax
+from .near_symmetry import Candidate, Fit, Normalised, fit, refine_fixed, refine_minimax, refit_point
 from .precision import Rounding
 from .spheres import EXPONENTS as SPHERE_TERMS
 from .spheres import nearest_sphere
@@ -105,6 +107,10 @@ FLAT_SLOPE = 1e-8
 """A change of the profile's terms of degree ``d - 1`` under a unit shift along the axis below
 this (relative to the terms) is the floating-point fit's noise, not a slope: a paraboloid's
 term in ``h`` does not change at all, and dividing by that noise put its centre at 10¹⁰."""
+DECIMAL_RADIUS = 1e-8
+"""The finest radius (relative to the part's size) at which a point is snapped to a decimal
+(:func:`exact_axes`, in the second pass): a designer's placement has at most about 8
+significant digits, and a finer decimal is no simpler than the simplest rational."""
 MAX_SHIFT = 1e3
 """A profile centre farther than this along the axis from its foot (in the units of the
 normalised ``f``, whose points are of size 1) is noise: the foot is taken instead."""
@@ -131,16 +137,23 @@ Built: TypeAlias = fmpq_mpoly | Poly
 
 
 def exact_axes(
-    f: Normalised, best: Fit, directions: list[Direction], tolerance: float
+    f: Normalised, best: Fit, directions: list[Direction], tolerance: float, again: bool = False
 ) -> Iterator[tuple[Direction | None, Vector | None]]:
     """Exact (direction, point) pairs to try, simplest first: the first ``AXIS_TRIES``
     directions whose float fit passes, each with the points near the profile's centre on that
-    axis whose float fit passes, coarsest first (docs/math.md §8). A coarse pair can pass with
+    axis whose float fit passes, coarsest first (docs/math.md §8), each coordinate the simplest
+    rational within the radius. A coarse pair can pass with
     free coefficients and fail once they are snapped, so finer pairs follow. On an axis in a
     quadratic field the point is its one rational point, found within ``tolerance`` (the input's
-    relative rounding), when its foot is irrational."""
+    relative rounding), when its foot is irrational. ``again``, the second pass of a quadric
+    (:func:`snap_again`, :func:`_start_points`): for each radius down to :data:`DECIMAL_RADIUS`
+    the decimal of fewest places first (a CAD part's vertex is placed in decimals)."""
     kind = best.candidate.kind
     limit = max(1.0 + best.noise, best.residual * 1.5)
+
+    def nearby(eps: float) -> tuple[Callable[[float, float], Fraction], ...]:
+        return (decimal_near, simplest_near) if again and eps >= DECIMAL_RADIUS else (simplest_near,)
+
     tried = 0
     for a in directions if kind in (REVOLUTION, CYLINDER, PLANE) else [None]:
         direction = None if a is None else np.array([float(v) for v in a])
@@ -149,15 +162,15 @@ def exact_axes(
                 yield a, None
                 tried += 1
         else:
-            starts = _start_points(f, best, a, tolerance, limit)
+            starts = _start_points(f, best, a, tolerance, limit, again)
             if not starts:
                 continue
             tried += 1
             seen: list[Vector] = []
             for point in starts:
                 passing = False
-                for eps in EPSILONS:
-                    c = three(simplest_near(float(v) * f.length, eps * f.length) for v in point)
+                for eps, near in ((e, near) for e in EPSILONS for near in nearby(e)):
+                    c = three(near(float(v) * f.length, eps * f.length) for v in point)
                     if c in seen:
                         continue
                     seen.append(c)
@@ -169,18 +182,31 @@ def exact_axes(
             return
 
 
-def _start_points(f: Normalised, best: Fit, a: Direction | None, tolerance: float, limit: float) -> list[FloatArray]:
+def _start_points(
+    f: Normalised, best: Fit, a: Direction | None, tolerance: float, limit: float, again: bool = False
+) -> list[FloatArray]:
     """The points of the axis along ``a`` whose coordinates are snapped, in order, each one whose
     float fit passes: the profile's centre (:func:`profile_centre`; the foot of a cylinder's
-    axis) and, on an axis in a quadratic field, its one rational point
+    axis, the vertex of a paraboloid) and, on an axis in a quadratic field, its one rational point
     (:func:`.directions.rational_point`, within ``POINT_PRECISION`` times ``tolerance``), first
-    for a cylinder, whose foot is irrational when that point is off the origin."""
+    for a cylinder, whose foot is irrational when that point is off the origin.
+
+    ``again``, the second pass of a quadric that got no surface within the rounding
+    (:func:`snap_again`): a fitted point that fails on the exact axis along ``a`` is fitted again for
+    ``a`` (:func:`.near_symmetry.refit_point`; the fitted axis turned to ``a`` about a point near
+    the origin misses a vertex 250 units away), a paraboloid's point is its vertex, and points are
+    snapped to decimals first (:func:`exact_axes`). Not in
+    the first pass: a refitted point makes wrong directions pass as well, whose surfaces use up
+    the checks before a right one's."""
     point = best.candidate.point
     assert point is not None  # every kind of surface of revolution but a plane has a point
     if a is None:
         return [point]
     direction = np.array([float(v) for v in a])
-    starts = [profile_centre(f, best, direction)]
+    starts = [profile_centre(f, best, direction, vertex=again)]
+    if again and fit(f, best.candidate, point=starts[0], direction=direction).residual > limit:
+        turned = fit(f, best.candidate, point=refit_point(f, best.candidate, direction), direction=direction)
+        starts = [profile_centre(f, turned, direction, vertex=True)]
     quadratic = _quadratic(a)
     if quadratic is not None:
         found = rational_point(starts[0] * f.length, quadratic, POINT_PRECISION * tolerance)
@@ -198,10 +224,11 @@ def _quadratic(a: Direction | None) -> QuadraticVector | None:
     return (x, y, z) if isinstance(x, Quadratic) and isinstance(y, Quadratic) and isinstance(z, Quadratic) else None
 
 
-def profile_centre(f: Normalised, best: Fit, direction: FloatArray) -> FloatArray:
+def profile_centre(f: Normalised, best: Fit, direction: FloatArray, vertex: bool = False) -> FloatArray:
     """The point of the axis about which the profile's terms of degree ``d - 1`` are smallest
     (the centre of a torus, the vertex region of a paraboloid): least squares in the shift
-    ``t`` along the axis, whose effect on those terms is linear."""
+    ``t`` along the axis, whose effect on those terms is linear. Where those terms do not move,
+    the foot, or with ``vertex`` a quadric's vertex (:func:`_vertex`)."""
     unit = direction / np.linalg.norm(direction)
     point = best.candidate.point
     assert point is not None  # an axis has a point
@@ -215,10 +242,31 @@ def profile_centre(f: Normalised, best: Fit, direction: FloatArray) -> FloatArra
 
     at_zero, at_one = below_top(0.0), below_top(1.0)
     slope = at_one - at_zero
-    if float(np.linalg.norm(slope)) <= FLAT_SLOPE * max(float(np.linalg.norm(at_zero)), 1.0):
-        return foot  # those terms do not move with the point (a paraboloid: only the constant does)
-    t = -float(slope @ at_zero) / float(slope @ slope)
-    return foot if abs(t) > MAX_SHIFT else foot + t * unit
+    if float(np.linalg.norm(slope)) > FLAT_SLOPE * max(float(np.linalg.norm(at_zero)), 1.0):
+        t = -float(slope @ at_zero) / float(slope @ slope)
+        if abs(t) <= MAX_SHIFT:
+            return foot + t * unit
+    return _vertex(f, best, foot, unit) if vertex else foot  # those terms do not move with the point
+
+
+def _vertex(f: Normalised, best: Fit, foot: FloatArray, unit: FloatArray) -> FloatArray:
+    """The vertex of a paraboloid ``d² − 2p·h + k`` about the axis through ``foot`` along
+    ``unit``: a shift ``t`` along the axis changes only ``k``, by ``2p·t``, and at the vertex
+    ``k = 0``. A CAD part's vertex is its placement, decimals where the foot is not (on an axis
+    turned by 30° the foot is irrational). For other surfaces whose terms of degree ``d − 1``
+    do not move (none of degree 2), the foot."""
+    if f.degree != 2:
+        return foot
+
+    def constant(t: float) -> float:
+        local = fit(f, best.candidate, point=foot + t * unit, direction=unit)
+        return float(local.coefficients[local.exponents.index((0, 0))])
+
+    at_zero = constant(0.0)
+    slope = constant(1.0) - at_zero
+    if slope == 0.0 or abs(at_zero / slope) > MAX_SHIFT:
+        return foot
+    return foot - at_zero / slope * unit
 
 
 def _radius(sigma: FloatArray, spread: float, family: DirectionSnap) -> float | FloatArray:
@@ -284,6 +332,21 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
     if not found:
         return None
     return min(found, key=_rank).surface
+
+
+def snap_again(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurface | None:
+    """The second pass of a quadric of revolution whose :func:`snap` found no surface within
+    the rounding: the families again, the point refitted on each exact axis and a paraboloid's
+    at its vertex (:func:`_start_points`)."""
+    if best.candidate.kind != REVOLUTION or f.degree != 2 or exact.ring.domain != QQ:
+        return None
+    typed = Typed(to_flint(exact), dense.float_coefficients(exact))
+    found = [
+        surface
+        for family in (*FAMILIES, quadratic_family)
+        if (surface := _first_exact(f, best, family, typed, rounding, again=True)) is not None
+    ]
+    return min(found, key=_rank).surface if found else None
 
 
 def _rank(found: _Found) -> tuple[bool, bool, bool, int]:
@@ -370,14 +433,19 @@ def _about_apex(coefficients: list[Fraction]) -> bool:
 
 
 def _first_exact(
-    f: Normalised, best: Fit, family: DirectionSnap | None, typed: Typed | None, rounding: Rounding
+    f: Normalised,
+    best: Fit,
+    family: DirectionSnap | None,
+    typed: Typed | None,
+    rounding: Rounding,
+    again: bool = False,
 ) -> _Found | None:
     """The first exact surface, in the order of :func:`exact_axes`, with every coefficient
     within the rounding (else the first within twice it, in the mean). When the simplest
     coefficients fail on a coarse axis, the axis is refined with them held fixed and snapped
     again, finely."""
     fallback: _Found | None = None
-    for found in _exact_surfaces(f, best, family, typed, rounding):
+    for found in _exact_surfaces(f, best, family, typed, rounding, again):
         if found.surface.largest <= 1.0:
             return found
         if fallback is None:
@@ -398,7 +466,12 @@ class _Found(NamedTuple):
 
 
 def _exact_surfaces(
-    f: Normalised, best: Fit, family: DirectionSnap | None, typed: Typed | None, rounding: Rounding
+    f: Normalised,
+    best: Fit,
+    family: DirectionSnap | None,
+    typed: Typed | None,
+    rounding: Rounding,
+    again: bool = False,
 ) -> Iterator[_Found]:
     """Exact surfaces within twice the rounding (in the mean), simplest axes first; at most
     ``MAX_CHECKS`` exact surfaces are built, and the axis is refined with fixed coefficients
@@ -447,7 +520,7 @@ def _exact_surfaces(
     rescaled: list[_Found] = []
     refitted: list[_Found] = []  # snapped one ratio at a time, some held (.coefficients)
     held: list[_Held] = []
-    for first, (a, c) in enumerate(exact_axes(f, best, directions, rounding.tolerance)):
+    for first, (a, c) in enumerate(exact_axes(f, best, directions, rounding.tolerance, again)):
         direction = None if a is None else np.array([float(v) for v in a])
         point = None if c is None else np.array([float(v) for v in c]) / f.length
         local = fit(f, best.candidate, point=point, direction=direction)
