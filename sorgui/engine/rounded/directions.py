@@ -28,7 +28,14 @@ import numpy as np
 from .dense import FloatArray
 
 Vector: TypeAlias = tuple[Fraction, Fraction, Fraction]
-EPSILONS = tuple(10.0**-k for k in range(2, 17))
+EPSILONS = tuple(10.0**-k for k in range(2, 14))
+"""The radii within which a direction is snapped, coarsest first: finer than ``10⁻¹³`` an
+irrational axis (along ``(1, √2, √3)``) is matched by integers of 15 digits and more, no
+designer's direction; such an input gets no exact surface, and the note names a tolerance."""
+POINT_EPSILONS = tuple(10.0**-k for k in range(2, 17))
+"""The radii within which an axis point is snapped (relative to the part's size), coarsest
+first: on to ``10⁻¹⁶``, since a part about a point of 16 digits printed with 17 (a double) has
+floating point's rounding, which a point within ``10⁻¹³`` misses."""
 MAX_DENOMINATOR = 10**6
 
 T = TypeVar("T")

@@ -68,8 +68,8 @@ from .cylinders import EXPONENTS as CYLINDER_TERMS
 from .cylinders import nearest_cylinder, radius_cost
 from .dense import FloatArray
 from .directions import (
-    EPSILONS,
     FAMILIES,
+    POINT_EPSILONS,
     Direction,
     DirectionSnap,
     Quadratic,
@@ -169,7 +169,7 @@ def exact_axes(
             seen: list[Vector] = []
             for point in starts:
                 passing = False
-                for eps, near in ((e, near) for e in EPSILONS for near in nearby(e)):
+                for eps, near in ((e, near) for e in POINT_EPSILONS for near in nearby(e)):
                     c = three(near(float(v) * f.length, eps * f.length) for v in point)
                     if c in seen:
                         continue
