@@ -216,13 +216,14 @@ def _exponent(digits: str, start: int, end: int) -> Token:
 
 def _name(word: str, start: int, variables: tuple[str, ...] = _VARIABLES) -> Iterator[Token]:
     """``sqrt``, ``pow`` (C's and Python's ``pow(a, n)``), or a run of x, y, z (``xyz`` is
-    ``x*y*z``; of one-letter ``variables``); any other name is an error."""
+    ``x*y*z``; of one-letter ``variables``), in lower or in upper case (a CAD system's ``X``);
+    any other name is an error."""
     if word in ("sqrt", "pow", "Sqrt"):
         yield Token(word.lower(), start, start + len(word))  # Mathematica's Sqrt[2] too
     elif word in TRIGONOMETRIC and variables != _VARIABLES:
         yield Token(word.lower(), start, start + len(word))  # cos(u) in a parametrization's component
-    elif set(word) <= set(variables):
-        for i, letter in enumerate(word):
+    elif set(word.lower()) <= set(variables) and (word.islower() or word.isupper()):
+        for i, letter in enumerate(word.lower()):
             yield Token("var", start + i, start + i + 1, variables.index(letter))
     else:
         names = ", ".join(variables)

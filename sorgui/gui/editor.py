@@ -78,7 +78,10 @@ class PolynomialHighlighter(QSyntaxHighlighter):
         super().__init__(document)
         self._rules: list[tuple[re.Pattern[str], QTextCharFormat]] = [
             (re.compile(r"\d+(?:\.\d*)?|\.\d+"), _char_format("#1565c0")),
-            (re.compile(r"(?<![A-Za-z_])[xyz]++(?![A-Za-z_])"), _char_format("#6a1b9a", bold=True)),  # xy, x2
+            (
+                re.compile(r"(?<![A-Za-z_])(?:[xyz]++|[XYZ]++)(?![A-Za-z_])"),
+                _char_format("#6a1b9a", bold=True),
+            ),  # xy, x2, X
             (re.compile(r"\*\*|[-+*/^=]"), _char_format("#ef6c00")),
             (re.compile(r"[()\[\]{}]"), _char_format("#616161")),
             (re.compile(r"\b(?:sqrt|pow)\b"), _char_format("#00838f", italic=True)),

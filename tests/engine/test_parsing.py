@@ -234,7 +234,7 @@ ERRORS = [
     ("x + sin(y)", 4, 7, "unknown name 'sin'"),
     ("exp(x)", 0, 3, "unknown name 'exp'"),
     ("pi*x^2", 0, 2, "unknown name 'pi'"),
-    ("X^2 + y", 0, 1, "unknown name 'X'"),
+    ("xY^2 + y", 0, 2, "unknown name 'xY'"),
     ("2e + x", 1, 2, "unknown name 'e'"),
     ("x + $", 4, 5, "unexpected character"),
     ("x + y_1", 5, 6, "unexpected character"),

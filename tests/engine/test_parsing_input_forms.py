@@ -43,6 +43,8 @@ X, Y, Z = R.gens
         "% MATLAB\nx^2 + y^2 - z; % v1.5",
         "pow(x, 2) + pow(y, 2) - z",  # C, Python, GLSL
         "pow(x,2.0) + pow(-y, 2) - pow(z, 1);",
+        "X^2 + Y^2 - Z",  # a CAD system's upper case
+        "+1.000000E+00*X**2 +1.000000E+00*Y**2 -1.000000E+00*Z",
     ],
 )
 def test_pasted_forms_of_the_same_paraboloid(text: str) -> None:
@@ -161,6 +163,7 @@ def test_latex_square_roots_give_the_number_field() -> None:
         ("pow x", "'pow' must be followed by"),
         ("pow(x, y)", "an exponent must be a constant number"),
         ("pow(x, 2", "unmatched '('"),
+        ("xY + z", "unknown name 'xY'"),  # one case or the other, not a mix
     ],
 )
 def test_malformed_pasted_forms_are_clear_errors(text: str, words: str) -> None:
