@@ -142,10 +142,10 @@ def exact_axes(
     """Exact (direction, point) pairs to try, simplest first: the first ``AXIS_TRIES``
     directions whose float fit passes, each with the points near the profile's centre on that
     axis whose float fit passes, coarsest first (docs/math.md §8), each coordinate the simplest
-    rational within the radius. A coarse pair can pass with
-    free coefficients and fail once they are snapped, so finer pairs follow. On an axis in a
-    quadratic field the point is its one rational point, found within ``tolerance`` (the input's
-    relative rounding), when its foot is irrational. ``again``, the second pass of a quadric
+    rational within the radius. A coarse pair can pass with free coefficients and fail once
+    they are snapped, so finer pairs follow. On an axis in a quadratic field the point is its
+    one rational point, found within ``tolerance`` (the input's relative rounding), when its
+    foot is irrational. ``again``, the second pass of a quadric
     (:func:`snap_again`, :func:`_start_points`): for each radius down to :data:`DECIMAL_RADIUS`
     the decimal of fewest places first (a CAD part's vertex is placed in decimals)."""
     kind = best.candidate.kind
@@ -192,12 +192,12 @@ def _start_points(
     for a cylinder, whose foot is irrational when that point is off the origin.
 
     ``again``, the second pass of a quadric that got no surface within the rounding
-    (:func:`snap_again`): a fitted point that fails on the exact axis along ``a`` is fitted again for
-    ``a`` (:func:`.near_symmetry.refit_point`; the fitted axis turned to ``a`` about a point near
-    the origin misses a vertex 250 units away), a paraboloid's point is its vertex, and points are
-    snapped to decimals first (:func:`exact_axes`). Not in
-    the first pass: a refitted point makes wrong directions pass as well, whose surfaces use up
-    the checks before a right one's."""
+    (:func:`snap_again`): a fitted point that fails on the exact axis along ``a`` is fitted
+    again for ``a`` (:func:`.near_symmetry.refit_point`; the fitted axis turned to ``a`` about a
+    point near the origin misses a vertex 250 units away), a paraboloid's point is its vertex,
+    and points are snapped to decimals first (:func:`exact_axes`). Not in the first pass: a
+    refitted point makes wrong directions pass as well, whose surfaces use up the checks before
+    a right one's."""
     point = best.candidate.point
     assert point is not None  # every kind of surface of revolution but a plane has a point
     if a is None:
