@@ -29,6 +29,7 @@ from sorgui.samples import (
     printed,
     printed_exact,
     printed_fixed,
+    quaternion_rotation,
     random_sor,
     rational_sor,
     rotation,
@@ -834,14 +835,9 @@ def _full_precision(shape: str, quaternion: tuple[int, int, int, int], point: tu
     ``quaternion``, moved to ``point`` and printed with 17 significant digits, as a CAD system
     writes a double."""
     x, y, z = sympy.symbols("x y z")
-    a, b, c, d = quaternion
     turn = sympy.Matrix(
-        [
-            [a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)],
-            [2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)],
-            [2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d],
-        ]
-    ) / (a * a + b * b + c * c + d * d)
+        [[sympy.Rational(v.numerator, v.denominator) for v in row] for row in quaternion_rotation(quaternion)]
+    )
     local = turn.T * (sympy.Matrix([x, y, z]) - sympy.Matrix([sympy.Rational(v) for v in point]))
     moved = sympy.Poly(sympy.sympify(shape).subs(dict(zip((x, y, z), local)), simultaneous=True), x, y, z)
     terms = []
