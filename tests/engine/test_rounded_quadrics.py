@@ -172,3 +172,16 @@ def test_a_rounded_sphere_has_its_designed_sphere_for_nearest_exact_surface() ->
     assert any("radius 150.25 about (58.315, 24.271, 64.029)" in note for note in analysis.approximate.notes)
     exact = analyze("1*x^2 - 116.63*x + 1*y^2 - 48.542*y + 1*z^2 - 128.058*z - 14485.628993")
     assert exact.approximate is not None and exact.approximate.nearest is None
+
+
+def test_a_spheroid_printed_with_four_places_is_near_a_surface_of_revolution() -> None:
+    """Semi-axes 63.5 and 25.4 about (−81.341, 189.35, 80.9) on an axis turned by 17.5° and
+    120°, printed with ``%.4f``: the quadratic coefficients keep one digit (``0.0003``), and the
+    rotation's singular value of (★), 0.013, was over the gate's cap of 10⁻², so its axis was
+    never refined and the input was "not near" (4.3 roundings off; refined, 0.19)."""
+    text = (
+        "+36.2017 -0.3846*z^1 +0.0014*z^2 -0.1880*y^1 +0.0006*y^1*z^1 +0.0003*y^2 +0.0946*x^1"
+        " -0.0004*x^1*z^1 -0.0001*x^1*y^1 +0.0003*x^2"
+    )
+    approximate = analyze(text, recognition_only=True).approximate
+    assert approximate is not None and approximate.near_sor and approximate.kind == "revolution"

@@ -63,9 +63,15 @@ intended surface: decimals such as ``0.5`` or ``3.0`` (a gallery's exact numbers
 exact, and nearness is only decided with ``--tolerance``."""
 
 GATE = 1e4
-"""A kind is tried when its singular values are below ``GATE·τ`` (and 10⁻²), ``τ`` the rounding
+"""A kind is tried when its singular values are below ``GATE·τ`` (and :data:`GATE_CAP`), ``τ`` the rounding
 of the coefficients (★) reads (:func:`gradient_tolerance`) if larger than the input's: a cheap filter;
 the weighted residual decides."""
+
+GATE_CAP = 5e-2
+"""The gate's cap: singular values above it are no near symmetry, whatever the rounding. A
+spheroid of semi-axes 63.5 and 25.4 printed with ``%.4f`` (quadratic coefficients such as
+``0.0003``, one digit) has its rotation's at 0.013, and with a cap of 10⁻² it was "not near"
+(a fit about the unrefined axis, 4.3 roundings off; refined, 0.19)."""
 
 NOISE_ALLOWANCE = 1.0
 """A fit is within the rounding when its residual is at most ``1 + min(noise, NOISE_ALLOWANCE)``:
@@ -300,7 +306,7 @@ def _in_field(vector: Sequence[Fraction | Quadratic], K: Domain) -> Vector:
 def _search(f: Normalised, sigma: FloatArray, vectors: FloatArray, tolerance: float) -> tuple[Fit | None, Fit | None]:
     """The first kind (most symmetric first) whose refined fit is within the rounding, and the
     best fit seen (for saying how far a miss is)."""
-    gate = min(1e-2, GATE * max(tolerance, gradient_tolerance(f)))
+    gate = min(GATE_CAP, GATE * max(tolerance, gradient_tolerance(f)))
     best: Fit | None = None
     for count in (3, 2, 1):
         if sigma[6 - count] > gate and not (count == 1 and best is None):
