@@ -46,6 +46,15 @@ SURFACES = {
         ),
         9,
     ),
+    "rounded cone printed with 17 digits (a residual over 1)": (
+        "(1)*x^2 + (-7)*x + (0.66000000000000014)*y^2 + (1.1777945491468365)*y*z + (-6.5945618440278562)*y"
+        " + (-0.020000000000000073)*z^2 + (1.7522431864335473)*z + (1.9955476949651754)"
+    ),
+    "torus about the axis (2, -2, 1) (its circles need the root of 5)": (
+        "x^4 - 4*x^3 + 2*x^2*y^2 + 8*x^2*y + 2*x^2*z^2 - 2*x^2*z + 100*x^2/9 - 4*x*y^2 - 344*x*y/9 - 4*x*z^2"
+        " + 136*x*z/9 - 578*x/9 + y^4 + 8*y^3 + 2*y^2*z^2 - 2*y^2*z + 208*y^2/9 + 8*y*z^2 - 172*y*z/9 + 506*y/9"
+        " + z^4 - 2*z^3 - 2*z^2/9 - 289*z/9 + 3469/36"
+    ),
 }
 
 
@@ -127,6 +136,28 @@ LIES = [
     ("rounded about a rational axis", ("approximate", "kind"), "none", "approximate.near_sor"),
     ("rounded about a rational axis", ("approximate", "axis", "direction"), [0.0, 0.0, 0.0], "approximate.axis"),
     ("sphere", ("profile", "frame_point"), ["0", "0", "0"], "profile.frame_point"),
+    (
+        "rounded about a rational axis",
+        ("approximate", "nearest", "max_deviation"),
+        1e-30,
+        "approximate.nearest.max_deviation",
+    ),
+    (
+        "rounded about a rational axis",
+        ("approximate", "nearest", "relative_distance"),
+        1e-30,
+        "approximate.nearest.relative_distance",
+    ),
+    (
+        "rounded about a rational axis",
+        ("approximate", "nearest", "within_rounding"),
+        False,
+        "approximate.nearest.within_rounding",
+    ),
+    ("rounded about a rational axis", ("approximate", "near_sor"), False, "approximate.nearest"),
+    ("torus", ("real_locus",), {"kind": "empty", "dimension": -1}, "real_locus.kind"),
+    ("torus", ("canal", "kinds"), ["pipe"], "canal.kinds"),
+    ("torus", ("canal", "kinds"), ["pipe", "revolution", "round"], "canal.kinds"),
 ]
 
 
@@ -152,6 +183,15 @@ def refused_naming(analysis: Analysis, named: str | None) -> None:
         check_report(analysis)
     assert caught.value.message.startswith(named), caught.value.message
     assert "\n" not in caught.value.message
+
+
+def test_another_surfaces_nearest_surface_is_refused(reports: dict[str, Analysis]) -> None:
+    """The nearest exact surface of a rounded cone pasted into the report of a rounded quadric
+    about another axis: its symmetry and axis agree with its own polynomial, but it is far from
+    the typed one, and the report said it within the rounding."""
+    cone = reports["rounded cone printed with 17 digits (a residual over 1)"].to_json()["approximate"]["nearest"]
+    swapped = tampered(reports["rounded about a rational axis"], ("approximate", "nearest"), cone)
+    refused_naming(swapped, "approximate.nearest.relative_distance")
 
 
 def test_a_constant_map_on_the_surface_is_no_parameterization(reports: dict[str, Analysis]) -> None:

@@ -24,12 +24,23 @@ from .maps import check_parametrization
 SMAT = ("m1", "m2", "m3", "r")
 
 
+KINDS = ("developable", "dupin", "pipe", "revolution")
+"""The kinds of canal surface a report may name (:func:`.canal.verdict.analyze_canal`)."""
+
+
 def check_canal(canal: Canal, surface: Surface, is_sor: bool, where: str, ids: Identities) -> None:
     """The families, the parameterizations by circles and the witness of ``canal``."""
     if canal.is_canal is not True and (canal.kinds or canal.families or canal.parametrizations):
         raise ClaimError(f"{where}.is_canal", "is not true, but sphere families or kinds are given")
+    unknown = sorted(set(canal.kinds) - set(KINDS))
+    if unknown:
+        raise ClaimError(f"{where}.kinds", f"holds {unknown[0]!r}, which is none of {', '.join(KINDS)}")
     if "revolution" in canal.kinds and not is_sor:
         raise ClaimError(f"{where}.kinds", "holds 'revolution' for a surface that is not one of revolution")
+    if canal.is_canal is True and is_sor and "revolution" not in canal.kinds:
+        raise ClaimError(f"{where}.kinds", "lacks 'revolution' for a surface of revolution")
+    if any(family.pipe for family in canal.families) and "pipe" not in canal.kinds:
+        raise ClaimError(f"{where}.kinds", "lacks 'pipe', but a sphere family has a constant radius")
     ids.need(*surface.radicands)
     for i, family in enumerate(canal.families):
         check_family(family, surface, f"{where}.families[{i}]", ids)
@@ -140,10 +151,16 @@ def _check_circles(family: CanalFamily, t: str, surface: Surface, where: str, id
         length1, length_n = _dot(e1, e1) % p, _dot(n, n) % p
         if length1 == 0 or length_n == 0:
             raise Redraw("the circle's frame is degenerate at the point")
-        cos, sin = point.cos_sin or (1, 0)
-        alpha = point.root(("circle", where, "alpha"), r2 * pow(length1, -1, p) % p)
-        beta = point.root(("circle", where, "beta"), r2 * pow(length1 * length_n, -1, p) % p) if r2 else 0
-        xyz = [(ci + cos * alpha * a + sin * beta * b) % p for ci, a, b in zip(c, e1, e2)]
+        if r2 == 0:
+            return surface.at(point, c) == 0  # a circle of radius 0: its centre
+        # A point α·e1 + β·e2 from the centre: α²·|e1|² + β²·|n|²·|e1|² = r² (|e2|² = |n|²·|e1|²).
+        # β is drawn and α is a root: a conic over F_p has points whatever p, and about every
+        # second β serves. (Roots of r²/|e1|² and r²/(|e1|²·|n|²) at once may exist for no point
+        # at all modulo p: a torus's circles about the axis (2, -2, 1) need √5.)
+        beta = point.of(f"circle beta {where}")
+        alpha_squared = (r2 - beta * beta * length1 * length_n) * pow(length1, -1, p) % p
+        alpha = point.root(("circle", where, "alpha"), alpha_squared)
+        xyz = [(ci + alpha * a + beta * b) % p for ci, a, b in zip(c, e1, e2)]
         return surface.at(point, xyz) == 0
 
     texts = [*family.parametrization, family.radius_squared, *centre, *normal, radius_squared]

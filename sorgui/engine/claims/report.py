@@ -41,13 +41,13 @@ def check_report(analysis: Analysis) -> None:
 
 
 def _check_analysis(analysis: Analysis, where: str, ids: Identities) -> None:
-    locus = analysis.real_locus
-    if locus is not None and DIMENSIONS[locus.kind] != locus.dimension:
-        raise ClaimError(f"{where}real_locus.dimension", f"is {locus.dimension}, but {locus.kind!r} has another")
+    _check_real_locus(analysis, where)
     _check_unfinished(analysis, where)
     if analysis.approximate is not None:
         _check_approximation(analysis.approximate, f"{where}approximate")
         _check_nearest(analysis.approximate, f"{where}approximate", ids)
+        if analysis.input_kind == "equation":
+            _check_nearness(analysis.input, analysis.approximate, where)
     if analysis.input_kind == "parametrization":
         found = check_parametric(analysis, where, ids)
         if found is not None:
@@ -136,6 +136,29 @@ def _check_factor(factor: Factor, where: str, ids: Identities) -> Surface:
     return surface
 
 
+def _check_real_locus(analysis: Analysis, where: str) -> None:
+    """The real locus agrees with itself (a kind and its dimension) and with the real maps: a
+    real parameterization, or ``X`` rational over ``R``, has a surface of real points."""
+    locus = analysis.real_locus
+    if locus is None:
+        return
+    if DIMENSIONS[locus.kind] != locus.dimension:
+        raise ClaimError(f"{where}real_locus.dimension", f"is {locus.dimension}, but {locus.kind!r} has another")
+    if locus.kind in ("surface", "undecided"):
+        return
+    real_maps = [i for i, p in enumerate(analysis.parametrizations) if p.real]
+    if real_maps:
+        raise ClaimError(
+            f"{where}real_locus.kind",
+            f"is {locus.kind!r}, but parametrizations[{real_maps[0]}] is real: X has a surface of real points",
+        )
+    if analysis.rationality is not None and analysis.rationality.real_rational:
+        raise ClaimError(
+            f"{where}real_locus.kind",
+            f"is {locus.kind!r}, but X is claimed rational over R, which needs a surface of real points",
+        )
+
+
 def _check_unfinished(analysis: Analysis, where: str) -> None:
     """A stage the time limit cut short has no result: no Table 1 row, no parameterization."""
     unfinished = set(analysis.unfinished)
@@ -148,9 +171,16 @@ def _check_unfinished(analysis: Analysis, where: str) -> None:
 
 def _check_approximation(approx: Approximation, where: str) -> None:
     """The floating-point verdict on rounded input agrees with itself: "near" is a surface of
-    revolution's kind within the rounding, and the sizes are sizes."""
-    if approx.near_sor and (approx.kind not in SOR_KINDS or (approx.residual is not None and approx.residual > 1)):
+    revolution's kind within the rounding (its residual at most ``1 + NOISE_ALLOWANCE``, the
+    float noise it may excuse), a nearest exact surface is only found for a near one, and the
+    sizes are sizes."""
+    from ..rounded.approximate import NOISE_ALLOWANCE  # numpy: only for rounded input
+
+    within = approx.residual is None or approx.residual <= 1.0 + NOISE_ALLOWANCE
+    if approx.near_sor and (approx.kind not in SOR_KINDS or not within):
         raise ClaimError(f"{where}.near_sor", "is claimed, but the kind or the residual says otherwise")
+    if approx.nearest is not None and not approx.near_sor:
+        raise ClaimError(f"{where}.nearest", "is given, but the input is not claimed near a surface of revolution")
     for name in ("tolerance", "relative_distance", "residual"):
         value = getattr(approx, name)
         if value is not None and not (math.isfinite(value) and value >= 0):
@@ -160,6 +190,61 @@ def _check_approximation(approx: Approximation, where: str) -> None:
         raise ClaimError(f"{where}.nearest.max_deviation", "must be at least 0")
     if approx.axis is not None and not any(approx.axis.direction):
         raise ClaimError(f"{where}.axis.direction", "must not be 0")
+
+
+FIGURES_AGREE = 1e-6
+"""The relative difference allowed between a nearest surface's figures as claimed and as
+computed again (the same float computations on the same numbers: they agree to the last bits)."""
+
+
+def _check_nearness(text: str, approx: Approximation, where: str) -> None:
+    """What the report says of its nearest exact surface ``g`` against the typed ``f`` (the
+    distance of their coefficients, the largest residual in units of the rounding, the deviation
+    of their zero sets, whether ``g`` is within the rounding), computed again under the rounding
+    the report names (the input's digits, or the tolerance given): a report with another
+    surface's ``g`` pasted in claimed it within the rounding of the typed one."""
+    nearest = approx.nearest
+    if nearest is None:
+        return
+    from ..rounded.approximate import nearest_figures, rounding_of  # numpy: only for rounded input
+
+    f = read_polynomial(text, f"{where}input")
+    where = f"{where}approximate"
+    given = approx.tolerance if approx.tolerance_source == "given" else None
+    try:
+        rounding, _ = rounding_of(f, text, given)
+    except AnalysisError as exc:
+        raise ClaimError(f"{where}.tolerance", f"cannot be: {exc.message}") from None
+    if rounding is None:
+        raise ClaimError(f"{where}.nearest", "is given for an input without decimals or a tolerance")
+    g = read_polynomial(nearest.polynomial, f"{where}.nearest.polynomial")
+    try:
+        found = nearest_figures(f, g, rounding)
+    except AnalysisError as exc:
+        raise ClaimError(f"{where}.nearest.polynomial", f"cannot be: {exc.message}") from None
+    claimed = (
+        ("relative_distance", nearest.relative_distance, found.relative_distance),
+        ("largest_residual", nearest.largest_residual, found.largest_residual),
+        ("max_deviation", nearest.max_deviation, found.max_deviation),
+    )
+    for name, said, computed in claimed:
+        if said is None and name == "largest_residual":
+            continue  # reports written before it was kept
+        if not _agree(said, computed):
+            raise ClaimError(f"{where}.nearest.{name}", f"is {said}, but the nearest surface's is {computed}")
+    if nearest.within_rounding != found.within_rounding:
+        raise ClaimError(
+            f"{where}.nearest.within_rounding",
+            f"is {str(nearest.within_rounding).lower()}, but the nearest surface is "
+            + ("within" if found.within_rounding else "outside")
+            + " the input's rounding",
+        )
+
+
+def _agree(said: float | None, computed: float | None) -> bool:
+    if said is None or computed is None:
+        return said is computed
+    return abs(said - computed) <= FIGURES_AGREE * max(abs(said), abs(computed)) or said == computed
 
 
 def _check_nearest(approx: Approximation, where: str, ids: Identities) -> None:

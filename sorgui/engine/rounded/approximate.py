@@ -16,6 +16,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 from sympy.polys.domains import QQ
@@ -32,6 +33,7 @@ from ..recognition.symmetry import (
     REVOLUTION,
     SOR_KINDS,
     SPHERE,
+    recognize_symmetry,
 )
 from ..results import ApproximateAxis, Approximation, NearestSurface, Triple
 from ..syntax import square_roots
@@ -146,12 +148,7 @@ def approximate_symmetry(
     k = _balancing_power(f)
     if not k:
         return _approximate_symmetry(f, rounding, snap_exact=snap_exact, notes=notes, sphere=sphere)
-    scale = QQ(10) ** k if k > 0 else QQ(1, 10 ** (-k))
-    scaled = replace(
-        rounding,
-        bounds={m: b * 10.0**k for m, b in rounding.bounds.items()},
-        default=rounding.default * 10.0**k,
-    )
+    scale, scaled = _balanced(rounding, k)
     near = _approximate_symmetry(f * scale, scaled, snap_exact=snap_exact, notes=notes, sphere=sphere)
     if near.nearest is None or near.approximation.nearest is None:
         return near
@@ -168,6 +165,17 @@ def _balancing_power(f: Poly) -> int:
         return 0
     exponent = math.floor(math.log10(largest))
     return -exponent if abs(exponent) > BALANCE_FROM else 0
+
+
+def _balanced(rounding: Rounding, k: int) -> tuple[Any, Rounding]:
+    """The factor ``10^k`` and the rounding of ``10^k·f`` (:data:`BALANCE_FROM`)."""
+    scale = QQ(10) ** k if k > 0 else QQ(1, 10 ** (-k))
+    scaled = replace(
+        rounding,
+        bounds={m: b * 10.0**k for m, b in rounding.bounds.items()},
+        default=rounding.default * 10.0**k,
+    )
+    return scale, scaled
 
 
 def _approximate_symmetry(
@@ -428,3 +436,30 @@ def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> Near
         within_rounding=exact.largest <= 1.0 and near_zero_set,
         largest_residual=exact.largest,
     )
+
+
+def nearest_figures(f: Poly, g: Poly, rounding: Rounding) -> NearestSurface:
+    """The report of ``g`` as the nearest exact surface of the rounded ``f`` under ``rounding``,
+    its figures (the largest residual in units of the rounding, the relative distance, the
+    deviation of the zero sets, within the rounding or not) computed again as the analysis
+    computes them (:func:`.snapping.check_surface`, :func:`_nearest_surface`): a saved report's
+    claims about its nearest surface are checked against these (docs/math.md §14).
+
+    ``f`` and ``g`` are balanced as :func:`approximate_symmetry` balances them. The difference
+    is exact when both are over ``QQ``, else taken in floats, as the analysis takes it."""
+    k = _balancing_power(f)
+    if k:
+        scale, rounding = _balanced(rounding, k)
+        f, g = f * scale, g * scale
+    coefficients = dense.float_coefficients(f)
+    if g.ring == f.ring:
+        difference = dense.float_coefficients(f - g)
+    else:
+        others = dense.float_coefficients(g)
+        difference = {m: coefficients.get(m, 0.0) - others.get(m, 0.0) for m in set(coefficients) | set(others)}
+    ratios = [abs(r) / rounding.bound(m) for m, r in difference.items()]
+    residual = math.sqrt(sum(v * v for v in ratios) / math.comb(rounding.degree + 3, 3))
+    distance = math.hypot(*difference.values()) / math.hypot(*coefficients.values())
+    symmetry = recognize_symmetry(g)
+    exact = ExactSurface(g, symmetry, residual, max(ratios, default=0.0), distance, None, None)
+    return _nearest_surface(exact, normalise(coefficients, rounding), f)
