@@ -417,7 +417,14 @@ def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None 
             raise UsageError("--format needs the name of a format (json, md, tex, stl, ...)")
         suffix = "." + fmt.lower().lstrip(".").removeprefix("patch.") if fmt else path.suffix.lower()
         if suffix not in EXPORT_SUFFIXES:
-            raise UsageError(f"unknown export format of {path}; use {', '.join(EXPORT_SUFFIXES)}")
+            formats = ", ".join(EXPORT_SUFFIXES)
+            if fmt:
+                raise UsageError(f"unknown export format {fmt!r} (--format); use one of {formats}")
+            if not path.suffix:
+                raise UsageError(
+                    f"unknown export format of {path} (no suffix): give --format FORMAT or a name ending in {formats}"
+                )
+            raise UsageError(f"unknown export format of {path}; use {formats}")
         if suffix in CAD_SUFFIXES and importlib.util.find_spec("OCP") is None:
             from sorgui.cad import INSTALL_HINT
 
@@ -425,11 +432,24 @@ def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None 
         side = [path.with_suffix(SIDE_FILES[suffix])] if suffix in SIDE_FILES else []
         for target in (path, *side):
             _check_target(target, inputs, beside=path if target is not path else None)
+        for picture in side:
+            if picture not in outputs and picture.is_file() and not _sorgui_picture(picture):
+                raise UsageError(
+                    f"refusing to overwrite {picture} (the picture written beside {path}): it is not a "
+                    "picture sorgui wrote; move it, or name it with -o to replace it"
+                )
     if cap and not any(_capped(path, fmt) for path in outputs):
         raise UsageError(
             f"--cap applies to CAD files of the surface ({' '.join(CAD_SUFFIXES)}; not a NAME.patch.step "
             "patch): give -o PART.step"
         )
+
+
+def _sorgui_picture(path: Path) -> bool:
+    """Whether ``path`` is a picture sorgui wrote (a Markdown report's earlier ``NAME.png``)."""
+    from sorgui.export.picture import is_sorgui_picture
+
+    return is_sorgui_picture(path)
 
 
 def _capped(path: Path, fmt: str | None) -> bool:

@@ -46,6 +46,36 @@ def test_a_reports_picture_never_replaces_the_input(tmp_path: Path) -> None:
     assert source.read_text(encoding="utf-8") == EQUATION and not (tmp_path / "surf.md").exists()
 
 
+def test_a_reports_picture_replaces_only_a_picture_sorgui_wrote(tmp_path: Path) -> None:
+    """``-o r.md`` writes ``r.png`` beside it: a photo of that name is refused (it was replaced
+    without a word), sorgui's own picture of an earlier run is replaced, and so is a file the
+    user names with ``-o``."""
+    photo = tmp_path / "r.png"
+    photo.write_bytes(b"my holiday photo")
+    args = ["--recognition-only", "x^2 + y^2 - z", "-o", "r.md"]
+    done = run(args, tmp_path)
+    assert done.returncode == 2, done.stderr
+    assert "refusing to overwrite r.png (the picture written beside r.md): it is not a picture sorgui wrote" in (
+        done.stderr
+    )
+    assert photo.read_bytes() == b"my holiday photo" and not (tmp_path / "r.md").exists()
+    photo.unlink()
+    for _ in range(2):
+        done = run(args, tmp_path)
+        assert done.returncode == 0, done.stderr
+    photo.write_bytes(b"my holiday photo")
+    done = run([*args, "-o", "r.png"], tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert photo.read_bytes().startswith(b"\x89PNG")
+
+
+def test_a_target_without_a_format_says_how_to_name_one(tmp_path: Path) -> None:
+    done = run(["--recognition-only", "x^2 + y^2 - z", "-o", "/dev/null"], tmp_path)
+    assert done.returncode == 2 and "of /dev/null (no suffix): give --format FORMAT" in done.stderr
+    done = run(["--recognition-only", "x^2 + y^2 - z", "--format", "docx", "-o", "a.txt"], tmp_path)
+    assert done.returncode == 2 and "unknown export format 'docx' (--format)" in done.stderr
+
+
 @pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs named pipes")
 def test_a_named_pipe_is_written_in_place(tmp_path: Path) -> None:
     pipe = tmp_path / "out.json"

@@ -12,6 +12,7 @@ itself: GLX under X (or Xvfb), EGL or OSMesa without a display; when none can be
 from __future__ import annotations
 
 import gc
+from pathlib import Path
 from typing import Protocol
 
 import numpy as np
@@ -101,8 +102,31 @@ def render_png(scene: PictureScene, size: tuple[int, int] = PICTURE_SIZE, transp
     return png_bytes(image)
 
 
+PICTURE_MARK = ("Software", "sorgui")
+"""The PNG text chunk of every picture sorgui writes: a Markdown report's ``NAME.png`` replaces
+an earlier picture of sorgui's without a word, but not another file of that name."""
+
+
+def is_sorgui_picture(path: Path) -> bool:
+    """Whether the file at ``path`` is a PNG that sorgui wrote (:data:`PICTURE_MARK`, among the
+    chunks before the image data)."""
+    try:
+        with path.open("rb") as file:
+            head = file.read(MARK_WITHIN)
+    except OSError:
+        return False
+    key, value = PICTURE_MARK
+    return head.startswith(b"\x89PNG") and f"{key}\0{value}".encode() in head.split(b"IDAT", 1)[0]
+
+
+MARK_WITHIN = 4096
+"""Bytes from the start of a PNG within which :data:`PICTURE_MARK` is looked for (VTK writes the
+text chunks right after the header)."""
+
+
 def png_bytes(image: np.ndarray) -> bytes:
-    """An ``(h, w, 3|4)`` ``uint8`` image as PNG bytes (VTK's PNG writer, in memory)."""
+    """An ``(h, w, 3|4)`` ``uint8`` image as PNG bytes (VTK's PNG writer, in memory), marked as
+    sorgui's (:data:`PICTURE_MARK`)."""
     from vtkmodules.vtkCommonDataModel import vtkImageData
     from vtkmodules.vtkIOImage import vtkPNGWriter
 
@@ -115,6 +139,7 @@ def png_bytes(image: np.ndarray) -> bytes:
     array = numpy_to_vtk(flipped, deep=True)
     data.GetPointData().SetScalars(array)
     writer = vtkPNGWriter()
+    writer.AddText(*PICTURE_MARK)
     writer.SetInputData(data)
     writer.WriteToMemoryOn()
     writer.Write()
