@@ -372,9 +372,10 @@ def read_input(args: argparse.Namespace) -> tuple[str, Path | None]:
         try:
             with open(args.file, encoding="utf-8") as stream:
                 return _bounded(stream.read(MAX_INPUT + 1), str(args.file)), args.file
-        except (OSError, UnicodeDecodeError) as exc:
-            reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-            raise UsageError(f"cannot read {args.file}: {reason}") from None
+        except UnicodeDecodeError as exc:
+            raise UsageError(f"cannot read {args.file}: {_not_text(exc)}") from None
+        except OSError as exc:
+            raise UsageError(f"cannot read {args.file}: {exc.strerror or exc}") from None
     if args.expression is None:
         from sorgui.examples import example_text
 
@@ -387,8 +388,13 @@ def read_input(args: argparse.Namespace) -> tuple[str, Path | None]:
         try:
             return _bounded(sys.stdin.read(MAX_INPUT + 1), "standard input"), None
         except UnicodeDecodeError as exc:
-            raise UsageError(f"cannot read standard input: {exc}") from None
+            raise UsageError(f"cannot read standard input: {_not_text(exc)}") from None
     return _bounded(args.expression, "the expression"), None
+
+
+def _not_text(error: UnicodeDecodeError) -> str:
+    """Why bytes that are not UTF-8 are no equation, and where."""
+    return f"it is not UTF-8 text (byte {error.start + 1} is 0x{error.object[error.start]:02x}): an equation is text"
 
 
 def _bounded(text: str, source: str) -> str:
@@ -514,6 +520,13 @@ def write_outputs(
     others before it are said on stderr), a refused report :class:`_ReportRefused`."""
     if not outputs:
         return  # nothing to write: the export modules (and numpy) stay unloaded
+    failures: list[str] = []
+    if result is not None:
+        failures = [reason for path in outputs if (reason := _write_plain(result, path, fmt)) is not None]
+        outputs = [path for path in outputs if not _plain(path, fmt)]
+        if not outputs:
+            _raise_failures(failures)
+            return
     from sorgui.session.export_process import (
         ExportRequest,
         ExportTarget,
@@ -535,7 +548,6 @@ def write_outputs(
         bounds=region.bounds,
         cap=cap,
     )
-    failures: list[str] = []
     for message in export_supervised(request, deadline, limit):
         match message:
             case FileWritten(path, holds) if holds:
@@ -544,6 +556,37 @@ def write_outputs(
                 failures.append(reason)
             case ReportRefused(reason):
                 raise _ReportRefused(reason)
+    _raise_failures(failures)
+
+
+def _plain(path: Path, fmt: str | None) -> bool:
+    """Whether ``path`` is a JSON or text report (:data:`~sorgui.export.text.PLAIN_SUFFIXES`)."""
+    from sorgui.export.formats import format_of
+    from sorgui.export.text import PLAIN_SUFFIXES
+
+    return format_of(path, fmt).suffix in PLAIN_SUFFIXES
+
+
+def _write_plain(result: Analysis, path: Path, fmt: str | None) -> str | None:
+    """Write the JSON or text report ``path`` here, at once (milliseconds, no sympy: the report of
+    an analysis that used up its time limit is kept as the terminal shows it); the reason it
+    failed, else ``None`` (also for the other formats, which the export process writes)."""
+    if not _plain(path, fmt):
+        return None
+    from sorgui.export.atomic import atomic_write_text
+    from sorgui.export.formats import format_of
+    from sorgui.export.text import json_report, text_report
+
+    writer = json_report if format_of(path, fmt).suffix == ".json" else text_report
+    try:
+        atomic_write_text(path, writer(result))
+    except OSError as exc:
+        return f"cannot write {path}: {exc.strerror or exc}"
+    return None
+
+
+def _raise_failures(failures: list[str]) -> None:
+    """Say every file not written on stderr, the last as :class:`_OutputError`."""
     for reason in failures[:-1]:
         print(f"sorgui: {one_line(reason)}", file=sys.stderr, flush=True)
     if failures:

@@ -153,6 +153,15 @@ def test_outputs_are_checked_before_the_analysis(tmp_path: Path) -> None:
         assert out.returncode == 2 and "permission denied" in one_line(out.stderr)
 
 
+def test_a_binary_file_is_said_not_to_be_text(tmp_path: Path) -> None:
+    path = tmp_path / "program"
+    path.write_bytes(b"\x7fELF\x02\x01\x01\x00" + b"\x00" * 16 + b"\xd0a")
+    out = sorgui("analyze", "-f", str(path))
+    assert out.returncode == 2, out.stderr
+    said = one_line(out.stderr)
+    assert said == f"sorgui: cannot read {path}: it is not UTF-8 text (byte 25 is 0xd0): an equation is text"
+
+
 def test_the_input_file_is_never_overwritten(tmp_path: Path) -> None:
     path = tmp_path / "eq.txt"
     path.write_text("x^2+y^2-z\n", encoding="utf-8")
@@ -226,9 +235,16 @@ def test_a_failed_write_names_the_file(tmp_path: Path, monkeypatch: pytest.Monke
     def full_disk(*_args, **_kwargs):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
 
+    import sorgui.export.atomic as atomic
+
     monkeypatch.setattr(files, "export_analysis", full_disk)
     # the export child must be forked for the patch to reach it (a test process with threads spawns)
     monkeypatch.setattr(export_process, "quick_context", lambda: multiprocessing.get_context("fork"))
+    target = tmp_path / "r.tex"
+    with pytest.raises(cli._OutputError, match=f"cannot write {target}: No space left on device"):
+        cli.write_outputs(analyze("x^2+y^2-z", recognition_only=True), [target])
+    # a JSON or text report is written by this process itself
+    monkeypatch.setattr(atomic, "atomic_write_text", full_disk)
     target = tmp_path / "r.json"
     with pytest.raises(cli._OutputError, match=f"cannot write {target}: No space left on device"):
         cli.write_outputs(analyze("x^2+y^2-z", recognition_only=True), [target])

@@ -322,7 +322,8 @@ def test_a_cad_file_of_a_surface_outside_the_drawn_ball_is_refused_before_open_c
         ("10^400", "cannot be drawn: its coefficients span about 10^400"),
         (
             "10^40",
-            "inside the ball of radius 2 about (0, 0, 0), chosen for it: give a region that holds some (--region)",
+            "inside the ball of radius 2 about (0, 0, 0), chosen for it: give a region that holds some (the ball's "
+            "centre and radius; --region on the command line)",
         ),
         ("1 --region 1000", "the ball of radius 1000 about (0, 0, 0) asked for is too large to draw the surface in"),
     ):
@@ -383,6 +384,20 @@ def test_a_nearly_revolving_surface_without_an_exact_one_is_not_called_no_surfac
     done = sorgui("analyze", "-f", str(text), "--tolerance", "1e-10", "-o", str(target))
     assert done.returncode == 0 and target.exists(), done.stderr
     assert "the nearest exact surface's part" in lines(done.stderr)[-1]
+
+
+def test_a_recognition_only_part_of_rounded_input_says_what_it_lacks(tmp_path: Path) -> None:
+    """With --recognition-only the nearest exact surface of a rounded torus is found but not
+    analysed, and its part is built from that analysis: the refusal says so (it said that no
+    exact surface was found within the rounding)."""
+    pytest.importorskip("OCP")
+    text = Path(__file__).parent / "data" / "rounded-torus-6-digits.txt"
+    target = tmp_path / "torus.step"
+    done = sorgui("analyze", "--recognition-only", "-f", str(text), "-o", str(target))
+    message = lines(done.stderr)[-1]
+    assert done.returncode == 1 and not target.exists(), done.stderr
+    assert "with --recognition-only its nearest exact surface is not analysed" in message
+    assert "analyse without --recognition-only for its part" in message and "was found" not in message
 
 
 def test_a_nearest_surface_beyond_the_rounding_is_written_and_says_so(tmp_path: Path) -> None:

@@ -107,6 +107,39 @@ def test_the_time_limit_keeps_the_finished_stages() -> None:
     wait_for(lambda: all(dead(pid) for pid in children + singulars), 5)
 
 
+def test_an_analysis_that_used_up_its_time_keeps_its_report_files(tmp_path: Path) -> None:
+    """Frozen in Singular until the limit: the JSON and text reports of the stages done are
+    written all the same (they were lost with the files that need the export process, whose
+    time was used up), the text one as the terminal shows it; the LaTeX file is said unwritten."""
+    files = [tmp_path / name for name in ("r.json", "r.txt", "r.tex")]
+    proc = launch([*ANALYZE, "--timeout", "8", "-f", SLOW, *(a for f in files for a in ("-o", str(f)))])
+    wait_for(lambda: singular_processes(proc.pid), 60)
+    freeze_analysis(proc)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 1 and "Traceback" not in err, err
+    assert f"cannot write {files[2]}: not written within the time limit of 8 s" in err
+    data = json.loads(files[0].read_text(encoding="utf-8"))
+    assert data["is_sor"] is True and "rationality" in data["unfinished"]
+    assert files[1].read_text(encoding="utf-8") == out and "surface of revolution: YES" in out
+    assert not files[2].exists()
+
+
+def test_a_maps_verdicts_are_not_listed_unfinished() -> None:
+    """A bicubic map whose implicit equation takes more than the limit: its symmetry ("none",
+    not of revolution) and its cone or cylinder come from the map and are decided; only the
+    implicit equation's stages are unfinished (the recognition was listed too, beside
+    ``is_sor: false``, which the README says is ``null`` when the recognition is unfinished)."""
+    bicubic = (
+        "x = u + 2*v^3 - u^2*v + 3*u^3*v^2, y = v - u^3 + 2*u*v^2 + u^2*v^3 - 1, z = u*v + u^3*v^3 - 2*v^2*u + 5*u^2"
+    )
+    done = subprocess.run([*ANALYZE, "--json", "--timeout", "3", bicubic], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    data = json.loads(done.stdout)
+    assert data["input_kind"] == "parametrization" and data["is_sor"] is False and data["symmetry"] == "none"
+    assert "implicit equation" in data["unfinished"] and data["conical"]["kind"] == "none"
+    assert "recognition" not in data["unfinished"] and "conical" not in data["unfinished"]
+
+
 def test_a_verdict_found_before_a_stuck_real_locus_is_kept() -> None:
     """The real locus of ``(x² + y² + z² + 10⁵⁰)¹⁰ − 10⁵⁰·x`` takes minutes; its analysis process
     frozen there (as inside one long C call) and ended at the limit: the verdict and the axis,

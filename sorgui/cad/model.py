@@ -409,18 +409,22 @@ def _no_part_words(analysis: Analysis) -> str:
     if approximate is not None and approximate.near_sor:
         distance = approximate.relative_distance
         within = f"within {distance:.2g} (relative) of " if distance is not None else "near "
-        found = (
-            "no nearest exact surface is computed for a parametrization"
-            if analysis.input_kind == "parametrization"
-            else "no exact surface with a rational or quadratic axis was found within its rounding"
-        )
+        unanalysed = approximate.nearest is not None and approximate.nearest.analysis is None
+        if analysis.input_kind == "parametrization":
+            found = "no nearest exact surface is computed for a parametrization"
+        elif unanalysed:
+            found = "with --recognition-only its nearest exact surface is not analysed"
+        else:
+            found = "no exact surface with a rational or quadratic axis was found within its rounding"
         tight = approximate.tolerance_source == "input" and (approximate.tolerance or 1.0) < FULL_PRECISION
         looser = (
             "; its 14 or more digits are finer than the arithmetic that printed them: "
             "a larger tolerance (--tolerance 1e-10) may find one"
-            if tight and analysis.input_kind != "parametrization"
+            if tight and analysis.input_kind != "parametrization" and not unanalysed
             else ""
         )
+        if unanalysed:
+            looser = "; analyse without --recognition-only for its part"
         return (
             f"the typed surface is not exactly a surface of revolution, only {within}{kind_noun(approximate.kind)}, "
             f"and {found} to build the part from (the approximate axis is in the report){looser}{patch}"

@@ -305,18 +305,26 @@ def _two(text: str, start: int, end: int) -> tuple[str, str]:
     )
 
 
+def _decimal_comma(text: str, start: int = 0) -> ParseError | None:
+    """The error of a decimal comma (``1,5``) in ``text`` from ``start``, if there is one."""
+    comma = _DECIMAL_COMMA.search(text, start)
+    if comma is None:
+        return None
+    at = comma.start() + 1
+    return ParseError(
+        f"'{comma.group()}' reads as two components of a parametrization: write decimals with a point "
+        f"({comma.group().replace(',', '.')})",
+        at,
+        at + 1,
+    )
+
+
 def _count_error(text: str, start: int, cuts: tuple[list[int], list[int]], count: int) -> ParseError:
     """Why the text is not three components, where it shows: a decimal comma (``1,5``), text
     around a triple ``(X, Y, Z)``, or the first separator of what is otherwise an equation."""
-    comma = _DECIMAL_COMMA.search(text, start)
+    comma = _decimal_comma(text, start)
     if comma is not None:
-        at = comma.start() + 1
-        return ParseError(
-            f"'{comma.group()}' reads as two components of a parametrization: write decimals with a point "
-            f"({comma.group().replace(',', '.')})",
-            at,
-            at + 1,
-        )
+        return comma
     if not cuts[0] and len(cuts[1]) == 2:
         around = _around_triple(text, start, cuts[1][0])
         if around is not None:
@@ -489,6 +497,9 @@ def _refuse_names(text: str, words: Sequence[tuple[str, int]]) -> None:
                 end + digits,
             )
         if set(word) & set(COORDINATES) and set(word) <= set(COORDINATES):
+            comma = _decimal_comma(text)  # x^2 + 1,5*y^2 + 2,5*z^2 - 1: three "components"
+            if comma is not None:
+                raise comma
             raise ParseError(
                 f"a component cannot use '{word}': x, y, z are the coordinates; name the parameters"
                 " otherwise (s, t; u, v; …)",

@@ -114,6 +114,9 @@ def unfinished_analysis(
     rec = latest.recognition
     may_be_sor = rec.symmetry == UNDECIDED or rec.is_sor
     needs_rationality = not recognition_only and (rec.symmetry == UNDECIDED or (rec.is_sor and rec.profile is not None))
+    # A map's verdicts come from the map itself (docs/math.md §13): its symmetry and its cone or
+    # cylinder are decided, whatever is left of the analysis of its implicit equation.
+    from_map = latest.input_kind == "parametrization" and rec.symmetry != UNDECIDED
     pipeline = [
         "recognition",
         "factors",
@@ -123,6 +126,8 @@ def unfinished_analysis(
         "canal",
     ]
     done = {name for name, _ in timings}
+    if from_map:
+        done |= {"recognition"} | ({"conical"} if latest.conical is not None else set())
     unfinished = [s for s in pipeline if s not in done]
     if current is not None and current not in done and current not in unfinished:
         unfinished.insert(0, current)

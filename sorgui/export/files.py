@@ -25,7 +25,8 @@ from sorgui.export.atomic import atomic_write_bytes, atomic_write_text
 from sorgui.export.cas import latex_document, maple_file, mathematica_file
 from sorgui.export.formats import Format, format_of, wants_patch
 from sorgui.export.python_module import python_module
-from sorgui.export.reports import html_report, json_report, markdown_report, text_report
+from sorgui.export.reports import html_report, markdown_report
+from sorgui.export.text import json_report, text_report
 
 PNG_SIZE = (1600, 1200)
 """The size of a PNG written from the command line (the window saves the viewport's own)."""

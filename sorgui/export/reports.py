@@ -1,4 +1,5 @@
-"""Report files: JSON (``sorgui analyze --json``), plain text, Markdown and HTML.
+"""Report files: Markdown and HTML, and a saved JSON report read back (the JSON and text reports
+themselves are :mod:`sorgui.export.text`'s, which needs no sympy).
 
 Markdown and HTML say the same things in the same order — the verdict, the axis, the profile,
 the Table 1 row and the genera, the tubular surface, every parameterization with its parameter
@@ -26,7 +27,7 @@ import sympy
 
 from sorgui import __version__
 from sorgui.engine.errors import SorguiError
-from sorgui.engine.results import VERSION_KEY, Analysis, Canal, report_json
+from sorgui.engine.results import VERSION_KEY, Analysis, Canal
 from sorgui.engine.stage_results import Rationality
 from sorgui.engine.vocabulary import canal_kind
 from sorgui.export.cas import LATEX_STYLE, latex_name, verdict
@@ -38,7 +39,13 @@ from sorgui.export.formulas import (
     surface_formulas,
 )
 from sorgui.export.quoting import code_fence, markup_text
-from sorgui.export.text import TABLE_1, approximation_lines, conical_lines, parametric_lines, plain_text, symmetry_name
+from sorgui.export.text import (
+    TABLE_1,
+    approximation_lines,
+    conical_lines,
+    parametric_lines,
+    symmetry_name,
+)
 
 KNOWN_KEYS = frozenset(
     {
@@ -76,11 +83,6 @@ DISPLAY_LENGTH = 60
 """LaTeX longer than this is displayed on its own line."""
 
 
-def json_report(analysis: Analysis) -> str:
-    """The JSON document of ``sorgui analyze --json``."""
-    return json.dumps(report_json(analysis), indent=1) + "\n"
-
-
 class ReportError(SorguiError):
     """A file is not a JSON report of sorgui (unreadable, not JSON, or not an analysis)."""
 
@@ -94,7 +96,7 @@ BATCH_KEYS = ("line", "line_hash", "options")
 
 
 def read_report(path: str | Path, line: int | None = None) -> Analysis:
-    """The analysis saved in the JSON report ``path`` (the inverse of :func:`json_report`),
+    """The analysis saved in the JSON report ``path`` (the inverse of :func:`.text.json_report`),
     validated (:func:`sorgui.export.validation.validate`): a report is a file from elsewhere.
     A results file of ``--each-line`` (JSON Lines) gives the object of its input's ``line``
     (:func:`_batch_line`), and a file of one such object that object.
@@ -264,11 +266,6 @@ def _one_line(text: str) -> str:
     """``text`` on one line of at most 120 characters (a message quoting a file's content)."""
     flat = " ".join(text.split())
     return flat if len(flat) <= 120 else flat[:120] + "…"
-
-
-def text_report(analysis: Analysis) -> str:
-    """The command line's report."""
-    return plain_text(analysis) + "\n"
 
 
 @dataclass(frozen=True)

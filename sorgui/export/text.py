@@ -1,11 +1,13 @@
-"""A short human-readable report of an :class:`~sorgui.engine.results.Analysis` (the CLI's output)."""
+"""A short human-readable report of an :class:`~sorgui.engine.results.Analysis` (the CLI's output),
+and the JSON document: the report files made from the analysis alone, without sympy."""
 
 from __future__ import annotations
 
+import json
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from sorgui.engine.results import UNDECIDED, Analysis, Canal, Conical, NearestSurface, Recognition
+from sorgui.engine.results import UNDECIDED, Analysis, Canal, Conical, NearestSurface, Recognition, report_json
 from sorgui.engine.vocabulary import canal_kind, kind_phrase
 from sorgui.numerics import without_noise
 
@@ -162,6 +164,21 @@ def parametric_lines(analysis: Analysis) -> list[str]:
     return lines
 
 
+PLAIN_SUFFIXES = (".json", ".txt")
+"""The report files written from the analysis alone, in milliseconds and without sympy: the
+command line writes them itself (:func:`json_report`, :func:`text_report`)."""
+
+
+def json_report(analysis: Analysis) -> str:
+    """The JSON document of ``sorgui analyze --json``."""
+    return json.dumps(report_json(analysis), indent=1) + "\n"
+
+
+def text_report(analysis: Analysis) -> str:
+    """The command line's report, as it prints it."""
+    return plain_text(analysis)
+
+
 def plain_text(analysis: Analysis) -> str:
     """The whole report as text (ending with a newline)."""
     rec = analysis.recognition
@@ -228,6 +245,8 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
     if ap.residual is not None:
         tried = ap.near_sor or ap.kind not in (None, "none") or ap.residual > 1
         scale = "at most 1: within it" if tried else "no kind of symmetry was tried, see the notes"
+        if ap.near_sor and ap.residual > 1:  # a fit excused up to one more rounding of float noise (§8.2)
+            scale = "over 1, by less than floating point's own error in the fit: within it"
         lines.append(
             f"  residual {ap.residual:.3g} times the rounding ({scale}); singular values "
             f"of (★): {', '.join(f'{v:.2g}' for v in ap.singular_values)}"

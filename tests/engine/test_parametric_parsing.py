@@ -154,6 +154,7 @@ def test_an_equation_with_a_stray_comma_says_what_a_parametrization_needs() -> N
     [
         ("1,5x + y", "write decimals with a point (1.5)", ","),
         ("x + 2,5*y^2 - z", "write decimals with a point (2.5)", ","),
+        ("x^2 + 1,5*y^2 + 2,5*z^2 - 1", "write decimals with a point (1.5)", ","),  # three "components"
         ("x^2 + y^2; + z^2 - 1", "three components", ";"),
         ("(s, t, s^2 + t^2)+", "follows the triple (X, Y, Z)", "+"),
         ("2*(s, t, s^2 + t^2)", "comes before the triple (X, Y, Z)", "2*"),

@@ -453,7 +453,7 @@ def test_a_surface_without_real_points_is_told_apart_from_the_real_column_of_tab
     """``x² + y² + 1``: row 1 (its profile splits over C), whose real column says "rational";
     the report says the column assumes real points, and why no rotated profile was made (its
     two components are complex conjugates, not "nested or higher roots")."""
-    from sorgui.export.reports import text_report
+    from sorgui.export.text import text_report
 
     analysis = analyze("x^2 + y^2 + 1")
     assert analysis.rationality.table_row == 1 and analysis.rationality.real_rational is False

@@ -147,7 +147,8 @@ def test_the_headline_of_rounded_input_within_its_rounding_is_nearly_as_in_the_w
     """Not exactly of revolution but within its rounding: every file says *nearly* first, as
     the window's banner does (the Markdown and HTML said "not a surface of revolution")."""
     from sorgui.engine import analyze
-    from sorgui.export.reports import html_report, text_report
+    from sorgui.export.reports import html_report
+    from sorgui.export.text import text_report
 
     analysis = analyze(TURNED_CYLINDER_10_DIGITS)
     assert not analysis.is_sor and analysis.approximate is not None and analysis.approximate.near_sor
@@ -159,8 +160,27 @@ def test_the_headline_of_rounded_input_within_its_rounding_is_nearly_as_in_the_w
 
 def test_an_exact_ellipsoid_nearly_a_sphere_is_not_called_exactly_a_sphere() -> None:
     from sorgui.engine import analyze
-    from sorgui.export.reports import text_report
+    from sorgui.export.text import text_report
 
     text = text_report(analyze("x^2 + 1.0001y^2 + z^2 - 1"))
     assert "exactly a surface of revolution; within the tolerance, nearly a sphere" in text
     assert "exactly a sphere" not in text
+
+
+def test_a_residual_over_one_within_the_float_noise_is_not_said_to_be_at_most_one() -> None:
+    """A cone printed with 17 digits is near a surface of revolution with a residual of 1.04
+    roundings (floating point's own error in the fit excuses up to one more): the line said
+    "(at most 1: within it)" beside 1.04."""
+    from sorgui.engine import analyze
+    from sorgui.export.text import text_report
+
+    cone = (
+        "(1)*x^2 + (-7)*x + (0.66000000000000014)*y^2 + (1.1777945491468365)*y*z + (-6.5945618440278562)*y"
+        " + (-0.020000000000000073)*z^2 + (1.7522431864335473)*z + (1.9955476949651754)"
+    )
+    analysis = analyze(cone, recognition_only=True)
+    assert analysis.approximate is not None and analysis.approximate.near_sor
+    assert analysis.approximate.residual is not None and 1 < analysis.approximate.residual <= 2
+    text = text_report(analysis)
+    assert "(over 1, by less than floating point's own error in the fit: within it)" in text
+    assert "at most 1: within it" not in text

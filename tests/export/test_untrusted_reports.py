@@ -23,7 +23,8 @@ import pytest
 from sorgui import __version__
 from sorgui.engine.results import Analysis
 from sorgui.export.files import export_analysis
-from sorgui.export.reports import ReportError, json_report, read_report
+from sorgui.export.reports import ReportError, read_report
+from sorgui.export.text import json_report
 
 MARKER = "PWNED"
 BREAKOUTS = {
