@@ -8,6 +8,11 @@ translations along it"); a canal kind (docs/math.md §9) has one phrase.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .stage_results import RealLocus
+
 SYMMETRY_KINDS: dict[str, tuple[str, str]] = {
     "revolution": ("a surface of revolution", "about one axis"),
     "cylinder_of_revolution": ("a cylinder of revolution", "rotations about its axis and translations along it"),
@@ -67,3 +72,22 @@ def no_surface(
             pieces.append("a circle about the axis" if circles == 1 else f"{circles} circles about the axis")
         return f"the surface's real points are a curve ({' and '.join(pieces) or 'a line'}), not a surface"
     return None
+
+
+def no_surface_words(locus: RealLocus | None) -> str | None:
+    """What the real points are when they make no surface (the real locus, docs/math.md §3.4),
+    which no region can show: a region to give was suggested for ``x² + y² + z² + 1``. ``None``
+    when they may make one."""
+    if locus is None or locus.kind in ("surface", "undecided"):
+        return None
+    if locus.kind == "empty":
+        return "the surface has no real points at all: there is nothing to draw, in any region"
+    if locus.kind == "points":
+        count = "isolated points" if locus.points != 1 else "a single point"
+        if locus.points is not None and locus.points > 1:
+            count = f"{locus.points} isolated points"
+        return f"the surface's real points are {count}, no surface: there is nothing to draw"
+    pieces = [f"{locus.circles} circle" + "s" * (locus.circles != 1) + " about the axis"] if locus.circles else []
+    pieces += ["the axis itself"] if locus.axis_line else []
+    shown = " and ".join(pieces) or "curves"
+    return f"the surface's real points form {shown}, no surface: there is nothing to draw"

@@ -124,9 +124,12 @@ def summary_lines(analysis: Analysis) -> list[str]:
 def approximate_line(approx: Approximation) -> str:
     """The verdict on a rounded input in one line."""
     kind = f" ({kind_noun(approx.kind)})" if approx.kind else ""
+    if approx.tolerance is None:  # numbers beyond floating point (1e400): nearness not decided
+        return f"nearness to a surface of revolution not decided: {'; '.join(approx.notes) or 'no tolerance'}"
+    residual = "" if approx.residual is None else f"; residual {approx.residual:.3g} roundings"
     return (
         f"{'near' if approx.near_sor else 'not near'} a surface of revolution{kind} within the relative "
-        f"tolerance {approx.tolerance:g} ({approx.tolerance_source}); residual {approx.residual:.3g} roundings"
+        f"tolerance {approx.tolerance:g} ({approx.tolerance_source}){residual}"
     )
 
 

@@ -52,6 +52,7 @@ from sorgui.gui.wording import (
     caption_tip,
     radius_words,
     spine_words,
+    tolerance_words,
     verdict,
     why_not,
 )
@@ -343,7 +344,7 @@ class ResultsPane(QScrollArea):
         source = "from the digits of the input" if approx.tolerance_source == "input" else "given"
         smallest = ", ".join(f"{v:.2g}" for v in approx.singular_values[-3:])
         rows = [
-            ("tolerance", f"{approx.tolerance:.2g} (relative, {source})"),
+            ("tolerance", f"{tolerance_words(approx)} (relative, {source})"),
             ("near", _near_words(approx)),
             ("relative distance", "–" if approx.relative_distance is None else f"{approx.relative_distance:.3g}"),
             ("in units of rounding", "–" if approx.residual is None else f"{approx.residual:.3g}"),

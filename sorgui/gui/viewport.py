@@ -385,11 +385,13 @@ class Viewport(QWidget):
 
     def show_scene(self, scene: SceneData, reset_camera: bool = True, caption: str | None = None) -> None:
         """Replace the drawn scene by ``scene`` (actors updated in place by name); ``caption``
-        names the surface shown."""
+        names the surface shown; an empty view says why under it (the scene's note: no real
+        points, numbers beyond floating point, a region that misses the surface)."""
         self._scene = scene
         self._stale = False
         if caption is not None:
-            self.caption.setText(caption)
+            empty = scene.surface.is_empty and scene.notes
+            self.caption.setText(f"{caption}\n{scene.notes[0]}" if empty else caption)
         if self._plotter is None and self._loading is not None and self._loading.is_alive():
             # A later scene of the same surface (its curves) keeps the camera waiting with the
             # first: the one restored from the last session, else the framing asked for.
@@ -805,7 +807,9 @@ class Viewport(QWidget):
         return actions
 
     def _axis(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """The drawn axis: the exact one, else the approximate axis of rounded input."""
+        """The drawn axis: the exact one, else the approximate axis of rounded input, each from
+        the point the results pane gives (heights count from it; they counted from where the
+        drawn approximate axis leaves the ball)."""
         scene = self._scene
         if scene is None:
             return None
@@ -813,7 +817,8 @@ class Viewport(QWidget):
             return scene.axis
         if not scene.approximate_axis.is_empty:
             a, b = scene.approximate_axis.points[0], scene.approximate_axis.points[-1]
-            return a, b - a
+            point = scene.approximate_axis_point
+            return (a if point is None else np.asarray(point, dtype=float)), b - a
         return None
 
     def _show_surface(self) -> None:

@@ -211,6 +211,12 @@ def near_words(approx: Approximation) -> str:
     return f"not exactly, but within {approx.relative_distance:.2g} (relative) of {kind}{about}"
 
 
+def tolerance_words(approx: Approximation) -> str:
+    """The relative tolerance in force, or why there is none (numbers beyond floating point:
+    ``1e400``)."""
+    return "beyond floating point" if approx.tolerance is None else f"{approx.tolerance:.2g}"
+
+
 def far_words(approx: Approximation) -> str:
     """Why rounded input is *not* near a surface of revolution: how far it is, or what it is
     near instead (an extrusion: its distance and residual are those of the extrusion)."""
@@ -219,13 +225,13 @@ def far_words(approx: Approximation) -> str:
         residual = "" if approx.residual is None else f", {approx.residual:.3g} times the rounding of the input"
         return (
             f"not near one either, but within the rounding it is {kind_noun(approx.kind)}{along}: "
-            f"{approx.relative_distance:.2g} away (relative){residual} (tolerance {approx.tolerance:.2g})"
+            f"{approx.relative_distance:.2g} away (relative){residual} (tolerance {tolerance_words(approx)})"
         )
     distance = "–" if approx.relative_distance is None else f"{approx.relative_distance:.2g}"
     residual = "" if approx.residual is None else f", {approx.residual:.3g} times the rounding of the input"
     return (
         f"not near one either: the nearest rotation-invariant polynomial is {distance} "
-        f"away (relative){residual} (tolerance {approx.tolerance:.2g})"
+        f"away (relative){residual} (tolerance {tolerance_words(approx)})"
     )
 
 

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 from sorgui.engine.results import Analysis
 from sorgui.engine.stage_results import BEING_COMPUTED
+from sorgui.engine.vocabulary import no_surface_words
 from sorgui.session.components import Component
 from sorgui.session.events import SessionEvents
 from sorgui.session.job import JobRequest, JobResult, run_job
@@ -509,7 +510,10 @@ class Session:
         match message:
             case Finished(result):
                 run.analysis = result.analysis
-                run.scene = run.scene if run.scene is not None else result.scene
+                scene = run.scene if run.scene is not None else result.scene
+                run.scene = _with_real_points(scene, result.analysis)
+                if run.scene is not scene and run.scene is not None:
+                    self.events.scene_changed.emit(run.scene)  # its note, shown under the empty view
                 run.nearest_scene = run.nearest_scene if run.nearest_scene is not None else result.nearest_scene
                 run.result = replace(result, scene=run.scene, nearest_scene=run.nearest_scene)
             case Invalid(text, position, end):
@@ -539,3 +543,12 @@ class Session:
             implicit.note = "not found"
             self._set_state(run, implicit, StageState.FAILED)
         self.events.run_finished.emit(run)
+
+
+def _with_real_points(scene: SceneData | None, analysis: Analysis) -> SceneData | None:
+    """An empty scene whose note says what the real points are, once the real locus is known
+    (the scene is drawn before it): ``x² + y² + z² + 1`` was told to give a region."""
+    if scene is None or not scene.surface.is_empty:
+        return scene
+    words = no_surface_words(analysis.real_locus)
+    return scene if words is None else replace(scene, notes=(f"{words[0].upper()}{words[1:]}.",))

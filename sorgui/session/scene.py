@@ -33,8 +33,10 @@ class SceneData:
     ball; ``axis_point``/``axis_direction``: the unique axis as floats, if there is one;
     ``notes``: what the picture leaves out, in words for the user. ``factor_axes``: the axes
     of the factors of a reducible surface (one polyline each); ``approximate_axis``: the
-    floating-point axis of rounded input; ``deviation``: per surface point, the distance to
-    the nearest exact surface (``|g|/|∇g|``, length units), when there is one.
+    floating-point axis of rounded input, and ``approximate_axis_point`` its point as the report
+    gives it (the probe's heights count from it, as from the exact axis's point); ``deviation``:
+    per surface point, the distance to the nearest exact surface (``|g|/|∇g|``, length units),
+    when there is one.
     ``canal_spine``/``canal_circles``: the spines and a few characteristic circles of a canal
     surface's sphere families (docs/math.md §9; a spine of positive genus traced numerically);
     ``canal_families``: those families as float curves or SMAT equations, to find the sphere
@@ -63,6 +65,7 @@ class SceneData:
     box: ClipBox | None = None
     base_curve: LineData = LineData.empty()
     typed_terms: Terms | None = None
+    approximate_axis_point: tuple[float, float, float] | None = None
 
     @property
     def axis(self) -> tuple[np.ndarray, np.ndarray] | None:

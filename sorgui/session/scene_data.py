@@ -27,7 +27,7 @@ from sorgui.engine.patches import patch_maps
 from sorgui.engine.results import Analysis, Approximation, Conical, Recognition
 from sorgui.engine.rounded import dense
 from sorgui.engine.rounded.deviation import extent_directions, is_bounded, view_ball
-from sorgui.engine.stage_results import BaseCurve, Parametrization
+from sorgui.engine.stage_results import BaseCurve, Parametrization, RealLocus
 from sorgui.engine.values import (
     ExpressionError,
     Terms,
@@ -38,6 +38,7 @@ from sorgui.engine.values import (
     to_float,
     zero_set_profile,
 )
+from sorgui.engine.vocabulary import no_surface_words
 from sorgui.export.text import float_text
 from sorgui.render import (
     PATCH_RANGE,
@@ -330,7 +331,8 @@ def build_scene(
             chosen: ClipSphere | None = chosen_region(analysis, terms, center, axis_direction)
         else:
             chosen = drawn if radius is not None else None
-        notes.append(_empty_note(analysis.squarefree, box if box is not None else region, chosen, spacing))
+        where = box if box is not None else region
+        notes.append(_empty_note(analysis.squarefree, where, chosen, spacing, analysis.real_locus))
     segment, profile = LineData.empty(), LineData.empty()
     axis_point = None
     if rec.axis is not None:
@@ -395,10 +397,13 @@ def _too_far(region: ClipSphere, degree: int) -> str | None:
     )
 
 
-def _empty_note(squarefree: str, where: ClipSphere | ClipBox, chosen: ClipSphere | None, spacing: float) -> str:
+def _empty_note(
+    squarefree: str, where: ClipSphere | ClipBox, chosen: ClipSphere | None, spacing: float, locus: RealLocus | None
+) -> str:
     """Why nothing of the surface is drawn in ``where``, as a note of the scene: its numbers
-    beyond floating point, or :func:`_empty_words`."""
-    why = beyond_floats(squarefree) or _empty_words(where, chosen, spacing)
+    beyond floating point, its real points (no surface of them: the real locus, docs/math.md
+    §3.4), or :func:`_empty_words`."""
+    why = beyond_floats(squarefree) or no_surface_words(locus) or _empty_words(where, chosen, spacing)
     return f"{why[0].upper()}{why[1:]}."
 
 
@@ -414,7 +419,7 @@ def _empty_words(where: ClipSphere | ClipBox, chosen: ClipSphere | None, spacing
     if chosen is None:
         return (
             f"the surface has no real points that can be drawn inside {region}, chosen for it: "
-            "give a region that holds some (--region)"
+            "give a region that holds some (the ball's centre and radius; --region on the command line)"
         )
     if isinstance(where, ClipSphere) and chosen.radius < 2 * spacing < where.radius:
         return (
@@ -476,7 +481,13 @@ def with_approximation(scene: SceneData, analysis: Analysis) -> SceneData:
     deviation = None
     if approx.nearest is not None and not scene.surface.is_empty:
         deviation = surface_deviation(polynomial_terms(approx.nearest.polynomial), scene.surface.points)
-    return replace(scene, approximate_axis=approximate_axis(analysis, scene.region), deviation=deviation)
+    point = None if approx.axis is None else approx.axis.point
+    return replace(
+        scene,
+        approximate_axis=approximate_axis(analysis, scene.region),
+        approximate_axis_point=point,
+        deviation=deviation,
+    )
 
 
 def approximate_axis(analysis: Analysis, region: ClipSphere) -> LineData:

@@ -381,3 +381,20 @@ def test_a_dropped_block_leaves_the_page_at_once_and_qt_deletes_it(window) -> No
     assert old.isHidden() and old not in page.findChildren(type(old))
     QCoreApplication.sendPostedEvents(None, QEvent.Type.DeferredDelete)
     assert not shiboken6.isValid(old)
+
+
+@pytest.mark.parametrize(
+    ("equation", "words"),
+    [
+        ("x^2 + y^2 + z^2 + 1", "The surface has no real points at all: there is nothing to draw, in any region."),
+        ("(x^2 + y^2 + z^2 - 4)^2 + z^2", "real points form 1 circle about the axis, no surface"),
+    ],
+)
+def test_an_empty_view_says_what_the_real_points_are(window, run_analysis, qtbot, equation: str, words: str) -> None:
+    """A surface without a surface of real points: the empty 3D view says so under the equation,
+    and so does the status line (both told the user to give a region, "(--region)", a flag of the
+    command line)."""
+    run_analysis(window, equation)
+    qtbot.waitUntil(lambda: not window.session.run.running, timeout=120_000)
+    qtbot.waitUntil(lambda: words in window.viewport.caption.text(), timeout=60_000)
+    assert "--region" not in window.viewport.caption.text() and words in window.stage_label.text()

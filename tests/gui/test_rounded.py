@@ -139,3 +139,36 @@ def test_a_rounded_cone_shows_its_apex_as_the_text_report_does(window, run_analy
     assert apex is not None
     qtbot.waitUntil(lambda: "apex (about)" in pane_text(window), timeout=60_000)
     assert f"apex (about)\n{float_text(apex, 6)}" in pane_text(window)
+
+
+def test_numbers_beyond_floating_point_are_shown_to_the_end(window, run_analysis, qtbot) -> None:
+    """A sphere of radius² 10⁴⁰⁰: exact, and its nearness undecided (no tolerance in floating
+    point). Its approximation section raised a TypeError on every message, and the pane stayed
+    at "being decided" after the analysis had ended."""
+    from tests.gui.test_canal import pane_text
+
+    run_analysis(window, "x^2 + y^2 + z^2 - 1e400")
+    qtbot.waitUntil(lambda: not window.session.run.running, timeout=120_000)
+    qtbot.waitUntil(lambda: "being decided" not in pane_text(window), timeout=60_000)
+    text = pane_text(window)
+    assert "beyond floating point (relative, from the digits of the input)" in text
+
+
+def test_a_probe_on_rounded_input_counts_heights_from_the_axis_point_shown(window, run_analysis, qtbot) -> None:
+    """The height of a picked point of a rounded torus along its approximate axis counts from
+    the axis point the results pane gives (it counted from where the drawn axis leaves the
+    ball); its radius is the distance to that axis."""
+    import numpy as np
+
+    from tests.engine.test_approximate import _turned_torus
+
+    _, direction, centre = _turned_torus()
+    run_analysis(window, printed(_turned_torus()[0], 10), timeout_ms=300_000)
+    qtbot.waitUntil(lambda: not window.viewport.scene.approximate_axis.is_empty, timeout=60_000)
+    approximate = window.session.run.analysis.approximate.axis
+    point = centre + direction + 3 * np.array([0.0, 0.0, 1.0])  # height 1 and radius 3 about the centre
+    info = window.viewport.pick_point(tuple(point))
+    unit = np.asarray(approximate.direction) / np.linalg.norm(approximate.direction)
+    expected = float(np.dot(info.point - np.asarray(approximate.point), unit))
+    assert abs(info.height - expected) < 1e-6 and abs(info.radius - 3.0) < 1e-3
+    assert f"height {expected:.4g}" in window.viewport.pick_label.text()
