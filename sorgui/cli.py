@@ -431,6 +431,11 @@ def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None 
                     f"unknown export format of {path} (no suffix): give --format FORMAT or a name ending in {formats}"
                 )
             raise UsageError(f"unknown export format of {path}; use {formats}")
+        if _patch_of_a_report(path, fmt, suffix):
+            raise UsageError(
+                f"{path}: NAME.patch.FORMAT writes the parameterization's patch as a CAD file or a mesh "
+                f"(.step, .stl, ...); a {suffix} file has no patch, name it without '.patch'"
+            )
         if suffix in CAD_SUFFIXES and importlib.util.find_spec("OCP") is None:
             from sorgui.cad import INSTALL_HINT
 
@@ -449,6 +454,14 @@ def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None 
             f"--cap applies to CAD files of the surface ({' '.join(CAD_SUFFIXES)}; not a NAME.patch.step "
             "patch): give -o PART.step"
         )
+
+
+def _patch_of_a_report(path: Path, fmt: str | None, suffix: str) -> bool:
+    """Whether ``path`` asks for a patch (``r.patch.json``) in a format that has none: it wrote
+    the ordinary report without a word."""
+    from sorgui.export.formats import FORMATS, wants_patch
+
+    return wants_patch(path, fmt) and FORMATS[suffix].kind not in ("mesh", "cad")
 
 
 def _sorgui_picture(path: Path) -> bool:

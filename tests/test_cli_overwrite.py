@@ -76,6 +76,14 @@ def test_a_target_without_a_format_says_how_to_name_one(tmp_path: Path) -> None:
     assert done.returncode == 2 and "unknown export format 'docx' (--format)" in done.stderr
 
 
+def test_a_patch_of_a_report_is_refused(tmp_path: Path) -> None:
+    """``r.patch.json`` wrote the ordinary report without a word: only CAD files and meshes have
+    a patch."""
+    done = run(["--recognition-only", "x^2 + y^2 - z", "-o", "r.patch.json"], tmp_path)
+    assert done.returncode == 2 and "a .json file has no patch" in done.stderr
+    assert not (tmp_path / "r.patch.json").exists()
+
+
 @pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs named pipes")
 def test_a_named_pipe_is_written_in_place(tmp_path: Path) -> None:
     pipe = tmp_path / "out.json"
