@@ -192,9 +192,11 @@ def _check_approximation(approx: Approximation, where: str) -> None:
         raise ClaimError(f"{where}.axis.direction", "must not be 0")
 
 
-FIGURES_AGREE = 1e-6
+FIGURES_AGREE = 1e-3
 """The relative difference allowed between a nearest surface's figures as claimed and as
-computed again (the same float computations on the same numbers: they agree to the last bits)."""
+computed again: the same float computations on the same numbers agree to the last bits on one
+machine, and another machine's libraries may move the deviation's Newton steps by far less than
+this; a surface pasted in from another report is off by orders of magnitude."""
 
 
 def _check_nearness(text: str, approx: Approximation, where: str) -> None:
