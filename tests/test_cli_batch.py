@@ -306,14 +306,19 @@ def test_resume_refuses_a_file_that_is_not_this_inputs(tmp_path: Path) -> None:
     assert results.read_bytes() == before
     assert edited.stderr.count("\n") == shorter.stderr.count("\n") == 1
     lines.write_text(many_lines(5), encoding="utf-8")  # the input of ``before`` again
-    for other in (b"my precious notes\n", b'{"a": 1}\n', before + b"a note\n" + before):
+    # whole lines, and a last line without a newline that is no start of sorgui's (it was taken
+    # for a line cut short by a crash and the notes replaced)
+    others = (b"my precious notes\n", b'{"a": 1}\n', before + b"a note\n" + before, b'{"my": "notes"}')
+    others += (before + b"note",)
+    for other in others:
         results.write_bytes(other)  # one whole line that is not sorgui's was taken for a cut-short one
         kept = subprocess.run([*batch, "--resume"], capture_output=True, text=True, timeout=120)
         assert kept.returncode == 2 and "is not a line of sorgui's output in order" in kept.stderr, kept.stderr
         assert results.read_bytes() == other
-    results.write_bytes(before + b"\0" * 40)  # the zeros a power cut leaves: dropped and redone
-    again = subprocess.run([*batch, "--resume"], capture_output=True, text=True, timeout=120)
-    assert again.returncode == 0 and results.read_bytes() == before
+    for debris in (b"\0" * 40, b'{"li', before.splitlines(keepends=True)[0][:30] + b"\0" * 8):
+        results.write_bytes(before + debris)  # zeros of a power cut, or a line of ours cut short: redone
+        again = subprocess.run([*batch, "--resume"], capture_output=True, text=True, timeout=120)
+        assert again.returncode == 0 and results.read_bytes() == before
 
     plain = tmp_path / "lines"
     plain.write_text(many_lines(5), encoding="utf-8")

@@ -6,8 +6,9 @@ every :data:`SYNC_EVERY` seconds and at the end. A batch killed by ``SIGKILL`` o
 and started again with ``--resume`` keeps every line of the file that is whole, valid JSON
 and belongs to the input as it is now: the file's lines are matched, in order, with the
 input's lines by line number and :func:`.lines.line_hash`; the lines it holds are not analysed
-again, and the rest are appended. A last line that is cut short (or the zeros a power cut
-leaves) is dropped and redone. The result is the file one uninterrupted run writes.
+again, and the rest are appended. A last line of sorgui's that is cut short (or the zeros a
+power cut leaves) is dropped and redone; other text without its newline is refused, as any
+other line is. The result is the file one uninterrupted run writes.
 
 Nothing is lost or mixed silently: without ``--resume`` a file that holds results is refused,
 and with it a file whose lines do not match the input (the input was edited, or it is another
@@ -170,13 +171,25 @@ class ResultsFile:
                 self._valid_end = offset
                 previous = entry[0]
                 yield entry
-            elif not raw.endswith(b"\n") or not raw.strip(b"\0\n"):
-                debris = True  # cut short, or zeros: the end of the file as a crash left it
+            elif not raw.strip(b"\0\n") or (not raw.endswith(b"\n") and _cut_short(raw)):
+                debris = True  # zeros, or a line of ours cut short: the end of the file as a crash left it
             else:
                 raise BatchError(
                     f"cannot resume {self.path}: its line {number} is not a line of sorgui's output in order; "
                     "give another results file, or remove it first"
                 )
+
+
+LINE_START = b'{"line": '
+"""How every line of a results file begins (:attr:`.answers.Answer.text`)."""
+
+
+def _cut_short(raw: bytes) -> bool:
+    """Whether ``raw``, a last line without its newline, is the start of one of sorgui's lines
+    (a crash cut it; the zeros of a power cut may follow), not another file's text (a notes file
+    of one line without a newline was replaced by a batch's results)."""
+    text = raw.rstrip(b"\0")
+    return text.startswith(LINE_START) or LINE_START.startswith(text)
 
 
 def _entry(raw: bytes) -> Entry | None:
