@@ -43,6 +43,9 @@ from .native import edges_of
 from .reading import Part, faces_of
 from .recognition import Recognised
 
+KEPT_SHOWN = 3
+"""The recognised faces kept as read whose reasons the summary names (the rest are counted)."""
+
 
 @dataclass(frozen=True)
 class Canonical:
@@ -62,7 +65,10 @@ class Canonical:
         n = len(self.replaced)
         words = f"{n} face{'s' if n != 1 else ''} on native surfaces"
         if self.kept:
-            words += f", {len(self.kept)} recognised face{'s' if len(self.kept) != 1 else ''} kept as they were"
+            why = "; ".join(f"face {number}: {reason}" for number, reason in self.kept[:KEPT_SHOWN])
+            more = f"; {len(self.kept) - KEPT_SHOWN} more" if len(self.kept) > KEPT_SHOWN else ""
+            plural = "s" if len(self.kept) != 1 else ""
+            words += f", {len(self.kept)} recognised face{plural} kept as read ({why}{more})"
         words += "; valid (BRepCheck)" if self.valid else "; NOT valid under BRepCheck"
         return f"{words} ({self.file_note})" if self.file_note else words
 

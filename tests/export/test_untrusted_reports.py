@@ -274,3 +274,15 @@ def test_a_crafted_value_that_reads_as_formulas_is_refused_before_any_export(
         read_report(crafted)
     message = caught.value.message
     assert named in message and "\n" not in message, message
+
+
+def test_a_parts_report_is_said_to_be_one(tmp_path: Path) -> None:
+    """The JSON of ``sorgui analyze PART.step`` given to ``sorgui open``: it said "not a sorgui
+    report (missing or bad 'polynomial')", although sorgui wrote it."""
+    path = tmp_path / "part.json"
+    path.write_text(
+        json.dumps({"sorgui_version": "0.1.0", "file": "mixed.step", "format": "STEP", "units": "mm", "faces": []}),
+        encoding="utf-8",
+    )
+    with pytest.raises(ReportError, match=r"is the report of the faces of a CAD part \(mixed.step"):
+        read_report(path)
