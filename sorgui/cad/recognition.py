@@ -126,6 +126,10 @@ def recognise_face(face: TopoDS_Face, number: int, tolerance: float | None = Non
         kind = adaptor.GetType()
         name = FILE_TYPES.get(kind, "SURFACE")
         read = _as_in_file(adaptor, kind, number, name, tol)
+        if read is not None and read.kind == lc.REVOLUTION:
+            special = _recognised(face, number, name, tol)  # IGES writes a cylinder, a torus, … so
+            if special.report.kind in lc.ANALYTIC:
+                return special
         if read is not None:
             return Recognised(read)
         return _recognised(face, number, name, tol)

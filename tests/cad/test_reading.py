@@ -145,3 +145,24 @@ def test_the_part_formats_agree() -> None:
     from sorgui.session.part_job import PART_SUFFIXES
 
     assert PART_SUFFIXES == CAD_SUFFIXES and set(FORMATS) == set(CAD_SUFFIXES)
+
+
+def test_an_iges_surface_of_revolution_is_read_as_the_cylinder_or_cone_it_is(tmp_path: Path) -> None:
+    """IGES writes every face of a revolved profile as a surface of revolution (type 120): a
+    cylinder, a cone and a sphere were reported only as "a surface of revolution (as the file
+    says)", without their radius, where the same part in STEP gives them."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeRevol
+    from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt
+
+    corners = [gp_Pnt(x, 0, z) for x, z in ((0, 0), (10, 0), (10, 20), (6, 30), (0, 30))]
+    wire = BRepBuilderAPI_MakeWire()
+    for start, end in zip(corners, corners[1:] + corners[:1]):
+        wire.Add(BRepBuilderAPI_MakeEdge(start, end).Edge())
+    profile = BRepBuilderAPI_MakeFace(wire.Wire()).Face()
+    shape = BRepPrimAPI_MakeRevol(profile, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2 * math.pi).Shape()
+    report, _ = analyse_part(read_part(written(tmp_path, shape, "turned.igs")))
+    revolved = [f for f in report.faces if f.type_in_file == "SURFACE_OF_REVOLUTION"]
+    assert sorted(f.kind for f in revolved) == ["cone", "cylinder"]
+    (cylinder,) = [f for f in revolved if f.kind == "cylinder"]
+    assert cylinder.radius == pytest.approx(10) and np.linalg.norm(np.cross(cylinder.axis.direction, [0, 0, 1])) < 1e-9
