@@ -137,7 +137,8 @@ def read_report(path: str | Path, line: int | None = None) -> Analysis:
     if "error" in data and "input" not in data:
         raise ReportError(f"{path} holds an error, not an analysis")
     if isinstance(data.get("faces"), list) and "input" not in data:
-        part = data.get("file") if isinstance(data.get("file"), str) else "a CAD file"
+        named = data.get("file")
+        part = named if isinstance(named, str) else "a CAD file"
         raise ReportError(
             f"{path} is the report of the faces of a CAD part ({_one_line(part)}, sorgui analyze PART.step), not of "
             "an equation: open the part itself to see it (sorgui analyze PART.step, or File → Open in the window)"
