@@ -680,6 +680,8 @@ def _near_words(approx: Approximation) -> str:
     nearly instead."""
     if approx.near_sor:
         return f"yes: {kind_noun(approx.kind)}"
+    if approx.residual is None and not approx.singular_values:  # numbers beyond floats, or too coarse
+        return "not decided (see the note)"
     if approx.kind in (None, "none"):
         return "no: no continuous symmetry within the tolerance"
     return f"no: nearly {kind_noun(approx.kind)}"

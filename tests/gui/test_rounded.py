@@ -152,6 +152,7 @@ def test_numbers_beyond_floating_point_are_shown_to_the_end(window, run_analysis
     qtbot.waitUntil(lambda: "being decided" not in pane_text(window), timeout=60_000)
     text = pane_text(window)
     assert "beyond floating point (relative, from the digits of the input)" in text
+    assert "not decided (see the note)" in text and "no continuous symmetry within the tolerance" not in text
 
 
 def test_a_probe_on_rounded_input_counts_heights_from_the_axis_point_shown(window, run_analysis, qtbot) -> None:
