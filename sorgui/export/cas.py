@@ -23,7 +23,7 @@ from sorgui.engine.vocabulary import kind_noun
 from sorgui.export.coverage import CoverageStyle
 from sorgui.export.formulas import Formula, analysis_formulas
 from sorgui.export.quoting import hash_comment, mathematica_comment, one_line
-from sorgui.export.text import TABLE_1, approximation_lines
+from sorgui.export.text import TABLE_1, approximation_lines, within_words
 
 LATEX_LINE = 100
 """Characters of LaTeX source per displayed line before a long sum is broken."""
@@ -93,7 +93,7 @@ def verdict(analysis: Analysis) -> str:
         "undecided": "undecided whether it is a surface of revolution "
         "(the recognition did not finish within the time limit)",
         "sor": "a surface of revolution",
-        "near": "nearly a surface of revolution (not exactly: within the rounding of the input)",
+        "near": f"nearly a surface of revolution (not exactly: within {within_words(analysis.approximate)})",
         "not": "not a surface of revolution",
     }[analysis.verdict]
 

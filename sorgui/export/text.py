@@ -7,7 +7,16 @@ import json
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
-from sorgui.engine.results import UNDECIDED, Analysis, Canal, Conical, NearestSurface, Recognition, report_json
+from sorgui.engine.results import (
+    UNDECIDED,
+    Analysis,
+    Approximation,
+    Canal,
+    Conical,
+    NearestSurface,
+    Recognition,
+    report_json,
+)
 from sorgui.engine.vocabulary import canal_kind, kind_phrase
 from sorgui.numerics import without_noise
 
@@ -295,13 +304,20 @@ def recognition_lines_of_nearest(near: NearestSurface) -> list[str]:
     return [f"axis: {_vec(near.axis.point)} + t·{_vec(near.axis.direction)}"]
 
 
+def within_words(approx: Approximation | None) -> str:
+    """What rounded input is near a surface within: the rounding of its digits, or the tolerance
+    given with ``--tolerance`` (finer than the digits, it said "the rounding of the input")."""
+    given = approx is not None and approx.tolerance_source == "given"
+    return "the tolerance given" if given else "the rounding of the input"
+
+
 def analysis_lines(analysis: Analysis) -> list[str]:
     """Everything the report says of one analysis but the polynomial and the timings."""
     rec = analysis.recognition
     verdict = {
         "sor": "YES",
         "not": "NO",
-        "near": "NO exactly, but NEARLY: within the rounding of the input (see below)",
+        "near": f"NO exactly, but NEARLY: within {within_words(analysis.approximate)} (see below)",
         "undecided": "undecided",
     }[analysis.verdict]
     lines = [

@@ -184,3 +184,15 @@ def test_a_residual_over_one_within_the_float_noise_is_not_said_to_be_at_most_on
     text = text_report(analysis)
     assert "(over 1, by less than floating point's own error in the fit: within it)" in text
     assert "at most 1: within it" not in text
+
+
+def test_a_tolerance_given_is_named_in_the_headline() -> None:
+    """With ``--tolerance`` the headline said "within the rounding of the input", whatever the
+    digits: it names the tolerance given."""
+    from sorgui.engine import analyze
+    from sorgui.export.text import text_report
+
+    given = text_report(analyze("x^2 + 1.0000001y^2 + 2z^2 - 1", recognition_only=True, tolerance=1e-6))
+    assert "surface of revolution: NO exactly, but NEARLY: within the tolerance given (see below)" in given
+    typed = text_report(analyze("x^2 + 1.0000001y^2 + 2z^2 - 1", recognition_only=True))
+    assert "NEARLY: within the rounding of the input (see below)" in typed
