@@ -75,19 +75,10 @@ def no_surface(
 
 
 def no_surface_words(locus: RealLocus | None) -> str | None:
-    """What the real points are when they make no surface (the real locus, docs/math.md §3.4),
-    which no region can show: a region to give was suggested for ``x² + y² + z² + 1``. ``None``
-    when they may make one."""
-    if locus is None or locus.kind in ("surface", "undecided"):
+    """:func:`no_surface` of a real locus, said for a picture: no region can show such points
+    (a region to give was suggested for ``x² + y² + z² + 1``). ``None`` when they may make a
+    surface (or the locus is not known)."""
+    if locus is None:
         return None
-    if locus.kind == "empty":
-        return "the surface has no real points at all: there is nothing to draw, in any region"
-    if locus.kind == "points":
-        count = "isolated points" if locus.points != 1 else "a single point"
-        if locus.points is not None and locus.points > 1:
-            count = f"{locus.points} isolated points"
-        return f"the surface's real points are {count}, no surface: there is nothing to draw"
-    pieces = [f"{locus.circles} circle" + "s" * (locus.circles != 1) + " about the axis"] if locus.circles else []
-    pieces += ["the axis itself"] if locus.axis_line else []
-    shown = " and ".join(pieces) or "curves"
-    return f"the surface's real points form {shown}, no surface: there is nothing to draw"
+    why = no_surface(locus.kind, locus.points, locus.circles, locus.axis_line)
+    return None if why is None else f"{why}: there is nothing to draw, in any region"

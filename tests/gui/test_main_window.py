@@ -386,8 +386,8 @@ def test_a_dropped_block_leaves_the_page_at_once_and_qt_deletes_it(window) -> No
 @pytest.mark.parametrize(
     ("equation", "words"),
     [
-        ("x^2 + y^2 + z^2 + 1", "The surface has no real points at all: there is nothing to draw, in any region."),
-        ("(x^2 + y^2 + z^2 - 4)^2 + z^2", "real points form 1 circle about the axis, no surface"),
+        ("x^2 + y^2 + z^2 + 1", "The surface has no real points: there is nothing to draw, in any region."),
+        ("(x^2 + y^2 + z^2 - 4)^2 + z^2", "real points are a curve (a circle about the axis), not a surface: there is"),
     ],
 )
 def test_an_empty_view_says_what_the_real_points_are(window, run_analysis, qtbot, equation: str, words: str) -> None:
