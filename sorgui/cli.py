@@ -441,10 +441,12 @@ def check_outputs(outputs: Sequence[Path], source: Path | None, fmt: str | None 
 
             raise UsageError(f"cannot write {path}: {INSTALL_HINT}")
         side = [path.with_suffix(SIDE_FILES[suffix])] if suffix in SIDE_FILES else []
+        if side:
+            from sorgui.export.picture import is_sorgui_picture  # a Markdown report's earlier NAME.png
         for target in (path, *side):
             _check_target(target, inputs, beside=path if target is not path else None)
         for picture in side:
-            if picture not in outputs and picture.is_file() and not _sorgui_picture(picture):
+            if picture not in outputs and picture.is_file() and not is_sorgui_picture(picture):
                 raise UsageError(
                     f"refusing to overwrite {picture} (the picture written beside {path}): it is not a "
                     "picture sorgui wrote; move it, or name it with -o to replace it"
@@ -462,13 +464,6 @@ def _patch_of_a_report(path: Path, fmt: str | None, suffix: str) -> bool:
     from sorgui.export.formats import FORMATS, wants_patch
 
     return wants_patch(path, fmt) and FORMATS[suffix].kind not in ("mesh", "cad")
-
-
-def _sorgui_picture(path: Path) -> bool:
-    """Whether ``path`` is a picture sorgui wrote (a Markdown report's earlier ``NAME.png``)."""
-    from sorgui.export.picture import is_sorgui_picture
-
-    return is_sorgui_picture(path)
 
 
 def _capped(path: Path, fmt: str | None) -> bool:
@@ -535,8 +530,9 @@ def write_outputs(
         return  # nothing to write: the export modules (and numpy) stay unloaded
     failures: list[str] = []
     if result is not None:
-        failures = [reason for path in outputs if (reason := _write_plain(result, path, fmt)) is not None]
-        outputs = [path for path in outputs if not _plain(path, fmt)]
+        plain = [path for path in outputs if _plain(path, fmt)]
+        failures = [reason for path in plain if (reason := _write_plain(result, path, fmt)) is not None]
+        outputs = [path for path in outputs if path not in plain]
         if not outputs:
             _raise_failures(failures)
             return
@@ -583,9 +579,7 @@ def _plain(path: Path, fmt: str | None) -> bool:
 def _write_plain(result: Analysis, path: Path, fmt: str | None) -> str | None:
     """Write the JSON or text report ``path`` here, at once (milliseconds, no sympy: the report of
     an analysis that used up its time limit is kept as the terminal shows it); the reason it
-    failed, else ``None`` (also for the other formats, which the export process writes)."""
-    if not _plain(path, fmt):
-        return None
+    failed, else ``None``."""
     from sorgui.export.atomic import atomic_write_text
     from sorgui.export.formats import format_of
     from sorgui.export.text import json_report, text_report
@@ -737,14 +731,9 @@ def analyze_main(argv: Sequence[str]) -> int:
     except _OutputError as exc:
         unwritten = str(exc)  # the answer is still printed: nothing of the analysis is lost
     try:
-        if args.json:
-            from sorgui.engine.results import report_json
+        from sorgui.export.text import json_report, text_report  # what -o writes to .json and .txt
 
-            emit(json.dumps(report_json(result), indent=1))
-        else:
-            from sorgui.export.text import plain_text
-
-            emit(plain_text(result))
+        emit(json_report(result) if args.json else text_report(result))
     except _OutputError as exc:
         return fail(str(exc), None, False, 1)
     return 0 if unwritten is None else fail(unwritten, None, False, 1)
