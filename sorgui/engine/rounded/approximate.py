@@ -53,7 +53,7 @@ from .near_symmetry import (
     plain_distance,
     refine,
 )
-from .precision import FLOAT_FLOOR, Rounding, given_rounding, input_rounding
+from .precision import FLOAT_FLOOR, TIE, Rounding, given_rounding, input_rounding
 from .snapping import ExactSurface, snap, snap_again
 
 MAX_SPAN = 1e100
@@ -62,7 +62,8 @@ MAX_SPAN = 1e100
 COARSEST = 0.1
 """A rounding read off the printed digits coarser than this (relative) says nothing about the
 intended surface: decimals such as ``0.5`` or ``3.0`` (a gallery's exact numbers) are taken as
-exact, and nearness is only decided with ``--tolerance``."""
+exact, and nearness is only decided with ``--tolerance``. A digit's rounding is read a hair
+wide (:data:`.precision.TIE`): one digit is this coarse, not coarser."""
 
 GATE = 1e4
 """A kind is tried when its singular values are below ``GATE·τ`` (and :data:`GATE_CAP`), ``τ`` the rounding
@@ -196,7 +197,7 @@ def _approximate_symmetry(
         return NearResult(
             Approximation(tolerance, rounding.source, False, None, None, None, (), notes=(*notes, note)), None
         )
-    if rounding.source == "input" and rounding.tolerance > COARSEST:
+    if rounding.source == "input" and rounding.tolerance > COARSEST * TIE:
         note = (
             f"the input's decimals have at most {rounding.digits} significant digits, a rounding of "
             f"{rounding.tolerance:.2g} (relative): too coarse to tell which surface was meant, so its numbers "

@@ -21,15 +21,20 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
-from flint import fmpq_mpoly
+from flint import fmpq, fmpq_mpoly
+from sympy.polys.domains import QQ
 
 from . import dense
 from .dense import FloatArray
 from .directions import decimal_places, simplest_between, simplest_near
 from .near_symmetry import Fit, Normalised, invariant_basis
 from .precision import Rounding
+
+if TYPE_CHECKING:
+    from ..algebra.polys import Poly
 
 
 @dataclass(frozen=True)
@@ -41,7 +46,7 @@ class Typed:
     floats: dict[dense.Monomial, float]
 
 
-WITHIN = 1.0 - 1e-8
+WITHIN = 1.0 - 1e-13
 """The share of each coefficient's rounding a rescaled surface is fitted within: the residual
 is measured in floats, a hair from where the exact interval ends."""
 
@@ -311,27 +316,56 @@ def matched_scales(g: fmpq_mpoly, typed: Typed, rounding: Rounding) -> list[Frac
     return scales
 
 
-def within_scale(g: fmpq_mpoly, typed: Typed, rounding: Rounding) -> Fraction | None:
+def within_scale(g: fmpq_mpoly | Poly, typed: Typed, rounding: Rounding) -> Fraction | None:
     """The factor ``μ`` that makes ``μ·g`` the monic form of ``g`` times the simplest ``λ``
     (the fewest bits, a decimal when one is simplest) with every coefficient within its
     rounding of ``f``'s, or ``None`` when there is no such ``λ`` (docs/math.md §8.5). ``f`` may be
     a simple surface times a printed factor (``0.94515``), and the scale snapped from one
     coefficient of the fit (the simplest rational within its standard errors, ``1189/1258``)
-    misses the rounding of ``f``'s largest coefficients by a millionth."""
-    monomials = [dense.monomial(m) for m in g.monoms()]
-    values = [Fraction(int(c.p), int(c.q)) for c in g.coeffs()]
+    misses the rounding of ``f``'s largest coefficients by a millionth. Over ``QQ(√d)`` (an axis
+    in a quadratic field) ``g`` is made monic at its first rational coefficient, so that ``μ`` is
+    rational, and the others are taken to 30 digits."""
+    terms = _exact_terms(g)
+    first = next((value for _, value, rational in terms if rational), None)
+    if first is None:
+        return None
     lo: Fraction | None = None
     hi: Fraction | None = None
-    for m, n in zip(monomials, (v / values[0] for v in values)):
+    for m, n in ((m, value / first) for m, value, _ in terms):
         value, bound = Fraction(typed.floats.get(m, 0.0)), Fraction(rounding.bound(m) * WITHIN)
-        first, last = sorted(((value - bound) / n, (value + bound) / n))
-        lo = first if lo is None else max(lo, first)
-        hi = last if hi is None else min(hi, last)
+        low, high = sorted(((value - bound) / n, (value + bound) / n))
+        lo = low if lo is None else max(lo, low)
+        hi = high if hi is None else min(hi, high)
         if lo > hi:
             return None
     if lo is None or hi is None or lo <= 0 <= hi:
         return None
-    return min((simplest_between(lo, hi), _shortest_decimal(lo, hi)), key=lambda v: bits([v])) / values[0]
+    return min((simplest_between(lo, hi), _shortest_decimal(lo, hi)), key=lambda v: bits([v])) / first
+
+
+def scaled_surface(g: fmpq_mpoly | Poly, factor: Fraction) -> fmpq_mpoly | Poly:
+    """``factor·g``, over ``QQ`` or ``QQ(√d)``."""
+    if isinstance(g, fmpq_mpoly):
+        return g * fmpq(factor.numerator, factor.denominator)
+    K = g.ring.domain
+    return g * K.convert(QQ(factor.numerator, factor.denominator))
+
+
+def _exact_terms(g: fmpq_mpoly | Poly) -> list[tuple[dense.Monomial, Fraction, bool]]:
+    """The terms of ``g`` with their coefficients as rationals and whether they are exact: over
+    ``QQ(√d)`` (whose elements are ``b·√d + a``, the list ``[b, a]``) an irrational one is taken
+    to 30 digits."""
+    if isinstance(g, fmpq_mpoly):
+        return [(dense.monomial(m), Fraction(int(c.p), int(c.q)), True) for m, c in zip(g.monoms(), g.coeffs())]
+    K = g.ring.domain
+    d = int(-K.mod.to_list()[-1])
+    root = Fraction(math.isqrt(d * 10**60), 10**30)
+    terms = []
+    for m, c in g.items():
+        parts = [Fraction(int(v.numerator), int(v.denominator)) for v in c.to_list()]
+        b, a = ([Fraction(0)] * (2 - len(parts)) + parts)[-2:]
+        terms.append((dense.monomial(m), a + b * root, b == 0))
+    return terms
 
 
 def _shortest_decimal(lo: Fraction, hi: Fraction) -> Fraction:

@@ -32,15 +32,28 @@ from fractions import Fraction
 from typing import TYPE_CHECKING, NamedTuple, Protocol, TypeAlias, TypeVar
 
 import numpy as np
-from flint import fmpq, fmpq_mpoly
+from flint import fmpq_mpoly
 
-from .coefficients import Typed, bits, shape_bits, within_scale
+from .coefficients import Typed, bits, scaled_surface, shape_bits, within_scale
 from .dense import FloatArray, Monomial
-from .directions import FAMILIES, DirectionSnap, angles_of, decimal_near, simplest_near, three, unit_at
+from .directions import (
+    FAMILIES,
+    Direction,
+    DirectionSnap,
+    angles_of,
+    decimal_near,
+    direction_parts,
+    quadratic_family,
+    simplest_near,
+    squared_length,
+    three,
+    unit_at,
+)
 from .precision import Rounding
 
 if TYPE_CHECKING:
     from ..algebra.linalg import Vector
+    from ..algebra.polys import Poly
     from .near_symmetry import Normalised
 
 
@@ -52,9 +65,13 @@ class Checked(Protocol):
 
 
 S = TypeVar("S", bound=Checked)
-Build = Callable[["Vector", "Vector", list[Fraction]], "fmpq_mpoly | None"]
+Build = Callable[["Direction | None", "Vector", list[Fraction]], "fmpq_mpoly | Poly | None"]
 """``g`` of the quadric of revolution with ``q_ij`` on :data:`EXPONENTS` about the axis through
-a point along a direction (:func:`.snapping.build`)."""
+a point along a direction (:func:`.snapping.build`): over ``QQ``, or ``QQ(√d)`` for a direction
+in that field."""
+Check: TypeAlias = "Callable[[fmpq_mpoly | Poly, Direction, Vector], S | None]"
+"""An exact surface checked against the typed one, along its direction through its point
+(:func:`.snapping.check_surface`)."""
 
 EXPONENTS = ((0, 0), (1, 0), (2, 0), (0, 1))
 """The terms ``h^i ρ^j`` of a quadric of revolution (:func:`.snapping.build`); a cone about its
@@ -84,7 +101,7 @@ def nearest_cone(
     rounding: Rounding,
     centre: FloatArray,
     build: Build,
-    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+    check: Check[S],
 ) -> tuple[list[Fraction], S] | None:
     """The simplest cone of revolution with every coefficient within the rounding of the
     quadric ``f`` (its ``q_ij`` on :data:`EXPONENTS`, and the surface), or ``None``. ``centre``
@@ -121,7 +138,7 @@ def nearest_about(
     typed: Typed,
     rounding: Rounding,
     build: Build,
-    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+    check: Check[S],
 ) -> tuple[list[Fraction], S] | None:
     """The simplest surface that passes about the first of ``points`` (a cone's apex, a torus's
     centre; coarsest first) about which one passes. At each, the weighted least-squares fit of
@@ -177,23 +194,26 @@ def first_shapes(
     typed: Typed,
     rounding: Rounding,
     build: Build,
-    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+    check: Check[S],
     budget: int,
 ) -> tuple[list[tuple[int, list[Fraction], S]], int]:
-    """For each family of directions, the first of ``shapes`` (coarsest first) that passes
-    about ``point`` along the direction ``refit`` fits for it (:func:`first_direction`), and
-    the exact surfaces checked (at most about ``budget``)."""
+    """For each family of directions (a quadratic field's first, a CAD part turned by 30°, which
+    has none near a rational direction and costs nothing there; then the rational ones), the
+    first of ``shapes`` (coarsest first) that passes about ``point`` along the direction
+    ``refit`` fits for it (:func:`first_direction`), and the exact surfaces checked (at most
+    about ``budget``: a rational family counts every radius, the quadratic one the directions
+    it had)."""
     refits: dict[object, FloatArray] = {}
     found = []
     checks = 0
-    for family in FAMILIES:
+    for family in (quadratic_family, *FAMILIES):
         for shape in shapes:
             if shape.key not in refits:
                 refits[shape.key] = refit(shape.model)
-            passed = first_direction(
+            passed, tried = first_direction(
                 family, refits[shape.key], shape.coefficients_of, point, typed, rounding, build, check
             )
-            checks += len(DIRECTION_RADII) if passed is None else 1
+            checks += tried if family is quadratic_family else len(DIRECTION_RADII) if passed is None else 1
             if passed is not None:
                 found.append(passed)
                 break  # the coarsest shape of this family that passes
@@ -210,29 +230,31 @@ def first_direction(
     typed: Typed,
     rounding: Rounding,
     build: Build,
-    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
-) -> tuple[int, list[Fraction], S] | None:
+    check: Check[S],
+) -> tuple[tuple[int, list[Fraction], S] | None, int]:
     """The surface about the axis through ``point`` along the coarsest direction ``a`` of
     ``family`` near ``unit`` (within :data:`DIRECTION_RADII`) with every coefficient within the
     rounding, once scaled; ``coefficients_of(|a|²)`` are its ``q_ij``. Its bits (coefficients,
-    point and axis), coefficients and surface."""
+    point and axis), coefficients and surface, and how many directions were tried."""
+    tried = 0
     for radius in DIRECTION_RADII:
         a = family(unit, radius)
-        if a is None or not all(isinstance(v, Fraction) for v in a):
+        norm2 = None if a is None else squared_length(a)
+        if a is None or norm2 is None:
             continue
-        rational = three(v for v in a if isinstance(v, Fraction))
-        coefficients = coefficients_of(sum((v * v for v in rational), Fraction(0)))
-        g = build(rational, point, coefficients)
+        tried += 1
+        coefficients = coefficients_of(norm2)
+        g = build(a, point, coefficients)
         if g is None:
             continue
         factor = within_scale(g, typed, rounding)
         if factor is None:
             continue
-        surface = check(g * fmpq(factor.numerator, factor.denominator), rational, point)
+        surface = check(scaled_surface(g, factor), a, point)
         if surface is not None and surface.largest <= 1.0:
             scaled = [factor * c for c in coefficients]
-            return shape_bits(scaled) + bits([*point, *rational]), scaled, surface
-    return None
+            return (shape_bits(scaled) + bits([*point, *direction_parts(a)]), scaled, surface), tried
+    return None, tried
 
 
 def _cone_coefficients(K: Fraction) -> Callable[[Fraction], list[Fraction]]:

@@ -13,11 +13,13 @@ found from every coefficient, and then snapped:
 1. with ``a`` held, ``f ≈ λ(|p − c|² − (â·(p − c))² − r²)`` is linear in ``λ``, ``λc`` (two
    coordinates across the axis) and the constant: a weighted least-squares fit (weights: the
    rounding of each coefficient); ``â`` itself is fitted by Gauss and Newton's steps on the two
-   angles of ``â``, the rest solved linearly at each step, and snapped in each family;
+   angles of ``â``, the rest solved linearly at each step, and snapped in each family (a
+   quadratic field's first: a part turned by 30° has ``a = (0, 1, −√3)``);
 2. the foot ``c`` of the origin on the axis is snapped through ``|a|²·c``, whose coordinates are
    the designer's (``|a|²·c = |a|²·c₀ − (a·c₀)·a`` for a designed point ``c₀`` of the axis):
    to the nearest decimals of fewest places, then to the simplest rationals, coarsest first, the
-   first whose fit (with ``r`` free) is within twice the rounding;
+   first whose fit (with ``r`` free) is within twice the rounding; on an axis in ``QQ(√d)``,
+   whose foot is irrational, its one rational point is snapped instead;
 3. ``r`` is snapped to the nearest decimal of fewest places (a CAD radius), else ``r²`` to the
    simplest rational, coarsest first; ``g`` is scaled by the simplest factor that puts every
    coefficient within the rounding (:func:`.coefficients.within_scale`) and checked exactly.
@@ -30,21 +32,37 @@ the answer.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from fractions import Fraction
 from typing import TYPE_CHECKING
 
 import numpy as np
-from flint import fmpq, fmpq_mpoly
+from flint import fmpq_mpoly
 
-from .coefficients import Typed, axis_bits, bits, within_scale
-from .cones import DIRECTION_RADII, MAX_RESIDUAL, Build, S, simplest
+from .coefficients import Typed, axis_bits, bits, scaled_surface, within_scale
+from .cones import DIRECTION_RADII, MAX_RESIDUAL, Build, Check, S, simplest
 from .dense import FloatArray, Monomial
-from .directions import FAMILIES, angles_of, decimal_near, rational_sqrt, simplest_near, three, unit_at
+from .directions import (
+    FAMILIES,
+    POINT_PRECISION,
+    Direction,
+    Quadratic,
+    angles_of,
+    decimal_near,
+    direction_parts,
+    quadratic_family,
+    rational_point,
+    rational_sqrt,
+    simplest_near,
+    squared_length,
+    three,
+    unit_at,
+)
 from .precision import Rounding
 
 if TYPE_CHECKING:
     from ..algebra.linalg import Vector
+    from ..algebra.polys import Poly
     from .near_symmetry import Normalised
 
 EXPONENTS = ((0, 0), (0, 1))
@@ -70,7 +88,7 @@ def nearest_cylinder(
     rounding: Rounding,
     direction: FloatArray,
     build: Build,
-    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+    check: Check[S],
 ) -> tuple[list[Fraction], S] | None:
     """The simplest cylinder of revolution with every coefficient within the rounding of the
     quadric ``f`` (its ``q_ij`` on :data:`EXPONENTS`, and the surface), or ``None``.
@@ -84,12 +102,11 @@ def nearest_cylinder(
     unit = _refined_direction(monomials, weights, target, direction / np.linalg.norm(direction))
     found: list[tuple[int, list[Fraction], S]] = []
     checks = 0
-    for family in FAMILIES:
+    for family in (quadratic_family, *FAMILIES):
         for radius in DIRECTION_RADII:
-            snapped = family(unit, radius)
-            if snapped is None or not all(isinstance(v, Fraction) for v in snapped):
+            a = family(unit, radius)
+            if a is None or squared_length(a) is None:
                 continue
-            a = three(v for v in snapped if isinstance(v, Fraction))
             passed, tried = _cylinder_along(a, monomials, weights, target, typed, rounding, build, check)
             checks += tried
             if passed is not None:
@@ -102,18 +119,19 @@ def nearest_cylinder(
 
 
 def _cylinder_along(
-    a: tuple[Fraction, Fraction, Fraction],
+    a: Direction,
     monomials: list[Monomial],
     weights: FloatArray,
     target: FloatArray,
     typed: Typed,
     rounding: Rounding,
     build: Build,
-    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+    check: Check[S],
 ) -> tuple[tuple[int, list[Fraction], S] | None, int]:
     """The simplest cylinder along the exact direction ``a`` that passes (its bits, coefficients
     and surface), and how many were checked."""
-    norm2 = sum((v * v for v in a), Fraction(0))
+    norm2 = squared_length(a)
+    assert norm2 is not None  # nearest_cylinder takes only directions of rational length
     unit = np.array([float(v) for v in a]) / math.sqrt(float(norm2))
     solved = _linear_fit(monomials, weights, target, unit)
     if solved is None or solved[3] > MAX_RESIDUAL:
@@ -124,54 +142,82 @@ def _cylinder_along(
     scale = max(float(np.linalg.norm(foot)), math.sqrt(r2))
     checks = 0
     best: tuple[int, list[Fraction], S] | None = None
-    seen: set[tuple[Fraction, Fraction, Fraction]] = set()
-    for radius in FOOT_RADII:
-        for snap in (decimal_near, simplest_near):
-            scaled = three(snap(float(v) * float(norm2), radius * scale * float(norm2)) for v in foot)
-            c = three(v / norm2 for v in scaled)
-            if c in seen:
-                continue
-            seen.add(c)
-            held = _radius_fit(monomials, weights, target, unit, np.array([float(v) for v in c]))
-            if held is None or held[1] > MAX_RESIDUAL or held[0] <= 0:
-                continue
-            passed, tried = _radius_about(a, c, held[0], typed, rounding, build, check)
-            checks += tried
-            if passed is not None and (best is None or passed[0] < best[0]):
-                best = passed
-            if best is not None and (best[0] < RADIUS_WEIGHT * DECIMAL_BITS + axis_bits(a, c) or checks >= MAX_CHECKS):
-                return best, checks  # a short radius: a finer point has no simpler one
+    for c in _snapped_points(a, norm2, foot, scale, rounding.tolerance):
+        held = _radius_fit(monomials, weights, target, unit, np.array([float(v) for v in c]))
+        if held is None or held[1] > MAX_RESIDUAL or held[0] <= 0:
+            continue
+        passed, tried = _radius_about(a, c, held[0], typed, rounding, build, check)
+        checks += tried
+        if passed is not None and (best is None or passed[0] < best[0]):
+            best = passed
+        if best is not None and (best[0] < RADIUS_WEIGHT * DECIMAL_BITS + _axis_cost(a, c) or checks >= MAX_CHECKS):
+            return best, checks  # a short radius: a finer point has no simpler one
     return best, checks
 
 
+def _snapped_points(
+    a: Direction, norm2: Fraction, foot: FloatArray, scale: float, tolerance: float
+) -> Iterator[tuple[Fraction, Fraction, Fraction]]:
+    """Exact points of the axis along ``a`` through ``foot`` (the foot of the origin), coarsest
+    first, each snapped within :data:`FOOT_RADII` (times ``scale``) to decimals of fewest places,
+    then to the simplest rationals: on a rational direction ``|a|²·c`` is snapped (the
+    designer's numbers, module docstring); on one in a quadratic field, whose foot is
+    irrational when the part is off the origin, the axis's one rational point
+    (:func:`.directions.rational_point`, within :data:`.directions.POINT_PRECISION` times the
+    input's relative rounding)."""
+    quadratic = [v for v in a if isinstance(v, Quadratic)]
+    if len(quadratic) == 3:
+        found = rational_point(foot, three(quadratic), POINT_PRECISION * tolerance)
+        if found is None:
+            return
+        point, factor = found, Fraction(1)
+    else:
+        point, factor = foot * float(norm2), norm2
+    seen: set[tuple[Fraction, Fraction, Fraction]] = set()
+    for radius in FOOT_RADII:
+        for snap in (decimal_near, simplest_near):
+            c = three(snap(float(v), radius * scale * float(factor)) / factor for v in point)
+            if c not in seen:
+                seen.add(c)
+                yield c
+
+
+def _axis_cost(a: Direction, c: Vector) -> int:
+    """The bits of the axis through ``c`` along ``a``: :func:`.coefficients.axis_bits` on a
+    rational direction, else the point's and both parts of each coordinate of ``a``."""
+    rational = [v for v in a if isinstance(v, Fraction)]
+    return axis_bits(rational, c) if len(rational) == 3 else bits([*c, *direction_parts(a)])
+
+
 def _radius_about(
-    a: tuple[Fraction, Fraction, Fraction],
-    c: tuple[Fraction, Fraction, Fraction],
+    a: Direction,
+    c: Vector,
     r2: float,
     typed: Typed,
     rounding: Rounding,
     build: Build,
-    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+    check: Check[S],
 ) -> tuple[tuple[int, list[Fraction], S] | None, int]:
     """The cylinder about the axis through ``c`` along ``a`` with the coarsest snapped radius
     near ``√r2`` that passes (its cost, coefficients and surface), and how many were checked."""
-    norm2 = sum((v * v for v in a), Fraction(0))
+    norm2 = squared_length(a)
+    assert norm2 is not None  # nearest_cylinder takes only directions of rational length
     found, checks = snapped_radius(
         r2, norm2, lambda coefficients: build(a, c, coefficients), typed, rounding, lambda g: check(g, a, c)
     )
     if found is None:
         return None, checks
     squared, coefficients, surface = found
-    return (radius_cost(squared) + axis_bits(a, c), coefficients, surface), checks
+    return (radius_cost(squared) + _axis_cost(a, c), coefficients, surface), checks
 
 
 def snapped_radius(
     r2: float,
     norm2: Fraction,
-    build: Callable[[list[Fraction]], fmpq_mpoly | None],
+    build: Callable[[list[Fraction]], fmpq_mpoly | Poly | None],
     typed: Typed,
     rounding: Rounding,
-    check: Callable[[fmpq_mpoly], S | None],
+    check: Callable[[fmpq_mpoly | Poly], S | None],
 ) -> tuple[tuple[Fraction, list[Fraction], S] | None, int]:
     """The coarsest radius snapped near ``√r2`` (:data:`RADIUS_RADII`: the decimal of fewest
     places, else ``r²`` the simplest rational) whose surface ``build([−norm2·r², 1])``, scaled
@@ -188,7 +234,7 @@ def snapped_radius(
             factor = None if g is None else within_scale(g, typed, rounding)
             if g is None or factor is None:
                 continue
-            surface = check(g * fmpq(factor.numerator, factor.denominator))
+            surface = check(scaled_surface(g, factor))
             if surface is not None and surface.largest <= 1.0:
                 return (squared, [factor * q for q in coefficients], surface), checks
     return None, checks

@@ -37,6 +37,9 @@ POINT_EPSILONS = tuple(10.0**-k for k in range(2, 17))
 first: on to ``10⁻¹⁶``, since a part about a point of 16 digits printed with 17 (a double) has
 floating point's rounding, which a point within ``10⁻¹³`` misses."""
 MAX_DENOMINATOR = 10**6
+POINT_PRECISION = 100.0
+"""How many times the input's relative rounding a rational point on a quadratic axis may be off
+(:func:`.directions.rational_point`)."""
 
 T = TypeVar("T")
 
@@ -278,6 +281,27 @@ def _square_free(m: int) -> tuple[int, int] | None:
         f *= p ** (e % 2)
         p += 1 if p == 2 else 2
     return r, f * rest
+
+
+def squared_length(a: Direction) -> Fraction | None:
+    """``|a|²`` when it is rational: always for a rational direction, and for a quadratic one
+    whose coordinates are each rational or a rational multiple of ``√d``."""
+    rational = [v for v in a if isinstance(v, Fraction)]
+    if len(rational) == 3:
+        return sum((v * v for v in rational), Fraction(0))
+    quadratic = [v for v in a if isinstance(v, Quadratic)]
+    if len(quadratic) < 3 or any(q.a and q.b for q in quadratic):
+        return None
+    return sum((q.a**2 + q.b**2 * q.d for q in quadratic), Fraction(0))
+
+
+def direction_parts(a: Direction) -> list[Fraction]:
+    """The rationals ``a`` is written with, whose bits it costs: its coordinates, or both parts
+    of each coordinate ``a + b·√d`` of a direction in a quadratic field."""
+    parts: list[Fraction] = []
+    for v in a:
+        parts += [v.a, v.b] if isinstance(v, Quadratic) else [Fraction(v)]
+    return parts
 
 
 def quadratic_family(direction: FloatArray, epsilon: float | FloatArray) -> QuadraticVector | None:

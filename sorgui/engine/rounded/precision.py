@@ -48,6 +48,12 @@ FLOAT_FLOOR = 4e-15
 """Relative noise (to the largest coefficient) of coefficients computed in double precision,
 below any printed digit: about 18 ulp, a sum of products erring with the largest of them."""
 
+TIE = 1.0 + 1e-12
+"""A literal's rounding is half a unit in its last place with both ends included, and a little
+over: a designed value that ends in that half (``4R² − 2(R² − r²) = −1370.965`` of a torus of
+``R = 25.4``, ``r = 6.35``, printed ``-1370.96``) is at the very end, where the comparisons of a
+scaled surface (:data:`.coefficients.WITHIN`) and of floats would cut it off."""
+
 MAX_PRODUCTS = 2_000_000
 """Term products the propagation may spend; past this the bound is taken uniform (see below)."""
 
@@ -178,7 +184,7 @@ def _fraction(text: str, node: Num) -> str:
 
 
 def _literal_bound(text: str, node: Num, digits: int, fixed_point: bool) -> float:
-    """Half a unit in the last printed place of a literal, read as the module docstring says; 0
+    """Half a unit in the last printed place of a literal (:data:`TIE`), read as the module docstring says; 0
     for a superscript (``x²``, ``10⁻³``), an exponent and exact."""
     if not text[node.start].isascii():
         return 0.0
@@ -187,10 +193,10 @@ def _literal_bound(text: str, node: Num, digits: int, fixed_point: bool) -> floa
     decimal = fraction is not None or exponent is not None
     if not decimal and fixed_point:
         return 0.0
-    by_digits = 0.5 * 10.0 ** (math.floor(math.log10(value)) - digits + 1) if value else 0.0
+    by_digits = TIE * 0.5 * 10.0 ** (math.floor(math.log10(value)) - digits + 1) if value else 0.0
     if not decimal:
         return by_digits
-    own = 0.5 * 10.0 ** (int(exponent or 0) - len(fraction or ""))
+    own = TIE * 0.5 * 10.0 ** (int(exponent or 0) - len(fraction or ""))
     return own if fixed_point else min(own, by_digits) if value else own
 
 

@@ -63,24 +63,27 @@ from .coefficients import (
     torus_completion,
     within_scale,
 )
-from .cones import EXPONENTS, nearest_cone
+from .cones import EXPONENTS, Build, Check, nearest_cone
 from .cylinders import EXPONENTS as CYLINDER_TERMS
 from .cylinders import nearest_cylinder, radius_cost
 from .dense import FloatArray
 from .directions import (
     FAMILIES,
     POINT_EPSILONS,
+    POINT_PRECISION,
     Direction,
     DirectionSnap,
     Quadratic,
     QuadraticVector,
     Vector,
     decimal_near,
+    direction_parts,
     integer_vector,
     quadratic_family,
     rational_point,
     simplest_near,
     snapped_directions,
+    squared_length,
     three,
 )
 from .near_symmetry import Candidate, Fit, Normalised, fit, refine_fixed, refine_minimax, refit_point
@@ -100,9 +103,6 @@ MINIMAX_POINTS = 3
 MINIMAX_SPREADS = (0.1, 0.01)
 """The same for the axis that makes the largest residual smallest: that axis is already
 within the rounding, and a coarse snap would undo it."""
-POINT_PRECISION = 100.0
-"""How many times the input's relative rounding a rational point on a quadratic axis may be off
-(:func:`.directions.rational_point`)."""
 FLAT_SLOPE = 1e-8
 """A change of the profile's terms of degree ``d - 1`` under a unit shift along the axis below
 this (relative to the terms) is the floating-point fit's noise, not a slope: a paraboloid's
@@ -279,8 +279,8 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
     """The simplest exact surface of the fit's kind within the rounding, or ``None``: for each
     family of directions the first surface that passes, and for a quadric the nearest cone or
     cylinder (:func:`.cones.nearest_cone`, :func:`.cylinders.nearest_cylinder`), and for a
-    quartic with no torus within the rounding yet the nearest torus (:func:`.tori.nearest_torus`);
-    of these a
+    quartic the nearest torus (:func:`.tori.nearest_torus`: the families' tori may hold the
+    rounding on a direction of 23-bit coordinates, with no designer's coefficients); of these a
     torus or a cone (the CAD part) first, then one whose coefficients were snapped (not fitted:
     coefficients fitted to an axis fit it whatever the axis), then the one whose profile
     coefficients and axis have the fewest bits."""
@@ -320,8 +320,7 @@ def snap(f: Normalised, best: Fit, exact: Poly, rounding: Rounding) -> ExactSurf
         )
         if sphere is not None:
             found.append(_Found(sphere[0], sphere[1], False, False))
-    has_torus = any(item.torus and item.surface.largest <= 1.0 for item in found)
-    if best.candidate.kind == REVOLUTION and f.degree == 4 and typed is not None and not has_torus:
+    if best.candidate.kind == REVOLUTION and f.degree == 4 and typed is not None:
         assert best.candidate.direction is not None  # an axis has a direction
         centre = profile_centre(f, best, best.candidate.direction) * f.length
         torus = nearest_torus(
@@ -387,7 +386,7 @@ def _radius_squared(found: _Found) -> Fraction | None:
         return -found.coefficients[0] / found.coefficients[1]
     if found.surface.symmetry.kind != CYLINDER or direction is None or len(found.coefficients) != 2:
         return None
-    norm2 = _squared_length(direction)
+    norm2 = squared_length(direction)
     q00, q01 = found.coefficients
     return None if norm2 is None or not q01 else -q00 / (q01 * norm2)
 
@@ -395,31 +394,26 @@ def _radius_squared(found: _Found) -> Fraction | None:
 def _slope(found: _Found) -> Fraction | None:
     """``K = −(q₂₀|a|² + q₀₁)/q₀₁`` of a cone about its apex, when ``|a|²`` is rational."""
     direction = found.surface.direction
-    norm2 = None if direction is None else _squared_length(direction)
+    norm2 = None if direction is None else squared_length(direction)
     q20, q01 = found.coefficients[2], found.coefficients[3]
     return None if norm2 is None or not q01 else -(q20 * norm2 + q01) / q01
 
 
-def _quadric_builder(
-    kind: str, exponents: tuple[tuple[int, int], ...]
-) -> Callable[[Vector | None, Vector, list[Fraction]], fmpq_mpoly | None]:
-    """:func:`build` over ``QQ`` of a surface of ``kind`` on ``exponents``, for :mod:`.cones`,
+def _quadric_builder(kind: str, exponents: tuple[tuple[int, int], ...]) -> Build:
+    """:func:`build` of a surface of ``kind`` on ``exponents``, for :mod:`.cones`,
     :mod:`.cylinders` and :mod:`.tori` (and with no direction, :mod:`.spheres`)."""
 
-    def built(a: Vector | None, c: Vector, coefficients: list[Fraction]) -> fmpq_mpoly | None:
-        g = build(kind, a, c, exponents, coefficients)
-        return g if isinstance(g, fmpq_mpoly) else None
+    def built(a: Direction | None, c: Vector, coefficients: list[Fraction]) -> Built | None:
+        return build(kind, a, c, exponents, coefficients)
 
     return built
 
 
-def _checker(
-    f: Normalised, typed: Typed, rounding: Rounding
-) -> Callable[[fmpq_mpoly, Vector, Vector], ExactSurface | None]:
+def _checker(f: Normalised, typed: Typed, rounding: Rounding) -> Check[ExactSurface]:
     """:func:`check_surface` against the typed ``f``, for :mod:`.cones`, :mod:`.cylinders` and
     :mod:`.tori`."""
 
-    def checked(g: fmpq_mpoly, a: Vector, c: Vector) -> ExactSurface | None:
+    def checked(g: Built, a: Direction, c: Vector) -> ExactSurface | None:
         return check_surface(g, typed, rounding, f, a, c)
 
     return checked
@@ -487,7 +481,7 @@ def _exact_surfaces(
     kind = best.candidate.kind
 
     def is_torus(a: Direction | None, exponents: tuple[tuple[int, int], ...], coefficients: list[Fraction]) -> bool:
-        norm2 = None if kind != REVOLUTION or a is None else _squared_length(a)
+        norm2 = None if kind != REVOLUTION or a is None else squared_length(a)
         return norm2 is not None and torus_completion(exponents, coefficients, norm2) == coefficients
 
     def checked(
@@ -538,7 +532,7 @@ def _exact_surfaces(
             g = build(kind, a, c, local.exponents, ratios)
             return None if not isinstance(g, fmpq_mpoly) or typed is None else within_scale(g, typed, rounding)
 
-        norm2 = None if kind != REVOLUTION or a is None else _squared_length(a)
+        norm2 = None if kind != REVOLUTION or a is None else squared_length(a)
         candidates = coefficient_candidates(f, local, matched_for, norm2, within_for)
         for rank, (coefficients, source) in enumerate(candidates):
             checks += 1
@@ -674,35 +668,20 @@ def _snapped_axes(
         yield a, c
 
 
-def _squared_length(a: Direction) -> Fraction | None:
-    """``|a|²`` when it is rational: always for a rational direction, and for a quadratic one
-    whose coordinates are each rational or a rational multiple of ``√d``."""
-    rational = [v for v in a if isinstance(v, Fraction)]
-    if len(rational) == 3:
-        return sum((v * v for v in rational), Fraction(0))
-    quadratic = [v for v in a if isinstance(v, Quadratic)]
-    if len(quadratic) < 3 or any(q.a and q.b for q in quadratic):
-        return None
-    return sum((q.a**2 + q.b**2 * q.d for q in quadratic), Fraction(0))
-
-
 def _axis_bits(surface: ExactSurface) -> int:
     """The bits of an exact surface's axis: its point's coordinates and its direction's (both
     parts of a coordinate in ``QQ(√d)``; on a rational direction, :func:`.coefficients.axis_bits`).
     Two families may snap to the same profile coefficients; the simpler axis wins (the turned CAD
     part's ``(0, 1/2, √3/2)``, not a rational direction of 60-bit coordinates within the same
     rounding)."""
-    direction = surface.direction or ()
+    direction = surface.direction
     point = [Fraction(v) for v in surface.point or ()]
-    rational = [Fraction(v) for v in direction if not isinstance(v, Quadratic)]
-    if point and direction and len(rational) == len(direction):
-        return axis_bits(rational, point)
-    if point and not direction:  # a sphere's centre, as a CAD system prints it
+    if direction is None:  # a sphere's centre, as a CAD system prints it; a plane's none
         return sum(decimal_bits(v) for v in point)
-    values = list(point)
-    for v in direction:
-        values += [v.a, v.b] if isinstance(v, Quadratic) else [Fraction(v)]
-    return bits(values)
+    rational = [Fraction(v) for v in direction if not isinstance(v, Quadratic)]
+    if point and len(rational) == len(direction):
+        return axis_bits(rational, point)
+    return bits([*point, *direction_parts(direction)])
 
 
 def build(

@@ -18,7 +18,8 @@ every coefficient with the centre held, snapped, and the axis fitted again for t
    and ``c₀``: a weighted least-squares fit over every coefficient (weights: the rounding);
 3. ``M/λ = (2k − S)·I + S·ââᵀ``: the odd eigenvalue is ``2k``, the pair ``2k − S``; ``R`` and
    ``r`` are snapped to decimals (coarsest first), and with them held ``(λ, â)`` are fitted
-   again (:func:`.cones.refit_direction`); ``â`` is snapped in each family of directions;
+   again (:func:`.cones.refit_direction`); ``â`` is snapped in each family of directions, a
+   quadratic field's first (:func:`.cones.first_shapes`);
 4. ``g`` is scaled by the simplest factor that puts every coefficient within the rounding and
    checked exactly, as a cone is (:func:`.cones.first_direction`).
 
@@ -32,10 +33,10 @@ from fractions import Fraction
 from typing import TYPE_CHECKING
 
 import numpy as np
-from flint import fmpq_mpoly
 
 from .cones import (
     Build,
+    Check,
     Model,
     S,
     Shape,
@@ -52,7 +53,6 @@ from .near_symmetry import lawson
 from .precision import Rounding
 
 if TYPE_CHECKING:
-    from ..algebra.linalg import Vector
     from .coefficients import Typed
     from .near_symmetry import Normalised
 
@@ -67,7 +67,7 @@ def nearest_torus(
     rounding: Rounding,
     centre: FloatArray,
     build: Build,
-    check: Callable[[fmpq_mpoly, Vector, Vector], S | None],
+    check: Check[S],
 ) -> tuple[list[Fraction], S] | None:
     """The simplest torus with every coefficient within the rounding of the quartic ``f`` (its
     ``q_ij`` on :data:`.coefficients.TORUS_TERMS`, and the surface), or ``None``. ``centre`` is
