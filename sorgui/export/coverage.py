@@ -18,7 +18,7 @@ Made when a file asks for it (:attr:`sorgui.export.formulas.Formula.coverage`), 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import sympy
@@ -53,6 +53,10 @@ class Limit:
     parameter: sympy.Symbol
     point: tuple[sympy.Expr, ...] | None
     check: tuple[sympy.Expr, bool] | None = None
+    finite: tuple[sympy.Expr, ...] | None = None
+    """For a map of one parameter (a curve: a spine, a circle of centres), the finite parameter
+    values that give the limit point as well (real ones for a real map); ``()`` when none does;
+    ``None`` when not decided (coefficients beyond ``QQ``)."""
 
 
 @dataclass(frozen=True)
@@ -84,7 +88,10 @@ class Coverage:
             moving = [p for p in rest if any(c.has(p) for c in limit.point)]
             what = f"the curve {point} over {', '.join(st.expr(p) for p in moving)}" if moving else f"the point {point}"
             fixed = f" with {', '.join(st.expr(p) for p in rest)} fixed" if rest else ""
-            out.append(f"reached only as {tends}, by no finite {st.expr(limit.parameter)}{fixed}: {what}")
+            if not rest and limit.finite != ():
+                out.append(f"as {tends} the map tends to {what}" + _finite_text(limit, st))
+                continue
+            out.append(f"reached only as {tends}, by no finite {st.math(st.expr(limit.parameter))}{fixed}: {what}")
             if limit.check is not None and moving:
                 value, missed = limit.check
                 at = st.math(f"{st.expr(moving[0])} = {st.expr(value)}")
@@ -112,6 +119,15 @@ class CoverageStyle:
     to: str = "->"
     infinity: str = "oo"
     power: Callable[[int], str] = field(default=lambda n: "" if n == 1 else f"^{n}")
+
+
+def _finite_text(limit: Limit, st: CoverageStyle) -> str:
+    """The end of the line of a curve's limit point that a finite parameter value gives too, or
+    that was not decided."""
+    if limit.finite is None:
+        return f"; whether a finite {st.math(st.expr(limit.parameter))} gives it too was not decided"
+    values = ", ".join(st.math(f"{st.expr(limit.parameter)} = {st.expr(v)}") for v in limit.finite)
+    return f", which {values} gives too: no point is missed there"
 
 
 def _zeros_text(item: Excluded, real: bool, st: CoverageStyle) -> str:
@@ -142,7 +158,10 @@ def coverage(
     if not limits:
         return Coverage(parameters, real, excluded, ())
     return Coverage(
-        parameters, real, excluded, tuple(_checked(_limit(fractions, p), fractions, parameters) for p in parameters)
+        parameters,
+        real,
+        excluded,
+        tuple(_checked(_limit(fractions, p), fractions, parameters, real) for p in parameters),
     )
 
 
@@ -200,10 +219,12 @@ SAMPLE_VALUES = (sympy.Rational(7, 3), sympy.Rational(-5, 11), sympy.Rational(13
 
 
 def _checked(
-    limit: Limit, fractions: list[tuple[sympy.Expr, sympy.Expr]], parameters: tuple[sympy.Symbol, ...]
+    limit: Limit, fractions: list[tuple[sympy.Expr, sympy.Expr]], parameters: tuple[sympy.Symbol, ...], real: bool
 ) -> Limit:
     """``limit`` with its exact missed-point test (see :class:`Limit`), when it is affordable."""
     rest = [p for p in parameters if p != limit.parameter]
+    if limit.point is not None and not rest:
+        return replace(limit, finite=_finite_values(limit, fractions, real))
     if limit.point is None or len(rest) != 1:
         return limit
     polys = [sympy.Poly(e, *parameters) for pair in fractions for e in pair]
@@ -222,3 +243,31 @@ def _checked(
         basis = sympy.groebner([*equations, sympy.expand(u * denominator - 1)], u, *parameters, order="grevlex")
         return Limit(limit.parameter, limit.point, (value, list(basis.exprs) == [1]))
     return limit
+
+
+def _finite_values(
+    limit: Limit, fractions: list[tuple[sympy.Expr, sympy.Expr]], real: bool
+) -> tuple[sympy.Expr, ...] | None:
+    """The values ``t`` of a curve's parameter where ``N_i(t) − P_i·D_i(t) = 0`` for every
+    coordinate and no ``D_i`` vanishes: those that give the limit point ``P`` (a spine
+    ``4t/(t² − 1)`` along the axis tends to the origin, which ``t = 0`` gives too). Real ones for
+    a real map; ``None`` over a field beyond ``QQ``."""
+    assert limit.point is not None  # a limit point is checked
+    t = limit.parameter
+    common: sympy.Poly | None = None
+    denominators = sympy.Poly(1, t, domain="QQ")
+    for (numerator, denominator), coordinate in zip(fractions, limit.point):
+        try:
+            difference = sympy.Poly(sympy.expand(numerator - coordinate * denominator), t, domain="QQ")
+            denominators *= sympy.Poly(denominator, t, domain="QQ")
+        except (sympy.PolynomialError, sympy.CoercionFailed):
+            return None
+        common = difference if common is None else common.gcd(difference)
+    if common is None or common.is_zero:
+        return None
+    while common.degree() > 0 and not common.gcd(denominators).is_one:
+        common = common.exquo(common.gcd(denominators))
+    if common.degree() <= 0:
+        return ()
+    roots = sympy.real_roots(common) if real else sympy.Poly(common).all_roots()
+    return tuple(sorted(set(roots), key=sympy.default_sort_key))

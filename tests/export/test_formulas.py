@@ -73,6 +73,30 @@ def test_a_point_reached_again_is_not_called_missed() -> None:
     assert reached.check[1] is False
 
 
+def test_a_curve_s_limit_point_that_a_finite_value_gives_is_not_called_missed() -> None:
+    """The torus's second sphere family has the spine ``(0, 0, 4t/(t² − 1))``: it tends to the
+    origin as t → ∞, and t = 0 gives the origin too (the files said "reached only as t → ∞, by
+    no finite t"); the circle ``((1 − t²)/(1 + t²), 2t/(1 + t²))`` misses its limit ``(−1, 0)``;
+    over the reals a point that only complex values give is missed."""
+    spine = coverage((sympy.Integer(0), sympy.Integer(0), 4 * t / (t**2 - 1)), (t,), True)
+    assert spine.limits[0].finite == (0,)
+    assert (
+        spine.lines()[-1]
+        == "as t -> oo the map tends to the point (0, 0, 0), which t = 0 gives too: no point is missed there"
+    )
+    circle = coverage(((1 - t**2) / (1 + t**2), 2 * t / (1 + t**2)), (t,), True)
+    assert circle.limits[0].finite == ()
+    assert circle.lines()[-1].startswith("reached only as t -> oo, by no finite t: the point (-1, 0)")
+    curve = ((t**3 + t**2 + 2) / (t**3 + 1), sympy.Integer(0))  # the limit 1 at t = ±i
+    assert coverage(curve, (t,), real=True).limits[0].finite == ()
+    assert set(coverage(curve, (t,), real=False).limits[0].finite) == {sympy.I, -sympy.I}
+    algebraic = coverage((sympy.sqrt(2) * t / (t**2 + 1), t / (t**2 + 1)), (t,), True).limits[0]
+    assert (
+        algebraic.finite is None
+        and "was not decided" in coverage((sympy.sqrt(2) * t / (t**2 + 1), t / (t**2 + 1)), (t,), True).lines()[-1]
+    )
+
+
 def test_the_exact_missed_point_test_is_for_maps_over_the_rationals() -> None:
     """Over an algebraic field its Gröbner basis took minutes (a rounded torus's nearest surface's
     complex map over QQ(√21, i), whose files were then not written in the time limit): the limit
