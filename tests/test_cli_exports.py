@@ -13,6 +13,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 SORGUI = [sys.executable, "-m", "sorgui.cli"]
@@ -514,6 +515,43 @@ def test_the_mesh_patch_of_rounded_input_is_the_nearest_surfaces_and_says_so(tmp
     assert header.startswith("# sorgui: parametric patch of the nearest exact surface of revolution ")
     assert "(rounded input; its coefficients" in header
     assert pyvista.read(stl).n_cells > 100
+
+
+ROUNDED_CONE = (
+    "-0.675000*x^2 - 0.250000*x*y + 0.612372*x*z - 0.675000*y^2 - 0.612372*y*z - 0.050000*z^2"
+    " + 2.462372*x + 2.337628*y + 0.512372*z - 3.312628"
+)
+"""A cone of ``tan²θ = 1/4`` about ``(1, −1, √6)`` through its apex, printed with ``%.6f``: exactly
+a cone over a conic, whose own map by its lines has coefficients of 80 digits in a quadratic
+field."""
+
+
+def test_a_rounded_cone_s_patch_mesh_and_patch_step_are_one_surface(tmp_path: Path) -> None:
+    """The mesh patch took the typed cone's own map (on ``f``), the ``.patch.step`` the nearest
+    exact cone's (on ``g``): both are now the nearest cone's, and the header says so."""
+    import pyvista
+
+    obj = tmp_path / "c.patch.obj"
+    done = sorgui("analyze", ROUNDED_CONE, "-o", str(obj))
+    assert done.returncode == 0, done.stderr
+    header = obj.read_text(encoding="utf-8").splitlines()[0]
+    assert header.startswith("# sorgui: parametric patch of the nearest exact surface of revolution ")
+    points = pyvista.read(obj).points.astype(float)
+    x, y, z = points.T
+    s6 = np.sqrt(6)
+    g = (  # the nearest exact cone, as the header prints it
+        -27 / 40 * x**2
+        - x * y / 4
+        + s6 / 4 * x * z
+        - 27 / 40 * y**2
+        - s6 / 4 * y * z
+        - z**2 / 20
+        + (s6 / 4 + 37 / 20) * x
+        + (59 / 20 - s6 / 4) * y
+        - (1 / 10 - s6 / 4) * z
+        - (157 / 40 - s6 / 4)
+    )
+    assert np.max(np.abs(g)) < 1e-9 * max(1.0, float(np.max(np.abs(points))) ** 2)
 
 
 SPHERE_TIMES_PLANE = (

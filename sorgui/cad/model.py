@@ -17,7 +17,7 @@ import numpy as np
 import sympy
 from OCP.BRepCheck import BRepCheck_Analyzer
 
-from sorgui.engine.patches import nearest_surface, own_maps
+from sorgui.engine.patches import nearest_surface, own_maps, patch_stand_in
 from sorgui.engine.results import Analysis
 from sorgui.engine.values import ExpressionError, polynomial_terms, zero_set_profile
 from sorgui.engine.vocabulary import kind_noun
@@ -448,8 +448,9 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
     circles, of a cone or cylinder by its lines, of a sphere by stereographic projection) over
     the window's parameter box, covered once and oriented along ``∇f`` (:mod:`.patch`), cut to
     the drawn ball and to the user's box if there is one; for rounded input, the nearest exact
-    surface's (:mod:`.nearest`)."""
-    nearest = nearest_surface(analysis)
+    surface's (:mod:`.nearest`) when it has one: the map of the patch meshes
+    (:func:`~sorgui.engine.patches.patch_maps`)."""
+    nearest = patch_stand_in(analysis)
     if nearest is not None and nearest.analysis is not None:
         model = patch_model(nearest.analysis, nearest_scene(scene, nearest.analysis))
         deviation = typed_deviation(model.shape, analysis.squarefree, scene)

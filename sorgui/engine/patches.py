@@ -6,7 +6,10 @@ CAD file ``NAME.patch.step`` all take the first map of :func:`patch_maps`, so th
 the patch the others show: a map of ``X`` (docs/math.md §6), of a canal surface by its circles
 (§9), of a cone or cylinder by its lines (§10), or a sphere's stereographic projection. For
 rounded input, which is exactly none of these, the maps are those of the exact surface it was
-meant to be (:func:`nearest_surface`, §8.5).
+meant to be (:func:`nearest_surface`, §8.5), also when the rounded surface has maps of its
+own: a rounded cone is exactly a cone over a conic, whose map by its lines has coefficients in
+``QQ(√659998899417)`` of 80 digits, no CAD patch, and the mesh files took that map while
+``NAME.patch.step`` took the nearest cone's.
 """
 
 from __future__ import annotations
@@ -28,7 +31,7 @@ def own_maps(analysis: Analysis) -> list[Parametrization]:
 
 
 def patch_maps(analysis: Analysis) -> list[Parametrization]:
-    """:func:`own_maps`, or for rounded input without any, the nearest exact surface's."""
+    """For rounded input the nearest exact surface's maps, when it has any; else :func:`own_maps`."""
     stand_in = patch_stand_in(analysis)
     exact = stand_in.analysis if stand_in is not None else None
     return own_maps(analysis if exact is None else exact)
@@ -36,9 +39,10 @@ def patch_maps(analysis: Analysis) -> list[Parametrization]:
 
 def patch_stand_in(analysis: Analysis) -> NearestSurface | None:
     """The nearest exact surface whose maps :func:`patch_maps` gives for ``analysis``: rounded
-    input without maps of its own; ``None`` when the maps are its own (or there are none)."""
+    input whose nearest exact surface has a map; ``None`` when the maps are its own (or there are
+    none)."""
     nearest = nearest_surface(analysis)
-    return None if nearest is None or own_maps(analysis) else nearest
+    return nearest if nearest is not None and nearest.analysis is not None and own_maps(nearest.analysis) else None
 
 
 def nearest_surface(analysis: Analysis) -> NearestSurface | None:
