@@ -279,3 +279,11 @@ def test_a_rounded_turned_torus_in_cos_and_sin_is_nearly_of_revolution() -> None
     text = f"x = {c}*(2+cos(v))*cos(u) - {c}*sin(v), y = (2+cos(v))*sin(u), z = {c}*(2+cos(v))*cos(u) + {c}*sin(v)"
     analysis = analyze(text, timeout=120)
     assert not analysis.is_sor and analysis.approximate is not None and analysis.approximate.near_sor
+
+
+def test_the_given_map_is_said_to_give_x_as_the_closure_of_its_image() -> None:
+    """``(s² − t², 2st, s² + t²)`` reaches only ``z ≥ 0`` of the cone ``x² + y² = z²`` with real
+    parameters: "X is its image" was false over the reals."""
+    given = analyze("(s^2-t^2, 2*s*t, s^2+t^2)").parametrizations[0]
+    assert given.method == "the given parametrization"
+    assert "X is the closure of its image" in given.verification and "part of it" in given.verification

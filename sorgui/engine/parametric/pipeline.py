@@ -400,7 +400,7 @@ def _decorated(
         proper=record.proper,
         method="the given parametrization",
         verified=True,
-        verification="the typed map itself: X is its image",
+        verification="the typed map itself: X is the closure of its image (real parameters may reach part of it only)",
     )
     conical = analysis.conical
     if near is not None and conical is not None and conical.kind == "none":
