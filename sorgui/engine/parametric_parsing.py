@@ -10,7 +10,8 @@ The forms (docs/math.md §13)::
                             X, Y, Z; and after a function's head, after a name or none: Maple's
                             P := (u, v) -> [X, Y, Z], LaTeX's (u, v) \\mapsto (X, Y, Z), Python's
                             lambda u, v: (X, Y, Z), def P(u, v): return (X, Y, Z), return X, Y, Z,
-                            numpy's np.array([X, Y, Z])
+                            numpy's np.array([X, Y, Z]); a module's name before a function
+                            is read as Python means it: np.cos(v), math.sqrt(2)
 
 The parameters are the two names other than ``x, y, z`` that the components use (one-letter names
 run together are products, as ``x, y, z`` are in equations: ``st`` is ``s·t``), in the order a
@@ -89,6 +90,11 @@ _HEAD = re.compile(
 )
 """A function's head before the components, after a name or none: Maple's ``(u, v) ->``,
 LaTeX's ``(u, v) \\mapsto``, Python's ``lambda u, v:``, ``def P(u, v): return`` or ``return``."""
+_MODULE = re.compile(
+    rf"\b(?:np|numpy|math|sympy|sp)\s*+\.\s*+(?=(?:{'|'.join(sorted(FUNCTIONS | TRANSCENDENTAL))})\b)", re.ASCII
+)
+"""A module's name before a function, as Python code writes it: ``np.cos(v)``, ``math.sqrt(2)``
+(read as ``cos(v)``, ``sqrt(2)``: the same positions, the prefix made blanks)."""
 _CALL = re.compile(r"\s*+((?:(?:np|numpy)\s*+\.\s*+)?+array)\s*+(?=\()", re.ASCII)
 """numpy's ``np.array`` before the parentheses that hold the triple: ``np.array([X, Y, Z])``."""
 
@@ -139,6 +145,7 @@ def parse_parametrization(text: str) -> ParsedParametrization:
 
     if len(text) > MAX_LENGTH:
         raise ParseError(f"the input is too long (more than {MAX_LENGTH:,} characters)", 0, len(text))
+    typed, text = text, _MODULE.sub(lambda m: " " * len(m.group()), text)  # the same positions
     spans, named = _layout(text)
     _refuse_characters(text, spans)
     parameters = named or _discover(text, spans)
@@ -173,10 +180,10 @@ def parse_parametrization(text: str) -> ParsedParametrization:
         )
     if _is_degenerate(surface):
         raise ParseError("the image is a curve or a point, not a surface: P_s × P_t is identically zero", 0, len(text))
-    plain = without_comments(text)
-    components = tuple(_RIGHT.sub("", plain[a:b]).strip() for a, b in spans)
+    plain = without_comments(typed)
+    components = tuple(_RIGHT.sub("", _MODULE.sub("", plain[a:b])).strip() for a, b in spans)
     return ParsedParametrization(
-        text, (components[0], components[1], components[2]), parameters, surface, field, radicands, angles
+        typed, (components[0], components[1], components[2]), parameters, surface, field, radicands, angles
     )
 
 

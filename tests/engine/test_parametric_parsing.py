@@ -353,3 +353,16 @@ def test_cos_and_sin_as_papers_and_other_programs_write_them(text: str) -> None:
 def test_cos_and_sin_stay_refused_in_an_equation(text: str) -> None:
     with pytest.raises(ParseError, match="unknown name '(cos|sin|Sin)'"):
         parse_polynomial(text)
+
+
+def test_a_module_s_name_before_a_function_is_read_as_python_means_it() -> None:
+    """``lambda u, v: (u*np.cos(v), …)`` was refused ("unexpected character '.'") beside the
+    README's ``np.array``; a function a rational map has no place for is still refused, at its
+    own position."""
+    with_module = parse_parametrization("lambda u, v: np.array([u*np.cos(v), u*numpy.sin(v), math.sqrt(2)*u**2])")
+    plain = parse_parametrization("lambda u, v: (u*cos(v), u*sin(v), sqrt(2)*u**2)")
+    assert (with_module.map.X, with_module.map.W, with_module.angles) == (plain.map.X, plain.map.W, plain.angles)
+    assert with_module.components == ("u*cos(v)", "u*sin(v)", "sqrt(2)*u**2")
+    with pytest.raises(ParseError, match="'exp' is not allowed") as refused:
+        parse_parametrization("lambda u, v: (u*np.cos(v), u*np.sin(v), np.exp(u))")
+    assert refused.value.position == "lambda u, v: (u*np.cos(v), u*np.sin(v), np.exp(u))".index("exp")
