@@ -401,6 +401,19 @@ def test_a_recognition_only_part_of_rounded_input_says_what_it_lacks(tmp_path: P
     assert "analyse without --recognition-only for its part" in message and "was found" not in message
 
 
+def test_a_recognition_only_part_of_an_elliptic_cone_says_it_was_not_analysed(tmp_path: Path) -> None:
+    """An elliptic cone is a cone over a conic, but with --recognition-only that stage does not
+    run: the refusal said it is not a cone over a rational curve."""
+    pytest.importorskip("OCP")
+    target = tmp_path / "cone.step"
+    done = sorgui("analyze", "--recognition-only", "4*x^2+5*y^2-z^2", "-o", str(target))
+    message = lines(done.stderr)[-1]
+    assert done.returncode == 1 and not target.exists(), done.stderr
+    assert "with --recognition-only it is not analysed as a cylinder or cone over a curve" in message
+    assert "nor a cylinder or cone" not in message
+    assert sorgui("analyze", "4*x^2+5*y^2-z^2", "-o", str(target)).returncode == 0 and target.exists()
+
+
 def test_a_nearest_surface_beyond_the_rounding_is_written_and_says_so(tmp_path: Path) -> None:
     """A cone of 7.5° printed with 6 decimals whose nearest exact surface found lies beyond the
     rounding (one coefficient 2.7 times its rounding off): its part is written, and the line

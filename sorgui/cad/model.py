@@ -437,6 +437,11 @@ def _no_part_words(analysis: Analysis) -> str:
             f"from rounded input to build the part from (its approximate "
             f"{'apex' if kind == 'cone' else 'direction'} is in the report){patch}"
         )
+    if conical is None and "conical" not in analysis.unfinished:
+        return (
+            "the surface is not a surface of revolution, and with --recognition-only it is not analysed as a "
+            f"cylinder or cone over a curve or a canal surface; analyse without --recognition-only for its part{patch}"
+        )
     return (
         "the surface is not a surface of revolution, nor a cylinder or cone over a rational curve, "
         f"nor a canal surface with known circles{patch}"
