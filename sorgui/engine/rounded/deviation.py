@@ -146,12 +146,12 @@ def natural_length(array: FloatArray, middle: FloatArray | None = None) -> float
 
 def part_size(array: FloatArray) -> float | None:
     """``(|f_low| / |f_high|)^(1/(high − low))``, unclipped (:func:`natural_length`); ``None``
-    when ``f`` is zero or homogeneous (a cone about the origin has no size)."""
+    when ``f`` is zero or homogeneous (a cone about the origin has no size), or beyond floats."""
     i, j, k = np.indices(array.shape)
     degrees = (i + j + k).ravel()
     values = np.abs(array).ravel()
     largest = float(values.max(initial=0.0))
-    if largest == 0:
+    if largest == 0 or not math.isfinite(largest):  # 1e400 is inf in floats: no size to read
         return None
     sizes = np.bincount(degrees, weights=(values / largest) ** 2)
     present = np.nonzero(sizes)[0]
