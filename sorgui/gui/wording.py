@@ -128,7 +128,7 @@ def invalid_heading(message: str) -> str:
         return "The equation is too large"
     if "is empty" in message or "editor is empty" in message:
         return "No equation"
-    if "constant" in message or "no variables" in message:
+    if re.search(r"(?<![-\w])constant", message) or "no variables" in message:  # not "non-constant"
         return "No surface: the equation is constant"
     return "Not a polynomial in x, y, z"
 
