@@ -340,13 +340,26 @@ def analysis_lines(analysis: Analysis) -> list[str]:
         lines += conical_lines(analysis.conical)
     if analysis.canal is not None:
         lines += canal_lines(analysis.canal)
-        nearly = nearly_canal(analysis)
+        nearly = nearly_canal(analysis) or typed_canal_note(analysis)
         if nearly:
             lines.append(f"  rounded input: {nearly}")
     if analysis.unfinished:
         lines.append(f"not finished within the time limit (undecided): {', '.join(analysis.unfinished)}")
     lines += approximation_lines(analysis)
     return lines
+
+
+def typed_canal_note(analysis: Analysis) -> str:
+    """For rounded input that is not exactly canal nor near a surface of revolution: that the
+    verdict is of the typed coefficients (a Dupin cyclide printed in decimals was told "not
+    canal" and nothing more); empty otherwise."""
+    approx, canal = analysis.approximate, analysis.canal
+    if approx is None or canal is None or canal.is_canal is not False or approx.near_sor:
+        return ""
+    return (
+        "the verdict is of the typed coefficients: a canal surface printed in decimals is seldom exactly canal, "
+        "and nearness to a canal surface that is not of revolution is not decided"
+    )
 
 
 def nearly_canal(analysis: Analysis) -> str:

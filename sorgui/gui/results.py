@@ -41,6 +41,7 @@ from sorgui.export.text import (
     outside_words,
     plain_text,
     symmetry_name,
+    typed_canal_note,
 )
 from sorgui.gui.formula_view import FormulaView
 from sorgui.gui.page import CAPTION_WIDTH, Page, Row
@@ -219,7 +220,9 @@ class ResultsPane(QScrollArea):
             self._section("Cone or cylinder", [("", _undecided(limit))])
         if analysis.canal is not None:
             near = analysis.verdict == "near"
-            self._canal_section(analysis.canal, nearly_canal(analysis), near and "nearest" in pending)
+            self._canal_section(
+                analysis.canal, nearly_canal(analysis), near and "nearest" in pending, typed_canal_note(analysis)
+            )
         elif "canal" in pending:
             self._section("Canal surface", [("", "being decided: the sphere family and its certificate follow")])
         elif "canal" in unfinished:
@@ -596,9 +599,10 @@ class ResultsPane(QScrollArea):
         ]
         self._section("Cone or cylinder", rows)
 
-    def _canal_section(self, canal: Canal, nearly: str = "", nearest_pending: bool = False) -> None:
+    def _canal_section(self, canal: Canal, nearly: str = "", nearest_pending: bool = False, typed: str = "") -> None:
         """The canal verdict; for rounded input near a surface of revolution, the nearest exact
-        surface's verdict first (what was meant), then that of the typed rationals."""
+        surface's verdict first (what was meant), then that of the typed rationals; for other
+        rounded input, the ``typed`` note that the verdict is of the typed rationals."""
         if nearly:
             rows = [("canal", nearly), ("exactly", canal_verdict(canal) + " (the typed rationals)")]
         elif nearest_pending and canal.is_canal is False:
@@ -608,6 +612,8 @@ class ResultsPane(QScrollArea):
             ]
         else:
             rows = [("canal", canal_verdict(canal))]
+        if typed:
+            rows.append(("rounded input", typed))
         evidence = canal_evidence(canal)
         if evidence is not None:
             rows.append(evidence)

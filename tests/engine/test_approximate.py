@@ -881,3 +881,22 @@ def test_a_quadric_printed_at_full_precision_has_a_nearest_exact_surface(
     assert nearest is not None and nearest.within_rounding
     assert nearest.axis is not None and nearest.axis.direction == direction
     assert nearest.analysis is not None and nearest.analysis.is_sor
+
+
+def test_a_rounded_dupin_cyclide_s_canal_verdict_says_it_is_of_the_typed_coefficients() -> None:
+    """A Dupin cyclide (not of revolution) turned by 30° and printed with 10 digits is exactly no
+    canal surface, and no nearest canal surface is looked for: the report said "canal surface:
+    NO" and nothing more, now that the verdict is the typed coefficients'."""
+    from sorgui.export.text import plain_text
+
+    x, y, z = sympy.symbols("x y z")
+    c, s = sympy.sqrt(3) / 2, sympy.Rational(1, 2)
+    u, v = c * x - s * y, s * x + c * y  # turned by 30° about z
+    a, b2, k, mu = 2, 3, 1, sympy.Rational(3, 2)  # a² = b² + k²
+    cyclide = (u**2 + v**2 + z**2 + b2 - mu**2) ** 2 - 4 * (a * u - k * mu) ** 2 - 4 * b2 * v**2
+    terms = sympy.Poly(sympy.expand(cyclide), x, y, z).terms()
+    text = " + ".join(f"{float(q):.10g}*x^{i}*y^{j}*z^{m}" for (i, j, m), q in terms).replace("+ -", "- ")
+    result = analyze(text)
+    assert result.canal is not None and result.canal.is_canal is False and not result.approximate.near_sor
+    assert "the verdict is of the typed coefficients" in plain_text(result)
+    assert analyze(str(sympy.expand(cyclide))).canal.is_canal  # the cyclide typed exactly
