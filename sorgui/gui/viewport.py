@@ -929,8 +929,7 @@ def _pick_text(info: PickInfo) -> str:
     if info.is_singular:
         parts.append("singular point: ∇f = 0, no normal line")
     elif info.axis_test is not None:
-        verdict = "<b>meets</b> the axis" if info.axis_test.meets else "<b>misses</b> the axis"
-        parts.append(f"normal {verdict} (distance {info.axis_test.distance:.2g})")
+        parts.append(info.axis_test.words(lambda verb: f"<b>{verb}</b>"))
     if np.isfinite(info.radius):
         parts.append(f"height {info.height:.4g}, radius {info.radius:.4g}")
     return " · ".join(parts)

@@ -112,3 +112,16 @@ def test_latitude_circle_of_a_pick_lies_on_the_surface_of_revolution():
 def test_axis_coordinates():
     height, radius = axis_coordinates((3, 4, 5), (0, 0, 1), (0, 0, 2))
     assert (height, radius) == (pytest.approx(4.0), pytest.approx(5.0))
+
+
+def test_a_normal_nearly_parallel_to_the_axis_is_said_to_meet_it_without_a_noisy_distance():
+    """At a torus's tube top the normal is nearly parallel to the axis: the distance between the
+    two lines is the skew divided by a sine near 0, noise (0.0586 on a rounded torus, where other
+    points gave 1e-9); the words say the normal meets the axis, nearly parallel to it."""
+    tilted = np.array([1e-4, 0.0, 1.0])
+    test = normal_meets_axis((2.0, 0.0, 1.0), tilted, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
+    assert test.meets and test.sine < 1e-3
+    assert test.words() == "normal meets the axis (nearly parallel to it)"
+    assert test.words(lambda verb: f"<b>{verb}</b>") == "normal <b>meets</b> the axis (nearly parallel to it)"
+    skew = normal_meets_axis((0, 0, 1), (1, 0, 0), (0, 0, 0), (0, 1, 0))
+    assert skew.words() == "normal misses the axis (distance 1)"
