@@ -64,6 +64,10 @@ class RealLocus:
     axis_line: bool | None = None
 
 
+GIVEN_MAP = "the given parametrization"
+"""The ``method`` of a typed parametrization's own map, listed first among the maps."""
+
+
 @dataclass(frozen=True)
 class Parametrization:
     """A rational parameterization of ``X`` in the original coordinates, checked by substitution.

@@ -174,3 +174,10 @@ def test_without_the_equation_only_the_map_itself_parameterizes(reports: dict[st
         check_report(tampered(reports[CUT], ("profile",), torus["profile"]))
     with pytest.raises(ClaimError, match="^rationality"):
         check_report(tampered(reports[PATCH], ("rationality",), torus["rationality"]))
+
+
+def test_a_properness_changed_in_the_record_alone_is_refused(reports: dict[str, Analysis]) -> None:
+    """``parametric.proper = false`` with a fibre of 2 agrees with itself, and the report was
+    opened saying the given map is not proper and, further down, that it is ("real, proper")."""
+    lie = tampered(reports[SOR], ("parametric", "fibre"), 2)
+    refused_naming(tampered(lie, ("parametric", "proper"), False), "parametrizations[0].proper")

@@ -40,7 +40,7 @@ from ..parametric.maps import RationalMap, fraction_text
 from ..parametric_parsing import parse_parametrization
 from ..recognition.symmetry import Symmetry
 from ..results import UNDECIDED, Analysis, Canal, Conical, Recognition
-from ..stage_results import ParametricInput, Parametrization
+from ..stage_results import GIVEN_MAP, ParametricInput, Parametrization
 from .formulas import Surface, formula, nonzero, read_polynomial, values, vector
 from .identities import Identities, proportional
 from .maps import check_parametrization_form
@@ -99,6 +99,12 @@ def check_parametric(analysis: Analysis, where: str, ids: Identities) -> Surface
         raise ClaimError(f"{where}field", f"is {analysis.field}, but the map's coefficients lie in {field_name(K)}")
     ids.need(*truth.radicands)
     _check_record(record, truth, f"{where}parametric.", ids)
+    for i, given in enumerate(analysis.parametrizations):
+        if given.method == GIVEN_MAP and given.proper != record.proper:
+            raise ClaimError(
+                f"{where}parametrizations[{i}].proper",
+                f"is {given.proper}, but the given map's is {record.proper} (parametric.proper)",
+            )
     known = bool(analysis.recognition.polynomial)
     if known and record.implicit_method is None:
         raise ClaimError(f"{where}parametric.implicit_method", "is missing, but the report has an implicit equation")

@@ -32,7 +32,7 @@ from ..parsing import has_decimals
 from ..recognition.recognize import axis_report
 from ..recognition.symmetry import Symmetry
 from ..results import UNDECIDED, Analysis, Approximation, Canal, Conical, Factor, Recognition, Triple
-from ..stage_results import BEING_COMPUTED, ParametricInput, Parametrization
+from ..stage_results import BEING_COMPUTED, GIVEN_MAP, ParametricInput, Parametrization
 from ..stages import PartialCallback, StageClock
 from ..timelimit import time_limit, unfinished_analysis
 from .maps import ParameterRing, RationalMap, fraction_text
@@ -398,7 +398,7 @@ def _decorated(
         field=record.field,
         real=True,
         proper=record.proper,
-        method="the given parametrization",
+        method=GIVEN_MAP,
         verified=True,
         verification="the typed map itself: X is the closure of its image (real parameters may reach part of it only)",
     )
