@@ -58,6 +58,12 @@ class Profile:
 UNDECIDED = "undecided"
 """The ``symmetry`` of a recognition that did not finish within the time limit."""
 
+MAP_NEAR_FACTOR = 30.0
+"""How many times the tolerance the relative deviation of a map's near kind may reach (the unit
+of a map's ``residual``, :mod:`.parametric.nearly`): the rounding of a surface of revolution's
+map printed with 6, 10 or 15 digits leaves 0.5 to 0.8 times the tolerance, a coefficient moved
+by ``10⁻⁶`` (at 10 digits) or ``10⁻³`` (at 6) hundreds and thousands of times."""
+
 
 @dataclass(frozen=True)
 class Recognition:

@@ -93,7 +93,7 @@ def verdict(analysis: Analysis) -> str:
         "undecided": "undecided whether it is a surface of revolution "
         "(the recognition did not finish within the time limit)",
         "sor": "a surface of revolution",
-        "near": f"nearly a surface of revolution (not exactly: within {within_words(analysis.approximate)})",
+        "near": f"nearly a surface of revolution (not exactly: within {within_words(analysis)})",
         "not": "not a surface of revolution",
     }[analysis.verdict]
 

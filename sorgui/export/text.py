@@ -8,9 +8,9 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from sorgui.engine.results import (
+    MAP_NEAR_FACTOR,
     UNDECIDED,
     Analysis,
-    Approximation,
     Canal,
     Conical,
     NearestSurface,
@@ -256,8 +256,13 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
         scale = "at most 1: within it" if tried else "no kind of symmetry was tried, see the notes"
         if ap.near_sor and ap.residual > 1:  # a fit excused up to one more rounding of float noise (§8.2)
             scale = "over 1, by less than floating point's own error in the fit: within it"
+        unit = (
+            f"{MAP_NEAR_FACTOR:g} times the tolerance, a map's limit of nearness"
+            if analysis.input_kind == "parametrization"
+            else "the rounding"
+        )
         lines.append(
-            f"  residual {ap.residual:.3g} times the rounding ({scale}); singular values "
+            f"  residual {ap.residual:.3g} times {unit} ({scale}); singular values "
             f"of (★): {', '.join(f'{v:.2g}' for v in ap.singular_values)}"
         )
     lines += [f"  note: {note}" for note in ap.notes]
@@ -304,11 +309,15 @@ def recognition_lines_of_nearest(near: NearestSurface) -> list[str]:
     return [f"axis: {_vec(near.axis.point)} + t·{_vec(near.axis.direction)}"]
 
 
-def within_words(approx: Approximation | None) -> str:
+def within_words(analysis: Analysis) -> str:
     """What rounded input is near a surface within: the rounding of its digits, or the tolerance
-    given with ``--tolerance`` (finer than the digits, it said "the rounding of the input")."""
+    given with ``--tolerance`` (finer than the digits, it said "the rounding of the input"); a
+    map within :data:`~sorgui.engine.results.MAP_NEAR_FACTOR` times that (its deviation 1.8 times
+    the tolerance was said to be "within the rounding")."""
+    approx = analysis.approximate
     given = approx is not None and approx.tolerance_source == "given"
-    return "the tolerance given" if given else "the rounding of the input"
+    words = "the tolerance given" if given else "the rounding of the input"
+    return f"{MAP_NEAR_FACTOR:g} times {words}" if analysis.input_kind == "parametrization" else words
 
 
 def analysis_lines(analysis: Analysis) -> list[str]:
@@ -317,7 +326,7 @@ def analysis_lines(analysis: Analysis) -> list[str]:
     verdict = {
         "sor": "YES",
         "not": "NO",
-        "near": f"NO exactly, but NEARLY: within {within_words(analysis.approximate)} (see below)",
+        "near": f"NO exactly, but NEARLY: within {within_words(analysis)} (see below)",
         "undecided": "undecided",
     }[analysis.verdict]
     lines = [

@@ -287,3 +287,17 @@ def test_the_given_map_is_said_to_give_x_as_the_closure_of_its_image() -> None:
     given = analyze("(s^2-t^2, 2*s*t, s^2+t^2)").parametrizations[0]
     assert given.method == "the given parametrization"
     assert "X is the closure of its image" in given.verification and "part of it" in given.verification
+
+
+def test_a_rounded_map_s_nearness_is_said_in_its_own_unit() -> None:
+    """A rounded torus's map is near a surface of revolution when its deviation is within 30
+    times the tolerance: 1.8 times it was said to be "within the rounding of the input", with a
+    "residual 0.0605 times the rounding" beside it."""
+    from pathlib import Path
+
+    from sorgui.export.text import plain_text
+
+    text = (Path(__file__).parents[1] / "data" / "rounded-torus-map.txt").read_text(encoding="utf-8")
+    report = plain_text(analyze(text, recognition_only=True))
+    assert "NEARLY: within 30 times the rounding of the input" in report
+    assert "times 30 times the tolerance, a map's limit of nearness (at most 1: within it)" in report

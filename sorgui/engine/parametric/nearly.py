@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from ..recognition.symmetry import CYLINDER, PLANE, REVOLUTION, SPHERE
+from ..results import MAP_NEAR_FACTOR as NEAR_FACTOR
 from ..results import ApproximateAxis, Approximation
 from ..rounded.line_complex import (
     Samples,
@@ -48,10 +49,6 @@ from ..rounded.line_complex import (
 )
 from .maps import RationalMap
 
-NEAR_FACTOR = 30.0
-"""How many times the tolerance the relative deviation of a near kind may reach: the rounding of
-a surface of revolution's map printed with 6, 10 or 15 digits leaves 0.5 to 0.8 times it, a
-coefficient moved by ``10⁻⁶`` (at 10 digits) or ``10⁻³`` (at 6) hundreds and thousands of times."""
 COARSEST = 0.1
 """A rounding coarser than this (``0.5``, ``3.0``: a gallery's exact numbers) says nothing: the
 input is taken as exact."""
