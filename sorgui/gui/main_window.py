@@ -303,6 +303,11 @@ class MainWindow(QMainWindow):
         self.setCentralWidget(self.splitter)
         self.setMinimumSize(*MINIMUM_SIZE)
         self.resize(*_initial_size(self.screen().availableGeometry().size()))
+        # Tab from the equation to the button that runs it (it sits just above), then Cancel,
+        # then the results: Qt's order of creation put Analyze last, after the 3D view.
+        QWidget.setTabOrder(self.editor.text_edit, self.analyze_button)
+        QWidget.setTabOrder(self.analyze_button, self.cancel_button)
+        QWidget.setTabOrder(self.cancel_button, self.results)
 
     def _build_actions(self) -> None:
         menu = self.menuBar()

@@ -398,3 +398,21 @@ def test_an_empty_view_says_what_the_real_points_are(window, run_analysis, qtbot
     qtbot.waitUntil(lambda: not window.session.run.running, timeout=120_000)
     qtbot.waitUntil(lambda: words in window.viewport.caption.text(), timeout=60_000)
     assert "--region" not in window.viewport.caption.text() and words in window.stage_label.text()
+
+
+def test_tab_goes_from_the_equation_to_analyze_and_cancel(window) -> None:
+    """Analyze sits above the editor but came last in the tab order, after the 3D view, and
+    Cancel was never reached (it is when a run makes it enabled)."""
+
+    def tabbed_from(widget):  # noqa: ANN001, ANN202
+        following = widget.nextInFocusChain()
+        while not (following.focusPolicy() & Qt.FocusPolicy.TabFocus) or not following.isEnabled():
+            following = following.nextInFocusChain()
+        return following
+
+    window.cancel_button.setEnabled(True)
+    try:
+        assert tabbed_from(window.editor.text_edit) is window.analyze_button
+        assert tabbed_from(window.analyze_button) is window.cancel_button
+    finally:
+        window.cancel_button.setEnabled(False)
