@@ -26,6 +26,7 @@ from OCP.BRepBuilderAPI import (
     BRepBuilderAPI_MakeWire,
     BRepBuilderAPI_NurbsConvert,
     BRepBuilderAPI_Sewing,
+    BRepBuilderAPI_Transform,
 )
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
@@ -42,7 +43,7 @@ from OCP.Geom import (
     Geom_SurfaceOfRevolution,
     Geom_ToroidalSurface,
 )
-from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt
+from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt, gp_Trsf
 from OCP.GProp import GProp_GProps
 from OCP.OCP.collections import (
     Array1_double,
@@ -57,6 +58,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 from sorgui.render import ClipBox, ClipSphere
 
 from .conical import Extrusion, Ruled
+from .failures import OCCT_ERRORS
 from .geometry import Analytic, CadGeometryError, Frame, RationalCurve
 from .patch import BezierPatch
 from .reading import faces_of
@@ -106,11 +108,37 @@ def revolution_faces(frame: Frame, curves: Sequence[Geom_BSplineCurve], toleranc
     faces = []
     for curve in curves:
         surface = Geom_SurfaceOfRevolution(curve, axis)
-        maker = BRepBuilderAPI_MakeFace(
-            surface, 0.0, 2 * math.pi, curve.FirstParameter(), curve.LastParameter(), tolerance
-        )
-        faces.append(_face(maker))
+        low, high = curve.FirstParameter(), curve.LastParameter()
+        try:
+            faces.append(_face(BRepBuilderAPI_MakeFace(surface, 0.0, 2 * math.pi, low, high, tolerance)))
+        except OCCT_ERRORS:
+            faces.append(_turned_about_z(curve, frame, tolerance))
     return faces
+
+
+def _turned_about_z(curve: Geom_BSplineCurve, frame: Frame, tolerance: float) -> TopoDS_Face:
+    """The face of ``curve`` turned about the axis, made in the frame whose z-axis is the axis
+    and moved back: there an end pole within ``POLE_GAP`` of the axis is put on it exactly. A
+    pole 3e-16 from the axis, where Open CASCADE's normal of the surface is a cross product of
+    rounding errors, raised "gp_Dir::CrossCross() - result vector has zero norm"."""
+    placed = gp_Trsf()
+    placed.SetTransformation(gp_Ax3(_point(frame.point), _dir(frame.direction)))
+    local = curve.Copy()
+    local.Transform(placed)
+    for index in (1, local.NbPoles()):
+        pole = local.Pole(index)
+        if math.hypot(pole.X(), pole.Y()) <= POLE_GAP * max(1.0, abs(pole.Z())):
+            local.SetPole(index, gp_Pnt(0.0, 0.0, pole.Z()))
+    surface = Geom_SurfaceOfRevolution(local, gp_Ax1(gp_Pnt(0.0, 0.0, 0.0), gp_Dir(0.0, 0.0, 1.0)))
+    face = _face(
+        BRepBuilderAPI_MakeFace(surface, 0.0, 2 * math.pi, local.FirstParameter(), local.LastParameter(), tolerance)
+    )
+    return TopoDS.Face(BRepBuilderAPI_Transform(face, placed.Inverted(), True).Shape())
+
+
+POLE_GAP = 1e-12
+"""How far (relative to its height along the axis, at least 1) an end of a turned profile may be
+from the axis and be put on it (:func:`_turned_about_z`)."""
 
 
 def extrusion_faces(extrusion: Extrusion, tolerance: float) -> list[TopoDS_Face]:
