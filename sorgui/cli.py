@@ -29,10 +29,10 @@ import sys
 import time
 import unicodedata
 from collections.abc import Callable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager, nullcontext
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, NoReturn
+from typing import IO, TYPE_CHECKING, Any, NoReturn
 
 from sorgui import __version__
 
@@ -365,17 +365,13 @@ def _is_option(arg: str, options: dict[str, argparse.Action]) -> bool:
 
 
 def read_input(args: argparse.Namespace) -> tuple[str, Path | None]:
-    """The equation text (at most :data:`MAX_INPUT` characters) and the file it came from."""
+    """The equation text (at most :data:`MAX_INPUT` characters) and the file it came from, read
+    within the time limit (:func:`_read_within`)."""
     if args.file is not None:
         if args.expression is not None:
             raise UsageError("give either an expression or -f FILE, not both")
-        try:
-            with open(args.file, encoding="utf-8") as stream:
-                return _bounded(stream.read(MAX_INPUT + 1), str(args.file)), args.file
-        except UnicodeDecodeError as exc:
-            raise UsageError(f"cannot read {args.file}: {_not_text(exc)}") from None
-        except OSError as exc:
-            raise UsageError(f"cannot read {args.file}: {exc.strerror or exc}") from None
+        path = args.file
+        return _bounded(_read_within(lambda: open(path, "rb"), str(path), args.timeout), str(path)), path
     if args.expression is None:
         from sorgui.examples import example_text
 
@@ -385,11 +381,49 @@ def read_input(args: argparse.Namespace) -> tuple[str, Path | None]:
         )
         return example_text(DEFAULT_EXAMPLE), None
     if args.expression == "-":
-        try:
-            return _bounded(sys.stdin.read(MAX_INPUT + 1), "standard input"), None
-        except UnicodeDecodeError as exc:
-            raise UsageError(f"cannot read standard input: {_not_text(exc)}") from None
+        stdin = sys.stdin.buffer
+        text = _read_within(lambda: nullcontext(stdin), "standard input", args.timeout)
+        return _bounded(text, "standard input"), None
     return _bounded(args.expression, "the expression"), None
+
+
+class InputTimeout(Exception):
+    """The equation was not read within the time limit (a named pipe without a writer, a slow
+    standard input): the limit counts reading the input (README, "Time limits")."""
+
+
+def _read_within(opener: Callable[[], AbstractContextManager[IO[bytes]]], source: str, timeout: float) -> str:
+    """The text of the stream ``opener`` opens, as UTF-8, read by a thread the command waits for
+    until ``timeout`` seconds after its start: opening a named pipe without a writer, or reading
+    a slow standard input, blocks in the system call, which no signal handler interrupts
+    (``--timeout 3`` waited 200 s for such a pipe). The thread is left blocked: the command ends.
+    The same bytes and the same refusal of what is not UTF-8 for a file and standard input."""
+    import threading
+
+    read: list[bytes | OSError] = []
+
+    def reader() -> None:
+        try:
+            with opener() as stream:
+                read.append(stream.read(4 * (MAX_INPUT + 1)))  # UTF-8: at most 4 bytes a character
+        except OSError as exc:
+            read.append(exc)
+
+    worker = threading.Thread(target=reader, name="sorgui input", daemon=True)
+    worker.start()
+    started = _started[-1] if _started else time.monotonic()
+    worker.join(max(0.0, started + timeout - time.monotonic()))
+    if not read:
+        from sorgui.engine.timelimit import limit_message
+
+        raise InputTimeout(f"{limit_message(timeout)} (while reading the equation from {source})")
+    data = read[0]
+    if isinstance(data, OSError):
+        raise UsageError(f"cannot read {source}: {data.strerror or data}")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise UsageError(f"cannot read {source}: {_not_text(exc)}") from None
 
 
 def _not_text(error: UnicodeDecodeError) -> str:
@@ -701,6 +735,8 @@ def analyze_main(argv: Sequence[str]) -> int:
         check_outputs(args.output, source, args.export_format, args.cap)
     except UsageError as exc:
         return fail(str(exc), None, as_json, 2)
+    except InputTimeout as exc:
+        return fail(str(exc), None, as_json, 1)
     except _OutputError as exc:
         return fail(str(exc), None, False, 1)
     from sorgui.session.messages import Failed, Finished, Invalid

@@ -258,3 +258,45 @@ def test_each_line_loses_no_line_when_a_worker_is_killed(tmp_path: Path) -> None
     assert "died" in rows[0]["error"]["message"]
     assert rows[1]["is_sor"] is False and rows[2]["is_sor"] is True
     assert proc.returncode == 1
+
+
+def test_the_time_limit_holds_while_the_input_is_read(tmp_path: Path) -> None:
+    """``--timeout`` counts reading the input: a named pipe with no writer hung sorgui forever
+    (its open blocks, which no signal handler interrupts), and a standard input that writes
+    nothing was waited for in full before the limit was said to be used up."""
+    import os
+
+    fifo = tmp_path / "equation.fifo"
+    os.mkfifo(fifo)
+    start = time.monotonic()
+    done = subprocess.run([*ANALYZE, "--timeout", "2", "-f", str(fifo)], capture_output=True, text=True, timeout=30)
+    assert time.monotonic() - start < 3 + 1  # the limit, and a second to answer
+    assert done.returncode == 1
+    assert "within the time limit of 2 s (while reading the equation from" in done.stderr
+    start = time.monotonic()
+    silent = subprocess.Popen(
+        [*ANALYZE, "--timeout", "2", "-"], stdin=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    try:
+        silent.wait(timeout=30)  # its standard input stays open and empty
+    finally:
+        silent.kill()
+        assert silent.stdin is not None and silent.stderr is not None
+        silent.stdin.close()
+        err = silent.stderr.read()
+        silent.stderr.close()
+    assert time.monotonic() - start < 3 + 1 and silent.returncode == 1
+    assert "while reading the equation from standard input" in err
+
+
+def test_standard_input_that_is_not_text_is_refused_as_a_file_is(tmp_path: Path) -> None:
+    """A UTF-16 file on standard input said "unexpected character '\\udcff'", a binary one
+    "unmatched ')'"; with -f both said they are not UTF-8 text."""
+    data = "x^2+y^2-1".encode("utf-16")
+    path = tmp_path / "utf16.txt"
+    path.write_bytes(data)
+    piped = subprocess.run([*ANALYZE, "-"], input=data, capture_output=True, timeout=60)
+    named = subprocess.run([*ANALYZE, "-f", str(path)], capture_output=True, timeout=60)
+    assert piped.returncode == named.returncode == 2
+    for done in (piped, named):
+        assert b"it is not UTF-8 text (byte 1 is 0xff)" in done.stderr
