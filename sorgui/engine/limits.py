@@ -26,6 +26,11 @@ MAX_BITS = 66_439  # size of any constant (numerator or denominator): 20,000 dig
 MAX_RADICAND_DIGITS = 50  # sqrt(n) needs the square part of n: factoring must stay fast
 MAX_RADICANDS = 4  # [K : QQ] <= 16
 MAX_WORK = 5_000_000  # coefficient multiplications while expanding (a few seconds)
+MAX_TOTAL_BITS = 128_000_000
+"""The bits of an expanded polynomial's coefficients, all together (terms × the bits of each, a
+bound read off the syntax tree): 16 MB. ``(a·x + b·y + c·z + 1)^60`` with 300-digit ``a, b, c``
+(a kilobyte, within every other limit) expanded to 39,711 terms of 18,000 digits, printed 537 MB
+and used 5 GB. A dense degree-60 polynomial of 900-digit coefficients is within it."""
 
 
 class Limits:

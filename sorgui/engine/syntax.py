@@ -51,6 +51,7 @@ from .limits import (
     MAX_NESTING,
     MAX_RADICAND_DIGITS,
     MAX_RADICANDS,
+    MAX_TOTAL_BITS,
     MAX_WORK,
     equation_span,
 )
@@ -554,6 +555,11 @@ def _bits(q: Rational) -> int:
     return max(q.numerator.bit_length(), q.denominator.bit_length())
 
 
+def _monomials(degree: int) -> int:
+    """The monomials of total degree at most ``degree`` in three variables."""
+    return math.comb(degree + 3, 3)
+
+
 def _show(n: int) -> str:
     """``n`` for a message; huge numbers cannot (and need not) be printed in full."""
     return f"{n:,}" if n < 10**15 else f"about 2^{n.bit_length() - 1}"
@@ -579,39 +585,48 @@ class Evaluator:
 
         deg(a+b) = max, deg(a*b) = sum, deg(a^n) = n*deg(a), deg(a/c) = deg(a).
         """
+        degree, bits, _ = self._bounds(node)
+        return degree, bits
+
+    def _bounds(self, node: Node) -> tuple[int, int, int]:
+        """:meth:`check`'s bounds and the number of terms of the expanded ``node``: a sum has at
+        most the sum of its terms', a product the product of its factors', ``a^n`` the number of
+        products of ``n`` of ``a``'s terms, each at most the monomials of its degree."""
         match node:
             case Num():
-                return 0, _bits(node.value)
+                return 0, _bits(node.value), 1
             case Var():
-                return 1, 1
+                return 1, 1, 1
             case Neg():
-                return self.check(node.arg)
+                return self._bounds(node.arg)
             case Reciprocal():
-                return 0, self.check(node.arg)[1]
+                return 0, self._bounds(node.arg)[1], 1
             case Sqrt():
                 c, m = self._surd(node)
-                return 0, _bits(c) + m.bit_length()
+                return 0, _bits(c) + m.bit_length(), 1
             case Sum():  # plain loops: a comprehension would cost a stack frame per level
-                degree = bits = 0
+                degree = bits = terms = 0
                 for term in node.terms:
-                    d, b = self.check(term)
-                    degree, bits = max(degree, d), max(bits, b)
-                return degree, bits + len(node.terms).bit_length()
+                    d, b, t = self._bounds(term)
+                    degree, bits, terms = max(degree, d), max(bits, b), terms + t
+                return degree, bits + len(node.terms).bit_length(), min(terms, _monomials(degree))
             case Product():
                 degree = bits = 0
+                terms = 1
                 for factor in node.factors:
-                    d, b = self.check(factor)
+                    d, b, t = self._bounds(factor)
                     degree, bits = degree + d, bits + b
-                return self._within_limits(node, degree, bits)
+                    terms = min(terms * t, _monomials(degree))
+                return self._within_limits(node, degree, bits, terms)
             case Power():
                 return self._check_power(node)
             case Trig():
-                return 2 * node.multiple, 2 * node.multiple
+                return 2 * node.multiple, 2 * node.multiple, _monomials(2 * node.multiple)
         raise TypeError(node)
 
-    def _check_power(self, node: Power) -> tuple[int, int]:
+    def _check_power(self, node: Power) -> tuple[int, int, int]:
         n = self._exponent(node)
-        degree, bits = self.check(node.base)
+        degree, bits, terms = self._bounds(node.base)
         if degree > 0:
             if n.denominator != 1 or (n < 0 and not self.fractions):
                 raise ParseError(
@@ -620,15 +635,19 @@ class Evaluator:
                     node.exponent.start,
                     node.exponent.end,
                 )
-            return self._within_limits(node, degree * abs(int(n)), bits * abs(int(n)))
+            k = abs(int(n))
+            if degree * k > MAX_DEGREE:  # before the count of its terms, which can be huge
+                self._within_limits(node, degree * k, 0, 1)
+            products = min(math.comb(terms + k - 1, k), _monomials(degree * k))
+            return self._within_limits(node, degree * k, bits * k, products)
         if n.denominator == 1:
             self._check_exponent(node, n)
-            return self._within_limits(node, 0, bits * abs(int(n)))
+            return self._within_limits(node, 0, bits * abs(int(n)), 1)
         c, m = self._surd(node)
-        return 0, _bits(c) + m.bit_length()
+        return 0, _bits(c) + m.bit_length(), 1
 
     @staticmethod
-    def _within_limits(node: Node, degree: int, bits: int) -> tuple[int, int]:
+    def _within_limits(node: Node, degree: int, bits: int, terms: int) -> tuple[int, int, int]:
         if degree > MAX_DEGREE:
             raise ParseError(
                 f"the degree is too high: this part has degree up to {_show(degree)}, the limit is {MAX_DEGREE}",
@@ -641,7 +660,14 @@ class Evaluator:
                 node.start,
                 node.end,
             )
-        return degree, bits
+        if terms * bits > MAX_TOTAL_BITS:
+            raise ParseError(
+                f"the expanded polynomial is too large: this part has up to {terms:,} terms of up to {bits:,} "
+                f"bits, about {_show(terms * bits // 8_000_000)} MB; the limit is {MAX_TOTAL_BITS // 8_000_000} MB",
+                node.start,
+                node.end,
+            )
+        return degree, bits, terms
 
     @staticmethod
     def _check_exponent(node: Power, n: Rational) -> None:
@@ -674,12 +700,12 @@ class Evaluator:
                 value = Fraction(0)
                 for term in node.terms:
                     value += self._rational(term, role)
-                    self._within_limits(node, 0, _bits(value))
+                    self._within_limits(node, 0, _bits(value), 1)
             case Product():
                 value = Fraction(1)
                 for factor in node.factors:
                     value *= self._rational(factor, role)
-                    self._within_limits(node, 0, _bits(value))
+                    self._within_limits(node, 0, _bits(value), 1)
             case Reciprocal():
                 denominator = self._rational(node.arg, role)
                 if denominator == 0:
@@ -700,7 +726,7 @@ class Evaluator:
                     base = self._rational(node.base, role)
                     if base == 0 and n < 0:
                         raise ParseError("division by zero", node.start, node.end)
-                    self._within_limits(node, 0, abs(int(n)) * _bits(base))
+                    self._within_limits(node, 0, abs(int(n)) * _bits(base), 1)
                     value = base ** int(n)
         self._rationals[node] = value
         return value
@@ -727,7 +753,7 @@ class Evaluator:
             if k < 0:
                 raise ParseError("division by zero", node.start, node.end)
             return self._surds.setdefault(node, (Fraction(0), 1))
-        self._within_limits(node, 0, abs(k) * _bits(q))
+        self._within_limits(node, 0, abs(k) * _bits(q), 1)
         c, m = _square_free_part(q, node)
         if m > 1:
             self.radicands.add(m)
