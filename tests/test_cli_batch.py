@@ -380,3 +380,13 @@ def test_a_results_file_is_resumed_only_with_the_options_it_was_written_with(tmp
         )
     same = run_batch(tmp_path, "--recognition-only", "-o", str(results), "--resume", lines=good)
     assert same.returncode == 0 and "(1 kept from before)" in same.stderr
+
+
+def test_a_line_counts_by_its_verdict_when_only_a_later_stage_is_unfinished() -> None:
+    """The summary said '0 not, 4 unfinished' of lines whose answer was a decided no, with only
+    the canal stage past the time limit: a line is unfinished when its verdict is."""
+    from sorgui.batch.answers import NOT_SURFACE_OF_REVOLUTION, SURFACE_OF_REVOLUTION, UNFINISHED, kind_of
+
+    assert kind_of({"is_sor": False, "symmetry": "none", "unfinished": ["canal"]}) == NOT_SURFACE_OF_REVOLUTION
+    assert kind_of({"is_sor": True, "symmetry": "revolution", "unfinished": ["rationality"]}) == SURFACE_OF_REVOLUTION
+    assert kind_of({"is_sor": False, "symmetry": "undecided", "unfinished": ["recognition"]}) == UNFINISHED

@@ -32,8 +32,13 @@ ERROR = "error"
 UNFINISHED = "unfinished"
 KINDS = (SURFACE_OF_REVOLUTION, NOT_SURFACE_OF_REVOLUTION, NEARLY, ERROR, UNFINISHED)
 """What a line counts as in the summary: exactly one of these (an error first, then an
-analysis that stopped at its time limit, then its verdict; rounded input that is not exactly a
-surface of revolution but within its rounding of one is "nearly")."""
+analysis whose time limit came before its verdict, then its verdict, also when a later stage
+was left unfinished; rounded input that is not exactly a surface of revolution but within its
+rounding of one is "nearly")."""
+
+UNDECIDED = "undecided"
+"""The JSON's ``symmetry`` of a recognition that met its time limit (``engine.results.UNDECIDED``,
+not imported: the batch's own process does not load the result classes, 15 ms of its start)."""
 
 ANALYSED, FAILED, NOT_A_POLYNOMIAL = 0, 1, 2
 """A line's status; the batch exits with 1 when a line failed, else 2 when a line was not a
@@ -159,7 +164,7 @@ def kind_of(data: dict[str, Any]) -> str:
     """What an output object counts as (:data:`KINDS`)."""
     if "error" in data:
         return ERROR
-    if data.get("unfinished"):
+    if data.get("symmetry") == UNDECIDED:  # the recognition met the time limit: no verdict
         return UNFINISHED
     if data.get("is_sor"):
         return SURFACE_OF_REVOLUTION
