@@ -900,3 +900,18 @@ def test_a_rounded_dupin_cyclide_s_canal_verdict_says_it_is_of_the_typed_coeffic
     assert result.canal is not None and result.canal.is_canal is False and not result.approximate.near_sor
     assert "the verdict is of the typed coefficients" in plain_text(result)
     assert analyze(str(sympy.expand(cyclide))).canal.is_canal  # the cyclide typed exactly
+
+
+def test_a_rounding_read_off_one_decimal_among_integers_is_said_so() -> None:
+    """A torus with its ``x²`` coefficient moved by 10⁻³ and printed with ``%.10g``: only
+    ``-57.999`` shows decimals, so every number is read to its 5 digits, and the torus is
+    within that rounding. The verdict stands (the printer may have printed 5 digits); a note
+    names the one number the digits were read from and says to give --tolerance, under which
+    it is no longer near."""
+    text = (Path(__file__).parents[1] / "data" / "nearly-torus-one-decimal.txt").read_text(encoding="utf-8")
+    approx = analyze(text, recognition_only=True).approximate
+    assert approx is not None and approx.near_sor
+    assert any("read off one number, 57.999 (5 significant digits)" in note for note in approx.notes)
+    assert not analyze(text, recognition_only=True, tolerance=1e-10).approximate.near_sor
+    exact_sor = analyze("x^2+y^2-1.5e-3*z", recognition_only=True).approximate
+    assert not any("read off one number" in note for note in exact_sor.notes)

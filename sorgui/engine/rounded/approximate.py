@@ -241,6 +241,12 @@ def _approximate_symmetry(
                 "no exact surface with rational axis and coefficients was found within the "
                 "rounding; the axis above is approximate"
             )
+    if near and snap_exact and rounding.read_from is not None:  # "nearly", not an exact surface
+        collected.append(
+            f"the rounding is read off one number, {rounding.read_from} ({rounding.digits} significant digits), and "
+            "every other number to as many digits; if they carry more (a printer that drops trailing zeros "
+            "prints 58 for 58.00000), give --tolerance for the digits they were printed with"
+        )
     distance = None if shown is None else plain_distance(normalised, shown.candidate)
     if accepted is None:
         collected.append(_far_note(sigma, best, rounding, distance))

@@ -72,6 +72,9 @@ class Rounding:
     ``"input"`` (from the printed digits) or ``"given"``; ``digits`` is the largest number of
     significant digits printed (``None`` when the tolerance was given). An infinite
     ``tolerance`` means the digits could not be read in floating point (a literal beyond it).
+    ``read_from`` is the one literal whose digits every other number was read to, when a single
+    decimal set them beside integers (``-57.999`` among ``1``, ``58``, ``441``): a printer that
+    drops trailing zeros (``%g``) may have printed them with more.
     """
 
     bounds: dict[Monomial, float]
@@ -80,6 +83,7 @@ class Rounding:
     tolerance: float
     source: str
     digits: int | None
+    read_from: str | None = None
 
     def bound(self, monomial: Monomial) -> float:
         """``e_α`` for the monomial ``α``."""
@@ -115,7 +119,11 @@ def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
     bounds = {m: max(e, floor) for m, e in errors.items()}
     printed = [e for e in errors.values() if e > 0.0]
     default = max(min(printed, default=floor), floor)
-    return Rounding(bounds, default, degree, _norm(bounds.values()) / _norm(coefficients.values()), "input", digits)
+    widest = [node for node in decimals if _significant_digits(text, node) == digits]
+    alone = len(widest) == 1 and not fixed_point and len(literals) > len(decimals)
+    tolerance = _norm(bounds.values()) / _norm(coefficients.values())
+    read_from = text[widest[0].start : widest[0].end] if alone else None
+    return Rounding(bounds, default, degree, tolerance, "input", digits, read_from)
 
 
 def given_rounding(tolerance: float, coefficients: FloatPoly) -> Rounding:
