@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from math import comb
 from typing import TypeAlias
 
@@ -83,7 +83,7 @@ class Rounding:
     tolerance: float
     source: str
     digits: int | None
-    read_from: str | None = None
+    read_from: str | None = field(default=None, compare=False)  # how it is printed, not a bound
 
     def bound(self, monomial: Monomial) -> float:
         """``e_α`` for the monomial ``α``."""
