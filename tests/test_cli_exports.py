@@ -604,3 +604,13 @@ def test_a_step_file_reads_back_as_the_part_it_was_written_of(tmp_path: Path) ->
     wrote = next(line for line in done.stderr.splitlines() if "part.step" in line)
     assert "faces written as B-splines" in wrote, done.stderr
     assert "faces written as B-splines" not in next(line for line in done.stderr.splitlines() if "part.brep" in line)
+
+
+def test_sorgui_s_own_text_report_given_back_says_what_it_is(tmp_path: Path) -> None:
+    """``sorgui analyze -f r.txt`` of sorgui's own text report (and File → Open in the window)
+    said "the components of a triple have no labels 'x =', 'y =', 'z ='"."""
+    report = tmp_path / "r.txt"
+    assert sorgui("analyze", "x^2+y^2-z", "-o", str(report)).returncode == 0
+    done = sorgui("analyze", "-f", str(report))
+    assert done.returncode == 2
+    assert "this is sorgui's text report, which is not read back: open its JSON report" in done.stderr

@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any
 
 from .algebra.linalg import Vector
 from .errors import AnalysisError, TimeLimitReached
+from .limits import refuse_text_report
 from .parsing import has_decimals, is_parametrization, parse_polynomial
 from .recognition.symmetry import NEAREST_CANAL_NOTE, PLANE, SPHERE, revolution_canal
 from .results import Analysis, Approximation, Canal, Conical
@@ -97,6 +98,7 @@ def analyze(
     """
     clock = StageClock(progress, cancel, partial, stage_done, parsed)
     start = time.monotonic()
+    refuse_text_report(text)
     if is_parametrization(text):  # x = X(s, t), y = …, z = …: docs/math.md §13
         from .parametric.pipeline import analyze_parametrization
         from .parametric_parsing import parse_parametrization

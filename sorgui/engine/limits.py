@@ -65,6 +65,25 @@ _OPENING = re.compile(r"\s*(\$\$?|\\\[|\\\()")
 _CLOSING = {"$": "$", "$$": "$$", "\\[": "\\]", "\\(": "\\)"}
 
 
+_TEXT_REPORT = re.compile(r"\s*+f = [^\n]*+\r?\nfield K = ")
+"""The first two lines of sorgui's own text report (``NAME.txt``, the terminal's answer)."""
+
+
+def refuse_text_report(text: str) -> None:
+    """A :class:`ParseError` for sorgui's own text report, which is no equation: opened or pasted
+    back it said "the components of a triple have no labels" (its lines hold commas)."""
+    if _TEXT_REPORT.match(text):
+        from .errors import ParseError
+
+        first = text.find("\n")
+        raise ParseError(
+            "this is sorgui's text report, which is not read back: open its JSON report "
+            "(sorgui open REPORT.json, or File → Open in the window), or take the equation of its first line",
+            0,
+            first if first > 0 else len(text),
+        )
+
+
 def without_comments(text: str) -> str:
     """``text`` with each comment (:data:`COMMENT`) replaced by spaces: the same positions."""
     if "#" not in text and "//" not in text and "%" not in text:

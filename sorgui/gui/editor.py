@@ -28,7 +28,7 @@ from PySide6.QtGui import (
 from PySide6.QtWidgets import QLabel, QPlainTextEdit, QTextEdit, QVBoxLayout, QWidget
 
 from sorgui.engine.errors import ParseError
-from sorgui.engine.limits import COMMENT
+from sorgui.engine.limits import COMMENT, refuse_text_report
 from sorgui.engine.parametric_parsing import ParsedParametrization, parse_input
 from sorgui.engine.parsing import is_parametrization, parse_rational
 from sorgui.gui.wording import short_numbers
@@ -55,6 +55,7 @@ def summary(text: str) -> str:
     An equation over ``QQ`` is read by flint alone (:func:`~sorgui.engine.parsing.parse_rational`):
     the window checks its first equation before the first verdict, and sympy, which the general
     reader needs for square roots and parametrizations, is then not loaded on the GUI thread."""
+    refuse_text_report(text)
     if not is_parametrization(text):
         rational = parse_rational(text)
         if rational is not None:
