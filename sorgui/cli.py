@@ -962,18 +962,58 @@ WINDOWLESS_PLATFORMS = ("offscreen", "minimal", "minimalegl", "vnc")
 """Qt platforms that give no OpenGL window: the 3D view (a ``QOpenGLWidget``) would crash there."""
 
 
-def display_problem(environ: Mapping[str, str], platform: str) -> str | None:
+def display_problem(
+    environ: Mapping[str, str], platform: str, opens: Callable[[str], bool] | None = None
+) -> str | None:
     """Why the window cannot be shown here (in words), or ``None``: Qt set to a platform without
     OpenGL windows (``QT_QPA_PLATFORM=offscreen``), or on Linux no X display (sorgui's window
-    renders through X, also under Wayland), where Qt would abort with a core dump."""
+    renders through X, also under Wayland), or one that cannot be opened (``opens``: by default
+    :func:`x_display_opens`), where Qt would abort with a core dump."""
+    opens = x_display_opens if opens is None else opens
     chosen = environ.get("QT_QPA_PLATFORM", "")
     name = chosen.split(":", 1)[0].strip().lower()
     advice = "use 'sorgui analyze' or 'sorgui open REPORT.json -o FILE' on the terminal"
     if name in WINDOWLESS_PLATFORMS:
         return f"QT_QPA_PLATFORM={chosen} has none for its 3D view; unset it, or {advice}"
-    if platform.startswith("linux") and name in ("", "xcb") and not environ.get("DISPLAY"):
-        return f"DISPLAY is not set; run it in a desktop session, or {advice}"
+    if platform.startswith("linux") and name in ("", "xcb"):
+        display = environ.get("DISPLAY")
+        if not display:
+            return f"DISPLAY is not set; run it in a desktop session, or {advice}"
+        if not opens(display):
+            return (
+                f"the X display DISPLAY={display} cannot be opened (no X server there, or one this user may not "
+                f"use: an ssh session without X forwarding); run it in a desktop session, or {advice}"
+            )
     return None
+
+
+def x_display_opens(display: str) -> bool:
+    """Whether a connection to the X display ``display`` can be made, asked of libxcb, which Qt's
+    X platform loads too (``True`` when libxcb cannot be loaded: Qt then says why). Qt aborts the
+    process with a core dump on a display it cannot open (``DISPLAY=:99``, exit 134)."""
+    import ctypes
+
+    try:
+        xcb = ctypes.CDLL("libxcb.so.1")
+    except OSError:
+        return True
+    xcb.xcb_connect.restype = ctypes.c_void_p
+    xcb.xcb_connect.argtypes = [ctypes.c_char_p, ctypes.c_void_p]
+    xcb.xcb_connection_has_error.argtypes = [ctypes.c_void_p]
+    xcb.xcb_disconnect.argtypes = [ctypes.c_void_p]
+    saved = os.dup(2)  # libxcb prints its reason ("Authorization required, ...") on standard error
+    try:
+        with open(os.devnull, "wb") as null:
+            os.dup2(null.fileno(), 2)
+            connection = xcb.xcb_connect(display.encode(errors="replace"), None)
+    finally:
+        os.dup2(saved, 2)
+        os.close(saved)
+    try:
+        return bool(connection) and xcb.xcb_connection_has_error(connection) == 0
+    finally:
+        if connection:
+            xcb.xcb_disconnect(connection)
 
 
 def open_parser() -> argparse.ArgumentParser:

@@ -44,7 +44,12 @@ def test_version_and_help_are_answered_at_once() -> None:
 
 @pytest.mark.parametrize(
     "environment",
-    [{"QT_QPA_PLATFORM": "offscreen"}, {"QT_QPA_PLATFORM": "minimal"}, {"DISPLAY": None}],
+    [
+        {"QT_QPA_PLATFORM": "offscreen"},
+        {"QT_QPA_PLATFORM": "minimal"},
+        {"DISPLAY": None},
+        {"DISPLAY": ":98765", "QT_QPA_PLATFORM": None},  # no X server there: Qt aborted, exit 134
+    ],
 )
 def test_the_window_without_a_display_is_one_line(torus_report: Path, environment: dict[str, str | None]) -> None:
     """Qt offscreen has no OpenGL window for the 3D view, and Qt without X aborts: said, exit 1."""
@@ -55,7 +60,9 @@ def test_the_window_without_a_display_is_one_line(torus_report: Path, environmen
 
 
 def test_display_problem_names_what_is_missing() -> None:
-    assert cli.display_problem({"DISPLAY": ":0"}, "linux") is None
+    assert cli.display_problem({"DISPLAY": ":0"}, "linux", opens=lambda display: True) is None
+    refused = cli.display_problem({"DISPLAY": ":99"}, "linux", opens=lambda display: False)
+    assert refused is not None and "DISPLAY=:99 cannot be opened" in refused  # Qt aborted there: exit 134
     assert cli.display_problem({"QT_QPA_PLATFORM": "wayland", "WAYLAND_DISPLAY": "w"}, "linux") is None
     assert "DISPLAY is not set" in cli.display_problem({}, "linux")
     assert "offscreen" in cli.display_problem({"QT_QPA_PLATFORM": "offscreen", "DISPLAY": ":0"}, "linux")
