@@ -61,8 +61,10 @@ COMMENT = r"(?:(?<=\s)|(?<![\s\S]))(?:#|//|%)[^\n]*+"
 """A comment to the end of its line: Python's and Maple's ``#``, Singular's ``//``, MATLAB's and
 LaTeX's ``%``, at the start of a line or after a space (``x%2`` is no comment, but an error)."""
 _COMMENT = re.compile(COMMENT)
-_OPENING = re.compile(r"\s*(\$\$?|\\\[|\\\()")
+_OPENING = re.compile(r"\s*(\$\$?|\\\[|\\\(|\\begin\{(?:multline|equation|align|gather|displaymath)\*?\})")
 _CLOSING = {"$": "$", "$$": "$$", "\\[": "\\]", "\\(": "\\)"}
+"""Each math delimiter's closing one; an environment ``\\begin{multline*}`` (sorgui's LaTeX
+files set a long equation in one) closes with its ``\\end``."""
 
 
 _TEXT_REPORT = re.compile(r"\s*+f = [^\n]*+\r?\nfield K = ")
@@ -94,7 +96,8 @@ def without_comments(text: str) -> str:
 def statement_span(text: str) -> tuple[int, int]:
     """The characters ``start:end`` of ``text`` that hold the equation or the parametrization a
     user pasted as a statement of another program: without comments around it, LaTeX's math
-    delimiters (``$ $``, ``$$ $$``, ``\\[ \\]``, ``\\( \\)``) and a final ``;`` or ``:``
+    delimiters (``$ $``, ``$$ $$``, ``\\[ \\]``, ``\\( \\)``, a ``multline*``, ``equation``,
+    ``align`` or ``gather`` environment) and a final ``;`` or ``:``
     (Maple, Singular, Mathematica, MATLAB) or ``,`` (an item of a list). The readers read only
     these characters, so every position they report is one of ``text``."""
     text = without_comments(text)
@@ -102,7 +105,8 @@ def statement_span(text: str) -> tuple[int, int]:
     start = len(text) - len(text.lstrip()) if text[:1].isspace() else 0
     opening = _OPENING.match(text)
     if opening is not None:
-        closing = _CLOSING[opening.group(1)]
+        delimiter = opening.group(1)
+        closing = _CLOSING.get(delimiter) or delimiter.replace("\\begin", "\\end", 1)
         if end - len(closing) >= opening.end() and text.endswith(closing, opening.end(), end):
             start, end = opening.end(), _unterminated(text, opening.end(), end - len(closing))
     return start, end

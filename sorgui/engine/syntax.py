@@ -84,7 +84,8 @@ _OPERATORS = {
 }
 _SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻", "0123456789-")
 TOKEN = re.compile(
-    rf"(?P<space>[\s\ufeff\u200b-\u200d\u2060]+|{COMMENT}|\\(?:(?:left|right|quad|qquad)(?![A-Za-z])|[,;:! \\]))"
+    rf"(?P<space>[\s\ufeff\u200b-\u200d\u2060]+|{COMMENT}"
+    r"|\\(?:(?:left|right|quad|qquad|[Bb]igg?[lr]?)(?![A-Za-z])|[,;:! \\]))"
     r"|(?P<num>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:(?:[eEdD]|\*\^)[-+−]?[0-9]+)?)"
     r"|(?P<name>[A-Za-z]+)"
     r"|(?P<sup>⁻?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)"
@@ -167,7 +168,7 @@ def token_stream(
     Only :func:`.limits.equation_span` is read: a label (``f(x,y,z) = g`` is the equation
     ``g = 0``), a final ``;`` and LaTeX's ``$ $`` are skipped, and comments (``#``, ``//``,
     ``%`` to the end of the line) are spaces. ``{ }`` and ``[ ]`` are parentheses,
-    ``\\cdot`` and ``\\times`` are ``*``, ``\\sqrt`` is ``sqrt``, and ``\\left``, ``\\right``,
+    ``\\cdot`` and ``\\times`` are ``*``, ``\\sqrt`` is ``sqrt``, and ``\\left``, ``\\right``, ``\\bigl``,
     LaTeX spacing and line breaks (``\\\\``) are ignored; Mathematica's ``==`` is ``=``. Digits
     written right after x, y or z are its exponent, as Singular prints them (``x2y`` is
     ``x^2*y``); after a parameter they are refused (``t1`` is no power of ``t``).

@@ -266,3 +266,19 @@ def test_long_runs_of_white_space_are_read_once(head: str) -> None:
             parse_input(head + " " * 200_000 + tail)
         except ParseError:
             pass
+
+
+def test_a_long_equation_of_sorgui_s_latex_file_pastes_back() -> None:
+    """sorgui's .tex sets a long equation in a ``multline*`` environment and a quotient's
+    numerator in ``\\bigl( … \\bigr)``: pasted back, "unexpected character '\\'"."""
+    pasted = "\n".join(
+        [
+            r"\begin{multline*}",
+            r"f = \frac{1}{125 s^{2} + 5}\bigl( x^{4} + 2 x^{2} y^{2} + 2 x^{2} z^{2} - 10 x^{2} + y^{4} \\",
+            r"\quad + 2 y^{2} z^{2} - 10 y^{2} + z^{4} + 6 z^{2} + 9\bigr)",
+            r"\end{multline*}",
+        ]
+    ).replace("125 s^{2} + 5", "4")
+    torus = parse_polynomial("((x^2+y^2+z^2+3)^2-16*(x^2+y^2))/4").polynomial
+    assert parse_polynomial(pasted).polynomial == torus
+    assert parse_polynomial(r"\Bigl(x + 1\Bigr)^{2} - y").polynomial == parse_polynomial("(x+1)^2 - y").polynomial
