@@ -465,6 +465,14 @@ def _discover(text: str, spans: Sequence[tuple[int, int]]) -> tuple[str, str]:
         raise ParseError(
             f"the components use one parameter ({names[0]}): the image is a curve, not a surface", 0, len(text)
         )
+    if "I" in names and len(names) == 3:  # Maple's and Mathematica's imaginary unit
+        at = next(p for w, p in words if w == "I")
+        raise ParseError(
+            "'I' is taken for a third parameter: a map with complex coefficients (Maple's and Mathematica's I) "
+            "is not read, only real ones",
+            at,
+            at + 1,
+        )
     raise ParseError(
         f"the components use {len(names)} parameters ({', '.join(names)}): a surface is given by two",
         *_last_new(words, found),

@@ -366,3 +366,10 @@ def test_a_module_s_name_before_a_function_is_read_as_python_means_it() -> None:
     with pytest.raises(ParseError, match="'exp' is not allowed") as refused:
         parse_parametrization("lambda u, v: (u*np.cos(v), u*np.sin(v), np.exp(u))")
     assert refused.value.position == "lambda u, v: (u*np.cos(v), u*np.sin(v), np.exp(u))".index("exp")
+
+
+def test_a_complex_map_s_imaginary_unit_is_said_to_be_one() -> None:
+    """A complex parameterization of sorgui's Maple file pasted back said "the components use 3
+    parameters (I, s, t)"."""
+    with pytest.raises(ParseError, match="'I' is taken for a third parameter: a map with complex coefficients"):
+        parse_parametrization("X1 := [s, I*t, s^2 + t^2];")
