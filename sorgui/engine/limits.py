@@ -18,7 +18,8 @@ MAX_NESTING = 200  # parentheses and '^' nested inside each other
 MAX_EXPONENT = 10_000  # |n| in c^n for a constant c
 MAX_DECIMAL_EXPONENT = 1_000  # |e| in 1.5e-3
 MAX_DIGITS = 20_000  # digits of one number literal
-MAX_BITS = 66_439  # size of any constant (numerator or denominator): 20,000 digits
+MAX_BITS = 66_500  # size of any constant (numerator or denominator): 20,000 digits (66,439 bits) and the few
+# bits a bound of a product of sums adds: (10^20000 - 1)·z·(x + 1) has no larger coefficient
 # Python refuses to print integers of more than 4,300 digits by default; the engine prints the
 # numbers it derives from the input (products of a few coefficients), so every process of sorgui
 # raises that limit to MAX_PRINTED_DIGITS (sorgui/__init__.py), which the limits above keep at

@@ -597,7 +597,7 @@ class Evaluator:
             case Num():
                 return 0, _bits(node.value), 1
             case Var():
-                return 1, 1, 1
+                return 1, 0, 1  # its coefficient 1 adds no bits to a product (a·z has the bits of a)
             case Neg():
                 return self._bounds(node.arg)
             case Reciprocal():
@@ -610,7 +610,7 @@ class Evaluator:
                 for term in node.terms:
                     d, b, t = self._bounds(term)
                     degree, bits, terms = max(degree, d), max(bits, b), terms + t
-                return degree, bits + len(node.terms).bit_length(), min(terms, _monomials(degree))
+                return degree, bits + (len(node.terms) - 1).bit_length(), min(terms, _monomials(degree))
             case Product():
                 degree = bits = 0
                 terms = 1

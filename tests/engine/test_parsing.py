@@ -703,3 +703,13 @@ def test_a_power_that_would_expand_beyond_memory_is_refused_before_it_is_expande
         parse_polynomial(big)
     assert time.monotonic() - start < 1.0
     assert len(parse_polynomial("(x+y+z+1)^20").polynomial.terms()) == 1771  # dense, small numbers: read
+
+
+def test_a_number_of_20000_digits_times_a_variable_is_read() -> None:
+    """The README reads numbers of up to 20,000 digits: 10^20000 − 1 times z was refused ("needs
+    up to 66,440 bits, the limit is 66,439"), its variable counted a bit of its own."""
+    nines = "9" * 20_000
+    for text in (f"x^2 + y^2 - {nines}*z", f"x^2 + y^2 - {nines}*z*(x + 1)"):
+        assert max(abs(int(c)) for c in parse_polynomial(text).polynomial.coeffs()) == int(nines)
+    with pytest.raises(ParseError, match="more than 20,000 digits"):
+        parse_polynomial(f"x^2 + y^2 - {nines}9*z")
