@@ -258,7 +258,8 @@ def analyze_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--each-line",
         action="store_true",
-        help="analyse every line of the input (-f FILE or '-') on its own and print JSON Lines; '#' starts a comment",
+        help="analyse every line of the input (-f FILE or '-') on its own and print JSON Lines; "
+        "'#', '//' and '%%' start a comment",
     )
     parser.add_argument(
         "--jobs", type=positive_int, default=None, help="with --each-line: the number of worker processes (default 1)"
@@ -909,7 +910,8 @@ def gui_main(argv: Sequence[str]) -> int:
     parser = _Parser(
         prog="sorgui",
         description="sorgui: surfaces of revolution, exactly.",
-        epilog="Use 'sorgui analyze --help' for the command line.",
+        epilog="Use 'sorgui analyze --help' for the command line, 'sorgui open --help' for a saved report "
+        "(shown in the window, or its files written with -o).",
     )
     parser.add_argument("file", nargs="?", help="an equation file to open")
     parser.add_argument("--version", action="version", version=f"sorgui {__version__}")

@@ -68,7 +68,8 @@ sorgui decides <b>from the map itself, exactly</b>, whether its image is a surfa
 (every normal line meets the axis), a cone or a cylinder, then finds its implicit equation and
 analyses that as it would a typed one; the given map is the first of the parameterizations shown. A
 map printed with decimals is also asked whether it is, within its rounding, a surface of
-revolution. A curve or a point, a constant component, a function such as sin, one or three
+revolution. A parameter written only in cos(k·u) and sin(k·u) is an angle, read exactly in
+tan(u/2). A curve or a point, a constant component, a function such as exp or tan, one or three
 parameters and a zero denominator are refused in one line (docs/math.md §13).</p>
 """
 
