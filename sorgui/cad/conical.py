@@ -97,7 +97,7 @@ def _lines(param: Parametrization) -> tuple[sympy.Matrix, sympy.Matrix, sympy.Sy
     """``A(s)`` and ``B(s)`` of ``X(s, t) = A(s) + t·B(s)``, if ``X`` has that form."""
     s, t = (sympy.Symbol(name) for name in param.parameters)
     x = sympy.Matrix([read_expression(c) for c in param.coordinates])
-    start = x.subs(t, 0)
+    start = x.subs(t, 0).applyfunc(sympy.cancel)  # a cone's apex: (3s² + 12)/(2s² + 8) is 3/2
     step = (x.subs(t, 1) - start).applyfunc(sympy.cancel)
     if any(sympy.cancel(e) != 0 for e in x - start - t * step):
         return None

@@ -293,6 +293,7 @@ def test_rounded_input_gets_the_nearest_exact_surfaces_part(tmp_path: Path, name
     [
         ("9*(2*x-y)^2+4*(2*x+4*y-5*z-3)^2-180", "SurfaceOfExtrusion", 1),
         ("x^2-y^2-z^2+x*y", "BSplineSurface", 2),
+        ("(x-3/2)^2+4*y^2-z^2", "BSplineSurface", 2),  # an apex off the origin: was refused
     ],
 )
 def test_cylinders_and_cones_over_a_curve_are_their_native_surfaces(tmp_path: Path, text: str, kind: str, shells: int):
