@@ -452,3 +452,22 @@ def test_a_sphere_on_the_balls_own_sphere_is_written_whole(tmp_path: Path, centr
     props = GProp_GProps()
     BRepGProp.SurfaceProperties_s(shape, props)
     assert props.Mass() == pytest.approx(16 * np.pi, rel=1e-6)
+
+
+def test_a_large_bounded_part_is_drawn_whole(tmp_path: Path) -> None:
+    """A torus of radii 300,000 and 100,000 (300 m in mm) centred (1.5e5, −2e5, 7.5e4): its
+    ball was capped at a radius of 10,000 and held no point of it."""
+    import sympy
+
+    X, Y, Z = sympy.symbols("x y z")
+    text = str(
+        sympy.expand(
+            ((X - 150_000) ** 2 + (Y + 200_000) ** 2 + (Z - 75_000) ** 2 + 300_000**2 - 100_000**2) ** 2
+            - 4 * 300_000**2 * ((X - 150_000) ** 2 + (Y + 200_000) ** 2)
+        )
+    )
+    analysis = analyze(text)
+    scene = build_scene(analysis)
+    assert scene.region.radius > 400_000
+    path, holds = export_file(analysis, tmp_path / "big.step", scene=scene)
+    assert "an analytic surface, 1 face" in holds and readback.topology(read_shape(path)).valid

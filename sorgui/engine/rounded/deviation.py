@@ -27,6 +27,7 @@ SMALLEST_RADIUS = 1.0e-6
 ``R = 0.03``) was drawn a speck in a ball of radius 2, and one of 0.4 mm not at all, when every
 ball's radius was at least :data:`MIN_RADIUS`."""
 MAX_RADIUS = 1.0e4
+"""The largest ball drawn for an unbounded surface (its far branches dropped, :func:`view_ball`)."""
 NO_POINTS_RADIUS = 2.0
 """The ball's radius when no line through the centre meets the surface away from it (a cone
 about its apex, a plane through the centre)."""
@@ -96,7 +97,8 @@ def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = N
     through ``center``; an unbounded one from its real points on the lines of
     :func:`probe_directions`, those farther than ``SPREAD`` times the median distance dropped
     (far branches). Centred on the middle of the points kept (along the axis, if any), radius
-    ``MARGIN`` times the farthest, clamped to ``[MIN_RADIUS, MAX_RADIUS]``."""
+    ``MARGIN`` times the farthest, at least :func:`natural_length`, and for an unbounded surface at
+    most ``MAX_RADIUS`` (a sphere of radius 30,000 was looked for in a ball of radius 10,000)."""
     directions = extent_directions(axis)
     bounded = is_bounded(array, directions)
     if not bounded:
@@ -116,7 +118,8 @@ def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = N
     else:
         middle = 0.5 * (core.min(axis=0) + core.max(axis=0))
     radius = MARGIN * float(np.linalg.norm(core - middle, axis=1).max())
-    return middle, float(np.clip(radius, natural_length(array, center), MAX_RADIUS))
+    largest = math.inf if bounded else MAX_RADIUS  # a bounded part whole, however large (30 m in mm)
+    return middle, float(np.clip(radius, natural_length(array, center), largest))
 
 
 TRANSLATION_NOISE = 1e-12
