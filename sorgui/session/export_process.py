@@ -261,7 +261,7 @@ class ExportProcess:
             remove_leftovers(folder, pid)
         return [
             *(
-                FileFailed(t.path, f"cannot write {t.path}: {reason} (an old file is left as it was)")
+                FileFailed(t.path, f"cannot write {t.path}: {reason}" + _kept(Path(t.path)))
                 for t in request.targets
                 if t.path not in self.answered
             ),
@@ -303,3 +303,9 @@ def export_supervised(
         return messages
     finally:
         worker.close()
+
+
+def _kept(path: Path) -> str:
+    """What became of the file an export did not write: its old one stays, if there was one (a new
+    file's refusal said "an old file is left as it was" too)."""
+    return " (the old file is left as it was)" if path.exists() else " (no file was written)"
