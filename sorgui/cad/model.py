@@ -140,6 +140,7 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
         return _capped(model, exact_scene, analysis.recognition.polynomial) if cap else model
     size = scene.region.radius
     check_size(size)
+    check_size(_drawn_extent(scene))
     own = _of_its_zero_set(analysis)
     faces = _surface_faces(own, scene, tolerance, precision(size))
     try:
@@ -152,6 +153,16 @@ def surface_model(analysis: Analysis, scene: Scene, tolerance: float | None = No
         faces = _surface_faces(own, scene, tolerance, precision(size), analytic=False)
         model = finished(faces, scene, analysis.squarefree)
     return _capped(model, scene, analysis.recognition.polynomial) if cap else model
+
+
+def _drawn_extent(scene: Scene) -> float:
+    """The diagonal of the box around the drawn surface's points (the ball's radius when none
+    is drawn): a torus of R = 3e-6 in its ball of radius 1.4e-4 passed the size check of the
+    ball, and its fitted profile was then said to need "a larger fit tolerance"."""
+    points = scene.surface.points
+    if len(points) == 0:
+        return scene.region.radius
+    return float(np.linalg.norm(points.max(axis=0) - points.min(axis=0)))
 
 
 def _of_its_zero_set(analysis: Analysis) -> Analysis:

@@ -471,3 +471,14 @@ def test_a_large_bounded_part_is_drawn_whole(tmp_path: Path) -> None:
     assert scene.region.radius > 400_000
     path, holds = export_file(analysis, tmp_path / "big.step", scene=scene)
     assert "an analytic surface, 1 face" in holds and readback.topology(read_shape(path)).valid
+
+
+def test_a_part_too_small_for_open_cascade_says_so_in_its_default_ball(tmp_path: Path) -> None:
+    """A torus of radii 3e-6 and 1e-6 in the ball chosen for it (30 times its size): the fitted
+    profile was said to need "a larger fit tolerance"; with --region, that the part is too small
+    for Open CASCADE's precision. Both say the latter now."""
+    from sorgui.cad.geometry import CadGeometryError
+
+    analysis = analyze("(x^2+y^2+z^2+8e-12)^2-36e-12*(x^2+y^2)")
+    with pytest.raises((CadGeometryError, ValueError), match="too small for Open CASCADE's precision"):
+        export_file(analysis, tmp_path / "tiny.step", scene=build_scene(analysis))
