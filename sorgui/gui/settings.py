@@ -192,6 +192,15 @@ class Settings(QObject):
         self._store.sync()
 
 
+def recent_label(name: str, files: list[str]) -> str:
+    """The file's name in the recent files menu, with its folder's name when another file of the
+    list has the same name (two ``eq.sor`` read alike, and a menu shows no tool tip)."""
+    path = Path(name)
+    if sum(Path(other).name == path.name for other in files) < 2:
+        return path.name
+    return f"{path.name}  ({path.parent.name or path.parent})"
+
+
 class RecentFilesMenu(QMenu):
     """File ▸ Open Recent: one action per remembered file, rebuilt when the list changes."""
 
@@ -207,7 +216,8 @@ class RecentFilesMenu(QMenu):
         self.clear()
         files = self._settings.recent_files
         for index, name in enumerate(files):
-            label = f"&{index + 1}  {Path(name).name}" if index < 9 else Path(name).name
+            shown = recent_label(name, files)
+            label = f"&{index + 1}  {shown}" if index < 9 else shown
             action = QAction(label, self)
             action.setToolTip(name)
             action.setData(name)

@@ -122,3 +122,12 @@ def test_the_tolerance_of_the_window_reaches_the_engine() -> None:
     assert [parse_tolerance(t) for t in ("auto", "", "1e-8", "2", "x")] == [None, None, 1e-8, False, False]
     final = run_job(JobRequest("x^2 + y^2 - z", tolerance=1e-8, resolution=20))
     assert isinstance(final, Finished) and final.result.analysis.approximate.tolerance == 1e-8
+
+
+def test_two_recent_files_of_one_name_show_their_folders() -> None:
+    """Two ``eq.sor`` in different folders both read "eq.sor" in File ▸ Open Recent (a menu shows
+    no tool tip): each now names its folder."""
+    from sorgui.gui.settings import recent_label
+
+    files = ["/work/a/eq.sor", "/work/b/eq.sor", "/work/c/torus.sor"]
+    assert [recent_label(name, files) for name in files] == ["eq.sor  (a)", "eq.sor  (b)", "torus.sor"]
