@@ -52,14 +52,14 @@ class AxisTest:
         """The normal meets or misses the axis (the verb through ``mark``, the window's bold), and
         how far apart they are where that is known."""
         verdict = f"{mark('meets' if self.meets else 'misses')} the axis"
-        if self.meets and self.sine < NEARLY_PARALLEL:
-            return f"normal {verdict} (nearly parallel to it)"
+        if self.meets and self.sine < NEARLY_PARALLEL and self.distance != 0:
+            return f"normal {verdict} (nearly parallel)"
         return f"normal {verdict} (distance {self.distance:.3g})"
 
 
 NEARLY_PARALLEL = 1e-2
 """Below this ``sin(angle)`` a normal that meets the axis is said to be nearly parallel to it,
-and no distance is printed."""
+and no distance is printed (but an exact 0, the top of an exact torus's tube)."""
 
 
 @dataclass(frozen=True, eq=False)

@@ -118,10 +118,12 @@ def test_a_normal_nearly_parallel_to_the_axis_is_said_to_meet_it_without_a_noisy
     """At a torus's tube top the normal is nearly parallel to the axis: the distance between the
     two lines is the skew divided by a sine near 0, noise (0.0586 on a rounded torus, where other
     points gave 1e-9); the words say the normal meets the axis, nearly parallel to it."""
-    tilted = np.array([1e-4, 0.0, 1.0])
+    tilted = np.array([1e-4, 3e-12, 1.0])  # the normal of a rounded torus at its tube's top
     test = normal_meets_axis((2.0, 0.0, 1.0), tilted, (0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
-    assert test.meets and test.sine < 1e-3
-    assert test.words() == "normal meets the axis (nearly parallel to it)"
-    assert test.words(lambda verb: f"<b>{verb}</b>") == "normal <b>meets</b> the axis (nearly parallel to it)"
+    assert test.meets and test.sine < 1e-3 and test.distance > 1e-9
+    assert test.words() == "normal meets the axis (nearly parallel)"
+    assert test.words(lambda verb: f"<b>{verb}</b>") == "normal <b>meets</b> the axis (nearly parallel)"
+    exact = normal_meets_axis((2.0, 0.0, 1.0), (0.0, 0.0, 1.0), (0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
+    assert exact.words() == "normal meets the axis (distance 0)"  # an exact torus's: parallel, at infinity
     skew = normal_meets_axis((0, 0, 1), (1, 0, 0), (0, 0, 0), (0, 1, 0))
     assert skew.words() == "normal misses the axis (distance 1)"
