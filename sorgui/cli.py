@@ -382,7 +382,9 @@ def read_input(args: argparse.Namespace) -> tuple[str, Path | None]:
         )
         return example_text(DEFAULT_EXAMPLE), None
     if args.expression == "-":
-        stdin = sys.stdin.buffer
+        stdin = getattr(sys.stdin, "buffer", None)
+        if stdin is None:  # a text stream in its place (a caller of main() in the same process)
+            return _bounded(sys.stdin.read(MAX_INPUT + 1), "standard input"), None
         text = _read_within(lambda: nullcontext(stdin), "standard input", args.timeout)
         return _bounded(text, "standard input"), None
     return _bounded(args.expression, "the expression"), None
