@@ -74,7 +74,7 @@ def view_region(terms: Terms, center: np.ndarray, axis: np.ndarray | None = None
     :func:`~sorgui.engine.rounded.deviation.view_ball` (real points on a star of lines, far branches
     dropped), the same ball in which a rounded input's deviation is measured (docs/math.md §8.6)."""
     center = np.asarray(center, dtype=np.float64)
-    middle, radius = view_ball(_dense(terms), center, axis)
+    middle, radius = view_ball(_dense(terms), center, axis, whole=True)
     if np.linalg.norm(middle - center) <= SAME_CENTRE * max(radius, float(np.linalg.norm(center))):
         middle = center  # the exact centre, not one 4e-16 off it (a sphere's CAD part was cut in two)
     return _ball(middle, radius)
@@ -106,7 +106,7 @@ def with_bounded_factors(
     for polynomial in factors:
         array = _dense(polynomial_terms(polynomial))
         if array.shape[0] > 1 and is_bounded(array, extent_directions(axis)):
-            middle, radius = view_ball(array, np.asarray(center, dtype=np.float64), axis)
+            middle, radius = view_ball(array, np.asarray(center, dtype=np.float64), axis, whole=True)
             balls.append(_ball(middle, radius))
     return _holding(balls, axis)
 

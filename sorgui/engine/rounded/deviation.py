@@ -91,14 +91,18 @@ def is_bounded(array: FloatArray, directions: list[FloatArray]) -> bool:
     return largest > 0 and bool(np.all(values > 1e-9 * largest) or np.all(values < -1e-9 * largest))
 
 
-def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = None) -> tuple[FloatArray, float]:
+def view_ball(
+    array: FloatArray, center: FloatArray, axis: FloatArray | None = None, *, whole: bool = False
+) -> tuple[FloatArray, float]:
     """The ball that shows the real surface ``f = 0`` around ``center``: a bounded surface
     (:func:`is_bounded`) whole, from its real points on the lines of :func:`extent_directions`
     through ``center``; an unbounded one from its real points on the lines of
     :func:`probe_directions`, those farther than ``SPREAD`` times the median distance dropped
     (far branches). Centred on the middle of the points kept (along the axis, if any), radius
-    ``MARGIN`` times the farthest, at least :func:`natural_length`, and for an unbounded surface at
-    most ``MAX_RADIUS`` (a sphere of radius 30,000 was looked for in a ball of radius 10,000)."""
+    ``MARGIN`` times the farthest, at least :func:`natural_length`, at most ``MAX_RADIUS``; with
+    ``whole`` (the drawn scene's ball) a bounded surface's is not capped (a sphere of radius 30,000
+    was looked for in a ball of radius 10,000). The deviation of two zero sets keeps the cap: the
+    candidates' balls decide which nearest surface is chosen."""
     directions = extent_directions(axis)
     bounded = is_bounded(array, directions)
     if not bounded:
@@ -118,7 +122,7 @@ def view_ball(array: FloatArray, center: FloatArray, axis: FloatArray | None = N
     else:
         middle = 0.5 * (core.min(axis=0) + core.max(axis=0))
     radius = MARGIN * float(np.linalg.norm(core - middle, axis=1).max())
-    largest = math.inf if bounded else MAX_RADIUS  # a bounded part whole, however large (30 m in mm)
+    largest = math.inf if bounded and whole else MAX_RADIUS  # a bounded part whole, however large
     return middle, float(np.clip(radius, natural_length(array, center), largest))
 
 
