@@ -29,7 +29,7 @@ from sympy.polys.domains import QQ
 
 from . import dense
 from .dense import FloatArray
-from .directions import decimal_places, simplest_between, simplest_near
+from .directions import Direction, decimal_places, direction_parts, simplest_between, simplest_near
 from .near_symmetry import Fit, Normalised, invariant_basis
 from .precision import Rounding
 
@@ -383,6 +383,13 @@ def _shortest_decimal(lo: Fraction, hi: Fraction) -> Fraction:
 
 def bits(values: list[Fraction]) -> int:
     return sum(v.numerator.bit_length() + v.denominator.bit_length() for v in values)
+
+
+def direction_bits(a: Direction, c: Sequence[Fraction]) -> int:
+    """The bits of the axis through ``c`` along ``a``: :func:`axis_bits` on a rational direction,
+    else those of the point and of both parts of each coordinate of a quadratic one."""
+    rational = [v for v in a if isinstance(v, Fraction)]
+    return axis_bits(rational, c) if len(rational) == len(a) else bits([*c, *direction_parts(a)])
 
 
 def axis_bits(a: Sequence[Fraction], c: Sequence[Fraction]) -> int:

@@ -39,7 +39,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from flint import fmpq_mpoly
 
-from .coefficients import Typed, axis_bits, bits, scaled_surface, within_scale
+from .coefficients import Typed, bits, direction_bits, scaled_surface, within_scale
 from .cones import DIRECTION_RADII, MAX_RESIDUAL, Build, Check, S, simplest
 from .dense import FloatArray, Monomial
 from .directions import (
@@ -49,7 +49,6 @@ from .directions import (
     Quadratic,
     angles_of,
     decimal_near,
-    direction_parts,
     quadratic_family,
     rational_point,
     rational_sqrt,
@@ -150,7 +149,7 @@ def _cylinder_along(
         checks += tried
         if passed is not None and (best is None or passed[0] < best[0]):
             best = passed
-        if best is not None and (best[0] < RADIUS_WEIGHT * DECIMAL_BITS + _axis_cost(a, c) or checks >= MAX_CHECKS):
+        if best is not None and (best[0] < RADIUS_WEIGHT * DECIMAL_BITS + direction_bits(a, c) or checks >= MAX_CHECKS):
             return best, checks  # a short radius: a finer point has no simpler one
     return best, checks
 
@@ -182,13 +181,6 @@ def _snapped_points(
                 yield c
 
 
-def _axis_cost(a: Direction, c: Vector) -> int:
-    """The bits of the axis through ``c`` along ``a``: :func:`.coefficients.axis_bits` on a
-    rational direction, else the point's and both parts of each coordinate of ``a``."""
-    rational = [v for v in a if isinstance(v, Fraction)]
-    return axis_bits(rational, c) if len(rational) == 3 else bits([*c, *direction_parts(a)])
-
-
 def _radius_about(
     a: Direction,
     c: Vector,
@@ -208,7 +200,7 @@ def _radius_about(
     if found is None:
         return None, checks
     squared, coefficients, surface = found
-    return (radius_cost(squared) + _axis_cost(a, c), coefficients, surface), checks
+    return (radius_cost(squared) + direction_bits(a, c), coefficients, surface), checks
 
 
 def snapped_radius(

@@ -54,10 +54,10 @@ from .coefficients import (
     SNAPPED,
     TORUS_TERMS,
     Typed,
-    axis_bits,
     bits,
     coefficient_candidates,
     decimal_bits,
+    direction_bits,
     matched_scales,
     shape_bits,
     torus_completion,
@@ -678,10 +678,9 @@ def _axis_bits(surface: ExactSurface) -> int:
     point = [Fraction(v) for v in surface.point or ()]
     if direction is None:  # a sphere's centre, as a CAD system prints it; a plane's none
         return sum(decimal_bits(v) for v in point)
-    rational = [Fraction(v) for v in direction if not isinstance(v, Quadratic)]
-    if point and len(rational) == len(direction):
-        return axis_bits(rational, point)
-    return bits([*point, *direction_parts(direction)])
+    if point:
+        return direction_bits(direction, point)
+    return bits(direction_parts(direction))
 
 
 def build(
