@@ -179,11 +179,9 @@ def test_a_loose_tolerance_still_writes_the_whole_profile(tmp_path: Path, analys
     )
 
 
-@pytest.mark.parametrize(
-    "text", ["x^2+y^2+z^2-1e24", "(x^2+y^2+z^2+3*10^18)^2-16*10^18*(x^2+y^2)", "x^2+y^2+z^2-1e-24"]
-)
-def test_an_empty_or_unresolvable_part_is_refused_in_one_sentence(tmp_path: Path, text: str) -> None:
-    analysis = analyze(text)
+def test_an_unresolvable_part_is_refused_in_one_sentence(tmp_path: Path) -> None:
+    """A sphere of radius 1e-12: below what Open CASCADE resolves."""
+    analysis = analyze("x^2+y^2+z^2-1e-24")
     scene = build_scene(analysis)
     with pytest.raises(ValueError) as error:
         export_file(analysis, tmp_path / "part.step", scene=scene)
@@ -482,3 +480,30 @@ def test_a_part_too_small_for_open_cascade_says_so_in_its_default_ball(tmp_path:
     analysis = analyze("(x^2+y^2+z^2+8e-12)^2-36e-12*(x^2+y^2)")
     with pytest.raises((CadGeometryError, ValueError), match="too small for Open CASCADE's precision"):
         export_file(analysis, tmp_path / "tiny.step", scene=build_scene(analysis))
+
+
+@pytest.mark.parametrize(
+    ("text", "area"),
+    [
+        ("x^2 + y^2 + z^2 - 9000000000000", 4 * np.pi * 9e12),
+        ("x^2 + y^2 + z^2 - 3000000*x + 4000000*y - 1500000*z - 2187500000000", 4 * np.pi * 9e12),
+        ("x^2+y^2+z^2-1e24", 4 * np.pi * 1e24),
+        ("(x^2+y^2+z^2+3*10^18)^2-16*10^18*(x^2+y^2)", 4 * np.pi**2 * 2e18),
+    ],
+)
+def test_a_very_large_part_is_drawn_whole(tmp_path: Path, text: str, area: float) -> None:
+    """Spheres of radii 3e6 (about the origin and about (1.5e6, −2e6, 7.5e5)) and 1e12, and a
+    torus of radii 2e9 and 1e9, had a ball of radius 2 and no part: along a line through the
+    centre, read off values at distance 1, ``t² − 9e12`` had a leading coefficient of 1e-13 of
+    the largest, dropped as noise."""
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    analysis = analyze(text)
+    scene = build_scene(analysis)
+    path, holds = export_file(analysis, tmp_path / "part.step", scene=scene)
+    shape = read_shape(path)
+    assert "1 face" in holds and readback.topology(shape).valid
+    props = GProp_GProps()
+    BRepGProp.SurfaceProperties_s(shape, props)
+    assert props.Mass() == pytest.approx(area, rel=1e-6)

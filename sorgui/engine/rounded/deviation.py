@@ -107,7 +107,12 @@ def view_ball(
     bounded = is_bounded(array, directions)
     if not bounded:
         directions = probe_directions(axis)
-    points = [center + t * d for d in directions for t in real_roots(dense.restriction_to_line(array, center, d))]
+    # each line in steps of the part's size: its restriction is read off values at that distance
+    # (a sphere of radius 3e6 had, from values at distance 1, a leading coefficient of 1e-13 of
+    # the largest, taken for noise, and no point at all)
+    length = size_about(array, center) or 1.0
+    steps = [length * d for d in directions]
+    points = [center + t * step for step in steps for t in real_roots(dense.restriction_to_line(array, center, step))]
     pts = np.array(points).reshape(-1, 3)
     distances = np.linalg.norm(pts - center, axis=1)
     positive = distances[distances > 1e-9 * max(1.0, float(np.linalg.norm(center)))]
@@ -123,7 +128,7 @@ def view_ball(
         middle = 0.5 * (core.min(axis=0) + core.max(axis=0))
     radius = MARGIN * float(np.linalg.norm(core - middle, axis=1).max())
     largest = math.inf if bounded and whole else MAX_RADIUS  # a bounded part whole, however large
-    return middle, float(np.clip(radius, natural_length(array, center), largest))
+    return middle, float(np.clip(radius, _clipped(length), largest))
 
 
 TRANSLATION_NOISE = 1e-12
@@ -141,14 +146,24 @@ def natural_length(array: FloatArray, middle: FloatArray | None = None) -> float
     cone about its apex, whose numerical roots near the apex are noise of about 10⁻⁵, keeps the
     floor of 1 (its parts are all of one degree; about the middle of those roots they were not,
     and a cubic cone was drawn in a ball 6e-6 across)."""
-    length = part_size(array)
-    if middle is not None:
-        moved = dense.translated(array, middle)
-        largest = float(np.abs(moved).max(initial=0.0))
-        moved[np.abs(moved) <= TRANSLATION_NOISE * largest] = 0.0  # a shift by 5e-16 made terms of 1e-46
-        about = part_size(moved)
-        length = about if about is not None and math.isfinite(about) else length
+    return _clipped(size_about(array, middle) if middle is not None else part_size(array))
+
+
+def _clipped(length: float | None) -> float:
+    """A part's size as the floor of a view ball's radius (:func:`natural_length`)."""
     return MIN_RADIUS if length is None else float(np.clip(length, SMALLEST_RADIUS, MIN_RADIUS))
+
+
+def size_about(array: FloatArray, middle: FloatArray) -> float | None:
+    """:func:`part_size` of ``f`` about ``middle`` (of ``f`` itself when that has none; ``None``
+    when neither has a finite one): the unclipped length of :func:`natural_length`."""
+    moved = dense.translated(array, middle)
+    largest = float(np.abs(moved).max(initial=0.0))
+    moved[np.abs(moved) <= TRANSLATION_NOISE * largest] = 0.0  # a shift by 5e-16 made terms of 1e-46
+    for length in (part_size(moved), part_size(array)):
+        if length is not None and math.isfinite(length):
+            return length
+    return None
 
 
 def part_size(array: FloatArray) -> float | None:
