@@ -154,3 +154,45 @@ def test_a_scheduler_out_of_reach_is_one_line(tmp_path: Path) -> None:
     )
     assert out.returncode == 1 and out.stderr.startswith("sorgui: cannot reach the Dask scheduler at tcp://127.0.0.1:9")
     assert out.stderr.count("\n") == 1
+
+
+@pytest.mark.parametrize("reply", [b"", b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n" * 4])
+def test_a_server_that_is_not_a_scheduler_is_one_line_in_time(tmp_path: Path, reply: bytes) -> None:
+    """A server that accepts the connection and never answers (a web server) held the batch
+    forever; one that answers in HTTP ended it with a traceback from Dask's decoder."""
+    import socket
+    import threading
+
+    server = socket.create_server(("127.0.0.1", 0))
+    accepted: list[socket.socket] = []
+
+    def serve() -> None:
+        while True:
+            try:
+                connection, _ = server.accept()
+            except OSError:
+                return
+            accepted.append(connection)
+            if reply:
+                connection.recv(100)
+                connection.sendall(reply)
+
+    threading.Thread(target=serve, daemon=True).start()
+    lines = tmp_path / "lines.txt"
+    lines.write_text("x^2+y^2-z\n", encoding="utf-8")
+    address = f"tcp://127.0.0.1:{server.getsockname()[1]}"
+    started = time.monotonic()
+    try:
+        out = subprocess.run(
+            [*SORGUI, "--each-line", "--scheduler", address, "-f", str(lines)],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+    finally:
+        server.close()
+        for connection in accepted:
+            connection.close()
+    assert out.returncode == 1 and out.stderr.startswith(f"sorgui: cannot reach the Dask scheduler at {address}: ")
+    assert out.stderr.count("\n") == 1 and "Traceback" not in out.stderr
+    assert time.monotonic() - started < 60

@@ -36,6 +36,35 @@ REFRESH_EVERY = 5.0
 """Seconds between two looks at how many worker threads the cluster has (workers come and go)."""
 
 
+def _connect(distributed: Any, address: str) -> Any:  # noqa: ANN401 - the distributed module, a Client
+    """A Dask client of the scheduler at ``address``, or :class:`.BatchError` in one line within
+    :data:`CONNECT_TIMEOUT` and a second: Dask's own timeout does not cover a server that accepts
+    the connection and never answers (a web server: the batch waited forever), and a server that
+    answers with something else than Dask's messages raised from deep in its decoder."""
+    found: list[Any] = []
+    failed: list[BaseException] = []
+
+    def connect() -> None:
+        try:
+            found.append(distributed.Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False))
+        except BaseException as exc:  # noqa: BLE001 - any failure is said in one line
+            failed.append(exc)
+
+    thread = threading.Thread(target=connect, name="sorgui-dask-connect", daemon=True)
+    thread.start()
+    thread.join(CONNECT_TIMEOUT + 1.0)
+    if found:
+        return found[0]
+    if not failed:
+        why = f"no answer in {CONNECT_TIMEOUT:g} s"
+    elif isinstance(failed[0], (OSError, TimeoutError, ValueError)):
+        why = str(failed[0])
+    else:
+        detail = " ".join(f"{type(failed[0]).__name__}: {failed[0]}".split())[:120]
+        why = f"the server there does not answer as a Dask scheduler does ({detail})"
+    raise BatchError(f"cannot reach the Dask scheduler at {address}: {why}", status=1)
+
+
 class Cluster:
     """Lines submitted to a Dask scheduler as tasks, at most :attr:`capacity` at a time."""
 
@@ -48,10 +77,7 @@ class Cluster:
             raise BatchError(INSTALL_HINT) from None
         logging.getLogger("distributed").setLevel(logging.ERROR)  # the one-line errors are sorgui's
         self._dask: Any = distributed
-        try:
-            self.client: Any = self._dask.Client(address, timeout=CONNECT_TIMEOUT, set_as_default=False)
-        except (OSError, TimeoutError, ValueError) as exc:
-            raise BatchError(f"cannot reach the Dask scheduler at {address}: {exc}", status=1) from None
+        self.client: Any = _connect(distributed, address)
         self.address = address
         self.request = request
         self.running: dict[Any, tuple[int, Line]] = {}
