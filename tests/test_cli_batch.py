@@ -194,6 +194,46 @@ def test_a_progress_line_and_a_summary_on_a_terminal(tmp_path: Path) -> None:
     assert b"sorgui: 2 lines: 2 surfaces of revolution, 0 not, 0 errors, 0 unfinished" in shown
 
 
+def shown_on_a_terminal(raw: bytes) -> list[str]:
+    """The lines a terminal shows for ``raw``: each carriage return writes over its line."""
+    lines = []
+    for line in raw.decode().split("\n"):
+        shown = ""
+        for part in line.split("\r"):
+            shown = part + shown[len(part) :]
+        lines.append(shown.rstrip())
+    return [line for line in lines if line]
+
+
+def test_the_output_lines_on_the_terminal_of_the_progress_line_are_json_lines(tmp_path: Path) -> None:
+    """The lines and the progress line on one terminal: the progress line was left in front of
+    the next output line, which a user copying the lines got as bad JSON."""
+    path = tmp_path / "lines.txt"
+    path.write_text("x^2+y^2-z\nx^2+y^2+z^2-1\nx^3+y*z\nx^2-y^2+z^2-1\n", encoding="utf-8")
+    master, slave = pty.openpty()
+    try:
+        proc = subprocess.Popen(
+            [*SORGUI, "--each-line", "--recognition-only", "-f", str(path)], stdout=slave, stderr=slave
+        )
+        os.close(slave)
+        proc.wait(timeout=120)
+        raw = b""
+        while True:
+            try:
+                chunk = os.read(master, 4096)
+            except OSError:
+                break
+            if not chunk:
+                break
+            raw += chunk
+    finally:
+        os.close(master)
+    assert proc.returncode == 0 and b"lines/s" in raw
+    shown = shown_on_a_terminal(raw)
+    assert [json.loads(line)["line"] for line in shown[:-1]] == [1, 2, 3, 4]
+    assert shown[-1].startswith("sorgui: 4 lines: 3 surfaces of revolution, 1 not")
+
+
 def test_each_line_needs_a_file_or_standard_input() -> None:
     out = subprocess.run([*SORGUI, "--each-line"], capture_output=True, text=True, timeout=60)
     assert out.returncode == 2 and out.stderr.count("\n") == 1 and "--each-line reads" in out.stderr

@@ -24,8 +24,9 @@ REDRAW_EVERY = 0.2
 class Progress:
     """The progress line (``stream`` a terminal) and the counts of the summary."""
 
-    def __init__(self, stream: TextIO | None, total: int | None) -> None:
+    def __init__(self, stream: TextIO | None, total: int | None, *, shared: bool = False) -> None:
         self._stream = stream
+        self._shared = shared  # the output lines go to the same terminal
         self._total = total
         self._started = time.monotonic()
         self._drawn = 0.0
@@ -66,6 +67,19 @@ class Progress:
         line_rate = (self.line - self._from) / elapsed
         eta = f" · {_duration(left / line_rate)} left" if line_rate > 0 and left else ""
         return f"{self.line:,}/{self._total:,} lines · {rate:,.1f} lines/s{eta}"
+
+    def before_output(self) -> None:
+        """Erase the progress line before an output line is written to the same terminal (it was
+        left in front of that line, and what was copied from the terminal was not JSON Lines);
+        it is drawn again after the line."""
+        if self._shared and self._stream is not None and self._width:
+            try:
+                self._stream.write("\r" + " " * self._width + "\r")
+                self._stream.flush()
+            except (OSError, ValueError):
+                self._stream = None
+            self._width = 0
+            self._drawn = 0.0
 
     def _draw(self, text: str) -> None:
         assert self._stream is not None

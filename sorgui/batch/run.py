@@ -137,7 +137,7 @@ def run_each_line(args: argparse.Namespace, emit: Callable[[str], None], limit: 
         try:
             show = sys.stderr if sys.stderr.isatty() else None
             total = count_lines(stream) if show is not None and inputs else None
-            progress = Progress(show, total)
+            progress = Progress(show, total, shared=show is not None and sys.stdout.isatty())
             reader = LineReader(stream, limit)
             status = _run(reader, results, emit, progress, _runner(args, scheduler), options)
         finally:
@@ -173,6 +173,7 @@ def _run(
             if results is not None:
                 results.write(answer)
             else:
+                progress.before_output()
                 emit(answer.text)
             statuses.add(answer.status)
             failure = json.loads(answer.text)["error"]["message"] if answer.status == FAILED else None
