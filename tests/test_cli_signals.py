@@ -197,3 +197,31 @@ def test_a_batch_survives_a_worker_that_dies(tmp_path: Path) -> None:
     assert "the analysis process died (signal 9)" in rows[0]["error"]["message"], rows[0]
     assert rows[1]["is_sor"] is False and rows[2]["is_sor"] is False
     wait_for(lambda: dead(singular), 10)
+
+
+def test_ctrl_c_while_the_command_line_loads_prints_one_line_and_exits_130() -> None:
+    """A Ctrl+C in the first 40 ms, while ``sorgui.cli`` was imported, printed a
+    ``KeyboardInterrupt`` traceback and the process died by the signal: the console script's
+    entry point (``sorgui.launcher``) answers it as ``sorgui.cli.main`` does. The interrupt is
+    raised by an import hook at the import of ``sorgui.cli``, where a real one would land."""
+    code = (
+        "import sys\n"
+        "class Interrupt:\n"
+        "    def find_spec(self, name, path=None, target=None):\n"
+        "        if name == 'sorgui.cli':\n"
+        "            raise KeyboardInterrupt\n"
+        "sys.meta_path.insert(0, Interrupt())\n"
+        "from sorgui.launcher import main\n"
+        "sys.exit(main())\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code, "analyze", "x^2+y^2-z"], capture_output=True, text=True, timeout=60
+    )
+    assert out.returncode == 130 and out.stderr == "sorgui: interrupted\n"
+
+
+def test_the_console_script_runs_the_launcher() -> None:
+    from importlib.metadata import entry_points
+
+    scripts = {e.name: e.value for e in entry_points(group="console_scripts") if e.name == "sorgui"}
+    assert scripts == {"sorgui": "sorgui.launcher:main"}
