@@ -95,6 +95,10 @@ _MODULE = re.compile(
 )
 """A module's name before a function, as Python code writes it: ``np.cos(v)``, ``math.sqrt(2)``
 (read as ``cos(v)``, ``sqrt(2)``: the same positions, the prefix made blanks)."""
+_DISPLAY_JOINT = re.compile(r"(\\[\])]|\$\$?+)([^\S\n]*+\n\s*+)(\\[(\[]|\$\$?+)")
+"""The end of one LaTeX display and the start of the next on a later line (``\\]`` line break
+``\\[``): the components of a map written as three displays, as sorgui's LaTeX file writes them,
+are read as three lines."""
 _CALL = re.compile(r"\s*+((?:(?:np|numpy)\s*+\.\s*+)?+array)\s*+(?=\()", re.ASCII)
 """numpy's ``np.array`` before the parentheses that hold the triple: ``np.array([X, Y, Z])``."""
 
@@ -145,7 +149,7 @@ def parse_parametrization(text: str) -> ParsedParametrization:
 
     if len(text) > MAX_LENGTH:
         raise ParseError(f"the input is too long (more than {MAX_LENGTH:,} characters)", 0, len(text))
-    typed, text = text, _MODULE.sub(lambda m: " " * len(m.group()), text)  # the same positions
+    typed, text = text, _without_joints(_MODULE.sub(lambda m: " " * len(m.group()), text))  # the same positions
     spans, named = _layout(text)
     _refuse_characters(text, spans)
     parameters = named or _discover(text, spans)
@@ -180,11 +184,17 @@ def parse_parametrization(text: str) -> ParsedParametrization:
         )
     if _is_degenerate(surface):
         raise ParseError("the image is a curve or a point, not a surface: P_s × P_t is identically zero", 0, len(text))
-    plain = without_comments(typed)
+    plain = _without_joints(without_comments(typed))
     components = tuple(_RIGHT.sub("", _MODULE.sub("", plain[a:b])).strip() for a, b in spans)
     return ParsedParametrization(
         typed, (components[0], components[1], components[2]), parameters, surface, field, radicands, angles
     )
+
+
+def _without_joints(text: str) -> str:
+    """``text`` with each :data:`_DISPLAY_JOINT` replaced by spaces and its line breaks: the
+    same positions."""
+    return _DISPLAY_JOINT.sub(lambda m: " " * len(m.group(1)) + m.group(2) + " " * len(m.group(3)), text)
 
 
 def _angles(text: str, trees: Sequence[Node], parameters: tuple[str, str]) -> tuple[tuple[str, str], ...]:

@@ -173,9 +173,10 @@ def _separates(body: str) -> bool:
 _SEPARATOR = re.compile(r"(?<!\\)[,;]")
 _POW_CALL = re.compile(r"(?<![A-Za-z])pow\s*\(")
 _BRACKET_OR_SEPARATOR = re.compile(r"[(\[{)\]}]|(?<!\\)[,;]")
-_LABEL_LINE = re.compile(r"(?m)^[^\S\n]*+[xyz][^\S\n]*+(?:\([^()\n]*+\))?+[^\S\n]*+:?=")
-"""A line that starts with ``x =`` (or ``x(u, v) =``); possessive and within its line, so that
-a page of spaces or of empty lines is read once."""
+_LABEL_LINE = re.compile(r"(?m)^[^\S\n]*+(?:\\[(\[]|\$\$?+)?+[^\S\n]*+[xyz][^\S\n]*+(?:\([^()\n]*+\))?+[^\S\n]*+:?=")
+"""A line that starts with ``x =`` (or ``x(u, v) =``), also inside LaTeX's ``\\[``, ``\\(`` or
+``$`` (sorgui's LaTeX file writes a map's components as three displays); possessive and within
+its line, so that a page of spaces or of empty lines is read once."""
 
 
 _DECIMAL_MARK = re.compile(r"[0-9]\.|\.[0-9]|[0-9](?:[eEdD]|\*\^)[-+−]?[0-9]")

@@ -282,3 +282,25 @@ def test_a_long_equation_of_sorgui_s_latex_file_pastes_back() -> None:
     torus = parse_polynomial("((x^2+y^2+z^2+3)^2-16*(x^2+y^2))/4").polynomial
     assert parse_polynomial(pasted).polynomial == torus
     assert parse_polynomial(r"\Bigl(x + 1\Bigr)^{2} - y").polynomial == parse_polynomial("(x+1)^2 - y").polynomial
+
+
+@pytest.mark.parametrize(
+    ("opening", "closing"), [("\\[\n", "\n\\]"), ("\\[ ", " \\]"), ("\\( ", " \\)"), ("$", "$"), ("$$", "$$")]
+)
+def test_a_map_of_sorgui_s_latex_file_pastes_back(opening: str, closing: str) -> None:
+    """sorgui's .tex writes a map as three displays, ``\\[ x(s, t) = … \\]`` and so on: pasted
+    back, "unmatched ')'" (and "unknown name 's'" without the labels' parameters)."""
+    components = [
+        r"x(s, t) = \frac{- s^{2} t^{2} - 12 s^{2} + t^{2} + 12}{s^{2} t^{2} + 4 s^{2} + t^{2} + 4}",
+        r"y(s, t) = \frac{2 s t^{2} + 24 s}{s^{2} t^{2} + 4 s^{2} + t^{2} + 4}",
+        r"z(s, t) = - \frac{4 t}{t^{2} + 4}",
+    ]
+    typed = "(-s^2*t^2-12*s^2+t^2+12)/(s^2*t^2+4*s^2+t^2+4), (2*s*t^2+24*s)/(s^2*t^2+4*s^2+t^2+4), -4*t/(t^2+4)"
+    from sorgui.engine.parametric_parsing import ParsedParametrization, parse_input
+
+    expected = parse_input(typed)
+    assert isinstance(expected, ParsedParametrization)
+    for labels in (components, [c.replace("(s, t)", "") for c in components]):
+        pasted = parse_input("\n".join(opening + c + closing for c in labels))
+        assert isinstance(pasted, ParsedParametrization) and pasted.parameters == ("s", "t")
+        assert (pasted.map.X, pasted.map.W) == (expected.map.X, expected.map.W)
