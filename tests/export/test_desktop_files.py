@@ -109,8 +109,8 @@ def test_install_and_uninstall_for_the_current_user(tmp_path) -> None:
 def test_pyproject_declares_license_scripts_and_bounds() -> None:
     project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
     assert project["license"] == "MIT"
-    assert project["scripts"]["sorgui"] == "sorgui.cli:main"
-    assert project["gui-scripts"]["sorgui-gui"] == "sorgui.cli:main"
+    assert project["scripts"]["sorgui"] == "sorgui.launcher:main"
+    assert project["gui-scripts"]["sorgui-gui"] == "sorgui.launcher:main"
     assert all(">=" in requirement for requirement in project["dependencies"])
     assert any(c.startswith("Topic :: Scientific/Engineering :: Mathematics") for c in project["classifiers"])
     assert any(r.startswith("build") for r in project["optional-dependencies"]["test"])
