@@ -4,6 +4,7 @@ and the JSON document: the report files made from the analysis alone, without sy
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
@@ -217,6 +218,18 @@ def _floats(v: tuple[float, ...], tolerance: float | None = None) -> str:
     return float_text(v, 9, tolerance)
 
 
+def unit_text(v: Sequence[float], digits: int, tolerance: float | None) -> str:
+    """An approximate unit vector (an axis, a normal) with ``digits`` significant digits: its
+    components within the rounding ``tolerance`` dropped (:func:`without_noise`), and the rest
+    scaled back to length 1 (a tilt of 1.7° within a tolerance of 0.033 was printed
+    ``(0, 0, 0.999550219)``, no unit vector, beside the JSON's ``(-0.02999, 0, 0.99955)``)."""
+    kept = without_noise(v, tolerance)
+    length = math.sqrt(sum(c * c for c in kept))
+    if kept != list(v) and length > 0:
+        kept = [c / length for c in kept]
+    return float_text(kept, digits)
+
+
 def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
     """The rounded-input verdict in words (docs/math.md §8), with the nearest exact surface and,
     when ``nested``, that surface's whole analysis."""
@@ -228,12 +241,13 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
     lines = [f"rounded input: tolerance {tolerance} (relative, {source})"]
     where = ""
     if ap.axis is not None:
-        where = f" about the axis {_floats(ap.axis.point, ap.tolerance)} + t·{_floats(ap.axis.direction, ap.tolerance)}"
+        direction = unit_text(ap.axis.direction, 9, ap.tolerance)
+        where = f" about the axis {_floats(ap.axis.point, ap.tolerance)} + t·{direction}"
     elif ap.center is not None:
         where = f" centred at {_floats(ap.center, ap.tolerance)}"
     elif ap.normal is not None:
         across = "along" if ap.kind == "extrusion" else "with normal"  # an extrusion's vector is its direction
-        where = f" {across} {_floats(ap.normal, ap.tolerance)}"
+        where = f" {across} {unit_text(ap.normal, 9, ap.tolerance)}"
     kind = NEAR_KINDS.get(ap.kind or "", "a surface of revolution")
     exact = analysis.recognition.symmetry
     if ap.near_sor and analysis.is_sor and (ap.kind or exact) == exact:

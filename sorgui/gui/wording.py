@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from sorgui.engine.results import Analysis, Approximation, Canal, Conical, Recognition
 from sorgui.engine.stage_results import CanalFamily
 from sorgui.engine.vocabulary import canal_kind, kind_noun, kind_phrase
-from sorgui.export.text import float_text
+from sorgui.export.text import float_text, unit_text
 from sorgui.session.components import Component
 from sorgui.session.model import STAGE_TITLES
 
@@ -203,7 +203,7 @@ def near_words(approx: Approximation) -> str:
     axis = approx.axis
     about = (
         f" about the line {floats(axis.point, tolerance=approx.tolerance)} + "
-        f"t·{floats(axis.direction, tolerance=approx.tolerance)}"
+        f"t·{unit_text(axis.direction, 6, approx.tolerance)}"
         if axis is not None
         else ""
     )
@@ -221,7 +221,7 @@ def far_words(approx: Approximation) -> str:
     """Why rounded input is *not* near a surface of revolution: how far it is, or what it is
     near instead (an extrusion: its distance and residual are those of the extrusion)."""
     if approx.kind not in (None, "none", "revolution") and approx.relative_distance is not None:
-        along = "" if approx.normal is None else f" along {floats(approx.normal, tolerance=approx.tolerance)}"
+        along = "" if approx.normal is None else f" along {unit_text(approx.normal, 6, approx.tolerance)}"
         residual = "" if approx.residual is None else f", {approx.residual:.3g} times the rounding of the input"
         return (
             f"not near one either, but within the rounding it is {kind_noun(approx.kind)}{along}: "

@@ -80,3 +80,26 @@ def test_a_report_that_lies_about_its_map_is_refused(
     """Claims that validate but that the map does not bear out (sorgui.engine.claims.parametric)."""
     message = refusal(reports["cone"], tmp_path, change)
     assert "is refused" in message and words in message and "\n" not in message, message
+
+
+def test_an_approximate_axis_is_printed_as_a_unit_vector() -> None:
+    """A torus map whose axis is tilted by 1.7° within a tolerance of 0.033: the report printed
+    the axis ``(0, 0, 0.999550219)`` (the tilt dropped as rounding, the rest kept), no unit
+    vector; the window's sentence the same."""
+    import re
+
+    from sorgui.export.text import text_report
+    from sorgui.gui.wording import near_words
+
+    analysis = analyze(
+        "x = (50.0000 + 12.5000*cos(v))*cos(u), y = (50.0000 + 12.5000*cos(v))*sin(u), "
+        "z = 12.5000*sin(v) + 1.5*cos(u)",
+        recognition_only=True,
+    )
+    approximate = analysis.approximate
+    assert approximate is not None and approximate.axis is not None and approximate.near_sor
+    assert abs(approximate.axis.direction[0]) > 0.02  # the tilt, within the tolerance
+    for text in (text_report(analysis), near_words(approximate)):
+        found = re.search(r"t·\(([^)]*)\)", text)
+        assert found is not None, text
+        assert sum(float(c) ** 2 for c in found.group(1).split(",")) == pytest.approx(1, abs=1e-8), text
