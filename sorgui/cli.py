@@ -382,6 +382,8 @@ def read_input(args: argparse.Namespace) -> tuple[str, Path | None]:
         )
         return example_text(DEFAULT_EXAMPLE), None
     if args.expression == "-":
+        if stdin_closed():
+            raise UsageError("standard input is closed (the shell's <&-): nothing to read with -")
         stdin = getattr(sys.stdin, "buffer", None)
         if stdin is None:  # a text stream in its place (a caller of main() in the same process)
             return _bounded(sys.stdin.read(MAX_INPUT + 1), "standard input"), None
@@ -1186,6 +1188,12 @@ def _private_folder() -> Path | None:
         return Path(tempfile.mkdtemp(prefix="sorgui-matplotlib-"))
     except OSError:
         return None
+
+
+def stdin_closed() -> bool:
+    """Whether standard input is the stand-in :func:`_usable_streams` put for a closed one (a
+    closed input read as empty was reported as 'the input is empty')."""
+    return getattr(sys.stdin, "name", None) == os.devnull
 
 
 def _usable_streams() -> None:

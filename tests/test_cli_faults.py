@@ -32,8 +32,12 @@ def one_line(err: str) -> str:
 
 
 def test_closed_standard_streams() -> None:
-    closed_in = shell("SORGUI - <&-")
-    assert closed_in.returncode == 2 and "the input is empty" in one_line(closed_in.stderr)
+    closed_in = shell("SORGUI - <&-")  # was "the input is empty"
+    assert closed_in.returncode == 2 and "standard input is closed" in one_line(closed_in.stderr)
+    closed_lines = shell("SORGUI --each-line - <&-")
+    assert closed_lines.returncode == 2 and "standard input is closed" in one_line(closed_lines.stderr)
+    empty = shell("SORGUI - </dev/null")
+    assert empty.returncode == 2 and "the input is empty" in one_line(empty.stderr)
     closed_out = shell(f"SORGUI --recognition-only '{EQUATION}' >&-")
     assert closed_out.returncode == 1 and "standard output is closed" in one_line(closed_out.stderr)
     closed_err = shell(f"SORGUI --recognition-only '{EQUATION}' 2>&-")
