@@ -92,8 +92,7 @@ def test_an_approximate_axis_is_printed_as_a_unit_vector() -> None:
     from sorgui.gui.wording import near_words
 
     analysis = analyze(
-        "x = (50.0000 + 12.5000*cos(v))*cos(u), y = (50.0000 + 12.5000*cos(v))*sin(u), "
-        "z = 12.5000*sin(v) + 1.5*cos(u)",
+        "x = (50.0000 + 12.5000*cos(v))*cos(u), y = (50.0000 + 12.5000*cos(v))*sin(u), z = 12.5000*sin(v) + 1.5*cos(u)",
         recognition_only=True,
     )
     approximate = analysis.approximate
