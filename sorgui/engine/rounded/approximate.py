@@ -364,9 +364,14 @@ def _far_note(sigma: FloatArray, best: Fit | None, rounding: Rounding, distance:
     if best is None:
         return f"not near any continuous symmetry: {smallest}"
     kind = kind_noun(best.candidate.kind)
+    weighed = ""
+    if distance is not None and distance <= rounding.tolerance:  # near overall, far for a coefficient's own rounding
+        weighed = (
+            " of the coefficients it changes, each weighed by its own rounding (the relative distance weighs all alike)"
+        )
     return (
         f"not within the rounding of {kind}: the nearest one about the best axis is "
-        f"{distance:.2g} away (relative), {best.residual:.3g} times the rounding; {smallest}"
+        f"{distance:.2g} away (relative), {best.residual:.3g} times the rounding{weighed}; {smallest}"
     )
 
 
