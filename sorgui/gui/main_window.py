@@ -644,7 +644,7 @@ class MainWindow(QMainWindow):
 
     def _on_radius_change(self, radius: float) -> None:
         if not self.worker.is_busy:
-            self.session.remesh(radius, self.viewport.mesh_resolution())
+            self.session.remesh(radius if radius > 0 else None, self.viewport.mesh_resolution())  # 0: automatic
 
     def _finished_analysis(self) -> Analysis | None:
         """The analysis of the finished current run (the one shown), if any."""

@@ -29,6 +29,7 @@ from __future__ import annotations
 import contextlib
 import gc
 import importlib
+import math
 import sys
 import threading
 from pathlib import Path
@@ -156,7 +157,8 @@ def _import_rendering() -> None:
 class Viewport(QWidget):
     """The render window with its controls.
 
-    :attr:`radius_requested` asks for the scene to be rebuilt in a ball of the given radius;
+    :attr:`radius_requested` asks for the scene to be rebuilt in a ball of the given radius (0:
+    the automatic ball);
     :attr:`picked` carries the :class:`~sorgui.render.picking.PickInfo` of a picked point.
     """
 
@@ -440,6 +442,7 @@ class Viewport(QWidget):
         )
         self.patch_box.setEnabled(patch.n_points > 0)
         self.radius_box.blockSignals(True)
+        _fit_radius_box(self.radius_box, scene.region.radius)
         self.radius_box.setValue(scene.region.radius)
         self.radius_box.blockSignals(False)
         self.radius_box.setEnabled(True)
@@ -658,8 +661,8 @@ class Viewport(QWidget):
 
     def _apply_radius(self) -> None:
         radius = self.radius_box.value()
-        if self._scene is not None and radius > 0 and abs(radius - self._scene.region.radius) > 1e-9:
-            self.radius_requested.emit(self.radius_box.value())
+        if self._scene is not None and (radius == 0 or abs(radius - self._scene.region.radius) > 1e-9 * radius):
+            self.radius_requested.emit(radius)  # 0: the automatic ball again
 
     def _on_patch_visibility_change(self, visible: bool) -> None:
         self._set_visibility("patch", visible)
@@ -933,3 +936,14 @@ def _pick_text(info: PickInfo) -> str:
     if np.isfinite(info.radius):
         parts.append(f"height {info.height:.4g}, radius {info.radius:.4g}")
     return " · ".join(parts)
+
+
+def _fit_radius_box(box: QDoubleSpinBox, radius: float) -> None:
+    """The radius box's digits, range and step for a ball of ``radius``: about four significant
+    digits, up to 100 times it, a step of a quarter of its power of ten. A fixed range of 0 to
+    10⁴ with 3 decimals showed a part's ball of radius 5e6 as 10000.000 (one step down drew a
+    ball that held none of it) and one of radius 0.000177 as "automatic"."""
+    magnitude = math.floor(math.log10(radius)) if radius > 0 and math.isfinite(radius) else 0
+    box.setDecimals(min(max(3, 3 - magnitude), 15))
+    box.setRange(0.0, max(1e4, 100.0 * radius) if math.isfinite(radius) else 1e4)
+    box.setSingleStep(0.25 * 10.0**magnitude)

@@ -323,3 +323,26 @@ def test_the_render_windows_surface_leaves_pysides_wrappers_with_it(qtbot) -> No
     assert not shiboken6.isValid(viewport)
     left = [w for w in shiboken6.getAllValidWrappers() if shiboken6.getCppPointer(w)[0] == address]
     assert not left, f"wrappers of deleted objects still registered: {left}"
+
+
+@pytest.mark.parametrize(
+    ("text", "shown"), [("x^2+y^2+z^2-9e12", "ball radius 3"), ("x^2+y^2-1e-8", "ball radius 0.000")]
+)
+def test_the_radius_box_shows_a_large_or_small_ball_and_automatic_brings_it_back(
+    window, run_analysis, qtbot, text: str, shown: str
+) -> None:
+    """The box's fixed range of 0 to 10⁴ with 3 decimals showed a ball of radius 3.75e6 as
+    10000.000 (one step down drew a ball that held none of the part) and one of radius 0.000177
+    as "automatic"; "automatic" kept the last ball asked for."""
+    run_analysis(window, text)
+    viewport = window.viewport
+    automatic = viewport.scene.region.radius
+    box = viewport.radius_box
+    assert box.text().startswith(shown) and box.value() == pytest.approx(automatic, rel=1e-3), box.text()
+    with qtbot.waitSignal(window.result_shown, timeout=60_000) as blocker:
+        box.stepDown()
+    smaller = blocker.args[0].scene
+    assert automatic * 0.5 < smaller.region.radius < automatic and not smaller.surface.is_empty
+    with qtbot.waitSignal(window.result_shown, timeout=60_000) as blocker:
+        box.setValue(0.0)
+    assert blocker.args[0].scene.region.radius == pytest.approx(automatic)
