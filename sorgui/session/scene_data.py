@@ -419,13 +419,14 @@ def _empty_words(where: ClipSphere | ClipBox, chosen: ClipSphere | None, spacing
     if chosen is None:
         return (
             f"the surface has no real points that can be drawn inside {region}, chosen for it: "
-            "give a region that holds some (the ball's centre and radius; --region on the command line)"
+            "give a region that holds some (the ball's centre and radius: the ball radius box of the window, "
+            "--region on the command line)"
         )
     if isinstance(where, ClipSphere) and chosen.radius < 2 * spacing < where.radius:
         return (
             f"{region} asked for is too large to draw the surface in: the mesh's grid (spacing "
-            f"{spacing:.3g}) passes between its points; give a smaller one (--region {chosen.radius:.3g}, "
-            "the radius of the ball chosen for it)"
+            f"{spacing:.3g}) passes between its points; give a smaller one (the ball chosen for it has radius "
+            f"{chosen.radius:.3g}: the ball radius box of the window, --region on the command line)"
         )
     return (
         f"the surface has no real points that can be drawn inside {region} asked for: give a region that "

@@ -488,11 +488,12 @@ def test_a_part_too_small_for_open_cascade_says_so_in_its_default_ball(tmp_path:
         ("x^2 + y^2 + z^2 - 9000000000000", 4 * np.pi * 9e12),
         ("x^2 + y^2 + z^2 - 3000000*x + 4000000*y - 1500000*z - 2187500000000", 4 * np.pi * 9e12),
         ("x^2+y^2+z^2-1e24", 4 * np.pi * 1e24),
+        ("x^2+y^2+z^2-10^40", 4 * np.pi * 1e40),
         ("(x^2+y^2+z^2+3*10^18)^2-16*10^18*(x^2+y^2)", 4 * np.pi**2 * 2e18),
     ],
 )
 def test_a_very_large_part_is_drawn_whole(tmp_path: Path, text: str, area: float) -> None:
-    """Spheres of radii 3e6 (about the origin and about (1.5e6, −2e6, 7.5e5)) and 1e12, and a
+    """Spheres of radii 3e6 (about the origin and about (1.5e6, −2e6, 7.5e5)), 1e12 and 1e20, and a
     torus of radii 2e9 and 1e9, had a ball of radius 2 and no part: along a line through the
     centre, read off values at distance 1, ``t² − 9e12`` had a leading coefficient of 1e-13 of
     the largest, dropped as noise."""
