@@ -915,3 +915,17 @@ def test_a_rounding_read_off_one_decimal_among_integers_is_said_so() -> None:
     assert not analyze(text, recognition_only=True, tolerance=1e-10).approximate.near_sor
     exact_sor = analyze("x^2+y^2-1.5e-3*z", recognition_only=True).approximate
     assert not any("read off one number" in note for note in exact_sor.notes)
+
+
+@pytest.mark.parametrize("size", [1e3, 1e4])
+def test_a_large_turned_torus_printed_with_10_digits_snaps_to_that_torus(size: float) -> None:
+    """A torus of radii 3s and s turned by 30° and 45° about (1.5s, −2s, 0.7s), printed with 10
+    digits: every bound was floored at 4e-15 of the constant term (1.7e18 at s = 10⁴), which left
+    the quartic coefficients free by thousands, and the nearest surface was 383 units (s = 10⁴)
+    or 5.4e-5 (s = 10³) from the torus."""
+    a, b = math.radians(30), math.radians(45)
+    direction = np.array([math.sin(a) * math.sin(b), -math.cos(a) * math.sin(b), math.cos(b)])
+    text = rounded_torus(direction, size * np.array([1.5, -2.0, 0.7]), (3 * size, size), digits=10)
+    nearest = analyze(text, recognition_only=True).approximate.nearest
+    assert nearest is not None and nearest.within_rounding and nearest.kind == "revolution"
+    assert nearest.max_deviation is not None and nearest.max_deviation < 1e-8 * size

@@ -102,8 +102,8 @@ def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
         return None
     digits = max(_significant_digits(text, node) for node in decimals)
     fixed_point = _fixed_point(text, decimals)
-    top = max(abs(c) for c in coefficients.values())
-    floor = FLOAT_FLOOR * top
+    floors = _float_floors(coefficients)
+    floor = min(floors.values())
     degree = max(sum(m) for m in coefficients)
     try:
         propagated = _Propagation(text, digits, fixed_point).run(tree)
@@ -116,7 +116,7 @@ def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
             errors = {m: propagated.get(m, 0.0) for m in coefficients}
     except OverflowError:  # a literal or product beyond floating point: no bound can be read
         return Rounding({}, math.inf, degree, math.inf, "input", digits)
-    bounds = {m: max(e, floor) for m, e in errors.items()}
+    bounds = {m: max(e, floors[sum(m)]) for m, e in errors.items()}
     printed = [e for e in errors.values() if e > 0.0]
     default = max(min(printed, default=floor), floor)
     widest = [node for node in decimals if _significant_digits(text, node) == digits]
@@ -124,6 +124,55 @@ def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
     tolerance = _norm(bounds.values()) / _norm(coefficients.values())
     read_from = text[widest[0].start : widest[0].end] if alone else None
     return Rounding(bounds, default, degree, tolerance, "input", digits, read_from)
+
+
+LARGE_PART = 10.0
+"""A part size (:func:`_part_size`) above which the floor of a coefficient depends on its degree
+(:func:`_float_floors`); below it :data:`FLOAT_FLOOR` is of the largest coefficient, as it always
+was. A small part's floor, so taken, frees its low-degree coefficients by a few units of their
+last digits; a large part's freed its high-degree ones by thousands."""
+
+
+def _float_floors(coefficients: FloatPoly) -> dict[int, float]:
+    """The floor of the bound of a coefficient of each degree: for a large part (size ``L`` above
+    :data:`LARGE_PART`), :data:`FLOAT_FLOOR` of the largest coefficient of ``f(L·X)``, brought back
+    to ``f``'s own (``L^-d`` for degree ``d``), never above that of ``f``'s largest coefficient;
+    else that of ``f``'s largest coefficient. A part of size 4e4 has a constant term near 1e18 and
+    quartic ones near 1: floored at 4e-15 of the constant, every coefficient of degree 2 to 4 was
+    free to move by thousands, and a torus turned and printed with 10 digits came out as a
+    nearest surface 383 units from it; the noise of a coefficient is that of the terms it is a
+    sum of, whose size the scale sets."""
+    degree = max(sum(m) for m in coefficients)
+    top = max(abs(c) for c in coefficients.values())
+    length = _part_size(coefficients)
+    if length is None or not LARGE_PART < length < math.inf:
+        return dict.fromkeys(range(degree + 1), FLOAT_FLOOR * top)
+    scale = math.log(length)
+    largest = max(math.log(abs(c)) + sum(m) * scale for m, c in coefficients.items() if c)
+    floors = {}
+    for d in range(degree + 1):
+        try:
+            floors[d] = min(math.exp(math.log(FLOAT_FLOOR) + largest - d * scale), FLOAT_FLOOR * top)
+        except OverflowError:
+            floors[d] = FLOAT_FLOOR * top
+    return floors
+
+
+def _part_size(coefficients: FloatPoly) -> float | None:
+    """``(|f_low| / |f_high|)^(1/(high − low))`` of the lowest and highest homogeneous parts of
+    ``f`` (their coefficients' norms): the length at which they weigh alike; ``None`` for a
+    homogeneous ``f``."""
+    norms: dict[int, float] = {}
+    for m, c in coefficients.items():
+        if c:
+            norms[sum(m)] = math.hypot(norms.get(sum(m), 0.0), c)
+    low, high = min(norms), max(norms)
+    if low == high:
+        return None
+    try:
+        return math.exp((math.log(norms[low]) - math.log(norms[high])) / (high - low))
+    except OverflowError:
+        return math.inf
 
 
 def given_rounding(tolerance: float, coefficients: FloatPoly) -> Rounding:
