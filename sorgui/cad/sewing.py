@@ -23,8 +23,10 @@ from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Sewing
 from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools
 from OCP.gp import gp_Pnt, gp_Vec
+from OCP.GProp import GProp_GProps
 from OCP.ShapeFix import ShapeFix_Shell, ShapeFix_Solid
 from OCP.TopAbs import TopAbs_FACE, TopAbs_REVERSED, TopAbs_SHELL, TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
@@ -119,13 +121,30 @@ def _shells(sewn: TopoDS_Shape) -> list[TopoDS_Shell]:
     return shells
 
 
+FLAT_SOLID = 1e-6
+"""A solid whose volume is below this times its area^(3/2) encloses nothing: its faces cover a
+sheet twice (a torus of radii 1000 and 1, the thinnest part a user may draw, has 2.5e-3)."""
+
+
 def _finished(shell: TopoDS_Shell, terms: Terms | None) -> TopoDS_Shape:
     """A closed shell as a solid whose faces point out of it; an open one along ``∇f`` (by the
     sign of ``n·∇f`` over all its faces: where ``f`` has a singular curve, a node of a profile,
-    ``∇f`` turns over across it while the sheet's orientation goes on)."""
+    ``∇f`` turns over across it while the sheet's orientation goes on). A solid of no positive
+    volume is refused (:data:`FLAT_SOLID`): a rounded cone's nearest surface had a face that
+    covered one nappe twice, sewn on itself into a "solid" of volume 4e-10 (−1797 read back) that
+    BRepCheck passes and its STEP file does not."""
     if BRep_Tool.IsClosed_s(shell):
         solid = ShapeFix_Solid().SolidFromShell(shell)
-        return next(iter(_explore(solid, TopAbs_SOLID)), solid)
+        solid = next(iter(_explore(solid, TopAbs_SOLID)), solid)
+        volume, area = GProp_GProps(), GProp_GProps()
+        BRepGProp.VolumeProperties_s(solid, volume)
+        BRepGProp.SurfaceProperties_s(solid, area)
+        if not volume.Mass() > FLAT_SOLID * area.Mass() ** 1.5:
+            raise CadGeometryError(
+                "Open CASCADE made a closed sheet of the part into a solid of no volume: a face covers "
+                "part of the surface twice (write a mesh instead, .stl or .obj)"
+            )
+        return solid
     if terms is not None and gradient_agreement(shell, terms) < 0:
         return shell.Reversed()
     return shell

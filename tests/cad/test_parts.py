@@ -508,3 +508,18 @@ def test_a_very_large_part_is_drawn_whole(tmp_path: Path, text: str, area: float
     props = GProp_GProps()
     BRepGProp.SurfaceProperties_s(shape, props)
     assert props.Mass() == pytest.approx(area, rel=1e-6)
+
+
+def test_a_part_whose_face_covers_a_sheet_twice_is_refused(tmp_path: Path) -> None:
+    """A cone of half-angle 15° on a random axis printed with ``%.6g``: its nearest exact surface's
+    part had a face that covered one nappe twice, sewn on itself into a "solid" of volume 4e-10
+    (−1797 read back): BRepCheck passed it, the STEP file read back invalid, exit 0."""
+    text = (
+        "0.860182*x^2 - 0.287985*x*y - 0.662039*x*z + 44.4615*x + 0.851709*y^2 - 0.681803*y*z - 112.37*y"
+        " + 0.216313*z^2 + 24.4716*z + 3714.22"
+    )
+    analysis = analyze(text)
+    with pytest.raises(ValueError, match="covers part of the surface twice"):
+        export_file(analysis, tmp_path / "cone.step", scene=build_scene(analysis))
+    assert not (tmp_path / "cone.step").exists()
+
