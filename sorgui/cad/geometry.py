@@ -267,13 +267,15 @@ def _quadric(square: sympy.Poly, frame: Frame, centre: np.ndarray, radius: float
     alpha, beta, gamma = (square.coeff_monomial(m) for m in (x**2, x, 1))
     delta = square.coeff_monomial(w)
     height = float((centre - frame.point) @ frame.direction)
+    off = off_axis(centre, frame.point, frame.direction)
     if alpha == 0 and beta == 0:
         r2 = _number(-gamma / delta)
         if r2 <= 0:
             return None
-        if r2 >= radius**2:
+        gap = math.sqrt(r2) - off  # the cylinder's nearest approach to the ball's centre, across the axis
+        if gap * gap >= radius**2:
             raise CadGeometryError("the cylinder does not meet the drawn ball")
-        half = math.sqrt(radius**2 - r2)
+        half = math.sqrt(radius**2 - gap * gap)
         return Analytic(
             "cylinder",
             frame.point + height * frame.direction,
@@ -290,9 +292,22 @@ def _quadric(square: sympy.Poly, frame: Frame, centre: np.ndarray, radius: float
     if b * b - c <= 0:
         raise CadGeometryError("the cone does not meet the drawn ball")
     root = math.sqrt(b * b - c)
-    return Analytic(
-        "cone", frame.point + apex_x * frame.direction, frame.direction, semi_angle=angle, extent=(-b - root, -b + root)
-    )
+    extent = (-b - root, -b + root)
+    if off > ON_AXIS * radius:  # a ball off the axis: every generatrix's stretch in it, cut to it later
+        reach = math.hypot(offset, off) + radius
+        extent = (-reach, reach)
+    apex = frame.point + apex_x * frame.direction
+    return Analytic("cone", apex, frame.direction, semi_angle=angle, extent=extent)
+
+
+ON_AXIS = 1e-9
+"""How far from the axis, relative to the ball's radius, the ball's centre may be and be on it."""
+
+
+def off_axis(centre: np.ndarray, point: np.ndarray, direction: np.ndarray) -> float:
+    """The distance of ``centre`` from the line through ``point`` along the unit ``direction``."""
+    relative = centre - point
+    return float(np.linalg.norm(relative - (relative @ direction) * direction))
 
 
 def _torus(square: sympy.Poly, frame: Frame) -> Analytic | None:

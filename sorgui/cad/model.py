@@ -23,7 +23,6 @@ from sorgui.engine.values import ExpressionError, polynomial_terms, zero_set_pro
 from sorgui.engine.vocabulary import kind_noun
 from sorgui.numerics import without_noise
 from sorgui.render import PATCH_RANGES, ClipBox, ClipSphere, LineData, MeshData
-from sorgui.render.geometry import foot_on_line
 
 from . import shapes
 from .canal import Sweep, canal_sweep
@@ -33,12 +32,14 @@ from .coverage import missing
 from .factors import factor_parts
 from .fitted import FIT_TOLERANCE, fitted_arc, uncovered
 from .geometry import (
+    ON_AXIS,
     Analytic,
     CadGeometryError,
     Frame,
     analytic_surfaces,
     axis_frame,
     exact_profile,
+    off_axis,
 )
 from .meridian import meridian_curve, profile_arcs, profile_distance
 from .nearest import nearest_lines, nearest_scene, typed_deviation
@@ -341,12 +342,15 @@ def _off_axis(ball: ClipSphere, frame: Frame) -> bool:
     """Whether the ball's centre is off the axis: its disk would then differ from one meridian
     half-plane to the next, and a revolved profile cut to one of them would not be the part in
     the ball."""
-    centre = np.asarray(ball.center)
-    return float(np.linalg.norm(centre - foot_on_line(centre, frame.point, frame.direction))) > 1e-9 * ball.radius
+    return off_axis(np.asarray(ball.center), frame.point, frame.direction) > ON_AXIS * ball.radius
 
 
 def _inside(spec: Analytic, ball: ClipSphere) -> bool:
-    """Whether a whole sphere or torus lies in ``ball`` (the other kinds are built inside it)."""
+    """Whether a whole sphere or torus lies in ``ball``; whether a cylinder or cone is built inside
+    it (a ball centred on its axis; one off it is cut to: the part was of the ball moved onto the
+    axis, 3 units² more of a unit cylinder in a ball of radius 2.5 about (1, 0, 0)); a plane is."""
+    if spec.kind in ("cylinder", "cone"):
+        return off_axis(np.asarray(ball.center), spec.origin, spec.direction) <= ON_AXIS * ball.radius
     if spec.kind not in ("sphere", "torus"):
         return True
     reach = spec.radius + spec.minor_radius
