@@ -610,3 +610,15 @@ def test_sorgui_s_own_text_report_given_back_says_what_it_is(tmp_path: Path) -> 
     done = sorgui("analyze", "-f", str(report))
     assert done.returncode == 2
     assert "this is sorgui's text report, which is not read back: open its JSON report" in done.stderr
+
+
+def test_a_brep_file_in_other_units_says_it_holds_none(tmp_path: Path) -> None:
+    """A .brep file has no unit: written with ``--units in`` it read back as millimetres, where
+    the STEP and IGES files of the same part say inches, and nothing was said."""
+    pytest.importorskip("OCP")
+    torus = "(x^2 + y^2 + z^2 + 3)^2 - 16(x^2 + y^2)"
+    done = sorgui("analyze", torus, "--recognition-only", "--units", "in", "-o", str(tmp_path / "t.brep"))
+    assert done.returncode == 0
+    assert "a .brep file holds no unit: its lengths are inches (--units in)" in lines(done.stderr)[-1]
+    plain = sorgui("analyze", torus, "--recognition-only", "-o", str(tmp_path / "t2.brep"))
+    assert plain.returncode == 0 and "holds no unit" not in plain.stderr

@@ -73,7 +73,17 @@ def export_file(
     from sorgui.cad import cad_file, summary
 
     data, model = cad_file(analysis, scene, path.name, form.suffix, wants_patch(path, fmt), units, tolerance, cap)
-    return atomic_write_bytes(path, data), summary(model, form.suffix)
+    unitless = ""
+    if form.suffix == ".brep" and units != "mm":  # Open CASCADE's own format: numbers, no unit
+        words = UNIT_NAMES.get(units, units)
+        unitless = (
+            f"; a .brep file holds no unit: its lengths are {words} (--units {units}), which the file does not say"
+        )
+    return atomic_write_bytes(path, data), summary(model, form.suffix) + unitless
+
+
+UNIT_NAMES = {"cm": "centimetres", "m": "metres", "um": "micrometres", "in": "inches", "ft": "feet"}
+"""The units of ``--units`` in words, for the note of a ``.brep`` file, which holds none."""
 
 
 def _has_a_surface(analysis: Analysis, form: Format, patch: bool) -> None:
