@@ -20,12 +20,13 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.Geom import Geom_Surface
-from OCP.GeomAbs import GeomAbs_SurfaceType
+from OCP.GeomAbs import GeomAbs_CurveType, GeomAbs_SurfaceType
 from OCP.gp import gp_Ax1
 from OCP.TopoDS import TopoDS_Face
 
@@ -188,11 +189,44 @@ def _as_in_file(
             minor_radius=torus.MinorRadius(),
         )
     if kind == T.GeomAbs_SurfaceOfRevolution:
-        return replace(report, kind=lc.REVOLUTION, axis=_axis(adaptor.AxeOfRevolution()))
+        axis = adaptor.AxeOfRevolution()
+        return _turned_circle(report, axis, adaptor.BasisCurve()) or replace(
+            report, kind=lc.REVOLUTION, axis=_axis(axis)
+        )
     if kind == T.GeomAbs_SurfaceOfExtrusion:
         d = adaptor.Direction()
         return replace(report, kind=lc.EXTRUSION, direction=_canonical_direction((d.X(), d.Y(), d.Z())))
     return None
+
+
+def _turned_circle(report: FaceReport, axis: gp_Ax1, curve: Any) -> FaceReport | None:  # noqa: ANN401 - an Adaptor3d_Curve
+    """A torus (a spindle torus too, which Open CASCADE's toroidal surface does not hold and
+    sorgui writes as a circle turned about the axis) when the turned curve is a circle in a plane
+    through the axis; ``None`` otherwise."""
+    if curve.GetType() != GeomAbs_CurveType.GeomAbs_Circle:
+        return None
+    circle = curve.Circle()
+    c, n = circle.Location(), circle.Axis().Direction()
+    p, d = axis.Location(), axis.Direction()
+    centre, normal = np.array([c.X(), c.Y(), c.Z()]), np.array([n.X(), n.Y(), n.Z()])
+    point, direction = np.array([p.X(), p.Y(), p.Z()]), np.array([d.X(), d.Y(), d.Z()])
+    foot = point + ((centre - point) @ direction) * direction
+    major = float(np.linalg.norm(centre - foot))
+    scale = max(major, circle.Radius())
+    if abs(normal @ direction) > PLANAR or abs((centre - point) @ normal) > PLANAR * scale or major <= PLANAR * scale:
+        return None
+    return replace(
+        report,
+        kind=lc.TORUS,
+        axis=_axis(axis),
+        center=(float(foot[0]), float(foot[1]), float(foot[2])),
+        radius=major,
+        minor_radius=circle.Radius(),
+    )
+
+
+PLANAR = 1e-9
+"""How far off the axis's plane (relative) a turned circle may be and make a torus."""
 
 
 def _axis(axis: gp_Ax1) -> ApproximateAxis:

@@ -166,3 +166,15 @@ def test_an_iges_surface_of_revolution_is_read_as_the_cylinder_or_cone_it_is(tmp
     assert sorted(f.kind for f in revolved) == ["cone", "cylinder"]
     (cylinder,) = [f for f in revolved if f.kind == "cylinder"]
     assert cylinder.radius == pytest.approx(10) and np.linalg.norm(np.cross(cylinder.axis.direction, [0, 0, 1])) < 1e-9
+
+
+def test_a_spindle_torus_reads_back_as_a_torus(tmp_path: Path) -> None:
+    """Open CASCADE's toroidal surface holds no spindle torus (R < r): sorgui writes it as a
+    circle turned about the axis, which its reader called only "a surface of revolution"."""
+    spindle = analyze("((x-1)^2+(y-2)^2+(z-3)^2-3)^2-4*((x-1)^2+(y-2)^2)")
+    path = export_analysis(spindle, tmp_path / "spindle.step", scene=build_scene(spindle))
+    report, _ = analyse_part(read_part(path))
+    assert [(f.type_in_file, f.kind) for f in report.faces] == [("SURFACE_OF_REVOLUTION", "torus")]
+    (face,) = report.faces
+    assert (face.radius, face.minor_radius) == (pytest.approx(1), pytest.approx(2))
+    assert face.center == pytest.approx((1, 2, 3))
