@@ -39,12 +39,12 @@ from .reading import faces_of
 SAMPLES = 4096
 """Parameters ``t = tan(θ/2)`` at which the circles are tried against the ball."""
 
-SECTIONS = 24
-"""Circles the first sweep of each run goes through; doubled while the tolerance is missed."""
-
-REFINEMENTS = 4
-"""How many times the circles are doubled, at most (beyond some hundreds of circles the loft's
-own approximation strays more again: the best sweep is kept)."""
+SECTIONS = (24, 48, 96, 128, 160, 192, 256)
+"""The circles each sweep of a run goes through, tried in turn until one is within the tolerance
+(the best is kept). Beyond some hundreds the loft's own approximation strays more again, and
+between them its deviation is not monotone: the bundled Dupin cyclide was 7e-8 from its sweep
+through 160 circles, 1.7e-6 through 192 and 6.9e-8 through 256, and when the count was doubled
+from 24 (to 384) it was refused at 1.7e-6 against a tolerance of 1.1e-6."""
 
 
 @dataclass(frozen=True)
@@ -108,15 +108,14 @@ def canal_sweep(analysis: Analysis, ball: ClipSphere, goal: float, tolerance: fl
         runs = _runs(circles, ball)
         if not runs:
             raise CadGeometryError("the canal surface has no characteristic circle in the drawn ball")
-        sections, best = SECTIONS, None
-        for _ in range(REFINEMENTS + 1):
+        best = None
+        for sections in SECTIONS:
             faces = [f for low, high, closed in runs for f in _loft(circles, low, high, closed, sections, tolerance)]
             sweep = Sweep(faces, _deviation(faces, terms, ball), sections * len(runs))
             if best is None or sweep.deviation < best.deviation:
                 best = sweep
             if sweep.deviation <= goal:
                 break
-            sections *= 2
         return best
     return None
 
@@ -185,24 +184,6 @@ def _loft(circles: _Circles, low: float, high: float, closed: bool, count: int, 
     if not done or len(ends) != 2:
         raise CadGeometryError("Open CASCADE could not sweep the canal surface's circles")
     return [_trimmed(face, ends, tolerance) for face in faces_of(loft.Shape())]
-
-
-def _spread(circles: _Circles, low: float, high: float, count: int) -> np.ndarray:
-    """``count`` angles from ``low`` to ``high`` evenly along the spine (the lengths travelled by
-    the centre and the radius together: evenly in angle the circles crowd where the spine is
-    slow), and :data:`EXTRA` more beyond each end at the end's spacing."""
-    fine = np.linspace(low, high, 4097)
-    centre, _, radius = circles.at(fine)
-    steps = np.linalg.norm(np.diff(centre, axis=0), axis=1) + np.abs(np.diff(radius))
-    length = np.concatenate([[0.0], np.cumsum(np.where(np.isfinite(steps), steps, 0.0))])
-    inner = (
-        np.interp(np.linspace(0.0, length[-1], count), length, fine)
-        if length[-1] > 0
-        else np.linspace(low, high, count)
-    )
-    before = inner[0] - (inner[1] - inner[0]) * np.arange(EXTRA, 0, -1)
-    after = inner[-1] + (inner[-1] - inner[-2]) * np.arange(1, EXTRA + 1)
-    return np.concatenate([before, inner, after])
 
 
 def _trimmed(face: TopoDS_Face, ends: list[np.ndarray], tolerance: float) -> TopoDS_Face:

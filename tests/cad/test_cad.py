@@ -18,7 +18,7 @@ from sorgui.engine import analyze
 from sorgui.engine.results import Analysis
 from sorgui.engine.values import polynomial_terms
 from sorgui.examples import example_text
-from sorgui.export.files import export_analysis
+from sorgui.export.files import export_analysis, export_file
 from sorgui.session.scene_data import SceneData, build_scene
 
 pytest.importorskip("OCP")
@@ -166,10 +166,10 @@ def test_a_surface_of_no_kind_written_natively_is_refused_in_one_sentence(tmp_pa
 
 
 def test_a_tolerance_a_sweep_misses_writes_no_file(tmp_path: Path, cases) -> None:
-    """The Dupin cyclide swept through its circles strays above 1e-7 of the ball's radius."""
+    """The Dupin cyclide swept through its circles strays above 1e-9 of the ball's radius."""
     analysis, scene = cases["dupin"]
     with pytest.raises(ValueError, match="more than the tolerance"):
-        export_analysis(analysis, tmp_path / "dupin.step", scene=scene)
+        export_file(analysis, tmp_path / "dupin.step", scene=scene, tolerance=1e-9)
     assert not (tmp_path / "dupin.step").exists()
 
 

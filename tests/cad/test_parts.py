@@ -391,14 +391,15 @@ def test_a_capped_rounded_part_states_the_deviation_of_its_surface_not_of_its_ca
 
 
 @pytest.mark.parametrize(
-    ("example", "tolerance", "solids"), [("pipe-twisted-cubic", None, 0), ("dupin-cyclide", 1e-5, 1)]
+    ("example", "tolerance", "solids"), [("pipe-twisted-cubic", None, 0), ("dupin-cyclide", None, 1)]
 )
 def test_a_canal_surface_is_swept_through_its_circles_within_the_stated_tolerance(
     tmp_path: Path, example: str, tolerance: float | None, solids: int
 ) -> None:
     """The pipe about the twisted cubic and the Dupin cyclide (no surfaces of revolution: they
     were refused): a B-spline surface through their characteristic circles, the measured
-    deviation stated and held; the closed cyclide is a solid."""
+    deviation stated and held; the closed cyclide is a solid (at the default tolerance: its
+    sweep through twice as many circles each time strayed 1.7e-6 against 1.1e-6)."""
     analysis = analyze(example_text(example))
     scene = build_scene(analysis)
     path, holds = export_file(analysis, tmp_path / "canal.step", scene=scene, tolerance=tolerance)
