@@ -179,6 +179,14 @@ class Viewport(QWidget):
         self._loading_timer = QTimer(self)
         self._loading_timer.setInterval(LOADING_POLL_MS)
         self._loading_timer.timeout.connect(self._show_loading)
+        from PySide6.QtOpenGLWidgets import QOpenGLWidget
+
+        self._gl_anchor = QOpenGLWidget(self)
+        """Never shown: an OpenGL widget in the window from its start makes Qt create the window's
+        native window for OpenGL at once. The render window, the first OpenGL widget added after
+        the window was shown, made Qt destroy and create it again: it lost the keyboard focus
+        without a window manager (Ctrl+Return and Esc then did nothing) and flashed with one."""
+        self._gl_anchor.hide()
         self._placeholder = QLabel("Starting the 3D view…", self)
         self._placeholder.setAlignment(Qt.AlignmentFlag.AlignCenter)
         self._placeholder.setMinimumSize(120, 120)

@@ -346,3 +346,19 @@ def test_the_radius_box_shows_a_large_or_small_ball_and_automatic_brings_it_back
     with qtbot.waitSignal(window.result_shown, timeout=60_000) as blocker:
         box.setValue(0.0)
     assert blocker.args[0].scene.region.radius == pytest.approx(automatic)
+
+
+def test_the_render_window_keeps_the_window_and_its_keyboard_focus(make_window, qtbot) -> None:
+    """The render window, the first OpenGL widget added once the window was shown, made Qt
+    destroy the window's native window and create another: without a window manager the window
+    lost the keyboard focus for good (Ctrl+Return and Esc did nothing), and with one it flashed."""
+    from PySide6.QtWidgets import QApplication
+
+    window = make_window()
+    window.activateWindow()
+    qtbot.waitUntil(lambda: QApplication.activeWindow() is window, timeout=10_000)
+    native = int(window.winId())
+    window.viewport.start_rendering()
+    qtbot.wait(500)
+    assert int(window.winId()) == native
+    assert QApplication.activeWindow() is window
