@@ -69,6 +69,7 @@ from sorgui.gui.exporting import (
     with_suffix_of,
     without_export_suffix,
 )
+from sorgui.gui.flow_layout import ElidedLabel
 from sorgui.gui.help import TOPICS, HelpDialog
 from sorgui.gui.region_dialog import BoxDialog
 from sorgui.gui.report_reader import ReportReader
@@ -388,7 +389,7 @@ class MainWindow(QMainWindow):
         return action
 
     def _build_status_bar(self) -> None:
-        self.stage_label = QLabel("Ready")
+        self.stage_label = ElidedLabel("Ready")  # a long message ends in "…", whole in its tooltip
         self.stage_label.setObjectName("stageLabel")
         self.stage_label.setMinimumWidth(50)
         self.busy_indicator = BusyIndicator(self.ticker)

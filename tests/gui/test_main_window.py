@@ -416,3 +416,14 @@ def test_tab_goes_from_the_equation_to_analyze_and_cancel(window) -> None:
         assert tabbed_from(window.analyze_button) is window.cancel_button
     finally:
         window.cancel_button.setEnabled(False)
+
+
+def test_a_long_status_line_is_elided_and_whole_in_its_tooltip(window, run_analysis, qtbot) -> None:
+    """The status line was cut at the window's edge ("… give a smaller one (--regi"), with no
+    way to read the rest: it now ends in "…" where it does not fit, and its tooltip holds it whole."""
+    window.resize(700, 600)
+    run_analysis(window, "x^2 + y^2 + z^2 + 1")
+    qtbot.waitUntil(lambda: not window.session.run.running, timeout=60_000)
+    label = window.stage_label
+    assert label.toolTip() == label.text() and label.text()
+    assert label.fontMetrics().horizontalAdvance(label.text()) > label.width()  # too long to show whole
