@@ -127,7 +127,7 @@ def input_rounding(text: str, coefficients: FloatPoly) -> Rounding | None:
 
 
 LARGE_PART = 10.0
-"""A part size (:func:`_part_size`) above which the floor of a coefficient depends on its degree
+"""A part size (:func:`.deviation.part_size`) above which the floor of a coefficient depends on its degree
 (:func:`_float_floors`); below it :data:`FLOAT_FLOOR` is of the largest coefficient, as it always
 was. A small part's floor, so taken, frees its low-degree coefficients by a few units of their
 last digits; a large part's freed its high-degree ones by thousands."""
@@ -142,9 +142,12 @@ def _float_floors(coefficients: FloatPoly) -> dict[int, float]:
     free to move by thousands, and a torus turned and printed with 10 digits came out as a
     nearest surface 383 units from it; the noise of a coefficient is that of the terms it is a
     sum of, whose size the scale sets."""
+    from . import dense  # numpy: loaded here, where decimals are read, not with the module
+    from .deviation import part_size
+
     degree = max(sum(m) for m in coefficients)
     top = max(abs(c) for c in coefficients.values())
-    length = _part_size(coefficients)
+    length = part_size(dense.from_terms(coefficients, degree))
     if length is None or not LARGE_PART < length < math.inf:
         return dict.fromkeys(range(degree + 1), FLOAT_FLOOR * top)
     scale = math.log(length)
@@ -156,23 +159,6 @@ def _float_floors(coefficients: FloatPoly) -> dict[int, float]:
         except OverflowError:
             floors[d] = FLOAT_FLOOR * top
     return floors
-
-
-def _part_size(coefficients: FloatPoly) -> float | None:
-    """``(|f_low| / |f_high|)^(1/(high − low))`` of the lowest and highest homogeneous parts of
-    ``f`` (their coefficients' norms): the length at which they weigh alike; ``None`` for a
-    homogeneous ``f``."""
-    norms: dict[int, float] = {}
-    for m, c in coefficients.items():
-        if c:
-            norms[sum(m)] = math.hypot(norms.get(sum(m), 0.0), c)
-    low, high = min(norms), max(norms)
-    if low == high:
-        return None
-    try:
-        return math.exp((math.log(norms[low]) - math.log(norms[high])) / (high - low))
-    except OverflowError:
-        return math.inf
 
 
 def given_rounding(tolerance: float, coefficients: FloatPoly) -> Rounding:
