@@ -33,6 +33,7 @@ from sorgui.engine.stage_results import Parametrization
 from sorgui.engine.values import ExpressionError, Terms, float_vector, polynomial_terms, read_expression
 from sorgui.numerics import real_roots
 from sorgui.render import ClipSphere
+from sorgui.render.geometry import foot_on_line
 from sorgui.render.sampling import first_order_distance
 
 DIGITS = 40
@@ -305,9 +306,8 @@ ON_AXIS = 1e-9
 
 
 def off_axis(centre: np.ndarray, point: np.ndarray, direction: np.ndarray) -> float:
-    """The distance of ``centre`` from the line through ``point`` along the unit ``direction``."""
-    relative = centre - point
-    return float(np.linalg.norm(relative - (relative @ direction) * direction))
+    """The distance of ``centre`` from the line through ``point`` along ``direction``."""
+    return float(np.linalg.norm(centre - foot_on_line(centre, point, direction)))
 
 
 def _torus(square: sympy.Poly, frame: Frame) -> Analytic | None:

@@ -33,6 +33,7 @@ from OCP.TopoDS import TopoDS_Face
 from sorgui.engine.results import ApproximateAxis
 from sorgui.engine.rounded import line_complex as lc
 from sorgui.engine.rounded.line_complex import SurfaceFit
+from sorgui.render.geometry import foot_on_line
 
 from . import native as nat
 from .failures import OCCT_ERRORS, from_occt
@@ -210,7 +211,7 @@ def _turned_circle(report: FaceReport, axis: gp_Ax1, curve: Any) -> FaceReport |
     p, d = axis.Location(), axis.Direction()
     centre, normal = np.array([c.X(), c.Y(), c.Z()]), np.array([n.X(), n.Y(), n.Z()])
     point, direction = np.array([p.X(), p.Y(), p.Z()]), np.array([d.X(), d.Y(), d.Z()])
-    foot = point + ((centre - point) @ direction) * direction
+    foot = foot_on_line(centre, point, direction)
     major = float(np.linalg.norm(centre - foot))
     scale = max(major, circle.Radius())
     if abs(normal @ direction) > PLANAR or abs((centre - point) @ normal) > PLANAR * scale or major <= PLANAR * scale:
