@@ -35,6 +35,7 @@ from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any, NoReturn
 
 from sorgui import __version__
+from sorgui.launcher import interrupted
 
 if TYPE_CHECKING:
     from sorgui.engine import Analysis
@@ -1114,8 +1115,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         with ending_signals():
             status = command(argv[1:]) if command is not None else gui_main(argv)
     except KeyboardInterrupt:
-        print("sorgui: interrupted", file=sys.stderr)
-        status = 130
+        status = interrupted()
     except _Terminated as exc:
         status = 128 + exc.signum
     if own_process:

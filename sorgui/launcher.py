@@ -23,5 +23,11 @@ def main() -> int:
 
         return run()
     except KeyboardInterrupt:
-        print("sorgui: interrupted", file=sys.stderr)
-        return INTERRUPTED
+        return interrupted()
+
+
+def interrupted() -> int:
+    """Say that Ctrl+C ended the command, and its exit status (:data:`INTERRUPTED`): here, and in
+    :func:`sorgui.cli.main` once it has taken over the signals."""
+    print("sorgui: interrupted", file=sys.stderr)
+    return INTERRUPTED
