@@ -902,6 +902,8 @@ def each_line(args: argparse.Namespace) -> int:
     as one equation (:data:`MAX_INPUT`)."""
     from sorgui.batch import BatchError, run_each_line
 
+    if args.file is None and stdin_closed():
+        raise UsageError("standard input is closed (the shell's <&-): give -f FILE")
     try:
         return run_each_line(args, emit, MAX_INPUT)
     except BatchError as exc:

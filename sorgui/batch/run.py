@@ -232,8 +232,6 @@ def _runner(args: argparse.Namespace, scheduler: str | None) -> Runner:
 
 def _open_input(path: Path | None) -> BinaryIO:
     if path is None:
-        if getattr(sys.stdin, "name", None) == os.devnull:  # the stand-in of a closed one (sorgui.cli)
-            raise BatchError("standard input is closed (the shell's <&-): give -f FILE")
         return sys.stdin.buffer
     try:
         return open(path, "rb")  # noqa: SIM115 - closed by run_each_line
