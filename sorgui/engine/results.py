@@ -64,6 +64,17 @@ of a map's ``residual``, :mod:`.parametric.nearly`): the rounding of a surface o
 map printed with 6, 10 or 15 digits leaves 0.5 to 0.8 times the tolerance, a coefficient moved
 by ``10⁻⁶`` (at 10 digits) or ``10⁻³`` (at 6) hundreds and thousands of times."""
 
+MAP_NEAR_CEILING = 0.05
+"""The largest relative deviation a map's near kind may have, however coarse its rounding: at two
+significant digits (a tolerance of 0.05) :data:`MAP_NEAR_FACTOR` times the tolerance is above 1,
+and every map was "nearly a cylinder" (the cosine of a normal with a direction is at most 1)."""
+
+
+def map_near_limit(tolerance: float) -> float:
+    """The relative deviation within which a map is near a kind (the unit of its ``residual``):
+    :data:`MAP_NEAR_FACTOR` times ``tolerance``, at most :data:`MAP_NEAR_CEILING`."""
+    return min(MAP_NEAR_FACTOR * tolerance, MAP_NEAR_CEILING)
+
 
 @dataclass(frozen=True)
 class Recognition:

@@ -9,6 +9,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from sorgui.engine.results import (
+    MAP_NEAR_CEILING,
     MAP_NEAR_FACTOR,
     UNDECIDED,
     Analysis,
@@ -16,6 +17,7 @@ from sorgui.engine.results import (
     Conical,
     NearestSurface,
     Recognition,
+    map_near_limit,
     report_json,
 )
 from sorgui.engine.vocabulary import canal_kind, kind_phrase
@@ -271,7 +273,7 @@ def approximation_lines(analysis: Analysis, nested: bool = True) -> list[str]:
         if ap.near_sor and ap.residual > 1:  # a fit excused up to one more rounding of float noise (§8.2)
             scale = "over 1, by less than floating point's own error in the fit: within it"
         unit = (
-            f"{MAP_NEAR_FACTOR:g} times the tolerance, a map's limit of nearness"
+            f"{_map_limit(ap.tolerance, 'the tolerance')}, a map's limit of nearness"
             if analysis.input_kind == "parametrization"
             else "the rounding"
         )
@@ -331,7 +333,17 @@ def within_words(analysis: Analysis) -> str:
     approx = analysis.approximate
     given = approx is not None and approx.tolerance_source == "given"
     words = "the tolerance given" if given else "the rounding of the input"
-    return f"{MAP_NEAR_FACTOR:g} times {words}" if analysis.input_kind == "parametrization" else words
+    if analysis.input_kind != "parametrization" or approx is None:
+        return words
+    return _map_limit(approx.tolerance, words)
+
+
+def _map_limit(tolerance: float | None, words: str) -> str:
+    """A map's limit of nearness (:func:`~sorgui.engine.results.map_near_limit`) in words: so many
+    times ``words`` (the tolerance), or the ceiling when that is coarser."""
+    if tolerance is not None and map_near_limit(tolerance) < MAP_NEAR_FACTOR * tolerance:
+        return f"{MAP_NEAR_CEILING:g} (relative; {MAP_NEAR_FACTOR:g} times {words} is coarser)"
+    return f"{MAP_NEAR_FACTOR:g} times {words}"
 
 
 def analysis_lines(analysis: Analysis) -> list[str]:

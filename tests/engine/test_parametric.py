@@ -301,3 +301,18 @@ def test_a_rounded_map_s_nearness_is_said_in_its_own_unit() -> None:
     report = plain_text(analyze(text, recognition_only=True))
     assert "NEARLY: within 30 times the rounding of the input" in report
     assert "times 30 times the tolerance, a map's limit of nearness (at most 1: within it)" in report
+
+
+def test_a_map_printed_with_two_digits_is_near_nothing_it_is_not() -> None:
+    """Printed with two significant digits (a tolerance of 0.05), 30 times the tolerance is above
+    1, and the elliptic paraboloid ``(s, 2t, 3s² + 3t²)`` was "nearly a cylinder along (0, 0, 1)
+    within the rounding (relative residual 0.86)": its normals lean up to 80° from the
+    perpendicular to that direction. A map's limit of nearness is at most 0.05."""
+    from sorgui.engine.results import MAP_NEAR_CEILING, map_near_limit
+    from sorgui.export.text import plain_text
+
+    assert map_near_limit(0.05) == MAP_NEAR_CEILING == 0.05 and map_near_limit(5e-7) == pytest.approx(1.5e-5)
+    analysis = analyze("1.0*s, 2.0*t, 3.0*s^2 + 3.0*t^2", timeout=120)
+    assert analysis.conical is not None and analysis.conical.kind == "none"
+    assert analysis.conical.near_direction is None and analysis.conical.near_apex is None
+    assert "nearly" not in plain_text(analysis)

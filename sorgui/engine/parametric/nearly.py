@@ -19,8 +19,9 @@ complex of sampled normals that CAD faces are read with (:mod:`sorgui.engine.rou
 
 The tolerance is the input's: half a unit in the last place of its most precise decimal,
 relative (``0.5·10^(1−k)`` for ``k`` significant digits), or ``--tolerance``. A kind is *near*
-when its deviation is within :data:`NEAR_FACTOR` times the tolerance (the ``residual`` of the
-:class:`~sorgui.engine.results.Approximation` is the deviation in that unit: at most 1 is near) (CAD printing rounds
+when its deviation is within :func:`~sorgui.engine.results.map_near_limit` (30 times the
+tolerance, at most 0.05; the ``residual`` of the :class:`~sorgui.engine.results.Approximation` is
+the deviation in that unit: at most 1 is near) (CAD printing rounds
 every coefficient, and the normals amplify that by the conditioning of the map; a coefficient
 moved by ``10⁻³`` or ``10⁻⁶`` stays far outside).
 """
@@ -35,8 +36,7 @@ from typing import Any
 import numpy as np
 
 from ..recognition.symmetry import CYLINDER, PLANE, REVOLUTION, SPHERE
-from ..results import MAP_NEAR_FACTOR as NEAR_FACTOR
-from ..results import ApproximateAxis, Approximation
+from ..results import ApproximateAxis, Approximation, map_near_limit
 from ..rounded.line_complex import (
     Samples,
     axis_of,
@@ -159,7 +159,7 @@ def nearly(surface: RationalMap, tolerance: float, source: str) -> tuple[Approxi
         deviation = None if axis is None else _axis_deviation(samples, axis)
         along = deviation is not None and not math.isfinite(deviation)
         deviation = None if along else deviation
-        residual = None if deviation is None else deviation / (NEAR_FACTOR * tolerance)
+        residual = None if deviation is None else deviation / map_near_limit(tolerance)
         why = (
             f"not near any continuous symmetry: the smallest singular value of (★) is {singular[-1]:.4g}, "
             f"above {gate:.4g}, so no kind is tried"
@@ -182,14 +182,14 @@ def nearly(surface: RationalMap, tolerance: float, source: str) -> tuple[Approxi
         )
         return approximation, _near_cone(samples, tolerance)
     kind, deviation, axis, center, normal = found
-    near = deviation <= NEAR_FACTOR * tolerance
+    near = deviation <= map_near_limit(tolerance)
     approximation = Approximation(
         tolerance,
         source,
         near,
         kind,
         deviation,
-        deviation / (NEAR_FACTOR * tolerance),
+        deviation / map_near_limit(tolerance),
         singular,
         axis=axis,
         center=center,
@@ -250,14 +250,14 @@ def _near_cone(samples: Samples, tolerance: float) -> NearCone | None:
     normals are within it of perpendicular to one direction, else ``None``."""
     n, p, size = samples.normals, samples.points, samples.size
     singular = np.linalg.svd(n, compute_uv=False)
-    if singular[-1] <= NEAR_FACTOR * tolerance * singular[0]:
+    if singular[-1] <= map_near_limit(tolerance) * singular[0]:
         a = translation_direction(samples)
         a = a if a[int(np.argmax(np.abs(a)))] > 0 else -a
         deviation = float(np.max(np.abs(n @ a)))
-        return NearCone(None, _vector(a), deviation) if deviation <= NEAR_FACTOR * tolerance else None
+        return NearCone(None, _vector(a), deviation) if deviation <= map_near_limit(tolerance) else None
     apex = cone_apex(samples)
     deviation = float(np.max(np.abs(np.sum((p - apex) * n, axis=1)))) / size
-    return NearCone(_vector(apex), None, deviation) if deviation <= NEAR_FACTOR * tolerance else None
+    return NearCone(_vector(apex), None, deviation) if deviation <= map_near_limit(tolerance) else None
 
 
 def _vector(v: np.ndarray) -> tuple[float, float, float]:
