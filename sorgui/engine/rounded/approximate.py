@@ -40,7 +40,7 @@ from ..syntax import square_roots
 from ..vocabulary import kind_noun
 from . import dense
 from .dense import FloatArray
-from .deviation import max_deviation
+from .deviation import axis_centre, max_deviation
 from .directions import Quadratic, decimal_places, perpendicular, rational_sqrt, three
 from .near_symmetry import (
     Candidate,
@@ -436,6 +436,8 @@ def _nearest_surface(exact: ExactSurface, f: Normalised, original: Poly) -> Near
     elif sym.center is not None:
         center = floats(sym.center) / f.length
     deviation = max_deviation(f.array, g, center, direction)
+    if deviation is None and direction is not None:  # the part may be small and far from that point
+        deviation = max_deviation(f.array, g, axis_centre(g, center, direction), direction)
     near_zero_set = deviation is None or deviation <= FAR_ZERO_SET
     return NearestSurface(
         polynomial=poly_str(exact.polynomial),
