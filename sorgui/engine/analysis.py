@@ -216,7 +216,7 @@ def analyze_polynomial(
     """
     from .algebra.linalg import perpendicular
     from .algebra.polys import field_name, poly_str, total_degree
-    from .recognition.profile import plane_foot, profile_curve
+    from .recognition.profile import plane_foot, power_profile, profile_curve
     from .recognition.recognize import factor_reports, profile_report, recognize
     from .revolution.real_locus import real_locus
     from .stage_results import Rationality
@@ -237,14 +237,14 @@ def analyze_polynomial(
     sphere = centre is not None
     if centre is not None and not recognition_only:
         K = f.ring.domain
-        profile = profile_curve(f, centre, (K.zero, K.zero, K.one), (K.one, K.zero, K.zero))
+        profile = power_profile(f, distinct[0], centre, (K.zero, K.zero, K.one), (K.one, K.zero, K.zero))
         recognition = replace(recognition, profile=profile_report(profile, K))
     # A plane likewise: every normal line is an axis, Table 1 is read about one of them.
     plane = profile is None and symmetry.kind == PLANE and kept == 1
     if plane and not recognition_only:
         K = f.ring.domain
         foot, normal = plane_foot(distinct[0])  # the plane itself, not a power of it
-        profile = profile_curve(f, foot, normal, perpendicular(normal, K))
+        profile = power_profile(f, distinct[0], foot, normal, perpendicular(normal, K))
         recognition = replace(recognition, profile=profile_report(profile, K))
     approximation: Approximation | None = None
     near = None

@@ -33,6 +33,7 @@ from ..algebra.polys import (
     primitive,
     sqrt_in_field,
     to_expr,
+    total_degree,
 )
 
 S_R = ("s", "r")
@@ -180,4 +181,25 @@ def profile_curve(f: Poly, point: Vector, direction: Vector, normal: Vector | No
         orthonormal=orthonormal_profile(rational, frame) if even else poly_ring(("x", "y"), K).zero,
         even=even,
         verified=verified,
+    )
+
+
+def power_profile(f: Poly, g: Poly, point: Vector, direction: Vector, normal: Vector) -> ProfileCurve:
+    """The profile of ``f = c·g^k`` about the axis through ``point`` (:func:`profile_curve`), read
+    off ``g``'s: ``p̃_f`` is ``p̃_g^k`` up to a constant, verified when ``p̃_g`` is. A plane or a
+    sphere taken to the 45th power was composed in the axis frame and verified there (2 s,
+    outside every stage). ``f`` itself when ``g``'s profile is not even in ``r``."""
+    if f == g:
+        return profile_curve(f, point, direction, normal)
+    own = profile_curve(g, point, direction, normal)
+    if not own.even:
+        return profile_curve(f, point, direction, normal)
+    rational = primitive(own.rational ** (total_degree(f) // total_degree(g)))
+    return ProfileCurve(
+        frame=own.frame,
+        rational=rational,
+        square=square_profile(rational),
+        orthonormal=orthonormal_profile(rational, own.frame),
+        even=True,
+        verified=own.verified,
     )
