@@ -14,6 +14,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from sorgui.batch import LineReader, equations, line_hash
 
 SORGUI = [sys.executable, "-m", "sorgui.cli", "analyze"]
@@ -311,6 +313,25 @@ def test_a_batch_killed_and_resumed_writes_the_file_of_one_uninterrupted_run(tmp
     again = subprocess.run([*batch, "-o", str(results), "--resume"], capture_output=True, text=True, timeout=120)
     assert again.returncode == whole.returncode and "(400 kept from before)" in again.stderr  # the kept errors count
     assert rows_of(results.read_text(encoding="utf-8")) == rows_of(whole.stdout)
+
+
+@pytest.mark.parametrize(("signum", "status"), [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_an_interrupted_batch_says_what_its_results_file_holds(tmp_path: Path, signum: int, status: int) -> None:
+    """Ctrl+C during a batch into a results file said only "interrupted" (a signal, nothing):
+    how many lines the file holds and that ``--resume`` goes on are said."""
+    lines = tmp_path / "lines.txt"
+    lines.write_text(many_lines(2000), encoding="utf-8")
+    results = tmp_path / "results.jsonl"
+    batch = [*SORGUI, "--each-line", "--recognition-only", "-f", str(lines), "-o", str(results)]
+    proc = subprocess.Popen(batch, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while (not results.exists() or results.read_bytes().count(b"\n") < 20) and time.monotonic() < deadline:
+        time.sleep(0.005)
+    proc.send_signal(signum)
+    _, err = proc.communicate(timeout=60)
+    held = results.read_bytes().count(b"\n")
+    assert proc.returncode == status and 20 <= held < 2000, err
+    assert f"sorgui: {results} holds {held:,} lines; the same command with --resume goes on from there" in err
 
 
 def test_a_kept_failure_gives_the_exit_status_of_the_run_that_wrote_it(tmp_path: Path) -> None:

@@ -48,6 +48,8 @@ class ResultsFile:
         """How many kept lines count as each kind (:data:`.answers.KINDS`)."""
         self.kept_statuses: set[int] = set()
         """The statuses of the kept lines: the batch's exit status counts them as the run that wrote them did."""
+        self.written = 0
+        """The lines written by this run."""
         self._fd: int | None = None
         self._synced = time.monotonic()
         status = _status(path, inputs)
@@ -117,8 +119,13 @@ class ResultsFile:
         data = memoryview((answer.text + "\n").encode("utf-8"))
         while data:
             data = data[os.write(self._fd, data) :]
+        self.written += 1
         if time.monotonic() - self._synced >= SYNC_EVERY:
             self._sync()
+
+    def lines(self) -> int:
+        """The lines the file holds: those kept and those written by this run."""
+        return sum(self.kept.values()) + self.written
 
     def close(self) -> None:
         """Flush the file to the disk and close it."""

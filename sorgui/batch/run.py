@@ -140,6 +140,14 @@ def run_each_line(args: argparse.Namespace, emit: Callable[[str], None], limit: 
             progress = Progress(show, total, shared=show is not None and sys.stdout.isatty())
             reader = LineReader(stream, limit)
             status = _run(reader, results, emit, progress, _runner(args, scheduler), options)
+        except BaseException as exc:
+            if results is not None and not isinstance(exc, Exception):  # Ctrl+C or an ending signal
+                print(
+                    f"sorgui: {results.path} holds {results.lines():,} line{'s' if results.lines() != 1 else ''}; "
+                    "the same command with --resume goes on from there",
+                    file=sys.stderr,
+                )
+            raise
         finally:
             if results is not None:
                 results.close()
