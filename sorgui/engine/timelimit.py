@@ -103,7 +103,8 @@ def unfinished_analysis(
     ``start`` (the :func:`skeleton`) with the ``recognition`` if there is one; ``unfinished``
     lists the stage that was running (``current``) and the stages of the equation's analysis
     (:func:`~.analysis.analyze_polynomial`) that were still to come, the cone and canal ones
-    included.
+    included, and a map's properness and implicit equation before them (a map stopped in its
+    properness said nothing of its implicit equation).
 
     Needs no sympy: the parent of a killed analysis process composes it from what the process
     sent before it was ended."""
@@ -117,7 +118,11 @@ def unfinished_analysis(
     # A map's verdicts come from the map itself (docs/math.md §13): its symmetry and its cone or
     # cylinder are decided, whatever is left of the analysis of its implicit equation.
     from_map = latest.input_kind == "parametrization" and rec.symmetry != UNDECIDED
+    # A map's own stages before those of its implicit equation (:mod:`.parametric.pipeline`).
+    of_map = latest.input_kind == "parametrization"
     pipeline = [
+        *(("properness",) if of_map and not recognition_only else ()),
+        *(("implicit equation",) if of_map else ()),
         "recognition",
         "factors",
         *(("real locus",) if not recognition_only and may_be_sor else ()),

@@ -131,3 +131,17 @@ def test_the_alarm_is_restored_and_only_armed_in_the_main_thread() -> None:
     thread.start()
     thread.join()
     assert seen == [before]
+
+
+def test_a_map_stopped_before_its_implicit_equation_lists_it_unfinished() -> None:
+    """A bicubic map stopped at 1 s, in its properness (Singular), listed ``properness``,
+    ``factors`` and ``canal`` unfinished, and not its implicit equation, which its report said
+    was not found within the limit (at 3 s it was listed)."""
+    bicubic = (
+        "x = u + 2*v^3 - u^2*v + 3*u^3*v^2, y = v - u^3 + 2*u*v^2 + u^2*v^3 - 1, z = u*v + u^3*v^3 - 2*v^2*u + 5*u^2"
+    )
+    result = analyze(bicubic, timeout=1)
+    done = {name for name, _ in result.timings}
+    assert result.input_kind == "parametrization" and "implicit equation" not in done
+    assert "implicit equation" in result.unfinished
+    assert "properness" in result.unfinished or "properness" in done
