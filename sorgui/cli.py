@@ -426,6 +426,9 @@ def _read_within(opener: Callable[[], AbstractContextManager[IO[bytes]]], source
     data = read[0]
     if isinstance(data, OSError):
         raise UsageError(f"cannot read {source}: {data.strerror or data}")
+    nul = data.find(b"\0")
+    if nul >= 0:  # /dev/zero, a binary file: "too long" said nothing of what it is
+        raise UsageError(f"cannot read {source}: byte {nul + 1} is a NUL byte: this is not a text file")
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as exc:

@@ -92,12 +92,26 @@ def test_the_window_command_line_errors_are_one_line_too() -> None:
 
 def test_input_is_read_only_up_to_the_limit() -> None:
     start = time.monotonic()
+    endless = subprocess.Popen(["yes", "x^2 + y^2 - z"], stdout=subprocess.PIPE)
+    try:
+        out = sorgui("analyze", "-", stdin=endless.stdout, timeout=60)
+    finally:
+        endless.kill()
+        endless.wait()
+        endless.stdout.close()
+    assert out.returncode == 2 and "standard input is too long (more than 1,000,000 characters)" in one_line(out.stderr)
+    assert time.monotonic() - start < 40  # gigabytes would take minutes
+
+
+def test_a_file_with_a_nul_byte_is_said_not_to_be_text() -> None:
+    """``-f /dev/zero`` was "too long (more than 1,000,000 characters)", where ``--each-line``
+    says what it is."""
     out = sorgui("analyze", "-f", "/dev/zero", timeout=60)
-    assert out.returncode == 2 and "too long (more than 1,000,000 characters)" in one_line(out.stderr)
-    with open("/dev/zero", "rb") as endless:
-        out = sorgui("analyze", "-", stdin=endless, timeout=60)
-    assert out.returncode == 2 and "standard input is too long" in one_line(out.stderr)
-    assert time.monotonic() - start < 40  # two processes; gigabytes would take minutes
+    assert out.returncode == 2
+    assert one_line(out.stderr) == "sorgui: cannot read /dev/zero: byte 1 is a NUL byte: this is not a text file"
+    with open("/dev/zero", "rb") as zeros:
+        out = sorgui("analyze", "-", stdin=zeros, timeout=60)
+    assert out.returncode == 2 and "standard input: byte 1 is a NUL byte" in one_line(out.stderr)
 
 
 def test_the_input_limit_is_the_parsers() -> None:
@@ -158,8 +172,12 @@ def test_a_binary_file_is_said_not_to_be_text(tmp_path: Path) -> None:
     path.write_bytes(b"\x7fELF\x02\x01\x01\x00" + b"\x00" * 16 + b"\xd0a")
     out = sorgui("analyze", "-f", str(path))
     assert out.returncode == 2, out.stderr
+    assert one_line(out.stderr) == f"sorgui: cannot read {path}: byte 8 is a NUL byte: this is not a text file"
+    path.write_bytes("x² + y² = z".encode("latin-1"))
+    out = sorgui("analyze", "-f", str(path))
+    assert out.returncode == 2, out.stderr
     said = one_line(out.stderr)
-    assert said == f"sorgui: cannot read {path}: it is not UTF-8 text (byte 25 is 0xd0): an equation is text"
+    assert said == f"sorgui: cannot read {path}: it is not UTF-8 text (byte 2 is 0xb2): an equation is text"
 
 
 def test_the_input_file_is_never_overwritten(tmp_path: Path) -> None:
