@@ -426,13 +426,14 @@ def _read_within(opener: Callable[[], AbstractContextManager[IO[bytes]]], source
     data = read[0]
     if isinstance(data, OSError):
         raise UsageError(f"cannot read {source}: {data.strerror or data}")
-    nul = data.find(b"\0")
-    if nul >= 0:  # /dev/zero, a binary file: "too long" said nothing of what it is
-        raise UsageError(f"cannot read {source}: byte {nul + 1} is a NUL byte: this is not a text file")
     try:
-        return data.decode("utf-8")
+        text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise UsageError(f"cannot read {source}: {_not_text(exc)}") from None
+    nul = data.find(b"\0")
+    if nul >= 0:  # /dev/zero is UTF-8: "too long" said nothing of what it is
+        raise UsageError(f"cannot read {source}: byte {nul + 1} is a NUL byte: this is not a text file")
+    return text
 
 
 def _not_text(error: UnicodeDecodeError) -> str:
