@@ -331,7 +331,7 @@ class Conical:
         )
 
 
-Verdict = Literal["sor", "near", "not", "undecided"]
+Verdict = Literal["sor", "near", "not", "not exactly", "undecided"]
 """What :attr:`Analysis.verdict` says."""
 
 
@@ -367,11 +367,14 @@ class Analysis:
     def verdict(self) -> Verdict:
         """The answer every view words: ``undecided`` (the recognition met the time limit),
         ``sor`` (a surface of revolution), ``near`` (rounded input that is none exactly but one
-        within its rounding, docs/math.md §8), else ``not``."""
+        within its rounding, docs/math.md §8), ``not exactly`` (rounded input that is none
+        exactly, the analysis of its rounding unfinished), else ``not``."""
         if not self.recognition.decided:
             return "undecided"
         if self.recognition.is_sor:
             return "sor"
+        if self.approximate is None and "approximate" in self.unfinished:
+            return "not exactly"
         return "near" if self.approximate is not None and self.approximate.near_sor else "not"
 
     def to_json(self) -> dict[str, Any]:

@@ -126,6 +126,7 @@ def unfinished_analysis(
         "recognition",
         "factors",
         *(("real locus",) if not recognition_only and may_be_sor else ()),
+        *(("approximate",) if not rec.is_sor and latest.approximate is None and _rounded(latest.input) else ()),
         *(("rationality", "parametrizations") if needs_rationality else ()),
         *(() if recognition_only else ("conical",)),
         "canal",
@@ -144,3 +145,10 @@ def unfinished_analysis(
     elif rationality is not None and "parametrizations" in unfinished:
         rationality = replace(rationality, notes=(*rationality.notes, f"no parameterizations: {message}"))
     return replace(latest, rationality=rationality, timings=timings, unfinished=tuple(unfinished))
+
+
+def _rounded(text: str) -> bool:
+    """Whether ``text`` prints decimals: its rounding is analysed (the stage ``approximate``)."""
+    from .parsing import has_decimals  # flint: only for an analysis that met its limit
+
+    return has_decimals(text)

@@ -27,6 +27,13 @@ SYMMETRY_KINDS: dict[str, tuple[str, str]] = {
 }
 """Each symmetry kind: its noun phrase and what makes it that kind."""
 
+UNDECIDED_NEARNESS = (
+    "its decimals are exact rationals of which it is not one; whether it is one within the rounding "
+    "of its digits was not decided (the analysis did not finish)"
+)
+"""The verdict of rounded input that is no surface of revolution exactly, stopped (cancelled, or
+at its time limit) before the analysis of its rounding (docs/math.md §8) ended: not a plain "no"."""
+
 CANAL_KINDS: dict[str, str] = {
     "pipe": "a pipe (all spheres of one radius)",
     "revolution": "a surface of revolution (the spheres' centres on a line)",

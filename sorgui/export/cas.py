@@ -19,7 +19,7 @@ from sympy.printing.maple import maple_code
 from sympy.printing.mathematica import mathematica_code
 
 from sorgui.engine.results import Analysis, Approximation
-from sorgui.engine.vocabulary import kind_noun
+from sorgui.engine.vocabulary import UNDECIDED_NEARNESS, kind_noun
 from sorgui.export.coverage import CoverageStyle
 from sorgui.export.formulas import Formula, analysis_formulas
 from sorgui.export.quoting import hash_comment, mathematica_comment, one_line
@@ -95,6 +95,7 @@ def verdict(analysis: Analysis) -> str:
         "sor": "a surface of revolution",
         "near": f"nearly a surface of revolution (not exactly: within {within_words(analysis)})",
         "not": "not a surface of revolution",
+        "not exactly": f"not exactly a surface of revolution ({UNDECIDED_NEARNESS})",
     }[analysis.verdict]
 
 

@@ -20,7 +20,7 @@ from sorgui.engine.results import (
     map_near_limit,
     report_json,
 )
-from sorgui.engine.vocabulary import canal_kind, kind_phrase
+from sorgui.engine.vocabulary import UNDECIDED_NEARNESS, canal_kind, kind_phrase
 from sorgui.numerics import without_noise
 
 if TYPE_CHECKING:
@@ -353,6 +353,7 @@ def analysis_lines(analysis: Analysis) -> list[str]:
         "sor": "YES",
         "not": "NO",
         "near": f"NO exactly, but NEARLY: within {within_words(analysis)} (see below)",
+        "not exactly": f"NO exactly; {UNDECIDED_NEARNESS}",
         "undecided": "undecided",
     }[analysis.verdict]
     lines = [

@@ -160,12 +160,14 @@ class ResultsPane(QScrollArea):
         unfinished: Collection[str] = (),
         limit: float | None = None,
         beyond: bool = False,
+        stopped: Collection[str] = (),
     ) -> None:
         """Show ``analysis``, every formula as text at once and typeset when the typesetting
         process has it. ``stages`` are the run's finished stages with their times and ``wall``
         its wall time so far (the Timings section: the same figures as the stage line);
         ``pending`` names the stages still to come (shown as such), ``unfinished`` those the time
-        limit of ``limit`` seconds cut short (shown as undecided); ``nearest`` says that
+        limit of ``limit`` seconds cut short (shown as undecided), ``stopped`` those cancelled or
+        cut short (rounded input stopped in its rounding's stage is not a plain *no*); ``nearest`` says that
         ``analysis`` is that of the nearest exact surface (its numbers in decimals, as rounded
         input's), ``beyond`` that it lies outside the input's rounding; ``components`` are the
         typed components of a blend, to explain a *no*."""
@@ -176,7 +178,9 @@ class ResultsPane(QScrollArea):
         if nearest and rec.polynomial:
             self._formulas["polynomial"] = expression_formula(rec.polynomial, "g =", "decimal")
         self._begin(analysis.input)
-        title, detail, kind = verdict(analysis, rounding_pending="approximate" in pending)
+        title, detail, kind = verdict(
+            analysis, rounding_pending="approximate" in pending, rounding_stopped="approximate" in stopped
+        )
         if nearest:
             title = "The nearest exact surface: " + title.lower()
             meant = (

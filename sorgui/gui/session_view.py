@@ -149,6 +149,7 @@ class SessionView(QObject):
                 done,
                 pending=pending,
                 unfinished={s.name for s in run.unfinished()} if not nearest else set(),
+                stopped={s.name for s in run.stage_list() if s.state in (StageState.CANCELLED, StageState.UNFINISHED)},
                 limit=run.limit,
                 nearest=nearest,
                 beyond=nearest and found is not None and not found.within_rounding,
@@ -296,6 +297,7 @@ class SessionView(QObject):
                 "sor": "surface of revolution",
                 "near": "nearly a surface of revolution",
                 "not": "not a surface of revolution",
+                "not exactly": "not exactly a surface of revolution (nearness within the rounding undecided)",
                 "undecided": "undecided whether it is a surface of revolution",
             }[analysis.verdict]
             summary = run.scene.summary() if run.scene is not None else ""

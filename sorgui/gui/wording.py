@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 from sorgui.engine.results import Analysis, Approximation, Canal, Conical, Recognition
 from sorgui.engine.stage_results import CanalFamily
-from sorgui.engine.vocabulary import canal_kind, kind_noun, kind_phrase
+from sorgui.engine.vocabulary import UNDECIDED_NEARNESS, canal_kind, kind_noun, kind_phrase
 from sorgui.export.text import float_text, unit_text
 from sorgui.session.components import Component
 from sorgui.session.model import STAGE_TITLES
@@ -244,10 +244,10 @@ def _over(conical: Conical) -> str:
     return f" over a curve of degree {base.degree}, genus {base.genus} ({rational})"
 
 
-def verdict(analysis: Analysis, rounding_pending: bool = False) -> tuple[str, str, str]:
+def verdict(analysis: Analysis, rounding_pending: bool = False, rounding_stopped: bool = False) -> tuple[str, str, str]:
     """``(title, detail, kind)`` of the verdict banner; ``kind`` is ``sor``, ``near``, ``not``
     or ``info`` (rounded input's exact *no*, while whether it is one within its rounding is
-    ``rounding_pending``)."""
+    ``rounding_pending``, or once its stage was ``rounding_stopped``: cancelled, cut short)."""
     rec = analysis.recognition
     approx = analysis.approximate
     if rounding_pending and not rec.is_sor and approx is None:
@@ -260,8 +260,12 @@ def verdict(analysis: Analysis, rounding_pending: bool = False) -> tuple[str, st
     kind = kind_phrase(rec.symmetry)
     degree = f"degree {rec.degree}" if rec.polynomial else "degree unknown"  # a map's equation may not be found
     answer = analysis.verdict
+    if rounding_stopped and answer == "not" and approx is None:
+        answer = "not exactly"
     if answer == "undecided":
         return "Undecided within the time limit", f"{kind} · {degree} over {short_numbers(analysis.field)}", "info"
+    if answer == "not exactly":
+        return "Not exactly a surface of revolution", f"{UNDECIDED_NEARNESS} · {degree}", "info"
     detail = f"{kind} · {degree} over {short_numbers(analysis.field)} · dim L = {rec.symmetry_dimension}"
     conical = analysis.conical
     if conical is not None and conical.kind == "cone" and conical.apex is not None:

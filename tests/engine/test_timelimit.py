@@ -145,3 +145,36 @@ def test_a_map_stopped_before_its_implicit_equation_lists_it_unfinished() -> Non
     assert result.input_kind == "parametrization" and "implicit equation" not in done
     assert "implicit equation" in result.unfinished
     assert "properness" in result.unfinished or "properness" in done
+
+
+def _stopped_before_its_rounding() -> Analysis:
+    """A rounded hyperboloid (no surface of revolution exactly) stopped after its factors, before
+    the analysis of its rounding."""
+    from dataclasses import replace
+
+    full = analyze("1.0000001*x^2 + y^2 - z^2 - 1", recognition_only=True)
+    latest = replace(full, approximate=None, timings=())
+    return unfinished_analysis(
+        latest,
+        recognition=latest.recognition,
+        latest=latest,
+        timings=(("parse", 0.001), ("recognition", 0.001), ("factors", 0.001)),
+        current=None,
+        message="too slow",
+        recognition_only=True,
+    )
+
+
+def test_rounded_input_stopped_before_its_rounding_is_not_a_plain_no() -> None:
+    """Rounded input (a torus, in the QA run) stopped (its time limit, Esc) before the analysis of its
+    rounding was a plain "NO" (red "Not a surface of revolution" in the window), where the
+    whole analysis says "nearly": its exact *no* is said, and its nearness undecided."""
+    from sorgui.export.cas import verdict
+    from sorgui.export.text import plain_text
+
+    result = _stopped_before_its_rounding()
+    assert "approximate" in result.unfinished and result.verdict == "not exactly"
+    assert "surface of revolution: NO exactly; its decimals are exact rationals of which it is not one" in (
+        plain_text(result)
+    )
+    assert verdict(result).startswith("not exactly a surface of revolution (its decimals")

@@ -18,3 +18,18 @@ def test_a_refused_equation_s_heading_names_what_is_wrong(text: str, heading: st
     with pytest.raises(ParseError) as refused:
         parse_polynomial(text)
     assert invalid_heading(str(refused.value)) == heading
+
+
+def test_rounded_input_cancelled_in_its_rounding_is_not_a_plain_no() -> None:
+    """Esc while a rounded torus's rounding was analysed showed a red "Not a surface of
+    revolution" banner; the analysis, whole, says "nearly"."""
+    from dataclasses import replace
+
+    from sorgui.engine import analyze
+    from sorgui.gui.wording import verdict
+
+    analysis = replace(analyze("1.0000001*x^2 + y^2 - z^2 - 1", recognition_only=True), approximate=None)
+    assert verdict(analysis)[0] == "Not a surface of revolution"
+    title, detail, kind = verdict(analysis, rounding_stopped=True)
+    assert title == "Not exactly a surface of revolution" and kind == "info"
+    assert "within the rounding of its digits was not decided" in detail
