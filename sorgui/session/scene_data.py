@@ -17,6 +17,7 @@ centre, or the origin), so that bounded parts of the surface are shown whole.
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
@@ -316,7 +317,7 @@ def build_scene(
     c, r = np.asarray(region.center), region.radius
     bounds = box.bounds if box is not None else tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
     clip: ClipSphere | ClipBox = box if box is not None else region
-    too_far = _too_far(region, analysis.recognition.degree)
+    too_far = _too_far(terms, region, analysis.recognition.degree)
     if too_far is not None:
         empty = LineData.empty()
         return SceneData(terms, region, MeshData.empty(), empty, empty, None, None, None, None, (too_far,), box=box)
@@ -380,15 +381,26 @@ FLOAT_ERROR = 1e-3
 above which the surface is not drawn (:func:`_too_far`)."""
 
 
-def _too_far(region: ClipSphere, degree: int) -> str | None:
+def _too_far(terms: Terms, region: ClipSphere, degree: int) -> str | None:
     """Why a surface in ``region`` cannot be drawn in floating point, in words (``None`` when it
-    can): about a centre at distance ``D`` the terms of ``f`` are ``(D/r)^degree`` times larger
-    than its spread in a ball of radius ``r``, and their rounding error swamps it. A sphere of
-    radius 10⁻³ about ``(10¹², 0, 0)`` was meshed as a flat disc 17 000 across (67 MB), one of
-    radius 1 about ``(10¹⁷, 0, 0)`` failed the whole run's drawing stage with an internal error."""
-    distance = float(np.linalg.norm(region.center))
-    ratio = distance / region.radius
-    if ratio <= 1 or float(np.finfo(np.float64).eps) * ratio ** max(degree, 1) <= FLOAT_ERROR:
+    can): the rounding error of ``f``'s values in the ball (``ε·Σ|c_k·x^k|`` at 27 points of it)
+    against their spread there. A sphere of radius 10⁻³ about ``(10¹², 0, 0)`` was meshed as a
+    flat disc 17 000 across (67 MB), one of radius 1 about ``(10¹⁷, 0, 0)`` failed the whole run's
+    drawing stage with an internal error. The spread is measured, not taken as ``r^degree``: a
+    ball of radius 0.5 on a torus of radii 250 and 40 a thousand from the origin was refused."""
+    c, r = np.asarray(region.center, dtype=float), region.radius
+    distance = float(np.linalg.norm(c))
+    eps = float(np.finfo(np.float64).eps)
+    if distance <= r or eps * (distance / r) ** max(degree, 1) <= FLOAT_ERROR:
+        return None  # the terms cannot outgrow the spread by that much
+    steps = np.array(list(itertools.product((-0.5, 0.0, 0.5), repeat=3)))
+    points = c + r * steps
+    with np.errstate(all="ignore"):
+        values = evaluate_points(terms, points)
+        sizes = evaluate_points([(e, abs(v)) for e, v in terms], np.abs(points))
+        spread = float(np.ptp(values))
+        error = eps * float(np.max(sizes)) * max(degree, 1)
+    if np.all(np.isfinite(values)) and math.isfinite(error) and error <= FLOAT_ERROR * spread:
         return None
     return (
         f"The surface cannot be drawn in floating point: it lies {distance:.3g} from the origin, in a ball of radius "

@@ -215,6 +215,22 @@ def test_a_part_too_small_for_its_distance_is_not_drawn_and_says_why(text: str) 
     assert scene.notes and "cannot be drawn in floating point" in scene.notes[0]
 
 
+@pytest.mark.parametrize("radius", [0.5, 0.05])
+def test_a_small_ball_on_a_large_part_far_from_the_origin_is_drawn(radius: float) -> None:
+    """A ball of radius 0.5 on a torus of radii 250 and 40 centred a thousand from the origin was
+    refused as beyond floating point (the spread of ``f`` in the ball was taken as ``r⁴``, not
+    measured), and told to move the part nearer the origin; a box of 2 there meshed."""
+    from sorgui.engine import analyze
+    from sorgui.render.geometry import ClipSphere
+    from sorgui.session.scene_data import build_scene
+
+    torus = "((x-1000)^2+(y+200)^2+(z-50)^2+250^2-40^2)^2-4*250^2*((x-1000)^2+(y+200)^2)"
+    scene = build_scene(
+        analyze(torus, recognition_only=True), region=ClipSphere(np.array([1290.0, -200.0, 50.0]), radius)
+    )
+    assert not scene.surface.is_empty and not scene.notes
+
+
 @pytest.mark.parametrize("scale", [1e-2, 1e-4])
 def test_a_small_part_is_framed_at_its_own_size(scale: float) -> None:
     """A torus 4 cm across written in metres (``R = 0.03``, ``r = 0.01``) was drawn a speck in a
