@@ -8,6 +8,8 @@ window), not the builders' engine and sympy.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -79,6 +81,18 @@ class SceneData:
         rounding noise: ``(0, 0, 0)``, not ``(1.11e-16, 1.67e-16, 5.55e-17)``) or box."""
         if self.box is not None:
             low, high = self.box.bounds[0::2], self.box.bounds[1::2]
-            return f"{self.surface.n_faces:,} triangles in the box {float_text(low, 3)} to {float_text(high, 3)}"
-        center = float_text(self.region.center, 3)
+            digits = digits_at_scale([*low, *high], max(h - lo for lo, h in zip(low, high)))
+            return (
+                f"{self.surface.n_faces:,} triangles in the box {float_text(low, digits)} to {float_text(high, digits)}"
+            )
+        center = float_text(self.region.center, digits_at_scale(self.region.center, self.region.radius))
         return f"{self.surface.n_faces:,} triangles in a ball of radius {self.region.radius:.3g} about {center}"
+
+
+def digits_at_scale(values: Sequence[float], size: float) -> int:
+    """Significant digits that show ``values`` (a place) to 3 digits of ``size`` (a region's):
+    a box from 1289 to 1291 was "(1.29e+03, …) to (1.29e+03, …)" with 3 digits."""
+    largest = max((abs(v) for v in values), default=0.0)
+    if size <= 0 or largest <= size or not math.isfinite(largest / size):
+        return 3
+    return min(3 + math.ceil(math.log10(largest / size)), 12)

@@ -427,3 +427,12 @@ def test_the_view_ball_of_a_sphere_is_centred_on_its_exact_centre() -> None:
 
     assert build_scene(analyze("x^2+y^2+z^2-4")).region.center == (0.0, 0.0, 0.0)
     assert build_scene(analyze("(x^2+y^2+z^2+3)^2-16(x^2+y^2)")).region.center == (0.0, 0.0, 0.0)
+
+
+def test_the_status_bar_places_a_small_region_far_from_the_origin_to_its_own_scale() -> None:
+    """A box from 1289 to 1291 was said "(1.29e+03, -201, 49) to (1.29e+03, -199, 51)"."""
+    from sorgui.session.scene import digits_at_scale
+
+    assert digits_at_scale([1289, -201, 49, 1291, -199, 51], 2) == 6
+    assert f"{1289:.{digits_at_scale([1289, 1291], 2)}g}" == "1289"
+    assert digits_at_scale([0.5, 0.2], 2) == 3 and digits_at_scale([1e6], 1e-6) == 12
