@@ -51,3 +51,17 @@ def test_the_box_dialog_accepts_only_sides_from_low_to_high(qtbot) -> None:
     assert ok.isEnabled() and dialog.bounds() == BOX
     dialog.boxes[3].setValue(-6.0)  # y from -5 to -6
     assert not ok.isEnabled() and "not y" in dialog.problem.text()
+
+
+def test_the_camera_frames_the_box_not_the_ball_that_holds_it(window, run_analysis, qtbot) -> None:
+    """A box 2 across on a torus 580 across was framed in the ball about the axis holding it
+    (radius 291): the piece was a speck in the middle of an empty view."""
+    big = "((x-1000)^2+(y+200)^2+(z-50)^2+250^2-40^2)^2-4*250^2*((x-1000)^2+(y+200)^2)"
+    run_analysis(window, big)
+    box = (1289.0, 1291.0, -201.0, -199.0, 49.0, 51.0)
+    assert window.cut_to_box(box)
+    qtbot.waitUntil(lambda: window.viewport.scene is not None and window.viewport.scene.box is not None, timeout=60_000)
+    assert window.viewport.scene.surface.n_faces > 100
+    camera = window.viewport.plotter.renderer.GetActiveCamera()
+    assert np.allclose(camera.GetFocalPoint(), (1290.0, -200.0, 50.0), atol=1e-6)
+    assert np.linalg.norm(np.array(camera.GetPosition()) - (1290.0, -200.0, 50.0)) < 20
