@@ -1062,6 +1062,11 @@ def open_main(argv: Sequence[str]) -> int:
     with ``-o FILE`` its files, written without the window (the same checks, the same writers)."""
     try:
         args = open_parser().parse_args(argv)
+        if Path(args.report).suffix.lower() in CAD_SUFFIXES:
+            raise UsageError(
+                f"{args.report} is a CAD part, not a report: 'sorgui analyze {args.report}' reads its surfaces "
+                f"('sorgui {args.report}' shows them in the window)"
+            )
         if args.output:
             check_outputs(args.output, args.report, args.export_format, args.cap)
         elif file_options_given(args):

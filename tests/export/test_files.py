@@ -98,6 +98,17 @@ def test_open_refuses_what_is_not_a_report(tmp_path, capsys: pytest.CaptureFixtu
     ]
 
 
+def test_open_points_a_cad_part_to_analyze(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``sorgui open part.step`` said "is not a JSON report: Expecting value: line 1 column 1"."""
+    part = tmp_path / "part.step"
+    part.write_text("ISO-10303-21;\n", encoding="ascii")
+    assert main(["open", str(part)]) == 2
+    assert capsys.readouterr().err.strip() == (
+        f"sorgui: {part} is a CAD part, not a report: 'sorgui analyze {part}' reads its surfaces "
+        f"('sorgui {part}' shows them in the window)"
+    )
+
+
 def test_open_hands_a_valid_report_to_the_window(analyses, tmp_path, monkeypatch) -> None:
     import sorgui.gui.app
 
