@@ -436,3 +436,14 @@ def test_the_status_bar_places_a_small_region_far_from_the_origin_to_its_own_sca
     assert digits_at_scale([1289, -201, 49, 1291, -199, 51], 2) == 6
     assert f"{1289:.{digits_at_scale([1289, 1291], 2)}g}" == "1289"
     assert digits_at_scale([0.5, 0.2], 2) == 3 and digits_at_scale([1e6], 1e-6) == 12
+
+
+@pytest.mark.parametrize("text", ["x^2+y^2-20000^2", "x^2+y^2-100000*z", "x^2+y^2-z^2-10000^2"])
+def test_a_large_unbounded_part_is_drawn_in_a_ball_of_its_size(text: str) -> None:
+    """A cylinder of radius 20,000 (and a paraboloid, a hyperboloid of that size) had the ball of
+    radius 10,000 that every unbounded surface was capped at: none of it inside, no file."""
+    from sorgui.engine import analyze
+    from sorgui.session.scene_data import build_scene
+
+    scene = build_scene(analyze(text, recognition_only=True))
+    assert not scene.surface.is_empty and scene.region.radius > 10_000

@@ -27,7 +27,12 @@ SMALLEST_RADIUS = 1.0e-6
 ``R = 0.03``) was drawn a speck in a ball of radius 2, and one of 0.4 mm not at all, when every
 ball's radius was at least :data:`MIN_RADIUS`."""
 MAX_RADIUS = 1.0e4
-"""The largest ball drawn for an unbounded surface (its far branches dropped, :func:`view_ball`)."""
+"""The largest ball drawn for an unbounded surface (its far branches dropped, :func:`view_ball`),
+unless the part itself is larger (:data:`PART_SIZES`)."""
+PART_SIZES = 4.0
+"""An unbounded part of size ``L`` (:func:`size_about`) larger than :data:`MAX_RADIUS` is drawn in
+a ball of radius up to this many times ``L``: a cylinder of radius 20,000 had the ball of radius
+10,000 about its axis, which held none of it, and no file was written."""
 NO_POINTS_RADIUS = 2.0
 """The ball's radius when no line through the centre meets the surface away from it (a cone
 about its apex, a plane through the centre)."""
@@ -99,7 +104,8 @@ def view_ball(
     through ``center``; an unbounded one from its real points on the lines of
     :func:`probe_directions`, those farther than ``SPREAD`` times the median distance dropped
     (far branches). Centred on the middle of the points kept (along the axis, if any), radius
-    ``MARGIN`` times the farthest, at least :func:`natural_length`, at most ``MAX_RADIUS``; with
+    ``MARGIN`` times the farthest, at least :func:`natural_length`, at most ``MAX_RADIUS`` (or
+    ``PART_SIZES`` times the part's size, when that is larger); with
     ``whole`` (the drawn scene's ball) a bounded surface's is not capped (a sphere of radius 30,000
     was looked for in a ball of radius 10,000). The deviation of two zero sets keeps the cap: the
     candidates' balls decide which nearest surface is chosen."""
@@ -127,7 +133,7 @@ def view_ball(
     else:
         middle = 0.5 * (core.min(axis=0) + core.max(axis=0))
     radius = MARGIN * float(np.linalg.norm(core - middle, axis=1).max())
-    largest = math.inf if bounded and whole else MAX_RADIUS  # a bounded part whole, however large
+    largest = math.inf if bounded and whole else max(MAX_RADIUS, PART_SIZES * length)  # a bounded part whole
     return middle, float(np.clip(radius, _clipped(length), largest))
 
 
