@@ -59,6 +59,9 @@ if TYPE_CHECKING:
 GRID_OFFSET = (0.41421356237309515, 0.7320508075688772, 0.2360679774997898)
 """Grid offsets as fractions of the spacing: the fractional parts of √2, √3 and √5."""
 
+THIN_SIDE = 4
+"""A side of the box shorter than this many spacings is sampled in this many steps of its own."""
+
 MAX_GRID_NODES = 1 << 27
 """At most this many grid nodes (1 GiB of ``float64`` samples): a clear error, not an OOM kill."""
 
@@ -133,35 +136,46 @@ class MeshData:
 
 @dataclass(frozen=True)
 class SamplingGrid:
-    """A regular grid: ``dims`` nodes per axis from ``origin`` with the same ``spacing``."""
+    """A regular grid: ``dims`` nodes per axis from ``origin``, ``spacing`` apart, or ``steps``
+    apart along each axis when given (a thin side of a box, :func:`sampling_grid`)."""
 
     origin: tuple[float, float, float]
     spacing: float
     dims: tuple[int, int, int]
+    steps: tuple[float, float, float] | None = None
+
+    @property
+    def step(self) -> tuple[float, float, float]:
+        """The nodes' distance along ``x``, ``y`` and ``z``."""
+        return self.steps if self.steps is not None else (self.spacing, self.spacing, self.spacing)
 
     def axes(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The node coordinates along ``x``, ``y`` and ``z``."""
-        (ox, oy, oz), (nx, ny, nz) = self.origin, self.dims
-        return ox + self.spacing * np.arange(nx), oy + self.spacing * np.arange(ny), oz + self.spacing * np.arange(nz)
+        (ox, oy, oz), (nx, ny, nz), (sx, sy, sz) = self.origin, self.dims, self.step
+        return ox + sx * np.arange(nx), oy + sy * np.arange(ny), oz + sz * np.arange(nz)
 
 
 def sampling_grid(bounds: tuple[float, ...], resolution: int = 150) -> SamplingGrid:
     """The offset grid inside ``bounds`` with ``resolution`` nodes along the longest side.
 
     The spacing is the same on every axis (equilateral-ish triangles): ``longest side /
-    resolution``. Node ``0`` sits at ``min + GRID_OFFSET·spacing``, the last node inside the box.
+    resolution``, but a side thinner than :data:`THIN_SIDE` spacings gets that many steps of its
+    own (a slab 0.01 thick of a torus 8 across had its two nodes across 0.07 apart, and no
+    triangle in it). Node ``0`` sits at ``min + GRID_OFFSET·step``, the last node inside the box.
     """
     b = np.asarray(as_bounds(bounds)).reshape(3, 2)
     if resolution < 2:
         raise ValueError("resolution must be at least 2")
     extent = b[:, 1] - b[:, 0]
     spacing = float(extent.max()) / resolution
-    offset = np.asarray(GRID_OFFSET) * spacing
-    dims = np.maximum(np.floor((extent - offset) / spacing).astype(int) + 1, 2)
+    steps = np.minimum(spacing, extent / THIN_SIDE)
+    offset = np.asarray(GRID_OFFSET) * steps
+    dims = np.maximum(np.floor((extent - offset) / steps).astype(int) + 1, 2)
     if int(np.prod(dims, dtype=np.int64)) > MAX_GRID_NODES:
         raise ValueError(f"a {dims[0]}×{dims[1]}×{dims[2]} grid exceeds {MAX_GRID_NODES} nodes")
     nx, ny, nz = (int(n) for n in dims)
-    return SamplingGrid(tuple(b[:, 0] + offset), spacing, (nx, ny, nz))
+    own = None if np.all(steps == spacing) else (float(steps[0]), float(steps[1]), float(steps[2]))
+    return SamplingGrid(tuple(b[:, 0] + offset), spacing, (nx, ny, nz), own)
 
 
 def sample_surface(terms: Terms, grid: SamplingGrid) -> np.ndarray:
@@ -205,7 +219,7 @@ def contour_zero(values: np.ndarray, grid: SamplingGrid) -> vtkPolyData:
     out.ShallowCopy(flying.GetOutput())
     if out.GetPoints() is not None:
         index = vtk_to_numpy(out.GetPoints().GetData())
-        world = np.asarray(grid.origin) + grid.spacing * index.astype(np.float64)
+        world = np.asarray(grid.origin) + np.asarray(grid.step) * index.astype(np.float64)
         set_points(out, world)
     return out
 
@@ -298,7 +312,7 @@ def orient_by_gradient(
 
 def grid_bounds(grid: SamplingGrid) -> tuple[float, ...]:
     """The box spanned by the nodes of ``grid``, in pyvista's bounds order."""
-    return tuple(v for o, n in zip(grid.origin, grid.dims) for v in (o, o + (n - 1) * grid.spacing))
+    return tuple(v for o, n, s in zip(grid.origin, grid.dims, grid.step) for v in (o, o + (n - 1) * s))
 
 
 def zero_level_triangles(

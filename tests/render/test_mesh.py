@@ -8,7 +8,9 @@ import pytest
 from sorgui.render.geometry import ClipBox, ClipSphere, view_direction, view_up
 from sorgui.render.mesh import (
     GRID_OFFSET,
+    THIN_SIDE,
     MeshData,
+    grid_bounds,
     mesh_to_polydata,
     sampling_grid,
     surface_mesh,
@@ -68,6 +70,20 @@ def test_sphere_normals_point_to_f_positive_and_faces_are_wound_to_match(sphere_
 def test_mesh_data_is_read_only(sphere_mesh):
     with pytest.raises(ValueError):
         sphere_mesh.points[0, 0] = 5.0
+
+
+def test_a_thin_box_is_sampled_across_its_thickness() -> None:
+    """A slab 0.01 thick of the torus ``R = 3, r = 1`` (``--region -5:5,-5:5,0:0.01 --cap``) had
+    two nodes across it 0.07 apart, no triangle inside, and was refused as holding no real point."""
+    from sorgui.engine.values import polynomial_terms
+
+    slab = (-5.0, 5.0, -5.0, 5.0, 0.0, 0.01)
+    grid = sampling_grid(slab, 150)
+    assert grid.dims[2] >= THIN_SIDE and grid.step[2] <= 0.01 / THIN_SIDE and grid.step[0] == grid.spacing
+    assert grid_bounds(grid)[5] <= 0.01 and grid.axes()[2][-1] <= 0.01
+    torus = "x**4 + 2*x**2*y**2 + 2*x**2*z**2 - 20*x**2 + y**4 + 2*y**2*z**2 - 20*y**2 + z**4 + 16*z**2 + 64"
+    mesh = surface_mesh(polynomial_terms(torus), slab, clip=ClipBox(slab))
+    assert not mesh.is_empty and np.all(mesh.points[:, 2] >= -1e-12) and np.all(mesh.points[:, 2] <= 0.01 + 1e-12)
 
 
 def test_grid_is_offset_so_simple_points_are_not_nodes():
