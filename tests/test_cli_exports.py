@@ -622,3 +622,14 @@ def test_a_brep_file_in_other_units_says_it_holds_none(tmp_path: Path) -> None:
     assert "a .brep file holds no unit: its lengths are inches (--units in)" in lines(done.stderr)[-1]
     plain = sorgui("analyze", torus, "--recognition-only", "-o", str(tmp_path / "t2.brep"))
     assert plain.returncode == 0 and "holds no unit" not in plain.stderr
+
+
+def test_a_cad_part_with_nothing_in_its_ball_names_the_ball(tmp_path: Path) -> None:
+    """A ball of radius 2 about the torus's centre (it touches the tube's inner equator only)
+    was refused with "no real points inside the drawn ball": no ball named, no advice."""
+    pytest.importorskip("OCP")
+    path = tmp_path / "touch.step"
+    torus = "(x^2+y^2+z^2+8)^2-36(x^2+y^2)"
+    out = sorgui("analyze", "--recognition-only", torus, "--region", "0,0,0,2", "-o", str(path))
+    assert out.returncode == 1 and not path.exists()
+    assert "no real points inside the ball of radius 2 about (0, 0, 0): give a region that meets it" in out.stderr

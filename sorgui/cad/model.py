@@ -232,7 +232,7 @@ def _surface_faces(
             made = shapes.analytic_faces(spec, edge)
             faces += made if _inside(spec, ball) else shapes.cut_to(made, ball)
         if not faces:
-            raise CadGeometryError("the surface has no real points inside the drawn ball")
+            raise _nothing_inside(ball)
         return Faces(faces, "analytic", tuple(line for spec in specs for line in _analytic_lines(spec)))
     if len(analysis.factors) > 1:
         return _factor_faces(analysis, scene, tolerance, edge)
@@ -248,7 +248,7 @@ def _surface_faces(
     curve = meridian_curve(rec.profile, frame, ball)
     arcs = profile_arcs(scene.profile_curve.polylines(), curve, ball)
     if not arcs:
-        raise CadGeometryError("the surface has no real points inside the drawn ball")
+        raise _nothing_inside(ball)
     axis = _axis_line(frame.point, frame.direction)
     goal = (tolerance if tolerance is not None else FIT_TOLERANCE) * ball.radius
     surface = scene.surface.points
@@ -282,7 +282,7 @@ def _factor_faces(analysis: Analysis, scene: Scene, tolerance: float | None, edg
         lines = tuple(f"{own.squarefree} = 0: {line}" for line in made.description)
         parts.append(dataclasses.replace(made, description=lines))
     if not parts:
-        raise CadGeometryError("the surface has no real points inside the drawn ball")
+        raise _nothing_inside(scene.region)
     route = max((part.route for part in parts), key=ROUTES.index)
     deviations = [part.deviation for part in parts if part.deviation is not None]
     tolerances = [part.tolerance for part in parts if part.tolerance is not None]
@@ -308,7 +308,7 @@ def _swept_faces(sweep: Sweep, ball: ClipSphere, goal: float) -> Faces:
         )
     faces = shapes.cut_to(sweep.faces, ball)
     if not faces:
-        raise CadGeometryError("the surface has no real points inside the drawn ball")
+        raise _nothing_inside(ball)
     lines = (
         f"canal surface: B-spline surface through {sweep.circles} of its characteristic circles",
         f"fitted to tolerance {goal:.3g}; measured deviation {sweep.deviation:.3g} (within it)",
@@ -334,7 +334,7 @@ def _lined_faces(lined: Extrusion | Ruled, ball: ClipSphere, edge: float) -> Fac
         )
         route = "ruled"
     if not faces:
-        raise CadGeometryError("the surface has no real points inside the drawn ball")
+        raise _nothing_inside(ball)
     return Faces(faces, route, lines)
 
 
@@ -507,3 +507,13 @@ def patch_model(analysis: Analysis, scene: Scene) -> CadModel:
     if outside:
         raise CadGeometryError("the parameterization's patch has no point inside the drawn ball")
     raise CadGeometryError("the analysis has no verified real rational parameterization to write as a patch")
+
+
+def _nothing_inside(ball: ClipSphere) -> CadGeometryError:
+    """The refusal of a part with nothing in its ``ball``, naming the ball and what to do (it said
+    only "the drawn ball", where the mesh's refusals name it and advise a region)."""
+    centre = ", ".join(f"{v:.6g}" for v in ball.center)
+    return CadGeometryError(
+        f"the surface has no real points inside the ball of radius {ball.radius:.6g} about ({centre}): "
+        "give a region that meets it (--region on the command line, the ball radius box of the window)"
+    )
