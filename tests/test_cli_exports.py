@@ -633,3 +633,13 @@ def test_a_cad_part_with_nothing_in_its_ball_names_the_ball(tmp_path: Path) -> N
     out = sorgui("analyze", "--recognition-only", torus, "--region", "0,0,0,2", "-o", str(path))
     assert out.returncode == 1 and not path.exists()
     assert "no real points inside the ball of radius 2 about (0, 0, 0): give a region that meets it" in out.stderr
+
+
+def test_a_large_hyperboloid_gets_its_exact_profile(tmp_path: Path) -> None:
+    """``x² + y² − z² = 1000²`` was written with a fitted profile (waists 1, 10 and 100 with the
+    exact one): the crossings of its hyperbola with the ball were lost to the roots' noise floor."""
+    pytest.importorskip("OCP")
+    path = tmp_path / "waist.step"
+    out = sorgui("analyze", "x^2+y^2-z^2-1000^2", "-o", str(path))
+    assert out.returncode == 0, out.stderr
+    assert "a surface of revolution of the exact rational profile" in out.stderr

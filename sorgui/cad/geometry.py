@@ -521,12 +521,22 @@ def _value(form: Form, theta: float) -> float:
 
 
 def _angles(form: Form) -> list[float]:
-    """The angles ``θ = 2·atan(t)`` of the real roots of ``form`` (``π`` for ``t = ∞``)."""
-    top = max(abs(float(c)) for c in form)
+    """The angles ``θ = 2·atan(t)`` of the real roots of ``form`` (``π`` for ``t = ∞``), found in
+    ``t = ρ·s`` with ``ρ`` balancing its lowest and highest coefficients: the sphere's form of a
+    hyperbola of waist 1000 (coefficients from 2 to 3.2·10¹³) lost its top one to the roots'
+    noise floor, and with it the crossings at ``t = ±6088``; the arc then ran into a pole."""
+    c = np.array([float(v) for v in form])
+    top = float(np.abs(c).max(initial=0.0))
     if top == 0:
         return []
-    out = [2 * math.atan(float(t)) for t in real_roots(np.array([float(c) for c in form]))]
-    if abs(float(form[-1])) <= 1e-14 * top:
+    if not math.isfinite(top):  # beyond floats: no root is read, as real_roots reads none
+        return [math.pi] if abs(c[-1]) <= 1e-14 * top else []
+    kept = np.nonzero(np.abs(c) > 1e-14 * top)[0]
+    low, high = int(kept[0]), int(kept[-1])
+    rho = (abs(c[low]) / abs(c[high])) ** (1.0 / (high - low)) if high > low else 1.0
+    scaled = np.where(np.abs(c) > 1e-14 * top, c, 0.0) * rho ** np.arange(len(c))
+    out = [2 * math.atan(float(s) * rho) for s in real_roots(scaled)]
+    if high < len(c) - 1:
         out.append(math.pi)
     return out
 

@@ -511,18 +511,43 @@ def test_a_very_large_part_is_drawn_whole(tmp_path: Path, text: str, area: float
     assert props.Mass() == pytest.approx(area, rel=1e-6)
 
 
-def test_a_part_whose_face_covers_a_sheet_twice_is_refused(tmp_path: Path) -> None:
+def test_a_rounded_cone_s_part_covers_each_nappe_once(tmp_path: Path) -> None:
     """A cone of half-angle 15° on a random axis printed with ``%.6g``: its nearest exact surface's
     part had a face that covered one nappe twice, sewn on itself into a "solid" of volume 4e-10
-    (−1797 read back): BRepCheck passed it, the STEP file read back invalid, exit 0."""
+    (−1797 read back), then refused: the profile's crossings with the ball were lost to the
+    roots' noise floor (``cad.geometry._angles``). Its two faces now hold the mesh's area."""
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
     text = (
         "0.860182*x^2 - 0.287985*x*y - 0.662039*x*z + 44.4615*x + 0.851709*y^2 - 0.681803*y*z - 112.37*y"
         " + 0.216313*z^2 + 24.4716*z + 3714.22"
     )
     analysis = analyze(text)
-    with pytest.raises(ValueError, match="covers part of the surface twice"):
-        export_file(analysis, tmp_path / "cone.step", scene=build_scene(analysis))
-    assert not (tmp_path / "cone.step").exists()
+    scene = build_scene(analysis)
+    path, _holds = export_file(analysis, tmp_path / "cone.step", scene=scene)
+    shape = read_shape(path)
+    area = GProp_GProps()
+    BRepGProp.SurfaceProperties_s(shape, area)
+    points = np.asarray(scene.surface.points)
+    triangles = points[np.asarray(scene.surface.faces).reshape(-1, 4)[:, 1:]]
+    mesh = 0.5 * np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1)
+    assert BRepCheck_Analyzer(shape).IsValid() and area.Mass() == pytest.approx(mesh.sum(), rel=5e-3)
+
+
+def test_a_closed_sheet_of_no_volume_is_refused() -> None:
+    """The guard behind the cone above: a closed shell that encloses nothing (its faces cover a
+    sheet twice) is not written as a solid."""
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox
+
+    from sorgui.cad.geometry import CadGeometryError
+    from sorgui.cad.sewing import _finished
+
+    flat = BRepPrimAPI_MakeBox(1000.0, 1000.0, 1e-3).Shell()  # volume 1000 against an area of 2e6
+    with pytest.raises(CadGeometryError, match="covers part of the surface twice"):
+        _finished(flat, None)
+    assert not _finished(BRepPrimAPI_MakeBox(1.0, 1.0, 1.0).Shell(), None).IsNull()
 
 
 def test_a_cylinder_in_a_ball_off_its_axis_is_cut_to_that_ball(tmp_path: Path) -> None:
