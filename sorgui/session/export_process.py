@@ -131,7 +131,9 @@ def run_exports(request: ExportRequest) -> Iterator[ExportMessage]:
             return
     scene, scene_error = request.scene, None
     if scene is not None and any(_needs_scene(t) for t in request.targets):
-        scene = _at_full_resolution(scene)
+        from sorgui.session.scene_data import at_full_resolution
+
+        scene = at_full_resolution(scene)
     if scene is None and any(_needs_scene(t) for t in request.targets):
         try:
             scene = _scene(analysis, request)
@@ -154,26 +156,6 @@ def _needs_scene(target: ExportTarget) -> bool:
     except ValueError:
         return False
     return form.needs_scene or form.suffix in (".md", ".html")
-
-
-def _at_full_resolution(scene: Any) -> Any:  # noqa: ANN401 - a SceneData
-    """The window's ``scene`` with its surface meshed again on the command line's grid when the
-    window drew it coarser (software OpenGL): an STL written from the window had a third of the
-    command line's triangles. The same surface (typed or nearest), ball or box."""
-    from sorgui.render.mesh import DEFAULT_RESOLUTION, surface_mesh
-
-    surface = scene.surface
-    if not scene.terms or surface.is_empty:
-        return scene  # a map's patch, or nothing drawn
-    if scene.box is not None:
-        bounds, clip = tuple(scene.box.bounds), scene.box
-    else:
-        c, r = scene.region.center, scene.region.radius
-        bounds, clip = tuple(v for i in range(3) for v in (c[i] - r, c[i] + r)), scene.region
-    longest = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4])
-    if surface.spacing <= longest / DEFAULT_RESOLUTION * (1 + 1e-9):
-        return scene
-    return replace(scene, surface=surface_mesh(scene.terms, bounds, resolution=DEFAULT_RESOLUTION, clip=clip))
 
 
 def _scene(analysis: Analysis, request: ExportRequest) -> Any:  # noqa: ANN401 - a SceneData

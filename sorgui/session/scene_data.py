@@ -376,6 +376,23 @@ def build_scene(
     )
 
 
+def at_full_resolution(scene: SceneData) -> SceneData:
+    """The window's ``scene`` with its surface meshed again on the command line's grid when the
+    window drew it coarser (software OpenGL): an STL written from the window had a third of the
+    command line's triangles. The same surface (typed or nearest), ball or box."""
+    surface = scene.surface
+    if not scene.terms or surface.is_empty:
+        return scene  # a map's patch, or nothing drawn
+    clip: ClipSphere | ClipBox = scene.region if scene.box is None else scene.box
+    c, r = scene.region.center, scene.region.radius
+    ball = tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
+    bounds = tuple(scene.box.bounds) if scene.box is not None else ball
+    longest = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4])
+    if surface.spacing <= longest / DEFAULT_RESOLUTION * (1 + 1e-9):
+        return scene
+    return replace(scene, surface=surface_mesh(scene.terms, bounds, resolution=DEFAULT_RESOLUTION, clip=clip))
+
+
 FLOAT_ERROR = 1e-3
 """The error of floating-point values of ``f`` in the ball, relative to their spread there,
 above which the surface is not drawn (:func:`_too_far`)."""
