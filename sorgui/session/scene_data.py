@@ -314,9 +314,7 @@ def build_scene(
     drawn = region  # the chosen ball, when no region was asked for
     if radius is not None:
         region = ClipSphere(region.center, radius)
-    c, r = np.asarray(region.center), region.radius
-    bounds = box.bounds if box is not None else tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
-    clip: ClipSphere | ClipBox = box if box is not None else region
+    bounds, clip = _mesh_region(region, box)
     too_far = _too_far(terms, region, analysis.recognition.degree)
     if too_far is not None:
         empty = LineData.empty()
@@ -376,6 +374,14 @@ def build_scene(
     )
 
 
+def _mesh_region(region: ClipSphere, box: ClipBox | None) -> tuple[tuple[float, ...], ClipSphere | ClipBox]:
+    """The grid's bounds and the clip of a scene's mesh: the box when there is one, else the ball."""
+    if box is not None:
+        return tuple(box.bounds), box
+    c, r = region.center, region.radius
+    return tuple(v for i in range(3) for v in (c[i] - r, c[i] + r)), region
+
+
 def at_full_resolution(scene: SceneData) -> SceneData:
     """The window's ``scene`` with its surface meshed again on the command line's grid when the
     window drew it coarser (software OpenGL): an STL written from the window had a third of the
@@ -383,10 +389,7 @@ def at_full_resolution(scene: SceneData) -> SceneData:
     surface = scene.surface
     if not scene.terms or surface.is_empty:
         return scene  # a map's patch, or nothing drawn
-    clip: ClipSphere | ClipBox = scene.region if scene.box is None else scene.box
-    c, r = scene.region.center, scene.region.radius
-    ball = tuple(v for i in range(3) for v in (c[i] - r, c[i] + r))
-    bounds = tuple(scene.box.bounds) if scene.box is not None else ball
+    bounds, clip = _mesh_region(scene.region, scene.box)
     longest = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4])
     if surface.spacing <= longest / DEFAULT_RESOLUTION * (1 + 1e-9):
         return scene
